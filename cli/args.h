@@ -1,0 +1,33 @@
+// Command-line parsing for `camsim`. Bad usage throws UsageError (exit code 2).
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace camsim {
+
+class UsageError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+struct RenderArgs {
+  std::optional<std::string> scene;  // none: the built-in default scene
+  std::string outputDir = "out";
+  std::optional<int> spp;
+  std::optional<std::uint64_t> seed;
+  int threads = 0;  // 0: all cores
+};
+
+struct Command {
+  enum class Kind { kHelp, kVersion, kRender } kind = Kind::kHelp;
+  RenderArgs render;
+};
+
+Command parseArgs(const std::vector<std::string>& args);  // args without argv[0]
+std::string usageText();
+
+}  // namespace camsim

@@ -1,0 +1,49 @@
+// camsim: command-line entry point. The only place that turns errors into exit codes:
+// 0 success, 1 internal error, 2 bad input, 130 interrupted.
+#include <csignal>
+#include <cstdio>
+#include <exception>
+#include <iostream>
+
+#include "cli/args.h"
+#include "cli/render_command.h"
+#include "sensor/input_error.h"
+
+namespace {
+
+std::atomic<bool> gCancel{false};
+
+extern "C" void onSignal(int) { gCancel.store(true); }
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::vector<std::string> args(argv + 1, argv + argc);
+  try {
+    const camsim::Command cmd = camsim::parseArgs(args);
+    switch (cmd.kind) {
+      case camsim::Command::Kind::kHelp:
+        std::cout << camsim::usageText();
+        return 0;
+      case camsim::Command::Kind::kVersion:
+        std::cout << "camsim " << CAMSIM_VERSION << "\n";
+        return 0;
+      case camsim::Command::Kind::kRender: {
+        std::signal(SIGINT, onSignal);
+        std::signal(SIGTERM, onSignal);
+        const auto result = camsim::runRender(cmd.render, std::cerr, &gCancel);
+        return result.cancelled ? 130 : 0;
+      }
+    }
+  } catch (const camsim::UsageError& e) {
+    std::cerr << "camsim: " << e.what() << "\n";
+    return 2;
+  } catch (const camsim::InputError& e) {
+    std::cerr << "camsim: error: " << e.what() << "\n";
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "camsim: internal error: " << e.what() << "\n";
+    return 1;
+  }
+  return 1;
+}

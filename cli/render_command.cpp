@@ -1,0 +1,134 @@
+#include "cli/render_command.h"
+
+#include <cstdio>
+#include <fstream>
+#include <ostream>
+#include <sstream>
+
+#include "cli/progress.h"
+#include "integrator/render.h"
+#include "integrator/scene.h"
+#include "integrator/scene_loader.h"
+#include "sensor/display_image.h"
+#include "sensor/exr_io.h"
+#include "sensor/input_error.h"
+#include "sensor/output_set.h"
+#include "sensor/png_io.h"
+
+namespace camsim {
+namespace {
+
+struct LoadedScene {
+  SceneDescription description;
+  std::string text;
+};
+
+LoadedScene load(const RenderArgs& args) {
+  LoadedScene loaded;
+  if (!args.scene) {
+    loaded.text = std::string(defaultSceneText());
+    loaded.description = loadSceneFromText(loaded.text, "<default: scenes/cornell_box.yaml>", ".");
+  } else {
+    const std::filesystem::path path(*args.scene);
+    std::ifstream in(path, std::ios::binary);
+    if (!in || std::filesystem::is_directory(path)) throw InputError({path.string(), 0, 0}, "", "cannot open scene file");
+    std::ostringstream text;
+    text << in.rdbuf();
+    loaded.text = text.str();
+    loaded.description = loadSceneFromText(loaded.text, path.string(),
+                                           path.parent_path().empty() ? "." : path.parent_path());
+  }
+  if (args.spp) loaded.description.render.spp = *args.spp;
+  if (args.seed) loaded.description.render.seed = *args.seed;
+  return loaded;
+}
+
+std::string formatRate(double perSecond) {
+  char buf[32];
+  if (perSecond >= 1e6) std::snprintf(buf, sizeof buf, "%.2f M", perSecond * 1e-6);
+  else if (perSecond >= 1e3) std::snprintf(buf, sizeof buf, "%.2f k", perSecond * 1e-3);
+  else std::snprintf(buf, sizeof buf, "%.2f ", perSecond);
+  return buf;
+}
+
+// The scene-linear EXR image: R, G, B (linear Rec.709) and the XYZ layer, absolute.
+Image exrImage(const Image& xyz) {
+  const Image rgb = xyzToRgb(xyz, RgbColorSpace::linearRec709());
+  Image out(xyz.width, xyz.height, {"R", "G", "B", "XYZ.X", "XYZ.Y", "XYZ.Z"});
+  for (int y = 0; y < xyz.height; ++y)
+    for (int x = 0; x < xyz.width; ++x)
+      for (int c = 0; c < 3; ++c) {
+        out.at(x, y, c) = rgb.at(x, y, c);
+        out.at(x, y, 3 + c) = xyz.at(x, y, c);
+      }
+  return out;
+}
+
+}  // namespace
+
+std::string fnv1aHex(std::string_view data) {
+  std::uint64_t h = 0xcbf29ce484222325ull;
+  for (unsigned char c : data) {
+    h ^= c;
+    h *= 0x100000001b3ull;
+  }
+  char buf[17];
+  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
+  return buf;
+}
+
+RenderCommandResult runRender(const RenderArgs& args, std::ostream& log, const std::atomic<bool>* cancel) {
+  const LoadedScene loaded = load(args);
+  const SceneDescription& desc = loaded.description;
+  const std::filesystem::path outDir(args.outputDir);
+  std::error_code ec;
+  std::filesystem::create_directories(outDir, ec);
+  if (!std::filesystem::is_directory(outDir))
+    throw InputError({outDir.string(), 0, 0}, "", "cannot create output directory" + (ec ? ": " + ec.message() : ""));
+
+  const Scene scene(desc);
+  const SpectralResponse response = SpectralResponse::cieXyz();
+  ProgressBar progress("rendering " + desc.name);
+  RenderOptions options;
+  options.spp = desc.render.spp;
+  options.seed = desc.render.seed;
+  options.threads = args.threads;
+  options.cancel = cancel;
+  options.progress = [&progress](int done, int total) { progress.update(done, total); };
+  const RenderResult result = render(scene, response, options);
+  progress.finish();
+  RenderCommandResult outcome;
+  if (result.stats.cancelled) {
+    outcome.cancelled = true;
+    log << "render interrupted: no output written\n";
+    return outcome;
+  }
+
+  const RenderStats& st = result.stats;
+  Metadata meta = {{"camsim:version", CAMSIM_VERSION},
+                   {"camsim:scene", desc.sourceFile},
+                   {"camsim:scene_fnv1a64", fnv1aHex(loaded.text)},
+                   {"camsim:spp", std::to_string(desc.render.spp)},
+                   {"camsim:seed", std::to_string(desc.render.seed)},
+                   {"camsim:render_seconds", std::to_string(st.seconds)},
+                   {"camsim:rejected_samples", std::to_string(st.rejectedSamples)},
+                   {"camsim:units", "R,G,B: linear Rec.709, (1,1,1) has luminance 1 cd/m2; XYZ.Y: luminance in cd/m2"}};
+  const auto& cs = RgbColorSpace::linearRec709();
+  OutputSet outputs(outDir);
+  writeExr(outputs.add(desc.name + ".exr"), exrImage(result.image), meta,
+           ExrChromaticities{cs.red(), cs.green(), cs.blue(), cs.white()});
+  const QuickLook look = quickLookSrgb8(result.image);
+  writePng8(outputs.add(desc.name + ".png"), result.image.width, result.image.height, look.rgb8);
+  outcome.files = outputs.commit();
+
+  const double samples = static_cast<double>(st.samples);
+  log << "rendered " << desc.name << ": " << result.image.width << "x" << result.image.height << ", "
+      << desc.render.spp << " spp, " << st.threads << " threads, " << formatSeconds(st.seconds) << " ("
+      << formatRate(samples / st.seconds) << "samples/s, " << formatRate(double(st.rays.total()) / st.seconds)
+      << "rays/s)\n";
+  if (st.rejectedSamples > 0) log << "warning: " << st.rejectedSamples << " samples had NaN/Inf radiance and were dropped\n";
+  for (const auto& f : outcome.files) log << "wrote " << f.string() << "\n";
+  return outcome;
+}
+
+}  // namespace camsim

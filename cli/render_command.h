@@ -1,0 +1,33 @@
+// `camsim render`: load → build → render → write, with all outputs appearing atomically.
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <filesystem>
+#include <iosfwd>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "cli/args.h"
+
+namespace camsim {
+
+// The embedded default scene (scenes/cornell_box.yaml at build time).
+std::string_view defaultSceneFile(std::string_view relPath);
+inline std::string_view defaultSceneText() { return defaultSceneFile("cornell_box.yaml"); }
+
+// 64-bit FNV-1a, as 16 hex digits: identifies the scene text in output metadata.
+std::string fnv1aHex(std::string_view data);
+
+struct RenderCommandResult {
+  std::vector<std::filesystem::path> files;  // written, final names
+  bool cancelled = false;
+};
+
+// Throws InputError on bad input (nothing is written then). `cancel` may stop the render;
+// a cancelled render writes no file under a final name.
+RenderCommandResult runRender(const RenderArgs& args, std::ostream& log,
+                              const std::atomic<bool>* cancel = nullptr);
+
+}  // namespace camsim

@@ -1,0 +1,34 @@
+#include "integrator/area_light.h"
+
+#include "integrator/math.h"
+
+namespace camsim {
+
+AreaLight::AreaLight(const Shape& shape, Spectrum radiance, bool twoSided)
+    : shape_(shape), radiance_(radiance), twoSided_(twoSided) {}
+
+std::optional<LightSample> AreaLight::sample(const glm::vec3& ref, float u1, glm::vec2 u2,
+                                             const SampledWavelengths& lambda) const {
+  const std::optional<ShapeSample> ss = shape_.sample(ref, u1, u2);
+  if (!ss) return std::nullopt;
+  const glm::vec3 toLight = ss->point.p - ref;
+  const float dist2 = lengthSquared(toLight);
+  if (dist2 == 0.0f) return std::nullopt;
+  LightSample ls;
+  ls.wi = toLight / std::sqrt(dist2);
+  ls.L = L(ss->point, -ls.wi, lambda);
+  if (ls.L.isZero()) return std::nullopt;
+  ls.pdf = ss->pdf;
+  ls.point = ss->point;
+  return ls;
+}
+
+float AreaLight::pdf(const glm::vec3& ref, const SurfaceInteraction& onLight) const {
+  return shape_.pdf(ref, onLight);
+}
+
+double AreaLight::power() const {
+  return static_cast<double>(kPi * shape_.area()) * radiance_.sum() * (twoSided_ ? 2.0 : 1.0);
+}
+
+}  // namespace camsim

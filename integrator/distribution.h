@@ -1,0 +1,52 @@
+// DiscreteDistribution: picks index i with probability w_i / Σw (alias-free, by binary
+// search on the CDF). Used for choosing lights by power and triangles by area.
+#pragma once
+
+#include <algorithm>
+#include <span>
+#include <vector>
+
+#include "sensor/check.h"
+
+namespace camsim {
+
+class DiscreteDistribution {
+ public:
+  DiscreteDistribution() = default;
+  explicit DiscreteDistribution(std::span<const double> weights) {
+    cdf_.resize(weights.size() + 1, 0.0);
+    for (size_t i = 0; i < weights.size(); ++i) {
+      CAMSIM_CHECK(weights[i] >= 0.0);
+      cdf_[i + 1] = cdf_[i] + weights[i];
+    }
+    total_ = cdf_.back();
+    if (total_ > 0.0)
+      for (double& c : cdf_) c /= total_;
+  }
+
+  size_t size() const { return cdf_.empty() ? 0 : cdf_.size() - 1; }
+  double total() const { return total_; }
+  float pmf(size_t i) const { return static_cast<float>(cdf_[i + 1] - cdf_[i]); }
+
+  // Index for u in [0,1); *uRemapped gets u rescaled to [0,1) within the chosen bucket.
+  size_t sample(float u, float* uRemapped = nullptr) const {
+    CAMSIM_CHECK(total_ > 0.0);
+    const double uu = u;
+    auto it = std::upper_bound(cdf_.begin() + 1, cdf_.end(), uu);
+    size_t i = static_cast<size_t>(it - cdf_.begin()) - 1;
+    i = std::min(i, size() - 1);
+    while (pmf(i) == 0.0f && i > 0) --i;  // never pick a zero-weight entry at a boundary
+    if (uRemapped) {
+      const double width = cdf_[i + 1] - cdf_[i];
+      *uRemapped = width > 0.0 ? static_cast<float>(std::clamp((uu - cdf_[i]) / width, 0.0, 0x1.fffffep-1))
+                               : 0.0f;
+    }
+    return i;
+  }
+
+ private:
+  std::vector<double> cdf_;
+  double total_ = 0.0;
+};
+
+}  // namespace camsim

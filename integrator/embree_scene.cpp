@@ -1,0 +1,131 @@
+#include "integrator/embree_scene.h"
+
+#include <embree3/rtcore.h>
+
+#include <cstdio>
+#include <stdexcept>
+#include <string>
+
+#include <glm/vec4.hpp>
+
+#include "integrator/sphere.h"
+#include "integrator/triangle_mesh.h"
+#include "sensor/check.h"
+
+namespace camsim {
+namespace {
+
+void reportEmbreeError(void*, RTCError code, const char* message) {
+  if (code == RTC_ERROR_NONE) return;
+  std::fprintf(stderr, "embree error %d: %s\n", static_cast<int>(code), message ? message : "");
+}
+
+}  // namespace
+
+struct EmbreeScene::Impl {
+  RTCDevice device = nullptr;
+  RTCScene scene = nullptr;
+  std::vector<glm::vec4> sphereData;  // x, y, z, radius per sphere shape (kept alive)
+
+  ~Impl() {
+    if (scene) rtcReleaseScene(scene);
+    if (device) rtcReleaseDevice(device);
+  }
+};
+
+EmbreeScene::EmbreeScene(const std::vector<std::unique_ptr<Shape>>& shapes)
+    : impl_(std::make_unique<Impl>()) {
+  impl_->device = rtcNewDevice(nullptr);
+  if (!impl_->device) throw std::runtime_error("cannot create Embree device");
+  rtcSetDeviceErrorFunction(impl_->device, reportEmbreeError, nullptr);
+  impl_->scene = rtcNewScene(impl_->device);
+  rtcSetSceneBuildQuality(impl_->scene, RTC_BUILD_QUALITY_HIGH);
+  impl_->sphereData.reserve(shapes.size());
+  for (size_t id = 0; id < shapes.size(); ++id) {
+    RTCGeometry geom = nullptr;
+    if (const auto* mesh = dynamic_cast<const TriangleMesh*>(shapes[id].get())) {
+      geom = rtcNewGeometry(impl_->device, RTC_GEOMETRY_TYPE_TRIANGLE);
+      // Embree may read up to 16 bytes from the last vertex, so the vertices go into a
+      // buffer Embree allocates (with its padding) rather than sharing the mesh's array.
+      auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0,
+                                                            RTC_FORMAT_FLOAT3, sizeof(float) * 3,
+                                                            mesh->positions().size()));
+      for (size_t i = 0; i < mesh->positions().size(); ++i) {
+        v[3 * i] = mesh->positions()[i].x;
+        v[3 * i + 1] = mesh->positions()[i].y;
+        v[3 * i + 2] = mesh->positions()[i].z;
+      }
+      auto* idx = static_cast<unsigned*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0,
+                                                                 RTC_FORMAT_UINT3, sizeof(unsigned) * 3,
+                                                                 mesh->triangleCount()));
+      for (size_t i = 0; i < mesh->indices().size(); ++i) idx[i] = mesh->indices()[i];
+    } else if (const auto* sphere = dynamic_cast<const Sphere*>(shapes[id].get())) {
+      geom = rtcNewGeometry(impl_->device, RTC_GEOMETRY_TYPE_SPHERE_POINT);
+      auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0,
+                                                            RTC_FORMAT_FLOAT4, sizeof(float) * 4, 1));
+      v[0] = sphere->centre().x;
+      v[1] = sphere->centre().y;
+      v[2] = sphere->centre().z;
+      v[3] = sphere->radius();
+    } else {
+      CAMSIM_CHECK(false && "unknown shape type");
+    }
+    rtcCommitGeometry(geom);
+    rtcAttachGeometryByID(impl_->scene, geom, static_cast<unsigned>(id));
+    rtcReleaseGeometry(geom);
+  }
+  rtcCommitScene(impl_->scene);
+}
+
+EmbreeScene::~EmbreeScene() = default;
+
+bool EmbreeScene::intersect(const Ray& ray, Hit& hit) const {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  RTCRayHit rh;
+  rh.ray.org_x = ray.o.x;
+  rh.ray.org_y = ray.o.y;
+  rh.ray.org_z = ray.o.z;
+  rh.ray.dir_x = ray.d.x;
+  rh.ray.dir_y = ray.d.y;
+  rh.ray.dir_z = ray.d.z;
+  rh.ray.tnear = 0.0f;
+  rh.ray.tfar = ray.tMax;
+  rh.ray.time = 0.0f;
+  rh.ray.mask = 0xFFFFFFFFu;
+  rh.ray.id = 0;
+  rh.ray.flags = 0;
+  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
+  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  rtcIntersect1(impl_->scene, &context, &rh);
+  if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
+  hit.shape = static_cast<int>(rh.hit.geomID);
+  hit.prim = static_cast<int>(rh.hit.primID);
+  hit.u = rh.hit.u;
+  hit.v = rh.hit.v;
+  hit.t = rh.ray.tfar;
+  return true;
+}
+
+bool EmbreeScene::occluded(const Ray& ray) const {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  RTCRay r;
+  r.org_x = ray.o.x;
+  r.org_y = ray.o.y;
+  r.org_z = ray.o.z;
+  r.dir_x = ray.d.x;
+  r.dir_y = ray.d.y;
+  r.dir_z = ray.d.z;
+  r.tnear = 0.0f;
+  r.tfar = ray.tMax;
+  r.time = 0.0f;
+  r.mask = 0xFFFFFFFFu;
+  r.id = 0;
+  r.flags = 0;
+  rtcOccluded1(impl_->scene, &context, &r);
+  return r.tfar < 0.0f;  // Embree sets tfar = −inf on occlusion
+}
+
+}  // namespace camsim

@@ -1,0 +1,32 @@
+// EmbreeScene: every ray query goes through here; this module is the only one that
+// includes Embree. Geometry id == shape index, so a Hit names its Shape directly.
+// Triangle meshes become RTC_GEOMETRY_TYPE_TRIANGLE (copied into Embree-owned, padded
+// buffers), spheres RTC_GEOMETRY_TYPE_SPHERE_POINT. BVH: RTC_BUILD_QUALITY_HIGH.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "integrator/ray.h"
+#include "integrator/shape.h"
+
+namespace camsim {
+
+class EmbreeScene {
+ public:
+  explicit EmbreeScene(const std::vector<std::unique_ptr<Shape>>& shapes);
+  ~EmbreeScene();
+  EmbreeScene(const EmbreeScene&) = delete;
+  EmbreeScene& operator=(const EmbreeScene&) = delete;
+
+  // Closest hit with t in (0, ray.tMax]; false if none.
+  bool intersect(const Ray& ray, Hit& hit) const;
+  // True if anything is hit with t in (0, ray.tMax).
+  bool occluded(const Ray& ray) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace camsim

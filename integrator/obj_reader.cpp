@@ -1,0 +1,250 @@
+// Wavefront OBJ reader (accepted subset: see mesh_io.h). One pass over the text held in
+// memory: lines and tokens are views into it and numbers go through std::from_chars, so the
+// hot loop allocates nothing apart from growing the output vectors.
+//
+// Indices must refer to vertices/normals defined earlier in the file (positive = absolute,
+// negative = relative to the current end); forward references are rejected.
+//
+// Normals: OBJ attaches `vn` indices to face corners, MeshData holds one normal per
+// position. Normals are kept only if every face corner references a normal and each
+// position is always paired with the same normal (same index or an identical vector);
+// otherwise MeshData::normals is left empty and the caller computes geometric normals.
+// Positions used by no face get a zero normal.
+#include <charconv>
+#include <cmath>
+#include <cstdint>
+#include <cstdlib>
+#include <cstring>
+#include <limits>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "integrator/mesh_io.h"
+#include "sensor/input_error.h"
+
+namespace camsim {
+namespace mesh_io_detail {
+std::string readWholeFile(const std::filesystem::path& path);  // mesh_io.cpp
+}
+
+namespace {
+
+constexpr std::size_t kMaxCount = 100'000'000;
+constexpr std::uint32_t kNoNormal = std::numeric_limits<std::uint32_t>::max();
+
+bool isSpace(char c) {
+  return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f';
+}
+
+// Parses a real number token starting at p (which must not be whitespace). Returns the end
+// of the token, or nullptr if it is not a number. Over/underflow: strtod semantics (an
+// overflow gives inf, which the caller rejects; an underflow gives 0 or a denormal).
+const char* parseReal(const char* p, const char* end, double& out) {
+  if (p < end && *p == '+') {
+    ++p;
+    if (p < end && *p == '-') return nullptr;
+  }
+  auto [ptr, ec] = std::from_chars(p, end, out);
+  if (ec == std::errc::result_out_of_range) {
+    const std::string copy(p, static_cast<std::size_t>(ptr - p));  // rare: re-parse with strtod
+    out = std::strtod(copy.c_str(), nullptr);
+  } else if (ec != std::errc()) {
+    return nullptr;
+  }
+  if (ptr < end && !isSpace(*ptr)) return nullptr;
+  return ptr;
+}
+
+class ObjParser {
+ public:
+  ObjParser(std::string_view text, const std::string& source) : text_(text), source_(source) {}
+  MeshData run();
+
+ private:
+  void parseLine(const char* p, const char* end);
+  glm::vec3 parseVec3(const char* p, const char* end, const char* what);
+  void parseFace(const char* p, const char* end);
+  const char* parseIndex(const char* p, const char* end, const char* tokenStart, std::int64_t& out);
+  std::uint32_t resolve(std::int64_t index, std::size_t count, const char* what, const char* at);
+  void trackNormal(std::uint32_t position, std::uint32_t normal, bool hasNormal);
+  [[noreturn]] void fail(const char* at, const std::string& message) const;
+  std::string tokenAt(const char* p, const char* end) const;
+
+  std::string_view text_;
+  const std::string& source_;
+  std::int64_t line_ = 0;
+  const char* lineStart_ = nullptr;
+  const char* lineEnd_ = nullptr;
+  std::vector<glm::vec3> positions_;
+  std::vector<glm::vec3> normals_;
+  std::vector<std::uint32_t> indices_;
+  std::vector<std::uint32_t> normalOf_;  // per position: the vn index used with it
+  bool normalsUsable_ = true;
+};
+
+void ObjParser::fail(const char* at, const std::string& message) const {
+  const int line = static_cast<int>(std::min<std::int64_t>(line_, std::numeric_limits<int>::max()));
+  int column = 0;
+  if (at != nullptr && at >= lineStart_ && at - lineStart_ < std::numeric_limits<int>::max())
+    column = static_cast<int>(at - lineStart_) + 1;
+  throw InputError({source_, line, column}, "", message);
+}
+
+std::string ObjParser::tokenAt(const char* p, const char* end) const {
+  const char* q = p;
+  while (q < end && !isSpace(*q) && q - p < 40) ++q;
+  return std::string(p, static_cast<std::size_t>(q - p));
+}
+
+MeshData ObjParser::run() {
+  const char* p = text_.data();
+  const char* const end = p + text_.size();
+  while (p < end) {
+    ++line_;
+    const void* nl = std::memchr(p, '\n', static_cast<std::size_t>(end - p));
+    const char* eol = nl != nullptr ? static_cast<const char*>(nl) : end;
+    lineStart_ = p;
+    lineEnd_ = eol;
+    parseLine(p, eol);
+    p = eol == end ? end : eol + 1;
+  }
+  if (indices_.empty())
+    throw InputError({source_, 0, 0}, "", "OBJ file has no faces (no triangles)");
+
+  MeshData mesh;
+  mesh.positions = std::move(positions_);
+  mesh.indices = std::move(indices_);
+  if (normalsUsable_ && !normals_.empty()) {
+    mesh.normals.assign(mesh.positions.size(), glm::vec3(0.0f));
+    for (std::size_t i = 0; i < normalOf_.size(); ++i)
+      if (normalOf_[i] != kNoNormal) mesh.normals[i] = normals_[normalOf_[i]];
+  }
+  return mesh;
+}
+
+void ObjParser::parseLine(const char* p, const char* end) {
+  while (p < end && isSpace(*p)) ++p;
+  const char* keyword = p;
+  while (p < end && !isSpace(*p)) ++p;
+  const std::string_view kw(keyword, static_cast<std::size_t>(p - keyword));
+  if (kw == "v") {
+    if (positions_.size() >= kMaxCount) fail(keyword, "more than 100000000 vertices");
+    positions_.push_back(parseVec3(p, end, "vertex"));
+  } else if (kw == "vn") {
+    if (normals_.size() >= kMaxCount) fail(keyword, "more than 100000000 normals");
+    normals_.push_back(parseVec3(p, end, "normal"));
+  } else if (kw == "f") {
+    parseFace(p, end);
+  }
+  // Everything else (vt, vp, o, g, s, usemtl, mtllib, l, p, comments, ...) is ignored.
+}
+
+// Reads three coordinates; further tokens (w, vertex colours) are ignored.
+glm::vec3 ObjParser::parseVec3(const char* p, const char* end, const char* what) {
+  float xyz[3] = {};
+  for (float& c : xyz) {
+    while (p < end && isSpace(*p)) ++p;
+    if (p == end || *p == '#') fail(p, std::string(what) + " needs 3 coordinates");
+    double d = 0.0;
+    const char* next = parseReal(p, end, d);
+    if (next == nullptr) fail(p, "'" + tokenAt(p, end) + "' is not a number");
+    if (!std::isfinite(d) || std::fabs(d) > static_cast<double>(std::numeric_limits<float>::max()))
+      fail(p, std::string(what) + " coordinate '" + tokenAt(p, end) + "' is not a finite float");
+    c = static_cast<float>(d);
+    p = next;
+  }
+  return {xyz[0], xyz[1], xyz[2]};
+}
+
+const char* ObjParser::parseIndex(const char* p, const char* end, const char* tokenStart,
+                                  std::int64_t& out) {
+  auto [ptr, ec] = std::from_chars(p, end, out);
+  if (ec != std::errc())
+    fail(tokenStart,
+         "bad face vertex '" + tokenAt(tokenStart, end) + "' (expected i, i/t, i//n or i/t/n)");
+  return ptr;
+}
+
+std::uint32_t ObjParser::resolve(std::int64_t index, std::size_t count, const char* what,
+                                 const char* at) {
+  if (index == 0) fail(at, std::string(what) + " index 0 is invalid (OBJ indices start at 1)");
+  const std::int64_t n = static_cast<std::int64_t>(count);
+  const std::int64_t absolute = index > 0 ? index - 1 : n + index;
+  if (absolute < 0 || absolute >= n)
+    fail(at, std::string(what) + " index " + std::to_string(index) + " out of range (" +
+                 std::to_string(count) + " defined so far)");
+  return static_cast<std::uint32_t>(absolute);
+}
+
+void ObjParser::parseFace(const char* p, const char* end) {
+  std::int64_t corners = 0;
+  std::uint32_t first = 0;
+  std::uint32_t prev = 0;
+  while (true) {
+    while (p < end && isSpace(*p)) ++p;
+    if (p == end || *p == '#') break;
+    const char* tokenStart = p;
+    std::int64_t raw = 0;
+    p = parseIndex(p, end, tokenStart, raw);
+    const std::uint32_t pos = resolve(raw, positions_.size(), "vertex", tokenStart);
+    std::uint32_t normal = 0;
+    bool hasNormal = false;
+    if (p < end && *p == '/') {
+      ++p;
+      // Texcoord index (required after one '/', ignored); "i/" fails here.
+      if (p == end || *p != '/') p = parseIndex(p, end, tokenStart, raw);
+      if (p < end && *p == '/') {
+        p = parseIndex(p + 1, end, tokenStart, raw);
+        normal = resolve(raw, normals_.size(), "normal", tokenStart);
+        hasNormal = true;
+      }
+    }
+    if (p < end && !isSpace(*p))
+      fail(tokenStart,
+           "bad face vertex '" + tokenAt(tokenStart, end) + "' (expected i, i/t, i//n or i/t/n)");
+    trackNormal(pos, normal, hasNormal);
+    if (corners == 0) {
+      first = pos;
+    } else if (corners >= 2) {
+      if (indices_.size() >= 3 * kMaxCount) fail(tokenStart, "more than 100000000 triangles");
+      indices_.push_back(first);
+      indices_.push_back(prev);
+      indices_.push_back(pos);
+    }
+    prev = pos;
+    ++corners;
+  }
+  if (corners < 3)
+    fail(nullptr, "face has " + std::to_string(corners) + " vertices (at least 3 needed)");
+}
+
+void ObjParser::trackNormal(std::uint32_t position, std::uint32_t normal, bool hasNormal) {
+  if (!normalsUsable_) return;
+  if (!hasNormal) {
+    normalsUsable_ = false;
+    normalOf_.clear();
+    return;
+  }
+  if (normalOf_.size() < positions_.size()) normalOf_.resize(positions_.size(), kNoNormal);
+  std::uint32_t& slot = normalOf_[position];
+  if (slot == kNoNormal) {
+    slot = normal;
+  } else if (slot != normal && normals_[slot] != normals_[normal]) {
+    normalsUsable_ = false;
+    normalOf_.clear();
+  }
+}
+
+}  // namespace
+
+MeshData parseObj(std::string_view text, const std::string& sourceName) {
+  return ObjParser(text, sourceName).run();
+}
+
+MeshData readObj(const std::filesystem::path& path) {
+  const std::string text = mesh_io_detail::readWholeFile(path);
+  return parseObj(text, path.string());
+}
+
+}  // namespace camsim

@@ -1,0 +1,38 @@
+// The spectral path tracer: estimates the radiance L(x, ω, λ) arriving along a camera ray
+// at the path's sampled wavelengths, solving the rendering equation
+//
+//   L(x, ωo) = Le(x, ωo) + ∫ f(x, ωo, ωi) L(x', −ωi) |cos θi| dωi
+//
+// with next-event estimation (one light sample per bounce, lights chosen ∝ power) and
+// BSDF sampling, combined by multiple importance sampling (power heuristic, β = 2), and
+// Russian roulette after settings.rrDepth bounces (survival ∝ max throughput).
+#pragma once
+
+#include <cstdint>
+
+#include "integrator/ray.h"
+#include "integrator/sampler.h"
+#include "integrator/scene.h"
+#include "sensor/sampled_spectrum.h"
+
+namespace camsim {
+
+struct RayCounts {
+  std::uint64_t camera = 0;  // primary rays
+  std::uint64_t bounce = 0;  // closest-hit rays after a scattering event
+  std::uint64_t shadow = 0;  // occlusion rays for next-event estimation
+
+  std::uint64_t total() const { return camera + bounce + shadow; }
+  RayCounts& operator+=(const RayCounts& o) {
+    camera += o.camera;
+    bounce += o.bounce;
+    shadow += o.shadow;
+    return *this;
+  }
+};
+
+// Radiance (W·m⁻²·sr⁻¹·nm⁻¹) along `ray` at the wavelengths `lambda`.
+SampledSpectrum traceRadiance(const Scene& scene, Ray ray, const SampledWavelengths& lambda,
+                              Sampler& sampler, RayCounts& counts);
+
+}  // namespace camsim

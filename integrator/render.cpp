@@ -1,0 +1,97 @@
+#include "integrator/render.h"
+
+#include <chrono>
+#include <mutex>
+
+#include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/info.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include "integrator/film.h"
+
+namespace camsim {
+namespace {
+
+constexpr int kTileSize = 16;
+
+struct TileStats {
+  std::uint64_t samples = 0, rejected = 0;
+  RayCounts rays;
+};
+
+void renderTile(const Scene& scene, Film& film, const RenderOptions& options, glm::ivec2 lo,
+                glm::ivec2 hi, Sampler& sampler, TileStats& stats) {
+  const Camera& camera = scene.camera();
+  for (int y = lo.y; y < hi.y; ++y) {
+    for (int x = lo.x; x < hi.x; ++x) {
+      const glm::ivec2 pixel(x, y);
+      for (int s = 0; s < options.spp; ++s) {
+        sampler.startPixelSample(pixel, s);
+        const SampledWavelengths lambda = SampledWavelengths::sampleVisible(sampler.get1D());
+        CameraSample cs;
+        cs.pFilm = glm::vec2(pixel) + sampler.getPixel2D();
+        const std::optional<CameraRay> cr = camera.generateRay(cs);
+        ++stats.samples;
+        if (!cr) continue;
+        ++stats.rays.camera;
+        const SampledSpectrum L = traceRadiance(scene, cr->ray, lambda, sampler, stats.rays);
+        if (!film.addSample(pixel, L, lambda, cr->weight)) ++stats.rejected;
+      }
+    }
+  }
+}
+
+}  // namespace
+
+RenderResult render(const Scene& scene, const SpectralResponse& response, const RenderOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  const glm::ivec2 res = scene.camera().resolution();
+  Film film(res, response);
+  const int tilesX = (res.x + kTileSize - 1) / kTileSize;
+  const int tilesY = (res.y + kTileSize - 1) / kTileSize;
+  const int tileCount = tilesX * tilesY;
+  const int threads = options.threads > 0 ? options.threads : tbb::info::default_concurrency();
+
+  IndependentSampler prototype(options.seed);
+  tbb::enumerable_thread_specific<TileStats> perThread;
+  std::atomic<int> tilesDone{0};
+  std::mutex progressMutex;
+  std::atomic<bool> cancelled{false};
+
+  tbb::task_arena arena(threads);
+  arena.execute([&] {
+    tbb::parallel_for(tbb::blocked_range<int>(0, tileCount, 1), [&](const tbb::blocked_range<int>& range) {
+      std::unique_ptr<Sampler> sampler = prototype.clone();
+      for (int tile = range.begin(); tile != range.end(); ++tile) {
+        if (options.cancel && options.cancel->load(std::memory_order_relaxed)) {
+          cancelled = true;
+          return;
+        }
+        const glm::ivec2 lo((tile % tilesX) * kTileSize, (tile / tilesX) * kTileSize);
+        const glm::ivec2 hi = glm::min(lo + kTileSize, res);
+        renderTile(scene, film, options, lo, hi, *sampler, perThread.local());
+        const int done = ++tilesDone;
+        if (options.progress) {
+          std::lock_guard<std::mutex> lock(progressMutex);
+          options.progress(done, tileCount);
+        }
+      }
+    });
+  });
+
+  RenderResult result;
+  result.image = film.toImage(options.spp);
+  for (const TileStats& t : perThread) {
+    result.stats.samples += t.samples;
+    result.stats.rejectedSamples += t.rejected;
+    result.stats.rays += t.rays;
+  }
+  result.stats.threads = threads;
+  result.stats.cancelled = cancelled;
+  result.stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+}  // namespace camsim

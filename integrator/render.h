@@ -1,0 +1,46 @@
+// render(): the render loop. The image is cut into 16×16 tiles that TBB schedules over
+// the threads; each pixel sample draws its numbers from its own stream (seed, pixel,
+// sample index), so the result is bit-identical for any thread count.
+//
+// Per pixel sample: wavelengths (1D) → film position, uniform over the pixel (2D) →
+// camera ray → traceRadiance → film.
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <functional>
+
+#include "integrator/path_tracer.h"
+#include "integrator/scene.h"
+#include "sensor/image.h"
+#include "sensor/spectral_response.h"
+
+namespace camsim {
+
+struct RenderOptions {
+  int spp = 16;
+  std::uint64_t seed = 0;
+  int threads = 0;  // 0 = all hardware threads
+  // Called from worker threads (serialised) as tiles finish: (tiles done, tiles total).
+  std::function<void(int, int)> progress;
+  // Checked between tiles; when set, the render stops early and reports cancelled.
+  const std::atomic<bool>* cancel = nullptr;
+};
+
+struct RenderStats {
+  double seconds = 0.0;
+  std::uint64_t samples = 0;           // pixel samples traced
+  std::uint64_t rejectedSamples = 0;   // NaN/Inf radiance, dropped from the film
+  RayCounts rays;
+  int threads = 0;
+  bool cancelled = false;
+};
+
+struct RenderResult {
+  Image image;  // one channel per response channel, pixel means
+  RenderStats stats;
+};
+
+RenderResult render(const Scene& scene, const SpectralResponse& response, const RenderOptions& options);
+
+}  // namespace camsim

@@ -1,0 +1,51 @@
+// Scene: the renderable objects built from a SceneDescription — camera, shapes on Embree,
+// materials, lights and the light-selection distribution (∝ power).
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "integrator/area_light.h"
+#include "integrator/camera.h"
+#include "integrator/distribution.h"
+#include "integrator/embree_scene.h"
+#include "integrator/material.h"
+#include "integrator/scene_description.h"
+
+namespace camsim {
+
+class Scene {
+ public:
+  explicit Scene(const SceneDescription& description);
+
+  const Camera& camera() const { return *camera_; }
+  const RenderSettings& settings() const { return settings_; }
+  const EmbreeScene& geometry() const { return *geometry_; }
+  const Shape& shape(int index) const { return *shapes_[static_cast<size_t>(index)]; }
+  // Never null: shapes without a reflecting material get a black one.
+  const Material& material(int shape) const { return *materials_[materialOfShape_[static_cast<size_t>(shape)]]; }
+  // The area light of a shape, or null if it does not emit.
+  const AreaLight* areaLight(int shape) const { return lightOfShape_[static_cast<size_t>(shape)]; }
+
+  size_t lightCount() const { return lights_.size(); }
+  const Light& light(size_t i) const { return *lights_[i]; }
+  const DiscreteDistribution& lightDistribution() const { return lightDistribution_; }
+  // Probability that NEE picks the light of an emitting shape.
+  float lightPmfOfShape(int shape) const {
+    return lightDistribution_.pmf(lightIndexOfShape_[static_cast<size_t>(shape)]);
+  }
+
+ private:
+  std::unique_ptr<Camera> camera_;
+  RenderSettings settings_;
+  std::vector<std::unique_ptr<Shape>> shapes_;
+  std::vector<std::unique_ptr<Material>> materials_;
+  std::vector<size_t> materialOfShape_;
+  std::vector<std::unique_ptr<AreaLight>> lights_;
+  std::vector<const AreaLight*> lightOfShape_;
+  std::vector<size_t> lightIndexOfShape_;
+  DiscreteDistribution lightDistribution_;
+  std::unique_ptr<EmbreeScene> geometry_;
+};
+
+}  // namespace camsim

@@ -1,0 +1,64 @@
+// SceneDescription: a loaded, validated scene as plain data in SI units (m, s, nm,
+// W·m⁻²·sr⁻¹·nm⁻¹). The loader produces it from a scene file; Scene builds the renderable
+// objects from it. Nothing here refers to a file format.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/mat4x4.hpp>
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+#include "integrator/mesh_io.h"
+#include "sensor/spectrum.h"
+
+namespace camsim {
+
+struct CameraDescription {
+  glm::mat4 worldFromCamera{1.0f};  // columns: right, up, forward, position (m)
+  glm::vec2 sensorSizeM{0.036f, 0.024f};
+  glm::ivec2 resolution{640, 480};
+  float focalLengthM = 0.050f;
+};
+
+struct RenderSettings {
+  int spp = 64;             // samples per pixel
+  std::uint64_t seed = 0;   // render seed
+  int maxDepth = 16;        // maximum number of scattering events on a path
+  int rrDepth = 3;          // Russian roulette starts after this many bounces
+};
+
+struct MaterialDescription {
+  std::string name;
+  Spectrum reflectance;  // diffuse reflectance ρ(λ), dimensionless
+};
+
+struct EmissionDescription {
+  Spectrum radiance;      // L_e(λ), W·m⁻²·sr⁻¹·nm⁻¹
+  bool twoSided = false;
+};
+
+struct ShapeDescription {
+  enum class Kind { kMesh, kSphere };
+  Kind kind = Kind::kMesh;
+  std::string label;  // for messages: the user's name or "shapes[i]"
+  int material = -1;  // index into SceneDescription::materials; -1 = black (reflects nothing)
+  std::optional<EmissionDescription> emission;
+  MeshData mesh;              // kMesh, world space (m)
+  glm::vec3 centre{0.0f};     // kSphere (m)
+  float radius = 0.0f;        // kSphere (m)
+};
+
+struct SceneDescription {
+  std::string sourceFile;  // what it was loaded from ("<default>" for the embedded scene)
+  std::string name;        // output base name
+  CameraDescription camera;
+  RenderSettings render;
+  std::vector<MaterialDescription> materials;
+  std::vector<ShapeDescription> shapes;
+};
+
+}  // namespace camsim

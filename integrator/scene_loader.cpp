@@ -1,0 +1,277 @@
+#include "integrator/scene_loader.h"
+
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include <glm/geometric.hpp>
+
+#include "integrator/scene_spectra.h"
+#include "integrator/yaml_reader.h"
+#include "sensor/cie.h"
+#include "sensor/spectral_data.h"
+
+namespace camsim {
+namespace {
+
+struct Context {
+  std::filesystem::path baseDir;
+  SpectrumSearch search;
+  std::map<std::string, int> materialIndex;
+};
+
+glm::vec3 toVec3(const glm::dvec3& v) { return glm::vec3(v); }
+
+RenderSettings parseRender(YamlMap map) {
+  RenderSettings r;
+  if (auto v = map.find("spp")) r.spp = static_cast<int>(v->integer(1, SceneLimits::kMaxSpp));
+  if (auto v = map.find("seed")) r.seed = static_cast<std::uint64_t>(v->integer(0, INT64_MAX));
+  if (auto v = map.find("max_depth")) r.maxDepth = static_cast<int>(v->integer(0, SceneLimits::kMaxDepth));
+  if (auto v = map.find("rr_depth")) r.rrDepth = static_cast<int>(v->integer(1, SceneLimits::kMaxDepth));
+  map.finish({"spp", "seed", "max_depth", "rr_depth"});
+  return r;
+}
+
+glm::mat4 lookAt(const YamlValue& where, glm::dvec3 position, glm::dvec3 target, glm::dvec3 up) {
+  const glm::dvec3 toTarget = target - position;
+  if (glm::length(toTarget) == 0.0) where.fail("look_at equals position");
+  const glm::dvec3 forward = glm::normalize(toTarget);
+  // Right-handed world: right = forward × up (looking along +z with +y up, right is −x).
+  const glm::dvec3 rightRaw = glm::cross(forward, up);
+  if (glm::length(rightRaw) < 1e-9 * glm::length(up)) where.fail("up is parallel to the viewing direction");
+  const glm::dvec3 right = glm::normalize(rightRaw);
+  const glm::dvec3 trueUp = glm::cross(right, forward);
+  glm::mat4 m(1.0f);
+  m[0] = glm::vec4(toVec3(right), 0.0f);
+  m[1] = glm::vec4(toVec3(trueUp), 0.0f);
+  m[2] = glm::vec4(toVec3(forward), 0.0f);
+  m[3] = glm::vec4(toVec3(position), 1.0f);
+  return m;
+}
+
+CameraDescription parseCamera(YamlMap map) {
+  CameraDescription c;
+  if (auto m = map.find("world_from_camera")) {
+    const std::vector<double> v = m->numbers();
+    if (v.size() != 16) m->fail("expected 16 numbers (a 4×4 matrix, row by row)");
+    for (int row = 0; row < 4; ++row)
+      for (int col = 0; col < 4; ++col) c.worldFromCamera[col][row] = static_cast<float>(v[static_cast<size_t>(row * 4 + col)]);
+    if (v[12] != 0.0 || v[13] != 0.0 || v[14] != 0.0 || v[15] != 1.0) m->fail("last row must be [0, 0, 0, 1]");
+    const glm::vec3 x(c.worldFromCamera[0]), y(c.worldFromCamera[1]), z(c.worldFromCamera[2]);
+    if (std::abs(glm::dot(x, y)) > 1e-4f || std::abs(glm::dot(y, z)) > 1e-4f || std::abs(glm::dot(x, z)) > 1e-4f ||
+        std::abs(glm::length(x) - 1.0f) > 1e-4f || std::abs(glm::length(y) - 1.0f) > 1e-4f ||
+        std::abs(glm::length(z) - 1.0f) > 1e-4f)
+      m->fail("the rotation part must be orthonormal (columns right, up, forward)");
+  } else {
+    const YamlValue position = map.require("position");
+    const YamlValue target = map.require("look_at");
+    glm::dvec3 up(0.0, 1.0, 0.0);
+    if (auto u = map.find("up")) up = u->vec3();
+    c.worldFromCamera = lookAt(target, position.vec3(), target.vec3(), up);
+  }
+  if (auto v = map.find("sensor_width_mm")) c.sensorSizeM.x = static_cast<float>(v->number(0.0, 1000.0, true) * 1e-3);
+  if (auto v = map.find("sensor_height_mm")) c.sensorSizeM.y = static_cast<float>(v->number(0.0, 1000.0, true) * 1e-3);
+  if (auto v = map.find("focal_length_mm")) c.focalLengthM = static_cast<float>(v->number(0.0, 1e5, true) * 1e-3);
+  if (auto v = map.find("resolution")) {
+    const std::vector<YamlValue> items = v->items();
+    if (items.size() != 2) v->fail("expected [width, height] in pixels");
+    c.resolution.x = static_cast<int>(items[0].integer(1, SceneLimits::kMaxResolution));
+    c.resolution.y = static_cast<int>(items[1].integer(1, SceneLimits::kMaxResolution));
+    if (std::int64_t(c.resolution.x) * c.resolution.y > SceneLimits::kMaxPixels)
+      v->fail("more than " + std::to_string(SceneLimits::kMaxPixels) + " pixels (limit SceneLimits::kMaxPixels)");
+  }
+  map.finish({"position", "look_at", "up", "world_from_camera", "sensor_width_mm", "sensor_height_mm",
+              "focal_length_mm", "resolution"});
+  return c;
+}
+
+MaterialDescription parseMaterial(const std::string& name, YamlMap map, const Context& ctx) {
+  MaterialDescription m;
+  m.name = name;
+  const YamlValue type = map.require("type");
+  if (type.string() != "diffuse") type.fail("unknown material type '" + type.string() + "' (known: diffuse)");
+  m.reflectance = Spectrum::constant(0.5);
+  if (auto r = map.find("reflectance")) m.reflectance = parseSpectrum(*r, SpectrumUse::kReflectance, ctx.search);
+  map.finish({"type", "reflectance"});
+  return m;
+}
+
+EmissionDescription parseEmission(YamlMap map, const Context& ctx) {
+  EmissionDescription e;
+  const auto spectrum = map.find("spectrum");
+  const Spectrum shape = spectrum ? parseSpectrum(*spectrum, SpectrumUse::kEmission, ctx.search)
+                                  : cieIlluminant("D65");
+  const auto lum = map.find("luminance");
+  const auto scale = map.find("scale");
+  if (lum && scale) scale->fail("give either luminance (cd/m²) or scale, not both");
+  if (lum) {
+    const double target = lum->number(0.0, 1e15);
+    const double shapeLuminance = luminance(shape);
+    if (target > 0.0 && !(shapeLuminance > 0.0))
+      (spectrum ? *spectrum : *lum).fail("this spectrum has no visible power, so it cannot have a luminance");
+    e.radiance = target > 0.0 ? shape * (target / shapeLuminance) : Spectrum::constant(0.0);
+  } else if (scale) {
+    e.radiance = shape * scale->number(0.0, 1e30);
+  } else {
+    map.self().fail("emission needs 'luminance' (cd/m²) or 'scale' (W·m⁻²·sr⁻¹·nm⁻¹ per spectrum unit)");
+  }
+  if (auto t = map.find("two_sided")) e.twoSided = t->boolean();
+  map.finish({"spectrum", "luminance", "scale", "two_sided"});
+  return e;
+}
+
+std::vector<std::uint32_t> parseFaces(const YamlValue& faces, size_t vertexCount) {
+  std::vector<std::uint32_t> indices;
+  for (const YamlValue& face : faces.items()) {
+    const std::vector<YamlValue> idx = face.items();
+    if (idx.size() < 3) face.fail("a face needs at least 3 vertex indices");
+    std::vector<std::uint32_t> poly;
+    for (const YamlValue& i : idx)
+      poly.push_back(static_cast<std::uint32_t>(i.integer(0, static_cast<std::int64_t>(vertexCount) - 1)));
+    for (size_t k = 1; k + 1 < poly.size(); ++k) indices.insert(indices.end(), {poly[0], poly[k], poly[k + 1]});
+    if (indices.size() / 3 > static_cast<size_t>(SceneLimits::kMaxTrianglesInline))
+      faces.fail("too many triangles for an inline mesh: use a mesh file");
+  }
+  return indices;
+}
+
+void checkMesh(const YamlValue& where, const MeshData& mesh) {
+  if (mesh.indices.empty()) where.fail("mesh has no triangles");
+  double area = 0.0;
+  for (size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
+    const glm::dvec3 a = mesh.positions[mesh.indices[t]], b = mesh.positions[mesh.indices[t + 1]],
+                     c = mesh.positions[mesh.indices[t + 2]];
+    area += glm::length(glm::cross(b - a, c - a));
+  }
+  if (!(area > 0.0)) where.fail("mesh has zero area");
+}
+
+ShapeDescription parseShape(YamlMap map, size_t index, const Context& ctx) {
+  ShapeDescription s;
+  s.label = "shapes[" + std::to_string(index) + "]";
+  if (auto n = map.find("name")) s.label = n->string();
+  const YamlValue type = map.require("type");
+  const std::string t = type.string();
+  std::vector<std::string> known = {"type", "name", "material", "emission"};
+  if (t == "sphere") {
+    s.kind = ShapeDescription::Kind::kSphere;
+    s.centre = toVec3(map.require("centre").vec3());
+    s.radius = static_cast<float>(map.require("radius").number(0.0, 1e12, true));
+    known.insert(known.end(), {"centre", "radius"});
+  } else if (t == "rectangle") {
+    const glm::dvec3 corner = map.require("corner").vec3();
+    const YamlValue eu = map.require("edge_u"), ev = map.require("edge_v");
+    const glm::dvec3 u = eu.vec3(), v = ev.vec3();
+    if (!(glm::length(glm::cross(u, v)) > 0.0)) ev.fail("edge_u and edge_v must span a non-zero area");
+    s.mesh.positions = {toVec3(corner), toVec3(corner + u), toVec3(corner + u + v), toVec3(corner + v)};
+    s.mesh.indices = {0, 1, 2, 0, 2, 3};
+    known.insert(known.end(), {"corner", "edge_u", "edge_v"});
+  } else if (t == "mesh") {
+    const auto file = map.find("file");
+    const auto vertices = map.find("vertices");
+    if (file && vertices) vertices->fail("give either 'file' or 'vertices', not both");
+    if (file) {
+      std::filesystem::path p(file->string());
+      if (p.is_relative()) p = ctx.baseDir / p;
+      if (!std::filesystem::is_regular_file(p)) file->fail("mesh file '" + p.string() + "' not found");
+      try {
+        s.mesh = readMeshFile(p);
+      } catch (const InputError& e) {
+        if (e.where().line > 0) throw;
+        file->fail(e.what());
+      }
+      double scale = 1.0;
+      if (auto sc = map.find("scale")) scale = sc->number(0.0, 1e12, true);
+      glm::dvec3 translate(0.0);
+      if (auto tr = map.find("translate")) translate = tr->vec3();
+      for (glm::vec3& p3 : s.mesh.positions) p3 = toVec3(glm::dvec3(p3) * scale + translate);
+      checkMesh(*file, s.mesh);
+    } else if (vertices) {
+      for (const YamlValue& v : vertices->items()) s.mesh.positions.push_back(toVec3(v.vec3()));
+      if (s.mesh.positions.size() < 3) vertices->fail("a mesh needs at least 3 vertices");
+      const YamlValue faces = map.require("faces");
+      s.mesh.indices = parseFaces(faces, s.mesh.positions.size());
+      checkMesh(faces, s.mesh);
+    } else {
+      map.self().fail("a mesh needs 'file' or 'vertices' and 'faces'");
+    }
+    known.insert(known.end(), {"file", "scale", "translate", "vertices", "faces"});
+  } else {
+    type.fail("unknown shape type '" + t + "' (known: sphere, rectangle, mesh)");
+  }
+  if (auto e = map.find("emission")) s.emission = parseEmission(YamlMap(*e), ctx);
+  if (auto m = map.find("material")) {
+    const std::string name = m->string();
+    const auto it = ctx.materialIndex.find(name);
+    if (it == ctx.materialIndex.end()) m->fail("no material named '" + name + "'");
+    s.material = it->second;
+  } else if (!s.emission) {
+    map.self().fail("shape needs a 'material' (only emitters may omit it: they are then black)");
+  }
+  map.finish(known);
+  return s;
+}
+
+}  // namespace
+
+std::filesystem::path lutsDirectory() {
+  if (const char* env = std::getenv("CAMSIM_LUTS"); env && *env) return env;
+  return CAMSIM_LUTS_DIR;
+}
+
+SceneDescription loadSceneFromText(const std::string& text, const std::string& displayName,
+                                   const std::filesystem::path& baseDir, const LoadOptions& options) {
+  const YamlValue root = parseYaml(text, displayName);
+  if (!root.node() || root.node().IsNull()) throw InputError({displayName, 1, 1}, "", "the scene file is empty");
+  YamlMap top(root);
+  Context ctx;
+  ctx.baseDir = baseDir;
+  ctx.search.directories.push_back(baseDir);
+  if (auto paths = top.find("spectra_path")) {
+    for (const YamlValue& p : paths->items()) {
+      std::filesystem::path dir(p.string());
+      if (dir.is_relative()) dir = baseDir / dir;
+      if (!std::filesystem::is_directory(dir)) p.fail("directory '" + dir.string() + "' does not exist");
+      ctx.search.directories.push_back(dir);
+    }
+  }
+  for (const auto& dir : options.spectraPath) ctx.search.directories.push_back(dir);
+  ctx.search.directories.push_back(lutsDirectory() / "spectra");
+
+  SceneDescription scene;
+  scene.sourceFile = displayName;
+  if (auto v = top.find("format")) {
+    if (v->string() != "camsim-scene/1") v->fail("unsupported format '" + v->string() + "' (this camsim reads camsim-scene/1)");
+  }
+  scene.name = std::filesystem::path(displayName).stem().string();
+  if (auto v = top.find("name")) scene.name = v->string();
+  if (scene.name.empty() || scene.name.find_first_of("/\\") != std::string::npos)
+    top.self().fail("name must be a non-empty file name without '/'");
+  if (auto v = top.find("render")) scene.render = parseRender(YamlMap(*v));
+  scene.camera = parseCamera(YamlMap(top.require("camera")));
+  if (auto mats = top.find("materials")) {
+    YamlMap mmap(*mats);
+    for (const std::string& name : mmap.keys()) {
+      ctx.materialIndex[name] = static_cast<int>(scene.materials.size());
+      scene.materials.push_back(parseMaterial(name, YamlMap(*mmap.find(name)), ctx));
+    }
+  }
+  const YamlValue shapes = top.require("shapes");
+  const std::vector<YamlValue> items = shapes.items();
+  if (items.empty()) shapes.fail("the scene has no shapes");
+  for (size_t i = 0; i < items.size(); ++i) scene.shapes.push_back(parseShape(YamlMap(items[i]), i, ctx));
+  top.finish({"format", "name", "spectra_path", "render", "camera", "materials", "shapes"});
+  return scene;
+}
+
+SceneDescription loadScene(const std::filesystem::path& file, const LoadOptions& options) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in || std::filesystem::is_directory(file)) throw InputError({file.string(), 0, 0}, "", "cannot open scene file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return loadSceneFromText(text.str(), file.string(), file.parent_path().empty() ? "." : file.parent_path(), options);
+}
+
+}  // namespace camsim

@@ -1,0 +1,88 @@
+#include "integrator/scene_spectra.h"
+
+#include "sensor/color_space.h"
+#include "sensor/rgb_uplift.h"
+#include "sensor/spectral_data.h"
+
+namespace camsim {
+namespace {
+
+std::filesystem::path findTable(const YamlValue& value, const std::string& name,
+                                const SpectrumSearch& search) {
+  const std::filesystem::path p(name);
+  if (p.is_absolute()) {
+    if (std::filesystem::is_regular_file(p)) return p;
+  } else {
+    for (const auto& dir : search.directories)
+      if (std::filesystem::is_regular_file(dir / p)) return dir / p;
+  }
+  std::string dirs;
+  for (const auto& dir : search.directories) dirs += (dirs.empty() ? "" : ", ") + dir.string();
+  value.fail("spectral table '" + name + "' not found (searched: " + dirs + ")");
+}
+
+Spectrum fromTable(YamlMap& map, SpectrumUse use, const SpectrumSearch& search) {
+  const YamlValue file = map.require("csv");
+  const std::filesystem::path path = findTable(file, file.string(), search);
+  const SpectralTable table = readSpectralCsv(path);
+  size_t column = 0;
+  if (const auto col = map.find("column")) {
+    try {
+      column = table.columnIndex(col->string());
+    } catch (const InputError& e) {
+      col->fail(e.message() + " in " + path.string());
+    }
+  } else if (table.columns.size() != 1) {
+    map.self().fail("table " + path.string() + " has several columns: name one with 'column'");
+  }
+  map.finish({"csv", "column"});
+  Spectrum s = table.spectrum(column, use == SpectrumUse::kReflectance ? Extrapolation::kClamp
+                                                                       : Extrapolation::kZero);
+  if (s.minValue() < 0.0) file.fail("spectral table has negative values");
+  if (use == SpectrumUse::kReflectance && s.maxValue() > 1.0)
+    file.fail("reflectance must lie in [0, 1]; the table exceeds 1");
+  return s;
+}
+
+}  // namespace
+
+Spectrum parseSpectrum(const YamlValue& value, SpectrumUse use, const SpectrumSearch& search) {
+  const bool reflectance = use == SpectrumUse::kReflectance;
+  if (value.isScalar()) {
+    return Spectrum::constant(reflectance ? value.number(0.0, 1.0) : value.number(0.0, 1e30));
+  }
+  YamlMap map(value);
+  if (map.has("rgb")) {
+    const YamlValue rgbValue = *map.find("rgb");
+    const glm::dvec3 rgb = rgbValue.vec3();
+    map.finish({"rgb"});
+    const double hi = reflectance ? 1.0 : 1e30;
+    for (int i = 0; i < 3; ++i)
+      if (rgb[i] < 0.0 || rgb[i] > hi)
+        rgbValue.fail(reflectance ? "RGB reflectance components must lie in [0, 1]"
+                                  : "RGB components must be ≥ 0");
+    if (reflectance) return rgbToReflectance(rgb, RgbColorSpace::linearRec709());
+    if (rgb.x + rgb.y + rgb.z == 0.0) return Spectrum::constant(0.0);
+    return rgbToEmissionShape(rgb, RgbColorSpace::linearRec709());
+  }
+  if (map.has("csv")) return fromTable(map, use, search);
+  if (map.has("blackbody") || map.has("illuminant")) {
+    if (reflectance) map.self().fail("a reflectance cannot be a blackbody or an illuminant");
+    if (const auto t = map.find("blackbody")) {
+      const double kelvin = t->number(100.0, 1e6);
+      map.finish({"blackbody"});
+      return Spectrum::blackbody(kelvin);
+    }
+    const YamlValue name = *map.find("illuminant");
+    map.finish({"illuminant"});
+    try {
+      return cieIlluminant(name.string());
+    } catch (const InputError& e) {
+      name.fail(e.message());
+    }
+  }
+  map.self().fail(reflectance ? "expected a number in [0, 1], {rgb: [...]} or {csv: ...}"
+                              : "expected a number, {rgb}, {csv}, {blackbody} or {illuminant}");
+}
+
+}  // namespace camsim

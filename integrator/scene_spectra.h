@@ -1,0 +1,25 @@
+// Spectrum values in scene files (used for reflectance and emission):
+//   0.5                                  constant
+//   {rgb: [r, g, b]}                     uplifted from linear Rec.709 (smooth, bounded)
+//   {csv: file.csv, column: name}        tabulated; column optional for 1-column tables
+//   {blackbody: 5000}                    Planck radiance at T (K), W·m⁻²·sr⁻¹·nm⁻¹ (emission)
+//   {illuminant: D65}                    CIE standard illuminant, relative (emission)
+#pragma once
+
+#include <filesystem>
+#include <vector>
+
+#include "integrator/yaml_reader.h"
+#include "sensor/spectrum.h"
+
+namespace camsim {
+
+enum class SpectrumUse { kReflectance, kEmission };
+
+struct SpectrumSearch {
+  std::vector<std::filesystem::path> directories;  // in order
+};
+
+Spectrum parseSpectrum(const YamlValue& value, SpectrumUse use, const SpectrumSearch& search);
+
+}  // namespace camsim

@@ -1,0 +1,72 @@
+// YamlMap / YamlValue: checked access to a parsed YAML (or JSON) document with the
+// location of every value, for error messages "file:line:col: key 'a.b[2].c': …".
+// A YamlMap remembers which keys were read; finish() rejects any key nobody asked for,
+// so typos are errors rather than silently ignored settings. Only the scene loader
+// includes this (and yaml-cpp).
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <set>
+#include <string>
+#include <vector>
+
+#include <glm/vec3.hpp>
+#include <yaml-cpp/yaml.h>
+
+#include "sensor/input_error.h"
+
+namespace camsim {
+
+class YamlValue {
+ public:
+  YamlValue(YAML::Node node, std::string key, std::string file)
+      : node_(std::move(node)), key_(std::move(key)), file_(std::move(file)) {}
+
+  const YAML::Node& node() const { return node_; }
+  const std::string& key() const { return key_; }
+  const std::string& file() const { return file_; }
+  SourceLocation where() const;
+  [[noreturn]] void fail(const std::string& message) const;
+
+  bool isMap() const { return node_.IsMap(); }
+  bool isSequence() const { return node_.IsSequence(); }
+  bool isScalar() const { return node_.IsScalar(); }
+
+  std::string string() const;
+  double number() const;  // finite
+  double number(double lo, double hi, bool loOpen = false) const;  // in [lo, hi] (or (lo, hi])
+  std::int64_t integer(std::int64_t lo, std::int64_t hi) const;
+  bool boolean() const;
+  glm::dvec3 vec3() const;  // [x, y, z], finite
+  std::vector<YamlValue> items() const;  // elements of a sequence
+  std::vector<double> numbers() const;   // a sequence of finite numbers
+
+ private:
+  YAML::Node node_;
+  std::string key_;
+  std::string file_;
+};
+
+class YamlMap {
+ public:
+  explicit YamlMap(const YamlValue& value);  // fails unless value is a mapping
+
+  bool has(const std::string& name) const;
+  std::optional<YamlValue> find(const std::string& name);  // marks the key as used
+  YamlValue require(const std::string& name);              // error if missing
+  std::vector<std::string> keys() const;
+  const YamlValue& self() const { return self_; }
+  // Rejects keys that were never read, naming the first one and listing the known ones.
+  void finish(const std::vector<std::string>& known) const;
+
+ private:
+  std::string childKey(const std::string& name) const;
+  YamlValue self_;
+  std::set<std::string> used_;
+};
+
+// Parses YAML/JSON text; syntax errors become InputError with the location.
+YamlValue parseYaml(const std::string& text, const std::string& file);
+
+}  // namespace camsim

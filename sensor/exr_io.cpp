@@ -1,0 +1,79 @@
+#include "sensor/exr_io.h"
+
+#include <OpenEXR/ImfChannelList.h>
+#include <OpenEXR/ImfChromaticities.h>
+#include <OpenEXR/ImfFrameBuffer.h>
+#include <OpenEXR/ImfHeader.h>
+#include <OpenEXR/ImfInputFile.h>
+#include <OpenEXR/ImfOutputFile.h>
+#include <OpenEXR/ImfStandardAttributes.h>
+#include <OpenEXR/ImfStringAttribute.h>
+
+#include "sensor/input_error.h"
+
+namespace camsim {
+
+void writeExr(const std::filesystem::path& path, const Image& image, const Metadata& metadata,
+              const std::optional<ExrChromaticities>& chromaticities) {
+  CAMSIM_CHECK(image.width > 0 && image.height > 0 && image.channelCount() > 0);
+  Imf::Header header(image.width, image.height);
+  header.compression() = Imf::ZIP_COMPRESSION;
+  for (const auto& [key, value] : metadata) header.insert(key, Imf::StringAttribute(value));
+  if (chromaticities) {
+    const auto& c = *chromaticities;
+    Imf::addChromaticities(header, Imf::Chromaticities(
+                                       Imath::V2f(float(c.red.x), float(c.red.y)),
+                                       Imath::V2f(float(c.green.x), float(c.green.y)),
+                                       Imath::V2f(float(c.blue.x), float(c.blue.y)),
+                                       Imath::V2f(float(c.white.x), float(c.white.y))));
+  }
+  Imf::FrameBuffer frame;
+  const size_t pixelStride = sizeof(float) * image.channels.size();
+  const size_t rowStride = pixelStride * static_cast<size_t>(image.width);
+  for (int c = 0; c < image.channelCount(); ++c) {
+    header.channels().insert(image.channels[c], Imf::Channel(Imf::FLOAT));
+    // OpenEXR wants a non-const base pointer even for writing; it only reads through it.
+    char* base = reinterpret_cast<char*>(const_cast<float*>(image.pixels.data() + c));
+    frame.insert(image.channels[c], Imf::Slice(Imf::FLOAT, base, pixelStride, rowStride));
+  }
+  Imf::OutputFile file(path.c_str(), header);
+  file.setFrameBuffer(frame);
+  file.writePixels(image.height);
+}
+
+ExrFile readExr(const std::filesystem::path& path) {
+  try {
+    Imf::InputFile file(path.c_str());
+    const Imf::Header& header = file.header();
+    const Imath::Box2i dw = header.dataWindow();
+    ExrFile out;
+    std::vector<std::string> names;
+    for (auto it = header.channels().begin(); it != header.channels().end(); ++it)
+      names.emplace_back(it.name());
+    out.image = Image(dw.max.x - dw.min.x + 1, dw.max.y - dw.min.y + 1, names);
+    Imf::FrameBuffer frame;
+    const size_t pixelStride = sizeof(float) * names.size();
+    const size_t rowStride = pixelStride * static_cast<size_t>(out.image.width);
+    for (size_t c = 0; c < names.size(); ++c) {
+      char* base = reinterpret_cast<char*>(out.image.pixels.data() + c) -
+                   static_cast<ptrdiff_t>(dw.min.x) * static_cast<ptrdiff_t>(pixelStride) -
+                   static_cast<ptrdiff_t>(dw.min.y) * static_cast<ptrdiff_t>(rowStride);
+      frame.insert(names[c], Imf::Slice(Imf::FLOAT, base, pixelStride, rowStride));
+    }
+    file.setFrameBuffer(frame);
+    file.readPixels(dw.min.y, dw.max.y);
+    for (auto it = header.begin(); it != header.end(); ++it)
+      if (const auto* s = dynamic_cast<const Imf::StringAttribute*>(&it.attribute()))
+        out.metadata.emplace_back(it.name(), s->value());
+    if (Imf::hasChromaticities(header)) {
+      const Imf::Chromaticities& c = Imf::chromaticities(header);
+      out.chromaticities = ExrChromaticities{
+          {c.red.x, c.red.y}, {c.green.x, c.green.y}, {c.blue.x, c.blue.y}, {c.white.x, c.white.y}};
+    }
+    return out;
+  } catch (const std::exception& e) {
+    throw InputError({path.string(), 0, 0}, "", std::string("cannot read EXR: ") + e.what());
+  }
+}
+
+}  // namespace camsim

@@ -1,0 +1,35 @@
+// OutputSet: a render's output files appear all at once or not at all.
+// Each file is written under a temporary name in the target directory
+// (".<name>.camsim-tmp-<pid>") and renamed to its final name by commit(); an OutputSet
+// destroyed before commit() (an error, an exception) removes its temporaries, so a
+// failed run never leaves a file under a final name.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace camsim {
+
+class OutputSet {
+ public:
+  explicit OutputSet(std::filesystem::path directory);
+  ~OutputSet();
+  OutputSet(const OutputSet&) = delete;
+  OutputSet& operator=(const OutputSet&) = delete;
+
+  // The temporary path to write `fileName` to; it becomes directory/fileName on commit.
+  std::filesystem::path add(const std::string& fileName);
+  // Renames every temporary to its final name. Returns the final paths.
+  std::vector<std::filesystem::path> commit();
+
+  const std::filesystem::path& directory() const { return directory_; }
+
+ private:
+  std::filesystem::path directory_;
+  std::vector<std::pair<std::filesystem::path, std::filesystem::path>> files_;  // temp, final
+  bool committed_ = false;
+};
+
+}  // namespace camsim

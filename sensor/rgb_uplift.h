@@ -1,0 +1,41 @@
+// RGB → smooth, bounded spectrum (Jakob & Hanika 2019, "A Low-Dimensional Function Space
+// for Efficient Spectral Upsampling").
+//
+//   s(λ) = S(c₀ t² + c₁ t + c₂),  t = (λ − 360 nm) / 470 nm,  S(x) = ½ + x / (2 √(1 + x²))
+//
+// s is smooth and lies in (0, 1), so an uplifted reflectance is always physically valid.
+// The coefficients are found by damped Gauss–Newton on the residual
+//   r(c) = RGB(s_c under the colour space's white illuminant) − target,
+// walking from mid-grey (c = 0) to the target in small steps, so saturated colours
+// converge. Fits are done once, when a scene is loaded.
+#pragma once
+
+#include <glm/vec3.hpp>
+
+#include "sensor/color_space.h"
+#include "sensor/spectrum.h"
+
+namespace camsim {
+
+struct SigmoidPolynomial {
+  double c0 = 0.0, c1 = 0.0, c2 = 0.0;
+  double operator()(double lambdaNm) const;
+  Spectrum toSpectrum() const;
+};
+
+// Best sigmoid polynomial for an RGB reflectance with components in [0, 1].
+SigmoidPolynomial fitSigmoidPolynomial(const glm::dvec3& rgb, const RgbColorSpace& space);
+
+// Reflectance whose colour under the space's white is rgb (components in [0, 1]);
+// r = g = b gives the constant spectrum exactly.
+Spectrum rgbToReflectance(const glm::dvec3& rgb, const RgbColorSpace& space);
+
+// Relative emission spectrum whose colour is rgb (components ≥ 0, not all 0):
+//   E(λ) = 2m · s_{rgb/2m}(λ) · I(λ) / Σ I ȳ,  m = max(rgb),  I = the space's white.
+// Its XYZ (Σ E·cmf) equals the space's XYZ of rgb; scale it to absolute units afterwards.
+Spectrum rgbToEmissionShape(const glm::dvec3& rgb, const RgbColorSpace& space);
+
+// RGB of a reflectance under the space's white (the inverse of rgbToReflectance).
+glm::dvec3 reflectanceToRgb(const Spectrum& reflectance, const RgbColorSpace& space);
+
+}  // namespace camsim

@@ -1,0 +1,67 @@
+// Spectrum: a function of wavelength, stored densely at 1 nm over [360, 830] nm.
+//
+// Every spectral quantity in camsim (reflectance, spectral radiance, colour-matching
+// function, quantum efficiency) is converted to this one representation when it is
+// loaded, so evaluation on the hot path is one lookup and one lerp, with no virtual call.
+// The unit is the caller's: reflectance is dimensionless, spectral radiance is
+// W·m⁻²·sr⁻¹·nm⁻¹, and so on; the type carries numbers, the field names carry units.
+#pragma once
+
+#include <array>
+#include <span>
+
+namespace camsim {
+
+inline constexpr int kLambdaMinNm = 360;
+inline constexpr int kLambdaMaxNm = 830;
+inline constexpr int kSpectrumSamples = kLambdaMaxNm - kLambdaMinNm + 1;  // 471
+
+// What a tabulated spectrum does outside its table's wavelength range.
+enum class Extrapolation {
+  kZero,   // 0 outside (emission, sensitivities)
+  kClamp,  // hold the end values (reflectance measured over a shorter range)
+};
+
+class Spectrum {
+ public:
+  Spectrum() { values_.fill(0.0f); }
+
+  static Spectrum constant(double value);
+  // Planck's law: spectral radiance of a blackbody, W·m⁻²·sr⁻¹·nm⁻¹.
+  static Spectrum blackbody(double kelvin);
+  // Piecewise-linear through (lambdaNm[i], values[i]); lambdaNm strictly increasing.
+  static Spectrum fromSamples(std::span<const double> lambdaNm, std::span<const double> values,
+                              Extrapolation outside);
+
+  // Linear interpolation; 0 outside [360, 830] nm.
+  float operator()(float lambdaNm) const {
+    const float x = lambdaNm - static_cast<float>(kLambdaMinNm);
+    if (!(x >= 0.0f) || x > static_cast<float>(kSpectrumSamples - 1)) return 0.0f;
+    int i = static_cast<int>(x);
+    if (i >= kSpectrumSamples - 1) i = kSpectrumSamples - 2;
+    const float t = x - static_cast<float>(i);
+    return values_[i] + t * (values_[i + 1] - values_[i]);
+  }
+
+  // Value at sample i, i.e. at (360 + i) nm.
+  float sample(int i) const { return values_[i]; }
+  float& sample(int i) { return values_[i]; }
+
+  Spectrum& operator*=(double s);
+  Spectrum& operator*=(const Spectrum& s);
+  friend Spectrum operator*(Spectrum a, double s) { return a *= s; }
+  friend Spectrum operator*(Spectrum a, const Spectrum& b) { return a *= b; }
+
+  double maxValue() const;
+  double minValue() const;
+  // Σ value·1 nm over the grid (rectangle rule on the 1 nm grid, the CIE convention).
+  double sum() const;
+
+ private:
+  std::array<float, kSpectrumSamples> values_;
+};
+
+// Σ a(λ)·b(λ)·1 nm over the grid.
+double innerProduct(const Spectrum& a, const Spectrum& b);
+
+}  // namespace camsim
