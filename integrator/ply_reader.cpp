@@ -60,21 +60,18 @@ struct TypeInfo {
   std::size_t size;
   std::int64_t min, max;  // integer types only
 };
-constexpr TypeInfo kTypes[] = {  // indexed by Type
-    {"char", "int8", 1, INT8_MIN, INT8_MAX},
-    {"uchar", "uint8", 1, 0, UINT8_MAX},
-    {"short", "int16", 2, INT16_MIN, INT16_MAX},
-    {"ushort", "uint16", 2, 0, UINT16_MAX},
-    {"int", "int32", 4, INT32_MIN, INT32_MAX},
-    {"uint", "uint32", 4, 0, UINT32_MAX},
-    {"float", "float32", 4, 0, 0},
-    {"double", "float64", 8, 0, 0}};
+// Indexed by Type.
+constexpr TypeInfo kTypes[] = {{"char", "int8", 1, INT8_MIN, INT8_MAX},
+                               {"uchar", "uint8", 1, 0, UINT8_MAX},
+                               {"short", "int16", 2, INT16_MIN, INT16_MAX},
+                               {"ushort", "uint16", 2, 0, UINT16_MAX},
+                               {"int", "int32", 4, INT32_MIN, INT32_MAX},
+                               {"uint", "uint32", 4, 0, UINT32_MAX},
+                               {"float", "float32", 4, 0, 0},
+                               {"double", "float64", 8, 0, 0}};
 
 const TypeInfo& info(Type t) {
   return kTypes[static_cast<std::size_t>(t)];
-}
-std::size_t typeSize(Type t) {
-  return info(t).size;
 }
 bool isInteger(Type t) {
   return t != Type::kFloat && t != Type::kDouble;
@@ -147,13 +144,11 @@ Header parseHeader(std::string_view bytes, const std::string& src) {
     if (w.empty() || w[0] == "comment" || w[0] == "obj_info") continue;
     if (w[0] == "format") {
       if (haveFormat || w.size() != 3) failAt(src, line, "expected one 'format <type> 1.0' line");
-      if (w[1] == "ascii")
-        h.format = Format::kAscii;
-      else if (w[1] == "binary_little_endian")
-        h.format = Format::kBinaryLittle;
-      else if (w[1] == "binary_big_endian")
-        h.format = Format::kBinaryBig;
-      else
+      constexpr std::string_view kFormats[] = {"ascii", "binary_little_endian",
+                                               "binary_big_endian"};  // indexed by Format
+      const auto* f = std::find(std::begin(kFormats), std::end(kFormats), w[1]);
+      h.format = static_cast<Format>(f - std::begin(kFormats));
+      if (f == std::end(kFormats))
         failAt(src, line,
                "unknown PLY format '" + std::string(w[1]) +
                    "' (expected ascii, binary_little_endian or binary_big_endian)");
@@ -233,72 +228,62 @@ std::uint64_t assignSlots(Header& h, const std::string& src, bool& hasNormals) {
   return vertex->count;
 }
 
+[[noreturn]] void rowFail(const std::string& src, int line, const Element& e, std::uint64_t row,
+                          const std::string& message) {
+  failAt(src, line, "element '" + e.name + "' index " + std::to_string(row) + ": " + message);
+}
+
+// Reader interface used by readBody: beginRow/endRow delimit a row, number/integer/skip/
+// skipList consume values (false = missing, malformed or out of range for the type),
+// line() is the current line (0 for binary), moreRows() reports leftover data.
 class BinaryReader {
  public:
-  BinaryReader(std::string_view body, bool bigEndian, const std::string& source)
+  BinaryReader(std::string_view body, bool bigEndian)
       : p_(body.data()),
         end_(body.data() + body.size()),
-        swap_(bigEndian != (std::endian::native == std::endian::big)),
-        source_(source) {}
+        swap_(bigEndian != (std::endian::native == std::endian::big)) {}
 
   bool beginRow() { return true; }
   bool endRow() { return true; }
-  void finish() {}
-
-  void checkCapacity(const Element& e) const {
-    std::size_t minRow = 0;
-    for (const Property& p : e.properties) minRow += typeSize(p.isList ? p.countType : p.type);
-    if (minRow > 0 && e.count > remaining() / minRow)
-      failAt(source_, 0,
-             "element '" + e.name + "' declares " + std::to_string(e.count) + " rows of at least " +
-                 std::to_string(minRow) + " bytes but only " + std::to_string(remaining()) +
-                 " bytes are left (truncated file?)");
-  }
-
-  [[noreturn]] void fail(const Element& e, std::uint64_t row, const std::string& message) const {
-    throw InputError(
-        {source_, 0, 0}, "",
-        "binary element '" + e.name + "' index " + std::to_string(row) + ": " + message);
+  bool moreRows() { return false; }  // trailing bytes are ignored
+  int line() const { return 0; }
+  std::size_t bytesLeft() const { return static_cast<std::size_t>(end_ - p_); }
+  static std::size_t minRowBytes(const Element& e) {
+    std::size_t n = 0;
+    for (const Property& p : e.properties) n += info(p.isList ? p.countType : p.type).size;
+    return n;
   }
 
   bool number(Type t, double& out) { return read(t, out); }
   bool integer(Type t, std::int64_t& out) { return isInteger(t) && read(t, out); }
   bool skip(Type t) { return skipList(t, 1); }
   bool skipList(Type t, std::uint64_t n) {
-    if (n > remaining() / typeSize(t)) return false;
-    p_ += n * typeSize(t);
+    if (n > bytesLeft() / info(t).size) return false;
+    p_ += n * info(t).size;
     return true;
   }
 
  private:
-  std::size_t remaining() const { return static_cast<std::size_t>(end_ - p_); }
-
   template <class Out>
   bool read(Type t, Out& out) {
+    // clang-format off
     switch (t) {
-      case Type::kInt8:
-        return load<std::int8_t>(out);
-      case Type::kUint8:
-        return load<std::uint8_t>(out);
-      case Type::kInt16:
-        return load<std::int16_t>(out);
-      case Type::kUint16:
-        return load<std::uint16_t>(out);
-      case Type::kInt32:
-        return load<std::int32_t>(out);
-      case Type::kUint32:
-        return load<std::uint32_t>(out);
-      case Type::kFloat:
-        return load<float>(out);
-      case Type::kDouble:
-        return load<double>(out);
+      case Type::kInt8: return load<std::int8_t>(out);
+      case Type::kUint8: return load<std::uint8_t>(out);
+      case Type::kInt16: return load<std::int16_t>(out);
+      case Type::kUint16: return load<std::uint16_t>(out);
+      case Type::kInt32: return load<std::int32_t>(out);
+      case Type::kUint32: return load<std::uint32_t>(out);
+      case Type::kFloat: return load<float>(out);
+      case Type::kDouble: return load<double>(out);
     }
+    // clang-format on
     return false;
   }
 
   template <class T, class Out>
   bool load(Out& out) {
-    if (remaining() < sizeof(T)) return false;
+    if (bytesLeft() < sizeof(T)) return false;
     unsigned char buf[sizeof(T)];
     std::memcpy(buf, p_, sizeof(T));
     if (swap_) std::reverse(buf, buf + sizeof(T));
@@ -312,16 +297,15 @@ class BinaryReader {
   const char* p_;
   const char* end_;
   bool swap_;
-  const std::string& source_;
 };
 
+// One element row per line; blank lines are skipped.
 class AsciiReader {
  public:
-  AsciiReader(std::string_view body, int headerLines, const std::string& source)
-      : next_(body.data()), end_(body.data() + body.size()), line_(headerLines), source_(source) {}
+  AsciiReader(std::string_view body, int headerLines)
+      : next_(body.data()), end_(body.data() + body.size()), line_(headerLines) {}
 
-  // Moves to the next non-blank line.
-  bool beginRow() {
+  bool beginRow() {  // moves to the next non-blank line
     while (next_ < end_) {
       const void* nl = std::memchr(next_, '\n', static_cast<std::size_t>(end_ - next_));
       cur_ = next_;
@@ -337,36 +321,23 @@ class AsciiReader {
     skipSpace();
     return cur_ == lineEnd_;
   }
-  void finish() {
-    if (beginRow()) failAt(source_, line_, "unexpected data after the last PLY element");
-  }
-
+  bool moreRows() { return beginRow(); }
+  int line() const { return line_; }
+  std::size_t bytesLeft() const { return static_cast<std::size_t>(end_ - next_) + 1; }
   // Each value takes at least one character and one separator.
-  void checkCapacity(const Element& e) const {
-    const std::size_t minRow = 2 * e.properties.size();
-    const std::size_t left = static_cast<std::size_t>(end_ - next_) + 1;
-    if (minRow > 0 && e.count > left / minRow)
-      failAt(source_, line_ + 1,
-             "element '" + e.name + "' declares " + std::to_string(e.count) + " rows but only " +
-                 std::to_string(left - 1) + " bytes are left (truncated file?)");
-  }
-
-  [[noreturn]] void fail(const Element& e, std::uint64_t row, const std::string& message) const {
-    throw InputError({source_, line_, 0}, "",
-                     "element '" + e.name + "' index " + std::to_string(row) + ": " + message);
-  }
+  static std::size_t minRowBytes(const Element& e) { return 2 * e.properties.size(); }
 
   bool number(Type t, double& out) {
     if (isInteger(t)) {
-      std::int64_t v = 0;
-      if (!integer(t, v)) return false;
-      out = static_cast<double>(v);
-      return true;
+      std::int64_t i = 0;
+      const bool ok = integer(t, i);
+      out = static_cast<double>(i);
+      return ok;
     }
     const std::string_view tok = token();
     const char* first = tok.data();
     const char* last = first + tok.size();
-    if (first < last && *first == '+' && last - first > 1 && first[1] != '-') ++first;
+    if (last - first > 1 && *first == '+' && first[1] != '-') ++first;
     auto [ptr, ec] = std::from_chars(first, last, out);
     if (ec == std::errc::result_out_of_range) {  // rare: let strtod decide (inf or tiny)
       out = std::strtod(std::string(first, last).c_str(), nullptr);
@@ -374,14 +345,12 @@ class AsciiReader {
     }
     return !tok.empty() && ec == std::errc() && ptr == last;
   }
-
   bool integer(Type t, std::int64_t& out) {
     const std::string_view tok = token();
     auto [ptr, ec] = std::from_chars(tok.data(), tok.data() + tok.size(), out);
     if (tok.empty() || ec != std::errc() || ptr != tok.data() + tok.size()) return false;
     return isInteger(t) && out >= info(t).min && out <= info(t).max;
   }
-
   bool skip(Type t) {
     double d = 0.0;
     return number(t, d);
@@ -411,42 +380,21 @@ class AsciiReader {
   const char* cur_ = nullptr;
   const char* lineEnd_ = nullptr;
   int line_;
-  const std::string& source_;
 };
 
-// Reads a polygon's indices (count already read) and fan-triangulates it into `out`.
 template <class Reader>
-void readPolygon(Reader& in, const Element& e, std::uint64_t row, Type type, std::int64_t count,
-                 std::uint64_t vertexCount, std::vector<std::uint32_t>& out) {
-  if (count < 3)
-    in.fail(e, row, "face has " + std::to_string(count) + " vertices (at least 3 needed)");
-  std::uint32_t first = 0;
-  std::uint32_t prev = 0;
-  for (std::int64_t k = 0; k < count; ++k) {  // bounded: every index consumes input
-    std::int64_t index = 0;
-    if (!in.integer(type, index)) in.fail(e, row, "missing or malformed vertex index");
-    if (index < 0 || static_cast<std::uint64_t>(index) >= vertexCount)
-      in.fail(e, row,
-              "vertex index " + std::to_string(index) + " out of range (" +
-                  std::to_string(vertexCount) + " vertices)");
-    const auto u = static_cast<std::uint32_t>(index);
-    if (k == 0) {
-      first = u;
-    } else if (k >= 2) {
-      out.push_back(first);
-      out.push_back(prev);
-      out.push_back(u);
-    }
-    prev = u;
-  }
-}
-
-template <class Reader>
-MeshData readBody(const Header& h, Reader& in, std::uint64_t vertexCount, bool hasNormals) {
+MeshData readBody(const Header& h, Reader& in, const std::string& src, std::uint64_t vertexCount,
+                  bool hasNormals) {
   MeshData mesh;
   for (const Element& e : h.elements) {
     if (e.properties.empty() || e.count == 0) continue;
-    in.checkCapacity(e);  // bounds the reservations and loops below by the file size
+    // Bounds the reservations and loops below by the file size.
+    const std::size_t minRow = Reader::minRowBytes(e);
+    if (e.count > in.bytesLeft() / minRow)
+      failAt(src, e.line,
+             "element '" + e.name + "' declares " + std::to_string(e.count) +
+                 " rows but the file has only " + std::to_string(in.bytesLeft()) +
+                 " bytes left (truncated file?)");
     const bool isVertex = e.name == "vertex";
     if (isVertex) {
       mesh.positions.reserve(e.count);
@@ -455,38 +403,50 @@ MeshData readBody(const Header& h, Reader& in, std::uint64_t vertexCount, bool h
       mesh.indices.reserve(3 * e.count);
     }
     for (std::uint64_t row = 0; row < e.count; ++row) {
-      if (!in.beginRow()) in.fail(e, row, "file ends before this row");
+      if (!in.beginRow()) rowFail(src, in.line(), e, row, "file ends before this row");
       float v[6] = {};
       for (const Property& p : e.properties) {
-        if (p.isList) {
-          std::int64_t n = 0;
-          if (!in.integer(p.countType, n) || n < 0)
-            in.fail(e, row, "missing or malformed list count for '" + p.name + "'");
-          if (p.slot == kIndicesSlot) {
-            readPolygon(in, e, row, p.type, n, vertexCount, mesh.indices);
-          } else if (!in.skipList(p.type, static_cast<std::uint64_t>(n))) {
-            in.fail(e, row, "missing or malformed values for '" + p.name + "'");
+        std::int64_t n = 0;  // list length
+        double d = 0.0;      // scalar value
+        if (p.isList && (!in.integer(p.countType, n) || n < 0)) {
+          rowFail(src, in.line(), e, row, "missing or malformed list count for '" + p.name + "'");
+        } else if (p.isList && p.slot == kIndicesSlot) {  // fan-triangulate the polygon
+          if (n < 3)
+            rowFail(src, in.line(), e, row,
+                    "face has " + std::to_string(n) + " vertices (at least 3 needed)");
+          std::uint32_t first = 0;
+          std::uint32_t prev = 0;
+          for (std::int64_t k = 0; k < n; ++k) {  // bounded: every index consumes input
+            std::int64_t index = 0;
+            if (!in.integer(p.type, index))
+              rowFail(src, in.line(), e, row, "missing or malformed vertex index");
+            if (index < 0 || static_cast<std::uint64_t>(index) >= vertexCount)
+              rowFail(src, in.line(), e, row,
+                      "vertex index " + std::to_string(index) + " out of range (" +
+                          std::to_string(vertexCount) + " vertices)");
+            const auto u = static_cast<std::uint32_t>(index);
+            if (k == 0) first = u;
+            if (k >= 2) mesh.indices.insert(mesh.indices.end(), {first, prev, u});
+            prev = u;
           }
-        } else if (p.slot >= 0) {
-          double d = 0.0;
-          if (!in.number(p.type, d))
-            in.fail(e, row, "missing or malformed value for '" + p.name + "'");
+        } else if (p.isList ? !in.skipList(p.type, static_cast<std::uint64_t>(n))
+                            : !in.number(p.type, d)) {
+          rowFail(src, in.line(), e, row, "missing or malformed value for '" + p.name + "'");
+        } else if (!p.isList && p.slot >= 0) {
           if (!std::isfinite(d) ||
               std::fabs(d) > static_cast<double>(std::numeric_limits<float>::max()))
-            in.fail(e, row, "'" + p.name + "' is not a finite float");
+            rowFail(src, in.line(), e, row, "'" + p.name + "' is not a finite float");
           v[p.slot] = static_cast<float>(d);
-        } else if (!in.skip(p.type)) {
-          in.fail(e, row, "missing or malformed value for '" + p.name + "'");
         }
       }
-      if (!in.endRow()) in.fail(e, row, "too many values on the line");
+      if (!in.endRow()) rowFail(src, in.line(), e, row, "too many values on the line");
       if (isVertex) {
         mesh.positions.emplace_back(v[0], v[1], v[2]);
         if (hasNormals) mesh.normals.emplace_back(v[3], v[4], v[5]);
       }
     }
   }
-  in.finish();
+  if (in.moreRows()) failAt(src, in.line(), "unexpected data after the last PLY element");
   return mesh;
 }
 
@@ -499,11 +459,11 @@ MeshData parsePly(std::string_view bytes, const std::string& sourceName) {
   const std::string_view body = bytes.substr(header.bodyOffset);
   MeshData mesh;
   if (header.format == Format::kAscii) {
-    AsciiReader reader(body, header.lines, sourceName);
-    mesh = readBody(header, reader, vertexCount, hasNormals);
+    AsciiReader reader(body, header.lines);
+    mesh = readBody(header, reader, sourceName, vertexCount, hasNormals);
   } else {
-    BinaryReader reader(body, header.format == Format::kBinaryBig, sourceName);
-    mesh = readBody(header, reader, vertexCount, hasNormals);
+    BinaryReader reader(body, header.format == Format::kBinaryBig);
+    mesh = readBody(header, reader, sourceName, vertexCount, hasNormals);
   }
   if (mesh.indices.empty()) failAt(sourceName, 0, "PLY file has no faces (no triangles)");
   return mesh;
