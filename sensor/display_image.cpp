@@ -29,9 +29,14 @@ Image xyzToRgb(const Image& xyz, const RgbColorSpace& space) {
 QuickLook quickLookSrgb8(const Image& xyz) {
   const auto c = xyzChannels(xyz);
   double sumY = 0.0;
+  size_t finite = 0;
   for (int y = 0; y < xyz.height; ++y)
-    for (int x = 0; x < xyz.width; ++x) sumY += static_cast<double>(xyz.at(x, y, c[1]));
-  const double meanY = sumY / (static_cast<double>(xyz.width) * xyz.height);
+    for (int x = 0; x < xyz.width; ++x)
+      if (const float v = xyz.at(x, y, c[1]); std::isfinite(v)) {
+        sumY += static_cast<double>(v);
+        ++finite;
+      }
+  const double meanY = finite > 0 ? sumY / static_cast<double>(finite) : 0.0;
   QuickLook out;
   out.exposure = meanY > 0.0 ? 0.18 / meanY : 1.0;
   const Image rgb = xyzToRgb(xyz, RgbColorSpace::linearRec709());

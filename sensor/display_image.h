@@ -1,7 +1,7 @@
 // Conversions of absolute XYZ images for output, before OpenColorIO takes over (later).
 //
 //   xyzToRgb:  RGB = M_rgb←xyz · XYZ  (per pixel; units kept: Y = 1 cd/m² ↔ luminance 1)
-//   quickLookSrgb8: exposure k = 0.18 / mean(Y) (mean luminance → mid-grey), then
+//   quickLookSrgb8: exposure k = 0.18 / mean(Y) over finite pixels (mean luminance → mid-grey), then
 //     linear Rec.709 = k · M · XYZ, clipped to [0, 1], sRGB-encoded, rounded to 8 bits.
 #pragma once
 

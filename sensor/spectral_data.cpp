@@ -53,6 +53,7 @@ SpectralTable parseSpectralCsv(std::string_view text, const std::string& sourceN
   SpectralTable table;
   table.source = sourceName;
   int lineNo = 0;
+  int headerLine = 0;
   bool haveHeader = false;
   size_t pos = 0;
   while (pos <= text.size()) {
@@ -67,12 +68,19 @@ SpectralTable parseSpectralCsv(std::string_view text, const std::string& sourceN
     if (!haveHeader) {
       if (fields.size() < 2)
         throw InputError(where, "", "header needs a wavelength column and at least one value column");
+      // A numeric first field means the header line is missing: without this check the
+      // first data row would silently become the header (and be lost).
+      double firstField = 0.0;
+      if (parseDouble(fields[0], firstField))
+        throw InputError(where, "",
+                         "missing header line (e.g. 'wavelength_nm,value'): found a data row");
       for (size_t i = 1; i < fields.size(); ++i) {
         if (fields[i].empty()) throw InputError(where, "", "empty column name in header");
         table.columns.emplace_back(fields[i]);
       }
       table.values.resize(table.columns.size());
       haveHeader = true;
+      headerLine = lineNo;
       continue;
     }
     if (fields.size() != table.columns.size() + 1)
@@ -92,7 +100,8 @@ SpectralTable parseSpectralCsv(std::string_view text, const std::string& sourceN
     }
   }
   if (!haveHeader) throw InputError({sourceName, 0, 0}, "", "empty spectral table");
-  if (table.wavelengthsNm.empty()) throw InputError({sourceName, lineNo, 0}, "", "spectral table has no rows");
+  if (table.wavelengthsNm.empty())
+    throw InputError({sourceName, headerLine, 0}, "", "spectral table has no rows");
   return table;
 }
 

@@ -1,0 +1,140 @@
+// Tests for sensor/output_set: a render's files appear all at once or not at all.
+#include "sensor/output_set.h"
+
+#include <unistd.h>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <system_error>
+
+#include <gtest/gtest.h>
+
+namespace camsim {
+namespace {
+
+// A fresh directory per test (suite, name and pid in its name), removed afterwards.
+class OutputSetTest : public testing::Test {
+ protected:
+  void SetUp() override {
+    const testing::TestInfo* info = testing::UnitTest::GetInstance()->current_test_info();
+    dir_ = std::filesystem::temp_directory_path() /
+           (std::string("camsim_") + info->test_suite_name() + "_" + info->name() + "_" +
+            std::to_string(::getpid()));
+    std::filesystem::remove_all(dir_);
+    std::filesystem::create_directories(dir_);
+  }
+  void TearDown() override {
+    std::error_code ignored;
+    std::filesystem::remove_all(dir_, ignored);
+  }
+
+  size_t entries() const {
+    return static_cast<size_t>(std::distance(std::filesystem::directory_iterator(dir_),
+                                             std::filesystem::directory_iterator()));
+  }
+  static void write(const std::filesystem::path& path, const std::string& text) {
+    std::ofstream out(path, std::ios::binary);
+    out << text;
+    ASSERT_TRUE(out.good()) << path;
+  }
+  static std::string read(const std::filesystem::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::ostringstream text;
+    text << in.rdbuf();
+    return text.str();
+  }
+
+  std::filesystem::path dir_;
+};
+
+TEST_F(OutputSetTest, AddGivesAHiddenTemporaryInTheDirectory) {
+  OutputSet set(dir_);
+  EXPECT_EQ(set.directory(), dir_);
+  const std::filesystem::path temp = set.add("image.exr");
+  EXPECT_EQ(temp.parent_path(), dir_);
+  EXPECT_NE(temp.filename(), "image.exr");
+  EXPECT_EQ(temp.filename().string().front(), '.');
+  EXPECT_NE(temp.filename().string().find("image.exr"), std::string::npos);
+  EXPECT_NE(set.add("image.png"), temp);
+}
+
+TEST_F(OutputSetTest, UncommittedFilesAreRemovedAndNeverAppearUnderTheFinalName) {
+  {
+    OutputSet set(dir_);
+    const std::filesystem::path a = set.add("a.exr");
+    const std::filesystem::path b = set.add("b.png");
+    write(a, "aaa");
+    write(b, "bbb");
+    EXPECT_TRUE(std::filesystem::exists(a));
+    EXPECT_TRUE(std::filesystem::exists(b));
+    EXPECT_FALSE(std::filesystem::exists(dir_ / "a.exr"));
+    EXPECT_FALSE(std::filesystem::exists(dir_ / "b.png"));
+    EXPECT_EQ(entries(), 2u);
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "a.exr"));
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "b.png"));
+  EXPECT_EQ(entries(), 0u);
+}
+
+TEST_F(OutputSetTest, CommitRenamesToTheFinalNames) {
+  std::filesystem::path a;
+  std::filesystem::path b;
+  {
+    OutputSet set(dir_);
+    a = set.add("a.exr");
+    b = set.add("b.png");
+    write(a, "first");
+    write(b, "second");
+    const std::vector<std::filesystem::path> finals = set.commit();
+    ASSERT_EQ(finals.size(), 2u);
+    EXPECT_EQ(finals[0], dir_ / "a.exr");
+    EXPECT_EQ(finals[1], dir_ / "b.png");
+  }
+  // Still there after the set is destroyed, with their content; temporaries gone.
+  EXPECT_EQ(read(dir_ / "a.exr"), "first");
+  EXPECT_EQ(read(dir_ / "b.png"), "second");
+  EXPECT_FALSE(std::filesystem::exists(a));
+  EXPECT_FALSE(std::filesystem::exists(b));
+  EXPECT_EQ(entries(), 2u);
+}
+
+TEST_F(OutputSetTest, CommitReplacesAnExistingFile) {
+  write(dir_ / "a.exr", "old");
+  {
+    OutputSet set(dir_);
+    write(set.add("a.exr"), "new");
+    EXPECT_EQ(read(dir_ / "a.exr"), "old");  // untouched until commit
+    set.commit();
+  }
+  EXPECT_EQ(read(dir_ / "a.exr"), "new");
+  EXPECT_EQ(entries(), 1u);
+}
+
+TEST_F(OutputSetTest, ExceptionBeforeCommitLeavesTheDirectoryEmpty) {
+  try {
+    OutputSet set(dir_);
+    write(set.add("a.exr"), "partial");
+    write(set.add("b.png"), "partial");
+    set.add("c.json");  // never written: removing it must not fail
+    throw std::runtime_error("render failed");
+  } catch (const std::runtime_error& e) {
+    EXPECT_STREQ(e.what(), "render failed");
+  }
+  EXPECT_EQ(entries(), 0u);
+}
+
+TEST_F(OutputSetTest, UncommittedSetDoesNotTouchExistingFinalFiles) {
+  write(dir_ / "a.exr", "previous run");
+  {
+    OutputSet set(dir_);
+    write(set.add("a.exr"), "failed run");
+  }
+  EXPECT_EQ(read(dir_ / "a.exr"), "previous run");
+  EXPECT_EQ(entries(), 1u);
+}
+
+}  // namespace
+}  // namespace camsim

@@ -1,0 +1,183 @@
+// Tests for sensor/sampled_spectrum: the visible-wavelength pdf, its inverse CDF, the
+// stratified hero-wavelength sets and SampledSpectrum arithmetic.
+#include "sensor/sampled_spectrum.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <random>
+
+#include <gtest/gtest.h>
+
+#include "sensor/cie.h"
+
+namespace camsim {
+namespace {
+
+// Σ ȳ over the 1 nm grid of the CIE 1931 2° table (luts/spectra/cie1931_2deg_xyz.csv).
+constexpr double kSumYBar = 106.856895;
+
+// Composite Simpson's rule of visibleWavelengthPdf over [a, b] with n (even) intervals.
+// The pdf is smooth (a scaled sech²), so n = 2000 over ≤ 470 nm is accurate to ≪ 1e-8.
+double integratePdf(double a, double b, int n = 2000) {
+  if (b <= a) return 0.0;
+  const double h = (b - a) / n;
+  auto f = [](double x) {
+    return static_cast<double>(visibleWavelengthPdf(static_cast<float>(x)));
+  };
+  double s = f(a) + f(b);
+  for (int i = 1; i < n; ++i) s += (i % 2 == 1 ? 4.0 : 2.0) * f(a + i * h);
+  return s * h / 3.0;
+}
+
+// Uniform float in [0, 1) from 24 random bits (exactly representable, never 1).
+float uniformFloat(std::mt19937& rng) {
+  return static_cast<float>(rng() >> 8) * 0x1p-24f;
+}
+
+TEST(VisibleWavelengthPdf, IntegratesToOneOverTheVisibleRange) {
+  // Tolerance 1e-4 (brief); the quadrature error is ≪ 1e-8 and the float pdf adds ~1e-7.
+  EXPECT_NEAR(integratePdf(kLambdaMinNm, kLambdaMaxNm), 1.0, 1e-4);
+}
+
+TEST(VisibleWavelengthPdf, IsZeroOutsideAndPeaksAt538Nm) {
+  EXPECT_EQ(visibleWavelengthPdf(359.9f), 0.0f);
+  EXPECT_EQ(visibleWavelengthPdf(830.1f), 0.0f);
+  EXPECT_GT(visibleWavelengthPdf(360.0f), 0.0f);
+  EXPECT_GT(visibleWavelengthPdf(830.0f), 0.0f);
+  // Closed form at the centre: a / Z with Z = tanh(a·292) − tanh(−a·178), a = 0.0072.
+  const double z = std::tanh(0.0072 * 292.0) - std::tanh(-0.0072 * 178.0);
+  // Relative 1e-6: float result.
+  EXPECT_NEAR(static_cast<double>(visibleWavelengthPdf(538.0f)), 0.0072 / z, 1e-6 * 0.0072 / z);
+  EXPECT_GT(visibleWavelengthPdf(538.0f), visibleWavelengthPdf(520.0f));
+  EXPECT_GT(visibleWavelengthPdf(538.0f), visibleWavelengthPdf(560.0f));
+}
+
+TEST(SampleVisibleWavelength, IsTheInverseCdf) {
+  for (const float u : {0.001f, 0.05f, 0.1f, 0.25f, 0.4f, 0.5f, 0.6f, 0.75f, 0.9f, 0.99f}) {
+    const float lambda = sampleVisibleWavelength(u);
+    ASSERT_GE(lambda, static_cast<float>(kLambdaMinNm));
+    ASSERT_LE(lambda, static_cast<float>(kLambdaMaxNm));
+    // ∫_360^λ p = u within 1e-4 (brief); λ is float (ulp ≈ 6e-5 nm, i.e. ≪ 1e-6 in u).
+    EXPECT_NEAR(integratePdf(kLambdaMinNm, static_cast<double>(lambda)), static_cast<double>(u),
+                1e-4)
+        << "u = " << u;
+  }
+  // The ends of the unit interval map to the ends of the range (float atanh: 1e-3 nm).
+  EXPECT_NEAR(static_cast<double>(sampleVisibleWavelength(0.0f)), kLambdaMinNm, 1e-3);
+  EXPECT_NEAR(static_cast<double>(sampleVisibleWavelength(1.0f)), kLambdaMaxNm, 1e-3);
+}
+
+TEST(SampleVisibleWavelength, IsMonotonic) {
+  float previous = sampleVisibleWavelength(0.0f);
+  for (int i = 1; i <= 1000; ++i) {
+    const float lambda = sampleVisibleWavelength(static_cast<float>(i) / 1000.0f);
+    EXPECT_GT(lambda, previous) << "i = " << i;
+    previous = lambda;
+  }
+}
+
+TEST(SampledWavelengths, SampleVisibleIsStratifiedOverCdfQuarters) {
+  // u values chosen away from multiples of 1/4 so no wavelength sits on a quarter boundary.
+  for (const float u : {0.01f, 0.13f, 0.3f, 0.49f, 0.62f, 0.77f, 0.999f}) {
+    const SampledWavelengths w = SampledWavelengths::sampleVisible(u);
+    std::array<int, kWavelengthSamples> perQuarter{};
+    for (int i = 0; i < kWavelengthSamples; ++i) {
+      const double cdf = integratePdf(kLambdaMinNm, static_cast<double>(w[i]));
+      const int quarter = std::clamp(static_cast<int>(cdf * 4.0), 0, 3);
+      ++perQuarter[quarter];
+      // The i-th wavelength is the inverse CDF of u + i/4 (mod 1); 1e-4 as above.
+      const double ui = std::fmod(static_cast<double>(u) + i / 4.0, 1.0);
+      EXPECT_NEAR(cdf, ui, 1e-4) << "u = " << u << ", i = " << i;
+      // The pdf is the visible pdf at that wavelength (same float computation: equality).
+      EXPECT_EQ(w.pdf(i), visibleWavelengthPdf(w[i])) << "u = " << u << ", i = " << i;
+      EXPECT_EQ(w.pdfs()[i], w.pdf(i));
+    }
+    for (int q = 0; q < 4; ++q) EXPECT_EQ(perQuarter[q], 1) << "u = " << u << ", quarter " << q;
+  }
+}
+
+TEST(SampledWavelengths, SampleUniformIsStratifiedWithConstantPdf) {
+  const SampledWavelengths w = SampledWavelengths::sampleUniform(0.1f);
+  // Expected λ_i = 360 + 470·((0.1 + i/4) mod 1): 407, 524.5, 642, 759.5 (float: 1e-3 nm).
+  const std::array<double, 4> expected{407.0, 524.5, 642.0, 759.5};
+  for (int i = 0; i < kWavelengthSamples; ++i) {
+    EXPECT_NEAR(static_cast<double>(w[i]), expected[i], 1e-3) << "i = " << i;
+    EXPECT_NEAR(static_cast<double>(w.pdf(i)), 1.0 / 470.0, 1e-9);
+  }
+}
+
+TEST(SampledWavelengths, MonteCarloIntegralOfYBarMatchesTheTableSum) {
+  // ∫ȳ dλ ≈ (1/N) Σ_samples (1/4) Σ_i ȳ(λ_i) / p(λ_i), N = 2^16 with a fixed seed.
+  const Spectrum& yBar = Cie1931::get().y;
+  std::mt19937 rng(12345u);
+  constexpr int kSamples = 1 << 16;
+  double total = 0.0;
+  for (int n = 0; n < kSamples; ++n) {
+    const SampledWavelengths w = SampledWavelengths::sampleVisible(uniformFloat(rng));
+    const SampledSpectrum estimate = safeDiv(sampleSpectrum(yBar, w), w.pdfs());
+    total += static_cast<double>(estimate.average());
+  }
+  // 0.5 % (brief). The pdf follows ȳ closely and the samples are stratified, so the
+  // standard error at 2^16 samples is far smaller (≈0.05 %).
+  EXPECT_NEAR(total / kSamples, kSumYBar, 0.005 * kSumYBar);
+}
+
+TEST(SampledSpectrum, Arithmetic) {
+  SampledSpectrum a;
+  SampledSpectrum b;
+  for (int i = 0; i < kWavelengthSamples; ++i) {
+    a[i] = static_cast<float>(i + 1);      // 1 2 3 4
+    b[i] = static_cast<float>(2 * i + 1);  // 1 3 5 7
+  }
+  // Small integers and halves: exact in float.
+  const SampledSpectrum sum = a + b;
+  const SampledSpectrum diff = b - a;
+  const SampledSpectrum prod = a * b;
+  const SampledSpectrum scaled = 2.0f * a;
+  const SampledSpectrum halved = a / 2.0f;
+  for (int i = 0; i < kWavelengthSamples; ++i) {
+    EXPECT_EQ(sum[i], static_cast<float>(3 * i + 2));
+    EXPECT_EQ(diff[i], static_cast<float>(i));
+    EXPECT_EQ(prod[i], static_cast<float>((i + 1) * (2 * i + 1)));
+    EXPECT_EQ(scaled[i], static_cast<float>(2 * (i + 1)));
+    EXPECT_EQ(halved[i], 0.5f * static_cast<float>(i + 1));
+  }
+  EXPECT_EQ(a.average(), 2.5f);
+  EXPECT_EQ(b.maxComponent(), 7.0f);
+  EXPECT_FALSE(a.isZero());
+  EXPECT_TRUE(SampledSpectrum().isZero());
+  EXPECT_TRUE(a.isFinite());
+  SampledSpectrum bad = a;
+  bad[2] = std::numeric_limits<float>::infinity();
+  EXPECT_FALSE(bad.isFinite());
+}
+
+TEST(SampledSpectrum, SafeDivTreatsZeroDenominatorAsZero) {
+  SampledSpectrum num(6.0f);
+  SampledSpectrum den;
+  den[0] = 2.0f;
+  den[1] = 0.0f;
+  den[2] = 3.0f;
+  den[3] = 0.0f;
+  const SampledSpectrum q = safeDiv(num, den);
+  EXPECT_EQ(q[0], 3.0f);
+  EXPECT_EQ(q[1], 0.0f);
+  EXPECT_EQ(q[2], 2.0f);
+  EXPECT_EQ(q[3], 0.0f);
+}
+
+TEST(SampledSpectrum, SampleSpectrumEvaluatesAtTheWavelengths) {
+  Spectrum ramp;
+  for (int i = 0; i < kSpectrumSamples; ++i) ramp.sample(i) = static_cast<float>(i);
+  const SampledWavelengths w = SampledWavelengths::sampleUniform(0.1f);
+  const SampledSpectrum s = sampleSpectrum(ramp, w);
+  // ramp(λ) = λ − 360 (linear, so the lerp is exact up to float rounding of λ: 1e-3).
+  for (int i = 0; i < kWavelengthSamples; ++i)
+    EXPECT_NEAR(static_cast<double>(s[i]), static_cast<double>(w[i]) - kLambdaMinNm, 1e-3);
+}
+
+}  // namespace
+}  // namespace camsim
