@@ -24,6 +24,30 @@ struct Context {
 
 glm::vec3 toVec3(const glm::dvec3& v) { return glm::vec3(v); }
 
+// Geometry is stored in single precision: a point finite as a double can still overflow.
+glm::vec3 toPoint(const YamlValue& where, const glm::dvec3& v) {
+  const glm::vec3 p(v);
+  if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+    where.fail("coordinates exceed the single-precision range (about ±3.4e38)");
+  return p;
+}
+
+// A positive length stored in single precision: it must not underflow to 0.
+float positiveFloat(const YamlValue& where, double v) {
+  const float f = static_cast<float>(v);
+  if (!(f > 0.0f)) where.fail("value is too small (it is 0 in single precision)");
+  return f;
+}
+
+// Pixels per side, with the limit named in the message.
+int resolutionSide(const YamlValue& v) {
+  const std::int64_t n = v.integer(INT64_MIN, INT64_MAX);
+  if (n < 1 || n > SceneLimits::kMaxResolution)
+    v.fail("value " + std::to_string(n) + " is out of range [1, " +
+           std::to_string(SceneLimits::kMaxResolution) + "] (limit SceneLimits::kMaxResolution)");
+  return static_cast<int>(n);
+}
+
 RenderSettings parseRender(YamlMap map) {
   RenderSettings r;
   if (auto v = map.find("spp")) r.spp = static_cast<int>(v->integer(1, SceneLimits::kMaxSpp));
@@ -34,7 +58,8 @@ RenderSettings parseRender(YamlMap map) {
   return r;
 }
 
-glm::mat4 lookAt(const YamlValue& where, glm::dvec3 position, glm::dvec3 target, glm::dvec3 up) {
+glm::mat4 lookAt(const YamlValue& where, const YamlValue& positionWhere, glm::dvec3 position,
+                 glm::dvec3 target, glm::dvec3 up) {
   const glm::dvec3 toTarget = target - position;
   if (glm::length(toTarget) == 0.0) where.fail("look_at equals position");
   const glm::dvec3 forward = glm::normalize(toTarget);
@@ -47,7 +72,7 @@ glm::mat4 lookAt(const YamlValue& where, glm::dvec3 position, glm::dvec3 target,
   m[0] = glm::vec4(toVec3(right), 0.0f);
   m[1] = glm::vec4(toVec3(trueUp), 0.0f);
   m[2] = glm::vec4(toVec3(forward), 0.0f);
-  m[3] = glm::vec4(toVec3(position), 1.0f);
+  m[3] = glm::vec4(toPoint(positionWhere, position), 1.0f);
   return m;
 }
 
@@ -59,6 +84,7 @@ CameraDescription parseCamera(YamlMap map) {
     for (int row = 0; row < 4; ++row)
       for (int col = 0; col < 4; ++col) c.worldFromCamera[col][row] = static_cast<float>(v[static_cast<size_t>(row * 4 + col)]);
     if (v[12] != 0.0 || v[13] != 0.0 || v[14] != 0.0 || v[15] != 1.0) m->fail("last row must be [0, 0, 0, 1]");
+    toPoint(*m, glm::dvec3(v[3], v[7], v[11]));
     const glm::vec3 x(c.worldFromCamera[0]), y(c.worldFromCamera[1]), z(c.worldFromCamera[2]);
     if (std::abs(glm::dot(x, y)) > 1e-4f || std::abs(glm::dot(y, z)) > 1e-4f || std::abs(glm::dot(x, z)) > 1e-4f ||
         std::abs(glm::length(x) - 1.0f) > 1e-4f || std::abs(glm::length(y) - 1.0f) > 1e-4f ||
@@ -69,16 +95,19 @@ CameraDescription parseCamera(YamlMap map) {
     const YamlValue target = map.require("look_at");
     glm::dvec3 up(0.0, 1.0, 0.0);
     if (auto u = map.find("up")) up = u->vec3();
-    c.worldFromCamera = lookAt(target, position.vec3(), target.vec3(), up);
+    c.worldFromCamera = lookAt(target, position, position.vec3(), target.vec3(), up);
   }
-  if (auto v = map.find("sensor_width_mm")) c.sensorSizeM.x = static_cast<float>(v->number(0.0, 1000.0, true) * 1e-3);
-  if (auto v = map.find("sensor_height_mm")) c.sensorSizeM.y = static_cast<float>(v->number(0.0, 1000.0, true) * 1e-3);
-  if (auto v = map.find("focal_length_mm")) c.focalLengthM = static_cast<float>(v->number(0.0, 1e5, true) * 1e-3);
+  if (auto v = map.find("sensor_width_mm"))
+    c.sensorSizeM.x = positiveFloat(*v, v->number(0.0, 1000.0, true) * 1e-3);
+  if (auto v = map.find("sensor_height_mm"))
+    c.sensorSizeM.y = positiveFloat(*v, v->number(0.0, 1000.0, true) * 1e-3);
+  if (auto v = map.find("focal_length_mm"))
+    c.focalLengthM = positiveFloat(*v, v->number(0.0, 1e5, true) * 1e-3);
   if (auto v = map.find("resolution")) {
     const std::vector<YamlValue> items = v->items();
     if (items.size() != 2) v->fail("expected [width, height] in pixels");
-    c.resolution.x = static_cast<int>(items[0].integer(1, SceneLimits::kMaxResolution));
-    c.resolution.y = static_cast<int>(items[1].integer(1, SceneLimits::kMaxResolution));
+    c.resolution.x = resolutionSide(items[0]);
+    c.resolution.y = resolutionSide(items[1]);
     if (std::int64_t(c.resolution.x) * c.resolution.y > SceneLimits::kMaxPixels)
       v->fail("more than " + std::to_string(SceneLimits::kMaxPixels) + " pixels (limit SceneLimits::kMaxPixels)");
   }
@@ -117,6 +146,8 @@ EmissionDescription parseEmission(YamlMap map, const Context& ctx) {
   } else {
     map.self().fail("emission needs 'luminance' (cd/m²) or 'scale' (W·m⁻²·sr⁻¹·nm⁻¹ per spectrum unit)");
   }
+  if (!std::isfinite(e.radiance.maxValue()))
+    (lum ? *lum : *scale).fail("the radiance exceeds the single-precision range");
   if (auto t = map.find("two_sided")) e.twoSided = t->boolean();
   map.finish({"spectrum", "luminance", "scale", "two_sided"});
   return e;
@@ -137,15 +168,20 @@ std::vector<std::uint32_t> parseFaces(const YamlValue& faces, size_t vertexCount
   return indices;
 }
 
-void checkMesh(const YamlValue& where, const MeshData& mesh) {
-  if (mesh.indices.empty()) where.fail("mesh has no triangles");
+// Twice the total area, computed from the single-precision positions the renderer uses.
+double meshArea2(const MeshData& mesh) {
   double area = 0.0;
   for (size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
     const glm::dvec3 a = mesh.positions[mesh.indices[t]], b = mesh.positions[mesh.indices[t + 1]],
                      c = mesh.positions[mesh.indices[t + 2]];
     area += glm::length(glm::cross(b - a, c - a));
   }
-  if (!(area > 0.0)) where.fail("mesh has zero area");
+  return area;
+}
+
+void checkMesh(const YamlValue& where, const MeshData& mesh) {
+  if (mesh.indices.empty()) where.fail("mesh has no triangles");
+  if (!(meshArea2(mesh) > 0.0)) where.fail("mesh has zero area");
 }
 
 ShapeDescription parseShape(YamlMap map, size_t index, const Context& ctx) {
@@ -157,16 +193,24 @@ ShapeDescription parseShape(YamlMap map, size_t index, const Context& ctx) {
   std::vector<std::string> known = {"type", "name", "material", "emission"};
   if (t == "sphere") {
     s.kind = ShapeDescription::Kind::kSphere;
-    s.centre = toVec3(map.require("centre").vec3());
-    s.radius = static_cast<float>(map.require("radius").number(0.0, 1e12, true));
+    const YamlValue centre = map.require("centre");
+    s.centre = toPoint(centre, centre.vec3());
+    const YamlValue radius = map.require("radius");
+    s.radius = positiveFloat(radius, radius.number(0.0, 1e12, true));
     known.insert(known.end(), {"centre", "radius"});
   } else if (t == "rectangle") {
-    const glm::dvec3 corner = map.require("corner").vec3();
+    const YamlValue cv = map.require("corner");
+    const glm::dvec3 corner = cv.vec3();
+    // Look both edges up before requiring either, so that a missing edge_u is not taken
+    // for a misspelling of edge_v.
+    map.find("edge_u");
+    map.find("edge_v");
     const YamlValue eu = map.require("edge_u"), ev = map.require("edge_v");
     const glm::dvec3 u = eu.vec3(), v = ev.vec3();
-    if (!(glm::length(glm::cross(u, v)) > 0.0)) ev.fail("edge_u and edge_v must span a non-zero area");
-    s.mesh.positions = {toVec3(corner), toVec3(corner + u), toVec3(corner + u + v), toVec3(corner + v)};
+    s.mesh.positions = {toPoint(cv, corner), toPoint(eu, corner + u), toPoint(ev, corner + u + v),
+                        toPoint(ev, corner + v)};
     s.mesh.indices = {0, 1, 2, 0, 2, 3};
+    if (!(meshArea2(s.mesh) > 0.0)) ev.fail("edge_u and edge_v must span a non-zero area");
     known.insert(known.end(), {"corner", "edge_u", "edge_v"});
   } else if (t == "mesh") {
     const auto file = map.find("file");
@@ -186,10 +230,11 @@ ShapeDescription parseShape(YamlMap map, size_t index, const Context& ctx) {
       if (auto sc = map.find("scale")) scale = sc->number(0.0, 1e12, true);
       glm::dvec3 translate(0.0);
       if (auto tr = map.find("translate")) translate = tr->vec3();
-      for (glm::vec3& p3 : s.mesh.positions) p3 = toVec3(glm::dvec3(p3) * scale + translate);
+      for (glm::vec3& p3 : s.mesh.positions)
+        p3 = toPoint(*file, glm::dvec3(p3) * scale + translate);
       checkMesh(*file, s.mesh);
     } else if (vertices) {
-      for (const YamlValue& v : vertices->items()) s.mesh.positions.push_back(toVec3(v.vec3()));
+      for (const YamlValue& v : vertices->items()) s.mesh.positions.push_back(toPoint(v, v.vec3()));
       if (s.mesh.positions.size() < 3) vertices->fail("a mesh needs at least 3 vertices");
       const YamlValue faces = map.require("faces");
       s.mesh.indices = parseFaces(faces, s.mesh.positions.size());

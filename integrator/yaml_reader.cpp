@@ -1,14 +1,17 @@
 #include "integrator/yaml_reader.h"
 
+#include <algorithm>
+#include <cctype>
 #include <charconv>
 #include <cmath>
+#include <map>
+#include <string_view>
 
 namespace camsim {
 
 SourceLocation YamlValue::where() const {
-  const YAML::Mark mark = node_.Mark();
-  if (mark.line < 0) return {file_, 0, 0};
-  return {file_, mark.line + 1, mark.column + 1};
+  if (mark_.line < 0) return {file_, 0, 0};
+  return {file_, mark_.line + 1, mark_.column + 1};
 }
 
 void YamlValue::fail(const std::string& message) const { throw InputError(where(), key_, message); }
@@ -26,8 +29,10 @@ double YamlValue::number() const {
   if (!s.empty() && s.front() == '+') ++begin;
   const auto [ptr, ec] = std::from_chars(begin, s.data() + s.size(), value);
   if (ec != std::errc() || ptr != s.data() + s.size()) {
-    if (s == ".nan" || s == ".NaN" || s == ".inf" || s == "-.inf" || s == ".Inf")
-      fail("'" + s + "' is not a finite number");
+    std::string lower = s.substr(!s.empty() && (s.front() == '+' || s.front() == '-') ? 1 : 0);
+    std::transform(lower.begin(), lower.end(), lower.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    if (lower == ".nan" || lower == ".inf") fail("'" + s + "' is not a finite number");
     fail("'" + s + "' is not a number");
   }
   if (!std::isfinite(value)) fail("'" + s + "' is not a finite number");
@@ -87,6 +92,18 @@ glm::dvec3 YamlValue::vec3() const {
 
 YamlMap::YamlMap(const YamlValue& value) : self_(value) {
   if (!value.isMap()) value.fail("expected a mapping of keys to values");
+  // yaml-cpp keeps duplicate keys; lookups would silently use the first one.
+  std::map<std::string, int> seen;  // key → line (1-based)
+  for (auto it = self_.node().begin(); it != self_.node().end(); ++it) {
+    if (!it->first.IsScalar())
+      YamlValue(it->first, self_.key(), self_.file()).fail("a key must be a plain name");
+    const std::string name = it->first.Scalar();
+    const auto [first, inserted] = seen.emplace(name, it->first.Mark().line + 1);
+    if (!inserted) {
+      YamlValue(it->first, childKey(name), self_.file())
+          .fail("duplicate key (first given at line " + std::to_string(first->second) + ")");
+    }
+  }
 }
 
 std::string YamlMap::childKey(const std::string& name) const {
@@ -96,16 +113,51 @@ std::string YamlMap::childKey(const std::string& name) const {
 bool YamlMap::has(const std::string& name) const { return static_cast<bool>(self_.node()[name]); }
 
 std::optional<YamlValue> YamlMap::find(const std::string& name) {
-  const YAML::Node child = self_.node()[name];
-  if (!child) return std::nullopt;
-  used_.insert(name);
-  return YamlValue(child, childKey(name), self_.file());
+  for (auto it = self_.node().begin(); it != self_.node().end(); ++it) {
+    if (it->first.Scalar() != name) continue;
+    used_.insert(name);
+    // A key given without a value ("radius:" at the end of a line) is a null node that
+    // yaml-cpp places at the next token, on a later line or past the end: use the key.
+    const YAML::Mark valueMark = it->second.Mark();
+    const YAML::Mark keyMark = it->first.Mark();
+    const bool misplaced = it->second.IsNull() && valueMark.line != keyMark.line;
+    return YamlValue(it->second, childKey(name), self_.file(), misplaced ? keyMark : valueMark);
+  }
+  return std::nullopt;
 }
+
+namespace {
+
+// Levenshtein distance, for "did you mean" hints on misspelt keys.
+size_t editDistance(const std::string& a, const std::string& b) {
+  std::vector<size_t> row(b.size() + 1);
+  for (size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (size_t i = 1; i <= a.size(); ++i) {
+    size_t diagonal = row[0];
+    row[0] = i;
+    for (size_t j = 1; j <= b.size(); ++j) {
+      const size_t substitute = diagonal + (a[i - 1] == b[j - 1] ? 0 : 1);
+      diagonal = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, substitute});
+    }
+  }
+  return row[b.size()];
+}
+
+}  // namespace
 
 YamlValue YamlMap::require(const std::string& name) {
   std::optional<YamlValue> v = find(name);
-  if (!v) throw InputError(self_.where(), childKey(name), "required key is missing");
-  return *v;
+  if (v) return *v;
+  // A misspelt required key ("radus") is reported where the typo is, not as a missing key.
+  for (auto it = self_.node().begin(); it != self_.node().end(); ++it) {
+    const std::string other = it->first.Scalar();
+    if (!used_.count(other) && editDistance(other, name) <= 2 && other.size() > 2) {
+      YamlValue(it->first, childKey(other), self_.file())
+          .fail("unknown key (did you mean '" + name + "'? It is required here)");
+    }
+  }
+  throw InputError(self_.where(), childKey(name), "required key is missing");
 }
 
 std::vector<std::string> YamlMap::keys() const {
@@ -128,14 +180,122 @@ void YamlMap::finish(const std::vector<std::string>& known) const {
   }
 }
 
-YamlValue parseYaml(const std::string& text, const std::string& file) {
-  try {
-    YAML::Node root = YAML::Load(text);
-    return YamlValue(root, "", file);
-  } catch (const YAML::Exception& e) {
-    throw InputError({file, e.mark.line >= 0 ? e.mark.line + 1 : 0, e.mark.column >= 0 ? e.mark.column + 1 : 0},
-                     "", "YAML syntax error: " + e.msg);
+namespace {
+
+struct Bracket {
+  char c;
+  int line, column;  // 1-based
+};
+
+// The innermost '[' or '{' still open at byte `end` of `text`, skipping quoted scalars and
+// comments. yaml-cpp reports an unclosed flow collection where it gave up (often the end
+// of the file); the bracket that needs closing is what the user has to find.
+std::optional<Bracket> unclosedBracket(const std::string& text, size_t end) {
+  constexpr std::string_view kQuoteAfter = " \t\n[{,:";  // a quote here starts a scalar
+  std::vector<Bracket> open;
+  int line = 1, column = 0;
+  char quote = 0;  // '"' or '\'' inside a quoted scalar
+  bool comment = false;
+  end = std::min(end, text.size());
+  for (size_t i = 0; i < end; ++i) {
+    const char c = text[i];
+    const char prev = i > 0 ? text[i - 1] : '\n';
+    ++column;
+    if (c == '\n') {
+      comment = false;
+      ++line;
+      column = 0;
+    } else if (comment) {
+      continue;
+    } else if (quote == '"') {
+      if (c == '\\' && i + 1 < end && text[i + 1] != '\n') {
+        ++i;
+        ++column;
+      } else if (c == '"') {
+        quote = 0;
+      }
+    } else if (quote == '\'') {
+      if (c == '\'' && i + 1 < end && text[i + 1] == '\'') {
+        ++i;  // '' is an escaped quote
+        ++column;
+      } else if (c == '\'') {
+        quote = 0;
+      }
+    } else if (c == '#' && (prev == ' ' || prev == '\t' || prev == '\n')) {
+      comment = true;
+    } else if ((c == '"' || c == '\'') && kQuoteAfter.find(prev) != std::string_view::npos) {
+      quote = c;
+    } else if (c == '[' || c == '{') {
+      open.push_back({c, line, column});
+    } else if (!open.empty() &&
+               ((c == ']' && open.back().c == '[') || (c == '}' && open.back().c == '{'))) {
+      open.pop_back();
+    }
   }
+  if (open.empty()) return std::nullopt;
+  return open.back();
+}
+
+// yaml-cpp 0.7 accepts a quoted scalar left open when the text ends with a line break: the
+// scalar swallows the rest of the file. Check that every quoted scalar is closed.
+void checkQuotesClosed(const YAML::Node& node, const std::string& text, const std::string& file) {
+  if (node.IsMap()) {
+    for (auto it = node.begin(); it != node.end(); ++it) {
+      checkQuotesClosed(it->first, text, file);
+      checkQuotesClosed(it->second, text, file);
+    }
+  } else if (node.IsSequence()) {
+    for (size_t i = 0; i < node.size(); ++i) checkQuotesClosed(node[i], text, file);
+  } else if (node.IsScalar()) {
+    const YAML::Mark mark = node.Mark();
+    if (mark.pos < 0 || static_cast<size_t>(mark.pos) >= text.size()) return;
+    const char q = text[static_cast<size_t>(mark.pos)];
+    if (q != '"' && q != '\'') return;  // a plain scalar
+    for (size_t i = static_cast<size_t>(mark.pos) + 1; i < text.size(); ++i) {
+      if (q == '"' && text[i] == '\\') {
+        ++i;
+      } else if (text[i] == q) {
+        if (q == '\'' && i + 1 < text.size() && text[i + 1] == '\'') {
+          ++i;  // '' is an escaped quote
+        } else {
+          return;
+        }
+      }
+    }
+    YamlValue(node, "", file).fail(std::string("YAML syntax error: the quoted string (") + q +
+                                   ") is never closed");
+  }
+}
+
+}  // namespace
+
+YamlValue parseYaml(const std::string& text, const std::string& file) {
+  std::vector<YAML::Node> documents;
+  try {
+    documents = YAML::LoadAll(text);
+  } catch (const YAML::Exception& e) {
+    SourceLocation where{file, e.mark.line >= 0 ? e.mark.line + 1 : 0,
+                         e.mark.column >= 0 ? e.mark.column + 1 : 0};
+    std::string message = "YAML syntax error: " + e.msg;
+    if (e.msg == YAML::ErrorMsg::END_OF_SEQ_FLOW || e.msg == YAML::ErrorMsg::END_OF_MAP_FLOW) {
+      const size_t end = e.mark.pos >= 0 ? static_cast<size_t>(e.mark.pos) : text.size();
+      if (const auto b = unclosedBracket(text, end)) {
+        where.line = b->line;
+        where.column = b->column;
+        message += " ('" + std::string(1, b->c) + "' is never closed)";
+      }
+    }
+    throw InputError(where, "", message);
+  }
+  if (documents.empty()) return YamlValue(YAML::Node(), "", file);
+  for (const YAML::Node& document : documents) checkQuotesClosed(document, text, file);
+  // YAML::Load would silently drop everything after a second '---'.
+  for (size_t i = 1; i < documents.size(); ++i) {
+    if (!documents[i].IsNull())
+      YamlValue(documents[i], "", file)
+          .fail("a scene file holds one YAML document; this is a second");
+  }
+  return YamlValue(documents[0], "", file);
 }
 
 }  // namespace camsim

@@ -21,7 +21,11 @@ namespace camsim {
 class YamlValue {
  public:
   YamlValue(YAML::Node node, std::string key, std::string file)
-      : node_(std::move(node)), key_(std::move(key)), file_(std::move(file)) {}
+      : node_(std::move(node)), key_(std::move(key)), file_(std::move(file)), mark_(node_.Mark()) {}
+  // `mark` overrides the node's own location (used for keys given without a value, whose
+  // null node yaml-cpp places at the next token, often on a later line).
+  YamlValue(YAML::Node node, std::string key, std::string file, YAML::Mark mark)
+      : node_(std::move(node)), key_(std::move(key)), file_(std::move(file)), mark_(mark) {}
 
   const YAML::Node& node() const { return node_; }
   const std::string& key() const { return key_; }
@@ -46,11 +50,13 @@ class YamlValue {
   YAML::Node node_;
   std::string key_;
   std::string file_;
+  YAML::Mark mark_;
 };
 
 class YamlMap {
  public:
-  explicit YamlMap(const YamlValue& value);  // fails unless value is a mapping
+  // Fails unless value is a mapping whose keys are distinct plain scalars.
+  explicit YamlMap(const YamlValue& value);
 
   bool has(const std::string& name) const;
   std::optional<YamlValue> find(const std::string& name);  // marks the key as used
@@ -66,7 +72,8 @@ class YamlMap {
   std::set<std::string> used_;
 };
 
-// Parses YAML/JSON text; syntax errors become InputError with the location.
+// Parses YAML/JSON text holding one document; syntax errors become InputError with the
+// location (for an unclosed '[' or '{': the bracket's location).
 YamlValue parseYaml(const std::string& text, const std::string& file);
 
 }  // namespace camsim

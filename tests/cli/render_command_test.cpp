@@ -1,0 +1,329 @@
+// Tests for the `camsim` command line (cli/args.cpp, cli/render_command.cpp, cli/main.cpp):
+// parseArgs as a unit, then the real binary (CAMSIM_BINARY) run through the shell — exit
+// codes, "file:line:col" error messages, no output at all after a bad scene, and a small
+// render whose EXR carries the expected channels and metadata.
+#include "cli/args.h"
+
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "cli/render_command.h"
+#include "integrator/scene_loader.h"
+#include "sensor/exr_io.h"
+
+namespace camsim {
+namespace {
+
+namespace fs = std::filesystem;
+
+// ---- parseArgs -------------------------------------------------------------------------
+
+TEST(ParseArgs, RenderDefaults) {
+  const Command cmd = parseArgs({"render"});
+  EXPECT_EQ(cmd.kind, Command::Kind::kRender);
+  EXPECT_FALSE(cmd.render.scene.has_value());
+  EXPECT_EQ(cmd.render.outputDir, "out");
+  EXPECT_FALSE(cmd.render.spp.has_value());
+  EXPECT_FALSE(cmd.render.seed.has_value());
+  EXPECT_EQ(cmd.render.threads, 0);
+}
+
+TEST(ParseArgs, AllOptions) {
+  const Command cmd = parseArgs(
+      {"render", "box.yaml", "-o", "dir", "--spp", "16", "--seed", "42", "--threads", "3"});
+  EXPECT_EQ(cmd.kind, Command::Kind::kRender);
+  EXPECT_EQ(cmd.render.scene, "box.yaml");
+  EXPECT_EQ(cmd.render.outputDir, "dir");
+  EXPECT_EQ(cmd.render.spp, 16);
+  EXPECT_EQ(cmd.render.seed, 42u);
+  EXPECT_EQ(cmd.render.threads, 3);
+  EXPECT_EQ(parseArgs({"render", "--output", "o2"}).render.outputDir, "o2");
+  EXPECT_EQ(parseArgs({"render", "--spp", std::to_string(SceneLimits::kMaxSpp)}).render.spp,
+            SceneLimits::kMaxSpp);
+}
+
+TEST(ParseArgs, HelpAndVersion) {
+  EXPECT_EQ(parseArgs({"--help"}).kind, Command::Kind::kHelp);
+  EXPECT_EQ(parseArgs({"-h"}).kind, Command::Kind::kHelp);
+  EXPECT_EQ(parseArgs({"render", "--help"}).kind, Command::Kind::kHelp);
+  EXPECT_EQ(parseArgs({"--version"}).kind, Command::Kind::kVersion);
+  EXPECT_NE(usageText().find("usage:"), std::string::npos);
+}
+
+TEST(ParseArgs, BadUsageThrows) {
+  using Args = std::vector<std::string>;
+  for (const Args& args : {Args{}, Args{"draw"}, Args{"render", "--bogus"},
+                           Args{"render", "--spp", "abc"}, Args{"render", "--spp", "12x"},
+                           Args{"render", "--spp", ""}, Args{"render", "--spp", "0"},
+                           Args{"render", "--spp", std::to_string(SceneLimits::kMaxSpp + 1)},
+                           Args{"render", "--spp", "99999999999999999999"},
+                           Args{"render", "--seed", "-1"}, Args{"render", "--threads", "0"},
+                           Args{"render", "--spp"}, Args{"render", "-o", ""},
+                           Args{"render", "a.yaml", "b.yaml"}}) {
+    std::string joined;
+    for (const auto& a : args) joined += "'" + a + "' ";
+    EXPECT_THROW(parseArgs(args), UsageError) << joined;
+  }
+}
+
+// ---- the binary ------------------------------------------------------------------------
+
+class TempDir {
+ public:
+  TempDir() {
+    static std::atomic<int> counter{0};
+    const auto stamp = std::chrono::steady_clock::now().time_since_epoch().count();
+    path_ = fs::temp_directory_path() / ("camsim_cli_test_" + std::to_string(getpid()) + "_" +
+                                         std::to_string(stamp) + "_" + std::to_string(counter++));
+    fs::create_directories(path_);
+  }
+  ~TempDir() {
+    std::error_code ec;
+    fs::remove_all(path_, ec);
+  }
+  TempDir(const TempDir&) = delete;
+  TempDir& operator=(const TempDir&) = delete;
+  const fs::path& path() const { return path_; }
+
+ private:
+  fs::path path_;
+};
+
+std::string quote(const std::string& s) {
+  std::string out = "'";
+  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
+
+std::string readFile(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+void writeFile(const fs::path& path, const std::string& text) {
+  std::ofstream out(path, std::ios::binary);
+  out << text;
+  ASSERT_TRUE(out.good()) << path;
+}
+
+struct RunResult {
+  int exitCode = -1;
+  std::string out;
+  std::string err;
+};
+
+// Runs `program args` with stdout and stderr captured into files in logDir.
+RunResult runProgram(const std::string& program, const std::string& args, const fs::path& logDir) {
+  const fs::path out = logDir / "stdout.txt", err = logDir / "stderr.txt";
+  const std::string command =
+      quote(program) + " " + args + " >" + quote(out.string()) + " 2>" + quote(err.string());
+  const int status = std::system(command.c_str());
+  RunResult r;
+  if (status != -1 && WIFEXITED(status)) r.exitCode = WEXITSTATUS(status);
+  r.out = readFile(out);
+  r.err = readFile(err);
+  return r;
+}
+
+RunResult camsim(const std::string& args, const fs::path& logDir) {
+  return runProgram(CAMSIM_BINARY, args, logDir);
+}
+
+std::vector<std::string> filesIn(const fs::path& dir) {
+  std::vector<std::string> names;
+  if (!fs::exists(dir)) return names;
+  for (const auto& entry : fs::recursive_directory_iterator(dir))
+    names.push_back(fs::relative(entry.path(), dir).string());
+  return names;
+}
+
+TEST(CamsimBinary, HelpAndVersion) {
+  TempDir dir;
+  RunResult r = camsim("--help", dir.path());
+  EXPECT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_NE(r.out.find("usage:"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("camsim render"), std::string::npos) << r.out;
+  r = camsim("--version", dir.path());
+  EXPECT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_EQ(r.out, "camsim 0.1.0\n");
+}
+
+TEST(CamsimBinary, BadUsageExitsTwo) {
+  TempDir dir;
+  RunResult r = camsim("render --bogus", dir.path());
+  EXPECT_EQ(r.exitCode, 2);
+  EXPECT_NE(r.err.find("unknown option '--bogus'"), std::string::npos) << r.err;
+  r = camsim("frobnicate", dir.path());
+  EXPECT_EQ(r.exitCode, 2);
+  EXPECT_NE(r.err.find("unknown command 'frobnicate'"), std::string::npos) << r.err;
+  r = camsim("", dir.path());
+  EXPECT_EQ(r.exitCode, 2);
+  r = camsim("render --spp 0", dir.path());
+  EXPECT_EQ(r.exitCode, 2);
+  EXPECT_NE(r.err.find("--spp"), std::string::npos) << r.err;
+}
+
+TEST(CamsimBinary, NonexistentSceneExitsTwo) {
+  TempDir dir;
+  const fs::path scene = dir.path() / "no_such_scene.yaml";
+  const fs::path out = dir.path() / "out";
+  const RunResult r = camsim("render " + quote(scene.string()) + " -o " + quote(out.string()),
+                             dir.path());
+  EXPECT_EQ(r.exitCode, 2);
+  EXPECT_NE(r.err.find(scene.string()), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("cannot open scene file"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(out));
+}
+
+// Lines 1–7; the shape is on line 8 (the value of radius at column 47).
+const std::string kPrefix =
+    "camera:\n  position: [0, 0, -1]\n  look_at: [0, 0, 0]\n  resolution: [8, 8]\n"
+    "materials:\n  m: {type: diffuse}\nshapes:\n";
+
+struct BadScene {
+  const char* name;
+  std::string text;
+  std::string location;  // ":line:col"
+  std::string key;       // "" when none applies
+};
+
+const BadScene kBadScenes[] = {
+    {"SyntaxError", kPrefix + "  - {type: sphere, centre: [0, 0, 0], radius: 1, material: m\n",
+     ":8:5", ""},
+    {"UnknownKey",
+     kPrefix + "  - {type: sphere, centre: [0, 0, 0], radius: 1, material: m}\nfoo: 1\n", ":9:1",
+     "foo"},
+    {"NegativeSize", kPrefix + "  - {type: sphere, centre: [0, 0, 0], radius: -2, material: m}\n",
+     ":8:47", "shapes[0].radius"},
+    {"MissingMeshFile", kPrefix + "  - type: mesh\n    material: m\n    file: nowhere.obj\n",
+     ":10:11", "shapes[0].file"},
+    {"NaN", kPrefix + "  - {type: sphere, centre: [0, .nan, 0], radius: 1, material: m}\n", ":8:32",
+     "shapes[0].centre[1]"},
+    {"WrongType", kPrefix + "  - {type: sphere, centre: [0, 0, 0], radius: big, material: m}\n",
+     ":8:47", "shapes[0].radius"},
+    {"ZeroResolution",
+     "camera:\n  position: [0, 0, -1]\n  look_at: [0, 0, 0]\n  resolution: [8, 0]\n"
+     "shapes:\n  - {type: sphere, centre: [0, 0, 0], radius: 1}\n",
+     ":4:19", "camera.resolution[1]"},
+};
+
+void PrintTo(const BadScene& s, std::ostream* os) { *os << s.name; }
+
+class CamsimBadScene : public ::testing::TestWithParam<BadScene> {};
+
+TEST_P(CamsimBadScene, ExitsTwoWithLocationAndWritesNothing) {
+  const BadScene& c = GetParam();
+  TempDir dir;
+  const fs::path scene = dir.path() / "BAD.yaml";
+  writeFile(scene, c.text);
+  const fs::path out = dir.path() / "out";
+  fs::create_directories(out);
+  const RunResult r =
+      camsim("render " + quote(scene.string()) + " -o " + quote(out.string()), dir.path());
+  EXPECT_EQ(r.exitCode, 2) << r.err;
+  EXPECT_NE(r.err.find(scene.string() + c.location + ": "), std::string::npos)
+      << "expected " << c.location << " in: " << r.err;
+  if (!c.key.empty()) {
+    EXPECT_NE(r.err.find("key '" + c.key + "'"), std::string::npos) << r.err;
+  }
+  EXPECT_EQ(r.err.find("internal error"), std::string::npos) << r.err;
+  EXPECT_TRUE(filesIn(out).empty()) << "left behind: " << filesIn(out).front();
+  // A directory that did not exist is not created for a scene that fails to load.
+  const fs::path fresh = dir.path() / "fresh";
+  EXPECT_EQ(camsim("render " + quote(scene.string()) + " -o " + quote(fresh.string()), dir.path())
+                .exitCode,
+            2);
+  EXPECT_FALSE(fs::exists(fresh));
+}
+
+INSTANTIATE_TEST_SUITE_P(Scenes, CamsimBadScene, ::testing::ValuesIn(kBadScenes),
+                         [](const ::testing::TestParamInfo<BadScene>& param) {
+                           return std::string(param.param.name);
+                         });
+
+// The Cornell box scene at 32×32 px, written next to the test's other files.
+std::string smallCornellBox() {
+  std::string text = readFile(fs::path(CAMSIM_SOURCE_DIR) / "scenes" / "cornell_box.yaml");
+  const std::string from = "resolution: [512, 512]";
+  const size_t at = text.find(from);
+  if (at == std::string::npos) return "";
+  return text.replace(at, from.size(), "resolution: [32, 32]");
+}
+
+TEST(CamsimBinary, RendersSmallSceneToExrAndPng) {
+  TempDir dir;
+  const std::string text = smallCornellBox();
+  ASSERT_FALSE(text.empty()) << "scenes/cornell_box.yaml no longer has resolution [512, 512]";
+  const fs::path scene = dir.path() / "small_box.yaml";
+  writeFile(scene, text);
+  const fs::path out = dir.path() / "out" / "nested";  // created by camsim
+  const RunResult r = camsim("render " + quote(scene.string()) + " -o " + quote(out.string()) +
+                                 " --spp 2 --seed 5 --threads 2",
+                             dir.path());
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_NE(r.err.find("rendered cornell_box: 32x32, 2 spp"), std::string::npos) << r.err;
+
+  std::vector<std::string> files = filesIn(out);
+  std::sort(files.begin(), files.end());
+  EXPECT_EQ(files, (std::vector<std::string>{"cornell_box.exr", "cornell_box.png"}));
+  const std::string png = readFile(out / "cornell_box.png");
+  ASSERT_GE(png.size(), 8u);
+  EXPECT_EQ(png.substr(1, 3), "PNG");
+
+  const ExrFile exr = readExr(out / "cornell_box.exr");
+  EXPECT_EQ(exr.image.width, 32);
+  EXPECT_EQ(exr.image.height, 32);
+  EXPECT_EQ(exr.image.channelCount(), 6);
+  for (const char* ch : {"R", "G", "B", "XYZ.X", "XYZ.Y", "XYZ.Z"})
+    EXPECT_GE(exr.image.channelIndex(ch), 0) << ch;
+  auto meta = [&](const std::string& key) -> std::string {
+    for (const auto& [k, v] : exr.metadata)
+      if (k == key) return v;
+    ADD_FAILURE() << "no metadata " << key;
+    return "";
+  };
+  EXPECT_EQ(meta("camsim:spp"), "2");
+  EXPECT_EQ(meta("camsim:seed"), "5");
+  EXPECT_EQ(meta("camsim:version"), "0.1.0");
+  EXPECT_EQ(meta("camsim:scene_fnv1a64"), fnv1aHex(text));
+  const std::string seconds = meta("camsim:render_seconds");
+  EXPECT_FALSE(seconds.empty());
+  EXPECT_GE(std::atof(seconds.c_str()), 0.0);
+  EXPECT_TRUE(exr.chromaticities.has_value());
+
+  // Absolute units: the luminance of the lit scene is positive and finite everywhere.
+  const int y = exr.image.channelIndex("XYZ.Y");
+  ASSERT_GE(y, 0);
+  double sum = 0.0;
+  for (int py = 0; py < 32; ++py)
+    for (int px = 0; px < 32; ++px) {
+      const float v = exr.image.at(px, py, y);
+      ASSERT_TRUE(std::isfinite(v));
+      sum += static_cast<double>(v);
+    }
+  EXPECT_GT(sum, 0.0);
+
+  // (e) OpenEXR's own tool reads the file, when installed.
+  if (std::system("command -v exrheader >/dev/null 2>&1") != 0) GTEST_SKIP() << "no exrheader";
+  const RunResult h =
+      runProgram("exrheader", quote((out / "cornell_box.exr").string()), dir.path());
+  EXPECT_EQ(h.exitCode, 0) << h.err;
+  EXPECT_NE(h.out.find("camsim:spp"), std::string::npos) << h.out;
+}
+
+}  // namespace
+}  // namespace camsim
