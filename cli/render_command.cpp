@@ -43,6 +43,27 @@ LoadedScene load(const RenderArgs& args) {
   return loaded;
 }
 
+std::string number(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.9g", v);
+  return buf;
+}
+
+void appendCameraMetadata(const PhysicalCamera& camera, Metadata& meta) {
+  const PhysicalCameraParams& p = camera.params();
+  const glm::dvec4 k = camera.intrinsics();
+  meta.insert(meta.end(), {{"camsim:exposure_time_s", number(p.shutter.effectiveTime())},
+                           {"camsim:f_number", number(p.fNumber)},
+                           {"camsim:focal_length_m", number(p.focalLength)},
+                           {"camsim:image_distance_m", number(camera.imageDistance())},
+                           {"camsim:pixel_area_m2", number(camera.pixelArea())},
+                           {"camsim:opencv_fx_fy_cx_cy", number(k.x) + " " + number(k.y) + " " + number(k.z) +
+                                                             " " + number(k.w)},
+                           {"camsim:opencv_k1_k2_p1_p2_k3",
+                            number(p.distortion.k1) + " " + number(p.distortion.k2) + " " + number(p.distortion.p1) +
+                                " " + number(p.distortion.p2) + " " + number(p.distortion.k3)}});
+}
+
 std::string formatRate(double perSecond) {
   char buf[32];
   if (perSecond >= 1e6) std::snprintf(buf, sizeof buf, "%.2f M", perSecond * 1e-6);
@@ -112,7 +133,11 @@ RenderCommandResult runRender(const RenderArgs& args, std::ostream& log, const s
                    {"camsim:seed", std::to_string(desc.render.seed)},
                    {"camsim:render_seconds", std::to_string(st.seconds)},
                    {"camsim:rejected_samples", std::to_string(st.rejectedSamples)},
-                   {"camsim:units", "R,G,B: linear Rec.709, (1,1,1) has luminance 1 cd/m2; XYZ.Y: luminance in cd/m2"}};
+                   {"camsim:modelled", st.modelled.describe()},
+                   {"camsim:units", "energy on each photosite weighted by the CIE 1931 observer x 683 lm/W: "
+                                    "XYZ.Y is luminous energy in lm*s (talbot); R,G,B: linear Rec.709 on the "
+                                    "same scale (1,1,1 has Y = 1 lm*s)"}};
+  appendCameraMetadata(scene.camera(), meta);
   const auto& cs = RgbColorSpace::linearRec709();
   OutputSet outputs(outDir);
   writeExr(outputs.add(desc.name + ".exr"), exrImage(result.image), meta,
@@ -122,6 +147,7 @@ RenderCommandResult runRender(const RenderArgs& args, std::ostream& log, const s
   outcome.files = outputs.commit();
 
   const double samples = static_cast<double>(st.samples);
+  log << "modelled: " << st.modelled.describe() << "\n";
   log << "rendered " << desc.name << ": " << result.image.width << "x" << result.image.height << ", "
       << desc.render.spp << " spp, " << st.threads << " threads, " << formatSeconds(st.seconds) << " ("
       << formatRate(samples / st.seconds) << "samples/s, " << formatRate(double(st.rays.total()) / st.seconds)

@@ -6,8 +6,6 @@
 #include <stdexcept>
 #include <string>
 
-#include <glm/vec4.hpp>
-
 #include "integrator/sphere.h"
 #include "integrator/triangle_mesh.h"
 #include "sensor/check.h"
@@ -25,7 +23,6 @@ void reportEmbreeError(void*, RTCError code, const char* message) {
 struct EmbreeScene::Impl {
   RTCDevice device = nullptr;
   RTCScene scene = nullptr;
-  std::vector<glm::vec4> sphereData;  // x, y, z, radius per sphere shape (kept alive)
 
   ~Impl() {
     if (scene) rtcReleaseScene(scene);
@@ -33,27 +30,36 @@ struct EmbreeScene::Impl {
   }
 };
 
-EmbreeScene::EmbreeScene(const std::vector<std::unique_ptr<Shape>>& shapes)
+EmbreeScene::EmbreeScene(const std::vector<std::unique_ptr<Shape>>& shapes, double motionStart,
+                         double motionEnd)
     : impl_(std::make_unique<Impl>()) {
+  if (motionEnd > motionStart) {
+    timeOffset_ = motionStart;
+    timeScale_ = 1.0 / (motionEnd - motionStart);
+  }
   impl_->device = rtcNewDevice(nullptr);
   if (!impl_->device) throw std::runtime_error("cannot create Embree device");
   rtcSetDeviceErrorFunction(impl_->device, reportEmbreeError, nullptr);
   impl_->scene = rtcNewScene(impl_->device);
   rtcSetSceneBuildQuality(impl_->scene, RTC_BUILD_QUALITY_HIGH);
-  impl_->sphereData.reserve(shapes.size());
   for (size_t id = 0; id < shapes.size(); ++id) {
     RTCGeometry geom = nullptr;
     if (const auto* mesh = dynamic_cast<const TriangleMesh*>(shapes[id].get())) {
       geom = rtcNewGeometry(impl_->device, RTC_GEOMETRY_TYPE_TRIANGLE);
-      // Embree may read up to 16 bytes from the last vertex, so the vertices go into a
-      // buffer Embree allocates (with its padding) rather than sharing the mesh's array.
-      auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0,
-                                                            RTC_FORMAT_FLOAT3, sizeof(float) * 3,
-                                                            mesh->positions().size()));
-      for (size_t i = 0; i < mesh->positions().size(); ++i) {
-        v[3 * i] = mesh->positions()[i].x;
-        v[3 * i + 1] = mesh->positions()[i].y;
-        v[3 * i + 2] = mesh->positions()[i].z;
+      const int steps = mesh->timeSteps().count;
+      rtcSetGeometryTimeStepCount(geom, static_cast<unsigned>(steps));
+      for (int k = 0; k < steps; ++k) {
+        // Embree may read up to 16 bytes from the last vertex, so the vertices go into a
+        // buffer Embree allocates (with its padding) rather than sharing the mesh's array.
+        const std::vector<glm::vec3>& p = mesh->positions(k);
+        auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX,
+                                                              static_cast<unsigned>(k), RTC_FORMAT_FLOAT3,
+                                                              sizeof(float) * 3, p.size()));
+        for (size_t i = 0; i < p.size(); ++i) {
+          v[3 * i] = p[i].x;
+          v[3 * i + 1] = p[i].y;
+          v[3 * i + 2] = p[i].z;
+        }
       }
       auto* idx = static_cast<unsigned*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0,
                                                                  RTC_FORMAT_UINT3, sizeof(unsigned) * 3,
@@ -61,12 +67,17 @@ EmbreeScene::EmbreeScene(const std::vector<std::unique_ptr<Shape>>& shapes)
       for (size_t i = 0; i < mesh->indices().size(); ++i) idx[i] = mesh->indices()[i];
     } else if (const auto* sphere = dynamic_cast<const Sphere*>(shapes[id].get())) {
       geom = rtcNewGeometry(impl_->device, RTC_GEOMETRY_TYPE_SPHERE_POINT);
-      auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0,
-                                                            RTC_FORMAT_FLOAT4, sizeof(float) * 4, 1));
-      v[0] = sphere->centre().x;
-      v[1] = sphere->centre().y;
-      v[2] = sphere->centre().z;
-      v[3] = sphere->radius();
+      const int steps = sphere->timeSteps().count;
+      rtcSetGeometryTimeStepCount(geom, static_cast<unsigned>(steps));
+      for (int k = 0; k < steps; ++k) {
+        auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, static_cast<unsigned>(k),
+                                                              RTC_FORMAT_FLOAT4, sizeof(float) * 4, 1));
+        const glm::vec3& c = sphere->centres()[static_cast<size_t>(k)];
+        v[0] = c.x;
+        v[1] = c.y;
+        v[2] = c.z;
+        v[3] = sphere->radii()[static_cast<size_t>(k)];
+      }
     } else {
       CAMSIM_CHECK(false && "unknown shape type");
     }
@@ -91,7 +102,7 @@ bool EmbreeScene::intersect(const Ray& ray, Hit& hit) const {
   rh.ray.dir_z = ray.d.z;
   rh.ray.tnear = 0.0f;
   rh.ray.tfar = ray.tMax;
-  rh.ray.time = 0.0f;
+  rh.ray.time = static_cast<float>((static_cast<double>(ray.time) - timeOffset_) * timeScale_);
   rh.ray.mask = 0xFFFFFFFFu;
   rh.ray.id = 0;
   rh.ray.flags = 0;
@@ -120,7 +131,7 @@ bool EmbreeScene::occluded(const Ray& ray) const {
   r.dir_z = ray.d.z;
   r.tnear = 0.0f;
   r.tfar = ray.tMax;
-  r.time = 0.0f;
+  r.time = static_cast<float>((static_cast<double>(ray.time) - timeOffset_) * timeScale_);
   r.mask = 0xFFFFFFFFu;
   r.id = 0;
   r.flags = 0;

@@ -2,6 +2,9 @@
 // includes Embree. Geometry id == shape index, so a Hit names its Shape directly.
 // Triangle meshes become RTC_GEOMETRY_TYPE_TRIANGLE (copied into Embree-owned, padded
 // buffers), spheres RTC_GEOMETRY_TYPE_SPHERE_POINT. BVH: RTC_BUILD_QUALITY_HIGH.
+// Moving shapes use Embree's motion blur: one vertex buffer per time step
+// (rtcSetGeometryTimeStepCount), steps uniform over the scene's motion span [t0, t1];
+// a ray's time t (s) is passed to Embree as (t − t0)/(t1 − t0). Nothing is rebuilt per sample.
 #pragma once
 
 #include <memory>
@@ -14,7 +17,8 @@ namespace camsim {
 
 class EmbreeScene {
  public:
-  explicit EmbreeScene(const std::vector<std::unique_ptr<Shape>>& shapes);
+  // motionSpan: the time interval moving shapes' steps cover (ignored if nothing moves).
+  EmbreeScene(const std::vector<std::unique_ptr<Shape>>& shapes, double motionStart, double motionEnd);
   ~EmbreeScene();
   EmbreeScene(const EmbreeScene&) = delete;
   EmbreeScene& operator=(const EmbreeScene&) = delete;
@@ -27,6 +31,7 @@ class EmbreeScene {
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;
+  double timeOffset_ = 0.0, timeScale_ = 0.0;
 };
 
 }  // namespace camsim

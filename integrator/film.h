@@ -1,9 +1,11 @@
 // Film: per-pixel accumulators of what the spectral response asks for.
 //
-//   pixel value v_c = (1/n) Σ_samples w · (1/N) Σᵢ r_c(λᵢ) L(λᵢ) / p(λᵢ)
+//   pixel value v_c = (1/n) Σ_samples (1/N) Σᵢ r_c(λᵢ) W(λᵢ) L(λᵢ) / p(λᵢ)
 //
-// with n the samples per pixel, w the camera's measurement weight and r_c the response
-// curve of channel c (sensor::SpectralResponse). Each pixel is written by one tile only,
+// with n the samples per pixel, W the camera's measurement weight (radiance → energy on
+// the photosite, see PhysicalCamera) and r_c the response curve of channel c
+// (sensor::SpectralResponse). With W in m²·s·sr the value is the response-weighted energy
+// on the photosite. Each pixel is written by one tile only,
 // so no locking is needed. Samples with NaN/Inf radiance are rejected and counted.
 #pragma once
 
@@ -23,13 +25,12 @@ class Film {
  public:
   Film(glm::ivec2 resolution, const SpectralResponse& response);
 
-  // Returns false (and adds nothing) if the sample is not finite.
-  bool addSample(glm::ivec2 pixel, const SampledSpectrum& L, const SampledWavelengths& lambda,
-                 float weight) {
-    if (!L.isFinite() || !std::isfinite(weight)) return false;
+  // q: the sample's weighted spectral quantity (radiance × camera weight). Returns false
+  // (and adds nothing) if it is not finite.
+  bool addSample(glm::ivec2 pixel, const SampledSpectrum& q, const SampledWavelengths& lambda) {
+    if (!q.isFinite()) return false;
     double* sums = &sums_[(static_cast<size_t>(pixel.y) * static_cast<size_t>(resolution_.x) +
                            static_cast<size_t>(pixel.x)) * channels_];
-    const SampledSpectrum q = L * weight;
     for (size_t c = 0; c < channels_; ++c) sums[c] += response_.estimate(static_cast<int>(c), q, lambda);
     return true;
   }

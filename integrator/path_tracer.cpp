@@ -27,7 +27,7 @@ SampledSpectrum sampleLight(const Scene& scene, const SurfaceInteraction& si, co
   float uRemapped = 0.0f;
   const size_t index = scene.lightDistribution().sample(uLight, &uRemapped);
   const float pmf = scene.lightDistribution().pmf(index);
-  const std::optional<LightSample> ls = scene.light(index).sample(si.p, uRemapped, uPoint, lambda);
+  const std::optional<LightSample> ls = scene.light(index).sample(si.p, si.time, uRemapped, uPoint, lambda);
   if (!ls || pmf == 0.0f) return SampledSpectrum(0.0f);
   const glm::vec3 wiLocal = frame.toLocal(ls->wi);
   const SampledSpectrum f = material.f(woLocal, wiLocal, lambda) * std::abs(wiLocal.z);

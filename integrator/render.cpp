@@ -1,6 +1,7 @@
 #include "integrator/render.h"
 
 #include <chrono>
+#include <cmath>
 #include <mutex>
 
 #include <tbb/blocked_range.h>
@@ -21,23 +22,38 @@ struct TileStats {
   RayCounts rays;
 };
 
-void renderTile(const Scene& scene, Film& film, const RenderOptions& options, glm::ivec2 lo,
-                glm::ivec2 hi, Sampler& sampler, TileStats& stats) {
-  const Camera& camera = scene.camera();
+void renderTile(const Scene& scene, Film& film, const RenderOptions& options, const ModelledDimensions& dims,
+                glm::ivec2 lo, glm::ivec2 hi, Sampler& sampler, TileStats& stats) {
+  const PhysicalCamera& camera = scene.camera();
+  const Shutter& shutter = camera.shutter();
+  // The photosensitive area: centred in the pixel, sides scaled by √fill.
+  const float side = static_cast<float>(std::sqrt(camera.params().fillFactor));
   for (int y = lo.y; y < hi.y; ++y) {
     for (int x = lo.x; x < hi.x; ++x) {
       const glm::ivec2 pixel(x, y);
       for (int s = 0; s < options.spp; ++s) {
         sampler.startPixelSample(pixel, s);
+        sampler.setDimension(kDimWavelength);
         const SampledWavelengths lambda = SampledWavelengths::sampleVisible(sampler.get1D());
         CameraSample cs;
-        cs.pFilm = glm::vec2(pixel) + sampler.getPixel2D();
-        const std::optional<CameraRay> cr = camera.generateRay(cs);
+        sampler.setDimension(kDimPixel);
+        cs.pFilm = glm::vec2(pixel) + 0.5f + (sampler.get2D() - 0.5f) * side;
+        if (dims.aperture) {
+          sampler.setDimension(kDimLens);
+          cs.pLens = sampler.get2D();
+        }
+        cs.time = shutter.open();
+        if (dims.time) {
+          sampler.setDimension(kDimTime);
+          cs.time = shutter.sample(static_cast<double>(sampler.get1D())) + shutter.rowOffset(y);
+        }
+        sampler.setDimension(kDimPath);
+        const std::optional<CameraRay> cr = camera.generateRay(cs, lambda);
         ++stats.samples;
         if (!cr) continue;
         ++stats.rays.camera;
         const SampledSpectrum L = traceRadiance(scene, cr->ray, lambda, sampler, stats.rays);
-        if (!film.addSample(pixel, L, lambda, cr->weight)) ++stats.rejected;
+        if (!film.addSample(pixel, L * cr->weight, lambda)) ++stats.rejected;
       }
     }
   }
@@ -48,6 +64,8 @@ void renderTile(const Scene& scene, Film& film, const RenderOptions& options, gl
 RenderResult render(const Scene& scene, const SpectralResponse& response, const RenderOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   const glm::ivec2 res = scene.camera().resolution();
+  ModelledDimensions dims = scene.modelled();
+  dims.time = dims.time || options.forceTime;
   Film film(res, response);
   const int tilesX = (res.x + kTileSize - 1) / kTileSize;
   const int tilesY = (res.y + kTileSize - 1) / kTileSize;
@@ -71,7 +89,7 @@ RenderResult render(const Scene& scene, const SpectralResponse& response, const 
         }
         const glm::ivec2 lo((tile % tilesX) * kTileSize, (tile / tilesX) * kTileSize);
         const glm::ivec2 hi = glm::min(lo + kTileSize, res);
-        renderTile(scene, film, options, lo, hi, *sampler, perThread.local());
+        renderTile(scene, film, options, dims, lo, hi, *sampler, perThread.local());
         const int done = ++tilesDone;
         if (options.progress) {
           std::lock_guard<std::mutex> lock(progressMutex);
@@ -89,6 +107,7 @@ RenderResult render(const Scene& scene, const SpectralResponse& response, const 
     result.stats.rays += t.rays;
   }
   result.stats.threads = threads;
+  result.stats.modelled = dims;
   result.stats.cancelled = cancelled;
   result.stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;

@@ -2,8 +2,10 @@
 // the threads; each pixel sample draws its numbers from its own stream (seed, pixel,
 // sample index), so the result is bit-identical for any thread count.
 //
-// Per pixel sample: wavelengths (1D) → film position, uniform over the pixel (2D) →
-// camera ray → traceRadiance → film.
+// Per pixel sample (dimension slots in sampler.h): wavelengths → film position, uniform
+// over the photosite → lens position (only if the camera has an aperture) → time from the
+// shutter curve, offset by the row for a rolling shutter (only if something moves) →
+// camera ray and its measurement weight → traceRadiance → film.
 #pragma once
 
 #include <atomic>
@@ -25,6 +27,9 @@ struct RenderOptions {
   std::function<void(int, int)> progress;
   // Checked between tiles; when set, the render stops early and reports cancelled.
   const std::atomic<bool>* cancel = nullptr;
+  // Sample time even when the scene analysis says nothing moves (for tests: the image
+  // must not change).
+  bool forceTime = false;
 };
 
 struct RenderStats {
@@ -34,6 +39,7 @@ struct RenderStats {
   RayCounts rays;
   int threads = 0;
   bool cancelled = false;
+  ModelledDimensions modelled;  // what was integrated over
 };
 
 struct RenderResult {

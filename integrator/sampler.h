@@ -1,6 +1,9 @@
-// Sampler: the uniform numbers one pixel sample consumes, dimension by dimension.
-// startPixelSample() fixes the stream for (pixel, sample index), so a sample's numbers
-// do not depend on which thread renders it or in what order.
+// Sampler: the uniform numbers one pixel sample consumes, by dimension.
+// startPixelSample() fixes the stream for (pixel, sample index); numbers are addressed by
+// dimension, so a sample's numbers depend neither on the thread nor on which *other*
+// dimensions were drawn. The render loop gives each dimension of the measurement integral
+// a fixed slot (SampleDimension), so switching, say, time sampling on or off leaves every
+// other number unchanged.
 #pragma once
 
 #include <cstdint>
@@ -12,37 +15,51 @@
 
 namespace camsim {
 
+// Fixed dimension slots of a camera sample; path tracing uses kPath onwards.
+enum SampleDimension : int {
+  kDimWavelength = 0,
+  kDimPixel = 1,  // 2 numbers
+  kDimLens = 3,   // 2 numbers
+  kDimTime = 5,
+  kDimPath = 6,
+};
+
 class Sampler {
  public:
   virtual ~Sampler() = default;
   virtual void startPixelSample(glm::ivec2 pixel, int sampleIndex) = 0;
+  virtual void setDimension(int dimension) = 0;
   virtual float get1D() = 0;
   virtual glm::vec2 get2D() = 0;
-  // The position within the pixel's photosensitive area.
-  virtual glm::vec2 getPixel2D() = 0;
   virtual std::unique_ptr<Sampler> clone() const = 0;
 };
 
-// Independent uniform numbers from PCG32 keyed by (seed, pixel, sample index).
+// Independent uniform numbers: u = hash(seed, pixel, sample index, dimension), a
+// counter-based generator (no state carried between numbers).
 class IndependentSampler final : public Sampler {
  public:
   explicit IndependentSampler(std::uint64_t seed) : seed_(seed) {}
 
   void startPixelSample(glm::ivec2 pixel, int sampleIndex) override {
-    rng_.seed(hashValues(seed_, static_cast<std::uint32_t>(pixel.x), static_cast<std::uint32_t>(pixel.y)),
-              static_cast<std::uint64_t>(sampleIndex));
+    key_ = hashValues(seed_, static_cast<std::uint32_t>(pixel.x), static_cast<std::uint32_t>(pixel.y),
+                      static_cast<std::uint32_t>(sampleIndex));
+    dimension_ = 0;
   }
-  float get1D() override { return rng_.uniform(); }
+  void setDimension(int dimension) override { dimension_ = static_cast<std::uint64_t>(dimension); }
+  float get1D() override {
+    const std::uint64_t h = mix64(key_ + 0x9e3779b97f4a7c15ull * (++dimension_));
+    return static_cast<float>(h >> 40) * 0x1p-24f;
+  }
   glm::vec2 get2D() override {
-    const float a = rng_.uniform();
-    return {a, rng_.uniform()};
+    const float a = get1D();
+    return {a, get1D()};
   }
-  glm::vec2 getPixel2D() override { return get2D(); }
   std::unique_ptr<Sampler> clone() const override { return std::make_unique<IndependentSampler>(*this); }
 
  private:
   std::uint64_t seed_;
-  Pcg32 rng_;
+  std::uint64_t key_ = 0;
+  std::uint64_t dimension_ = 0;
 };
 
 }  // namespace camsim

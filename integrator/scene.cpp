@@ -1,26 +1,99 @@
 #include "integrator/scene.h"
 
+#include <algorithm>
+#include <cmath>
+
 #include "integrator/diffuse_material.h"
-#include "integrator/pinhole_camera.h"
 #include "integrator/sphere.h"
 #include "integrator/triangle_mesh.h"
 
 namespace camsim {
+namespace {
+
+// Time steps for a moving shape: linear interpolation between steps must follow the
+// keyframed rotation closely (≤ 2° per step: chord error < 1.6e-4 of the radius) and
+// must not skip keyframes (≥ 4 steps per key interval inside the span). At most 257.
+int timeStepsFor(const RigidMotion& motion, double t0, double t1) {
+  const double degrees = motion.rotationAngleDuring(t0, t1) * 180.0 / M_PI;
+  int keysInside = 0;
+  for (const Keyframe& k : motion.keys()) keysInside += (k.time > t0 && k.time < t1) ? 1 : 0;
+  const int steps = 1 + std::max(static_cast<int>(std::ceil(degrees / 2.0)), 4 * (keysInside + 1));
+  return std::clamp(steps, 2, 257);
+}
+
+std::unique_ptr<Shape> buildShape(const ShapeDescription& s, double t0, double t1, bool& moving) {
+  moving = !s.motion.empty() && !s.motion.isStaticDuring(t0, t1);
+  TimeSteps steps{t0, t1, moving ? timeStepsFor(s.motion, t0, t1) : 1};
+  auto transformAt = [&](int k) { return s.motion.empty() ? glm::dmat4(1.0) : s.motion.at(steps.timeOf(k)); };
+  if (s.kind == ShapeDescription::Kind::kSphere) {
+    std::vector<glm::vec3> centres;
+    std::vector<float> radii;
+    for (int k = 0; k < steps.count; ++k) {
+      const glm::dmat4 m = transformAt(k);
+      centres.emplace_back(m * glm::dvec4(glm::dvec3(s.centre), 1.0));
+      radii.push_back(static_cast<float>(glm::length(glm::dvec3(m[0])) * static_cast<double>(s.radius)));
+    }
+    return std::make_unique<Sphere>(std::move(centres), std::move(radii), steps);
+  }
+  std::vector<std::vector<glm::vec3>> positions(static_cast<size_t>(steps.count));
+  std::vector<std::vector<glm::vec3>> normals;
+  if (!s.mesh.normals.empty()) normals.resize(static_cast<size_t>(steps.count));
+  for (int k = 0; k < steps.count; ++k) {
+    const glm::dmat4 m = transformAt(k);
+    const glm::dmat3 rotation(m);  // uniform scale: normals only need renormalising
+    auto& p = positions[static_cast<size_t>(k)];
+    p.reserve(s.mesh.positions.size());
+    for (const glm::vec3& v : s.mesh.positions) p.emplace_back(m * glm::dvec4(glm::dvec3(v), 1.0));
+    if (!normals.empty())
+      for (const glm::vec3& n : s.mesh.normals)
+        normals[static_cast<size_t>(k)].emplace_back(glm::normalize(rotation * glm::dvec3(n)));
+  }
+  return std::make_unique<TriangleMesh>(std::move(positions), std::move(normals), s.mesh.indices, steps);
+}
+
+}  // namespace
+
+std::string ModelledDimensions::describe() const {
+  std::string out;
+  if (aperture)
+    out += blades > 0 ? "aperture (" + std::to_string(blades) + " blades), " : "aperture (circular), ";
+  else
+    out += "pinhole, ";
+  if (time) {
+    std::string why;
+    if (movingObjects > 0)
+      why += std::to_string(movingObjects) + (movingObjects == 1 ? " moving object" : " moving objects");
+    if (cameraMoves) why += std::string(why.empty() ? "" : ", ") + "moving camera";
+    if (rollingShutter) why += ", rolling shutter";
+    out += "time (" + why + "; " + std::to_string(timeSteps) + " motion steps), ";
+  } else {
+    out += "static (no time sampling), ";
+  }
+  return out + std::to_string(wavelengths) + " wavelengths";
+}
 
 Scene::Scene(const SceneDescription& d) : settings_(d.render) {
-  const CameraDescription& c = d.camera;
-  camera_ = std::make_unique<PinholeCamera>(c.worldFromCamera, c.sensorSizeM, c.resolution,
-                                            c.focalLengthM);
+  camera_ = std::make_unique<PhysicalCamera>(d.camera);
+  const Shutter& shutter = camera_->shutter();
+  exposureStart_ = shutter.open();
+  exposureEnd_ = shutter.close() + shutter.rowOffset(camera_->resolution().y - 1);
+
+  modelled_.aperture = camera_->hasAperture();
+  modelled_.blades = d.camera.aperture ? d.camera.aperture->blades() : 0;
+  modelled_.cameraMoves = camera_->moves(exposureStart_, exposureEnd_);
+
   materials_.push_back(std::make_unique<DiffuseMaterial>(Spectrum::constant(0.0)));  // black
   for (const MaterialDescription& m : d.materials)
     materials_.push_back(std::make_unique<DiffuseMaterial>(m.reflectance));
 
   std::vector<double> powers;
   for (const ShapeDescription& s : d.shapes) {
-    if (s.kind == ShapeDescription::Kind::kSphere)
-      shapes_.push_back(std::make_unique<Sphere>(s.centre, s.radius));
-    else
-      shapes_.push_back(std::make_unique<TriangleMesh>(s.mesh.positions, s.mesh.normals, s.mesh.indices));
+    bool moving = false;
+    shapes_.push_back(buildShape(s, exposureStart_, exposureEnd_, moving));
+    if (moving) {
+      ++modelled_.movingObjects;
+      modelled_.timeSteps = std::max(modelled_.timeSteps, shapes_.back()->timeSteps().count);
+    }
     materialOfShape_.push_back(s.material < 0 ? 0 : static_cast<size_t>(s.material) + 1);
     lightOfShape_.push_back(nullptr);
     lightIndexOfShape_.push_back(0);
@@ -32,8 +105,10 @@ Scene::Scene(const SceneDescription& d) : settings_(d.render) {
       lights_.push_back(std::move(light));
     }
   }
+  modelled_.time = modelled_.cameraMoves || modelled_.movingObjects > 0;
+  modelled_.rollingShutter = modelled_.time && shutter.type() == Shutter::Type::kRolling;
   if (!powers.empty()) lightDistribution_ = DiscreteDistribution(powers);
-  geometry_ = std::make_unique<EmbreeScene>(shapes_);
+  geometry_ = std::make_unique<EmbreeScene>(shapes_, exposureStart_, exposureEnd_);
 }
 
 }  // namespace camsim

@@ -1,25 +1,46 @@
 // Scene: the renderable objects built from a SceneDescription — camera, shapes on Embree,
-// materials, lights and the light-selection distribution (∝ power).
+// materials, lights and the light-selection distribution (∝ power) — and the analysis of
+// which dimensions of the measurement integral the scene needs (ModelledDimensions).
 #pragma once
 
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "integrator/area_light.h"
-#include "integrator/camera.h"
 #include "integrator/distribution.h"
 #include "integrator/embree_scene.h"
 #include "integrator/material.h"
+#include "integrator/physical_camera.h"
 #include "integrator/scene_description.h"
 
 namespace camsim {
+
+// What the renderer integrates over, beyond pixel area: only what can change the image.
+struct ModelledDimensions {
+  bool aperture = false;      // lens positions (thin lens); false: pinhole
+  int blades = 0;             // 0: circular stop
+  bool time = false;          // shutter time: something moves during the exposure
+  int movingObjects = 0;
+  bool cameraMoves = false;
+  bool rollingShutter = false;
+  int wavelengths = kWavelengthSamples;
+  int timeSteps = 1;          // Embree motion time steps (largest over shapes)
+
+  // e.g. "aperture (6 blades), time (2 moving objects, rolling shutter), 4 wavelengths"
+  std::string describe() const;
+};
 
 class Scene {
  public:
   explicit Scene(const SceneDescription& description);
 
-  const Camera& camera() const { return *camera_; }
+  const PhysicalCamera& camera() const { return *camera_; }
   const RenderSettings& settings() const { return settings_; }
+  const ModelledDimensions& modelled() const { return modelled_; }
+  // The interval ray times fall in: shutter open → close of the last row.
+  double exposureStart() const { return exposureStart_; }
+  double exposureEnd() const { return exposureEnd_; }
   const EmbreeScene& geometry() const { return *geometry_; }
   const Shape& shape(int index) const { return *shapes_[static_cast<size_t>(index)]; }
   // Never null: shapes without a reflecting material get a black one.
@@ -36,8 +57,10 @@ class Scene {
   }
 
  private:
-  std::unique_ptr<Camera> camera_;
+  std::unique_ptr<PhysicalCamera> camera_;
   RenderSettings settings_;
+  ModelledDimensions modelled_;
+  double exposureStart_ = 0.0, exposureEnd_ = 0.0;
   std::vector<std::unique_ptr<Shape>> shapes_;
   std::vector<std::unique_ptr<Material>> materials_;
   std::vector<size_t> materialOfShape_;

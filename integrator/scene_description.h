@@ -13,16 +13,11 @@
 #include <glm/vec3.hpp>
 
 #include "integrator/mesh_io.h"
+#include "integrator/motion.h"
+#include "integrator/physical_camera.h"
 #include "sensor/spectrum.h"
 
 namespace camsim {
-
-struct CameraDescription {
-  glm::mat4 worldFromCamera{1.0f};  // columns: right, up, forward, position (m)
-  glm::vec2 sensorSizeM{0.036f, 0.024f};
-  glm::ivec2 resolution{640, 480};
-  float focalLengthM = 0.050f;
-};
 
 struct RenderSettings {
   int spp = 64;             // samples per pixel
@@ -47,15 +42,16 @@ struct ShapeDescription {
   std::string label;  // for messages: the user's name or "shapes[i]"
   int material = -1;  // index into SceneDescription::materials; -1 = black (reflects nothing)
   std::optional<EmissionDescription> emission;
-  MeshData mesh;              // kMesh, world space (m)
-  glm::vec3 centre{0.0f};     // kSphere (m)
+  MeshData mesh;              // kMesh, object space (m)
+  glm::vec3 centre{0.0f};     // kSphere, object space (m)
   float radius = 0.0f;        // kSphere (m)
+  RigidMotion motion;         // object → world over time; empty = identity
 };
 
 struct SceneDescription {
   std::string sourceFile;  // what it was loaded from ("<default>" for the embedded scene)
   std::string name;        // output base name
-  CameraDescription camera;
+  PhysicalCameraParams camera;
   RenderSettings render;
   std::vector<MaterialDescription> materials;
   std::vector<ShapeDescription> shapes;

@@ -8,6 +8,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "integrator/scene_loader_parts.h"
 #include "integrator/scene_spectra.h"
 #include "integrator/yaml_reader.h"
 #include "sensor/cie.h"
@@ -22,31 +23,9 @@ struct Context {
   std::map<std::string, int> materialIndex;
 };
 
-glm::vec3 toVec3(const glm::dvec3& v) { return glm::vec3(v); }
 
-// Geometry is stored in single precision: a point finite as a double can still overflow.
-glm::vec3 toPoint(const YamlValue& where, const glm::dvec3& v) {
-  const glm::vec3 p(v);
-  if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
-    where.fail("coordinates exceed the single-precision range (about ±3.4e38)");
-  return p;
-}
 
-// A positive length stored in single precision: it must not underflow to 0.
-float positiveFloat(const YamlValue& where, double v) {
-  const float f = static_cast<float>(v);
-  if (!(f > 0.0f)) where.fail("value is too small (it is 0 in single precision)");
-  return f;
-}
 
-// Pixels per side, with the limit named in the message.
-int resolutionSide(const YamlValue& v) {
-  const std::int64_t n = v.integer(INT64_MIN, INT64_MAX);
-  if (n < 1 || n > SceneLimits::kMaxResolution)
-    v.fail("value " + std::to_string(n) + " is out of range [1, " +
-           std::to_string(SceneLimits::kMaxResolution) + "] (limit SceneLimits::kMaxResolution)");
-  return static_cast<int>(n);
-}
 
 RenderSettings parseRender(YamlMap map) {
   RenderSettings r;
@@ -58,63 +37,7 @@ RenderSettings parseRender(YamlMap map) {
   return r;
 }
 
-glm::mat4 lookAt(const YamlValue& where, const YamlValue& positionWhere, glm::dvec3 position,
-                 glm::dvec3 target, glm::dvec3 up) {
-  const glm::dvec3 toTarget = target - position;
-  if (glm::length(toTarget) == 0.0) where.fail("look_at equals position");
-  const glm::dvec3 forward = glm::normalize(toTarget);
-  // Right-handed world: right = forward × up (looking along +z with +y up, right is −x).
-  const glm::dvec3 rightRaw = glm::cross(forward, up);
-  if (glm::length(rightRaw) < 1e-9 * glm::length(up)) where.fail("up is parallel to the viewing direction");
-  const glm::dvec3 right = glm::normalize(rightRaw);
-  const glm::dvec3 trueUp = glm::cross(right, forward);
-  glm::mat4 m(1.0f);
-  m[0] = glm::vec4(toVec3(right), 0.0f);
-  m[1] = glm::vec4(toVec3(trueUp), 0.0f);
-  m[2] = glm::vec4(toVec3(forward), 0.0f);
-  m[3] = glm::vec4(toPoint(positionWhere, position), 1.0f);
-  return m;
-}
 
-CameraDescription parseCamera(YamlMap map) {
-  CameraDescription c;
-  if (auto m = map.find("world_from_camera")) {
-    const std::vector<double> v = m->numbers();
-    if (v.size() != 16) m->fail("expected 16 numbers (a 4×4 matrix, row by row)");
-    for (int row = 0; row < 4; ++row)
-      for (int col = 0; col < 4; ++col) c.worldFromCamera[col][row] = static_cast<float>(v[static_cast<size_t>(row * 4 + col)]);
-    if (v[12] != 0.0 || v[13] != 0.0 || v[14] != 0.0 || v[15] != 1.0) m->fail("last row must be [0, 0, 0, 1]");
-    toPoint(*m, glm::dvec3(v[3], v[7], v[11]));
-    const glm::vec3 x(c.worldFromCamera[0]), y(c.worldFromCamera[1]), z(c.worldFromCamera[2]);
-    if (std::abs(glm::dot(x, y)) > 1e-4f || std::abs(glm::dot(y, z)) > 1e-4f || std::abs(glm::dot(x, z)) > 1e-4f ||
-        std::abs(glm::length(x) - 1.0f) > 1e-4f || std::abs(glm::length(y) - 1.0f) > 1e-4f ||
-        std::abs(glm::length(z) - 1.0f) > 1e-4f)
-      m->fail("the rotation part must be orthonormal (columns right, up, forward)");
-  } else {
-    const YamlValue position = map.require("position");
-    const YamlValue target = map.require("look_at");
-    glm::dvec3 up(0.0, 1.0, 0.0);
-    if (auto u = map.find("up")) up = u->vec3();
-    c.worldFromCamera = lookAt(target, position, position.vec3(), target.vec3(), up);
-  }
-  if (auto v = map.find("sensor_width_mm"))
-    c.sensorSizeM.x = positiveFloat(*v, v->number(0.0, 1000.0, true) * 1e-3);
-  if (auto v = map.find("sensor_height_mm"))
-    c.sensorSizeM.y = positiveFloat(*v, v->number(0.0, 1000.0, true) * 1e-3);
-  if (auto v = map.find("focal_length_mm"))
-    c.focalLengthM = positiveFloat(*v, v->number(0.0, 1e5, true) * 1e-3);
-  if (auto v = map.find("resolution")) {
-    const std::vector<YamlValue> items = v->items();
-    if (items.size() != 2) v->fail("expected [width, height] in pixels");
-    c.resolution.x = resolutionSide(items[0]);
-    c.resolution.y = resolutionSide(items[1]);
-    if (std::int64_t(c.resolution.x) * c.resolution.y > SceneLimits::kMaxPixels)
-      v->fail("more than " + std::to_string(SceneLimits::kMaxPixels) + " pixels (limit SceneLimits::kMaxPixels)");
-  }
-  map.finish({"position", "look_at", "up", "world_from_camera", "sensor_width_mm", "sensor_height_mm",
-              "focal_length_mm", "resolution"});
-  return c;
-}
 
 MaterialDescription parseMaterial(const std::string& name, YamlMap map, const Context& ctx) {
   MaterialDescription m;
@@ -190,7 +113,8 @@ ShapeDescription parseShape(YamlMap map, size_t index, const Context& ctx) {
   if (auto n = map.find("name")) s.label = n->string();
   const YamlValue type = map.require("type");
   const std::string t = type.string();
-  std::vector<std::string> known = {"type", "name", "material", "emission"};
+  std::vector<std::string> known = {"type", "name", "material", "emission", "motion"};
+  if (auto m = map.find("motion")) s.motion = parseMotion(*m, false);
   if (t == "sphere") {
     s.kind = ShapeDescription::Kind::kSphere;
     const YamlValue centre = map.require("centre");
@@ -295,7 +219,7 @@ SceneDescription loadSceneFromText(const std::string& text, const std::string& d
   if (scene.name.empty() || scene.name.find_first_of("/\\") != std::string::npos)
     top.self().fail("name must be a non-empty file name without '/'");
   if (auto v = top.find("render")) scene.render = parseRender(YamlMap(*v));
-  scene.camera = parseCamera(YamlMap(top.require("camera")));
+  scene.camera = parseCamera(YamlMap(top.require("camera")), ctx.search);
   if (auto mats = top.find("materials")) {
     YamlMap mmap(*mats);
     for (const std::string& name : mmap.keys()) {

@@ -2,6 +2,10 @@
 // meshes (which also carry rectangles) and spheres. Intersection itself is done by
 // EmbreeScene; a Shape turns Embree's hit into a SurfaceInteraction and samples points.
 // Lengths in metres.
+//
+// Moving shapes hold K ≥ 2 poses at time steps spread uniformly over the scene's motion
+// span [t0, t1] (TimeSteps) and interpolate them linearly, exactly as Embree does for
+// motion-blurred geometry, so hit points agree with Embree's intersection.
 #pragma once
 
 #include <optional>
@@ -22,13 +26,34 @@ struct Hit {
   float t = 0.0f;
 };
 
+// Uniform time steps over [t0, t1]; count 1 means static.
+struct TimeSteps {
+  double t0 = 0.0, t1 = 1.0;
+  int count = 1;
+  // Step index i and fraction f in [0,1] with time between steps i and i+1.
+  void locate(float time, int& i, float& f) const {
+    if (count <= 1) {
+      i = 0;
+      f = 0.0f;
+      return;
+    }
+    const double x = (static_cast<double>(time) - t0) / (t1 - t0) * (count - 1);
+    const double clamped = x < 0.0 ? 0.0 : (x > count - 1 ? count - 1 : x);
+    i = static_cast<int>(clamped);
+    if (i >= count - 1) i = count - 2;
+    f = static_cast<float>(clamped - i);
+  }
+  double timeOf(int step) const { return count <= 1 ? t0 : t0 + (t1 - t0) * step / (count - 1); }
+};
+
 struct SurfaceInteraction {
   glm::vec3 p{0.0f};       // position, m
   glm::vec3 pError{0.0f};  // absolute floating-point error bound on p, m
   glm::vec3 n{0.0f};       // geometric normal, unit; its side is the shape's front
   glm::vec3 ns{0.0f};      // shading normal, unit, in n's hemisphere
   int shape = -1;
-  float time = 0.0f;
+  int prim = -1;      // triangle index (meshes)
+  float time = 0.0f;  // s
 
   // Origin for a ray leaving towards w, offset against self-intersection.
   glm::vec3 spawnOrigin(const glm::vec3& w) const;
@@ -42,11 +67,14 @@ struct ShapeSample {
 class Shape {
  public:
   virtual ~Shape() = default;
-  virtual float area() const = 0;  // m²
+  virtual float area() const = 0;  // m², at rest
+  virtual const TimeSteps& timeSteps() const = 0;
   virtual SurfaceInteraction interaction(const Hit& hit, const Ray& ray) const = 0;
-  // A point on the shape seen from ref (u1 in [0,1), u2 in [0,1)²), with its solid-angle pdf.
-  virtual std::optional<ShapeSample> sample(const glm::vec3& ref, float u1, glm::vec2 u2) const = 0;
-  // Solid-angle density of sample() producing `onShape` as seen from ref.
+  // A point on the shape at `time` seen from ref (u1 in [0,1), u2 in [0,1)²), with its
+  // solid-angle pdf.
+  virtual std::optional<ShapeSample> sample(const glm::vec3& ref, float u1, glm::vec2 u2,
+                                            float time) const = 0;
+  // Solid-angle density of sample() producing `onShape` (at onShape.time) as seen from ref.
   virtual float pdf(const glm::vec3& ref, const SurfaceInteraction& onShape) const = 0;
 };
 

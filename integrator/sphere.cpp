@@ -5,44 +5,56 @@
 
 namespace camsim {
 
-Sphere::Sphere(glm::vec3 centre, float radius) : centre_(centre), radius_(radius) {
-  CAMSIM_CHECK(radius > 0.0f);
+Sphere::Sphere(std::vector<glm::vec3> centres, std::vector<float> radii, TimeSteps steps)
+    : centres_(std::move(centres)), radii_(std::move(radii)), steps_(steps) {
+  CAMSIM_CHECK(!centres_.empty() && centres_.size() == radii_.size() &&
+               static_cast<int>(centres_.size()) == steps_.count);
+  for (float r : radii_) CAMSIM_CHECK(r > 0.0f);
 }
 
-float Sphere::area() const { return 4.0f * kPi * radius_ * radius_; }
+Sphere::Pose Sphere::at(float time) const {
+  int i;
+  float f;
+  steps_.locate(time, i, f);
+  const size_t k = static_cast<size_t>(i);
+  if (f == 0.0f) return {centres_[k], radii_[k]};
+  return {glm::mix(centres_[k], centres_[k + 1], f), (1.0f - f) * radii_[k] + f * radii_[k + 1]};
+}
 
-SurfaceInteraction Sphere::surfacePoint(const glm::vec3& direction) const {
+float Sphere::area() const { return 4.0f * kPi * radii_[0] * radii_[0]; }
+
+SurfaceInteraction Sphere::surfacePoint(const Pose& pose, const glm::vec3& direction, float time) {
   SurfaceInteraction si;
   si.n = glm::normalize(direction);
   si.ns = si.n;
-  si.p = centre_ + radius_ * si.n;
-  si.pError = gammaBound(5) * (glm::abs(si.p) + glm::abs(centre_));
+  si.p = pose.centre + pose.radius * si.n;
+  si.pError = gammaBound(5) * (glm::abs(si.p) + glm::abs(pose.centre));
+  si.time = time;
   return si;
 }
 
-bool Sphere::inside(const glm::vec3& ref) const {
-  return lengthSquared(ref - centre_) <= radius_ * radius_ * (1.0f + 1e-4f);
+bool Sphere::inside(const Pose& pose, const glm::vec3& ref) {
+  return lengthSquared(ref - pose.centre) <= pose.radius * pose.radius * (1.0f + 1e-4f);
 }
 
 SurfaceInteraction Sphere::interaction(const Hit& hit, const Ray& ray) const {
-  SurfaceInteraction si = surfacePoint(ray.at(hit.t) - centre_);
-  si.time = ray.time;
-  return si;
+  const Pose pose = at(ray.time);
+  return surfacePoint(pose, ray.at(hit.t) - pose.centre, ray.time);
 }
 
-std::optional<ShapeSample> Sphere::sample(const glm::vec3& ref, float u1, glm::vec2 u2) const {
-  (void)u1;
+std::optional<ShapeSample> Sphere::sample(const glm::vec3& ref, float /*u1*/, glm::vec2 u2, float time) const {
+  const Pose pose = at(time);
   ShapeSample s;
-  if (inside(ref)) {
+  if (inside(pose, ref)) {
     const float z = 1.0f - 2.0f * u2.x;
     const float r = safeSqrt(1.0f - z * z);
     const float phi = 2.0f * kPi * u2.y;
-    s.point = surfacePoint({r * std::cos(phi), r * std::sin(phi), z});
-    s.pdf = areaToSolidAnglePdf(1.0f / area(), ref, s.point);
+    s.point = surfacePoint(pose, {r * std::cos(phi), r * std::sin(phi), z}, time);
+    s.pdf = areaToSolidAnglePdf(1.0f / (4.0f * kPi * pose.radius * pose.radius), ref, s.point);
   } else {
-    const glm::vec3 toCentre = centre_ - ref;
+    const glm::vec3 toCentre = pose.centre - ref;
     const float dc = glm::length(toCentre);
-    const float sin2Max = radius_ * radius_ / (dc * dc);
+    const float sin2Max = pose.radius * pose.radius / (dc * dc);
     const float cosMax = safeSqrt(1.0f - sin2Max);
     const float oneMinusCosMax = sin2Max / (1.0f + cosMax);  // 1 − cosθmax without cancellation
     // Uniform cone direction, then the point where it meets the sphere (nearest hit).
@@ -52,8 +64,8 @@ std::optional<ShapeSample> Sphere::sample(const glm::vec3& ref, float u1, glm::v
     const Frame frame = Frame::fromZ(toCentre / dc);
     const glm::vec3 w = frame.toWorld({sinTheta * std::cos(phi), sinTheta * std::sin(phi), cosTheta});
     // |ref + t w − c|² = r²: t = dc cosθ − √(r² − dc² sin²θ)
-    const float t = dc * cosTheta - safeSqrt(radius_ * radius_ - dc * dc * sinTheta * sinTheta);
-    s.point = surfacePoint(ref + t * w - centre_);
+    const float t = dc * cosTheta - safeSqrt(pose.radius * pose.radius - dc * dc * sinTheta * sinTheta);
+    s.point = surfacePoint(pose, ref + t * w - pose.centre, time);
     s.pdf = 1.0f / (2.0f * kPi * oneMinusCosMax);
   }
   if (!(s.pdf > 0.0f) || !std::isfinite(s.pdf)) return std::nullopt;
@@ -61,9 +73,10 @@ std::optional<ShapeSample> Sphere::sample(const glm::vec3& ref, float u1, glm::v
 }
 
 float Sphere::pdf(const glm::vec3& ref, const SurfaceInteraction& onShape) const {
-  if (inside(ref)) return areaToSolidAnglePdf(1.0f / area(), ref, onShape);
-  const float dc2 = lengthSquared(centre_ - ref);
-  const float sin2Max = radius_ * radius_ / dc2;
+  const Pose pose = at(onShape.time);
+  if (inside(pose, ref)) return areaToSolidAnglePdf(1.0f / (4.0f * kPi * pose.radius * pose.radius), ref, onShape);
+  const float dc2 = lengthSquared(pose.centre - ref);
+  const float sin2Max = pose.radius * pose.radius / dc2;
   const float cosMax = safeSqrt(1.0f - sin2Max);
   return 1.0f / (2.0f * kPi * (sin2Max / (1.0f + cosMax)));
 }

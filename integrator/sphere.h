@@ -3,7 +3,10 @@
 // subtends, pdf = 1 / (2π (1 − cos θmax)),  sin²θmax = r² / |c − ref|²;
 // from inside: uniform by area, pdf = d² / (|cos θ| · 4πr²).
 // Hit points are re-projected onto the surface, error bound γ(5)·|p|.
+// A moving sphere holds a centre and radius per time step, interpolated linearly.
 #pragma once
+
+#include <vector>
 
 #include "integrator/shape.h"
 
@@ -11,22 +14,29 @@ namespace camsim {
 
 class Sphere final : public Shape {
  public:
-  Sphere(glm::vec3 centre, float radius);
+  Sphere(std::vector<glm::vec3> centres, std::vector<float> radii, TimeSteps steps);
 
-  const glm::vec3& centre() const { return centre_; }
-  float radius() const { return radius_; }
+  const std::vector<glm::vec3>& centres() const { return centres_; }
+  const std::vector<float>& radii() const { return radii_; }
+  const TimeSteps& timeSteps() const override { return steps_; }
 
   float area() const override;
   SurfaceInteraction interaction(const Hit& hit, const Ray& ray) const override;
-  std::optional<ShapeSample> sample(const glm::vec3& ref, float u1, glm::vec2 u2) const override;
+  std::optional<ShapeSample> sample(const glm::vec3& ref, float u1, glm::vec2 u2, float time) const override;
   float pdf(const glm::vec3& ref, const SurfaceInteraction& onShape) const override;
 
  private:
-  SurfaceInteraction surfacePoint(const glm::vec3& direction) const;
-  bool inside(const glm::vec3& ref) const;
+  struct Pose {
+    glm::vec3 centre;
+    float radius;
+  };
+  Pose at(float time) const;
+  static SurfaceInteraction surfacePoint(const Pose& pose, const glm::vec3& direction, float time);
+  static bool inside(const Pose& pose, const glm::vec3& ref);
 
-  glm::vec3 centre_;
-  float radius_;
+  std::vector<glm::vec3> centres_;
+  std::vector<float> radii_;
+  TimeSteps steps_;
 };
 
 }  // namespace camsim

@@ -1,7 +1,10 @@
-// TriangleMesh: indexed triangles in world space (m). Optional per-vertex normals give
-// the shading normal. Points are sampled uniformly by area (triangle chosen ∝ area).
+// TriangleMesh: indexed triangles in world space (m), possibly moving (K poses at uniform
+// time steps, vertices interpolated linearly in time). Optional per-vertex normals give
+// the shading normal. Points are sampled uniformly by area: a triangle is chosen with
+// probability ∝ its area at rest, then a uniform point on it at the sample's time.
 //   p = b0·p0 + b1·p1 + b2·p2,  error bound γ(7)·(|b0 p0| + |b1 p1| + |b2 p2|)
 //   geometric normal n = normalize((p1 − p0) × (p2 − p0))  (counter-clockwise front)
+//   pdf_area(p on triangle k at t) = P(k) / area_k(t)
 #pragma once
 
 #include <cstdint>
@@ -14,26 +17,31 @@ namespace camsim {
 
 class TriangleMesh final : public Shape {
  public:
-  // indices: 3 per triangle. Degenerate (zero-area) triangles are kept for intersection
-  // (Embree never hits them) and get zero sampling weight.
-  TriangleMesh(std::vector<glm::vec3> positions, std::vector<glm::vec3> normals,
-               std::vector<std::uint32_t> indices);
+  // positions[k] / normals[k]: pose at time step k (normals may be empty). indices: 3 per
+  // triangle. Zero-area triangles are kept for intersection (Embree never hits them) and
+  // are never sampled.
+  TriangleMesh(std::vector<std::vector<glm::vec3>> positions, std::vector<std::vector<glm::vec3>> normals,
+               std::vector<std::uint32_t> indices, TimeSteps steps);
 
-  const std::vector<glm::vec3>& positions() const { return positions_; }
+  const std::vector<glm::vec3>& positions(int step = 0) const { return positions_[static_cast<size_t>(step)]; }
   const std::vector<std::uint32_t>& indices() const { return indices_; }
   size_t triangleCount() const { return indices_.size() / 3; }
+  const TimeSteps& timeSteps() const override { return steps_; }
 
   float area() const override { return area_; }
   SurfaceInteraction interaction(const Hit& hit, const Ray& ray) const override;
-  std::optional<ShapeSample> sample(const glm::vec3& ref, float u1, glm::vec2 u2) const override;
+  std::optional<ShapeSample> sample(const glm::vec3& ref, float u1, glm::vec2 u2, float time) const override;
   float pdf(const glm::vec3& ref, const SurfaceInteraction& onShape) const override;
 
  private:
-  SurfaceInteraction pointOn(size_t tri, float b1, float b2) const;
+  glm::vec3 vertex(std::uint32_t index, int step, float f) const;
+  SurfaceInteraction pointOn(size_t tri, float b1, float b2, float time) const;
+  float triangleArea(size_t tri, float time) const;
 
-  std::vector<glm::vec3> positions_;
-  std::vector<glm::vec3> normals_;
+  std::vector<std::vector<glm::vec3>> positions_;
+  std::vector<std::vector<glm::vec3>> normals_;
   std::vector<std::uint32_t> indices_;
+  TimeSteps steps_;
   DiscreteDistribution areaDistribution_;
   float area_ = 0.0f;
 };

@@ -10,6 +10,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "tests/integrator/camera_weight.h"
 #include "integrator/render.h"
 #include "integrator/scene.h"
 #include "integrator/scene_loader.h"
@@ -21,6 +22,8 @@ namespace {
 // Σ ȳ Δλ on the 1 nm grid: the Y of a flat spectrum of value 1.
 double flatY() { return kMaxLuminousEfficacy * Cie1931::get().y.sum(); }
 
+// Renders and divides every pixel by its exact mean pinhole weight, so the result is the
+// pixel's mean radiance-weighted Y (cd/m²) and comparable with radiance closed forms.
 Image renderY(const std::string& yaml, int spp, std::uint64_t seed = 1) {
   const SceneDescription desc = loadSceneFromText(yaml, "test.yaml", ".");
   const Scene scene(desc);
@@ -28,14 +31,21 @@ Image renderY(const std::string& yaml, int spp, std::uint64_t seed = 1) {
   options.spp = spp;
   options.seed = seed;
   const SpectralResponse response = SpectralResponse::cieXyz();
-  const RenderResult result = render(scene, response, options);
+  RenderResult result = render(scene, response, options);
   EXPECT_EQ(result.stats.rejectedSamples, 0u);
-  return result.image;
+  Image& img = result.image;
+  for (int y = 0; y < img.height; ++y)
+    for (int x = 0; x < img.width; ++x) {
+      const double w = meanPinholeWeight(scene.camera(), x, y);
+      for (int c = 0; c < img.channelCount(); ++c)
+        img.at(x, y, c) = static_cast<float>(static_cast<double>(img.at(x, y, c)) / w);
+    }
+  return img;
 }
 
 std::string furnaceScene(double rho, int resolution, int maxDepth, int rrDepth) {
   return "camera: {position: [0, 0, 0], look_at: [0, 0, 1], resolution: [" + std::to_string(resolution) +
-         ", " + std::to_string(resolution) + "], focal_length_mm: 10}\n"
+         ", " + std::to_string(resolution) + "], focal_length_mm: 50}\n"
          "render: {max_depth: " + std::to_string(maxDepth) + ", rr_depth: " + std::to_string(rrDepth) + "}\n"
          "materials: {wall: {type: diffuse, reflectance: " + std::to_string(rho) + "}}\n"
          "shapes:\n"
@@ -107,16 +117,22 @@ TEST(Irradiance, LambertianFloorUnderRectangularEmitter) {
   // Camera looks down −y with up = +z, so right = forward × up = (0,−1,0) × (0,0,1) = −x.
   // Pixel (i, j) sees the floor at x = −(u − ½)·w·h/f, z = (½ − v)·w·h/f, h = 0.25 m.
   const double halfExtent = 0.25 * 0.5;  // (24 mm / 24 mm) · 0.25 m / 2
+  // The pixel weights the floor by cos⁴θ (camera equation), so the expectation is the
+  // cos⁴-weighted mean of E over the photosite.
   constexpr int kSub = 16;
   for (int j = 0; j < img.height; ++j)
     for (int i = 0; i < img.width; ++i) {
-      double e = 0.0;
+      double e = 0.0, wsum = 0.0;
       for (int sy = 0; sy < kSub; ++sy)
         for (int sx = 0; sx < kSub; ++sx) {
           const double u = (i + (sx + 0.5) / kSub) / img.width, v = (j + (sy + 0.5) / kSub) / img.height;
-          const glm::dvec3 p(-(u - 0.5) * 2.0 * halfExtent, 0.0, (0.5 - v) * 2.0 * halfExtent);
-          e += polygonIrradiance(p, {0.0, 1.0, 0.0}, emitter) / (kSub * kSub);
+          const double a = (u - 0.5) * 2.0, b = (0.5 - v) * 2.0;  // sensor coords / half-width
+          const double cos2 = 1.0 / (1.0 + 0.25 * (a * a + b * b));  // tanθ = half-width/f · r
+          const glm::dvec3 p(-a * halfExtent, 0.0, b * halfExtent);
+          e += cos2 * cos2 * polygonIrradiance(p, {0.0, 1.0, 0.0}, emitter);
+          wsum += cos2 * cos2;
         }
+      e /= wsum;
       const double expected = 0.6 / M_PI * e * 0.02 * flatY();
       EXPECT_NEAR(static_cast<double>(img.at(i, j, yc)) / expected, 1.0, 0.01) << "pixel " << i << "," << j;
     }

@@ -1,0 +1,35 @@
+// Aperture: the shape of the lens stop, sampled uniformly over its area.
+//
+// | parameter | unit | default | meaning |
+// |-----------|------|---------|---------|
+// | diameter  | m    | f/N     | entrance-pupil diameter D of the circular stop |
+// | blades    | —    | 0       | 0: circular; N ≥ 3: a regular N-gon |
+// | rotation  | rad  | 0       | polygon orientation: a vertex at angle `rotation` from +x (camera right), counter-clockwise towards +y (up) |
+//
+// A polygonal stop has the same area as the circle of diameter D = f/N, so exposure
+// follows the f-number whatever the blade count: circumradius R = D/2 · √(2π / (N sin(2π/N))).
+#pragma once
+
+#include <glm/vec2.hpp>
+
+namespace camsim {
+
+class Aperture {
+ public:
+  Aperture(double diameter, int blades, double rotation);
+
+  double area() const { return area_; }  // m²
+  int blades() const { return blades_; }
+  double circumradius() const { return radius_; }
+  double rotation() const { return rotation_; }
+  // Uniform point on the stop (camera-space x right, y up, metres) from u in [0,1)².
+  glm::vec2 sample(glm::vec2 u) const;
+
+ private:
+  int blades_;
+  double rotation_;
+  double radius_;  // circle radius, or polygon circumradius
+  double area_;
+};
+
+}  // namespace camsim

@@ -1,0 +1,86 @@
+// PhysicalCamera: a thin-lens camera (a pinhole when it has no aperture) whose film
+// records the energy arriving on each photosite — the pixel measurement equation
+//
+//   Q_c = ∫_shutter s(t) ∫_photosite ∫_aperture ∫_λ r_c(λ) T_lens(λ) L(x, ω, t, λ)
+//                                         cosθ_film cosθ_lens / d²  dλ dA_lens dA_pixel dt
+//
+// For a sample (film point, lens point, time, wavelengths) drawn uniformly over the
+// photosensitive area and the aperture and with density s(t)/T_eff in time, the weight is
+//
+//   W = A_pixel · T_eff · A_aperture · cos⁴θ / z_i² · T_lens(λ)   [m²·s·sr → radiance to energy]
+//
+// with θ the angle between the optical axis and the film-point → lens-point segment and
+// z_i = f·z_o / (z_o − f) the image distance for focus distance z_o (z_i = f at infinity).
+// Uniform radiance L gives, on axis, E = π L T / (1 + 4 N_w²) exactly, N_w = z_i / D.
+// Without an aperture (pinhole) the lens point is the centre and the same formula holds in
+// the small-aperture limit (E = π L T / (4 N_w²) on axis, cos⁴θ off axis).
+//
+// | parameter        | unit | default   | meaning |
+// |------------------|------|-----------|---------|
+// | sensor size      | m    | 36×24 mm  | |
+// | resolution       | px   | 640×480   | pitch = size / resolution |
+// | fill factor      | —    | 1         | photosensitive fraction of the pixel area (centred, same aspect) |
+// | focal length f   | m    | 50 mm     | |
+// | f-number N       | —    | 8         | D = f/N |
+// | focus distance   | m    | ∞         | z_o, measured from the lens |
+// | aperture         | —    | none      | none: pinhole; else circular or N blades (see Aperture) |
+// | lens transmittance | —  | 1         | T_lens(λ) |
+// | distortion       | —    | none      | Brown–Conrady, OpenCV convention (see LensDistortion) |
+// | shutter          | s    | 1/60 box  | see Shutter |
+// | motion           | m, ° | static    | camera keyframes: translate adds to the position (world), rotate turns about the camera centre in camera axes |
+#pragma once
+
+#include <optional>
+
+#include "integrator/aperture.h"
+#include "integrator/camera.h"
+#include "integrator/lens_distortion.h"
+#include "integrator/motion.h"
+#include "integrator/shutter.h"
+#include "sensor/spectrum.h"
+
+namespace camsim {
+
+struct PhysicalCameraParams {
+  glm::dmat4 worldFromCamera{1.0};  // at rest; columns right, up, forward, position
+  RigidMotion motion;                // camera-relative keyframes (may be empty)
+  glm::dvec2 sensorSize{0.036, 0.024};
+  glm::ivec2 resolution{640, 480};
+  double fillFactor = 1.0;
+  double focalLength = 0.050;
+  double fNumber = 8.0;
+  double focusDistance = 0.0;  // 0 = infinity
+  std::optional<Aperture> aperture;  // none: pinhole
+  Spectrum lensTransmittance = Spectrum::constant(1.0);
+  LensDistortion distortion;
+  Shutter shutter = Shutter::box(0.0, 1.0 / 60.0);
+};
+
+class PhysicalCamera final : public Camera {
+ public:
+  explicit PhysicalCamera(PhysicalCameraParams params);
+
+  std::optional<CameraRay> generateRay(const CameraSample& sample,
+                                       const SampledWavelengths& lambda) const override;
+  glm::ivec2 resolution() const override { return p_.resolution; }
+  bool hasAperture() const override { return p_.aperture.has_value(); }
+  bool moves(double t0, double t1) const override { return !p_.motion.isStaticDuring(t0, t1); }
+  const Shutter& shutter() const override { return p_.shutter; }
+
+  const PhysicalCameraParams& params() const { return p_; }
+  double imageDistance() const { return imageDistance_; }  // z_i, m
+  double pixelArea() const { return pixelArea_; }          // photosensitive area, m²
+  double apertureArea() const { return apertureArea_; }    // m²
+  glm::dmat4 worldFromCameraAt(double t) const;
+  // OpenCV intrinsics (pixels): fx, fy, cx, cy.
+  glm::dvec4 intrinsics() const;
+
+ private:
+  PhysicalCameraParams p_;
+  double imageDistance_;
+  double pixelArea_;
+  double apertureArea_;
+  bool transmittanceIsOne_;
+};
+
+}  // namespace camsim

@@ -1,0 +1,22 @@
+// Internal pieces of the scene loader shared between its files (not a public API).
+#pragma once
+
+#include <glm/vec3.hpp>
+
+#include "integrator/motion.h"
+#include "integrator/physical_camera.h"
+#include "integrator/scene_spectra.h"
+#include "integrator/yaml_reader.h"
+
+namespace camsim {
+
+// Geometry is stored in single precision: a point finite as a double can still overflow.
+glm::vec3 toPoint(const YamlValue& where, const glm::dvec3& v);
+// A positive length stored in single precision: it must not underflow to 0.
+float positiveFloat(const YamlValue& where, double v);
+// `camera:` → camera parameters (see docs/scene-format.md).
+PhysicalCameraParams parseCamera(YamlMap map, const SpectrumSearch& search);
+// `motion:` keyframes; `forCamera` forbids scale.
+RigidMotion parseMotion(const YamlValue& value, bool forCamera);
+
+}  // namespace camsim
