@@ -7,7 +7,11 @@
 //   rel. RMSE = sqrt(mean over pixels (Y − Y_ref)²) / mean(Y_ref)
 // which includes the reference's noise (subtract in quadrature for the render's own).
 //
-// usage: render_bench [--threads N] [--ref-spp N] [--spp a,b,c,...]
+// Then the cost of the measurement-equation features on the same scene and spp, relative to
+// the static pinhole render: a thin lens (f/2.8, 6 blades, focused at 1 m) and motion blur
+// (the short block translating 5 cm and the camera panning during the 1/60 s exposure).
+//
+// usage: render_bench [--threads N] [--ref-spp N] [--spp a,b,c,...] [--feature-spp N]
 #include <charconv>
 #include <cmath>
 #include <cstdio>
@@ -44,12 +48,13 @@ int parseInt(const char* s) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  int threads = 0, refSpp = 256;
+  int threads = 0, refSpp = 256, featureSpp = 16;
   std::vector<int> spps = {1, 4, 16, 64};
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string a = argv[i];
     if (a == "--threads") threads = parseInt(argv[i + 1]);
     else if (a == "--ref-spp") refSpp = parseInt(argv[i + 1]);
+    else if (a == "--feature-spp") featureSpp = parseInt(argv[i + 1]);
     else if (a == "--spp") {
       spps.clear();
       for (std::string list = argv[i + 1]; !list.empty();) {
@@ -97,5 +102,41 @@ int main(int argc, char** argv) {
   }
   std::printf("\nthreads: %d. rel.RMSE includes the reference's noise; expect it to fall as 1/sqrt(spp).\n",
               refA.stats.threads);
+
+  // Feature cost at equal spp, relative to the static pinhole render.
+  SceneDescription dof = desc;
+  dof.camera.fNumber = 2.8;
+  dof.camera.focusDistance = 1.0;
+  dof.camera.aperture.emplace(dof.camera.focalLength / dof.camera.fNumber, 6, 0.0);
+  SceneDescription motion = desc;
+  for (ShapeDescription& s : motion.shapes)
+    if (s.label == "short_block") {
+      Keyframe k0, k1;
+      k1.time = 1.0 / 60.0;
+      k1.translate = {0.05, 0.0, 0.0};
+      s.motion = RigidMotion({k0, k1});
+    }
+  Keyframe c0, c1;
+  c1.time = 1.0 / 60.0;
+  c1.rotate = glm::angleAxis(glm::radians(1.0), glm::dvec3(0.0, 1.0, 0.0));
+  motion.camera.motion = RigidMotion({c0, c1});
+  std::printf("\nfeature cost at %d spp (same scene, seconds relative to the static pinhole render):\n", featureSpp);
+  std::printf("%-22s %9s %12s %8s  %s\n", "variant", "seconds", "samples/s", "ratio", "modelled");
+  double baseline = 0.0;
+  const std::pair<const char*, const SceneDescription*> variants[] = {
+      {"static pinhole", &desc}, {"depth of field", &dof}, {"motion blur", &motion}};
+  for (const auto& [name, d] : variants) {
+    const Scene variantScene(*d);
+    RenderOptions o;
+    o.spp = featureSpp;
+    o.seed = 1;
+    o.threads = threads;
+    const RenderResult r = render(variantScene, response, o);
+    if (baseline == 0.0) baseline = r.stats.seconds;
+    std::printf("%-22s %9.3f %11.3fM %8.3f  %s\n", name, r.stats.seconds,
+                static_cast<double>(r.stats.samples) / r.stats.seconds * 1e-6, r.stats.seconds / baseline,
+                r.stats.modelled.describe().c_str());
+    std::fflush(stdout);
+  }
   return 0;
 }
