@@ -10,7 +10,7 @@
 
 #include "integrator/scene_loader_parts.h"
 #include "integrator/scene_spectra.h"
-#include "integrator/yaml_reader.h"
+#include "sensor/yaml_reader.h"
 #include "sensor/cie.h"
 #include "sensor/spectral_data.h"
 

@@ -6,7 +6,7 @@
 #include "integrator/motion.h"
 #include "integrator/physical_camera.h"
 #include "integrator/scene_spectra.h"
-#include "integrator/yaml_reader.h"
+#include "sensor/yaml_reader.h"
 
 namespace camsim {
 

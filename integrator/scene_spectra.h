@@ -9,7 +9,7 @@
 #include <filesystem>
 #include <vector>
 
-#include "integrator/yaml_reader.h"
+#include "sensor/yaml_reader.h"
 #include "sensor/spectrum.h"
 
 namespace camsim {

@@ -1,4 +1,4 @@
-#include "integrator/yaml_reader.h"
+#include "sensor/yaml_reader.h"
 
 #include <algorithm>
 #include <cctype>

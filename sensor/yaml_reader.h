@@ -1,8 +1,8 @@
 // YamlMap / YamlValue: checked access to a parsed YAML (or JSON) document with the
 // location of every value, for error messages "file:line:col: key 'a.b[2].c': …".
 // A YamlMap remembers which keys were read; finish() rejects any key nobody asked for,
-// so typos are errors rather than silently ignored settings. Only the scene loader
-// includes this (and yaml-cpp).
+// so typos are errors rather than silently ignored settings. Used by the scene loader
+// (integrator/) and the sensor-description loader (sensor/).
 #pragma once
 
 #include <cstdint>
