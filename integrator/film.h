@@ -1,12 +1,13 @@
-// Film: per-pixel accumulators of what the spectral response asks for.
+// Film: per-pixel accumulators of what one or more spectral responses ask for.
 //
 //   pixel value v_c = (1/n) Σ_samples (1/N) Σᵢ r_c(λᵢ) W(λᵢ) L(λᵢ) / p(λᵢ)
 //
 // with n the samples per pixel, W the camera's measurement weight (radiance → energy on
 // the photosite, see PhysicalCamera) and r_c the response curve of channel c
-// (sensor::SpectralResponse). With W in m²·s·sr the value is the response-weighted energy
-// on the photosite. Each pixel is written by one tile only,
-// so no locking is needed. Samples with NaN/Inf radiance are rejected and counted.
+// (sensor::SpectralResponse): the response-weighted energy on the photosite. A mosaic
+// response (a CFA) stores only the photosite's own channel. Several responses (e.g. CIE
+// XYZ and a sensor's QE) are filled by the same samples in one pass. Each pixel is written
+// by one tile only, so no locking is needed. Non-finite samples are rejected and counted.
 #pragma once
 
 #include <cmath>
@@ -23,27 +24,33 @@ namespace camsim {
 
 class Film {
  public:
-  Film(glm::ivec2 resolution, const SpectralResponse& response);
+  Film(glm::ivec2 resolution, std::vector<const SpectralResponse*> responses);
 
   // q: the sample's weighted spectral quantity (radiance × camera weight). Returns false
   // (and adds nothing) if it is not finite.
   bool addSample(glm::ivec2 pixel, const SampledSpectrum& q, const SampledWavelengths& lambda) {
     if (!q.isFinite()) return false;
     double* sums = &sums_[(static_cast<size_t>(pixel.y) * static_cast<size_t>(resolution_.x) +
-                           static_cast<size_t>(pixel.x)) * channels_];
-    for (size_t c = 0; c < channels_; ++c) sums[c] += response_.estimate(static_cast<int>(c), q, lambda);
+                           static_cast<size_t>(pixel.x)) * stride_];
+    for (const SpectralResponse* r : responses_) {
+      if (r->isMosaic()) {
+        *sums++ += r->estimate(r->mosaic().channelAt(pixel.x, pixel.y), q, lambda);
+      } else {
+        for (int c = 0; c < r->channelCount(); ++c) *sums++ += r->estimate(c, q, lambda);
+      }
+    }
     return true;
   }
 
   glm::ivec2 resolution() const { return resolution_; }
-  const SpectralResponse& response() const { return response_; }
-  // The pixel means, one channel per response channel, named after them.
-  Image toImage(int samplesPerPixel) const;
+  // One image per response: its channels named after the response's, or one channel
+  // named after the response for a mosaic.
+  std::vector<Image> toImages(int samplesPerPixel) const;
 
  private:
   glm::ivec2 resolution_;
-  const SpectralResponse& response_;
-  size_t channels_;
+  std::vector<const SpectralResponse*> responses_;
+  size_t stride_ = 0;
   std::vector<double> sums_;
 };
 

@@ -62,11 +62,16 @@ void renderTile(const Scene& scene, Film& film, const RenderOptions& options, co
 }  // namespace
 
 RenderResult render(const Scene& scene, const SpectralResponse& response, const RenderOptions& options) {
+  return render(scene, std::vector<const SpectralResponse*>{&response}, options);
+}
+
+RenderResult render(const Scene& scene, const std::vector<const SpectralResponse*>& responses,
+                    const RenderOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   const glm::ivec2 res = scene.camera().resolution();
   ModelledDimensions dims = scene.modelled();
   dims.time = dims.time || options.forceTime;
-  Film film(res, response);
+  Film film(res, responses);
   const int tilesX = (res.x + kTileSize - 1) / kTileSize;
   const int tilesY = (res.y + kTileSize - 1) / kTileSize;
   const int tileCount = tilesX * tilesY;
@@ -100,7 +105,8 @@ RenderResult render(const Scene& scene, const SpectralResponse& response, const 
   });
 
   RenderResult result;
-  result.image = film.toImage(options.spp);
+  result.images = film.toImages(options.spp);
+  result.image = result.images.front();
   for (const TileStats& t : perThread) {
     result.stats.samples += t.samples;
     result.stats.rejectedSamples += t.rejected;

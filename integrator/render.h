@@ -11,6 +11,7 @@
 #include <atomic>
 #include <cstdint>
 #include <functional>
+#include <vector>
 
 #include "integrator/path_tracer.h"
 #include "integrator/scene.h"
@@ -43,10 +44,14 @@ struct RenderStats {
 };
 
 struct RenderResult {
-  Image image;  // one channel per response channel, pixel means
+  Image image;                // the first response's image (pixel means)
+  std::vector<Image> images;  // one per response, in order
   RenderStats stats;
 };
 
 RenderResult render(const Scene& scene, const SpectralResponse& response, const RenderOptions& options);
+// Several responses filled by the same samples (e.g. CIE XYZ and a sensor's electrons).
+RenderResult render(const Scene& scene, const std::vector<const SpectralResponse*>& responses,
+                    const RenderOptions& options);
 
 }  // namespace camsim

@@ -7,14 +7,20 @@
 // radiance, W·m⁻²·sr⁻¹·nm⁻¹). The film estimates it from the path's wavelengths as
 // (1/N) Σᵢ r_c(λᵢ) Q(λᵢ) / p(λᵢ).
 //
-// cieXyz(): r = Km · (x̄, ȳ, z̄), Km = 683 lm/W, so Y is luminance in cd/m² and X, Z are
-// on the same absolute scale. A sensor (later) supplies QE(λ)·λ/(hc) curves per CFA
-// channel through the same interface; sensor/ never needs to know about the integrator.
+// cieXyz(): r = Km · (x̄, ȳ, z̄), Km = 683 lm/W: with Q the spectral energy on the
+// photosite (J/nm), Y is luminous energy in lm·s.
+// sensorElectrons(): r_c = QE_c(λ) · λ/(h c), so v_c is the expected number of
+// photo-electrons (photons = energy / (h c / λ), times the quantum efficiency). A mosaic
+// response (a CFA) gives each photosite only its own channel: the film stores one value
+// per pixel and a Bayer sensor costs no more than a monochrome one.
+// sensor/ never needs to know about the integrator.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "sensor/cfa.h"
 #include "sensor/sampled_spectrum.h"
 #include "sensor/spectrum.h"
 
@@ -28,8 +34,18 @@ struct ResponseChannel {
 class SpectralResponse {
  public:
   SpectralResponse(std::string name, std::string unit, std::vector<ResponseChannel> channels);
+  // A mosaic: photosite (x, y) sees only channel mosaic.channelAt(x, y).
+  SpectralResponse(std::string name, std::string unit, std::vector<ResponseChannel> channels, CfaLayout mosaic);
 
   static SpectralResponse cieXyz();
+  // Expected photo-electrons per channel from absolute QE curves (one per channel).
+  static SpectralResponse electrons(const std::vector<std::string>& names, const std::vector<Spectrum>& qe,
+                                    const CfaLayout* mosaic);
+
+  bool isMosaic() const { return mosaic_.has_value(); }
+  const CfaLayout& mosaic() const { return *mosaic_; }
+  // Channels stored per pixel: 1 for a mosaic, else channelCount().
+  int storedChannels() const { return mosaic_ ? 1 : channelCount(); }
 
   const std::string& name() const { return name_; }
   // Unit of the integrated value, e.g. "cd/m^2".
@@ -50,6 +66,7 @@ class SpectralResponse {
   std::string name_;
   std::string unit_;
   std::vector<ResponseChannel> channels_;
+  std::optional<CfaLayout> mosaic_;
 };
 
 }  // namespace camsim
