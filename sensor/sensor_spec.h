@@ -3,10 +3,10 @@
 //
 // | field                  | unit         | meaning |
 // |------------------------|--------------|---------|
-// | name                   | —            | display name (default: the file name without extension) |
+// | name                   | —            | display name (default: the file's stem) |
 // | pixel_pitch_um         | µm           | photosite pitch (the camera's sensor size must agree) |
 // | fill_factor            | —            | photosensitive fraction of the pixel area |
-// | cfa                    | —            | RGGB, BGGR, GRBG, GBRG, mono, xyz (stacked) or a custom tile |
+// | cfa                    | —            | RGGB, BGGR, GRBG, GBRG, mono, xyz (stacked), custom tile |
 // | qe                     | e⁻/photon    | per channel: relative curve × peak_qe, or ideal CIE XYZ, or a CSV |
 // | ir_cut                 | —            | optional transmittance multiplying every channel's QE |
 // | full_well_e            | e⁻           | full-well capacity |
