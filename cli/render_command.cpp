@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "cli/progress.h"
+#include "cli/sensor_outputs.h"
 #include "integrator/render.h"
 #include "integrator/scene.h"
 #include "integrator/scene_loader.h"
@@ -109,6 +110,14 @@ RenderCommandResult runRender(const RenderArgs& args, std::ostream& log, const s
 
   const Scene scene(desc);
   const SpectralResponse response = SpectralResponse::cieXyz();
+  std::vector<const SpectralResponse*> responses = {&response};
+  std::optional<SpectralResponse> sensorResponse;
+  if (desc.sensor) {
+    const SensorSpec& spec = desc.sensor->spec;
+    const bool mosaic = !spec.cfa.isStacked();
+    sensorResponse = SpectralResponse::electrons(spec.cfa.channels, spec.qe, mosaic ? &spec.cfa : nullptr);
+    responses.push_back(&*sensorResponse);
+  }
   ProgressBar progress("rendering " + desc.name);
   RenderOptions options;
   options.spp = desc.render.spp;
@@ -116,7 +125,7 @@ RenderCommandResult runRender(const RenderArgs& args, std::ostream& log, const s
   options.threads = args.threads;
   options.cancel = cancel;
   options.progress = [&progress](int done, int total) { progress.update(done, total); };
-  const RenderResult result = render(scene, response, options);
+  const RenderResult result = render(scene, responses, options);
   progress.finish();
   RenderCommandResult outcome;
   if (result.stats.cancelled) {
@@ -144,6 +153,24 @@ RenderCommandResult runRender(const RenderArgs& args, std::ostream& log, const s
            ExrChromaticities{cs.red(), cs.green(), cs.blue(), cs.white()});
   const QuickLook look = quickLookSrgb8(result.image);
   writePng8(outputs.add(desc.name + ".png"), result.image.width, result.image.height, look.rgb8);
+  if (desc.sensor) {
+    // Re-render only for moving scenes, whose motion blur depends on the exposure time.
+    auto rerender = [&](double k) {
+      SceneDescription longer = desc;
+      longer.camera.shutter = desc.camera.shutter.scaled(k);
+      const Scene s2(longer);
+      RenderOptions o = options;
+      o.progress = nullptr;
+      return render(s2, *sensorResponse, o).image;
+    };
+    double aeScale = 1.0;
+    const auto frames = writeSensorFrames(*desc.sensor, desc.name, desc.camera.shutter.effectiveTime(),
+                                          st.modelled.time, result.images[1], rerender, meta, outputs, log, aeScale);
+    for (const auto& f : frames)
+      if (f.clippedFraction > 0.01)
+        log << "note: " << (f.dngFile.empty() ? f.rawExrFile : f.dngFile) << ": " << 100.0 * f.clippedFraction
+            << " % of photosites clipped\n";
+  }
   outcome.files = outputs.commit();
 
   const double samples = static_cast<double>(st.samples);

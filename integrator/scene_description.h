@@ -15,6 +15,9 @@
 #include "integrator/mesh_io.h"
 #include "integrator/motion.h"
 #include "integrator/physical_camera.h"
+#include "sensor/exposure_control.h"
+#include "sensor/sensor_model.h"
+#include "sensor/sensor_spec.h"
 #include "sensor/spectrum.h"
 
 namespace camsim {
@@ -48,6 +51,17 @@ struct ShapeDescription {
   RigidMotion motion;         // object → world over time; empty = identity
 };
 
+// `sensor:` — the camera's sensor and how it is exposed and read out.
+struct SensorSettings {
+  SensorSpec spec;
+  double iso = 100.0;
+  NoiseMode noise = NoiseMode::kFull;
+  std::uint64_t noiseSeed = 0;
+  std::uint64_t frame = 0;
+  std::optional<AutoExposure> autoExposure;
+  std::vector<double> bracketEv;  // exposure offsets in stops; empty: one exposure
+};
+
 struct SceneDescription {
   std::string sourceFile;  // what it was loaded from ("<default>" for the embedded scene)
   std::string name;        // output base name
@@ -55,6 +69,7 @@ struct SceneDescription {
   RenderSettings render;
   std::vector<MaterialDescription> materials;
   std::vector<ShapeDescription> shapes;
+  std::optional<SensorSettings> sensor;  // none: the film records CIE XYZ only
 };
 
 }  // namespace camsim

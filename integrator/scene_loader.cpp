@@ -219,7 +219,10 @@ SceneDescription loadSceneFromText(const std::string& text, const std::string& d
   if (scene.name.empty() || scene.name.find_first_of("/\\") != std::string::npos)
     top.self().fail("name must be a non-empty file name without '/'");
   if (auto v = top.find("render")) scene.render = parseRender(YamlMap(*v));
-  scene.camera = parseCamera(YamlMap(top.require("camera")), ctx.search);
+  const YamlValue cameraValue = top.require("camera");
+  scene.camera = parseCamera(YamlMap(cameraValue), ctx.search);
+  if (auto sensor = top.find("sensor"))
+    scene.sensor = parseSensorSettings(YamlMap(*sensor), baseDir, cameraValue, scene.camera);
   if (auto mats = top.find("materials")) {
     YamlMap mmap(*mats);
     for (const std::string& name : mmap.keys()) {
@@ -231,7 +234,7 @@ SceneDescription loadSceneFromText(const std::string& text, const std::string& d
   const std::vector<YamlValue> items = shapes.items();
   if (items.empty()) shapes.fail("the scene has no shapes");
   for (size_t i = 0; i < items.size(); ++i) scene.shapes.push_back(parseShape(YamlMap(items[i]), i, ctx));
-  top.finish({"format", "name", "spectra_path", "render", "camera", "materials", "shapes"});
+  top.finish({"format", "name", "spectra_path", "render", "camera", "sensor", "materials", "shapes"});
   return scene;
 }
 

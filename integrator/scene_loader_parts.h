@@ -1,10 +1,13 @@
 // Internal pieces of the scene loader shared between its files (not a public API).
 #pragma once
 
+#include <filesystem>
+
 #include <glm/vec3.hpp>
 
 #include "integrator/motion.h"
 #include "integrator/physical_camera.h"
+#include "integrator/scene_description.h"
 #include "integrator/scene_spectra.h"
 #include "sensor/yaml_reader.h"
 
@@ -16,6 +19,10 @@ glm::vec3 toPoint(const YamlValue& where, const glm::dvec3& v);
 float positiveFloat(const YamlValue& where, double v);
 // `camera:` → camera parameters (see docs/scene-format.md).
 PhysicalCameraParams parseCamera(YamlMap map, const SpectrumSearch& search);
+// `sensor:` → sensor settings; sets the camera's sensor size and fill factor from the
+// sensor's pixel pitch (cameraMap: the camera's keys, to reject conflicting ones).
+SensorSettings parseSensorSettings(YamlMap map, const std::filesystem::path& baseDir, const YamlValue& camera,
+                                   PhysicalCameraParams& cameraParams);
 // `motion:` keyframes; `forCamera` forbids scale.
 RigidMotion parseMotion(const YamlValue& value, bool forCamera);
 

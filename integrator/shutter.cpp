@@ -30,6 +30,13 @@ Shutter Shutter::trapezoid(double open, double close, double rampOpen, double ra
   return Shutter(std::move(t), std::move(s), type, rowTime);
 }
 
+Shutter Shutter::scaled(double k) const {
+  CAMSIM_CHECK(k > 0.0);
+  std::vector<double> t = times_;
+  for (double& v : t) v = times_.front() + (v - times_.front()) * k;
+  return Shutter(std::move(t), values_, type_, rowTime_);
+}
+
 double Shutter::efficiency(double t) const {
   if (t < times_.front() || t > times_.back()) return 0.0;
   const size_t i = std::min<size_t>(

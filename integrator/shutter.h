@@ -29,6 +29,9 @@ class Shutter {
   static Shutter trapezoid(double open, double close, double rampOpen, double rampClose,
                            Type type = Type::kGlobal, double rowTime = 0.0);
 
+  // The same curve stretched in time by k about the opening time (exposure × k).
+  Shutter scaled(double k) const;
+
   double open() const { return times_.front(); }
   double close() const { return times_.back(); }
   double effectiveTime() const { return total_; }  // T_eff, s

@@ -1,0 +1,35 @@
+// The sensor stage of `camsim render`: from the noise-free expected electrons of a render
+// to raw frames on disk — auto-exposure (metering on the noise-free signal), exposure
+// brackets, noise and ADC (sensor::expose), raw DNG and raw EXR.
+#pragma once
+
+#include <functional>
+#include <iosfwd>
+#include <string>
+#include <vector>
+
+#include "integrator/scene_description.h"
+#include "sensor/image.h"
+#include "sensor/output_set.h"
+
+namespace camsim {
+
+struct SensorFrameReport {
+  double exposureTimeS = 0.0;  // effective, after auto-exposure and bracketing
+  double ev = 0.0;
+  double clippedFraction = 0.0;  // photosites at the white level
+  std::string dngFile, rawExrFile;
+};
+
+// electrons: the render's sensor film (expected e⁻ at the scene's exposure, T_eff).
+// rerender(k): renders again with the shutter stretched by k and returns the new
+// electrons — used only when the scene moves (motion blur depends on the exposure);
+// static scenes scale linearly. Writes NAME[_evX].dng and NAME[_evX]_raw.exr.
+// `exposureScale` returns the auto-exposure factor applied to every frame (1 if none).
+std::vector<SensorFrameReport> writeSensorFrames(const SensorSettings& sensor, const std::string& name,
+                                                 double exposureTimeS, bool sceneMoves, const Image& electrons,
+                                                 const std::function<Image(double)>& rerender,
+                                                 const Metadata& meta, OutputSet& outputs, std::ostream& log,
+                                                 double& exposureScale);
+
+}  // namespace camsim

@@ -1,0 +1,68 @@
+// The scene loader's `sensor:` block (docs/scene-format.md): which sensor, ISO, noise,
+// auto-exposure and brackets. The sensor description itself is parsed by sensor/.
+#include <cmath>
+
+#include "integrator/scene_loader.h"
+#include "integrator/scene_loader_parts.h"
+
+namespace camsim {
+
+SensorSettings parseSensorSettings(YamlMap map, const std::filesystem::path& baseDir, const YamlValue& camera,
+                                   PhysicalCameraParams& cameraParams) {
+  SensorSettings s;
+  const YamlValue model = map.require("model");
+  std::string name = model.string();
+  if (std::filesystem::is_regular_file(baseDir / name)) name = (baseDir / name).string();
+  try {
+    s.spec = loadSensorSpec(name, lutsDirectory());
+  } catch (const InputError& e) {
+    if (e.where().line > 0) throw;  // an error inside the sensor file names its own location
+    model.fail(e.message());
+  }
+  s.iso = s.spec.baseIso;
+  if (auto v = map.find("iso")) s.iso = v->number(1.0, 1e7);
+  if (auto v = map.find("noise")) {
+    const std::string mode = v->string();
+    if (mode == "none") s.noise = NoiseMode::kNone;
+    else if (mode == "photon") s.noise = NoiseMode::kPhoton;
+    else if (mode != "full") v->fail("unknown noise mode '" + mode + "' (known: none, photon, full)");
+  }
+  if (auto v = map.find("noise_seed")) s.noiseSeed = static_cast<std::uint64_t>(v->integer(0, INT64_MAX));
+  if (auto v = map.find("frame")) s.frame = static_cast<std::uint64_t>(v->integer(0, INT64_MAX));
+  if (auto v = map.find("auto_exposure")) {
+    YamlMap ae(*v);
+    AutoExposure a;
+    if (auto m = ae.find("metering")) {
+      const std::string how = m->string();
+      if (how == "mean") a.metering = AutoExposure::Metering::kMean;
+      else if (how == "centre_weighted") a.metering = AutoExposure::Metering::kCentreWeighted;
+      else if (how == "percentile") a.metering = AutoExposure::Metering::kPercentile, a.target = 0.9;
+      else m->fail("unknown metering '" + how + "' (known: mean, centre_weighted, percentile)");
+    }
+    if (auto t = ae.find("target")) a.target = t->number(0.0, 1.0, true);
+    if (auto p = ae.find("percentile")) {
+      if (a.metering != AutoExposure::Metering::kPercentile) p->fail("percentile needs metering: percentile");
+      a.percentile = p->number(0.0, 100.0, true);
+    }
+    ae.finish({"metering", "target", "percentile"});
+    s.autoExposure = a;
+  }
+  if (auto b = map.find("bracket_ev")) {
+    s.bracketEv = b->numbers();
+    if (s.bracketEv.empty() || s.bracketEv.size() > 16) b->fail("give 1 to 16 exposure offsets in stops");
+    for (double ev : s.bracketEv)
+      if (std::abs(ev) > 20.0) b->fail("exposure offsets must lie within ±20 stops");
+  }
+  map.finish({"model", "iso", "noise", "noise_seed", "frame", "auto_exposure", "bracket_ev"});
+
+  // The sensor sets the pixel geometry; the camera must not contradict it.
+  YamlMap cameraKeys(camera);
+  for (const char* key : {"sensor_width_mm", "sensor_height_mm", "fill_factor"})
+    if (auto v = cameraKeys.find(key))
+      v->fail(std::string(key) + " conflicts with the sensor's pixel pitch and fill factor: remove it");
+  cameraParams.sensorSize = glm::dvec2(cameraParams.resolution) * s.spec.pixelPitchM;
+  cameraParams.fillFactor = s.spec.fillFactor;
+  return s;
+}
+
+}  // namespace camsim
