@@ -9,6 +9,8 @@
 #include <OpenEXR/ImfStandardAttributes.h>
 #include <OpenEXR/ImfStringAttribute.h>
 
+#include <charconv>
+
 #include "sensor/input_error.h"
 
 namespace camsim {
@@ -74,6 +76,44 @@ ExrFile readExr(const std::filesystem::path& path) {
   } catch (const std::exception& e) {
     throw InputError({path.string(), 0, 0}, "", std::string("cannot read EXR: ") + e.what());
   }
+}
+
+namespace {
+
+std::string shortestDecimal(double v) {
+  char buffer[32];
+  const auto result = std::to_chars(buffer, buffer + sizeof buffer, v);
+  return std::string(buffer, result.ptr);
+}
+
+}  // namespace
+
+void writeRawExr(const std::filesystem::path& path, const RawImage& raw,
+                 const Image& expectedElectrons, const Metadata& meta) {
+  CAMSIM_CHECK(raw.width > 0 && raw.height > 0 &&
+               raw.dn.size() == static_cast<size_t>(raw.width) * static_cast<size_t>(raw.height));
+  CAMSIM_CHECK(expectedElectrons.width == raw.width && expectedElectrons.height == raw.height);
+  std::vector<std::string> names = {"raw.DN"};
+  for (const auto& c : expectedElectrons.channels) names.push_back("electrons." + c);
+  Image image(raw.width, raw.height, names);
+  const int electronChannels = expectedElectrons.channelCount();
+  for (int y = 0; y < raw.height; ++y)
+    for (int x = 0; x < raw.width; ++x) {
+      image.at(x, y, 0) = static_cast<float>(raw.at(x, y));
+      for (int c = 0; c < electronChannels; ++c)
+        image.at(x, y, c + 1) = expectedElectrons.at(x, y, c);
+    }
+  const Metadata levels = {{"camsim:cfa", raw.cfa.name},
+                           {"camsim:black_level_dn", shortestDecimal(raw.blackLevelDn)},
+                           {"camsim:white_level_dn", shortestDecimal(raw.whiteLevelDn)}};
+  Metadata all;
+  for (const auto& entry : meta) {
+    bool replaced = false;
+    for (const auto& level : levels) replaced = replaced || level.first == entry.first;
+    if (!replaced) all.push_back(entry);
+  }
+  all.insert(all.end(), levels.begin(), levels.end());
+  writeExr(path, image, all, std::nullopt);
 }
 
 }  // namespace camsim

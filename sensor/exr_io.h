@@ -7,6 +7,7 @@
 
 #include "sensor/cie.h"
 #include "sensor/image.h"
+#include "sensor/raw_image.h"
 
 namespace camsim {
 
@@ -26,5 +27,14 @@ struct ExrFile {
 };
 // Throws InputError if the file cannot be read as an EXR.
 ExrFile readExr(const std::filesystem::path& path);
+
+// Raw EXR: the sensor's output and its noise-free input side by side, same size.
+//   "raw.DN"          the digital numbers as float (exact: every 16-bit integer is a float)
+//   "electrons.<c>"   every channel c of expectedElectrons (e.g. "electrons.expected")
+// String attributes: meta, then camsim:cfa (the layout name, e.g. "RGGB", "mono"),
+// camsim:black_level_dn and camsim:white_level_dn (shortest round-trip decimal), which
+// replace any meta entries of the same names.
+void writeRawExr(const std::filesystem::path& path, const RawImage& raw,
+                 const Image& expectedElectrons, const Metadata& meta);
 
 }  // namespace camsim

@@ -142,5 +142,53 @@ TEST_F(ExrIoTest, ReadingATruncatedExrThrowsInputError) {
   EXPECT_THROW(readExr(path), InputError);
 }
 
+// Raw EXR: raw.DN exact for every 16-bit value, the electrons layer bit-exact, the levels
+// and the CFA name as string attributes (a caller's entry of the same name is replaced).
+TEST_F(ExrIoTest, RawExrHoldsDnElectronsAndLevels) {
+  RawImage raw;
+  raw.width = 256;
+  raw.height = 256;
+  raw.cfa.width = raw.cfa.height = 2;
+  raw.cfa.tile = {2, 1, 1, 0};
+  raw.cfa.channels = {"R", "G", "B"};
+  raw.cfa.name = "BGGR";
+  raw.blackLevelDn = 64.5;
+  raw.whiteLevelDn = 16383.0;
+  for (int i = 0; i < raw.width * raw.height; ++i) raw.dn.push_back(static_cast<std::uint16_t>(i));
+  Image electrons(raw.width, raw.height, {"expected", "variance"});
+  std::mt19937 rng(99u);
+  std::uniform_real_distribution<float> dist(0.0f, 50000.0f);
+  for (float& v : electrons.pixels) v = dist(rng);
+  const std::filesystem::path path = dir_ / "raw.exr";
+  writeRawExr(path, raw, electrons, {{"camsim:sensor", "test"}, {"camsim:cfa", "stale"}});
+
+  const ExrFile read = readExr(path);
+  ASSERT_EQ(read.image.width, raw.width);
+  ASSERT_EQ(read.image.height, raw.height);
+  ASSERT_EQ(read.image.channelCount(), 3);
+  const int dn = read.image.channelIndex("raw.DN");
+  const int expected = read.image.channelIndex("electrons.expected");
+  const int variance = read.image.channelIndex("electrons.variance");
+  ASSERT_GE(dn, 0);
+  ASSERT_GE(expected, 0);
+  ASSERT_GE(variance, 0);
+  for (int y = 0; y < raw.height; ++y)
+    for (int x = 0; x < raw.width; ++x) {
+      // Every value 0 … 65535 occurs once and comes back as exactly that integer.
+      ASSERT_EQ(read.image.at(x, y, dn), static_cast<float>(raw.at(x, y))) << x << ", " << y;
+      ASSERT_EQ(bits(read.image.at(x, y, expected)), bits(electrons.at(x, y, 0)));
+      ASSERT_EQ(bits(read.image.at(x, y, variance)), bits(electrons.at(x, y, 1)));
+    }
+  EXPECT_EQ(read.image.at(255, 255, dn), 65535.0f);
+  const std::map<std::string, std::string> got(read.metadata.begin(), read.metadata.end());
+  const std::map<std::string, std::string> want{{"camsim:sensor", "test"},
+                                                {"camsim:cfa", "BGGR"},
+                                                {"camsim:black_level_dn", "64.5"},
+                                                {"camsim:white_level_dn", "16383"}};
+  EXPECT_EQ(got, want);
+  EXPECT_EQ(read.metadata.size(), want.size());
+  EXPECT_FALSE(read.chromaticities.has_value());
+}
+
 }  // namespace
 }  // namespace camsim

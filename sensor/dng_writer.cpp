@@ -1,0 +1,231 @@
+#include "sensor/dng_writer.h"
+
+#include <tiffio.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdarg>
+#include <cstdint>
+#include <cstdio>
+#include <memory>
+#include <stdexcept>
+#include <string>
+
+#include <glm/matrix.hpp>
+
+#include "sensor/check.h"
+#include "sensor/cie.h"
+#include "sensor/input_error.h"
+#include "sensor/spectral_data.h"
+
+namespace camsim {
+namespace {
+
+constexpr int kPhotometricLinearRaw = 34892;  // DNG; libtiff's tiff.h does not name it
+
+// Σ_λ a(λ)·b(λ)·c(λ) [·λ] over the 1 nm grid, in double.
+double weightedSum(const Spectrum& a, const Spectrum& b, const Spectrum& c, bool timesLambda) {
+  double sum = 0.0;
+  for (int i = 0; i < kSpectrumSamples; ++i) {
+    const double lambda = timesLambda ? static_cast<double>(kLambdaMinNm + i) : 1.0;
+    sum += static_cast<double>(a.sample(i)) * static_cast<double>(b.sample(i)) *
+           static_cast<double>(c.sample(i)) * lambda;
+  }
+  return sum;
+}
+
+glm::dvec3 cameraResponse(const std::vector<Spectrum>& qe, const Spectrum& reflectance,
+                          const Spectrum& illuminant) {
+  return {weightedSum(qe[0], reflectance, illuminant, true),
+          weightedSum(qe[1], reflectance, illuminant, true),
+          weightedSum(qe[2], reflectance, illuminant, true)};
+}
+
+// DNG CFAPlaneColor code of a channel name (R, G, B only), -1 otherwise.
+int planeColorCode(const std::string& name) {
+  if (name == "R") return 0;
+  if (name == "G") return 1;
+  if (name == "B") return 2;
+  return -1;
+}
+
+// libtiff's per-file error handler: keeps the first message for the exception.
+int captureTiffError(TIFF*, void* userData, const char* module, const char* fmt, va_list ap) {
+  auto* message = static_cast<std::string*>(userData);
+  if (message->empty()) {
+    char buffer[512];
+    std::vsnprintf(buffer, sizeof buffer, fmt, ap);
+    *message = std::string(module ? module : "libtiff") + ": " + buffer;
+  }
+  return 1;
+}
+
+int ignoreTiffWarning(TIFF*, void*, const char*, const char*, va_list) {
+  return 1;
+}
+
+std::string metadataValue(const Metadata& meta, const std::string& key) {
+  for (const auto& [k, v] : meta)
+    if (k == key) return v;
+  return {};
+}
+
+}  // namespace
+
+DngColor dngColorFromQe(const std::vector<Spectrum>& qe, const Spectrum& illuminant,
+                        const std::filesystem::path& colorCheckerCsv) {
+  if (qe.size() != 3)
+    throw InputError({}, "qe",
+                     "DNG colour needs 3 QE curves (R, G, B), got " + std::to_string(qe.size()));
+  const SpectralTable chart = readSpectralCsv(colorCheckerCsv);
+  if (chart.columns.size() < 3)
+    throw InputError({chart.source, 0, 0}, "", "a colour fit needs at least 3 reflectance columns");
+  const Spectrum d65 = cieIlluminant("D65");
+  const Cie1931& cie = Cie1931::get();
+  const Spectrum one = Spectrum::constant(1.0);
+  const double yWhite = weightedSum(cie.y, one, d65, false);
+
+  glm::dmat3 xx(0.0), cx(0.0);  // Σ X Xᵀ and Σ c Xᵀ
+  for (size_t p = 0; p < chart.columns.size(); ++p) {
+    const Spectrum r = chart.spectrum(p, Extrapolation::kClamp);
+    const glm::dvec3 xyz =
+        glm::dvec3(weightedSum(cie.x, r, d65, false), weightedSum(cie.y, r, d65, false),
+                   weightedSum(cie.z, r, d65, false)) /
+        yWhite;
+    const glm::dvec3 c = cameraResponse(qe, r, d65);
+    xx += glm::outerProduct(xyz, xyz);
+    cx += glm::outerProduct(c, xyz);
+  }
+  CAMSIM_CHECK(std::abs(glm::determinant(xx)) > 0.0);
+  glm::dmat3 m = cx * glm::inverse(xx);
+  const glm::dvec3 whiteXyz =
+      glm::dvec3(weightedSum(cie.x, one, d65, false), yWhite, weightedSum(cie.z, one, d65, false)) /
+      yWhite;
+  const glm::dvec3 whiteCamera = m * whiteXyz;
+  const double peak = std::max({whiteCamera.x, whiteCamera.y, whiteCamera.z});
+  if (!(peak > 0.0)) throw InputError({}, "qe", "the sensor does not respond to the D65 white");
+  m /= peak;
+
+  DngColor color;
+  color.xyzToCamera = m;
+  const glm::dvec3 neutral = cameraResponse(qe, one, illuminant);
+  if (!(neutral.y > 0.0))
+    throw InputError({}, "qe", "the G channel does not respond to the illuminant");
+  color.asShotNeutral = neutral / neutral.y;
+  return color;
+}
+
+void writeDng(const std::filesystem::path& path, const RawImage& raw, const DngColor& color,
+              const Metadata& meta) {
+  CAMSIM_CHECK(raw.width > 0 && raw.height > 0 &&
+               raw.dn.size() == static_cast<size_t>(raw.width) * static_cast<size_t>(raw.height));
+  const CfaLayout& cfa = raw.cfa;
+  const bool mono = cfa.isMonochrome();
+  std::vector<std::uint8_t> pattern;
+  if (!mono) {
+    CAMSIM_CHECK(cfa.width > 0 && cfa.height > 0 &&
+                 cfa.tile.size() ==
+                     static_cast<size_t>(cfa.width) * static_cast<size_t>(cfa.height));
+    for (const int channel : cfa.tile) {
+      const int code = planeColorCode(cfa.channels.at(static_cast<size_t>(channel)));
+      if (code < 0)
+        throw InputError(
+            {}, "cfa",
+            "DNG output supports R, G, B colour filter arrays only, not '" + cfa.name + "'");
+      pattern.push_back(static_cast<std::uint8_t>(code));
+    }
+  }
+
+  std::string error;
+  std::unique_ptr<TIFFOpenOptions, void (*)(TIFFOpenOptions*)> options(TIFFOpenOptionsAlloc(),
+                                                                       &TIFFOpenOptionsFree);
+  TIFFOpenOptionsSetErrorHandlerExtR(options.get(), &captureTiffError, &error);
+  TIFFOpenOptionsSetWarningHandlerExtR(options.get(), &ignoreTiffWarning, nullptr);
+  std::unique_ptr<TIFF, void (*)(TIFF*)> tif(TIFFOpenExt(path.c_str(), "w", options.get()),
+                                             &TIFFClose);
+  const auto fail = [&](const std::string& what) {
+    throw std::runtime_error("cannot write DNG " + path.string() + ": " + what +
+                             (error.empty() ? "" : " (" + error + ")"));
+  };
+  if (!tif) fail("cannot open");
+  TIFF* t = tif.get();
+  bool ok = true;
+  // Scalars go through varargs: pass them as the promoted type libtiff reads (int/uint32).
+  const auto setU32 = [&](uint32_t tag, std::uint32_t v) {
+    ok = ok && TIFFSetField(t, tag, v) == 1;
+  };
+  const auto setU16 = [&](uint32_t tag, int v) { ok = ok && TIFFSetField(t, tag, v) == 1; };
+  const auto setText = [&](uint32_t tag, const std::string& s) {
+    ok = ok && TIFFSetField(t, tag, s.c_str()) == 1;
+  };
+
+  setU32(TIFFTAG_SUBFILETYPE, 0);
+  setU32(TIFFTAG_IMAGEWIDTH, static_cast<std::uint32_t>(raw.width));
+  setU32(TIFFTAG_IMAGELENGTH, static_cast<std::uint32_t>(raw.height));
+  setU16(TIFFTAG_BITSPERSAMPLE, 16);
+  setU16(TIFFTAG_SAMPLESPERPIXEL, 1);
+  setU16(TIFFTAG_SAMPLEFORMAT, SAMPLEFORMAT_UINT);
+  setU16(TIFFTAG_COMPRESSION, COMPRESSION_NONE);
+  setU16(TIFFTAG_PLANARCONFIG, PLANARCONFIG_CONTIG);
+  setU16(TIFFTAG_ORIENTATION, ORIENTATION_TOPLEFT);
+  setU16(TIFFTAG_PHOTOMETRIC, mono ? kPhotometricLinearRaw : PHOTOMETRIC_CFA);
+  setU32(TIFFTAG_ROWSPERSTRIP, TIFFDefaultStripSize(t, 0));
+
+  const std::string sensor = metadataValue(meta, "camsim:sensor");
+  const std::string model = sensor.empty() ? "camsim" : "camsim " + sensor;
+  setText(TIFFTAG_MAKE, "camsim");
+  setText(TIFFTAG_MODEL, model);
+  setText(TIFFTAG_UNIQUECAMERAMODEL, model);
+  setText(TIFFTAG_SOFTWARE, std::string("camsim ") + CAMSIM_VERSION);
+  std::string description;
+  for (const auto& [key, value] : meta) description += key + ": " + value + "\n";
+  if (!description.empty()) setText(TIFFTAG_IMAGEDESCRIPTION, description);
+
+  const std::uint8_t dngVersion[4] = {1, 4, 0, 0};
+  const std::uint8_t dngBackward[4] = {1, 1, 0, 0};
+  ok = ok && TIFFSetField(t, TIFFTAG_DNGVERSION, dngVersion) == 1;
+  ok = ok && TIFFSetField(t, TIFFTAG_DNGBACKWARDVERSION, dngBackward) == 1;
+
+  const std::uint16_t repeatOne[2] = {1, 1};
+  const float black[1] = {static_cast<float>(raw.blackLevelDn)};
+  const std::uint32_t white[1] = {static_cast<std::uint32_t>(std::lround(raw.whiteLevelDn))};
+  ok = ok && TIFFSetField(t, TIFFTAG_BLACKLEVELREPEATDIM, repeatOne) == 1;
+  ok = ok && TIFFSetField(t, TIFFTAG_BLACKLEVEL, 1, black) == 1;
+  ok = ok && TIFFSetField(t, TIFFTAG_WHITELEVEL, 1, white) == 1;
+
+  if (!mono) {
+    const std::uint16_t repeat[2] = {static_cast<std::uint16_t>(cfa.height),
+                                     static_cast<std::uint16_t>(cfa.width)};
+    const std::uint8_t planeColor[3] = {0, 1, 2};
+    ok = ok && TIFFSetField(t, TIFFTAG_CFAREPEATPATTERNDIM, repeat) == 1;
+    ok = ok &&
+         TIFFSetField(t, TIFFTAG_CFAPATTERN, static_cast<int>(pattern.size()), pattern.data()) == 1;
+    ok = ok && TIFFSetField(t, TIFFTAG_CFAPLANECOLOR, 3, planeColor) == 1;
+    setU16(TIFFTAG_CFALAYOUT, 1);
+    float matrix[9];
+    for (int row = 0; row < 3; ++row)
+      for (int col = 0; col < 3; ++col)
+        matrix[row * 3 + col] =
+            static_cast<float>(color.xyzToCamera[col][row]);  // glm: [column][row]
+    const float neutral[3] = {static_cast<float>(color.asShotNeutral.x),
+                              static_cast<float>(color.asShotNeutral.y),
+                              static_cast<float>(color.asShotNeutral.z)};
+    ok = ok && TIFFSetField(t, TIFFTAG_COLORMATRIX1, 9, matrix) == 1;
+    setU16(TIFFTAG_CALIBRATIONILLUMINANT1, 21);  // D65
+    ok = ok && TIFFSetField(t, TIFFTAG_ASSHOTNEUTRAL, 3, neutral) == 1;
+  }
+  if (!ok) fail("cannot set a DNG tag");
+
+  std::vector<std::uint16_t> row(static_cast<size_t>(raw.width));
+  for (int y = 0; y < raw.height; ++y) {
+    const auto begin = raw.dn.begin() + static_cast<std::ptrdiff_t>(y) * raw.width;
+    std::copy(begin, begin + raw.width, row.begin());
+    if (TIFFWriteScanline(t, row.data(), static_cast<std::uint32_t>(y), 0) != 1)
+      fail("cannot write pixels");
+  }
+  if (TIFFFlush(t) != 1) fail("cannot flush");
+  tif.reset();
+  if (!error.empty()) fail("libtiff error");
+}
+
+}  // namespace camsim
