@@ -1,0 +1,56 @@
+#!/usr/bin/env bash
+# Runs every libFuzzer harness in fuzz/ for SECONDS each (default 300), one after the other.
+#   scripts/fuzz.sh [SECONDS] [HARNESS...]
+# Builds them first in $CAMSIM_FUZZ_BUILD_DIR (default build-fuzz/; Clang, CAMSIM_FUZZ=ON).
+# Exits non-zero if any harness finds a crash, a sanitizer error, a leak, a timeout or an
+# out-of-memory; the input is then in <build>/fuzz/artifacts/<harness>/ (replay it with
+# `<build>/fuzz/fuzz_<harness> FILE`). The seed corpora in fuzz/corpus/ are only read: new
+# inputs go to <build>/fuzz/work/<harness>/ (copy good ones into fuzz/corpus/ by hand, and
+# any input that once failed into fuzz/regressions/<harness>/).
+# Environment: CAMSIM_JOBS (parallel build jobs, default: nproc).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+seconds=${1:-300}
+shift || true
+build_dir=${CAMSIM_FUZZ_BUILD_DIR:-build-fuzz}
+jobs=${CAMSIM_JOBS:-$(nproc)}
+harnesses=("$@")
+if ((${#harnesses[@]} == 0)); then harnesses=(scene_loader obj ply spectral_csv); fi
+
+CC=clang CXX=clang++ cmake -S . -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  -DCAMSIM_FUZZ=ON -DCAMSIM_BUILD_TESTS=OFF -DCAMSIM_BUILD_BENCH=OFF \
+  -DCAMSIM_WERROR=OFF >/dev/null  # warnings are gated by the GCC builds; Clang's differ
+cmake --build "$build_dir" -j"$jobs" --target "${harnesses[@]/#/fuzz_}"
+
+# Sanitizer reports abort (libFuzzer then saves the input and exits non-zero).
+export ASAN_OPTIONS=${ASAN_OPTIONS:-abort_on_error=1:detect_leaks=1}
+export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
+
+failed=()
+for h in "${harnesses[@]}"; do
+  work="$build_dir/fuzz/work/$h"
+  artifacts="$build_dir/fuzz/artifacts/$h"
+  mkdir -p "$work" "$artifacts"
+  log="$build_dir/fuzz/$h.log"
+  dict=()
+  if [ -f "fuzz/dict/$h.dict" ]; then dict=(-dict="fuzz/dict/$h.dict"); fi
+  echo "fuzz: $h for ${seconds}s (log: $log)" >&2
+  # -timeout: one input taking > 10 s is a finding (a hang); -rss_limit_mb: so is > 2 GB.
+  # Inputs are at most 64 KiB: enough for every format, small enough to stay fast.
+  if "$build_dir/fuzz/fuzz_$h" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 \
+       -max_len=65536 -print_final_stats=1 -artifact_prefix="$artifacts/" "${dict[@]}" \
+       "$work" "fuzz/corpus/$h" $( [ -d "fuzz/regressions/$h" ] && echo "fuzz/regressions/$h") \
+       >"$log" 2>&1; then
+    runs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)
+    echo "fuzz: $h: ${runs:-?} executions, no crash" >&2
+  else
+    echo "fuzz: $h FAILED; last lines of $log:" >&2
+    tail -n 40 "$log" >&2
+    failed+=("$h")
+  fi
+done
+if ((${#failed[@]})); then
+  echo "fuzz: findings in: ${failed[*]} (inputs in $build_dir/fuzz/artifacts/)" >&2
+  exit 1
+fi
