@@ -1,10 +1,23 @@
 #include "sensor/output_set.h"
 
+#include <signal.h>
 #include <unistd.h>
 
+#include <cerrno>
+#include <charconv>
+#include <string_view>
 #include <system_error>
 
 namespace camsim {
+namespace {
+
+constexpr std::string_view kTempMarker = ".camsim-tmp-";
+
+std::filesystem::path temporaryName(const std::string& fileName, long pid) {
+  return "." + fileName + std::string(kTempMarker) + std::to_string(pid);
+}
+
+}  // namespace
 
 OutputSet::OutputSet(std::filesystem::path directory) : directory_(std::move(directory)) {}
 
@@ -15,8 +28,7 @@ OutputSet::~OutputSet() {
 }
 
 std::filesystem::path OutputSet::add(const std::string& fileName) {
-  const auto temp =
-      directory_ / ("." + fileName + ".camsim-tmp-" + std::to_string(static_cast<long>(::getpid())));
+  const auto temp = directory_ / temporaryName(fileName, static_cast<long>(::getpid()));
   files_.emplace_back(temp, directory_ / fileName);
   return temp;
 }
@@ -29,6 +41,47 @@ std::vector<std::filesystem::path> OutputSet::commit() {
   }
   committed_ = true;
   return finals;
+}
+
+long OutputSet::temporaryOwner(const std::string& fileName) {
+  const size_t marker = fileName.rfind(kTempMarker);
+  // "." + at least one character of the final name + marker + digits.
+  if (fileName.size() < 2 || fileName[0] != '.' || marker == std::string::npos || marker < 2)
+    return -1;
+  const char* first = fileName.data() + marker + kTempMarker.size();
+  const char* last = fileName.data() + fileName.size();
+  long pid = 0;
+  const auto [ptr, ec] = std::from_chars(first, last, pid);
+  if (first == last || ec != std::errc() || ptr != last || pid <= 0) return -1;
+  return pid;
+}
+
+std::vector<std::filesystem::path> OutputSet::cleanStaleTemporaries(
+    const std::filesystem::path& directory) {
+  // Collect first, remove afterwards: no removal while the directory is being read.
+  std::vector<std::filesystem::path> stale;
+  const long self = static_cast<long>(::getpid());
+  std::error_code ec;
+  for (std::filesystem::directory_iterator it(directory, ec), end; !ec && it != end;
+       it.increment(ec)) {
+    const long pid = temporaryOwner(it->path().filename().string());
+    if (pid < 0 || pid == self) continue;
+    // Never follow or descend: a temporary is a regular file (or a link, removed as such).
+    std::error_code typeError;
+    const auto type = it->symlink_status(typeError).type();
+    if (typeError || (type != std::filesystem::file_type::regular &&
+                      type != std::filesystem::file_type::symlink))
+      continue;
+    // Alive, or alive under another user (EPERM): not stale.
+    if (::kill(static_cast<pid_t>(pid), 0) == 0 || errno != ESRCH) continue;
+    stale.push_back(it->path());
+  }
+  std::vector<std::filesystem::path> removed;
+  for (const auto& path : stale) {
+    std::error_code removeError;
+    if (std::filesystem::remove(path, removeError)) removed.push_back(path);
+  }
+  return removed;
 }
 
 }  // namespace camsim

@@ -3,6 +3,11 @@
 // (".<name>.camsim-tmp-<pid>") and renamed to its final name by commit(); an OutputSet
 // destroyed before commit() (an error, an exception) removes its temporaries, so a
 // failed run never leaves a file under a final name.
+//
+// A run killed outright (SIGKILL, power loss) cannot remove its temporaries; the next run
+// into the same directory does, with cleanStaleTemporaries(): a temporary whose writer's
+// PID no longer exists is stale. (PIDs are those of this machine's PID namespace: do not
+// share an output directory between machines or containers.)
 #pragma once
 
 #include <filesystem>
@@ -25,6 +30,15 @@ class OutputSet {
   std::vector<std::filesystem::path> commit();
 
   const std::filesystem::path& directory() const { return directory_; }
+
+  // Removes the files `.<name>.camsim-tmp-<pid>` in `directory` (not in subdirectories)
+  // whose process <pid> is gone (kill(pid, 0) fails with ESRCH); a live process's
+  // temporaries, including this process's, and every other file are left alone. Returns
+  // the removed paths. A missing directory has nothing to clean.
+  static std::vector<std::filesystem::path> cleanStaleTemporaries(
+      const std::filesystem::path& directory);
+  // The PID in a temporary's file name, or -1 if `fileName` is not one.
+  static long temporaryOwner(const std::string& fileName);
 
  private:
   std::filesystem::path directory_;

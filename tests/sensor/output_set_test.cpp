@@ -1,7 +1,10 @@
 // Tests for sensor/output_set: a render's files appear all at once or not at all.
 #include "sensor/output_set.h"
 
+#include <sys/wait.h>
 #include <unistd.h>
+
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -9,6 +12,7 @@
 #include <stdexcept>
 #include <string>
 #include <system_error>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -134,6 +138,70 @@ TEST_F(OutputSetTest, UncommittedSetDoesNotTouchExistingFinalFiles) {
   }
   EXPECT_EQ(read(dir_ / "a.exr"), "previous run");
   EXPECT_EQ(entries(), 1u);
+}
+
+
+// A PID that belonged to a process that has exited and been reaped (a killed run's).
+pid_t deadPid() {
+  const pid_t child = ::fork();
+  if (child == 0) ::_exit(0);
+  int status = 0;
+  ::waitpid(child, &status, 0);
+  return child;
+}
+
+TEST(OutputSetNames, TemporaryOwnerReadsThePidOfTemporaryNamesOnly) {
+  EXPECT_EQ(OutputSet::temporaryOwner(".a.exr.camsim-tmp-1234"), 1234);
+  EXPECT_EQ(OutputSet::temporaryOwner(".cornell_box.partial.exr.camsim-tmp-7"), 7);
+  EXPECT_EQ(OutputSet::temporaryOwner("a.exr.camsim-tmp-1234"), -1);   // not hidden
+  EXPECT_EQ(OutputSet::temporaryOwner(".camsim-tmp-1234"), -1);        // no final name
+  EXPECT_EQ(OutputSet::temporaryOwner(".a.exr.camsim-tmp-"), -1);      // no pid
+  EXPECT_EQ(OutputSet::temporaryOwner(".a.exr.camsim-tmp-12x"), -1);
+  EXPECT_EQ(OutputSet::temporaryOwner(".a.exr.camsim-tmp--5"), -1);
+  EXPECT_EQ(OutputSet::temporaryOwner(".a.exr.camsim-tmp-0"), -1);
+  EXPECT_EQ(OutputSet::temporaryOwner(".a.exr.camsim-tmp-99999999999999999999999"), -1);
+  EXPECT_EQ(OutputSet::temporaryOwner("a.exr"), -1);
+}
+
+TEST_F(OutputSetTest, TemporariesCarryThisProcessPid) {
+  OutputSet set(dir_);
+  EXPECT_EQ(OutputSet::temporaryOwner(set.add("a.exr").filename().string()),
+            static_cast<long>(::getpid()));
+}
+
+TEST_F(OutputSetTest, CleanStaleTemporariesRemovesOnlyThoseOfDeadProcesses) {
+  const std::string dead = std::to_string(deadPid());
+  const std::string parent = std::to_string(::getppid());  // alive while we run
+  write(dir_ / (".a.exr.camsim-tmp-" + dead), "killed run");
+  write(dir_ / (".a.png.camsim-tmp-" + dead), "killed run");
+  write(dir_ / (".a.exr.camsim-tmp-" + parent), "another run, still writing");
+  write(dir_ / "a.exr", "a finished run");
+  write(dir_ / ".hidden", "not ours");
+  write(dir_ / ".a.exr.camsim-tmp-abc", "not a pid");
+  std::filesystem::create_directory(dir_ / (".dir.camsim-tmp-" + dead));  // never descended
+  OutputSet current(dir_);
+  write(current.add("b.exr"), "this run, still writing");
+
+  std::vector<std::filesystem::path> removed = OutputSet::cleanStaleTemporaries(dir_);
+  std::sort(removed.begin(), removed.end());
+  ASSERT_EQ(removed.size(), 2u);
+  EXPECT_EQ(removed[0], dir_ / (".a.exr.camsim-tmp-" + dead));
+  EXPECT_EQ(removed[1], dir_ / (".a.png.camsim-tmp-" + dead));
+  EXPECT_FALSE(std::filesystem::exists(removed[0]));
+  EXPECT_FALSE(std::filesystem::exists(removed[1]));
+  EXPECT_TRUE(std::filesystem::exists(dir_ / (".a.exr.camsim-tmp-" + parent)));
+  EXPECT_EQ(read(dir_ / "a.exr"), "a finished run");
+  EXPECT_TRUE(std::filesystem::exists(dir_ / ".hidden"));
+  EXPECT_TRUE(std::filesystem::exists(dir_ / ".a.exr.camsim-tmp-abc"));
+  EXPECT_TRUE(std::filesystem::is_directory(dir_ / (".dir.camsim-tmp-" + dead)));
+  EXPECT_EQ(entries(), 6u);  // 8 before, minus the 2 stale ones
+  current.commit();
+  EXPECT_EQ(read(dir_ / "b.exr"), "this run, still writing");
+  EXPECT_TRUE(OutputSet::cleanStaleTemporaries(dir_).empty());  // idempotent
+}
+
+TEST_F(OutputSetTest, CleanStaleTemporariesOfAMissingDirectoryDoesNothing) {
+  EXPECT_TRUE(OutputSet::cleanStaleTemporaries(dir_ / "missing").empty());
 }
 
 }  // namespace
