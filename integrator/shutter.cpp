@@ -60,7 +60,7 @@ double Shutter::sample(double u) const {
     x = a > 0.0 ? r / a : 0.0;
   } else {
     const double disc = std::max(0.0, a * a + 2.0 * b * r);
-    x = 2.0 * r / (a + std::sqrt(disc));  // stable root of b/2 x² + a x − r = 0
+    x = r > 0.0 ? 2.0 * r / (a + std::sqrt(disc)) : 0.0;  // root of b/2 x² + a x − r = 0
   }
   return times_[i - 1] + std::clamp(x, 0.0, dt);
 }
