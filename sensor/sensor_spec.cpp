@@ -151,8 +151,13 @@ std::vector<Spectrum> parseQe(const YamlValue& value, const CfaLayout& cfa,
     }
     double peak = 1.0;
     if (const auto p = map.find("peak_qe")) peak = p->number(0.0, 1.0, true);
-    // Normalised so that max ȳ = peak (x̄ then peaks at 1.062 · peak: an ideal, not a QE).
-    const double yMax = cie.y.maxValue();
+    // Electrons count photons (energy · λ/hc), so QE = cmf(λ) · 555 nm/λ makes the
+    // electrons exactly proportional to CIE X, Y, Z of the light's energy. Normalised so
+    // that the Y channel peaks at `peak` (an ideal, not a physical QE: X may exceed it).
+    Spectrum photonToEnergy;
+    for (int i = 0; i < kSpectrumSamples; ++i) photonToEnergy.sample(i) = static_cast<float>(555.0 / (kLambdaMinNm + i));
+    for (Spectrum& s : qe) s *= photonToEnergy;
+    const double yMax = (cie.y * photonToEnergy).maxValue();
     for (Spectrum& s : qe) s *= peak / yMax;
   } else if (const auto curves = map.find("curves")) {
     const SpectralTable table = readTable(*curves, dirs);

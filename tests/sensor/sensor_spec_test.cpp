@@ -1,5 +1,6 @@
 // Tests for sensor/sensor_spec: the presets, the YAML format's QE forms, validation with
 // located errors, and the derived quantities (dark current, saturation).
+#include "sensor/cie.h"
 #include "sensor/sensor_spec.h"
 
 #include <unistd.h>
@@ -206,8 +207,17 @@ TEST(SensorSpec, PresetsLoad) {
   EXPECT_TRUE(xyz.noiseless);
   EXPECT_TRUE(xyz.cfa.isStacked());
   ASSERT_EQ(xyz.qe.size(), 3u);
-  EXPECT_NEAR(xyz.qe[1].maxValue(), 1.0, 1e-6);  // max ȳ = 1
-  EXPECT_NEAR(xyz.qe[0].maxValue(), 1.062, 2e-3);
+  EXPECT_NEAR(xyz.qe[1].maxValue(), 1.0, 1e-6);  // the Y channel peaks at 1
+  // Electrons count photons (∝ energy · λ): QE·λ ∝ cmf makes them proportional to XYZ.
+  const Cie1931& cie = Cie1931::get();
+  const Spectrum* cmf[3] = {&cie.x, &cie.y, &cie.z};
+  for (int c = 0; c < 3; ++c) {
+    const double ref = static_cast<double>(xyz.qe[static_cast<size_t>(c)](555.0f)) * 555.0 /
+                       static_cast<double>((*cmf[c])(555.0f));
+    for (float nm : {420.0f, 450.0f, 500.0f, 600.0f, 650.0f})
+      EXPECT_NEAR(static_cast<double>(xyz.qe[static_cast<size_t>(c)](nm)) * static_cast<double>(nm) /
+                      static_cast<double>((*cmf[c])(nm)) / ref, 1.0, 1e-5) << c << " at " << nm;
+  }
   EXPECT_EQ(xyz.whiteLevelDn(), 65535.0);
   EXPECT_EQ(xyz.readNoiseE, 0.0);
 
