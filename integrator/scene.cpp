@@ -12,13 +12,14 @@ namespace {
 
 // Time steps for a moving shape: linear interpolation between steps must follow the
 // keyframed rotation closely (≤ 2° per step: chord error < 1.6e-4 of the radius) and
-// must not skip keyframes (≥ 4 steps per key interval inside the span). At most 257.
+// must not skip keyframes (≥ 4 steps per key interval inside the span). At most 129, Embree's
+// RTC_MAX_TIME_STEP_COUNT (more fails in rtcSetGeometryTimeStepCount).
 int timeStepsFor(const RigidMotion& motion, double t0, double t1) {
   const double degrees = motion.rotationAngleDuring(t0, t1) * 180.0 / M_PI;
   int keysInside = 0;
   for (const Keyframe& k : motion.keys()) keysInside += (k.time > t0 && k.time < t1) ? 1 : 0;
   const int steps = 1 + std::max(static_cast<int>(std::ceil(degrees / 2.0)), 4 * (keysInside + 1));
-  return std::clamp(steps, 2, 257);
+  return std::clamp(steps, 2, 129);
 }
 
 std::unique_ptr<Shape> buildShape(const ShapeDescription& s, double t0, double t1, bool& moving) {
