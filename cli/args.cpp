@@ -24,6 +24,7 @@ std::string usageText() {
          "\n"
          "usage:\n"
          "  camsim render [SCENE] [-o DIR] [--spp N] [--seed N] [--threads N]\n"
+         "  camsim ptc SENSOR [-o DIR] [--seed N]   (photon transfer: camsim ptc --help)\n"
          "  camsim --help | --version\n"
          "\n"
          "render  renders SCENE (YAML or JSON, see docs/scene-format.md), or the built-in\n"

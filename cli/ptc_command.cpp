@@ -1,0 +1,264 @@
+#include "cli/ptc_command.h"
+
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cctype>
+#include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <ostream>
+#include <sstream>
+
+#include "cli/args.h"
+#include "sensor/input_error.h"
+#include "sensor/output_set.h"
+#include "sensor/sensor_spec.h"
+
+namespace camsim {
+namespace {
+
+// printf-style conversions of one double: 'f' fixed, 'g' general, 's' signed fixed.
+std::string format(char style, int precision, double v) {
+  char buf[64];
+  if (style == 'f')
+    std::snprintf(buf, sizeof buf, "%.*f", precision, v);
+  else if (style == 's')
+    std::snprintf(buf, sizeof buf, "%+.*f", precision, v);
+  else
+    std::snprintf(buf, sizeof buf, "%.*g", precision, v);
+  return buf;
+}
+
+// Pads to `width` code points (UTF-8: continuation bytes do not count).
+std::string pad(const std::string& s, std::size_t width, bool right = false) {
+  std::size_t points = 0;
+  for (unsigned char ch : s) points += (ch & 0xC0) != 0x80;
+  const std::string fill(points < width ? width - points : 0, ' ');
+  return right ? fill + s : s + fill;
+}
+
+// Significant digits without an exponent for the magnitudes in the table.
+std::string number(double v) {
+  const double a = std::abs(v);
+  if (a == 0.0) return "0";
+  if (a >= 1000.0) return format('f', 0, v);
+  if (a >= 10.0) return format('f', 2, v);
+  if (a >= 0.1) return format('f', 4, v);
+  return format('f', 5, v);
+}
+
+// Characters a file name keeps; others become '_'.
+std::string fileStem(const std::string& name) {
+  std::string s;
+  for (char ch : name)
+    s += (std::isalnum(static_cast<unsigned char>(ch)) || ch == '-' || ch == '.' || ch == '_')
+             ? ch
+             : '_';
+  return s.empty() ? "sensor" : s;
+}
+
+// Runs argv (no shell) and waits; the exit status, or -1 if it could not run or was killed.
+int runProcess(const std::vector<std::string>& argv, bool quiet) {
+  std::vector<char*> cargv;
+  for (const std::string& a : argv) cargv.push_back(const_cast<char*>(a.c_str()));
+  cargv.push_back(nullptr);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  if (quiet) {
+    posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
+    posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, "/dev/null", O_WRONLY, 0);
+  }
+  pid_t pid = 0;
+  const int rc = posix_spawn(&pid, argv[0].c_str(), &actions, nullptr, cargv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  if (rc != 0) return -1;
+  int status = 0;
+  while (waitpid(pid, &status, 0) < 0)
+    if (errno != EINTR) return -1;
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+std::string pythonPath() {
+  const char* env = std::getenv("CAMSIM_PYTHON");
+  return env && *env ? env : "/usr/bin/python3";
+}
+
+}  // namespace
+
+std::string ptcUsageText() {
+  return "usage: camsim ptc SENSOR [-o DIR] [--seed N]\n"
+         "\n"
+         "ptc  measures SENSOR (a preset name such as smartphone-1.4um, or a sensor YAML file)\n"
+         "     the EMVA 1288 way (Release 4.0 Linear: photon transfer, SNR, dark noise, DSNU,\n"
+         "     PRNU, linearity) on the simulated sensor, prints the results next to the values\n"
+         "     its configuration implies, and writes into DIR (default: out/):\n"
+         "       ptc_SENSOR.csv      one row per irradiation step (mu_p, mu_y, var_y, SNR)\n"
+         "       ptc_SENSOR_ptc.png  photon transfer curve with the fitted system gain\n"
+         "       ptc_SENSOR_snr.png  SNR against photons, with the ideal and model curves\n"
+         "     (the plots need python3-matplotlib; without it only the CSV is written)\n"
+         "  -o, --output DIR   output directory (created if missing)\n"
+         "  --seed N           noise seed (default 1)\n";
+}
+
+PtcArgs parsePtcArgs(const std::vector<std::string>& args) {
+  PtcArgs p;
+  for (std::size_t i = 1; i < args.size(); ++i) {
+    const std::string& a = args[i];
+    auto value = [&]() -> const std::string& {
+      if (i + 1 >= args.size()) throw UsageError(a + " needs a value");
+      return args[++i];
+    };
+    if (a == "--help" || a == "-h") {
+      p.help = true;
+    } else if (a == "-o" || a == "--output") {
+      p.outputDir = value();
+      if (p.outputDir.empty()) throw UsageError(a + " needs a non-empty directory");
+    } else if (a == "--seed") {
+      const std::string& text = value();
+      std::uint64_t seed = 0;
+      const auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), seed);
+      if (ec != std::errc() || ptr != text.data() + text.size() || text.empty())
+        throw UsageError("--seed expects a non-negative integer, got '" + text + "'");
+      p.seed = seed;
+    } else if (!a.empty() && a[0] == '-') {
+      throw UsageError("unknown option '" + a + "' (try 'camsim ptc --help')");
+    } else if (p.sensor.empty()) {
+      p.sensor = a;
+    } else {
+      throw UsageError("more than one sensor given: '" + p.sensor + "' and '" + a + "'");
+    }
+  }
+  if (!p.help && p.sensor.empty())
+    throw UsageError("ptc needs a sensor preset or file (try 'camsim ptc --help')");
+  return p;
+}
+
+std::string formatPtcTable(const PtcResult& m, const PtcConfigured& c) {
+  struct Row {
+    std::string name, unit;
+    double configured, measured;
+    bool db;  // difference in dB instead of a relative error
+  };
+  const Row rows[] = {
+      {"system gain K", "DN/e⁻", c.systemGainK, m.systemGainK, false},
+      {"quantum efficiency η", "e⁻/photon", c.quantumEfficiency, m.quantumEfficiency, false},
+      {"responsivity R = K·η", "DN/photon", c.systemGainK * c.quantumEfficiency, m.responsivityR,
+       false},
+      {"temporal dark noise σ_d", "e⁻", c.darkNoiseE, m.darkNoiseE, false},
+      {"clip capacity μ_e.clip", "e⁻", c.muESat, m.muEClip, false},
+      {"saturation capacity μ_e.sat", "e⁻", c.muESatEmva, m.muESat, false},
+      {"SNR_max", "dB", c.snrMaxDb, m.snrMaxDb, true},
+      {"sensitivity threshold μ_p.min", "photons", c.muPMin, m.muPMin, false},
+      {"dynamic range DR", "dB", c.dynamicRangeDb, m.dynamicRangeDb, true},
+      {"DSNU₁₂₈₈", "e⁻", c.dsnuE, m.dsnuE, false},
+      {"PRNU₁₂₈₈", "%", c.prnuPercent, m.prnuPercent, false},
+      {"linearity error LE", "%", 0.0, m.linearityErrorPercent, true},
+  };
+  std::ostringstream out;
+  out << pad("quantity", 31) << pad("unit", 11) << pad("configured", 12, true)
+      << pad("measured", 12, true) << pad("error", 11, true) << "\n";
+  for (const Row& r : rows) {
+    std::string err;
+    if (r.db)
+      err = format('s', 2, r.measured - r.configured) + (r.unit == "%" ? " pt" : " dB");
+    else if (r.configured != 0.0)
+      err = format('s', 2, 100.0 * (r.measured / r.configured - 1.0)) + " %";
+    out << pad(r.name, 31) << pad(r.unit, 11) << pad(number(r.configured), 12, true)
+        << pad(number(r.measured), 12, true) << pad(err, 11, true) << "\n";
+  }
+  return out.str();
+}
+
+std::string formatPtcCsv(const PtcResult& m) {
+  std::ostringstream out;
+  out << "level,irradiance_w_m2,mu_p,mu_e,mu_y,var_y,mu_y_minus_dark,var_y_minus_dark,snr,"
+         "in_gain_fit,saturation\n";
+  char buf[256];
+  for (std::size_t i = 0; i < m.data.levels.size(); ++i) {
+    const PtcLevel& l = m.data.levels[i];
+    std::snprintf(buf, sizeof buf, "%zu,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%d,%d\n", i,
+                  l.irradianceWm2, l.muP, m.quantumEfficiency * l.muP, l.muY, l.varY,
+                  l.muY - m.data.muYDark, l.varY - m.data.varYDark, l.snr,
+                  static_cast<int>(i) < m.gainFitCount ? 1 : 0,
+                  static_cast<int>(i) == m.saturationIndex ? 1 : 0);
+    out << buf;
+  }
+  return out.str();
+}
+
+std::vector<std::filesystem::path> runPtc(const PtcArgs& args, std::ostream& out,
+                                          std::ostream& log) {
+  const SensorSpec sensor = loadSensorSpec(args.sensor, CAMSIM_LUTS_DIR);
+  const std::filesystem::path outDir(args.outputDir);
+  std::error_code ec;
+  std::filesystem::create_directories(outDir, ec);
+  if (!std::filesystem::is_directory(outDir))
+    throw InputError({outDir.string(), 0, 0}, "",
+                     "cannot create output directory" + (ec ? ": " + ec.message() : ""));
+
+  PtcOptions options;
+  if (args.seed) options.seed = *args.seed;
+  log << "camsim ptc: measuring " << sensor.name << " (" << options.levels << " levels, "
+      << options.width << "×" << options.height << " photosites)\n";
+  const PtcResult m = measurePhotonTransfer(sensor, options);
+  const PtcConfigured c = configuredPhotonTransfer(sensor, options);
+
+  out << "EMVA 1288 (Release 4.0 Linear) photon transfer of " << sensor.name << "\n"
+      << "  light " << format('f', 0, options.wavelengthNm) << " nm on channel " << m.channel
+      << " (highest QE at that wavelength): " << m.pixels << " of "
+      << options.width * options.height << " photosites analysed\n"
+      << "  exposure " << format('g', 3, options.exposureTimeS * 1e3) << " ms at base ISO "
+      << format('g', 6, sensor.baseIso) << "; " << m.data.levels.size() << " levels × 2 frames; "
+      << options.spatialFrames << " dark + " << options.spatialFrames
+      << " half-saturation frames; seed " << options.seed << "\n"
+      << "  configured μ_e.clip = saturationElectrons(); configured μ_e.sat = where the\n"
+      << "  configuration's temporal variance peaks (EMVA's definition), see docs/ptc.md\n\n"
+      << formatPtcTable(m, c);
+
+  const std::string stem = "ptc_" + fileStem(sensor.name);
+  OutputSet outputs(outDir);
+  const std::filesystem::path csv = outputs.add(stem + ".csv");
+  {
+    std::ofstream f(csv, std::ios::binary);
+    f << formatPtcCsv(m);
+    if (!f.flush()) throw InputError({csv.string(), 0, 0}, "", "cannot write");
+  }
+  const std::string python = pythonPath();
+  if (runProcess({python, "-c", "import matplotlib"}, true) != 0) {
+    log << "camsim ptc: " << python << " with matplotlib not found (Debian: apt-get install "
+        << "python3-matplotlib): plots skipped, CSV only\n";
+  } else {
+    const auto ptcPng = outputs.add(stem + "_ptc.png"), snrPng = outputs.add(stem + "_snr.png");
+    out.flush();
+    const int rc =
+        runProcess({python, "-c", std::string(ptcPlotScriptFile("ptc_plot.py")), csv.string(),
+                    ptcPng.string(), snrPng.string(), sensor.name, format('g', 9, m.systemGainK),
+                    format('g', 9, m.quantumEfficiency), format('g', 9, m.darkNoiseE),
+                    format('g', 9, m.muPSat), format('g', 9, m.muPMin)},
+                   false);
+    if (rc != 0)
+      throw std::runtime_error("the plot script failed (" + python + " exit status " +
+                               std::to_string(rc) + ")");
+  }
+  const std::vector<std::filesystem::path> files = outputs.commit();
+  for (const auto& f : files) log << "camsim ptc: wrote " << f.string() << "\n";
+  return files;
+}
+
+int runPtcCommand(const std::vector<std::string>& args, std::ostream& out, std::ostream& log) {
+  const PtcArgs parsed = parsePtcArgs(args);
+  if (parsed.help) {
+    out << ptcUsageText();
+    return 0;
+  }
+  runPtc(parsed, out, log);
+  return 0;
+}
+
+}  // namespace camsim

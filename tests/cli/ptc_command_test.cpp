@@ -1,0 +1,179 @@
+// Tests for `camsim ptc` (cli/ptc_command.cpp): argument parsing and the table as units,
+// then the real binary (CAMSIM_BINARY): a preset measured into a directory (CSV, and the
+// two PNGs when /usr/bin/python3 has matplotlib), a plot-less run when Python is missing,
+// and exit code 2 with a located message (and no file) for a bad sensor.
+#include "cli/ptc_command.h"
+
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "cli/args.h"
+
+namespace camsim {
+namespace {
+
+namespace fs = std::filesystem;
+
+TEST(PtcArgs, ParsesSensorOutputAndSeed) {
+  PtcArgs a = parsePtcArgs({"ptc", "smartphone-1.4um"});
+  EXPECT_EQ(a.sensor, "smartphone-1.4um");
+  EXPECT_EQ(a.outputDir, "out");
+  EXPECT_FALSE(a.seed.has_value());
+  a = parsePtcArgs({"ptc", "-o", "dir", "my.yaml", "--seed", "42"});
+  EXPECT_EQ(a.sensor, "my.yaml");
+  EXPECT_EQ(a.outputDir, "dir");
+  EXPECT_EQ(a.seed, 42u);
+  EXPECT_TRUE(parsePtcArgs({"ptc", "--help"}).help);
+  EXPECT_NE(ptcUsageText().find("camsim ptc SENSOR"), std::string::npos);
+}
+
+TEST(PtcArgs, BadUsageThrows) {
+  using Args = std::vector<std::string>;
+  for (const Args& args : {Args{"ptc"}, Args{"ptc", "a", "b"}, Args{"ptc", "a", "--bogus"},
+                           Args{"ptc", "a", "--seed"}, Args{"ptc", "a", "--seed", "-1"},
+                           Args{"ptc", "a", "--seed", "1x"}, Args{"ptc", "a", "-o", ""}}) {
+    std::string joined;
+    for (const auto& a : args) joined += "'" + a + "' ";
+    EXPECT_THROW(parsePtcArgs(args), UsageError) << joined;
+  }
+}
+
+TEST(PtcTable, ShowsConfiguredMeasuredAndRelativeError) {
+  PtcResult m;
+  m.systemGainK = 0.202;
+  PtcConfigured c;
+  c.systemGainK = 0.2;
+  const std::string table = formatPtcTable(m, c);
+  EXPECT_NE(table.find("system gain K"), std::string::npos) << table;
+  EXPECT_NE(table.find("+1.00 %"), std::string::npos) << table;
+  for (const char* row : {"quantum efficiency", "temporal dark noise", "μ_e.sat", "μ_e.clip",
+                          "μ_p.min", "dynamic range", "DSNU", "PRNU", "linearity error"})
+    EXPECT_NE(table.find(row), std::string::npos) << row;
+}
+
+// ---- the binary -----------------------------------------------------------------------------
+
+class TempDir {
+ public:
+  TempDir() {
+    std::string tmpl = (fs::temp_directory_path() / "camsim-ptc-XXXXXX").string();
+    path_ = ::mkdtemp(tmpl.data());
+  }
+  ~TempDir() {
+    std::error_code ec;
+    fs::remove_all(path_, ec);
+  }
+  const fs::path& path() const { return path_; }
+
+ private:
+  fs::path path_;
+};
+
+std::string quote(const std::string& s) {
+  std::string out = "'";
+  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
+
+std::string readFile(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+struct PtcRun {
+  int exitCode = -1;
+  std::string out, err;
+};
+
+// `env camsim args` with stdout and stderr captured into files in logDir.
+PtcRun camsim(const std::string& env, const std::string& args, const fs::path& logDir) {
+  const fs::path out = logDir / "stdout.txt", err = logDir / "stderr.txt";
+  const std::string command = env + " " + quote(CAMSIM_BINARY) + " " + args + " >" +
+                              quote(out.string()) + " 2>" + quote(err.string());
+  const int status = std::system(command.c_str());
+  PtcRun r;
+  if (status != -1 && WIFEXITED(status)) r.exitCode = WEXITSTATUS(status);
+  r.out = readFile(out);
+  r.err = readFile(err);
+  return r;
+}
+
+bool hasMatplotlib() {
+  return std::system("/usr/bin/python3 -c 'import matplotlib' >/dev/null 2>&1") == 0;
+}
+
+std::size_t lineCount(const std::string& text) {
+  std::size_t n = 0;
+  for (char c : text) n += c == '\n';
+  return n;
+}
+
+TEST(PtcBinary, MeasuresAPresetAndWritesCsvAndPlots) {
+  TempDir dir;
+  const fs::path out = dir.path() / "ptc";
+  const PtcRun r = camsim("", "ptc smartphone-1.4um -o " + quote(out.string()), dir.path());
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_NE(r.out.find("system gain K"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("channel G"), std::string::npos) << r.out;
+  const std::string csv = readFile(out / "ptc_smartphone-1.4um.csv");
+  EXPECT_EQ(csv.rfind("level,irradiance_w_m2,mu_p,mu_e,mu_y,var_y,", 0), 0u) << csv.substr(0, 100);
+  EXPECT_GE(lineCount(csv), 51u);  // header + ≥ 50 levels
+  if (!hasMatplotlib()) GTEST_SKIP() << "no matplotlib for /usr/bin/python3: plots not checked";
+  for (const char* png : {"ptc_smartphone-1.4um_ptc.png", "ptc_smartphone-1.4um_snr.png"}) {
+    const std::string data = readFile(out / png);
+    EXPECT_GT(data.size(), 1000u) << png;
+    EXPECT_EQ(data.substr(0, 8), std::string("\x89PNG\r\n\x1a\n", 8)) << png;
+  }
+  // Nothing else: no temporary left behind.
+  std::size_t files = 0;
+  for (const auto& entry : fs::directory_iterator(out)) files += entry.is_regular_file();
+  EXPECT_EQ(files, 3u);
+}
+
+TEST(PtcBinary, WithoutPythonWritesTheCsvOnly) {
+  TempDir dir;
+  const fs::path out = dir.path() / "ptc";
+  const PtcRun r = camsim("CAMSIM_PYTHON=/nonexistent/python3",
+                          "ptc fullframe-d850 -o " + quote(out.string()), dir.path());
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_NE(r.err.find("plots skipped"), std::string::npos) << r.err;
+  EXPECT_TRUE(fs::exists(out / "ptc_fullframe-d850.csv"));
+  EXPECT_FALSE(fs::exists(out / "ptc_fullframe-d850_ptc.png"));
+}
+
+TEST(PtcBinary, BadSensorExitsTwoWithALocatedMessageAndWritesNothing) {
+  TempDir dir;
+  // The smartphone preset with a negative full well on its line.
+  std::string text = readFile(fs::path(CAMSIM_LUTS_DIR) / "sensors" / "smartphone-1.4um.yaml");
+  const std::size_t at = text.find("full_well_e: ");
+  ASSERT_NE(at, std::string::npos);
+  text.insert(at + 13, "-");
+  const std::size_t line = 1 + lineCount(text.substr(0, at));
+  const fs::path bad = dir.path() / "bad.yaml";
+  std::ofstream(bad, std::ios::binary) << text;
+  const fs::path out = dir.path() / "ptc";
+  PtcRun r = camsim("", "ptc " + quote(bad.string()) + " -o " + quote(out.string()), dir.path());
+  EXPECT_EQ(r.exitCode, 2);
+  EXPECT_NE(r.err.find("bad.yaml:" + std::to_string(line) + ":"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("full_well_e"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(out));
+  // An unknown preset and a missing argument are bad input too.
+  r = camsim("", "ptc no-such-sensor -o " + quote(out.string()), dir.path());
+  EXPECT_EQ(r.exitCode, 2);
+  EXPECT_NE(r.err.find("no-such-sensor"), std::string::npos) << r.err;
+  EXPECT_EQ(camsim("", "ptc", dir.path()).exitCode, 2);
+  EXPECT_EQ(camsim("", "ptc --help", dir.path()).exitCode, 0);
+}
+
+}  // namespace
+}  // namespace camsim
