@@ -1,6 +1,7 @@
 #include "cli/args.h"
 
 #include <charconv>
+#include <cmath>
 
 #include "integrator/scene_loader.h"
 
@@ -24,6 +25,7 @@ std::string usageText() {
          "\n"
          "usage:\n"
          "  camsim render [SCENE] [-o DIR] [--spp N] [--seed N] [--threads N]\n"
+         "                [--max-memory-gb X]\n"
          "  camsim ptc SENSOR [-o DIR] [--seed N]   (photon transfer: camsim ptc --help)\n"
          "  camsim --help | --version\n"
          "\n"
@@ -36,6 +38,8 @@ std::string usageText() {
          "  --spp N            samples per pixel (overrides the scene's render.spp)\n"
          "  --seed N           render seed (overrides render.seed)\n"
          "  --threads N        worker threads (default: all cores); the image does not depend on it\n"
+         "  --max-memory-gb X  refuse to start a render whose estimated memory exceeds X GB\n"
+         "                     (default: 75 % of physical memory)\n"
          "\n"
          "exit codes: 0 success, 1 internal error, 2 bad input (scene, files or arguments),\n"
          "            130 interrupted\n";
@@ -71,6 +75,13 @@ Command parseArgs(const std::vector<std::string>& args) {
       r.seed = static_cast<std::uint64_t>(parseInteger(a, value(), 0, INT64_MAX));
     } else if (a == "--threads") {
       r.threads = static_cast<int>(parseInteger(a, value(), 1, 1024));
+    } else if (a == "--max-memory-gb") {
+      const std::string& text = value();
+      double gb = 0.0;
+      const auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), gb);
+      if (ec != std::errc() || ptr != text.data() + text.size() || !std::isfinite(gb) || gb <= 0.0)
+        throw UsageError(a + " expects a positive number of GB, got '" + text + "'");
+      r.maxMemoryGb = gb;
     } else if (!a.empty() && a[0] == '-') {
       throw UsageError("unknown option '" + a + "' (try 'camsim --help')");
     } else if (!r.scene) {

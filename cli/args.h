@@ -20,6 +20,7 @@ struct RenderArgs {
   std::optional<int> spp;
   std::optional<std::uint64_t> seed;
   int threads = 0;  // 0: all cores
+  std::optional<double> maxMemoryGb;  // none: 75 % of physical memory (resource_guard.h)
 };
 
 struct Command {

@@ -14,7 +14,13 @@ namespace {
 
 std::atomic<bool> gCancel{false};
 
-extern "C" void onSignal(int) { gCancel.store(true); }
+// The first SIGINT/SIGTERM asks the render to stop (it checks between tiles, then writes
+// NAME.partial.exr and exits with 130); a second one, e.g. a second Ctrl-C, kills at once
+// (temporaries left behind are removed by the next run into the same directory).
+extern "C" void onSignal(int sig) {
+  gCancel.store(true);
+  std::signal(sig, SIG_DFL);  // async-signal-safe
+}
 
 }  // namespace
 
@@ -33,6 +39,7 @@ int main(int argc, char** argv) {
       case camsim::Command::Kind::kRender: {
         std::signal(SIGINT, onSignal);
         std::signal(SIGTERM, onSignal);
+        static_assert(std::atomic<bool>::is_always_lock_free, "set from a signal handler");
         const auto result = camsim::runRender(cmd.render, std::cerr, &gCancel);
         return result.cancelled ? 130 : 0;
       }

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "cli/progress.h"
+#include "cli/resource_guard.h"
 #include "cli/sensor_outputs.h"
 #include "integrator/render.h"
 #include "integrator/scene.h"
@@ -86,6 +87,34 @@ Image exrImage(const Image& xyz) {
   return out;
 }
 
+// An interrupted render's finished tiles (each has its full spp), as NAME.partial.exr —
+// never a final name, so a partial image is not taken for a finished one. Nothing when no
+// tile had finished.
+std::vector<std::filesystem::path> writePartialExr(const SceneDescription& desc,
+                                                   const std::filesystem::path& outDir,
+                                                   const Image& xyz, int done, int total,
+                                                   std::ostream& log) {
+  if (done <= 0) {
+    log << "render interrupted before a tile had finished: no output written\n";
+    return {};
+  }
+  const std::string what = std::to_string(done) + " of " + std::to_string(total) + " tiles";
+  const Metadata meta = {{"camsim:version", CAMSIM_VERSION},
+                         {"camsim:scene", desc.sourceFile},
+                         {"camsim:spp", std::to_string(desc.render.spp)},
+                         {"camsim:seed", std::to_string(desc.render.seed)},
+                         {"camsim:partial", "interrupted after " + what +
+                                                " (16x16 px each, all spp); other pixels are 0"}};
+  const auto& cs = RgbColorSpace::linearRec709();
+  OutputSet outputs(outDir);
+  writeExr(outputs.add(desc.name + ".partial.exr"), exrImage(xyz), meta,
+           ExrChromaticities{cs.red(), cs.green(), cs.blue(), cs.white()});
+  std::vector<std::filesystem::path> files = outputs.commit();
+  log << "render interrupted after " << what << ": wrote " << files.front().string()
+      << " (unfinished tiles are 0); no final output written\n";
+  return files;
+}
+
 }  // namespace
 
 std::string fnv1aHex(std::string_view data) {
@@ -102,11 +131,14 @@ std::string fnv1aHex(std::string_view data) {
 RenderCommandResult runRender(const RenderArgs& args, std::ostream& log, const std::atomic<bool>* cancel) {
   const LoadedScene loaded = load(args);
   const SceneDescription& desc = loaded.description;
+  checkMemoryLimit(desc, args.maxMemoryGb);  // before any work
   const std::filesystem::path outDir(args.outputDir);
   std::error_code ec;
   std::filesystem::create_directories(outDir, ec);
   if (!std::filesystem::is_directory(outDir))
     throw InputError({outDir.string(), 0, 0}, "", "cannot create output directory" + (ec ? ": " + ec.message() : ""));
+  for (const auto& stale : OutputSet::cleanStaleTemporaries(outDir))
+    log << "removed " << stale.string() << " (left by a run that was killed)\n";
 
   const Scene scene(desc);
   const SpectralResponse response = SpectralResponse::cieXyz();
@@ -124,13 +156,18 @@ RenderCommandResult runRender(const RenderArgs& args, std::ostream& log, const s
   options.seed = desc.render.seed;
   options.threads = args.threads;
   options.cancel = cancel;
-  options.progress = [&progress](int done, int total) { progress.update(done, total); };
+  std::atomic<int> tilesDone{0}, tilesTotal{0};
+  options.progress = [&](int done, int total) {
+    progress.update(done, total);
+    tilesDone = done;
+    tilesTotal = total;
+  };
   const RenderResult result = render(scene, responses, options);
   progress.finish();
   RenderCommandResult outcome;
   if (result.stats.cancelled) {
     outcome.cancelled = true;
-    log << "render interrupted: no output written\n";
+    outcome.files = writePartialExr(desc, outDir, result.image, tilesDone, tilesTotal, log);
     return outcome;
   }
 
@@ -172,6 +209,8 @@ RenderCommandResult runRender(const RenderArgs& args, std::ostream& log, const s
             << " % of photosites clipped\n";
   }
   outcome.files = outputs.commit();
+  if (std::filesystem::remove(outDir / (desc.name + ".partial.exr"), ec))
+    log << "removed " << (outDir / (desc.name + ".partial.exr")).string() << " of an interrupted run\n";
 
   const double samples = static_cast<double>(st.samples);
   log << "modelled: " << st.modelled.describe() << "\n";

@@ -25,8 +25,11 @@ struct RenderCommandResult {
   bool cancelled = false;
 };
 
-// Throws InputError on bad input (nothing is written then). `cancel` may stop the render;
-// a cancelled render writes no file under a final name.
+// Throws InputError on bad input (nothing is written then), including a render whose
+// estimated memory exceeds the limit (resource_guard.h), before any work. `cancel` may stop
+// the render; a cancelled render writes no file under a final name, only NAME.partial.exr
+// with the tiles that had finished (if any). Temporaries of killed runs in the output
+// directory are removed (OutputSet::cleanStaleTemporaries).
 RenderCommandResult runRender(const RenderArgs& args, std::ostream& log,
                               const std::atomic<bool>* cancel = nullptr);
 

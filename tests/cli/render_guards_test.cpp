@@ -1,0 +1,301 @@
+// Tests for the guards around `camsim render` (cli/resource_guard.cpp, cli/render_command.cpp,
+// cli/main.cpp, sensor/output_set.cpp), mostly on the real binary (CAMSIM_BINARY) run as a
+// child process: resource limits fail at once with exit code 2 before any work; SIGINT
+// stops a render mid-way with exit code 130 and no file under a final name (only
+// NAME.partial.exr); SIGKILL leaves at most temporaries, which the next run removes.
+#include <fcntl.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "cli/resource_guard.h"
+#include "integrator/scene_loader.h"
+#include "sensor/exr_io.h"
+#include "sensor/input_error.h"
+#include "sensor/output_set.h"
+
+extern char** environ;
+
+namespace camsim {
+namespace {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+// A fresh directory per test, removed afterwards.
+class RenderGuards : public testing::Test {
+ protected:
+  void SetUp() override {
+    const testing::TestInfo* info = testing::UnitTest::GetInstance()->current_test_info();
+    dir_ = fs::temp_directory_path() /
+           ("camsim_guards_" + std::string(info->name()) + "_" + std::to_string(::getpid()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override {
+    std::error_code ignored;
+    fs::remove_all(dir_, ignored);
+  }
+  fs::path dir_;
+};
+
+std::string readFile(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+void writeFile(const fs::path& path, const std::string& text) {
+  std::ofstream out(path, std::ios::binary);
+  out << text;
+  ASSERT_TRUE(out.good()) << path;
+}
+
+std::vector<std::string> filesIn(const fs::path& dir) {
+  std::vector<std::string> names;
+  if (!fs::exists(dir)) return names;
+  for (const auto& entry : fs::directory_iterator(dir)) names.push_back(entry.path().filename());
+  return names;
+}
+
+// `camsim ARGS` as a child process, stdout and stderr into files next to the outputs.
+class Child {
+ public:
+  Child(const std::vector<std::string>& args, const fs::path& logPrefix)
+      : errPath_(logPrefix.string() + ".stderr") {
+    std::vector<std::string> argv = {CAMSIM_BINARY};
+    argv.insert(argv.end(), args.begin(), args.end());
+    std::vector<char*> cargv;
+    for (auto& a : argv) cargv.push_back(a.data());
+    cargv.push_back(nullptr);
+    posix_spawn_file_actions_t actions;
+    posix_spawn_file_actions_init(&actions);
+    const std::string out = logPrefix.string() + ".stdout";
+    posix_spawn_file_actions_addopen(&actions, 1, out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    posix_spawn_file_actions_addopen(&actions, 2, errPath_.c_str(), O_WRONLY | O_CREAT | O_TRUNC,
+                                     0644);
+    if (::posix_spawn(&pid_, cargv[0], &actions, nullptr, cargv.data(), environ) != 0) pid_ = -1;
+    posix_spawn_file_actions_destroy(&actions);
+    start_ = Clock::now();
+  }
+  ~Child() {
+    if (pid_ > 0 && !status_) {
+      ::kill(pid_, SIGKILL);
+      ::waitpid(pid_, nullptr, 0);
+    }
+  }
+  Child(const Child&) = delete;
+  Child& operator=(const Child&) = delete;
+
+  pid_t pid() const { return pid_; }
+  bool running() const { return pid_ > 0 && !status_; }
+  void signal(int sig) const { ::kill(pid_, sig); }
+  // Waits at most `limit`; the raw wait status, or none on a timeout.
+  std::optional<int> wait(std::chrono::duration<double> limit) {
+    const auto deadline = Clock::now() + limit;
+    while (!status_) {
+      int status = 0;
+      const pid_t r = ::waitpid(pid_, &status, WNOHANG);
+      if (r == pid_) status_ = status;
+      else if (r < 0 || Clock::now() > deadline) break;
+      else std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    return status_;
+  }
+  double secondsSinceStart() const {
+    return std::chrono::duration<double>(Clock::now() - start_).count();
+  }
+  // CPU seconds the child has used (utime + stime from /proc), 0 if unknown.
+  double cpuSeconds() const {
+    std::istringstream stat(readFile("/proc/" + std::to_string(pid_) + "/stat"));
+    std::string field;
+    const auto close = stat.str().rfind(')');  // the command name may hold spaces
+    if (close == std::string::npos) return 0.0;
+    stat.seekg(static_cast<std::streamoff>(close + 2));
+    std::vector<std::string> fields;
+    while (stat >> field) fields.push_back(field);
+    if (fields.size() < 13) return 0.0;  // fields[11], [12]: utime, stime (fields 14, 15)
+    return static_cast<double>(std::stoll(fields[11]) + std::stoll(fields[12])) /
+           static_cast<double>(::sysconf(_SC_CLK_TCK));
+  }
+  std::string err() const { return readFile(errPath_); }
+
+ private:
+  pid_t pid_ = -1;
+  std::string errPath_;
+  std::optional<int> status_;
+  Clock::time_point start_;
+};
+
+int exitCode(int status) { return WIFEXITED(status) ? WEXITSTATUS(status) : -WTERMSIG(status); }
+
+// ---- resource guards ---------------------------------------------------------------------
+
+TEST_F(RenderGuards, MillionPixelSidesFailAtOnceNamingTheLimit) {
+  const fs::path scene = dir_ / "huge.yaml";
+  writeFile(scene,
+            "camera: {position: [0, 0, -3], look_at: [0, 0, 0], resolution: [1000000, 1000000]}\n"
+            "shapes: [{type: sphere, centre: [0, 0, 0], radius: 1, emission: {luminance: 1}}]\n");
+  Child run({"render", scene.string(), "-o", (dir_ / "out").string()}, dir_ / "run");
+  const auto status = run.wait(std::chrono::seconds(30));
+  ASSERT_TRUE(status) << "still running after 30 s";
+  EXPECT_LT(run.secondsSinceStart(), 2.0);
+  EXPECT_EQ(exitCode(*status), 2) << run.err();
+  EXPECT_NE(run.err().find("1000000"), std::string::npos) << run.err();
+  EXPECT_NE(run.err().find("limit"), std::string::npos) << run.err();
+  EXPECT_NE(run.err().find(std::to_string(SceneLimits::kMaxResolution)), std::string::npos)
+      << run.err();
+  EXPECT_FALSE(fs::exists(dir_ / "out"));
+}
+
+TEST_F(RenderGuards, MemoryLimitFailsBeforeAnyWorkNamingTheLimitAndHowToRaiseIt) {
+  // The default scene (512x512) needs ~29 MB; 1 MB is too little.
+  Child run({"render", "-o", (dir_ / "out").string(), "--max-memory-gb", "0.001"}, dir_ / "run");
+  const auto status = run.wait(std::chrono::seconds(30));
+  ASSERT_TRUE(status) << "still running after 30 s";
+  EXPECT_LT(run.secondsSinceStart(), 2.0);
+  EXPECT_EQ(exitCode(*status), 2) << run.err();
+  const std::string err = run.err();
+  EXPECT_NE(err.find("camsim: error: "), std::string::npos) << err;
+  EXPECT_NE(err.find("1.0 MB set by --max-memory-gb"), std::string::npos) << err;
+  EXPECT_NE(err.find("raise the limit with --max-memory-gb"), std::string::npos) << err;
+  EXPECT_FALSE(fs::exists(dir_ / "out")) << "work started: the output directory was created";
+}
+
+TEST(MemoryEstimate, CountsFilmImagesAndTriangles) {
+  SceneDescription desc = loadSceneFromText(
+      "camera: {position: [0, 0, -3], look_at: [0, 0, 0], resolution: [1000, 500]}\n"
+      "shapes:\n"
+      "  - {type: sphere, centre: [0, 0, 0], radius: 1, emission: {luminance: 1}}\n"
+      "  - {type: mesh, vertices: [[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]],\n"
+      "     faces: [[0, 1, 2, 3]], emission: {luminance: 1}}\n",
+      "<test>", ".");
+  const MemoryEstimate m = estimateRenderMemory(desc);
+  EXPECT_EQ(m.film, 500000u * 3u * 8u);     // XYZ accumulators, doubles
+  EXPECT_GE(m.images, 500000u * 6u * 4u);   // at least the EXR image (R, G, B, X, Y, Z floats)
+  EXPECT_EQ(m.meshes, 2u * 100u);            // a quad: two triangles
+  EXPECT_EQ(m.total(), m.film + m.images + m.meshes);
+  EXPECT_NO_THROW(checkMemoryLimit(desc, 1.0));
+  EXPECT_THROW(checkMemoryLimit(desc, 0.01), InputError);
+  // 16384² px is within SceneLimits but needs > 16 GB: over the default limit on machines
+  // with less than ~27 GB of memory, and always over an explicit 16 GB.
+  desc.camera.resolution = {16384, 16384};
+  EXPECT_GT(estimateRenderMemory(desc).total(), 16e9);
+  EXPECT_THROW(checkMemoryLimit(desc, 16.0), InputError);
+  if (physicalMemoryBytes() > 0 && physicalMemoryBytes() * kDefaultMemoryFraction < 16e9) {
+    EXPECT_THROW(checkMemoryLimit(desc, std::nullopt), InputError);
+  }
+}
+
+// ---- interruption ------------------------------------------------------------------------
+
+// How long a stopped render may take to exit: the loop checks between 16x16 tiles, and a
+// tile at 4096 spp is ~1.4 s of one core in Release (several times that under ASan).
+constexpr std::chrono::seconds kStopDeadline{120};
+
+TEST_F(RenderGuards, SigintStopsARenderMidWayWithExitCode130AndNoFinalOutput) {
+  const fs::path out = dir_ / "out";
+  // 512x512 at 4096 spp: ~10 minutes on 2 cores, so it is mid-way after a second.
+  Child run({"render", "-o", out.string(), "--spp", "4096"}, dir_ / "run");
+  std::this_thread::sleep_for(std::chrono::seconds(1));
+  ASSERT_TRUE(run.running()) << "finished too early: " << run.err();
+  const auto sent = Clock::now();
+  run.signal(SIGINT);
+  const auto status = run.wait(kStopDeadline);
+  ASSERT_TRUE(status) << "did not stop within " << kStopDeadline.count() << " s of SIGINT";
+  const double stopSeconds = std::chrono::duration<double>(Clock::now() - sent).count();
+  RecordProperty("seconds_from_sigint_to_exit", std::to_string(stopSeconds));
+  EXPECT_EQ(exitCode(*status), 130) << run.err();
+  EXPECT_NE(run.err().find("render interrupted"), std::string::npos) << run.err();
+  EXPECT_FALSE(fs::exists(out / "cornell_box.exr"));
+  EXPECT_FALSE(fs::exists(out / "cornell_box.png"));
+  for (const std::string& name : filesIn(out))  // at most the clearly named partial image
+    EXPECT_EQ(name, "cornell_box.partial.exr");
+}
+
+TEST_F(RenderGuards, SigintSavesTheFinishedTilesAsPartialExrAndTheNextRunRemovesIt) {
+  const fs::path out = dir_ / "out";
+  // 64 spp: ~10 s in Release, tiles of ~20 ms each; interrupted after 1.5 s of CPU.
+  Child run({"render", "-o", out.string(), "--spp", "64", "--threads", "2"}, dir_ / "run");
+  while (run.running() && run.cpuSeconds() < 1.5 && run.secondsSinceStart() < 60.0)
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  ASSERT_TRUE(run.running()) << "finished too early: " << run.err();
+  run.signal(SIGINT);
+  const auto status = run.wait(kStopDeadline);
+  ASSERT_TRUE(status) << "did not stop within " << kStopDeadline.count() << " s of SIGINT";
+  EXPECT_EQ(exitCode(*status), 130) << run.err();
+  ASSERT_EQ(filesIn(out), std::vector<std::string>{"cornell_box.partial.exr"}) << run.err();
+
+  const ExrFile partial = readExr(out / "cornell_box.partial.exr");
+  ASSERT_EQ(partial.image.width, 512);
+  std::string note;
+  for (const auto& [key, value] : partial.metadata)
+    if (key == "camsim:partial") note = value;
+  EXPECT_NE(note.find("interrupted after"), std::string::npos) << note;
+  const int y = partial.image.channelIndex("XYZ.Y");
+  ASSERT_GE(y, 0);
+  size_t lit = 0, dark = 0;
+  for (int py = 0; py < partial.image.height; ++py)
+    for (int px = 0; px < partial.image.width; ++px)
+      (partial.image.at(px, py, y) > 0.0f ? lit : dark) += 1;
+  EXPECT_GT(lit, 0u) << "no finished tile";
+  EXPECT_GT(dark, 0u) << "not a partial image";
+
+  // A finished run into the same directory replaces it with the final outputs.
+  Child next({"render", "-o", out.string(), "--spp", "1"}, dir_ / "next");
+  const auto nextStatus = next.wait(std::chrono::seconds(300));
+  ASSERT_TRUE(nextStatus);
+  EXPECT_EQ(exitCode(*nextStatus), 0) << next.err();
+  EXPECT_TRUE(fs::exists(out / "cornell_box.exr"));
+  EXPECT_FALSE(fs::exists(out / "cornell_box.partial.exr")) << next.err();
+}
+
+TEST_F(RenderGuards, SigkillLeavesOnlyTemporariesAndTheNextRunRemovesThem) {
+  const fs::path out = dir_ / "out";
+  Child run({"render", "-o", out.string(), "--spp", "4096"}, dir_ / "run");
+  std::this_thread::sleep_for(std::chrono::seconds(1));
+  ASSERT_TRUE(run.running()) << "finished too early: " << run.err();
+  run.signal(SIGKILL);
+  const auto status = run.wait(std::chrono::seconds(30));
+  ASSERT_TRUE(status);
+  EXPECT_EQ(exitCode(*status), -SIGKILL);
+  for (const std::string& name : filesIn(out))  // nothing, or the killed run's temporaries
+    EXPECT_EQ(OutputSet::temporaryOwner(name), static_cast<long>(run.pid())) << name;
+
+  // What a kill during writing leaves (its timing cannot be hit reliably): temporaries of
+  // the killed PID. Next to them, one of a live process (this test) and a finished output.
+  const std::string killed = std::to_string(run.pid());
+  writeFile(out / (".cornell_box.exr.camsim-tmp-" + killed), "half an EXR");
+  writeFile(out / (".cornell_box.png.camsim-tmp-" + killed), "half a PNG");
+  const std::string live = ".other.exr.camsim-tmp-" + std::to_string(::getpid());
+  writeFile(out / live, "being written");
+  writeFile(out / "keep.exr", "a finished output");
+
+  Child next({"render", "-o", out.string(), "--spp", "1"}, dir_ / "next");
+  const auto nextStatus = next.wait(std::chrono::seconds(300));
+  ASSERT_TRUE(nextStatus);
+  EXPECT_EQ(exitCode(*nextStatus), 0) << next.err();
+  EXPECT_FALSE(fs::exists(out / (".cornell_box.exr.camsim-tmp-" + killed)));
+  EXPECT_FALSE(fs::exists(out / (".cornell_box.png.camsim-tmp-" + killed)));
+  EXPECT_NE(next.err().find("left by a run that was killed"), std::string::npos) << next.err();
+  EXPECT_TRUE(fs::exists(out / live));
+  EXPECT_EQ(readFile(out / "keep.exr"), "a finished output");
+  EXPECT_TRUE(fs::exists(out / "cornell_box.exr"));
+  EXPECT_TRUE(fs::exists(out / "cornell_box.png"));
+}
+
+}  // namespace
+}  // namespace camsim
