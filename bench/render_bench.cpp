@@ -1,7 +1,8 @@
 // render_bench: speed *and* error of the path tracer on the default scene (Cornell box,
 // 512×512), in one run.
 //
-// Reference: the mean of two independent renders at --ref-spp each (seeds 1001, 1002).
+// Reference: the mean of two independent renders at --ref-spp each (seeds 1001, 1002,
+// Sobol' sampler). Rows: both samplers at each spp.
 // Its own noise is estimated from their difference: rel. RMSE(ref) = RMSE(A − B) / 2 /
 // mean(Y). Each benchmark row renders with seed 1 and reports
 //   rel. RMSE = sqrt(mean over pixels (Y − Y_ref)²) / mean(Y_ref)
@@ -71,8 +72,9 @@ int main(int argc, char** argv) {
   desc.camera.resolution = {512, 512};
   const Scene scene(desc);
   const SpectralResponse response = SpectralResponse::cieXyz();
-  auto run = [&](int spp, std::uint64_t seed) {
+  auto run = [&](int spp, std::uint64_t seed, SamplerKind sampler = SamplerKind::kSobol) {
     RenderOptions o;
+    o.sampler = sampler;
     o.spp = spp;
     o.seed = seed;
     o.threads = threads;
@@ -88,13 +90,15 @@ int main(int argc, char** argv) {
   for (size_t i = 0; i < refA.image.pixels.size(); ++i)
     refA.image.pixels[i] = 0.5f * (refA.image.pixels[i] + refB.image.pixels[i]);
   std::printf("reference: %.1f s, its own rel. RMSE ~ %.4f\n\n", refA.stats.seconds + refB.stats.seconds, refNoise);
-  std::printf("%6s %9s %12s %12s %10s %10s %10s %12s\n", "spp", "seconds", "samples/s", "rays/s",
+  std::printf("%-12s %6s %9s %12s %12s %10s %10s %10s %12s\n", "sampler", "spp", "seconds", "samples/s", "rays/s",
               "camera", "shadow", "bounce", "rel.RMSE(Y)");
+  for (const SamplerKind sampler : {SamplerKind::kIndependent, SamplerKind::kSobol})
   for (int spp : spps) {
-    const RenderResult r = run(spp, 1);
+    const RenderResult r = run(spp, 1, sampler);
     const RenderStats& s = r.stats;
     const double rays = static_cast<double>(s.rays.total());
-    std::printf("%6d %9.3f %11.3fM %11.3fM %9.1f%% %9.1f%% %9.1f%% %12.4f\n", spp, s.seconds,
+    std::printf("%-12s %6d %9.3f %11.3fM %11.3fM %9.1f%% %9.1f%% %9.1f%% %12.4f\n",
+                sampler == SamplerKind::kSobol ? "sobol" : "independent", spp, s.seconds,
                 static_cast<double>(s.samples) / s.seconds * 1e-6, rays / s.seconds * 1e-6,
                 100.0 * static_cast<double>(s.rays.camera) / rays, 100.0 * static_cast<double>(s.rays.shadow) / rays,
                 100.0 * static_cast<double>(s.rays.bounce) / rays, relRmse(r.image, refA.image, Y));

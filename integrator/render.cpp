@@ -11,6 +11,7 @@
 #include <tbb/task_arena.h>
 
 #include "integrator/film.h"
+#include "integrator/sobol_sampler.h"
 
 namespace camsim {
 namespace {
@@ -77,7 +78,10 @@ RenderResult render(const Scene& scene, const std::vector<const SpectralResponse
   const int tileCount = tilesX * tilesY;
   const int threads = options.threads > 0 ? options.threads : tbb::info::default_concurrency();
 
-  IndependentSampler prototype(options.seed);
+  const SamplerKind kind = options.sampler.value_or(scene.settings().sampler);
+  std::unique_ptr<Sampler> prototype;
+  if (kind == SamplerKind::kSobol) prototype = std::make_unique<SobolSampler>(options.seed);
+  else prototype = std::make_unique<IndependentSampler>(options.seed);
   tbb::enumerable_thread_specific<TileStats> perThread;
   std::atomic<int> tilesDone{0};
   std::mutex progressMutex;
@@ -86,7 +90,7 @@ RenderResult render(const Scene& scene, const std::vector<const SpectralResponse
   tbb::task_arena arena(threads);
   arena.execute([&] {
     tbb::parallel_for(tbb::blocked_range<int>(0, tileCount, 1), [&](const tbb::blocked_range<int>& range) {
-      std::unique_ptr<Sampler> sampler = prototype.clone();
+      std::unique_ptr<Sampler> sampler = prototype->clone();
       for (int tile = range.begin(); tile != range.end(); ++tile) {
         if (options.cancel && options.cancel->load(std::memory_order_relaxed)) {
           cancelled = true;

@@ -11,6 +11,7 @@
 #include <atomic>
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <vector>
 
 #include "integrator/path_tracer.h"
@@ -31,6 +32,8 @@ struct RenderOptions {
   // Sample time even when the scene analysis says nothing moves (for tests: the image
   // must not change).
   bool forceTime = false;
+  // Overrides the scene's render.sampler (benchmarks compare samplers).
+  std::optional<SamplerKind> sampler;
 };
 
 struct RenderStats {

@@ -22,7 +22,10 @@
 
 namespace camsim {
 
+enum class SamplerKind { kIndependent, kSobol };
+
 struct RenderSettings {
+  SamplerKind sampler = SamplerKind::kSobol;  // see integrator/sobol_sampler.h
   int spp = 64;             // samples per pixel
   std::uint64_t seed = 0;   // render seed
   int maxDepth = 16;        // maximum number of scattering events on a path

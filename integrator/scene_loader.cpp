@@ -29,11 +29,17 @@ struct Context {
 
 RenderSettings parseRender(YamlMap map) {
   RenderSettings r;
+  if (auto v = map.find("sampler")) {
+    const std::string name = v->string();
+    if (name == "sobol") r.sampler = SamplerKind::kSobol;
+    else if (name == "independent") r.sampler = SamplerKind::kIndependent;
+    else v->fail("unknown sampler '" + name + "' (known: sobol, independent)");
+  }
   if (auto v = map.find("spp")) r.spp = static_cast<int>(v->integer(1, SceneLimits::kMaxSpp));
   if (auto v = map.find("seed")) r.seed = static_cast<std::uint64_t>(v->integer(0, INT64_MAX));
   if (auto v = map.find("max_depth")) r.maxDepth = static_cast<int>(v->integer(0, SceneLimits::kMaxDepth));
   if (auto v = map.find("rr_depth")) r.rrDepth = static_cast<int>(v->integer(1, SceneLimits::kMaxDepth));
-  map.finish({"spp", "seed", "max_depth", "rr_depth"});
+  map.finish({"sampler", "spp", "seed", "max_depth", "rr_depth"});
   return r;
 }
 

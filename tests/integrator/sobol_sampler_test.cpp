@@ -1,0 +1,82 @@
+// SobolSampler: every 2D pair of the first 2^m samples of a pixel is a (0, m, 2)-net
+// (one point in every elementary interval), 1D slots are stratified, results are
+// deterministic, and pixels/dimensions get independent scrambles.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <set>
+#include <vector>
+
+#include "integrator/sobol_sampler.h"
+
+namespace camsim {
+namespace {
+
+std::vector<glm::vec2> pairs(std::uint64_t seed, glm::ivec2 pixel, int dimension, int n) {
+  SobolSampler s(seed);
+  std::vector<glm::vec2> out;
+  for (int i = 0; i < n; ++i) {
+    s.startPixelSample(pixel, i);
+    s.setDimension(dimension);
+    out.push_back(s.get2D());
+  }
+  return out;
+}
+
+TEST(SobolSampler, EveryPairIsAZeroMTwoNet) {
+  for (int dimension : {1, 3, 6, 9, 40})
+    for (int m = 1; m <= 10; ++m) {
+      const int n = 1 << m;
+      const auto pts = pairs(7, {5, 9}, dimension, n);
+      for (int a = 0; a <= m; ++a) {  // intervals of 2^-a × 2^-(m-a)
+        std::set<std::pair<int, int>> cells;
+        for (const glm::vec2& p : pts)
+          cells.emplace(static_cast<int>(std::ldexp(static_cast<double>(p.x), a)),
+                        static_cast<int>(std::ldexp(static_cast<double>(p.y), m - a)));
+        EXPECT_EQ(static_cast<int>(cells.size()), n) << "dimension " << dimension << " m " << m << " a " << a;
+      }
+    }
+}
+
+TEST(SobolSampler, OneDimensionalSlotsAreStratifiedAndDeterministic) {
+  SobolSampler s(3), t(3);
+  std::set<int> strata;
+  for (int i = 0; i < 256; ++i) {
+    s.startPixelSample({1, 2}, i);
+    t.startPixelSample({1, 2}, i);
+    s.setDimension(kDimTime);
+    t.setDimension(kDimTime);
+    const float u = s.get1D();
+    EXPECT_EQ(u, t.get1D());
+    strata.insert(static_cast<int>(u * 256.0f));
+  }
+  EXPECT_EQ(strata.size(), 256u);
+}
+
+TEST(SobolSampler, PixelsAndDimensionsAreScrambledIndependently) {
+  const auto a = pairs(7, {0, 0}, 1, 16), b = pairs(7, {1, 0}, 1, 16), c = pairs(7, {0, 0}, 3, 16);
+  int sameAB = 0, sameAC = 0;
+  for (int i = 0; i < 16; ++i) {
+    sameAB += a[static_cast<size_t>(i)] == b[static_cast<size_t>(i)] ? 1 : 0;
+    sameAC += a[static_cast<size_t>(i)] == c[static_cast<size_t>(i)] ? 1 : 0;
+  }
+  EXPECT_EQ(sameAB, 0);
+  EXPECT_EQ(sameAC, 0);
+}
+
+// Integration error of a smooth 2D function: scrambled Sobol' at 1024 points is far below
+// the independent sampler's σ ≈ 0.29/√1024 ≈ 0.009 (asserted < 0.002 over 16 pixels).
+TEST(SobolSampler, IntegratesSmoothFunctionsAccurately) {
+  double worst = 0.0;
+  for (int px = 0; px < 16; ++px) {
+    double sum = 0.0;
+    for (const glm::vec2& p : pairs(11, {px, 0}, 1, 1024))
+      sum += std::sin(3.0 * static_cast<double>(p.x)) * std::exp(static_cast<double>(p.y));
+    const double exact = (1.0 - std::cos(3.0)) / 3.0 * (std::exp(1.0) - 1.0);
+    worst = std::max(worst, std::abs(sum / 1024.0 - exact));
+  }
+  EXPECT_LT(worst, 0.002);
+}
+
+}  // namespace
+}  // namespace camsim
