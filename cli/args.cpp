@@ -18,6 +18,14 @@ std::int64_t parseInteger(const std::string& flag, const std::string& text, std:
   return value;
 }
 
+double parsePositive(const std::string& flag, const std::string& text, double hi) {
+  double v = 0.0;
+  const auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+  if (ec != std::errc() || ptr != text.data() + text.size() || !std::isfinite(v) || v <= 0.0 || v > hi)
+    throw UsageError(flag + " expects a positive number (at most " + std::to_string(hi) + "), got '" + text + "'");
+  return v;
+}
+
 }  // namespace
 
 std::string usageText() {
@@ -25,19 +33,25 @@ std::string usageText() {
          "\n"
          "usage:\n"
          "  camsim render [SCENE] [-o DIR] [--spp N] [--seed N] [--threads N]\n"
-         "                [--max-memory-gb X]\n"
+         "                [--max-memory-gb X] [--exposure-time S] [--f-number N] [--iso N]\n"
+         "                [--noise none|photon|full] [--noise-seed N]\n"
          "  camsim ptc SENSOR [-o DIR] [--seed N]   (photon transfer: camsim ptc --help)\n"
          "  camsim --help | --version\n"
          "\n"
          "render  renders SCENE (YAML or JSON, see docs/scene-format.md), or the built-in\n"
          "        Cornell box when no SCENE is given, and writes into DIR (default: out/):\n"
          "          NAME.exr  scene-linear OpenEXR: R,G,B linear Rec.709 and XYZ.X/Y/Z, absolute\n"
-         "                    units (Y in cd/m²), with render metadata\n"
+         "                    units (energy per photosite, Y in lm·s), with metadata\n"
          "          NAME.png  quick-look sRGB picture, mean luminance exposed to mid-grey\n"
          "  -o, --output DIR   output directory (created if missing)\n"
          "  --spp N            samples per pixel (overrides the scene's render.spp)\n"
          "  --seed N           render seed (overrides render.seed)\n"
          "  --threads N        worker threads (default: all cores); the image does not depend on it\n"
+         "  --exposure-time S  effective exposure time in seconds (stretches the scene's shutter)\n"
+         "  --f-number N       lens f-number (overrides camera.f_number)\n"
+         "  --iso N            sensor ISO (scenes with a sensor)\n"
+         "  --noise MODE       sensor noise: none, photon or full (scenes with a sensor)\n"
+         "  --noise-seed N     seed of the sensor's temporal noise\n"
          "  --max-memory-gb X  refuse to start a render whose estimated memory exceeds X GB\n"
          "                     (default: 75 % of physical memory)\n"
          "\n"
@@ -76,12 +90,19 @@ Command parseArgs(const std::vector<std::string>& args) {
     } else if (a == "--threads") {
       r.threads = static_cast<int>(parseInteger(a, value(), 1, 1024));
     } else if (a == "--max-memory-gb") {
-      const std::string& text = value();
-      double gb = 0.0;
-      const auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), gb);
-      if (ec != std::errc() || ptr != text.data() + text.size() || !std::isfinite(gb) || gb <= 0.0)
-        throw UsageError(a + " expects a positive number of GB, got '" + text + "'");
-      r.maxMemoryGb = gb;
+      r.maxMemoryGb = parsePositive(a, value(), 1e9);
+    } else if (a == "--exposure-time") {
+      r.exposureTimeS = parsePositive(a, value(), 1e6);
+    } else if (a == "--f-number") {
+      r.fNumber = parsePositive(a, value(), 1e4);
+    } else if (a == "--iso") {
+      r.iso = parsePositive(a, value(), 1e7);
+    } else if (a == "--noise") {
+      r.noise = value();
+      if (*r.noise != "none" && *r.noise != "photon" && *r.noise != "full")
+        throw UsageError("--noise must be none, photon or full, got '" + *r.noise + "'");
+    } else if (a == "--noise-seed") {
+      r.noiseSeed = static_cast<std::uint64_t>(parseInteger(a, value(), 0, INT64_MAX));
     } else if (!a.empty() && a[0] == '-') {
       throw UsageError("unknown option '" + a + "' (try 'camsim --help')");
     } else if (!r.scene) {

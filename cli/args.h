@@ -21,6 +21,12 @@ struct RenderArgs {
   std::optional<std::uint64_t> seed;
   int threads = 0;  // 0: all cores
   std::optional<double> maxMemoryGb;  // none: 75 % of physical memory (resource_guard.h)
+  // Exposure overrides (scene values otherwise).
+  std::optional<double> exposureTimeS;  // effective exposure time T_eff, s (the shutter is stretched)
+  std::optional<double> fNumber;
+  std::optional<double> iso;          // needs a sensor
+  std::optional<std::string> noise;   // none | photon | full; needs a sensor
+  std::optional<std::uint64_t> noiseSeed;
 };
 
 struct Command {

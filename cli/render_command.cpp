@@ -40,8 +40,22 @@ LoadedScene load(const RenderArgs& args) {
     loaded.description = loadSceneFromText(loaded.text, path.string(),
                                            path.parent_path().empty() ? "." : path.parent_path());
   }
-  if (args.spp) loaded.description.render.spp = *args.spp;
-  if (args.seed) loaded.description.render.seed = *args.seed;
+  SceneDescription& d = loaded.description;
+  if (args.spp) d.render.spp = *args.spp;
+  if (args.seed) d.render.seed = *args.seed;
+  if (args.exposureTimeS) d.camera.shutter = d.camera.shutter.scaled(*args.exposureTimeS / d.camera.shutter.effectiveTime());
+  if (args.fNumber) {
+    d.camera.fNumber = *args.fNumber;
+    if (d.camera.aperture)
+      d.camera.aperture.emplace(d.camera.focalLength / d.camera.fNumber, d.camera.aperture->blades(),
+                                d.camera.aperture->rotation());
+  }
+  if ((args.iso || args.noise || args.noiseSeed) && !d.sensor)
+    throw UsageError("--iso, --noise and --noise-seed need a scene with a sensor");
+  if (args.iso) d.sensor->iso = *args.iso;
+  if (args.noiseSeed) d.sensor->noiseSeed = *args.noiseSeed;
+  if (args.noise)
+    d.sensor->noise = *args.noise == "none" ? NoiseMode::kNone : *args.noise == "photon" ? NoiseMode::kPhoton : NoiseMode::kFull;
   return loaded;
 }
 

@@ -18,6 +18,14 @@ void reportEmbreeError(void*, RTCError code, const char* message) {
   std::fprintf(stderr, "embree error %d: %s\n", static_cast<int>(code), message ? message : "");
 }
 
+// Embree reports errors through the device; an error leaves the scene unusable, so stop
+// here (an internal error, exit code 1) instead of tracing rays through bad buffers.
+void throwOnEmbreeError(RTCDevice device, const std::string& what) {
+  const RTCError code = rtcGetDeviceError(device);
+  if (code != RTC_ERROR_NONE)
+    throw std::runtime_error("Embree error " + std::to_string(static_cast<int>(code)) + " while " + what);
+}
+
 }  // namespace
 
 struct EmbreeScene::Impl {
@@ -84,8 +92,10 @@ EmbreeScene::EmbreeScene(const std::vector<std::unique_ptr<Shape>>& shapes, doub
     rtcCommitGeometry(geom);
     rtcAttachGeometryByID(impl_->scene, geom, static_cast<unsigned>(id));
     rtcReleaseGeometry(geom);
+    throwOnEmbreeError(impl_->device, "adding shape " + std::to_string(id));
   }
   rtcCommitScene(impl_->scene);
+  throwOnEmbreeError(impl_->device, "building the BVH");
 }
 
 EmbreeScene::~EmbreeScene() = default;

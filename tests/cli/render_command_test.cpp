@@ -327,3 +327,24 @@ TEST(CamsimBinary, RendersSmallSceneToExrAndPng) {
 
 }  // namespace
 }  // namespace camsim
+
+namespace camsim {
+namespace {
+
+TEST(ParseArgsExposure, ExposureOverridesParseAndValidate) {
+  const Command c = parseArgs({"render", "s.yaml", "--exposure-time", "0.004", "--f-number", "2.8", "--iso", "800",
+                               "--noise", "photon", "--noise-seed", "5"});
+  EXPECT_DOUBLE_EQ(*c.render.exposureTimeS, 0.004);
+  EXPECT_DOUBLE_EQ(*c.render.fNumber, 2.8);
+  EXPECT_DOUBLE_EQ(*c.render.iso, 800.0);
+  EXPECT_EQ(*c.render.noise, "photon");
+  EXPECT_EQ(*c.render.noiseSeed, 5u);
+  for (const auto& bad : std::vector<std::vector<std::string>>{{"render", "--exposure-time", "0"},
+                                                              {"render", "--f-number", "-2"},
+                                                              {"render", "--iso", "abc"},
+                                                              {"render", "--noise", "loud"}})
+    EXPECT_THROW(parseArgs(bad), UsageError);
+}
+
+}  // namespace
+}  // namespace camsim
