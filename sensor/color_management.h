@@ -15,8 +15,8 @@
 // A DisplayChoice is (display, view, looks); empty display = the config's default display,
 // empty view = that display's default view, empty looks = none. `looks` is an OCIO look list
 // ("a", "a, b", "+a, -b"): each name must be a look of the config. Unknown names throw
-// InputError (key "display", "view" or "look") whose message lists the valid choices; so does a
-// look on a data view (e.g. "Raw", which passes values through unchanged).
+// InputError (key "display", "view" or "look") whose message lists the valid choices. A look on
+// a data view (e.g. "Raw", which passes values through unchanged) throws InputError too.
 //
 // Output: packed float RGB in the display's encoding (e.g. sRGB-encoded, [0, 1] nominal; PQ
 // code values in [0, 1] for Rec.2100-PQ). The caller quantises: quantizeDisplay8 / 16 clamp
