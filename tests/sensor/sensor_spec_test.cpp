@@ -214,9 +214,11 @@ TEST(SensorSpec, PresetsLoad) {
   for (int c = 0; c < 3; ++c) {
     const double ref = static_cast<double>(xyz.qe[static_cast<size_t>(c)](555.0f)) * 555.0 /
                        static_cast<double>((*cmf[c])(555.0f));
-    for (float nm : {420.0f, 450.0f, 500.0f, 600.0f, 650.0f})
+    for (float nm : {420.0f, 450.0f, 500.0f, 600.0f, 650.0f}) {
+      if (static_cast<double>((*cmf[c])(nm)) < 1e-3) continue;  // z̄ vanishes in the red
       EXPECT_NEAR(static_cast<double>(xyz.qe[static_cast<size_t>(c)](nm)) * static_cast<double>(nm) /
                       static_cast<double>((*cmf[c])(nm)) / ref, 1.0, 1e-5) << c << " at " << nm;
+    }
   }
   EXPECT_EQ(xyz.whiteLevelDn(), 65535.0);
   EXPECT_EQ(xyz.readNoiseE, 0.0);
