@@ -14,32 +14,15 @@
 #include <glm/matrix.hpp>
 
 #include "sensor/check.h"
-#include "sensor/cie.h"
+#include "sensor/color_correction.h"
 #include "sensor/input_error.h"
 #include "sensor/spectral_data.h"
+#include "sensor/white_balance.h"
 
 namespace camsim {
 namespace {
 
 constexpr int kPhotometricLinearRaw = 34892;  // DNG; libtiff's tiff.h does not name it
-
-// Σ_λ a(λ)·b(λ)·c(λ) [·λ] over the 1 nm grid, in double.
-double weightedSum(const Spectrum& a, const Spectrum& b, const Spectrum& c, bool timesLambda) {
-  double sum = 0.0;
-  for (int i = 0; i < kSpectrumSamples; ++i) {
-    const double lambda = timesLambda ? static_cast<double>(kLambdaMinNm + i) : 1.0;
-    sum += static_cast<double>(a.sample(i)) * static_cast<double>(b.sample(i)) *
-           static_cast<double>(c.sample(i)) * lambda;
-  }
-  return sum;
-}
-
-glm::dvec3 cameraResponse(const std::vector<Spectrum>& qe, const Spectrum& reflectance,
-                          const Spectrum& illuminant) {
-  return {weightedSum(qe[0], reflectance, illuminant, true),
-          weightedSum(qe[1], reflectance, illuminant, true),
-          weightedSum(qe[2], reflectance, illuminant, true)};
-}
 
 // DNG CFAPlaneColor code of a channel name (R, G, B only), -1 otherwise.
 int planeColorCode(const std::string& name) {
@@ -77,41 +60,20 @@ DngColor dngColorFromQe(const std::vector<Spectrum>& qe, const Spectrum& illumin
   if (qe.size() != 3)
     throw InputError({}, "qe",
                      "DNG colour needs 3 QE curves (R, G, B), got " + std::to_string(qe.size()));
-  const SpectralTable chart = readSpectralCsv(colorCheckerCsv);
-  if (chart.columns.size() < 3)
-    throw InputError({chart.source, 0, 0}, "", "a colour fit needs at least 3 reflectance columns");
-  const Spectrum d65 = cieIlluminant("D65");
-  const Cie1931& cie = Cie1931::get();
-  const Spectrum one = Spectrum::constant(1.0);
-  const double yWhite = weightedSum(cie.y, one, d65, false);
-
-  glm::dmat3 xx(0.0), cx(0.0);  // Σ X Xᵀ and Σ c Xᵀ
-  for (size_t p = 0; p < chart.columns.size(); ++p) {
-    const Spectrum r = chart.spectrum(p, Extrapolation::kClamp);
-    const glm::dvec3 xyz =
-        glm::dvec3(weightedSum(cie.x, r, d65, false), weightedSum(cie.y, r, d65, false),
-                   weightedSum(cie.z, r, d65, false)) /
-        yWhite;
-    const glm::dvec3 c = cameraResponse(qe, r, d65);
-    xx += glm::outerProduct(xyz, xyz);
-    cx += glm::outerProduct(c, xyz);
-  }
-  CAMSIM_CHECK(std::abs(glm::determinant(xx)) > 0.0);
-  glm::dmat3 m = cx * glm::inverse(xx);
-  const glm::dvec3 whiteXyz =
-      glm::dvec3(weightedSum(cie.x, one, d65, false), yWhite, weightedSum(cie.z, one, d65, false)) /
-      yWhite;
-  const glm::dvec3 whiteCamera = m * whiteXyz;
+  // The shared chart fit (sensor/color_correction.h), here in the XYZ → camera direction.
+  const ChartSamples chart = colorCheckerSamples(qe, cieIlluminant("D65"), colorCheckerCsv);
+  glm::dmat3 m = fitLinearMap(chart.xyz, chart.camera);
+  const glm::dvec3 whiteCamera = m * chart.xyzWhite;
   const double peak = std::max({whiteCamera.x, whiteCamera.y, whiteCamera.z});
   if (!(peak > 0.0)) throw InputError({}, "qe", "the sensor does not respond to the D65 white");
   m /= peak;
 
   DngColor color;
   color.xyzToCamera = m;
-  const glm::dvec3 neutral = cameraResponse(qe, one, illuminant);
-  if (!(neutral.y > 0.0))
+  const std::vector<double> neutral = cameraResponse(qe, Spectrum::constant(1.0), illuminant);
+  if (!(neutral[1] > 0.0))
     throw InputError({}, "qe", "the G channel does not respond to the illuminant");
-  color.asShotNeutral = neutral / neutral.y;
+  color.asShotNeutral = glm::dvec3(neutral[0], neutral[1], neutral[2]) / neutral[1];
   return color;
 }
 
