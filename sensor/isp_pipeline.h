@@ -1,0 +1,48 @@
+// The image pipeline: raw DN → scene-linear working-space RGB (ACEScg by default), each
+// stage a function on plain images (sensor/isp_black_level.h, white_balance.h,
+// demosaic.h, color_correction.h). developRaw() runs them in order:
+//
+//   1. normalise:     n = (DN − black) / (white − black)
+//   2. white balance: per CFA channel, n_k · g_k with g from the scene illuminant (camera
+//                     response Σ QE_k·I·λ), a grey region, or grey-world
+//   3. demosaic:      Malvar–He–Cutler (default) or bilinear; stacked sensors skip it
+//   4. colour:        working RGB = W · M · balanced camera RGB, M the CCM fitted on the 24
+//                     ColorChecker reflectances under `ccmIlluminant` from the sensor's own
+//                     QE curves (never hard-coded), W = XYZ(D65) → working space
+//   5. exposure:      × 1 (values are fractions of the sensor's saturation; 0.18 ≈ the
+//                     auto-exposure target)
+// An ideal XYZ (stacked) sensor skips demosaic and the CCM: its channels are XYZ.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "sensor/color_correction.h"
+#include "sensor/demosaic.h"
+#include "sensor/image.h"
+#include "sensor/raw_image.h"
+#include "sensor/sensor_spec.h"
+#include "sensor/white_balance.h"
+
+namespace camsim {
+
+struct IspSettings {
+  enum class WhiteBalance { kIlluminant, kRegion, kGreyWorld };
+  WhiteBalance whiteBalance = WhiteBalance::kIlluminant;
+  std::string illuminant = "D65";  // CIE illuminant name for kIlluminant and the CCM fit
+  PixelRegion region;              // for kRegion
+  DemosaicMethod demosaic = DemosaicMethod::kMalvarHeCutler;
+};
+
+struct DevelopedImage {
+  Image working;                     // R, G, B in the working space (ACEScg)
+  std::vector<double> whiteBalance;  // gains per camera channel (reference channel = 1)
+  ColorCorrection colorCorrection;   // the fitted CCM and matrices used
+};
+
+// raws: one RawImage for a mosaic sensor, one per channel for a stacked sensor.
+DevelopedImage developRaw(const std::vector<RawImage>& raws, const SensorSpec& sensor,
+                          const IspSettings& settings, const std::filesystem::path& colorCheckerCsv);
+
+}  // namespace camsim
