@@ -35,6 +35,7 @@ std::string usageText() {
          "  camsim render [SCENE] [-o DIR] [--spp N] [--seed N] [--threads N]\n"
          "                [--max-memory-gb X] [--exposure-time S] [--f-number N] [--iso N]\n"
          "                [--noise none|photon|full] [--noise-seed N]\n"
+         "                [--ocio-config FILE] [--display D] [--view V] [--look L]\n"
          "  camsim ptc SENSOR [-o DIR] [--seed N]   (photon transfer: camsim ptc --help)\n"
          "  camsim --help | --version\n"
          "\n"
@@ -42,7 +43,10 @@ std::string usageText() {
          "        Cornell box when no SCENE is given, and writes into DIR (default: out/):\n"
          "          NAME.exr  scene-linear OpenEXR: R,G,B linear Rec.709 and XYZ.X/Y/Z, absolute\n"
          "                    units (energy per photosite, Y in lm·s), with metadata\n"
-         "          NAME.png  quick-look sRGB picture, mean luminance exposed to mid-grey\n"
+         "          NAME.png  the picture through OpenColorIO (display/view/look below)\n"
+         "          NAME.json every camera, sensor, ISP and colour setting used\n"
+         "        and with a sensor in the scene also NAME.dng, NAME_raw.exr (raw DN + electrons)\n"
+         "        and NAME_acescg.exr (the developed scene-linear ACEScg image)\n"
          "  -o, --output DIR   output directory (created if missing)\n"
          "  --spp N            samples per pixel (overrides the scene's render.spp)\n"
          "  --seed N           render seed (overrides render.seed)\n"
@@ -52,6 +56,9 @@ std::string usageText() {
          "  --iso N            sensor ISO (scenes with a sensor)\n"
          "  --noise MODE       sensor noise: none, photon or full (scenes with a sensor)\n"
          "  --noise-seed N     seed of the sensor's temporal noise\n"
+         "  --ocio-config FILE OpenColorIO config for the PNG (default: $OCIO, else luts/config.ocio)\n"
+         "  --display D, --view V, --look L   output transform (default: the config's sRGB,\n"
+         "                     'ACES 1.0 - SDR Video', no look; see docs/color-management.md)\n"
          "  --max-memory-gb X  refuse to start a render whose estimated memory exceeds X GB\n"
          "                     (default: 75 % of physical memory)\n"
          "\n"
@@ -101,6 +108,14 @@ Command parseArgs(const std::vector<std::string>& args) {
       r.noise = value();
       if (*r.noise != "none" && *r.noise != "photon" && *r.noise != "full")
         throw UsageError("--noise must be none, photon or full, got '" + *r.noise + "'");
+    } else if (a == "--ocio-config") {
+      r.ocioConfig = value();
+    } else if (a == "--display") {
+      r.display = value();
+    } else if (a == "--view") {
+      r.view = value();
+    } else if (a == "--look") {
+      r.look = value();
     } else if (a == "--noise-seed") {
       r.noiseSeed = static_cast<std::uint64_t>(parseInteger(a, value(), 0, INT64_MAX));
     } else if (!a.empty() && a[0] == '-') {

@@ -27,6 +27,8 @@ struct RenderArgs {
   std::optional<double> iso;          // needs a sensor
   std::optional<std::string> noise;   // none | photon | full; needs a sensor
   std::optional<std::uint64_t> noiseSeed;
+  // Output transform (OpenColorIO): empty = the config's defaults.
+  std::string ocioConfig, display, view, look;
 };
 
 struct Command {

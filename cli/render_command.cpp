@@ -7,7 +7,7 @@
 
 #include "cli/progress.h"
 #include "cli/resource_guard.h"
-#include "cli/sensor_outputs.h"
+#include "cli/render_outputs.h"
 #include "integrator/render.h"
 #include "integrator/scene.h"
 #include "integrator/scene_loader.h"
@@ -154,6 +154,8 @@ RenderCommandResult runRender(const RenderArgs& args, std::ostream& log, const s
   for (const auto& stale : OutputSet::cleanStaleTemporaries(outDir))
     log << "removed " << stale.string() << " (left by a run that was killed)\n";
 
+  const PictureSettings picture{args.ocioConfig, {args.display, args.view, args.look}};
+  checkPictureSettings(picture);  // a bad config or display/view/look fails before rendering
   const Scene scene(desc);
   const SpectralResponse response = SpectralResponse::cieXyz();
   std::vector<const SpectralResponse*> responses = {&response};
@@ -198,30 +200,17 @@ RenderCommandResult runRender(const RenderArgs& args, std::ostream& log, const s
                                     "XYZ.Y is luminous energy in lm*s (talbot); R,G,B: linear Rec.709 on the "
                                     "same scale (1,1,1 has Y = 1 lm*s)"}};
   appendCameraMetadata(scene.camera(), meta);
-  const auto& cs = RgbColorSpace::linearRec709();
   OutputSet outputs(outDir);
-  writeExr(outputs.add(desc.name + ".exr"), exrImage(result.image), meta,
-           ExrChromaticities{cs.red(), cs.green(), cs.blue(), cs.white()});
-  const QuickLook look = quickLookSrgb8(result.image);
-  writePng8(outputs.add(desc.name + ".png"), result.image.width, result.image.height, look.rgb8);
-  if (desc.sensor) {
-    // Re-render only for moving scenes, whose motion blur depends on the exposure time.
-    auto rerender = [&](double k) {
-      SceneDescription longer = desc;
-      longer.camera.shutter = desc.camera.shutter.scaled(k);
-      const Scene s2(longer);
-      RenderOptions o = options;
-      o.progress = nullptr;
-      return render(s2, *sensorResponse, o).image;
-    };
-    double aeScale = 1.0;
-    const auto frames = writeSensorFrames(*desc.sensor, desc.name, desc.camera.shutter.effectiveTime(),
-                                          st.modelled.time, result.images[1], rerender, meta, outputs, log, aeScale);
-    for (const auto& f : frames)
-      if (f.clippedFraction > 0.01)
-        log << "note: " << (f.dngFile.empty() ? f.rawExrFile : f.dngFile) << ": " << 100.0 * f.clippedFraction
-            << " % of photosites clipped\n";
-  }
+  // Re-render only for moving scenes, whose motion blur depends on the exposure time.
+  auto rerender = [&](double k) {
+    SceneDescription longer = desc;
+    longer.camera.shutter = desc.camera.shutter.scaled(k);
+    const Scene s2(longer);
+    RenderOptions o = options;
+    o.progress = nullptr;
+    return render(s2, *sensorResponse, o).image;
+  };
+  writeRenderOutputs({desc, scene, result, meta, picture, rerender}, outputs, log);
   outcome.files = outputs.commit();
   if (std::filesystem::remove(outDir / (desc.name + ".partial.exr"), ec))
     log << "removed " << (outDir / (desc.name + ".partial.exr")).string() << " of an interrupted run\n";

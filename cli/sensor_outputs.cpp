@@ -1,5 +1,6 @@
 #include "cli/sensor_outputs.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <ostream>
@@ -26,15 +27,22 @@ Image scaled(const Image& image, double k) {
   return out;
 }
 
+// One channel of a multi-channel image.
+Image plane(const Image& image, int c) {
+  Image out(image.width, image.height, {image.channels[static_cast<size_t>(c)]});
+  const size_t n = static_cast<size_t>(image.channelCount());
+  for (size_t p = 0; p < out.pixels.size(); ++p) out.pixels[p] = image.pixels[p * n + static_cast<size_t>(c)];
+  return out;
+}
+
 }  // namespace
 
-std::vector<SensorFrameReport> writeSensorFrames(const SensorSettings& sensor, const std::string& name,
-                                                 double exposureTimeS, bool sceneMoves, const Image& electrons,
-                                                 const std::function<Image(double)>& rerender,
-                                                 const Metadata& meta, OutputSet& outputs, std::ostream& log,
-                                                 double& exposureScale) {
+SensorOutputs writeSensorFrames(const SensorSettings& sensor, const std::string& name, double exposureTimeS,
+                                bool sceneMoves, const Image& electrons, const std::function<Image(double)>& rerender,
+                                const Metadata& meta, OutputSet& outputs, std::ostream& log) {
   const SensorSpec& spec = sensor.spec;
-  exposureScale = 1.0;
+  SensorOutputs result;
+  double& exposureScale = result.exposureScale;
   Image base = electrons;
   if (sensor.autoExposure) {
     exposureScale = autoExposureScale(electrons, *sensor.autoExposure, spec.saturationElectrons(sensor.iso));
@@ -49,7 +57,8 @@ std::vector<SensorFrameReport> writeSensorFrames(const SensorSettings& sensor, c
                              ? dngColorFromQe(spec.qe, cieIlluminant("D65"),
                                               lutsDirectory() / "spectra" / "colorchecker_classic_reflectance.csv")
                              : DngColor{};
-  std::vector<SensorFrameReport> reports;
+  const size_t reference = static_cast<size_t>(
+      std::find(evs.begin(), evs.end(), 0.0) == evs.end() ? 0 : std::find(evs.begin(), evs.end(), 0.0) - evs.begin());
   for (size_t i = 0; i < evs.size(); ++i) {
     const double k = std::exp2(evs[i]);
     const Image frameElectrons = evs[i] == 0.0 ? base : (sceneMoves ? rerender(exposureScale * k) : scaled(base, k));
@@ -57,10 +66,18 @@ std::vector<SensorFrameReport> writeSensorFrames(const SensorSettings& sensor, c
     report.ev = evs[i];
     report.exposureTimeS = exposureTimeS * exposureScale * k;
     const ExposureSettings settings{report.exposureTimeS, sensor.iso};
-    const RawImage raw = expose(frameElectrons, spec, settings, sensor.noise, sensor.noiseSeed, sensor.frame + i);
-    size_t clipped = 0;
-    for (std::uint16_t v : raw.dn) clipped += static_cast<double>(v) >= raw.whiteLevelDn ? 1 : 0;
-    report.clippedFraction = raw.dn.empty() ? 0.0 : static_cast<double>(clipped) / static_cast<double>(raw.dn.size());
+    // A mosaic is one plane; a stacked sensor exposes each channel plane (own noise seed).
+    std::vector<RawImage> raws;
+    for (int c = 0; c < frameElectrons.channelCount(); ++c)
+      raws.push_back(expose(frameElectrons.channelCount() == 1 ? frameElectrons : plane(frameElectrons, c), spec,
+                            settings, sensor.noise, sensor.noiseSeed + static_cast<std::uint64_t>(c) * 0x9e3779b9u,
+                            sensor.frame + i));
+    size_t clipped = 0, total = 0;
+    for (const RawImage& raw : raws) {
+      for (std::uint16_t v : raw.dn) clipped += static_cast<double>(v) >= raw.whiteLevelDn ? 1 : 0;
+      total += raw.dn.size();
+    }
+    report.clippedFraction = total == 0 ? 0.0 : static_cast<double>(clipped) / static_cast<double>(total);
     Metadata frameMeta = meta;
     frameMeta.insert(frameMeta.end(), {{"camsim:sensor", spec.name},
                                        {"camsim:iso", std::to_string(sensor.iso)},
@@ -70,13 +87,19 @@ std::vector<SensorFrameReport> writeSensorFrames(const SensorSettings& sensor, c
     const std::string stem = name + evSuffix(evs[i], bracketed);
     if (!spec.cfa.isStacked()) {
       report.dngFile = stem + ".dng";
-      writeDng(outputs.add(report.dngFile), raw, color, frameMeta);
+      writeDng(outputs.add(report.dngFile), raws.front(), color, frameMeta);
+      report.rawExrFile = stem + "_raw.exr";
+      writeRawExr(outputs.add(report.rawExrFile), raws.front(), frameElectrons, frameMeta);
+    } else {
+      for (size_t c = 0; c < raws.size(); ++c) {
+        report.rawExrFile = stem + "_raw_" + spec.cfa.channels[c] + ".exr";
+        writeRawExr(outputs.add(report.rawExrFile), raws[c], plane(frameElectrons, static_cast<int>(c)), frameMeta);
+      }
     }
-    report.rawExrFile = stem + "_raw.exr";
-    writeRawExr(outputs.add(report.rawExrFile), raw, frameElectrons, frameMeta);
-    reports.push_back(report);
+    if (i == reference) result.referenceRaws = std::move(raws);
+    result.frames.push_back(report);
   }
-  return reports;
+  return result;
 }
 
 }  // namespace camsim

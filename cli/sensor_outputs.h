@@ -11,6 +11,7 @@
 #include "integrator/scene_description.h"
 #include "sensor/image.h"
 #include "sensor/output_set.h"
+#include "sensor/raw_image.h"
 
 namespace camsim {
 
@@ -21,15 +22,19 @@ struct SensorFrameReport {
   std::string dngFile, rawExrFile;
 };
 
+struct SensorOutputs {
+  std::vector<SensorFrameReport> frames;
+  std::vector<RawImage> referenceRaws;  // the 0 EV frame (or the first bracket): one per plane
+  double exposureScale = 1.0;           // auto-exposure factor applied to every frame
+};
+
 // electrons: the render's sensor film (expected e⁻ at the scene's exposure, T_eff).
 // rerender(k): renders again with the shutter stretched by k and returns the new
 // electrons — used only when the scene moves (motion blur depends on the exposure);
-// static scenes scale linearly. Writes NAME[_evX].dng and NAME[_evX]_raw.exr.
-// `exposureScale` returns the auto-exposure factor applied to every frame (1 if none).
-std::vector<SensorFrameReport> writeSensorFrames(const SensorSettings& sensor, const std::string& name,
-                                                 double exposureTimeS, bool sceneMoves, const Image& electrons,
-                                                 const std::function<Image(double)>& rerender,
-                                                 const Metadata& meta, OutputSet& outputs, std::ostream& log,
-                                                 double& exposureScale);
+// static scenes scale linearly. Writes NAME[_evX].dng and NAME[_evX]_raw.exr (a stacked
+// sensor: NAME[_evX]_raw_<channel>.exr per plane, no DNG).
+SensorOutputs writeSensorFrames(const SensorSettings& sensor, const std::string& name, double exposureTimeS,
+                                bool sceneMoves, const Image& electrons, const std::function<Image(double)>& rerender,
+                                const Metadata& meta, OutputSet& outputs, std::ostream& log);
 
 }  // namespace camsim

@@ -16,6 +16,7 @@
 #include "integrator/motion.h"
 #include "integrator/physical_camera.h"
 #include "sensor/exposure_control.h"
+#include "sensor/isp_pipeline.h"
 #include "sensor/sensor_model.h"
 #include "sensor/sensor_spec.h"
 #include "sensor/spectrum.h"
@@ -73,6 +74,7 @@ struct SceneDescription {
   std::vector<MaterialDescription> materials;
   std::vector<ShapeDescription> shapes;
   std::optional<SensorSettings> sensor;  // none: the film records CIE XYZ only
+  IspSettings isp;                       // raw → picture (scenes with a sensor)
 };
 
 }  // namespace camsim

@@ -229,6 +229,10 @@ SceneDescription loadSceneFromText(const std::string& text, const std::string& d
   scene.camera = parseCamera(YamlMap(cameraValue), ctx.search);
   if (auto sensor = top.find("sensor"))
     scene.sensor = parseSensorSettings(YamlMap(*sensor), baseDir, cameraValue, scene.camera);
+  if (auto isp = top.find("isp")) {
+    if (!scene.sensor) isp->fail("isp settings need a sensor");
+    scene.isp = parseIspSettings(YamlMap(*isp));
+  }
   if (auto mats = top.find("materials")) {
     YamlMap mmap(*mats);
     for (const std::string& name : mmap.keys()) {
@@ -240,7 +244,7 @@ SceneDescription loadSceneFromText(const std::string& text, const std::string& d
   const std::vector<YamlValue> items = shapes.items();
   if (items.empty()) shapes.fail("the scene has no shapes");
   for (size_t i = 0; i < items.size(); ++i) scene.shapes.push_back(parseShape(YamlMap(items[i]), i, ctx));
-  top.finish({"format", "name", "spectra_path", "render", "camera", "sensor", "materials", "shapes"});
+  top.finish({"format", "name", "spectra_path", "render", "camera", "sensor", "isp", "materials", "shapes"});
   return scene;
 }
 

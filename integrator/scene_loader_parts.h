@@ -23,6 +23,8 @@ PhysicalCameraParams parseCamera(YamlMap map, const SpectrumSearch& search);
 // sensor's pixel pitch (cameraMap: the camera's keys, to reject conflicting ones).
 SensorSettings parseSensorSettings(YamlMap map, const std::filesystem::path& baseDir, const YamlValue& camera,
                                    PhysicalCameraParams& cameraParams);
+// `isp:` → image-pipeline settings (white balance, demosaic).
+IspSettings parseIspSettings(YamlMap map);
 // `motion:` keyframes; `forCamera` forbids scale.
 RigidMotion parseMotion(const YamlValue& value, bool forCamera);
 

@@ -4,6 +4,7 @@
 
 #include "integrator/scene_loader.h"
 #include "integrator/scene_loader_parts.h"
+#include "sensor/spectral_data.h"
 
 namespace camsim {
 
@@ -63,6 +64,42 @@ SensorSettings parseSensorSettings(YamlMap map, const std::filesystem::path& bas
   cameraParams.sensorSize = glm::dvec2(cameraParams.resolution) * s.spec.pixelPitchM;
   cameraParams.fillFactor = s.spec.fillFactor;
   return s;
+}
+
+IspSettings parseIspSettings(YamlMap map) {
+  IspSettings isp;
+  if (auto wb = map.find("white_balance")) {
+    const std::string how = wb->string();
+    if (how == "illuminant") isp.whiteBalance = IspSettings::WhiteBalance::kIlluminant;
+    else if (how == "grey_world") isp.whiteBalance = IspSettings::WhiteBalance::kGreyWorld;
+    else if (how == "region") isp.whiteBalance = IspSettings::WhiteBalance::kRegion;
+    else wb->fail("unknown white balance '" + how + "' (known: illuminant, region, grey_world)");
+  }
+  if (auto ill = map.find("illuminant")) {
+    isp.illuminant = ill->string();
+    try {
+      cieIlluminant(isp.illuminant);
+    } catch (const InputError& e) {
+      ill->fail(e.message());
+    }
+  }
+  if (auto r = map.find("region")) {
+    if (isp.whiteBalance != IspSettings::WhiteBalance::kRegion) r->fail("region needs white_balance: region");
+    const std::vector<YamlValue> v = r->items();
+    if (v.size() != 4) r->fail("expected [x, y, width, height] in pixels");
+    isp.region = {static_cast<int>(v[0].integer(0, 1 << 20)), static_cast<int>(v[1].integer(0, 1 << 20)),
+                  static_cast<int>(v[2].integer(1, 1 << 20)), static_cast<int>(v[3].integer(1, 1 << 20))};
+  } else if (isp.whiteBalance == IspSettings::WhiteBalance::kRegion) {
+    map.self().fail("white_balance: region needs region: [x, y, width, height]");
+  }
+  if (auto d = map.find("demosaic")) {
+    const std::string how = d->string();
+    if (how == "malvar") isp.demosaic = DemosaicMethod::kMalvarHeCutler;
+    else if (how == "bilinear") isp.demosaic = DemosaicMethod::kBilinear;
+    else d->fail("unknown demosaic '" + how + "' (known: malvar, bilinear)");
+  }
+  map.finish({"white_balance", "illuminant", "region", "demosaic"});
+  return isp;
 }
 
 }  // namespace camsim

@@ -1,5 +1,7 @@
 #include "sensor/isp_pipeline.h"
 
+#include <algorithm>
+
 #include "sensor/check.h"
 #include "sensor/color_space.h"
 #include "sensor/isp_black_level.h"
@@ -36,6 +38,11 @@ DevelopedImage developRaw(const std::vector<RawImage>& raws, const SensorSpec& s
       break;
   }
   mosaic = applyWhiteBalance(mosaic, cfa, out.whiteBalance);
+  // Highlight clipping: a photosite that saturated (≥ 1 before the gains) would turn
+  // coloured once its channel is multiplied; clip every channel where the channel with
+  // the smallest gain saturates, so clipped highlights stay neutral (as dcraw does).
+  const double clipLevel = *std::min_element(out.whiteBalance.begin(), out.whiteBalance.end());
+  for (float& v : mosaic.pixels) v = std::min(v, static_cast<float>(clipLevel));
   const Image camera = cfa.isMonochrome() ? mosaic : demosaic(mosaic, cfa, settings.demosaic);
   if (cfa.isMonochrome()) {  // one channel: no colour to correct
     out.working = camera;

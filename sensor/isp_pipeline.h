@@ -4,7 +4,8 @@
 //
 //   1. normalise:     n = (DN − black) / (white − black)
 //   2. white balance: per CFA channel, n_k · g_k with g from the scene illuminant (camera
-//                     response Σ QE_k·I·λ), a grey region, or grey-world
+//                     response Σ QE_k·I·λ), a grey region, or grey-world; then clipped
+//                     at min_k g_k so saturated highlights stay neutral
 //   3. demosaic:      Malvar–He–Cutler (default) or bilinear; stacked sensors skip it
 //   4. colour:        working RGB = W · M · balanced camera RGB, M the CCM fitted on the 24
 //                     ColorChecker reflectances under `ccmIlluminant` from the sensor's own

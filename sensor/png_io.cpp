@@ -11,7 +11,7 @@
 namespace camsim {
 
 void writePng8(const std::filesystem::path& path, int width, int height,
-               const std::vector<std::uint8_t>& rgb) {
+               const std::vector<std::uint8_t>& rgb, bool tagSrgb) {
   CAMSIM_CHECK(width > 0 && height > 0 &&
                rgb.size() == static_cast<size_t>(width) * static_cast<size_t>(height) * 3);
   std::unique_ptr<FILE, int (*)(FILE*)> fp(std::fopen(path.c_str(), "wb"), &std::fclose);
@@ -30,7 +30,7 @@ void writePng8(const std::filesystem::path& path, int width, int height,
   png_set_IHDR(png, info, static_cast<png_uint_32>(width), static_cast<png_uint_32>(height), 8,
                PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT,
                PNG_FILTER_TYPE_DEFAULT);
-  png_set_sRGB_gAMA_and_cHRM(png, info, PNG_sRGB_INTENT_PERCEPTUAL);
+  if (tagSrgb) png_set_sRGB_gAMA_and_cHRM(png, info, PNG_sRGB_INTENT_PERCEPTUAL);
   png_write_info(png, info);
   for (int y = 0; y < height; ++y)
     png_write_row(png, rgb.data() + static_cast<size_t>(y) * static_cast<size_t>(width) * 3);

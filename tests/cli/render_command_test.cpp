@@ -279,7 +279,11 @@ TEST(CamsimBinary, RendersSmallSceneToExrAndPng) {
 
   std::vector<std::string> files = filesIn(out);
   std::sort(files.begin(), files.end());
-  EXPECT_EQ(files, (std::vector<std::string>{"cornell_box.exr", "cornell_box.png"}));
+  EXPECT_EQ(files, (std::vector<std::string>{"cornell_box.exr", "cornell_box.json", "cornell_box.png"}));
+  const std::string json = readFile(out / "cornell_box.json");
+  EXPECT_NE(json.find("\"display\": \"sRGB\""), std::string::npos) << json;
+  EXPECT_NE(json.find("\"view\": \"ACES 1.0 - SDR Video\""), std::string::npos) << json;
+  EXPECT_NE(json.find("\"spp\": 2"), std::string::npos) << json;
   const std::string png = readFile(out / "cornell_box.png");
   ASSERT_GE(png.size(), 8u);
   EXPECT_EQ(png.substr(1, 3), "PNG");
@@ -344,6 +348,42 @@ TEST(ParseArgsExposure, ExposureOverridesParseAndValidate) {
                                                               {"render", "--iso", "abc"},
                                                               {"render", "--noise", "loud"}})
     EXPECT_THROW(parseArgs(bad), UsageError);
+}
+
+}  // namespace
+}  // namespace camsim
+
+namespace camsim {
+namespace {
+
+// A user OCIO config on the command line is used (and named in the sidecar); a bad
+// display fails with exit code 2 before rendering, writing nothing.
+TEST(CamsimBinary, UserOcioConfigIsUsedAndBadDisplayIsRejected) {
+  TempDir dir;
+  writeFile(dir.path() / "small_box.yaml", smallCornellBox());
+  writeFile(dir.path() / "user.ocio",
+            "ocio_profile_version: 2.1\n"
+            "roles: {scene_linear: lin, default: lin}\n"
+            "file_rules: [!<Rule> {name: Default, colorspace: lin}]\n"
+            "displays: {Studio: [!<View> {name: Plain, colorspace: out}]}\n"
+            "colorspaces:\n"
+            "  - !<ColorSpace> {name: lin, aliases: [ACEScg]}\n"
+            "  - !<ColorSpace> {name: out, from_scene_reference: !<ExponentTransform> {value: 2.2, direction: inverse}}\n");
+  const fs::path out = dir.path() / "out";
+  const std::string scene = quote((dir.path() / "small_box.yaml").string());
+  const RunResult ok = camsim("render " + scene + " -o " + quote(out.string()) + " --spp 1 --ocio-config " +
+                                  quote((dir.path() / "user.ocio").string()) + " --display Studio --view Plain",
+                              dir.path());
+  ASSERT_EQ(ok.exitCode, 0) << ok.err;
+  const std::string json = readFile(out / "cornell_box.json");
+  EXPECT_NE(json.find("user.ocio"), std::string::npos) << json;
+  EXPECT_NE(json.find("\"display\": \"Studio\""), std::string::npos) << json;
+
+  const fs::path out2 = dir.path() / "out2";
+  const RunResult bad = camsim("render " + scene + " -o " + quote(out2.string()) + " --spp 1 --display Nope", dir.path());
+  EXPECT_EQ(bad.exitCode, 2);
+  EXPECT_NE(bad.err.find("Nope"), std::string::npos) << bad.err;
+  EXPECT_TRUE(!fs::exists(out2) || filesIn(out2).empty());
 }
 
 }  // namespace

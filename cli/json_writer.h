@@ -1,0 +1,62 @@
+// A minimal JSON writer for sidecar files: nested objects of strings, numbers, booleans
+// and arrays of numbers, written in insertion order.
+#pragma once
+
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace camsim {
+
+class JsonObject {
+ public:
+  JsonObject& set(const std::string& key, const std::string& value) { return raw(key, quote(value)); }
+  JsonObject& set(const std::string& key, const char* value) { return raw(key, quote(value)); }
+  JsonObject& set(const std::string& key, double value) { return raw(key, number(value)); }
+  JsonObject& set(const std::string& key, bool value) { return raw(key, value ? "true" : "false"); }
+  JsonObject& set(const std::string& key, const std::vector<double>& values) {
+    std::string s = "[";
+    for (size_t i = 0; i < values.size(); ++i) s += (i ? ", " : "") + number(values[i]);
+    return raw(key, s + "]");
+  }
+  JsonObject& set(const std::string& key, const JsonObject& object) { return raw(key, object.str()); }
+
+  std::string str(int indent = 0) const {
+    const std::string pad(static_cast<size_t>(indent + 2), ' ');
+    std::string s = "{\n";
+    for (size_t i = 0; i < fields_.size(); ++i) {
+      std::string value = fields_[i].second;
+      for (size_t p = value.find('\n'); p != std::string::npos; p = value.find('\n', p + 1))
+        value.insert(p + 1, std::string(static_cast<size_t>(indent + 2), ' '));
+      s += pad + quote(fields_[i].first) + ": " + value + (i + 1 < fields_.size() ? ",\n" : "\n");
+    }
+    return s + std::string(static_cast<size_t>(indent), ' ') + "}";
+  }
+
+ private:
+  JsonObject& raw(const std::string& key, std::string value) {
+    fields_.emplace_back(key, std::move(value));
+    return *this;
+  }
+  static std::string number(double v) {
+    if (!std::isfinite(v)) return "null";
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.10g", v);
+    return buf;
+  }
+  static std::string quote(const std::string& s) {
+    std::string out = "\"";
+    for (char c : s) {
+      if (c == '"' || c == '\\') out += '\\', out += c;
+      else if (c == '\n') out += "\\n";
+      else if (static_cast<unsigned char>(c) < 0x20) out += ' ';
+      else out += c;
+    }
+    return out + "\"";
+  }
+  std::vector<std::pair<std::string, std::string>> fields_;
+};
+
+}  // namespace camsim
