@@ -4,12 +4,18 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
 #include <string>
+
+#include <unistd.h>
 
 #include "integrator/render.h"
 #include "integrator/scene.h"
 #include "integrator/scene_loader.h"
 #include "sensor/exposure_control.h"
+#include "sensor/exr_io.h"
 #include "sensor/sensor_model.h"
 
 namespace camsim {
@@ -81,6 +87,45 @@ TEST(SensorRender, AutoExposurePutsTheMeanAtTheTarget) {
   ae.percentile = 100.0;
   ae.target = 0.9;
   EXPECT_NEAR(autoExposureScale(electrons, ae, 6000.0) * 25.0, 0.9 * 6000.0, 1e-9);  // max is 25
+}
+
+}  // namespace
+}  // namespace camsim
+
+namespace camsim {
+namespace {
+
+// `bracket_ev: [-1, 0, 1]` writes one DNG and raw EXR per frame; with noise off each stop
+// doubles the signal above black (within DN rounding).
+TEST(SensorRender, BracketWritesOneFramePerStop) {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / ("camsim_bracket_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  std::string scene = kFlatField;
+  scene.replace(scene.find("noise: full, noise_seed: 9}"), 27, "noise: none, bracket_ev: [-1, 0, 1]}");
+  scene.replace(scene.find("resolution: [256, 256]"), 22, "resolution: [32, 32]");
+  {
+    std::ofstream(dir / "bracket.yaml") << scene;
+  }
+  const std::string cmd = std::string(CAMSIM_BINARY) + " render " + (dir / "bracket.yaml").string() + " -o " +
+                          (dir / "out").string() + " --spp 4 2> " + (dir / "log.txt").string();
+  ASSERT_EQ(std::system(cmd.c_str()), 0);
+  double previous = 0.0;
+  for (const char* ev : {"-1", "+0", "+1"}) {
+    const auto stem = dir / "out" / (std::string("bracket_ev") + ev);
+    ASSERT_TRUE(std::filesystem::exists(stem.string() + ".dng")) << stem;
+    const ExrFile raw = readExr(stem.string() + "_raw.exr");
+    const int c = raw.image.channelIndex("raw.DN");
+    ASSERT_GE(c, 0);
+    double sum = 0.0;
+    for (int y = 0; y < raw.image.height; ++y)
+      for (int x = 0; x < raw.image.width; ++x) sum += static_cast<double>(raw.image.at(x, y, c)) - 64.0;
+    const double mean = sum / (raw.image.width * raw.image.height);
+    if (previous > 0.0) {
+      EXPECT_NEAR(mean / previous, 2.0, 0.02) << ev;
+    }
+    previous = mean;
+  }
+  std::filesystem::remove_all(dir);
 }
 
 }  // namespace
