@@ -1,7 +1,79 @@
 #!/usr/bin/env bash
-# Sets up and builds (scripts/setup.sh), then runs the whole test suite with CTest.
-set -euo pipefail
+# Sets up and builds (scripts/setup.sh), then runs every quality gate (docs/testing.md):
+#   1. the test suite (CTest) on the Release build in build/;
+#   2. the same suite built with AddressSanitizer + UndefinedBehaviorSanitizer (GCC, -O1 -g,
+#      CAMSIM_SANITIZE=ON) in build-asan/;
+#   3. the libFuzzer harnesses (Clang, CAMSIM_FUZZ=ON) in build-fuzz/: every seed and
+#      regression input replayed once (CTest), then each harness fuzzed for
+#      CAMSIM_FUZZ_SECONDS (default 45) by scripts/fuzz.sh.
+# Every stage runs even when an earlier one failed; the script fails if any did.
+# Environment: CAMSIM_BUILD_DIR, CAMSIM_ASAN_BUILD_DIR, CAMSIM_FUZZ_BUILD_DIR (build
+# directories), CAMSIM_FUZZ_SECONDS (0 skips the fuzzing runs, not the replay), CAMSIM_JOBS
+# (parallel build and test jobs, default: nproc).
+set -uo pipefail
 cd "$(dirname "$0")/.."
-scripts/setup.sh
+
 build_dir=${CAMSIM_BUILD_DIR:-build}
-ctest --test-dir "$build_dir" --output-on-failure -j"$(nproc)"
+asan_dir=${CAMSIM_ASAN_BUILD_DIR:-build-asan}
+fuzz_dir=${CAMSIM_FUZZ_BUILD_DIR:-build-fuzz}
+fuzz_seconds=${CAMSIM_FUZZ_SECONDS:-45}
+jobs=${CAMSIM_JOBS:-$(nproc)}
+failed=()
+start=$SECONDS
+
+stage() {  # stage NAME COMMAND...: runs COMMAND, records NAME if it fails
+  local name=$1
+  shift
+  local t0=$SECONDS
+  echo "== test.sh: $name" >&2
+  if "$@"; then
+    echo "== test.sh: $name: ok ($((SECONDS - t0)) s)" >&2
+  else
+    echo "== test.sh: $name: FAILED ($((SECONDS - t0)) s)" >&2
+    failed+=("$name")
+  fi
+}
+
+release_suite() {
+  CAMSIM_BUILD_DIR=$build_dir scripts/setup.sh &&
+    ctest --test-dir "$build_dir" --output-on-failure -j"$jobs"
+}
+
+# Under ASan + UBSan every sanitizer report aborts the test (-fno-sanitize-recover=all)
+# and LeakSanitizer fails a process that leaks. No test is excluded: the whole suite takes
+# about a minute there (docs/testing.md).
+asan_suite() {
+  cmake -S . -B "$asan_dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+    -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g -DNDEBUG" -DCAMSIM_SANITIZE=ON \
+    -DCAMSIM_BUILD_BENCH=OFF >/dev/null &&
+    cmake --build "$asan_dir" -j"$jobs" &&
+    ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:strict_init_order=1:detect_stack_use_after_return=1} \
+      UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1} \
+      ctest --test-dir "$asan_dir" --output-on-failure -j"$jobs"
+}
+
+fuzz_replay() {
+  CC=clang CXX=clang++ cmake -S . -B "$fuzz_dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+    -DCAMSIM_FUZZ=ON -DCAMSIM_BUILD_TESTS=OFF -DCAMSIM_BUILD_BENCH=OFF \
+    -DCAMSIM_WERROR=OFF >/dev/null &&
+    cmake --build "$fuzz_dir" -j"$jobs" &&
+    ctest --test-dir "$fuzz_dir/fuzz" --output-on-failure -j"$jobs"
+}
+
+fuzz_run() {
+  CAMSIM_FUZZ_BUILD_DIR=$fuzz_dir CAMSIM_JOBS=$jobs scripts/fuzz.sh "$fuzz_seconds"
+}
+
+stage "Release test suite ($build_dir)" release_suite
+stage "ASan+UBSan test suite ($asan_dir)" asan_suite
+stage "fuzz corpus and regression replay ($fuzz_dir)" fuzz_replay
+if ((fuzz_seconds > 0)); then
+  stage "fuzzing, ${fuzz_seconds} s per harness ($fuzz_dir)" fuzz_run
+fi
+
+echo "== test.sh: $((SECONDS - start)) s in all" >&2
+if ((${#failed[@]})); then
+  printf '== test.sh: FAILED: %s\n' "${failed[@]}" >&2
+  exit 1
+fi
+echo "== test.sh: all passed" >&2
