@@ -88,18 +88,6 @@ std::string formatRate(double perSecond) {
   return buf;
 }
 
-// The scene-linear EXR image: R, G, B (linear Rec.709) and the XYZ layer, absolute.
-Image exrImage(const Image& xyz) {
-  const Image rgb = xyzToRgb(xyz, RgbColorSpace::linearRec709());
-  Image out(xyz.width, xyz.height, {"R", "G", "B", "XYZ.X", "XYZ.Y", "XYZ.Z"});
-  for (int y = 0; y < xyz.height; ++y)
-    for (int x = 0; x < xyz.width; ++x)
-      for (int c = 0; c < 3; ++c) {
-        out.at(x, y, c) = rgb.at(x, y, c);
-        out.at(x, y, 3 + c) = xyz.at(x, y, c);
-      }
-  return out;
-}
 
 // An interrupted render's finished tiles (each has its full spp), as NAME.partial.exr —
 // never a final name, so a partial image is not taken for a finished one. Nothing when no
@@ -121,7 +109,7 @@ std::vector<std::filesystem::path> writePartialExr(const SceneDescription& desc,
                                                 " (16x16 px each, all spp); other pixels are 0"}};
   const auto& cs = RgbColorSpace::linearRec709();
   OutputSet outputs(outDir);
-  writeExr(outputs.add(desc.name + ".partial.exr"), exrImage(xyz), meta,
+  writeExr(outputs.add(desc.name + ".partial.exr"), xyzExrImage(xyz), meta,
            ExrChromaticities{cs.red(), cs.green(), cs.blue(), cs.white()});
   std::vector<std::filesystem::path> files = outputs.commit();
   log << "render interrupted after " << what << ": wrote " << files.front().string()

@@ -14,18 +14,6 @@
 namespace camsim {
 namespace {
 
-// The scene-linear EXR image: R, G, B (linear Rec.709) and the XYZ layer, absolute.
-Image exrImage(const Image& xyz) {
-  const Image rgb = xyzToRgb(xyz, RgbColorSpace::linearRec709());
-  Image out(xyz.width, xyz.height, {"R", "G", "B", "XYZ.X", "XYZ.Y", "XYZ.Z"});
-  for (int y = 0; y < xyz.height; ++y)
-    for (int x = 0; x < xyz.width; ++x)
-      for (int c = 0; c < 3; ++c) {
-        out.at(x, y, c) = rgb.at(x, y, c);
-        out.at(x, y, 3 + c) = xyz.at(x, y, c);
-      }
-  return out;
-}
 
 std::vector<double> matrixRows(const glm::dmat3& m) {
   std::vector<double> v;
@@ -63,11 +51,23 @@ const char* noiseName(NoiseMode m) {
 
 }  // namespace
 
+Image xyzExrImage(const Image& xyz) {
+  const Image rgb = xyzToRgb(xyz, RgbColorSpace::linearRec709());
+  Image out(xyz.width, xyz.height, {"R", "G", "B", "XYZ.X", "XYZ.Y", "XYZ.Z"});
+  for (int y = 0; y < xyz.height; ++y)
+    for (int x = 0; x < xyz.width; ++x)
+      for (int c = 0; c < 3; ++c) {
+        out.at(x, y, c) = rgb.at(x, y, c);
+        out.at(x, y, 3 + c) = xyz.at(x, y, c);
+      }
+  return out;
+}
+
 void writeRenderOutputs(const RenderOutputInputs& in, OutputSet& outputs, std::ostream& log) {
   const SceneDescription& desc = in.description;
   const RenderStats& st = in.result.stats;
   const auto& rec709 = RgbColorSpace::linearRec709();
-  writeExr(outputs.add(desc.name + ".exr"), exrImage(in.result.image), in.metadata,
+  writeExr(outputs.add(desc.name + ".exr"), xyzExrImage(in.result.image), in.metadata,
            ExrChromaticities{rec709.red(), rec709.green(), rec709.blue(), rec709.white()});
 
   JsonObject sidecar;

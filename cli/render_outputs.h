@@ -26,4 +26,7 @@ struct RenderOutputInputs {
 
 void writeRenderOutputs(const RenderOutputInputs& in, OutputSet& outputs, std::ostream& log);
 
+// The scene-linear NAME.exr image: R, G, B (linear Rec.709) and the XYZ layer, absolute.
+Image xyzExrImage(const Image& xyz);
+
 }  // namespace camsim

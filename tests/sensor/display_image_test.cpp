@@ -68,57 +68,5 @@ TEST(XyzToRgb, AcesCgWhite) {
   for (const float v : rgb.pixels) EXPECT_NEAR(static_cast<double>(v), 1.0, 1e-6);
 }
 
-TEST(QuickLookSrgb8, ConstantD65ImageIsMidGrey) {
-  const Image xyz = constantXyz(4, 3, d65White(10.0));
-  const QuickLook q = quickLookSrgb8(xyz);
-  // Exposure 0.18 / mean Y = 0.018 (float Y = 10 is exact: 1e-12).
-  EXPECT_NEAR(q.exposure, 0.018, 1e-12);
-  ASSERT_EQ(q.rgb8.size(), 4u * 3u * 3u);
-  // 0.18 linear → sRGB 0.4614 → 117.6 → 118 in every channel (≥ 0.3 code values margin).
-  for (size_t i = 0; i < q.rgb8.size(); ++i) EXPECT_EQ(q.rgb8[i], 118) << "i = " << i;
-}
-
-TEST(QuickLookSrgb8, ExposureFromMeanLuminanceAndClipping) {
-  // Half the pixels at Y = 1, half at Y = 3: mean 2, exposure 0.09. The bright pixels map
-  // to linear 0.27 → 0.5564 → 141.9 → 142 (by hand), the dark ones to 0.09 → 0.3318 → 84.6 → 85.
-  Image xyz(2, 1, {"X", "Y", "Z"});
-  const glm::dvec3 dark = d65White(1.0);
-  const glm::dvec3 bright = d65White(3.0);
-  for (int c = 0; c < 3; ++c) {
-    xyz.at(0, 0, c) = static_cast<float>(dark[c]);
-    xyz.at(1, 0, c) = static_cast<float>(bright[c]);
-  }
-  const QuickLook q = quickLookSrgb8(xyz);
-  EXPECT_NEAR(q.exposure, 0.09, 1e-12);
-  for (int c = 0; c < 3; ++c) {
-    EXPECT_EQ(q.rgb8[static_cast<size_t>(c)], std::lround(srgbEncode(0.09) * 255.0));
-    EXPECT_EQ(q.rgb8[static_cast<size_t>(3 + c)], std::lround(srgbEncode(0.27) * 255.0));
-  }
-  EXPECT_EQ(std::lround(srgbEncode(0.09) * 255.0), 85);
-  EXPECT_EQ(std::lround(srgbEncode(0.27) * 255.0), 142);
-
-  // 10 pixels, mean Y = 101/10 = 10.1, exposure 0.18/10.1. Pixel 1 (Y = 100) maps to
-  // linear 1.78: clipped to 255. Pixel 0 is XYZ (0, 1, 0), outside the Rec.709 gamut:
-  // R = −1.5372·Y and B = −0.2040·Y clip to 0, G = 1.8758 · 0.18/10.1 = 0.03343 linear →
-  // sRGB 0.2010 → 51.27 → 51 (by hand with the IEC inverse matrix; margin 0.23 codes).
-  Image hot(10, 1, {"X", "Y", "Z"});
-  const glm::dvec3 hi = d65White(100.0);
-  for (int c = 0; c < 3; ++c) hot.at(1, 0, c) = static_cast<float>(hi[c]);
-  hot.at(0, 0, 1) = 1.0f;
-  const QuickLook h = quickLookSrgb8(hot);
-  EXPECT_NEAR(h.exposure, 0.18 / 10.1, 1e-9);  // float Y = 100: sum exact, 1e-9 is generous
-  for (int c = 0; c < 3; ++c) EXPECT_EQ(h.rgb8[static_cast<size_t>(3 + c)], 255);
-  EXPECT_EQ(h.rgb8[0], 0);
-  EXPECT_EQ(h.rgb8[1], 51);
-  EXPECT_EQ(h.rgb8[2], 0);
-  for (size_t i = 6; i < h.rgb8.size(); ++i) EXPECT_EQ(h.rgb8[i], 0) << "i = " << i;
-}
-
-TEST(QuickLookSrgb8, BlackImage) {
-  const QuickLook q = quickLookSrgb8(constantXyz(2, 2, {0.0, 0.0, 0.0}));
-  EXPECT_EQ(q.exposure, 1.0);  // no light: no exposure scaling
-  for (const std::uint8_t v : q.rgb8) EXPECT_EQ(v, 0);
-}
-
 }  // namespace
 }  // namespace camsim
