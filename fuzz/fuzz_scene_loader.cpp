@@ -33,7 +33,8 @@ void removeBaseDir() {
 }  // namespace
 
 extern "C" int LLVMFuzzerInitialize(int*, char***) {
-  std::string pattern = (std::filesystem::temp_directory_path() / "camsim_fuzz_scene_XXXXXX").string();
+  std::string pattern =
+      (std::filesystem::temp_directory_path() / "camsim_fuzz_scene_XXXXXX").string();
   FUZZ_CHECK(::mkdtemp(pattern.data()) != nullptr);
   gBaseDir = pattern;
   std::atexit(removeBaseDir);

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Runs every libFuzzer harness in fuzz/ for SECONDS each (default 300), one after the other.
+# Runs every libFuzzer harness (fuzz/fuzz_*.cpp) for SECONDS each (default 300), one after the other.
 #   scripts/fuzz.sh [SECONDS] [HARNESS...]
 # Builds them first in $CAMSIM_FUZZ_BUILD_DIR (default build-fuzz/; Clang, CAMSIM_FUZZ=ON).
 # Exits non-zero if any harness finds a crash, a sanitizer error, a leak, a timeout or an
@@ -16,7 +16,12 @@ shift || true
 build_dir=${CAMSIM_FUZZ_BUILD_DIR:-build-fuzz}
 jobs=${CAMSIM_JOBS:-$(nproc)}
 harnesses=("$@")
-if ((${#harnesses[@]} == 0)); then harnesses=(scene_loader obj ply spectral_csv); fi
+if ((${#harnesses[@]} == 0)); then  # all: fuzz/fuzz_<harness>.cpp
+  for f in fuzz/fuzz_*.cpp; do
+    f=${f#fuzz/fuzz_}
+    harnesses+=("${f%.cpp}")
+  done
+fi
 
 CC=clang CXX=clang++ cmake -S . -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DCAMSIM_FUZZ=ON -DCAMSIM_BUILD_TESTS=OFF -DCAMSIM_BUILD_BENCH=OFF \

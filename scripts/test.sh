@@ -43,11 +43,12 @@ release_suite() {
 # and LeakSanitizer fails a process that leaks. No test is excluded: the whole suite takes
 # about a minute there (docs/testing.md).
 asan_suite() {
+  local asan=detect_leaks=1:strict_init_order=1:detect_stack_use_after_return=1
   cmake -S . -B "$asan_dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
     -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g -DNDEBUG" -DCAMSIM_SANITIZE=ON \
     -DCAMSIM_BUILD_BENCH=OFF >/dev/null &&
     cmake --build "$asan_dir" -j"$jobs" &&
-    ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:strict_init_order=1:detect_stack_use_after_return=1} \
+    ASAN_OPTIONS=${ASAN_OPTIONS:-$asan} \
       UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1} \
       ctest --test-dir "$asan_dir" --output-on-failure -j"$jobs"
 }
