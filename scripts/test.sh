@@ -2,7 +2,7 @@
 # Sets up and builds (scripts/setup.sh), then runs every quality gate (docs/testing.md):
 #   1. the test suite (CTest) on the Release build in build/;
 #   2. the same suite built with AddressSanitizer + UndefinedBehaviorSanitizer (GCC, -O1 -g,
-#      CAMSIM_SANITIZE=ON) in build-asan/;
+#      CAMSIM_SANITIZE=ON) in build-asan/, less two slow statistical tests (see below);
 #   3. the libFuzzer harnesses (Clang, CAMSIM_FUZZ=ON) in build-fuzz/: every seed and
 #      regression input replayed once (CTest), then each harness fuzzed for
 #      CAMSIM_FUZZ_SECONDS (default 45) by scripts/fuzz.sh.
@@ -40,17 +40,21 @@ release_suite() {
 }
 
 # Under ASan + UBSan every sanitizer report aborts the test (-fno-sanitize-recover=all)
-# and LeakSanitizer fails a process that leaks. No test is excluded: the whole suite takes
-# about a minute there (docs/testing.md).
+# and LeakSanitizer fails a process that leaks. Two statistical tests are left out there
+# (they run in the Release suite): each renders the ColorChecker chart twice at 64 spp and
+# takes over 2 min under ASan (15x its Release time), half the ASan suite's time; the same
+# render -> expose -> develop chain runs under ASan in
+# ColorChecker.IdealXyzSensorMatchesSpectralColorimetry and the sensor/ ISP unit tests.
 asan_suite() {
   local asan=detect_leaks=1:strict_init_order=1:detect_stack_use_after_return=1
+  local slow='^ColorChecker\.(MeasuredCameraWithFittedCcm|WhiteBalanceMakesNeutralPatchesNeutral)$'
   cmake -S . -B "$asan_dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
     -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g -DNDEBUG" -DCAMSIM_SANITIZE=ON \
     -DCAMSIM_BUILD_BENCH=OFF >/dev/null &&
     cmake --build "$asan_dir" -j"$jobs" &&
     ASAN_OPTIONS=${ASAN_OPTIONS:-$asan} \
       UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1} \
-      ctest --test-dir "$asan_dir" --output-on-failure -j"$jobs"
+      ctest --test-dir "$asan_dir" --output-on-failure -j"$jobs" -E "$slow"
 }
 
 fuzz_replay() {
