@@ -31,7 +31,7 @@ class DiscreteDistribution {
   // Index for u in [0,1); *uRemapped gets u rescaled to [0,1) within the chosen bucket.
   size_t sample(float u, float* uRemapped = nullptr) const {
     CAMSIM_CHECK(total_ > 0.0);
-    const double uu = u;
+    const double uu = static_cast<double>(u);
     auto it = std::upper_bound(cdf_.begin() + 1, cdf_.end(), uu);
     size_t i = static_cast<size_t>(it - cdf_.begin()) - 1;
     i = std::min(i, size() - 1);

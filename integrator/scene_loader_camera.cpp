@@ -158,8 +158,8 @@ PhysicalCameraParams parseCamera(YamlMap map, const SpectrumSearch& search) {
     if (auto u = map.find("up")) up = u->vec3();
     c.worldFromCamera = lookAt(target, position, position.vec3(), target.vec3(), up);
   }
-  if (auto v = map.find("sensor_width_mm")) c.sensorSize.x = positiveFloat(*v, v->number(0.0, 1000.0, true) * 1e-3);
-  if (auto v = map.find("sensor_height_mm")) c.sensorSize.y = positiveFloat(*v, v->number(0.0, 1000.0, true) * 1e-3);
+  if (auto v = map.find("sensor_width_mm")) c.sensorSize.x = static_cast<double>(positiveFloat(*v, v->number(0.0, 1000.0, true) * 1e-3));
+  if (auto v = map.find("sensor_height_mm")) c.sensorSize.y = static_cast<double>(positiveFloat(*v, v->number(0.0, 1000.0, true) * 1e-3));
   if (auto v = map.find("resolution")) {
     const std::vector<YamlValue> items = v->items();
     if (items.size() != 2) v->fail("expected [width, height] in pixels");
@@ -169,7 +169,7 @@ PhysicalCameraParams parseCamera(YamlMap map, const SpectrumSearch& search) {
       v->fail("more than " + std::to_string(SceneLimits::kMaxPixels) + " pixels (limit SceneLimits::kMaxPixels)");
   }
   if (auto v = map.find("fill_factor")) c.fillFactor = v->number(0.0, 1.0, true);
-  if (auto v = map.find("focal_length_mm")) c.focalLength = positiveFloat(*v, v->number(0.0, 1e5, true) * 1e-3);
+  if (auto v = map.find("focal_length_mm")) c.focalLength = static_cast<double>(positiveFloat(*v, v->number(0.0, 1e5, true) * 1e-3));
   if (auto v = map.find("f_number")) c.fNumber = v->number(0.5, 1e4);
   if (auto v = map.find("focus_distance_m")) {
     c.focusDistance = v->number(0.0, 1e12, true);

@@ -70,7 +70,8 @@ ExrFile readExr(const std::filesystem::path& path) {
     if (Imf::hasChromaticities(header)) {
       const Imf::Chromaticities& c = Imf::chromaticities(header);
       out.chromaticities = ExrChromaticities{
-          {c.red.x, c.red.y}, {c.green.x, c.green.y}, {c.blue.x, c.blue.y}, {c.white.x, c.white.y}};
+          {double(c.red.x), double(c.red.y)}, {double(c.green.x), double(c.green.y)},
+          {double(c.blue.x), double(c.blue.y)}, {double(c.white.x), double(c.white.y)}};
     }
     return out;
   } catch (const std::exception& e) {
