@@ -2,6 +2,7 @@
 // then the real binary (CAMSIM_BINARY): a preset measured into a directory (CSV, and the
 // two PNGs when /usr/bin/python3 has matplotlib), a plot-less run when Python is missing,
 // and exit code 2 with a located message (and no file) for a bad sensor.
+#include "tests/support/temp_dir.h"
 #include "cli/ptc_command.h"
 
 #include <gtest/gtest.h>
@@ -61,21 +62,7 @@ TEST(PtcTable, ShowsConfiguredMeasuredAndRelativeError) {
 
 // ---- the binary -----------------------------------------------------------------------------
 
-class TempDir {
- public:
-  TempDir() {
-    std::string tmpl = (fs::temp_directory_path() / "camsim-ptc-XXXXXX").string();
-    path_ = ::mkdtemp(tmpl.data());
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path_, ec);
-  }
-  const fs::path& path() const { return path_; }
-
- private:
-  fs::path path_;
-};
+using test::TempDir;
 
 std::string quote(const std::string& s) {
   std::string out = "'";

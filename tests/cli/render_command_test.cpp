@@ -2,6 +2,7 @@
 // parseArgs as a unit, then the real binary (CAMSIM_BINARY) run through the shell — exit
 // codes, "file:line:col" error messages, no output at all after a bad scene, and a small
 // render whose EXR carries the expected channels and metadata.
+#include "tests/support/temp_dir.h"
 #include "cli/args.h"
 
 #include <gtest/gtest.h>
@@ -80,26 +81,7 @@ TEST(ParseArgs, BadUsageThrows) {
 
 // ---- the binary ------------------------------------------------------------------------
 
-class TempDir {
- public:
-  TempDir() {
-    static std::atomic<int> counter{0};
-    const auto stamp = std::chrono::steady_clock::now().time_since_epoch().count();
-    path_ = fs::temp_directory_path() / ("camsim_cli_test_" + std::to_string(getpid()) + "_" +
-                                         std::to_string(stamp) + "_" + std::to_string(counter++));
-    fs::create_directories(path_);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path_, ec);
-  }
-  TempDir(const TempDir&) = delete;
-  TempDir& operator=(const TempDir&) = delete;
-  const fs::path& path() const { return path_; }
-
- private:
-  fs::path path_;
-};
+using test::TempDir;
 
 std::string quote(const std::string& s) {
   std::string out = "'";

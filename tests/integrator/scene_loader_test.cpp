@@ -1,6 +1,7 @@
 // Tests for integrator/scene_loader.{h,cpp} (with yaml_reader and scene_spectra): every
 // malformed scene is an InputError naming file, line, column and the dotted key; valid
 // scenes (YAML and JSON, inline and file meshes, spectra from CSV/RGB/blackbody) load.
+#include "tests/support/temp_dir.h"
 #include "integrator/scene_loader.h"
 
 #include <gtest/gtest.h>
@@ -25,27 +26,7 @@ namespace {
 namespace fs = std::filesystem;
 
 // A fresh directory under the system temp directory, removed with everything in it.
-class TempDir {
- public:
-  TempDir() {
-    static std::atomic<int> counter{0};
-    const auto stamp = std::chrono::steady_clock::now().time_since_epoch().count();
-    path_ = fs::temp_directory_path() / ("camsim_scene_loader_test_" + std::to_string(getpid()) +
-                                         "_" + std::to_string(stamp) + "_" +
-                                         std::to_string(counter++));
-    fs::create_directories(path_);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path_, ec);
-  }
-  TempDir(const TempDir&) = delete;
-  TempDir& operator=(const TempDir&) = delete;
-  const fs::path& path() const { return path_; }
-
- private:
-  fs::path path_;
-};
+using test::TempDir;
 
 void writeFile(const fs::path& path, const std::string& text) {
   fs::create_directories(path.parent_path());
