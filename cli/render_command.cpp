@@ -200,8 +200,9 @@ RenderCommandResult runRender(const RenderArgs& args, std::ostream& log, const s
   };
   writeRenderOutputs({desc, scene, result, meta, picture, rerender}, outputs, log);
   outcome.files = outputs.commit();
-  if (std::filesystem::remove(outDir / (desc.name + ".partial.exr"), ec))
-    log << "removed " << (outDir / (desc.name + ".partial.exr")).string() << " of an interrupted run\n";
+  const std::filesystem::path stalePartial = outDir / (desc.name + ".partial.exr");
+  if (std::filesystem::remove(stalePartial, ec))
+    log << "removed " << stalePartial.string() << " of an interrupted run\n";
 
   const double samples = static_cast<double>(st.samples);
   log << "modelled: " << st.modelled.describe() << "\n";

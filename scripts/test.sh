@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Sets up and builds (scripts/setup.sh), then runs every quality gate (docs/testing.md):
 #   1. the test suite (CTest) on the Release build in build/;
-#   2. the same suite built with AddressSanitizer + UndefinedBehaviorSanitizer (GCC, -O1 -g,
-#      CAMSIM_SANITIZE=ON) in build-asan/, less two slow statistical tests (see below);
+#   2. the same suite built with AddressSanitizer + UndefinedBehaviorSanitizer (GCC,
+#      CAMSIM_SANITIZE=ON, -O1 -g1: line tables for the reports, a quarter faster to compile
+#      than -g) in build-asan/, less two slow statistical tests (see below);
 #   3. the libFuzzer harnesses (Clang, CAMSIM_FUZZ=ON) in build-fuzz/: every seed and
 #      regression input replayed once (CTest), then each harness fuzzed for
 #      CAMSIM_FUZZ_SECONDS (default 45) by scripts/fuzz.sh.
@@ -49,7 +50,7 @@ asan_suite() {
   local asan=detect_leaks=1:strict_init_order=1:detect_stack_use_after_return=1
   local slow='^ColorChecker\.(MeasuredCameraWithFittedCcm|WhiteBalanceMakesNeutralPatchesNeutral)$'
   cmake -S . -B "$asan_dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-    -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g -DNDEBUG" -DCAMSIM_SANITIZE=ON \
+    -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" -DCAMSIM_SANITIZE=ON \
     -DCAMSIM_BUILD_BENCH=OFF >/dev/null &&
     cmake --build "$asan_dir" -j"$jobs" &&
     ASAN_OPTIONS=${ASAN_OPTIONS:-$asan} \
