@@ -1,8 +1,11 @@
 #include "sensor/yaml_reader.h"
 
+#include <yaml-cpp/eventhandler.h>
+
 #include <algorithm>
 #include <cctype>
 #include <charconv>
+#include <sstream>
 #include <cmath>
 #include <map>
 #include <string_view>
@@ -267,35 +270,81 @@ void checkQuotesClosed(const YAML::Node& node, const std::string& text, const st
   }
 }
 
+// Records, per document, whether it has content and where that content starts.
+class DocumentCounter final : public YAML::EventHandler {
+ public:
+  struct Document {
+    bool hasContent = false;
+    YAML::Mark mark;
+  };
+  std::vector<Document> documents;
+
+  void OnDocumentStart(const YAML::Mark&) override { documents.emplace_back(); }
+  void OnDocumentEnd() override {}
+  void OnNull(const YAML::Mark& m, YAML::anchor_t) override { note(m, false); }
+  void OnAlias(const YAML::Mark& m, YAML::anchor_t) override { note(m, true); }
+  void OnScalar(const YAML::Mark& m, const std::string&, YAML::anchor_t, const std::string&) override { note(m, true); }
+  void OnSequenceStart(const YAML::Mark& m, const std::string&, YAML::anchor_t, YAML::EmitterStyle::value) override {
+    note(m, true);
+  }
+  void OnSequenceEnd() override {}
+  void OnMapStart(const YAML::Mark& m, const std::string&, YAML::anchor_t, YAML::EmitterStyle::value) override {
+    note(m, true);
+  }
+  void OnMapEnd() override {}
+
+ private:
+  void note(const YAML::Mark& m, bool content) {
+    if (documents.empty()) documents.emplace_back();
+    if (content && !documents.back().hasContent) documents.back() = {true, m};
+  }
+};
+
+[[noreturn]] void throwSyntaxError(const YAML::Exception& e, const std::string& text, const std::string& file) {
+  SourceLocation where{file, e.mark.line >= 0 ? e.mark.line + 1 : 0, e.mark.column >= 0 ? e.mark.column + 1 : 0};
+  std::string message = "YAML syntax error: " + e.msg;
+  if (e.msg == YAML::ErrorMsg::END_OF_SEQ_FLOW || e.msg == YAML::ErrorMsg::END_OF_MAP_FLOW) {
+    const size_t end = e.mark.pos >= 0 ? static_cast<size_t>(e.mark.pos) : text.size();
+    if (const auto b = unclosedBracket(text, end)) {
+      where.line = b->line;
+      where.column = b->column;
+      message += " ('" + std::string(1, b->c) + "' is never closed)";
+    }
+  }
+  throw InputError(where, "", message);
+}
+
 }  // namespace
 
 YamlValue parseYaml(const std::string& text, const std::string& file) {
-  std::vector<YAML::Node> documents;
+  // yaml-cpp 0.7's LoadAll can loop forever on inputs such as "," (it keeps returning
+  // empty documents without consuming input: jbeder/yaml-cpp#1319). So: the first document
+  // with YAML::Load, and the document structure with the event parser, bounded — a stream
+  // that yields more documents than it has bytes is not making progress.
+  YAML::Node first;
+  DocumentCounter counter;
   try {
-    documents = YAML::LoadAll(text);
-  } catch (const YAML::Exception& e) {
-    SourceLocation where{file, e.mark.line >= 0 ? e.mark.line + 1 : 0,
-                         e.mark.column >= 0 ? e.mark.column + 1 : 0};
-    std::string message = "YAML syntax error: " + e.msg;
-    if (e.msg == YAML::ErrorMsg::END_OF_SEQ_FLOW || e.msg == YAML::ErrorMsg::END_OF_MAP_FLOW) {
-      const size_t end = e.mark.pos >= 0 ? static_cast<size_t>(e.mark.pos) : text.size();
-      if (const auto b = unclosedBracket(text, end)) {
-        where.line = b->line;
-        where.column = b->column;
-        message += " ('" + std::string(1, b->c) + "' is never closed)";
-      }
+    first = YAML::Load(text);
+    std::istringstream in(text);
+    YAML::Parser parser(in);
+    const size_t maxDocuments = text.size() + 2;
+    while (parser.HandleNextDocument(counter)) {
+      if (counter.documents.size() > maxDocuments)
+        throw InputError({file, 1, 1}, "", "YAML syntax error: the text is not a YAML document (a stray ',' or flow indicator?)");
     }
-    throw InputError(where, "", message);
+  } catch (const YAML::Exception& e) {
+    throwSyntaxError(e, text, file);
   }
-  if (documents.empty()) return YamlValue(YAML::Node(), "", file);
-  for (const YAML::Node& document : documents) checkQuotesClosed(document, text, file);
-  // YAML::Load would silently drop everything after a second '---'.
-  for (size_t i = 1; i < documents.size(); ++i) {
-    if (!documents[i].IsNull())
-      YamlValue(documents[i], "", file)
-          .fail("a scene file holds one YAML document; this is a second");
+  if (!first) return YamlValue(YAML::Node(), "", file);
+  checkQuotesClosed(first, text, file);
+  // YAML::Load alone would silently drop everything after a second '---'.
+  for (size_t i = 1; i < counter.documents.size(); ++i) {
+    if (counter.documents[i].hasContent) {
+      const YAML::Mark& m = counter.documents[i].mark;
+      throw InputError({file, m.line + 1, m.column + 1}, "", "a scene file holds one YAML document; this is a second");
+    }
   }
-  return YamlValue(documents[0], "", file);
+  return YamlValue(first, "", file);
 }
 
 }  // namespace camsim

@@ -350,3 +350,23 @@ TEST(SceneLoaderTest, LuminanceSetsAbsoluteScale) {
 
 }  // namespace
 }  // namespace camsim
+
+namespace camsim {
+namespace {
+
+// yaml-cpp 0.7's LoadAll loops forever on these (fuzz finding, jbeder/yaml-cpp#1319): the
+// loader must reject them at once as syntax errors at 1:1.
+TEST(SceneLoaderYamlCpp, InputsThatMadeLoadAllLoopAreSyntaxErrors) {
+  for (const char* text : {",", "[]\"\",", ",,,"}) {
+    try {
+      loadSceneFromText(text, "loop.yaml", ".");
+      ADD_FAILURE() << "accepted '" << text << "'";
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.where().line, 1) << text;
+      EXPECT_NE(std::string(e.what()).find("YAML syntax error"), std::string::npos) << e.what();
+    }
+  }
+}
+
+}  // namespace
+}  // namespace camsim
