@@ -6,26 +6,34 @@
 
 namespace camsim {
 
-DiffuseMaterial::DiffuseMaterial(Spectrum reflectance)
-    : reflectance_(reflectance), reflects_(reflectance.maxValue() > 0.0) {}
+DiffuseMaterial::DiffuseMaterial(std::unique_ptr<SpectrumTexture> reflectance)
+    : reflectance_(std::move(reflectance)), reflects_(reflectance_->maxValue() > 0.0) {}
 
-SampledSpectrum DiffuseMaterial::f(const glm::vec3& wo, const glm::vec3& wi,
-                                   const SampledWavelengths& lambda) const {
+DiffuseMaterial::DiffuseMaterial(Spectrum reflectance)
+    : DiffuseMaterial(std::make_unique<ConstantSpectrumTexture>(std::move(reflectance))) {}
+
+SampledSpectrum DiffuseMaterial::f(const glm::vec3& wo, const glm::vec3& wi, const SampledWavelengths& lambda,
+                                   const BsdfContext& ctx) const {
   if (wo.z * wi.z <= 0.0f) return SampledSpectrum(0.0f);
-  return sampleSpectrum(reflectance_, lambda) * kInvPi;
+  return reflectance_->evaluate(ctx.uv, lambda) * kInvPi;
 }
 
 std::optional<BsdfSample> DiffuseMaterial::sample(const glm::vec3& wo, float /*uc*/, glm::vec2 u,
-                                                  const SampledWavelengths& lambda) const {
+                                                  const SampledWavelengths& lambda, const BsdfContext& ctx) const {
   if (wo.z == 0.0f) return std::nullopt;
   glm::vec3 wi = sampleCosineHemisphere(u);
   if (wo.z < 0.0f) wi.z = -wi.z;
   const float pdfValue = std::abs(wi.z) * kInvPi;
   if (pdfValue == 0.0f) return std::nullopt;
-  return BsdfSample{sampleSpectrum(reflectance_, lambda) * kInvPi, wi, pdfValue};
+  BsdfSample s;
+  s.f = reflectance_->evaluate(ctx.uv, lambda) * kInvPi;
+  s.wi = wi;
+  s.pdf = pdfValue;
+  return s;
 }
 
-float DiffuseMaterial::pdf(const glm::vec3& wo, const glm::vec3& wi) const {
+float DiffuseMaterial::pdf(const glm::vec3& wo, const glm::vec3& wi, const SampledWavelengths& /*lambda*/,
+                           const BsdfContext& /*ctx*/) const {
   if (wo.z * wi.z <= 0.0f) return 0.0f;
   return std::abs(wi.z) * kInvPi;
 }

@@ -2,30 +2,34 @@
 //
 // | parameter   | unit          | default |
 // |-------------|---------------|---------|
-// | reflectance | dimensionless | 0.5     |  ρ(λ) in [0, 1]
+// | reflectance | dimensionless | 0.5     |  ρ(λ) in [0, 1], may be a texture
 //
 //   f = ρ(λ)/π  when wo and wi are on the same side, else 0
 //   sampling: cosine-weighted on wo's side, pdf = |cos θi| / π
 #pragma once
 
+#include <memory>
+
 #include "integrator/material.h"
-#include "sensor/spectrum.h"
+#include "integrator/texture.h"
 
 namespace camsim {
 
 class DiffuseMaterial final : public Material {
  public:
+  explicit DiffuseMaterial(std::unique_ptr<SpectrumTexture> reflectance);
   explicit DiffuseMaterial(Spectrum reflectance);
 
-  SampledSpectrum f(const glm::vec3& wo, const glm::vec3& wi,
-                    const SampledWavelengths& lambda) const override;
-  std::optional<BsdfSample> sample(const glm::vec3& wo, float uc, glm::vec2 u,
-                                   const SampledWavelengths& lambda) const override;
-  float pdf(const glm::vec3& wo, const glm::vec3& wi) const override;
+  SampledSpectrum f(const glm::vec3& wo, const glm::vec3& wi, const SampledWavelengths& lambda,
+                    const BsdfContext& ctx) const override;
+  std::optional<BsdfSample> sample(const glm::vec3& wo, float uc, glm::vec2 u, const SampledWavelengths& lambda,
+                                   const BsdfContext& ctx) const override;
+  float pdf(const glm::vec3& wo, const glm::vec3& wi, const SampledWavelengths& lambda,
+            const BsdfContext& ctx) const override;
   bool reflects() const override { return reflects_; }
 
  private:
-  Spectrum reflectance_;
+  std::unique_ptr<SpectrumTexture> reflectance_;
   bool reflects_;
 };
 

@@ -96,6 +96,10 @@ EmbreeScene::EmbreeScene(const std::vector<std::unique_ptr<Shape>>& shapes, doub
   }
   rtcCommitScene(impl_->scene);
   throwOnEmbreeError(impl_->device, "building the BVH");
+  RTCBounds b;
+  rtcGetSceneBounds(impl_->scene, &b);
+  lower_ = glm::vec3(b.lower_x, b.lower_y, b.lower_z);
+  upper_ = glm::vec3(b.upper_x, b.upper_y, b.upper_z);
 }
 
 EmbreeScene::~EmbreeScene() = default;

@@ -27,11 +27,15 @@ class EmbreeScene {
   bool intersect(const Ray& ray, Hit& hit) const;
   // True if anything is hit with t in (0, ray.tMax).
   bool occluded(const Ray& ray) const;
+  // Axis-aligned bounds of all geometry over all time steps (m); lower > upper if empty.
+  glm::vec3 boundsLower() const { return lower_; }
+  glm::vec3 boundsUpper() const { return upper_; }
 
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;
   double timeOffset_ = 0.0, timeScale_ = 0.0;
+  glm::vec3 lower_{1.0f}, upper_{-1.0f};
 };
 
 }  // namespace camsim

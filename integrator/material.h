@@ -1,9 +1,16 @@
-// Material: the BSDF at a surface point, in the local shading frame (z = shading normal),
-// following Nori's plain interface. Directions are unit vectors pointing away from the
-// surface: wo towards the viewer, wi towards the light.
-//   f(wo, wi, λ)   BSDF value, sr⁻¹
-//   sample(...)    draws wi ∝ (approximately) f·|cos θi|, returns f, pdf (sr⁻¹)
-//   pdf(wo, wi)    density of sample() producing wi
+// Material: the BSDF at a surface point, in the local shading frame (z = shading normal,
+// pointing to the surface's front, i.e. outside for closed shapes), following Nori's plain
+// interface. Directions are unit vectors pointing away from the surface: wo towards the
+// viewer, wi towards the light. Transmission means wi and wo on opposite sides (wi.z·wo.z < 0).
+//   f(wo, wi, λ, ctx)     BSDF value, sr⁻¹ (0 for delta lobes: they are only sampled)
+//   sample(...)           draws wi ∝ (approximately) f·|cos θi|, returns f, pdf
+//   pdf(wo, wi, λ, ctx)   density of sample() producing wi (sr⁻¹; 0 for delta lobes)
+// Radiance transport: a transmitted path's f carries the 1/η² factor of radiance
+// crossing an interface (η = ηt/ηi), so L/n² is invariant along a refracted ray.
+//
+// Dispersive materials (η depends on λ) scatter each wavelength differently: before
+// using them the integrator calls lambda.terminateSecondary(), and the material then
+// evaluates η at the hero wavelength lambda[0] only.
 #pragma once
 
 #include <optional>
@@ -15,22 +22,34 @@
 
 namespace camsim {
 
+// What a material may look up besides the directions: texture coordinates.
+struct BsdfContext {
+  glm::vec2 uv{0.0f};
+};
+
 struct BsdfSample {
-  SampledSpectrum f;
+  SampledSpectrum f;     // BSDF value, sr⁻¹; for a delta lobe: the lobe's weight / |cos θi|
   glm::vec3 wi{0.0f};
-  float pdf = 0.0f;
+  float pdf = 0.0f;      // sr⁻¹; for a delta lobe: the probability of choosing the lobe
+  bool specular = false; // delta lobe (mirror, smooth glass): no MIS with light sampling
+  bool transmission = false;
 };
 
 class Material {
  public:
   virtual ~Material() = default;
-  virtual SampledSpectrum f(const glm::vec3& wo, const glm::vec3& wi,
-                            const SampledWavelengths& lambda) const = 0;
+  virtual SampledSpectrum f(const glm::vec3& wo, const glm::vec3& wi, const SampledWavelengths& lambda,
+                            const BsdfContext& ctx) const = 0;
   virtual std::optional<BsdfSample> sample(const glm::vec3& wo, float uc, glm::vec2 u,
-                                           const SampledWavelengths& lambda) const = 0;
-  virtual float pdf(const glm::vec3& wo, const glm::vec3& wi) const = 0;
+                                           const SampledWavelengths& lambda, const BsdfContext& ctx) const = 0;
+  virtual float pdf(const glm::vec3& wo, const glm::vec3& wi, const SampledWavelengths& lambda,
+                    const BsdfContext& ctx) const = 0;
   // False for a material that reflects nothing (lets the integrator stop a path).
   virtual bool reflects() const { return true; }
+  // False when every lobe is a delta (mirror, smooth glass): light sampling is skipped.
+  virtual bool hasNonSpecular() const { return true; }
+  // True when η depends on wavelength (see above).
+  virtual bool dispersive() const { return false; }
 };
 
 }  // namespace camsim

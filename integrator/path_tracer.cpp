@@ -17,47 +17,84 @@ Ray shadowRay(const SurfaceInteraction& from, const SurfaceInteraction& to) {
   return r;
 }
 
+// Ray from a surface point along w to infinity (sun, environment).
+Ray escapeRay(const SurfaceInteraction& from, const glm::vec3& w) {
+  return Ray{from.spawnOrigin(w), w, std::numeric_limits<float>::infinity(), from.time};
+}
+
+// The shading frame may disagree with the geometry about which side a direction is on
+// (interpolated normals). Such directions would leak light through the surface: the
+// scattering is rejected unless both frames agree on reflection vs transmission.
+bool sidesAgree(const glm::vec3& n, const glm::vec3& wo, const glm::vec3& wi, const glm::vec3& woLocal,
+                const glm::vec3& wiLocal) {
+  const bool geometricReflection = glm::dot(wo, n) * glm::dot(wi, n) > 0.0f;
+  const bool shadingReflection = woLocal.z * wiLocal.z > 0.0f;
+  return geometricReflection == shadingReflection;
+}
+
+struct ShadingPoint {
+  const SurfaceInteraction& si;
+  const Frame& frame;
+  const glm::vec3& wo;
+  glm::vec3 woLocal;
+  const Material& material;
+  BsdfContext ctx;
+};
+
 // One light sample, MIS-weighted against BSDF sampling. Returns the contribution to L
 // before multiplying by the path throughput.
-SampledSpectrum sampleLight(const Scene& scene, const SurfaceInteraction& si, const Frame& frame,
-                            const glm::vec3& woLocal, const Material& material,
-                            const SampledWavelengths& lambda, Sampler& sampler, RayCounts& counts) {
+SampledSpectrum sampleLight(const Scene& scene, const ShadingPoint& sp, const SampledWavelengths& lambda,
+                            Sampler& sampler, RayCounts& counts) {
   const float uLight = sampler.get1D();
   const glm::vec2 uPoint = sampler.get2D();
   float uRemapped = 0.0f;
   const size_t index = scene.lightDistribution().sample(uLight, &uRemapped);
   const float pmf = scene.lightDistribution().pmf(index);
-  const std::optional<LightSample> ls = scene.light(index).sample(si.p, si.time, uRemapped, uPoint, lambda);
-  if (!ls || pmf == 0.0f) return SampledSpectrum(0.0f);
-  const glm::vec3 wiLocal = frame.toLocal(ls->wi);
-  const SampledSpectrum f = material.f(woLocal, wiLocal, lambda) * std::abs(wiLocal.z);
+  const std::optional<LightSample> ls = scene.light(index).sample(sp.si.p, sp.si.time, uRemapped, uPoint, lambda);
+  if (!ls || pmf == 0.0f || !(ls->pdf > 0.0f)) return SampledSpectrum(0.0f);
+  const glm::vec3 wiLocal = sp.frame.toLocal(ls->wi);
+  if (!sidesAgree(sp.si.n, sp.wo, ls->wi, sp.woLocal, wiLocal)) return SampledSpectrum(0.0f);
+  const SampledSpectrum f = sp.material.f(sp.woLocal, wiLocal, lambda, sp.ctx) * std::abs(wiLocal.z);
   if (f.isZero()) return SampledSpectrum(0.0f);
   ++counts.shadow;
-  if (scene.geometry().occluded(shadowRay(si, ls->point))) return SampledSpectrum(0.0f);
+  const Ray shadow = ls->infinite ? escapeRay(sp.si, ls->wi) : shadowRay(sp.si, ls->point);
+  if (scene.geometry().occluded(shadow)) return SampledSpectrum(0.0f);
   const float lightPdf = pmf * ls->pdf;
-  const float weight = powerHeuristic(lightPdf, material.pdf(woLocal, wiLocal));
+  const float weight = ls->delta ? 1.0f : powerHeuristic(lightPdf, sp.material.pdf(sp.woLocal, wiLocal, lambda, sp.ctx));
   return f * ls->L * (weight / lightPdf);
 }
 
 }  // namespace
 
-SampledSpectrum traceRadiance(const Scene& scene, Ray ray, const SampledWavelengths& lambda,
-                              Sampler& sampler, RayCounts& counts) {
+SampledSpectrum traceRadiance(const Scene& scene, Ray ray, SampledWavelengths& lambda, Sampler& sampler,
+                              RayCounts& counts) {
   const RenderSettings& settings = scene.settings();
   const bool haveLights = scene.lightCount() > 0;
   SampledSpectrum L(0.0f), beta(1.0f);
   float prevBsdfPdf = 0.0f;
+  bool prevSpecular = true;  // the camera ray: emitters seen directly get full weight
   glm::vec3 prevP(0.0f);
   for (int depth = 0;; ++depth) {
     Hit hit;
-    if (!scene.geometry().intersect(ray, hit)) break;
+    if (!scene.geometry().intersect(ray, hit)) {
+      const glm::vec3 d = glm::normalize(ray.d);
+      for (size_t index : scene.infiniteLights()) {
+        const Light& light = scene.light(index);
+        const SampledSpectrum Le = light.Le(d, lambda);
+        if (Le.isZero()) continue;
+        const float weight =
+            prevSpecular ? 1.0f : powerHeuristic(prevBsdfPdf, scene.lightDistribution().pmf(index) * light.pdfDirection(d));
+        L += beta * Le * weight;
+      }
+      break;
+    }
     const SurfaceInteraction si = scene.shape(hit.shape).interaction(hit, ray);
     const glm::vec3 wo = -glm::normalize(ray.d);
 
     if (const AreaLight* light = scene.areaLight(hit.shape)) {
       const SampledSpectrum Le = light->L(si, wo, lambda);
       if (!Le.isZero()) {
-        if (depth == 0) {
+        if (prevSpecular) {
           L += beta * Le;
         } else {
           const float lightPdf = scene.lightPmfOfShape(hit.shape) * light->pdf(prevP, si);
@@ -68,18 +105,21 @@ SampledSpectrum traceRadiance(const Scene& scene, Ray ray, const SampledWaveleng
     if (depth >= settings.maxDepth) break;
     const Material& material = scene.material(hit.shape);
     if (!material.reflects()) break;
+    if (material.dispersive()) lambda.terminateSecondary();
 
     const Frame frame = Frame::fromZ(si.ns);
-    const glm::vec3 woLocal = frame.toLocal(wo);
-    if (haveLights) L += beta * sampleLight(scene, si, frame, woLocal, material, lambda, sampler, counts);
+    const ShadingPoint sp{si, frame, wo, frame.toLocal(wo), material, BsdfContext{si.uv}};
+    if (haveLights && material.hasNonSpecular()) L += beta * sampleLight(scene, sp, lambda, sampler, counts);
 
     const float uc = sampler.get1D();
-    const std::optional<BsdfSample> bs = material.sample(woLocal, uc, sampler.get2D(), lambda);
-    if (!bs || bs->pdf == 0.0f || bs->f.isZero()) break;
+    const std::optional<BsdfSample> bs = material.sample(sp.woLocal, uc, sampler.get2D(), lambda, sp.ctx);
+    if (!bs || !(bs->pdf > 0.0f) || bs->f.isZero()) break;
+    const glm::vec3 wi = frame.toWorld(bs->wi);
+    if (!sidesAgree(si.n, wo, wi, sp.woLocal, bs->wi)) break;
     beta *= bs->f * (std::abs(bs->wi.z) / bs->pdf);
     prevBsdfPdf = bs->pdf;
+    prevSpecular = bs->specular;
     prevP = si.p;
-    const glm::vec3 wi = frame.toWorld(bs->wi);
     ray = Ray{si.spawnOrigin(wi), wi, std::numeric_limits<float>::infinity(), ray.time};
     ++counts.bounce;
 

@@ -31,8 +31,10 @@ struct RayCounts {
   }
 };
 
-// Radiance (W·m⁻²·sr⁻¹·nm⁻¹) along `ray` at the wavelengths `lambda`.
-SampledSpectrum traceRadiance(const Scene& scene, Ray ray, const SampledWavelengths& lambda,
+// Radiance (W·m⁻²·sr⁻¹·nm⁻¹) along `ray` at the wavelengths `lambda`. A dispersive
+// material on the path terminates the secondary wavelengths (lambda is updated: the film
+// must use it).
+SampledSpectrum traceRadiance(const Scene& scene, Ray ray, SampledWavelengths& lambda,
                               Sampler& sampler, RayCounts& counts);
 
 }  // namespace camsim

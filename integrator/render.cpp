@@ -35,7 +35,7 @@ void renderTile(const Scene& scene, Film& film, const RenderOptions& options, co
       for (int s = 0; s < options.spp; ++s) {
         sampler.startPixelSample(pixel, s);
         sampler.setDimension(kDimWavelength);
-        const SampledWavelengths lambda = SampledWavelengths::sampleVisible(sampler.get1D());
+        SampledWavelengths lambda = SampledWavelengths::sampleVisible(sampler.get1D());
         CameraSample cs;
         sampler.setDimension(kDimPixel);
         cs.pFilm = glm::vec2(pixel) + 0.5f + (sampler.get2D() - 0.5f) * side;

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "integrator/diffuse_material.h"
+#include "integrator/factory.h"
 #include "integrator/sphere.h"
 #include "integrator/triangle_mesh.h"
 
@@ -84,8 +85,7 @@ Scene::Scene(const SceneDescription& d) : settings_(d.render) {
   modelled_.cameraMoves = camera_->moves(exposureStart_, exposureEnd_);
 
   materials_.push_back(std::make_unique<DiffuseMaterial>(Spectrum::constant(0.0)));  // black
-  for (const MaterialDescription& m : d.materials)
-    materials_.push_back(std::make_unique<DiffuseMaterial>(m.reflectance));
+  for (const MaterialDescription& m : d.materials) materials_.push_back(makeMaterial(m));
 
   std::vector<double> powers;
   for (const ShapeDescription& s : d.shapes) {
@@ -108,8 +108,20 @@ Scene::Scene(const SceneDescription& d) : settings_(d.render) {
   }
   modelled_.time = modelled_.cameraMoves || modelled_.movingObjects > 0;
   modelled_.rollingShutter = modelled_.time && shutter.type() == Shutter::Type::kRolling;
-  if (!powers.empty()) lightDistribution_ = DiscreteDistribution(powers);
   geometry_ = std::make_unique<EmbreeScene>(shapes_, exposureStart_, exposureEnd_);
+  if (geometry_->boundsLower().x <= geometry_->boundsUpper().x) {
+    boundsCentre_ = 0.5f * (geometry_->boundsLower() + geometry_->boundsUpper());
+    boundsRadius_ = 0.5f * glm::length(geometry_->boundsUpper() - geometry_->boundsLower());
+  }
+  for (const LightDescription& l : d.lights) {
+    lights_.push_back(makeLight(l));
+    if (lights_.back()->isInfinite()) infiniteLights_.push_back(lights_.size() - 1);
+  }
+  for (size_t i = powers.size(); i < lights_.size(); ++i) {
+    lights_[i]->setSceneBounds(boundsCentre_, boundsRadius_);
+    powers.push_back(lights_[i]->power());
+  }
+  if (!powers.empty()) lightDistribution_ = DiscreteDistribution(powers);
 }
 
 }  // namespace camsim

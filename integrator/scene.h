@@ -49,6 +49,11 @@ class Scene {
   const AreaLight* areaLight(int shape) const { return lightOfShape_[static_cast<size_t>(shape)]; }
 
   size_t lightCount() const { return lights_.size(); }
+  // Indices of the lights that rays escaping the scene see (sun, environment).
+  const std::vector<size_t>& infiniteLights() const { return infiniteLights_; }
+  // Bounding sphere of the geometry at rest (m).
+  glm::vec3 boundsCentre() const { return boundsCentre_; }
+  float boundsRadius() const { return boundsRadius_; }
   const Light& light(size_t i) const { return *lights_[i]; }
   const DiscreteDistribution& lightDistribution() const { return lightDistribution_; }
   // Probability that NEE picks the light of an emitting shape.
@@ -64,7 +69,10 @@ class Scene {
   std::vector<std::unique_ptr<Shape>> shapes_;
   std::vector<std::unique_ptr<Material>> materials_;
   std::vector<size_t> materialOfShape_;
-  std::vector<std::unique_ptr<AreaLight>> lights_;
+  std::vector<std::unique_ptr<Light>> lights_;
+  std::vector<size_t> infiniteLights_;
+  glm::vec3 boundsCentre_{0.0f};
+  float boundsRadius_ = 0.0f;
   std::vector<const AreaLight*> lightOfShape_;
   std::vector<size_t> lightIndexOfShape_;
   DiscreteDistribution lightDistribution_;

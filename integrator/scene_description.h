@@ -4,15 +4,19 @@
 #pragma once
 
 #include <cstdint>
+#include <filesystem>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include <glm/mat3x3.hpp>
 #include <glm/mat4x4.hpp>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
+#include "integrator/fresnel.h"
 #include "integrator/mesh_io.h"
+#include "integrator/microfacet.h"
 #include "integrator/motion.h"
 #include "integrator/physical_camera.h"
 #include "sensor/exposure_control.h"
@@ -33,9 +37,63 @@ struct RenderSettings {
   int rrDepth = 3;          // Russian roulette starts after this many bounces
 };
 
+// A material input that may vary over the surface: a constant (spectrum or scalar), an
+// image (EXR/PNG) or a procedural checkerboard. See integrator/texture.h.
+struct TextureDescription {
+  enum class Kind { kConstant, kImage, kCheckerboard };
+  Kind kind = Kind::kConstant;
+  Spectrum value = Spectrum::constant(0.5);  // kConstant (scalar inputs: the constant's value)
+  std::filesystem::path file;                // kImage
+  // kImage: how texel values are encoded: "srgb" (PNG default), "linear" (linear Rec.709,
+  // EXR default) or "raw" (numbers used as they are, e.g. roughness maps).
+  std::string encoding;
+  Spectrum checkerA = Spectrum::constant(0.8), checkerB = Spectrum::constant(0.2);  // kCheckerboard
+  float checks = 8.0f;                       // kCheckerboard: squares per unit of u and v
+  glm::vec2 uvScale{1.0f}, uvOffset{0.0f};   // uv' = uv · scale + offset (kImage, kCheckerboard)
+
+  static TextureDescription constant(double v) {
+    TextureDescription t;
+    t.value = Spectrum::constant(v);
+    return t;
+  }
+};
+
 struct MaterialDescription {
+  enum class Type { kDiffuse, kConductor, kMirror, kDielectric, kPlastic };
   std::string name;
-  Spectrum reflectance;  // diffuse reflectance ρ(λ), dimensionless
+  Type type = Type::kDiffuse;
+  // diffuse/plastic: diffuse reflectance ρ(λ); mirror: reflectance; conductor with
+  // Schlick Fresnel: normal-incidence reflectance R0(λ). Dimensionless, in [0, 1].
+  TextureDescription reflectance;
+  // conductor/dielectric/plastic: microfacet α (dimensionless, ≥ 0; 0 = smooth). A
+  // constant is given as a flat spectrum; only its value matters.
+  TextureDescription roughness = TextureDescription::constant(0.0);
+  float anisotropy = 0.0f;  // αx = α (1 + a), αy = α (1 − a); a in (−1, 1)
+  MicrofacetDistribution distribution = MicrofacetDistribution::kGgx;
+  MaskingModel masking = MaskingModel::kSmith;
+  FresnelModel fresnel = FresnelModel::kExact;  // conductor
+  Spectrum eta = Spectrum::constant(1.5);       // conductor η(λ); dielectric/plastic: index inside / outside
+  Spectrum k = Spectrum::constant(0.0);         // conductor extinction k(λ)
+  float specularWeight = 0.1f;                  // plastic ks (kd = 1 − ks)
+};
+
+// Lights that are not shapes (`lights:` in the scene file). Units in docs/scene-format.md.
+struct LightDescription {
+  enum class Kind { kPoint, kSpot, kDistant, kEnvironment };
+  Kind kind = Kind::kPoint;
+  std::string label;  // for messages
+  // point/spot: radiant intensity I(λ), W·sr⁻¹·nm⁻¹ (spot: on the axis)
+  // distant:    spectral irradiance E(λ) on a plane facing the light, W·m⁻²·nm⁻¹
+  // environment: a spectral scale applied to the map's uplifted RGB (dimensionless per
+  //             W·m⁻²·sr⁻¹·nm⁻¹ of map value)
+  Spectrum spectrum = Spectrum::constant(0.0);
+  glm::vec3 position{0.0f};            // point/spot, m
+  glm::vec3 direction{0.0f, 0.0f, -1.0f};  // spot axis / direction the sunlight travels (unit)
+  float coneAngle = 0.5f;              // spot: half-angle where the light ends, rad
+  float falloffStart = 0.4f;           // spot: half-angle where the smooth falloff begins, rad
+  float angularDiameter = 0.0f;        // distant: apparent diameter of the disc, rad (0 = delta)
+  std::filesystem::path file;          // environment: lat-long EXR
+  glm::dmat3 worldFromLight{1.0};      // environment: rotation of the map (map +z = up)
 };
 
 struct EmissionDescription {
@@ -73,6 +131,7 @@ struct SceneDescription {
   RenderSettings render;
   std::vector<MaterialDescription> materials;
   std::vector<ShapeDescription> shapes;
+  std::vector<LightDescription> lights;
   std::optional<SensorSettings> sensor;  // none: the film records CIE XYZ only
   IspSettings isp;                       // raw → picture (scenes with a sensor)
 };

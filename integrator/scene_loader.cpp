@@ -50,8 +50,7 @@ MaterialDescription parseMaterial(const std::string& name, YamlMap map, const Co
   m.name = name;
   const YamlValue type = map.require("type");
   if (type.string() != "diffuse") type.fail("unknown material type '" + type.string() + "' (known: diffuse)");
-  m.reflectance = Spectrum::constant(0.5);
-  if (auto r = map.find("reflectance")) m.reflectance = parseSpectrum(*r, SpectrumUse::kReflectance, ctx.search);
+  if (auto r = map.find("reflectance")) m.reflectance.value = parseSpectrum(*r, SpectrumUse::kReflectance, ctx.search);
   map.finish({"type", "reflectance"});
   return m;
 }

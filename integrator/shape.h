@@ -50,7 +50,8 @@ struct SurfaceInteraction {
   glm::vec3 p{0.0f};       // position, m
   glm::vec3 pError{0.0f};  // absolute floating-point error bound on p, m
   glm::vec3 n{0.0f};       // geometric normal, unit; its side is the shape's front
-  glm::vec3 ns{0.0f};      // shading normal, unit, in n's hemisphere
+  glm::vec3 ns{0.0f};      // shading normal, unit (interpolated normals may face away from n)
+  glm::vec2 uv{0.0f};      // texture coordinates (see integrator/texture.h)
   int shape = -1;
   int prim = -1;      // triangle index (meshes)
   float time = 0.0f;  // s

@@ -86,6 +86,19 @@ class SampledWavelengths {
 
   float operator[](int i) const { return lambda_[i]; }
   float pdf(int i) const { return pdf_[i]; }
+  // After a wavelength-dependent scattering event (dispersion) only the hero wavelength
+  // can continue: the others get pdf 0 and the hero's pdf is divided by N, so the film's
+  // estimate (1/N) Σ r q / p stays unbiased (pbrt-v4 §4.5.4).
+  void terminateSecondary() {
+    if (secondaryTerminated()) return;
+    for (int i = 1; i < kWavelengthSamples; ++i) pdf_[i] = 0.0f;
+    pdf_[0] /= static_cast<float>(kWavelengthSamples);
+  }
+  bool secondaryTerminated() const {
+    for (int i = 1; i < kWavelengthSamples; ++i)
+      if (pdf_[i] != 0.0f) return false;
+    return true;
+  }
   SampledSpectrum pdfs() const {
     SampledSpectrum p;
     for (int i = 0; i < kWavelengthSamples; ++i) p[i] = pdf_[i];

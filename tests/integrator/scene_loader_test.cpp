@@ -265,7 +265,7 @@ TEST(SceneLoaderTest, ValidJsonLoads) {
   EXPECT_EQ(scene.shapes[0].kind, ShapeDescription::Kind::kSphere);
   EXPECT_FLOAT_EQ(scene.shapes[0].radius, 0.5f);
   EXPECT_FLOAT_EQ(scene.shapes[0].centre.z, 2.0f);
-  EXPECT_FLOAT_EQ(scene.materials[0].reflectance(550.0f), 0.25f);
+  EXPECT_FLOAT_EQ(scene.materials[0].reflectance.value(550.0f), 0.25f);
 }
 
 TEST(SceneLoaderTest, ObjMeshWithScaleAndTranslate) {
@@ -294,7 +294,7 @@ TEST(SceneLoaderTest, CsvReflectanceFoundThroughSpectraPath) {
                            "matte}}\nshapes:\n" +
                            kSphere;
   const SceneDescription scene = loadSceneFromText(text, "test.yaml", dir.path());
-  const Spectrum& r = scene.materials[0].reflectance;
+  const Spectrum& r = scene.materials[0].reflectance.value;
   EXPECT_NEAR(r(400.0f), 0.1, 1e-6);
   EXPECT_NEAR(r(550.0f), 0.25, 1e-6);
   EXPECT_NEAR(r(700.0f), 0.4, 1e-6);
@@ -318,7 +318,7 @@ TEST(SceneLoaderTest, RgbReflectance) {
           kSphere,
       "test.yaml", dir.path());
   const Spectrum expected = rgbToReflectance({0.6, 0.3, 0.1}, RgbColorSpace::linearRec709());
-  const Spectrum& r = scene.materials[0].reflectance;
+  const Spectrum& r = scene.materials[0].reflectance.value;
   for (int i = 0; i < kSpectrumSamples; ++i) {
     EXPECT_FLOAT_EQ(r.sample(i), expected.sample(i)) << i;
     EXPECT_GE(r.sample(i), 0.0f);

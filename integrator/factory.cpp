@@ -1,0 +1,58 @@
+#include "integrator/factory.h"
+
+#include "integrator/diffuse_material.h"
+#include "sensor/check.h"
+
+namespace camsim {
+
+std::unique_ptr<SpectrumTexture> makeSpectrumTexture(const TextureDescription& d) {
+  switch (d.kind) {
+    case TextureDescription::Kind::kConstant:
+      return std::make_unique<ConstantSpectrumTexture>(d.value);
+    case TextureDescription::Kind::kImage:
+    case TextureDescription::Kind::kCheckerboard:
+      break;  // TODO(textures)
+  }
+  CAMSIM_CHECK(false);
+  return nullptr;
+}
+
+std::unique_ptr<FloatTexture> makeFloatTexture(const TextureDescription& d) {
+  switch (d.kind) {
+    case TextureDescription::Kind::kConstant:
+      return std::make_unique<ConstantFloatTexture>(d.value(550.0f));
+    case TextureDescription::Kind::kImage:
+    case TextureDescription::Kind::kCheckerboard:
+      break;  // TODO(textures)
+  }
+  CAMSIM_CHECK(false);
+  return nullptr;
+}
+
+std::unique_ptr<Material> makeMaterial(const MaterialDescription& d) {
+  switch (d.type) {
+    case MaterialDescription::Type::kDiffuse:
+      return std::make_unique<DiffuseMaterial>(makeSpectrumTexture(d.reflectance));
+    case MaterialDescription::Type::kConductor:
+    case MaterialDescription::Type::kMirror:
+    case MaterialDescription::Type::kDielectric:
+    case MaterialDescription::Type::kPlastic:
+      break;  // TODO(materials)
+  }
+  CAMSIM_CHECK(false);
+  return nullptr;
+}
+
+std::unique_ptr<Light> makeLight(const LightDescription& d) {
+  switch (d.kind) {
+    case LightDescription::Kind::kPoint:
+    case LightDescription::Kind::kSpot:
+    case LightDescription::Kind::kDistant:
+    case LightDescription::Kind::kEnvironment:
+      break;  // TODO(lights)
+  }
+  CAMSIM_CHECK(false);
+  return nullptr;
+}
+
+}  // namespace camsim

@@ -1,0 +1,59 @@
+// Microfacet distributions and shadowing–masking, in the local shading frame (z = normal).
+//
+// | parameter    | unit          | default | meaning                                        |
+// |--------------|---------------|---------|------------------------------------------------|
+// | distribution | —             | ggx     | D: ggx (Trowbridge–Reitz) or beckmann          |
+// | masking      | —             | smith   | G: smith (height-correlated) or v-groove       |
+// | alpha_x/y    | dimensionless | —       | α, width of the slope distribution (≈ RMS slope·√2 for Beckmann); 0 = smooth |
+//
+//   GGX       D(m) = 1 / (π αx αy cos⁴θm (1 + tan²θm (cos²φ/αx² + sin²φ/αy²))²)
+//             Λ(ω) = (−1 + √(1 + α(φ)² tan²θ)) / 2
+//   Beckmann  D(m) = exp(−tan²θm (cos²φ/αx² + sin²φ/αy²)) / (π αx αy cos⁴θm)
+//             Λ(ω) = (erfc(a) ... ) exact: (e^{−a²}/(a√π) − erfc(a)) / 2,  a = 1/(α(φ) tanθ)
+//   Smith, height-correlated   G(ωo, ωi) = 1 / (1 + Λ(ωo) + Λ(ωi))
+//   V-groove (Cook–Torrance)   G(ωo, ωi) = min(1, 2 cosθm cosθo / (ωo·m), 2 cosθm cosθi / (ωi·m))
+//   Visible normals (Heitz 2018)   D_ω(m) = G1(ω) max(0, ω·m) D(m) / cosθ
+//
+// Sampling: GGX samples visible normals exactly (Heitz 2018), pdf(ω, m) = D_ω(m).
+// Beckmann samples D(m) cosθm (Walter et al. 2007), pdf(ω, m) = D(m) |cosθm|.
+// Both are valid for either masking model (the pdf does not depend on G).
+#pragma once
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+namespace camsim {
+
+enum class MicrofacetDistribution { kGgx, kBeckmann };
+enum class MaskingModel { kSmith, kVGroove };
+
+class MicrofacetModel {
+ public:
+  MicrofacetModel(MicrofacetDistribution distribution, MaskingModel masking, float alphaX, float alphaY);
+
+  // Below this α the surface is treated as perfectly smooth (a delta lobe): D would
+  // overflow single precision and no sampler could find the peak.
+  static constexpr float kSmoothAlpha = 1e-4f;
+  bool effectivelySmooth() const;
+
+  float D(const glm::vec3& wm) const;
+  float lambda(const glm::vec3& w) const;
+  float G1(const glm::vec3& w) const;
+  // Joint shadowing–masking of the selected model for the half-vector wm.
+  float G(const glm::vec3& wo, const glm::vec3& wi, const glm::vec3& wm) const;
+  // Draws a microfacet normal (in the +z hemisphere) for the direction w (either side:
+  // w is mirrored into +z first).
+  glm::vec3 sampleWm(const glm::vec3& w, glm::vec2 u) const;
+  // Density of sampleWm producing wm, sr⁻¹.
+  float pdf(const glm::vec3& w, const glm::vec3& wm) const;
+
+  MicrofacetDistribution distribution() const { return distribution_; }
+  MaskingModel masking() const { return masking_; }
+
+ private:
+  MicrofacetDistribution distribution_;
+  MaskingModel masking_;
+  float alphaX_, alphaY_;
+};
+
+}  // namespace camsim
