@@ -45,16 +45,6 @@ RenderSettings parseRender(YamlMap map) {
 
 
 
-MaterialDescription parseMaterial(const std::string& name, YamlMap map, const Context& ctx) {
-  MaterialDescription m;
-  m.name = name;
-  const YamlValue type = map.require("type");
-  if (type.string() != "diffuse") type.fail("unknown material type '" + type.string() + "' (known: diffuse)");
-  if (auto r = map.find("reflectance")) m.reflectance.value = parseSpectrum(*r, SpectrumUse::kReflectance, ctx.search);
-  map.finish({"type", "reflectance"});
-  return m;
-}
-
 EmissionDescription parseEmission(YamlMap map, const Context& ctx) {
   EmissionDescription e;
   const auto spectrum = map.find("spectrum");
@@ -236,7 +226,7 @@ SceneDescription loadSceneFromText(const std::string& text, const std::string& d
     YamlMap mmap(*mats);
     for (const std::string& name : mmap.keys()) {
       ctx.materialIndex[name] = static_cast<int>(scene.materials.size());
-      scene.materials.push_back(parseMaterial(name, YamlMap(*mmap.find(name)), ctx));
+      scene.materials.push_back(parseMaterial(name, YamlMap(*mmap.find(name)), ctx.search, ctx.baseDir));
     }
   }
   const YamlValue shapes = top.require("shapes");

@@ -25,6 +25,15 @@ SensorSettings parseSensorSettings(YamlMap map, const std::filesystem::path& bas
                                    PhysicalCameraParams& cameraParams);
 // `isp:` → image-pipeline settings (white balance, demosaic).
 IspSettings parseIspSettings(YamlMap map);
+// A material input that may be a texture (integrator/scene_loader_textures.cpp):
+// reflectance: a spectrum (see scene_spectra.h), {texture: …} or {checkerboard: …};
+// roughness: a number ≥ 0 or {texture: …}.
+enum class TextureUse { kReflectance, kRoughness };
+TextureDescription parseTexture(const YamlValue& v, TextureUse use, const SpectrumSearch& search,
+                                const std::filesystem::path& baseDir);
+// `materials:` entry → material description (integrator/scene_loader_materials.cpp).
+MaterialDescription parseMaterial(const std::string& name, YamlMap map, const SpectrumSearch& search,
+                                  const std::filesystem::path& baseDir);
 // `motion:` keyframes; `forCamera` forbids scale.
 RigidMotion parseMotion(const YamlValue& value, bool forCamera);
 

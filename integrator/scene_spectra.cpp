@@ -36,8 +36,7 @@ Spectrum fromTable(YamlMap& map, SpectrumUse use, const SpectrumSearch& search) 
     map.self().fail("table " + path.string() + " has several columns: name one with 'column'");
   }
   map.finish({"csv", "column"});
-  Spectrum s = table.spectrum(column, use == SpectrumUse::kReflectance ? Extrapolation::kClamp
-                                                                       : Extrapolation::kZero);
+  Spectrum s = table.spectrum(column, use == SpectrumUse::kEmission ? Extrapolation::kZero : Extrapolation::kClamp);
   if (s.minValue() < 0.0) file.fail("spectral table has negative values");
   if (use == SpectrumUse::kReflectance && s.maxValue() > 1.0)
     file.fail("reflectance must lie in [0, 1]; the table exceeds 1");
@@ -48,6 +47,12 @@ Spectrum fromTable(YamlMap& map, SpectrumUse use, const SpectrumSearch& search) 
 
 Spectrum parseSpectrum(const YamlValue& value, SpectrumUse use, const SpectrumSearch& search) {
   const bool reflectance = use == SpectrumUse::kReflectance;
+  if (use == SpectrumUse::kIndex) {
+    if (value.isScalar()) return Spectrum::constant(value.number(0.0, 1e3));
+    YamlMap map(value);
+    if (map.has("csv")) return fromTable(map, use, search);
+    map.self().fail("expected a number or {csv: file, column: name}");
+  }
   if (value.isScalar()) {
     return Spectrum::constant(reflectance ? value.number(0.0, 1.0) : value.number(0.0, 1e30));
   }

@@ -4,6 +4,7 @@
 //   {csv: file.csv, column: name}        tabulated; column optional for 1-column tables
 //   {blackbody: 5000}                    Planck radiance at T (K), W·m⁻²·sr⁻¹·nm⁻¹ (emission)
 //   {illuminant: D65}                    CIE standard illuminant, relative (emission)
+// Refractive indices (kIndex) take a number or {csv}.
 #pragma once
 
 #include <filesystem>
@@ -14,7 +15,9 @@
 
 namespace camsim {
 
-enum class SpectrumUse { kReflectance, kEmission };
+// kIndex: a refractive index η(λ) or extinction coefficient k(λ): a number ≥ 0 or {csv}
+// (tables are clamped, not zeroed, beyond their range).
+enum class SpectrumUse { kReflectance, kEmission, kIndex };
 
 struct SpectrumSearch {
   std::vector<std::filesystem::path> directories;  // in order

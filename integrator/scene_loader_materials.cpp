@@ -1,0 +1,132 @@
+// `materials:` entries → MaterialDescription. Keys per type (docs/scene-format.md):
+//   diffuse     reflectance
+//   mirror      reflectance
+//   conductor   metal | eta + k, fresnel (exact | schlick; schlick takes reflectance = R0),
+//               roughness, anisotropy, distribution, masking
+//   dielectric  glass | ior, roughness, anisotropy, distribution, masking
+//   plastic     reflectance, specular (ks), roughness, anisotropy, distribution, masking
+#include <string>
+#include <vector>
+
+#include "integrator/scene_loader_parts.h"
+#include "sensor/spectral_data.h"
+
+namespace camsim {
+namespace {
+
+MaterialDescription::Type parseType(const YamlValue& type) {
+  const std::string t = type.string();
+  if (t == "diffuse") return MaterialDescription::Type::kDiffuse;
+  if (t == "mirror") return MaterialDescription::Type::kMirror;
+  if (t == "conductor") return MaterialDescription::Type::kConductor;
+  if (t == "dielectric") return MaterialDescription::Type::kDielectric;
+  if (t == "plastic") return MaterialDescription::Type::kPlastic;
+  type.fail("unknown material type '" + t + "' (known: diffuse, mirror, conductor, dielectric, plastic)");
+}
+
+// The microfacet keys shared by conductor, dielectric and plastic.
+void parseMicrofacet(YamlMap& map, MaterialDescription& m, const SpectrumSearch& search,
+                     const std::filesystem::path& baseDir, std::vector<std::string>& known) {
+  if (auto r = map.find("roughness")) m.roughness = parseTexture(*r, TextureUse::kRoughness, search, baseDir);
+  if (auto a = map.find("anisotropy")) m.anisotropy = static_cast<float>(a->number(-0.99, 0.99));
+  if (auto d = map.find("distribution")) {
+    const std::string v = d->string();
+    if (v == "ggx") m.distribution = MicrofacetDistribution::kGgx;
+    else if (v == "beckmann") m.distribution = MicrofacetDistribution::kBeckmann;
+    else d->fail("unknown distribution '" + v + "' (known: ggx, beckmann)");
+  }
+  if (auto g = map.find("masking")) {
+    const std::string v = g->string();
+    if (v == "smith") m.masking = MaskingModel::kSmith;
+    else if (v == "v-groove") m.masking = MaskingModel::kVGroove;
+    else g->fail("unknown masking '" + v + "' (known: smith, v-groove)");
+  }
+  known.insert(known.end(), {"roughness", "anisotropy", "distribution", "masking"});
+}
+
+// A named table shipped in luts/spectra/<folder>/<name>.csv (or found on the spectra path).
+Spectrum namedColumn(const YamlValue& name, const std::string& folder, const std::string& column,
+                     const SpectrumSearch& search) {
+  const std::string file = folder + "/" + name.string() + ".csv";
+  for (const auto& dir : search.directories) {
+    if (!std::filesystem::is_regular_file(dir / file)) continue;
+    try {
+      const SpectralTable table = readSpectralCsv(dir / file);
+      return table.spectrum(table.columnIndex(column), Extrapolation::kClamp);
+    } catch (const InputError& e) {
+      name.fail(e.message() + " in " + (dir / file).string());
+    }
+  }
+  name.fail("no " + folder + " table '" + name.string() + "' (looked for " + file + " on the spectra path)");
+}
+
+void parseConductor(YamlMap& map, MaterialDescription& m, const SpectrumSearch& search,
+                    std::vector<std::string>& known) {
+  if (auto f = map.find("fresnel")) {
+    const std::string v = f->string();
+    if (v == "exact") m.fresnel = FresnelModel::kExact;
+    else if (v == "schlick") m.fresnel = FresnelModel::kSchlick;
+    else f->fail("unknown fresnel '" + v + "' (known: exact, schlick)");
+  }
+  const auto metal = map.find("metal");
+  const auto eta = map.find("eta");
+  const auto k = map.find("k");
+  known.insert(known.end(), {"fresnel", "metal", "eta", "k"});
+  if (m.fresnel == FresnelModel::kSchlick) {
+    if (metal || eta || k) (metal ? *metal : eta ? *eta : *k).fail("fresnel: schlick takes 'reflectance' (R0), not η and k");
+    if (!map.has("reflectance")) map.self().fail("fresnel: schlick needs 'reflectance' (normal-incidence R0)");
+    return;
+  }
+  if (map.has("reflectance")) map.self().fail("'reflectance' is for fresnel: schlick; exact Fresnel uses 'metal' or 'eta' and 'k'");
+  if (metal && (eta || k)) (eta ? *eta : *k).fail("give either 'metal' or 'eta' and 'k', not both");
+  if (metal) {
+    m.eta = namedColumn(*metal, "metals", "eta", search);
+    m.k = namedColumn(*metal, "metals", "k", search);
+  } else if (eta && k) {
+    m.eta = parseSpectrum(*eta, SpectrumUse::kIndex, search);
+    m.k = parseSpectrum(*k, SpectrumUse::kIndex, search);
+  } else {
+    map.self().fail("a conductor needs 'metal' (e.g. Au, Ag, Al, Cu) or both 'eta' and 'k'");
+  }
+  if (!(m.eta.minValue() > 0.0) && !(m.k.minValue() > 0.0))
+    map.self().fail("a conductor needs η > 0 or k > 0 at every wavelength");
+}
+
+void parseDielectric(YamlMap& map, MaterialDescription& m, const SpectrumSearch& search,
+                     std::vector<std::string>& known) {
+  const auto glass = map.find("glass");
+  const auto ior = map.find("ior");
+  known.insert(known.end(), {"glass", "ior"});
+  if (glass && ior) ior->fail("give either 'glass' or 'ior', not both");
+  if (glass) m.eta = namedColumn(*glass, "glasses", "eta", search);
+  else if (ior) m.eta = parseSpectrum(*ior, SpectrumUse::kIndex, search);
+  if (!(m.eta.minValue() >= 1e-3)) (glass ? *glass : *ior).fail("the index of refraction must be > 0");
+}
+
+}  // namespace
+
+MaterialDescription parseMaterial(const std::string& name, YamlMap map, const SpectrumSearch& search,
+                                  const std::filesystem::path& baseDir) {
+  MaterialDescription m;
+  m.name = name;
+  m.type = parseType(map.require("type"));
+  std::vector<std::string> known = {"type"};
+  using Type = MaterialDescription::Type;
+  if (m.type == Type::kMirror) m.reflectance = TextureDescription::constant(1.0);
+  if (m.type != Type::kDielectric) {
+    if (auto r = map.find("reflectance")) m.reflectance = parseTexture(*r, TextureUse::kReflectance, search, baseDir);
+    known.push_back("reflectance");
+  }
+  if (m.type == Type::kConductor || m.type == Type::kDielectric || m.type == Type::kPlastic)
+    parseMicrofacet(map, m, search, baseDir, known);
+  if (m.type == Type::kConductor) parseConductor(map, m, search, known);
+  if (m.type == Type::kDielectric) parseDielectric(map, m, search, known);
+  if (m.type == Type::kPlastic) {
+    if (auto ks = map.find("specular")) m.specularWeight = static_cast<float>(ks->number(0.0, 1.0));
+    known.push_back("specular");
+  }
+  map.finish(known);
+  return m;
+}
+
+}  // namespace camsim
