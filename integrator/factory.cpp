@@ -1,5 +1,6 @@
 #include "integrator/factory.h"
 
+#include "integrator/dielectric_material.h"
 #include "integrator/diffuse_material.h"
 #include "sensor/check.h"
 
@@ -33,9 +34,11 @@ std::unique_ptr<Material> makeMaterial(const MaterialDescription& d) {
   switch (d.type) {
     case MaterialDescription::Type::kDiffuse:
       return std::make_unique<DiffuseMaterial>(makeSpectrumTexture(d.reflectance));
+    case MaterialDescription::Type::kDielectric:
+      return std::make_unique<DielectricMaterial>(d.eta, makeFloatTexture(d.roughness), d.anisotropy,
+                                                  d.distribution, d.masking);
     case MaterialDescription::Type::kConductor:
     case MaterialDescription::Type::kMirror:
-    case MaterialDescription::Type::kDielectric:
     case MaterialDescription::Type::kPlastic:
       break;  // TODO(materials)
   }
