@@ -15,6 +15,12 @@
 // the regularised upper incomplete gamma Q(dof/2, χ²/2), and the test rejects when
 // p < 0.01 / testCount (Bonferroni over the tests of a suite). Deterministic (PCG32).
 // Every non-delta sample is also checked against f() and pdf() (relative 1e-3).
+// Narrow lobes (α ≲ 0.01): raise QuadratureOptions::minDepth (e.g. 6) so that the forced
+// panels see the peak, and the bin counts so that the lobe spans several cells.
+//
+//   const auto chi = bsdfcheck::chiSquare(material, wo, SampledWavelengths::sampleUniform(0.3f),
+//                                         BsdfContext{}, options);
+//   EXPECT_TRUE(chi.accepted) << chi.report;
 #pragma once
 
 #include <algorithm>
@@ -30,137 +36,9 @@
 
 #include "integrator/material.h"
 #include "integrator/rng.h"
+#include "tests/integrator/bsdf_check_quadrature.h"
 
 namespace camsim::bsdfcheck {
-
-inline constexpr double kTwoPi = 6.283185307179586476925;
-
-// Unit direction from cos θ and φ (computed in double, so z near ±1 stays accurate).
-inline glm::vec3 direction(double z, double phi) {
-  z = std::clamp(z, -1.0, 1.0);
-  const double s = std::sqrt(std::max(0.0, (1.0 - z) * (1.0 + z)));
-  return {static_cast<float>(s * std::cos(phi)), static_cast<float>(s * std::sin(phi)),
-          static_cast<float>(z)};
-}
-
-// ---------------------------------------------------------------- quadrature
-struct QuadratureOptions {
-  int minDepth = 3;      // forced uniform bisections per cell and axis (2³ = 8 panels);
-                         // raise it for very narrow lobes so the first panels see the peak
-  int maxDepth = 24;     // adaptive refinement limit
-  double relTol = 1e-6;  // |S₂ − S| ≤ 15 max(absTol, relTol |S₂|)
-  double absTol = 1e-10;
-};
-
-// Value of a spectral integrand: one double per wavelength sample.
-using Channels = std::array<double, kWavelengthSamples>;
-
-namespace detail {
-inline double magnitude(double v) {
-  return std::abs(v);
-}
-inline double magnitude(const Channels& v) {
-  double m = 0.0;
-  for (double x : v) m = std::max(m, std::abs(x));
-  return m;
-}
-inline Channels operator+(Channels a, const Channels& b) {
-  for (std::size_t i = 0; i < a.size(); ++i) a[i] += b[i];
-  return a;
-}
-inline Channels operator-(Channels a, const Channels& b) {
-  for (std::size_t i = 0; i < a.size(); ++i) a[i] -= b[i];
-  return a;
-}
-inline Channels operator*(double s, Channels a) {
-  for (double& x : a) x *= s;
-  return a;
-}
-
-template <class V, class F>
-V simpsonStep(const F& f, double a, double b, const V& fa, const V& fm, const V& fb, const V& whole,
-              int depth, const QuadratureOptions& o) {
-  const double m = 0.5 * (a + b), lm = 0.5 * (a + m), rm = 0.5 * (m + b);
-  const V flm = f(lm), frm = f(rm);
-  const V left = ((m - a) / 6.0) * (fa + 4.0 * flm + fm);
-  const V right = ((b - m) / 6.0) * (fm + 4.0 * frm + fb);
-  const V both = left + right;
-  const double tol = std::max(o.absTol, o.relTol * magnitude(both));
-  if (depth >= o.maxDepth || (depth >= o.minDepth && magnitude(both - whole) <= 15.0 * tol))
-    return both + (1.0 / 15.0) * (both - whole);
-  return simpsonStep(f, a, m, fa, flm, fm, left, depth + 1, o) +
-         simpsonStep(f, m, b, fm, frm, fb, right, depth + 1, o);
-}
-}  // namespace detail
-
-// Adaptive Simpson of f over [a, b]; V is double or Channels.
-template <class V, class F>
-V adaptiveSimpson(const F& f, double a, double b, const QuadratureOptions& o) {
-  using detail::operator+;
-  using detail::operator*;
-  const V fa = f(a), fm = f(0.5 * (a + b)), fb = f(b);
-  const V whole = ((b - a) / 6.0) * (fa + 4.0 * fm + fb);
-  return detail::simpsonStep<V>(f, a, b, fa, fm, fb, whole, 0, o);
-}
-
-// ∫∫ g(direction(z, φ)) dz dφ over z ∈ [z0, z1], φ ∈ [φ0, φ1]; g returns V.
-template <class V = double, class G>
-V integrateCell(const G& g, double z0, double z1, double phi0, double phi1,
-                const QuadratureOptions& o) {
-  const auto inner = [&](double z) {
-    return adaptiveSimpson<V>([&](double phi) -> V { return g(direction(z, phi)); }, phi0, phi1, o);
-  };
-  return adaptiveSimpson<V>(inner, z0, z1, o);
-}
-
-// ∫ g dω over the sphere, cell by cell on the χ² grid (cell edges catch the z = 0 jump).
-template <class V = double, class G>
-V integrateSphere(const G& g, int cosThetaBins, int phiBins, const QuadratureOptions& o) {
-  using detail::operator+;
-  V sum{};
-  for (int i = 0; i < cosThetaBins; ++i)
-    for (int j = 0; j < phiBins; ++j)
-      sum = sum + integrateCell<V>(g, -1.0 + 2.0 * i / cosThetaBins,
-                                   -1.0 + 2.0 * (i + 1) / cosThetaBins, kTwoPi * j / phiBins,
-                                   kTwoPi * (j + 1) / phiBins, o);
-  return sum;
-}
-
-// ---------------------------------------------------------------- χ² statistics
-// Regularised upper incomplete gamma Q(a, x) (series for x < a + 1, else Lentz continued
-// fraction), accurate to ~1e-12 for the a, x of χ² tests.
-inline double gammaQ(double a, double x) {
-  if (x <= 0.0) return 1.0;
-  const double logPrefix = -x + a * std::log(x) - std::lgamma(a);
-  if (x < a + 1.0) {
-    double term = 1.0 / a, sum = term;
-    for (int n = 1; n < 100000; ++n) {
-      term *= x / (a + n);
-      sum += term;
-      if (std::abs(term) < std::abs(sum) * 1e-15) break;
-    }
-    return std::max(0.0, 1.0 - sum * std::exp(logPrefix));
-  }
-  constexpr double tiny = 1e-300;
-  double b = x + 1.0 - a, c = 1.0 / tiny, d = 1.0 / b, h = d;
-  for (int n = 1; n < 100000; ++n) {
-    const double an = -n * (n - a);
-    b += 2.0;
-    d = an * d + b;
-    if (std::abs(d) < tiny) d = tiny;
-    c = b + an / c;
-    if (std::abs(c) < tiny) c = tiny;
-    d = 1.0 / d;
-    const double delta = d * c;
-    h *= delta;
-    if (std::abs(delta - 1.0) < 1e-15) break;
-  }
-  return std::exp(logPrefix) * h;
-}
-
-inline double chiSquarePValue(double statistic, int dof) {
-  return dof <= 0 ? 1.0 : gammaQ(0.5 * dof, 0.5 * statistic);
-}
 
 // ---------------------------------------------------------------- sample checks
 struct ChiSquareOptions {
