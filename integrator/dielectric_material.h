@@ -37,6 +37,12 @@
 // Samples that leave the sampled lobe's hemisphere (or hit a back-facing facet) are
 // rejected, so the pdf integrates to the probability that sample() succeeds (≤ 1).
 //
+// Total internal reflection: F(wo·wm, η) = 1 beyond the critical angle of the facet, so
+// the refraction branch is never chosen there; the smooth case reflects with pdf 1.
+// Grazing and extreme roughness: every quotient is checked; a non-finite f or pdf gives
+// 0 (f, pdf) or no sample, never NaN. hasNonSpecular() is false only when the roughness
+// is a constant below kSmoothAlpha or η is the constant 1 (then light sampling is skipped).
+//
 // Dispersion: when η(λ) is not constant, dispersive() is true; the integrator then
 // terminates the secondary wavelengths and η is evaluated at the hero wavelength lambda[0]
 // only (it is always evaluated there).
