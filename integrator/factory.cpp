@@ -2,7 +2,12 @@
 
 #include "integrator/dielectric_material.h"
 #include "integrator/diffuse_material.h"
+#include "integrator/distant_light.h"
+#include "integrator/environment_light.h"
+#include "integrator/point_light.h"
+#include "integrator/spot_light.h"
 #include "sensor/check.h"
+#include "sensor/exr_io.h"
 
 namespace camsim {
 
@@ -49,10 +54,14 @@ std::unique_ptr<Material> makeMaterial(const MaterialDescription& d) {
 std::unique_ptr<Light> makeLight(const LightDescription& d) {
   switch (d.kind) {
     case LightDescription::Kind::kPoint:
+      return std::make_unique<PointLight>(d.position, d.spectrum);
     case LightDescription::Kind::kSpot:
+      return std::make_unique<SpotLight>(d.position, d.direction, d.spectrum, d.coneAngle, d.falloffStart);
     case LightDescription::Kind::kDistant:
+      return std::make_unique<DistantLight>(d.spectrum, d.direction, d.angularDiameter);
     case LightDescription::Kind::kEnvironment:
-      break;  // TODO(lights)
+      return std::make_unique<EnvironmentLight>(d.image ? *d.image : readExr(d.file).image, d.spectrum,
+                                                glm::mat3(d.worldFromLight));
   }
   CAMSIM_CHECK(false);
   return nullptr;

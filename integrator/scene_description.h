@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -20,6 +21,7 @@
 #include "integrator/motion.h"
 #include "integrator/physical_camera.h"
 #include "sensor/exposure_control.h"
+#include "sensor/image.h"
 #include "sensor/isp_pipeline.h"
 #include "sensor/sensor_model.h"
 #include "sensor/sensor_spec.h"
@@ -77,23 +79,30 @@ struct MaterialDescription {
   float specularWeight = 0.1f;                  // plastic ks (kd = 1 − ks)
 };
 
-// Lights that are not shapes (`lights:` in the scene file). Units in docs/scene-format.md.
+// Lights that are not shapes (`lights:` in the scene file; units in docs/scene-format.md).
+// World up is +y (as the scenes' cameras): the loader builds `direction` from
+// elevation/azimuth and `worldFromLight` from the rotation about +y.
 struct LightDescription {
   enum class Kind { kPoint, kSpot, kDistant, kEnvironment };
   Kind kind = Kind::kPoint;
   std::string label;  // for messages
-  // point/spot: radiant intensity I(λ), W·sr⁻¹·nm⁻¹ (spot: on the axis)
-  // distant:    spectral irradiance E(λ) on a plane facing the light, W·m⁻²·nm⁻¹
-  // environment: a spectral scale applied to the map's uplifted RGB (dimensionless per
-  //             W·m⁻²·sr⁻¹·nm⁻¹ of map value)
+  // point/spot:  radiant intensity I(λ), W·sr⁻¹·nm⁻¹ (spot: on its axis)
+  // distant:     spectral irradiance E(λ) on a plane facing the light, W·m⁻²·nm⁻¹
+  // environment: dimensionless spectral scale s(λ) of the map's uplifted texels (a texel
+  //              (1, 1, 1) is D65/Σ D65 ȳ W·m⁻²·sr⁻¹·nm⁻¹, luminance 683 cd/m², at s = 1)
   Spectrum spectrum = Spectrum::constant(0.0);
-  glm::vec3 position{0.0f};            // point/spot, m
-  glm::vec3 direction{0.0f, 0.0f, -1.0f};  // spot axis / direction the sunlight travels (unit)
-  float coneAngle = 0.5f;              // spot: half-angle where the light ends, rad
-  float falloffStart = 0.4f;           // spot: half-angle where the smooth falloff begins, rad
-  float angularDiameter = 0.0f;        // distant: apparent diameter of the disc, rad (0 = delta)
-  std::filesystem::path file;          // environment: lat-long EXR
-  glm::dmat3 worldFromLight{1.0};      // environment: rotation of the map (map +z = up)
+  glm::vec3 position{0.0f};                // point/spot, m
+  glm::vec3 direction{0.0f, 0.0f, -1.0f};  // spot axis / the way sunlight travels (unit)
+  float coneAngle = 0.5f;                  // spot: half-angle where the light ends, rad
+  float falloffStart = 0.4f;               // spot: half-angle where the smooth falloff begins, rad (≤ coneAngle)
+  float angularDiameter = 0.0f;            // distant: apparent diameter of the disc, rad (0 = delta)
+  std::filesystem::path file;              // environment: lat-long EXR (linear Rec.709 R, G, B)
+  // environment: the map's texels as loaded (shared, read once by the loader); null: the
+  // factory reads `file`.
+  std::shared_ptr<const Image> image;
+  // environment: rotation, map space → world. Map space has +z at the zenith (row 0);
+  // see integrator/environment_light.h for the lat-long mapping.
+  glm::dmat3 worldFromLight{1.0};
 };
 
 struct EmissionDescription {

@@ -36,5 +36,11 @@ MaterialDescription parseMaterial(const std::string& name, YamlMap map, const Sp
                                   const std::filesystem::path& baseDir);
 // `motion:` keyframes; `forCamera` forbids scale.
 RigidMotion parseMotion(const YamlValue& value, bool forCamera);
+// `lights:` → point, spot, distant and environment lights (scene_loader_lights.cpp);
+// positions are shifted into render space (world − renderOrigin), files resolve against
+// baseDir.
+std::vector<LightDescription> parseLights(const YamlValue& lights, const SpectrumSearch& search,
+                                          const std::filesystem::path& baseDir,
+                                          const glm::dvec3& renderOrigin);
 
 }  // namespace camsim
