@@ -135,6 +135,10 @@ struct SensorSettings {
 
 struct SceneDescription {
   std::string sourceFile;  // what it was loaded from ("<default>" for the embedded scene)
+  // Render space: every position below is relative to this point of the scene file's
+  // world (m) — the camera's rest position — so that scenes far from the world origin
+  // keep single-precision accuracy near the camera (world = render + renderOrigin).
+  glm::dvec3 renderOrigin{0.0};
   std::string name;        // output base name
   PhysicalCameraParams camera;
   RenderSettings render;

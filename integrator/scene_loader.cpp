@@ -21,6 +21,7 @@ struct Context {
   std::filesystem::path baseDir;
   SpectrumSearch search;
   std::map<std::string, int> materialIndex;
+  glm::dvec3 origin{0.0};  // render-space origin (SceneDescription::renderOrigin)
 };
 
 
@@ -109,11 +110,20 @@ ShapeDescription parseShape(YamlMap map, size_t index, const Context& ctx) {
   const YamlValue type = map.require("type");
   const std::string t = type.string();
   std::vector<std::string> known = {"type", "name", "material", "emission", "motion"};
-  if (auto m = map.find("motion")) s.motion = parseMotion(*m, false);
+  if (auto m = map.find("motion")) {
+    // Keyframes carry the world position: shift them into render space; the geometry
+    // itself is then in object space.
+    std::vector<Keyframe> keys = parseMotion(*m, false).keys();
+    for (Keyframe& k : keys) k.translate -= ctx.origin;
+    s.motion = RigidMotion(std::move(keys));
+  }
+  // Render-space position of a point given in the scene file.
+  const glm::dvec3 shift = s.motion.empty() ? ctx.origin : glm::dvec3(0.0);
+  auto point = [&](const YamlValue& where, const glm::dvec3& v) { return toPoint(where, v - shift); };
   if (t == "sphere") {
     s.kind = ShapeDescription::Kind::kSphere;
     const YamlValue centre = map.require("centre");
-    s.centre = toPoint(centre, centre.vec3());
+    s.centre = point(centre, centre.vec3());
     const YamlValue radius = map.require("radius");
     s.radius = positiveFloat(radius, radius.number(0.0, 1e12, true));
     known.insert(known.end(), {"centre", "radius"});
@@ -126,8 +136,7 @@ ShapeDescription parseShape(YamlMap map, size_t index, const Context& ctx) {
     map.find("edge_v");
     const YamlValue eu = map.require("edge_u"), ev = map.require("edge_v");
     const glm::dvec3 u = eu.vec3(), v = ev.vec3();
-    s.mesh.positions = {toPoint(cv, corner), toPoint(eu, corner + u), toPoint(ev, corner + u + v),
-                        toPoint(ev, corner + v)};
+    s.mesh.positions = {point(cv, corner), point(eu, corner + u), point(ev, corner + u + v), point(ev, corner + v)};
     s.mesh.indices = {0, 1, 2, 0, 2, 3};
     if (!(meshArea2(s.mesh) > 0.0)) ev.fail("edge_u and edge_v must span a non-zero area");
     known.insert(known.end(), {"corner", "edge_u", "edge_v"});
@@ -150,10 +159,10 @@ ShapeDescription parseShape(YamlMap map, size_t index, const Context& ctx) {
       glm::dvec3 translate(0.0);
       if (auto tr = map.find("translate")) translate = tr->vec3();
       for (glm::vec3& p3 : s.mesh.positions)
-        p3 = toPoint(*file, glm::dvec3(p3) * scale + translate);
+        p3 = point(*file, glm::dvec3(p3) * scale + translate);
       checkMesh(*file, s.mesh);
     } else if (vertices) {
-      for (const YamlValue& v : vertices->items()) s.mesh.positions.push_back(toPoint(v, v.vec3()));
+      for (const YamlValue& v : vertices->items()) s.mesh.positions.push_back(point(v, v.vec3()));
       if (s.mesh.positions.size() < 3) vertices->fail("a mesh needs at least 3 vertices");
       const YamlValue faces = map.require("faces");
       s.mesh.indices = parseFaces(faces, s.mesh.positions.size());
@@ -216,6 +225,9 @@ SceneDescription loadSceneFromText(const std::string& text, const std::string& d
   if (auto v = top.find("render")) scene.render = parseRender(YamlMap(*v));
   const YamlValue cameraValue = top.require("camera");
   scene.camera = parseCamera(YamlMap(cameraValue), ctx.search);
+  ctx.origin = glm::dvec3(scene.camera.worldFromCamera[3]);
+  scene.renderOrigin = ctx.origin;
+  scene.camera.worldFromCamera[3] = glm::dvec4(0.0, 0.0, 0.0, 1.0);
   if (auto sensor = top.find("sensor"))
     scene.sensor = parseSensorSettings(YamlMap(*sensor), baseDir, cameraValue, scene.camera);
   if (auto isp = top.find("isp")) {
@@ -233,7 +245,8 @@ SceneDescription loadSceneFromText(const std::string& text, const std::string& d
   const std::vector<YamlValue> items = shapes.items();
   if (items.empty()) shapes.fail("the scene has no shapes");
   for (size_t i = 0; i < items.size(); ++i) scene.shapes.push_back(parseShape(YamlMap(items[i]), i, ctx));
-  top.finish({"format", "name", "spectra_path", "render", "camera", "sensor", "isp", "materials", "shapes"});
+  if (auto l = top.find("lights")) scene.lights = parseLights(*l, ctx.search, baseDir, scene.renderOrigin);
+  top.finish({"format", "name", "spectra_path", "render", "camera", "sensor", "isp", "materials", "shapes", "lights"});
   return scene;
 }
 

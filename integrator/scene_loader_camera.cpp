@@ -51,7 +51,8 @@ glm::dmat4 lookAt(const YamlValue& where, const YamlValue& positionWhere, glm::d
   m[0] = glm::dvec4(right, 0.0);
   m[1] = glm::dvec4(trueUp, 0.0);
   m[2] = glm::dvec4(forward, 0.0);
-  m[3] = glm::dvec4(glm::dvec3(toPoint(positionWhere, position)), 1.0);
+  toPoint(positionWhere, position);  // range check only: the position stays double
+  m[3] = glm::dvec4(position, 1.0);
   return m;
 }
 
