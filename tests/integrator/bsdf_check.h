@@ -9,7 +9,7 @@
 //
 // χ² (Nori/Mitsuba style): the sphere is cut into cosThetaBins × phiBins cells of equal
 // solid angle (uniform in z = cos θ ∈ [−1, 1] and φ ∈ [0, 2π)); the expected count of a
-// cell is N ∫_cell pdf dω by nested adaptive Simpson quadrature in (z, φ) (dω = dz dφ).
+// cell is N ∫_cell pdf dω by nested adaptive Simpson quadrature in (θ, φ) (dω = sin θ dθ dφ).
 // Delta samples and failed samples (nullopt) form one extra "other" cell whose expected
 // count is N (1 − ∫ pdf dω). Cells with expected < minExpected are pooled; the p-value is
 // the regularised upper incomplete gamma Q(dof/2, χ²/2), and the test rejects when

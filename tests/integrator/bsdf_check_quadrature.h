@@ -1,5 +1,5 @@
 // Numerical tools of the BSDF checks (bsdf_check.h): directions from (cos θ, φ), nested
-// adaptive Simpson quadrature over cells of the sphere (dω = d cos θ dφ), and the χ²
+// adaptive Simpson quadrature over cells of the sphere (dω = sin θ dθ dφ), and the χ²
 // p-value through the regularised upper incomplete gamma function.
 //
 // | option   | default | meaning                                                       |
@@ -97,10 +97,22 @@ V adaptiveSimpson(const F& f, double a, double b, const QuadratureOptions& o) {
 template <class V = double, class G>
 V integrateCell(const G& g, double z0, double z1, double phi0, double phi1,
                 const QuadratureOptions& o) {
-  const auto inner = [&](double z) {
-    return adaptiveSimpson<V>([&](double phi) -> V { return g(direction(z, phi)); }, phi0, phi1, o);
+  // Outer integral in θ (dz = sin θ dθ): lobes peaked at the poles are α wide in θ but
+  // only α² wide in z, so θ resolves them with far fewer panels.
+  const auto inner = [&](double theta) -> V {
+    const double st = std::sin(theta), ct = std::cos(theta);
+    const V ring = adaptiveSimpson<V>(
+        [&](double phi) -> V {
+          const glm::vec3 w(static_cast<float>(st * std::cos(phi)),
+                            static_cast<float>(st * std::sin(phi)), static_cast<float>(ct));
+          return g(w);
+        },
+        phi0, phi1, o);
+    using detail::operator*;
+    return st * ring;
   };
-  return adaptiveSimpson<V>(inner, z0, z1, o);
+  return adaptiveSimpson<V>(inner, std::acos(std::clamp(z1, -1.0, 1.0)),
+                            std::acos(std::clamp(z0, -1.0, 1.0)), o);
 }
 
 // ∫ g dω over the sphere, cell by cell on the χ² grid (cell edges catch the z = 0 jump).

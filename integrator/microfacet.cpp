@@ -1,0 +1,139 @@
+// Microfacet distributions, Smith and V-groove shadowing–masking, normal sampling.
+//
+// | parameter    | unit          | default | meaning                                        |
+// |--------------|---------------|---------|------------------------------------------------|
+// | distribution | —             | ggx     | ggx (Trowbridge–Reitz) or beckmann             |
+// | masking      | —             | smith   | smith (height-correlated) or v-groove          |
+// | alpha_x/y    | dimensionless | —       | slope widths; clamped below at kMinAlpha       |
+//
+// Everything is written with the components of unit vectors instead of θ and φ, which
+// keeps it finite at cos θ → 0 and at the pole (no tan θ, no division by sin θ):
+//   GGX       D(m) = 1 / (π αx αy (mx²/αx² + my²/αy² + mz²)²)          (mz > 0, else 0)
+//             α(φ)² tan²θ = (αx² wx² + αy² wy²) / wz²,   Λ = t / (2 (1 + √(1 + t))),  t = α(φ)²
+//             tan²θ G1/|cos θ| = 2 / (|wz| + √(wz² + αx² wx² + αy² wy²))     (finite at wz = 0)
+//   Beckmann  D(m) = exp(−(mx²/αx² + my²/αy²)/mz²) / (π αx αy mz⁴)
+//             Λ = (e^{−a²}/(a√π) − erfc(a)) / 2,  a = |wz| / √(αx² wx² + αy² wy²)  (double)
+//   Sampling  GGX: visible normals (Heitz 2018), pdf = G1(w) max(0, w·m) D(m) / |cos θ|
+//             Beckmann: slopes (x̃, ỹ) ~ Gaussian with σ = α/√2 (Box–Muller), which is exactly
+//             D(m) cos θm dω (Walter et al. 2007: tan²θm = −α² ln(1 − u) when isotropic)
+#include "integrator/microfacet.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <glm/geometric.hpp>
+
+#include "integrator/math.h"
+
+namespace camsim {
+namespace {
+
+// Smallest α used in evaluation: D ≤ 1/(π kMinAlpha²) ≈ 3e11 still fits in a float.
+constexpr float kMinAlpha = 1e-6f;
+constexpr double kSqrtPi = 1.77245385090551602730;
+
+glm::vec3 toUpperHemisphere(const glm::vec3& w) {
+  return {w.x, w.y, std::abs(w.z)};
+}
+
+}  // namespace
+
+MicrofacetModel::MicrofacetModel(MicrofacetDistribution distribution, MaskingModel masking,
+                                 float alphaX, float alphaY)
+    : distribution_(distribution),
+      masking_(masking),
+      alphaX_(std::max(alphaX, kMinAlpha)),
+      alphaY_(std::max(alphaY, kMinAlpha)) {}
+
+bool MicrofacetModel::effectivelySmooth() const {
+  return std::max(alphaX_, alphaY_) < kSmoothAlpha;
+}
+
+float MicrofacetModel::D(const glm::vec3& wm) const {
+  if (!(wm.z > 0.0f)) return 0.0f;
+  const double ax = alphaX_, ay = alphaY_;
+  const double x = wm.x, y = wm.y, z = wm.z;
+  const double slope2 = x * x / (ax * ax) + y * y / (ay * ay);  // tan²θ·(…)·cos²θ
+  if (distribution_ == MicrofacetDistribution::kGgx) {
+    const double d = slope2 + z * z;
+    return static_cast<float>(1.0 / (M_PI * ax * ay * d * d));
+  }
+  const double e = slope2 / (z * z);
+  if (e > 700.0) return 0.0f;  // exp underflows (and z⁴ may be 0)
+  return static_cast<float>(std::exp(-e) / (M_PI * ax * ay * z * z * z * z));
+}
+
+float MicrofacetModel::lambda(const glm::vec3& w) const {
+  const double z = std::abs(static_cast<double>(w.z));
+  const double x = w.x, y = w.y, ax = alphaX_, ay = alphaY_;
+  const double a2s2 = ax * ax * x * x + ay * ay * y * y;  // α(φ)² sin²θ
+  if (a2s2 == 0.0) return 0.0f;                           // at the pole: nothing is masked
+  if (z == 0.0) return std::numeric_limits<float>::infinity();
+  if (distribution_ == MicrofacetDistribution::kGgx) {
+    const double t = a2s2 / (z * z);
+    if (!std::isfinite(t)) return std::numeric_limits<float>::infinity();
+    return static_cast<float>(t / (2.0 * (1.0 + std::sqrt(1.0 + t))));
+  }
+  const double a = z / std::sqrt(a2s2);
+  if (a > 26.0) return 0.0f;  // e^{−a²} underflows; Λ < 1e-296
+  return static_cast<float>(0.5 * (std::exp(-a * a) / (a * kSqrtPi) - std::erfc(a)));
+}
+
+float MicrofacetModel::G1(const glm::vec3& w) const {
+  return 1.0f / (1.0f + lambda(w));
+}
+
+float MicrofacetModel::G(const glm::vec3& wo, const glm::vec3& wi, const glm::vec3& wm) const {
+  if (masking_ == MaskingModel::kSmith) return 1.0f / (1.0f + lambda(wo) + lambda(wi));
+  // V-groove: min(1, 2 |cos θm| |cos θ| / |w·m|) for each direction.
+  const auto term = [&](const glm::vec3& w) {
+    const float wDotM = std::abs(glm::dot(w, wm));
+    if (wDotM <= 0.0f) return 1.0f;
+    return std::min(1.0f, 2.0f * std::abs(wm.z) * std::abs(w.z) / wDotM);
+  };
+  return std::min(term(wo), term(wi));
+}
+
+glm::vec3 MicrofacetModel::sampleWm(const glm::vec3& wIn, glm::vec2 u) const {
+  const glm::vec3 w = toUpperHemisphere(wIn);
+  const float u0 = std::min(u.x, 1.0f - 0x1p-24f), u1 = u.y;
+  if (distribution_ == MicrofacetDistribution::kBeckmann) {
+    // Box–Muller: slopes with density exp(−x̃²/αx² − ỹ²/αy²)/(π αx αy).
+    const float r = std::sqrt(-std::log1p(-u0));
+    const float phi = 2.0f * kPi * u1;
+    const float sx = alphaX_ * r * std::cos(phi), sy = alphaY_ * r * std::sin(phi);
+    return glm::normalize(glm::vec3(-sx, -sy, 1.0f));
+  }
+  // GGX visible normals: stretch w to the hemisphere configuration (α = 1), sample the
+  // projected disk of the hemisphere seen from wh, unstretch.
+  const glm::vec3 wh = glm::normalize(glm::vec3(alphaX_ * w.x, alphaY_ * w.y, w.z));
+  const float len2 = wh.x * wh.x + wh.y * wh.y;
+  const glm::vec3 t1 =
+      len2 > 0.0f ? glm::vec3(-wh.y, wh.x, 0.0f) / std::sqrt(len2) : glm::vec3(1.0f, 0.0f, 0.0f);
+  const glm::vec3 t2 = glm::cross(wh, t1);
+  const float r = std::sqrt(u0), phi = 2.0f * kPi * u1;
+  const float p1 = r * std::cos(phi);
+  float p2 = r * std::sin(phi);
+  const float s = 0.5f * (1.0f + wh.z);
+  p2 = (1.0f - s) * safeSqrt(1.0f - p1 * p1) + s * p2;
+  const glm::vec3 nh = p1 * t1 + p2 * t2 + safeSqrt(1.0f - p1 * p1 - p2 * p2) * wh;
+  return glm::normalize(glm::vec3(alphaX_ * nh.x, alphaY_ * nh.y, std::max(1e-6f, nh.z)));
+}
+
+float MicrofacetModel::pdf(const glm::vec3& wIn, const glm::vec3& wm) const {
+  const float d = D(wm);
+  if (d == 0.0f) return 0.0f;
+  if (distribution_ == MicrofacetDistribution::kBeckmann) return d * wm.z;
+  const glm::vec3 w = toUpperHemisphere(wIn);
+  const float wDotM = glm::dot(w, wm);
+  if (!(wDotM > 0.0f)) return 0.0f;
+  // G1(w)/cos θ written without the division by cos θ (finite at grazing w).
+  const float g1OverCos =
+      2.0f /
+      (w.z + std::sqrt(w.z * w.z + alphaX_ * alphaX_ * w.x * w.x + alphaY_ * alphaY_ * w.y * w.y));
+  if (!std::isfinite(g1OverCos)) return 0.0f;
+  return g1OverCos * wDotM * d;
+}
+
+}  // namespace camsim
