@@ -1,5 +1,6 @@
 #include "integrator/dielectric_material.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include <glm/geometric.hpp>
@@ -43,6 +44,54 @@ bool finitePositive(float x) {
   return x > 0.0f && std::isfinite(x);
 }
 
+// The facets wo sees are those with wo·wm of wo's sign; from the inside these are the
+// visible normals of −wo (point reflection), not of wo mirrored in the plane, so the
+// microfacet sampler and its pdf are always given the direction on the +z side.
+glm::vec3 facing(const glm::vec3& wo) {
+  return wo.z < 0.0f ? -wo : wo;
+}
+
+// Fresnel transmittance 1 − R of a refraction pair from both cosines (c1 on the incident
+// side, c2 on the other, etap = n2/n1): T = (t∥ + t⊥)/2 with t = 1 − r² written as
+//   t∥ = 4 η' c1 c2 / (η' c1 + c2)²,   t⊥ = 4 η' c1 c2 / (c1 + η' c2)².
+// Symmetric in the two sides and free of the cancellation in 1 − R and in
+// cosθt = √(1 − sin²θi/η'²) near the critical angle, so the BTDF stays reciprocal there.
+float transmittance(float c1, float c2, float etap) {
+  c1 = std::abs(c1);
+  c2 = std::abs(c2);
+  const float a = etap * c1 + c2, b = c1 + etap * c2;
+  return std::min(1.0f, 2.0f * etap * c1 * c2 * (1.0f / (a * a) + 1.0f / (b * b)));
+}
+
+// The rough BSDF and the density of sample() for one pair of directions (see the header).
+// The lobe-choice probability is F(wo·wm) as in sample(); the BTDF uses the accurate
+// two-sided transmittance.
+struct RoughValue {
+  float f, pdf;
+};
+
+std::optional<RoughValue> evaluateRough(const glm::vec3& wo, const glm::vec3& wi, float eta,
+                                        const MicrofacetModel& m) {
+  const std::optional<HalfVector> h = halfVector(wo, wi, eta);
+  if (!h) return std::nullopt;
+  const float cosOM = glm::dot(wo, h->wm), cosIM = glm::dot(wi, h->wm);
+  const float R = fresnelDielectric(cosOM, eta);
+  const float dg = m.D(h->wm) * m.G(wo, wi, h->wm);
+  const float pdfWm = m.pdf(facing(wo), h->wm);
+  RoughValue v;
+  if (h->reflection) {
+    v.f = dg * R / (4.0f * std::abs(wi.z * wo.z));
+    v.pdf = pdfWm / (4.0f * std::abs(cosOM)) * R;
+  } else {
+    const float denom = sqr(cosIM + cosOM / h->etap);
+    const float T = transmittance(cosOM, cosIM, h->etap);
+    v.f = dg * T * std::abs(cosIM * cosOM / (denom * wi.z * wo.z)) / sqr(h->etap);
+    v.pdf = pdfWm * (std::abs(cosIM) / denom) * (1.0f - R);
+  }
+  if (!std::isfinite(v.f) || !std::isfinite(v.pdf)) return std::nullopt;
+  return v;
+}
+
 }  // namespace
 
 DielectricMaterial::DielectricMaterial(Spectrum eta, std::unique_ptr<FloatTexture> roughness,
@@ -83,20 +132,8 @@ SampledSpectrum DielectricMaterial::f(const glm::vec3& wo, const glm::vec3& wi,
   const float eta = etaAt(lambda);
   const MicrofacetModel m = microfacet(ctx);
   if (smooth(m, eta)) return SampledSpectrum(0.0f);
-  const std::optional<HalfVector> h = halfVector(wo, wi, eta);
-  if (!h) return SampledSpectrum(0.0f);
-  const float cosOM = glm::dot(wo, h->wm), cosIM = glm::dot(wi, h->wm);
-  const float F = fresnelDielectric(cosOM, eta);
-  const float dg = m.D(h->wm) * m.G(wo, wi, h->wm);
-  float value;
-  if (h->reflection) {
-    value = dg * F / (4.0f * std::abs(wi.z * wo.z));
-  } else {
-    const float denom = sqr(cosIM + cosOM / h->etap) * wi.z * wo.z;
-    value = dg * (1.0f - F) * std::abs(cosIM * cosOM / denom) / sqr(h->etap);
-  }
-  if (!std::isfinite(value)) return SampledSpectrum(0.0f);
-  return SampledSpectrum(value);
+  const std::optional<RoughValue> v = evaluateRough(wo, wi, eta, m);
+  return SampledSpectrum(v ? v->f : 0.0f);
 }
 
 float DielectricMaterial::pdf(const glm::vec3& wo, const glm::vec3& wi,
@@ -104,18 +141,8 @@ float DielectricMaterial::pdf(const glm::vec3& wo, const glm::vec3& wi,
   const float eta = etaAt(lambda);
   const MicrofacetModel m = microfacet(ctx);
   if (smooth(m, eta)) return 0.0f;
-  const std::optional<HalfVector> h = halfVector(wo, wi, eta);
-  if (!h) return 0.0f;
-  const float cosOM = glm::dot(wo, h->wm), cosIM = glm::dot(wi, h->wm);
-  const float R = fresnelDielectric(cosOM, eta);
-  float value;
-  if (h->reflection) {
-    value = m.pdf(wo, h->wm) / (4.0f * std::abs(cosOM)) * R;
-  } else {
-    const float dwmDwi = std::abs(cosIM) / sqr(cosIM + cosOM / h->etap);
-    value = m.pdf(wo, h->wm) * dwmDwi * (1.0f - R);
-  }
-  return std::isfinite(value) ? value : 0.0f;
+  const std::optional<RoughValue> v = evaluateRough(wo, wi, eta, m);
+  return v ? v->pdf : 0.0f;
 }
 
 std::optional<BsdfSample> DielectricMaterial::sample(const glm::vec3& wo, float uc, glm::vec2 u,
@@ -130,7 +157,8 @@ std::optional<BsdfSample> DielectricMaterial::sample(const glm::vec3& wo, float 
 
 std::optional<BsdfSample> DielectricMaterial::sampleSmooth(const glm::vec3& wo, float uc,
                                                            float eta) const {
-  const float R = fresnelDielectric(wo.z, eta), T = 1.0f - R;
+  // Index-matched: nothing reflects (fresnelDielectric would round grazing η = 1 to TIR).
+  const float R = eta == 1.0f ? 0.0f : fresnelDielectric(wo.z, eta), T = 1.0f - R;
   BsdfSample s;
   s.specular = true;
   if (uc < R) {
@@ -159,31 +187,27 @@ std::optional<BsdfSample> DielectricMaterial::sampleSmooth(const glm::vec3& wo, 
 std::optional<BsdfSample> DielectricMaterial::sampleRough(const glm::vec3& wo, float uc,
                                                           glm::vec2 u, float eta,
                                                           const MicrofacetModel& m) const {
-  const glm::vec3 wm = m.sampleWm(wo, u);
+  const glm::vec3 wm = m.sampleWm(facing(wo), u);
   const float cosOM = glm::dot(wo, wm);
   if (cosOM * wo.z <= 0.0f) return std::nullopt;  // a back-facing facet (Beckmann samples D cosθm)
-  const float R = fresnelDielectric(cosOM, eta), T = 1.0f - R;
-  const float pdfWm = m.pdf(wo, wm);
   BsdfSample s;
-  if (uc < R) {
+  if (uc < fresnelDielectric(cosOM, eta)) {
     s.wi = glm::normalize(reflect(wo, wm));
-    if (s.wi.z * wo.z <= 0.0f || glm::dot(s.wi, wm) * s.wi.z <= 0.0f) return std::nullopt;
-    s.pdf = pdfWm / (4.0f * std::abs(cosOM)) * R;
-    s.f = SampledSpectrum(m.D(wm) * m.G(wo, s.wi, wm) * R / (4.0f * std::abs(s.wi.z * wo.z)));
+    if (s.wi.z * wo.z <= 0.0f) return std::nullopt;
   } else {
     const std::optional<Refraction> r = refract(wo, wm, eta);
     if (!r) return std::nullopt;
     s.wi = glm::normalize(r->wt);
-    const float cosIM = glm::dot(s.wi, wm);
-    if (s.wi.z * wo.z >= 0.0f || cosIM * s.wi.z <= 0.0f) return std::nullopt;
-    const float denom = sqr(cosIM + cosOM / r->etap);
-    s.pdf = pdfWm * (std::abs(cosIM) / denom) * T;
-    const float ft =
-        m.D(wm) * m.G(wo, s.wi, wm) * T * std::abs(cosIM * cosOM / (denom * s.wi.z * wo.z));
-    s.f = SampledSpectrum(ft / sqr(r->etap));
+    if (s.wi.z * wo.z >= 0.0f) return std::nullopt;
     s.transmission = true;
   }
-  if (!finitePositive(s.pdf) || !s.f.isFinite()) return std::nullopt;
+  // f and pdf from (wo, wi) exactly as f() and pdf() compute them, so the three agree to
+  // the last bit (MIS relies on it), also where they are ill-conditioned (V-groove G at
+  // near-vertical facets, Fresnel near the critical angle).
+  const std::optional<RoughValue> v = evaluateRough(wo, s.wi, eta, m);
+  if (!v || !finitePositive(v->pdf) || !std::isfinite(v->f)) return std::nullopt;
+  s.f = SampledSpectrum(v->f);
+  s.pdf = v->pdf;
   return s;
 }
 

@@ -27,8 +27,11 @@
 //   reflection    f = D(wm) G(wo, wi) F / (4 |cosθi cosθo|)
 //   transmission  f = D(wm) G(wo, wi) (1 − F) |wi·wm| |wo·wm|
 //                     / (|cosθi cosθo| (wi·wm + wo·wm/η')² η'²)
-//   with F = F(wo·wm, η). The transmission f obeys the generalised reciprocity
-//   f(wo, wi) / η_o² = f(wi, wo) / η_i²  (η_o, η_i the indices of wo's and wi's sides).
+//   with F = F(wo·wm, η); in the BTDF, 1 − F is the two-sided transmittance
+//   T = 2 η' c1 c2 (1/(η' c1 + c2)² + 1/(c1 + η' c2)²), c1 = |wo·wm|, c2 = |wi·wm| (equal to
+//   1 − F in exact arithmetic, but accurate near the critical angle). The transmission f obeys the
+//   generalised reciprocity f(wo, wi) / η_o² = f(wi, wo) / η_i²  (η_o, η_i the indices of wo's and
+//   wi's sides).
 // Sampling: wm ~ MicrofacetModel::sampleWm(wo, u); reflection with probability F(wo·wm),
 // else refraction through wm; the density of wi is the density of wm times the Jacobian
 //   reflection    dwm/dwi = 1 / (4 |wo·wm|)

@@ -110,7 +110,7 @@ TEST(DielectricMaterial, SmoothFresnelSnellAndWeights) {
   const DielectricMaterial mat(Spectrum::constant(eta), 0.0f);
   EXPECT_FALSE(mat.hasNonSpecular());
   const SampledWavelengths lambda = lambdaAt(550.0f);
-  for (double cosO : {1.0, 0.9, 0.5, 0.2, 0.05, -1.0, -0.9, -0.8, -0.75}) {
+  for (double cosO : {1.0, 0.9, 0.5, 0.2, 0.05, -1.0, -0.9, -0.8, -0.75, -0.7, -0.3, -0.05}) {
     SCOPED_TRACE("cos theta_o = " + std::to_string(cosO));
     const glm::vec3 wo = dir(cosO);
     const double etap = cosO > 0.0 ? 1.5 : 1.0 / 1.5;
@@ -145,8 +145,8 @@ TEST(DielectricMaterial, SmoothFresnelSnellAndWeights) {
     }
     const double R = fresnelRef(cosO, eta);
     EXPECT_NEAR(static_cast<double>(reflected) / kN, R, 1.0 / kN + 1e-5);
-    if (cosO < -std::sqrt(1.0 - 1.0 / 2.25)) {  // η = 1.5
-      EXPECT_EQ(reflected, kN);  // beyond the critical angle
+    if (cosO < 0.0 && cosO > -std::sqrt(1.0 - 1.0 / 2.25)) {  // η = 1.5
+      EXPECT_EQ(reflected, kN);                               // beyond the critical angle
     }
   }
 }
@@ -219,6 +219,24 @@ TEST(DielectricMaterial, FurnaceEnergyAtMostOne) {
         }
 }
 
+// Sampling covers f: the sampled albedo E[f |cos θi| / pdf] equals the quadrature
+// ∫ f |cos θi| dω (a direction where f > 0 but pdf = 0 would make the estimate low).
+TEST(DielectricMaterial, SampledAlbedoMatchesQuadrature) {
+  const SampledWavelengths lambda = lambdaAt(550.0f);
+  for (MD d : {MD::kGgx, MD::kBeckmann})
+    for (double c : {0.8, 0.2, -0.9, -0.3}) {
+      const DielectricMaterial mat(Spectrum::constant(1.5), 0.3f, 0.2f, d);
+      bsdfcheck::AlbedoOptions o;
+      o.sampleCount = 100000;
+      const bsdfcheck::AlbedoResult r = bsdfcheck::albedo(mat, dir(c), lambda, {}, o);
+      SCOPED_TRACE(std::string(name(d)) + " cos " + std::to_string(c));
+      EXPECT_EQ(r.nonFinite, 0);
+      EXPECT_NEAR(r.mean[0], r.quadrature[0], 4.0 * r.stdErr[0] + 2e-3);
+      std::printf("  %-8s alpha 0.3 cos %+.1f: sampled %.4f +- %.4f, quadrature %.4f\n", name(d), c,
+                  r.mean[0], r.stdErr[0], r.quadrature[0]);
+    }
+}
+
 // (5) Reciprocity: reflection f(wo, wi) = f(wi, wo); transmission (radiance BTDF)
 // f(wo, wi)/η_o² = f(wi, wo)/η_i², η_o and η_i the indices of wo's and wi's sides.
 TEST(DielectricMaterial, GeneralisedReciprocity) {
@@ -235,7 +253,7 @@ TEST(DielectricMaterial, GeneralisedReciprocity) {
           SCOPED_TRACE(std::string(name(d)) + " " + name(m) + " eta " + std::to_string(eta) +
                        (transmission ? " transmission" : " reflection"));
           EXPECT_EQ(r.nonFinite, 0);
-          EXPECT_GT(r.nonZeroPairs, o.pairs / 3);
+          EXPECT_GT(r.nonZeroPairs, o.pairs / 8);
           EXPECT_LT(r.maxRelError, 2e-3) << "worst wo " << r.worstWo.z << " wi " << r.worstWi.z;
         }
 }
@@ -315,7 +333,7 @@ TEST(DielectricMaterial, HardCasesStayFinite) {
             ASSERT_TRUE(std::isfinite(mat.pdf(wo, s->wi, lambda, {})));
           }
           if (std::abs(c) >= 0.3) {
-            EXPECT_GT(produced, 1000);
+            EXPECT_GT(produced, 200);
           }
         }
       }
