@@ -15,8 +15,8 @@
 //
 // Spectrum of a texel of colour c (Jakob–Hanika uplift, as rgbToEmissionShape):
 //   L(λ) = s(λ) · k_c · S(c₀λ'² + c₁λ' + c₂) · D65(λ),  Σ k_c S(…) D65 ȳ Δλ = Y(c),
-// with (c₀, c₁, c₂) bilinear in a table of fits over the chromaticity of c (fitted once per
-// table node at construction, never per lookup) and k_c fixing the luminance exactly:
+// with (c₀, c₁, c₂) from RgbEmissionTable (bilinear in a table of fits made once, never
+// per lookup) and k_c fixing the luminance (to ≤ 5e-4) (Σ over 3 nm bins of the 1 nm grid):
 // a texel (1, 1, 1) has L = D65 / Σ D65 ȳ, i.e. luminance 683 cd/m².
 //
 //   p(ω) = p(u, v) / (2π² sin θ),  p(u, v) ∝ Y(texel) · sin θ_texel centre
@@ -30,6 +30,7 @@
 
 #include "integrator/distribution_2d.h"
 #include "integrator/light.h"
+#include "integrator/rgb_emission_table.h"
 #include "sensor/image.h"
 #include "sensor/spectrum.h"
 
@@ -62,8 +63,8 @@ class EnvironmentLight final : public Light {
 
  private:
   struct Texel {
-    float c0 = 0.0f, c1 = 0.0f, c2 = 0.0f;  // sigmoid polynomial in λ' = (λ − 360)/470
-    float k = 0.0f;                         // luminance normalisation (0: black)
+    SigmoidCoefficients shape;  // see rgb_emission_table.h
+    float k = 0.0f;             // luminance normalisation (0: black)
   };
   const Texel& texel(int column, int row) const {
     return texels_[static_cast<size_t>(row) * static_cast<size_t>(width_) +
