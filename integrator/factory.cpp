@@ -1,9 +1,11 @@
 #include "integrator/factory.h"
 
+#include "integrator/checkerboard_texture.h"
 #include "integrator/dielectric_material.h"
 #include "integrator/diffuse_material.h"
 #include "integrator/distant_light.h"
 #include "integrator/environment_light.h"
+#include "integrator/image_texture.h"
 #include "integrator/point_light.h"
 #include "integrator/spot_light.h"
 #include "sensor/check.h"
@@ -16,8 +18,11 @@ std::unique_ptr<SpectrumTexture> makeSpectrumTexture(const TextureDescription& d
     case TextureDescription::Kind::kConstant:
       return std::make_unique<ConstantSpectrumTexture>(d.value);
     case TextureDescription::Kind::kImage:
+      return std::make_unique<ImageSpectrumTexture>(
+          loadTextureImage(d.file, textureEncoding(d.file, d.encoding)), d.uvScale, d.uvOffset);
     case TextureDescription::Kind::kCheckerboard:
-      break;  // TODO(textures)
+      return std::make_unique<CheckerboardSpectrumTexture>(d.checkerA, d.checkerB, d.checks, d.uvScale,
+                                                           d.uvOffset);
   }
   CAMSIM_CHECK(false);
   return nullptr;
@@ -27,9 +32,13 @@ std::unique_ptr<FloatTexture> makeFloatTexture(const TextureDescription& d) {
   switch (d.kind) {
     case TextureDescription::Kind::kConstant:
       return std::make_unique<ConstantFloatTexture>(d.value(550.0f));
-    case TextureDescription::Kind::kImage:
-    case TextureDescription::Kind::kCheckerboard:
-      break;  // TODO(textures)
+    case TextureDescription::Kind::kImage:  // scalar maps default to raw numbers
+      return std::make_unique<ImageFloatTexture>(
+          loadTextureImage(d.file, textureEncoding(d.file, d.encoding.empty() ? "raw" : d.encoding)), d.uvScale,
+          d.uvOffset);
+    case TextureDescription::Kind::kCheckerboard:  // constants as for kConstant: the value at 550 nm
+      return std::make_unique<CheckerboardFloatTexture>(d.checkerA(550.0f), d.checkerB(550.0f), d.checks,
+                                                        d.uvScale, d.uvOffset);
   }
   CAMSIM_CHECK(false);
   return nullptr;

@@ -10,6 +10,12 @@
 // position is always paired with the same normal (same index or an identical vector);
 // otherwise MeshData::normals is left empty and the caller computes geometric normals.
 // Positions used by no face get a zero normal.
+//
+// Texture coordinates: likewise attached to face corners. They are kept only if every face
+// corner references a defined `vt`; a position used with several distinct uvs is then split: the
+// first uv stays with the original vertex, every further (position, uv) pair gets a new
+// vertex (a copy of the position and its normal) appended after the file's positions.
+// Positions used by no face get uv (0, 0).
 #include <charconv>
 #include <cmath>
 #include <cstdint>
@@ -18,6 +24,7 @@
 #include <limits>
 #include <string>
 #include <string_view>
+#include <unordered_map>
 #include <vector>
 
 #include "integrator/mesh_io.h"
@@ -32,6 +39,7 @@ namespace {
 
 constexpr std::size_t kMaxCount = 100'000'000;
 constexpr std::uint32_t kNoNormal = std::numeric_limits<std::uint32_t>::max();
+constexpr std::uint32_t kNoUv = kNoNormal;
 
 bool isSpace(char c) {
   return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f';
@@ -64,6 +72,9 @@ class ObjParser {
  private:
   void parseLine(const char* p, const char* end);
   glm::vec3 parseVec3(const char* p, const char* end, const char* what);
+  glm::vec2 parseUv(const char* p, const char* end);
+  float parseCoord(const char*& p, const char* end, const char* what);
+  void splitByUv(MeshData& mesh) const;
   void parseFace(const char* p, const char* end);
   const char* parseIndex(const char* p, const char* end, const char* tokenStart, std::int64_t& out);
   std::uint32_t resolve(std::int64_t index, std::size_t count, const char* what, const char* at);
@@ -81,6 +92,9 @@ class ObjParser {
   std::vector<std::uint32_t> indices_;
   std::vector<std::uint32_t> normalOf_;  // per position: the vn index used with it
   bool normalsUsable_ = true;
+  std::vector<glm::vec2> texcoords_;
+  std::vector<std::uint32_t> cornerUv_;  // per entry of indices_: its vt index
+  bool uvsUsable_ = true;
 };
 
 void ObjParser::fail(const char* at, const std::string& message) const {
@@ -120,7 +134,33 @@ MeshData ObjParser::run() {
     for (std::size_t i = 0; i < normalOf_.size(); ++i)
       if (normalOf_[i] != kNoNormal) mesh.normals[i] = normals_[normalOf_[i]];
   }
+  if (uvsUsable_ && cornerUv_.size() == mesh.indices.size()) splitByUv(mesh);
   return mesh;
+}
+
+void ObjParser::splitByUv(MeshData& mesh) const {
+  const std::size_t original = mesh.positions.size();
+  std::vector<std::uint32_t> uvOf(original, kNoUv);        // vt index kept by the original vertex
+  std::unordered_map<std::uint64_t, std::uint32_t> extra;  // (position, vt) → new vertex
+  std::vector<glm::vec2> extraUvs;
+  for (std::size_t k = 0; k < mesh.indices.size(); ++k) {
+    const std::uint32_t pos = mesh.indices[k], vt = cornerUv_[k];
+    std::uint32_t& kept = uvOf[pos];
+    if (kept == kNoUv) kept = vt;
+    if (kept == vt || texcoords_[kept] == texcoords_[vt]) continue;
+    const std::uint64_t key = (std::uint64_t{pos} << 32) | vt;
+    auto [it, inserted] = extra.try_emplace(key, static_cast<std::uint32_t>(mesh.positions.size()));
+    if (inserted) {  // at most 4·10⁸ vertices in all (kMaxCount): fits in uint32
+      mesh.positions.push_back(mesh.positions[pos]);
+      if (!mesh.normals.empty()) mesh.normals.push_back(mesh.normals[pos]);
+      extraUvs.push_back(texcoords_[vt]);
+    }
+    mesh.indices[k] = it->second;
+  }
+  mesh.uvs.assign(original, glm::vec2(0.0f));
+  for (std::size_t i = 0; i < original; ++i)
+    if (uvOf[i] != kNoUv) mesh.uvs[i] = texcoords_[uvOf[i]];
+  mesh.uvs.insert(mesh.uvs.end(), extraUvs.begin(), extraUvs.end());
 }
 
 void ObjParser::parseLine(const char* p, const char* end) {
@@ -134,10 +174,24 @@ void ObjParser::parseLine(const char* p, const char* end) {
   } else if (kw == "vn") {
     if (normals_.size() >= kMaxCount) fail(keyword, "more than 100000000 normals");
     normals_.push_back(parseVec3(p, end, "normal"));
+  } else if (kw == "vt") {
+    if (texcoords_.size() >= kMaxCount) fail(keyword, "more than 100000000 texture coordinates");
+    texcoords_.push_back(parseUv(p, end));
   } else if (kw == "f") {
     parseFace(p, end);
   }
-  // Everything else (vt, vp, o, g, s, usemtl, mtllib, l, p, comments, ...) is ignored.
+  // Everything else (vp, o, g, s, usemtl, mtllib, l, p, comments, ...) is ignored.
+}
+
+// One finite float coordinate at p (after spaces); advances p past it.
+float ObjParser::parseCoord(const char*& p, const char* end, const char* what) {
+  double d = 0.0;
+  const char* next = parseReal(p, end, d);
+  if (next == nullptr) fail(p, "'" + tokenAt(p, end) + "' is not a number");
+  if (!std::isfinite(d) || std::fabs(d) > static_cast<double>(std::numeric_limits<float>::max()))
+    fail(p, std::string(what) + " coordinate '" + tokenAt(p, end) + "' is not a finite float");
+  p = next;
+  return static_cast<float>(d);
 }
 
 // Reads three coordinates; further tokens (w, vertex colours) are ignored.
@@ -146,15 +200,23 @@ glm::vec3 ObjParser::parseVec3(const char* p, const char* end, const char* what)
   for (float& c : xyz) {
     while (p < end && isSpace(*p)) ++p;
     if (p == end || *p == '#') fail(p, std::string(what) + " needs 3 coordinates");
-    double d = 0.0;
-    const char* next = parseReal(p, end, d);
-    if (next == nullptr) fail(p, "'" + tokenAt(p, end) + "' is not a number");
-    if (!std::isfinite(d) || std::fabs(d) > static_cast<double>(std::numeric_limits<float>::max()))
-      fail(p, std::string(what) + " coordinate '" + tokenAt(p, end) + "' is not a finite float");
-    c = static_cast<float>(d);
-    p = next;
+    c = parseCoord(p, end, what);
   }
   return {xyz[0], xyz[1], xyz[2]};
+}
+
+// `vt u [v [w]]`: v defaults to 0, w is ignored.
+glm::vec2 ObjParser::parseUv(const char* p, const char* end) {
+  float uv[2] = {};
+  for (int i = 0; i < 2; ++i) {
+    while (p < end && isSpace(*p)) ++p;
+    if (p == end || *p == '#') {
+      if (i == 0) fail(p, "texture coordinate needs at least 1 value");
+      break;
+    }
+    uv[i] = parseCoord(p, end, "texture");
+  }
+  return {uv[0], uv[1]};
 }
 
 const char* ObjParser::parseIndex(const char* p, const char* end, const char* tokenStart,
@@ -179,8 +241,8 @@ std::uint32_t ObjParser::resolve(std::int64_t index, std::size_t count, const ch
 
 void ObjParser::parseFace(const char* p, const char* end) {
   std::int64_t corners = 0;
-  std::uint32_t first = 0;
-  std::uint32_t prev = 0;
+  std::uint32_t first = 0, firstUv = kNoUv;
+  std::uint32_t prev = 0, prevUv = kNoUv;
   while (true) {
     while (p < end && isSpace(*p)) ++p;
     if (p == end || *p == '#') break;
@@ -190,10 +252,17 @@ void ObjParser::parseFace(const char* p, const char* end) {
     const std::uint32_t pos = resolve(raw, positions_.size(), "vertex", tokenStart);
     std::uint32_t normal = 0;
     bool hasNormal = false;
+    std::uint32_t uv = kNoUv;
     if (p < end && *p == '/') {
       ++p;
-      // Texcoord index (required after one '/', ignored); "i/" fails here.
-      if (p == end || *p != '/') p = parseIndex(p, end, tokenStart, raw);
+      // Texcoord index (required after one '/'; "i/" fails here). One that names no `vt`
+      // (0 or out of range) only drops the uvs: such files loaded when vt was ignored.
+      if (p == end || *p != '/') {
+        p = parseIndex(p, end, tokenStart, raw);
+        const std::int64_t n = static_cast<std::int64_t>(texcoords_.size());
+        const std::int64_t absolute = raw > 0 ? raw - 1 : n + raw;
+        if (raw != 0 && absolute >= 0 && absolute < n) uv = static_cast<std::uint32_t>(absolute);
+      }
       if (p < end && *p == '/') {
         p = parseIndex(p + 1, end, tokenStart, raw);
         normal = resolve(raw, normals_.size(), "normal", tokenStart);
@@ -204,15 +273,22 @@ void ObjParser::parseFace(const char* p, const char* end) {
       fail(tokenStart,
            "bad face vertex '" + tokenAt(tokenStart, end) + "' (expected i, i/t, i//n or i/t/n)");
     trackNormal(pos, normal, hasNormal);
+    if (uv == kNoUv && uvsUsable_) {
+      uvsUsable_ = false;
+      cornerUv_ = {};
+    }
     if (corners == 0) {
       first = pos;
+      firstUv = uv;
     } else if (corners >= 2) {
       if (indices_.size() >= 3 * kMaxCount) fail(tokenStart, "more than 100000000 triangles");
       indices_.push_back(first);
       indices_.push_back(prev);
       indices_.push_back(pos);
+      if (uvsUsable_) cornerUv_.insert(cornerUv_.end(), {firstUv, prevUv, uv});
     }
     prev = pos;
+    prevUv = uv;
     ++corners;
   }
   if (corners < 3)

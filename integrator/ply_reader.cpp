@@ -28,7 +28,7 @@ std::string readWholeFile(const std::filesystem::path& path);  // mesh_io.cpp
 namespace {
 
 constexpr std::uint64_t kMaxElementCount = 100'000'000;
-constexpr int kIndicesSlot = 6;  // vertex slots 0..5 are x y z nx ny nz
+constexpr int kIndicesSlot = 8;  // vertex slots 0..7 are x y z nx ny nz u v
 
 enum class Type : std::uint8_t { kInt8, kUint8, kInt16, kUint16, kInt32, kUint32, kFloat, kDouble };
 enum class Format : std::uint8_t { kAscii, kBinaryLittle, kBinaryBig };
@@ -187,18 +187,28 @@ Header parseHeader(std::string_view bytes, const std::string& src) {
 }
 
 // Marks the properties we use (Property::slot) and checks that they are present and usable.
-// Returns the vertex count; sets hasNormals.
-std::uint64_t assignSlots(Header& h, const std::string& src, bool& hasNormals) {
-  static constexpr std::string_view kVertexNames[] = {"x", "y", "z", "nx", "ny", "nz"};
+// Returns the vertex count; sets hasNormals and hasUvs.
+std::uint64_t assignSlots(Header& h, const std::string& src, bool& hasNormals, bool& hasUvs) {
+  // Names per slot; the texture coordinates have alternatives (the first one present wins).
+  static constexpr std::string_view kVertexNames[8][3] = {{"x"},
+                                                          {"y"},
+                                                          {"z"},
+                                                          {"nx"},
+                                                          {"ny"},
+                                                          {"nz"},
+                                                          {"u", "s", "texture_u"},
+                                                          {"v", "t", "texture_v"}};
   const Element* vertex = nullptr;
   const Element* face = nullptr;
   for (Element& e : h.elements) {
     if (e.name == "vertex") {
       vertex = &e;
-      bool found[6] = {};
+      bool found[8] = {};
       for (Property& p : e.properties) {
-        for (int s = 0; s < 6; ++s) {
-          if (p.name != kVertexNames[s]) continue;
+        for (int s = 0; s < 8; ++s) {
+          const auto& names = kVertexNames[s];
+          if (found[s] || std::find(std::begin(names), std::end(names), p.name) == std::end(names))
+            continue;
           if (p.isList) failAt(src, e.line, "vertex property '" + p.name + "' must not be a list");
           p.slot = s;
           found[s] = true;
@@ -209,6 +219,9 @@ std::uint64_t assignSlots(Header& h, const std::string& src, bool& hasNormals) {
       hasNormals = found[3] && found[4] && found[5];
       if (!hasNormals && (found[3] || found[4] || found[5]))
         failAt(src, e.line, "vertex element has some but not all of nx, ny, nz");
+      hasUvs = found[6] && found[7];
+      if (found[6] != found[7])
+        failAt(src, e.line, "vertex element has only one texture coordinate (need u and v)");
     } else if (e.name == "face") {
       face = &e;
       for (Property& p : e.properties) {
@@ -384,7 +397,7 @@ class AsciiReader {
 
 template <class Reader>
 MeshData readBody(const Header& h, Reader& in, const std::string& src, std::uint64_t vertexCount,
-                  bool hasNormals) {
+                  bool hasNormals, bool hasUvs) {
   MeshData mesh;
   for (const Element& e : h.elements) {
     if (e.properties.empty() || e.count == 0) continue;
@@ -399,12 +412,13 @@ MeshData readBody(const Header& h, Reader& in, const std::string& src, std::uint
     if (isVertex) {
       mesh.positions.reserve(e.count);
       if (hasNormals) mesh.normals.reserve(e.count);
+      if (hasUvs) mesh.uvs.reserve(e.count);
     } else if (e.name == "face") {
       mesh.indices.reserve(3 * e.count);
     }
     for (std::uint64_t row = 0; row < e.count; ++row) {
       if (!in.beginRow()) rowFail(src, in.line(), e, row, "file ends before this row");
-      float v[6] = {};
+      float v[8] = {};
       for (const Property& p : e.properties) {
         std::int64_t n = 0;  // list length
         double d = 0.0;      // scalar value
@@ -443,6 +457,7 @@ MeshData readBody(const Header& h, Reader& in, const std::string& src, std::uint
       if (isVertex) {
         mesh.positions.emplace_back(v[0], v[1], v[2]);
         if (hasNormals) mesh.normals.emplace_back(v[3], v[4], v[5]);
+        if (hasUvs) mesh.uvs.emplace_back(v[6], v[7]);
       }
     }
   }
@@ -454,16 +469,16 @@ MeshData readBody(const Header& h, Reader& in, const std::string& src, std::uint
 
 MeshData parsePly(std::string_view bytes, const std::string& sourceName) {
   Header header = parseHeader(bytes, sourceName);
-  bool hasNormals = false;
-  const std::uint64_t vertexCount = assignSlots(header, sourceName, hasNormals);
+  bool hasNormals = false, hasUvs = false;
+  const std::uint64_t vertexCount = assignSlots(header, sourceName, hasNormals, hasUvs);
   const std::string_view body = bytes.substr(header.bodyOffset);
   MeshData mesh;
   if (header.format == Format::kAscii) {
     AsciiReader reader(body, header.lines);
-    mesh = readBody(header, reader, sourceName, vertexCount, hasNormals);
+    mesh = readBody(header, reader, sourceName, vertexCount, hasNormals, hasUvs);
   } else {
     BinaryReader reader(body, header.format == Format::kBinaryBig);
-    mesh = readBody(header, reader, sourceName, vertexCount, hasNormals);
+    mesh = readBody(header, reader, sourceName, vertexCount, hasNormals, hasUvs);
   }
   if (mesh.indices.empty()) failAt(sourceName, 0, "PLY file has no faces (no triangles)");
   return mesh;

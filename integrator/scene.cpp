@@ -50,7 +50,7 @@ std::unique_ptr<Shape> buildShape(const ShapeDescription& s, double t0, double t
       for (const glm::vec3& n : s.mesh.normals)
         normals[static_cast<size_t>(k)].emplace_back(glm::normalize(rotation * glm::dvec3(n)));
   }
-  return std::make_unique<TriangleMesh>(std::move(positions), std::move(normals), s.mesh.indices, steps);
+  return std::make_unique<TriangleMesh>(std::move(positions), std::move(normals), s.mesh.indices, steps, s.mesh.uvs);
 }
 
 }  // namespace

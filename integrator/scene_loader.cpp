@@ -138,6 +138,7 @@ ShapeDescription parseShape(YamlMap map, size_t index, const Context& ctx) {
     const glm::dvec3 u = eu.vec3(), v = ev.vec3();
     s.mesh.positions = {point(cv, corner), point(eu, corner + u), point(ev, corner + u + v), point(ev, corner + v)};
     s.mesh.indices = {0, 1, 2, 0, 2, 3};
+    s.mesh.uvs = {{0.0f, 0.0f}, {1.0f, 0.0f}, {1.0f, 1.0f}, {0.0f, 1.0f}};  // corner, +u, +u+v, +v
     if (!(meshArea2(s.mesh) > 0.0)) ev.fail("edge_u and edge_v must span a non-zero area");
     known.insert(known.end(), {"corner", "edge_u", "edge_v"});
   } else if (t == "mesh") {

@@ -1,4 +1,11 @@
+// Sphere (see sphere.h). Texture coordinates of a point with unit normal n (from the
+// centre): u = φ/2π in [0, 1) with φ = atan2(n.y, n.x) about +z, v = θ/π with θ = acos(n.z)
+// from +z (v = 0 at the +z pole, 1 at −z). The axes are the world's (a sphere has no
+// orientation of its own).
 #include "integrator/sphere.h"
+
+#include <algorithm>
+#include <cmath>
 
 #include "integrator/math.h"
 #include "sensor/check.h"
@@ -21,7 +28,9 @@ Sphere::Pose Sphere::at(float time) const {
   return {glm::mix(centres_[k], centres_[k + 1], f), (1.0f - f) * radii_[k] + f * radii_[k + 1]};
 }
 
-float Sphere::area() const { return 4.0f * kPi * radii_[0] * radii_[0]; }
+float Sphere::area() const {
+  return 4.0f * kPi * radii_[0] * radii_[0];
+}
 
 SurfaceInteraction Sphere::surfacePoint(const Pose& pose, const glm::vec3& direction, float time) {
   SurfaceInteraction si;
@@ -29,6 +38,9 @@ SurfaceInteraction Sphere::surfacePoint(const Pose& pose, const glm::vec3& direc
   si.ns = si.n;
   si.p = pose.centre + pose.radius * si.n;
   si.pError = gammaBound(5) * (glm::abs(si.p) + glm::abs(pose.centre));
+  float u = std::atan2(si.n.y, si.n.x) / (2.0f * kPi);
+  if (u < 0.0f) u += 1.0f;
+  si.uv = {u < 1.0f ? u : 0.0f, std::acos(std::clamp(si.n.z, -1.0f, 1.0f)) / kPi};
   si.time = time;
   return si;
 }
@@ -42,7 +54,8 @@ SurfaceInteraction Sphere::interaction(const Hit& hit, const Ray& ray) const {
   return surfacePoint(pose, ray.at(hit.t) - pose.centre, ray.time);
 }
 
-std::optional<ShapeSample> Sphere::sample(const glm::vec3& ref, float /*u1*/, glm::vec2 u2, float time) const {
+std::optional<ShapeSample> Sphere::sample(const glm::vec3& ref, float /*u1*/, glm::vec2 u2,
+                                          float time) const {
   const Pose pose = at(time);
   ShapeSample s;
   if (inside(pose, ref)) {
@@ -62,9 +75,11 @@ std::optional<ShapeSample> Sphere::sample(const glm::vec3& ref, float /*u1*/, gl
     const float sinTheta = safeSqrt(1.0f - cosTheta * cosTheta);
     const float phi = 2.0f * kPi * u2.y;
     const Frame frame = Frame::fromZ(toCentre / dc);
-    const glm::vec3 w = frame.toWorld({sinTheta * std::cos(phi), sinTheta * std::sin(phi), cosTheta});
+    const glm::vec3 w =
+        frame.toWorld({sinTheta * std::cos(phi), sinTheta * std::sin(phi), cosTheta});
     // |ref + t w − c|² = r²: t = dc cosθ − √(r² − dc² sin²θ)
-    const float t = dc * cosTheta - safeSqrt(pose.radius * pose.radius - dc * dc * sinTheta * sinTheta);
+    const float t =
+        dc * cosTheta - safeSqrt(pose.radius * pose.radius - dc * dc * sinTheta * sinTheta);
     s.point = surfacePoint(pose, ref + t * w - pose.centre, time);
     s.pdf = 1.0f / (2.0f * kPi * oneMinusCosMax);
   }
@@ -74,7 +89,8 @@ std::optional<ShapeSample> Sphere::sample(const glm::vec3& ref, float /*u1*/, gl
 
 float Sphere::pdf(const glm::vec3& ref, const SurfaceInteraction& onShape) const {
   const Pose pose = at(onShape.time);
-  if (inside(pose, ref)) return areaToSolidAnglePdf(1.0f / (4.0f * kPi * pose.radius * pose.radius), ref, onShape);
+  if (inside(pose, ref))
+    return areaToSolidAnglePdf(1.0f / (4.0f * kPi * pose.radius * pose.radius), ref, onShape);
   const float dc2 = lengthSquared(pose.centre - ref);
   const float sin2Max = pose.radius * pose.radius / dc2;
   const float cosMax = safeSqrt(1.0f - sin2Max);

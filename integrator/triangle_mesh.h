@@ -5,6 +5,8 @@
 //   p = b0·p0 + b1·p1 + b2·p2,  error bound γ(7)·(|b0 p0| + |b1 p1| + |b2 p2|)
 //   geometric normal n = normalize((p1 − p0) × (p2 − p0))  (counter-clockwise front)
 //   pdf_area(p on triangle k at t) = P(k) / area_k(t)
+//   texture coordinates uv = b0·uv0 + b1·uv1 + b2·uv2 with per-vertex uvs; a mesh without
+//   them uses (0,0), (1,0), (1,1) at each triangle's corners: uv = (b1 + b2, b2) (pbrt)
 #pragma once
 
 #include <cstdint>
@@ -18,19 +20,23 @@ namespace camsim {
 class TriangleMesh final : public Shape {
  public:
   // positions[k] / normals[k]: pose at time step k (normals may be empty). indices: 3 per
-  // triangle. Zero-area triangles are kept for intersection (Embree never hits them) and
-  // are never sampled.
-  TriangleMesh(std::vector<std::vector<glm::vec3>> positions, std::vector<std::vector<glm::vec3>> normals,
-               std::vector<std::uint32_t> indices, TimeSteps steps);
+  // triangle. uvs: empty or one per vertex (they do not move). Zero-area triangles are kept
+  // for intersection (Embree never hits them) and are never sampled.
+  TriangleMesh(std::vector<std::vector<glm::vec3>> positions,
+               std::vector<std::vector<glm::vec3>> normals, std::vector<std::uint32_t> indices,
+               TimeSteps steps, std::vector<glm::vec2> uvs = {});
 
-  const std::vector<glm::vec3>& positions(int step = 0) const { return positions_[static_cast<size_t>(step)]; }
+  const std::vector<glm::vec3>& positions(int step = 0) const {
+    return positions_[static_cast<size_t>(step)];
+  }
   const std::vector<std::uint32_t>& indices() const { return indices_; }
   size_t triangleCount() const { return indices_.size() / 3; }
   const TimeSteps& timeSteps() const override { return steps_; }
 
   float area() const override { return area_; }
   SurfaceInteraction interaction(const Hit& hit, const Ray& ray) const override;
-  std::optional<ShapeSample> sample(const glm::vec3& ref, float u1, glm::vec2 u2, float time) const override;
+  std::optional<ShapeSample> sample(const glm::vec3& ref, float u1, glm::vec2 u2,
+                                    float time) const override;
   float pdf(const glm::vec3& ref, const SurfaceInteraction& onShape) const override;
 
  private:
@@ -41,6 +47,7 @@ class TriangleMesh final : public Shape {
   std::vector<std::vector<glm::vec3>> positions_;
   std::vector<std::vector<glm::vec3>> normals_;
   std::vector<std::uint32_t> indices_;
+  std::vector<glm::vec2> uvs_;
   TimeSteps steps_;
   DiscreteDistribution areaDistribution_;
   float area_ = 0.0f;

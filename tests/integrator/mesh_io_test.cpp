@@ -150,6 +150,60 @@ TEST(ObjTest, NoTrianglesIsAnError) {
   expectObjError("v 0 0 0\nv 1 0 0\nv 0 1 0\n# f 1 2 3\n", 0, "no faces");
 }
 
+TEST(ObjTest, TextureCoordinatesPerPosition) {
+  const MeshData m = parseObj(
+      "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 1 0 0.5\nvt 1 1\nvt 0.25\n"
+      "f 1/1 2/2 3/3 4/-1\n",
+      "test");  // vt 0.25: v = 0; w ignored
+  ASSERT_EQ(m.uvs.size(), 4u);
+  EXPECT_EQ(m.positions.size(), 4u);
+  EXPECT_EQ(m.uvs[1], glm::vec2(1, 0));
+  EXPECT_EQ(m.uvs[2], glm::vec2(1, 1));
+  EXPECT_EQ(m.uvs[3], glm::vec2(0.25f, 0));
+  EXPECT_EQ(m.indices, (Indices{0, 1, 2, 0, 2, 3}));
+}
+
+// A position used with two different uvs becomes two vertices (the second appended, with
+// a copy of the position and of its normal); an equal uv under another vt index does not.
+TEST(ObjTest, TextureSeamSplitsVertices) {
+  const MeshData m = parseObj(
+      "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvn 0 0 1\n"
+      "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nvt 0.5 0.5\nvt 1 1\n"
+      "f 1/1/1 2/2/1 3/3/1\nf 1/5/1 3/6/1 4/4/1\nf 1/5/1 4/4/1 2/2/1\n",
+      "test");
+  ASSERT_EQ(m.positions.size(), 5u);
+  ASSERT_EQ(m.uvs.size(), 5u);
+  ASSERT_EQ(m.normals.size(), 5u);
+  EXPECT_EQ(m.indices, (Indices{0, 1, 2, 4, 2, 3, 4, 3, 1}));
+  EXPECT_EQ(m.positions[4], m.positions[0]);
+  EXPECT_EQ(m.normals[4], glm::vec3(0, 0, 1));
+  EXPECT_EQ(m.uvs[0], glm::vec2(0, 0));
+  EXPECT_EQ(m.uvs[4], glm::vec2(0.5f, 0.5f));
+  EXPECT_EQ(m.uvs[2], glm::vec2(1, 1));
+}
+
+TEST(ObjTest, CornerWithoutTextureCoordinateDropsUvs) {
+  const MeshData m = parseObj(
+      "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nvt 0 0\nvt 1 0\nvt 0 1\n"
+      "f 1/1 2/2 3/3\nf 2 4 3\n",
+      "test");
+  EXPECT_TRUE(m.uvs.empty());
+  EXPECT_EQ(m.positions.size(), 4u);
+  EXPECT_TRUE(parseObj("v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nf 1 2 3\n", "test").uvs.empty());
+}
+
+TEST(ObjTest, MalformedTextureCoordinates) {
+  const std::string tri = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
+  expectObjError(tri + "vt\n", 4, "at least 1 value");
+  expectObjError(tri + "vt 0 x\n", 4, "not a number");
+  expectObjError(tri + "vt 0 inf\n", 4, "not a finite");
+  expectObjError(tri + "vt 0 0\nf 1/1 2/ 3/1\n", 5, "bad face vertex");
+  // A vt index naming no texture coordinate only drops the uvs (such files loaded before).
+  EXPECT_TRUE(parseObj(tri + "vt 0 0\nf 1/1 2/2 3/1\n", "test").uvs.empty());
+  EXPECT_TRUE(parseObj(tri + "vt 0 0\nf 1/0 2/1 3/1\n", "test").uvs.empty());
+  EXPECT_EQ(parseObj(tri + "vt 0 0\nf 1/1 2/1 3/-1\n", "test").uvs.size(), 3u);
+}
+
 // ---- PLY -------------------------------------------------------------------------------
 
 // A 5-vertex mesh: a quad (0 1 2 3) and a triangle (1 4 2).
@@ -276,6 +330,42 @@ TEST(PlyTest, ReadsNormalsCrlfAndVertexIndexName) {
   ASSERT_EQ(m.normals.size(), 3u);
   EXPECT_EQ(m.normals[2], glm::vec3(0, 1, 0));
   EXPECT_EQ(m.indices, (Indices{2, 1, 0}));
+}
+
+// Texture coordinates under each accepted pair of names, as float or double.
+TEST(PlyTest, ReadsTextureCoordinates) {
+  for (const auto& [u, v] : {std::pair{"u", "v"}, {"s", "t"}, {"texture_u", "texture_v"}}) {
+    SCOPED_TRACE(u);
+    const std::string ply = std::string(
+                                "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n"
+                                "property float y\nproperty float z\nproperty float ") +
+                            u + "\nproperty double " + v +
+                            "\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
+                            "0 0 0 0 0\n1 0 0 0.5 0\n0 1 0 0.25 1\n3 0 1 2\n";
+    const MeshData m = parsePly(ply, "test");
+    ASSERT_EQ(m.uvs.size(), 3u);
+    EXPECT_EQ(m.uvs[1], glm::vec2(0.5f, 0));
+    EXPECT_EQ(m.uvs[2], glm::vec2(0.25f, 1));
+  }
+  EXPECT_TRUE(parsePly(asciiPly(), "test").uvs.empty());
+  BinaryWriter w(true);
+  for (float f : {0.f, 0.f, 0.f, 0.1f, 0.2f, 1.f, 0.f, 0.f, 0.3f, 0.4f, 0.f, 1.f, 0.f, 0.5f, 0.6f})
+    w.put(f);
+  for (std::uint8_t b : {std::uint8_t{3}, std::uint8_t{0}, std::uint8_t{1}, std::uint8_t{2}})
+    w.put(b);
+  const MeshData b = parsePly(
+      "ply\nformat binary_big_endian 1.0\nelement vertex 3\nproperty float x\n"
+      "property float y\nproperty float z\nproperty float s\nproperty float t\n"
+      "element face 1\nproperty list uchar uchar vertex_indices\nend_header\n" +
+          w.bytes,
+      "test");
+  ASSERT_EQ(b.uvs.size(), 3u);
+  EXPECT_EQ(b.uvs[2], glm::vec2(0.5f, 0.6f));
+  expectPlyError(
+      "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+      "property float z\nproperty float u\nelement face 1\n"
+      "property list uchar int vertex_indices\nend_header\n",
+      3, "only one texture coordinate");
 }
 
 TEST(PlyTest, MalformedHeader) {
