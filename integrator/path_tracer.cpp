@@ -44,7 +44,7 @@ struct ShadingPoint {
 // One light sample, MIS-weighted against BSDF sampling. Returns the contribution to L
 // before multiplying by the path throughput.
 SampledSpectrum sampleLight(const Scene& scene, const ShadingPoint& sp, const SampledWavelengths& lambda,
-                            Sampler& sampler, RayCounts& counts) {
+                            Sampler& sampler, RayCounts& counts, RayRecorder* recorder) {
   const float uLight = sampler.get1D();
   const glm::vec2 uPoint = sampler.get2D();
   float uRemapped = 0.0f;
@@ -58,6 +58,7 @@ SampledSpectrum sampleLight(const Scene& scene, const ShadingPoint& sp, const Sa
   if (f.isZero()) return SampledSpectrum(0.0f);
   ++counts.shadow;
   const Ray shadow = ls->infinite ? escapeRay(sp.si, ls->wi) : shadowRay(sp.si, ls->point);
+  if (recorder) recorder->record(RayKind::kShadow, shadow);
   if (scene.geometry().occluded(shadow)) return SampledSpectrum(0.0f);
   const float lightPdf = pmf * ls->pdf;
   const float weight = ls->delta ? 1.0f : powerHeuristic(lightPdf, sp.material.pdf(sp.woLocal, wiLocal, lambda, sp.ctx));
@@ -67,7 +68,7 @@ SampledSpectrum sampleLight(const Scene& scene, const ShadingPoint& sp, const Sa
 }  // namespace
 
 SampledSpectrum traceRadiance(const Scene& scene, Ray ray, SampledWavelengths& lambda, Sampler& sampler,
-                              RayCounts& counts) {
+                              RayCounts& counts, RayRecorder* recorder) {
   const RenderSettings& settings = scene.settings();
   const bool haveLights = scene.lightCount() > 0;
   SampledSpectrum L(0.0f), beta(1.0f);
@@ -109,7 +110,7 @@ SampledSpectrum traceRadiance(const Scene& scene, Ray ray, SampledWavelengths& l
 
     const Frame frame = Frame::fromZ(si.ns);
     const ShadingPoint sp{si, frame, wo, frame.toLocal(wo), material, BsdfContext{si.uv}};
-    if (haveLights && material.hasNonSpecular()) L += beta * sampleLight(scene, sp, lambda, sampler, counts);
+    if (haveLights && material.hasNonSpecular()) L += beta * sampleLight(scene, sp, lambda, sampler, counts, recorder);
 
     const float uc = sampler.get1D();
     const std::optional<BsdfSample> bs = material.sample(sp.woLocal, uc, sampler.get2D(), lambda, sp.ctx);
@@ -122,6 +123,7 @@ SampledSpectrum traceRadiance(const Scene& scene, Ray ray, SampledWavelengths& l
     prevP = si.p;
     ray = Ray{si.spawnOrigin(wi), wi, std::numeric_limits<float>::infinity(), ray.time};
     ++counts.bounce;
+    if (recorder) recorder->record(RayKind::kBounce, ray);
 
     if (depth + 1 >= settings.rrDepth) {
       const float q = std::max(0.0f, 1.0f - beta.maxComponent());

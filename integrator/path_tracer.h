@@ -11,6 +11,7 @@
 #include <cstdint>
 
 #include "integrator/ray.h"
+#include "integrator/ray_recorder.h"
 #include "integrator/sampler.h"
 #include "integrator/scene.h"
 #include "sensor/sampled_spectrum.h"
@@ -33,8 +34,8 @@ struct RayCounts {
 
 // Radiance (W·m⁻²·sr⁻¹·nm⁻¹) along `ray` at the wavelengths `lambda`. A dispersive
 // material on the path terminates the secondary wavelengths (lambda is updated: the film
-// must use it).
+// must use it). A recorder, if given, gets every bounce and shadow ray cast.
 SampledSpectrum traceRadiance(const Scene& scene, Ray ray, SampledWavelengths& lambda,
-                              Sampler& sampler, RayCounts& counts);
+                              Sampler& sampler, RayCounts& counts, RayRecorder* recorder = nullptr);
 
 }  // namespace camsim

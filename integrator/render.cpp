@@ -53,7 +53,8 @@ void renderTile(const Scene& scene, Film& film, const RenderOptions& options, co
         ++stats.samples;
         if (!cr) continue;
         ++stats.rays.camera;
-        const SampledSpectrum L = traceRadiance(scene, cr->ray, lambda, sampler, stats.rays);
+        if (options.recorder) options.recorder->record(RayKind::kCamera, cr->ray);
+        const SampledSpectrum L = traceRadiance(scene, cr->ray, lambda, sampler, stats.rays, options.recorder);
         if (!film.addSample(pixel, L * cr->weight, lambda)) ++stats.rejected;
       }
     }

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "integrator/path_tracer.h"
+#include "integrator/ray_recorder.h"
 #include "integrator/scene.h"
 #include "sensor/image.h"
 #include "sensor/spectral_response.h"
@@ -34,6 +35,8 @@ struct RenderOptions {
   bool forceTime = false;
   // Overrides the scene's render.sampler (benchmarks compare samplers).
   std::optional<SamplerKind> sampler;
+  // When set, every ray cast is also recorded (camsim bench replays them: ray_recorder.h).
+  RayRecorder* recorder = nullptr;
 };
 
 struct RenderStats {
