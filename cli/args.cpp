@@ -37,6 +37,8 @@ std::string usageText() {
          "                [--noise none|photon|full] [--noise-seed N]\n"
          "                [--ocio-config FILE] [--display D] [--view V] [--look L]\n"
          "  camsim ptc SENSOR [-o DIR] [--seed N]   (photon transfer: camsim ptc --help)\n"
+         "  camsim bench [--quick] [--out DIR] [--scenes a,b] [--max-spp N] ...\n"
+         "                                          (speed against error: camsim bench --help)\n"
          "  camsim --help | --version\n"
          "\n"
          "render  renders SCENE (YAML or JSON, see docs/scene-format.md), or the built-in\n"

@@ -1,0 +1,261 @@
+#include "cli/bench_command.h"
+
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <chrono>
+#include <cstdlib>
+#include <fstream>
+#include <ostream>
+#include <sstream>
+
+#include "cli/args.h"
+#include "cli/bench_limit.h"
+#include "cli/bench_metrics.h"
+#include "cli/bench_reference.h"
+#include "cli/progress.h"
+#include "integrator/scene.h"
+#include "integrator/scene_loader.h"
+#include "sensor/input_error.h"
+#include "sensor/output_set.h"
+
+namespace camsim {
+namespace {
+
+// Runs argv (no shell) and waits; the exit status, or -1 if it could not run or was killed.
+int runProcess(const std::vector<std::string>& argv, bool quiet) {
+  std::vector<char*> cargv;
+  for (const std::string& a : argv) cargv.push_back(const_cast<char*>(a.c_str()));
+  cargv.push_back(nullptr);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  if (quiet) {
+    posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
+    posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, "/dev/null", O_WRONLY, 0);
+  }
+  pid_t pid = 0;
+  const int rc = posix_spawn(&pid, argv[0].c_str(), &actions, nullptr, cargv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  if (rc != 0) return -1;
+  int status = 0;
+  while (waitpid(pid, &status, 0) < 0)
+    if (errno != EINTR) return -1;
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+std::string loadAverage() {
+  std::ifstream in("/proc/loadavg");
+  double one = 0.0;
+  in >> one;
+  return formatNumber(one, 3);
+}
+
+struct LoadedBenchScene {
+  std::string name, text;
+  std::filesystem::path baseDir;
+  SceneDescription description;
+  glm::ivec2 original{0};
+};
+
+LoadedBenchScene loadBenchScene(const std::string& name, int longSide) {
+  LoadedBenchScene s;
+  const std::filesystem::path path = benchScenePath(name);
+  s.name = path.stem().string();
+  std::ifstream in(path, std::ios::binary);
+  if (!in || std::filesystem::is_directory(path)) throw InputError({path.string(), 0, 0}, "", "cannot open scene file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  s.text = text.str();
+  s.baseDir = path.parent_path().empty() ? std::filesystem::path(".") : path.parent_path();
+  s.description = loadSceneFromText(s.text, path.string(), s.baseDir);
+  glm::ivec2& res = s.description.camera.resolution;
+  s.original = res;
+  const int side = std::max(res.x, res.y);
+  if (side > longSide) {
+    res.x = std::max(1, static_cast<int>(std::lround(static_cast<double>(res.x) * longSide / side)));
+    res.y = std::max(1, static_cast<int>(std::lround(static_cast<double>(res.y) * longSide / side)));
+  }
+  return s;
+}
+
+// The sweep of one scene: both samplers at every budget, against the reference.
+std::vector<BenchRow> sweep(const LoadedBenchScene& s, const Scene& scene, const Reference& ref, const BenchPlan& plan,
+                            std::ostream& log) {
+  static const SpectralResponse response = SpectralResponse::cieXyz();
+  std::vector<BenchRow> rows;
+  for (const SamplerKind kind : {SamplerKind::kIndependent, SamplerKind::kSobol})
+    for (const int spp : plan.budgets()) {
+      RenderOptions o;
+      o.spp = spp;
+      o.seed = 1;
+      o.threads = plan.threads;
+      o.sampler = kind;
+      const double cpu0 = processCpuSeconds();
+      const RenderResult r = render(scene, response, o);
+      BenchRow row;
+      row.cpuSeconds = processCpuSeconds() - cpu0;
+      row.scene = s.name;
+      row.sampler = kind == SamplerKind::kSobol ? "sobol" : "independent";
+      row.spp = spp;
+      row.width = r.image.width;
+      row.height = r.image.height;
+      row.seconds = r.stats.seconds;
+      row.samples = r.stats.samples;
+      row.rays = r.stats.rays.total();
+      row.error = compareImages(luminanceOf(r.image), ref.image, 0);
+      row.floor = ref.noise;
+      log << "bench: " << s.name << " " << row.sampler << " " << spp << " spp: " << formatNumber(row.seconds, 3)
+          << " s, rMSE " << formatNumber(row.error.rmse, 3) << "\n";
+      rows.push_back(row);
+    }
+  return rows;
+}
+
+void writeFile(const std::filesystem::path& path, const std::string& text) {
+  std::ofstream f(path, std::ios::binary);
+  f << text;
+  if (!f.flush()) throw InputError({path.string(), 0, 0}, "", "cannot write");
+}
+
+}  // namespace
+
+int runBench(const BenchArgs& args, std::ostream& out, std::ostream& log) {
+  const auto start = std::chrono::steady_clock::now();
+  const double cpuStart = processCpuSeconds();
+  const BenchPlan plan = planBench(args);
+  const std::vector<std::string> names = args.scenes.empty() ? benchSuite() : args.scenes;
+  const std::filesystem::path outDir(args.outputDir);
+  const std::filesystem::path cacheDir = args.cacheDir ? std::filesystem::path(*args.cacheDir) : defaultBenchCacheDir();
+  std::error_code ec;
+  std::filesystem::create_directories(outDir, ec);
+  if (!std::filesystem::is_directory(outDir))
+    throw InputError({outDir.string(), 0, 0}, "", "cannot create output directory" + (ec ? ": " + ec.message() : ""));
+  const std::string loadBefore = loadAverage();
+
+  std::ostringstream report;
+  std::string budgets;
+  for (int spp : plan.budgets()) budgets += (budgets.empty() ? "" : ",") + std::to_string(spp);
+  report << "camsim " << CAMSIM_VERSION << " bench" << (args.quick ? " --quick" : "") << ": " << plan.threads
+         << " threads; images reduced to a long side of " << plan.longSide << " px; budgets " << budgets
+         << " spp per sampler (seed 1)\n"
+         << "error: luminance Y against a reference of " << plan.refSpp
+         << " Sobol' spp (two halves, seeds 1001/1002); rMSE = mean (x-r)^2/(r^2+eps^2), MRAE = mean |x-r|/(|r|+eps),"
+            " eps = 1% of mean Y\n\n";
+
+  std::vector<BenchRow> rows;
+  std::vector<SamplerSlopes> slopes;
+  std::vector<LimitResult> limits;
+  std::ostringstream extras, refs;
+  std::vector<std::string> failed;
+  for (const std::string& name : names) {
+    LoadedBenchScene s;
+    try {
+      s = loadBenchScene(name, plan.longSide);
+    } catch (const InputError& e) {
+      log << "bench: skipping " << name << ": " << e.what() << "\n";
+      failed.push_back(name + ": " + e.what());
+      continue;
+    }
+    log << "bench: " << s.name << " at " << s.description.camera.resolution.x << "x"
+        << s.description.camera.resolution.y << " (scene: " << s.original.x << "x" << s.original.y << ")\n";
+    const Scene scene(s.description);
+    ReferenceRequest request{s.name, s.text, s.baseDir, s.description, plan.refSpp, plan.threads};
+    ProgressBar bar("reference " + s.name);
+    const Reference ref = obtainReference(request, cacheDir, log, [&](int d, int t) { bar.update(d, t); });
+    bar.finish();
+    refs << "  " << s.name << " " << s.description.camera.resolution.x << "x" << s.description.camera.resolution.y
+         << ": rMSE floor " << formatNumber(ref.noise.rmse, 3) << ", MRAE floor " << formatNumber(ref.noise.mrae, 3)
+         << (ref.fromCache ? " (cached " : " (rendered in " + formatNumber(ref.seconds, 3) + " s, ")
+         << ref.file.filename().string() << ")\n";
+    std::vector<BenchRow> sceneRows = sweep(s, scene, ref, plan, log);
+    for (const char* sampler : {"independent", "sobol"}) {
+      std::vector<BenchRow*> mine;
+      for (BenchRow& r : sceneRows)
+        if (r.sampler == sampler) mine.push_back(&r);
+      slopes.push_back(fitRows(mine));
+    }
+    rows.insert(rows.end(), sceneRows.begin(), sceneRows.end());
+    log << "bench: " << s.name << ": recording and replaying rays\n";
+    limits.push_back(measureLimit(scene, s.name, plan.captureSpp, plan.threads));
+    if (s.name == "cornell_box") {
+      log << "bench: thread scaling on " << s.name << "\n";
+      extras << formatScaling(s.name, measureThreadScaling(scene, plan.featureSpp, plan.threads)) << "\n";
+    }
+    if (s.name == "motion_blur") {
+      log << "bench: motion-blur overhead on " << s.name << "\n";
+      extras << formatMotionOverhead(s.name, measureMotionOverhead(s.description, plan.featureSpp, plan.threads))
+             << "\n";
+    }
+  }
+  if (plan.meshTriangles > 0) {
+    log << "bench: building a " << plan.meshTriangles << "-triangle mesh\n";
+    const std::filesystem::path temp =
+        std::filesystem::temp_directory_path() / ("camsim-bench-" + std::to_string(::getpid()));
+    std::filesystem::create_directories(temp);
+    try {
+      extras << formatMeshBuild(measureMeshBuild(plan.meshTriangles, plan.threads, temp));
+    } catch (...) {
+      std::filesystem::remove_all(temp, ec);
+      throw;
+    }
+    std::filesystem::remove_all(temp, ec);
+  }
+
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double cpu = processCpuSeconds() - cpuStart;
+  report << "references (noise floor of each; rMSE below " << formatNumber(kFloorFactor, 2)
+         << "x the floor is left out of the fit):\n"
+         << refs.str() << "\n"
+         << formatBenchTable(rows) << "(* = in the fit)\n\n"
+         << "log-log slope of rMSE against render time (least squares over the budgets marked *):\n"
+         << formatSlopeTable(slopes) << "\n"
+         << "the limit: the rays of a " << plan.captureSpp
+         << "-spp Sobol' render, replayed through EmbreeScene alone (traversal only), " << plan.threads
+         << " threads; ratio = tracer rays/s / raw rays/s of the same mix:\n"
+         << formatLimitTable(limits) << "\n"
+         << extras.str() << "\n"
+         << "total: " << formatSeconds(wall) << " wall, " << formatNumber(cpu, 4) << " CPU-s ("
+         << formatNumber(100.0 * cpu / (wall * plan.threads), 3) << "% of " << plan.threads
+         << " cores); load average " << loadBefore << " before, " << loadAverage() << " after\n";
+  for (const std::string& f : failed) report << "failed: " << f << "\n";
+  out << report.str();
+  out.flush();
+
+  OutputSet outputs(outDir);
+  const std::filesystem::path csv = outputs.add("bench.csv");
+  writeFile(csv, formatBenchCsv(rows));
+  writeFile(outputs.add("bench_limit.csv"), formatLimitCsv(limits));
+  writeFile(outputs.add("bench.txt"), report.str());
+  const char* env = std::getenv("CAMSIM_PYTHON");
+  const std::string python = env && *env ? env : "/usr/bin/python3";
+  if (rows.empty()) {
+    log << "bench: no rows: plot skipped\n";
+  } else if (runProcess({python, "-c", "import matplotlib"}, true) != 0) {
+    log << "bench: " << python << " with matplotlib not found (Debian: apt-get install python3-matplotlib): "
+        << "plot skipped\n";
+  } else {
+    const std::filesystem::path png = outputs.add("bench.png");
+    const std::string note = std::to_string(plan.threads) + " threads, long side " + std::to_string(plan.longSide) +
+                             " px, reference " + std::to_string(plan.refSpp) + " spp";
+    const int rc = runProcess({python, "-c", std::string(benchPlotScriptFile("bench_plot.py")), csv.string(),
+                               png.string(), note},
+                              false);
+    if (rc != 0) throw std::runtime_error("the plot script failed (" + python + " exit status " + std::to_string(rc) + ")");
+  }
+  for (const auto& f : outputs.commit()) log << "bench: wrote " << f.string() << "\n";
+  return failed.empty() ? 0 : 2;
+}
+
+int runBenchCommand(const std::vector<std::string>& args, std::ostream& out, std::ostream& log) {
+  const BenchArgs parsed = parseBenchArgs(args);
+  if (parsed.help) {
+    out << benchUsageText();
+    return 0;
+  }
+  return runBench(parsed, out, log);
+}
+
+}  // namespace camsim

@@ -1,0 +1,73 @@
+// `camsim bench`: speed against error, and the distance to the limit of bare traversal.
+//
+//   camsim bench [--quick] [--out DIR] [--threads N] [--scenes a,b] [--max-spp N]
+//                [--resolution PX] [--ref-spp N] [--cache DIR] [--mesh-triangles N]
+//
+// For each scene of the suite (scenes/NAME.yaml: cornell_box, dof_chart, motion_blur,
+// metals_glass, small_light), at a reduced resolution (long side PX), each sampler
+// (independent, sobol; seed 1) renders at 1, 2, 4, … max-spp samples per pixel; each image's
+// error on luminance Y against the scene's reference (bench_reference.h) is measured
+// (bench_metrics.h), and rMSE against seconds is fitted in log-log per sampler. Then the
+// limit and the costs of threads, motion blur and mesh building (bench_limit.h).
+//
+// Output: the tables on stdout; DIR/bench.csv (one row per render), DIR/bench_limit.csv,
+// DIR/bench.txt (the report as printed) and, when /usr/bin/python3 has matplotlib,
+// DIR/bench.png (scripts/bench_plot.py, embedded; CAMSIM_PYTHON replaces the interpreter).
+// Progress on stderr. References are cached in --cache (default: bench-cache/ beside the
+// camsim binary, i.e. in the build directory). A scene that fails to load is reported and
+// skipped; the command then exits with 2 after writing the others' results.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <iosfwd>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace camsim {
+
+struct BenchArgs {
+  bool quick = false;
+  bool help = false;
+  std::string outputDir = "bench-out";
+  int threads = 0;                  // 0: all cores
+  std::vector<std::string> scenes;  // empty: benchSuite(); a name or a path to a scene file
+  std::optional<int> maxSpp, resolution, refSpp;
+  std::optional<std::string> cacheDir;
+  std::optional<std::uint64_t> meshTriangles;  // 0: skip the mesh build
+};
+
+// args[0] == "bench". UsageError on bad usage.
+BenchArgs parseBenchArgs(const std::vector<std::string>& args);
+std::string benchUsageText();
+const std::vector<std::string>& benchSuite();
+
+// What a run does, from the arguments (defaults differ with --quick).
+struct BenchPlan {
+  int longSide = 128;     // px
+  int maxSpp = 256;
+  int refSpp = 2048;
+  int captureSpp = 4;     // the limit's recording render
+  int featureSpp = 16;    // thread scaling and motion overhead
+  std::uint64_t meshTriangles = 1000000;
+  int threads = 0;        // resolved: never 0
+  std::vector<int> budgets() const;  // 1, 2, 4, … up to maxSpp (and maxSpp itself)
+};
+BenchPlan planBench(const BenchArgs& args);
+
+// The scene file of a suite name (scenes/NAME.yaml of the source tree, or $CAMSIM_SCENES/NAME.yaml);
+// a name containing '/' or ending in .yaml/.json is a path already.
+std::filesystem::path benchScenePath(const std::string& name);
+std::filesystem::path defaultBenchCacheDir();
+
+// The embedded plot script (scripts/bench_plot.py at build time).
+std::string_view benchPlotScriptFile(std::string_view relPath);
+
+// Runs the benchmark; returns the exit code (0, or 2 if a scene failed to load).
+int runBench(const BenchArgs& args, std::ostream& out, std::ostream& log);
+// Entry point from main(): parses `args` (args[0] == "bench") and runs.
+int runBenchCommand(const std::vector<std::string>& args, std::ostream& out, std::ostream& log);
+
+}  // namespace camsim

@@ -1,0 +1,186 @@
+#include "cli/bench_limit.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <bit>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <memory>
+
+#include <tbb/info.h>
+#include <tbb/task_arena.h>
+
+#include "cli/bench_metrics.h"
+#include "integrator/scene.h"
+#include "integrator/scene_loader.h"
+#include "sensor/input_error.h"
+
+namespace camsim {
+namespace {
+
+RenderResult renderWith(const Scene& scene, int spp, int threads, RayRecorder* recorder = nullptr,
+                        bool forceTime = false) {
+  static const SpectralResponse response = SpectralResponse::cieXyz();
+  RenderOptions o;
+  o.spp = spp;
+  o.seed = 1;
+  o.threads = threads;
+  o.sampler = SamplerKind::kSobol;
+  o.recorder = recorder;
+  o.forceTime = forceTime;
+  return render(scene, response, o);
+}
+
+double residentBytes() {
+  std::ifstream statm("/proc/self/statm");
+  double pages = 0.0, resident = 0.0;
+  statm >> pages >> resident;
+  return resident * static_cast<double>(::sysconf(_SC_PAGESIZE));
+}
+
+double secondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+}  // namespace
+
+LimitResult measureLimit(const Scene& scene, const std::string& name, int spp, int threads) {
+  LimitResult r;
+  r.scene = name;
+  r.spp = spp;
+  r.threads = threads > 0 ? threads : tbb::info::default_concurrency();
+  std::vector<RecordedRay> rays;
+  {
+    RayRecorder recorder;
+    r.capture = renderWith(scene, spp, threads, &recorder).stats;
+    rays = recorder.rays();
+    r.dropped = recorder.dropped();
+  }
+  r.recorded = rays.size();
+  r.tracer = renderWith(scene, spp, threads).stats;
+  r.mix = replayRays(scene.geometry(), rays, threads);
+  for (int k = 0; k < kRayKindCount; ++k)
+    r.byKind[static_cast<std::size_t>(k)] = replayRays(scene.geometry(), raysOfKind(rays, static_cast<RayKind>(k)),
+                                                       threads, 0.25);
+  return r;
+}
+
+ScalingResult measureThreadScaling(const Scene& scene, int spp, int threads) {
+  ScalingResult s;
+  s.spp = spp;
+  s.threads = threads > 0 ? threads : tbb::info::default_concurrency();
+  RayRecorder recorder;
+  renderWith(scene, std::max(1, spp / 4), s.threads, &recorder);
+  const std::vector<RecordedRay> rays = recorder.rays();
+  double cpu = processCpuSeconds();
+  s.one = renderWith(scene, spp, 1).stats;
+  s.cpuOne = processCpuSeconds() - cpu;
+  cpu = processCpuSeconds();
+  s.many = renderWith(scene, spp, s.threads).stats;
+  s.cpuMany = processCpuSeconds() - cpu;
+  s.rawOne = replayRays(scene.geometry(), rays, 1);
+  s.rawMany = replayRays(scene.geometry(), rays, s.threads);
+  return s;
+}
+
+SceneDescription withoutMotion(const SceneDescription& description) {
+  SceneDescription d = description;
+  for (ShapeDescription& s : d.shapes)
+    if (s.motion.keys().size() > 1) s.motion = RigidMotion({s.motion.keys().front()});
+  if (d.camera.motion.keys().size() > 1) d.camera.motion = RigidMotion({d.camera.motion.keys().front()});
+  return d;
+}
+
+MotionOverhead measureMotionOverhead(const SceneDescription& description, int spp, int threads) {
+  MotionOverhead m;
+  m.spp = spp;
+  const Scene moving(description);
+  m.timeSteps = moving.modelled().timeSteps;
+  const Scene still(withoutMotion(description));
+  m.moving = renderWith(moving, spp, threads).stats;
+  m.still = renderWith(still, spp, threads).stats;
+  m.stillTimeSampled = renderWith(still, spp, threads, nullptr, true).stats;
+  return m;
+}
+
+MeshData makeTorusMesh(std::uint64_t triangles) {
+  const auto quads = static_cast<double>((triangles + 1) / 2);
+  const auto segments = static_cast<std::uint32_t>(std::ceil(std::sqrt(2.0 * quads)));
+  const auto rings = static_cast<std::uint32_t>(std::ceil(quads / segments));
+  constexpr double kTwoPi = 6.283185307179586;
+  MeshData mesh;
+  mesh.positions.reserve(static_cast<std::size_t>(segments) * rings);
+  for (std::uint32_t i = 0; i < segments; ++i)
+    for (std::uint32_t j = 0; j < rings; ++j) {
+      const double u = kTwoPi * i / segments, v = kTwoPi * j / rings;
+      const double tube = 0.2 * (1.0 + 0.08 * std::sin(13.0 * u) * std::sin(7.0 * v));
+      const double ring = 0.5 + tube * std::cos(v);
+      mesh.positions.emplace_back(static_cast<float>(ring * std::cos(u)), static_cast<float>(tube * std::sin(v)),
+                                  static_cast<float>(ring * std::sin(u)));
+    }
+  mesh.indices.reserve(6 * static_cast<std::size_t>(segments) * rings);
+  for (std::uint32_t i = 0; i < segments; ++i)
+    for (std::uint32_t j = 0; j < rings; ++j) {
+      const std::uint32_t a = i * rings + j, b = ((i + 1) % segments) * rings + j;
+      const std::uint32_t c = ((i + 1) % segments) * rings + (j + 1) % rings, e = i * rings + (j + 1) % rings;
+      mesh.indices.insert(mesh.indices.end(), {a, b, c, a, c, e});
+    }
+  return mesh;
+}
+
+void writeBinaryPly(const std::filesystem::path& path, const MeshData& mesh) {
+  static_assert(std::endian::native == std::endian::little, "binary_little_endian is written as in memory");
+  std::ofstream out(path, std::ios::binary);
+  out << "ply\nformat binary_little_endian 1.0\nelement vertex " << mesh.positions.size()
+      << "\nproperty float x\nproperty float y\nproperty float z\nelement face " << mesh.indices.size() / 3
+      << "\nproperty list uchar int vertex_indices\nend_header\n";
+  for (const glm::vec3& p : mesh.positions) out.write(reinterpret_cast<const char*>(&p.x), 3 * sizeof(float));
+  std::vector<char> faces(13 * (mesh.indices.size() / 3));
+  for (std::size_t t = 0; t < mesh.indices.size() / 3; ++t) {
+    faces[13 * t] = 3;
+    for (int k = 0; k < 3; ++k) {
+      const auto index = static_cast<std::int32_t>(mesh.indices[3 * t + static_cast<std::size_t>(k)]);
+      std::memcpy(&faces[13 * t + 1 + 4 * static_cast<std::size_t>(k)], &index, 4);
+    }
+  }
+  out.write(faces.data(), static_cast<std::streamsize>(faces.size()));
+  if (!out.flush()) throw InputError({path.string(), 0, 0}, "", "cannot write the benchmark mesh");
+}
+
+MeshBuildResult measureMeshBuild(std::uint64_t triangles, int threads, const std::filesystem::path& tempDir) {
+  MeshBuildResult m;
+  const std::filesystem::path ply = tempDir / "torus.ply";
+  {
+    const MeshData mesh = makeTorusMesh(triangles);
+    m.triangles = mesh.indices.size() / 3;
+    writeBinaryPly(ply, mesh);
+  }
+  m.plyMegabytes = static_cast<double>(std::filesystem::file_size(ply)) * 1e-6;
+  const std::string text =
+      "format: camsim-scene/1\nname: mesh_build\nrender: {spp: 1}\n"
+      "camera: {position: [0, 1.5, -1.5], look_at: [0, 0, 0], up: [0, 1, 0], resolution: [16, 16]}\n"
+      "materials: {grey: {type: diffuse, reflectance: 0.5}}\n"
+      "shapes:\n  - {name: torus, type: mesh, file: torus.ply, material: grey}\n"
+      "  - {name: lamp, type: sphere, centre: [0, 2, 0], radius: 0.1, emission: {luminance: 1000}}\n";
+  auto start = std::chrono::steady_clock::now();
+  const SceneDescription desc = loadSceneFromText(text, "<bench mesh>", tempDir);
+  m.loadSeconds = secondsSince(start);
+  tbb::task_arena arena(threads > 0 ? threads : tbb::info::default_concurrency());
+  {
+    const double before = residentBytes();
+    start = std::chrono::steady_clock::now();
+    std::unique_ptr<Scene> scene;
+    arena.execute([&] { scene = std::make_unique<Scene>(desc); });
+    m.sceneSeconds = secondsSince(start);
+    m.rssBytesPerTriangle = (residentBytes() - before) / static_cast<double>(m.triangles);
+  }
+  m.embree = probeMeshBuild(desc.shapes.front().mesh, threads);
+  std::error_code ec;
+  std::filesystem::remove(ply, ec);
+  return m;
+}
+
+}  // namespace camsim

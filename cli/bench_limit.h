@@ -1,0 +1,94 @@
+// `camsim bench`: how close the tracer comes to the limit of bare Embree traversal, and
+// what threads, motion blur and big meshes cost.
+//
+// Limit (per scene): one render (Sobol', the bench resolution, captureSpp) records every
+// ray it casts (integrator/ray_recorder.h): camera, bounce and shadow rays with their tMax
+// and time. They are replayed through the scene's own EmbreeScene (intersect for camera and
+// bounce rays, occluded for shadow rays) in 256-ray chunks over tbb::parallel_for in a
+// task_arena of the same thread count, timing only the traversal loop (median of repeated
+// passes): raw rays/s per kind and for the recorded mix in recorded order. A second render
+// of the same settings without the recorder gives the tracer's rays/s; their ratio
+// (tracer ÷ raw, same mix) is the share of the tracer's time that is traversal.
+//
+// Thread scaling: a render and a replay at 1 and at N threads.
+// Motion overhead: the moving scene against the same scene with every motion reduced to its
+// first keyframe (a static pose), and that static scene with time sampled anyway.
+// Mesh build: a generated torus of ≥ N triangles written as binary PLY to a temporary
+// directory, loaded through the scene loader (timed), then built into a Scene (timed: the
+// TriangleMesh and Embree's BVH) with the RSS growth measured (/proc/self/statm); and built
+// again as a bare Embree scene with Embree's memory monitor counting its bytes
+// (integrator/embree_probe.h).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "integrator/embree_probe.h"
+#include "integrator/mesh_io.h"
+#include "integrator/ray_recorder.h"
+#include "integrator/render.h"
+#include "integrator/scene_description.h"
+
+namespace camsim {
+
+struct LimitResult {
+  std::string scene;
+  int spp = 0, threads = 0;
+  std::uint64_t recorded = 0, dropped = 0;
+  RenderStats capture;               // the recording render
+  RenderStats tracer;                // the same render without the recorder (timed)
+  ReplayResult mix;                  // all recorded rays, recorded order
+  std::array<ReplayResult, kRayKindCount> byKind;  // RayKind order
+  double tracerRaysPerSecond() const {
+    return tracer.seconds > 0.0 ? static_cast<double>(tracer.rays.total()) / tracer.seconds : 0.0;
+  }
+  double ratio() const {
+    const double raw = mix.raysPerSecond();
+    return raw > 0.0 ? tracerRaysPerSecond() / raw : 0.0;
+  }
+};
+LimitResult measureLimit(const Scene& scene, const std::string& name, int spp, int threads);
+
+struct ScalingResult {
+  int threads = 0, spp = 0;
+  RenderStats one, many;
+  double cpuOne = 0.0, cpuMany = 0.0;  // process CPU seconds of each render
+  ReplayResult rawOne, rawMany;
+};
+ScalingResult measureThreadScaling(const Scene& scene, int spp, int threads);
+
+// Every shape's and the camera's motion reduced to its first keyframe.
+SceneDescription withoutMotion(const SceneDescription& description);
+
+struct MotionOverhead {
+  int spp = 0;
+  int timeSteps = 0;
+  RenderStats moving, still, stillTimeSampled;
+};
+MotionOverhead measureMotionOverhead(const SceneDescription& description, int spp, int threads);
+
+// A torus of 2·segments·rings ≥ triangles triangles with a bumpy tube.
+MeshData makeTorusMesh(std::uint64_t triangles);
+void writeBinaryPly(const std::filesystem::path& path, const MeshData& mesh);
+
+struct MeshBuildResult {
+  std::uint64_t triangles = 0;
+  double plyMegabytes = 0.0;
+  double loadSeconds = 0.0;         // scene loader incl. PLY parsing
+  double sceneSeconds = 0.0;        // Scene: TriangleMesh + EmbreeScene (BVH build)
+  double rssBytesPerTriangle = 0.0;  // RSS growth over Scene construction / triangles
+  MeshBuildProbe embree;            // bare Embree with its memory monitor
+};
+MeshBuildResult measureMeshBuild(std::uint64_t triangles, int threads, const std::filesystem::path& tempDir);
+
+// Printed reports and the limit CSV.
+std::string formatLimitTable(const std::vector<LimitResult>& results);
+std::string formatLimitCsv(const std::vector<LimitResult>& results);
+std::string formatScaling(const std::string& scene, const ScalingResult& s);
+std::string formatMotionOverhead(const std::string& scene, const MotionOverhead& m);
+std::string formatMeshBuild(const MeshBuildResult& m);
+
+}  // namespace camsim

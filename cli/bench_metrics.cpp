@@ -1,0 +1,198 @@
+#include "cli/bench_metrics.h"
+
+#include <sys/resource.h>
+
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+
+namespace camsim {
+namespace {
+
+void checkComparable(const Image& a, const Image& b, int channel) {
+  if (a.width != b.width || a.height != b.height)
+    throw std::invalid_argument("images of different sizes: " + std::to_string(a.width) + "x" +
+                                std::to_string(a.height) + " and " + std::to_string(b.width) + "x" +
+                                std::to_string(b.height));
+  if (channel < 0 || channel >= a.channelCount() || channel >= b.channelCount())
+    throw std::invalid_argument("channel " + std::to_string(channel) + " missing");
+  if (a.width == 0 || a.height == 0) throw std::invalid_argument("empty image");
+}
+
+double channelMean(const Image& image, int channel) {
+  double sum = 0.0;
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 0; x < image.width; ++x) sum += static_cast<double>(image.at(x, y, channel));
+  return sum / (static_cast<double>(image.width) * static_cast<double>(image.height));
+}
+
+// Metrics of the per-pixel errors e(x, y) against the reference values r(x, y).
+template <typename ErrorAt, typename RefAt>
+ErrorMetrics metrics(int width, int height, ErrorAt error, RefAt ref, double refMean) {
+  const double eps = 0.01 * std::abs(refMean) + std::numeric_limits<double>::min();
+  double se = 0.0, ae = 0.0;
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      const double e = error(x, y), r = ref(x, y);
+      se += e * e / (r * r + eps * eps);
+      ae += std::abs(e) / (std::abs(r) + eps);
+    }
+  const double n = static_cast<double>(width) * static_cast<double>(height);
+  return {se / n, ae / n};
+}
+
+std::string fixed(double v, int decimals) {
+  char buf[48];
+  std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
+  return buf;
+}
+
+std::string csvField(const std::string& s) {
+  if (s.find_first_of(",\"\n") == std::string::npos) return s;
+  std::string quoted = "\"";
+  for (char c : s) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return quoted + "\"";
+}
+
+}  // namespace
+
+ErrorMetrics compareImages(const Image& image, const Image& reference, int channel) {
+  checkComparable(image, reference, channel);
+  return metrics(
+      image.width, image.height,
+      [&](int x, int y) {
+        return static_cast<double>(image.at(x, y, channel)) - static_cast<double>(reference.at(x, y, channel));
+      },
+      [&](int x, int y) { return static_cast<double>(reference.at(x, y, channel)); },
+      channelMean(reference, channel));
+}
+
+ErrorMetrics referenceNoise(const Image& halfA, const Image& halfB, int channel) {
+  checkComparable(halfA, halfB, channel);
+  auto a = [&](int x, int y) { return static_cast<double>(halfA.at(x, y, channel)); };
+  auto b = [&](int x, int y) { return static_cast<double>(halfB.at(x, y, channel)); };
+  const double mean = 0.5 * (channelMean(halfA, channel) + channelMean(halfB, channel));
+  return metrics(
+      halfA.width, halfA.height, [&](int x, int y) { return 0.5 * (a(x, y) - b(x, y)); },
+      [&](int x, int y) { return 0.5 * (a(x, y) + b(x, y)); }, mean);
+}
+
+SlopeFit fitLogLogSlope(const std::vector<double>& x, const std::vector<double>& y) {
+  SlopeFit fit;
+  fit.slope = fit.intercept = std::numeric_limits<double>::quiet_NaN();
+  double sx = 0.0, sy = 0.0, sxx = 0.0, sxy = 0.0, syy = 0.0;
+  int n = 0;
+  for (std::size_t i = 0; i < x.size() && i < y.size(); ++i) {
+    if (!(x[i] > 0.0) || !(y[i] > 0.0) || !std::isfinite(x[i]) || !std::isfinite(y[i])) continue;
+    const double lx = std::log10(x[i]), ly = std::log10(y[i]);
+    sx += lx;
+    sy += ly;
+    sxx += lx * lx;
+    sxy += lx * ly;
+    syy += ly * ly;
+    ++n;
+  }
+  fit.points = n;
+  const double dn = static_cast<double>(n);
+  const double varX = sxx - sx * sx / dn, varY = syy - sy * sy / dn, cov = sxy - sx * sy / dn;
+  if (n < 2 || !(varX > 0.0)) return fit;
+  fit.slope = cov / varX;
+  fit.intercept = (sy - fit.slope * sx) / dn;
+  fit.r2 = varY > 0.0 ? cov * cov / (varX * varY) : 1.0;
+  return fit;
+}
+
+SamplerSlopes fitRows(std::vector<BenchRow*>& rows) {
+  SamplerSlopes s;
+  std::vector<double> t, cpu, spp, err;
+  for (BenchRow* r : rows) {
+    s.scene = r->scene;
+    s.sampler = r->sampler;
+    r->inFit = r->error.rmse >= kFloorFactor * r->floor.rmse;
+    if (!r->inFit) continue;
+    t.push_back(r->seconds);
+    cpu.push_back(r->cpuSeconds);
+    spp.push_back(r->spp);
+    err.push_back(r->error.rmse);
+  }
+  s.vsSeconds = fitLogLogSlope(t, err);
+  s.vsCpuSeconds = fitLogLogSlope(cpu, err);
+  s.vsSpp = fitLogLogSlope(spp, err);
+  return s;
+}
+
+const std::vector<std::string>& benchCsvColumns() {
+  static const std::vector<std::string> columns = {
+      "scene",      "sampler",    "spp",  "width",        "height",   "seconds", "cpu_seconds",
+      "samples_per_s", "rays_per_s", "rmse_rel", "mrae", "ref_rmse_rel", "ref_mrae", "in_fit"};
+  return columns;
+}
+
+std::string formatBenchCsv(const std::vector<BenchRow>& rows) {
+  std::ostringstream out;
+  const auto& columns = benchCsvColumns();
+  for (std::size_t i = 0; i < columns.size(); ++i) out << (i ? "," : "") << columns[i];
+  out << "\n";
+  auto g = [](double v) { return formatNumber(v, 9); };
+  for (const BenchRow& r : rows)
+    out << csvField(r.scene) << "," << csvField(r.sampler) << "," << r.spp << "," << r.width << "," << r.height
+        << "," << g(r.seconds) << "," << g(r.cpuSeconds) << "," << g(r.samplesPerSecond()) << "," << g(r.raysPerSecond()) << ","
+        << g(r.error.rmse) << "," << g(r.error.mrae) << "," << g(r.floor.rmse) << "," << g(r.floor.mrae) << ","
+        << (r.inFit ? 1 : 0) << "\n";
+  return out.str();
+}
+
+double processCpuSeconds() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return static_cast<double>(u.ru_utime.tv_sec + u.ru_stime.tv_sec) +
+         1e-6 * static_cast<double>(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
+}
+
+std::string formatBenchRate(double perSecond) {
+  if (perSecond >= 1e6) return fixed(perSecond * 1e-6, 2) + " M";
+  if (perSecond >= 1e3) return fixed(perSecond * 1e-3, 2) + " k";
+  return fixed(perSecond, 1) + "  ";
+}
+
+std::string formatNumber(double v, int precision) {
+  char buf[48];
+  std::snprintf(buf, sizeof buf, "%.*g", precision, v);
+  return buf;
+}
+
+std::string formatBenchTable(const std::vector<BenchRow>& rows) {
+  char line[256];
+  std::ostringstream out;
+  std::snprintf(line, sizeof line, "%-13s %-11s %5s %9s %8s %10s %10s %10s %8s %s\n", "scene", "sampler", "spp",
+                "seconds", "CPU-s", "samples/s", "rays/s", "rMSE", "MRAE", "fit");
+  out << line;
+  for (const BenchRow& r : rows) {
+    std::snprintf(line, sizeof line, "%-13s %-11s %5d %9.3f %8.3f %10s %10s %10.3e %8.4f %s\n", r.scene.c_str(),
+                  r.sampler.c_str(), r.spp, r.seconds, r.cpuSeconds, formatBenchRate(r.samplesPerSecond()).c_str(),
+                  formatBenchRate(r.raysPerSecond()).c_str(), r.error.rmse, r.error.mrae, r.inFit ? "*" : "");
+    out << line;
+  }
+  return out.str();
+}
+
+std::string formatSlopeTable(const std::vector<SamplerSlopes>& slopes) {
+  char line[256];
+  std::ostringstream out;
+  std::snprintf(line, sizeof line, "%-13s %-11s %16s %6s %6s %15s %14s\n", "scene", "sampler", "slope rMSE/time",
+                "R^2", "points", "slope rMSE/CPU", "slope rMSE/spp");
+  out << line;
+  for (const SamplerSlopes& s : slopes) {
+    const bool ok = s.vsSeconds.points >= 2;
+    std::snprintf(line, sizeof line, "%-13s %-11s %16s %6s %6d %15s %14s\n", s.scene.c_str(), s.sampler.c_str(),
+                  ok ? fixed(s.vsSeconds.slope, 3).c_str() : "n/a", ok ? fixed(s.vsSeconds.r2, 3).c_str() : "",
+                  s.vsSeconds.points, ok ? fixed(s.vsCpuSeconds.slope, 3).c_str() : "n/a",
+                  ok ? fixed(s.vsSpp.slope, 3).c_str() : "n/a");
+    out << line;
+  }
+  return out.str();
+}
+
+}  // namespace camsim

@@ -1,0 +1,86 @@
+// `camsim bench`: error metrics, the log-log slope fit, and the table / CSV formats.
+//
+// Errors are on one channel of the film image: luminance Y (CIE 1931, the "Y" channel of
+// the XYZ film), against a reference image r of the same size. With m = mean(r) over the
+// image (the metrics are independent of the film's absolute scale):
+//   rMSE = mean over pixels of (x − r)² / (r² + ε²),   ε = 0.01·m
+//   MRAE = mean over pixels of |x − r| / (|r| + ε)
+// ε keeps black pixels (r = 0) from dominating: such a pixel counts like one at 1 % of the
+// mean luminance.
+//
+// A rendered reference has noise of its own. From two independent renders a, b of half the
+// reference's samples each (r = (a + b)/2), (a − b)/2 has the same variance as r's error,
+// so its rMSE / MRAE against r estimate the floor the measured errors cannot go below
+// (referenceNoise()); measured rMSE ≈ the render's own + the floor.
+//
+// Slope: least squares of log rMSE on log seconds over the budgets whose rMSE is at least
+// kFloorFactor × the floor (plain Monte Carlo gives −1: rMSE is a squared error).
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "sensor/image.h"
+
+namespace camsim {
+
+struct ErrorMetrics {
+  double rmse = 0.0;  // relative MSE (see above)
+  double mrae = 0.0;  // mean relative absolute error
+};
+
+// Throws std::invalid_argument if the sizes differ or the channel is missing.
+ErrorMetrics compareImages(const Image& image, const Image& reference, int channel);
+// The floor: metrics of (a − b)/2 against (a + b)/2 (a, b: the two half references).
+ErrorMetrics referenceNoise(const Image& halfA, const Image& halfB, int channel);
+
+inline constexpr double kFloorFactor = 4.0;
+
+struct SlopeFit {
+  double slope = 0.0, intercept = 0.0;  // log10 y = intercept + slope·log10 x
+  int points = 0;                       // 0 or 1: no fit (slope is NaN)
+  double r2 = 0.0;
+};
+// Least squares on (log10 x, log10 y) over the pairs with x > 0, y > 0.
+SlopeFit fitLogLogSlope(const std::vector<double>& x, const std::vector<double>& y);
+
+struct BenchRow {
+  std::string scene, sampler;
+  int spp = 0;
+  int width = 0, height = 0;
+  double seconds = 0.0;     // wall time of the render
+  double cpuSeconds = 0.0;  // this process's CPU time during it (all threads)
+  std::uint64_t samples = 0, rays = 0;
+  ErrorMetrics error;
+  ErrorMetrics floor;  // the reference's own noise
+  bool inFit = false;  // used for the slope (error ≥ kFloorFactor × floor)
+
+  double samplesPerSecond() const { return seconds > 0.0 ? static_cast<double>(samples) / seconds : 0.0; }
+  double raysPerSecond() const { return seconds > 0.0 ? static_cast<double>(rays) / seconds : 0.0; }
+};
+
+// Marks the rows of one scene and sampler that enter the fit, and fits them: rMSE
+// against wall seconds, and for comparison against CPU seconds (robust when other
+// processes share the cores) and against spp.
+struct SamplerSlopes {
+  std::string scene, sampler;
+  SlopeFit vsSeconds, vsCpuSeconds, vsSpp;
+};
+SamplerSlopes fitRows(std::vector<BenchRow*>& rows);
+
+// The CSV columns, in order.
+const std::vector<std::string>& benchCsvColumns();
+std::string formatBenchCsv(const std::vector<BenchRow>& rows);
+// Fixed-width text tables as printed.
+std::string formatBenchTable(const std::vector<BenchRow>& rows);
+std::string formatSlopeTable(const std::vector<SamplerSlopes>& slopes);
+
+// User + system CPU time of this process (all threads), s.
+double processCpuSeconds();
+
+// "1.23 M" style rates; "%.3g"-style numbers.
+std::string formatBenchRate(double perSecond);
+std::string formatNumber(double v, int precision = 3);
+
+}  // namespace camsim

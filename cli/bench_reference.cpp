@@ -1,0 +1,167 @@
+#include "cli/bench_reference.h"
+
+#include <algorithm>
+#include <fstream>
+#include <ostream>
+#include <regex>
+#include <set>
+#include <sstream>
+
+#include "cli/render_command.h"
+#include "integrator/render.h"
+#include "integrator/scene.h"
+#include "integrator/scene_loader.h"
+#include "sensor/exr_io.h"
+#include "sensor/input_error.h"
+#include "sensor/output_set.h"
+
+namespace camsim {
+namespace {
+
+constexpr const char* kFormatTag = "camsim-bench-reference/1";
+constexpr std::uint64_t kSeedA = 1001, kSeedB = 1002;
+
+std::string fileStamp(const std::filesystem::path& p, bool withContent) {
+  std::error_code ec;
+  std::ostringstream s;
+  s << p.string() << "|" << std::filesystem::file_size(p, ec) << "|"
+    << std::filesystem::last_write_time(p, ec).time_since_epoch().count();
+  if (withContent) {
+    std::ifstream in(p, std::ios::binary);
+    std::ostringstream bytes;
+    bytes << in.rdbuf();
+    s << "|" << fnv1aHex(bytes.str());
+  }
+  return s.str();
+}
+
+Image channelImage(const Image& source, int channel, const std::string& name) {
+  Image out(source.width, source.height, {name});
+  for (int y = 0; y < source.height; ++y)
+    for (int x = 0; x < source.width; ++x) out.at(x, y, 0) = source.at(x, y, channel);
+  return out;
+}
+
+// The cached file's three channels, or false if it is missing, unreadable or not ours.
+bool readCached(const std::filesystem::path& file, const std::string& key, Reference& ref) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(file, ec)) return false;
+  try {
+    const ExrFile exr = readExr(file);
+    const auto keyIt = std::find_if(exr.metadata.begin(), exr.metadata.end(),
+                                    [](const auto& kv) { return kv.first == "camsim:bench_key"; });
+    const int y = exr.image.channelIndex("Y"), a = exr.image.channelIndex("A.Y"), b = exr.image.channelIndex("B.Y");
+    if (keyIt == exr.metadata.end() || keyIt->second != key || y < 0 || a < 0 || b < 0) return false;
+    ref.image = channelImage(exr.image, y, "Y");
+    ref.halfA = channelImage(exr.image, a, "Y");
+    ref.halfB = channelImage(exr.image, b, "Y");
+    return true;
+  } catch (const InputError&) {
+    return false;  // a damaged file: render anew
+  }
+}
+
+}  // namespace
+
+Image luminanceOf(const Image& xyz) {
+  const int y = xyz.channelIndex("Y");
+  CAMSIM_CHECK(y >= 0 && "the film image has a Y channel");
+  return channelImage(xyz, y, "Y");
+}
+
+std::vector<std::filesystem::path> referencedFiles(const std::string& sceneText,
+                                                   const std::filesystem::path& baseDir) {
+  // `key: value` in block or flow style; the value may be quoted.
+  static const std::regex kRef(R"((?:^|[\s{,])(?:file|texture|csv)\s*:\s*["']?([^"',}\]\s#][^"',}\]#]*?)["']?\s*(?:[,}\]#]|$))",
+                               std::regex::multiline);
+  std::set<std::filesystem::path> found;
+  for (auto it = std::sregex_iterator(sceneText.begin(), sceneText.end(), kRef); it != std::sregex_iterator(); ++it) {
+    std::filesystem::path p((*it)[1].str());
+    if (p.is_relative()) p = baseDir / p;
+    std::error_code ec;
+    if (std::filesystem::is_regular_file(p, ec)) found.insert(p.lexically_normal());
+  }
+  return {found.begin(), found.end()};
+}
+
+std::string referenceKey(const ReferenceRequest& request) {
+  std::ostringstream key;
+  const glm::ivec2 res = request.description.camera.resolution;
+  key << kFormatTag << "\n" << CAMSIM_VERSION << "\n" << res.x << "x" << res.y << "\n" << request.spp << "\n"
+      << request.sceneText << "\n";
+  for (const auto& f : referencedFiles(request.sceneText, request.baseDir)) key << fileStamp(f, true) << "\n";
+  std::vector<std::filesystem::path> luts;
+  std::error_code ec;
+  const std::filesystem::path spectra = lutsDirectory() / "spectra";
+  for (auto it = std::filesystem::recursive_directory_iterator(spectra, ec);
+       !ec && it != std::filesystem::recursive_directory_iterator(); it.increment(ec))
+    if (it->is_regular_file(ec)) luts.push_back(it->path());
+  std::sort(luts.begin(), luts.end());
+  for (const auto& f : luts) key << fileStamp(f, false) << "\n";
+  return fnv1aHex(key.str());
+}
+
+Reference obtainReference(const ReferenceRequest& request, const std::filesystem::path& cacheDir,
+                          std::ostream& log, const std::function<void(int, int)>& progress) {
+  const std::string key = referenceKey(request);
+  const std::string fileName = request.name + "-" + key + ".exr";
+  Reference ref;
+  ref.file = cacheDir / fileName;
+  if (readCached(ref.file, key, ref)) {
+    ref.fromCache = true;
+    ref.noise = referenceNoise(ref.halfA, ref.halfB, 0);
+    log << "reference " << request.name << ": cached " << ref.file.string() << "\n";
+    return ref;
+  }
+  const Scene scene(request.description);
+  const SpectralResponse response = SpectralResponse::cieXyz();
+  const int half = std::max(1, request.spp / 2);
+  auto renderHalf = [&](std::uint64_t seed, int offset) {
+    RenderOptions o;
+    o.spp = half;
+    o.seed = seed;
+    o.threads = request.threads;
+    o.sampler = SamplerKind::kSobol;
+    if (progress)
+      o.progress = [&progress, offset](int done, int total) { progress(offset * total + done, 2 * total); };
+    return render(scene, response, o);
+  };
+  const RenderResult a = renderHalf(kSeedA, 0);
+  const RenderResult b = renderHalf(kSeedB, 1);
+  ref.seconds = a.stats.seconds + b.stats.seconds;
+  ref.halfA = luminanceOf(a.image);
+  ref.halfB = luminanceOf(b.image);
+  ref.image = Image(ref.halfA.width, ref.halfA.height, {"Y"});
+  for (std::size_t i = 0; i < ref.image.pixels.size(); ++i)
+    ref.image.pixels[i] = 0.5f * (ref.halfA.pixels[i] + ref.halfB.pixels[i]);
+  ref.noise = referenceNoise(ref.halfA, ref.halfB, 0);
+
+  std::error_code ec;
+  std::filesystem::create_directories(cacheDir, ec);
+  Image file(ref.image.width, ref.image.height, {"Y", "A.Y", "B.Y"});
+  for (int y = 0; y < file.height; ++y)
+    for (int x = 0; x < file.width; ++x) {
+      file.at(x, y, 0) = ref.image.at(x, y, 0);
+      file.at(x, y, 1) = ref.halfA.at(x, y, 0);
+      file.at(x, y, 2) = ref.halfB.at(x, y, 0);
+    }
+  const Metadata meta = {{"camsim:version", CAMSIM_VERSION},
+                         {"camsim:bench_key", key},
+                         {"camsim:scene", request.description.sourceFile},
+                         {"camsim:spp", std::to_string(2 * half) + " (two halves of " + std::to_string(half) +
+                                            ", Sobol', seeds 1001 and 1002)"},
+                         {"camsim:render_seconds", formatNumber(ref.seconds, 6)},
+                         {"camsim:units", "CIE Y of the film (lm*s per photosite)"}};
+  if (std::filesystem::is_directory(cacheDir, ec)) {
+    OutputSet out(cacheDir);
+    writeExr(out.add(fileName), file, meta, std::nullopt);
+    out.commit();
+  } else {
+    log << "warning: cannot create the reference cache " << cacheDir.string() << ": not cached\n";
+  }
+  log << "reference " << request.name << ": rendered " << 2 * half << " spp in " << formatNumber(ref.seconds, 3)
+      << " s (rMSE floor " << formatNumber(ref.noise.rmse, 3) << "), cached as " << ref.file.string() << "\n";
+  return ref;
+}
+
+}  // namespace camsim

@@ -1,0 +1,65 @@
+// `camsim bench`: reference images, rendered once and cached.
+//
+// None of the bench scenes has a closed-form image (interreflections, glossy and glass
+// transport, a moving fan), so each reference is a high-spp render: two independent Sobol'
+// renders of refSpp/2 samples each (seeds 1001 and 1002; the bench's own renders use seed
+// 1), averaged. The two halves also give the reference's own noise (bench_metrics.h).
+//
+// Cache: CACHE_DIR/NAME-HASH.exr with channels Y (the reference luminance), A.Y and B.Y
+// (the halves). HASH (FNV-1a 64) covers a format tag, camsim's version, the scene file's
+// text, the bench resolution, refSpp, and every file the scene refers to — each value of a
+// `file:`, `texture:` or `csv:` key that names an existing file (relative to the scene's
+// directory), by path, size, modification time and content — plus the size and modification
+// time of every file under luts/spectra (named metals, glasses and illuminants). Any change
+// to these renders a new reference; nothing else does (a changed tracer with the same version
+// reuses the old one: delete the cache directory to force a new one). Files are written
+// under a temporary name and renamed (OutputSet), so a killed run never leaves a truncated
+// reference behind.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <iosfwd>
+#include <string>
+#include <vector>
+
+#include "cli/bench_metrics.h"
+#include "integrator/scene_description.h"
+#include "sensor/image.h"
+
+namespace camsim {
+
+struct ReferenceRequest {
+  std::string name;                 // scene name (file stem)
+  std::string sceneText;            // the scene file as read
+  std::filesystem::path baseDir;    // where its relative paths resolve
+  SceneDescription description;     // loaded, already at the bench resolution
+  int spp = 2048;                   // total: two halves of spp/2
+  int threads = 0;
+};
+
+struct Reference {
+  Image image;         // one channel: "Y"
+  Image halfA, halfB;  // one channel each: "Y"
+  ErrorMetrics noise;  // the floor (referenceNoise of the halves)
+  std::filesystem::path file;
+  bool fromCache = false;
+  double seconds = 0.0;  // render time (0 when read from the cache)
+};
+
+// Files the scene text refers to (see above), existing ones only, sorted, unique.
+std::vector<std::filesystem::path> referencedFiles(const std::string& sceneText,
+                                                   const std::filesystem::path& baseDir);
+// The cache key (16 hex digits).
+std::string referenceKey(const ReferenceRequest& request);
+
+// Reads CACHE_DIR/NAME-KEY.exr if present and valid, else renders and writes it. `log`
+// gets one line on what happened; `progress(done, total)` follows the render's tiles.
+Reference obtainReference(const ReferenceRequest& request, const std::filesystem::path& cacheDir,
+                          std::ostream& log, const std::function<void(int, int)>& progress = {});
+
+// The luminance channel of a film image as a one-channel "Y" image.
+Image luminanceOf(const Image& xyz);
+
+}  // namespace camsim

@@ -1,0 +1,133 @@
+// The printed reports of bench_limit.h (tables for the terminal and the limit CSV).
+#include <cstdio>
+#include <sstream>
+
+#include "cli/bench_limit.h"
+#include "cli/bench_metrics.h"
+
+namespace camsim {
+namespace {
+
+double share(std::uint64_t part, std::uint64_t whole) {
+  return whole ? 100.0 * static_cast<double>(part) / static_cast<double>(whole) : 0.0;
+}
+
+double raysPerSecond(const RenderStats& s) {
+  return s.seconds > 0.0 ? static_cast<double>(s.rays.total()) / s.seconds : 0.0;
+}
+
+std::uint64_t countOf(const RayCounts& c, int kind) {
+  return kind == 0 ? c.camera : kind == 1 ? c.bounce : c.shadow;
+}
+
+}  // namespace
+
+std::string formatLimitTable(const std::vector<LimitResult>& results) {
+  std::ostringstream out;
+  char line[320];
+  std::snprintf(line, sizeof line, "%-13s %4s %9s %22s %22s %22s %11s %11s %6s\n", "scene", "spp", "rays",
+                "camera: share, raw/s", "bounce: share, raw/s", "shadow: share, raw/s", "raw mix/s", "tracer/s",
+                "ratio");
+  out << line;
+  for (const LimitResult& r : results) {
+    std::string kinds[kRayKindCount];
+    for (int k = 0; k < kRayKindCount; ++k) {
+      char cell[64];
+      std::snprintf(cell, sizeof cell, "%5.1f%% %10s", share(countOf(r.capture.rays, k), r.capture.rays.total()),
+                    formatBenchRate(r.byKind[static_cast<std::size_t>(k)].raysPerSecond()).c_str());
+      kinds[k] = cell;
+    }
+    std::snprintf(line, sizeof line, "%-13s %4d %9llu %22s %22s %22s %11s %11s %6.3f\n", r.scene.c_str(), r.spp,
+                  static_cast<unsigned long long>(r.recorded), kinds[0].c_str(), kinds[1].c_str(), kinds[2].c_str(),
+                  formatBenchRate(r.mix.raysPerSecond()).c_str(), formatBenchRate(r.tracerRaysPerSecond()).c_str(),
+                  r.ratio());
+    out << line;
+    if (r.dropped > 0)
+      out << "  (" << r.dropped << " rays past the recorder's limit were not recorded: the replay is a subset)\n";
+    if (r.recorded + r.dropped != r.capture.rays.total())
+      out << "  warning: recorded " << r.recorded + r.dropped << " rays but the render counted "
+          << r.capture.rays.total() << "\n";
+  }
+  return out.str();
+}
+
+std::string formatLimitCsv(const std::vector<LimitResult>& results) {
+  std::ostringstream out;
+  out << "scene,kind,spp,threads,rays,share,raw_rays_per_s,tracer_rays_per_s,ratio\n";
+  auto g = [](double v) { return formatNumber(v, 9); };
+  for (const LimitResult& r : results) {
+    out << r.scene << ",mix," << r.spp << "," << r.threads << "," << r.recorded << ",1," << g(r.mix.raysPerSecond())
+        << "," << g(r.tracerRaysPerSecond()) << "," << g(r.ratio()) << "\n";
+    for (int k = 0; k < kRayKindCount; ++k) {
+      const ReplayResult& rep = r.byKind[static_cast<std::size_t>(k)];
+      out << r.scene << "," << rayKindName(static_cast<RayKind>(k)) << "," << r.spp << "," << r.threads << ","
+          << rep.rays << "," << g(share(countOf(r.capture.rays, k), r.capture.rays.total()) / 100.0) << ","
+          << g(rep.raysPerSecond()) << ",,\n";
+    }
+  }
+  return out.str();
+}
+
+std::string formatScaling(const std::string& scene, const ScalingResult& s) {
+  std::ostringstream out;
+  char line[256];
+  const double speed = s.many.seconds > 0.0 ? s.one.seconds / s.many.seconds : 0.0;
+  const double raw = s.rawOne.raysPerSecond() > 0.0 ? s.rawMany.raysPerSecond() / s.rawOne.raysPerSecond() : 0.0;
+  out << "thread scaling, " << scene << " (Sobol', " << s.spp << " spp):\n";
+  std::snprintf(line, sizeof line, "  %-22s %10s %12s %12s\n", "", "1 thread", std::to_string(s.threads).append(" threads").c_str(),
+                "speed-up");
+  out << line;
+  std::snprintf(line, sizeof line, "  %-22s %9.3fs %11.3fs %11.2fx  (efficiency %.0f%%)\n", "tracer render, wall", s.one.seconds,
+                s.many.seconds, speed, 100.0 * speed / s.threads);
+  out << line;
+  std::snprintf(line, sizeof line, "  %-22s %9.3fs %11.3fs\n", "tracer render, CPU-s", s.cpuOne, s.cpuMany);
+  out << line;
+  std::snprintf(line, sizeof line, "  %-22s %10s %12s %11.2fx  (efficiency %.0f%%)\n", "raw replay, rays/s",
+                formatBenchRate(s.rawOne.raysPerSecond()).c_str(), formatBenchRate(s.rawMany.raysPerSecond()).c_str(), raw,
+                100.0 * raw / s.threads);
+  out << line;
+  return out.str();
+}
+
+std::string formatMotionOverhead(const std::string& scene, const MotionOverhead& m) {
+  std::ostringstream out;
+  char line[256];
+  out << "motion-blur overhead, " << scene << " (Sobol', " << m.spp << " spp; moving: " << m.timeSteps
+      << " Embree time steps):\n";
+  std::snprintf(line, sizeof line, "  %-40s %9s %11s %12s %13s\n", "variant", "seconds", "rays/s", "time ratio",
+                "per-ray ratio");
+  out << line;
+  const double base = m.still.seconds, baseRate = raysPerSecond(m.still);
+  const std::pair<const char*, const RenderStats*> rows[] = {
+      {"static (every motion at its first key)", &m.still},
+      {"static, time sampled anyway", &m.stillTimeSampled},
+      {"moving (as in the scene)", &m.moving}};
+  for (const auto& [name, st] : rows) {
+    std::snprintf(line, sizeof line, "  %-40s %9.3f %11s %12.3f %13.3f\n", name, st->seconds,
+                  formatBenchRate(raysPerSecond(*st)).c_str(), base > 0.0 ? st->seconds / base : 0.0,
+                  raysPerSecond(*st) > 0.0 ? baseRate / raysPerSecond(*st) : 0.0);
+    out << line;
+  }
+  return out.str();
+}
+
+std::string formatMeshBuild(const MeshBuildResult& m) {
+  std::ostringstream out;
+  char line[256];
+  out << "mesh build: generated torus, " << m.triangles << " triangles (binary PLY, "
+      << formatNumber(m.plyMegabytes, 3) << " MB):\n";
+  std::snprintf(line, sizeof line, "  load (scene loader + PLY parse)   %8.3f s\n", m.loadSeconds);
+  out << line;
+  std::snprintf(line, sizeof line, "  Scene build (mesh + Embree BVH)   %8.3f s   RSS growth %6.1f bytes/triangle\n",
+                m.sceneSeconds, m.rssBytesPerTriangle);
+  out << line;
+  std::snprintf(line, sizeof line,
+                "  bare Embree BVH build             %8.3f s   Embree memory %6.1f bytes/triangle after the build, "
+                "peak %.1f\n",
+                m.embree.buildSeconds, m.embree.bytesPerTriangle(),
+                m.triangles ? static_cast<double>(m.embree.bytesPeak) / static_cast<double>(m.triangles) : 0.0);
+  out << line;
+  return out.str();
+}
+
+}  // namespace camsim
