@@ -60,6 +60,7 @@ struct ChiSquareResult {
   int pdfMismatch = 0;       // sample().pdf ≠ pdf(wo, wi) (relative 1e-3)
   int fMismatch = 0;         // sample().f ≠ f(wo, wi) (relative 1e-3)
   double pdfIntegral = 0.0;  // ∫ pdf dω over the sphere
+  long unresolvedCells = 0;  // cells whose quadrature ran out of evaluations (rejects)
   std::string report;        // grid of observed/expected, and the reason for a rejection
 };
 
@@ -126,10 +127,12 @@ inline ChiSquareResult chiSquare(const Material& m, const glm::vec3& wo,
     return static_cast<double>(m.pdf(wo, wi, lambda, ctx));
   };
   const double total = static_cast<double>(o.sampleCount);
+  QuadratureOptions q = o.quadrature;
+  q.exhaustedCells = &r.unresolvedCells;
   for (int i = 0; i < nz; ++i)
     for (int j = 0; j < nphi; ++j) {
       const double p = integrateCell(pdfAt, -1.0 + 2.0 * i / nz, -1.0 + 2.0 * (i + 1) / nz,
-                                     kTwoPi * j / nphi, kTwoPi * (j + 1) / nphi, o.quadrature);
+                                     kTwoPi * j / nphi, kTwoPi * (j + 1) / nphi, q);
       r.pdfIntegral += p;
       expected[static_cast<std::size_t>(i * nphi + j)] = p * total;
     }
@@ -138,7 +141,8 @@ inline ChiSquareResult chiSquare(const Material& m, const glm::vec3& wo,
   std::ostringstream rep;
   rep << "wo = (" << wo.x << ", " << wo.y << ", " << wo.z << "), N = " << o.sampleCount
       << ", non-delta " << r.nonDelta << ", delta " << r.delta << ", failed " << r.failed
-      << ", invalid " << r.invalid << ", ∫pdf = " << r.pdfIntegral << "\n";
+      << ", invalid " << r.invalid << ", ∫pdf = " << r.pdfIntegral << ", unresolved cells "
+      << r.unresolvedCells << "\n";
   // Observed samples where the pdf integrates to 0: sample() and pdf() disagree outright.
   for (std::size_t c = 0; c < observed.size(); ++c)
     if (expected[c] == 0.0 && observed[c] > 0.0) {
@@ -179,7 +183,7 @@ inline ChiSquareResult chiSquare(const Material& m, const glm::vec3& wo,
   r.dof = static_cast<int>(bins.size()) - 1;
   r.pValue = chiSquarePValue(r.statistic, r.dof);
   r.significance = 0.01 / o.testCount;
-  r.accepted = r.pValue >= r.significance && r.invalid == 0;
+  r.accepted = r.pValue >= r.significance && r.invalid == 0 && r.unresolvedCells == 0;
   rep << "chi2 = " << r.statistic << ", dof = " << r.dof << ", p = " << r.pValue
       << (r.accepted ? " (accepted)" : " (REJECTED)") << " at " << r.significance << "\n";
   if (!r.accepted) {
@@ -219,9 +223,10 @@ struct AlbedoOptions {
 struct AlbedoResult {
   std::array<double, kWavelengthSamples> mean{}, stdErr{};  // all samples (delta included)
   std::array<double, kWavelengthSamples> nonDeltaMean{}, nonDeltaStdErr{};
-  Channels quadrature{};   // ∫ f |cos θi| dω (non-delta)
-  double maxWeight = 0.0;  // largest f |cos| / pdf of one sample
-  int nonFinite = 0;       // samples or evaluations with NaN/Inf or negative values
+  Channels quadrature{};     // ∫ f |cos θi| dω (non-delta)
+  double maxWeight = 0.0;    // largest f |cos| / pdf of one sample
+  int nonFinite = 0;         // samples or evaluations with NaN/Inf or negative values
+  long unresolvedCells = 0;  // quadrature cells that ran out of evaluations
 };
 
 inline AlbedoResult albedo(const Material& m, const glm::vec3& wo, const SampledWavelengths& lambda,
@@ -264,6 +269,8 @@ inline AlbedoResult albedo(const Material& m, const glm::vec3& wo, const Sampled
         std::sqrt(std::max(0.0, nsum2[c] / n - r.nonDeltaMean[c] * r.nonDeltaMean[c]) / n);
   }
   if (o.quadrature) {
+    QuadratureOptions q = o.quadratureOptions;
+    q.exhaustedCells = &r.unresolvedCells;
     r.quadrature = integrateSphere<Channels>(
         [&](const glm::vec3& wi) {
           const SampledSpectrum v = m.f(wo, wi, lambda, ctx);
@@ -278,7 +285,7 @@ inline AlbedoResult albedo(const Material& m, const glm::vec3& wo, const Sampled
           }
           return out;
         },
-        o.cosThetaBins, o.phiBins, o.quadratureOptions);
+        o.cosThetaBins, o.phiBins, q);
   }
   return r;
 }

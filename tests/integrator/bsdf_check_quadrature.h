@@ -2,15 +2,15 @@
 // adaptive Simpson quadrature over cells of the sphere (dω = sin θ dθ dφ), and the χ²
 // p-value through the regularised upper incomplete gamma function.
 //
-// | option   | default | meaning                                                       |
-// |----------|---------|---------------------------------------------------------------|
-// | minDepth | 3       | forced bisections per cell and axis before adaptive refinement |
-// | maxDepth | 24      | refinement limit (resolves lobes ~2⁻²⁴ of a cell wide)         |
-// | relTol   | 1e-6    | per-panel relative tolerance                                  |
-// | absTol   | 1e-10   | per-panel absolute tolerance                                  |
+// | option         | default | meaning                                                |
+// |----------------|---------|--------------------------------------------------------|
+// | minDepth       | 3       | forced bisections of every panel                       |
+// | maxDepth       | 22      | refinement limit                                       |
+// | relTol, absTol | 1e-5, 1e-8  | per-panel tolerance max(absTol, relTol |S₂|)       |
+// | maxEvaluations | 1e6     | integrand evaluations per cell (then panels are kept)  |
 //
-//   Simpson  S[a,b] = (b − a)/6 (f(a) + 4 f(m) + f(b)); accept S₂ + (S₂ − S)/15 when
-//            |S₂ − S| ≤ 15 max(absTol, relTol |S₂|)
+//   Simpson  S[a,b] = (b − a)/6 (f(a) + 4 f(m) + f(b)); a panel is accepted as
+//            S₂ + (S₂ − S)/15 when |S₂ − S| ≤ 15 max(absTol, relTol |S₂|)
 //   p-value  p = Q(dof/2, χ²/2)
 #pragma once
 
@@ -35,11 +35,13 @@ inline glm::vec3 direction(double z, double phi) {
 
 // ---------------------------------------------------------------- quadrature
 struct QuadratureOptions {
-  int minDepth = 3;      // forced uniform bisections per cell and axis (2³ = 8 panels);
-                         // raise it for very narrow lobes so the first panels see the peak
-  int maxDepth = 24;     // adaptive refinement limit
-  double relTol = 1e-6;  // |S₂ − S| ≤ 15 max(absTol, relTol |S₂|)
-  double absTol = 1e-10;
+  int minDepth = 3;      // forced bisections of every panel (2³ = 8 sub-panels); raise it
+                         // for very narrow lobes so that the first points see the peak
+  int maxDepth = 22;     // refinement limit
+  double relTol = 1e-5;  // panel accepted when |S₂ − S| ≤ 15 max(absTol, relTol |S₂|)
+  double absTol = 1e-8;
+  long maxEvaluations = 1000000;   // per cell; beyond it panels are accepted as they are
+  long* exhaustedCells = nullptr;  // if set: incremented for each cell that ran out
 };
 
 // Value of a spectral integrand: one double per wavelength sample.
@@ -67,52 +69,82 @@ inline Channels operator*(double s, Channels a) {
   return a;
 }
 
+struct SimpsonTolerance {
+  int minDepth, maxDepth;
+  double relTol, absTol;
+  long* budget;  // evaluations left (shared by the nested integrals of one cell)
+};
+
 template <class V, class F>
 V simpsonStep(const F& f, double a, double b, const V& fa, const V& fm, const V& fb, const V& whole,
-              int depth, const QuadratureOptions& o) {
+              int depth, const SimpsonTolerance& t) {
   const double m = 0.5 * (a + b), lm = 0.5 * (a + m), rm = 0.5 * (m + b);
   const V flm = f(lm), frm = f(rm);
   const V left = ((m - a) / 6.0) * (fa + 4.0 * flm + fm);
   const V right = ((b - m) / 6.0) * (fm + 4.0 * frm + fb);
   const V both = left + right;
-  const double tol = std::max(o.absTol, o.relTol * magnitude(both));
-  if (depth >= o.maxDepth || (depth >= o.minDepth && magnitude(both - whole) <= 15.0 * tol))
+  const double tol = std::max(t.absTol, t.relTol * magnitude(both));
+  if (depth >= t.maxDepth || *t.budget <= 0 ||
+      (depth >= t.minDepth && magnitude(both - whole) <= 15.0 * tol))
     return both + (1.0 / 15.0) * (both - whole);
-  return simpsonStep(f, a, m, fa, flm, fm, left, depth + 1, o) +
-         simpsonStep(f, m, b, fm, frm, fb, right, depth + 1, o);
+  return simpsonStep(f, a, m, fa, flm, fm, left, depth + 1, t) +
+         simpsonStep(f, m, b, fm, frm, fb, right, depth + 1, t);
 }
-}  // namespace detail
 
-// Adaptive Simpson of f over [a, b]; V is double or Channels.
 template <class V, class F>
-V adaptiveSimpson(const F& f, double a, double b, const QuadratureOptions& o) {
+V adaptiveSimpson(const F& f, double a, double b, const SimpsonTolerance& t) {
   using detail::operator+;
   using detail::operator*;
   const V fa = f(a), fm = f(0.5 * (a + b)), fb = f(b);
   const V whole = ((b - a) / 6.0) * (fa + 4.0 * fm + fb);
-  return detail::simpsonStep<V>(f, a, b, fa, fm, fb, whole, 0, o);
+  return simpsonStep<V>(f, a, b, fa, fm, fb, whole, 0, t);
 }
+}  // namespace detail
 
-// ∫∫ g(direction(z, φ)) dz dφ over z ∈ [z0, z1], φ ∈ [φ0, φ1]; g returns V.
+// ∫ g(ω) dω over the cell z ∈ [z0, z1], φ ∈ [φ0, φ1] (g returns V: double or Channels), by
+// nested adaptive Simpson: outer in θ (dω = sin θ dθ dφ), inner in φ.
+//  - θ resolves lobes at the poles (α wide in θ but α² in z); as sin θ hides the pole
+//    value, a polar cell's θ range is graded (1/4096, 1/256, 1/16 of its width) so that
+//    the first evaluations reach θ ~ 1e-4 there;
+//  - the inner integrals use a tolerance 4× tighter than the outer one, so their
+//    rounding noise does not drive the outer refinement;
+//  - a cell that uses up maxEvaluations (a feature narrower than the panels can follow)
+//    is counted in *exhaustedCells: its value is then unreliable.
 template <class V = double, class G>
 V integrateCell(const G& g, double z0, double z1, double phi0, double phi1,
                 const QuadratureOptions& o) {
-  // Outer integral in θ (dz = sin θ dθ): lobes peaked at the poles are α wide in θ but
-  // only α² wide in z, so θ resolves them with far fewer panels.
+  using detail::operator+;
+  long budget = o.maxEvaluations;
+  const detail::SimpsonTolerance outerTol{o.minDepth, o.maxDepth, o.relTol, o.absTol, &budget};
+  const detail::SimpsonTolerance innerTol{o.minDepth, o.maxDepth, o.relTol / 50.0, o.absTol / 50.0,
+                                          &budget};
   const auto inner = [&](double theta) -> V {
     const double st = std::sin(theta), ct = std::cos(theta);
-    const V ring = adaptiveSimpson<V>(
+    const V ring = detail::adaptiveSimpson<V>(
         [&](double phi) -> V {
+          --budget;
           const glm::vec3 w(static_cast<float>(st * std::cos(phi)),
                             static_cast<float>(st * std::sin(phi)), static_cast<float>(ct));
           return g(w);
         },
-        phi0, phi1, o);
+        phi0, phi1, innerTol);
     using detail::operator*;
     return st * ring;
   };
-  return adaptiveSimpson<V>(inner, std::acos(std::clamp(z1, -1.0, 1.0)),
-                            std::acos(std::clamp(z0, -1.0, 1.0)), o);
+  const double t0 = std::acos(std::clamp(z1, -1.0, 1.0)), t1 = std::acos(std::clamp(z0, -1.0, 1.0));
+  std::array<double, 8> edges{};
+  std::size_t n = 0;
+  edges[n++] = t0;
+  if (z1 >= 1.0)
+    for (double q : {1.0 / 4096, 1.0 / 256, 1.0 / 16}) edges[n++] = t0 + q * (t1 - t0);
+  if (z0 <= -1.0)
+    for (double q : {1.0 / 16, 1.0 / 256, 1.0 / 4096}) edges[n++] = t1 - q * (t1 - t0);
+  edges[n++] = t1;
+  V sum{};
+  for (std::size_t i = 0; i + 1 < n; ++i)
+    sum = sum + detail::adaptiveSimpson<V>(inner, edges[i], edges[i + 1], outerTol);
+  if (budget <= 0 && o.exhaustedCells != nullptr) ++*o.exhaustedCells;
+  return sum;
 }
 
 // ∫ g dω over the sphere, cell by cell on the χ² grid (cell edges catch the z = 0 jump).

@@ -34,7 +34,6 @@ std::string name(MicrofacetDistribution d) {
 bsdfcheck::QuadratureOptions fineQuadrature() {
   bsdfcheck::QuadratureOptions q;
   q.minDepth = 4;
-  q.relTol = 1e-6;
   return q;
 }
 
