@@ -14,6 +14,7 @@ namespace {
 constexpr int kNodeSpacingNm = 5;
 constexpr double kTolerance = 1e-6;
 constexpr int kMaxSteps = 6;
+constexpr double kTrusted = 1e-4;
 constexpr double kMaxCoefficient = 1e10;
 
 double smoothstep(double x) {
@@ -111,13 +112,18 @@ glm::dvec3 ReflectanceUplift::rgbOf(const SigmoidPolynomial& p) const {
 }
 
 double ReflectanceUplift::refine(const glm::dvec3& target, Coeffs& c, int maxSteps,
-                                 double tolerance) const {
+                                 double tolerance, double trusted) const {
   glm::dmat3 jacobian;
   glm::dvec3 r = evaluate(c, &jacobian) - target;
   double err = glm::dot(r, r);
   for (int step = 0; step < maxSteps && err > tolerance * tolerance; ++step) {
     if (!(std::abs(glm::determinant(jacobian)) > 0.0)) break;
     const glm::dvec3 delta = -(glm::inverse(jacobian) * r);
+    if (err < trusted * trusted) {  // close enough for Newton's quadratic convergence
+      for (size_t k = 0; k < 3; ++k)
+        c[k] = std::clamp(c[k] + delta[static_cast<int>(k)], -kMaxCoefficient, kMaxCoefficient);
+      return 0.0;
+    }
     bool improved = false;
     for (double scale = 1.0; scale > 1e-4 && !improved; scale *= 0.5) {
       Coeffs q{c[0] + scale * delta[0], c[1] + scale * delta[1], c[2] + scale * delta[2]};
@@ -157,7 +163,7 @@ void ReflectanceUplift::buildTable() {
           rgb[m] = z;
           rgb[(m + 1) % 3] = a * z;
           rgb[(m + 2) % 3] = b * z;
-          refine(rgb, c, 30, 1e-7);
+          refine(rgb, c, 30, 1e-7, 0.0);
           table_[index(m, k, j, i)] = {static_cast<float>(c[0]), static_cast<float>(c[1]),
                                        static_cast<float>(c[2])};
         };
@@ -202,7 +208,7 @@ SigmoidPolynomial ReflectanceUplift::fit(glm::dvec3 rgb) const {
   if (rgb.x == rgb.y && rgb.y == rgb.z) return {0.0, 0.0, inverseSigmoid(rgb.x)};
   Coeffs c = start(rgb);
   if (!std::isfinite(c[0] + c[1] + c[2])) c = {0.0, 0.0, 0.0};
-  refine(rgb, c, kMaxSteps, kTolerance);
+  refine(rgb, c, kMaxSteps, kTolerance, kTrusted);
   return {c[0], c[1], c[2]};
 }
 

@@ -198,7 +198,9 @@ TEST(ImageTexture, BadFilesAreInputErrorsNamingTheFile) {
 }
 
 // A 1024² 8-bit sRGB PNG of random colours (every texel a new colour): decode + uplift of
-// every texel. Bound 10 s for a shared, loaded machine; measured ≈ 1.1 s (2 cores, load ~5).
+// every texel. Measured: decode 0.07–0.13 s; uplift 2.0 s of CPU summed over both threads
+// (so ≈ 1 s wall on 2 idle cores), 7–9 s wall on the 2 cores shared under a load of 6–14.
+// Bound: 20 s wall.
 TEST(ImageTexture, LoadTimeOf1024SquaredRandomTexture) {
   TempDir dir;
   std::mt19937 rng(5);
@@ -218,7 +220,7 @@ TEST(ImageTexture, LoadTimeOf1024SquaredRandomTexture) {
   std::printf(
       "1024² texture: decode %.3f s, uplift %.3f s (wall); CPU time of both, all threads: %.3f s\n",
       decode, uplift, cpu);
-  EXPECT_LT(decode + uplift, 10.0);
+  EXPECT_LT(decode + uplift, 20.0);
   for (int k = 0; k < 20; ++k) {  // spot checks of the round trip
     const int x = static_cast<int>(rng() % 1024), y = static_cast<int>(rng() % 1024);
     const size_t i = (static_cast<size_t>(y) * 1024 + static_cast<size_t>(x)) * 3;
