@@ -1,11 +1,14 @@
 #include "integrator/factory.h"
 
 #include "integrator/checkerboard_texture.h"
+#include "integrator/conductor_material.h"
 #include "integrator/dielectric_material.h"
 #include "integrator/diffuse_material.h"
 #include "integrator/distant_light.h"
 #include "integrator/environment_light.h"
 #include "integrator/image_texture.h"
+#include "integrator/mirror_material.h"
+#include "integrator/plastic_material.h"
 #include "integrator/point_light.h"
 #include "integrator/spot_light.h"
 #include "sensor/check.h"
@@ -51,10 +54,30 @@ std::unique_ptr<Material> makeMaterial(const MaterialDescription& d) {
     case MaterialDescription::Type::kDielectric:
       return std::make_unique<DielectricMaterial>(d.eta, makeFloatTexture(d.roughness), d.anisotropy,
                                                   d.distribution, d.masking);
-    case MaterialDescription::Type::kConductor:
+    case MaterialDescription::Type::kConductor: {
+      ConductorParameters p;
+      p.roughness = makeFloatTexture(d.roughness);
+      p.anisotropy = d.anisotropy;
+      p.distribution = d.distribution;
+      p.masking = d.masking;
+      p.fresnel = d.fresnel;
+      p.eta = d.eta;
+      p.k = d.k;
+      if (d.fresnel == FresnelModel::kSchlick) p.r0 = makeSpectrumTexture(d.reflectance);
+      return std::make_unique<ConductorMaterial>(std::move(p));
+    }
     case MaterialDescription::Type::kMirror:
-    case MaterialDescription::Type::kPlastic:
-      break;  // TODO(materials)
+      return std::make_unique<MirrorMaterial>(makeSpectrumTexture(d.reflectance));
+    case MaterialDescription::Type::kPlastic: {
+      PlasticParameters p;
+      p.reflectance = makeSpectrumTexture(d.reflectance);
+      p.roughness = makeFloatTexture(d.roughness);
+      p.specularWeight = d.specularWeight;
+      p.anisotropy = d.anisotropy;
+      p.distribution = d.distribution;
+      p.masking = d.masking;
+      return std::make_unique<PlasticMaterial>(std::move(p));
+    }
   }
   CAMSIM_CHECK(false);
   return nullptr;
