@@ -296,6 +296,8 @@ struct ReciprocityOptions {
   std::uint64_t seed = 13;
   bool transmission = false;  // false: wi on wo's side; true: opposite sides
   float etaInside = 1.0f;     // index on the −z side (outside: 1), for transmission pairs
+  double minValue = 1e-30;    // pairs where both values are below this (denormal range of
+                              // float, no relative precision left) are not compared
 };
 
 struct ReciprocityResult {
@@ -328,7 +330,7 @@ inline ReciprocityResult reciprocity(const Material& m, const SampledWavelengths
     for (int c = 0; c < kWavelengthSamples; ++c) {
       const double x = a[c], y = b[c];
       const double scale = std::max(std::abs(x), std::abs(y));
-      if (scale == 0.0) continue;
+      if (scale <= o.minValue) continue;
       const double e = std::abs(x - y) / scale;
       if (e > r.maxRelError) {
         r.maxRelError = e;
