@@ -1,9 +1,11 @@
-// SobolSampler: every 2D pair of the first 2^m samples of a pixel is a (0, m, 2)-net
-// (one point in every elementary interval), 1D slots are stratified, results are
+// SobolSampler: every 2D pair of the first 2^m samples of a pixel — and of every aligned
+// block of 2^m samples, i.e. each pair is a (0, 2)-sequence — is a (0, m, 2)-net (one point
+// in every elementary interval), 1D slots are stratified, 1D and 2D results are
 // deterministic, and pixels/dimensions get independent scrambles.
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <memory>
 #include <set>
 #include <vector>
 
@@ -36,6 +38,51 @@ TEST(SobolSampler, EveryPairIsAZeroMTwoNet) {
         EXPECT_EQ(static_cast<int>(cells.size()), n) << "dimension " << dimension << " m " << m << " a " << a;
       }
     }
+}
+
+// The (0, 2)-sequence property: not only the first 2^m samples but every aligned block of
+// 2^m consecutive sample indices [k·2^m, (k+1)·2^m) of every pair is a (0, m, 2)-net, so a
+// render that continues past a power of two stays stratified. (The index shuffle maps
+// aligned blocks to aligned blocks: bit j of owen(i) depends only on bits ≥ j of i.)
+TEST(SobolSampler, EveryAlignedBlockOfEveryPairIsAZeroMTwoNet) {
+  for (int dimension : {1, 6, 11})
+    for (int m = 1; m <= 8; ++m)
+      for (int block : {1, 2, 5}) {
+        const int n = 1 << m;
+        const auto all = pairs(13, {2, 7}, dimension, (block + 1) * n);
+        const std::vector<glm::vec2> pts(all.begin() + block * n, all.end());
+        for (int a = 0; a <= m; ++a) {
+          std::set<std::pair<int, int>> cells;
+          for (const glm::vec2& p : pts)
+            cells.emplace(static_cast<int>(std::ldexp(static_cast<double>(p.x), a)),
+                          static_cast<int>(std::ldexp(static_cast<double>(p.y), m - a)));
+          EXPECT_EQ(static_cast<int>(cells.size()), n)
+              << "dimension " << dimension << " m " << m << " block " << block << " a " << a;
+        }
+      }
+}
+
+// A pair depends only on (seed, pixel, sample index, dimension): not on the sampler copy nor
+// on what was drawn before; another render seed gives other points.
+TEST(SobolSampler, TwoDimensionalPairsAreDeterministic) {
+  SobolSampler a(5), other(6);
+  const std::unique_ptr<Sampler> b = a.clone();
+  int sameAcrossSeeds = 0;
+  for (int i = 0; i < 64; ++i) {
+    a.startPixelSample({3, 4}, i);
+    a.setDimension(kDimLens);
+    const glm::vec2 pa = a.get2D();
+    b->startPixelSample({3, 4}, i);
+    b->setDimension(kDimPixel);
+    b->get2D();
+    b->get1D();
+    b->setDimension(kDimLens);
+    EXPECT_EQ(pa, b->get2D()) << i;
+    other.startPixelSample({3, 4}, i);
+    other.setDimension(kDimLens);
+    sameAcrossSeeds += other.get2D() == pa ? 1 : 0;
+  }
+  EXPECT_EQ(sameAcrossSeeds, 0);
 }
 
 TEST(SobolSampler, OneDimensionalSlotsAreStratifiedAndDeterministic) {

@@ -1,0 +1,306 @@
+// Tests for `camsim bench` (cli/bench_*.cpp): the error metrics on known images, the slope
+// fit on synthetic data, the CSV columns, argument parsing and the plan, and the reference
+// cache (reused while the scene and its files are unchanged, invalidated when they change).
+// No timing is asserted: the benchmark's numbers are measurements, not test outcomes.
+#include "tests/support/temp_dir.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+#include "cli/args.h"
+#include "cli/bench_command.h"
+#include "cli/bench_metrics.h"
+#include "cli/bench_reference.h"
+#include "integrator/scene_loader.h"
+
+namespace camsim {
+namespace {
+
+namespace fs = std::filesystem;
+
+Image constantImage(int w, int h, float v) {
+  Image image(w, h, {"Y"});
+  for (float& p : image.pixels) p = v;
+  return image;
+}
+
+// ---- metrics ---------------------------------------------------------------------------
+
+TEST(BenchMetrics, IdenticalImagesHaveZeroError) {
+  Image ref(4, 3, {"Y"});
+  for (std::size_t i = 0; i < ref.pixels.size(); ++i) ref.pixels[i] = 0.1f * static_cast<float>(i);
+  const ErrorMetrics e = compareImages(ref, ref, 0);
+  EXPECT_EQ(e.rmse, 0.0);
+  EXPECT_EQ(e.mrae, 0.0);
+}
+
+TEST(BenchMetrics, ConstantOffsetGivesTheClosedForm) {
+  // r = 2 everywhere, x = r + 0.5: rMSE = 0.5² / (2² + (0.01·2)²), MRAE = 0.5 / (2 + 0.02).
+  const ErrorMetrics e = compareImages(constantImage(5, 4, 2.5f), constantImage(5, 4, 2.0f), 0);
+  EXPECT_NEAR(e.rmse, 0.25 / (4.0 + 0.0004), 1e-9);
+  EXPECT_NEAR(e.mrae, 0.5 / 2.02, 1e-9);
+}
+
+TEST(BenchMetrics, RelativeErrorsDoNotDependOnTheFilmScale) {
+  Image ref(3, 3, {"Y"}), x(3, 3, {"Y"});
+  for (std::size_t i = 0; i < ref.pixels.size(); ++i) {
+    ref.pixels[i] = 1.0f + static_cast<float>(i);
+    x.pixels[i] = ref.pixels[i] * (i % 2 ? 1.1f : 0.95f);
+  }
+  const ErrorMetrics a = compareImages(x, ref, 0);
+  for (float& p : ref.pixels) p *= 1e-9f;
+  for (float& p : x.pixels) p *= 1e-9f;
+  const ErrorMetrics b = compareImages(x, ref, 0);
+  EXPECT_NEAR(b.rmse / a.rmse, 1.0, 1e-5);
+  EXPECT_NEAR(b.mrae / a.mrae, 1.0, 1e-5);
+}
+
+TEST(BenchMetrics, BlackReferencePixelsAreBoundedByEpsilon) {
+  // Half the pixels 0 in the reference: their error counts relative to ε = 1 % of the mean.
+  Image ref(2, 1, {"Y"}), x(2, 1, {"Y"});
+  ref.pixels = {0.0f, 2.0f};
+  x.pixels = {0.01f, 2.0f};
+  const double eps = 0.01 * 1.0;  // mean(ref) = 1
+  EXPECT_NEAR(compareImages(x, ref, 0).rmse, 0.5 * (0.01 * 0.01) / (eps * eps), 1e-6);
+  EXPECT_TRUE(std::isfinite(compareImages(x, ref, 0).mrae));
+}
+
+TEST(BenchMetrics, ReferenceNoiseIsTheErrorOfTheHalvesMean) {
+  // a = r + d, b = r − d: (a − b)/2 = d against (a + b)/2 = r.
+  const ErrorMetrics n = referenceNoise(constantImage(3, 3, 1.2f), constantImage(3, 3, 0.8f), 0);
+  EXPECT_NEAR(n.rmse, 0.04 / (1.0 + 1e-4), 1e-6);
+  EXPECT_NEAR(n.mrae, 0.2 / 1.01, 1e-6);
+}
+
+TEST(BenchMetrics, MismatchedImagesThrow) {
+  EXPECT_THROW(compareImages(constantImage(2, 2, 1.0f), constantImage(3, 2, 1.0f), 0), std::invalid_argument);
+  EXPECT_THROW(compareImages(constantImage(2, 2, 1.0f), constantImage(2, 2, 1.0f), 1), std::invalid_argument);
+}
+
+// ---- slope fit -------------------------------------------------------------------------
+
+TEST(BenchSlope, PowerLawGivesItsExponent) {
+  std::vector<double> t, e;
+  for (int k = 0; k < 9; ++k) {
+    t.push_back(0.01 * std::pow(2.0, k));
+    e.push_back(3.0 * std::pow(t.back(), -0.5));
+  }
+  const SlopeFit fit = fitLogLogSlope(t, e);
+  EXPECT_EQ(fit.points, 9);
+  EXPECT_NEAR(fit.slope, -0.5, 1e-12);
+  EXPECT_NEAR(fit.intercept, std::log10(3.0), 1e-12);
+  EXPECT_NEAR(fit.r2, 1.0, 1e-12);
+}
+
+TEST(BenchSlope, NoisyPowerLawAndDegenerateInputs) {
+  std::vector<double> t, e;
+  for (int k = 0; k < 8; ++k) {
+    t.push_back(std::pow(2.0, k));
+    e.push_back(std::pow(t.back(), -1.0) * (k % 2 ? 1.1 : 0.9));  // ±10 % alternating
+  }
+  EXPECT_NEAR(fitLogLogSlope(t, e).slope, -1.0, 0.05);
+  EXPECT_TRUE(std::isnan(fitLogLogSlope({1.0}, {1.0}).slope));
+  EXPECT_TRUE(std::isnan(fitLogLogSlope({2.0, 2.0}, {1.0, 3.0}).slope));
+  EXPECT_EQ(fitLogLogSlope({0.0, 1.0, -1.0}, {1.0, 0.0, 1.0}).points, 0);  // non-positive values dropped
+}
+
+TEST(BenchSlope, RowsBelowTheReferenceFloorStayOutOfTheFit) {
+  // rMSE = 1/spp against a floor of 2e-3: budgets with rMSE < 4 × 2e-3 (spp ≥ 128) are excluded.
+  std::vector<BenchRow> rows;
+  for (int spp = 1; spp <= 256; spp *= 2) {
+    BenchRow r;
+    r.scene = "s";
+    r.sampler = "independent";
+    r.spp = spp;
+    r.seconds = 0.01 * spp;
+    r.cpuSeconds = 0.02 * spp;
+    r.floor.rmse = 2e-3;
+    r.error.rmse = 1.0 / spp;
+    rows.push_back(r);
+  }
+  std::vector<BenchRow*> ptrs;
+  for (BenchRow& r : rows) ptrs.push_back(&r);
+  const SamplerSlopes s = fitRows(ptrs);
+  for (const BenchRow& r : rows) EXPECT_EQ(r.inFit, r.spp < 128) << r.spp;
+  EXPECT_EQ(s.vsSpp.points, 7);
+  EXPECT_NEAR(s.vsSpp.slope, -1.0, 1e-12);
+  EXPECT_NEAR(s.vsSeconds.slope, s.vsSpp.slope, 1e-9);
+  EXPECT_NEAR(s.vsCpuSeconds.slope, s.vsSpp.slope, 1e-9);
+  EXPECT_EQ(s.scene, "s");
+}
+
+// ---- CSV -------------------------------------------------------------------------------
+
+std::vector<std::string> splitLine(const std::string& line) {
+  std::vector<std::string> fields;
+  std::stringstream ss(line);
+  for (std::string f; std::getline(ss, f, ',');) fields.push_back(f);
+  if (!line.empty() && line.back() == ',') fields.emplace_back();
+  return fields;
+}
+
+TEST(BenchCsv, HasTheDocumentedColumns) {
+  const std::vector<std::string> expected = {"scene",      "sampler",    "spp",          "width",    "height",
+                                             "seconds",    "cpu_seconds", "samples_per_s", "rays_per_s",
+                                             "rmse_rel",   "mrae",       "ref_rmse_rel", "ref_mrae", "in_fit"};
+  EXPECT_EQ(benchCsvColumns(), expected);
+  BenchRow r;
+  r.scene = "cornell_box";
+  r.sampler = "sobol";
+  r.spp = 16;
+  r.width = 128;
+  r.height = 128;
+  r.seconds = 2.0;
+  r.samples = 1000;
+  r.rays = 5000;
+  r.error = {0.25, 0.5};
+  r.inFit = true;
+  std::istringstream csv(formatBenchCsv({r, r}));
+  std::string header, line;
+  std::getline(csv, header);
+  EXPECT_EQ(splitLine(header), expected);
+  int lines = 0;
+  while (std::getline(csv, line)) {
+    const auto f = splitLine(line);
+    ASSERT_EQ(f.size(), expected.size()) << line;
+    EXPECT_EQ(f[0], "cornell_box");
+    EXPECT_EQ(f[2], "16");
+    EXPECT_DOUBLE_EQ(std::stod(f[7]), 500.0);   // samples/s
+    EXPECT_DOUBLE_EQ(std::stod(f[8]), 2500.0);  // rays/s
+    EXPECT_DOUBLE_EQ(std::stod(f[9]), 0.25);
+    EXPECT_EQ(f[13], "1");
+    ++lines;
+  }
+  EXPECT_EQ(lines, 2);
+}
+
+// ---- arguments and plan ----------------------------------------------------------------
+
+TEST(BenchArgs, DefaultsQuickAndOptions) {
+  const BenchArgs d = parseBenchArgs({"bench"});
+  EXPECT_FALSE(d.quick);
+  EXPECT_EQ(d.outputDir, "bench-out");
+  const BenchPlan p = planBench(d);
+  EXPECT_EQ(p.budgets(), (std::vector<int>{1, 2, 4, 8, 16, 32, 64, 128, 256}));
+  EXPECT_EQ(p.refSpp, 2048);
+  EXPECT_GT(p.threads, 0);
+  const BenchArgs a = parseBenchArgs({"bench", "--quick", "--out", "o", "--threads", "1", "--scenes",
+                                      "cornell_box,x/y.yaml", "--max-spp", "48", "--mesh-triangles", "0"});
+  EXPECT_TRUE(a.quick);
+  EXPECT_EQ(a.outputDir, "o");
+  EXPECT_EQ(a.scenes, (std::vector<std::string>{"cornell_box", "x/y.yaml"}));
+  const BenchPlan q = planBench(a);
+  EXPECT_EQ(q.budgets(), (std::vector<int>{1, 2, 4, 8, 16, 32, 48}));
+  EXPECT_EQ(q.threads, 1);
+  EXPECT_EQ(q.meshTriangles, 0u);
+  EXPECT_EQ(q.longSide, 64);
+  EXPECT_EQ(benchScenePath("x/y.yaml"), fs::path("x/y.yaml"));
+  EXPECT_EQ(benchScenePath("cornell_box").filename(), "cornell_box.yaml");
+  EXPECT_TRUE(parseBenchArgs({"bench", "--help"}).help);
+}
+
+TEST(BenchArgs, BadUsageIsAUsageError) {
+  EXPECT_THROW(parseBenchArgs({"bench", "--max-spp", "0"}), UsageError);
+  EXPECT_THROW(parseBenchArgs({"bench", "--max-spp"}), UsageError);
+  EXPECT_THROW(parseBenchArgs({"bench", "--scenes", "a,,b"}), UsageError);
+  EXPECT_THROW(parseBenchArgs({"bench", "--threads", "x"}), UsageError);
+  EXPECT_THROW(parseBenchArgs({"bench", "--frobnicate"}), UsageError);
+}
+
+// ---- reference cache -------------------------------------------------------------------
+
+const char* kTinyScene =
+    "format: camsim-scene/1\nname: tiny\nrender: {spp: 4, max_depth: 2}\n"
+    "camera: {position: [0, 0, -2], look_at: [0, 0, 0], up: [0, 1, 0], resolution: [8, 6]}\n"
+    "materials: {grey: {type: diffuse, reflectance: REFL}}\n"
+    "shapes:\n  - {name: tri, type: mesh, file: tri.obj, material: grey}\n"
+    "  - {name: lamp, type: sphere, centre: [0, 2, -1], radius: 0.3, emission: {luminance: 1000}}\n";
+
+ReferenceRequest tinyRequest(const fs::path& dir, const std::string& reflectance) {
+  std::string text = kTinyScene;
+  text.replace(text.find("REFL"), 4, reflectance);
+  ReferenceRequest r;
+  r.name = "tiny";
+  r.sceneText = text;
+  r.baseDir = dir;
+  r.description = loadSceneFromText(text, "tiny.yaml", dir);
+  r.spp = 4;
+  r.threads = 1;
+  return r;
+}
+
+void writeText(const fs::path& p, const std::string& text) {
+  std::ofstream(p, std::ios::binary) << text;
+}
+
+TEST(BenchReference, CachedUntilTheSceneOrItsFilesChange) {
+  test::TempDir dir;
+  writeText(dir.path() / "tri.obj", "v -1 -1 0\nv 1 -1 0\nv 0 1 0\nf 1 2 3\n");
+  const fs::path cache = dir.path() / "cache";
+  std::ostringstream log;
+  const ReferenceRequest req = tinyRequest(dir.path(), "0.5");
+  const Reference first = obtainReference(req, cache, log);
+  EXPECT_FALSE(first.fromCache);
+  EXPECT_TRUE(fs::is_regular_file(first.file));
+  EXPECT_EQ(first.file.filename().string().rfind("tiny-", 0), 0u);
+  EXPECT_EQ(first.image.width, 8);
+  EXPECT_EQ(first.image.height, 6);
+
+  const Reference again = obtainReference(req, cache, log);  // unchanged: reused
+  EXPECT_TRUE(again.fromCache);
+  EXPECT_EQ(again.file, first.file);
+  EXPECT_EQ(again.image.pixels, first.image.pixels);
+  EXPECT_DOUBLE_EQ(again.noise.rmse, first.noise.rmse);
+
+  const Reference edited = obtainReference(tinyRequest(dir.path(), "0.6"), cache, log);  // scene text changed
+  EXPECT_FALSE(edited.fromCache);
+  EXPECT_NE(edited.file, first.file);
+
+  ReferenceRequest moreSpp = req;  // reference settings are part of the key
+  moreSpp.spp = 8;
+  EXPECT_NE(referenceKey(moreSpp), referenceKey(req));
+
+  // A referenced file's content changes (same size): a new reference.
+  const std::string keyBefore = referenceKey(req);
+  writeText(dir.path() / "tri.obj", "v -1 -1 0\nv 1 -1 0\nv 0 2 0\nf 1 2 3\n");
+  const ReferenceRequest meshEdited = tinyRequest(dir.path(), "0.5");
+  EXPECT_NE(referenceKey(meshEdited), keyBefore);
+  EXPECT_FALSE(obtainReference(meshEdited, cache, log).fromCache);
+  EXPECT_TRUE(obtainReference(meshEdited, cache, log).fromCache);
+}
+
+TEST(BenchReference, ADamagedCacheFileIsRenderedAgain) {
+  test::TempDir dir;
+  writeText(dir.path() / "tri.obj", "v -1 -1 0\nv 1 -1 0\nv 0 1 0\nf 1 2 3\n");
+  std::ostringstream log;
+  const ReferenceRequest req = tinyRequest(dir.path(), "0.5");
+  const Reference first = obtainReference(req, dir.path(), log);
+  writeText(first.file, "not an exr");
+  const Reference again = obtainReference(req, dir.path(), log);
+  EXPECT_FALSE(again.fromCache);
+  EXPECT_TRUE(obtainReference(req, dir.path(), log).fromCache);
+}
+
+TEST(BenchReference, ReferencedFilesAreFoundInBlockAndFlowStyle) {
+  test::TempDir dir;
+  for (const char* f : {"a.ply", "tex.png", "s.csv", "env.exr"}) writeText(dir.path() / f, "x");
+  const std::string text =
+      "shapes:\n  - type: mesh\n    file: a.ply   # comment\n"
+      "materials: {m: {type: diffuse, reflectance: {texture: tex.png, encoding: srgb}}}\n"
+      "x: {csv: \"s.csv\", column: y}\nlights:\n  - {type: environment, file: env.exr, scale: 1}\n"
+      "  - {type: environment, file: missing.exr}\n";
+  const auto files = referencedFiles(text, dir.path());
+  ASSERT_EQ(files.size(), 4u);
+  std::vector<std::string> names;
+  for (const auto& f : files) names.push_back(f.filename().string());
+  std::sort(names.begin(), names.end());
+  EXPECT_EQ(names, (std::vector<std::string>{"a.ply", "env.exr", "s.csv", "tex.png"}));
+}
+
+}  // namespace
+}  // namespace camsim

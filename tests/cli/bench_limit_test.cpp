@@ -1,0 +1,179 @@
+// Tests for the limit side of `camsim bench` (integrator/ray_recorder.h, cli/bench_limit.h):
+// the recorder captures exactly the rays the render counts, by kind; replaying them finds
+// the same hits; motion can be removed; the generated mesh is what the PLY reader reads
+// back; and the binary runs end to end into a directory (tables, CSVs), exiting 2 after a
+// scene that does not load. No timing is asserted.
+#include "tests/support/temp_dir.h"
+
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "cli/bench_command.h"
+#include "cli/bench_limit.h"
+#include "cli/bench_metrics.h"
+#include "integrator/render.h"
+#include "integrator/scene.h"
+#include "integrator/scene_loader.h"
+
+namespace camsim {
+namespace {
+
+namespace fs = std::filesystem;
+
+SceneDescription suiteScene(const std::string& name, glm::ivec2 resolution) {
+  SceneDescription d = loadScene(benchScenePath(name));
+  d.camera.resolution = resolution;
+  return d;
+}
+
+RenderResult renderRecorded(const Scene& scene, int spp, int threads, RayRecorder* recorder) {
+  RenderOptions o;
+  o.spp = spp;
+  o.seed = 3;
+  o.threads = threads;
+  o.recorder = recorder;
+  return render(scene, SpectralResponse::cieXyz(), o);
+}
+
+TEST(RayRecorder, RecordsEveryCountedRayByKind) {
+  const Scene scene(suiteScene("cornell_box", {24, 24}));
+  RayRecorder recorder;
+  const RenderResult r = renderRecorded(scene, 2, 2, &recorder);
+  const std::vector<RecordedRay> rays = recorder.rays();
+  EXPECT_EQ(recorder.dropped(), 0u);
+  ASSERT_EQ(rays.size(), r.stats.rays.total());
+  EXPECT_EQ(raysOfKind(rays, RayKind::kCamera).size(), r.stats.rays.camera);
+  EXPECT_EQ(raysOfKind(rays, RayKind::kBounce).size(), r.stats.rays.bounce);
+  EXPECT_EQ(raysOfKind(rays, RayKind::kShadow).size(), r.stats.rays.shadow);
+  EXPECT_GT(r.stats.rays.bounce, 0u);
+  EXPECT_GT(r.stats.rays.shadow, 0u);
+  // Recording does not change the image.
+  const RenderResult plain = renderRecorded(scene, 2, 2, nullptr);
+  EXPECT_EQ(plain.image.pixels, r.image.pixels);
+}
+
+TEST(RayRecorder, StopsAtItsLimitAndCountsTheRest) {
+  const Scene scene(suiteScene("cornell_box", {16, 16}));
+  RayRecorder recorder(100);
+  const RenderResult r = renderRecorded(scene, 1, 2, &recorder);
+  EXPECT_EQ(recorder.rays().size(), 100u);
+  EXPECT_EQ(recorder.rays().size() + recorder.dropped(), r.stats.rays.total());
+}
+
+TEST(RayReplay, FindsTheSameHitsAsASerialLoop) {
+  const Scene scene(suiteScene("cornell_box", {16, 16}));
+  RayRecorder recorder;
+  renderRecorded(scene, 2, 1, &recorder);
+  const std::vector<RecordedRay> rays = recorder.rays();
+  std::uint64_t expected = 0;
+  for (const RecordedRay& rr : rays) {
+    Hit hit;
+    const bool found = rr.kind == RayKind::kShadow ? scene.geometry().occluded(rr.ray) : scene.geometry().intersect(rr.ray, hit);
+    expected += found ? 1u : 0u;
+  }
+  const ReplayResult replay = replayRays(scene.geometry(), rays, 2, 0.0);
+  EXPECT_EQ(replay.rays, rays.size());
+  EXPECT_EQ(replay.hits, expected);
+  EXPECT_GE(replay.passes, 3);
+  EXPECT_GT(replay.seconds, 0.0);
+  // One kind alone: camera rays, most of which hit the box (its open front lets a few out).
+  const auto camera = raysOfKind(rays, RayKind::kCamera);
+  std::uint64_t cameraHits = 0;
+  for (const RecordedRay& rr : camera) {
+    Hit hit;
+    cameraHits += scene.geometry().intersect(rr.ray, hit) ? 1u : 0u;
+  }
+  EXPECT_GT(cameraHits, camera.size() / 2);
+  EXPECT_EQ(replayRays(scene.geometry(), camera, 1, 0.0).hits, cameraHits);
+  EXPECT_EQ(replayRays(scene.geometry(), {}, 1).rays, 0u);
+}
+
+TEST(BenchLimit, WithoutMotionMakesTheMotionBlurSceneStatic) {
+  const SceneDescription moving = suiteScene("motion_blur", {32, 21});
+  EXPECT_TRUE(Scene(moving).modelled().time);
+  const SceneDescription still = withoutMotion(moving);
+  const Scene scene(still);
+  EXPECT_FALSE(scene.modelled().time);
+  EXPECT_EQ(scene.modelled().timeSteps, 1);
+  ASSERT_EQ(still.shapes.size(), moving.shapes.size());
+  for (std::size_t i = 0; i < still.shapes.size(); ++i) {
+    if (moving.shapes[i].motion.empty()) continue;  // the first key's pose is kept
+    const RigidMotion& m = moving.shapes[i].motion;
+    EXPECT_TRUE(still.shapes[i].motion.at(1.0) == m.at(m.keys().front().time)) << i;
+  }
+}
+
+TEST(BenchLimit, TorusMeshRoundTripsThroughBinaryPly) {
+  const MeshData mesh = makeTorusMesh(5000);
+  EXPECT_GE(mesh.indices.size() / 3, 5000u);
+  EXPECT_LT(mesh.indices.size() / 3, 5400u);
+  for (std::uint32_t i : mesh.indices) ASSERT_LT(i, mesh.positions.size());
+  test::TempDir dir;
+  writeBinaryPly(dir.path() / "t.ply", mesh);
+  const MeshData back = readPly(dir.path() / "t.ply");
+  EXPECT_EQ(back.indices, mesh.indices);
+  EXPECT_EQ(back.positions, mesh.positions);
+  const MeshBuildResult m = measureMeshBuild(2000, 1, dir.path());
+  EXPECT_GE(m.triangles, 2000u);
+  EXPECT_GT(m.embree.bytesAfterBuild, static_cast<std::int64_t>(24 * m.triangles));  // at least the buffers
+  EXPECT_GE(m.embree.bytesPeak, m.embree.bytesAfterBuild);
+}
+
+// ---- the binary ------------------------------------------------------------------------
+
+std::string readFile(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+int runBench(const std::string& args, const fs::path& logDir) {
+  // No plot: CAMSIM_PYTHON names no interpreter (the plot script is the PtcBinary tests' kind
+  // of concern; here only the numbers' files are checked).
+  const std::string command = "CAMSIM_PYTHON=/nonexistent " + std::string(CAMSIM_BINARY) + " bench " + args + " >" +
+                              (logDir / "stdout.txt").string() + " 2>" + (logDir / "stderr.txt").string();
+  const int status = std::system(command.c_str());
+  return status != -1 && WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+TEST(BenchBinary, SmallRunWritesTablesAndCsvs) {
+  test::TempDir dir;
+  const fs::path out = dir.path() / "out";
+  ASSERT_EQ(runBench("--scenes cornell_box --resolution 16 --max-spp 2 --ref-spp 4 --mesh-triangles 1000 --out " +
+                         out.string() + " --cache " + (dir.path() / "cache").string(),
+                     dir.path()),
+            0)
+      << readFile(dir.path() / "stderr.txt");
+  const std::string stdoutText = readFile(dir.path() / "stdout.txt");
+  for (const char* needle : {"slope rMSE/time", "raw mix/s", "thread scaling", "mesh build", "total:"})
+    EXPECT_NE(stdoutText.find(needle), std::string::npos) << needle;
+  const std::string csv = readFile(out / "bench.csv");
+  EXPECT_EQ(csv.substr(0, csv.find('\n')), "scene,sampler,spp,width,height,seconds,cpu_seconds,samples_per_s,"
+                                           "rays_per_s,rmse_rel,mrae,ref_rmse_rel,ref_mrae,in_fit");
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 1 + 2 * 2);  // header + 2 samplers × budgets 1, 2
+  EXPECT_NE(readFile(out / "bench_limit.csv").find("cornell_box,mix,"), std::string::npos);
+  EXPECT_EQ(readFile(out / "bench.txt"), stdoutText);
+  EXPECT_TRUE(fs::is_directory(dir.path() / "cache"));
+}
+
+TEST(BenchBinary, AMissingSceneExitsTwoAfterTheOthers) {
+  test::TempDir dir;
+  const fs::path out = dir.path() / "out";
+  EXPECT_EQ(runBench("--scenes cornell_box,no_such_scene --resolution 8 --max-spp 1 --ref-spp 2 "
+                     "--mesh-triangles 0 --out " + out.string() + " --cache " + (dir.path() / "cache").string(),
+                     dir.path()),
+            2);
+  EXPECT_NE(readFile(dir.path() / "stderr.txt").find("no_such_scene"), std::string::npos);
+  EXPECT_TRUE(fs::is_regular_file(out / "bench.csv"));
+  EXPECT_EQ(runBench("--max-spp nope", dir.path()), 2);
+}
+
+}  // namespace
+}  // namespace camsim
