@@ -106,7 +106,7 @@ SlopeFit fitLogLogSlope(const std::vector<double>& x, const std::vector<double>&
 
 SamplerSlopes fitRows(std::vector<BenchRow*>& rows) {
   SamplerSlopes s;
-  std::vector<double> t, cpu, spp, err;
+  std::vector<double> t, cpu, spp, err, mrae;
   for (BenchRow* r : rows) {
     s.scene = r->scene;
     s.sampler = r->sampler;
@@ -116,10 +116,12 @@ SamplerSlopes fitRows(std::vector<BenchRow*>& rows) {
     cpu.push_back(r->cpuSeconds);
     spp.push_back(r->spp);
     err.push_back(r->error.rmse);
+    mrae.push_back(r->error.mrae);
   }
   s.vsSeconds = fitLogLogSlope(t, err);
   s.vsCpuSeconds = fitLogLogSlope(cpu, err);
   s.vsSpp = fitLogLogSlope(spp, err);
+  s.mraeVsSeconds = fitLogLogSlope(t, mrae);
   return s;
 }
 
@@ -181,15 +183,15 @@ std::string formatBenchTable(const std::vector<BenchRow>& rows) {
 std::string formatSlopeTable(const std::vector<SamplerSlopes>& slopes) {
   char line[256];
   std::ostringstream out;
-  std::snprintf(line, sizeof line, "%-13s %-11s %16s %6s %6s %15s %14s\n", "scene", "sampler", "slope rMSE/time",
-                "R^2", "points", "slope rMSE/CPU", "slope rMSE/spp");
+  std::snprintf(line, sizeof line, "%-13s %-11s %16s %6s %6s %15s %14s %15s\n", "scene", "sampler",
+                "slope rMSE/time", "R^2", "points", "slope rMSE/CPU", "slope rMSE/spp", "slope MRAE/time");
   out << line;
   for (const SamplerSlopes& s : slopes) {
     const bool ok = s.vsSeconds.points >= 2;
-    std::snprintf(line, sizeof line, "%-13s %-11s %16s %6s %6d %15s %14s\n", s.scene.c_str(), s.sampler.c_str(),
+    std::snprintf(line, sizeof line, "%-13s %-11s %16s %6s %6d %15s %14s %15s\n", s.scene.c_str(), s.sampler.c_str(),
                   ok ? fixed(s.vsSeconds.slope, 3).c_str() : "n/a", ok ? fixed(s.vsSeconds.r2, 3).c_str() : "",
                   s.vsSeconds.points, ok ? fixed(s.vsCpuSeconds.slope, 3).c_str() : "n/a",
-                  ok ? fixed(s.vsSpp.slope, 3).c_str() : "n/a");
+                  ok ? fixed(s.vsSpp.slope, 3).c_str() : "n/a", ok ? fixed(s.mraeVsSeconds.slope, 3).c_str() : "n/a");
     out << line;
   }
   return out.str();

@@ -14,7 +14,10 @@
 // (referenceNoise()); measured rMSE ≈ the render's own + the floor.
 //
 // Slope: least squares of log rMSE on log seconds over the budgets whose rMSE is at least
-// kFloorFactor × the floor (plain Monte Carlo gives −1: rMSE is a squared error).
+// kFloorFactor × the floor (plain Monte Carlo gives −1: rMSE is a squared error). rMSE is
+// dominated by rare very bright samples (a pixel whose reference is dark gets one hit of a
+// small bright light: its error then falls as N⁻²); MRAE's slope (−0.5 for plain Monte
+// Carlo) is printed next to it.
 #pragma once
 
 #include <cstdint>
@@ -66,6 +69,7 @@ struct BenchRow {
 struct SamplerSlopes {
   std::string scene, sampler;
   SlopeFit vsSeconds, vsCpuSeconds, vsSpp;
+  SlopeFit mraeVsSeconds;  // MRAE (robust to rare bright samples; −0.5 for plain Monte Carlo)
 };
 SamplerSlopes fitRows(std::vector<BenchRow*>& rows);
 
