@@ -209,7 +209,7 @@ RenderCommandResult runRender(const RenderArgs& args, std::ostream& log, const s
   log << "rendered " << desc.name << ": " << result.image.width << "x" << result.image.height << ", "
       << desc.render.spp << " spp, " << st.threads << " threads, " << formatSeconds(st.seconds) << " ("
       << formatRate(samples / st.seconds) << "samples/s, " << formatRate(double(st.rays.total()) / st.seconds)
-      << "rays/s)\n";
+      << "rays/s), rejected samples (NaN/Inf): " << st.rejectedSamples << "\n";
   if (st.rejectedSamples > 0) log << "warning: " << st.rejectedSamples << " samples had NaN/Inf radiance and were dropped\n";
   for (const auto& f : outcome.files) log << "wrote " << f.string() << "\n";
   return outcome;

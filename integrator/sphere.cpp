@@ -38,9 +38,12 @@ SurfaceInteraction Sphere::surfacePoint(const Pose& pose, const glm::vec3& direc
   si.ns = si.n;
   si.p = pose.centre + pose.radius * si.n;
   si.pError = gammaBound(5) * (glm::abs(si.p) + glm::abs(pose.centre));
-  float u = std::atan2(si.n.y, si.n.x) / (2.0f * kPi);
+  // World up is +y: u = φ/2π about +y (φ from +z towards +x), v = 1 − θ/π (θ from +y), so
+  // an image's top row (v = 1) maps to the top pole and the picture is not mirrored when
+  // seen from a camera looking along +z.
+  float u = std::atan2(si.n.x, si.n.z) / (2.0f * kPi);
   if (u < 0.0f) u += 1.0f;
-  si.uv = {u < 1.0f ? u : 0.0f, std::acos(std::clamp(si.n.z, -1.0f, 1.0f)) / kPi};
+  si.uv = {u < 1.0f ? u : 0.0f, 1.0f - std::acos(std::clamp(si.n.y, -1.0f, 1.0f)) / kPi};
   si.time = time;
   return si;
 }

@@ -1,5 +1,6 @@
 // Textures: values that vary over a surface with its texture coordinates (u, v) in [0, 1)²
-// (meshes: per-vertex uv, default (0, 0); spheres: u = φ/2π, v = θ/π from the pole +z).
+// (meshes: per-vertex uv, or (0,0), (1,0), (1,1) per triangle without them; spheres:
+// u = φ/2π about +y, v = 1 − θ/π from the top pole — see docs/scene-format.md).
 // Small closed set: constant, image (EXR/PNG), checkerboard.
 //   SpectrumTexture  reflectance-like spectra, dimensionless, evaluated at the path's λ
 //   FloatTexture     scalars such as roughness

@@ -78,6 +78,7 @@ TEST(HardCases, GrazingIncidenceInAUniformFurnace) {
     const LuminanceImage img = renderLuminance(grazingFurnace({0, 0, 0}, 1.0, height), 1024);
     expectClean(img);
     const double expected = 0.02 * flatY();
+    std::printf("[measured] grazing height %g m: mean L / reference = %.4f\n", height, meanOf(img) / expected);
     for (int y = 0; y < 4; ++y)
       for (int x = 0; x < 4; ++x) EXPECT_NEAR(img.at(x, y) / expected, 1.0, 0.02) << "height " << height;
   }
@@ -92,6 +93,8 @@ TEST(HardCases, FarFromOriginAndMillimetreScale) {
                                std::pair{glm::dvec3(1e6, 2e6, -3e6), 1e-3}}) {
     const LuminanceImage img = renderLuminance(grazingFurnace(centre, scale, 0.05), 1024);
     expectClean(img);
+    std::printf("[measured] centre (%g, %g, %g) scale %g: mean L / reference = %.4f\n", centre.x, centre.y, centre.z,
+                scale, meanOf(img) / expected);
     for (int y = 0; y < 4; ++y)
       for (int x = 0; x < 4; ++x)
         EXPECT_NEAR(img.at(x, y) / expected, 1.0, 0.02) << "centre " << centre.x << " scale " << scale;
@@ -144,43 +147,48 @@ TEST(HardCases, NeedleAndDegenerateTrianglesChangeNothing) {
   const LuminanceImage needles = renderLuminance(needleFloor(true), 4096);
   expectClean(reference);
   expectClean(needles);
+  std::printf("[measured] needle floor / two-triangle floor: %.4f\n", meanOf(needles) / meanOf(reference));
   EXPECT_NEAR(meanOf(needles) / meanOf(reference), 1.0, 0.01);
   for (int y = 0; y < 8; ++y)
     for (int x = 0; x < 8; ++x) EXPECT_NEAR(needles.at(x, y) / reference.at(x, y), 1.0, 0.05) << x << "," << y;
 }
 
 // A uniform field: the camera and a sphere of `material` inside a closed, purely emitting
-// sphere (Lₑ = 0.01, black, two-sided). What the sphere reflects is albedo(ωo)·Lₑ.
-std::string uniformField(const std::string& material, double fieldScale = 0.01) {
+// sphere (Lₑ = 0.01, black, two-sided). What the sphere reflects is albedo(ωo)·Lₑ. Without
+// the inner sphere (material empty) the camera sees the field itself: the same seed gives
+// the same wavelengths per pixel sample, so ratios to that render carry no wavelength noise.
+std::string uniformField(const std::string& material) {
   return "camera: {position: [0, 0, -3], look_at: [0, 0, 0], sensor_width_mm: 8, sensor_height_mm: 8,\n"
          "         focal_length_mm: 50, resolution: [6, 6]}\n"
          "render: {max_depth: 40, rr_depth: 10000}\n"
-         "materials: {m: " + material + "}\n"
+         "materials: {m: " + (material.empty() ? std::string("{type: diffuse}") : material) + "}\n"
          "shapes:\n"
-         "  - {type: sphere, centre: [0, 0, 0], radius: 10, emission: {scale: " + num(fieldScale) +
-         ", spectrum: 1, two_sided: true}}\n"
-         "  - {type: sphere, centre: [0, 0, 0], radius: 0.5, material: m}\n";
+         "  - {type: sphere, centre: [0, 0, 0], radius: 10, emission: {scale: 0.01, spectrum: 1, two_sided: true}}\n" +
+         (material.empty() ? std::string() : "  - {type: sphere, centre: [0, 0, 0], radius: 0.5, material: m}\n");
 }
 
-// Roughness 0 (delta), 1e-4 (the sharpest microfacet lobe) and 1 with F = 1: a mirror-like
-// conductor returns exactly Lₑ for α = 0 and within 1 % for α = 1e-4; at α = 1 the lost
-// multiple-scattering energy makes it darker but never brighter (≤ Lₑ + 1 %) and never
-// below the single-scattering albedo bound 0.5 at any pixel.
+// Roughness 0 (delta), 1e-4 (the sharpest microfacet lobe) and 1, with F = 1: α = 0
+// returns the field exactly (ratio 1 to 1e-5: float rounding only); α = 1e-4 within 1 % per
+// pixel; α = 1 loses the multiple-scattering energy: darker, never brighter (≤ 1 + 1 %),
+// and above 0.25 (the single-scattering albedo at normal incidence, the lowest over the
+// sphere, is 0.307 for GGX and 0.46 for Beckmann by quadrature).
 TEST(HardCases, ConductorRoughnessExtremesInAUniformField) {
-  const double le = 0.01 * flatY();
+  const LuminanceImage field = renderLuminance(uniformField(""), 256);
   for (const char* distribution : {"ggx", "beckmann"}) {
     for (double alpha : {0.0, 1e-4, 1.0}) {
       const std::string material = std::string("{type: conductor, fresnel: schlick, reflectance: 1, roughness: ") +
                                    num(alpha) + ", distribution: " + distribution + "}";
       const LuminanceImage img = renderLuminance(uniformField(material), 256);
       expectClean(img);
+      std::printf("[measured] %s α %g, F = 1: mean L / Le = %.5f\n", distribution, alpha, meanOf(img) / meanOf(field));
       for (int y = 0; y < 6; ++y)
         for (int x = 0; x < 6; ++x) {
-          const double r = img.at(x, y) / le;
-          if (alpha < 0.5) EXPECT_NEAR(r, 1.0, alpha == 0.0 ? 1e-4 : 0.01) << distribution << " α " << alpha;
-          else {
+          const double r = img.at(x, y) / field.at(x, y);
+          if (alpha < 0.5) {
+            EXPECT_NEAR(r, 1.0, alpha == 0.0 ? 1e-5 : 0.01) << distribution << " α " << alpha;
+          } else {
             EXPECT_LE(r, 1.01) << distribution;
-            EXPECT_GE(r, 0.5) << distribution;
+            EXPECT_GE(r, 0.25) << distribution;
           }
         }
     }
@@ -220,20 +228,28 @@ TEST(HardCases, ShadingNormalsFacingAwayFromTheGeometry) {
   std::filesystem::remove_all(dir);
 }
 
-// Camera → mirror (k = 0.8, 45°) → emitter: L = k·Lₑ exactly (delta chain, no noise
-// beyond the wavelengths: the spectrum is flat).
+// Camera → mirror (k = 0.8, 45°) → emitter: L = k·Lₑ exactly. The reference is the same
+// emitter seen directly (same seed, so the same wavelengths): the ratio is k to float
+// rounding.
 TEST(HardCases, MirrorReflectsAnEmitterAtKTimesLe) {
-  const std::string scene =
+  const std::string camera =
       "camera: {position: [0, 0, -2], look_at: [0, 0, 0], sensor_width_mm: 2, sensor_height_mm: 2,\n"
-      "         focal_length_mm: 50, resolution: [4, 4]}\n"
-      "materials: {m: {type: mirror, reflectance: 0.8}}\n"
+      "         focal_length_mm: 50, resolution: [4, 4]}\n";
+  const std::string viaMirror =
+      camera + "materials: {m: {type: mirror, reflectance: 0.8}}\n"
       "shapes:\n"
       "  - {type: mesh, material: m, vertices: [[-1, -1, 1], [1, -1, -1], [1, 1, -1], [-1, 1, 1]], faces: [[0, 3, 2, 1]]}\n"
       "  - {type: rectangle, corner: [-3, -2, -2], edge_u: [0, 4, 0], edge_v: [0, 0, 4], emission: {scale: 0.01, spectrum: 1}}\n";
-  const LuminanceImage img = renderLuminance(scene, 16);
+  const std::string direct =
+      camera + "shapes:\n"
+      "  - {type: rectangle, corner: [-2, -2, 3], edge_u: [0, 4, 0], edge_v: [4, 0, 0], emission: {scale: 0.01, spectrum: 1}}\n";
+  const LuminanceImage img = renderLuminance(viaMirror, 16);
+  const LuminanceImage reference = renderLuminance(direct, 16);
   expectClean(img);
+  expectClean(reference);
+  std::printf("[measured] mirror k = 0.8: L / Le = %.6f\n", meanOf(img) / meanOf(reference));
   for (int y = 0; y < 4; ++y)
-    for (int x = 0; x < 4; ++x) EXPECT_NEAR(img.at(x, y) / (0.8 * 0.01 * flatY()), 1.0, 1e-4) << x << "," << y;
+    for (int x = 0; x < 4; ++x) EXPECT_NEAR(img.at(x, y) / reference.at(x, y), 0.8, 1e-5) << x << "," << y;
 }
 
 // A smooth glass slab (η = 1.5, 0.2 m thick) in front of an emitter, at normal incidence:
@@ -254,6 +270,7 @@ TEST(HardCases, GlassSlabTransmitsTheFresnelPredictedRadiance) {
   const LuminanceImage img = renderLuminance(scene, 1024);
   expectClean(img);
   const double r = 0.04;
+  std::printf("[measured] glass slab: L / (Le (1-R)/(1+R)) = %.4f\n", meanOf(img) / (0.01 * flatY() * (1.0 - r) / (1.0 + r)));
   EXPECT_NEAR(meanOf(img) / (0.01 * flatY() * (1.0 - r) / (1.0 + r)), 1.0, 0.005);
 }
 
@@ -274,6 +291,7 @@ TEST(HardCases, LightInsideGlass) {
       "  - {type: rectangle, corner: [-1, -1, 0], edge_u: [0, 2, 0], edge_v: [2, 0, 0], emission: {scale: 0.01, spectrum: 1}}\n";
   const LuminanceImage img = renderLuminance(scene, 256);
   expectClean(img);
+  std::printf("[measured] light inside glass: L / ((1-R) Le / eta^2) = %.4f\n", meanOf(img) / (0.01 * flatY() * 0.96 / 2.25));
   EXPECT_NEAR(meanOf(img) / (0.01 * flatY() * 0.96 / 2.25), 1.0, 0.005);
 }
 
@@ -293,6 +311,7 @@ TEST(HardCases, CameraInsideGlassSeesEtaSquaredTimesTheField) {
   };
   const LuminanceImage constant = renderLuminance(scene("ior: 1.5"), 256);
   expectClean(constant);
+  std::printf("[measured] camera inside glass (eta 1.5): L / (eta^2 Le) = %.4f\n", meanOf(constant) / (0.01 * flatY() * 2.25));
   EXPECT_NEAR(meanOf(constant) / (0.01 * flatY() * 2.25), 1.0, 0.01);
 
   const LuminanceImage bk7 = renderLuminance(scene("glass: BK7"), 1024);
@@ -305,6 +324,7 @@ TEST(HardCases, CameraInsideGlassSeesEtaSquaredTimesTheField) {
     const double e = static_cast<double>(eta(static_cast<float>(lambda)));
     y += e * e * 0.01 * static_cast<double>(Cie1931::get().y.sample(i));
   }
+  std::printf("[measured] camera inside BK7: Y / (Km ∫ eta² Le ybar) = %.4f\n", meanOf(bk7) / (kMaxLuminousEfficacy * y));
   EXPECT_NEAR(meanOf(bk7) / (kMaxLuminousEfficacy * y), 1.0, 0.01);
 }
 

@@ -84,7 +84,7 @@ const ErrorCase kErrorCases[] = {
     {"SyntaxUnclosedQuote", "name: \"box\n" + kPrefix + kSphere, 1, 7, "", "never closed"},
     {"SyntaxBadIndentation", kCamera + " up: [0, 1, 0]\n" + kMaterials + "shapes:\n" + kSphere, 4,
      2, "", "YAML syntax error"},
-    {"UnknownTopLevelKey", withShapes(kSphere) + "lights: []\n", 8, 1, "lights", "unknown key"},
+    {"UnknownTopLevelKey", withShapes(kSphere) + "lamps: []\n", 8, 1, "lamps", "unknown key"},
     {"MisspeltShapeKey",
      withShapes(kSphere +
                 "  - type: sphere\n    centre: [0, 0, 0]\n    radus: 1\n    material: m\n"),
@@ -264,7 +264,9 @@ TEST(SceneLoaderTest, ValidJsonLoads) {
   ASSERT_EQ(scene.shapes.size(), 1u);
   EXPECT_EQ(scene.shapes[0].kind, ShapeDescription::Kind::kSphere);
   EXPECT_FLOAT_EQ(scene.shapes[0].radius, 0.5f);
-  EXPECT_FLOAT_EQ(scene.shapes[0].centre.z, 2.0f);
+  // Render space: relative to the camera's position (0, 0, −1).
+  EXPECT_EQ(scene.renderOrigin, glm::dvec3(0.0, 0.0, -1.0));
+  EXPECT_FLOAT_EQ(scene.shapes[0].centre.z, 3.0f);
   EXPECT_FLOAT_EQ(scene.materials[0].reflectance.value(550.0f), 0.25f);
 }
 
@@ -279,9 +281,11 @@ TEST(SceneLoaderTest, ObjMeshWithScaleAndTranslate) {
   const MeshData& mesh = scene.shapes[0].mesh;
   EXPECT_EQ(scene.shapes[0].kind, ShapeDescription::Kind::kMesh);
   ASSERT_EQ(mesh.positions.size(), 3u);
-  EXPECT_EQ(mesh.positions[0], glm::vec3(1, 2, 3));
-  EXPECT_EQ(mesh.positions[1], glm::vec3(3, 2, 3));
-  EXPECT_EQ(mesh.positions[2], glm::vec3(1, 4, 3));
+  // Render space: world positions minus the camera's position.
+  auto world = [&](double x, double y, double z) { return glm::vec3(glm::dvec3(x, y, z) - scene.renderOrigin); };
+  EXPECT_EQ(mesh.positions[0], world(1, 2, 3));
+  EXPECT_EQ(mesh.positions[1], world(3, 2, 3));
+  EXPECT_EQ(mesh.positions[2], world(1, 4, 3));
   EXPECT_EQ(mesh.indices, (std::vector<std::uint32_t>{0, 1, 2}));
 }
 

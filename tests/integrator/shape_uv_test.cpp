@@ -85,26 +85,26 @@ glm::vec2 sphereUv(const glm::vec3& direction) {
 }
 
 TEST(SphereUv, PolesAndEquator) {
-  const glm::vec2 north = sphereUv({0, 0, 1}), south = sphereUv({0, 0, -1});
-  EXPECT_NEAR(north.y, 0.0f, kTol);  // v = θ/π from +z
-  EXPECT_NEAR(south.y, 1.0f, kTol);
+  const glm::vec2 north = sphereUv({0, 1, 0}), south = sphereUv({0, -1, 0});
+  EXPECT_NEAR(north.y, 1.0f, kTol);  // v = 1 − θ/π, θ from +y (world up)
+  EXPECT_NEAR(south.y, 0.0f, kTol);
   EXPECT_GE(north.x, 0.0f);
   EXPECT_LT(north.x, 1.0f);
   const struct {
     glm::vec3 direction;
     float u;
-  } equator[] = {{{1, 0, 0}, 0.0f}, {{0, 1, 0}, 0.25f}, {{-1, 0, 0}, 0.5f}, {{0, -1, 0}, 0.75f}};
+  } equator[] = {{{0, 0, 1}, 0.0f}, {{1, 0, 0}, 0.25f}, {{0, 0, -1}, 0.5f}, {{-1, 0, 0}, 0.75f}};
   for (const auto& e : equator) {
     const glm::vec2 uv = sphereUv(e.direction);
     EXPECT_NEAR(uv.x, e.u, kTol) << e.direction.x << " " << e.direction.y;
     EXPECT_NEAR(uv.y, 0.5f, kTol);
   }
-  // 45° above the equator towards +x+y: u = 1/8, v = 1/4.
-  const glm::vec2 mid = sphereUv(glm::normalize(glm::vec3(0.5f, 0.5f, std::sqrt(0.5f))));
+  // 45° above the equator between +z and +x: u = 1/8, v = 3/4.
+  const glm::vec2 mid = sphereUv(glm::normalize(glm::vec3(0.5f, std::sqrt(0.5f), 0.5f)));
   EXPECT_NEAR(mid.x, 0.125f, 1e-5f);
-  EXPECT_NEAR(mid.y, 0.25f, 1e-5f);
+  EXPECT_NEAR(mid.y, 0.75f, 1e-5f);
   // Just below φ = 2π (u slightly under 1, never 1).
-  const glm::vec2 wrap = sphereUv(glm::normalize(glm::vec3(1.0f, -1e-7f, 0.0f)));
+  const glm::vec2 wrap = sphereUv(glm::normalize(glm::vec3(-1e-7f, 0.0f, 1.0f)));
   EXPECT_GE(wrap.x, 0.0f);
   EXPECT_LT(wrap.x, 1.0f);
 }
