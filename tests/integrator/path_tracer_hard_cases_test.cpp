@@ -252,6 +252,15 @@ TEST(HardCases, MirrorReflectsAnEmitterAtKTimesLe) {
     for (int x = 0; x < 4; ++x) EXPECT_NEAR(img.at(x, y) / reference.at(x, y), 0.8, 1e-5) << x << "," << y;
 }
 
+// A 10 m × 10 m glass block between z = −h and z = +h, faces outward (the camera looks
+// along +z from z = −2 at normal incidence).
+std::string glassBox(double h) {
+  const std::string a = num(-h), b = num(h);
+  return "  - {type: mesh, material: glass, vertices: [[-5, -5, " + a + "], [5, -5, " + a + "], [5, 5, " + a +
+         "], [-5, 5, " + a + "],\n     [-5, -5, " + b + "], [5, -5, " + b + "], [5, 5, " + b + "], [-5, 5, " + b +
+         "]],\n     faces: [[0, 3, 2, 1], [4, 5, 6, 7], [0, 1, 5, 4], [1, 2, 6, 5], [2, 3, 7, 6], [3, 0, 4, 7]]}\n";
+}
+
 // A smooth glass slab (η = 1.5, 0.2 m thick) in front of an emitter, at normal incidence:
 // the transmitted radiance summed over all internal reflections is Lₑ(1−R)²/(1−R²) =
 // Lₑ(1−R)/(1+R), R = ((η−1)/(η+1))² = 0.04 → 0.923077 Lₑ. The field of view is ±0.6°,
@@ -262,10 +271,8 @@ TEST(HardCases, GlassSlabTransmitsTheFresnelPredictedRadiance) {
       "         focal_length_mm: 50, resolution: [4, 4]}\n"
       "render: {max_depth: 40, rr_depth: 10000}\n"
       "materials: {glass: {type: dielectric, ior: 1.5}}\n"
-      "shapes:\n"
-      "  - {type: mesh, material: glass, vertices: [[-5, -5, -0.1], [5, -5, -0.1], [5, 5, -0.1], [-5, 5, -0.1],\n"
-      "     [-5, -5, 0.1], [5, -5, 0.1], [5, 5, 0.1], [-5, 5, 0.1]],\n"
-      "     faces: [[0, 3, 2, 1], [4, 5, 6, 7], [0, 1, 5, 4], [1, 2, 6, 5], [2, 3, 7, 6], [3, 0, 4, 7]]}\n"
+      "shapes:\n" +
+      glassBox(0.1) +
       "  - {type: rectangle, corner: [-10, -10, 1], edge_u: [0, 20, 0], edge_v: [20, 0, 0], emission: {scale: 0.01, spectrum: 1}}\n";
   const LuminanceImage img = renderLuminance(scene, 1024);
   expectClean(img);
@@ -284,10 +291,8 @@ TEST(HardCases, LightInsideGlass) {
       "         focal_length_mm: 50, resolution: [4, 4]}\n"
       "render: {max_depth: 40, rr_depth: 10000}\n"
       "materials: {glass: {type: dielectric, ior: 1.5}}\n"
-      "shapes:\n"
-      "  - {type: mesh, material: glass, vertices: [[-5, -5, -0.5], [5, -5, -0.5], [5, 5, -0.5], [-5, 5, -0.5],\n"
-      "     [-5, -5, 0.5], [5, -5, 0.5], [5, 5, 0.5], [-5, 5, 0.5]],\n"
-      "     faces: [[0, 3, 2, 1], [4, 5, 6, 7], [0, 1, 5, 4], [1, 2, 6, 5], [2, 3, 7, 6], [3, 0, 4, 7]]}\n"
+      "shapes:\n" +
+      glassBox(0.5) +
       "  - {type: rectangle, corner: [-1, -1, 0], edge_u: [0, 2, 0], edge_v: [2, 0, 0], emission: {scale: 0.01, spectrum: 1}}\n";
   const LuminanceImage img = renderLuminance(scene, 256);
   expectClean(img);
