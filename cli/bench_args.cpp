@@ -112,7 +112,7 @@ BenchPlan planBench(const BenchArgs& args) {
     p.longSide = 64;
     p.maxSpp = 32;
     p.captureSpp = 2;
-    p.featureSpp = 8;
+    p.featureSpp = 16;
   }
   if (args.resolution) p.longSide = *args.resolution;
   if (args.maxSpp) p.maxSpp = *args.maxSpp;

@@ -50,7 +50,7 @@ struct BenchPlan {
   int maxSpp = 256;
   int refSpp = 2048;
   int captureSpp = 4;     // the limit's recording render
-  int featureSpp = 16;    // thread scaling and motion overhead
+  int featureSpp = 64;    // thread scaling and motion overhead
   std::uint64_t meshTriangles = 1000000;
   int threads = 0;        // resolved: never 0
   std::vector<int> budgets() const;  // 1, 2, 4, … up to maxSpp (and maxSpp itself)

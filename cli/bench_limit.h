@@ -13,11 +13,14 @@
 // Thread scaling: a render and a replay at 1 and at N threads.
 // Motion overhead: the moving scene against the same scene with every motion reduced to its
 // first keyframe (a static pose), and that static scene with time sampled anyway.
+// These renders are short: each is the fastest of 3 (the least disturbed by other load).
 // Mesh build: a generated torus of ≥ N triangles written as binary PLY to a temporary
 // directory, loaded through the scene loader (timed), then built into a Scene (timed: the
-// TriangleMesh and Embree's BVH) with the RSS growth measured (/proc/self/statm); and built
-// again as a bare Embree scene with Embree's memory monitor counting its bytes
-// (integrator/embree_probe.h).
+// TriangleMesh and Embree's BVH at the quality EmbreeScene picks) with the RSS growth measured (/proc/self/statm, after
+// malloc_trim and with glibc's mmap threshold fixed at 128 KiB, so that large buffers get
+// fresh pages rather than reusing freed ones); and built
+// again as a bare Embree scene, at medium and at high BVH quality, with Embree's memory
+// monitor counting its bytes (integrator/embree_probe.h).
 #pragma once
 
 #include <array>
@@ -80,7 +83,9 @@ struct MeshBuildResult {
   double loadSeconds = 0.0;         // scene loader incl. PLY parsing
   double sceneSeconds = 0.0;        // Scene: TriangleMesh + EmbreeScene (BVH build)
   double rssBytesPerTriangle = 0.0;  // RSS growth over Scene construction / triangles
-  MeshBuildProbe embree;            // bare Embree with its memory monitor
+  // Bare Embree with its memory monitor (bytes allocated, which includes reserved blocks
+  // not yet touched), at RTC_BUILD_QUALITY_MEDIUM and _HIGH.
+  MeshBuildProbe embreeMedium, embreeHigh;
 };
 MeshBuildResult measureMeshBuild(std::uint64_t triangles, int threads, const std::filesystem::path& tempDir);
 

@@ -80,7 +80,8 @@ std::string formatScaling(const std::string& scene, const ScalingResult& s) {
   std::snprintf(line, sizeof line, "  %-22s %9.3fs %11.3fs %11.2fx  (efficiency %.0f%%)\n", "tracer render, wall", s.one.seconds,
                 s.many.seconds, speed, 100.0 * speed / s.threads);
   out << line;
-  std::snprintf(line, sizeof line, "  %-22s %9.3fs %11.3fs\n", "tracer render, CPU-s", s.cpuOne, s.cpuMany);
+  std::snprintf(line, sizeof line, "  %-22s %9.3fs %11.3fs %11.2fx  (the work %d threads add; wall speed-up needs idle cores)\n",
+                "tracer render, CPU-s", s.cpuOne, s.cpuMany, s.cpuOne > 0.0 ? s.cpuMany / s.cpuOne : 0.0, s.threads);
   out << line;
   std::snprintf(line, sizeof line, "  %-22s %10s %12s %11.2fx  (efficiency %.0f%%)\n", "raw replay, rays/s",
                 formatBenchRate(s.rawOne.raysPerSecond()).c_str(), formatBenchRate(s.rawMany.raysPerSecond()).c_str(), raw,
@@ -118,15 +119,20 @@ std::string formatMeshBuild(const MeshBuildResult& m) {
       << formatNumber(m.plyMegabytes, 3) << " MB):\n";
   std::snprintf(line, sizeof line, "  load (scene loader + PLY parse)   %8.3f s\n", m.loadSeconds);
   out << line;
-  std::snprintf(line, sizeof line, "  Scene build (mesh + Embree BVH)   %8.3f s   RSS growth %6.1f bytes/triangle\n",
+  std::snprintf(line, sizeof line,
+                "  Scene build (mesh + Embree BVH)   %8.3f s   resident set grew %.1f bytes/triangle "
+                "(camsim's mesh copy + Embree's touched pages)\n",
                 m.sceneSeconds, m.rssBytesPerTriangle);
   out << line;
-  std::snprintf(line, sizeof line,
-                "  bare Embree BVH build             %8.3f s   Embree memory %6.1f bytes/triangle after the build, "
-                "peak %.1f\n",
-                m.embree.buildSeconds, m.embree.bytesPerTriangle(),
-                m.triangles ? static_cast<double>(m.embree.bytesPeak) / static_cast<double>(m.triangles) : 0.0);
-  out << line;
+  for (const auto& [name, probe] : {std::pair<const char*, const MeshBuildProbe*>{"medium", &m.embreeMedium},
+                                     std::pair<const char*, const MeshBuildProbe*>{"high", &m.embreeHigh}}) {
+    std::snprintf(line, sizeof line,
+                  "  bare Embree, %-6s quality      %8.3f s   Embree allocated %.1f bytes/triangle (memory monitor: "
+                  "buffers + BVH, incl. reserved blocks), peak %.1f\n",
+                  name, probe->buildSeconds, probe->bytesPerTriangle(),
+                  m.triangles ? static_cast<double>(probe->bytesPeak) / static_cast<double>(m.triangles) : 0.0);
+    out << line;
+  }
   return out.str();
 }
 

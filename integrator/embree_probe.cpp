@@ -40,7 +40,7 @@ struct DeviceGuard {
 
 }  // namespace
 
-MeshBuildProbe probeMeshBuild(const MeshData& mesh, int threads) {
+MeshBuildProbe probeMeshBuild(const MeshData& mesh, int threads, BvhQuality quality) {
   MeshBuildProbe probe;
   probe.triangles = mesh.indices.size() / 3;
   MemoryCount count;
@@ -49,7 +49,7 @@ MeshBuildProbe probeMeshBuild(const MeshData& mesh, int threads) {
   if (!g.device) throw std::runtime_error("cannot create Embree device");
   rtcSetDeviceMemoryMonitorFunction(g.device, countMemory, &count);
   g.scene = rtcNewScene(g.device);
-  rtcSetSceneBuildQuality(g.scene, RTC_BUILD_QUALITY_HIGH);
+  rtcSetSceneBuildQuality(g.scene, quality == BvhQuality::kHigh ? RTC_BUILD_QUALITY_HIGH : RTC_BUILD_QUALITY_MEDIUM);
   RTCGeometry geom = rtcNewGeometry(g.device, RTC_GEOMETRY_TYPE_TRIANGLE);
   auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
                                                         sizeof(float) * 3, mesh.positions.size()));

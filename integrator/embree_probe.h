@@ -1,9 +1,9 @@
 // Embree probes for `camsim bench`: measurements that need Embree itself (this and
 // embree_scene.cpp are the only modules that include it).
 //
-// probeMeshBuild() builds a standalone Embree scene of one static triangle mesh exactly as
-// EmbreeScene does (Embree-owned vertex and index buffers, RTC_BUILD_QUALITY_HIGH, default
-// scene flags) on a device with a memory monitor (rtcSetDeviceMemoryMonitorFunction), so
+// probeMeshBuild() builds a standalone Embree scene of one static triangle mesh the way
+// EmbreeScene does (Embree-owned vertex and index buffers, default scene flags) at the given
+// build quality, on a device with a memory monitor (rtcSetDeviceMemoryMonitorFunction), so
 // every byte Embree allocates — buffers, BVH nodes, primitive blocks and build temporaries —
 // is counted. Reported: the build time (rtcCommitScene only), bytes in use after the build
 // and the peak during it.
@@ -25,7 +25,9 @@ struct MeshBuildProbe {
   }
 };
 
+enum class BvhQuality { kMedium, kHigh };  // RTC_BUILD_QUALITY_MEDIUM / _HIGH
+
 // `threads`: the TBB threads Embree builds with (0: all cores; set through a task_arena).
-MeshBuildProbe probeMeshBuild(const MeshData& mesh, int threads);
+MeshBuildProbe probeMeshBuild(const MeshData& mesh, int threads, BvhQuality quality);
 
 }  // namespace camsim
