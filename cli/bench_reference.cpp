@@ -3,9 +3,9 @@
 #include <algorithm>
 #include <fstream>
 #include <ostream>
-#include <regex>
 #include <set>
 #include <sstream>
+#include <string_view>
 
 #include "cli/render_command.h"
 #include "integrator/render.h"
@@ -71,15 +71,32 @@ Image luminanceOf(const Image& xyz) {
 
 std::vector<std::filesystem::path> referencedFiles(const std::string& sceneText,
                                                    const std::filesystem::path& baseDir) {
-  // `key: value` in block or flow style; the value may be quoted.
-  static const std::regex kRef(R"((?:^|[\s{,])(?:file|texture|csv)\s*:\s*["']?([^"',}\]\s#][^"',}\]#]*?)["']?\s*(?:[,}\]#]|$))",
-                               std::regex::multiline);
+  // `key: value` in block or flow style; the value may be quoted. A plain scanner, not
+  // std::regex (whose std::function internals trip GCC 12's -Wmaybe-uninitialized at -O1).
   std::set<std::filesystem::path> found;
-  for (auto it = std::sregex_iterator(sceneText.begin(), sceneText.end(), kRef); it != std::sregex_iterator(); ++it) {
-    std::filesystem::path p((*it)[1].str());
-    if (p.is_relative()) p = baseDir / p;
-    std::error_code ec;
-    if (std::filesystem::is_regular_file(p, ec)) found.insert(p.lexically_normal());
+  const std::string& t = sceneText;
+  for (const char* key : {"file", "texture", "csv"}) {
+    const std::string k(key);
+    for (size_t at = t.find(k); at != std::string::npos; at = t.find(k, at + 1)) {
+      if (at > 0 && std::string_view(" \t\n{,").find(t[at - 1]) == std::string_view::npos) continue;
+      size_t i = at + k.size();
+      while (i < t.size() && (t[i] == ' ' || t[i] == '\t')) ++i;
+      if (i >= t.size() || t[i] != ':') continue;
+      ++i;
+      while (i < t.size() && (t[i] == ' ' || t[i] == '\t')) ++i;
+      const char quote = i < t.size() && (t[i] == '"' || t[i] == '\'') ? t[i++] : '\0';
+      const size_t begin = i;
+      while (i < t.size() && t[i] != '\n' &&
+             (quote ? t[i] != quote : std::string_view(",}]#").find(t[i]) == std::string_view::npos))
+        ++i;
+      size_t end = i;
+      while (end > begin && (t[end - 1] == ' ' || t[end - 1] == '\t')) --end;
+      if (end == begin) continue;
+      std::filesystem::path p(t.substr(begin, end - begin));
+      if (p.is_relative()) p = baseDir / p;
+      std::error_code ec;
+      if (std::filesystem::is_regular_file(p, ec)) found.insert(p.lexically_normal());
+    }
   }
   return {found.begin(), found.end()};
 }
