@@ -42,12 +42,12 @@ std::string benchUsageText() {
          "the tracer's rays/s against bare Embree traversal of the same recorded rays, thread scaling,\n"
          "motion-blur overhead and the build of a 1 M-triangle mesh.\n"
          "\n"
-         "  --quick            a 1-2 minute variant (64 px, up to 32 spp, 256-spp references)\n"
+         "  --quick            a quick variant, under a minute (64 px, up to 64 spp, 512-spp references)\n"
          "  --out DIR          output directory (default bench-out/): bench.csv, bench_limit.csv,\n"
          "                     bench.txt and bench.png (the plot needs python3-matplotlib)\n"
          "  --threads N        worker threads (default: all cores)\n"
          "  --scenes a,b       scenes to run: suite names or scene files (default: the suite)\n"
-         "  --max-spp N        largest budget (default 256; --quick 32)\n"
+         "  --max-spp N        largest budget (default 256; --quick 64)\n"
          "  --resolution PX    long side of the bench images in pixels (default 128; --quick 64)\n"
          "  --ref-spp N        reference samples per pixel (default 8 x max-spp)\n"
          "  --cache DIR        reference cache (default: bench-cache/ in the build directory)\n"
@@ -110,7 +110,7 @@ BenchPlan planBench(const BenchArgs& args) {
   BenchPlan p;
   if (args.quick) {
     p.longSide = 64;
-    p.maxSpp = 32;
+    p.maxSpp = 64;
     p.captureSpp = 2;
     p.featureSpp = 16;
   }
