@@ -86,6 +86,9 @@ class SampledWavelengths {
 
   float operator[](int i) const { return lambda_[i]; }
   float pdf(int i) const { return pdf_[i]; }
+  // λᵢ's position on Spectrum's 1 nm grid (see Spectrum::interpolate).
+  int gridIndex(int i) const { return gridIndex_[i]; }
+  float gridFraction(int i) const { return gridFraction_[i]; }
   // After a wavelength-dependent scattering event (dispersion) only the hero wavelength
   // can continue: the others get pdf 0 and the hero's pdf is divided by N, so the film's
   // estimate (1/N) Σ r q / p stays unbiased (pbrt-v4 §4.5.4).
@@ -106,17 +109,21 @@ class SampledWavelengths {
   }
 
  private:
+  void locateOnGrid();  // fills gridIndex_/gridFraction_ from lambda_
+
   std::array<float, kWavelengthSamples> lambda_{};
   std::array<float, kWavelengthSamples> pdf_{};
+  std::array<int, kWavelengthSamples> gridIndex_{};
+  std::array<float, kWavelengthSamples> gridFraction_{};
 };
 
 float visibleWavelengthPdf(float lambdaNm);
 float sampleVisibleWavelength(float u);
 
-// The spectrum's values at the path's wavelengths.
+// The spectrum's values at the path's wavelengths (equal to s(lambda[i])).
 inline SampledSpectrum sampleSpectrum(const Spectrum& s, const SampledWavelengths& lambda) {
   SampledSpectrum out;
-  for (int i = 0; i < kWavelengthSamples; ++i) out[i] = s(lambda[i]);
+  for (int i = 0; i < kWavelengthSamples; ++i) out[i] = s.interpolate(lambda.gridIndex(i), lambda.gridFraction(i));
   return out;
 }
 

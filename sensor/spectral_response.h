@@ -58,7 +58,8 @@ class SpectralResponse {
     const Spectrum& r = channels_[c].curve;
     double sum = 0.0;
     for (int i = 0; i < kWavelengthSamples; ++i)
-      if (lambda.pdf(i) > 0.0f) sum += static_cast<double>(r(lambda[i]) * q[i] / lambda.pdf(i));
+      if (lambda.pdf(i) > 0.0f)
+        sum += static_cast<double>(r.interpolate(lambda.gridIndex(i), lambda.gridFraction(i)) * q[i] / lambda.pdf(i));
     return sum / kWavelengthSamples;
   }
 

@@ -43,6 +43,11 @@ class Spectrum {
     return values_[i] + t * (values_[i + 1] - values_[i]);
   }
 
+  // The same interpolation at a precomputed grid position: i = ⌊λ − 360⌋ (at most 469)
+  // and t = λ − 360 − i. SampledWavelengths computes (i, t) once per path, so that each of
+  // the many lookups a path makes at the same wavelengths is one lerp.
+  float interpolate(int i, float t) const { return values_[i] + t * (values_[i + 1] - values_[i]); }
+
   // Value at sample i, i.e. at (360 + i) nm.
   float sample(int i) const { return values_[i]; }
   float& sample(int i) { return values_[i]; }
