@@ -2,6 +2,7 @@
 
 #include <embree3/rtcore.h>
 
+#include <atomic>
 #include <cstdio>
 #include <stdexcept>
 #include <string>
@@ -26,11 +27,28 @@ void throwOnEmbreeError(RTCDevice device, const std::string& what) {
     throw std::runtime_error("Embree error " + std::to_string(static_cast<int>(code)) + " while " + what);
 }
 
+struct MemoryCount {
+  std::atomic<std::int64_t> bytes{0}, peak{0};
+};
+
+// Embree calls this before each allocation and after each free (bytes < 0).
+bool countEmbreeMemory(void* userPtr, ssize_t bytes, bool /*post*/) {
+  auto* count = static_cast<MemoryCount*>(userPtr);
+  const std::int64_t now = count->bytes.fetch_add(bytes, std::memory_order_relaxed) + bytes;
+  std::int64_t peak = count->peak.load(std::memory_order_relaxed);
+  while (now > peak && !count->peak.compare_exchange_weak(peak, now, std::memory_order_relaxed)) {
+  }
+  return true;
+}
+
+static_assert(sizeof(glm::vec3) == 3 * sizeof(float), "Embree reads the vertices as packed float3");
+
 }  // namespace
 
 struct EmbreeScene::Impl {
   RTCDevice device = nullptr;
   RTCScene scene = nullptr;
+  MemoryCount memory;
 
   ~Impl() {
     if (scene) rtcReleaseScene(scene);
@@ -48,31 +66,32 @@ EmbreeScene::EmbreeScene(const std::vector<std::unique_ptr<Shape>>& shapes, doub
   impl_->device = rtcNewDevice(nullptr);
   if (!impl_->device) throw std::runtime_error("cannot create Embree device");
   rtcSetDeviceErrorFunction(impl_->device, reportEmbreeError, nullptr);
+  rtcSetDeviceMemoryMonitorFunction(impl_->device, countEmbreeMemory, &impl_->memory);
   impl_->scene = rtcNewScene(impl_->device);
-  rtcSetSceneBuildQuality(impl_->scene, RTC_BUILD_QUALITY_HIGH);
+  size_t triangles = 0;
+  for (const auto& shape : shapes)
+    if (const auto* mesh = dynamic_cast<const TriangleMesh*>(shape.get())) triangles += mesh->triangleCount();
+  rtcSetSceneBuildQuality(impl_->scene,
+                          triangles > kHighQualityTriangles ? RTC_BUILD_QUALITY_MEDIUM : RTC_BUILD_QUALITY_HIGH);
   for (size_t id = 0; id < shapes.size(); ++id) {
     RTCGeometry geom = nullptr;
     if (const auto* mesh = dynamic_cast<const TriangleMesh*>(shapes[id].get())) {
       geom = rtcNewGeometry(impl_->device, RTC_GEOMETRY_TYPE_TRIANGLE);
       const int steps = mesh->timeSteps().count;
       rtcSetGeometryTimeStepCount(geom, static_cast<unsigned>(steps));
+      // Shared, not copied: Embree reads the mesh's arrays in place. It may load 16 bytes
+      // from the last vertex (and index triple), so TriangleMesh allocates one element
+      // more than it uses; checked here because reading past it would be out of bounds.
       for (int k = 0; k < steps; ++k) {
-        // Embree may read up to 16 bytes from the last vertex, so the vertices go into a
-        // buffer Embree allocates (with its padding) rather than sharing the mesh's array.
         const std::vector<glm::vec3>& p = mesh->positions(k);
-        auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX,
-                                                              static_cast<unsigned>(k), RTC_FORMAT_FLOAT3,
-                                                              sizeof(float) * 3, p.size()));
-        for (size_t i = 0; i < p.size(); ++i) {
-          v[3 * i] = p[i].x;
-          v[3 * i + 1] = p[i].y;
-          v[3 * i + 2] = p[i].z;
-        }
+        CAMSIM_CHECK(p.capacity() > p.size());
+        rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, static_cast<unsigned>(k), RTC_FORMAT_FLOAT3,
+                                   p.data(), 0, sizeof(glm::vec3), p.size());
       }
-      auto* idx = static_cast<unsigned*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0,
-                                                                 RTC_FORMAT_UINT3, sizeof(unsigned) * 3,
-                                                                 mesh->triangleCount()));
-      for (size_t i = 0; i < mesh->indices().size(); ++i) idx[i] = mesh->indices()[i];
+      const std::vector<std::uint32_t>& idx = mesh->indices();
+      CAMSIM_CHECK(idx.capacity() >= idx.size() + 3);
+      rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, idx.data(), 0,
+                                 3 * sizeof(std::uint32_t), mesh->triangleCount());
     } else if (const auto* sphere = dynamic_cast<const Sphere*>(shapes[id].get())) {
       geom = rtcNewGeometry(impl_->device, RTC_GEOMETRY_TYPE_SPHERE_POINT);
       const int steps = sphere->timeSteps().count;
@@ -103,6 +122,9 @@ EmbreeScene::EmbreeScene(const std::vector<std::unique_ptr<Shape>>& shapes, doub
 }
 
 EmbreeScene::~EmbreeScene() = default;
+
+std::int64_t EmbreeScene::embreeBytes() const { return impl_->memory.bytes.load(); }
+std::int64_t EmbreeScene::embreePeakBytes() const { return impl_->memory.peak.load(); }
 
 bool EmbreeScene::intersect(const Ray& ray, Hit& hit) const {
   RTCIntersectContext context;

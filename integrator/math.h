@@ -38,11 +38,15 @@ inline float nextFloatDown(float v) {
   return std::bit_cast<float>(bits);
 }
 
+// |v| per component. glm::abs is written as x >= 0 ? x : −x, which GCC compiles to a
+// branch per component; std::abs on a float is one mask.
+inline glm::vec3 absComponents(const glm::vec3& v) { return {std::abs(v.x), std::abs(v.y), std::abs(v.z)}; }
+
 // Moves p off its surface (normal n, absolute error bound pError) to the side of w, far
 // enough that a ray leaving from it cannot re-hit the surface it started on.
 inline glm::vec3 offsetRayOrigin(const glm::vec3& p, const glm::vec3& pError, const glm::vec3& n,
                                  const glm::vec3& w) {
-  const float d = glm::dot(glm::abs(n), pError);
+  const float d = glm::dot(absComponents(n), pError);
   glm::vec3 offset = d * n;
   if (glm::dot(w, n) < 0.0f) offset = -offset;
   glm::vec3 po = p + offset;

@@ -6,10 +6,6 @@
 
 namespace camsim {
 
-glm::vec3 SurfaceInteraction::spawnOrigin(const glm::vec3& w) const {
-  return offsetRayOrigin(p, pError, n, w);
-}
-
 float areaToSolidAnglePdf(float pdfArea, const glm::vec3& ref, const SurfaceInteraction& onShape) {
   const glm::vec3 d = onShape.p - ref;
   const float dist2 = lengthSquared(d);

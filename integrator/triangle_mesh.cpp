@@ -5,29 +5,44 @@
 
 namespace camsim {
 
+namespace {
+
+// Room for `spare` elements past the end, which Embree may read (see the header); a
+// caller that built the vector with that capacity already pays no copy.
+template <typename T>
+void reserveSpare(std::vector<T>& v, size_t spare) {
+  if (v.capacity() < v.size() + spare) v.reserve(v.size() + spare);
+}
+
+}  // namespace
+
 TriangleMesh::TriangleMesh(std::vector<std::vector<glm::vec3>> positions,
                            std::vector<std::vector<glm::vec3>> normals,
                            std::vector<std::uint32_t> indices, TimeSteps steps,
-                           std::vector<glm::vec2> uvs)
+                           std::vector<glm::vec2> uvs, bool samplable)
     : positions_(std::move(positions)),
       normals_(std::move(normals)),
       indices_(std::move(indices)),
       uvs_(std::move(uvs)),
-      steps_(steps) {
+      steps_(steps),
+      samplable_(samplable) {
   CAMSIM_CHECK(indices_.size() % 3 == 0 && !indices_.empty());
   CAMSIM_CHECK(static_cast<int>(positions_.size()) == steps_.count);
   CAMSIM_CHECK(normals_.empty() || normals_.size() == positions_.size());
   CAMSIM_CHECK(uvs_.empty() || uvs_.size() == positions_[0].size());
-  std::vector<double> areas(triangleCount());
+  for (auto& p : positions_) reserveSpare(p, 1);
+  reserveSpare(indices_, 3);
+  std::vector<double> areas(samplable_ ? triangleCount() : 0);
   double total = 0.0;
   for (size_t t = 0; t < triangleCount(); ++t) {
     const glm::dvec3 p0 = positions_[0][indices_[3 * t]], p1 = positions_[0][indices_[3 * t + 1]],
                      p2 = positions_[0][indices_[3 * t + 2]];
-    areas[t] = 0.5 * glm::length(glm::cross(p1 - p0, p2 - p0));
-    total += areas[t];
+    const double area = 0.5 * glm::length(glm::cross(p1 - p0, p2 - p0));
+    if (samplable_) areas[t] = area;
+    total += area;
   }
   area_ = static_cast<float>(total);
-  if (total > 0.0) areaDistribution_ = DiscreteDistribution(areas);
+  if (samplable_ && total > 0.0) areaDistribution_ = DiscreteDistribution(areas);
 }
 
 glm::vec3 TriangleMesh::vertex(std::uint32_t index, int step, float f) const {
@@ -46,29 +61,49 @@ float TriangleMesh::triangleArea(size_t tri, float time) const {
   return 0.5f * glm::length(glm::cross(p1 - p0, p2 - p0));
 }
 
+// Density by area of sample() producing a point of triangle tri at `time`.
+float TriangleMesh::areaPdf(size_t tri, float time) const {
+  if (steps_.count == 1) return 1.0f / area_;
+  const float area = triangleArea(tri, time);
+  return area > 0.0f ? areaDistribution_.pmf(tri) / area : 0.0f;
+}
+
+// Hot: every hit and every light sample on a mesh comes through here. Static meshes skip
+// the time lookup and the lerps; |x| uses absComponents (see math.h).
 SurfaceInteraction TriangleMesh::pointOn(size_t tri, float b1, float b2, float time) const {
-  int step;
-  float f;
-  steps_.locate(time, step, f);
-  const std::uint32_t i0 = indices_[3 * tri], i1 = indices_[3 * tri + 1],
-                      i2 = indices_[3 * tri + 2];
-  const glm::vec3 p0 = vertex(i0, step, f), p1 = vertex(i1, step, f), p2 = vertex(i2, step, f);
+  int step = 0;
+  float f = 0.0f;
+  if (steps_.count > 1) steps_.locate(time, step, f);
+  const std::uint32_t i0 = indices_[3 * tri], i1 = indices_[3 * tri + 1], i2 = indices_[3 * tri + 2];
+  glm::vec3 p0, p1, p2;
+  if (f == 0.0f) {
+    const glm::vec3* p = positions_[static_cast<size_t>(step)].data();
+    p0 = p[i0];
+    p1 = p[i1];
+    p2 = p[i2];
+  } else {
+    p0 = vertex(i0, step, f);
+    p1 = vertex(i1, step, f);
+    p2 = vertex(i2, step, f);
+  }
   const float b0 = 1.0f - b1 - b2;
   SurfaceInteraction si;
   si.p = b0 * p0 + b1 * p1 + b2 * p2;
-  si.pError = gammaBound(7) * (glm::abs(b0 * p0) + glm::abs(b1 * p1) + glm::abs(b2 * p2));
+  si.pError = gammaBound(7) * (absComponents(b0 * p0) + absComponents(b1 * p1) + absComponents(b2 * p2));
   if (f != 0.0f)
-    si.pError += gammaBound(3) * (glm::abs(p0) + glm::abs(p1) + glm::abs(p2));  // time lerp
+    si.pError += gammaBound(3) * (absComponents(p0) + absComponents(p1) + absComponents(p2));  // time lerp
   const glm::vec3 cross = glm::cross(p1 - p0, p2 - p0);
-  const float len = glm::length(cross);
-  si.n = len > 0.0f ? cross / len : glm::vec3(0.0f, 0.0f, 1.0f);
+  const float len = std::sqrt(glm::dot(cross, cross));
+  si.n = len > 0.0f ? cross * (1.0f / len) : glm::vec3(0.0f, 0.0f, 1.0f);
   si.ns = si.n;
   if (!normals_.empty()) {
     const auto& n0 = normals_[static_cast<size_t>(step)];
-    const auto& n1 = normals_[static_cast<size_t>(f == 0.0f ? step : step + 1)];
-    const glm::vec3 ns = b0 * glm::mix(n0[i0], n1[i0], f) + b1 * glm::mix(n0[i1], n1[i1], f) +
-                         b2 * glm::mix(n0[i2], n1[i2], f);
-    const float nsLen = glm::length(ns);
+    glm::vec3 ns = b0 * n0[i0] + b1 * n0[i1] + b2 * n0[i2];
+    if (f != 0.0f) {
+      const auto& n1 = normals_[static_cast<size_t>(step) + 1];
+      ns = b0 * glm::mix(n0[i0], n1[i0], f) + b1 * glm::mix(n0[i1], n1[i1], f) + b2 * glm::mix(n0[i2], n1[i2], f);
+    }
+    const float nsLen = std::sqrt(glm::dot(ns, ns));
     if (nsLen > 0.0f && std::isfinite(nsLen)) {
       si.ns = ns / nsLen;
       // Keep the geometric normal on the side the mesh's normals point to.
@@ -87,24 +122,25 @@ SurfaceInteraction TriangleMesh::interaction(const Hit& hit, const Ray& ray) con
 
 std::optional<ShapeSample> TriangleMesh::sample(const glm::vec3& ref, float u1, glm::vec2 u2,
                                                 float time) const {
+  CAMSIM_CHECK(samplable_);
   if (area_ <= 0.0f) return std::nullopt;
   const size_t tri = areaDistribution_.sample(u1);
   const glm::vec2 b = sampleUniformTriangle(u2);
   ShapeSample s;
   s.point = pointOn(tri, b.y, 1.0f - b.x - b.y, time);
-  const float area = triangleArea(tri, time);
-  if (!(area > 0.0f)) return std::nullopt;
-  s.pdf = areaToSolidAnglePdf(areaDistribution_.pmf(tri) / area, ref, s.point);
+  const float pdfArea = areaPdf(tri, time);
+  if (!(pdfArea > 0.0f)) return std::nullopt;
+  s.pdf = areaToSolidAnglePdf(pdfArea, ref, s.point);
   if (!(s.pdf > 0.0f) || !std::isfinite(s.pdf)) return std::nullopt;
   return s;
 }
 
 float TriangleMesh::pdf(const glm::vec3& ref, const SurfaceInteraction& onShape) const {
+  CAMSIM_CHECK(samplable_);
   if (area_ <= 0.0f || onShape.prim < 0) return 0.0f;
-  const size_t tri = static_cast<size_t>(onShape.prim);
-  const float area = triangleArea(tri, onShape.time);
-  if (!(area > 0.0f)) return 0.0f;
-  return areaToSolidAnglePdf(areaDistribution_.pmf(tri) / area, ref, onShape);
+  const float pdfArea = areaPdf(static_cast<size_t>(onShape.prim), onShape.time);
+  if (!(pdfArea > 0.0f)) return 0.0f;
+  return areaToSolidAnglePdf(pdfArea, ref, onShape);
 }
 
 }  // namespace camsim

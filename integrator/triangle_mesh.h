@@ -7,6 +7,12 @@
 //   pdf_area(p on triangle k at t) = P(k) / area_k(t)
 //   texture coordinates uv = b0·uv0 + b1·uv1 + b2·uv2 with per-vertex uvs; a mesh without
 //   them uses (0,0), (1,0), (1,1) at each triangle's corners: uv = (b1 + b2, b2) (pbrt)
+//
+// Memory and speed: Embree traces the mesh's own position and index arrays (shared, see
+// EmbreeScene), so they are allocated with one spare element for Embree's 16-byte loads.
+// Only a mesh that a light samples (an emitter) keeps the per-triangle area distribution.
+// A static mesh (one time step) skips the time interpolation, and its area pdf is 1/area:
+// P(k)/area_k with P(k) = area_k/area.
 #pragma once
 
 #include <cstdint>
@@ -21,10 +27,11 @@ class TriangleMesh final : public Shape {
  public:
   // positions[k] / normals[k]: pose at time step k (normals may be empty). indices: 3 per
   // triangle. uvs: empty or one per vertex (they do not move). Zero-area triangles are kept
-  // for intersection (Embree never hits them) and are never sampled.
+  // for intersection (Embree never hits them) and are never sampled. samplable: false for
+  // a mesh no light samples (sample() and pdf() must then not be called).
   TriangleMesh(std::vector<std::vector<glm::vec3>> positions,
                std::vector<std::vector<glm::vec3>> normals, std::vector<std::uint32_t> indices,
-               TimeSteps steps, std::vector<glm::vec2> uvs = {});
+               TimeSteps steps, std::vector<glm::vec2> uvs = {}, bool samplable = true);
 
   const std::vector<glm::vec3>& positions(int step = 0) const {
     return positions_[static_cast<size_t>(step)];
@@ -43,13 +50,15 @@ class TriangleMesh final : public Shape {
   glm::vec3 vertex(std::uint32_t index, int step, float f) const;
   SurfaceInteraction pointOn(size_t tri, float b1, float b2, float time) const;
   float triangleArea(size_t tri, float time) const;
+  float areaPdf(size_t tri, float time) const;
 
   std::vector<std::vector<glm::vec3>> positions_;
   std::vector<std::vector<glm::vec3>> normals_;
   std::vector<std::uint32_t> indices_;
   std::vector<glm::vec2> uvs_;
   TimeSteps steps_;
-  DiscreteDistribution areaDistribution_;
+  DiscreteDistribution areaDistribution_;  // empty unless samplable
+  bool samplable_;
   float area_ = 0.0f;
 };
 
