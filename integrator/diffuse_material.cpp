@@ -22,7 +22,7 @@ std::optional<BsdfSample> DiffuseMaterial::sample(const glm::vec3& wo, float /*u
                                                   const SampledWavelengths& lambda, const BsdfContext& ctx) const {
   if (wo.z == 0.0f) return std::nullopt;
   glm::vec3 wi = sampleCosineHemisphere(u);
-  if (wo.z < 0.0f) wi.z = -wi.z;
+  wi.z = std::copysign(wi.z, wo.z);  // wo's side (wi.z ≥ 0 here); no branch on a random sign
   const float pdfValue = std::abs(wi.z) * kInvPi;
   if (pdfValue == 0.0f) return std::nullopt;
   BsdfSample s;

@@ -31,9 +31,20 @@ class DiscreteDistribution {
   // Index for u in [0,1); *uRemapped gets u rescaled to [0,1) within the chosen bucket.
   size_t sample(float u, float* uRemapped = nullptr) const {
     CAMSIM_CHECK(total_ > 0.0);
+    if (cdf_.size() == 2) {  // one entry (a scene with one light, a one-triangle mesh): no search
+      if (uRemapped) *uRemapped = std::min(u, 0x1.fffffep-1f);
+      return 0;
+    }
     const double uu = static_cast<double>(u);
-    auto it = std::upper_bound(cdf_.begin() + 1, cdf_.end(), uu);
-    size_t i = static_cast<size_t>(it - cdf_.begin()) - 1;
+    size_t i;
+    if (cdf_.size() <= kLinearSearchMax) {
+      // A handful of entries (a light's triangles, a few lights): count the CDF values ≤ u
+      // (what upper_bound finds) without the search's data-dependent branches.
+      i = 0;
+      for (size_t k = 1; k < cdf_.size(); ++k) i += cdf_[k] <= uu ? 1 : 0;
+    } else {
+      i = static_cast<size_t>(std::upper_bound(cdf_.begin() + 1, cdf_.end(), uu) - cdf_.begin()) - 1;
+    }
     i = std::min(i, size() - 1);
     while (pmf(i) == 0.0f && i > 0) --i;  // never pick a zero-weight entry at a boundary
     if (uRemapped) {
@@ -45,6 +56,7 @@ class DiscreteDistribution {
   }
 
  private:
+  static constexpr size_t kLinearSearchMax = 9;
   std::vector<double> cdf_;
   double total_ = 0.0;
 };

@@ -42,19 +42,30 @@ inline float nextFloatDown(float v) {
 // branch per component; std::abs on a float is one mask.
 inline glm::vec3 absComponents(const glm::vec3& v) { return {std::abs(v.x), std::abs(v.y), std::abs(v.z)}; }
 
+// v moved by one ulp: up if direction > 0, down if < 0, unchanged if 0 — nextFloatUp or
+// nextFloatDown without branches. Floats are mapped to integers in the same order (both
+// zeros to 0), stepped, and mapped back (differences from those two, irrelevant for ray
+// origins: ±∞ stay in either direction, and −2⁻¹⁴⁹ stepped up gives +0). Ray origins are
+// offset three times per bounce with directions that change sign from one ray to the
+// next, where the branches were mispredicted about half the time.
+inline float nextFloatToward(float v, float direction) {
+  const auto bits = std::bit_cast<std::int32_t>(v);
+  const std::int32_t ordered = bits >= 0 ? bits : std::numeric_limits<std::int32_t>::min() - bits;
+  const std::int32_t step = static_cast<std::int32_t>(direction > 0.0f) - static_cast<std::int32_t>(direction < 0.0f);
+  const std::int32_t moved = ordered + step;
+  const float result =
+      std::bit_cast<float>(moved >= 0 ? moved : std::numeric_limits<std::int32_t>::min() - moved);
+  return step == 0 || std::isinf(v) ? v : result;
+}
+
 // Moves p off its surface (normal n, absolute error bound pError) to the side of w, far
 // enough that a ray leaving from it cannot re-hit the surface it started on.
 inline glm::vec3 offsetRayOrigin(const glm::vec3& p, const glm::vec3& pError, const glm::vec3& n,
                                  const glm::vec3& w) {
   const float d = glm::dot(absComponents(n), pError);
-  glm::vec3 offset = d * n;
-  if (glm::dot(w, n) < 0.0f) offset = -offset;
-  glm::vec3 po = p + offset;
-  for (int i = 0; i < 3; ++i) {
-    if (offset[i] > 0.0f) po[i] = nextFloatUp(po[i]);
-    else if (offset[i] < 0.0f) po[i] = nextFloatDown(po[i]);
-  }
-  return po;
+  const glm::vec3 offset = (glm::dot(w, n) < 0.0f ? -d : d) * n;
+  const glm::vec3 po = p + offset;
+  return {nextFloatToward(po.x, offset.x), nextFloatToward(po.y, offset.y), nextFloatToward(po.z, offset.z)};
 }
 
 // Orthonormal basis around a unit vector (Duff et al. 2017).
@@ -79,14 +90,11 @@ inline float lengthSquared(const glm::vec3& v) { return glm::dot(v, v); }
 inline glm::vec2 sampleUniformDiskConcentric(glm::vec2 u) {
   const glm::vec2 o = 2.0f * u - 1.0f;
   if (o.x == 0.0f && o.y == 0.0f) return {0.0f, 0.0f};
-  float r, theta;
-  if (std::abs(o.x) > std::abs(o.y)) {
-    r = o.x;
-    theta = (kPi / 4.0f) * (o.y / o.x);
-  } else {
-    r = o.y;
-    theta = kPi / 2.0f - (kPi / 4.0f) * (o.x / o.y);
-  }
+  // Selects rather than an if/else: which wedge a random point falls in is a coin toss.
+  const bool xMajor = std::abs(o.x) > std::abs(o.y);
+  const float r = xMajor ? o.x : o.y;
+  const float ratio = (xMajor ? o.y : o.x) / r;
+  const float theta = xMajor ? (kPi / 4.0f) * ratio : kPi / 2.0f - (kPi / 4.0f) * ratio;
   return r * glm::vec2(std::cos(theta), std::sin(theta));
 }
 

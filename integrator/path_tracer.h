@@ -18,6 +18,8 @@
 
 namespace camsim {
 
+class SobolSampler;
+
 struct RayCounts {
   std::uint64_t camera = 0;  // primary rays
   std::uint64_t bounce = 0;  // closest-hit rays after a scattering event
@@ -37,5 +39,11 @@ struct RayCounts {
 // must use it). A recorder, if given, gets every bounce and shadow ray cast.
 SampledSpectrum traceRadiance(const Scene& scene, Ray ray, SampledWavelengths& lambda,
                               Sampler& sampler, RayCounts& counts, RayRecorder* recorder = nullptr);
+// The same path loop compiled for the concrete samplers (what the render loop calls): their
+// numbers are drawn through inlined, not virtual, calls.
+SampledSpectrum traceRadiance(const Scene& scene, Ray ray, SampledWavelengths& lambda,
+                              SobolSampler& sampler, RayCounts& counts, RayRecorder* recorder = nullptr);
+SampledSpectrum traceRadiance(const Scene& scene, Ray ray, SampledWavelengths& lambda,
+                              IndependentSampler& sampler, RayCounts& counts, RayRecorder* recorder = nullptr);
 
 }  // namespace camsim

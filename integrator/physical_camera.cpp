@@ -18,6 +18,28 @@ PhysicalCamera::PhysicalCamera(PhysicalCameraParams params) : p_(std::move(param
   const double diameter = f / p_.fNumber;
   apertureArea_ = p_.aperture ? p_.aperture->area() : M_PI * 0.25 * diameter * diameter;
   transmittanceIsOne_ = p_.lensTransmittance.minValue() == 1.0 && p_.lensTransmittance.maxValue() == 1.0;
+  fastPinhole_ = !p_.aperture && p_.distortion.isIdentity() && p_.motion.empty() && transmittanceIsOne_;
+  const glm::dmat4& m = p_.worldFromCamera;
+  right_ = glm::vec3(m[0]);
+  up_ = glm::vec3(m[1]);
+  forward_ = glm::vec3(m[2]);
+  origin_ = glm::vec3(m[3]);
+  filmScale_ = glm::vec2(p_.sensorSize.x / p_.resolution.x, -p_.sensorSize.y / p_.resolution.y);
+  filmOffset_ = glm::vec2(-0.5 * p_.sensorSize.x, 0.5 * p_.sensorSize.y);
+  zi_ = static_cast<float>(imageDistance_);
+  weightScale_ = static_cast<float>(pixelArea_ * p_.shutter.effectiveTime() * apertureArea_ * imageDistance_ *
+                                    imageDistance_);
+}
+
+std::optional<CameraRay> PhysicalCamera::generatePinholeRay(const CameraSample& sample) const {
+  const glm::vec2 s = sample.pFilm * filmScale_ + filmOffset_;
+  const float d2 = s.x * s.x + s.y * s.y + zi_ * zi_;
+  CameraRay cr;
+  cr.ray.o = origin_;
+  cr.ray.d = glm::normalize(s.x * right_ + s.y * up_ + zi_ * forward_);
+  cr.ray.time = static_cast<float>(sample.time);
+  cr.weight = SampledSpectrum(weightScale_ / (d2 * d2));
+  return cr;
 }
 
 glm::dmat4 PhysicalCamera::worldFromCameraAt(double t) const {
@@ -36,6 +58,7 @@ glm::dvec4 PhysicalCamera::intrinsics() const {
 
 std::optional<CameraRay> PhysicalCamera::generateRay(const CameraSample& sample,
                                                      const SampledWavelengths& lambda) const {
+  if (fastPinhole_) return generatePinholeRay(sample);
   // Sensor point, upright image coordinates (m): x right, y up, origin at the centre.
   const glm::dvec2 ndc = glm::dvec2(sample.pFilm) / glm::dvec2(p_.resolution);
   const glm::dvec2 s((ndc.x - 0.5) * p_.sensorSize.x, (0.5 - ndc.y) * p_.sensorSize.y);

@@ -76,11 +76,21 @@ class PhysicalCamera final : public Camera {
   glm::dvec4 intrinsics() const;
 
  private:
+  std::optional<CameraRay> generatePinholeRay(const CameraSample& sample) const;
+
   PhysicalCameraParams p_;
   double imageDistance_;
   double pixelArea_;
   double apertureArea_;
   bool transmittanceIsOne_;
+  // The static pinhole without distortion (the common case) generates its rays in float
+  // from constants fixed here, instead of the double matrix and weight math per sample:
+  // s = pFilm·filmScale + filmOffset (sensor point, m), d = normalize(s.x·right + s.y·up
+  // + z_i·forward), W = weightScale / (s² + z_i²)² with weightScale = A_pixel·T_eff·A·z_i².
+  bool fastPinhole_ = false;
+  glm::vec3 origin_{0.0f}, right_{0.0f}, up_{0.0f}, forward_{0.0f};
+  glm::vec2 filmScale_{0.0f}, filmOffset_{0.0f};
+  float zi_ = 0.0f, weightScale_ = 0.0f;
 };
 
 }  // namespace camsim

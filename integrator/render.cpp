@@ -23,8 +23,11 @@ struct TileStats {
   RayCounts rays;
 };
 
+// Compiled for each concrete sampler (final classes), so that drawing a number is an
+// inlined call, not a virtual one.
+template <typename SamplerT>
 void renderTile(const Scene& scene, Film& film, const RenderOptions& options, const ModelledDimensions& dims,
-                glm::ivec2 lo, glm::ivec2 hi, Sampler& sampler, TileStats& stats) {
+                glm::ivec2 lo, glm::ivec2 hi, SamplerT& sampler, TileStats& stats) {
   const PhysicalCamera& camera = scene.camera();
   const Shutter& shutter = camera.shutter();
   // The photosensitive area: centred in the pixel, sides scaled by √fill.
@@ -80,18 +83,15 @@ RenderResult render(const Scene& scene, const std::vector<const SpectralResponse
   const int threads = options.threads > 0 ? options.threads : tbb::info::default_concurrency();
 
   const SamplerKind kind = options.sampler.value_or(scene.settings().sampler);
-  std::unique_ptr<Sampler> prototype;
-  if (kind == SamplerKind::kSobol) prototype = std::make_unique<SobolSampler>(options.seed);
-  else prototype = std::make_unique<IndependentSampler>(options.seed);
   tbb::enumerable_thread_specific<TileStats> perThread;
   std::atomic<int> tilesDone{0};
   std::mutex progressMutex;
   std::atomic<bool> cancelled{false};
 
-  tbb::task_arena arena(threads);
-  arena.execute([&] {
+  // prototype: a SobolSampler or an IndependentSampler, copied per range of tiles.
+  auto renderAll = [&](const auto& prototype) {
     tbb::parallel_for(tbb::blocked_range<int>(0, tileCount, 1), [&](const tbb::blocked_range<int>& range) {
-      std::unique_ptr<Sampler> sampler = prototype->clone();
+      auto sampler = prototype;
       for (int tile = range.begin(); tile != range.end(); ++tile) {
         if (options.cancel && options.cancel->load(std::memory_order_relaxed)) {
           cancelled = true;
@@ -99,7 +99,7 @@ RenderResult render(const Scene& scene, const std::vector<const SpectralResponse
         }
         const glm::ivec2 lo((tile % tilesX) * kTileSize, (tile / tilesX) * kTileSize);
         const glm::ivec2 hi = glm::min(lo + kTileSize, res);
-        renderTile(scene, film, options, dims, lo, hi, *sampler, perThread.local());
+        renderTile(scene, film, options, dims, lo, hi, sampler, perThread.local());
         const int done = ++tilesDone;
         if (options.progress) {
           std::lock_guard<std::mutex> lock(progressMutex);
@@ -107,6 +107,11 @@ RenderResult render(const Scene& scene, const std::vector<const SpectralResponse
         }
       }
     });
+  };
+  tbb::task_arena arena(threads);
+  arena.execute([&] {
+    if (kind == SamplerKind::kSobol) renderAll(SobolSampler(options.seed));
+    else renderAll(IndependentSampler(options.seed));
   });
 
   RenderResult result;

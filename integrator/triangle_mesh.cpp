@@ -94,8 +94,11 @@ SurfaceInteraction TriangleMesh::pointOn(size_t tri, float b1, float b2, float t
     si.pError += gammaBound(3) * (absComponents(p0) + absComponents(p1) + absComponents(p2));  // time lerp
   const glm::vec3 cross = glm::cross(p1 - p0, p2 - p0);
   const float len = std::sqrt(glm::dot(cross, cross));
-  si.n = len > 0.0f ? cross * (1.0f / len) : glm::vec3(0.0f, 0.0f, 1.0f);
-  si.ns = si.n;
+  // n in a local first: copying si.n into si.ns through memory right after the three
+  // scalar stores stalled on store forwarding (seen with perf).
+  const glm::vec3 n = len > 0.0f ? cross * (1.0f / len) : glm::vec3(0.0f, 0.0f, 1.0f);
+  si.n = n;
+  si.ns = n;
   if (!normals_.empty()) {
     const auto& n0 = normals_[static_cast<size_t>(step)];
     glm::vec3 ns = b0 * n0[i0] + b1 * n0[i1] + b2 * n0[i2];

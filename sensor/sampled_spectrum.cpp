@@ -27,7 +27,8 @@ const VisibleConstants& visible() {
   return c;
 }
 
-float wrap(float u) { return u >= 1.0f ? u - 1.0f : u; }
+// u mod 1 for u in [0, 2), without a branch (which way it goes depends on the random u).
+float wrap(float u) { return u - static_cast<float>(u >= 1.0f); }
 
 }  // namespace
 
