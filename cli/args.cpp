@@ -8,16 +8,6 @@
 namespace camsim {
 namespace {
 
-std::int64_t parseInteger(const std::string& flag, const std::string& text, std::int64_t lo, std::int64_t hi) {
-  std::int64_t value = 0;
-  const auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
-  if (ec != std::errc() || ptr != text.data() + text.size())
-    throw UsageError(flag + " expects an integer, got '" + text + "'");
-  if (value < lo || value > hi)
-    throw UsageError(flag + " must be in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], got " + text);
-  return value;
-}
-
 double parsePositive(const std::string& flag, const std::string& text, double hi) {
   double v = 0.0;
   const auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
@@ -27,6 +17,16 @@ double parsePositive(const std::string& flag, const std::string& text, double hi
 }
 
 }  // namespace
+
+std::int64_t parseInteger(const std::string& flag, const std::string& text, std::int64_t lo, std::int64_t hi) {
+  std::int64_t value = 0;
+  const auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (ec != std::errc() || ptr != text.data() + text.size())
+    throw UsageError(flag + " expects an integer, got '" + text + "'");
+  if (value < lo || value > hi)
+    throw UsageError(flag + " must be in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], got " + text);
+  return value;
+}
 
 std::string usageText() {
   return "camsim — camera-sensor physically based image simulator\n"

@@ -38,5 +38,7 @@ struct Command {
 
 Command parseArgs(const std::vector<std::string>& args);  // args without argv[0]
 std::string usageText();
+// An integer flag value in [lo, hi]; UsageError naming the flag otherwise.
+std::int64_t parseInteger(const std::string& flag, const std::string& text, std::int64_t lo, std::int64_t hi);
 
 }  // namespace camsim

@@ -1,7 +1,6 @@
 // `camsim bench` arguments, plan and paths (bench_command.h).
 #include <unistd.h>
 
-#include <charconv>
 #include <cstdlib>
 
 #include <tbb/info.h>
@@ -10,19 +9,6 @@
 #include "cli/bench_command.h"
 
 namespace camsim {
-namespace {
-
-std::int64_t parseCount(const std::string& flag, const std::string& text, std::int64_t lo, std::int64_t hi) {
-  std::int64_t value = 0;
-  const auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
-  if (ec != std::errc() || ptr != text.data() + text.size())
-    throw UsageError(flag + " expects an integer, got '" + text + "'");
-  if (value < lo || value > hi)
-    throw UsageError(flag + " must be in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], got " + text);
-  return value;
-}
-
-}  // namespace
 
 const std::vector<std::string>& benchSuite() {
   static const std::vector<std::string> suite = {"cornell_box", "dof_chart", "motion_blur", "metals_glass",
@@ -70,7 +56,7 @@ BenchArgs parseBenchArgs(const std::vector<std::string>& args) {
       b.outputDir = value();
       if (b.outputDir.empty()) throw UsageError(a + " needs a non-empty directory");
     } else if (a == "--threads") {
-      b.threads = static_cast<int>(parseCount(a, value(), 1, 1024));
+      b.threads = static_cast<int>(parseInteger(a, value(), 1, 1024));
     } else if (a == "--scenes") {
       b.scenes.clear();
       const std::string list = value();
@@ -82,16 +68,16 @@ BenchArgs parseBenchArgs(const std::vector<std::string>& args) {
         start = comma + 1;
       }
     } else if (a == "--max-spp") {
-      b.maxSpp = static_cast<int>(parseCount(a, value(), 1, 65536));
+      b.maxSpp = static_cast<int>(parseInteger(a, value(), 1, 65536));
     } else if (a == "--resolution") {
-      b.resolution = static_cast<int>(parseCount(a, value(), 4, 8192));
+      b.resolution = static_cast<int>(parseInteger(a, value(), 4, 8192));
     } else if (a == "--ref-spp") {
-      b.refSpp = static_cast<int>(parseCount(a, value(), 2, 1 << 20));
+      b.refSpp = static_cast<int>(parseInteger(a, value(), 2, 1 << 20));
     } else if (a == "--cache") {
       b.cacheDir = value();
       if (b.cacheDir->empty()) throw UsageError(a + " needs a non-empty directory");
     } else if (a == "--mesh-triangles") {
-      b.meshTriangles = static_cast<std::uint64_t>(parseCount(a, value(), 0, 100000000));
+      b.meshTriangles = static_cast<std::uint64_t>(parseInteger(a, value(), 0, 100000000));
     } else {
       throw UsageError("unknown bench option '" + a + "' (try 'camsim bench --help')");
     }

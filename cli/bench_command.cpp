@@ -1,11 +1,7 @@
 #include "cli/bench_command.h"
 
-#include <fcntl.h>
-#include <spawn.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
-#include <cerrno>
 #include <chrono>
 #include <cstdlib>
 #include <fstream>
@@ -17,6 +13,7 @@
 #include "cli/bench_metrics.h"
 #include "cli/bench_reference.h"
 #include "cli/progress.h"
+#include "cli/python_script.h"
 #include "integrator/scene.h"
 #include "integrator/scene_loader.h"
 #include "sensor/input_error.h"
@@ -24,27 +21,6 @@
 
 namespace camsim {
 namespace {
-
-// Runs argv (no shell) and waits; the exit status, or -1 if it could not run or was killed.
-int runProcess(const std::vector<std::string>& argv, bool quiet) {
-  std::vector<char*> cargv;
-  for (const std::string& a : argv) cargv.push_back(const_cast<char*>(a.c_str()));
-  cargv.push_back(nullptr);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  if (quiet) {
-    posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
-    posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, "/dev/null", O_WRONLY, 0);
-  }
-  pid_t pid = 0;
-  const int rc = posix_spawn(&pid, argv[0].c_str(), &actions, nullptr, cargv.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  if (rc != 0) return -1;
-  int status = 0;
-  while (waitpid(pid, &status, 0) < 0)
-    if (errno != EINTR) return -1;
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
 
 std::string loadAverage() {
   std::ifstream in("/proc/loadavg");
@@ -229,21 +205,17 @@ int runBench(const BenchArgs& args, std::ostream& out, std::ostream& log) {
   writeFile(csv, formatBenchCsv(rows));
   writeFile(outputs.add("bench_limit.csv"), formatLimitCsv(limits));
   writeFile(outputs.add("bench.txt"), report.str());
-  const char* env = std::getenv("CAMSIM_PYTHON");
-  const std::string python = env && *env ? env : "/usr/bin/python3";
+  const std::optional<std::string> python = pythonWithMatplotlib();
   if (rows.empty()) {
     log << "bench: no rows: plot skipped\n";
-  } else if (runProcess({python, "-c", "import matplotlib"}, true) != 0) {
-    log << "bench: " << python << " with matplotlib not found (Debian: apt-get install python3-matplotlib): "
+  } else if (!python) {
+    log << "bench: python3 with matplotlib not found ($CAMSIM_PYTHON or /usr/bin/python3; Debian: apt-get install python3-matplotlib): "
         << "plot skipped\n";
   } else {
     const std::filesystem::path png = outputs.add("bench.png");
     const std::string note = std::to_string(plan.threads) + " threads, long side " + std::to_string(plan.longSide) +
                              " px, reference " + std::to_string(plan.refSpp) + " spp";
-    const int rc = runProcess({python, "-c", std::string(benchPlotScriptFile("bench_plot.py")), csv.string(),
-                               png.string(), note},
-                              false);
-    if (rc != 0) throw std::runtime_error("the plot script failed (" + python + " exit status " + std::to_string(rc) + ")");
+    runPythonScript(*python, benchPlotScriptFile("bench_plot.py"), {csv.string(), png.string(), note});
   }
   for (const auto& f : outputs.commit()) log << "bench: wrote " << f.string() << "\n";
   return failed.empty() ? 0 : 2;

@@ -1,12 +1,7 @@
 #include "cli/ptc_command.h"
 
-#include <fcntl.h>
-#include <spawn.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include <cctype>
-#include <cerrno>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
@@ -16,6 +11,7 @@
 #include <sstream>
 
 #include "cli/args.h"
+#include "cli/python_script.h"
 #include "sensor/input_error.h"
 #include "sensor/output_set.h"
 #include "sensor/sensor_spec.h"
@@ -63,31 +59,6 @@ std::string fileStem(const std::string& name) {
   return s.empty() ? "sensor" : s;
 }
 
-// Runs argv (no shell) and waits; the exit status, or -1 if it could not run or was killed.
-int runProcess(const std::vector<std::string>& argv, bool quiet) {
-  std::vector<char*> cargv;
-  for (const std::string& a : argv) cargv.push_back(const_cast<char*>(a.c_str()));
-  cargv.push_back(nullptr);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  if (quiet) {
-    posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
-    posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, "/dev/null", O_WRONLY, 0);
-  }
-  pid_t pid = 0;
-  const int rc = posix_spawn(&pid, argv[0].c_str(), &actions, nullptr, cargv.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  if (rc != 0) return -1;
-  int status = 0;
-  while (waitpid(pid, &status, 0) < 0)
-    if (errno != EINTR) return -1;
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
-
-std::string pythonPath() {
-  const char* env = std::getenv("CAMSIM_PYTHON");
-  return env && *env ? env : "/usr/bin/python3";
-}
 
 }  // namespace
 
@@ -229,22 +200,16 @@ std::vector<std::filesystem::path> runPtc(const PtcArgs& args, std::ostream& out
     f << formatPtcCsv(m);
     if (!f.flush()) throw InputError({csv.string(), 0, 0}, "", "cannot write");
   }
-  const std::string python = pythonPath();
-  if (runProcess({python, "-c", "import matplotlib"}, true) != 0) {
-    log << "camsim ptc: " << python << " with matplotlib not found (Debian: apt-get install "
+  if (const std::optional<std::string> python = pythonWithMatplotlib(); !python) {
+    log << "camsim ptc: python3 with matplotlib not found ($CAMSIM_PYTHON or /usr/bin/python3; Debian: apt-get install "
         << "python3-matplotlib): plots skipped, CSV only\n";
   } else {
     const auto ptcPng = outputs.add(stem + "_ptc.png"), snrPng = outputs.add(stem + "_snr.png");
     out.flush();
-    const int rc =
-        runProcess({python, "-c", std::string(ptcPlotScriptFile("ptc_plot.py")), csv.string(),
-                    ptcPng.string(), snrPng.string(), sensor.name, format('g', 9, m.systemGainK),
-                    format('g', 9, m.quantumEfficiency), format('g', 9, m.darkNoiseE),
-                    format('g', 9, m.muPSat), format('g', 9, m.muPMin)},
-                   false);
-    if (rc != 0)
-      throw std::runtime_error("the plot script failed (" + python + " exit status " +
-                               std::to_string(rc) + ")");
+    runPythonScript(*python, ptcPlotScriptFile("ptc_plot.py"),
+                    {csv.string(), ptcPng.string(), snrPng.string(), sensor.name, format('g', 9, m.systemGainK),
+                     format('g', 9, m.quantumEfficiency), format('g', 9, m.darkNoiseE), format('g', 9, m.muPSat),
+                     format('g', 9, m.muPMin)});
   }
   const std::vector<std::filesystem::path> files = outputs.commit();
   for (const auto& f : files) log << "camsim ptc: wrote " << f.string() << "\n";
