@@ -20,7 +20,7 @@
 #include "sensor/cie.h"
 #include "sensor/color_space.h"
 #include "sensor/exr_io.h"
-#include "tests/integrator/light_test_support.h"
+#include "tests/integrator/render_test_support.h"
 #include "tests/support/temp_dir.h"
 
 namespace camsim {

@@ -21,7 +21,7 @@
 #include "integrator/spot_light.h"
 #include "sensor/cie.h"
 #include "sensor/spectral_data.h"
-#include "tests/integrator/light_test_support.h"
+#include "tests/integrator/render_test_support.h"
 
 namespace camsim {
 namespace {

@@ -22,16 +22,15 @@
 #include "sensor/cie.h"
 #include "integrator/scene_loader.h"
 #include "sensor/spectral_data.h"
-#include "tests/integrator/light_test_support.h"
+#include "tests/integrator/render_test_support.h"
 
 namespace camsim {
 namespace {
 
+using test::flatY;
 using test::LuminanceImage;
 using test::renderLuminance;
 
-// Y (cd/m²) of a flat spectral radiance of 1 W·m⁻²·sr⁻¹·nm⁻¹.
-double flatY() { return kMaxLuminousEfficacy * Cie1931::get().y.sum(); }
 
 double meanOf(const LuminanceImage& img) {
   double sum = 0.0;

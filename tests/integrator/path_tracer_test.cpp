@@ -10,37 +10,18 @@
 
 #include <glm/geometric.hpp>
 
-#include "tests/integrator/camera_weight.h"
-#include "integrator/render.h"
-#include "integrator/scene.h"
-#include "integrator/scene_loader.h"
-#include "sensor/cie.h"
+#include "tests/integrator/render_test_support.h"
 
 namespace camsim {
 namespace {
 
-// Σ ȳ Δλ on the 1 nm grid: the Y of a flat spectrum of value 1.
-double flatY() { return kMaxLuminousEfficacy * Cie1931::get().y.sum(); }
+using test::flatY;
 
-// Renders and divides every pixel by its exact mean pinhole weight, so the result is the
-// pixel's mean radiance-weighted Y (cd/m²) and comparable with radiance closed forms.
+// Each pixel's mean radiance-weighted Y (cd/m²), comparable with radiance closed forms.
 Image renderY(const std::string& yaml, int spp, std::uint64_t seed = 1) {
-  const SceneDescription desc = loadSceneFromText(yaml, "test.yaml", ".");
-  const Scene scene(desc);
-  RenderOptions options;
-  options.spp = spp;
-  options.seed = seed;
-  const SpectralResponse response = SpectralResponse::cieXyz();
-  RenderResult result = render(scene, response, options);
-  EXPECT_EQ(result.stats.rejectedSamples, 0u);
-  Image& img = result.image;
-  for (int y = 0; y < img.height; ++y)
-    for (int x = 0; x < img.width; ++x) {
-      const double w = meanPinholeWeight(scene.camera(), x, y);
-      for (int c = 0; c < img.channelCount(); ++c)
-        img.at(x, y, c) = static_cast<float>(static_cast<double>(img.at(x, y, c)) / w);
-    }
-  return img;
+  const test::LuminanceImage r = test::renderLuminance(yaml, spp, seed);
+  EXPECT_EQ(r.stats.rejectedSamples, 0u);
+  return r.y;
 }
 
 std::string furnaceScene(double rho, int resolution, int maxDepth, int rrDepth) {

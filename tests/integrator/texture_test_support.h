@@ -13,7 +13,7 @@
 
 #include "sensor/cie.h"
 #include "sensor/png_io.h"
-#include "tests/integrator/light_test_support.h"  // renderLuminance, MaxError
+#include "tests/integrator/render_test_support.h"  // renderLuminance, MaxError
 
 namespace camsim::test {
 

@@ -1,4 +1,4 @@
-// Test helpers for the light tests: render a scene given as YAML text and return each
+// Test helpers for tests that render: render a scene given as YAML text and return each
 // pixel's mean radiance-weighted luminance Y (cd/m²), i.e. the film divided by the exact
 // mean pinhole weight (tests/integrator/camera_weight.h), so that pixels compare directly
 // with radiance closed forms; and small scene fragments.
@@ -16,6 +16,7 @@
 #include "integrator/render.h"
 #include "integrator/scene.h"
 #include "integrator/scene_loader.h"
+#include "sensor/cie.h"
 #include "tests/integrator/camera_weight.h"
 
 namespace camsim::test {
@@ -42,6 +43,9 @@ class MaxError {
  private:
   double max_ = 0.0;
 };
+
+// Y (cd/m²) of a flat spectral radiance of 1 W·m⁻²·sr⁻¹·nm⁻¹.
+inline double flatY() { return kMaxLuminousEfficacy * Cie1931::get().y.sum(); }
 
 struct LuminanceImage {
   Image y;  // one channel: mean luminance of the pixel's footprint, cd/m²
