@@ -3,17 +3,15 @@
 #include <algorithm>
 #include <cmath>
 
-#include "integrator/math.h"
-#include "integrator/point_light.h"
 #include "sensor/check.h"
 
 namespace camsim {
 
 SpotLight::SpotLight(const glm::vec3& position, const glm::vec3& axis, const Spectrum& intensity,
                      float coneAngle, float falloffStart)
-    : position_(position),
+    : point_(position, intensity),
       axis_(glm::normalize(axis)),
-      intensity_(intensity),
+      intensitySum_(intensity.sum()),
       cosEnd_(std::cos(coneAngle)),
       cosStart_(std::cos(falloffStart)),
       coneAngle_(static_cast<double>(coneAngle)),
@@ -30,21 +28,13 @@ float SpotLight::falloff(const glm::vec3& w) const {
   return t * t * (3.0f - 2.0f * t);
 }
 
-std::optional<LightSample> SpotLight::sample(const glm::vec3& ref, float time, float /*u1*/,
-                                             glm::vec2 /*u2*/,
+std::optional<LightSample> SpotLight::sample(const glm::vec3& ref, float time, float u1, glm::vec2 u2,
                                              const SampledWavelengths& lambda) const {
-  const glm::vec3 toLight = position_ - ref;
-  const float dist2 = lengthSquared(toLight);
-  if (!(dist2 > 0.0f) || !std::isfinite(dist2)) return std::nullopt;
-  LightSample ls;
-  ls.wi = toLight / std::sqrt(dist2);
-  const float f = falloff(-ls.wi);
+  std::optional<LightSample> ls = point_.sample(ref, time, u1, u2, lambda);
+  if (!ls) return std::nullopt;
+  const float f = falloff(-ls->wi);
   if (f == 0.0f) return std::nullopt;
-  ls.L = sampleSpectrum(intensity_, lambda) * (f / dist2);
-  if (ls.L.isZero()) return std::nullopt;
-  ls.pdf = 1.0f;
-  ls.delta = true;
-  ls.point = deltaLightPoint(position_, time);
+  ls->L *= f;
   return ls;
 }
 
@@ -57,7 +47,7 @@ double SpotLight::effectiveSolidAngle(double coneAngle, double falloffStart) {
 }
 
 double SpotLight::power() const {
-  return effectiveSolidAngle(coneAngle_, falloffStart_) * intensity_.sum();
+  return effectiveSolidAngle(coneAngle_, falloffStart_) * intensitySum_;
 }
 
 }  // namespace camsim

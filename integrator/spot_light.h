@@ -11,12 +11,13 @@
 //
 //   I(λ, θ) = I₀(λ) · smoothstep(cos θ; cos θ_e, cos θ_s)
 //   smoothstep(x; a, b) = t²(3 − 2t),  t = clamp((x − a)/(b − a), 0, 1)   (a step if a = b)
-//   E⊥(λ) = I(λ, θ) / d²  (as for the point light)
+//   E⊥(λ) = I(λ, θ) / d²  (the point light's sample, weighted by the falloff)
 //   Φ = 2π ∫ I₀ dλ · [(1 − cos θ_s) + (cos θ_s − cos θ_e)/2]
 // (exact: dω = d(cos θ) dφ and ∫ smoothstep over [cos θ_e, cos θ_s] is half the interval).
 #pragma once
 
 #include "integrator/light.h"
+#include "integrator/point_light.h"
 #include "sensor/spectrum.h"
 
 namespace camsim {
@@ -38,9 +39,9 @@ class SpotLight final : public Light {
   float falloff(const glm::vec3& w) const;
 
  private:
-  glm::vec3 position_;
+  PointLight point_;  // the same source without the cone
   glm::vec3 axis_;
-  Spectrum intensity_;
+  double intensitySum_;  // ∫ I₀ dλ
   float cosEnd_;    // cos θ_e
   float cosStart_;  // cos θ_s
   double coneAngle_, falloffStart_;
