@@ -19,6 +19,7 @@ const std::vector<std::string>& benchSuite() {
 std::string benchUsageText() {
   return "usage: camsim bench [--quick] [--out DIR] [--threads N] [--scenes a,b,...] [--max-spp N]\n"
          "                    [--resolution PX] [--ref-spp N] [--cache DIR] [--mesh-triangles N]\n"
+         "                    [--texture-size PX]\n"
          "\n"
          "Speed against error: renders each scene of the suite (cornell_box, dof_chart, motion_blur,\n"
          "metals_glass, small_light from scenes/) at a reduced resolution with both samplers\n"
@@ -26,7 +27,7 @@ std::string benchUsageText() {
          "luminance Y against a cached high-spp reference: rMSE and MRAE (docs/bench.md). Prints the\n"
          "table and, per scene and sampler, the log-log slope of rMSE against time; then the limit:\n"
          "the tracer's rays/s against bare Embree traversal of the same recorded rays, thread scaling,\n"
-         "motion-blur overhead and the build of a 1 M-triangle mesh.\n"
+         "motion-blur overhead, the build of a 1 M-triangle mesh and the load of a 1024x1024 texture.\n"
          "\n"
          "  --quick            a quick variant, under a minute (64 px, up to 64 spp, 512-spp references)\n"
          "  --out DIR          output directory (default bench-out/): bench.csv, bench_limit.csv,\n"
@@ -37,7 +38,8 @@ std::string benchUsageText() {
          "  --resolution PX    long side of the bench images in pixels (default 128; --quick 64)\n"
          "  --ref-spp N        reference samples per pixel (default 8 x max-spp)\n"
          "  --cache DIR        reference cache (default: bench-cache/ in the build directory)\n"
-         "  --mesh-triangles N triangles of the mesh-build test (default 1000000; 0 skips it)\n";
+         "  --mesh-triangles N triangles of the mesh-build test (default 1000000; 0 skips it)\n"
+         "  --texture-size PX  side of the texture-load test's random-colour PNG (default 1024; 0 skips it)\n";
 }
 
 BenchArgs parseBenchArgs(const std::vector<std::string>& args) {
@@ -78,6 +80,8 @@ BenchArgs parseBenchArgs(const std::vector<std::string>& args) {
       if (b.cacheDir->empty()) throw UsageError(a + " needs a non-empty directory");
     } else if (a == "--mesh-triangles") {
       b.meshTriangles = static_cast<std::uint64_t>(parseInteger(a, value(), 0, 100000000));
+    } else if (a == "--texture-size") {
+      b.textureSize = static_cast<int>(parseInteger(a, value(), 0, 16384));
     } else {
       throw UsageError("unknown bench option '" + a + "' (try 'camsim bench --help')");
     }
@@ -105,6 +109,7 @@ BenchPlan planBench(const BenchArgs& args) {
   p.refSpp = args.refSpp ? *args.refSpp : 8 * p.maxSpp;
   p.refSpp += p.refSpp % 2;  // two equal halves
   if (args.meshTriangles) p.meshTriangles = *args.meshTriangles;
+  if (args.textureSize) p.textureSize = *args.textureSize;
   p.threads = args.threads > 0 ? args.threads : tbb::info::default_concurrency();
   return p;
 }

@@ -166,13 +166,19 @@ int runBench(const BenchArgs& args, std::ostream& out, std::ostream& log) {
              << "\n";
     }
   }
-  if (plan.meshTriangles > 0) {
-    log << "bench: building a " << plan.meshTriangles << "-triangle mesh\n";
+  if (plan.meshTriangles > 0 || plan.textureSize > 0) {
     const std::filesystem::path temp =
         std::filesystem::temp_directory_path() / ("camsim-bench-" + std::to_string(::getpid()));
     std::filesystem::create_directories(temp);
     try {
-      extras << formatMeshBuild(measureMeshBuild(plan.meshTriangles, plan.threads, temp));
+      if (plan.meshTriangles > 0) {
+        log << "bench: building a " << plan.meshTriangles << "-triangle mesh\n";
+        extras << formatMeshBuild(measureMeshBuild(plan.meshTriangles, plan.threads, temp));
+      }
+      if (plan.textureSize > 0) {
+        log << "bench: loading a " << plan.textureSize << "-pixel-square random-colour texture\n";
+        extras << formatTextureLoad(measureTextureLoad(plan.textureSize, plan.threads, temp));
+      }
     } catch (...) {
       std::filesystem::remove_all(temp, ec);
       throw;

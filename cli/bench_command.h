@@ -2,6 +2,7 @@
 //
 //   camsim bench [--quick] [--out DIR] [--threads N] [--scenes a,b] [--max-spp N]
 //                [--resolution PX] [--ref-spp N] [--cache DIR] [--mesh-triangles N]
+//                [--texture-size PX]
 //
 // For each scene of the suite (scenes/NAME.yaml: cornell_box, dof_chart, motion_blur,
 // metals_glass, small_light), at a reduced resolution (long side PX), each sampler
@@ -37,6 +38,7 @@ struct BenchArgs {
   std::optional<int> maxSpp, resolution, refSpp;
   std::optional<std::string> cacheDir;
   std::optional<std::uint64_t> meshTriangles;  // 0: skip the mesh build
+  std::optional<int> textureSize;              // 0: skip the texture load
 };
 
 // args[0] == "bench". UsageError on bad usage.
@@ -52,6 +54,7 @@ struct BenchPlan {
   int captureSpp = 4;     // the limit's recording render
   int featureSpp = 64;    // thread scaling and motion overhead
   std::uint64_t meshTriangles = 1000000;
+  int textureSize = 1024;  // px, side of the texture-load test's image
   int threads = 0;        // resolved: never 0
   std::vector<int> budgets() const;  // 1, 2, 4, … up to maxSpp (and maxSpp itself)
 };

@@ -10,14 +10,19 @@
 #include <cstring>
 #include <fstream>
 #include <memory>
+#include <random>
 
 #include <tbb/info.h>
 #include <tbb/task_arena.h>
 
 #include "cli/bench_metrics.h"
+#include "integrator/image_texture.h"
 #include "integrator/scene.h"
 #include "integrator/scene_loader.h"
 #include "sensor/input_error.h"
+#include "sensor/png_io.h"
+#include "sensor/rgb_uplift.h"
+#include "sensor/spectrum.h"
 
 namespace camsim {
 namespace {
@@ -202,6 +207,42 @@ MeshBuildResult measureMeshBuild(std::uint64_t triangles, int threads, const std
   std::error_code ec;
   std::filesystem::remove(ply, ec);
   return m;
+}
+
+TextureLoadResult measureTextureLoad(int size, int threads, const std::filesystem::path& tempDir) {
+  TextureLoadResult t;
+  t.size = size;
+  std::mt19937 rng(5);
+  PngImage png;
+  png.width = png.height = size;
+  png.channels = 3;
+  png.samples.resize(static_cast<size_t>(size) * static_cast<size_t>(size) * 3);
+  for (std::uint16_t& q : png.samples) q = static_cast<std::uint16_t>(rng() & 0xff);
+  const std::filesystem::path file = tempDir / "random.png";
+  writePng(file, png);
+  tbb::task_arena arena(threads > 0 ? threads : tbb::info::default_concurrency());
+  auto start = std::chrono::steady_clock::now();
+  const TextureImage image = loadTextureImage(file, TextureEncoding::kSrgb);
+  t.decodeSeconds = secondsSince(start);
+  start = std::chrono::steady_clock::now();
+  const double cpu0 = processCpuSeconds();
+  std::unique_ptr<ImageSpectrumTexture> texture;
+  arena.execute([&] { texture = std::make_unique<ImageSpectrumTexture>(image, glm::vec2(1.0f), glm::vec2(0.0f)); });
+  t.upliftSeconds = secondsSince(start);
+  t.upliftCpuSeconds = processCpuSeconds() - cpu0;
+  for (int k = 0; k < 256; ++k) {
+    const int x = static_cast<int>(rng() % static_cast<unsigned>(size));
+    const int y = static_cast<int>(rng() % static_cast<unsigned>(size));
+    Spectrum s;
+    for (int i = 0; i < kSpectrumSamples; ++i) s.sample(i) = texture->texelValue(x, y, static_cast<float>(kLambdaMinNm + i));
+    const glm::dvec3 rgb = reflectanceToRgb(s, RgbColorSpace::linearRec709());
+    const size_t at = (static_cast<size_t>(y) * static_cast<size_t>(size) + static_cast<size_t>(x)) * 3;
+    for (int c = 0; c < 3; ++c)
+      t.maxRgbError = std::max(t.maxRgbError, std::abs(rgb[c] - static_cast<double>(image.values[at + static_cast<size_t>(c)])));
+  }
+  std::error_code ec;
+  std::filesystem::remove(file, ec);
+  return t;
 }
 
 }  // namespace camsim

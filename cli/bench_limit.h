@@ -89,11 +89,25 @@ struct MeshBuildResult {
 };
 MeshBuildResult measureMeshBuild(std::uint64_t triangles, int threads, const std::filesystem::path& tempDir);
 
+// Loading an image texture for reflectance: a size² 8-bit sRGB PNG of random colours (every
+// texel a new colour, the worst case for the per-texel uplift) decoded, then every texel
+// uplifted to a sigmoid polynomial (ImageSpectrumTexture). Error: the largest |RGB − RGB'| of
+// 256 random texels, RGB' the uplifted spectrum's linear Rec.709 reflectance under D65.
+struct TextureLoadResult {
+  int size = 0;
+  double decodeSeconds = 0.0;
+  double upliftSeconds = 0.0;
+  double upliftCpuSeconds = 0.0;  // process CPU time over the uplift, all threads
+  double maxRgbError = 0.0;
+};
+TextureLoadResult measureTextureLoad(int size, int threads, const std::filesystem::path& tempDir);
+
 // Printed reports and the limit CSV.
 std::string formatLimitTable(const std::vector<LimitResult>& results);
 std::string formatLimitCsv(const std::vector<LimitResult>& results);
 std::string formatScaling(const std::string& scene, const ScalingResult& s);
 std::string formatMotionOverhead(const std::string& scene, const MotionOverhead& m);
 std::string formatMeshBuild(const MeshBuildResult& m);
+std::string formatTextureLoad(const TextureLoadResult& t);
 
 }  // namespace camsim

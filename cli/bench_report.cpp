@@ -136,4 +136,14 @@ std::string formatMeshBuild(const MeshBuildResult& m) {
   return out.str();
 }
 
+std::string formatTextureLoad(const TextureLoadResult& t) {
+  char line[320];
+  const double texels = static_cast<double>(t.size) * t.size;
+  std::snprintf(line, sizeof line,
+                "texture load: %d x %d random-colour 8-bit sRGB PNG: decode %.3f s, uplift %.3f s (%.2f CPU-us per "
+                "texel); round-trip RGB error max %.1e\n",
+                t.size, t.size, t.decodeSeconds, t.upliftSeconds, 1e6 * t.upliftCpuSeconds / texels, t.maxRgbError);
+  return line;
+}
+
 }  // namespace camsim

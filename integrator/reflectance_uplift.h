@@ -25,7 +25,8 @@
 //
 // Measured (tests/integrator/reflectance_uplift_test) against reflectanceToRgb on the 1 nm
 // grid over 1006 colours (dark, saturated, the cube's corners): RGB error mean 2.4e-6, max
-// 1.5e-5 (the 5 nm quadrature's); 2.4 evaluations and 1.6–2.0 µs of CPU per colour.
+// 1.5e-5 (the 5 nm quadrature's); 2.4 evaluations per colour. Speed: `camsim bench`'s texture
+// load (1024² random colours: 1.98 µs of CPU per texel, 1.09 s wall on 2 cores).
 #pragma once
 
 #include <array>

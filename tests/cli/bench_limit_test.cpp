@@ -128,6 +128,18 @@ TEST(BenchLimit, TorusMeshRoundTripsThroughBinaryPly) {
   }
 }
 
+TEST(BenchLimit, TextureLoadUpliftsEveryTexelWithinItsStatedError) {
+  test::TempDir dir;
+  const TextureLoadResult t = measureTextureLoad(64, 1, dir.path());
+  EXPECT_EQ(t.size, 64);
+  EXPECT_GE(t.decodeSeconds, 0.0);
+  EXPECT_GE(t.upliftSeconds, 0.0);
+  EXPECT_GT(t.maxRgbError, 0.0);  // a fit, not a copy
+  EXPECT_LT(t.maxRgbError, 5e-5);  // reflectance_uplift.h's round-trip bound
+  EXPECT_FALSE(fs::exists(dir.path() / "random.png"));
+  EXPECT_NE(formatTextureLoad(t).find("64 x 64 random-colour"), std::string::npos);
+}
+
 // ---- the binary ------------------------------------------------------------------------
 
 std::string readFile(const fs::path& p) {
@@ -149,13 +161,13 @@ int runBench(const std::string& args, const fs::path& logDir) {
 TEST(BenchBinary, SmallRunWritesTablesAndCsvs) {
   test::TempDir dir;
   const fs::path out = dir.path() / "out";
-  ASSERT_EQ(runBench("--scenes cornell_box --resolution 16 --max-spp 2 --ref-spp 4 --mesh-triangles 1000 --out " +
+  ASSERT_EQ(runBench("--scenes cornell_box --resolution 16 --max-spp 2 --ref-spp 4 --mesh-triangles 1000 --texture-size 16 --out " +
                          out.string() + " --cache " + (dir.path() / "cache").string(),
                      dir.path()),
             0)
       << readFile(dir.path() / "stderr.txt");
   const std::string stdoutText = readFile(dir.path() / "stdout.txt");
-  for (const char* needle : {"slope rMSE/time", "raw mix/s", "thread scaling", "mesh build", "total:"})
+  for (const char* needle : {"slope rMSE/time", "raw mix/s", "thread scaling", "mesh build", "texture load", "total:"})
     EXPECT_NE(stdoutText.find(needle), std::string::npos) << needle;
   const std::string csv = readFile(out / "bench.csv");
   EXPECT_EQ(csv.substr(0, csv.find('\n')), "scene,sampler,spp,width,height,seconds,cpu_seconds,samples_per_s,"
