@@ -157,8 +157,7 @@ std::optional<BsdfSample> DielectricMaterial::sample(const glm::vec3& wo, float 
 
 std::optional<BsdfSample> DielectricMaterial::sampleSmooth(const glm::vec3& wo, float uc,
                                                            float eta) const {
-  // Index-matched: nothing reflects (fresnelDielectric would round grazing η = 1 to TIR).
-  const float R = eta == 1.0f ? 0.0f : fresnelDielectric(wo.z, eta), T = 1.0f - R;
+  const float R = fresnelDielectric(wo.z, eta), T = 1.0f - R;
   BsdfSample s;
   s.specular = true;
   if (uc < R) {
@@ -167,17 +166,11 @@ std::optional<BsdfSample> DielectricMaterial::sampleSmooth(const glm::vec3& wo, 
     s.pdf = R;
     return s;
   }
-  float etap = 1.0f;
-  if (eta == 1.0f) {
-    s.wi = -wo;  // index-matched: straight through
-  } else {
-    const std::optional<Refraction> r = refract(wo, glm::vec3(0.0f, 0.0f, 1.0f), eta);
-    if (!r) return std::nullopt;
-    s.wi = r->wt;
-    etap = r->etap;
-  }
+  const std::optional<Refraction> r = refract(wo, glm::vec3(0.0f, 0.0f, 1.0f), eta);
+  if (!r) return std::nullopt;
+  s.wi = r->wt;
   if (s.wi.z * wo.z >= 0.0f) return std::nullopt;
-  s.f = SampledSpectrum(T / (std::abs(s.wi.z) * sqr(etap)));
+  s.f = SampledSpectrum(T / (std::abs(s.wi.z) * sqr(r->etap)));
   s.pdf = T;
   s.transmission = true;
   if (!finitePositive(s.pdf) || !s.f.isFinite()) return std::nullopt;

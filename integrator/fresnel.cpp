@@ -9,7 +9,7 @@
 //
 //   r∥ = (η̃ cos θi − cos θt)/(η̃ cos θi + cos θt),  r⊥ = (cos θi − η̃ cos θt)/(cos θi + η̃ cos θt)
 //   cos θt = √(1 − sin²θi / η̃²),  R = (|r∥|² + |r⊥|²)/2   (η̃ = η real, or η + i k)
-//   dielectric: R = 1 once sin²θt ≥ 1 (total internal reflection)
+//   dielectric: R = 1 once sin²θt ≥ 1 (total internal reflection); η = 1: R = 0, wt = −wi exactly
 //   refraction: wt = −wi/η + (cos θi/η − cos θt) n
 #include "integrator/fresnel.h"
 
@@ -22,6 +22,7 @@
 namespace camsim {
 
 float fresnelDielectric(float cosThetaI, float eta) {
+  if (eta == 1.0f) return 0.0f;  // no interface (below, 1 − cos² rounds to 1 near grazing: TIR)
   cosThetaI = std::clamp(cosThetaI, -1.0f, 1.0f);
   if (cosThetaI < 0.0f) {  // light arrives from the inside: swap the media
     eta = 1.0f / eta;
@@ -34,7 +35,7 @@ float fresnelDielectric(float cosThetaI, float eta) {
   const float parallel = (eta * cosThetaI - cosThetaT) / (eta * cosThetaI + cosThetaT);
   const float perpendicular = (cosThetaI - eta * cosThetaT) / (cosThetaI + eta * cosThetaT);
   const float r = 0.5f * (parallel * parallel + perpendicular * perpendicular);
-  return std::isfinite(r) ? r : 1.0f;  // η = 1 at exact grazing: 0/0, limit 1
+  return std::isfinite(r) ? r : 1.0f;
 }
 
 float fresnelConductor(float cosThetaI, float eta, float k) {
@@ -68,6 +69,7 @@ SampledSpectrum fresnelSchlick(float cosThetaI, const SampledSpectrum& r0) {
 }
 
 std::optional<Refraction> refract(const glm::vec3& wi, glm::vec3 n, float eta) {
+  if (eta == 1.0f) return Refraction{-wi, 1.0f};  // index-matched: straight through, also at grazing
   float cosThetaI = std::clamp(glm::dot(n, wi), -1.0f, 1.0f);
   if (cosThetaI < 0.0f) {  // wi on the inside: the interface seen from the other side
     eta = 1.0f / eta;
