@@ -7,14 +7,6 @@
 #include "sensor/check.h"
 
 namespace camsim {
-namespace {
-
-// Mirrors a direction below the surface to +z (the material is the same on both sides).
-glm::vec3 upper(const glm::vec3& w) {
-  return {w.x, w.y, std::abs(w.z)};
-}
-
-}  // namespace
 
 ConductorMaterial::ConductorMaterial(ConductorParameters p) : p_(std::move(p)) {
   CAMSIM_CHECK(p_.roughness != nullptr);
@@ -25,9 +17,8 @@ ConductorMaterial::ConductorMaterial(ConductorParameters p) : p_(std::move(p)) {
 }
 
 MicrofacetModel ConductorMaterial::model(const BsdfContext& ctx) const {
-  const float alpha = std::max(0.0f, p_.roughness->evaluate(ctx.uv));
-  return MicrofacetModel(p_.distribution, p_.masking, alpha * (1.0f + p_.anisotropy),
-                         alpha * (1.0f - p_.anisotropy));
+  return MicrofacetModel::fromRoughness(p_.distribution, p_.masking, p_.roughness->evaluate(ctx.uv),
+                                       p_.anisotropy);
 }
 
 SampledSpectrum ConductorMaterial::fresnel(float cosTheta, const SampledWavelengths& lambda,
@@ -37,47 +28,24 @@ SampledSpectrum ConductorMaterial::fresnel(float cosTheta, const SampledWaveleng
   return fresnelConductor(cosTheta, sampleSpectrum(p_.eta, lambda), sampleSpectrum(p_.k, lambda));
 }
 
-// f and pdf for wo, wi on the +z side and their half vector wm.
-ConductorMaterial::Eval ConductorMaterial::evaluate(const MicrofacetModel& m, const glm::vec3& wo,
-                                                    const glm::vec3& wi, const glm::vec3& wm,
-                                                    const SampledWavelengths& lambda,
-                                                    const BsdfContext& ctx) const {
-  const float woDotWm = glm::dot(wo, wm);
-  if (!(woDotWm > 0.0f) || !(wm.z > 0.0f)) return {};
-  const float d = m.D(wm);
-  if (d == 0.0f) return {};
-  const float value = d * m.G(wo, wi, wm) / (4.0f * wo.z * wi.z);
-  const float pdf = m.pdf(wo, wm) / (4.0f * woDotWm);
-  if (!std::isfinite(value) || !std::isfinite(pdf)) return {};
-  return {fresnel(woDotWm, lambda, ctx) * value, pdf};
-}
-
-std::optional<glm::vec3> ConductorMaterial::halfVector(const glm::vec3& wo, const glm::vec3& wi) {
-  const glm::vec3 h = wo + wi;
-  const float len2 = glm::dot(h, h);
-  if (!(len2 > 0.0f)) return std::nullopt;
-  return h / std::sqrt(len2);
-}
-
 SampledSpectrum ConductorMaterial::f(const glm::vec3& woIn, const glm::vec3& wiIn,
                                      const SampledWavelengths& lambda,
                                      const BsdfContext& ctx) const {
   if (!(woIn.z * wiIn.z > 0.0f)) return SampledSpectrum(0.0f);
   const MicrofacetModel m = model(ctx);
   if (m.effectivelySmooth()) return SampledSpectrum(0.0f);
-  const glm::vec3 wo = upper(woIn), wi = upper(wiIn);
-  const std::optional<glm::vec3> wm = halfVector(wo, wi);
-  return wm ? evaluate(m, wo, wi, *wm, lambda, ctx).f : SampledSpectrum(0.0f);
+  const glm::vec3 wo = upperHemisphere(woIn), wi = upperHemisphere(wiIn), wm = halfVector(wo, wi);
+  const MicrofacetModel::Reflection r = m.reflection(wo, wi, wm);
+  return r.f > 0.0f ? fresnel(glm::dot(wo, wm), lambda, ctx) * r.f : SampledSpectrum(0.0f);
 }
 
 float ConductorMaterial::pdf(const glm::vec3& woIn, const glm::vec3& wiIn,
-                             const SampledWavelengths& lambda, const BsdfContext& ctx) const {
+                             const SampledWavelengths& /*lambda*/, const BsdfContext& ctx) const {
   if (!(woIn.z * wiIn.z > 0.0f)) return 0.0f;
   const MicrofacetModel m = model(ctx);
   if (m.effectivelySmooth()) return 0.0f;
-  const glm::vec3 wo = upper(woIn), wi = upper(wiIn);
-  const std::optional<glm::vec3> wm = halfVector(wo, wi);
-  return wm ? evaluate(m, wo, wi, *wm, lambda, ctx).pdf : 0.0f;
+  const glm::vec3 wo = upperHemisphere(woIn), wi = upperHemisphere(wiIn);
+  return m.reflection(wo, wi, halfVector(wo, wi)).pdf;
 }
 
 std::optional<BsdfSample> ConductorMaterial::sample(const glm::vec3& woIn, float /*uc*/,
@@ -85,7 +53,7 @@ std::optional<BsdfSample> ConductorMaterial::sample(const glm::vec3& woIn, float
                                                     const BsdfContext& ctx) const {
   if (woIn.z == 0.0f) return std::nullopt;
   const float side = woIn.z > 0.0f ? 1.0f : -1.0f;
-  const glm::vec3 wo = upper(woIn);
+  const glm::vec3 wo = upperHemisphere(woIn);
   const MicrofacetModel m = model(ctx);
   BsdfSample s;
   if (m.effectivelySmooth()) {
@@ -95,16 +63,13 @@ std::optional<BsdfSample> ConductorMaterial::sample(const glm::vec3& woIn, float
     s.specular = true;
     return s;
   }
-  const glm::vec3 wm = m.sampleWm(wo, u);
-  const glm::vec3 wi = glm::normalize(reflect(wo, wm));
-  if (!(wi.z > 0.0f)) return std::nullopt;
-  // f and pdf with the sampled wm: at grazing wo and tiny α the half vector rebuilt from
-  // (wo, wi) in single precision would be off by more than the lobe is wide.
-  const Eval e = evaluate(m, wo, wi, wm, lambda, ctx);
-  if (!(e.pdf > 0.0f)) return std::nullopt;
-  s.wi = glm::vec3(wi.x, wi.y, side * wi.z);
-  s.f = e.f;
-  s.pdf = e.pdf;
+  const std::optional<MicrofacetModel::ReflectionSample> h = m.sampleReflection(wo, u);
+  if (!h) return std::nullopt;
+  const MicrofacetModel::Reflection r = m.reflection(wo, h->wi, h->wm);
+  if (!(r.pdf > 0.0f)) return std::nullopt;
+  s.wi = glm::vec3(h->wi.x, h->wi.y, side * h->wi.z);
+  s.f = fresnel(glm::dot(wo, h->wm), lambda, ctx) * r.f;
+  s.pdf = r.pdf;
   return s;
 }
 

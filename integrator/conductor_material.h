@@ -51,15 +51,7 @@ class ConductorMaterial final : public Material {
   bool hasNonSpecular() const override { return hasNonSpecular_; }
 
  private:
-  struct Eval {
-    SampledSpectrum f;
-    float pdf = 0.0f;
-  };
   MicrofacetModel model(const BsdfContext& ctx) const;
-  Eval evaluate(const MicrofacetModel& m, const glm::vec3& wo, const glm::vec3& wi,
-                const glm::vec3& wm, const SampledWavelengths& lambda,
-                const BsdfContext& ctx) const;
-  static std::optional<glm::vec3> halfVector(const glm::vec3& wo, const glm::vec3& wi);
   SampledSpectrum fresnel(float cosTheta, const SampledWavelengths& lambda,
                           const BsdfContext& ctx) const;
 

@@ -44,13 +44,6 @@ bool finitePositive(float x) {
   return x > 0.0f && std::isfinite(x);
 }
 
-// The facets wo sees are those with wo·wm of wo's sign; from the inside these are the
-// visible normals of −wo (point reflection), not of wo mirrored in the plane, so the
-// microfacet sampler and its pdf are always given the direction on the +z side.
-glm::vec3 facing(const glm::vec3& wo) {
-  return wo.z < 0.0f ? -wo : wo;
-}
-
 // Fresnel transmittance 1 − R of a refraction pair from both cosines (c1 on the incident
 // side, c2 on the other, etap = n2/n1): T = (t∥ + t⊥)/2 with t = 1 − r² written as
 //   t∥ = 4 η' c1 c2 / (η' c1 + c2)²,   t⊥ = 4 η' c1 c2 / (c1 + η' c2)².
@@ -77,7 +70,7 @@ std::optional<RoughValue> evaluateRough(const glm::vec3& wo, const glm::vec3& wi
   const float cosOM = glm::dot(wo, h->wm), cosIM = glm::dot(wi, h->wm);
   const float R = fresnelDielectric(cosOM, eta);
   const float dg = m.D(h->wm) * m.G(wo, wi, h->wm);
-  const float pdfWm = m.pdf(facing(wo), h->wm);
+  const float pdfWm = m.pdf(wo, h->wm);
   RoughValue v;
   if (h->reflection) {
     v.f = dg * R / (4.0f * std::abs(wi.z * wo.z));
@@ -121,9 +114,7 @@ DielectricMaterial::DielectricMaterial(Spectrum eta, float roughness, float anis
                          anisotropy, distribution, masking) {}
 
 MicrofacetModel DielectricMaterial::microfacet(const BsdfContext& ctx) const {
-  const float alpha = std::max(0.0f, roughness_->evaluate(ctx.uv));
-  return MicrofacetModel(distribution_, masking_, alpha * (1.0f + anisotropy_),
-                         alpha * (1.0f - anisotropy_));
+  return MicrofacetModel::fromRoughness(distribution_, masking_, roughness_->evaluate(ctx.uv), anisotropy_);
 }
 
 SampledSpectrum DielectricMaterial::f(const glm::vec3& wo, const glm::vec3& wi,
@@ -180,7 +171,7 @@ std::optional<BsdfSample> DielectricMaterial::sampleSmooth(const glm::vec3& wo, 
 std::optional<BsdfSample> DielectricMaterial::sampleRough(const glm::vec3& wo, float uc,
                                                           glm::vec2 u, float eta,
                                                           const MicrofacetModel& m) const {
-  const glm::vec3 wm = m.sampleWm(facing(wo), u);
+  const glm::vec3 wm = m.sampleWm(wo, u);
   const float cosOM = glm::dot(wo, wm);
   if (cosOM * wo.z <= 0.0f) return std::nullopt;  // a back-facing facet (Beckmann samples D cosθm)
   BsdfSample s;

@@ -32,8 +32,8 @@
 //   1 − F in exact arithmetic, but accurate near the critical angle). The transmission f obeys the
 //   generalised reciprocity f(wo, wi) / η_o² = f(wi, wo) / η_i²  (η_o, η_i the indices of wo's and
 //   wi's sides).
-// Sampling: wm ~ MicrofacetModel::sampleWm(±wo, u), given −wo from the inside (the facets
-// seen from below are the visible normals of −wo); reflection with probability F(wo·wm),
+// Sampling: wm ~ MicrofacetModel::sampleWm(wo, u), which from the inside samples the visible
+// normals of −wo (the facets seen from below); reflection with probability F(wo·wm),
 // else refraction through wm; the density of wi is the density of wm times the Jacobian
 //   reflection    dwm/dwi = 1 / (4 |wo·wm|)
 //   transmission  dwm/dwi = |wi·wm| / (wi·wm + wo·wm/η')²

@@ -24,6 +24,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "integrator/fresnel.h"
 #include "integrator/math.h"
 
 namespace camsim {
@@ -33,9 +34,8 @@ namespace {
 constexpr float kMinAlpha = 1e-6f;
 constexpr double kSqrtPi = 1.77245385090551602730;
 
-glm::vec3 toUpperHemisphere(const glm::vec3& w) {
-  return {w.x, w.y, std::abs(w.z)};
-}
+// sampleWm and pdf for w below the surface: the lobe seen from the other side.
+glm::vec3 facingUp(const glm::vec3& w) { return w.z < 0.0f ? -w : w; }
 
 }  // namespace
 
@@ -45,6 +45,12 @@ MicrofacetModel::MicrofacetModel(MicrofacetDistribution distribution, MaskingMod
       masking_(masking),
       alphaX_(std::max(alphaX, kMinAlpha)),
       alphaY_(std::max(alphaY, kMinAlpha)) {}
+
+MicrofacetModel MicrofacetModel::fromRoughness(MicrofacetDistribution distribution, MaskingModel masking,
+                                               float alpha, float anisotropy) {
+  alpha = std::max(0.0f, alpha);
+  return MicrofacetModel(distribution, masking, alpha * (1.0f + anisotropy), alpha * (1.0f - anisotropy));
+}
 
 bool MicrofacetModel::effectivelySmooth() const {
   return std::max(alphaX_, alphaY_) < kSmoothAlpha;
@@ -96,7 +102,7 @@ float MicrofacetModel::G(const glm::vec3& wo, const glm::vec3& wi, const glm::ve
 }
 
 glm::vec3 MicrofacetModel::sampleWm(const glm::vec3& wIn, glm::vec2 u) const {
-  const glm::vec3 w = toUpperHemisphere(wIn);
+  const glm::vec3 w = facingUp(wIn);
   const float u0 = std::min(u.x, 1.0f - 0x1p-24f), u1 = u.y;
   if (distribution_ == MicrofacetDistribution::kBeckmann) {
     // Box–Muller: slopes with density exp(−x̃²/αx² − ỹ²/αy²)/(π αx αy).
@@ -125,7 +131,7 @@ float MicrofacetModel::pdf(const glm::vec3& wIn, const glm::vec3& wm) const {
   const float d = D(wm);
   if (d == 0.0f) return 0.0f;
   if (distribution_ == MicrofacetDistribution::kBeckmann) return d * wm.z;
-  const glm::vec3 w = toUpperHemisphere(wIn);
+  const glm::vec3 w = facingUp(wIn);
   const float wDotM = glm::dot(w, wm);
   if (!(wDotM > 0.0f)) return 0.0f;
   // G1(w)/cos θ written without the division by cos θ (finite at grazing w).
@@ -134,6 +140,26 @@ float MicrofacetModel::pdf(const glm::vec3& wIn, const glm::vec3& wm) const {
       (w.z + std::sqrt(w.z * w.z + alphaX_ * alphaX_ * w.x * w.x + alphaY_ * alphaY_ * w.y * w.y));
   if (!std::isfinite(g1OverCos)) return 0.0f;
   return g1OverCos * wDotM * d;
+}
+
+MicrofacetModel::Reflection MicrofacetModel::reflection(const glm::vec3& wo, const glm::vec3& wi,
+                                                        const glm::vec3& wm) const {
+  const float woDotWm = glm::dot(wo, wm);
+  if (!(woDotWm > 0.0f) || !(wm.z > 0.0f)) return {};
+  const float d = D(wm);
+  if (d == 0.0f) return {};
+  const float f = d * G(wo, wi, wm) / (4.0f * wo.z * wi.z);
+  const float p = pdf(wo, wm) / (4.0f * woDotWm);
+  if (!std::isfinite(f) || !std::isfinite(p)) return {};
+  return {f, p};
+}
+
+std::optional<MicrofacetModel::ReflectionSample> MicrofacetModel::sampleReflection(const glm::vec3& wo,
+                                                                                  glm::vec2 u) const {
+  const glm::vec3 wm = sampleWm(wo, u);
+  const glm::vec3 wi = glm::normalize(reflect(wo, wm));
+  if (!(wi.z > 0.0f)) return std::nullopt;
+  return ReflectionSample{wi, wm};
 }
 
 }  // namespace camsim

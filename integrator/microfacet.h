@@ -17,8 +17,16 @@
 // Sampling: GGX samples visible normals exactly (Heitz 2018), pdf(ω, m) = D_ω(m).
 // Beckmann samples D(m) cosθm (Walter et al. 2007), pdf(ω, m) = D(m) |cosθm|.
 // Both are valid for either masking model (the pdf does not depend on G).
+// A direction w below the surface (w.z < 0) is sampled as −w: the lobe seen from the other side.
+//
+// Reflection off the microfacets (conductor, plastic's specular lobe), Fresnel left out:
+//   f = D(m) G(ωo, ωi, m) / (4 cosθo cosθi),   pdf(ωi) = pdf(ωo, m) / (4 ωo·m),   m = half vector
 #pragma once
 
+#include <cmath>
+#include <optional>
+
+#include <glm/geometric.hpp>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
@@ -30,6 +38,9 @@ enum class MaskingModel { kSmith, kVGroove };
 class MicrofacetModel {
  public:
   MicrofacetModel(MicrofacetDistribution distribution, MaskingModel masking, float alphaX, float alphaY);
+  // From a roughness α (negative → 0) and an anisotropy a ∈ (−1, 1): αx = α (1 + a), αy = α (1 − a).
+  static MicrofacetModel fromRoughness(MicrofacetDistribution distribution, MaskingModel masking, float alpha,
+                                       float anisotropy);
 
   // Below this α the surface is treated as perfectly smooth (a delta lobe): D would
   // overflow single precision and no sampler could find the peak.
@@ -42,18 +53,35 @@ class MicrofacetModel {
   // Joint shadowing–masking of the selected model for the half-vector wm.
   float G(const glm::vec3& wo, const glm::vec3& wi, const glm::vec3& wm) const;
   // Draws a microfacet normal (in the +z hemisphere) for the direction w (either side:
-  // w is mirrored into +z first).
+  // w below the surface is taken as −w).
   glm::vec3 sampleWm(const glm::vec3& w, glm::vec2 u) const;
   // Density of sampleWm producing wm, sr⁻¹.
   float pdf(const glm::vec3& w, const glm::vec3& wm) const;
 
-  MicrofacetDistribution distribution() const { return distribution_; }
-  MaskingModel masking() const { return masking_; }
+  // Reflection for wo, wi on the +z side and their half vector (or the sampled normal) wm:
+  // f without Fresnel and the pdf of sampleReflection; both 0 if invalid or not finite.
+  struct Reflection {
+    float f = 0.0f;    // sr⁻¹
+    float pdf = 0.0f;  // sr⁻¹
+  };
+  Reflection reflection(const glm::vec3& wo, const glm::vec3& wi, const glm::vec3& wm) const;
+  // wo (z > 0) reflected about a sampled normal wm; nothing if wi falls below the surface.
+  // Callers evaluate with this wm, not one rebuilt from wo + wi: at grazing wo and tiny α the
+  // rebuilt half vector is off, in single precision, by more than the lobe is wide.
+  struct ReflectionSample {
+    glm::vec3 wi, wm;
+  };
+  std::optional<ReflectionSample> sampleReflection(const glm::vec3& wo, glm::vec2 u) const;
 
  private:
   MicrofacetDistribution distribution_;
   MaskingModel masking_;
   float alphaX_, alphaY_;
 };
+
+// The material is the same on both sides: a direction below the surface mirrored to +z.
+inline glm::vec3 upperHemisphere(const glm::vec3& w) { return {w.x, w.y, std::abs(w.z)}; }
+// Half vector of two directions on the +z side (their sum is never 0 there).
+inline glm::vec3 halfVector(const glm::vec3& wo, const glm::vec3& wi) { return glm::normalize(wo + wi); }
 
 }  // namespace camsim

@@ -210,5 +210,46 @@ TEST(Microfacet, FiniteFromSmoothToRoughAndAtGrazing) {
       MicrofacetModel(kDistributions[0], MaskingModel::kSmith, 1e-3f, 0.0f).effectivelySmooth());
 }
 
+// From below, the lobe is the one seen from the other side: w with w.z < 0 is sampled and
+// weighted as −w (point reflection, what the dielectric's inside needs), not as w mirrored in
+// the plane; the two differ for an anisotropic α and a direction off the principal planes.
+TEST(Microfacet, DirectionsBelowAreTakenAsTheirOpposite) {
+  const glm::vec3 below = glm::normalize(glm::vec3(0.5f, 0.3f, -0.4f));
+  for (MicrofacetDistribution d : kDistributions) {
+    const MicrofacetModel m(d, MaskingModel::kSmith, 0.6f, 0.1f);
+    for (const glm::vec2 u : {glm::vec2(0.2f, 0.3f), glm::vec2(0.7f, 0.9f)}) {
+      const glm::vec3 wm = m.sampleWm(below, u);
+      EXPECT_EQ(wm, m.sampleWm(-below, u)) << name(d);
+      EXPECT_EQ(m.pdf(below, wm), m.pdf(-below, wm)) << name(d);
+    }
+    if (d == MicrofacetDistribution::kGgx) {  // Beckmann samples D cos θm, whatever w
+      const glm::vec3 mirrored(below.x, below.y, -below.z);
+      EXPECT_NE(m.sampleWm(below, glm::vec2(0.2f, 0.3f)), m.sampleWm(mirrored, glm::vec2(0.2f, 0.3f)));
+    }
+  }
+}
+
+// The half-vector reflection shared by the conductor and the plastic's specular lobe:
+// f = D G / (4 cosθo cosθi) and pdf = pdf(wo, wm) / (4 wo·wm) at a hand-checked configuration;
+// nothing for a back-facing normal; sampleReflection's wi is wo mirrored about its wm.
+TEST(Microfacet, ReflectionIsTheHalfVectorFormula) {
+  const MicrofacetModel m(MicrofacetDistribution::kGgx, MaskingModel::kSmith, 0.3f, 0.3f);
+  const glm::vec3 wo = glm::normalize(glm::vec3(0.3f, 0.1f, 0.9f));
+  const glm::vec3 wi = glm::normalize(glm::vec3(-0.5f, 0.2f, 0.7f));
+  const glm::vec3 wm = halfVector(wo, wi);
+  const MicrofacetModel::Reflection r = m.reflection(wo, wi, wm);
+  EXPECT_FLOAT_EQ(r.f, m.D(wm) * m.G(wo, wi, wm) / (4.0f * wo.z * wi.z));
+  EXPECT_FLOAT_EQ(r.pdf, m.pdf(wo, wm) / (4.0f * glm::dot(wo, wm)));
+  EXPECT_GT(r.f, 0.0f);
+  const MicrofacetModel::Reflection none = m.reflection(wo, wi, -wm);
+  EXPECT_EQ(none.f, 0.0f);
+  EXPECT_EQ(none.pdf, 0.0f);
+  const std::optional<MicrofacetModel::ReflectionSample> s = m.sampleReflection(wo, glm::vec2(0.4f, 0.6f));
+  ASSERT_TRUE(s);
+  EXPECT_GT(s->wi.z, 0.0f);
+  EXPECT_NEAR(glm::dot(s->wi + wo, s->wm) / glm::length(s->wi + wo), 1.0f, 1e-5f);
+  EXPECT_TRUE(upperHemisphere(glm::vec3(0.1f, 0.2f, -0.3f)) == glm::vec3(0.1f, 0.2f, 0.3f));
+}
+
 }  // namespace
 }  // namespace camsim
