@@ -17,6 +17,7 @@
 
 #include "cli/bench_metrics.h"
 #include "integrator/image_texture.h"
+#include "integrator/ray_recorder.h"
 #include "integrator/scene.h"
 #include "integrator/scene_loader.h"
 #include "sensor/input_error.h"

@@ -24,7 +24,7 @@ namespace camsim {
 
 class EmbreeScene {
  public:
-  // motionSpan: the time interval moving shapes' steps cover (ignored if nothing moves).
+  // [motionStart, motionEnd] (s): the interval moving shapes' steps cover (ignored if nothing moves).
   EmbreeScene(const std::vector<std::unique_ptr<Shape>>& shapes, double motionStart, double motionEnd);
   ~EmbreeScene();
   EmbreeScene(const EmbreeScene&) = delete;

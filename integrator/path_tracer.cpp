@@ -1,6 +1,7 @@
 #include "integrator/path_tracer.h"
 
 #include "integrator/math.h"
+#include "integrator/ray_recorder.h"
 #include "integrator/sobol_sampler.h"
 
 namespace camsim {
@@ -138,11 +139,6 @@ SampledSpectrum trace(const Scene& scene, Ray ray, SampledWavelengths& lambda, S
 }
 
 }  // namespace
-
-SampledSpectrum traceRadiance(const Scene& scene, Ray ray, SampledWavelengths& lambda, Sampler& sampler,
-                              RayCounts& counts, RayRecorder* recorder) {
-  return trace(scene, ray, lambda, sampler, counts, recorder);
-}
 
 SampledSpectrum traceRadiance(const Scene& scene, Ray ray, SampledWavelengths& lambda, SobolSampler& sampler,
                               RayCounts& counts, RayRecorder* recorder) {

@@ -11,13 +11,13 @@
 #include <cstdint>
 
 #include "integrator/ray.h"
-#include "integrator/ray_recorder.h"
 #include "integrator/sampler.h"
 #include "integrator/scene.h"
 #include "sensor/sampled_spectrum.h"
 
 namespace camsim {
 
+class RayRecorder;  // integrator/ray_recorder.h
 class SobolSampler;
 
 struct RayCounts {
@@ -37,10 +37,8 @@ struct RayCounts {
 // Radiance (W·m⁻²·sr⁻¹·nm⁻¹) along `ray` at the wavelengths `lambda`. A dispersive
 // material on the path terminates the secondary wavelengths (lambda is updated: the film
 // must use it). A recorder, if given, gets every bounce and shadow ray cast.
-SampledSpectrum traceRadiance(const Scene& scene, Ray ray, SampledWavelengths& lambda,
-                              Sampler& sampler, RayCounts& counts, RayRecorder* recorder = nullptr);
-// The same path loop compiled for the concrete samplers (what the render loop calls): their
-// numbers are drawn through inlined, not virtual, calls.
+// Compiled per concrete sampler (what the render loop uses): its numbers are drawn through
+// inlined, not virtual, calls.
 SampledSpectrum traceRadiance(const Scene& scene, Ray ray, SampledWavelengths& lambda,
                               SobolSampler& sampler, RayCounts& counts, RayRecorder* recorder = nullptr);
 SampledSpectrum traceRadiance(const Scene& scene, Ray ray, SampledWavelengths& lambda,

@@ -11,6 +11,7 @@
 #include <tbb/task_arena.h>
 
 #include "integrator/film.h"
+#include "integrator/ray_recorder.h"
 #include "integrator/sobol_sampler.h"
 
 namespace camsim {

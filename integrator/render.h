@@ -15,7 +15,6 @@
 #include <vector>
 
 #include "integrator/path_tracer.h"
-#include "integrator/ray_recorder.h"
 #include "integrator/scene.h"
 #include "sensor/image.h"
 #include "sensor/spectral_response.h"

@@ -2,9 +2,10 @@
 // dimension slot ("padded" Sobol', Burley 2020, "Practical Hash-based Owen Scrambling").
 //
 // For dimension d of pixel p and sample index i:
-//   seed  = hash(render seed, p, d)
-//   i'    = owen(i, seed)                      (shuffles which sample gets which point)
-//   (x,y) = (owen(sobol₀(i'), h(seed,1)), owen(sobol₁(i'), h(seed,2)))
+//   key     = mix64(hash(render seed, p) ⊕ d·K),   s0, s1 = its low and high 32 bits,
+//   s2      = high 32 bits of mix64(key)
+//   i'      = owen(i, s0)                      (shuffles which sample gets which point)
+//   (x, y)  = (owen(sobol₀(i'), s1), owen(sobol₁(i'), s2))
 // sobol₀ is the van der Corput sequence (bit reversal) and sobol₁ the second Sobol'
 // dimension (direction numbers vₖ = vₖ₋₁ ⊕ (vₖ₋₁ ≫ 1), v₀ = 2³¹); together the first 2^m
 // points of every pair form a (0, m, 2)-net: every 2D projection of the measurement
@@ -27,10 +28,6 @@
 
 namespace camsim {
 
-std::uint32_t sobolDimension0(std::uint32_t index);
-std::uint32_t sobolDimension1(std::uint32_t index);
-std::uint32_t owenScramble(std::uint32_t value, std::uint32_t seed);
-
 namespace sobol {
 
 // Bit reversal: three swap steps, then a byte swap (one instruction) for the rest.
@@ -52,7 +49,7 @@ inline std::uint32_t laineKarras(std::uint32_t x, std::uint32_t seed) {
   return x;
 }
 
-// reverseBits(sobolDimension1(i)) without a loop over i's bits. Bit r of the reversed
+// reverseBits(sobol₁(i)) without a loop over i's bits. Bit r of the reversed
 // value is the XOR of the index bits k with r ⊆ k (direction number k is row k of Pascal's
 // triangle mod 2, and C(k, r) is odd iff r ⊆ k, Lucas): a superset-sum transform over
 // GF(2), five shift-mask-xor steps.
