@@ -202,6 +202,8 @@ MeshBuildResult measureMeshBuild(std::uint64_t triangles, int threads, const std
     arena.execute([&] { scene = std::make_unique<Scene>(desc); });
     m.sceneSeconds = secondsSince(start);
     m.rssBytesPerTriangle = (residentBytes() - before) / static_cast<double>(m.triangles);
+    m.sceneEmbreeBytes = scene->geometry().embreeBytes();
+    m.sceneEmbreePeakBytes = scene->geometry().embreePeakBytes();
   }
   m.embreeMedium = probeMeshBuild(desc.shapes.front().mesh, threads, BvhQuality::kMedium);
   m.embreeHigh = probeMeshBuild(desc.shapes.front().mesh, threads, BvhQuality::kHigh);

@@ -83,8 +83,10 @@ struct MeshBuildResult {
   double loadSeconds = 0.0;         // scene loader incl. PLY parsing
   double sceneSeconds = 0.0;        // Scene: TriangleMesh + EmbreeScene (BVH build)
   double rssBytesPerTriangle = 0.0;  // RSS growth over Scene construction / triangles
-  // Bare Embree with its memory monitor (bytes allocated, which includes reserved blocks
-  // not yet touched), at RTC_BUILD_QUALITY_MEDIUM and _HIGH.
+  // The Scene's own Embree device (memory monitor: BVH and build temporaries; bytes
+  // allocated, which includes reserved blocks not yet touched): in use after the build, peak.
+  std::int64_t sceneEmbreeBytes = 0, sceneEmbreePeakBytes = 0;
+  // The same mesh as a bare Embree scene at RTC_BUILD_QUALITY_MEDIUM and _HIGH.
   MeshBuildProbe embreeMedium, embreeHigh;
 };
 MeshBuildResult measureMeshBuild(std::uint64_t triangles, int threads, const std::filesystem::path& tempDir);

@@ -119,18 +119,21 @@ std::string formatMeshBuild(const MeshBuildResult& m) {
       << formatNumber(m.plyMegabytes, 3) << " MB):\n";
   std::snprintf(line, sizeof line, "  load (scene loader + PLY parse)   %8.3f s\n", m.loadSeconds);
   out << line;
+  const auto perTriangle = [&](std::int64_t bytes) {
+    return m.triangles ? static_cast<double>(bytes) / static_cast<double>(m.triangles) : 0.0;
+  };
   std::snprintf(line, sizeof line,
                 "  Scene build (mesh + Embree BVH)   %8.3f s   resident set grew %.1f bytes/triangle "
-                "(camsim's mesh copy + Embree's touched pages)\n",
-                m.sceneSeconds, m.rssBytesPerTriangle);
+                "(camsim's mesh copy + Embree's touched pages); Embree holds %.1f, peak %.1f\n",
+                m.sceneSeconds, m.rssBytesPerTriangle, perTriangle(m.sceneEmbreeBytes),
+                perTriangle(m.sceneEmbreePeakBytes));
   out << line;
   for (const auto& [name, probe] : {std::pair<const char*, const MeshBuildProbe*>{"medium", &m.embreeMedium},
                                      std::pair<const char*, const MeshBuildProbe*>{"high", &m.embreeHigh}}) {
     std::snprintf(line, sizeof line,
-                  "  bare Embree, %-6s quality      %8.3f s   Embree allocated %.1f bytes/triangle (memory monitor: "
-                  "buffers + BVH, incl. reserved blocks), peak %.1f\n",
-                  name, probe->buildSeconds, probe->bytesPerTriangle(),
-                  m.triangles ? static_cast<double>(probe->bytesPeak) / static_cast<double>(m.triangles) : 0.0);
+                  "  bare Embree, %-6s quality      %8.3f s   Embree holds %.1f bytes/triangle (memory monitor: "
+                  "BVH incl. reserved blocks; arrays shared), peak %.1f\n",
+                  name, probe->buildSeconds, probe->bytesPerTriangle(), perTriangle(probe->bytesPeak));
     out << line;
   }
   return out.str();

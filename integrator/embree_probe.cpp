@@ -2,32 +2,17 @@
 
 #include <embree3/rtcore.h>
 
-#include <atomic>
 #include <chrono>
 #include <stdexcept>
+#include <vector>
 
 #include <tbb/info.h>
 #include <tbb/task_arena.h>
 
+#include "integrator/embree_memory.h"
+
 namespace camsim {
 namespace {
-
-struct MemoryCount {
-  std::atomic<std::int64_t> inUse{0};
-  std::atomic<std::int64_t> peak{0};
-};
-
-// Called by Embree before (post = false) and after every allocation and free; bytes < 0
-// for frees. Returning true lets the allocation proceed.
-bool countMemory(void* user, ssize_t bytes, bool post) {
-  auto* count = static_cast<MemoryCount*>(user);
-  if (post) return true;
-  const std::int64_t now = count->inUse.fetch_add(bytes) + bytes;
-  std::int64_t seen = count->peak.load();
-  while (now > seen && !count->peak.compare_exchange_weak(seen, now)) {
-  }
-  return true;
-}
 
 struct DeviceGuard {
   RTCDevice device = nullptr;
@@ -43,24 +28,26 @@ struct DeviceGuard {
 MeshBuildProbe probeMeshBuild(const MeshData& mesh, int threads, BvhQuality quality) {
   MeshBuildProbe probe;
   probe.triangles = mesh.indices.size() / 3;
-  MemoryCount count;
+  EmbreeMemoryCount count;
   DeviceGuard g;
   g.device = rtcNewDevice(nullptr);
   if (!g.device) throw std::runtime_error("cannot create Embree device");
-  rtcSetDeviceMemoryMonitorFunction(g.device, countMemory, &count);
+  rtcSetDeviceMemoryMonitorFunction(g.device, countEmbreeMemory, &count);
   g.scene = rtcNewScene(g.device);
   rtcSetSceneBuildQuality(g.scene, quality == BvhQuality::kHigh ? RTC_BUILD_QUALITY_HIGH : RTC_BUILD_QUALITY_MEDIUM);
+  // Shared buffers as in EmbreeScene, padded the same way (Embree may read 16 bytes from the
+  // last vertex and index triple); the copies are ours, so Embree counts only its own memory.
+  std::vector<glm::vec3> positions;
+  positions.reserve(mesh.positions.size() + 1);
+  positions.assign(mesh.positions.begin(), mesh.positions.end());
+  std::vector<std::uint32_t> indices;
+  indices.reserve(mesh.indices.size() + 3);
+  indices.assign(mesh.indices.begin(), mesh.indices.end());
   RTCGeometry geom = rtcNewGeometry(g.device, RTC_GEOMETRY_TYPE_TRIANGLE);
-  auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
-                                                        sizeof(float) * 3, mesh.positions.size()));
-  for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
-    v[3 * i] = mesh.positions[i].x;
-    v[3 * i + 1] = mesh.positions[i].y;
-    v[3 * i + 2] = mesh.positions[i].z;
-  }
-  auto* idx = static_cast<unsigned*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
-                                                             sizeof(unsigned) * 3, probe.triangles));
-  for (std::size_t i = 0; i < mesh.indices.size(); ++i) idx[i] = mesh.indices[i];
+  rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, positions.data(), 0,
+                             sizeof(glm::vec3), positions.size());
+  rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, indices.data(), 0,
+                             3 * sizeof(std::uint32_t), probe.triangles);
   rtcCommitGeometry(geom);
   rtcAttachGeometry(g.scene, geom);
   rtcReleaseGeometry(geom);
@@ -69,7 +56,7 @@ MeshBuildProbe probeMeshBuild(const MeshData& mesh, int threads, BvhQuality qual
   arena.execute([&] { rtcCommitScene(g.scene); });
   probe.buildSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (rtcGetDeviceError(g.device) != RTC_ERROR_NONE) throw std::runtime_error("Embree error while building the BVH");
-  probe.bytesAfterBuild = count.inUse.load();
+  probe.bytesAfterBuild = count.bytes.load();
   probe.bytesPeak = count.peak.load();
   return probe;
 }

@@ -2,11 +2,12 @@
 // embree_scene.cpp are the only modules that include it).
 //
 // probeMeshBuild() builds a standalone Embree scene of one static triangle mesh the way
-// EmbreeScene does (Embree-owned vertex and index buffers, default scene flags) at the given
-// build quality, on a device with a memory monitor (rtcSetDeviceMemoryMonitorFunction), so
-// every byte Embree allocates — buffers, BVH nodes, primitive blocks and build temporaries —
-// is counted. Reported: the build time (rtcCommitScene only), bytes in use after the build
-// and the peak during it.
+// EmbreeScene does (vertex and index arrays shared with Embree, not copied into it; default
+// scene flags) at a chosen build quality (EmbreeScene picks high up to 250 k triangles, medium
+// above), on a device with a memory monitor (integrator/embree_memory.h), so every byte
+// Embree allocates — BVH nodes, primitive blocks and build temporaries — is counted.
+// Reported: the build time (rtcCommitScene only), bytes in use after the build and the peak
+// during it.
 #pragma once
 
 #include <cstdint>

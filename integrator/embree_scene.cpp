@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "integrator/embree_memory.h"
 #include "integrator/sphere.h"
 #include "integrator/triangle_mesh.h"
 #include "sensor/check.h"
@@ -27,28 +28,23 @@ void throwOnEmbreeError(RTCDevice device, const std::string& what) {
     throw std::runtime_error("Embree error " + std::to_string(static_cast<int>(code)) + " while " + what);
 }
 
-struct MemoryCount {
-  std::atomic<std::int64_t> bytes{0}, peak{0};
-};
-
-// Embree calls this before each allocation and after each free (bytes < 0).
-bool countEmbreeMemory(void* userPtr, ssize_t bytes, bool /*post*/) {
-  auto* count = static_cast<MemoryCount*>(userPtr);
-  const std::int64_t now = count->bytes.fetch_add(bytes, std::memory_order_relaxed) + bytes;
-  std::int64_t peak = count->peak.load(std::memory_order_relaxed);
-  while (now > peak && !count->peak.compare_exchange_weak(peak, now, std::memory_order_relaxed)) {
-  }
-  return true;
-}
-
 static_assert(sizeof(glm::vec3) == 3 * sizeof(float), "Embree reads the vertices as packed float3");
 
 }  // namespace
 
+bool countEmbreeMemory(void* count, ssize_t bytes, bool /*post*/) {
+  auto* c = static_cast<EmbreeMemoryCount*>(count);
+  const std::int64_t now = c->bytes.fetch_add(bytes, std::memory_order_relaxed) + bytes;
+  std::int64_t peak = c->peak.load(std::memory_order_relaxed);
+  while (now > peak && !c->peak.compare_exchange_weak(peak, now, std::memory_order_relaxed)) {
+  }
+  return true;
+}
+
 struct EmbreeScene::Impl {
   RTCDevice device = nullptr;
   RTCScene scene = nullptr;
-  MemoryCount memory;
+  EmbreeMemoryCount memory;
 
   ~Impl() {
     if (scene) rtcReleaseScene(scene);
