@@ -107,13 +107,6 @@ TextureImage fromExr(const std::filesystem::path& file, TextureEncoding encoding
   return image;
 }
 
-float sigmoidPolynomial(const std::array<float, 3>& c, float lambdaNm) {
-  const float t = (lambdaNm - static_cast<float>(kLambdaMinNm)) /
-                  static_cast<float>(kLambdaMaxNm - kLambdaMinNm);
-  const float x = (c[0] * t + c[1]) * t + c[2];
-  return 0.5f + x / (2.0f * std::sqrt(1.0f + x * x));
-}
-
 // Largest value of S(c₀t² + c₁t + c₂) over t ∈ [0, 1]: S is increasing, so the largest
 // value of the quadratic (at an end or at its vertex).
 double maxOverWavelength(const SigmoidPolynomial& p) {
@@ -194,7 +187,7 @@ ImageSpectrumTexture::ImageSpectrumTexture(const TextureImage& image, glm::vec2 
   CAMSIM_CHECK(width_ > 0 && height_ > 0 && (image.channels == 1 || image.channels == 3));
   const size_t texels = static_cast<size_t>(width_) * static_cast<size_t>(height_);
   CAMSIM_CHECK(image.values.size() == texels * static_cast<size_t>(image.channels));
-  coefficients_.assign(texels, {0.0f, 0.0f, 0.0f});
+  coefficients_.assign(texels, SigmoidCoefficients{});
   // Each distinct colour is fitted once: texels sorted by their clamped RGB (bit patterns of
   // non-negative floats order like the values), the distinct colours fitted in parallel.
   const size_t n = static_cast<size_t>(image.channels);
@@ -221,8 +214,7 @@ ImageSpectrumTexture::ImageSpectrumTexture(const TextureImage& image, glm::vec2 
                               std::bit_cast<float>(bits[2])));
     maxima[d] = maxOverWavelength(p);
     for (size_t k = firsts[d]; k < firsts[d + 1]; ++k)
-      coefficients_[keys[k].texel] = {static_cast<float>(p.c0), static_cast<float>(p.c1),
-                                      static_cast<float>(p.c2)};
+      coefficients_[keys[k].texel] = SigmoidCoefficients::from(p);
   });
   maxValue_ = *std::max_element(maxima.begin(), maxima.end());
 }
@@ -233,18 +225,15 @@ SampledSpectrum ImageSpectrumTexture::evaluate(glm::vec2 uv,
   SampledSpectrum out;
   for (int k = 0; k < 4; ++k) {
     if (f.weight[static_cast<size_t>(k)] == 0.0f) continue;
-    const std::array<float, 3>& c = coefficients_[f.texel[static_cast<size_t>(k)]];
-    for (int i = 0; i < kWavelengthSamples; ++i)
-      out[i] += f.weight[static_cast<size_t>(k)] * sigmoidPolynomial(c, lambda[i]);
+    const SigmoidCoefficients& c = coefficients_[f.texel[static_cast<size_t>(k)]];
+    for (int i = 0; i < kWavelengthSamples; ++i) out[i] += f.weight[static_cast<size_t>(k)] * c(lambda[i]);
   }
   return out;
 }
 
 float ImageSpectrumTexture::texelValue(int x, int y, float lambdaNm) const {
   CAMSIM_CHECK(x >= 0 && x < width_ && y >= 0 && y < height_);
-  return sigmoidPolynomial(
-      coefficients_[static_cast<size_t>(y) * static_cast<size_t>(width_) + static_cast<size_t>(x)],
-      lambdaNm);
+  return coefficients_[static_cast<size_t>(y) * static_cast<size_t>(width_) + static_cast<size_t>(x)](lambdaNm);
 }
 
 ImageFloatTexture::ImageFloatTexture(const TextureImage& image, glm::vec2 uvScale,

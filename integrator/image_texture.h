@@ -39,6 +39,7 @@
 #include <glm/vec2.hpp>
 
 #include "integrator/texture.h"
+#include "sensor/rgb_uplift.h"
 
 namespace camsim {
 
@@ -78,7 +79,7 @@ class ImageSpectrumTexture final : public SpectrumTexture {
  private:
   int width_, height_;
   glm::vec2 scale_, offset_;
-  std::vector<std::array<float, 3>> coefficients_;  // c₀, c₁, c₂ per texel
+  std::vector<SigmoidCoefficients> coefficients_;  // per texel
   double maxValue_ = 0.0;
 };
 

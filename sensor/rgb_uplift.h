@@ -10,6 +10,8 @@
 // converge. Fits are done once, when a scene is loaded.
 #pragma once
 
+#include <cmath>
+
 #include <glm/vec3.hpp>
 
 #include "sensor/color_space.h"
@@ -21,6 +23,24 @@ struct SigmoidPolynomial {
   double c0 = 0.0, c1 = 0.0, c2 = 0.0;
   double operator()(double lambdaNm) const;
   Spectrum toSpectrum() const;
+};
+
+// The same in single precision, for per-texel storage and evaluation while rendering.
+struct SigmoidCoefficients {
+  float c0 = 0.0f, c1 = 0.0f, c2 = 0.0f;
+
+  static SigmoidCoefficients from(const SigmoidPolynomial& p) {
+    return {static_cast<float>(p.c0), static_cast<float>(p.c1), static_cast<float>(p.c2)};
+  }
+  // s at t = (λ − 360 nm)/470 nm.
+  float at(float t) const {
+    const float x = (c0 * t + c1) * t + c2;
+    return 0.5f + x / (2.0f * std::sqrt(1.0f + x * x));
+  }
+  float operator()(float lambdaNm) const {
+    return at((lambdaNm - static_cast<float>(kLambdaMinNm)) /
+              static_cast<float>(kLambdaMaxNm - kLambdaMinNm));
+  }
 };
 
 // Best sigmoid polynomial for an RGB reflectance with components in [0, 1].
