@@ -40,12 +40,8 @@ LoadedBenchScene loadBenchScene(const std::string& name, int longSide) {
   LoadedBenchScene s;
   const std::filesystem::path path = benchScenePath(name);
   s.name = path.stem().string();
-  std::ifstream in(path, std::ios::binary);
-  if (!in || std::filesystem::is_directory(path)) throw InputError({path.string(), 0, 0}, "", "cannot open scene file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  s.text = text.str();
-  s.baseDir = path.parent_path().empty() ? std::filesystem::path(".") : path.parent_path();
+  s.text = readSceneFile(path);
+  s.baseDir = sceneBaseDir(path);
   s.description = loadSceneFromText(s.text, path.string(), s.baseDir);
   glm::ivec2& res = s.description.camera.resolution;
   s.original = res;
@@ -88,12 +84,6 @@ std::vector<BenchRow> sweep(const LoadedBenchScene& s, const Scene& scene, const
       rows.push_back(row);
     }
   return rows;
-}
-
-void writeFile(const std::filesystem::path& path, const std::string& text) {
-  std::ofstream f(path, std::ios::binary);
-  f << text;
-  if (!f.flush()) throw InputError({path.string(), 0, 0}, "", "cannot write");
 }
 
 }  // namespace
@@ -207,10 +197,9 @@ int runBench(const BenchArgs& args, std::ostream& out, std::ostream& log) {
   out.flush();
 
   OutputSet outputs(outDir);
-  const std::filesystem::path csv = outputs.add("bench.csv");
-  writeFile(csv, formatBenchCsv(rows));
-  writeFile(outputs.add("bench_limit.csv"), formatLimitCsv(limits));
-  writeFile(outputs.add("bench.txt"), report.str());
+  const std::filesystem::path csv = outputs.addText("bench.csv", formatBenchCsv(rows));
+  outputs.addText("bench_limit.csv", formatLimitCsv(limits));
+  outputs.addText("bench.txt", report.str());
   const std::optional<std::string> python = pythonWithMatplotlib();
   if (rows.empty()) {
     log << "bench: no rows: plot skipped\n";

@@ -6,7 +6,6 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <fstream>
 #include <ostream>
 #include <sstream>
 
@@ -194,12 +193,7 @@ std::vector<std::filesystem::path> runPtc(const PtcArgs& args, std::ostream& out
 
   const std::string stem = "ptc_" + fileStem(sensor.name);
   OutputSet outputs(outDir);
-  const std::filesystem::path csv = outputs.add(stem + ".csv");
-  {
-    std::ofstream f(csv, std::ios::binary);
-    f << formatPtcCsv(m);
-    if (!f.flush()) throw InputError({csv.string(), 0, 0}, "", "cannot write");
-  }
+  const std::filesystem::path csv = outputs.addText(stem + ".csv", formatPtcCsv(m));
   if (const std::optional<std::string> python = pythonWithMatplotlib(); !python) {
     log << "camsim ptc: python3 with matplotlib not found ($CAMSIM_PYTHON or /usr/bin/python3; Debian: apt-get install "
         << "python3-matplotlib): plots skipped, CSV only\n";

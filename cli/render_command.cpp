@@ -1,9 +1,7 @@
 #include "cli/render_command.h"
 
 #include <cstdio>
-#include <fstream>
 #include <ostream>
-#include <sstream>
 
 #include "cli/progress.h"
 #include "cli/resource_guard.h"
@@ -32,13 +30,8 @@ LoadedScene load(const RenderArgs& args) {
     loaded.description = loadSceneFromText(loaded.text, "<default: scenes/cornell_box.yaml>", ".");
   } else {
     const std::filesystem::path path(*args.scene);
-    std::ifstream in(path, std::ios::binary);
-    if (!in || std::filesystem::is_directory(path)) throw InputError({path.string(), 0, 0}, "", "cannot open scene file");
-    std::ostringstream text;
-    text << in.rdbuf();
-    loaded.text = text.str();
-    loaded.description = loadSceneFromText(loaded.text, path.string(),
-                                           path.parent_path().empty() ? "." : path.parent_path());
+    loaded.text = readSceneFile(path);
+    loaded.description = loadSceneFromText(loaded.text, path.string(), sceneBaseDir(path));
   }
   SceneDescription& d = loaded.description;
   if (args.spp) d.render.spp = *args.spp;

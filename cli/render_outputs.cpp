@@ -1,6 +1,5 @@
 #include "cli/render_outputs.h"
 
-#include <fstream>
 #include <ostream>
 
 #include "cli/json_writer.h"
@@ -133,9 +132,7 @@ void writeRenderOutputs(const RenderOutputInputs& in, OutputSet& outputs, std::o
     sidecar.set("display_exposure", exposure);
     sidecar.set("color", writePicture(acescg, desc.name, in.picture, false, in.metadata, outputs));
   }
-  std::ofstream json(outputs.add(desc.name + ".json"));
-  json << sidecar.str() << "\n";
-  if (!json) throw std::runtime_error("cannot write " + desc.name + ".json");
+  outputs.addText(desc.name + ".json", sidecar.str() + "\n");
 }
 
 }  // namespace camsim

@@ -251,12 +251,20 @@ SceneDescription loadSceneFromText(const std::string& text, const std::string& d
   return scene;
 }
 
-SceneDescription loadScene(const std::filesystem::path& file, const LoadOptions& options) {
+std::string readSceneFile(const std::filesystem::path& file) {
   std::ifstream in(file, std::ios::binary);
   if (!in || std::filesystem::is_directory(file)) throw InputError({file.string(), 0, 0}, "", "cannot open scene file");
   std::ostringstream text;
   text << in.rdbuf();
-  return loadSceneFromText(text.str(), file.string(), file.parent_path().empty() ? "." : file.parent_path(), options);
+  return text.str();
+}
+
+std::filesystem::path sceneBaseDir(const std::filesystem::path& file) {
+  return file.parent_path().empty() ? std::filesystem::path(".") : file.parent_path();
+}
+
+SceneDescription loadScene(const std::filesystem::path& file, const LoadOptions& options) {
+  return loadSceneFromText(readSceneFile(file), file.string(), sceneBaseDir(file), options);
 }
 
 }  // namespace camsim

@@ -28,6 +28,10 @@ struct SceneLimits {
 };
 
 SceneDescription loadScene(const std::filesystem::path& file, const LoadOptions& options = {});
+// The text of a scene file (InputError naming the file if it cannot be read) and the
+// directory its relative paths resolve against ("." for a bare file name).
+std::string readSceneFile(const std::filesystem::path& file);
+std::filesystem::path sceneBaseDir(const std::filesystem::path& file);
 // `displayName` names the text in messages; relative paths resolve against baseDir.
 SceneDescription loadSceneFromText(const std::string& text, const std::string& displayName,
                                    const std::filesystem::path& baseDir, const LoadOptions& options = {});

@@ -5,6 +5,8 @@
 
 #include <cerrno>
 #include <charconv>
+#include <fstream>
+#include <stdexcept>
 #include <string_view>
 #include <system_error>
 
@@ -30,6 +32,14 @@ OutputSet::~OutputSet() {
 std::filesystem::path OutputSet::add(const std::string& fileName) {
   const auto temp = directory_ / temporaryName(fileName, static_cast<long>(::getpid()));
   files_.emplace_back(temp, directory_ / fileName);
+  return temp;
+}
+
+std::filesystem::path OutputSet::addText(const std::string& fileName, const std::string& text) {
+  const std::filesystem::path temp = add(fileName);
+  std::ofstream f(temp, std::ios::binary);
+  f << text;
+  if (!f.flush()) throw std::runtime_error("cannot write " + (directory_ / fileName).string());
   return temp;
 }
 

@@ -26,6 +26,8 @@ class OutputSet {
 
   // The temporary path to write `fileName` to; it becomes directory/fileName on commit.
   std::filesystem::path add(const std::string& fileName);
+  // add() and write `text` to it; std::runtime_error "cannot write <final path>" on failure.
+  std::filesystem::path addText(const std::string& fileName, const std::string& text);
   // Renames every temporary to its final name. Returns the final paths.
   std::vector<std::filesystem::path> commit();
 

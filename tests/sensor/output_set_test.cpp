@@ -105,6 +105,25 @@ TEST_F(OutputSetTest, CommitRenamesToTheFinalNames) {
   EXPECT_EQ(entries(), 2u);
 }
 
+TEST_F(OutputSetTest, AddTextWritesTheTemporaryAndFailsNamingTheFinalFile) {
+  {
+    OutputSet set(dir_);
+    const std::filesystem::path temp = set.addText("table.csv", "a,b\n1,2\n");
+    EXPECT_EQ(read(temp), "a,b\n1,2\n");
+    set.commit();
+  }
+  EXPECT_EQ(read(dir_ / "table.csv"), "a,b\n1,2\n");
+  OutputSet missing(dir_ / "no" / "such" / "dir");
+  try {
+    missing.addText("table.csv", "x");
+    FAIL() << "no error for a missing directory";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("cannot write " + (dir_ / "no" / "such" / "dir" / "table.csv").string()),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 TEST_F(OutputSetTest, CommitReplacesAnExistingFile) {
   write(dir_ / "a.exr", "old");
   {
