@@ -81,7 +81,7 @@ LimitResult measureLimit(const Scene& scene, const std::string& name, int spp, i
   {
     RayRecorder recorder;
     r.capture = renderWith(scene, spp, threads, &recorder).stats;
-    rays = recorder.rays();
+    rays = recorder.takeRays();
     r.dropped = recorder.dropped();
   }
   r.recorded = rays.size();
@@ -99,7 +99,7 @@ ScalingResult measureThreadScaling(const Scene& scene, int spp, int threads) {
   s.threads = threads > 0 ? threads : tbb::info::default_concurrency();
   RayRecorder recorder;
   renderWith(scene, std::max(1, spp / 4), s.threads, &recorder);
-  const std::vector<RecordedRay> rays = recorder.rays();
+  const std::vector<RecordedRay> rays = recorder.takeRays();
   s.one = fastestOf(kRepeats, scene, spp, 1, false, &s.cpuOne);
   s.many = fastestOf(kRepeats, scene, spp, s.threads, false, &s.cpuMany);
   s.rawOne = replayRays(scene.geometry(), rays, 1);

@@ -45,9 +45,7 @@ struct LimitResult {
   RenderStats tracer;                // the same render without the recorder (timed)
   ReplayResult mix;                  // all recorded rays, recorded order
   std::array<ReplayResult, kRayKindCount> byKind;  // RayKind order
-  double tracerRaysPerSecond() const {
-    return tracer.seconds > 0.0 ? static_cast<double>(tracer.rays.total()) / tracer.seconds : 0.0;
-  }
+  double tracerRaysPerSecond() const { return tracer.raysPerSecond(); }
   double ratio() const {
     const double raw = mix.raysPerSecond();
     return raw > 0.0 ? tracerRaysPerSecond() / raw : 0.0;

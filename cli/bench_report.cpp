@@ -12,10 +12,6 @@ double share(std::uint64_t part, std::uint64_t whole) {
   return whole ? 100.0 * static_cast<double>(part) / static_cast<double>(whole) : 0.0;
 }
 
-double raysPerSecond(const RenderStats& s) {
-  return s.seconds > 0.0 ? static_cast<double>(s.rays.total()) / s.seconds : 0.0;
-}
-
 std::uint64_t countOf(const RayCounts& c, int kind) {
   return kind == 0 ? c.camera : kind == 1 ? c.bounce : c.shadow;
 }
@@ -98,15 +94,15 @@ std::string formatMotionOverhead(const std::string& scene, const MotionOverhead&
   std::snprintf(line, sizeof line, "  %-40s %9s %11s %12s %13s\n", "variant", "seconds", "rays/s", "time ratio",
                 "per-ray ratio");
   out << line;
-  const double base = m.still.seconds, baseRate = raysPerSecond(m.still);
+  const double base = m.still.seconds, baseRate = m.still.raysPerSecond();
   const std::pair<const char*, const RenderStats*> rows[] = {
       {"static (every motion at its first key)", &m.still},
       {"static, time sampled anyway", &m.stillTimeSampled},
       {"moving (as in the scene)", &m.moving}};
   for (const auto& [name, st] : rows) {
     std::snprintf(line, sizeof line, "  %-40s %9.3f %11s %12.3f %13.3f\n", name, st->seconds,
-                  formatBenchRate(raysPerSecond(*st)).c_str(), base > 0.0 ? st->seconds / base : 0.0,
-                  raysPerSecond(*st) > 0.0 ? baseRate / raysPerSecond(*st) : 0.0);
+                  formatBenchRate(st->raysPerSecond()).c_str(), base > 0.0 ? st->seconds / base : 0.0,
+                  st->raysPerSecond() > 0.0 ? baseRate / st->raysPerSecond() : 0.0);
     out << line;
   }
   return out.str();

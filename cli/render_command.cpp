@@ -197,11 +197,10 @@ RenderCommandResult runRender(const RenderArgs& args, std::ostream& log, const s
   if (std::filesystem::remove(stalePartial, ec))
     log << "removed " << stalePartial.string() << " of an interrupted run\n";
 
-  const double samples = static_cast<double>(st.samples);
   log << "modelled: " << st.modelled.describe() << "\n";
   log << "rendered " << desc.name << ": " << result.image.width << "x" << result.image.height << ", "
       << desc.render.spp << " spp, " << st.threads << " threads, " << formatSeconds(st.seconds) << " ("
-      << formatRate(samples / st.seconds) << "samples/s, " << formatRate(double(st.rays.total()) / st.seconds)
+      << formatRate(st.samplesPerSecond()) << "samples/s, " << formatRate(st.raysPerSecond())
       << "rays/s), rejected samples (NaN/Inf): " << st.rejectedSamples << "\n";
   if (st.rejectedSamples > 0) log << "warning: " << st.rejectedSamples << " samples had NaN/Inf radiance and were dropped\n";
   for (const auto& f : outcome.files) log << "wrote " << f.string() << "\n";

@@ -59,12 +59,15 @@ const char* rayKindName(RayKind kind) {
 
 RayRecorder::RayRecorder(std::size_t maxRays) : maxRays_(maxRays) {}
 
-std::vector<RecordedRay> RayRecorder::rays() const {
+std::vector<RecordedRay> RayRecorder::takeRays() {
   std::size_t total = 0;
   for (const auto& buffer : buffers_) total += buffer.size();
   std::vector<RecordedRay> all;
   all.reserve(total);
-  for (const auto& buffer : buffers_) all.insert(all.end(), buffer.begin(), buffer.end());
+  for (auto& buffer : buffers_) {
+    all.insert(all.end(), buffer.begin(), buffer.end());
+    std::vector<RecordedRay>().swap(buffer);
+  }
   return all;
 }
 

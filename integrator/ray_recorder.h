@@ -52,8 +52,10 @@ class RayRecorder {
     buffers_.local().push_back(RecordedRay{ray, kind});
   }
 
-  // Every stored ray: each thread's rays in the order that thread cast them.
-  std::vector<RecordedRay> rays() const;
+  // Every stored ray, moved out (the recorder is empty afterwards; each thread's buffer is
+  // freed as it is appended, so the peak is not twice the rays): each thread's rays in the
+  // order that thread cast them.
+  std::vector<RecordedRay> takeRays();
   std::uint64_t dropped() const { return dropped_.load(); }
 
  private:

@@ -46,6 +46,9 @@ struct RenderStats {
   int threads = 0;
   bool cancelled = false;
   ModelledDimensions modelled;  // what was integrated over
+
+  double samplesPerSecond() const { return seconds > 0.0 ? static_cast<double>(samples) / seconds : 0.0; }
+  double raysPerSecond() const { return seconds > 0.0 ? static_cast<double>(rays.total()) / seconds : 0.0; }
 };
 
 struct RenderResult {

@@ -45,7 +45,7 @@ TEST(RayRecorder, RecordsEveryCountedRayByKind) {
   const Scene scene(suiteScene("cornell_box", {24, 24}));
   RayRecorder recorder;
   const RenderResult r = renderRecorded(scene, 2, 2, &recorder);
-  const std::vector<RecordedRay> rays = recorder.rays();
+  const std::vector<RecordedRay> rays = recorder.takeRays();
   EXPECT_EQ(recorder.dropped(), 0u);
   ASSERT_EQ(rays.size(), r.stats.rays.total());
   EXPECT_EQ(raysOfKind(rays, RayKind::kCamera).size(), r.stats.rays.camera);
@@ -62,15 +62,17 @@ TEST(RayRecorder, StopsAtItsLimitAndCountsTheRest) {
   const Scene scene(suiteScene("cornell_box", {16, 16}));
   RayRecorder recorder(100);
   const RenderResult r = renderRecorded(scene, 1, 2, &recorder);
-  EXPECT_EQ(recorder.rays().size(), 100u);
-  EXPECT_EQ(recorder.rays().size() + recorder.dropped(), r.stats.rays.total());
+  const std::size_t kept = recorder.takeRays().size();
+  EXPECT_EQ(kept, 100u);
+  EXPECT_EQ(kept + recorder.dropped(), r.stats.rays.total());
+  EXPECT_TRUE(recorder.takeRays().empty());  // taken: nothing left
 }
 
 TEST(RayReplay, FindsTheSameHitsAsASerialLoop) {
   const Scene scene(suiteScene("cornell_box", {16, 16}));
   RayRecorder recorder;
   renderRecorded(scene, 2, 1, &recorder);
-  const std::vector<RecordedRay> rays = recorder.rays();
+  const std::vector<RecordedRay> rays = recorder.takeRays();
   std::uint64_t expected = 0;
   for (const RecordedRay& rr : rays) {
     Hit hit;
