@@ -11,20 +11,24 @@ namespace {
 double parsePositive(const std::string& flag, const std::string& text, double hi) {
   double v = 0.0;
   const auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
-  if (ec != std::errc() || ptr != text.data() + text.size() || !std::isfinite(v) || v <= 0.0 || v > hi)
-    throw UsageError(flag + " expects a positive number (at most " + std::to_string(hi) + "), got '" + text + "'");
+  if (ec != std::errc() || ptr != text.data() + text.size() || !std::isfinite(v) || v <= 0.0 ||
+      v > hi)
+    throw UsageError(flag + " expects a positive number (at most " + std::to_string(hi) +
+                     "), got '" + text + "'");
   return v;
 }
 
 }  // namespace
 
-std::int64_t parseInteger(const std::string& flag, const std::string& text, std::int64_t lo, std::int64_t hi) {
+std::int64_t parseInteger(const std::string& flag, const std::string& text, std::int64_t lo,
+                          std::int64_t hi) {
   std::int64_t value = 0;
   const auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
   if (ec != std::errc() || ptr != text.data() + text.size())
     throw UsageError(flag + " expects an integer, got '" + text + "'");
   if (value < lo || value > hi)
-    throw UsageError(flag + " must be in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], got " + text);
+    throw UsageError(flag + " must be in [" + std::to_string(lo) + ", " + std::to_string(hi) +
+                     "], got " + text);
   return value;
 }
 
@@ -52,13 +56,15 @@ std::string usageText() {
          "  -o, --output DIR   output directory (created if missing)\n"
          "  --spp N            samples per pixel (overrides the scene's render.spp)\n"
          "  --seed N           render seed (overrides render.seed)\n"
-         "  --threads N        worker threads (default: all cores); the image does not depend on it\n"
+         "  --threads N        worker threads (default: all cores); the image does not depend on "
+         "it\n"
          "  --exposure-time S  effective exposure time in seconds (stretches the scene's shutter)\n"
          "  --f-number N       lens f-number (overrides camera.f_number)\n"
          "  --iso N            sensor ISO (scenes with a sensor)\n"
          "  --noise MODE       sensor noise: none, photon or full (scenes with a sensor)\n"
          "  --noise-seed N     seed of the sensor's temporal noise\n"
-         "  --ocio-config FILE OpenColorIO config for the PNG (default: $OCIO, else luts/config.ocio)\n"
+         "  --ocio-config FILE OpenColorIO config for the PNG (default: $OCIO, else "
+         "luts/config.ocio)\n"
          "  --display D, --view V, --look L   output transform (default: the config's sRGB,\n"
          "                     'ACES 1.0 - SDR Video', no look; see docs/color-management.md)\n"
          "  --max-memory-gb X  refuse to start a render whose estimated memory exceeds X GB\n"

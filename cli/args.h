@@ -19,13 +19,14 @@ struct RenderArgs {
   std::string outputDir = "out";
   std::optional<int> spp;
   std::optional<std::uint64_t> seed;
-  int threads = 0;  // 0: all cores
+  int threads = 0;                    // 0: all cores
   std::optional<double> maxMemoryGb;  // none: 75 % of physical memory (resource_guard.h)
   // Exposure overrides (scene values otherwise).
-  std::optional<double> exposureTimeS;  // effective exposure time T_eff, s (the shutter is stretched)
+  std::optional<double>
+      exposureTimeS;  // effective exposure time T_eff, s (the shutter is stretched)
   std::optional<double> fNumber;
-  std::optional<double> iso;          // needs a sensor
-  std::optional<std::string> noise;   // none | photon | full; needs a sensor
+  std::optional<double> iso;         // needs a sensor
+  std::optional<std::string> noise;  // none | photon | full; needs a sensor
   std::optional<std::uint64_t> noiseSeed;
   // Output transform (OpenColorIO): empty = the config's defaults.
   std::string ocioConfig, display, view, look;
@@ -39,6 +40,7 @@ struct Command {
 Command parseArgs(const std::vector<std::string>& args);  // args without argv[0]
 std::string usageText();
 // An integer flag value in [lo, hi]; UsageError naming the flag otherwise.
-std::int64_t parseInteger(const std::string& flag, const std::string& text, std::int64_t lo, std::int64_t hi);
+std::int64_t parseInteger(const std::string& flag, const std::string& text, std::int64_t lo,
+                          std::int64_t hi);
 
 }  // namespace camsim

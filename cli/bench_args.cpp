@@ -11,25 +11,33 @@
 namespace camsim {
 
 const std::vector<std::string>& benchSuite() {
-  static const std::vector<std::string> suite = {"cornell_box", "dof_chart", "motion_blur", "metals_glass",
-                                                 "small_light"};
+  static const std::vector<std::string> suite = {"cornell_box", "dof_chart", "motion_blur",
+                                                 "metals_glass", "small_light"};
   return suite;
 }
 
 std::string benchUsageText() {
-  return "usage: camsim bench [--quick] [--out DIR] [--threads N] [--scenes a,b,...] [--max-spp N]\n"
+  return "usage: camsim bench [--quick] [--out DIR] [--threads N] [--scenes a,b,...] [--max-spp "
+         "N]\n"
          "                    [--resolution PX] [--ref-spp N] [--cache DIR] [--mesh-triangles N]\n"
          "                    [--texture-size PX]\n"
          "\n"
-         "Speed against error: renders each scene of the suite (cornell_box, dof_chart, motion_blur,\n"
+         "Speed against error: renders each scene of the suite (cornell_box, dof_chart, "
+         "motion_blur,\n"
          "metals_glass, small_light from scenes/) at a reduced resolution with both samplers\n"
-         "(independent, sobol) at 1, 2, 4, ... max-spp samples per pixel, and measures the error of\n"
-         "luminance Y against a cached high-spp reference: rMSE and MRAE (docs/bench.md). Prints the\n"
-         "table and, per scene and sampler, the log-log slope of rMSE against time; then the limit:\n"
-         "the tracer's rays/s against bare Embree traversal of the same recorded rays, thread scaling,\n"
-         "motion-blur overhead, the build of a 1 M-triangle mesh and the load of a 1024x1024 texture.\n"
+         "(independent, sobol) at 1, 2, 4, ... max-spp samples per pixel, and measures the error "
+         "of\n"
+         "luminance Y against a cached high-spp reference: rMSE and MRAE (docs/bench.md). Prints "
+         "the\n"
+         "table and, per scene and sampler, the log-log slope of rMSE against time; then the "
+         "limit:\n"
+         "the tracer's rays/s against bare Embree traversal of the same recorded rays, thread "
+         "scaling,\n"
+         "motion-blur overhead, the build of a 1 M-triangle mesh and the load of a 1024x1024 "
+         "texture.\n"
          "\n"
-         "  --quick            a quick variant, under a minute (64 px, up to 64 spp, 512-spp references)\n"
+         "  --quick            a quick variant, under a minute (64 px, up to 64 spp, 512-spp "
+         "references)\n"
          "  --out DIR          output directory (default bench-out/): bench.csv, bench_limit.csv,\n"
          "                     bench.txt and bench.png (the plot needs python3-matplotlib)\n"
          "  --threads N        worker threads (default: all cores)\n"
@@ -39,7 +47,8 @@ std::string benchUsageText() {
          "  --ref-spp N        reference samples per pixel (default 8 x max-spp)\n"
          "  --cache DIR        reference cache (default: bench-cache/ in the build directory)\n"
          "  --mesh-triangles N triangles of the mesh-build test (default 1000000; 0 skips it)\n"
-         "  --texture-size PX  side of the texture-load test's random-colour PNG (default 1024; 0 skips it)\n";
+         "  --texture-size PX  side of the texture-load test's random-colour PNG (default 1024; 0 "
+         "skips it)\n";
 }
 
 BenchArgs parseBenchArgs(const std::vector<std::string>& args) {
@@ -65,7 +74,8 @@ BenchArgs parseBenchArgs(const std::vector<std::string>& args) {
       for (std::size_t start = 0; start <= list.size();) {
         const std::size_t comma = std::min(list.find(',', start), list.size());
         const std::string name = list.substr(start, comma - start);
-        if (name.empty()) throw UsageError("--scenes expects names separated by commas, got '" + list + "'");
+        if (name.empty())
+          throw UsageError("--scenes expects names separated by commas, got '" + list + "'");
         b.scenes.push_back(name);
         start = comma + 1;
       }
@@ -117,9 +127,11 @@ BenchPlan planBench(const BenchArgs& args) {
 std::filesystem::path benchScenePath(const std::string& name) {
   const std::filesystem::path p(name);
   const std::string ext = p.extension().string();
-  if (name.find('/') != std::string::npos || ext == ".yaml" || ext == ".yml" || ext == ".json") return p;
+  if (name.find('/') != std::string::npos || ext == ".yaml" || ext == ".yml" || ext == ".json")
+    return p;
   const char* env = std::getenv("CAMSIM_SCENES");
-  const std::filesystem::path dir = env && *env ? std::filesystem::path(env) : std::filesystem::path(CAMSIM_SCENES_DIR);
+  const std::filesystem::path dir =
+      env && *env ? std::filesystem::path(env) : std::filesystem::path(CAMSIM_SCENES_DIR);
   return dir / (name + ".yaml");
 }
 

@@ -47,15 +47,17 @@ LoadedBenchScene loadBenchScene(const std::string& name, int longSide) {
   s.original = res;
   const int side = std::max(res.x, res.y);
   if (side > longSide) {
-    res.x = std::max(1, static_cast<int>(std::lround(static_cast<double>(res.x) * longSide / side)));
-    res.y = std::max(1, static_cast<int>(std::lround(static_cast<double>(res.y) * longSide / side)));
+    res.x =
+        std::max(1, static_cast<int>(std::lround(static_cast<double>(res.x) * longSide / side)));
+    res.y =
+        std::max(1, static_cast<int>(std::lround(static_cast<double>(res.y) * longSide / side)));
   }
   return s;
 }
 
 // The sweep of one scene: both samplers at every budget, against the reference.
-std::vector<BenchRow> sweep(const LoadedBenchScene& s, const Scene& scene, const Reference& ref, const BenchPlan& plan,
-                            std::ostream& log) {
+std::vector<BenchRow> sweep(const LoadedBenchScene& s, const Scene& scene, const Reference& ref,
+                            const BenchPlan& plan, std::ostream& log) {
   static const SpectralResponse response = SpectralResponse::cieXyz();
   std::vector<BenchRow> rows;
   for (const SamplerKind kind : {SamplerKind::kIndependent, SamplerKind::kSobol})
@@ -79,8 +81,9 @@ std::vector<BenchRow> sweep(const LoadedBenchScene& s, const Scene& scene, const
       row.rays = r.stats.rays.total();
       row.error = compareImages(luminanceOf(r.image), ref.image, 0);
       row.floor = ref.noise;
-      log << "bench: " << s.name << " " << row.sampler << " " << spp << " spp: " << formatNumber(row.seconds, 3)
-          << " s, rMSE " << formatNumber(row.error.rmse, 3) << "\n";
+      log << "bench: " << s.name << " " << row.sampler << " " << spp
+          << " spp: " << formatNumber(row.seconds, 3) << " s, rMSE "
+          << formatNumber(row.error.rmse, 3) << "\n";
       rows.push_back(row);
     }
   return rows;
@@ -94,21 +97,24 @@ int runBench(const BenchArgs& args, std::ostream& out, std::ostream& log) {
   const BenchPlan plan = planBench(args);
   const std::vector<std::string> names = args.scenes.empty() ? benchSuite() : args.scenes;
   const std::filesystem::path outDir(args.outputDir);
-  const std::filesystem::path cacheDir = args.cacheDir ? std::filesystem::path(*args.cacheDir) : defaultBenchCacheDir();
+  const std::filesystem::path cacheDir =
+      args.cacheDir ? std::filesystem::path(*args.cacheDir) : defaultBenchCacheDir();
   std::error_code ec;
   std::filesystem::create_directories(outDir, ec);
   if (!std::filesystem::is_directory(outDir))
-    throw InputError({outDir.string(), 0, 0}, "", "cannot create output directory" + (ec ? ": " + ec.message() : ""));
+    throw InputError({outDir.string(), 0, 0}, "",
+                     "cannot create output directory" + (ec ? ": " + ec.message() : ""));
   const std::string loadBefore = loadAverage();
 
   std::ostringstream report;
   std::string budgets;
   for (int spp : plan.budgets()) budgets += (budgets.empty() ? "" : ",") + std::to_string(spp);
-  report << "camsim " << CAMSIM_VERSION << " bench" << (args.quick ? " --quick" : "") << ": " << plan.threads
-         << " threads; images reduced to a long side of " << plan.longSide << " px; budgets " << budgets
-         << " spp per sampler (seed 1)\n"
+  report << "camsim " << CAMSIM_VERSION << " bench" << (args.quick ? " --quick" : "") << ": "
+         << plan.threads << " threads; images reduced to a long side of " << plan.longSide
+         << " px; budgets " << budgets << " spp per sampler (seed 1)\n"
          << "error: luminance Y against a reference of " << plan.refSpp
-         << " Sobol' spp (two halves, seeds 1001/1002); rMSE = mean (x-r)^2/(r^2+eps^2), MRAE = mean |x-r|/(|r|+eps),"
+         << " Sobol' spp (two halves, seeds 1001/1002); rMSE = mean (x-r)^2/(r^2+eps^2), MRAE = "
+            "mean |x-r|/(|r|+eps),"
             " eps = 1% of mean Y\n\n";
 
   std::vector<BenchRow> rows;
@@ -126,14 +132,17 @@ int runBench(const BenchArgs& args, std::ostream& out, std::ostream& log) {
       continue;
     }
     log << "bench: " << s.name << " at " << s.description.camera.resolution.x << "x"
-        << s.description.camera.resolution.y << " (scene: " << s.original.x << "x" << s.original.y << ")\n";
+        << s.description.camera.resolution.y << " (scene: " << s.original.x << "x" << s.original.y
+        << ")\n";
     const Scene scene(s.description);
     ReferenceRequest request{s.name, s.text, s.baseDir, s.description, plan.refSpp, plan.threads};
     ProgressBar bar("reference " + s.name);
-    const Reference ref = obtainReference(request, cacheDir, log, [&](int d, int t) { bar.update(d, t); });
+    const Reference ref =
+        obtainReference(request, cacheDir, log, [&](int d, int t) { bar.update(d, t); });
     bar.finish();
-    refs << "  " << s.name << " " << s.description.camera.resolution.x << "x" << s.description.camera.resolution.y
-         << ": rMSE floor " << formatNumber(ref.noise.rmse, 3) << ", MRAE floor " << formatNumber(ref.noise.mrae, 3)
+    refs << "  " << s.name << " " << s.description.camera.resolution.x << "x"
+         << s.description.camera.resolution.y << ": rMSE floor " << formatNumber(ref.noise.rmse, 3)
+         << ", MRAE floor " << formatNumber(ref.noise.mrae, 3)
          << (ref.fromCache ? " (cached " : " (rendered in " + formatNumber(ref.seconds, 3) + " s, ")
          << ref.file.filename().string() << ")\n";
     std::vector<BenchRow> sceneRows = sweep(s, scene, ref, plan, log);
@@ -148,11 +157,13 @@ int runBench(const BenchArgs& args, std::ostream& out, std::ostream& log) {
     limits.push_back(measureLimit(scene, s.name, plan.captureSpp, plan.threads));
     if (s.name == "cornell_box") {
       log << "bench: thread scaling on " << s.name << "\n";
-      extras << formatScaling(s.name, measureThreadScaling(scene, plan.featureSpp, plan.threads)) << "\n";
+      extras << formatScaling(s.name, measureThreadScaling(scene, plan.featureSpp, plan.threads))
+             << "\n";
     }
     if (s.name == "motion_blur") {
       log << "bench: motion-blur overhead on " << s.name << "\n";
-      extras << formatMotionOverhead(s.name, measureMotionOverhead(s.description, plan.featureSpp, plan.threads))
+      extras << formatMotionOverhead(
+                    s.name, measureMotionOverhead(s.description, plan.featureSpp, plan.threads))
              << "\n";
     }
   }
@@ -176,7 +187,8 @@ int runBench(const BenchArgs& args, std::ostream& out, std::ostream& log) {
     std::filesystem::remove_all(temp, ec);
   }
 
-  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double wall =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const double cpu = processCpuSeconds() - cpuStart;
   report << "references (noise floor of each; rMSE below " << formatNumber(kFloorFactor, 2)
          << "x the floor is left out of the fit):\n"
@@ -185,8 +197,8 @@ int runBench(const BenchArgs& args, std::ostream& out, std::ostream& log) {
          << "log-log slope of rMSE against render time (least squares over the budgets marked *):\n"
          << formatSlopeTable(slopes) << "\n"
          << "the limit: the rays of a " << plan.captureSpp
-         << "-spp Sobol' render, replayed through EmbreeScene alone (traversal only), " << plan.threads
-         << " threads; ratio = tracer rays/s / raw rays/s of the same mix:\n"
+         << "-spp Sobol' render, replayed through EmbreeScene alone (traversal only), "
+         << plan.threads << " threads; ratio = tracer rays/s / raw rays/s of the same mix:\n"
          << formatLimitTable(limits) << "\n"
          << extras.str() << "\n"
          << "total: " << formatSeconds(wall) << " wall, " << formatNumber(cpu, 4) << " CPU-s ("
@@ -204,13 +216,16 @@ int runBench(const BenchArgs& args, std::ostream& out, std::ostream& log) {
   if (rows.empty()) {
     log << "bench: no rows: plot skipped\n";
   } else if (!python) {
-    log << "bench: python3 with matplotlib not found ($CAMSIM_PYTHON or /usr/bin/python3; Debian: apt-get install python3-matplotlib): "
+    log << "bench: python3 with matplotlib not found ($CAMSIM_PYTHON or /usr/bin/python3; Debian: "
+           "apt-get install python3-matplotlib): "
         << "plot skipped\n";
   } else {
     const std::filesystem::path png = outputs.add("bench.png");
-    const std::string note = std::to_string(plan.threads) + " threads, long side " + std::to_string(plan.longSide) +
-                             " px, reference " + std::to_string(plan.refSpp) + " spp";
-    runPythonScript(*python, benchPlotScriptFile("bench_plot.py"), {csv.string(), png.string(), note});
+    const std::string note = std::to_string(plan.threads) + " threads, long side " +
+                             std::to_string(plan.longSide) + " px, reference " +
+                             std::to_string(plan.refSpp) + " spp";
+    runPythonScript(*python, benchPlotScriptFile("bench_plot.py"),
+                    {csv.string(), png.string(), note});
   }
   for (const auto& f : outputs.commit()) log << "bench: wrote " << f.string() << "\n";
   return failed.empty() ? 0 : 2;

@@ -48,14 +48,14 @@ const std::vector<std::string>& benchSuite();
 
 // What a run does, from the arguments (defaults differ with --quick).
 struct BenchPlan {
-  int longSide = 128;     // px
+  int longSide = 128;  // px
   int maxSpp = 256;
   int refSpp = 2048;
-  int captureSpp = 4;     // the limit's recording render
-  int featureSpp = 64;    // thread scaling and motion overhead
+  int captureSpp = 4;   // the limit's recording render
+  int featureSpp = 64;  // thread scaling and motion overhead
   std::uint64_t meshTriangles = 1000000;
-  int textureSize = 1024;  // px, side of the texture-load test's image
-  int threads = 0;        // resolved: never 0
+  int textureSize = 1024;            // px, side of the texture-load test's image
+  int threads = 0;                   // resolved: never 0
   std::vector<int> budgets() const;  // 1, 2, 4, … up to maxSpp (and maxSpp itself)
 };
 BenchPlan planBench(const BenchArgs& args);

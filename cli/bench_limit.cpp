@@ -45,7 +45,8 @@ RenderResult renderWith(const Scene& scene, int spp, int threads, RayRecorder* r
 
 // The fastest of `repeats` identical renders (short renders on a shared machine: the
 // minimum is the least disturbed), with the process CPU time of that one.
-RenderStats fastestOf(int repeats, const Scene& scene, int spp, int threads, bool forceTime, double* cpuSeconds) {
+RenderStats fastestOf(int repeats, const Scene& scene, int spp, int threads, bool forceTime,
+                      double* cpuSeconds) {
   RenderStats best;
   for (int i = 0; i < repeats; ++i) {
     const double cpu0 = processCpuSeconds();
@@ -88,8 +89,8 @@ LimitResult measureLimit(const Scene& scene, const std::string& name, int spp, i
   r.tracer = renderWith(scene, spp, threads).stats;
   r.mix = replayRays(scene.geometry(), rays, threads);
   for (int k = 0; k < kRayKindCount; ++k)
-    r.byKind[static_cast<std::size_t>(k)] = replayRays(scene.geometry(), raysOfKind(rays, static_cast<RayKind>(k)),
-                                                       threads, 0.25);
+    r.byKind[static_cast<std::size_t>(k)] =
+        replayRays(scene.geometry(), raysOfKind(rays, static_cast<RayKind>(k)), threads, 0.25);
   return r;
 }
 
@@ -111,7 +112,8 @@ SceneDescription withoutMotion(const SceneDescription& description) {
   SceneDescription d = description;
   for (ShapeDescription& s : d.shapes)
     if (s.motion.keys().size() > 1) s.motion = RigidMotion({s.motion.keys().front()});
-  if (d.camera.motion.keys().size() > 1) d.camera.motion = RigidMotion({d.camera.motion.keys().front()});
+  if (d.camera.motion.keys().size() > 1)
+    d.camera.motion = RigidMotion({d.camera.motion.keys().front()});
   return d;
 }
 
@@ -139,31 +141,36 @@ MeshData makeTorusMesh(std::uint64_t triangles) {
       const double u = kTwoPi * i / segments, v = kTwoPi * j / rings;
       const double tube = 0.2 * (1.0 + 0.08 * std::sin(13.0 * u) * std::sin(7.0 * v));
       const double ring = 0.5 + tube * std::cos(v);
-      mesh.positions.emplace_back(static_cast<float>(ring * std::cos(u)), static_cast<float>(tube * std::sin(v)),
+      mesh.positions.emplace_back(static_cast<float>(ring * std::cos(u)),
+                                  static_cast<float>(tube * std::sin(v)),
                                   static_cast<float>(ring * std::sin(u)));
     }
   mesh.indices.reserve(6 * static_cast<std::size_t>(segments) * rings);
   for (std::uint32_t i = 0; i < segments; ++i)
     for (std::uint32_t j = 0; j < rings; ++j) {
       const std::uint32_t a = i * rings + j, b = ((i + 1) % segments) * rings + j;
-      const std::uint32_t c = ((i + 1) % segments) * rings + (j + 1) % rings, e = i * rings + (j + 1) % rings;
+      const std::uint32_t c = ((i + 1) % segments) * rings + (j + 1) % rings,
+                          e = i * rings + (j + 1) % rings;
       mesh.indices.insert(mesh.indices.end(), {a, b, c, a, c, e});
     }
   return mesh;
 }
 
 void writeBinaryPly(const std::filesystem::path& path, const MeshData& mesh) {
-  static_assert(std::endian::native == std::endian::little, "binary_little_endian is written as in memory");
+  static_assert(std::endian::native == std::endian::little,
+                "binary_little_endian is written as in memory");
   std::ofstream out(path, std::ios::binary);
   out << "ply\nformat binary_little_endian 1.0\nelement vertex " << mesh.positions.size()
-      << "\nproperty float x\nproperty float y\nproperty float z\nelement face " << mesh.indices.size() / 3
-      << "\nproperty list uchar int vertex_indices\nend_header\n";
-  for (const glm::vec3& p : mesh.positions) out.write(reinterpret_cast<const char*>(&p.x), 3 * sizeof(float));
+      << "\nproperty float x\nproperty float y\nproperty float z\nelement face "
+      << mesh.indices.size() / 3 << "\nproperty list uchar int vertex_indices\nend_header\n";
+  for (const glm::vec3& p : mesh.positions)
+    out.write(reinterpret_cast<const char*>(&p.x), 3 * sizeof(float));
   std::vector<char> faces(13 * (mesh.indices.size() / 3));
   for (std::size_t t = 0; t < mesh.indices.size() / 3; ++t) {
     faces[13 * t] = 3;
     for (int k = 0; k < 3; ++k) {
-      const auto index = static_cast<std::int32_t>(mesh.indices[3 * t + static_cast<std::size_t>(k)]);
+      const auto index =
+          static_cast<std::int32_t>(mesh.indices[3 * t + static_cast<std::size_t>(k)]);
       std::memcpy(&faces[13 * t + 1 + 4 * static_cast<std::size_t>(k)], &index, 4);
     }
   }
@@ -171,7 +178,8 @@ void writeBinaryPly(const std::filesystem::path& path, const MeshData& mesh) {
   if (!out.flush()) throw InputError({path.string(), 0, 0}, "", "cannot write the benchmark mesh");
 }
 
-MeshBuildResult measureMeshBuild(std::uint64_t triangles, int threads, const std::filesystem::path& tempDir) {
+MeshBuildResult measureMeshBuild(std::uint64_t triangles, int threads,
+                                 const std::filesystem::path& tempDir) {
   MeshBuildResult m;
   const std::filesystem::path ply = tempDir / "torus.ply";
   {
@@ -182,10 +190,12 @@ MeshBuildResult measureMeshBuild(std::uint64_t triangles, int threads, const std
   m.plyMegabytes = static_cast<double>(std::filesystem::file_size(ply)) * 1e-6;
   const std::string text =
       "format: camsim-scene/1\nname: mesh_build\nrender: {spp: 1}\n"
-      "camera: {position: [0, 1.5, -1.5], look_at: [0, 0, 0], up: [0, 1, 0], resolution: [16, 16]}\n"
+      "camera: {position: [0, 1.5, -1.5], look_at: [0, 0, 0], up: [0, 1, 0], resolution: [16, "
+      "16]}\n"
       "materials: {grey: {type: diffuse, reflectance: 0.5}}\n"
       "shapes:\n  - {name: torus, type: mesh, file: torus.ply, material: grey}\n"
-      "  - {name: lamp, type: sphere, centre: [0, 2, 0], radius: 0.1, emission: {luminance: 1000}}\n";
+      "  - {name: lamp, type: sphere, centre: [0, 2, 0], radius: 0.1, emission: {luminance: "
+      "1000}}\n";
   auto start = std::chrono::steady_clock::now();
   const SceneDescription desc = loadSceneFromText(text, "<bench mesh>", tempDir);
   m.loadSeconds = secondsSince(start);
@@ -230,18 +240,24 @@ TextureLoadResult measureTextureLoad(int size, int threads, const std::filesyste
   start = std::chrono::steady_clock::now();
   const double cpu0 = processCpuSeconds();
   std::unique_ptr<ImageSpectrumTexture> texture;
-  arena.execute([&] { texture = std::make_unique<ImageSpectrumTexture>(image, glm::vec2(1.0f), glm::vec2(0.0f)); });
+  arena.execute([&] {
+    texture = std::make_unique<ImageSpectrumTexture>(image, glm::vec2(1.0f), glm::vec2(0.0f));
+  });
   t.upliftSeconds = secondsSince(start);
   t.upliftCpuSeconds = processCpuSeconds() - cpu0;
   for (int k = 0; k < 256; ++k) {
     const int x = static_cast<int>(rng() % static_cast<unsigned>(size));
     const int y = static_cast<int>(rng() % static_cast<unsigned>(size));
     Spectrum s;
-    for (int i = 0; i < kSpectrumSamples; ++i) s.sample(i) = texture->texelValue(x, y, static_cast<float>(kLambdaMinNm + i));
+    for (int i = 0; i < kSpectrumSamples; ++i)
+      s.sample(i) = texture->texelValue(x, y, static_cast<float>(kLambdaMinNm + i));
     const glm::dvec3 rgb = reflectanceToRgb(s, RgbColorSpace::linearRec709());
-    const size_t at = (static_cast<size_t>(y) * static_cast<size_t>(size) + static_cast<size_t>(x)) * 3;
+    const size_t at =
+        (static_cast<size_t>(y) * static_cast<size_t>(size) + static_cast<size_t>(x)) * 3;
     for (int c = 0; c < 3; ++c)
-      t.maxRgbError = std::max(t.maxRgbError, std::abs(rgb[c] - static_cast<double>(image.values[at + static_cast<size_t>(c)])));
+      t.maxRgbError = std::max(
+          t.maxRgbError,
+          std::abs(rgb[c] - static_cast<double>(image.values[at + static_cast<size_t>(c)])));
   }
   std::error_code ec;
   std::filesystem::remove(file, ec);

@@ -41,9 +41,9 @@ struct LimitResult {
   std::string scene;
   int spp = 0, threads = 0;
   std::uint64_t recorded = 0, dropped = 0;
-  RenderStats capture;               // the recording render
-  RenderStats tracer;                // the same render without the recorder (timed)
-  ReplayResult mix;                  // all recorded rays, recorded order
+  RenderStats capture;                             // the recording render
+  RenderStats tracer;                              // the same render without the recorder (timed)
+  ReplayResult mix;                                // all recorded rays, recorded order
   std::array<ReplayResult, kRayKindCount> byKind;  // RayKind order
   double tracerRaysPerSecond() const { return tracer.raysPerSecond(); }
   double ratio() const {
@@ -78,8 +78,8 @@ void writeBinaryPly(const std::filesystem::path& path, const MeshData& mesh);
 struct MeshBuildResult {
   std::uint64_t triangles = 0;
   double plyMegabytes = 0.0;
-  double loadSeconds = 0.0;         // scene loader incl. PLY parsing
-  double sceneSeconds = 0.0;        // Scene: TriangleMesh + EmbreeScene (BVH build)
+  double loadSeconds = 0.0;          // scene loader incl. PLY parsing
+  double sceneSeconds = 0.0;         // Scene: TriangleMesh + EmbreeScene (BVH build)
   double rssBytesPerTriangle = 0.0;  // RSS growth over Scene construction / triangles
   // The Scene's own Embree device (memory monitor: BVH and build temporaries; bytes
   // allocated, which includes reserved blocks not yet touched): in use after the build, peak.
@@ -87,7 +87,8 @@ struct MeshBuildResult {
   // The same mesh as a bare Embree scene at RTC_BUILD_QUALITY_MEDIUM and _HIGH.
   MeshBuildProbe embreeMedium, embreeHigh;
 };
-MeshBuildResult measureMeshBuild(std::uint64_t triangles, int threads, const std::filesystem::path& tempDir);
+MeshBuildResult measureMeshBuild(std::uint64_t triangles, int threads,
+                                 const std::filesystem::path& tempDir);
 
 // Loading an image texture for reflectance: a size² 8-bit sRGB PNG of random colours (every
 // texel a new colour, the worst case for the per-texel uplift) decoded, then every texel

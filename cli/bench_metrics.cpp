@@ -63,7 +63,8 @@ ErrorMetrics compareImages(const Image& image, const Image& reference, int chann
   return metrics(
       image.width, image.height,
       [&](int x, int y) {
-        return static_cast<double>(image.at(x, y, channel)) - static_cast<double>(reference.at(x, y, channel));
+        return static_cast<double>(image.at(x, y, channel)) -
+               static_cast<double>(reference.at(x, y, channel));
       },
       [&](int x, int y) { return static_cast<double>(reference.at(x, y, channel)); },
       channelMean(reference, channel));
@@ -127,8 +128,8 @@ SamplerSlopes fitRows(std::vector<BenchRow*>& rows) {
 
 const std::vector<std::string>& benchCsvColumns() {
   static const std::vector<std::string> columns = {
-      "scene",      "sampler",    "spp",  "width",        "height",   "seconds", "cpu_seconds",
-      "samples_per_s", "rays_per_s", "rmse_rel", "mrae", "ref_rmse_rel", "ref_mrae", "in_fit"};
+      "scene",         "sampler",    "spp",      "width", "height",       "seconds",  "cpu_seconds",
+      "samples_per_s", "rays_per_s", "rmse_rel", "mrae",  "ref_rmse_rel", "ref_mrae", "in_fit"};
   return columns;
 }
 
@@ -139,9 +140,10 @@ std::string formatBenchCsv(const std::vector<BenchRow>& rows) {
   out << "\n";
   auto g = [](double v) { return formatNumber(v, 9); };
   for (const BenchRow& r : rows)
-    out << csvField(r.scene) << "," << csvField(r.sampler) << "," << r.spp << "," << r.width << "," << r.height
-        << "," << g(r.seconds) << "," << g(r.cpuSeconds) << "," << g(r.samplesPerSecond()) << "," << g(r.raysPerSecond()) << ","
-        << g(r.error.rmse) << "," << g(r.error.mrae) << "," << g(r.floor.rmse) << "," << g(r.floor.mrae) << ","
+    out << csvField(r.scene) << "," << csvField(r.sampler) << "," << r.spp << "," << r.width << ","
+        << r.height << "," << g(r.seconds) << "," << g(r.cpuSeconds) << ","
+        << g(r.samplesPerSecond()) << "," << g(r.raysPerSecond()) << "," << g(r.error.rmse) << ","
+        << g(r.error.mrae) << "," << g(r.floor.rmse) << "," << g(r.floor.mrae) << ","
         << (r.inFit ? 1 : 0) << "\n";
   return out.str();
 }
@@ -168,13 +170,15 @@ std::string formatNumber(double v, int precision) {
 std::string formatBenchTable(const std::vector<BenchRow>& rows) {
   char line[256];
   std::ostringstream out;
-  std::snprintf(line, sizeof line, "%-13s %-11s %5s %9s %8s %10s %10s %10s %8s %s\n", "scene", "sampler", "spp",
-                "seconds", "CPU-s", "samples/s", "rays/s", "rMSE", "MRAE", "fit");
+  std::snprintf(line, sizeof line, "%-13s %-11s %5s %9s %8s %10s %10s %10s %8s %s\n", "scene",
+                "sampler", "spp", "seconds", "CPU-s", "samples/s", "rays/s", "rMSE", "MRAE", "fit");
   out << line;
   for (const BenchRow& r : rows) {
-    std::snprintf(line, sizeof line, "%-13s %-11s %5d %9.3f %8.3f %10s %10s %10.3e %8.4f %s\n", r.scene.c_str(),
-                  r.sampler.c_str(), r.spp, r.seconds, r.cpuSeconds, formatBenchRate(r.samplesPerSecond()).c_str(),
-                  formatBenchRate(r.raysPerSecond()).c_str(), r.error.rmse, r.error.mrae, r.inFit ? "*" : "");
+    std::snprintf(line, sizeof line, "%-13s %-11s %5d %9.3f %8.3f %10s %10s %10.3e %8.4f %s\n",
+                  r.scene.c_str(), r.sampler.c_str(), r.spp, r.seconds, r.cpuSeconds,
+                  formatBenchRate(r.samplesPerSecond()).c_str(),
+                  formatBenchRate(r.raysPerSecond()).c_str(), r.error.rmse, r.error.mrae,
+                  r.inFit ? "*" : "");
     out << line;
   }
   return out.str();
@@ -184,14 +188,17 @@ std::string formatSlopeTable(const std::vector<SamplerSlopes>& slopes) {
   char line[256];
   std::ostringstream out;
   std::snprintf(line, sizeof line, "%-13s %-11s %16s %6s %6s %15s %14s %15s\n", "scene", "sampler",
-                "slope rMSE/time", "R^2", "points", "slope rMSE/CPU", "slope rMSE/spp", "slope MRAE/time");
+                "slope rMSE/time", "R^2", "points", "slope rMSE/CPU", "slope rMSE/spp",
+                "slope MRAE/time");
   out << line;
   for (const SamplerSlopes& s : slopes) {
     const bool ok = s.vsSeconds.points >= 2;
-    std::snprintf(line, sizeof line, "%-13s %-11s %16s %6s %6d %15s %14s %15s\n", s.scene.c_str(), s.sampler.c_str(),
-                  ok ? fixed(s.vsSeconds.slope, 3).c_str() : "n/a", ok ? fixed(s.vsSeconds.r2, 3).c_str() : "",
-                  s.vsSeconds.points, ok ? fixed(s.vsCpuSeconds.slope, 3).c_str() : "n/a",
-                  ok ? fixed(s.vsSpp.slope, 3).c_str() : "n/a", ok ? fixed(s.mraeVsSeconds.slope, 3).c_str() : "n/a");
+    std::snprintf(line, sizeof line, "%-13s %-11s %16s %6s %6d %15s %14s %15s\n", s.scene.c_str(),
+                  s.sampler.c_str(), ok ? fixed(s.vsSeconds.slope, 3).c_str() : "n/a",
+                  ok ? fixed(s.vsSeconds.r2, 3).c_str() : "", s.vsSeconds.points,
+                  ok ? fixed(s.vsCpuSeconds.slope, 3).c_str() : "n/a",
+                  ok ? fixed(s.vsSpp.slope, 3).c_str() : "n/a",
+                  ok ? fixed(s.mraeVsSeconds.slope, 3).c_str() : "n/a");
     out << line;
   }
   return out.str();

@@ -59,7 +59,9 @@ struct BenchRow {
   ErrorMetrics floor;  // the reference's own noise
   bool inFit = false;  // used for the slope (error ≥ kFloorFactor × floor)
 
-  double samplesPerSecond() const { return seconds > 0.0 ? static_cast<double>(samples) / seconds : 0.0; }
+  double samplesPerSecond() const {
+    return seconds > 0.0 ? static_cast<double>(samples) / seconds : 0.0;
+  }
   double raysPerSecond() const { return seconds > 0.0 ? static_cast<double>(rays) / seconds : 0.0; }
 };
 

@@ -50,8 +50,10 @@ bool readCached(const std::filesystem::path& file, const std::string& key, Refer
     const ExrFile exr = readExr(file);
     const auto keyIt = std::find_if(exr.metadata.begin(), exr.metadata.end(),
                                     [](const auto& kv) { return kv.first == "camsim:bench_key"; });
-    const int y = exr.image.channelIndex("Y"), a = exr.image.channelIndex("A.Y"), b = exr.image.channelIndex("B.Y");
-    if (keyIt == exr.metadata.end() || keyIt->second != key || y < 0 || a < 0 || b < 0) return false;
+    const int y = exr.image.channelIndex("Y"), a = exr.image.channelIndex("A.Y"),
+              b = exr.image.channelIndex("B.Y");
+    if (keyIt == exr.metadata.end() || keyIt->second != key || y < 0 || a < 0 || b < 0)
+      return false;
     ref.image = channelImage(exr.image, y, "Y");
     ref.halfA = channelImage(exr.image, a, "Y");
     ref.halfB = channelImage(exr.image, b, "Y");
@@ -86,8 +88,9 @@ std::vector<std::filesystem::path> referencedFiles(const std::string& sceneText,
       while (i < t.size() && (t[i] == ' ' || t[i] == '\t')) ++i;
       const char quote = i < t.size() && (t[i] == '"' || t[i] == '\'') ? t[i++] : '\0';
       const size_t begin = i;
-      while (i < t.size() && t[i] != '\n' &&
-             (quote ? t[i] != quote : std::string_view(",}]#").find(t[i]) == std::string_view::npos))
+      while (
+          i < t.size() && t[i] != '\n' &&
+          (quote ? t[i] != quote : std::string_view(",}]#").find(t[i]) == std::string_view::npos))
         ++i;
       size_t end = i;
       while (end > begin && (t[end - 1] == ' ' || t[end - 1] == '\t')) --end;
@@ -104,9 +107,13 @@ std::vector<std::filesystem::path> referencedFiles(const std::string& sceneText,
 std::string referenceKey(const ReferenceRequest& request) {
   std::ostringstream key;
   const glm::ivec2 res = request.description.camera.resolution;
-  key << kFormatTag << "\n" << CAMSIM_VERSION << "\n" << res.x << "x" << res.y << "\n" << request.spp << "\n"
+  key << kFormatTag << "\n"
+      << CAMSIM_VERSION << "\n"
+      << res.x << "x" << res.y << "\n"
+      << request.spp << "\n"
       << request.sceneText << "\n";
-  for (const auto& f : referencedFiles(request.sceneText, request.baseDir)) key << fileStamp(f, true) << "\n";
+  for (const auto& f : referencedFiles(request.sceneText, request.baseDir))
+    key << fileStamp(f, true) << "\n";
   std::vector<std::filesystem::path> luts;
   std::error_code ec;
   const std::filesystem::path spectra = lutsDirectory() / "spectra";
@@ -140,7 +147,9 @@ Reference obtainReference(const ReferenceRequest& request, const std::filesystem
     o.threads = request.threads;
     o.sampler = SamplerKind::kSobol;
     if (progress)
-      o.progress = [&progress, offset](int done, int total) { progress(offset * total + done, 2 * total); };
+      o.progress = [&progress, offset](int done, int total) {
+        progress(offset * total + done, 2 * total);
+      };
     return render(scene, response, o);
   };
   const RenderResult a = renderHalf(kSeedA, 0);
@@ -162,13 +171,14 @@ Reference obtainReference(const ReferenceRequest& request, const std::filesystem
       file.at(x, y, 1) = ref.halfA.at(x, y, 0);
       file.at(x, y, 2) = ref.halfB.at(x, y, 0);
     }
-  const Metadata meta = {{"camsim:version", CAMSIM_VERSION},
-                         {"camsim:bench_key", key},
-                         {"camsim:scene", request.description.sourceFile},
-                         {"camsim:spp", std::to_string(2 * half) + " (two halves of " + std::to_string(half) +
-                                            ", Sobol', seeds 1001 and 1002)"},
-                         {"camsim:render_seconds", formatNumber(ref.seconds, 6)},
-                         {"camsim:units", "CIE Y of the film (lm*s per photosite)"}};
+  const Metadata meta = {
+      {"camsim:version", CAMSIM_VERSION},
+      {"camsim:bench_key", key},
+      {"camsim:scene", request.description.sourceFile},
+      {"camsim:spp", std::to_string(2 * half) + " (two halves of " + std::to_string(half) +
+                         ", Sobol', seeds 1001 and 1002)"},
+      {"camsim:render_seconds", formatNumber(ref.seconds, 6)},
+      {"camsim:units", "CIE Y of the film (lm*s per photosite)"}};
   if (std::filesystem::is_directory(cacheDir, ec)) {
     OutputSet out(cacheDir);
     writeExr(out.add(fileName), file, meta, std::nullopt);
@@ -176,8 +186,9 @@ Reference obtainReference(const ReferenceRequest& request, const std::filesystem
   } else {
     log << "warning: cannot create the reference cache " << cacheDir.string() << ": not cached\n";
   }
-  log << "reference " << request.name << ": rendered " << 2 * half << " spp in " << formatNumber(ref.seconds, 3)
-      << " s (rMSE floor " << formatNumber(ref.noise.rmse, 3) << "), cached as " << ref.file.string() << "\n";
+  log << "reference " << request.name << ": rendered " << 2 * half << " spp in "
+      << formatNumber(ref.seconds, 3) << " s (rMSE floor " << formatNumber(ref.noise.rmse, 3)
+      << "), cached as " << ref.file.string() << "\n";
   return ref;
 }
 

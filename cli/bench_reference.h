@@ -31,11 +31,11 @@
 namespace camsim {
 
 struct ReferenceRequest {
-  std::string name;                 // scene name (file stem)
-  std::string sceneText;            // the scene file as read
-  std::filesystem::path baseDir;    // where its relative paths resolve
-  SceneDescription description;     // loaded, already at the bench resolution
-  int spp = 2048;                   // total: two halves of spp/2
+  std::string name;               // scene name (file stem)
+  std::string sceneText;          // the scene file as read
+  std::filesystem::path baseDir;  // where its relative paths resolve
+  SceneDescription description;   // loaded, already at the bench resolution
+  int spp = 2048;                 // total: two halves of spp/2
   int threads = 0;
 };
 

@@ -21,25 +21,28 @@ std::uint64_t countOf(const RayCounts& c, int kind) {
 std::string formatLimitTable(const std::vector<LimitResult>& results) {
   std::ostringstream out;
   char line[320];
-  std::snprintf(line, sizeof line, "%-13s %4s %9s %22s %22s %22s %11s %11s %6s\n", "scene", "spp", "rays",
-                "camera: share, raw/s", "bounce: share, raw/s", "shadow: share, raw/s", "raw mix/s", "tracer/s",
-                "ratio");
+  std::snprintf(line, sizeof line, "%-13s %4s %9s %22s %22s %22s %11s %11s %6s\n", "scene", "spp",
+                "rays", "camera: share, raw/s", "bounce: share, raw/s", "shadow: share, raw/s",
+                "raw mix/s", "tracer/s", "ratio");
   out << line;
   for (const LimitResult& r : results) {
     std::string kinds[kRayKindCount];
     for (int k = 0; k < kRayKindCount; ++k) {
       char cell[64];
-      std::snprintf(cell, sizeof cell, "%5.1f%% %10s", share(countOf(r.capture.rays, k), r.capture.rays.total()),
+      std::snprintf(cell, sizeof cell, "%5.1f%% %10s",
+                    share(countOf(r.capture.rays, k), r.capture.rays.total()),
                     formatBenchRate(r.byKind[static_cast<std::size_t>(k)].raysPerSecond()).c_str());
       kinds[k] = cell;
     }
-    std::snprintf(line, sizeof line, "%-13s %4d %9llu %22s %22s %22s %11s %11s %6.3f\n", r.scene.c_str(), r.spp,
-                  static_cast<unsigned long long>(r.recorded), kinds[0].c_str(), kinds[1].c_str(), kinds[2].c_str(),
-                  formatBenchRate(r.mix.raysPerSecond()).c_str(), formatBenchRate(r.tracerRaysPerSecond()).c_str(),
-                  r.ratio());
+    std::snprintf(line, sizeof line, "%-13s %4d %9llu %22s %22s %22s %11s %11s %6.3f\n",
+                  r.scene.c_str(), r.spp, static_cast<unsigned long long>(r.recorded),
+                  kinds[0].c_str(), kinds[1].c_str(), kinds[2].c_str(),
+                  formatBenchRate(r.mix.raysPerSecond()).c_str(),
+                  formatBenchRate(r.tracerRaysPerSecond()).c_str(), r.ratio());
     out << line;
     if (r.dropped > 0)
-      out << "  (" << r.dropped << " rays past the recorder's limit were not recorded: the replay is a subset)\n";
+      out << "  (" << r.dropped
+          << " rays past the recorder's limit were not recorded: the replay is a subset)\n";
     if (r.recorded + r.dropped != r.capture.rays.total())
       out << "  warning: recorded " << r.recorded + r.dropped << " rays but the render counted "
           << r.capture.rays.total() << "\n";
@@ -52,12 +55,14 @@ std::string formatLimitCsv(const std::vector<LimitResult>& results) {
   out << "scene,kind,spp,threads,rays,share,raw_rays_per_s,tracer_rays_per_s,ratio\n";
   auto g = [](double v) { return formatNumber(v, 9); };
   for (const LimitResult& r : results) {
-    out << r.scene << ",mix," << r.spp << "," << r.threads << "," << r.recorded << ",1," << g(r.mix.raysPerSecond())
-        << "," << g(r.tracerRaysPerSecond()) << "," << g(r.ratio()) << "\n";
+    out << r.scene << ",mix," << r.spp << "," << r.threads << "," << r.recorded << ",1,"
+        << g(r.mix.raysPerSecond()) << "," << g(r.tracerRaysPerSecond()) << "," << g(r.ratio())
+        << "\n";
     for (int k = 0; k < kRayKindCount; ++k) {
       const ReplayResult& rep = r.byKind[static_cast<std::size_t>(k)];
-      out << r.scene << "," << rayKindName(static_cast<RayKind>(k)) << "," << r.spp << "," << r.threads << ","
-          << rep.rays << "," << g(share(countOf(r.capture.rays, k), r.capture.rays.total()) / 100.0) << ","
+      out << r.scene << "," << rayKindName(static_cast<RayKind>(k)) << "," << r.spp << ","
+          << r.threads << "," << rep.rays << ","
+          << g(share(countOf(r.capture.rays, k), r.capture.rays.total()) / 100.0) << ","
           << g(rep.raysPerSecond()) << ",,\n";
     }
   }
@@ -68,20 +73,25 @@ std::string formatScaling(const std::string& scene, const ScalingResult& s) {
   std::ostringstream out;
   char line[256];
   const double speed = s.many.seconds > 0.0 ? s.one.seconds / s.many.seconds : 0.0;
-  const double raw = s.rawOne.raysPerSecond() > 0.0 ? s.rawMany.raysPerSecond() / s.rawOne.raysPerSecond() : 0.0;
+  const double raw =
+      s.rawOne.raysPerSecond() > 0.0 ? s.rawMany.raysPerSecond() / s.rawOne.raysPerSecond() : 0.0;
   out << "thread scaling, " << scene << " (Sobol', " << s.spp << " spp):\n";
-  std::snprintf(line, sizeof line, "  %-22s %10s %12s %12s\n", "", "1 thread", std::to_string(s.threads).append(" threads").c_str(),
-                "speed-up");
+  std::snprintf(line, sizeof line, "  %-22s %10s %12s %12s\n", "", "1 thread",
+                std::to_string(s.threads).append(" threads").c_str(), "speed-up");
   out << line;
-  std::snprintf(line, sizeof line, "  %-22s %9.3fs %11.3fs %11.2fx  (efficiency %.0f%%)\n", "tracer render, wall", s.one.seconds,
-                s.many.seconds, speed, 100.0 * speed / s.threads);
+  std::snprintf(line, sizeof line, "  %-22s %9.3fs %11.3fs %11.2fx  (efficiency %.0f%%)\n",
+                "tracer render, wall", s.one.seconds, s.many.seconds, speed,
+                100.0 * speed / s.threads);
   out << line;
-  std::snprintf(line, sizeof line, "  %-22s %9.3fs %11.3fs %11.2fx  (the work %d threads add; wall speed-up needs idle cores)\n",
-                "tracer render, CPU-s", s.cpuOne, s.cpuMany, s.cpuOne > 0.0 ? s.cpuMany / s.cpuOne : 0.0, s.threads);
+  std::snprintf(
+      line, sizeof line,
+      "  %-22s %9.3fs %11.3fs %11.2fx  (the work %d threads add; wall speed-up needs idle cores)\n",
+      "tracer render, CPU-s", s.cpuOne, s.cpuMany, s.cpuOne > 0.0 ? s.cpuMany / s.cpuOne : 0.0,
+      s.threads);
   out << line;
-  std::snprintf(line, sizeof line, "  %-22s %10s %12s %11.2fx  (efficiency %.0f%%)\n", "raw replay, rays/s",
-                formatBenchRate(s.rawOne.raysPerSecond()).c_str(), formatBenchRate(s.rawMany.raysPerSecond()).c_str(), raw,
-                100.0 * raw / s.threads);
+  std::snprintf(line, sizeof line, "  %-22s %10s %12s %11.2fx  (efficiency %.0f%%)\n",
+                "raw replay, rays/s", formatBenchRate(s.rawOne.raysPerSecond()).c_str(),
+                formatBenchRate(s.rawMany.raysPerSecond()).c_str(), raw, 100.0 * raw / s.threads);
   out << line;
   return out.str();
 }
@@ -89,10 +99,10 @@ std::string formatScaling(const std::string& scene, const ScalingResult& s) {
 std::string formatMotionOverhead(const std::string& scene, const MotionOverhead& m) {
   std::ostringstream out;
   char line[256];
-  out << "motion-blur overhead, " << scene << " (Sobol', " << m.spp << " spp; moving: " << m.timeSteps
-      << " Embree time steps):\n";
-  std::snprintf(line, sizeof line, "  %-40s %9s %11s %12s %13s\n", "variant", "seconds", "rays/s", "time ratio",
-                "per-ray ratio");
+  out << "motion-blur overhead, " << scene << " (Sobol', " << m.spp
+      << " spp; moving: " << m.timeSteps << " Embree time steps):\n";
+  std::snprintf(line, sizeof line, "  %-40s %9s %11s %12s %13s\n", "variant", "seconds", "rays/s",
+                "time ratio", "per-ray ratio");
   out << line;
   const double base = m.still.seconds, baseRate = m.still.raysPerSecond();
   const std::pair<const char*, const RenderStats*> rows[] = {
@@ -101,7 +111,8 @@ std::string formatMotionOverhead(const std::string& scene, const MotionOverhead&
       {"moving (as in the scene)", &m.moving}};
   for (const auto& [name, st] : rows) {
     std::snprintf(line, sizeof line, "  %-40s %9.3f %11s %12.3f %13.3f\n", name, st->seconds,
-                  formatBenchRate(st->raysPerSecond()).c_str(), base > 0.0 ? st->seconds / base : 0.0,
+                  formatBenchRate(st->raysPerSecond()).c_str(),
+                  base > 0.0 ? st->seconds / base : 0.0,
                   st->raysPerSecond() > 0.0 ? baseRate / st->raysPerSecond() : 0.0);
     out << line;
   }
@@ -118,18 +129,22 @@ std::string formatMeshBuild(const MeshBuildResult& m) {
   const auto perTriangle = [&](std::int64_t bytes) {
     return m.triangles ? static_cast<double>(bytes) / static_cast<double>(m.triangles) : 0.0;
   };
-  std::snprintf(line, sizeof line,
-                "  Scene build (mesh + Embree BVH)   %8.3f s   resident set grew %.1f bytes/triangle "
-                "(camsim's mesh copy + Embree's touched pages); Embree holds %.1f, peak %.1f\n",
-                m.sceneSeconds, m.rssBytesPerTriangle, perTriangle(m.sceneEmbreeBytes),
-                perTriangle(m.sceneEmbreePeakBytes));
+  std::snprintf(
+      line, sizeof line,
+      "  Scene build (mesh + Embree BVH)   %8.3f s   resident set grew %.1f bytes/triangle "
+      "(camsim's mesh copy + Embree's touched pages); Embree holds %.1f, peak %.1f\n",
+      m.sceneSeconds, m.rssBytesPerTriangle, perTriangle(m.sceneEmbreeBytes),
+      perTriangle(m.sceneEmbreePeakBytes));
   out << line;
-  for (const auto& [name, probe] : {std::pair<const char*, const MeshBuildProbe*>{"medium", &m.embreeMedium},
-                                     std::pair<const char*, const MeshBuildProbe*>{"high", &m.embreeHigh}}) {
+  for (const auto& [name, probe] :
+       {std::pair<const char*, const MeshBuildProbe*>{"medium", &m.embreeMedium},
+        std::pair<const char*, const MeshBuildProbe*>{"high", &m.embreeHigh}}) {
     std::snprintf(line, sizeof line,
-                  "  bare Embree, %-6s quality      %8.3f s   Embree holds %.1f bytes/triangle (memory monitor: "
+                  "  bare Embree, %-6s quality      %8.3f s   Embree holds %.1f bytes/triangle "
+                  "(memory monitor: "
                   "BVH incl. reserved blocks; arrays shared), peak %.1f\n",
-                  name, probe->buildSeconds, probe->bytesPerTriangle(), perTriangle(probe->bytesPeak));
+                  name, probe->buildSeconds, probe->bytesPerTriangle(),
+                  perTriangle(probe->bytesPeak));
     out << line;
   }
   return out.str();
@@ -139,9 +154,11 @@ std::string formatTextureLoad(const TextureLoadResult& t) {
   char line[320];
   const double texels = static_cast<double>(t.size) * t.size;
   std::snprintf(line, sizeof line,
-                "texture load: %d x %d random-colour 8-bit sRGB PNG: decode %.3f s, uplift %.3f s (%.2f CPU-us per "
+                "texture load: %d x %d random-colour 8-bit sRGB PNG: decode %.3f s, uplift %.3f s "
+                "(%.2f CPU-us per "
                 "texel); round-trip RGB error max %.1e\n",
-                t.size, t.size, t.decodeSeconds, t.upliftSeconds, 1e6 * t.upliftCpuSeconds / texels, t.maxRgbError);
+                t.size, t.size, t.decodeSeconds, t.upliftSeconds, 1e6 * t.upliftCpuSeconds / texels,
+                t.maxRgbError);
   return line;
 }
 

@@ -12,7 +12,9 @@ namespace camsim {
 
 class JsonObject {
  public:
-  JsonObject& set(const std::string& key, const std::string& value) { return raw(key, quote(value)); }
+  JsonObject& set(const std::string& key, const std::string& value) {
+    return raw(key, quote(value));
+  }
   JsonObject& set(const std::string& key, const char* value) { return raw(key, quote(value)); }
   JsonObject& set(const std::string& key, double value) { return raw(key, number(value)); }
   JsonObject& set(const std::string& key, bool value) { return raw(key, value ? "true" : "false"); }
@@ -21,7 +23,9 @@ class JsonObject {
     for (size_t i = 0; i < values.size(); ++i) s += (i ? ", " : "") + number(values[i]);
     return raw(key, s + "]");
   }
-  JsonObject& set(const std::string& key, const JsonObject& object) { return raw(key, object.str()); }
+  JsonObject& set(const std::string& key, const JsonObject& object) {
+    return raw(key, object.str());
+  }
 
   std::string str(int indent = 0) const {
     const std::string pad(static_cast<size_t>(indent + 2), ' ');
@@ -49,10 +53,14 @@ class JsonObject {
   static std::string quote(const std::string& s) {
     std::string out = "\"";
     for (char c : s) {
-      if (c == '"' || c == '\\') out += '\\', out += c;
-      else if (c == '\n') out += "\\n";
-      else if (static_cast<unsigned char>(c) < 0x20) out += ' ';
-      else out += c;
+      if (c == '"' || c == '\\')
+        out += '\\', out += c;
+      else if (c == '\n')
+        out += "\\n";
+      else if (static_cast<unsigned char>(c) < 0x20)
+        out += ' ';
+      else
+        out += c;
     }
     return out + "\"";
   }

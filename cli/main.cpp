@@ -29,7 +29,8 @@ int main(int argc, char** argv) {
   std::vector<std::string> args(argv + 1, argv + argc);
   try {
     if (!args.empty() && args[0] == "ptc") return camsim::runPtcCommand(args, std::cout, std::cerr);
-    if (!args.empty() && args[0] == "bench") return camsim::runBenchCommand(args, std::cout, std::cerr);
+    if (!args.empty() && args[0] == "bench")
+      return camsim::runBenchCommand(args, std::cout, std::cerr);
     const camsim::Command cmd = camsim::parseArgs(args);
     switch (cmd.kind) {
       case camsim::Command::Kind::kHelp:

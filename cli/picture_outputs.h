@@ -22,8 +22,9 @@ DisplayChoice checkPictureSettings(const PictureSettings& settings);
 
 // acescg: R, G, B scene-linear ACEScg (already exposed: 0.18 = mid-grey). Writes
 // NAME.png through OCIO, and NAME_acescg.exr if writeExr. Returns what was used (JSON).
-JsonObject writePicture(const Image& acescg, const std::string& name, const PictureSettings& settings,
-                        bool writeExr, const Metadata& meta, OutputSet& outputs);
+JsonObject writePicture(const Image& acescg, const std::string& name,
+                        const PictureSettings& settings, bool writeExr, const Metadata& meta,
+                        OutputSet& outputs);
 
 // CIE XYZ (D65-referred, absolute) → ACEScg with the mean luminance exposed to 0.18.
 Image xyzToExposedAcescg(const Image& xyz, double& exposure);

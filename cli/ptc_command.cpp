@@ -1,6 +1,5 @@
 #include "cli/ptc_command.h"
 
-
 #include <cctype>
 #include <charconv>
 #include <cmath>
@@ -57,7 +56,6 @@ std::string fileStem(const std::string& name) {
              : '_';
   return s.empty() ? "sensor" : s;
 }
-
 
 }  // namespace
 
@@ -195,15 +193,17 @@ std::vector<std::filesystem::path> runPtc(const PtcArgs& args, std::ostream& out
   OutputSet outputs(outDir);
   const std::filesystem::path csv = outputs.addText(stem + ".csv", formatPtcCsv(m));
   if (const std::optional<std::string> python = pythonWithMatplotlib(); !python) {
-    log << "camsim ptc: python3 with matplotlib not found ($CAMSIM_PYTHON or /usr/bin/python3; Debian: apt-get install "
+    log << "camsim ptc: python3 with matplotlib not found ($CAMSIM_PYTHON or /usr/bin/python3; "
+           "Debian: apt-get install "
         << "python3-matplotlib): plots skipped, CSV only\n";
   } else {
     const auto ptcPng = outputs.add(stem + "_ptc.png"), snrPng = outputs.add(stem + "_snr.png");
     out.flush();
-    runPythonScript(*python, ptcPlotScriptFile("ptc_plot.py"),
-                    {csv.string(), ptcPng.string(), snrPng.string(), sensor.name, format('g', 9, m.systemGainK),
-                     format('g', 9, m.quantumEfficiency), format('g', 9, m.darkNoiseE), format('g', 9, m.muPSat),
-                     format('g', 9, m.muPMin)});
+    runPythonScript(
+        *python, ptcPlotScriptFile("ptc_plot.py"),
+        {csv.string(), ptcPng.string(), snrPng.string(), sensor.name, format('g', 9, m.systemGainK),
+         format('g', 9, m.quantumEfficiency), format('g', 9, m.darkNoiseE),
+         format('g', 9, m.muPSat), format('g', 9, m.muPMin)});
   }
   const std::vector<std::filesystem::path> files = outputs.commit();
   for (const auto& f : files) log << "camsim ptc: wrote " << f.string() << "\n";

@@ -4,8 +4,8 @@
 #include <ostream>
 
 #include "cli/progress.h"
-#include "cli/resource_guard.h"
 #include "cli/render_outputs.h"
+#include "cli/resource_guard.h"
 #include "integrator/render.h"
 #include "integrator/scene.h"
 #include "integrator/scene_loader.h"
@@ -36,19 +36,23 @@ LoadedScene load(const RenderArgs& args) {
   SceneDescription& d = loaded.description;
   if (args.spp) d.render.spp = *args.spp;
   if (args.seed) d.render.seed = *args.seed;
-  if (args.exposureTimeS) d.camera.shutter = d.camera.shutter.scaled(*args.exposureTimeS / d.camera.shutter.effectiveTime());
+  if (args.exposureTimeS)
+    d.camera.shutter =
+        d.camera.shutter.scaled(*args.exposureTimeS / d.camera.shutter.effectiveTime());
   if (args.fNumber) {
     d.camera.fNumber = *args.fNumber;
     if (d.camera.aperture)
-      d.camera.aperture.emplace(d.camera.focalLength / d.camera.fNumber, d.camera.aperture->blades(),
-                                d.camera.aperture->rotation());
+      d.camera.aperture.emplace(d.camera.focalLength / d.camera.fNumber,
+                                d.camera.aperture->blades(), d.camera.aperture->rotation());
   }
   if ((args.iso || args.noise || args.noiseSeed) && !d.sensor)
     throw UsageError("--iso, --noise and --noise-seed need a scene with a sensor");
   if (args.iso) d.sensor->iso = *args.iso;
   if (args.noiseSeed) d.sensor->noiseSeed = *args.noiseSeed;
   if (args.noise)
-    d.sensor->noise = *args.noise == "none" ? NoiseMode::kNone : *args.noise == "photon" ? NoiseMode::kPhoton : NoiseMode::kFull;
+    d.sensor->noise = *args.noise == "none"     ? NoiseMode::kNone
+                      : *args.noise == "photon" ? NoiseMode::kPhoton
+                                                : NoiseMode::kFull;
   return loaded;
 }
 
@@ -66,21 +70,24 @@ void appendCameraMetadata(const PhysicalCamera& camera, Metadata& meta) {
                            {"camsim:focal_length_m", number(p.focalLength)},
                            {"camsim:image_distance_m", number(camera.imageDistance())},
                            {"camsim:pixel_area_m2", number(camera.pixelArea())},
-                           {"camsim:opencv_fx_fy_cx_cy", number(k.x) + " " + number(k.y) + " " + number(k.z) +
-                                                             " " + number(k.w)},
+                           {"camsim:opencv_fx_fy_cx_cy", number(k.x) + " " + number(k.y) + " " +
+                                                             number(k.z) + " " + number(k.w)},
                            {"camsim:opencv_k1_k2_p1_p2_k3",
-                            number(p.distortion.k1) + " " + number(p.distortion.k2) + " " + number(p.distortion.p1) +
-                                " " + number(p.distortion.p2) + " " + number(p.distortion.k3)}});
+                            number(p.distortion.k1) + " " + number(p.distortion.k2) + " " +
+                                number(p.distortion.p1) + " " + number(p.distortion.p2) + " " +
+                                number(p.distortion.k3)}});
 }
 
 std::string formatRate(double perSecond) {
   char buf[32];
-  if (perSecond >= 1e6) std::snprintf(buf, sizeof buf, "%.2f M", perSecond * 1e-6);
-  else if (perSecond >= 1e3) std::snprintf(buf, sizeof buf, "%.2f k", perSecond * 1e-3);
-  else std::snprintf(buf, sizeof buf, "%.2f ", perSecond);
+  if (perSecond >= 1e6)
+    std::snprintf(buf, sizeof buf, "%.2f M", perSecond * 1e-6);
+  else if (perSecond >= 1e3)
+    std::snprintf(buf, sizeof buf, "%.2f k", perSecond * 1e-3);
+  else
+    std::snprintf(buf, sizeof buf, "%.2f ", perSecond);
   return buf;
 }
-
 
 // An interrupted render's finished tiles (each has its full spp), as NAME.partial.exr —
 // never a final name, so a partial image is not taken for a finished one. Nothing when no
@@ -123,7 +130,8 @@ std::string fnv1aHex(std::string_view data) {
   return buf;
 }
 
-RenderCommandResult runRender(const RenderArgs& args, std::ostream& log, const std::atomic<bool>* cancel) {
+RenderCommandResult runRender(const RenderArgs& args, std::ostream& log,
+                              const std::atomic<bool>* cancel) {
   const LoadedScene loaded = load(args);
   const SceneDescription& desc = loaded.description;
   checkMemoryLimit(desc, args.maxMemoryGb);  // before any work
@@ -131,7 +139,8 @@ RenderCommandResult runRender(const RenderArgs& args, std::ostream& log, const s
   std::error_code ec;
   std::filesystem::create_directories(outDir, ec);
   if (!std::filesystem::is_directory(outDir))
-    throw InputError({outDir.string(), 0, 0}, "", "cannot create output directory" + (ec ? ": " + ec.message() : ""));
+    throw InputError({outDir.string(), 0, 0}, "",
+                     "cannot create output directory" + (ec ? ": " + ec.message() : ""));
   for (const auto& stale : OutputSet::cleanStaleTemporaries(outDir))
     log << "removed " << stale.string() << " (left by a run that was killed)\n";
 
@@ -144,7 +153,8 @@ RenderCommandResult runRender(const RenderArgs& args, std::ostream& log, const s
   if (desc.sensor) {
     const SensorSpec& spec = desc.sensor->spec;
     const bool mosaic = !spec.cfa.isStacked();
-    sensorResponse = SpectralResponse::electrons(spec.cfa.channels, spec.qe, mosaic ? &spec.cfa : nullptr);
+    sensorResponse =
+        SpectralResponse::electrons(spec.cfa.channels, spec.qe, mosaic ? &spec.cfa : nullptr);
     responses.push_back(&*sensorResponse);
   }
   ProgressBar progress("rendering " + desc.name);
@@ -177,9 +187,10 @@ RenderCommandResult runRender(const RenderArgs& args, std::ostream& log, const s
                    {"camsim:render_seconds", std::to_string(st.seconds)},
                    {"camsim:rejected_samples", std::to_string(st.rejectedSamples)},
                    {"camsim:modelled", st.modelled.describe()},
-                   {"camsim:units", "energy on each photosite weighted by the CIE 1931 observer x 683 lm/W: "
-                                    "XYZ.Y is luminous energy in lm*s (talbot); R,G,B: linear Rec.709 on the "
-                                    "same scale (1,1,1 has Y = 1 lm*s)"}};
+                   {"camsim:units",
+                    "energy on each photosite weighted by the CIE 1931 observer x 683 lm/W: "
+                    "XYZ.Y is luminous energy in lm*s (talbot); R,G,B: linear Rec.709 on the "
+                    "same scale (1,1,1 has Y = 1 lm*s)"}};
   appendCameraMetadata(scene.camera(), meta);
   OutputSet outputs(outDir);
   // Re-render only for moving scenes, whose motion blur depends on the exposure time.
@@ -198,11 +209,13 @@ RenderCommandResult runRender(const RenderArgs& args, std::ostream& log, const s
     log << "removed " << stalePartial.string() << " of an interrupted run\n";
 
   log << "modelled: " << st.modelled.describe() << "\n";
-  log << "rendered " << desc.name << ": " << result.image.width << "x" << result.image.height << ", "
-      << desc.render.spp << " spp, " << st.threads << " threads, " << formatSeconds(st.seconds) << " ("
-      << formatRate(st.samplesPerSecond()) << "samples/s, " << formatRate(st.raysPerSecond())
+  log << "rendered " << desc.name << ": " << result.image.width << "x" << result.image.height
+      << ", " << desc.render.spp << " spp, " << st.threads << " threads, "
+      << formatSeconds(st.seconds) << " (" << formatRate(st.samplesPerSecond()) << "samples/s, "
+      << formatRate(st.raysPerSecond())
       << "rays/s), rejected samples (NaN/Inf): " << st.rejectedSamples << "\n";
-  if (st.rejectedSamples > 0) log << "warning: " << st.rejectedSamples << " samples had NaN/Inf radiance and were dropped\n";
+  if (st.rejectedSamples > 0)
+    log << "warning: " << st.rejectedSamples << " samples had NaN/Inf radiance and were dropped\n";
   for (const auto& f : outcome.files) log << "wrote " << f.string() << "\n";
   return outcome;
 }

@@ -15,7 +15,9 @@ namespace camsim {
 
 // The embedded default scene (scenes/cornell_box.yaml at build time).
 std::string_view defaultSceneFile(std::string_view relPath);
-inline std::string_view defaultSceneText() { return defaultSceneFile("cornell_box.yaml"); }
+inline std::string_view defaultSceneText() {
+  return defaultSceneFile("cornell_box.yaml");
+}
 
 // 64-bit FNV-1a, as 16 hex digits: identifies the scene text in output metadata.
 std::string fnv1aHex(std::string_view data);

@@ -13,7 +13,6 @@
 namespace camsim {
 namespace {
 
-
 std::vector<double> matrixRows(const glm::dmat3& m) {
   std::vector<double> v;
   for (int r = 0; r < 3; ++r)
@@ -32,15 +31,18 @@ JsonObject cameraJson(const PhysicalCamera& camera) {
       .set("f_number", p.fNumber)
       .set("focus_distance_m", p.focusDistance)
       .set("image_distance_m", camera.imageDistance())
-      .set("aperture", p.aperture ? (p.aperture->blades() ? std::to_string(p.aperture->blades()) + " blades" : "circular")
-                                  : "pinhole")
+      .set("aperture",
+           p.aperture ? (p.aperture->blades() ? std::to_string(p.aperture->blades()) + " blades"
+                                              : "circular")
+                      : "pinhole")
       .set("shutter_open_s", p.shutter.open())
       .set("shutter_close_s", p.shutter.close())
       .set("exposure_time_s", p.shutter.effectiveTime())
       .set("rolling_shutter_row_time_s", p.shutter.rowTime())
       .set("opencv_fx_fy_cx_cy", std::vector<double>{k.x, k.y, k.z, k.w})
-      .set("opencv_k1_k2_p1_p2_k3", std::vector<double>{p.distortion.k1, p.distortion.k2, p.distortion.p1,
-                                                         p.distortion.p2, p.distortion.k3});
+      .set("opencv_k1_k2_p1_p2_k3",
+           std::vector<double>{p.distortion.k1, p.distortion.k2, p.distortion.p1, p.distortion.p2,
+                               p.distortion.k3});
   return j;
 }
 
@@ -72,14 +74,15 @@ void writeRenderOutputs(const RenderOutputInputs& in, OutputSet& outputs, std::o
   JsonObject sidecar;
   sidecar.set("camsim_version", CAMSIM_VERSION)
       .set("scene", desc.sourceFile)
-      .set("render", JsonObject()
-                         .set("spp", double(desc.render.spp))
-                         .set("seed", double(desc.render.seed))
-                         .set("sampler", desc.render.sampler == SamplerKind::kSobol ? "sobol" : "independent")
-                         .set("max_depth", double(desc.render.maxDepth))
-                         .set("seconds", st.seconds)
-                         .set("rejected_samples", double(st.rejectedSamples))
-                         .set("modelled", st.modelled.describe()))
+      .set("render",
+           JsonObject()
+               .set("spp", double(desc.render.spp))
+               .set("seed", double(desc.render.seed))
+               .set("sampler", desc.render.sampler == SamplerKind::kSobol ? "sobol" : "independent")
+               .set("max_depth", double(desc.render.maxDepth))
+               .set("seconds", st.seconds)
+               .set("rejected_samples", double(st.rejectedSamples))
+               .set("modelled", st.modelled.describe()))
       .set("camera", cameraJson(in.scene.camera()));
 
   if (desc.sensor) {
@@ -89,10 +92,11 @@ void writeRenderOutputs(const RenderOutputInputs& in, OutputSet& outputs, std::o
                           in.result.images[1], in.rerender, in.metadata, outputs, log);
     for (const auto& f : frames.frames)
       if (f.clippedFraction > 0.01)
-        log << "note: " << (f.dngFile.empty() ? f.rawExrFile : f.dngFile) << ": " << 100.0 * f.clippedFraction
-            << " % of photosites clipped\n";
-    const DevelopedImage dev = developRaw(frames.referenceRaws, sensor.spec, desc.isp,
-                                          lutsDirectory() / "spectra" / "colorchecker_classic_reflectance.csv");
+        log << "note: " << (f.dngFile.empty() ? f.rawExrFile : f.dngFile) << ": "
+            << 100.0 * f.clippedFraction << " % of photosites clipped\n";
+    const DevelopedImage dev =
+        developRaw(frames.referenceRaws, sensor.spec, desc.isp,
+                   lutsDirectory() / "spectra" / "colorchecker_classic_reflectance.csv");
     Image working = dev.working;
     if (working.channelCount() == 1) {  // monochrome: grey RGB
       Image grey(working.width, working.height, {"R", "G", "B"});
@@ -108,7 +112,8 @@ void writeRenderOutputs(const RenderOutputInputs& in, OutputSet& outputs, std::o
         .set("noise", noiseName(sensor.noise))
         .set("noise_seed", double(sensor.noiseSeed))
         .set("frame", double(sensor.frame))
-        .set("auto_exposure", sensor.autoExposure ? meteringName(sensor.autoExposure->metering) : "off")
+        .set("auto_exposure",
+             sensor.autoExposure ? meteringName(sensor.autoExposure->metering) : "off")
         .set("auto_exposure_scale", frames.exposureScale)
         .set("bracket_ev", evs)
         .set("exposure_times_s", times)
@@ -116,15 +121,17 @@ void writeRenderOutputs(const RenderOutputInputs& in, OutputSet& outputs, std::o
         .set("saturation_e", sensor.spec.saturationElectrons(sensor.iso));
     sidecar.set("sensor", sensorJson);
     const char* wb[] = {"illuminant", "region", "grey_world"};
-    sidecar.set("isp", JsonObject()
-                           .set("white_balance", wb[static_cast<int>(desc.isp.whiteBalance)])
-                           .set("illuminant", desc.isp.illuminant)
-                           .set("white_balance_gains", dev.whiteBalance)
-                           .set("demosaic", desc.isp.demosaic == DemosaicMethod::kMalvarHeCutler ? "malvar-he-cutler"
-                                                                                                  : "bilinear")
-                           .set("ccm_camera_to_xyz_d65", matrixRows(dev.colorCorrection.cameraToXyz))
-                           .set("xyz_d65_to_working", matrixRows(dev.colorCorrection.xyzToWorking))
-                           .set("working_space", "ACEScg"));
+    sidecar.set("isp",
+                JsonObject()
+                    .set("white_balance", wb[static_cast<int>(desc.isp.whiteBalance)])
+                    .set("illuminant", desc.isp.illuminant)
+                    .set("white_balance_gains", dev.whiteBalance)
+                    .set("demosaic", desc.isp.demosaic == DemosaicMethod::kMalvarHeCutler
+                                         ? "malvar-he-cutler"
+                                         : "bilinear")
+                    .set("ccm_camera_to_xyz_d65", matrixRows(dev.colorCorrection.cameraToXyz))
+                    .set("xyz_d65_to_working", matrixRows(dev.colorCorrection.xyzToWorking))
+                    .set("working_space", "ACEScg"));
     sidecar.set("color", writePicture(working, desc.name, in.picture, true, in.metadata, outputs));
   } else {
     double exposure = 1.0;

@@ -16,9 +16,12 @@ constexpr std::uint64_t kBytesPerTriangle = 100;
 // "12.34 GB", "56.7 MB", "89 kB" (decimal units, as --max-memory-gb).
 std::string gb(double bytes) {
   char buf[32];
-  if (bytes >= 0.995e9) std::snprintf(buf, sizeof buf, "%.2f GB", bytes / kBytesPerGb);
-  else if (bytes >= 0.995e6) std::snprintf(buf, sizeof buf, "%.1f MB", bytes * 1e-6);
-  else std::snprintf(buf, sizeof buf, "%.0f kB", bytes * 1e-3);
+  if (bytes >= 0.995e9)
+    std::snprintf(buf, sizeof buf, "%.2f GB", bytes / kBytesPerGb);
+  else if (bytes >= 0.995e6)
+    std::snprintf(buf, sizeof buf, "%.1f MB", bytes * 1e-6);
+  else
+    std::snprintf(buf, sizeof buf, "%.0f kB", bytes * 1e-3);
   return buf;
 }
 
@@ -73,10 +76,10 @@ void checkMemoryLimit(const SceneDescription& desc, std::optional<double> maxMem
   const auto& res = desc.camera.resolution;
   throw InputError({desc.sourceFile, 0, 0}, "",
                    "this render needs an estimated " + gb(static_cast<double>(m.total())) +
-                       " of memory (film " + gb(static_cast<double>(m.film)) +
-                       ", output images " + gb(static_cast<double>(m.images)) + ", meshes " +
-                       gb(static_cast<double>(m.meshes)) + " for " + std::to_string(res.x) +
-                       "x" + std::to_string(res.y) + " px), more than " + which +
+                       " of memory (film " + gb(static_cast<double>(m.film)) + ", output images " +
+                       gb(static_cast<double>(m.images)) + ", meshes " +
+                       gb(static_cast<double>(m.meshes)) + " for " + std::to_string(res.x) + "x" +
+                       std::to_string(res.y) + " px), more than " + which +
                        "; lower camera.resolution or raise the limit with --max-memory-gb GB");
 }
 

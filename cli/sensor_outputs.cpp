@@ -31,37 +31,45 @@ Image scaled(const Image& image, double k) {
 Image plane(const Image& image, int c) {
   Image out(image.width, image.height, {image.channels[static_cast<size_t>(c)]});
   const size_t n = static_cast<size_t>(image.channelCount());
-  for (size_t p = 0; p < out.pixels.size(); ++p) out.pixels[p] = image.pixels[p * n + static_cast<size_t>(c)];
+  for (size_t p = 0; p < out.pixels.size(); ++p)
+    out.pixels[p] = image.pixels[p * n + static_cast<size_t>(c)];
   return out;
 }
 
 }  // namespace
 
-SensorOutputs writeSensorFrames(const SensorSettings& sensor, const std::string& name, double exposureTimeS,
-                                bool sceneMoves, const Image& electrons, const std::function<Image(double)>& rerender,
-                                const Metadata& meta, OutputSet& outputs, std::ostream& log) {
+SensorOutputs writeSensorFrames(const SensorSettings& sensor, const std::string& name,
+                                double exposureTimeS, bool sceneMoves, const Image& electrons,
+                                const std::function<Image(double)>& rerender, const Metadata& meta,
+                                OutputSet& outputs, std::ostream& log) {
   const SensorSpec& spec = sensor.spec;
   SensorOutputs result;
   double& exposureScale = result.exposureScale;
   Image base = electrons;
   if (sensor.autoExposure) {
-    exposureScale = autoExposureScale(electrons, *sensor.autoExposure, spec.saturationElectrons(sensor.iso));
+    exposureScale =
+        autoExposureScale(electrons, *sensor.autoExposure, spec.saturationElectrons(sensor.iso));
     base = sceneMoves ? rerender(exposureScale) : scaled(electrons, exposureScale);
     log << "auto-exposure (" << meteringName(sensor.autoExposure->metering) << ", target "
-        << sensor.autoExposure->target << " of saturation): exposure time " << exposureTimeS * exposureScale
-        << " s (x" << exposureScale << " the scene's), ISO " << sensor.iso << "\n";
+        << sensor.autoExposure->target << " of saturation): exposure time "
+        << exposureTimeS * exposureScale << " s (x" << exposureScale << " the scene's), ISO "
+        << sensor.iso << "\n";
   }
   const bool bracketed = !sensor.bracketEv.empty();
   const std::vector<double> evs = bracketed ? sensor.bracketEv : std::vector<double>{0.0};
-  const DngColor color = spec.qe.size() == 3 && !spec.cfa.isStacked()
-                             ? dngColorFromQe(spec.qe, cieIlluminant("D65"),
-                                              lutsDirectory() / "spectra" / "colorchecker_classic_reflectance.csv")
-                             : DngColor{};
-  const size_t reference = static_cast<size_t>(
-      std::find(evs.begin(), evs.end(), 0.0) == evs.end() ? 0 : std::find(evs.begin(), evs.end(), 0.0) - evs.begin());
+  const DngColor color =
+      spec.qe.size() == 3 && !spec.cfa.isStacked()
+          ? dngColorFromQe(spec.qe, cieIlluminant("D65"),
+                           lutsDirectory() / "spectra" / "colorchecker_classic_reflectance.csv")
+          : DngColor{};
+  const size_t reference =
+      static_cast<size_t>(std::find(evs.begin(), evs.end(), 0.0) == evs.end()
+                              ? 0
+                              : std::find(evs.begin(), evs.end(), 0.0) - evs.begin());
   for (size_t i = 0; i < evs.size(); ++i) {
     const double k = std::exp2(evs[i]);
-    const Image frameElectrons = evs[i] == 0.0 ? base : (sceneMoves ? rerender(exposureScale * k) : scaled(base, k));
+    const Image frameElectrons =
+        evs[i] == 0.0 ? base : (sceneMoves ? rerender(exposureScale * k) : scaled(base, k));
     SensorFrameReport report;
     report.ev = evs[i];
     report.exposureTimeS = exposureTimeS * exposureScale * k;
@@ -69,21 +77,24 @@ SensorOutputs writeSensorFrames(const SensorSettings& sensor, const std::string&
     // A mosaic is one plane; a stacked sensor exposes each channel plane (own noise seed).
     std::vector<RawImage> raws;
     for (int c = 0; c < frameElectrons.channelCount(); ++c)
-      raws.push_back(expose(frameElectrons.channelCount() == 1 ? frameElectrons : plane(frameElectrons, c), spec,
-                            settings, sensor.noise, sensor.noiseSeed + static_cast<std::uint64_t>(c) * 0x9e3779b9u,
-                            sensor.frame + i));
+      raws.push_back(
+          expose(frameElectrons.channelCount() == 1 ? frameElectrons : plane(frameElectrons, c),
+                 spec, settings, sensor.noise,
+                 sensor.noiseSeed + static_cast<std::uint64_t>(c) * 0x9e3779b9u, sensor.frame + i));
     size_t clipped = 0, total = 0;
     for (const RawImage& raw : raws) {
       for (std::uint16_t v : raw.dn) clipped += static_cast<double>(v) >= raw.whiteLevelDn ? 1 : 0;
       total += raw.dn.size();
     }
-    report.clippedFraction = total == 0 ? 0.0 : static_cast<double>(clipped) / static_cast<double>(total);
+    report.clippedFraction =
+        total == 0 ? 0.0 : static_cast<double>(clipped) / static_cast<double>(total);
     Metadata frameMeta = meta;
-    frameMeta.insert(frameMeta.end(), {{"camsim:sensor", spec.name},
-                                       {"camsim:iso", std::to_string(sensor.iso)},
-                                       {"camsim:exposure_time_s", std::to_string(report.exposureTimeS)},
-                                       {"camsim:noise_seed", std::to_string(sensor.noiseSeed)},
-                                       {"camsim:frame", std::to_string(sensor.frame + i)}});
+    frameMeta.insert(frameMeta.end(),
+                     {{"camsim:sensor", spec.name},
+                      {"camsim:iso", std::to_string(sensor.iso)},
+                      {"camsim:exposure_time_s", std::to_string(report.exposureTimeS)},
+                      {"camsim:noise_seed", std::to_string(sensor.noiseSeed)},
+                      {"camsim:frame", std::to_string(sensor.frame + i)}});
     const std::string stem = name + evSuffix(evs[i], bracketed);
     if (!spec.cfa.isStacked()) {
       report.dngFile = stem + ".dng";
@@ -93,7 +104,8 @@ SensorOutputs writeSensorFrames(const SensorSettings& sensor, const std::string&
     } else {
       for (size_t c = 0; c < raws.size(); ++c) {
         report.rawExrFile = stem + "_raw_" + spec.cfa.channels[c] + ".exr";
-        writeRawExr(outputs.add(report.rawExrFile), raws[c], plane(frameElectrons, static_cast<int>(c)), frameMeta);
+        writeRawExr(outputs.add(report.rawExrFile), raws[c],
+                    plane(frameElectrons, static_cast<int>(c)), frameMeta);
       }
     }
     if (i == reference) result.referenceRaws = std::move(raws);

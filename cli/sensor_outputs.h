@@ -33,8 +33,9 @@ struct SensorOutputs {
 // electrons — used only when the scene moves (motion blur depends on the exposure);
 // static scenes scale linearly. Writes NAME[_evX].dng and NAME[_evX]_raw.exr (a stacked
 // sensor: NAME[_evX]_raw_<channel>.exr per plane, no DNG).
-SensorOutputs writeSensorFrames(const SensorSettings& sensor, const std::string& name, double exposureTimeS,
-                                bool sceneMoves, const Image& electrons, const std::function<Image(double)>& rerender,
-                                const Metadata& meta, OutputSet& outputs, std::ostream& log);
+SensorOutputs writeSensorFrames(const SensorSettings& sensor, const std::string& name,
+                                double exposureTimeS, bool sceneMoves, const Image& electrons,
+                                const std::function<Image(double)>& rerender, const Metadata& meta,
+                                OutputSet& outputs, std::ostream& log);
 
 }  // namespace camsim

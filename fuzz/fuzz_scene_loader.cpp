@@ -54,8 +54,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
                camsim::SceneLimits::kMaxPixels);
     FUZZ_CHECK(desc.render.spp >= 1 && desc.render.spp <= camsim::SceneLimits::kMaxSpp);
     for (const auto& shape : desc.shapes) {
-      FUZZ_CHECK(shape.material >= -1 &&
-                 shape.material < static_cast<int>(desc.materials.size()));
+      FUZZ_CHECK(shape.material >= -1 && shape.material < static_cast<int>(desc.materials.size()));
       if (shape.kind == camsim::ShapeDescription::Kind::kMesh)
         camsim::fuzz::checkMesh(shape.mesh);
       else

@@ -21,7 +21,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     FUZZ_CHECK(s.qe.size() == s.cfa.channels.size());
     FUZZ_CHECK(s.adcBits >= 1 && s.adcBits <= 16);
     FUZZ_CHECK(s.blackLevelDn < s.whiteLevelDn());
-    for (const camsim::Spectrum& q : s.qe) FUZZ_CHECK(q.minValue() >= 0.0 && std::isfinite(q.maxValue()));
+    for (const camsim::Spectrum& q : s.qe)
+      FUZZ_CHECK(q.minValue() >= 0.0 && std::isfinite(q.maxValue()));
     for (const double iso : {s.baseIso, 2.0 * s.baseIso}) {
       FUZZ_CHECK(std::isfinite(s.systemGain(iso)) && s.systemGain(iso) > 0.0);
       FUZZ_CHECK(std::isfinite(s.saturationElectrons(iso)) && s.saturationElectrons(iso) >= 0.0);

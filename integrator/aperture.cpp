@@ -8,7 +8,8 @@
 
 namespace camsim {
 
-Aperture::Aperture(double diameter, int blades, double rotation) : blades_(blades), rotation_(rotation) {
+Aperture::Aperture(double diameter, int blades, double rotation)
+    : blades_(blades), rotation_(rotation) {
   CAMSIM_CHECK(diameter > 0.0 && (blades == 0 || blades >= 3));
   const double circleArea = M_PI * 0.25 * diameter * diameter;
   area_ = circleArea;
@@ -22,9 +23,12 @@ glm::vec2 Aperture::sample(glm::vec2 u) const {
   const float scaled = u.x * static_cast<float>(blades_);
   const int k = std::min(static_cast<int>(scaled), blades_ - 1);
   const glm::vec2 b = sampleUniformTriangle({scaled - static_cast<float>(k), u.y});
-  const double a0 = rotation_ + 2.0 * M_PI * k / blades_, a1 = rotation_ + 2.0 * M_PI * (k + 1) / blades_;
-  const glm::vec2 v0(static_cast<float>(radius_ * std::cos(a0)), static_cast<float>(radius_ * std::sin(a0)));
-  const glm::vec2 v1(static_cast<float>(radius_ * std::cos(a1)), static_cast<float>(radius_ * std::sin(a1)));
+  const double a0 = rotation_ + 2.0 * M_PI * k / blades_,
+               a1 = rotation_ + 2.0 * M_PI * (k + 1) / blades_;
+  const glm::vec2 v0(static_cast<float>(radius_ * std::cos(a0)),
+                     static_cast<float>(radius_ * std::sin(a0)));
+  const glm::vec2 v1(static_cast<float>(radius_ * std::cos(a1)),
+                     static_cast<float>(radius_ * std::sin(a1)));
   return b.y * v0 + (1.0f - b.x - b.y) * v1;  // the centre has weight b.x
 }
 

@@ -7,8 +7,8 @@ namespace camsim {
 AreaLight::AreaLight(const Shape& shape, Spectrum radiance, bool twoSided)
     : shape_(shape), radiance_(radiance), twoSided_(twoSided) {}
 
-std::optional<LightSample> AreaLight::sample(const glm::vec3& ref, float time, float u1, glm::vec2 u2,
-                                             const SampledWavelengths& lambda) const {
+std::optional<LightSample> AreaLight::sample(const glm::vec3& ref, float time, float u1,
+                                             glm::vec2 u2, const SampledWavelengths& lambda) const {
   const std::optional<ShapeSample> ss = shape_.sample(ref, u1, u2, time);
   if (!ss) return std::nullopt;
   const glm::vec3 toLight = ss->point.p - ref;

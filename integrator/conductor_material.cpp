@@ -18,7 +18,7 @@ ConductorMaterial::ConductorMaterial(ConductorParameters p) : p_(std::move(p)) {
 
 MicrofacetModel ConductorMaterial::model(const BsdfContext& ctx) const {
   return MicrofacetModel::fromRoughness(p_.distribution, p_.masking, p_.roughness->evaluate(ctx.uv),
-                                       p_.anisotropy);
+                                        p_.anisotropy);
 }
 
 SampledSpectrum ConductorMaterial::fresnel(float cosTheta, const SampledWavelengths& lambda,

@@ -114,7 +114,8 @@ DielectricMaterial::DielectricMaterial(Spectrum eta, float roughness, float anis
                          anisotropy, distribution, masking) {}
 
 MicrofacetModel DielectricMaterial::microfacet(const BsdfContext& ctx) const {
-  return MicrofacetModel::fromRoughness(distribution_, masking_, roughness_->evaluate(ctx.uv), anisotropy_);
+  return MicrofacetModel::fromRoughness(distribution_, masking_, roughness_->evaluate(ctx.uv),
+                                        anisotropy_);
 }
 
 SampledSpectrum DielectricMaterial::f(const glm::vec3& wo, const glm::vec3& wi,

@@ -12,14 +12,15 @@ DiffuseMaterial::DiffuseMaterial(std::unique_ptr<SpectrumTexture> reflectance)
 DiffuseMaterial::DiffuseMaterial(Spectrum reflectance)
     : DiffuseMaterial(std::make_unique<ConstantSpectrumTexture>(std::move(reflectance))) {}
 
-SampledSpectrum DiffuseMaterial::f(const glm::vec3& wo, const glm::vec3& wi, const SampledWavelengths& lambda,
-                                   const BsdfContext& ctx) const {
+SampledSpectrum DiffuseMaterial::f(const glm::vec3& wo, const glm::vec3& wi,
+                                   const SampledWavelengths& lambda, const BsdfContext& ctx) const {
   if (wo.z * wi.z <= 0.0f) return SampledSpectrum(0.0f);
   return reflectance_->evaluate(ctx.uv, lambda) * kInvPi;
 }
 
 std::optional<BsdfSample> DiffuseMaterial::sample(const glm::vec3& wo, float /*uc*/, glm::vec2 u,
-                                                  const SampledWavelengths& lambda, const BsdfContext& ctx) const {
+                                                  const SampledWavelengths& lambda,
+                                                  const BsdfContext& ctx) const {
   if (wo.z == 0.0f) return std::nullopt;
   glm::vec3 wi = sampleCosineHemisphere(u);
   wi.z = std::copysign(wi.z, wo.z);  // wo's side (wi.z ≥ 0 here); no branch on a random sign
@@ -32,8 +33,8 @@ std::optional<BsdfSample> DiffuseMaterial::sample(const glm::vec3& wo, float /*u
   return s;
 }
 
-float DiffuseMaterial::pdf(const glm::vec3& wo, const glm::vec3& wi, const SampledWavelengths& /*lambda*/,
-                           const BsdfContext& /*ctx*/) const {
+float DiffuseMaterial::pdf(const glm::vec3& wo, const glm::vec3& wi,
+                           const SampledWavelengths& /*lambda*/, const BsdfContext& /*ctx*/) const {
   if (wo.z * wi.z <= 0.0f) return 0.0f;
   return std::abs(wi.z) * kInvPi;
 }

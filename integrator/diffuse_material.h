@@ -22,7 +22,8 @@ class DiffuseMaterial final : public Material {
 
   SampledSpectrum f(const glm::vec3& wo, const glm::vec3& wi, const SampledWavelengths& lambda,
                     const BsdfContext& ctx) const override;
-  std::optional<BsdfSample> sample(const glm::vec3& wo, float uc, glm::vec2 u, const SampledWavelengths& lambda,
+  std::optional<BsdfSample> sample(const glm::vec3& wo, float uc, glm::vec2 u,
+                                   const SampledWavelengths& lambda,
                                    const BsdfContext& ctx) const override;
   float pdf(const glm::vec3& wo, const glm::vec3& wi, const SampledWavelengths& lambda,
             const BsdfContext& ctx) const override;

@@ -43,14 +43,16 @@ class DiscreteDistribution {
       i = 0;
       for (size_t k = 1; k < cdf_.size(); ++k) i += cdf_[k] <= uu ? 1 : 0;
     } else {
-      i = static_cast<size_t>(std::upper_bound(cdf_.begin() + 1, cdf_.end(), uu) - cdf_.begin()) - 1;
+      i = static_cast<size_t>(std::upper_bound(cdf_.begin() + 1, cdf_.end(), uu) - cdf_.begin()) -
+          1;
     }
     i = std::min(i, size() - 1);
     while (pmf(i) == 0.0f && i > 0) --i;  // never pick a zero-weight entry at a boundary
     if (uRemapped) {
       const double width = cdf_[i + 1] - cdf_[i];
-      *uRemapped = width > 0.0 ? static_cast<float>(std::clamp((uu - cdf_[i]) / width, 0.0, 0x1.fffffep-1))
-                               : 0.0f;
+      *uRemapped = width > 0.0
+                       ? static_cast<float>(std::clamp((uu - cdf_[i]) / width, 0.0, 0x1.fffffep-1))
+                       : 0.0f;
     }
     return i;
   }

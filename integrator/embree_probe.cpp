@@ -34,7 +34,8 @@ MeshBuildProbe probeMeshBuild(const MeshData& mesh, int threads, BvhQuality qual
   if (!g.device) throw std::runtime_error("cannot create Embree device");
   rtcSetDeviceMemoryMonitorFunction(g.device, countEmbreeMemory, &count);
   g.scene = rtcNewScene(g.device);
-  rtcSetSceneBuildQuality(g.scene, quality == BvhQuality::kHigh ? RTC_BUILD_QUALITY_HIGH : RTC_BUILD_QUALITY_MEDIUM);
+  rtcSetSceneBuildQuality(
+      g.scene, quality == BvhQuality::kHigh ? RTC_BUILD_QUALITY_HIGH : RTC_BUILD_QUALITY_MEDIUM);
   // Shared buffers as in EmbreeScene, padded the same way (Embree may read 16 bytes from the
   // last vertex and index triple); the copies are ours, so Embree counts only its own memory.
   std::vector<glm::vec3> positions;
@@ -44,8 +45,8 @@ MeshBuildProbe probeMeshBuild(const MeshData& mesh, int threads, BvhQuality qual
   indices.reserve(mesh.indices.size() + 3);
   indices.assign(mesh.indices.begin(), mesh.indices.end());
   RTCGeometry geom = rtcNewGeometry(g.device, RTC_GEOMETRY_TYPE_TRIANGLE);
-  rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, positions.data(), 0,
-                             sizeof(glm::vec3), positions.size());
+  rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, positions.data(),
+                             0, sizeof(glm::vec3), positions.size());
   rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, indices.data(), 0,
                              3 * sizeof(std::uint32_t), probe.triangles);
   rtcCommitGeometry(geom);
@@ -54,8 +55,10 @@ MeshBuildProbe probeMeshBuild(const MeshData& mesh, int threads, BvhQuality qual
   tbb::task_arena arena(threads > 0 ? threads : tbb::info::default_concurrency());
   const auto start = std::chrono::steady_clock::now();
   arena.execute([&] { rtcCommitScene(g.scene); });
-  probe.buildSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  if (rtcGetDeviceError(g.device) != RTC_ERROR_NONE) throw std::runtime_error("Embree error while building the BVH");
+  probe.buildSeconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (rtcGetDeviceError(g.device) != RTC_ERROR_NONE)
+    throw std::runtime_error("Embree error while building the BVH");
   probe.bytesAfterBuild = count.bytes.load();
   probe.bytesPeak = count.peak.load();
   return probe;

@@ -18,7 +18,7 @@ namespace camsim {
 
 struct MeshBuildProbe {
   std::uint64_t triangles = 0;
-  double buildSeconds = 0.0;        // rtcCommitScene: the BVH build
+  double buildSeconds = 0.0;         // rtcCommitScene: the BVH build
   std::int64_t bytesAfterBuild = 0;  // Embree's allocations in use once built
   std::int64_t bytesPeak = 0;        // the most in use at any time (build temporaries)
   double bytesPerTriangle() const {

@@ -25,7 +25,8 @@ void reportEmbreeError(void*, RTCError code, const char* message) {
 void throwOnEmbreeError(RTCDevice device, const std::string& what) {
   const RTCError code = rtcGetDeviceError(device);
   if (code != RTC_ERROR_NONE)
-    throw std::runtime_error("Embree error " + std::to_string(static_cast<int>(code)) + " while " + what);
+    throw std::runtime_error("Embree error " + std::to_string(static_cast<int>(code)) + " while " +
+                             what);
 }
 
 static_assert(sizeof(glm::vec3) == 3 * sizeof(float), "Embree reads the vertices as packed float3");
@@ -66,9 +67,10 @@ EmbreeScene::EmbreeScene(const std::vector<std::unique_ptr<Shape>>& shapes, doub
   impl_->scene = rtcNewScene(impl_->device);
   size_t triangles = 0;
   for (const auto& shape : shapes)
-    if (const auto* mesh = dynamic_cast<const TriangleMesh*>(shape.get())) triangles += mesh->triangleCount();
-  rtcSetSceneBuildQuality(impl_->scene,
-                          triangles > kHighQualityTriangles ? RTC_BUILD_QUALITY_MEDIUM : RTC_BUILD_QUALITY_HIGH);
+    if (const auto* mesh = dynamic_cast<const TriangleMesh*>(shape.get()))
+      triangles += mesh->triangleCount();
+  rtcSetSceneBuildQuality(impl_->scene, triangles > kHighQualityTriangles ? RTC_BUILD_QUALITY_MEDIUM
+                                                                          : RTC_BUILD_QUALITY_HIGH);
   for (size_t id = 0; id < shapes.size(); ++id) {
     RTCGeometry geom = nullptr;
     if (const auto* mesh = dynamic_cast<const TriangleMesh*>(shapes[id].get())) {
@@ -81,8 +83,8 @@ EmbreeScene::EmbreeScene(const std::vector<std::unique_ptr<Shape>>& shapes, doub
       for (int k = 0; k < steps; ++k) {
         const std::vector<glm::vec3>& p = mesh->positions(k);
         CAMSIM_CHECK(p.capacity() > p.size());
-        rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, static_cast<unsigned>(k), RTC_FORMAT_FLOAT3,
-                                   p.data(), 0, sizeof(glm::vec3), p.size());
+        rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, static_cast<unsigned>(k),
+                                   RTC_FORMAT_FLOAT3, p.data(), 0, sizeof(glm::vec3), p.size());
       }
       const std::vector<std::uint32_t>& idx = mesh->indices();
       CAMSIM_CHECK(idx.capacity() >= idx.size() + 3);
@@ -93,8 +95,9 @@ EmbreeScene::EmbreeScene(const std::vector<std::unique_ptr<Shape>>& shapes, doub
       const int steps = sphere->timeSteps().count;
       rtcSetGeometryTimeStepCount(geom, static_cast<unsigned>(steps));
       for (int k = 0; k < steps; ++k) {
-        auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, static_cast<unsigned>(k),
-                                                              RTC_FORMAT_FLOAT4, sizeof(float) * 4, 1));
+        auto* v = static_cast<float*>(
+            rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, static_cast<unsigned>(k),
+                                    RTC_FORMAT_FLOAT4, sizeof(float) * 4, 1));
         const glm::vec3& c = sphere->centres()[static_cast<size_t>(k)];
         v[0] = c.x;
         v[1] = c.y;
@@ -119,8 +122,12 @@ EmbreeScene::EmbreeScene(const std::vector<std::unique_ptr<Shape>>& shapes, doub
 
 EmbreeScene::~EmbreeScene() = default;
 
-std::int64_t EmbreeScene::embreeBytes() const { return impl_->memory.bytes.load(); }
-std::int64_t EmbreeScene::embreePeakBytes() const { return impl_->memory.peak.load(); }
+std::int64_t EmbreeScene::embreeBytes() const {
+  return impl_->memory.bytes.load();
+}
+std::int64_t EmbreeScene::embreePeakBytes() const {
+  return impl_->memory.peak.load();
+}
 
 bool EmbreeScene::intersect(const Ray& ray, Hit& hit) const {
   RTCIntersectContext context;

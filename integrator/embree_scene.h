@@ -25,7 +25,8 @@ namespace camsim {
 class EmbreeScene {
  public:
   // [motionStart, motionEnd] (s): the interval moving shapes' steps cover (ignored if nothing moves).
-  EmbreeScene(const std::vector<std::unique_ptr<Shape>>& shapes, double motionStart, double motionEnd);
+  EmbreeScene(const std::vector<std::unique_ptr<Shape>>& shapes, double motionStart,
+              double motionEnd);
   ~EmbreeScene();
   EmbreeScene(const EmbreeScene&) = delete;
   EmbreeScene& operator=(const EmbreeScene&) = delete;

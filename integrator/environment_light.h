@@ -3,8 +3,8 @@
 //
 // | parameter      | unit             | default  | meaning |
 // |----------------|------------------|----------|---------|
-// | texels         | W·m⁻²·sr⁻¹ (Y)   | —        | R, G, B channels, linear Rec.709 (negatives read
-// as 0) | | scale          | —                | 1        | s(λ), multiplies the uplifted spectrum |
+// | texels         | W·m⁻²·sr⁻¹ (Y)   | —        | R, G, B, linear Rec.709 (negatives read as 0) |
+// | scale          | —                | 1        | s(λ), multiplies the uplifted spectrum |
 // | worldFromLight | —                | identity | rotation, map space → world |
 //
 // Map space: +z is the zenith (row 0), θ from +z, φ clockwise seen from +z, from +x:

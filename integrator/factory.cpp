@@ -24,8 +24,8 @@ std::unique_ptr<SpectrumTexture> makeSpectrumTexture(const TextureDescription& d
       return std::make_unique<ImageSpectrumTexture>(
           loadTextureImage(d.file, textureEncoding(d.file, d.encoding)), d.uvScale, d.uvOffset);
     case TextureDescription::Kind::kCheckerboard:
-      return std::make_unique<CheckerboardSpectrumTexture>(d.checkerA, d.checkerB, d.checks, d.uvScale,
-                                                           d.uvOffset);
+      return std::make_unique<CheckerboardSpectrumTexture>(d.checkerA, d.checkerB, d.checks,
+                                                           d.uvScale, d.uvOffset);
   }
   CAMSIM_CHECK(false);
   return nullptr;
@@ -37,11 +37,13 @@ std::unique_ptr<FloatTexture> makeFloatTexture(const TextureDescription& d) {
       return std::make_unique<ConstantFloatTexture>(d.value(550.0f));
     case TextureDescription::Kind::kImage:  // scalar maps default to raw numbers
       return std::make_unique<ImageFloatTexture>(
-          loadTextureImage(d.file, textureEncoding(d.file, d.encoding.empty() ? "raw" : d.encoding)), d.uvScale,
-          d.uvOffset);
-    case TextureDescription::Kind::kCheckerboard:  // constants as for kConstant: the value at 550 nm
-      return std::make_unique<CheckerboardFloatTexture>(d.checkerA(550.0f), d.checkerB(550.0f), d.checks,
-                                                        d.uvScale, d.uvOffset);
+          loadTextureImage(d.file,
+                           textureEncoding(d.file, d.encoding.empty() ? "raw" : d.encoding)),
+          d.uvScale, d.uvOffset);
+    case TextureDescription::Kind::
+        kCheckerboard:  // constants as for kConstant: the value at 550 nm
+      return std::make_unique<CheckerboardFloatTexture>(d.checkerA(550.0f), d.checkerB(550.0f),
+                                                        d.checks, d.uvScale, d.uvOffset);
   }
   CAMSIM_CHECK(false);
   return nullptr;
@@ -52,8 +54,8 @@ std::unique_ptr<Material> makeMaterial(const MaterialDescription& d) {
     case MaterialDescription::Type::kDiffuse:
       return std::make_unique<DiffuseMaterial>(makeSpectrumTexture(d.reflectance));
     case MaterialDescription::Type::kDielectric:
-      return std::make_unique<DielectricMaterial>(d.eta, makeFloatTexture(d.roughness), d.anisotropy,
-                                                  d.distribution, d.masking);
+      return std::make_unique<DielectricMaterial>(d.eta, makeFloatTexture(d.roughness),
+                                                  d.anisotropy, d.distribution, d.masking);
     case MaterialDescription::Type::kConductor: {
       ConductorParameters p;
       p.roughness = makeFloatTexture(d.roughness);
@@ -88,12 +90,13 @@ std::unique_ptr<Light> makeLight(const LightDescription& d) {
     case LightDescription::Kind::kPoint:
       return std::make_unique<PointLight>(d.position, d.spectrum);
     case LightDescription::Kind::kSpot:
-      return std::make_unique<SpotLight>(d.position, d.direction, d.spectrum, d.coneAngle, d.falloffStart);
+      return std::make_unique<SpotLight>(d.position, d.direction, d.spectrum, d.coneAngle,
+                                         d.falloffStart);
     case LightDescription::Kind::kDistant:
       return std::make_unique<DistantLight>(d.spectrum, d.direction, d.angularDiameter);
     case LightDescription::Kind::kEnvironment:
-      return std::make_unique<EnvironmentLight>(d.image ? *d.image : readExr(d.file).image, d.spectrum,
-                                                glm::mat3(d.worldFromLight));
+      return std::make_unique<EnvironmentLight>(d.image ? *d.image : readExr(d.file).image,
+                                                d.spectrum, glm::mat3(d.worldFromLight));
   }
   CAMSIM_CHECK(false);
   return nullptr;

@@ -33,14 +33,17 @@ class Film {
     // q(λᵢ)/p(λᵢ) once per sample: every channel of every response weights the same values
     // (SpectralResponse::estimate, with the division hoisted out of the channel loop).
     SampledSpectrum w;
-    for (int i = 0; i < kWavelengthSamples; ++i) w[i] = lambda.pdf(i) > 0.0f ? q[i] / lambda.pdf(i) : 0.0f;
+    for (int i = 0; i < kWavelengthSamples; ++i)
+      w[i] = lambda.pdf(i) > 0.0f ? q[i] / lambda.pdf(i) : 0.0f;
     double* sums = &sums_[(static_cast<size_t>(pixel.y) * static_cast<size_t>(resolution_.x) +
-                           static_cast<size_t>(pixel.x)) * stride_];
+                           static_cast<size_t>(pixel.x)) *
+                          stride_];
     for (const SpectralResponse* r : responses_) {
       if (r->isMosaic()) {
         *sums++ += estimate(r->channel(r->mosaic().channelAt(pixel.x, pixel.y)).curve, w, lambda);
       } else {
-        for (int c = 0; c < r->channelCount(); ++c) *sums++ += estimate(r->channel(c).curve, w, lambda);
+        for (int c = 0; c < r->channelCount(); ++c)
+          *sums++ += estimate(r->channel(c).curve, w, lambda);
       }
     }
     return true;
@@ -53,7 +56,8 @@ class Film {
 
  private:
   // (1/N) Σᵢ r(λᵢ) wᵢ with wᵢ = q(λᵢ)/p(λᵢ) (0 where p = 0).
-  static double estimate(const Spectrum& r, const SampledSpectrum& w, const SampledWavelengths& lambda) {
+  static double estimate(const Spectrum& r, const SampledSpectrum& w,
+                         const SampledWavelengths& lambda) {
     double sum = 0.0;
     for (int i = 0; i < kWavelengthSamples; ++i)
       sum += static_cast<double>(r.interpolate(lambda.gridIndex(i), lambda.gridFraction(i)) * w[i]);

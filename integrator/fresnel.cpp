@@ -69,7 +69,8 @@ SampledSpectrum fresnelSchlick(float cosThetaI, const SampledSpectrum& r0) {
 }
 
 std::optional<Refraction> refract(const glm::vec3& wi, glm::vec3 n, float eta) {
-  if (eta == 1.0f) return Refraction{-wi, 1.0f};  // index-matched: straight through, also at grazing
+  if (eta == 1.0f)
+    return Refraction{-wi, 1.0f};  // index-matched: straight through, also at grazing
   float cosThetaI = std::clamp(glm::dot(n, wi), -1.0f, 1.0f);
   if (cosThetaI < 0.0f) {  // wi on the inside: the interface seen from the other side
     eta = 1.0f / eta;

@@ -21,10 +21,13 @@ enum class FresnelModel { kExact, kSchlick };
 
 float fresnelDielectric(float cosThetaI, float eta);
 float fresnelConductor(float cosThetaI, float eta, float k);
-SampledSpectrum fresnelConductor(float cosThetaI, const SampledSpectrum& eta, const SampledSpectrum& k);
+SampledSpectrum fresnelConductor(float cosThetaI, const SampledSpectrum& eta,
+                                 const SampledSpectrum& k);
 SampledSpectrum fresnelSchlick(float cosThetaI, const SampledSpectrum& r0);
 
-inline glm::vec3 reflect(const glm::vec3& wo, const glm::vec3& n) { return -wo + 2.0f * glm::dot(wo, n) * n; }
+inline glm::vec3 reflect(const glm::vec3& wo, const glm::vec3& n) {
+  return -wo + 2.0f * glm::dot(wo, n) * n;
+}
 
 // Refracts wi (pointing away from the surface) through the interface with normal n and
 // relative index eta (n's side is the outside). Returns the transmitted direction and the

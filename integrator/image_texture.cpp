@@ -226,14 +226,16 @@ SampledSpectrum ImageSpectrumTexture::evaluate(glm::vec2 uv,
   for (int k = 0; k < 4; ++k) {
     if (f.weight[static_cast<size_t>(k)] == 0.0f) continue;
     const SigmoidCoefficients& c = coefficients_[f.texel[static_cast<size_t>(k)]];
-    for (int i = 0; i < kWavelengthSamples; ++i) out[i] += f.weight[static_cast<size_t>(k)] * c(lambda[i]);
+    for (int i = 0; i < kWavelengthSamples; ++i)
+      out[i] += f.weight[static_cast<size_t>(k)] * c(lambda[i]);
   }
   return out;
 }
 
 float ImageSpectrumTexture::texelValue(int x, int y, float lambdaNm) const {
   CAMSIM_CHECK(x >= 0 && x < width_ && y >= 0 && y < height_);
-  return coefficients_[static_cast<size_t>(y) * static_cast<size_t>(width_) + static_cast<size_t>(x)](lambdaNm);
+  return coefficients_[static_cast<size_t>(y) * static_cast<size_t>(width_) +
+                       static_cast<size_t>(x)](lambdaNm);
 }
 
 ImageFloatTexture::ImageFloatTexture(const TextureImage& image, glm::vec2 uvScale,

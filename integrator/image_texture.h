@@ -1,11 +1,11 @@
 // Image textures: texel values from an EXR or PNG file, bilinearly filtered, repeating.
 //
-// | parameter | unit | default                                   | meaning |
-// |-----------|------|-------------------------------------------|---------|
-// | file      | —    | required                                  | `.exr` or `.png` |
-// | encoding  | —    | reflectance: png `srgb`, exr `linear`; scalar: `raw` | how numbers become
-// values | | scale     | —    | (1, 1)                                    | uv' = uv · scale +
-// offset | | offset    | —    | (0, 0)                                    | |
+// | parameter | unit | default                                      | meaning                   |
+// |-----------|------|----------------------------------------------|---------------------------|
+// | file      | —    | required                                     | `.exr` or `.png`          |
+// | encoding  | —    | reflectance: png `srgb`, exr `linear`; scalar: `raw` | how numbers become values |
+// | scale     | —    | (1, 1)                                       | uv' = uv · scale + offset |
+// | offset    | —    | (0, 0)                                       |                           |
 //
 // Decoding (PNG sample q of n bits, EXR float f):  e = q / (2ⁿ − 1)  or  e = f
 //   srgb:   value = srgbDecode(e) (IEC 61966-2-1: e ≤ 0.04045 ? e/12.92 : ((e + 0.055)/1.055)^2.4)

@@ -18,8 +18,10 @@ bool LensDistortion::undistort(glm::dvec2 target, glm::dvec2& out) const {
     const glm::dvec2 f = distort(p) - target;
     if (std::abs(f.x) < 1e-12 && std::abs(f.y) < 1e-12) break;
     constexpr double h = 1e-7;
-    const glm::dvec2 dx = (distort(p + glm::dvec2(h, 0.0)) - distort(p - glm::dvec2(h, 0.0))) / (2.0 * h);
-    const glm::dvec2 dy = (distort(p + glm::dvec2(0.0, h)) - distort(p - glm::dvec2(0.0, h))) / (2.0 * h);
+    const glm::dvec2 dx =
+        (distort(p + glm::dvec2(h, 0.0)) - distort(p - glm::dvec2(h, 0.0))) / (2.0 * h);
+    const glm::dvec2 dy =
+        (distort(p + glm::dvec2(0.0, h)) - distort(p - glm::dvec2(0.0, h))) / (2.0 * h);
     const double det = dx.x * dy.y - dy.x * dx.y;
     if (!(std::abs(det) > 1e-12)) return false;
     p -= glm::dvec2(dy.y * f.x - dy.x * f.y, -dx.y * f.x + dx.x * f.y) / det;

@@ -17,8 +17,8 @@
 
 #include <optional>
 
-#include <glm/vec2.hpp>
 #include <glm/geometric.hpp>
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 #include "integrator/shape.h"
@@ -38,13 +38,17 @@ struct LightSample {
 class Light {
  public:
   virtual ~Light() = default;
-  virtual std::optional<LightSample> sample(const glm::vec3& ref, float time, float u1, glm::vec2 u2,
+  virtual std::optional<LightSample> sample(const glm::vec3& ref, float time, float u1,
+                                            glm::vec2 u2,
                                             const SampledWavelengths& lambda) const = 0;
-  virtual float pdf(const glm::vec3& /*ref*/, const SurfaceInteraction& /*onLight*/) const { return 0.0f; }
+  virtual float pdf(const glm::vec3& /*ref*/, const SurfaceInteraction& /*onLight*/) const {
+    return 0.0f;
+  }
   virtual double power() const = 0;
   virtual bool isDelta() const { return false; }
   virtual bool isInfinite() const { return false; }
-  virtual SampledSpectrum Le(const glm::vec3& /*direction*/, const SampledWavelengths& /*lambda*/) const {
+  virtual SampledSpectrum Le(const glm::vec3& /*direction*/,
+                             const SampledWavelengths& /*lambda*/) const {
     return SampledSpectrum(0.0f);
   }
   virtual float pdfDirection(const glm::vec3& /*direction*/) const { return 0.0f; }

@@ -28,20 +28,21 @@ struct BsdfContext {
 };
 
 struct BsdfSample {
-  SampledSpectrum f;     // BSDF value, sr⁻¹; for a delta lobe: the lobe's weight / |cos θi|
+  SampledSpectrum f;  // BSDF value, sr⁻¹; for a delta lobe: the lobe's weight / |cos θi|
   glm::vec3 wi{0.0f};
-  float pdf = 0.0f;      // sr⁻¹; for a delta lobe: the probability of choosing the lobe
-  bool specular = false; // delta lobe (mirror, smooth glass): no MIS with light sampling
+  float pdf = 0.0f;       // sr⁻¹; for a delta lobe: the probability of choosing the lobe
+  bool specular = false;  // delta lobe (mirror, smooth glass): no MIS with light sampling
   bool transmission = false;
 };
 
 class Material {
  public:
   virtual ~Material() = default;
-  virtual SampledSpectrum f(const glm::vec3& wo, const glm::vec3& wi, const SampledWavelengths& lambda,
-                            const BsdfContext& ctx) const = 0;
+  virtual SampledSpectrum f(const glm::vec3& wo, const glm::vec3& wi,
+                            const SampledWavelengths& lambda, const BsdfContext& ctx) const = 0;
   virtual std::optional<BsdfSample> sample(const glm::vec3& wo, float uc, glm::vec2 u,
-                                           const SampledWavelengths& lambda, const BsdfContext& ctx) const = 0;
+                                           const SampledWavelengths& lambda,
+                                           const BsdfContext& ctx) const = 0;
   virtual float pdf(const glm::vec3& wo, const glm::vec3& wi, const SampledWavelengths& lambda,
                     const BsdfContext& ctx) const = 0;
   // False for a material that reflects nothing (lets the integrator stop a path).

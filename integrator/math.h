@@ -40,7 +40,9 @@ inline float nextFloatDown(float v) {
 
 // |v| per component. glm::abs is written as x >= 0 ? x : −x, which GCC compiles to a
 // branch per component; std::abs on a float is one mask.
-inline glm::vec3 absComponents(const glm::vec3& v) { return {std::abs(v.x), std::abs(v.y), std::abs(v.z)}; }
+inline glm::vec3 absComponents(const glm::vec3& v) {
+  return {std::abs(v.x), std::abs(v.y), std::abs(v.z)};
+}
 
 // v moved by one ulp: up if direction > 0, down if < 0, unchanged if 0 — nextFloatUp or
 // nextFloatDown without branches. Floats are mapped to integers in the same order (both
@@ -51,7 +53,8 @@ inline glm::vec3 absComponents(const glm::vec3& v) { return {std::abs(v.x), std:
 inline float nextFloatToward(float v, float direction) {
   const auto bits = std::bit_cast<std::int32_t>(v);
   const std::int32_t ordered = bits >= 0 ? bits : std::numeric_limits<std::int32_t>::min() - bits;
-  const std::int32_t step = static_cast<std::int32_t>(direction > 0.0f) - static_cast<std::int32_t>(direction < 0.0f);
+  const std::int32_t step =
+      static_cast<std::int32_t>(direction > 0.0f) - static_cast<std::int32_t>(direction < 0.0f);
   const std::int32_t moved = ordered + step;
   const float result =
       std::bit_cast<float>(moved >= 0 ? moved : std::numeric_limits<std::int32_t>::min() - moved);
@@ -65,7 +68,8 @@ inline glm::vec3 offsetRayOrigin(const glm::vec3& p, const glm::vec3& pError, co
   const float d = glm::dot(absComponents(n), pError);
   const glm::vec3 offset = (glm::dot(w, n) < 0.0f ? -d : d) * n;
   const glm::vec3 po = p + offset;
-  return {nextFloatToward(po.x, offset.x), nextFloatToward(po.y, offset.y), nextFloatToward(po.z, offset.z)};
+  return {nextFloatToward(po.x, offset.x), nextFloatToward(po.y, offset.y),
+          nextFloatToward(po.z, offset.z)};
 }
 
 // Orthonormal basis around a unit vector (Duff et al. 2017).
@@ -76,15 +80,22 @@ struct Frame {
     const float sign = std::copysign(1.0f, n.z);
     const float a = -1.0f / (sign + n.z);
     const float b = n.x * n.y * a;
-    return {{1.0f + sign * n.x * n.x * a, sign * b, -sign * n.x}, {b, sign + n.y * n.y * a, -n.y}, n};
+    return {
+        {1.0f + sign * n.x * n.x * a, sign * b, -sign * n.x}, {b, sign + n.y * n.y * a, -n.y}, n};
   }
-  glm::vec3 toLocal(const glm::vec3& v) const { return {glm::dot(v, s), glm::dot(v, t), glm::dot(v, n)}; }
+  glm::vec3 toLocal(const glm::vec3& v) const {
+    return {glm::dot(v, s), glm::dot(v, t), glm::dot(v, n)};
+  }
   glm::vec3 toWorld(const glm::vec3& v) const { return v.x * s + v.y * t + v.z * n; }
 };
 
-inline float safeSqrt(float x) { return std::sqrt(std::max(0.0f, x)); }
+inline float safeSqrt(float x) {
+  return std::sqrt(std::max(0.0f, x));
+}
 
-inline float lengthSquared(const glm::vec3& v) { return glm::dot(v, v); }
+inline float lengthSquared(const glm::vec3& v) {
+  return glm::dot(v, v);
+}
 
 // Concentric map of the unit square to the unit disk (Shirley & Chiu).
 inline glm::vec2 sampleUniformDiskConcentric(glm::vec2 u) {

@@ -35,7 +35,9 @@ constexpr float kMinAlpha = 1e-6f;
 constexpr double kSqrtPi = 1.77245385090551602730;
 
 // sampleWm and pdf for w below the surface: the lobe seen from the other side.
-glm::vec3 facingUp(const glm::vec3& w) { return w.z < 0.0f ? -w : w; }
+glm::vec3 facingUp(const glm::vec3& w) {
+  return w.z < 0.0f ? -w : w;
+}
 
 }  // namespace
 
@@ -46,10 +48,12 @@ MicrofacetModel::MicrofacetModel(MicrofacetDistribution distribution, MaskingMod
       alphaX_(std::max(alphaX, kMinAlpha)),
       alphaY_(std::max(alphaY, kMinAlpha)) {}
 
-MicrofacetModel MicrofacetModel::fromRoughness(MicrofacetDistribution distribution, MaskingModel masking,
-                                               float alpha, float anisotropy) {
+MicrofacetModel MicrofacetModel::fromRoughness(MicrofacetDistribution distribution,
+                                               MaskingModel masking, float alpha,
+                                               float anisotropy) {
   alpha = std::max(0.0f, alpha);
-  return MicrofacetModel(distribution, masking, alpha * (1.0f + anisotropy), alpha * (1.0f - anisotropy));
+  return MicrofacetModel(distribution, masking, alpha * (1.0f + anisotropy),
+                         alpha * (1.0f - anisotropy));
 }
 
 bool MicrofacetModel::effectivelySmooth() const {
@@ -154,8 +158,8 @@ MicrofacetModel::Reflection MicrofacetModel::reflection(const glm::vec3& wo, con
   return {f, p};
 }
 
-std::optional<MicrofacetModel::ReflectionSample> MicrofacetModel::sampleReflection(const glm::vec3& wo,
-                                                                                  glm::vec2 u) const {
+std::optional<MicrofacetModel::ReflectionSample> MicrofacetModel::sampleReflection(
+    const glm::vec3& wo, glm::vec2 u) const {
   const glm::vec3 wm = sampleWm(wo, u);
   const glm::vec3 wi = glm::normalize(reflect(wo, wm));
   if (!(wi.z > 0.0f)) return std::nullopt;

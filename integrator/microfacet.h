@@ -37,10 +37,11 @@ enum class MaskingModel { kSmith, kVGroove };
 
 class MicrofacetModel {
  public:
-  MicrofacetModel(MicrofacetDistribution distribution, MaskingModel masking, float alphaX, float alphaY);
+  MicrofacetModel(MicrofacetDistribution distribution, MaskingModel masking, float alphaX,
+                  float alphaY);
   // From a roughness α (negative → 0) and an anisotropy a ∈ (−1, 1): αx = α (1 + a), αy = α (1 − a).
-  static MicrofacetModel fromRoughness(MicrofacetDistribution distribution, MaskingModel masking, float alpha,
-                                       float anisotropy);
+  static MicrofacetModel fromRoughness(MicrofacetDistribution distribution, MaskingModel masking,
+                                       float alpha, float anisotropy);
 
   // Below this α the surface is treated as perfectly smooth (a delta lobe): D would
   // overflow single precision and no sampler could find the peak.
@@ -80,8 +81,12 @@ class MicrofacetModel {
 };
 
 // The material is the same on both sides: a direction below the surface mirrored to +z.
-inline glm::vec3 upperHemisphere(const glm::vec3& w) { return {w.x, w.y, std::abs(w.z)}; }
+inline glm::vec3 upperHemisphere(const glm::vec3& w) {
+  return {w.x, w.y, std::abs(w.z)};
+}
 // Half vector of two directions on the +z side (their sum is never 0 there).
-inline glm::vec3 halfVector(const glm::vec3& wo, const glm::vec3& wi) { return glm::normalize(wo + wi); }
+inline glm::vec3 halfVector(const glm::vec3& wo, const glm::vec3& wi) {
+  return glm::normalize(wo + wi);
+}
 
 }  // namespace camsim

@@ -30,7 +30,7 @@ struct Keyframe {
 
 class RigidMotion {
  public:
-  RigidMotion() = default;  // identity, static
+  RigidMotion() = default;                           // identity, static
   explicit RigidMotion(std::vector<Keyframe> keys);  // sorted by time, ≥ 1 key
 
   bool empty() const { return keys_.empty(); }

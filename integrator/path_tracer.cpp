@@ -27,8 +27,8 @@ Ray escapeRay(const SurfaceInteraction& from, const glm::vec3& w) {
 // The shading frame may disagree with the geometry about which side a direction is on
 // (interpolated normals). Such directions would leak light through the surface: the
 // scattering is rejected unless both frames agree on reflection vs transmission.
-bool sidesAgree(const glm::vec3& n, const glm::vec3& wo, const glm::vec3& wi, const glm::vec3& woLocal,
-                const glm::vec3& wiLocal) {
+bool sidesAgree(const glm::vec3& n, const glm::vec3& wo, const glm::vec3& wi,
+                const glm::vec3& woLocal, const glm::vec3& wiLocal) {
   const bool geometricReflection = glm::dot(wo, n) * glm::dot(wi, n) > 0.0f;
   const bool shadingReflection = woLocal.z * wiLocal.z > 0.0f;
   return geometricReflection == shadingReflection;
@@ -46,25 +46,30 @@ struct ShadingPoint {
 // One light sample, MIS-weighted against BSDF sampling. Returns the contribution to L
 // before multiplying by the path throughput.
 template <typename SamplerT>
-SampledSpectrum sampleLight(const Scene& scene, const ShadingPoint& sp, const SampledWavelengths& lambda,
-                            SamplerT& sampler, RayCounts& counts, RayRecorder* recorder) {
+SampledSpectrum sampleLight(const Scene& scene, const ShadingPoint& sp,
+                            const SampledWavelengths& lambda, SamplerT& sampler, RayCounts& counts,
+                            RayRecorder* recorder) {
   const float uLight = sampler.get1D();
   const glm::vec2 uPoint = sampler.get2D();
   float uRemapped = 0.0f;
   const size_t index = scene.lightDistribution().sample(uLight, &uRemapped);
   const float pmf = scene.lightDistribution().pmf(index);
-  const std::optional<LightSample> ls = scene.light(index).sample(sp.si.p, sp.si.time, uRemapped, uPoint, lambda);
+  const std::optional<LightSample> ls =
+      scene.light(index).sample(sp.si.p, sp.si.time, uRemapped, uPoint, lambda);
   if (!ls || pmf == 0.0f || !(ls->pdf > 0.0f)) return SampledSpectrum(0.0f);
   const glm::vec3 wiLocal = sp.frame.toLocal(ls->wi);
   if (!sidesAgree(sp.si.n, sp.wo, ls->wi, sp.woLocal, wiLocal)) return SampledSpectrum(0.0f);
-  const SampledSpectrum f = sp.material.f(sp.woLocal, wiLocal, lambda, sp.ctx) * std::abs(wiLocal.z);
+  const SampledSpectrum f =
+      sp.material.f(sp.woLocal, wiLocal, lambda, sp.ctx) * std::abs(wiLocal.z);
   if (f.isZero()) return SampledSpectrum(0.0f);
   ++counts.shadow;
   const Ray shadow = ls->infinite ? escapeRay(sp.si, ls->wi) : shadowRay(sp.si, ls->point);
   if (recorder) recorder->record(RayKind::kShadow, shadow);
   if (scene.geometry().occluded(shadow)) return SampledSpectrum(0.0f);
   const float lightPdf = pmf * ls->pdf;
-  const float weight = ls->delta ? 1.0f : powerHeuristic(lightPdf, sp.material.pdf(sp.woLocal, wiLocal, lambda, sp.ctx));
+  const float weight =
+      ls->delta ? 1.0f
+                : powerHeuristic(lightPdf, sp.material.pdf(sp.woLocal, wiLocal, lambda, sp.ctx));
   return f * ls->L * (weight / lightPdf);
 }
 
@@ -88,7 +93,9 @@ SampledSpectrum trace(const Scene& scene, Ray ray, SampledWavelengths& lambda, S
         const SampledSpectrum Le = light.Le(d, lambda);
         if (Le.isZero()) continue;
         const float weight =
-            prevSpecular ? 1.0f : powerHeuristic(prevBsdfPdf, scene.lightDistribution().pmf(index) * light.pdfDirection(d));
+            prevSpecular ? 1.0f
+                         : powerHeuristic(prevBsdfPdf, scene.lightDistribution().pmf(index) *
+                                                           light.pdfDirection(d));
         L += beta * Le * weight;
       }
       break;
@@ -114,10 +121,12 @@ SampledSpectrum trace(const Scene& scene, Ray ray, SampledWavelengths& lambda, S
 
     const Frame frame = Frame::fromZ(si.ns);
     const ShadingPoint sp{si, frame, wo, frame.toLocal(wo), material, BsdfContext{si.uv}};
-    if (haveLights && material.hasNonSpecular()) L += beta * sampleLight(scene, sp, lambda, sampler, counts, recorder);
+    if (haveLights && material.hasNonSpecular())
+      L += beta * sampleLight(scene, sp, lambda, sampler, counts, recorder);
 
     const float uc = sampler.get1D();
-    const std::optional<BsdfSample> bs = material.sample(sp.woLocal, uc, sampler.get2D(), lambda, sp.ctx);
+    const std::optional<BsdfSample> bs =
+        material.sample(sp.woLocal, uc, sampler.get2D(), lambda, sp.ctx);
     if (!bs || !(bs->pdf > 0.0f) || bs->f.isZero()) break;
     const glm::vec3 wi = frame.toWorld(bs->wi);
     if (!sidesAgree(si.n, wo, wi, sp.woLocal, bs->wi)) break;
@@ -140,13 +149,14 @@ SampledSpectrum trace(const Scene& scene, Ray ray, SampledWavelengths& lambda, S
 
 }  // namespace
 
-SampledSpectrum traceRadiance(const Scene& scene, Ray ray, SampledWavelengths& lambda, SobolSampler& sampler,
-                              RayCounts& counts, RayRecorder* recorder) {
+SampledSpectrum traceRadiance(const Scene& scene, Ray ray, SampledWavelengths& lambda,
+                              SobolSampler& sampler, RayCounts& counts, RayRecorder* recorder) {
   return trace(scene, ray, lambda, sampler, counts, recorder);
 }
 
-SampledSpectrum traceRadiance(const Scene& scene, Ray ray, SampledWavelengths& lambda, IndependentSampler& sampler,
-                              RayCounts& counts, RayRecorder* recorder) {
+SampledSpectrum traceRadiance(const Scene& scene, Ray ray, SampledWavelengths& lambda,
+                              IndependentSampler& sampler, RayCounts& counts,
+                              RayRecorder* recorder) {
   return trace(scene, ray, lambda, sampler, counts, recorder);
 }
 

@@ -40,8 +40,10 @@ struct RayCounts {
 // Compiled per concrete sampler (what the render loop uses): its numbers are drawn through
 // inlined, not virtual, calls.
 SampledSpectrum traceRadiance(const Scene& scene, Ray ray, SampledWavelengths& lambda,
-                              SobolSampler& sampler, RayCounts& counts, RayRecorder* recorder = nullptr);
+                              SobolSampler& sampler, RayCounts& counts,
+                              RayRecorder* recorder = nullptr);
 SampledSpectrum traceRadiance(const Scene& scene, Ray ray, SampledWavelengths& lambda,
-                              IndependentSampler& sampler, RayCounts& counts, RayRecorder* recorder = nullptr);
+                              IndependentSampler& sampler, RayCounts& counts,
+                              RayRecorder* recorder = nullptr);
 
 }  // namespace camsim

@@ -17,8 +17,10 @@ PhysicalCamera::PhysicalCamera(PhysicalCameraParams params) : p_(std::move(param
   pixelArea_ = pitch.x * pitch.y * p_.fillFactor;
   const double diameter = f / p_.fNumber;
   apertureArea_ = p_.aperture ? p_.aperture->area() : M_PI * 0.25 * diameter * diameter;
-  transmittanceIsOne_ = p_.lensTransmittance.minValue() == 1.0 && p_.lensTransmittance.maxValue() == 1.0;
-  fastPinhole_ = !p_.aperture && p_.distortion.isIdentity() && p_.motion.empty() && transmittanceIsOne_;
+  transmittanceIsOne_ =
+      p_.lensTransmittance.minValue() == 1.0 && p_.lensTransmittance.maxValue() == 1.0;
+  fastPinhole_ =
+      !p_.aperture && p_.distortion.isIdentity() && p_.motion.empty() && transmittanceIsOne_;
   const glm::dmat4& m = p_.worldFromCamera;
   right_ = glm::vec3(m[0]);
   up_ = glm::vec3(m[1]);
@@ -27,8 +29,8 @@ PhysicalCamera::PhysicalCamera(PhysicalCameraParams params) : p_(std::move(param
   filmScale_ = glm::vec2(p_.sensorSize.x / p_.resolution.x, -p_.sensorSize.y / p_.resolution.y);
   filmOffset_ = glm::vec2(-0.5 * p_.sensorSize.x, 0.5 * p_.sensorSize.y);
   zi_ = static_cast<float>(imageDistance_);
-  weightScale_ = static_cast<float>(pixelArea_ * p_.shutter.effectiveTime() * apertureArea_ * imageDistance_ *
-                                    imageDistance_);
+  weightScale_ = static_cast<float>(pixelArea_ * p_.shutter.effectiveTime() * apertureArea_ *
+                                    imageDistance_ * imageDistance_);
 }
 
 std::optional<CameraRay> PhysicalCamera::generatePinholeRay(const CameraSample& sample) const {

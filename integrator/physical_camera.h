@@ -43,13 +43,13 @@ namespace camsim {
 
 struct PhysicalCameraParams {
   glm::dmat4 worldFromCamera{1.0};  // at rest; columns right, up, forward, position
-  RigidMotion motion;                // camera-relative keyframes (may be empty)
+  RigidMotion motion;               // camera-relative keyframes (may be empty)
   glm::dvec2 sensorSize{0.036, 0.024};
   glm::ivec2 resolution{640, 480};
   double fillFactor = 1.0;
   double focalLength = 0.050;
   double fNumber = 8.0;
-  double focusDistance = 0.0;  // 0 = infinity
+  double focusDistance = 0.0;        // 0 = infinity
   std::optional<Aperture> aperture;  // none: pinhole
   Spectrum lensTransmittance = Spectrum::constant(1.0);
   LensDistortion distortion;

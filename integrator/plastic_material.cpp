@@ -23,8 +23,8 @@ PlasticMaterial::Lobes PlasticMaterial::lobes(const SampledWavelengths& lambda,
   const float diffuseWeight = kd * std::max(0.0f, rho.maxComponent());
   const float total = diffuseWeight + ks;
   return {rho * (kd * kInvPi), total > 0.0f ? diffuseWeight / total : 0.0f,
-          MicrofacetModel::fromRoughness(p_.distribution, p_.masking, p_.roughness->evaluate(ctx.uv),
-                                         p_.anisotropy)};
+          MicrofacetModel::fromRoughness(p_.distribution, p_.masking,
+                                         p_.roughness->evaluate(ctx.uv), p_.anisotropy)};
 }
 
 PlasticMaterial::Eval PlasticMaterial::evaluate(const Lobes& l, const glm::vec3& wo,

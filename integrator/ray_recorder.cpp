@@ -18,30 +18,32 @@ constexpr std::size_t kChunk = 16 * 16;  // rays per task: one 16×16 tile's wor
 
 // One pass over all rays; returns its wall time. `hits` is the sink that keeps the
 // compiler from dropping the queries.
-double replayPass(const EmbreeScene& geometry, const std::vector<RecordedRay>& rays, tbb::task_arena& arena,
-                  std::uint64_t& hits) {
+double replayPass(const EmbreeScene& geometry, const std::vector<RecordedRay>& rays,
+                  tbb::task_arena& arena, std::uint64_t& hits) {
   const std::size_t chunks = (rays.size() + kChunk - 1) / kChunk;
   tbb::combinable<std::uint64_t> found([] { return std::uint64_t{0}; });
   const auto start = std::chrono::steady_clock::now();
   arena.execute([&] {
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, chunks, 1), [&](const tbb::blocked_range<std::size_t>& r) {
-      std::uint64_t local = 0;
-      for (std::size_t c = r.begin(); c != r.end(); ++c) {
-        const std::size_t end = std::min(rays.size(), (c + 1) * kChunk);
-        for (std::size_t i = c * kChunk; i < end; ++i) {
-          const RecordedRay& rr = rays[i];
-          if (rr.kind == RayKind::kShadow) {
-            local += geometry.occluded(rr.ray) ? 1u : 0u;
-          } else {
-            Hit hit;
-            local += geometry.intersect(rr.ray, hit) ? 1u : 0u;
-          }
-        }
-      }
-      found.local() += local;
-    });
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, chunks, 1),
+                      [&](const tbb::blocked_range<std::size_t>& r) {
+                        std::uint64_t local = 0;
+                        for (std::size_t c = r.begin(); c != r.end(); ++c) {
+                          const std::size_t end = std::min(rays.size(), (c + 1) * kChunk);
+                          for (std::size_t i = c * kChunk; i < end; ++i) {
+                            const RecordedRay& rr = rays[i];
+                            if (rr.kind == RayKind::kShadow) {
+                              local += geometry.occluded(rr.ray) ? 1u : 0u;
+                            } else {
+                              Hit hit;
+                              local += geometry.intersect(rr.ray, hit) ? 1u : 0u;
+                            }
+                          }
+                        }
+                        found.local() += local;
+                      });
   });
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   hits = found.combine([](std::uint64_t a, std::uint64_t b) { return a + b; });
   return seconds;
 }
@@ -50,9 +52,12 @@ double replayPass(const EmbreeScene& geometry, const std::vector<RecordedRay>& r
 
 const char* rayKindName(RayKind kind) {
   switch (kind) {
-    case RayKind::kCamera: return "camera";
-    case RayKind::kBounce: return "bounce";
-    case RayKind::kShadow: return "shadow";
+    case RayKind::kCamera:
+      return "camera";
+    case RayKind::kBounce:
+      return "bounce";
+    case RayKind::kShadow:
+      return "shadow";
   }
   return "?";
 }
@@ -78,8 +83,8 @@ std::vector<RecordedRay> raysOfKind(const std::vector<RecordedRay>& rays, RayKin
   return out;
 }
 
-ReplayResult replayRays(const EmbreeScene& geometry, const std::vector<RecordedRay>& rays, int threads,
-                        double minSeconds) {
+ReplayResult replayRays(const EmbreeScene& geometry, const std::vector<RecordedRay>& rays,
+                        int threads, double minSeconds) {
   ReplayResult result;
   result.rays = rays.size();
   if (rays.empty()) return result;

@@ -27,8 +27,9 @@ struct TileStats {
 // Compiled for each concrete sampler (final classes), so that drawing a number is an
 // inlined call, not a virtual one.
 template <typename SamplerT>
-void renderTile(const Scene& scene, Film& film, const RenderOptions& options, const ModelledDimensions& dims,
-                glm::ivec2 lo, glm::ivec2 hi, SamplerT& sampler, TileStats& stats) {
+void renderTile(const Scene& scene, Film& film, const RenderOptions& options,
+                const ModelledDimensions& dims, glm::ivec2 lo, glm::ivec2 hi, SamplerT& sampler,
+                TileStats& stats) {
   const PhysicalCamera& camera = scene.camera();
   const Shutter& shutter = camera.shutter();
   // The photosensitive area: centred in the pixel, sides scaled by √fill.
@@ -58,7 +59,8 @@ void renderTile(const Scene& scene, Film& film, const RenderOptions& options, co
         if (!cr) continue;
         ++stats.rays.camera;
         if (options.recorder) options.recorder->record(RayKind::kCamera, cr->ray);
-        const SampledSpectrum L = traceRadiance(scene, cr->ray, lambda, sampler, stats.rays, options.recorder);
+        const SampledSpectrum L =
+            traceRadiance(scene, cr->ray, lambda, sampler, stats.rays, options.recorder);
         if (!film.addSample(pixel, L * cr->weight, lambda)) ++stats.rejected;
       }
     }
@@ -67,7 +69,8 @@ void renderTile(const Scene& scene, Film& film, const RenderOptions& options, co
 
 }  // namespace
 
-RenderResult render(const Scene& scene, const SpectralResponse& response, const RenderOptions& options) {
+RenderResult render(const Scene& scene, const SpectralResponse& response,
+                    const RenderOptions& options) {
   return render(scene, std::vector<const SpectralResponse*>{&response}, options);
 }
 
@@ -91,28 +94,31 @@ RenderResult render(const Scene& scene, const std::vector<const SpectralResponse
 
   // prototype: a SobolSampler or an IndependentSampler, copied per range of tiles.
   auto renderAll = [&](const auto& prototype) {
-    tbb::parallel_for(tbb::blocked_range<int>(0, tileCount, 1), [&](const tbb::blocked_range<int>& range) {
-      auto sampler = prototype;
-      for (int tile = range.begin(); tile != range.end(); ++tile) {
-        if (options.cancel && options.cancel->load(std::memory_order_relaxed)) {
-          cancelled = true;
-          return;
-        }
-        const glm::ivec2 lo((tile % tilesX) * kTileSize, (tile / tilesX) * kTileSize);
-        const glm::ivec2 hi = glm::min(lo + kTileSize, res);
-        renderTile(scene, film, options, dims, lo, hi, sampler, perThread.local());
-        const int done = ++tilesDone;
-        if (options.progress) {
-          std::lock_guard<std::mutex> lock(progressMutex);
-          options.progress(done, tileCount);
-        }
-      }
-    });
+    tbb::parallel_for(
+        tbb::blocked_range<int>(0, tileCount, 1), [&](const tbb::blocked_range<int>& range) {
+          auto sampler = prototype;
+          for (int tile = range.begin(); tile != range.end(); ++tile) {
+            if (options.cancel && options.cancel->load(std::memory_order_relaxed)) {
+              cancelled = true;
+              return;
+            }
+            const glm::ivec2 lo((tile % tilesX) * kTileSize, (tile / tilesX) * kTileSize);
+            const glm::ivec2 hi = glm::min(lo + kTileSize, res);
+            renderTile(scene, film, options, dims, lo, hi, sampler, perThread.local());
+            const int done = ++tilesDone;
+            if (options.progress) {
+              std::lock_guard<std::mutex> lock(progressMutex);
+              options.progress(done, tileCount);
+            }
+          }
+        });
   };
   tbb::task_arena arena(threads);
   arena.execute([&] {
-    if (kind == SamplerKind::kSobol) renderAll(SobolSampler(options.seed));
-    else renderAll(IndependentSampler(options.seed));
+    if (kind == SamplerKind::kSobol)
+      renderAll(SobolSampler(options.seed));
+    else
+      renderAll(IndependentSampler(options.seed));
   });
 
   RenderResult result;
@@ -126,7 +132,8 @@ RenderResult render(const Scene& scene, const std::vector<const SpectralResponse
   result.stats.threads = threads;
   result.stats.modelled = dims;
   result.stats.cancelled = cancelled;
-  result.stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  result.stats.seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
 }
 

@@ -40,15 +40,19 @@ struct RenderOptions {
 
 struct RenderStats {
   double seconds = 0.0;
-  std::uint64_t samples = 0;           // pixel samples traced
-  std::uint64_t rejectedSamples = 0;   // NaN/Inf radiance, dropped from the film
+  std::uint64_t samples = 0;          // pixel samples traced
+  std::uint64_t rejectedSamples = 0;  // NaN/Inf radiance, dropped from the film
   RayCounts rays;
   int threads = 0;
   bool cancelled = false;
   ModelledDimensions modelled;  // what was integrated over
 
-  double samplesPerSecond() const { return seconds > 0.0 ? static_cast<double>(samples) / seconds : 0.0; }
-  double raysPerSecond() const { return seconds > 0.0 ? static_cast<double>(rays.total()) / seconds : 0.0; }
+  double samplesPerSecond() const {
+    return seconds > 0.0 ? static_cast<double>(samples) / seconds : 0.0;
+  }
+  double raysPerSecond() const {
+    return seconds > 0.0 ? static_cast<double>(rays.total()) / seconds : 0.0;
+  }
 };
 
 struct RenderResult {
@@ -57,7 +61,8 @@ struct RenderResult {
   RenderStats stats;
 };
 
-RenderResult render(const Scene& scene, const SpectralResponse& response, const RenderOptions& options);
+RenderResult render(const Scene& scene, const SpectralResponse& response,
+                    const RenderOptions& options);
 // Several responses filled by the same samples (e.g. CIE XYZ and a sensor's electrons).
 RenderResult render(const Scene& scene, const std::vector<const SpectralResponse*>& responses,
                     const RenderOptions& options);

@@ -15,7 +15,9 @@ inline std::uint64_t mix64(std::uint64_t x) {
   return x ^ (x >> 31);
 }
 
-inline std::uint64_t hashValues(std::uint64_t a, std::uint64_t b) { return mix64(a ^ mix64(b)); }
+inline std::uint64_t hashValues(std::uint64_t a, std::uint64_t b) {
+  return mix64(a ^ mix64(b));
+}
 template <typename... Rest>
 std::uint64_t hashValues(std::uint64_t a, std::uint64_t b, Rest... rest) {
   return hashValues(hashValues(a, b), static_cast<std::uint64_t>(rest)...);

@@ -41,8 +41,8 @@ class IndependentSampler final : public Sampler {
   explicit IndependentSampler(std::uint64_t seed) : seed_(seed) {}
 
   void startPixelSample(glm::ivec2 pixel, int sampleIndex) override {
-    key_ = hashValues(seed_, static_cast<std::uint32_t>(pixel.x), static_cast<std::uint32_t>(pixel.y),
-                      static_cast<std::uint32_t>(sampleIndex));
+    key_ = hashValues(seed_, static_cast<std::uint32_t>(pixel.x),
+                      static_cast<std::uint32_t>(pixel.y), static_cast<std::uint32_t>(sampleIndex));
     dimension_ = 0;
   }
   void setDimension(int dimension) override { dimension_ = static_cast<std::uint64_t>(dimension); }
@@ -54,7 +54,9 @@ class IndependentSampler final : public Sampler {
     const float a = get1D();
     return {a, get1D()};
   }
-  std::unique_ptr<Sampler> clone() const override { return std::make_unique<IndependentSampler>(*this); }
+  std::unique_ptr<Sampler> clone() const override {
+    return std::make_unique<IndependentSampler>(*this);
+  }
 
  private:
   std::uint64_t seed_;

@@ -26,14 +26,17 @@ int timeStepsFor(const RigidMotion& motion, double t0, double t1) {
 std::unique_ptr<Shape> buildShape(const ShapeDescription& s, double t0, double t1, bool& moving) {
   moving = !s.motion.empty() && !s.motion.isStaticDuring(t0, t1);
   TimeSteps steps{t0, t1, moving ? timeStepsFor(s.motion, t0, t1) : 1};
-  auto transformAt = [&](int k) { return s.motion.empty() ? glm::dmat4(1.0) : s.motion.at(steps.timeOf(k)); };
+  auto transformAt = [&](int k) {
+    return s.motion.empty() ? glm::dmat4(1.0) : s.motion.at(steps.timeOf(k));
+  };
   if (s.kind == ShapeDescription::Kind::kSphere) {
     std::vector<glm::vec3> centres;
     std::vector<float> radii;
     for (int k = 0; k < steps.count; ++k) {
       const glm::dmat4 m = transformAt(k);
       centres.emplace_back(m * glm::dvec4(glm::dvec3(s.centre), 1.0));
-      radii.push_back(static_cast<float>(glm::length(glm::dvec3(m[0])) * static_cast<double>(s.radius)));
+      radii.push_back(
+          static_cast<float>(glm::length(glm::dvec3(m[0])) * static_cast<double>(s.radius)));
     }
     return std::make_unique<Sphere>(std::move(centres), std::move(radii), steps);
   }
@@ -53,8 +56,9 @@ std::unique_ptr<Shape> buildShape(const ShapeDescription& s, double t0, double t
   std::vector<std::uint32_t> indices;
   indices.reserve(s.mesh.indices.size() + 3);
   indices.assign(s.mesh.indices.begin(), s.mesh.indices.end());
-  return std::make_unique<TriangleMesh>(std::move(positions), std::move(normals), std::move(indices), steps,
-                                        s.mesh.uvs, s.emission.has_value());
+  return std::make_unique<TriangleMesh>(std::move(positions), std::move(normals),
+                                        std::move(indices), steps, s.mesh.uvs,
+                                        s.emission.has_value());
 }
 
 }  // namespace
@@ -62,13 +66,15 @@ std::unique_ptr<Shape> buildShape(const ShapeDescription& s, double t0, double t
 std::string ModelledDimensions::describe() const {
   std::string out;
   if (aperture)
-    out += blades > 0 ? "aperture (" + std::to_string(blades) + " blades), " : "aperture (circular), ";
+    out +=
+        blades > 0 ? "aperture (" + std::to_string(blades) + " blades), " : "aperture (circular), ";
   else
     out += "pinhole, ";
   if (time) {
     std::string why;
     if (movingObjects > 0)
-      why += std::to_string(movingObjects) + (movingObjects == 1 ? " moving object" : " moving objects");
+      why += std::to_string(movingObjects) +
+             (movingObjects == 1 ? " moving object" : " moving objects");
     if (cameraMoves) why += std::string(why.empty() ? "" : ", ") + "moving camera";
     if (rollingShutter) why += ", rolling shutter";
     out += "time (" + why + "; " + std::to_string(timeSteps) + " motion steps), ";
@@ -103,7 +109,8 @@ Scene::Scene(const SceneDescription& d) : settings_(d.render) {
     lightOfShape_.push_back(nullptr);
     lightIndexOfShape_.push_back(0);
     if (s.emission) {
-      auto light = std::make_unique<AreaLight>(*shapes_.back(), s.emission->radiance, s.emission->twoSided);
+      auto light =
+          std::make_unique<AreaLight>(*shapes_.back(), s.emission->radiance, s.emission->twoSided);
       lightOfShape_.back() = light.get();
       lightIndexOfShape_.back() = lights_.size();
       powers.push_back(light->power());

@@ -18,14 +18,14 @@ namespace camsim {
 
 // What the renderer integrates over, beyond pixel area: only what can change the image.
 struct ModelledDimensions {
-  bool aperture = false;      // lens positions (thin lens); false: pinhole
-  int blades = 0;             // 0: circular stop
-  bool time = false;          // shutter time: something moves during the exposure
+  bool aperture = false;  // lens positions (thin lens); false: pinhole
+  int blades = 0;         // 0: circular stop
+  bool time = false;      // shutter time: something moves during the exposure
   int movingObjects = 0;
   bool cameraMoves = false;
   bool rollingShutter = false;
   int wavelengths = kWavelengthSamples;
-  int timeSteps = 1;          // Embree motion time steps (largest over shapes)
+  int timeSteps = 1;  // Embree motion time steps (largest over shapes)
 
   // e.g. "aperture (6 blades), time (2 moving objects, rolling shutter), 4 wavelengths"
   std::string describe() const;
@@ -44,7 +44,9 @@ class Scene {
   const EmbreeScene& geometry() const { return *geometry_; }
   const Shape& shape(int index) const { return *shapes_[static_cast<size_t>(index)]; }
   // Never null: shapes without a reflecting material get a black one.
-  const Material& material(int shape) const { return *materials_[materialOfShape_[static_cast<size_t>(shape)]]; }
+  const Material& material(int shape) const {
+    return *materials_[materialOfShape_[static_cast<size_t>(shape)]];
+  }
   // The area light of a shape, or null if it does not emit.
   const AreaLight* areaLight(int shape) const { return lightOfShape_[static_cast<size_t>(shape)]; }
 

@@ -33,10 +33,10 @@ enum class SamplerKind { kIndependent, kSobol };
 
 struct RenderSettings {
   SamplerKind sampler = SamplerKind::kSobol;  // see integrator/sobol_sampler.h
-  int spp = 64;             // samples per pixel
-  std::uint64_t seed = 0;   // render seed
-  int maxDepth = 16;        // maximum number of scattering events on a path
-  int rrDepth = 3;          // Russian roulette starts after this many bounces
+  int spp = 64;                               // samples per pixel
+  std::uint64_t seed = 0;                     // render seed
+  int maxDepth = 16;                          // maximum number of scattering events on a path
+  int rrDepth = 3;                            // Russian roulette starts after this many bounces
 };
 
 // A material input that may vary over the surface: a constant (spectrum or scalar), an
@@ -50,8 +50,8 @@ struct TextureDescription {
   // EXR default) or "raw" (numbers used as they are, e.g. roughness maps).
   std::string encoding;
   Spectrum checkerA = Spectrum::constant(0.8), checkerB = Spectrum::constant(0.2);  // kCheckerboard
-  float checks = 8.0f;                       // kCheckerboard: squares per unit of u and v
-  glm::vec2 uvScale{1.0f}, uvOffset{0.0f};   // uv' = uv · scale + offset (kImage, kCheckerboard)
+  float checks = 8.0f;                      // kCheckerboard: squares per unit of u and v
+  glm::vec2 uvScale{1.0f}, uvOffset{0.0f};  // uv' = uv · scale + offset (kImage, kCheckerboard)
 
   static TextureDescription constant(double v) {
     TextureDescription t;
@@ -74,9 +74,10 @@ struct MaterialDescription {
   MicrofacetDistribution distribution = MicrofacetDistribution::kGgx;
   MaskingModel masking = MaskingModel::kSmith;
   FresnelModel fresnel = FresnelModel::kExact;  // conductor
-  Spectrum eta = Spectrum::constant(1.5);       // conductor η(λ); dielectric/plastic: index inside / outside
-  Spectrum k = Spectrum::constant(0.0);         // conductor extinction k(λ)
-  float specularWeight = 0.1f;                  // plastic ks (kd = 1 − ks)
+  Spectrum eta =
+      Spectrum::constant(1.5);  // conductor η(λ); dielectric/plastic: index inside / outside
+  Spectrum k = Spectrum::constant(0.0);  // conductor extinction k(λ)
+  float specularWeight = 0.1f;           // plastic ks (kd = 1 − ks)
 };
 
 // Lights that are not shapes (`lights:` in the scene file; units in docs/scene-format.md).
@@ -94,9 +95,9 @@ struct LightDescription {
   glm::vec3 position{0.0f};                // point/spot, m
   glm::vec3 direction{0.0f, 0.0f, -1.0f};  // spot axis / the way sunlight travels (unit)
   float coneAngle = 0.5f;                  // spot: half-angle where the light ends, rad
-  float falloffStart = 0.4f;               // spot: half-angle where the smooth falloff begins, rad (≤ coneAngle)
-  float angularDiameter = 0.0f;            // distant: apparent diameter of the disc, rad (0 = delta)
-  std::filesystem::path file;              // environment: lat-long EXR (linear Rec.709 R, G, B)
+  float falloffStart = 0.4f;  // spot: half-angle where the smooth falloff begins, rad (≤ coneAngle)
+  float angularDiameter = 0.0f;  // distant: apparent diameter of the disc, rad (0 = delta)
+  std::filesystem::path file;    // environment: lat-long EXR (linear Rec.709 R, G, B)
   // environment: the map's texels as loaded (shared, read once by the loader); null: the
   // factory reads `file`.
   std::shared_ptr<const Image> image;
@@ -106,7 +107,7 @@ struct LightDescription {
 };
 
 struct EmissionDescription {
-  Spectrum radiance;      // L_e(λ), W·m⁻²·sr⁻¹·nm⁻¹
+  Spectrum radiance;  // L_e(λ), W·m⁻²·sr⁻¹·nm⁻¹
   bool twoSided = false;
 };
 
@@ -116,10 +117,10 @@ struct ShapeDescription {
   std::string label;  // for messages: the user's name or "shapes[i]"
   int material = -1;  // index into SceneDescription::materials; -1 = black (reflects nothing)
   std::optional<EmissionDescription> emission;
-  MeshData mesh;              // kMesh, object space (m)
-  glm::vec3 centre{0.0f};     // kSphere, object space (m)
-  float radius = 0.0f;        // kSphere (m)
-  RigidMotion motion;         // object → world over time; empty = identity
+  MeshData mesh;           // kMesh, object space (m)
+  glm::vec3 centre{0.0f};  // kSphere, object space (m)
+  float radius = 0.0f;     // kSphere (m)
+  RigidMotion motion;      // object → world over time; empty = identity
 };
 
 // `sensor:` — the camera's sensor and how it is exposed and read out.
@@ -139,7 +140,7 @@ struct SceneDescription {
   // world (m) — the camera's rest position — so that scenes far from the world origin
   // keep single-precision accuracy near the camera (world = render + renderOrigin).
   glm::dvec3 renderOrigin{0.0};
-  std::string name;        // output base name
+  std::string name;  // output base name
   PhysicalCameraParams camera;
   RenderSettings render;
   std::vector<MaterialDescription> materials;

@@ -10,9 +10,9 @@
 
 #include "integrator/scene_loader_parts.h"
 #include "integrator/scene_spectra.h"
-#include "sensor/yaml_reader.h"
 #include "sensor/cie.h"
 #include "sensor/spectral_data.h"
+#include "sensor/yaml_reader.h"
 
 namespace camsim {
 namespace {
@@ -24,27 +24,26 @@ struct Context {
   glm::dvec3 origin{0.0};  // render-space origin (SceneDescription::renderOrigin)
 };
 
-
-
-
-
 RenderSettings parseRender(YamlMap map) {
   RenderSettings r;
   if (auto v = map.find("sampler")) {
     const std::string name = v->string();
-    if (name == "sobol") r.sampler = SamplerKind::kSobol;
-    else if (name == "independent") r.sampler = SamplerKind::kIndependent;
-    else v->fail("unknown sampler '" + name + "' (known: sobol, independent)");
+    if (name == "sobol")
+      r.sampler = SamplerKind::kSobol;
+    else if (name == "independent")
+      r.sampler = SamplerKind::kIndependent;
+    else
+      v->fail("unknown sampler '" + name + "' (known: sobol, independent)");
   }
   if (auto v = map.find("spp")) r.spp = static_cast<int>(v->integer(1, SceneLimits::kMaxSpp));
   if (auto v = map.find("seed")) r.seed = static_cast<std::uint64_t>(v->integer(0, INT64_MAX));
-  if (auto v = map.find("max_depth")) r.maxDepth = static_cast<int>(v->integer(0, SceneLimits::kMaxDepth));
-  if (auto v = map.find("rr_depth")) r.rrDepth = static_cast<int>(v->integer(1, SceneLimits::kMaxDepth));
+  if (auto v = map.find("max_depth"))
+    r.maxDepth = static_cast<int>(v->integer(0, SceneLimits::kMaxDepth));
+  if (auto v = map.find("rr_depth"))
+    r.rrDepth = static_cast<int>(v->integer(1, SceneLimits::kMaxDepth));
   map.finish({"sampler", "spp", "seed", "max_depth", "rr_depth"});
   return r;
 }
-
-
 
 EmissionDescription parseEmission(YamlMap map, const Context& ctx) {
   EmissionDescription e;
@@ -58,12 +57,14 @@ EmissionDescription parseEmission(YamlMap map, const Context& ctx) {
     const double target = lum->number(0.0, 1e15);
     const double shapeLuminance = luminance(shape);
     if (target > 0.0 && !(shapeLuminance > 0.0))
-      (spectrum ? *spectrum : *lum).fail("this spectrum has no visible power, so it cannot have a luminance");
+      (spectrum ? *spectrum : *lum)
+          .fail("this spectrum has no visible power, so it cannot have a luminance");
     e.radiance = target > 0.0 ? shape * (target / shapeLuminance) : Spectrum::constant(0.0);
   } else if (scale) {
     e.radiance = shape * scale->number(0.0, 1e30);
   } else {
-    map.self().fail("emission needs 'luminance' (cd/m²) or 'scale' (W·m⁻²·sr⁻¹·nm⁻¹ per spectrum unit)");
+    map.self().fail(
+        "emission needs 'luminance' (cd/m²) or 'scale' (W·m⁻²·sr⁻¹·nm⁻¹ per spectrum unit)");
   }
   if (!std::isfinite(e.radiance.maxValue()))
     (lum ? *lum : *scale).fail("the radiance exceeds the single-precision range");
@@ -79,8 +80,10 @@ std::vector<std::uint32_t> parseFaces(const YamlValue& faces, size_t vertexCount
     if (idx.size() < 3) face.fail("a face needs at least 3 vertex indices");
     std::vector<std::uint32_t> poly;
     for (const YamlValue& i : idx)
-      poly.push_back(static_cast<std::uint32_t>(i.integer(0, static_cast<std::int64_t>(vertexCount) - 1)));
-    for (size_t k = 1; k + 1 < poly.size(); ++k) indices.insert(indices.end(), {poly[0], poly[k], poly[k + 1]});
+      poly.push_back(
+          static_cast<std::uint32_t>(i.integer(0, static_cast<std::int64_t>(vertexCount) - 1)));
+    for (size_t k = 1; k + 1 < poly.size(); ++k)
+      indices.insert(indices.end(), {poly[0], poly[k], poly[k + 1]});
     if (indices.size() / 3 > static_cast<size_t>(SceneLimits::kMaxTrianglesInline))
       faces.fail("too many triangles for an inline mesh: use a mesh file");
   }
@@ -119,7 +122,9 @@ ShapeDescription parseShape(YamlMap map, size_t index, const Context& ctx) {
   }
   // Render-space position of a point given in the scene file.
   const glm::dvec3 shift = s.motion.empty() ? ctx.origin : glm::dvec3(0.0);
-  auto point = [&](const YamlValue& where, const glm::dvec3& v) { return toPoint(where, v - shift); };
+  auto point = [&](const YamlValue& where, const glm::dvec3& v) {
+    return toPoint(where, v - shift);
+  };
   if (t == "sphere") {
     s.kind = ShapeDescription::Kind::kSphere;
     const YamlValue centre = map.require("centre");
@@ -136,7 +141,8 @@ ShapeDescription parseShape(YamlMap map, size_t index, const Context& ctx) {
     map.find("edge_v");
     const YamlValue eu = map.require("edge_u"), ev = map.require("edge_v");
     const glm::dvec3 u = eu.vec3(), v = ev.vec3();
-    s.mesh.positions = {point(cv, corner), point(eu, corner + u), point(ev, corner + u + v), point(ev, corner + v)};
+    s.mesh.positions = {point(cv, corner), point(eu, corner + u), point(ev, corner + u + v),
+                        point(ev, corner + v)};
     s.mesh.indices = {0, 1, 2, 0, 2, 3};
     s.mesh.uvs = {{0.0f, 0.0f}, {1.0f, 0.0f}, {1.0f, 1.0f}, {0.0f, 1.0f}};  // corner, +u, +u+v, +v
     if (!(meshArea2(s.mesh) > 0.0)) ev.fail("edge_u and edge_v must span a non-zero area");
@@ -148,7 +154,8 @@ ShapeDescription parseShape(YamlMap map, size_t index, const Context& ctx) {
     if (file) {
       std::filesystem::path p(file->string());
       if (p.is_relative()) p = ctx.baseDir / p;
-      if (!std::filesystem::is_regular_file(p)) file->fail("mesh file '" + p.string() + "' not found");
+      if (!std::filesystem::is_regular_file(p))
+        file->fail("mesh file '" + p.string() + "' not found");
       try {
         s.mesh = readMeshFile(p);
       } catch (const InputError& e) {
@@ -159,8 +166,7 @@ ShapeDescription parseShape(YamlMap map, size_t index, const Context& ctx) {
       if (auto sc = map.find("scale")) scale = sc->number(0.0, 1e12, true);
       glm::dvec3 translate(0.0);
       if (auto tr = map.find("translate")) translate = tr->vec3();
-      for (glm::vec3& p3 : s.mesh.positions)
-        p3 = point(*file, glm::dvec3(p3) * scale + translate);
+      for (glm::vec3& p3 : s.mesh.positions) p3 = point(*file, glm::dvec3(p3) * scale + translate);
       checkMesh(*file, s.mesh);
     } else if (vertices) {
       for (const YamlValue& v : vertices->items()) s.mesh.positions.push_back(point(v, v.vec3()));
@@ -196,9 +202,11 @@ std::filesystem::path lutsDirectory() {
 }
 
 SceneDescription loadSceneFromText(const std::string& text, const std::string& displayName,
-                                   const std::filesystem::path& baseDir, const LoadOptions& options) {
+                                   const std::filesystem::path& baseDir,
+                                   const LoadOptions& options) {
   const YamlValue root = parseYaml(text, displayName);
-  if (!root.node() || root.node().IsNull()) throw InputError({displayName, 1, 1}, "", "the scene file is empty");
+  if (!root.node() || root.node().IsNull())
+    throw InputError({displayName, 1, 1}, "", "the scene file is empty");
   YamlMap top(root);
   Context ctx;
   ctx.baseDir = baseDir;
@@ -207,7 +215,8 @@ SceneDescription loadSceneFromText(const std::string& text, const std::string& d
     for (const YamlValue& p : paths->items()) {
       std::filesystem::path dir(p.string());
       if (dir.is_relative()) dir = baseDir / dir;
-      if (!std::filesystem::is_directory(dir)) p.fail("directory '" + dir.string() + "' does not exist");
+      if (!std::filesystem::is_directory(dir))
+        p.fail("directory '" + dir.string() + "' does not exist");
       ctx.search.directories.push_back(dir);
     }
   }
@@ -217,7 +226,8 @@ SceneDescription loadSceneFromText(const std::string& text, const std::string& d
   SceneDescription scene;
   scene.sourceFile = displayName;
   if (auto v = top.find("format")) {
-    if (v->string() != "camsim-scene/1") v->fail("unsupported format '" + v->string() + "' (this camsim reads camsim-scene/1)");
+    if (v->string() != "camsim-scene/1")
+      v->fail("unsupported format '" + v->string() + "' (this camsim reads camsim-scene/1)");
   }
   scene.name = std::filesystem::path(displayName).stem().string();
   if (auto v = top.find("name")) scene.name = v->string();
@@ -239,21 +249,26 @@ SceneDescription loadSceneFromText(const std::string& text, const std::string& d
     YamlMap mmap(*mats);
     for (const std::string& name : mmap.keys()) {
       ctx.materialIndex[name] = static_cast<int>(scene.materials.size());
-      scene.materials.push_back(parseMaterial(name, YamlMap(*mmap.find(name)), ctx.search, ctx.baseDir));
+      scene.materials.push_back(
+          parseMaterial(name, YamlMap(*mmap.find(name)), ctx.search, ctx.baseDir));
     }
   }
   const YamlValue shapes = top.require("shapes");
   const std::vector<YamlValue> items = shapes.items();
   if (items.empty()) shapes.fail("the scene has no shapes");
-  for (size_t i = 0; i < items.size(); ++i) scene.shapes.push_back(parseShape(YamlMap(items[i]), i, ctx));
-  if (auto l = top.find("lights")) scene.lights = parseLights(*l, ctx.search, baseDir, scene.renderOrigin);
-  top.finish({"format", "name", "spectra_path", "render", "camera", "sensor", "isp", "materials", "shapes", "lights"});
+  for (size_t i = 0; i < items.size(); ++i)
+    scene.shapes.push_back(parseShape(YamlMap(items[i]), i, ctx));
+  if (auto l = top.find("lights"))
+    scene.lights = parseLights(*l, ctx.search, baseDir, scene.renderOrigin);
+  top.finish({"format", "name", "spectra_path", "render", "camera", "sensor", "isp", "materials",
+              "shapes", "lights"});
   return scene;
 }
 
 std::string readSceneFile(const std::filesystem::path& file) {
   std::ifstream in(file, std::ios::binary);
-  if (!in || std::filesystem::is_directory(file)) throw InputError({file.string(), 0, 0}, "", "cannot open scene file");
+  if (!in || std::filesystem::is_directory(file))
+    throw InputError({file.string(), 0, 0}, "", "cannot open scene file");
   std::ostringstream text;
   text << in.rdbuf();
   return text.str();

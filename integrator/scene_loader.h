@@ -20,8 +20,8 @@ struct LoadOptions {
 
 // Limits checked before any work starts (resource guards). Raise them only knowingly.
 struct SceneLimits {
-  static constexpr std::int64_t kMaxResolution = 32768;          // px per side
-  static constexpr std::int64_t kMaxPixels = 268435456;          // 2^28 px (16k × 16k)
+  static constexpr std::int64_t kMaxResolution = 32768;  // px per side
+  static constexpr std::int64_t kMaxPixels = 268435456;  // 2^28 px (16k × 16k)
   static constexpr std::int64_t kMaxSpp = 1 << 20;
   static constexpr std::int64_t kMaxDepth = 10000;
   static constexpr std::int64_t kMaxTrianglesInline = 10000000;
@@ -34,7 +34,8 @@ std::string readSceneFile(const std::filesystem::path& file);
 std::filesystem::path sceneBaseDir(const std::filesystem::path& file);
 // `displayName` names the text in messages; relative paths resolve against baseDir.
 SceneDescription loadSceneFromText(const std::string& text, const std::string& displayName,
-                                   const std::filesystem::path& baseDir, const LoadOptions& options = {});
+                                   const std::filesystem::path& baseDir,
+                                   const LoadOptions& options = {});
 
 // The directory of luts/ used for spectral tables: $CAMSIM_LUTS if set, else the source
 // tree's luts/ this binary was built from.

@@ -44,7 +44,8 @@ glm::dmat4 lookAt(const YamlValue& where, const YamlValue& positionWhere, glm::d
   const glm::dvec3 forward = glm::normalize(toTarget);
   // Right-handed world: right = forward × up (looking along +z with +y up, right is −x).
   const glm::dvec3 rightRaw = glm::cross(forward, up);
-  if (glm::length(rightRaw) < 1e-9 * glm::length(up)) where.fail("up is parallel to the viewing direction");
+  if (glm::length(rightRaw) < 1e-9 * glm::length(up))
+    where.fail("up is parallel to the viewing direction");
   const glm::dvec3 right = glm::normalize(rightRaw);
   const glm::dvec3 trueUp = glm::cross(right, forward);
   glm::dmat4 m(1.0);
@@ -62,12 +63,13 @@ glm::dmat4 parseMatrix(const YamlValue& m) {
   glm::dmat4 out(1.0);
   for (int row = 0; row < 4; ++row)
     for (int col = 0; col < 4; ++col) out[col][row] = v[static_cast<size_t>(row * 4 + col)];
-  if (v[12] != 0.0 || v[13] != 0.0 || v[14] != 0.0 || v[15] != 1.0) m.fail("last row must be [0, 0, 0, 1]");
+  if (v[12] != 0.0 || v[13] != 0.0 || v[14] != 0.0 || v[15] != 1.0)
+    m.fail("last row must be [0, 0, 0, 1]");
   toPoint(m, glm::dvec3(v[3], v[7], v[11]));
   const glm::dvec3 x(out[0]), y(out[1]), z(out[2]);
-  if (std::abs(glm::dot(x, y)) > 1e-4 || std::abs(glm::dot(y, z)) > 1e-4 || std::abs(glm::dot(x, z)) > 1e-4 ||
-      std::abs(glm::length(x) - 1.0) > 1e-4 || std::abs(glm::length(y) - 1.0) > 1e-4 ||
-      std::abs(glm::length(z) - 1.0) > 1e-4)
+  if (std::abs(glm::dot(x, y)) > 1e-4 || std::abs(glm::dot(y, z)) > 1e-4 ||
+      std::abs(glm::dot(x, z)) > 1e-4 || std::abs(glm::length(x) - 1.0) > 1e-4 ||
+      std::abs(glm::length(y) - 1.0) > 1e-4 || std::abs(glm::length(z) - 1.0) > 1e-4)
     m.fail("the rotation part must be orthonormal (columns right, up, forward)");
   return out;
 }
@@ -76,8 +78,10 @@ Shutter parseShutter(YamlMap map) {
   Shutter::Type type = Shutter::Type::kGlobal;
   if (auto t = map.find("type")) {
     const std::string name = t->string();
-    if (name == "rolling") type = Shutter::Type::kRolling;
-    else if (name != "global") t->fail("unknown shutter type '" + name + "' (known: global, rolling)");
+    if (name == "rolling")
+      type = Shutter::Type::kRolling;
+    else if (name != "global")
+      t->fail("unknown shutter type '" + name + "' (known: global, rolling)");
   }
   double rowTime = 0.0;
   if (auto r = map.find("row_time")) {
@@ -96,7 +100,8 @@ Shutter parseShutter(YamlMap map) {
     }
     if (times.size() < 2) curve->fail("a shutter curve needs at least 2 points");
     double area = 0.0;
-    for (size_t i = 1; i < times.size(); ++i) area += 0.5 * (values[i] + values[i - 1]) * (times[i] - times[i - 1]);
+    for (size_t i = 1; i < times.size(); ++i)
+      area += 0.5 * (values[i] + values[i - 1]) * (times[i] - times[i - 1]);
     if (!(area > 0.0)) curve->fail("the shutter curve lets no light through");
     map.finish({"type", "row_time", "curve"});
     return Shutter(std::move(times), std::move(values), type, rowTime);
@@ -105,11 +110,13 @@ Shutter parseShutter(YamlMap map) {
   if (auto v = map.find("open")) open = v->number(-1e6, 1e6);
   const auto closeValue = map.find("close");
   if (closeValue) close = closeValue->number(-1e6, 1e6);
-  if (!(close > open)) (closeValue ? *closeValue : map.self()).fail("close must be later than open");
+  if (!(close > open))
+    (closeValue ? *closeValue : map.self()).fail("close must be later than open");
   if (auto v = map.find("ramp_open")) rampOpen = v->number(0.0, close - open);
   const auto rc = map.find("ramp_close");
   if (rc) rampClose = rc->number(0.0, close - open);
-  if (rampOpen + rampClose > close - open) rc->fail("ramp_open + ramp_close exceed the exposure (close − open)");
+  if (rampOpen + rampClose > close - open)
+    rc->fail("ramp_open + ramp_close exceed the exposure (close − open)");
   map.finish({"type", "row_time", "open", "close", "ramp_open", "ramp_close"});
   return Shutter::trapezoid(open, close, rampOpen, rampClose, type, rowTime);
 }
@@ -123,7 +130,8 @@ RigidMotion parseMotion(const YamlValue& value, bool forCamera) {
     Keyframe k;
     const YamlValue time = map.require("time");
     k.time = time.number(-1e6, 1e6);
-    if (!keys.empty() && k.time <= keys.back().time) time.fail("keyframe times must be strictly increasing");
+    if (!keys.empty() && k.time <= keys.back().time)
+      time.fail("keyframe times must be strictly increasing");
     if (auto t = map.find("translate")) k.translate = glm::dvec3(toPoint(*t, t->vec3()));
     if (auto r = map.find("rotate")) {
       YamlMap rm(*r);
@@ -159,22 +167,27 @@ PhysicalCameraParams parseCamera(YamlMap map, const SpectrumSearch& search) {
     if (auto u = map.find("up")) up = u->vec3();
     c.worldFromCamera = lookAt(target, position, position.vec3(), target.vec3(), up);
   }
-  if (auto v = map.find("sensor_width_mm")) c.sensorSize.x = static_cast<double>(positiveFloat(*v, v->number(0.0, 1000.0, true) * 1e-3));
-  if (auto v = map.find("sensor_height_mm")) c.sensorSize.y = static_cast<double>(positiveFloat(*v, v->number(0.0, 1000.0, true) * 1e-3));
+  if (auto v = map.find("sensor_width_mm"))
+    c.sensorSize.x = static_cast<double>(positiveFloat(*v, v->number(0.0, 1000.0, true) * 1e-3));
+  if (auto v = map.find("sensor_height_mm"))
+    c.sensorSize.y = static_cast<double>(positiveFloat(*v, v->number(0.0, 1000.0, true) * 1e-3));
   if (auto v = map.find("resolution")) {
     const std::vector<YamlValue> items = v->items();
     if (items.size() != 2) v->fail("expected [width, height] in pixels");
     c.resolution.x = resolutionSide(items[0]);
     c.resolution.y = resolutionSide(items[1]);
     if (std::int64_t(c.resolution.x) * c.resolution.y > SceneLimits::kMaxPixels)
-      v->fail("more than " + std::to_string(SceneLimits::kMaxPixels) + " pixels (limit SceneLimits::kMaxPixels)");
+      v->fail("more than " + std::to_string(SceneLimits::kMaxPixels) +
+              " pixels (limit SceneLimits::kMaxPixels)");
   }
   if (auto v = map.find("fill_factor")) c.fillFactor = v->number(0.0, 1.0, true);
-  if (auto v = map.find("focal_length_mm")) c.focalLength = static_cast<double>(positiveFloat(*v, v->number(0.0, 1e5, true) * 1e-3));
+  if (auto v = map.find("focal_length_mm"))
+    c.focalLength = static_cast<double>(positiveFloat(*v, v->number(0.0, 1e5, true) * 1e-3));
   if (auto v = map.find("f_number")) c.fNumber = v->number(0.5, 1e4);
   if (auto v = map.find("focus_distance_m")) {
     c.focusDistance = v->number(0.0, 1e12, true);
-    if (!(c.focusDistance > c.focalLength * 1.0001)) v->fail("focus distance must exceed the focal length");
+    if (!(c.focusDistance > c.focalLength * 1.0001))
+      v->fail("focus distance must exceed the focal length");
   }
   if (auto a = map.find("aperture")) {
     YamlMap am(*a);
@@ -188,10 +201,12 @@ PhysicalCameraParams parseCamera(YamlMap map, const SpectrumSearch& search) {
     am.finish({"blades", "rotation_deg"});
     c.aperture.emplace(c.focalLength / c.fNumber, blades, rotation);
   }
-  if (auto t = map.find("lens_transmittance")) c.lensTransmittance = parseSpectrum(*t, SpectrumUse::kReflectance, search);
+  if (auto t = map.find("lens_transmittance"))
+    c.lensTransmittance = parseSpectrum(*t, SpectrumUse::kReflectance, search);
   if (auto d = map.find("distortion")) {
     YamlMap dm(*d);
-    double* fields[] = {&c.distortion.k1, &c.distortion.k2, &c.distortion.k3, &c.distortion.p1, &c.distortion.p2};
+    double* fields[] = {&c.distortion.k1, &c.distortion.k2, &c.distortion.k3, &c.distortion.p1,
+                        &c.distortion.p2};
     const char* names[] = {"k1", "k2", "k3", "p1", "p2"};
     for (int i = 0; i < 5; ++i)
       if (auto v = dm.find(names[i])) *fields[i] = v->number(-1e3, 1e3);
@@ -199,9 +214,10 @@ PhysicalCameraParams parseCamera(YamlMap map, const SpectrumSearch& search) {
   }
   if (auto s = map.find("shutter")) c.shutter = parseShutter(YamlMap(*s));
   if (auto m = map.find("motion")) c.motion = parseMotion(*m, true);
-  map.finish({"position", "look_at", "up", "world_from_camera", "sensor_width_mm", "sensor_height_mm",
-              "resolution", "fill_factor", "focal_length_mm", "f_number", "focus_distance_m", "aperture",
-              "lens_transmittance", "distortion", "shutter", "motion"});
+  map.finish({"position", "look_at", "up", "world_from_camera", "sensor_width_mm",
+              "sensor_height_mm", "resolution", "fill_factor", "focal_length_mm", "f_number",
+              "focus_distance_m", "aperture", "lens_transmittance", "distortion", "shutter",
+              "motion"});
   return c;
 }
 

@@ -21,25 +21,33 @@ MaterialDescription::Type parseType(const YamlValue& type) {
   if (t == "conductor") return MaterialDescription::Type::kConductor;
   if (t == "dielectric") return MaterialDescription::Type::kDielectric;
   if (t == "plastic") return MaterialDescription::Type::kPlastic;
-  type.fail("unknown material type '" + t + "' (known: diffuse, mirror, conductor, dielectric, plastic)");
+  type.fail("unknown material type '" + t +
+            "' (known: diffuse, mirror, conductor, dielectric, plastic)");
 }
 
 // The microfacet keys shared by conductor, dielectric and plastic.
 void parseMicrofacet(YamlMap& map, MaterialDescription& m, const SpectrumSearch& search,
                      const std::filesystem::path& baseDir, std::vector<std::string>& known) {
-  if (auto r = map.find("roughness")) m.roughness = parseTexture(*r, TextureUse::kRoughness, search, baseDir);
+  if (auto r = map.find("roughness"))
+    m.roughness = parseTexture(*r, TextureUse::kRoughness, search, baseDir);
   if (auto a = map.find("anisotropy")) m.anisotropy = static_cast<float>(a->number(-0.99, 0.99));
   if (auto d = map.find("distribution")) {
     const std::string v = d->string();
-    if (v == "ggx") m.distribution = MicrofacetDistribution::kGgx;
-    else if (v == "beckmann") m.distribution = MicrofacetDistribution::kBeckmann;
-    else d->fail("unknown distribution '" + v + "' (known: ggx, beckmann)");
+    if (v == "ggx")
+      m.distribution = MicrofacetDistribution::kGgx;
+    else if (v == "beckmann")
+      m.distribution = MicrofacetDistribution::kBeckmann;
+    else
+      d->fail("unknown distribution '" + v + "' (known: ggx, beckmann)");
   }
   if (auto g = map.find("masking")) {
     const std::string v = g->string();
-    if (v == "smith") m.masking = MaskingModel::kSmith;
-    else if (v == "v-groove") m.masking = MaskingModel::kVGroove;
-    else g->fail("unknown masking '" + v + "' (known: smith, v-groove)");
+    if (v == "smith")
+      m.masking = MaskingModel::kSmith;
+    else if (v == "v-groove")
+      m.masking = MaskingModel::kVGroove;
+    else
+      g->fail("unknown masking '" + v + "' (known: smith, v-groove)");
   }
   known.insert(known.end(), {"roughness", "anisotropy", "distribution", "masking"});
 }
@@ -57,27 +65,38 @@ Spectrum namedColumn(const YamlValue& name, const std::string& folder, const std
       name.fail(e.message() + " in " + (dir / file).string());
     }
   }
-  name.fail("no " + folder + " table '" + name.string() + "' (looked for " + file + " on the spectra path)");
+  name.fail("no " + folder + " table '" + name.string() + "' (looked for " + file +
+            " on the spectra path)");
 }
 
 void parseConductor(YamlMap& map, MaterialDescription& m, const SpectrumSearch& search,
                     std::vector<std::string>& known) {
   if (auto f = map.find("fresnel")) {
     const std::string v = f->string();
-    if (v == "exact") m.fresnel = FresnelModel::kExact;
-    else if (v == "schlick") m.fresnel = FresnelModel::kSchlick;
-    else f->fail("unknown fresnel '" + v + "' (known: exact, schlick)");
+    if (v == "exact")
+      m.fresnel = FresnelModel::kExact;
+    else if (v == "schlick")
+      m.fresnel = FresnelModel::kSchlick;
+    else
+      f->fail("unknown fresnel '" + v + "' (known: exact, schlick)");
   }
   const auto metal = map.find("metal");
   const auto eta = map.find("eta");
   const auto k = map.find("k");
   known.insert(known.end(), {"fresnel", "metal", "eta", "k"});
   if (m.fresnel == FresnelModel::kSchlick) {
-    if (metal || eta || k) (metal ? *metal : eta ? *eta : *k).fail("fresnel: schlick takes 'reflectance' (R0), not η and k");
-    if (!map.has("reflectance")) map.self().fail("fresnel: schlick needs 'reflectance' (normal-incidence R0)");
+    if (metal || eta || k)
+      (metal ? *metal
+       : eta ? *eta
+             : *k)
+          .fail("fresnel: schlick takes 'reflectance' (R0), not η and k");
+    if (!map.has("reflectance"))
+      map.self().fail("fresnel: schlick needs 'reflectance' (normal-incidence R0)");
     return;
   }
-  if (map.has("reflectance")) map.self().fail("'reflectance' is for fresnel: schlick; exact Fresnel uses 'metal' or 'eta' and 'k'");
+  if (map.has("reflectance"))
+    map.self().fail(
+        "'reflectance' is for fresnel: schlick; exact Fresnel uses 'metal' or 'eta' and 'k'");
   if (metal && (eta || k)) (eta ? *eta : *k).fail("give either 'metal' or 'eta' and 'k', not both");
   if (metal) {
     m.eta = namedColumn(*metal, "metals", "eta", search);
@@ -98,14 +117,18 @@ void parseDielectric(YamlMap& map, MaterialDescription& m, const SpectrumSearch&
   const auto ior = map.find("ior");
   known.insert(known.end(), {"glass", "ior"});
   if (glass && ior) ior->fail("give either 'glass' or 'ior', not both");
-  if (glass) m.eta = namedColumn(*glass, "glasses", "eta", search);
-  else if (ior) m.eta = parseSpectrum(*ior, SpectrumUse::kIndex, search);
-  if (!(m.eta.minValue() >= 1e-3)) (glass ? *glass : *ior).fail("the index of refraction must be > 0");
+  if (glass)
+    m.eta = namedColumn(*glass, "glasses", "eta", search);
+  else if (ior)
+    m.eta = parseSpectrum(*ior, SpectrumUse::kIndex, search);
+  if (!(m.eta.minValue() >= 1e-3))
+    (glass ? *glass : *ior).fail("the index of refraction must be > 0");
 }
 
 }  // namespace
 
-MaterialDescription parseMaterial(const std::string& name, YamlMap map, const SpectrumSearch& search,
+MaterialDescription parseMaterial(const std::string& name, YamlMap map,
+                                  const SpectrumSearch& search,
                                   const std::filesystem::path& baseDir) {
   MaterialDescription m;
   m.name = name;
@@ -114,7 +137,8 @@ MaterialDescription parseMaterial(const std::string& name, YamlMap map, const Sp
   using Type = MaterialDescription::Type;
   if (m.type == Type::kMirror) m.reflectance = TextureDescription::constant(1.0);
   if (m.type != Type::kDielectric) {
-    if (auto r = map.find("reflectance")) m.reflectance = parseTexture(*r, TextureUse::kReflectance, search, baseDir);
+    if (auto r = map.find("reflectance"))
+      m.reflectance = parseTexture(*r, TextureUse::kReflectance, search, baseDir);
     known.push_back("reflectance");
   }
   if (m.type == Type::kConductor || m.type == Type::kDielectric || m.type == Type::kPlastic)

@@ -21,8 +21,8 @@ float positiveFloat(const YamlValue& where, double v);
 PhysicalCameraParams parseCamera(YamlMap map, const SpectrumSearch& search);
 // `sensor:` → sensor settings; sets the camera's sensor size and fill factor from the
 // sensor's pixel pitch (cameraMap: the camera's keys, to reject conflicting ones).
-SensorSettings parseSensorSettings(YamlMap map, const std::filesystem::path& baseDir, const YamlValue& camera,
-                                   PhysicalCameraParams& cameraParams);
+SensorSettings parseSensorSettings(YamlMap map, const std::filesystem::path& baseDir,
+                                   const YamlValue& camera, PhysicalCameraParams& cameraParams);
 // `isp:` → image-pipeline settings (white balance, demosaic).
 IspSettings parseIspSettings(YamlMap map);
 // A material input that may be a texture (integrator/scene_loader_textures.cpp):
@@ -32,7 +32,8 @@ enum class TextureUse { kReflectance, kRoughness };
 TextureDescription parseTexture(const YamlValue& v, TextureUse use, const SpectrumSearch& search,
                                 const std::filesystem::path& baseDir);
 // `materials:` entry → material description (integrator/scene_loader_materials.cpp).
-MaterialDescription parseMaterial(const std::string& name, YamlMap map, const SpectrumSearch& search,
+MaterialDescription parseMaterial(const std::string& name, YamlMap map,
+                                  const SpectrumSearch& search,
                                   const std::filesystem::path& baseDir);
 // `motion:` keyframes; `forCamera` forbids scale.
 RigidMotion parseMotion(const YamlValue& value, bool forCamera);

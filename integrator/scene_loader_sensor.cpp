@@ -8,8 +8,8 @@
 
 namespace camsim {
 
-SensorSettings parseSensorSettings(YamlMap map, const std::filesystem::path& baseDir, const YamlValue& camera,
-                                   PhysicalCameraParams& cameraParams) {
+SensorSettings parseSensorSettings(YamlMap map, const std::filesystem::path& baseDir,
+                                   const YamlValue& camera, PhysicalCameraParams& cameraParams) {
   SensorSettings s;
   const YamlValue model = map.require("model");
   std::string name = model.string();
@@ -24,25 +24,34 @@ SensorSettings parseSensorSettings(YamlMap map, const std::filesystem::path& bas
   if (auto v = map.find("iso")) s.iso = v->number(1.0, 1e7);
   if (auto v = map.find("noise")) {
     const std::string mode = v->string();
-    if (mode == "none") s.noise = NoiseMode::kNone;
-    else if (mode == "photon") s.noise = NoiseMode::kPhoton;
-    else if (mode != "full") v->fail("unknown noise mode '" + mode + "' (known: none, photon, full)");
+    if (mode == "none")
+      s.noise = NoiseMode::kNone;
+    else if (mode == "photon")
+      s.noise = NoiseMode::kPhoton;
+    else if (mode != "full")
+      v->fail("unknown noise mode '" + mode + "' (known: none, photon, full)");
   }
-  if (auto v = map.find("noise_seed")) s.noiseSeed = static_cast<std::uint64_t>(v->integer(0, INT64_MAX));
+  if (auto v = map.find("noise_seed"))
+    s.noiseSeed = static_cast<std::uint64_t>(v->integer(0, INT64_MAX));
   if (auto v = map.find("frame")) s.frame = static_cast<std::uint64_t>(v->integer(0, INT64_MAX));
   if (auto v = map.find("auto_exposure")) {
     YamlMap ae(*v);
     AutoExposure a;
     if (auto m = ae.find("metering")) {
       const std::string how = m->string();
-      if (how == "mean") a.metering = AutoExposure::Metering::kMean;
-      else if (how == "centre_weighted") a.metering = AutoExposure::Metering::kCentreWeighted;
-      else if (how == "percentile") a.metering = AutoExposure::Metering::kPercentile, a.target = 0.9;
-      else m->fail("unknown metering '" + how + "' (known: mean, centre_weighted, percentile)");
+      if (how == "mean")
+        a.metering = AutoExposure::Metering::kMean;
+      else if (how == "centre_weighted")
+        a.metering = AutoExposure::Metering::kCentreWeighted;
+      else if (how == "percentile")
+        a.metering = AutoExposure::Metering::kPercentile, a.target = 0.9;
+      else
+        m->fail("unknown metering '" + how + "' (known: mean, centre_weighted, percentile)");
     }
     if (auto t = ae.find("target")) a.target = t->number(0.0, 1.0, true);
     if (auto p = ae.find("percentile")) {
-      if (a.metering != AutoExposure::Metering::kPercentile) p->fail("percentile needs metering: percentile");
+      if (a.metering != AutoExposure::Metering::kPercentile)
+        p->fail("percentile needs metering: percentile");
       a.percentile = p->number(0.0, 100.0, true);
     }
     ae.finish({"metering", "target", "percentile"});
@@ -50,7 +59,8 @@ SensorSettings parseSensorSettings(YamlMap map, const std::filesystem::path& bas
   }
   if (auto b = map.find("bracket_ev")) {
     s.bracketEv = b->numbers();
-    if (s.bracketEv.empty() || s.bracketEv.size() > 16) b->fail("give 1 to 16 exposure offsets in stops");
+    if (s.bracketEv.empty() || s.bracketEv.size() > 16)
+      b->fail("give 1 to 16 exposure offsets in stops");
     for (double ev : s.bracketEv)
       if (std::abs(ev) > 20.0) b->fail("exposure offsets must lie within ±20 stops");
   }
@@ -60,7 +70,8 @@ SensorSettings parseSensorSettings(YamlMap map, const std::filesystem::path& bas
   YamlMap cameraKeys(camera);
   for (const char* key : {"sensor_width_mm", "sensor_height_mm", "fill_factor"})
     if (auto v = cameraKeys.find(key))
-      v->fail(std::string(key) + " conflicts with the sensor's pixel pitch and fill factor: remove it");
+      v->fail(std::string(key) +
+              " conflicts with the sensor's pixel pitch and fill factor: remove it");
   cameraParams.sensorSize = glm::dvec2(cameraParams.resolution) * s.spec.pixelPitchM;
   cameraParams.fillFactor = s.spec.fillFactor;
   return s;
@@ -70,10 +81,14 @@ IspSettings parseIspSettings(YamlMap map) {
   IspSettings isp;
   if (auto wb = map.find("white_balance")) {
     const std::string how = wb->string();
-    if (how == "illuminant") isp.whiteBalance = IspSettings::WhiteBalance::kIlluminant;
-    else if (how == "grey_world") isp.whiteBalance = IspSettings::WhiteBalance::kGreyWorld;
-    else if (how == "region") isp.whiteBalance = IspSettings::WhiteBalance::kRegion;
-    else wb->fail("unknown white balance '" + how + "' (known: illuminant, region, grey_world)");
+    if (how == "illuminant")
+      isp.whiteBalance = IspSettings::WhiteBalance::kIlluminant;
+    else if (how == "grey_world")
+      isp.whiteBalance = IspSettings::WhiteBalance::kGreyWorld;
+    else if (how == "region")
+      isp.whiteBalance = IspSettings::WhiteBalance::kRegion;
+    else
+      wb->fail("unknown white balance '" + how + "' (known: illuminant, region, grey_world)");
   }
   if (auto ill = map.find("illuminant")) {
     isp.illuminant = ill->string();
@@ -84,19 +99,24 @@ IspSettings parseIspSettings(YamlMap map) {
     }
   }
   if (auto r = map.find("region")) {
-    if (isp.whiteBalance != IspSettings::WhiteBalance::kRegion) r->fail("region needs white_balance: region");
+    if (isp.whiteBalance != IspSettings::WhiteBalance::kRegion)
+      r->fail("region needs white_balance: region");
     const std::vector<YamlValue> v = r->items();
     if (v.size() != 4) r->fail("expected [x, y, width, height] in pixels");
-    isp.region = {static_cast<int>(v[0].integer(0, 1 << 20)), static_cast<int>(v[1].integer(0, 1 << 20)),
-                  static_cast<int>(v[2].integer(1, 1 << 20)), static_cast<int>(v[3].integer(1, 1 << 20))};
+    isp.region = {
+        static_cast<int>(v[0].integer(0, 1 << 20)), static_cast<int>(v[1].integer(0, 1 << 20)),
+        static_cast<int>(v[2].integer(1, 1 << 20)), static_cast<int>(v[3].integer(1, 1 << 20))};
   } else if (isp.whiteBalance == IspSettings::WhiteBalance::kRegion) {
     map.self().fail("white_balance: region needs region: [x, y, width, height]");
   }
   if (auto d = map.find("demosaic")) {
     const std::string how = d->string();
-    if (how == "malvar") isp.demosaic = DemosaicMethod::kMalvarHeCutler;
-    else if (how == "bilinear") isp.demosaic = DemosaicMethod::kBilinear;
-    else d->fail("unknown demosaic '" + how + "' (known: malvar, bilinear)");
+    if (how == "malvar")
+      isp.demosaic = DemosaicMethod::kMalvarHeCutler;
+    else if (how == "bilinear")
+      isp.demosaic = DemosaicMethod::kBilinear;
+    else
+      d->fail("unknown demosaic '" + how + "' (known: malvar, bilinear)");
   }
   map.finish({"white_balance", "illuminant", "region", "demosaic"});
   return isp;

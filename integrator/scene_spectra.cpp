@@ -36,7 +36,8 @@ Spectrum fromTable(YamlMap& map, SpectrumUse use, const SpectrumSearch& search) 
     map.self().fail("table " + path.string() + " has several columns: name one with 'column'");
   }
   map.finish({"csv", "column"});
-  Spectrum s = table.spectrum(column, use == SpectrumUse::kEmission ? Extrapolation::kZero : Extrapolation::kClamp);
+  Spectrum s = table.spectrum(
+      column, use == SpectrumUse::kEmission ? Extrapolation::kZero : Extrapolation::kClamp);
   if (s.minValue() < 0.0) file.fail("spectral table has negative values");
   if (use == SpectrumUse::kReflectance && s.maxValue() > 1.0)
     file.fail("reflectance must lie in [0, 1]; the table exceeds 1");

@@ -10,8 +10,8 @@
 #include <filesystem>
 #include <vector>
 
-#include "sensor/yaml_reader.h"
 #include "sensor/spectrum.h"
+#include "sensor/yaml_reader.h"
 
 namespace camsim {
 

@@ -7,7 +7,8 @@
 
 namespace camsim {
 
-Shutter::Shutter(std::vector<double> times, std::vector<double> efficiency, Type type, double rowTime)
+Shutter::Shutter(std::vector<double> times, std::vector<double> efficiency, Type type,
+                 double rowTime)
     : times_(std::move(times)), values_(std::move(efficiency)), type_(type), rowTime_(rowTime) {
   CAMSIM_CHECK(times_.size() >= 2 && times_.size() == values_.size());
   cdf_.assign(times_.size(), 0.0);
@@ -19,13 +20,16 @@ Shutter::Shutter(std::vector<double> times, std::vector<double> efficiency, Type
   CAMSIM_CHECK(total_ > 0.0);
 }
 
-Shutter Shutter::box(double open, double close) { return Shutter({open, close}, {1.0, 1.0}, Type::kGlobal, 0.0); }
+Shutter Shutter::box(double open, double close) {
+  return Shutter({open, close}, {1.0, 1.0}, Type::kGlobal, 0.0);
+}
 
 Shutter Shutter::trapezoid(double open, double close, double rampOpen, double rampClose, Type type,
                            double rowTime) {
   std::vector<double> t = {open}, s = {rampOpen > 0.0 ? 0.0 : 1.0};
   if (rampOpen > 0.0) t.push_back(open + rampOpen), s.push_back(1.0);
-  if (rampClose > 0.0 && close - rampClose > t.back()) t.push_back(close - rampClose), s.push_back(1.0);
+  if (rampClose > 0.0 && close - rampClose > t.back())
+    t.push_back(close - rampClose), s.push_back(1.0);
   t.push_back(close), s.push_back(rampClose > 0.0 ? 0.0 : 1.0);
   return Shutter(std::move(t), std::move(s), type, rowTime);
 }

@@ -62,7 +62,9 @@ inline std::uint32_t reversedDimension1(std::uint32_t i) {
   return i;
 }
 
-inline float toUnit(std::uint32_t x) { return static_cast<float>(x >> 8) * 0x1p-24f; }
+inline float toUnit(std::uint32_t x) {
+  return static_cast<float>(x >> 8) * 0x1p-24f;
+}
 
 }  // namespace sobol
 
@@ -81,7 +83,8 @@ class SobolSampler final : public Sampler {
     const std::uint64_t key = dimensionKey(dimension_++);
     const std::uint32_t shuffled =
         sobol::reverseBits(sobol::laineKarras(reversedIndex_, static_cast<std::uint32_t>(key)));
-    return sobol::toUnit(sobol::reverseBits(sobol::laineKarras(shuffled, static_cast<std::uint32_t>(key >> 32))));
+    return sobol::toUnit(
+        sobol::reverseBits(sobol::laineKarras(shuffled, static_cast<std::uint32_t>(key >> 32))));
   }
   glm::vec2 get2D() override {
     const std::uint64_t key = dimensionKey(dimension_);
@@ -89,8 +92,10 @@ class SobolSampler final : public Sampler {
     const std::uint32_t shuffled =
         sobol::reverseBits(sobol::laineKarras(reversedIndex_, static_cast<std::uint32_t>(key)));
     const auto seedY = static_cast<std::uint32_t>(mix64(key) >> 32);
-    return {sobol::toUnit(sobol::reverseBits(sobol::laineKarras(shuffled, static_cast<std::uint32_t>(key >> 32)))),
-            sobol::toUnit(sobol::reverseBits(sobol::laineKarras(sobol::reversedDimension1(shuffled), seedY)))};
+    return {sobol::toUnit(sobol::reverseBits(
+                sobol::laineKarras(shuffled, static_cast<std::uint32_t>(key >> 32)))),
+            sobol::toUnit(sobol::reverseBits(
+                sobol::laineKarras(sobol::reversedDimension1(shuffled), seedY)))};
   }
   std::unique_ptr<Sampler> clone() const override { return std::make_unique<SobolSampler>(*this); }
 

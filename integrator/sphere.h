@@ -22,7 +22,8 @@ class Sphere final : public Shape {
 
   float area() const override;
   SurfaceInteraction interaction(const Hit& hit, const Ray& ray) const override;
-  std::optional<ShapeSample> sample(const glm::vec3& ref, float u1, glm::vec2 u2, float time) const override;
+  std::optional<ShapeSample> sample(const glm::vec3& ref, float u1, glm::vec2 u2,
+                                    float time) const override;
   float pdf(const glm::vec3& ref, const SurfaceInteraction& onShape) const override;
 
  private:

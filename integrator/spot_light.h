@@ -42,8 +42,8 @@ class SpotLight final : public Light {
   PointLight point_;  // the same source without the cone
   glm::vec3 axis_;
   double intensitySum_;  // ∫ I₀ dλ
-  float cosEnd_;    // cos θ_e
-  float cosStart_;  // cos θ_s
+  float cosEnd_;         // cos θ_e
+  float cosStart_;       // cos θ_s
   double coneAngle_, falloffStart_;
 };
 

@@ -74,7 +74,8 @@ SurfaceInteraction TriangleMesh::pointOn(size_t tri, float b1, float b2, float t
   int step = 0;
   float f = 0.0f;
   if (steps_.count > 1) steps_.locate(time, step, f);
-  const std::uint32_t i0 = indices_[3 * tri], i1 = indices_[3 * tri + 1], i2 = indices_[3 * tri + 2];
+  const std::uint32_t i0 = indices_[3 * tri], i1 = indices_[3 * tri + 1],
+                      i2 = indices_[3 * tri + 2];
   glm::vec3 p0, p1, p2;
   if (f == 0.0f) {
     const glm::vec3* p = positions_[static_cast<size_t>(step)].data();
@@ -89,9 +90,11 @@ SurfaceInteraction TriangleMesh::pointOn(size_t tri, float b1, float b2, float t
   const float b0 = 1.0f - b1 - b2;
   SurfaceInteraction si;
   si.p = b0 * p0 + b1 * p1 + b2 * p2;
-  si.pError = gammaBound(7) * (absComponents(b0 * p0) + absComponents(b1 * p1) + absComponents(b2 * p2));
+  si.pError =
+      gammaBound(7) * (absComponents(b0 * p0) + absComponents(b1 * p1) + absComponents(b2 * p2));
   if (f != 0.0f)
-    si.pError += gammaBound(3) * (absComponents(p0) + absComponents(p1) + absComponents(p2));  // time lerp
+    si.pError +=
+        gammaBound(3) * (absComponents(p0) + absComponents(p1) + absComponents(p2));  // time lerp
   const glm::vec3 cross = glm::cross(p1 - p0, p2 - p0);
   const float len = std::sqrt(glm::dot(cross, cross));
   // n in a local first: copying si.n into si.ns through memory right after the three
@@ -104,7 +107,8 @@ SurfaceInteraction TriangleMesh::pointOn(size_t tri, float b1, float b2, float t
     glm::vec3 ns = b0 * n0[i0] + b1 * n0[i1] + b2 * n0[i2];
     if (f != 0.0f) {
       const auto& n1 = normals_[static_cast<size_t>(step) + 1];
-      ns = b0 * glm::mix(n0[i0], n1[i0], f) + b1 * glm::mix(n0[i1], n1[i1], f) + b2 * glm::mix(n0[i2], n1[i2], f);
+      ns = b0 * glm::mix(n0[i0], n1[i0], f) + b1 * glm::mix(n0[i1], n1[i1], f) +
+           b2 * glm::mix(n0[i2], n1[i2], f);
     }
     const float nsLen = std::sqrt(glm::dot(ns, ns));
     if (nsLen > 0.0f && std::isfinite(nsLen)) {

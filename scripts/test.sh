@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Sets up and builds (scripts/setup.sh), then runs every quality gate (docs/testing.md):
-#   1. the test suite (CTest) on the Release build in build/;
+#   1. the test suite (CTest) on the Release build in build/; then every tracked .cpp/.h is
+#      checked to be clang-formatted (scripts/format.sh --check, a few seconds);
 #   2. the same suite built with AddressSanitizer + UndefinedBehaviorSanitizer (GCC,
 #      CAMSIM_SANITIZE=ON, -O1 -g1: line tables for the reports, a quarter faster to compile
 #      than -g) in build-asan/, less two slow statistical tests (see below);
@@ -71,6 +72,7 @@ fuzz_run() {
 }
 
 stage "Release test suite ($build_dir)" release_suite
+stage "clang-format check" scripts/format.sh --check
 stage "ASan+UBSan test suite ($asan_dir)" asan_suite
 stage "fuzz corpus and regression replay ($fuzz_dir)" fuzz_replay
 if ((fuzz_seconds > 0)); then

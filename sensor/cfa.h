@@ -13,12 +13,14 @@
 namespace camsim {
 
 struct CfaLayout {
-  int width = 1, height = 1;          // tile size, photosites
-  std::vector<int> tile = {0};        // channel index per tile position, row-major
+  int width = 1, height = 1;                  // tile size, photosites
+  std::vector<int> tile = {0};                // channel index per tile position, row-major
   std::vector<std::string> channels = {"Y"};  // channel names ("R", "G", "B", …)
-  std::string name = "mono";          // "RGGB", "BGGR", "GRBG", "GBRG", "mono" or custom
+  std::string name = "mono";                  // "RGGB", "BGGR", "GRBG", "GBRG", "mono" or custom
 
-  int channelAt(int x, int y) const { return tile[static_cast<size_t>((y % height) * width + (x % width))]; }
+  int channelAt(int x, int y) const {
+    return tile[static_cast<size_t>((y % height) * width + (x % width))];
+  }
   bool isMonochrome() const { return channels.size() == 1; }
   bool isStacked() const { return name == "xyz"; }
 

@@ -6,11 +6,11 @@
 #include <cstdio>
 #include <cstdlib>
 
-#define CAMSIM_CHECK(cond)                                                            \
-  do {                                                                                \
-    if (!(cond)) {                                                                    \
-      std::fprintf(stderr, "camsim internal error: %s:%d: check failed: %s\n", __FILE__, \
-                   __LINE__, #cond);                                                  \
-      std::abort();                                                                   \
-    }                                                                                 \
+#define CAMSIM_CHECK(cond)                                                                         \
+  do {                                                                                             \
+    if (!(cond)) {                                                                                 \
+      std::fprintf(stderr, "camsim internal error: %s:%d: check failed: %s\n", __FILE__, __LINE__, \
+                   #cond);                                                                         \
+      std::abort();                                                                                \
+    }                                                                                              \
   } while (false)

@@ -6,8 +6,8 @@ namespace camsim {
 
 const Cie1931& Cie1931::get() {
   static const Cie1931 cie = [] {
-    const SpectralTable t =
-        parseSpectralCsv(embeddedSpectralFile("cie1931_2deg_xyz.csv"), "luts/spectra/cie1931_2deg_xyz.csv");
+    const SpectralTable t = parseSpectralCsv(embeddedSpectralFile("cie1931_2deg_xyz.csv"),
+                                             "luts/spectra/cie1931_2deg_xyz.csv");
     return Cie1931{t.spectrum(t.columnIndex("x_bar"), Extrapolation::kZero),
                    t.spectrum(t.columnIndex("y_bar"), Extrapolation::kZero),
                    t.spectrum(t.columnIndex("z_bar"), Extrapolation::kZero)};

@@ -78,9 +78,12 @@ OcioConfigLocation resolveOcioConfig(const std::filesystem::path& explicitPath) 
 
 std::string describeOcioConfigOrigin(OcioConfigOrigin origin) {
   switch (origin) {
-    case OcioConfigOrigin::Explicit: return "explicit path";
-    case OcioConfigOrigin::OcioEnvironment: return "$OCIO";
-    case OcioConfigOrigin::Camsim: return "camsim's luts/config.ocio";
+    case OcioConfigOrigin::Explicit:
+      return "explicit path";
+    case OcioConfigOrigin::OcioEnvironment:
+      return "$OCIO";
+    case OcioConfigOrigin::Camsim:
+      return "camsim's luts/config.ocio";
   }
   return "?";
 }
@@ -104,8 +107,7 @@ OcioProcessor::OcioProcessor(const std::filesystem::path& explicitConfig,
   }
   const OCIO::Config& config = *impl->config;
   std::string wanted = inputColorSpace;
-  if (wanted.empty())
-    wanted = config.getColorSpace("ACEScg") ? "ACEScg" : OCIO::ROLE_SCENE_LINEAR;
+  if (wanted.empty()) wanted = config.getColorSpace("ACEScg") ? "ACEScg" : OCIO::ROLE_SCENE_LINEAR;
   const OCIO::ConstColorSpaceRcPtr space = config.getColorSpace(wanted.c_str());
   if (!space) {
     std::vector<std::string> names;
@@ -119,8 +121,12 @@ OcioProcessor::OcioProcessor(const std::filesystem::path& explicitConfig,
   impl_ = std::move(impl);
 }
 
-const OcioConfigLocation& OcioProcessor::location() const { return impl_->location; }
-const std::string& OcioProcessor::inputColorSpace() const { return impl_->input; }
+const OcioConfigLocation& OcioProcessor::location() const {
+  return impl_->location;
+}
+const std::string& OcioProcessor::inputColorSpace() const {
+  return impl_->input;
+}
 
 std::vector<std::string> OcioProcessor::displays() const {
   std::vector<std::string> out;
@@ -129,7 +135,9 @@ std::vector<std::string> OcioProcessor::displays() const {
   return out;
 }
 
-std::string OcioProcessor::defaultDisplay() const { return impl_->config->getDefaultDisplay(); }
+std::string OcioProcessor::defaultDisplay() const {
+  return impl_->config->getDefaultDisplay();
+}
 
 std::vector<std::string> OcioProcessor::views(const std::string& display) const {
   const std::string d = resolve({display, "", ""}).display;
@@ -158,29 +166,32 @@ DisplayChoice OcioProcessor::resolve(const DisplayChoice& choice) const {
   if (out.display.empty()) out.display = config.getDefaultDisplay();
   const std::vector<std::string> allDisplays = displays();
   if (!contains(allDisplays, out.display))
-    throw InputError(where, "display", "unknown display '" + out.display +
-                                           "'; the config's displays are " +
-                                           joinQuoted(allDisplays));
+    throw InputError(where, "display",
+                     "unknown display '" + out.display + "'; the config's displays are " +
+                         joinQuoted(allDisplays));
   if (out.view.empty()) out.view = config.getDefaultView(out.display.c_str());
   std::vector<std::string> allViews;
   for (int i = 0; i < config.getNumViews(out.display.c_str()); ++i)
     allViews.emplace_back(config.getView(out.display.c_str(), i));
   if (!contains(allViews, out.view))
-    throw InputError(where, "view", "unknown view '" + out.view + "' for display '" +
-                                        out.display + "'; its views are " + joinQuoted(allViews));
+    throw InputError(where, "view",
+                     "unknown view '" + out.view + "' for display '" + out.display +
+                         "'; its views are " + joinQuoted(allViews));
   out.looks = trim(out.looks);
   if (!out.looks.empty()) {
-    const char* viewSpace = config.getDisplayViewColorSpaceName(out.display.c_str(),
-                                                                 out.view.c_str());
+    const char* viewSpace =
+        config.getDisplayViewColorSpaceName(out.display.c_str(), out.view.c_str());
     const OCIO::ConstColorSpaceRcPtr space = config.getColorSpace(viewSpace);
     if (space && space->isData())
-      throw InputError(where, "look", "view '" + out.view + "' of display '" + out.display +
-                                          "' shows data unchanged: looks cannot apply to it");
+      throw InputError(where, "look",
+                       "view '" + out.view + "' of display '" + out.display +
+                           "' shows data unchanged: looks cannot apply to it");
     const std::vector<std::string> allLooks = looks();
     for (const std::string& name : lookNames(out.looks))
       if (!contains(allLooks, name))
-        throw InputError(where, "look", "unknown look '" + name + "' in '" + out.looks +
-                                            "'; the config's looks are " + joinQuoted(allLooks));
+        throw InputError(where, "look",
+                         "unknown look '" + name + "' in '" + out.looks +
+                             "'; the config's looks are " + joinQuoted(allLooks));
   }
   return out;
 }
@@ -206,11 +217,10 @@ DisplayPipeline OcioProcessor::pipeline(const DisplayChoice& choice) const {
   try {
     impl->cpu = impl_->config->getProcessor(group)->getDefaultCPUProcessor();
   } catch (const OCIO::Exception& e) {
-    throw InputError({impl_->location.path.string(), 0, 0}, "",
-                     "OCIO cannot build display '" + resolved.display + "', view '" +
-                         resolved.view + "'" +
-                         (resolved.looks.empty() ? "" : ", looks '" + resolved.looks + "'") +
-                         ": " + e.what());
+    throw InputError(
+        {impl_->location.path.string(), 0, 0}, "",
+        "OCIO cannot build display '" + resolved.display + "', view '" + resolved.view + "'" +
+            (resolved.looks.empty() ? "" : ", looks '" + resolved.looks + "'") + ": " + e.what());
   }
   return DisplayPipeline(std::move(resolved), std::move(impl));
 }

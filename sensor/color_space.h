@@ -17,8 +17,8 @@ namespace camsim {
 
 class RgbColorSpace {
  public:
-  RgbColorSpace(std::string name, Chromaticity r, Chromaticity g, Chromaticity b, Chromaticity white,
-                Spectrum illuminant);
+  RgbColorSpace(std::string name, Chromaticity r, Chromaticity g, Chromaticity b,
+                Chromaticity white, Spectrum illuminant);
 
   const std::string& name() const { return name_; }
   Chromaticity red() const { return r_; }

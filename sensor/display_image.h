@@ -11,5 +11,4 @@ namespace camsim {
 // Input: an image with channels named xName, yName, zName. Output: channels R, G, B.
 Image xyzToRgb(const Image& xyz, const RgbColorSpace& space);
 
-
 }  // namespace camsim

@@ -34,8 +34,9 @@ int planeColorCode(const std::string& name) {
 
 // libtiff's per-file error handler: keeps the first message for the exception. Declared
 // printf-like so compilers check the forwarding of libtiff's format string.
-__attribute__((format(printf, 4, 0))) int captureTiffError(TIFF*, void* userData, const char* module,
-                                                           const char* fmt, va_list ap) {
+__attribute__((format(printf, 4, 0))) int captureTiffError(TIFF*, void* userData,
+                                                           const char* module, const char* fmt,
+                                                           va_list ap) {
   auto* message = static_cast<std::string*>(userData);
   if (message->empty()) {
     char buffer[512];

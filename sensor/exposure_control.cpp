@@ -8,9 +8,12 @@ namespace camsim {
 
 std::string meteringName(AutoExposure::Metering m) {
   switch (m) {
-    case AutoExposure::Metering::kMean: return "mean";
-    case AutoExposure::Metering::kCentreWeighted: return "centre_weighted";
-    case AutoExposure::Metering::kPercentile: return "percentile";
+    case AutoExposure::Metering::kMean:
+      return "mean";
+    case AutoExposure::Metering::kCentreWeighted:
+      return "centre_weighted";
+    case AutoExposure::Metering::kPercentile:
+      return "percentile";
   }
   return "?";
 }
@@ -20,7 +23,8 @@ double meterElectrons(const Image& electrons, const AutoExposure& ae) {
   if (ae.metering == AutoExposure::Metering::kPercentile) {
     std::vector<float> values(electrons.pixels);
     if (values.empty()) return 0.0;
-    const double rank = std::clamp(ae.percentile / 100.0, 0.0, 1.0) * static_cast<double>(values.size() - 1);
+    const double rank =
+        std::clamp(ae.percentile / 100.0, 0.0, 1.0) * static_cast<double>(values.size() - 1);
     const auto k = static_cast<size_t>(std::lround(rank));
     std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(k), values.end());
     return static_cast<double>(values[k]);
@@ -41,7 +45,8 @@ double meterElectrons(const Image& electrons, const AutoExposure& ae) {
   return weights > 0.0 ? sum / weights : 0.0;
 }
 
-double autoExposureScale(const Image& electrons, const AutoExposure& ae, double saturationElectrons) {
+double autoExposureScale(const Image& electrons, const AutoExposure& ae,
+                         double saturationElectrons) {
   const double m = meterElectrons(electrons, ae);
   if (!(m > 0.0) || !std::isfinite(m)) return 1.0;
   return ae.target * saturationElectrons / m;

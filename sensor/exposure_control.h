@@ -31,6 +31,7 @@ std::string meteringName(AutoExposure::Metering m);
 // The metered value of an image (all channels pooled).
 double meterElectrons(const Image& electrons, const AutoExposure& ae);
 // k such that metering k·electrons gives target·saturationElectrons; 1 if the image is dark.
-double autoExposureScale(const Image& electrons, const AutoExposure& ae, double saturationElectrons);
+double autoExposureScale(const Image& electrons, const AutoExposure& ae,
+                         double saturationElectrons);
 
 }  // namespace camsim

@@ -23,11 +23,11 @@ void writeExr(const std::filesystem::path& path, const Image& image, const Metad
   for (const auto& [key, value] : metadata) header.insert(key, Imf::StringAttribute(value));
   if (chromaticities) {
     const auto& c = *chromaticities;
-    Imf::addChromaticities(header, Imf::Chromaticities(
-                                       Imath::V2f(float(c.red.x), float(c.red.y)),
-                                       Imath::V2f(float(c.green.x), float(c.green.y)),
-                                       Imath::V2f(float(c.blue.x), float(c.blue.y)),
-                                       Imath::V2f(float(c.white.x), float(c.white.y))));
+    Imf::addChromaticities(header,
+                           Imf::Chromaticities(Imath::V2f(float(c.red.x), float(c.red.y)),
+                                               Imath::V2f(float(c.green.x), float(c.green.y)),
+                                               Imath::V2f(float(c.blue.x), float(c.blue.y)),
+                                               Imath::V2f(float(c.white.x), float(c.white.y))));
   }
   Imf::FrameBuffer frame;
   const size_t pixelStride = sizeof(float) * image.channels.size();
@@ -69,9 +69,10 @@ ExrFile readExr(const std::filesystem::path& path) {
         out.metadata.emplace_back(it.name(), s->value());
     if (Imf::hasChromaticities(header)) {
       const Imf::Chromaticities& c = Imf::chromaticities(header);
-      out.chromaticities = ExrChromaticities{
-          {double(c.red.x), double(c.red.y)}, {double(c.green.x), double(c.green.y)},
-          {double(c.blue.x), double(c.blue.y)}, {double(c.white.x), double(c.white.y)}};
+      out.chromaticities = ExrChromaticities{{double(c.red.x), double(c.red.y)},
+                                             {double(c.green.x), double(c.green.y)},
+                                             {double(c.blue.x), double(c.blue.y)},
+                                             {double(c.white.x), double(c.white.y)}};
     }
     return out;
   } catch (const std::exception& e) {

@@ -18,7 +18,9 @@ struct Image {
 
   Image() = default;
   Image(int w, int h, std::vector<std::string> names)
-      : width(w), height(h), channels(std::move(names)),
+      : width(w),
+        height(h),
+        channels(std::move(names)),
         pixels(static_cast<size_t>(w) * static_cast<size_t>(h) * channels.size(), 0.0f) {
     CAMSIM_CHECK(w >= 0 && h >= 0);
   }
@@ -26,7 +28,8 @@ struct Image {
   int channelCount() const { return static_cast<int>(channels.size()); }
   size_t index(int x, int y, int c) const {
     return (static_cast<size_t>(y) * static_cast<size_t>(width) + static_cast<size_t>(x)) *
-               channels.size() + static_cast<size_t>(c);
+               channels.size() +
+           static_cast<size_t>(c);
   }
   float& at(int x, int y, int c) { return pixels[index(x, y, c)]; }
   float at(int x, int y, int c) const { return pixels[index(x, y, c)]; }

@@ -10,7 +10,8 @@
 namespace camsim {
 
 DevelopedImage developRaw(const std::vector<RawImage>& raws, const SensorSpec& sensor,
-                          const IspSettings& settings, const std::filesystem::path& colorCheckerCsv) {
+                          const IspSettings& settings,
+                          const std::filesystem::path& colorCheckerCsv) {
   CAMSIM_CHECK(!raws.empty());
   DevelopedImage out;
   const Spectrum illuminant = cieIlluminant(settings.illuminant);

@@ -44,6 +44,7 @@ struct DevelopedImage {
 
 // raws: one RawImage for a mosaic sensor, one per channel for a stacked sensor.
 DevelopedImage developRaw(const std::vector<RawImage>& raws, const SensorSpec& sensor,
-                          const IspSettings& settings, const std::filesystem::path& colorCheckerCsv);
+                          const IspSettings& settings,
+                          const std::filesystem::path& colorCheckerCsv);
 
 }  // namespace camsim

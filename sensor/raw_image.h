@@ -17,7 +17,9 @@ struct RawImage {
   double whiteLevelDn = 65535.0;
   int adcBits = 16;
 
-  std::uint16_t at(int x, int y) const { return dn[static_cast<size_t>(y) * static_cast<size_t>(width) + static_cast<size_t>(x)]; }
+  std::uint16_t at(int x, int y) const {
+    return dn[static_cast<size_t>(y) * static_cast<size_t>(width) + static_cast<size_t>(x)];
+  }
 };
 
 }  // namespace camsim

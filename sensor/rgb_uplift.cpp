@@ -72,7 +72,8 @@ double SigmoidPolynomial::operator()(double lambdaNm) const {
 
 Spectrum SigmoidPolynomial::toSpectrum() const {
   Spectrum s;
-  for (int i = 0; i < kSpectrumSamples; ++i) s.sample(i) = static_cast<float>((*this)(kLambdaMinNm + i));
+  for (int i = 0; i < kSpectrumSamples; ++i)
+    s.sample(i) = static_cast<float>((*this)(kLambdaMinNm + i));
   return s;
 }
 
@@ -95,7 +96,8 @@ SigmoidPolynomial fitSigmoidPolynomial(const glm::dvec3& rgb, const RgbColorSpac
 }
 
 Spectrum rgbToReflectance(const glm::dvec3& rgb, const RgbColorSpace& space) {
-  CAMSIM_CHECK(rgb.x >= 0.0 && rgb.y >= 0.0 && rgb.z >= 0.0 && rgb.x <= 1.0 && rgb.y <= 1.0 && rgb.z <= 1.0);
+  CAMSIM_CHECK(rgb.x >= 0.0 && rgb.y >= 0.0 && rgb.z >= 0.0 && rgb.x <= 1.0 && rgb.y <= 1.0 &&
+               rgb.z <= 1.0);
   if (rgb.x == rgb.y && rgb.y == rgb.z) return Spectrum::constant(rgb.x);
   return fitSigmoidPolynomial(rgb, space).toSpectrum();
 }

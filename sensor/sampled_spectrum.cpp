@@ -5,8 +5,8 @@
 namespace camsim {
 namespace {
 
-constexpr double kA = 0.0072;        // nm⁻¹
-constexpr double kCentre = 538.0;    // nm
+constexpr double kA = 0.0072;      // nm⁻¹
+constexpr double kCentre = 538.0;  // nm
 
 // Single precision on purpose: every pixel sample draws kWavelengthSamples wavelengths, and
 // the double-precision atanh/cosh of libm cost several times the rest of the sampling. In
@@ -16,7 +16,8 @@ struct VisibleConstants {
   float tanhLo, tanhRange;  // tanh(a(360 − 538)), tanh(a(830 − 538)) − tanhLo
   float pdfScale;           // a / Z
   VisibleConstants() {
-    const double lo = std::tanh(kA * (kLambdaMinNm - kCentre)), hi = std::tanh(kA * (kLambdaMaxNm - kCentre));
+    const double lo = std::tanh(kA * (kLambdaMinNm - kCentre)),
+                 hi = std::tanh(kA * (kLambdaMaxNm - kCentre));
     tanhLo = static_cast<float>(lo);
     tanhRange = static_cast<float>(hi - lo);
     pdfScale = static_cast<float>(kA / (hi - lo));
@@ -28,7 +29,9 @@ const VisibleConstants& visible() {
 }
 
 // u mod 1 for u in [0, 2), without a branch (which way it goes depends on the random u).
-float wrap(float u) { return u - static_cast<float>(u >= 1.0f); }
+float wrap(float u) {
+  return u - static_cast<float>(u >= 1.0f);
+}
 
 }  // namespace
 
@@ -43,7 +46,8 @@ float visibleWavelengthPdf(float lambdaNm) {
 float sampleVisibleWavelength(float u) {
   const VisibleConstants& c = visible();
   const float t = c.tanhLo + u * c.tanhRange;
-  const float lambda = static_cast<float>(kCentre) + static_cast<float>(0.5 / kA) * std::log((1.0f + t) / (1.0f - t));
+  const float lambda = static_cast<float>(kCentre) +
+                       static_cast<float>(0.5 / kA) * std::log((1.0f + t) / (1.0f - t));
   return std::clamp(lambda, static_cast<float>(kLambdaMinNm), static_cast<float>(kLambdaMaxNm));
 }
 

@@ -26,29 +26,38 @@ class SampledSpectrum {
   float operator[](int i) const { return v_[i]; }
   float& operator[](int i) { return v_[i]; }
 
-#define CAMSIM_SS_OP(op)                                                                  \
-  SampledSpectrum& operator op##=(const SampledSpectrum& o) {                             \
-    for (int i = 0; i < kWavelengthSamples; ++i) v_[i] op## = o.v_[i];                    \
-    return *this;                                                                         \
-  }                                                                                       \
-  SampledSpectrum& operator op##=(float s) {                                              \
-    for (int i = 0; i < kWavelengthSamples; ++i) v_[i] op## = s;                          \
-    return *this;                                                                         \
-  }                                                                                       \
-  friend SampledSpectrum operator op(SampledSpectrum a, const SampledSpectrum& b) {       \
-    return a op## = b;                                                                    \
-  }                                                                                       \
-  friend SampledSpectrum operator op(SampledSpectrum a, float s) { return a op## = s; }
+#define CAMSIM_SS_OP(op)                                                            \
+  SampledSpectrum& operator op##=(const SampledSpectrum& o) {                       \
+    for (int i = 0; i < kWavelengthSamples; ++i) v_[i] op## = o.v_[i];              \
+    return *this;                                                                   \
+  }                                                                                 \
+  SampledSpectrum& operator op##=(float s) {                                        \
+    for (int i = 0; i < kWavelengthSamples; ++i) v_[i] op## = s;                    \
+    return *this;                                                                   \
+  }                                                                                 \
+  friend SampledSpectrum operator op(SampledSpectrum a, const SampledSpectrum& b) { \
+    return a op## = b;                                                              \
+  }                                                                                 \
+  friend SampledSpectrum operator op(SampledSpectrum a, float s) {                  \
+    return a op## = s;                                                              \
+  }
   CAMSIM_SS_OP(+)
   CAMSIM_SS_OP(-)
   CAMSIM_SS_OP(*)
 #undef CAMSIM_SS_OP
-  friend SampledSpectrum operator*(float s, SampledSpectrum a) { return a *= s; }
-  SampledSpectrum& operator/=(float s) { return *this *= 1.0f / s; }
-  friend SampledSpectrum operator/(SampledSpectrum a, float s) { return a /= s; }
+  friend SampledSpectrum operator*(float s, SampledSpectrum a) {
+    return a *= s;
+  }
+  SampledSpectrum& operator/=(float s) {
+    return *this *= 1.0f / s;
+  }
+  friend SampledSpectrum operator/(SampledSpectrum a, float s) {
+    return a /= s;
+  }
   // Component-wise division with 0/0 := 0 (a zero pdf never carries energy).
   friend SampledSpectrum safeDiv(SampledSpectrum a, const SampledSpectrum& b) {
-    for (int i = 0; i < kWavelengthSamples; ++i) a.v_[i] = b.v_[i] != 0.0f ? a.v_[i] / b.v_[i] : 0.0f;
+    for (int i = 0; i < kWavelengthSamples; ++i)
+      a.v_[i] = b.v_[i] != 0.0f ? a.v_[i] / b.v_[i] : 0.0f;
     return a;
   }
 
@@ -123,7 +132,8 @@ float sampleVisibleWavelength(float u);
 // The spectrum's values at the path's wavelengths (equal to s(lambda[i])).
 inline SampledSpectrum sampleSpectrum(const Spectrum& s, const SampledWavelengths& lambda) {
   SampledSpectrum out;
-  for (int i = 0; i < kWavelengthSamples; ++i) out[i] = s.interpolate(lambda.gridIndex(i), lambda.gridFraction(i));
+  for (int i = 0; i < kWavelengthSamples; ++i)
+    out[i] = s.interpolate(lambda.gridIndex(i), lambda.gridFraction(i));
   return out;
 }
 

@@ -42,8 +42,9 @@ struct ExposureSettings {
 };
 
 // expectedElectrons: one channel, the noise-free photo-electrons per photosite.
-RawImage expose(const Image& expectedElectrons, const SensorSpec& sensor, const ExposureSettings& settings,
-                NoiseMode mode, std::uint64_t noiseSeed, std::uint64_t frame);
+RawImage expose(const Image& expectedElectrons, const SensorSpec& sensor,
+                const ExposureSettings& settings, NoiseMode mode, std::uint64_t noiseSeed,
+                std::uint64_t frame);
 
 // The noise-free output in DN before rounding (mode none): electrons plus the mean dark
 // signal, clipped at the full well, times K, plus the black level, within [0, white level].

@@ -155,7 +155,8 @@ std::vector<Spectrum> parseQe(const YamlValue& value, const CfaLayout& cfa,
     // electrons exactly proportional to CIE X, Y, Z of the light's energy. Normalised so
     // that the Y channel peaks at `peak` (an ideal, not a physical QE: X may exceed it).
     Spectrum photonToEnergy;
-    for (int i = 0; i < kSpectrumSamples; ++i) photonToEnergy.sample(i) = static_cast<float>(555.0 / (kLambdaMinNm + i));
+    for (int i = 0; i < kSpectrumSamples; ++i)
+      photonToEnergy.sample(i) = static_cast<float>(555.0 / (kLambdaMinNm + i));
     for (Spectrum& s : qe) s *= photonToEnergy;
     const double yMax = (cie.y * photonToEnergy).maxValue();
     for (Spectrum& s : qe) s *= peak / yMax;

@@ -40,7 +40,8 @@ struct SensorSpec {
   double pixelPitchM = 4e-6;
   double fillFactor = 1.0;
   CfaLayout cfa;
-  std::vector<Spectrum> qe;  // per CFA channel: absolute quantum efficiency QE(λ) in [0, 1], IR cut included
+  std::vector<Spectrum>
+      qe;  // per CFA channel: absolute quantum efficiency QE(λ) in [0, 1], IR cut included
   double fullWellE = 20000.0;
   double conversionGainEPerDn = 1.0;  // e⁻/DN at base ISO
   double baseIso = 100.0;
@@ -70,7 +71,8 @@ struct SensorSpec {
 // Parses a sensor description; relative CSV paths resolve against baseDir then lutsDir.
 // Errors: InputError with file, line, column and key.
 SensorSpec parseSensorSpec(const std::string& yamlText, const std::string& displayName,
-                           const std::filesystem::path& baseDir, const std::filesystem::path& lutsDir);
+                           const std::filesystem::path& baseDir,
+                           const std::filesystem::path& lutsDir);
 // A preset name ("smartphone-1.4um", …) from lutsDir/sensors/NAME.yaml, or a file path.
 SensorSpec loadSensorSpec(const std::string& presetOrPath, const std::filesystem::path& lutsDir);
 

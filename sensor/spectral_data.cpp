@@ -11,8 +11,10 @@ namespace camsim {
 namespace {
 
 std::string_view trim(std::string_view s) {
-  while (!s.empty() && (s.front() == ' ' || s.front() == '\t' || s.front() == '\r')) s.remove_prefix(1);
-  while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r')) s.remove_suffix(1);
+  while (!s.empty() && (s.front() == ' ' || s.front() == '\t' || s.front() == '\r'))
+    s.remove_prefix(1);
+  while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r'))
+    s.remove_suffix(1);
   return s;
 }
 
@@ -21,7 +23,8 @@ std::vector<std::string_view> splitCommas(std::string_view line) {
   size_t start = 0;
   for (;;) {
     const size_t comma = line.find(',', start);
-    out.push_back(trim(line.substr(start, comma == std::string_view::npos ? comma : comma - start)));
+    out.push_back(
+        trim(line.substr(start, comma == std::string_view::npos ? comma : comma - start)));
     if (comma == std::string_view::npos) break;
     start = comma + 1;
   }
@@ -67,7 +70,8 @@ SpectralTable parseSpectralCsv(std::string_view text, const std::string& sourceN
     const SourceLocation where{sourceName, lineNo, 1};
     if (!haveHeader) {
       if (fields.size() < 2)
-        throw InputError(where, "", "header needs a wavelength column and at least one value column");
+        throw InputError(where, "",
+                         "header needs a wavelength column and at least one value column");
       // A numeric first field means the header line is missing: without this check the
       // first data row would silently become the header (and be lost).
       double firstField = 0.0;
@@ -84,18 +88,21 @@ SpectralTable parseSpectralCsv(std::string_view text, const std::string& sourceN
       continue;
     }
     if (fields.size() != table.columns.size() + 1)
-      throw InputError(where, "", "row has " + std::to_string(fields.size()) + " fields, header has " +
-                                      std::to_string(table.columns.size() + 1));
+      throw InputError(where, "",
+                       "row has " + std::to_string(fields.size()) + " fields, header has " +
+                           std::to_string(table.columns.size() + 1));
     double lambda = 0.0;
     if (!parseDouble(fields[0], lambda) || !std::isfinite(lambda) || lambda <= 0.0)
-      throw InputError(where, "", "wavelength '" + std::string(fields[0]) + "' is not a positive number (nm)");
+      throw InputError(where, "",
+                       "wavelength '" + std::string(fields[0]) + "' is not a positive number (nm)");
     if (!table.wavelengthsNm.empty() && lambda <= table.wavelengthsNm.back())
       throw InputError(where, "", "wavelengths must be strictly increasing");
     table.wavelengthsNm.push_back(lambda);
     for (size_t c = 0; c < table.columns.size(); ++c) {
       double v = 0.0;
       if (!parseDouble(fields[c + 1], v) || !std::isfinite(v))
-        throw InputError(where, table.columns[c], "'" + std::string(fields[c + 1]) + "' is not a finite number");
+        throw InputError(where, table.columns[c],
+                         "'" + std::string(fields[c + 1]) + "' is not a finite number");
       table.values[c].push_back(v);
     }
   }
@@ -114,8 +121,8 @@ SpectralTable readSpectralCsv(const std::filesystem::path& path) {
 }
 
 std::vector<std::string> cieIlluminantNames() {
-  return {"A", "D50", "D65", "ACES_D60", "F1", "F2", "F3", "F4", "F5", "F6",
-          "F7", "F8", "F9", "F10", "F11", "F12"};
+  return {"A",  "D50", "D65", "ACES_D60", "F1", "F2",  "F3",  "F4",
+          "F5", "F6",  "F7",  "F8",       "F9", "F10", "F11", "F12"};
 }
 
 Spectrum cieIlluminant(const std::string& name) {

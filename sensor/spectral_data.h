@@ -14,10 +14,10 @@
 namespace camsim {
 
 struct SpectralTable {
-  std::string source;                      // file name, for error messages
-  std::vector<std::string> columns;        // value column names (not the wavelength one)
-  std::vector<double> wavelengthsNm;       // strictly increasing
-  std::vector<std::vector<double>> values; // values[column][row]
+  std::string source;                       // file name, for error messages
+  std::vector<std::string> columns;         // value column names (not the wavelength one)
+  std::vector<double> wavelengthsNm;        // strictly increasing
+  std::vector<std::vector<double>> values;  // values[column][row]
 
   // Index of a column by name; throws InputError naming the table and the columns.
   size_t columnIndex(const std::string& name) const;

@@ -35,12 +35,13 @@ class SpectralResponse {
  public:
   SpectralResponse(std::string name, std::string unit, std::vector<ResponseChannel> channels);
   // A mosaic: photosite (x, y) sees only channel mosaic.channelAt(x, y).
-  SpectralResponse(std::string name, std::string unit, std::vector<ResponseChannel> channels, CfaLayout mosaic);
+  SpectralResponse(std::string name, std::string unit, std::vector<ResponseChannel> channels,
+                   CfaLayout mosaic);
 
   static SpectralResponse cieXyz();
   // Expected photo-electrons per channel from absolute QE curves (one per channel).
-  static SpectralResponse electrons(const std::vector<std::string>& names, const std::vector<Spectrum>& qe,
-                                    const CfaLayout* mosaic);
+  static SpectralResponse electrons(const std::vector<std::string>& names,
+                                    const std::vector<Spectrum>& qe, const CfaLayout* mosaic);
 
   bool isMosaic() const { return mosaic_.has_value(); }
   const CfaLayout& mosaic() const { return *mosaic_; }
@@ -59,7 +60,8 @@ class SpectralResponse {
     double sum = 0.0;
     for (int i = 0; i < kWavelengthSamples; ++i)
       if (lambda.pdf(i) > 0.0f)
-        sum += static_cast<double>(r.interpolate(lambda.gridIndex(i), lambda.gridFraction(i)) * q[i] / lambda.pdf(i));
+        sum += static_cast<double>(r.interpolate(lambda.gridIndex(i), lambda.gridFraction(i)) *
+                                   q[i] / lambda.pdf(i));
     return sum / kWavelengthSamples;
   }
 

@@ -63,8 +63,12 @@ Spectrum& Spectrum::operator*=(const Spectrum& s) {
   return *this;
 }
 
-double Spectrum::maxValue() const { return static_cast<double>(*std::max_element(values_.begin(), values_.end())); }
-double Spectrum::minValue() const { return static_cast<double>(*std::min_element(values_.begin(), values_.end())); }
+double Spectrum::maxValue() const {
+  return static_cast<double>(*std::max_element(values_.begin(), values_.end()));
+}
+double Spectrum::minValue() const {
+  return static_cast<double>(*std::min_element(values_.begin(), values_.end()));
+}
 
 double Spectrum::sum() const {
   double total = 0.0;

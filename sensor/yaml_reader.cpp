@@ -5,9 +5,9 @@
 #include <algorithm>
 #include <cctype>
 #include <charconv>
-#include <sstream>
 #include <cmath>
 #include <map>
+#include <sstream>
 #include <string_view>
 
 namespace camsim {
@@ -17,7 +17,9 @@ SourceLocation YamlValue::where() const {
   return {file_, mark_.line + 1, mark_.column + 1};
 }
 
-void YamlValue::fail(const std::string& message) const { throw InputError(where(), key_, message); }
+void YamlValue::fail(const std::string& message) const {
+  throw InputError(where(), key_, message);
+}
 
 std::string YamlValue::string() const {
   if (!node_.IsScalar()) fail("expected a string");
@@ -45,8 +47,8 @@ double YamlValue::number() const {
 double YamlValue::number(double lo, double hi, bool loOpen) const {
   const double v = number();
   if (v < lo || v > hi || (loOpen && v == lo)) {
-    fail("value " + node_.Scalar() + " is out of range " + (loOpen ? "(" : "[") + std::to_string(lo) +
-         ", " + std::to_string(hi) + "]");
+    fail("value " + node_.Scalar() + " is out of range " + (loOpen ? "(" : "[") +
+         std::to_string(lo) + ", " + std::to_string(hi) + "]");
   }
   return v;
 }
@@ -59,7 +61,8 @@ std::int64_t YamlValue::integer(std::int64_t lo, std::int64_t hi) const {
   if (ec == std::errc::result_out_of_range) fail("integer " + s + " is out of range");
   if (ec != std::errc() || ptr != s.data() + s.size()) fail("'" + s + "' is not an integer");
   if (value < lo || value > hi)
-    fail("value " + s + " is out of range [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+    fail("value " + s + " is out of range [" + std::to_string(lo) + ", " + std::to_string(hi) +
+         "]");
   return value;
 }
 
@@ -113,7 +116,9 @@ std::string YamlMap::childKey(const std::string& name) const {
   return self_.key().empty() ? name : self_.key() + "." + name;
 }
 
-bool YamlMap::has(const std::string& name) const { return static_cast<bool>(self_.node()[name]); }
+bool YamlMap::has(const std::string& name) const {
+  return static_cast<bool>(self_.node()[name]);
+}
 
 std::optional<YamlValue> YamlMap::find(const std::string& name) {
   for (auto it = self_.node().begin(); it != self_.node().end(); ++it) {
@@ -165,7 +170,8 @@ YamlValue YamlMap::require(const std::string& name) {
 
 std::vector<std::string> YamlMap::keys() const {
   std::vector<std::string> out;
-  for (auto it = self_.node().begin(); it != self_.node().end(); ++it) out.push_back(it->first.Scalar());
+  for (auto it = self_.node().begin(); it != self_.node().end(); ++it)
+    out.push_back(it->first.Scalar());
   return out;
 }
 
@@ -265,8 +271,8 @@ void checkQuotesClosed(const YAML::Node& node, const std::string& text, const st
         }
       }
     }
-    YamlValue(node, "", file).fail(std::string("YAML syntax error: the quoted string (") + q +
-                                   ") is never closed");
+    YamlValue(node, "", file)
+        .fail(std::string("YAML syntax error: the quoted string (") + q + ") is never closed");
   }
 }
 
@@ -283,12 +289,17 @@ class DocumentCounter final : public YAML::EventHandler {
   void OnDocumentEnd() override {}
   void OnNull(const YAML::Mark& m, YAML::anchor_t) override { note(m, false); }
   void OnAlias(const YAML::Mark& m, YAML::anchor_t) override { note(m, true); }
-  void OnScalar(const YAML::Mark& m, const std::string&, YAML::anchor_t, const std::string&) override { note(m, true); }
-  void OnSequenceStart(const YAML::Mark& m, const std::string&, YAML::anchor_t, YAML::EmitterStyle::value) override {
+  void OnScalar(const YAML::Mark& m, const std::string&, YAML::anchor_t,
+                const std::string&) override {
+    note(m, true);
+  }
+  void OnSequenceStart(const YAML::Mark& m, const std::string&, YAML::anchor_t,
+                       YAML::EmitterStyle::value) override {
     note(m, true);
   }
   void OnSequenceEnd() override {}
-  void OnMapStart(const YAML::Mark& m, const std::string&, YAML::anchor_t, YAML::EmitterStyle::value) override {
+  void OnMapStart(const YAML::Mark& m, const std::string&, YAML::anchor_t,
+                  YAML::EmitterStyle::value) override {
     note(m, true);
   }
   void OnMapEnd() override {}
@@ -300,8 +311,10 @@ class DocumentCounter final : public YAML::EventHandler {
   }
 };
 
-[[noreturn]] void throwSyntaxError(const YAML::Exception& e, const std::string& text, const std::string& file) {
-  SourceLocation where{file, e.mark.line >= 0 ? e.mark.line + 1 : 0, e.mark.column >= 0 ? e.mark.column + 1 : 0};
+[[noreturn]] void throwSyntaxError(const YAML::Exception& e, const std::string& text,
+                                   const std::string& file) {
+  SourceLocation where{file, e.mark.line >= 0 ? e.mark.line + 1 : 0,
+                       e.mark.column >= 0 ? e.mark.column + 1 : 0};
   std::string message = "YAML syntax error: " + e.msg;
   if (e.msg == YAML::ErrorMsg::END_OF_SEQ_FLOW || e.msg == YAML::ErrorMsg::END_OF_MAP_FLOW) {
     const size_t end = e.mark.pos >= 0 ? static_cast<size_t>(e.mark.pos) : text.size();
@@ -330,7 +343,9 @@ YamlValue parseYaml(const std::string& text, const std::string& file) {
     const size_t maxDocuments = text.size() + 2;
     while (parser.HandleNextDocument(counter)) {
       if (counter.documents.size() > maxDocuments)
-        throw InputError({file, 1, 1}, "", "YAML syntax error: the text is not a YAML document (a stray ',' or flow indicator?)");
+        throw InputError(
+            {file, 1, 1}, "",
+            "YAML syntax error: the text is not a YAML document (a stray ',' or flow indicator?)");
     }
   } catch (const YAML::Exception& e) {
     throwSyntaxError(e, text, file);
@@ -341,7 +356,8 @@ YamlValue parseYaml(const std::string& text, const std::string& file) {
   for (size_t i = 1; i < counter.documents.size(); ++i) {
     if (counter.documents[i].hasContent) {
       const YAML::Mark& m = counter.documents[i].mark;
-      throw InputError({file, m.line + 1, m.column + 1}, "", "a scene file holds one YAML document; this is a second");
+      throw InputError({file, m.line + 1, m.column + 1}, "",
+                       "a scene file holds one YAML document; this is a second");
     }
   }
   return YamlValue(first, "", file);

@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
-#include <glm/vec3.hpp>
 #include <yaml-cpp/yaml.h>
+#include <glm/vec3.hpp>
 
 #include "sensor/input_error.h"
 
@@ -38,11 +38,11 @@ class YamlValue {
   bool isScalar() const { return node_.IsScalar(); }
 
   std::string string() const;
-  double number() const;  // finite
+  double number() const;                                           // finite
   double number(double lo, double hi, bool loOpen = false) const;  // in [lo, hi] (or (lo, hi])
   std::int64_t integer(std::int64_t lo, std::int64_t hi) const;
   bool boolean() const;
-  glm::dvec3 vec3() const;  // [x, y, z], finite
+  glm::dvec3 vec3() const;               // [x, y, z], finite
   std::vector<YamlValue> items() const;  // elements of a sequence
   std::vector<double> numbers() const;   // a sequence of finite numbers
 

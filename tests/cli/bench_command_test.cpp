@@ -78,8 +78,10 @@ TEST(BenchMetrics, ReferenceNoiseIsTheErrorOfTheHalvesMean) {
 }
 
 TEST(BenchMetrics, MismatchedImagesThrow) {
-  EXPECT_THROW(compareImages(constantImage(2, 2, 1.0f), constantImage(3, 2, 1.0f), 0), std::invalid_argument);
-  EXPECT_THROW(compareImages(constantImage(2, 2, 1.0f), constantImage(2, 2, 1.0f), 1), std::invalid_argument);
+  EXPECT_THROW(compareImages(constantImage(2, 2, 1.0f), constantImage(3, 2, 1.0f), 0),
+               std::invalid_argument);
+  EXPECT_THROW(compareImages(constantImage(2, 2, 1.0f), constantImage(2, 2, 1.0f), 1),
+               std::invalid_argument);
 }
 
 // ---- slope fit -------------------------------------------------------------------------
@@ -106,7 +108,8 @@ TEST(BenchSlope, NoisyPowerLawAndDegenerateInputs) {
   EXPECT_NEAR(fitLogLogSlope(t, e).slope, -1.0, 0.05);
   EXPECT_TRUE(std::isnan(fitLogLogSlope({1.0}, {1.0}).slope));
   EXPECT_TRUE(std::isnan(fitLogLogSlope({2.0, 2.0}, {1.0, 3.0}).slope));
-  EXPECT_EQ(fitLogLogSlope({0.0, 1.0, -1.0}, {1.0, 0.0, 1.0}).points, 0);  // non-positive values dropped
+  EXPECT_EQ(fitLogLogSlope({0.0, 1.0, -1.0}, {1.0, 0.0, 1.0}).points,
+            0);  // non-positive values dropped
 }
 
 TEST(BenchSlope, RowsBelowTheReferenceFloorStayOutOfTheFit) {
@@ -145,9 +148,9 @@ std::vector<std::string> splitLine(const std::string& line) {
 }
 
 TEST(BenchCsv, HasTheDocumentedColumns) {
-  const std::vector<std::string> expected = {"scene",      "sampler",    "spp",          "width",    "height",
-                                             "seconds",    "cpu_seconds", "samples_per_s", "rays_per_s",
-                                             "rmse_rel",   "mrae",       "ref_rmse_rel", "ref_mrae", "in_fit"};
+  const std::vector<std::string> expected = {
+      "scene",         "sampler",    "spp",      "width", "height",       "seconds",  "cpu_seconds",
+      "samples_per_s", "rays_per_s", "rmse_rel", "mrae",  "ref_rmse_rel", "ref_mrae", "in_fit"};
   EXPECT_EQ(benchCsvColumns(), expected);
   BenchRow r;
   r.scene = "cornell_box";
@@ -189,8 +192,9 @@ TEST(BenchArgs, DefaultsQuickAndOptions) {
   EXPECT_EQ(p.budgets(), (std::vector<int>{1, 2, 4, 8, 16, 32, 64, 128, 256}));
   EXPECT_EQ(p.refSpp, 2048);
   EXPECT_GT(p.threads, 0);
-  const BenchArgs a = parseBenchArgs({"bench", "--quick", "--out", "o", "--threads", "1", "--scenes",
-                                      "cornell_box,x/y.yaml", "--max-spp", "48", "--mesh-triangles", "0"});
+  const BenchArgs a =
+      parseBenchArgs({"bench", "--quick", "--out", "o", "--threads", "1", "--scenes",
+                      "cornell_box,x/y.yaml", "--max-spp", "48", "--mesh-triangles", "0"});
   EXPECT_TRUE(a.quick);
   EXPECT_EQ(a.outputDir, "o");
   EXPECT_EQ(a.scenes, (std::vector<std::string>{"cornell_box", "x/y.yaml"}));
@@ -219,7 +223,8 @@ const char* kTinyScene =
     "camera: {position: [0, 0, -2], look_at: [0, 0, 0], up: [0, 1, 0], resolution: [8, 6]}\n"
     "materials: {grey: {type: diffuse, reflectance: REFL}}\n"
     "shapes:\n  - {name: tri, type: mesh, file: tri.obj, material: grey}\n"
-    "  - {name: lamp, type: sphere, centre: [0, 2, -1], radius: 0.3, emission: {luminance: 1000}}\n";
+    "  - {name: lamp, type: sphere, centre: [0, 2, -1], radius: 0.3, emission: {luminance: "
+    "1000}}\n";
 
 ReferenceRequest tinyRequest(const fs::path& dir, const std::string& reflectance) {
   std::string text = kTinyScene;
@@ -257,7 +262,8 @@ TEST(BenchReference, CachedUntilTheSceneOrItsFilesChange) {
   EXPECT_EQ(again.image.pixels, first.image.pixels);
   EXPECT_DOUBLE_EQ(again.noise.rmse, first.noise.rmse);
 
-  const Reference edited = obtainReference(tinyRequest(dir.path(), "0.6"), cache, log);  // scene text changed
+  const Reference edited =
+      obtainReference(tinyRequest(dir.path(), "0.6"), cache, log);  // scene text changed
   EXPECT_FALSE(edited.fromCache);
   EXPECT_NE(edited.file, first.file);
 

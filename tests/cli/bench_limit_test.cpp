@@ -76,7 +76,8 @@ TEST(RayReplay, FindsTheSameHitsAsASerialLoop) {
   std::uint64_t expected = 0;
   for (const RecordedRay& rr : rays) {
     Hit hit;
-    const bool found = rr.kind == RayKind::kShadow ? scene.geometry().occluded(rr.ray) : scene.geometry().intersect(rr.ray, hit);
+    const bool found = rr.kind == RayKind::kShadow ? scene.geometry().occluded(rr.ray)
+                                                   : scene.geometry().intersect(rr.ray, hit);
     expected += found ? 1u : 0u;
   }
   const ReplayResult replay = replayRays(scene.geometry(), rays, 2, 0.0);
@@ -132,7 +133,8 @@ TEST(BenchLimit, TorusMeshRoundTripsThroughBinaryPly) {
   }
   // Below 250 k triangles the Scene builds at high quality, like the probe's high build
   // (same arrays shared, plus the lamp sphere's buffer: within 5 %).
-  EXPECT_NEAR(static_cast<double>(m.sceneEmbreeBytes), static_cast<double>(m.embreeHigh.bytesAfterBuild),
+  EXPECT_NEAR(static_cast<double>(m.sceneEmbreeBytes),
+              static_cast<double>(m.embreeHigh.bytesAfterBuild),
               0.05 * static_cast<double>(m.embreeHigh.bytesAfterBuild));
   EXPECT_GT(m.sceneEmbreePeakBytes, m.sceneEmbreeBytes);
 }
@@ -143,7 +145,7 @@ TEST(BenchLimit, TextureLoadUpliftsEveryTexelWithinItsStatedError) {
   EXPECT_EQ(t.size, 64);
   EXPECT_GE(t.decodeSeconds, 0.0);
   EXPECT_GE(t.upliftSeconds, 0.0);
-  EXPECT_GT(t.maxRgbError, 0.0);  // a fit, not a copy
+  EXPECT_GT(t.maxRgbError, 0.0);   // a fit, not a copy
   EXPECT_LT(t.maxRgbError, 5e-5);  // reflectance_uplift.h's round-trip bound
   EXPECT_FALSE(fs::exists(dir.path() / "random.png"));
   EXPECT_NE(formatTextureLoad(t).find("64 x 64 random-colour"), std::string::npos);
@@ -161,8 +163,9 @@ std::string readFile(const fs::path& p) {
 int runBench(const std::string& args, const fs::path& logDir) {
   // No plot: CAMSIM_PYTHON names no interpreter (the plot script is the PtcBinary tests' kind
   // of concern; here only the numbers' files are checked).
-  const std::string command = "CAMSIM_PYTHON=/nonexistent " + std::string(CAMSIM_BINARY) + " bench " + args + " >" +
-                              (logDir / "stdout.txt").string() + " 2>" + (logDir / "stderr.txt").string();
+  const std::string command = "CAMSIM_PYTHON=/nonexistent " + std::string(CAMSIM_BINARY) +
+                              " bench " + args + " >" + (logDir / "stdout.txt").string() + " 2>" +
+                              (logDir / "stderr.txt").string();
   const int status = std::system(command.c_str());
   return status != -1 && WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
@@ -170,18 +173,22 @@ int runBench(const std::string& args, const fs::path& logDir) {
 TEST(BenchBinary, SmallRunWritesTablesAndCsvs) {
   test::TempDir dir;
   const fs::path out = dir.path() / "out";
-  ASSERT_EQ(runBench("--scenes cornell_box --resolution 16 --max-spp 2 --ref-spp 4 --mesh-triangles 1000 --texture-size 16 --out " +
+  ASSERT_EQ(runBench("--scenes cornell_box --resolution 16 --max-spp 2 --ref-spp 4 "
+                     "--mesh-triangles 1000 --texture-size 16 --out " +
                          out.string() + " --cache " + (dir.path() / "cache").string(),
                      dir.path()),
             0)
       << readFile(dir.path() / "stderr.txt");
   const std::string stdoutText = readFile(dir.path() / "stdout.txt");
-  for (const char* needle : {"slope rMSE/time", "raw mix/s", "thread scaling", "mesh build", "texture load", "total:"})
+  for (const char* needle :
+       {"slope rMSE/time", "raw mix/s", "thread scaling", "mesh build", "texture load", "total:"})
     EXPECT_NE(stdoutText.find(needle), std::string::npos) << needle;
   const std::string csv = readFile(out / "bench.csv");
-  EXPECT_EQ(csv.substr(0, csv.find('\n')), "scene,sampler,spp,width,height,seconds,cpu_seconds,samples_per_s,"
-                                           "rays_per_s,rmse_rel,mrae,ref_rmse_rel,ref_mrae,in_fit");
-  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 1 + 2 * 2);  // header + 2 samplers × budgets 1, 2
+  EXPECT_EQ(csv.substr(0, csv.find('\n')),
+            "scene,sampler,spp,width,height,seconds,cpu_seconds,samples_per_s,"
+            "rays_per_s,rmse_rel,mrae,ref_rmse_rel,ref_mrae,in_fit");
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'),
+            1 + 2 * 2);  // header + 2 samplers × budgets 1, 2
   EXPECT_NE(readFile(out / "bench_limit.csv").find("cornell_box,mix,"), std::string::npos);
   EXPECT_EQ(readFile(out / "bench.txt"), stdoutText);
   EXPECT_TRUE(fs::is_directory(dir.path() / "cache"));
@@ -191,7 +198,8 @@ TEST(BenchBinary, AMissingSceneExitsTwoAfterTheOthers) {
   test::TempDir dir;
   const fs::path out = dir.path() / "out";
   EXPECT_EQ(runBench("--scenes cornell_box,no_such_scene --resolution 8 --max-spp 1 --ref-spp 2 "
-                     "--mesh-triangles 0 --out " + out.string() + " --cache " + (dir.path() / "cache").string(),
+                     "--mesh-triangles 0 --out " +
+                         out.string() + " --cache " + (dir.path() / "cache").string(),
                      dir.path()),
             2);
   EXPECT_NE(readFile(dir.path() / "stderr.txt").find("no_such_scene"), std::string::npos);

@@ -24,7 +24,8 @@ namespace camsim {
 namespace {
 
 const std::filesystem::path kSource(CAMSIM_SOURCE_DIR);
-const std::filesystem::path kChartCsv = kSource / "luts/spectra/colorchecker_classic_reflectance.csv";
+const std::filesystem::path kChartCsv =
+    kSource / "luts/spectra/colorchecker_classic_reflectance.csv";
 
 struct ChartResult {
   std::vector<glm::dvec3> labMeasured, labReference;
@@ -41,13 +42,14 @@ ChartResult measureChart(const std::string& sensorName, const std::string& illum
   sensor.iso = sensor.spec.baseIso;
   sensor.noise = NoiseMode::kNone;
   d.camera.sensorSize = glm::dvec2(d.camera.resolution) * sensor.spec.pixelPitchM;
-  d.camera.focalLength = d.camera.sensorSize.x / 0.3;  // the 0.3 m wide chart fills the frame at 1 m
+  d.camera.focalLength =
+      d.camera.sensorSize.x / 0.3;  // the 0.3 m wide chart fills the frame at 1 m
   const Spectrum light = cieIlluminant(illuminant);
   d.shapes[0].emission->radiance = light * (1000.0 / luminance(light));  // the dome, 1000 cd/m²
   const Scene scene(d);
   const SensorSpec& spec = sensor.spec;
-  const SpectralResponse response =
-      SpectralResponse::electrons(spec.cfa.channels, spec.qe, spec.cfa.isStacked() ? nullptr : &spec.cfa);
+  const SpectralResponse response = SpectralResponse::electrons(
+      spec.cfa.channels, spec.qe, spec.cfa.isStacked() ? nullptr : &spec.cfa);
   RenderOptions options;
   options.spp = 64;  // render noise under spiky F2 needs it: neutral patches move by ~0.5 at 16 spp
   const RenderResult r = render(scene, response, options);
@@ -56,13 +58,17 @@ ChartResult measureChart(const std::string& sensorName, const std::string& illum
   double whiteMax = 0.0;
   for (int y = 165; y < 185; ++y)
     for (int x = 15; x < 35; ++x)
-      for (int c = 0; c < r.image.channelCount(); ++c) whiteMax = std::max(whiteMax, static_cast<double>(r.image.at(x, y, c)));
+      for (int c = 0; c < r.image.channelCount(); ++c)
+        whiteMax = std::max(whiteMax, static_cast<double>(r.image.at(x, y, c)));
   const double k = 0.7 * spec.saturationElectrons(sensor.iso) / whiteMax;
   std::vector<RawImage> raws;
   for (int c = 0; c < r.image.channelCount(); ++c) {
     Image plane(r.image.width, r.image.height, {r.image.channels[static_cast<size_t>(c)]});
     for (size_t p = 0; p < plane.pixels.size(); ++p)
-      plane.pixels[p] = static_cast<float>(static_cast<double>(r.image.pixels[p * static_cast<size_t>(r.image.channelCount()) + static_cast<size_t>(c)]) * k);
+      plane.pixels[p] = static_cast<float>(
+          static_cast<double>(r.image.pixels[p * static_cast<size_t>(r.image.channelCount()) +
+                                             static_cast<size_t>(c)]) *
+          k);
     raws.push_back(expose(plane, spec, {0.01, sensor.iso}, NoiseMode::kNone, 0, 0));
   }
   IspSettings isp;
@@ -85,12 +91,17 @@ ChartResult measureChart(const std::string& sensorName, const std::string& illum
     glm::dvec3 sum(0.0);
     for (int y = cy - 10; y < cy + 10; ++y)
       for (int x = cx - 10; x < cx + 10; ++x)
-        sum += glm::dvec3(dev.working.at(x, y, 0), dev.working.at(x, y, 1), dev.working.at(x, y, 2));
+        sum +=
+            glm::dvec3(dev.working.at(x, y, 0), dev.working.at(x, y, 1), dev.working.at(x, y, 2));
     // Flat-field: undo the lens's cos⁴θ fall-off at the patch centre (up to 4 % here).
-    const double sx = ((cx + 0.5) / 300.0 - 0.5) * d.camera.sensorSize.x, sy = ((cy + 0.5) / 200.0 - 0.5) * d.camera.sensorSize.y;
-    const double cos2 = 1.0 / (1.0 + (sx * sx + sy * sy) / (d.camera.focalLength * d.camera.focalLength));
+    const double sx = ((cx + 0.5) / 300.0 - 0.5) * d.camera.sensorSize.x,
+                 sy = ((cy + 0.5) / 200.0 - 0.5) * d.camera.sensorSize.y;
+    const double cos2 =
+        1.0 / (1.0 + (sx * sx + sy * sy) / (d.camera.focalLength * d.camera.focalLength));
     measured.push_back(workingToXyz * (sum / 400.0) / (cos2 * cos2));
-    reference.push_back(cat * reflectanceToXyz(chart.spectrum(static_cast<size_t>(p), Extrapolation::kClamp), light));
+    reference.push_back(
+        cat *
+        reflectanceToXyz(chart.spectrum(static_cast<size_t>(p), Extrapolation::kClamp), light));
   }
   // Normalise the exposure on the white patch (19), as one does with a real chart.
   const double scale = reference[18].y / measured[18].y;

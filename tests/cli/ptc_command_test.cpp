@@ -2,8 +2,8 @@
 // then the real binary (CAMSIM_BINARY): a preset measured into a directory (CSV, and the
 // two PNGs when /usr/bin/python3 has matplotlib), a plot-less run when Python is missing,
 // and exit code 2 with a located message (and no file) for a bad sensor.
-#include "tests/support/temp_dir.h"
 #include "cli/ptc_command.h"
+#include "tests/support/temp_dir.h"
 
 #include <gtest/gtest.h>
 #include <sys/wait.h>

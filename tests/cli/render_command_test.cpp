@@ -2,8 +2,8 @@
 // parseArgs as a unit, then the real binary (CAMSIM_BINARY) run through the shell — exit
 // codes, "file:line:col" error messages, no output at all after a bad scene, and a small
 // render whose EXR carries the expected channels and metadata.
-#include "tests/support/temp_dir.h"
 #include "cli/args.h"
+#include "tests/support/temp_dir.h"
 
 #include <gtest/gtest.h>
 #include <sys/wait.h>
@@ -64,14 +64,13 @@ TEST(ParseArgs, HelpAndVersion) {
 
 TEST(ParseArgs, BadUsageThrows) {
   using Args = std::vector<std::string>;
-  for (const Args& args : {Args{}, Args{"draw"}, Args{"render", "--bogus"},
-                           Args{"render", "--spp", "abc"}, Args{"render", "--spp", "12x"},
-                           Args{"render", "--spp", ""}, Args{"render", "--spp", "0"},
-                           Args{"render", "--spp", std::to_string(SceneLimits::kMaxSpp + 1)},
-                           Args{"render", "--spp", "99999999999999999999"},
-                           Args{"render", "--seed", "-1"}, Args{"render", "--threads", "0"},
-                           Args{"render", "--spp"}, Args{"render", "-o", ""},
-                           Args{"render", "a.yaml", "b.yaml"}}) {
+  for (const Args& args :
+       {Args{}, Args{"draw"}, Args{"render", "--bogus"}, Args{"render", "--spp", "abc"},
+        Args{"render", "--spp", "12x"}, Args{"render", "--spp", ""}, Args{"render", "--spp", "0"},
+        Args{"render", "--spp", std::to_string(SceneLimits::kMaxSpp + 1)},
+        Args{"render", "--spp", "99999999999999999999"}, Args{"render", "--seed", "-1"},
+        Args{"render", "--threads", "0"}, Args{"render", "--spp"}, Args{"render", "-o", ""},
+        Args{"render", "a.yaml", "b.yaml"}}) {
     std::string joined;
     for (const auto& a : args) joined += "'" + a + "' ";
     EXPECT_THROW(parseArgs(args), UsageError) << joined;
@@ -162,8 +161,8 @@ TEST(CamsimBinary, NonexistentSceneExitsTwo) {
   TempDir dir;
   const fs::path scene = dir.path() / "no_such_scene.yaml";
   const fs::path out = dir.path() / "out";
-  const RunResult r = camsim("render " + quote(scene.string()) + " -o " + quote(out.string()),
-                             dir.path());
+  const RunResult r =
+      camsim("render " + quote(scene.string()) + " -o " + quote(out.string()), dir.path());
   EXPECT_EQ(r.exitCode, 2);
   EXPECT_NE(r.err.find(scene.string()), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("cannot open scene file"), std::string::npos) << r.err;
@@ -202,7 +201,9 @@ const BadScene kBadScenes[] = {
      ":4:19", "camera.resolution[1]"},
 };
 
-void PrintTo(const BadScene& s, std::ostream* os) { *os << s.name; }
+void PrintTo(const BadScene& s, std::ostream* os) {
+  *os << s.name;
+}
 
 class CamsimBadScene : public ::testing::TestWithParam<BadScene> {};
 
@@ -260,7 +261,8 @@ TEST(CamsimBinary, RendersSmallSceneToExrAndPng) {
 
   std::vector<std::string> files = filesIn(out);
   std::sort(files.begin(), files.end());
-  EXPECT_EQ(files, (std::vector<std::string>{"cornell_box.exr", "cornell_box.json", "cornell_box.png"}));
+  EXPECT_EQ(files,
+            (std::vector<std::string>{"cornell_box.exr", "cornell_box.json", "cornell_box.png"}));
   const std::string json = readFile(out / "cornell_box.json");
   EXPECT_NE(json.find("\"display\": \"sRGB\""), std::string::npos) << json;
   EXPECT_NE(json.find("\"view\": \"ACES 1.0 - SDR Video\""), std::string::npos) << json;
@@ -317,17 +319,17 @@ namespace camsim {
 namespace {
 
 TEST(ParseArgsExposure, ExposureOverridesParseAndValidate) {
-  const Command c = parseArgs({"render", "s.yaml", "--exposure-time", "0.004", "--f-number", "2.8", "--iso", "800",
-                               "--noise", "photon", "--noise-seed", "5"});
+  const Command c = parseArgs({"render", "s.yaml", "--exposure-time", "0.004", "--f-number", "2.8",
+                               "--iso", "800", "--noise", "photon", "--noise-seed", "5"});
   EXPECT_DOUBLE_EQ(*c.render.exposureTimeS, 0.004);
   EXPECT_DOUBLE_EQ(*c.render.fNumber, 2.8);
   EXPECT_DOUBLE_EQ(*c.render.iso, 800.0);
   EXPECT_EQ(*c.render.noise, "photon");
   EXPECT_EQ(*c.render.noiseSeed, 5u);
   for (const auto& bad : std::vector<std::vector<std::string>>{{"render", "--exposure-time", "0"},
-                                                              {"render", "--f-number", "-2"},
-                                                              {"render", "--iso", "abc"},
-                                                              {"render", "--noise", "loud"}})
+                                                               {"render", "--f-number", "-2"},
+                                                               {"render", "--iso", "abc"},
+                                                               {"render", "--noise", "loud"}})
     EXPECT_THROW(parseArgs(bad), UsageError);
 }
 
@@ -349,19 +351,22 @@ TEST(CamsimBinary, UserOcioConfigIsUsedAndBadDisplayIsRejected) {
             "displays: {Studio: [!<View> {name: Plain, colorspace: out}]}\n"
             "colorspaces:\n"
             "  - !<ColorSpace> {name: lin, aliases: [ACEScg]}\n"
-            "  - !<ColorSpace> {name: out, from_scene_reference: !<ExponentTransform> {value: 2.2, direction: inverse}}\n");
+            "  - !<ColorSpace> {name: out, from_scene_reference: !<ExponentTransform> {value: 2.2, "
+            "direction: inverse}}\n");
   const fs::path out = dir.path() / "out";
   const std::string scene = quote((dir.path() / "small_box.yaml").string());
-  const RunResult ok = camsim("render " + scene + " -o " + quote(out.string()) + " --spp 1 --ocio-config " +
-                                  quote((dir.path() / "user.ocio").string()) + " --display Studio --view Plain",
-                              dir.path());
+  const RunResult ok =
+      camsim("render " + scene + " -o " + quote(out.string()) + " --spp 1 --ocio-config " +
+                 quote((dir.path() / "user.ocio").string()) + " --display Studio --view Plain",
+             dir.path());
   ASSERT_EQ(ok.exitCode, 0) << ok.err;
   const std::string json = readFile(out / "cornell_box.json");
   EXPECT_NE(json.find("user.ocio"), std::string::npos) << json;
   EXPECT_NE(json.find("\"display\": \"Studio\""), std::string::npos) << json;
 
   const fs::path out2 = dir.path() / "out2";
-  const RunResult bad = camsim("render " + scene + " -o " + quote(out2.string()) + " --spp 1 --display Nope", dir.path());
+  const RunResult bad = camsim(
+      "render " + scene + " -o " + quote(out2.string()) + " --spp 1 --display Nope", dir.path());
   EXPECT_EQ(bad.exitCode, 2);
   EXPECT_NE(bad.err.find("Nope"), std::string::npos) << bad.err;
   EXPECT_TRUE(!fs::exists(out2) || filesIn(out2).empty());

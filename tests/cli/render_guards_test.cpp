@@ -109,9 +109,12 @@ class Child {
     while (!status_) {
       int status = 0;
       const pid_t r = ::waitpid(pid_, &status, WNOHANG);
-      if (r == pid_) status_ = status;
-      else if (r < 0 || Clock::now() > deadline) break;
-      else std::this_thread::sleep_for(std::chrono::milliseconds(10));
+      if (r == pid_)
+        status_ = status;
+      else if (r < 0 || Clock::now() > deadline)
+        break;
+      else
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
     }
     return status_;
   }
@@ -140,7 +143,9 @@ class Child {
   Clock::time_point start_;
 };
 
-int exitCode(int status) { return WIFEXITED(status) ? WEXITSTATUS(status) : -WTERMSIG(status); }
+int exitCode(int status) {
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -WTERMSIG(status);
+}
 
 // ---- resource guards ---------------------------------------------------------------------
 
@@ -184,9 +189,9 @@ TEST(MemoryEstimate, CountsFilmImagesAndTriangles) {
       "     faces: [[0, 1, 2, 3]], emission: {luminance: 1}}\n",
       "<test>", ".");
   const MemoryEstimate m = estimateRenderMemory(desc);
-  EXPECT_EQ(m.film, 500000u * 3u * 8u);     // XYZ accumulators, doubles
-  EXPECT_GE(m.images, 500000u * 6u * 4u);   // at least the EXR image (R, G, B, X, Y, Z floats)
-  EXPECT_EQ(m.meshes, 2u * 100u);            // a quad: two triangles
+  EXPECT_EQ(m.film, 500000u * 3u * 8u);    // XYZ accumulators, doubles
+  EXPECT_GE(m.images, 500000u * 6u * 4u);  // at least the EXR image (R, G, B, X, Y, Z floats)
+  EXPECT_EQ(m.meshes, 2u * 100u);          // a quad: two triangles
   EXPECT_EQ(m.total(), m.film + m.images + m.meshes);
   EXPECT_NO_THROW(checkMemoryLimit(desc, 1.0));
   EXPECT_THROW(checkMemoryLimit(desc, 0.01), InputError);

@@ -24,19 +24,22 @@ namespace {
 // A camera inside a uniformly emitting sphere (D65, 10 cd/m²: a dim room), f/2, 1/30 s:
 // a flat field of a few hundred photo-electrons per green photosite.
 const char* kFlatField =
-    "camera: {position: [0, 0, 0], look_at: [0, 0, 1], resolution: [256, 256], focal_length_mm: 4,\n"
+    "camera: {position: [0, 0, 0], look_at: [0, 0, 1], resolution: [256, 256], focal_length_mm: "
+    "4,\n"
     "         f_number: 2, shutter: {open: 0, close: 0.0333}}\n"
     "sensor: {model: smartphone-1.4um, iso: 100, noise: full, noise_seed: 9}\n"
     "render: {max_depth: 0}\n"
     "shapes:\n"
-    "  - {type: sphere, centre: [0, 0, 0], radius: 100, emission: {luminance: 10, two_sided: true}}\n";
+    "  - {type: sphere, centre: [0, 0, 0], radius: 100, emission: {luminance: 10, two_sided: "
+    "true}}\n";
 
 TEST(SensorRender, FlatPatchMeanAndVarianceMatchEmvaModel) {
   const SceneDescription desc = loadSceneFromText(kFlatField, "flat.yaml", ".");
   ASSERT_TRUE(desc.sensor.has_value());
   const SensorSpec& spec = desc.sensor->spec;
   const Scene scene(desc);
-  const SpectralResponse sensor = SpectralResponse::electrons(spec.cfa.channels, spec.qe, &spec.cfa);
+  const SpectralResponse sensor =
+      SpectralResponse::electrons(spec.cfa.channels, spec.qe, &spec.cfa);
   RenderOptions options;
   options.spp = 64;
   const RenderResult r = render(scene, sensor, options);
@@ -64,9 +67,11 @@ TEST(SensorRender, FlatPatchMeanAndVarianceMatchEmvaModel) {
   // σ²_y = K² (μ_e + μ_d + σ²_read + σ²_dsnu + σ²_row + σ²_col + (PRNU μ_e)² + var of μ_e) + 1/12.
   const double predictedMean = spec.blackLevelDn + K * (muE + dark);
   const double prnu = spec.prnuFraction * muE;
-  const double predictedVar = K * K * (muE + dark + spec.readNoiseE * spec.readNoiseE + spec.dsnuE * spec.dsnuE +
-                                       spec.rowFpnE * spec.rowFpnE + spec.columnFpnE * spec.columnFpnE +
-                                       prnu * prnu + varE) + 1.0 / 12.0;
+  const double predictedVar =
+      K * K *
+          (muE + dark + spec.readNoiseE * spec.readNoiseE + spec.dsnuE * spec.dsnuE +
+           spec.rowFpnE * spec.rowFpnE + spec.columnFpnE * spec.columnFpnE + prnu * prnu + varE) +
+      1.0 / 12.0;
   EXPECT_GT(muE, 100.0);
   EXPECT_LT(muE, 1000.0);  // a low light level: shot and read noise dominate
   // Tolerance 3 % (the issue's): the relative σ of a variance estimate over n ≈ 25000
@@ -74,12 +79,14 @@ TEST(SensorRender, FlatPatchMeanAndVarianceMatchEmvaModel) {
   EXPECT_NEAR((muDn - spec.blackLevelDn) / (predictedMean - spec.blackLevelDn), 1.0, 0.03);
   EXPECT_NEAR(varDn / predictedVar, 1.0, 0.03) << "n " << n << " muE " << muE << " varE " << varE;
   std::printf("flat patch: n %d, mu_e %.1f, mean ratio %.4f, variance ratio %.4f\n", n, muE,
-              (muDn - spec.blackLevelDn) / (predictedMean - spec.blackLevelDn), varDn / predictedVar);
+              (muDn - spec.blackLevelDn) / (predictedMean - spec.blackLevelDn),
+              varDn / predictedVar);
 }
 
 TEST(SensorRender, AutoExposurePutsTheMeanAtTheTarget) {
   Image electrons(4, 4, {"e"});
-  for (size_t i = 0; i < electrons.pixels.size(); ++i) electrons.pixels[i] = static_cast<float>(10 + i);
+  for (size_t i = 0; i < electrons.pixels.size(); ++i)
+    electrons.pixels[i] = static_cast<float>(10 + i);
   AutoExposure ae;  // mean, target 0.18
   const double k = autoExposureScale(electrons, ae, 6000.0);
   EXPECT_NEAR(meterElectrons(electrons, ae) * k, 0.18 * 6000.0, 1e-9);
@@ -98,16 +105,17 @@ namespace {
 // `bracket_ev: [-1, 0, 1]` writes one DNG and raw EXR per frame; with noise off each stop
 // doubles the signal above black (within DN rounding).
 TEST(SensorRender, BracketWritesOneFramePerStop) {
-  const std::filesystem::path dir = std::filesystem::temp_directory_path() / ("camsim_bracket_" + std::to_string(::getpid()));
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / ("camsim_bracket_" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
   std::string scene = kFlatField;
-  scene.replace(scene.find("noise: full, noise_seed: 9}"), 27, "noise: none, bracket_ev: [-1, 0, 1]}");
+  scene.replace(scene.find("noise: full, noise_seed: 9}"), 27,
+                "noise: none, bracket_ev: [-1, 0, 1]}");
   scene.replace(scene.find("resolution: [256, 256]"), 22, "resolution: [32, 32]");
-  {
-    std::ofstream(dir / "bracket.yaml") << scene;
-  }
-  const std::string cmd = std::string(CAMSIM_BINARY) + " render " + (dir / "bracket.yaml").string() + " -o " +
-                          (dir / "out").string() + " --spp 4 2> " + (dir / "log.txt").string();
+  { std::ofstream(dir / "bracket.yaml") << scene; }
+  const std::string cmd = std::string(CAMSIM_BINARY) + " render " +
+                          (dir / "bracket.yaml").string() + " -o " + (dir / "out").string() +
+                          " --spp 4 2> " + (dir / "log.txt").string();
   ASSERT_EQ(std::system(cmd.c_str()), 0);
   double previous = 0.0;
   for (const char* ev : {"-1", "+0", "+1"}) {
@@ -118,7 +126,8 @@ TEST(SensorRender, BracketWritesOneFramePerStop) {
     ASSERT_GE(c, 0);
     double sum = 0.0;
     for (int y = 0; y < raw.image.height; ++y)
-      for (int x = 0; x < raw.image.width; ++x) sum += static_cast<double>(raw.image.at(x, y, c)) - 64.0;
+      for (int x = 0; x < raw.image.width; ++x)
+        sum += static_cast<double>(raw.image.at(x, y, c)) - 64.0;
     const double mean = sum / (raw.image.width * raw.image.height);
     if (previous > 0.0) {
       EXPECT_NEAR(mean / previous, 2.0, 0.02) << ev;

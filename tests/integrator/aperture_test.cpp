@@ -27,7 +27,8 @@ TEST(Aperture, PolygonHasTheCircleAreaAndUniformSamplesInside) {
     const Aperture a(D, blades, 0.3);
     EXPECT_NEAR(a.area(), M_PI * 0.25 * D * D, 1e-15);
     if (blades > 0) {
-      const double polygonArea = 0.5 * blades * a.circumradius() * a.circumradius() * std::sin(2.0 * M_PI / blades);
+      const double polygonArea =
+          0.5 * blades * a.circumradius() * a.circumradius() * std::sin(2.0 * M_PI / blades);
       EXPECT_NEAR(polygonArea / a.area(), 1.0, 1e-12);
     }
     // Uniformity: the fraction of samples in the central disk of radius ρ equals its area
@@ -39,11 +40,14 @@ TEST(Aperture, PolygonHasTheCircleAreaAndUniformSamplesInside) {
     for (int i = 0; i < n; ++i) {
       const glm::vec2 u(rng.uniform(), rng.uniform());
       const glm::dvec2 p(a.sample(u));
-      if (blades == 0) ASSERT_LE(glm::length(p), 0.5 * D * (1.0 + 1e-6));
-      else ASSERT_TRUE(insidePolygon(p, blades, a.circumradius(), 0.3));
+      if (blades == 0)
+        ASSERT_LE(glm::length(p), 0.5 * D * (1.0 + 1e-6));
+      else
+        ASSERT_TRUE(insidePolygon(p, blades, a.circumradius(), 0.3));
       inDisk += glm::length(p) < rho ? 1 : 0;
     }
-    EXPECT_NEAR(static_cast<double>(inDisk) / n, M_PI * rho * rho / a.area(), 0.006) << blades << " blades";
+    EXPECT_NEAR(static_cast<double>(inDisk) / n, M_PI * rho * rho / a.area(), 0.006)
+        << blades << " blades";
   }
 }
 

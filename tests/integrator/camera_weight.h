@@ -19,7 +19,8 @@ inline double meanPinholeWeight(const PhysicalCamera& camera, int px, int py, in
       const double d2 = x * x + y * y + zi * zi;
       sum += zi * zi * zi * zi / (d2 * d2);
     }
-  return camera.pixelArea() * p.shutter.effectiveTime() * camera.apertureArea() / (zi * zi) * sum / (n * n);
+  return camera.pixelArea() * p.shutter.effectiveTime() * camera.apertureArea() / (zi * zi) * sum /
+         (n * n);
 }
 
 }  // namespace camsim

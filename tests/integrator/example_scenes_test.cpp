@@ -16,7 +16,8 @@ namespace {
 
 std::vector<std::filesystem::path> exampleScenes() {
   std::vector<std::filesystem::path> out;
-  for (const auto& e : std::filesystem::directory_iterator(std::filesystem::path(CAMSIM_SOURCE_DIR) / "scenes"))
+  for (const auto& e :
+       std::filesystem::directory_iterator(std::filesystem::path(CAMSIM_SOURCE_DIR) / "scenes"))
     if (e.path().extension() == ".yaml") out.push_back(e.path());
   std::sort(out.begin(), out.end());
   return out;

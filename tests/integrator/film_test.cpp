@@ -15,11 +15,14 @@ namespace {
 // A uniform field of flat spectral radiance 0.01 W·m⁻²·sr⁻¹·nm⁻¹ seen through a 20 µm
 // on-axis pixel block at f/4, 10 ms (pinhole: E = π L / (4 N²) on axis, cos⁴ ≈ 1 here).
 const char* kUniform =
-    "camera: {position: [0, 0, 0], look_at: [0, 0, 1], sensor_width_mm: 0.04, sensor_height_mm: 0.04,\n"
-    "         resolution: [2, 2], focal_length_mm: 50, f_number: 4, shutter: {open: 0, close: 0.01}}\n"
+    "camera: {position: [0, 0, 0], look_at: [0, 0, 1], sensor_width_mm: 0.04, sensor_height_mm: "
+    "0.04,\n"
+    "         resolution: [2, 2], focal_length_mm: 50, f_number: 4, shutter: {open: 0, close: "
+    "0.01}}\n"
     "render: {max_depth: 0}\n"
     "shapes:\n"
-    "  - {type: sphere, centre: [0, 0, 0], radius: 100, emission: {scale: 0.01, spectrum: 1, two_sided: true}}\n";
+    "  - {type: sphere, centre: [0, 0, 0], radius: 100, emission: {scale: 0.01, spectrum: 1, "
+    "two_sided: true}}\n";
 
 TEST(Film, MosaicStoresEachPhotositesChannelInElectrons) {
   const Scene scene(loadSceneFromText(kUniform, "test.yaml", "."));
@@ -48,7 +51,8 @@ TEST(Film, MosaicStoresEachPhotositesChannelInElectrons) {
   // Tolerance 1 %: the only noise is the wavelength sampling of QE·λ/p(λ).
   for (int y = 0; y < 2; ++y)
     for (int x = 0; x < 2; ++x)
-      EXPECT_NEAR(static_cast<double>(r.images[1].at(x, y, 0)) / expected[y][x], 1.0, 0.01) << x << "," << y;
+      EXPECT_NEAR(static_cast<double>(r.images[1].at(x, y, 0)) / expected[y][x], 1.0, 0.01)
+          << x << "," << y;
   // The XYZ film of the same pass is unchanged by the extra response.
   const RenderResult xyzOnly = render(scene, xyz, options);
   EXPECT_EQ(xyzOnly.image.pixels, r.images[0].pixels);

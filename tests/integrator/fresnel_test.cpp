@@ -42,7 +42,8 @@ TEST(Fresnel, TotalInternalReflectionAndGrazing) {
   EXPECT_NEAR(fresnelDielectric(1e-6f, eta), 1.0f, 1e-5f);
   // Index-matched (η = 1): no interface at any angle, although 1 − cos² rounds to 1 at
   // cos 1e-6 (the TIR branch would return 1); refraction goes straight through.
-  for (float c : {1e-6f, -1e-6f, 0.0f, 0.5f, -1.0f}) EXPECT_EQ(fresnelDielectric(c, 1.0f), 0.0f) << c;
+  for (float c : {1e-6f, -1e-6f, 0.0f, 0.5f, -1.0f})
+    EXPECT_EQ(fresnelDielectric(c, 1.0f), 0.0f) << c;
   for (const glm::vec3 wi : {glm::vec3(1.0f, 0.0f, 1e-6f), glm::vec3(0.6f, 0.0f, -0.8f)}) {
     const std::optional<Refraction> r = refract(wi, glm::vec3(0.0f, 0.0f, 1.0f), 1.0f);
     ASSERT_TRUE(r);

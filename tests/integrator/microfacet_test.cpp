@@ -224,7 +224,8 @@ TEST(Microfacet, DirectionsBelowAreTakenAsTheirOpposite) {
     }
     if (d == MicrofacetDistribution::kGgx) {  // Beckmann samples D cos θm, whatever w
       const glm::vec3 mirrored(below.x, below.y, -below.z);
-      EXPECT_NE(m.sampleWm(below, glm::vec2(0.2f, 0.3f)), m.sampleWm(mirrored, glm::vec2(0.2f, 0.3f)));
+      EXPECT_NE(m.sampleWm(below, glm::vec2(0.2f, 0.3f)),
+                m.sampleWm(mirrored, glm::vec2(0.2f, 0.3f)));
     }
   }
 }
@@ -244,7 +245,8 @@ TEST(Microfacet, ReflectionIsTheHalfVectorFormula) {
   const MicrofacetModel::Reflection none = m.reflection(wo, wi, -wm);
   EXPECT_EQ(none.f, 0.0f);
   EXPECT_EQ(none.pdf, 0.0f);
-  const std::optional<MicrofacetModel::ReflectionSample> s = m.sampleReflection(wo, glm::vec2(0.4f, 0.6f));
+  const std::optional<MicrofacetModel::ReflectionSample> s =
+      m.sampleReflection(wo, glm::vec2(0.4f, 0.6f));
   ASSERT_TRUE(s);
   EXPECT_GT(s->wi.z, 0.0f);
   EXPECT_NEAR(glm::dot(s->wi + wo, s->wm) / glm::length(s->wi + wo), 1.0f, 1e-5f);

@@ -24,8 +24,8 @@ TEST(RigidMotion, InterpolatesTranslationLinearlyAndRotationBySlerp) {
   EXPECT_NEAR(p.x, 0.5 + 1.5 * std::cos(angle), 1e-12);
   EXPECT_NEAR(p.y, 1.5 * std::sin(angle), 1e-12);
   EXPECT_NEAR(p.z, -1.0, 1e-12);
-  EXPECT_NEAR((m.at(-1.0) * x).x, 1.0, 1e-12);   // before the first key: first pose
-  EXPECT_NEAR((m.at(5.0) * x).y, 3.0, 1e-12);    // after the last: last pose (90°, scale 3)
+  EXPECT_NEAR((m.at(-1.0) * x).x, 1.0, 1e-12);  // before the first key: first pose
+  EXPECT_NEAR((m.at(5.0) * x).y, 3.0, 1e-12);   // after the last: last pose (90°, scale 3)
   EXPECT_FALSE(m.isStaticDuring(0.0, 1.0));
   EXPECT_TRUE(m.isStaticDuring(2.5, 3.0));
   EXPECT_NEAR(m.rotationAngleDuring(0.0, 2.0), M_PI / 2.0, 1e-9);

@@ -25,10 +25,15 @@ Image renderY(const std::string& yaml, int spp, std::uint64_t seed = 1) {
 }
 
 std::string furnaceScene(double rho, int resolution, int maxDepth, int rrDepth) {
-  return "camera: {position: [0, 0, 0], look_at: [0, 0, 1], resolution: [" + std::to_string(resolution) +
-         ", " + std::to_string(resolution) + "], focal_length_mm: 50}\n"
-         "render: {max_depth: " + std::to_string(maxDepth) + ", rr_depth: " + std::to_string(rrDepth) + "}\n"
-         "materials: {wall: {type: diffuse, reflectance: " + std::to_string(rho) + "}}\n"
+  return "camera: {position: [0, 0, 0], look_at: [0, 0, 1], resolution: [" +
+         std::to_string(resolution) + ", " + std::to_string(resolution) +
+         "], focal_length_mm: 50}\n"
+         "render: {max_depth: " +
+         std::to_string(maxDepth) + ", rr_depth: " + std::to_string(rrDepth) +
+         "}\n"
+         "materials: {wall: {type: diffuse, reflectance: " +
+         std::to_string(rho) +
+         "}}\n"
          "shapes:\n"
          "  - {type: sphere, centre: [0.1, -0.2, 0.3], radius: 1.5, material: wall,\n"
          "     emission: {scale: 0.01, spectrum: 1, two_sided: true}}\n";
@@ -46,7 +51,8 @@ TEST(Furnace, EveryPixelReadsLeOverOneMinusRho) {
     const int yc = img.channelIndex("Y");
     for (int y = 0; y < img.height; ++y)
       for (int x = 0; x < img.width; ++x)
-        EXPECT_NEAR(static_cast<double>(img.at(x, y, yc)) / expected, 1.0, 0.01) << "rho " << rho << " pixel " << x << "," << y;
+        EXPECT_NEAR(static_cast<double>(img.at(x, y, yc)) / expected, 1.0, 0.01)
+            << "rho " << rho << " pixel " << x << "," << y;
   }
 }
 
@@ -60,16 +66,19 @@ TEST(Furnace, RussianRouletteStaysUnbiased) {
     const int yc = img.channelIndex("Y");
     for (int y = 0; y < img.height; ++y)
       for (int x = 0; x < img.width; ++x)
-        EXPECT_NEAR(static_cast<double>(img.at(x, y, yc)) / expected, 1.0, 0.01) << "rho " << rho << " pixel " << x << "," << y;
+        EXPECT_NEAR(static_cast<double>(img.at(x, y, yc)) / expected, 1.0, 0.01)
+            << "rho " << rho << " pixel " << x << "," << y;
   }
 }
 
 // Irradiance at x (normal n) from a uniform Lambertian polygon of unit radiance:
 //   E = ½ Σᵢ βᵢ · (n · normalize(Rᵢ × Rᵢ₊₁)),  Rᵢ = vᵢ − x,  βᵢ = ∠(Rᵢ, Rᵢ₊₁).
-double polygonIrradiance(const glm::dvec3& x, const glm::dvec3& n, const std::vector<glm::dvec3>& poly) {
+double polygonIrradiance(const glm::dvec3& x, const glm::dvec3& n,
+                         const std::vector<glm::dvec3>& poly) {
   double sum = 0.0;
   for (size_t i = 0; i < poly.size(); ++i) {
-    const glm::dvec3 a = glm::normalize(poly[i] - x), b = glm::normalize(poly[(i + 1) % poly.size()] - x);
+    const glm::dvec3 a = glm::normalize(poly[i] - x),
+                     b = glm::normalize(poly[(i + 1) % poly.size()] - x);
     const double beta = std::acos(std::clamp(glm::dot(a, b), -1.0, 1.0));
     sum += beta * glm::dot(n, glm::normalize(glm::cross(a, b)));
   }
@@ -88,7 +97,8 @@ TEST(Irradiance, LambertianFloorUnderRectangularEmitter) {
       "render: {max_depth: 4}\n"
       "materials: {floor: {type: diffuse, reflectance: 0.6}}\n"
       "shapes:\n"
-      "  - {type: rectangle, corner: [-2, 0, -2], edge_u: [0, 0, 4], edge_v: [4, 0, 0], material: floor}\n"
+      "  - {type: rectangle, corner: [-2, 0, -2], edge_u: [0, 0, 4], edge_v: [4, 0, 0], material: "
+      "floor}\n"
       "  - {type: rectangle, corner: [-0.1, 0.3, -0.2], edge_u: [0.4, 0, 0], edge_v: [0, 0, 0.3],\n"
       "     emission: {scale: 0.02, spectrum: 1}}\n";
   const Image img = renderY(yaml, 65536);
@@ -106,8 +116,9 @@ TEST(Irradiance, LambertianFloorUnderRectangularEmitter) {
       double e = 0.0, wsum = 0.0;
       for (int sy = 0; sy < kSub; ++sy)
         for (int sx = 0; sx < kSub; ++sx) {
-          const double u = (i + (sx + 0.5) / kSub) / img.width, v = (j + (sy + 0.5) / kSub) / img.height;
-          const double a = (u - 0.5) * 2.0, b = (0.5 - v) * 2.0;  // sensor coords / half-width
+          const double u = (i + (sx + 0.5) / kSub) / img.width,
+                       v = (j + (sy + 0.5) / kSub) / img.height;
+          const double a = (u - 0.5) * 2.0, b = (0.5 - v) * 2.0;     // sensor coords / half-width
           const double cos2 = 1.0 / (1.0 + 0.25 * (a * a + b * b));  // tanθ = half-width/f · r
           const glm::dvec3 p(-a * halfExtent, 0.0, b * halfExtent);
           e += cos2 * cos2 * polygonIrradiance(p, {0.0, 1.0, 0.0}, emitter);
@@ -115,7 +126,8 @@ TEST(Irradiance, LambertianFloorUnderRectangularEmitter) {
         }
       e /= wsum;
       const double expected = 0.6 / M_PI * e * 0.02 * flatY();
-      EXPECT_NEAR(static_cast<double>(img.at(i, j, yc)) / expected, 1.0, 0.01) << "pixel " << i << "," << j;
+      EXPECT_NEAR(static_cast<double>(img.at(i, j, yc)) / expected, 1.0, 0.01)
+          << "pixel " << i << "," << j;
     }
 }
 

@@ -17,18 +17,22 @@ namespace {
 
 constexpr double kScale = 0.01;  // W·m⁻²·sr⁻¹·nm⁻¹, flat emitter spectrum
 
-double emitterLuminance() { return kMaxLuminousEfficacy * Cie1931::get().y.sum() * kScale; }
+double emitterLuminance() {
+  return kMaxLuminousEfficacy * Cie1931::get().y.sum() * kScale;
+}
 
 // A camera inside a large, black, two-sided emissive sphere: uniform radiance everywhere.
 std::string uniformField(const std::string& cameraExtra) {
-  return "camera: {position: [0, 0, 0], look_at: [0, 0, 1], " + cameraExtra + "}\n"
+  return "camera: {position: [0, 0, 0], look_at: [0, 0, 1], " + cameraExtra +
+         "}\n"
          "render: {max_depth: 0}\n"
          "shapes:\n"
          "  - {type: sphere, centre: [0, 0, 0], radius: 100,\n"
          "     emission: {scale: 0.01, spectrum: 1, two_sided: true}}\n";
 }
 
-RenderResult renderScene(const std::string& yaml, int spp, bool forceTime = false, std::uint64_t seed = 5) {
+RenderResult renderScene(const std::string& yaml, int spp, bool forceTime = false,
+                         std::uint64_t seed = 5) {
   const Scene scene(loadSceneFromText(yaml, "test.yaml", "."));
   const SpectralResponse response = SpectralResponse::cieXyz();
   RenderOptions options;
@@ -66,16 +70,20 @@ TEST(CameraEquation, OnAxisIrradianceIsExact) {
     double focus;  // m, 0 = infinity
   };
   for (const Case c : {Case{1.4, 0.0}, Case{2.8, 0.0}, Case{16.0, 0.0}, Case{2.8, 0.55}}) {
-    const std::string extra = "sensor_width_mm: 0.02, sensor_height_mm: 0.02, resolution: [1, 1], "
-                              "focal_length_mm: 50, f_number: " + std::to_string(c.N) +
-                              (c.focus > 0 ? ", focus_distance_m: " + std::to_string(c.focus) : "") +
-                              ", aperture: {blades: 0}, shutter: {open: 0, close: 0.01}";
+    const std::string extra =
+        "sensor_width_mm: 0.02, sensor_height_mm: 0.02, resolution: [1, 1], "
+        "focal_length_mm: 50, f_number: " +
+        std::to_string(c.N) +
+        (c.focus > 0 ? ", focus_distance_m: " + std::to_string(c.focus) : "") +
+        ", aperture: {blades: 0}, shutter: {open: 0, close: 0.01}";
     const RenderResult r = renderScene(uniformField(extra), 16384);
     const double f = 0.05;
     const double zi = c.focus > 0 ? f * c.focus / (c.focus - f) : f;
     const double Nw = c.N * zi / f;  // = N (1 + m)
-    const double expected = M_PI * emitterLuminance() / (1.0 + 4.0 * Nw * Nw) * (0.02e-3 * 0.02e-3) * 0.01;
-    EXPECT_NEAR(static_cast<double>(r.image.at(0, 0, 1)) / expected, 1.0, 0.01) << "N " << c.N << " focus " << c.focus;
+    const double expected =
+        M_PI * emitterLuminance() / (1.0 + 4.0 * Nw * Nw) * (0.02e-3 * 0.02e-3) * 0.01;
+    EXPECT_NEAR(static_cast<double>(r.image.at(0, 0, 1)) / expected, 1.0, 0.01)
+        << "N " << c.N << " focus " << c.focus;
   }
 }
 
@@ -84,9 +92,10 @@ TEST(CameraEquation, OnAxisIrradianceIsExact) {
 // numerically over the aperture and across each pixel. Tolerance 1 %.
 TEST(CameraEquation, OffAxisFollowsApertureSolidAngleAndCos4AtF16) {
   for (double N : {2.0, 16.0}) {
-    const std::string extra = "sensor_width_mm: 20.5, sensor_height_mm: 0.02, resolution: [41, 1], "
-                              "focal_length_mm: 25, f_number: " + std::to_string(N) +
-                              ", aperture: {blades: 0}, shutter: {open: 0, close: 0.01}";
+    const std::string extra =
+        "sensor_width_mm: 20.5, sensor_height_mm: 0.02, resolution: [41, 1], "
+        "focal_length_mm: 25, f_number: " +
+        std::to_string(N) + ", aperture: {blades: 0}, shutter: {open: 0, close: 0.01}";
     const RenderResult r = renderScene(uniformField(extra), 8192);
     const double f = 0.025, D = f / N, pitch = 0.5e-3, area = pitch * 0.02e-3;
     double centre = 0.0;
@@ -99,7 +108,8 @@ TEST(CameraEquation, OffAxisFollowsApertureSolidAngleAndCos4AtF16) {
         const double c2 = f * f / (x * x + f * f);
         cos4 += c2 * c2 / kSub;
       }
-      const double measured = static_cast<double>(r.image.at(px, 0, 1)) / (emitterLuminance() * area * 0.01);
+      const double measured =
+          static_cast<double>(r.image.at(px, 0, 1)) / (emitterLuminance() * area * 0.01);
       EXPECT_NEAR(measured / expected, 1.0, 0.01) << "N " << N << " pixel " << px;
       if (px == 20) centre = measured;
       if (N == 16.0) {
@@ -114,18 +124,22 @@ TEST(CameraEquation, OffAxisFollowsApertureSolidAngleAndCos4AtF16) {
 // scales as the aperture's projected solid angle 1/(1 + 4N²) within noise (1 %).
 TEST(Exposure, ScalesWithShutterTimeFillFactorAndAperture) {
   auto centreY = [](const std::string& extra, int spp) {
-    const std::string base = "sensor_width_mm: 0.02, sensor_height_mm: 0.02, resolution: [1, 1], focal_length_mm: 50, ";
+    const std::string base =
+        "sensor_width_mm: 0.02, sensor_height_mm: 0.02, resolution: [1, 1], focal_length_mm: 50, ";
     return static_cast<double>(renderScene(uniformField(base + extra), spp).image.at(0, 0, 1));
   };
   const double t1 = centreY("f_number: 4, shutter: {open: 0, close: 0.01}", 64);
   const double t2 = centreY("f_number: 4, shutter: {open: 0, close: 0.02}", 64);
   EXPECT_NEAR(t2 / t1, 2.0, 2e-6);
-  const double trapezoid = centreY("f_number: 4, shutter: {open: 0, close: 0.02, ramp_open: 0.004, ramp_close: 0.002}", 64);
+  const double trapezoid = centreY(
+      "f_number: 4, shutter: {open: 0, close: 0.02, ramp_open: 0.004, ramp_close: 0.002}", 64);
   EXPECT_NEAR(trapezoid / t1, (0.02 - 0.003) / 0.01, 2e-6);  // T_eff = T − (ramps)/2
   const double half = centreY("f_number: 4, fill_factor: 0.5, shutter: {open: 0, close: 0.01}", 64);
   EXPECT_NEAR(half / t1, 0.5, 1e-4);  // the pixel's cos⁴ varies < 1e-7 over 20 µm
-  const double f2 = centreY("f_number: 2, aperture: {blades: 0}, shutter: {open: 0, close: 0.01}", 16384);
-  const double f4 = centreY("f_number: 4, aperture: {blades: 0}, shutter: {open: 0, close: 0.01}", 16384);
+  const double f2 =
+      centreY("f_number: 2, aperture: {blades: 0}, shutter: {open: 0, close: 0.01}", 16384);
+  const double f4 =
+      centreY("f_number: 4, aperture: {blades: 0}, shutter: {open: 0, close: 0.01}", 16384);
   EXPECT_NEAR(f2 / f4, (1.0 + 4.0 * 16.0) / (1.0 + 4.0 * 4.0), 0.01 * (65.0 / 17.0));
 }
 
@@ -176,8 +190,9 @@ TEST(Distortion, MatchesOpenCvProjectPoints) {
 // A static scene gives the identical image with time sampling forced on and off, and the
 // analysis reports no time dimension (and no aperture for a pinhole).
 TEST(ModelledDimensions, StaticSceneNeedsNoTime) {
-  const std::string yaml = uniformField("resolution: [8, 8], shutter: {open: 0, close: 0.02, ramp_open: 0.005}") +
-                           "  - {type: sphere, centre: [0.3, 0, 3], radius: 0.5, emission: {luminance: 500}}\n";
+  const std::string yaml =
+      uniformField("resolution: [8, 8], shutter: {open: 0, close: 0.02, ramp_open: 0.005}") +
+      "  - {type: sphere, centre: [0.3, 0, 3], radius: 0.5, emission: {luminance: 500}}\n";
   const RenderResult off = renderScene(yaml, 16, false);
   const RenderResult on = renderScene(yaml, 16, true);
   EXPECT_FALSE(off.stats.modelled.time);
@@ -185,12 +200,14 @@ TEST(ModelledDimensions, StaticSceneNeedsNoTime) {
   EXPECT_FALSE(off.stats.modelled.aperture);
   EXPECT_EQ(off.stats.modelled.describe(), "pinhole, static (no time sampling), 4 wavelengths");
   ASSERT_EQ(off.image.pixels.size(), on.image.pixels.size());
-  EXPECT_EQ(0, std::memcmp(off.image.pixels.data(), on.image.pixels.data(), off.image.pixels.size() * sizeof(float)));
+  EXPECT_EQ(0, std::memcmp(off.image.pixels.data(), on.image.pixels.data(),
+                           off.image.pixels.size() * sizeof(float)));
 }
 
 TEST(ModelledDimensions, DescribesApertureTimeAndRollingShutter) {
   const std::string yaml =
-      "camera: {position: [0, 0, 0], look_at: [0, 0, 1], resolution: [4, 4], aperture: {blades: 6},\n"
+      "camera: {position: [0, 0, 0], look_at: [0, 0, 1], resolution: [4, 4], aperture: {blades: "
+      "6},\n"
       "         shutter: {open: 0, close: 0.01, type: rolling, row_time: 0.001}}\n"
       "shapes:\n"
       "  - {type: sphere, centre: [0, 0, 3], radius: 0.5, emission: {luminance: 500},\n"
@@ -201,7 +218,8 @@ TEST(ModelledDimensions, DescribesApertureTimeAndRollingShutter) {
   EXPECT_TRUE(r.stats.modelled.time);
   EXPECT_EQ(r.stats.modelled.movingObjects, 1);
   EXPECT_TRUE(r.stats.modelled.rollingShutter);
-  EXPECT_EQ(r.stats.modelled.describe().substr(0, 58), "aperture (6 blades), time (1 moving object, rolling shutte");
+  EXPECT_EQ(r.stats.modelled.describe().substr(0, 58),
+            "aperture (6 blades), time (1 moving object, rolling shutte");
 }
 
 }  // namespace

@@ -124,9 +124,11 @@ TEST(PlasticMaterial, RoughWhiteFurnaceConservesEnergy) {
         o.quadratureOptions.minDepth = 4;
         const auto a = bsdfcheck::albedo(*m, direction(z, 1.1), kLambda, {}, o);
         const std::string what = "α " + std::to_string(alpha) + " z " + std::to_string(z);
-        std::printf("[measured] plastic ρ 1, ks 0.1, %s α %.2f cosθo %.1f: albedo MC %.4f, quadrature %.4f\n",
-                    d == MicrofacetDistribution::kGgx ? "ggx" : "beckmann", static_cast<double>(alpha), z,
-                    a.mean[0], a.quadrature[0]);
+        std::printf(
+            "[measured] plastic ρ 1, ks 0.1, %s α %.2f cosθo %.1f: albedo MC %.4f, quadrature "
+            "%.4f\n",
+            d == MicrofacetDistribution::kGgx ? "ggx" : "beckmann", static_cast<double>(alpha), z,
+            a.mean[0], a.quadrature[0]);
         EXPECT_EQ(a.nonFinite, 0) << what;
         EXPECT_EQ(a.unresolvedCells, 0) << what;
         EXPECT_LE(a.mean[0], 1.0 + 5.0 * a.stdErr[0]) << what;

@@ -19,7 +19,8 @@ namespace camsim {
 namespace {
 
 SceneDescription smallCornell() {
-  SceneDescription d = loadScene(std::filesystem::path(CAMSIM_SOURCE_DIR) / "scenes/cornell_box.yaml");
+  SceneDescription d =
+      loadScene(std::filesystem::path(CAMSIM_SOURCE_DIR) / "scenes/cornell_box.yaml");
   d.camera.resolution = {48, 40};  // several tiles, one partial
   return d;
 }
@@ -51,7 +52,8 @@ TEST(Render, OneAndTwoThreadsGiveBitIdenticalExrs) {
                            one.image.pixels.size() * sizeof(float)));
   EXPECT_EQ(one.stats.rays.total(), two.stats.rays.total());
   // Through the EXR writer with the same metadata, the files are byte-identical.
-  const auto dir = std::filesystem::temp_directory_path() / ("camsim_render_test_" + std::to_string(::getpid()));
+  const auto dir =
+      std::filesystem::temp_directory_path() / ("camsim_render_test_" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
   const Metadata meta = {{"camsim:seed", "42"}};
   writeExr(dir / "one.exr", one.image, meta, std::nullopt);
@@ -65,8 +67,10 @@ TEST(Render, DifferentSeedsGiveDifferentNoiseSameSeedSameImage) {
   const RenderResult a = renderWith(scene, 2, 1);
   const RenderResult b = renderWith(scene, 2, 2);
   const RenderResult c = renderWith(scene, 2, 1);
-  EXPECT_NE(0, std::memcmp(a.image.pixels.data(), b.image.pixels.data(), a.image.pixels.size() * sizeof(float)));
-  EXPECT_EQ(0, std::memcmp(a.image.pixels.data(), c.image.pixels.data(), a.image.pixels.size() * sizeof(float)));
+  EXPECT_NE(0, std::memcmp(a.image.pixels.data(), b.image.pixels.data(),
+                           a.image.pixels.size() * sizeof(float)));
+  EXPECT_EQ(0, std::memcmp(a.image.pixels.data(), c.image.pixels.data(),
+                           a.image.pixels.size() * sizeof(float)));
 }
 
 TEST(Render, ReportsProgressOverEveryTileAndCountsRays) {

@@ -45,7 +45,9 @@ class MaxError {
 };
 
 // Y (cd/m²) of a flat spectral radiance of 1 W·m⁻²·sr⁻¹·nm⁻¹.
-inline double flatY() { return kMaxLuminousEfficacy * Cie1931::get().y.sum(); }
+inline double flatY() {
+  return kMaxLuminousEfficacy * Cie1931::get().y.sum();
+}
 
 struct LuminanceImage {
   Image y;  // one channel: mean luminance of the pixel's footprint, cd/m²

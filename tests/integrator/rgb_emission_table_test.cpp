@@ -46,10 +46,14 @@ TEST(RgbEmissionTable, NodesHoldTheFittedReflectance) {
         rho[(channel + 1) % 3] = 0.5 * a / kLast;
         rho[(channel + 2) % 3] = 0.5 * b / kLast;
         const SigmoidCoefficients c = table.lookup(2.0 * rho);
-        const SigmoidCoefficients fit = SigmoidCoefficients::from(ReflectanceUplift::linearRec709().fit(rho));
-        EXPECT_NEAR(c.c0, fit.c0, 1e-5f * (1.0f + std::abs(fit.c0))) << channel << " " << a << " " << b;
-        EXPECT_NEAR(c.c1, fit.c1, 1e-5f * (1.0f + std::abs(fit.c1))) << channel << " " << a << " " << b;
-        EXPECT_NEAR(c.c2, fit.c2, 1e-5f * (1.0f + std::abs(fit.c2))) << channel << " " << a << " " << b;
+        const SigmoidCoefficients fit =
+            SigmoidCoefficients::from(ReflectanceUplift::linearRec709().fit(rho));
+        EXPECT_NEAR(c.c0, fit.c0, 1e-5f * (1.0f + std::abs(fit.c0)))
+            << channel << " " << a << " " << b;
+        EXPECT_NEAR(c.c1, fit.c1, 1e-5f * (1.0f + std::abs(fit.c1)))
+            << channel << " " << a << " " << b;
+        EXPECT_NEAR(c.c2, fit.c2, 1e-5f * (1.0f + std::abs(fit.c2)))
+            << channel << " " << a << " " << b;
       }
 }
 
@@ -61,7 +65,7 @@ TEST(RgbEmissionTable, ChromaticityBetweenNodesAndScaleInvariance) {
   for (int k = 0; k < 2000; ++k) {
     glm::dvec3 c(u(rng), u(rng), u(rng));
     if (k % 4 == 0) c = glm::dvec3(1.0) - 0.02 * c;  // near grey
-    if (k % 4 == 1) c[k % 3] = 0.0;                   // on the gamut's faces
+    if (k % 4 == 1) c[k % 3] = 0.0;                  // on the gamut's faces
     if (std::max({c.x, c.y, c.z}) <= 0.0) continue;
     const SigmoidCoefficients s = table.lookup(c);
     const glm::dvec2 d = chromaticity(shapeRgb(s)) - chromaticity(c);

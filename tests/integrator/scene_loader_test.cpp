@@ -1,18 +1,18 @@
 // Tests for integrator/scene_loader.{h,cpp} (with yaml_reader and scene_spectra): every
 // malformed scene is an InputError naming file, line, column and the dotted key; valid
 // scenes (YAML and JSON, inline and file meshes, spectra from CSV/RGB/blackbody) load.
-#include "tests/support/temp_dir.h"
 #include "integrator/scene_loader.h"
+#include "tests/support/temp_dir.h"
 
 #include <gtest/gtest.h>
 
+#include <unistd.h>
 #include <atomic>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
-#include <unistd.h>
 
 #include "sensor/cie.h"
 #include "sensor/color_space.h"
@@ -43,17 +43,19 @@ std::string readFile(const fs::path& path) {
 
 // Lines 1–6 of most test scenes; the shapes follow from line 7.
 const std::string kCamera =
-    "camera:\n"                  // 1
-    "  position: [0, 0, -1]\n"   // 2
-    "  look_at: [0, 0, 0]\n";    // 3
+    "camera:\n"                 // 1
+    "  position: [0, 0, -1]\n"  // 2
+    "  look_at: [0, 0, 0]\n";   // 3
 const std::string kMaterials =
-    "materials:\n"               // 4
-    "  m: {type: diffuse}\n";    // 5
+    "materials:\n"             // 4
+    "  m: {type: diffuse}\n";  // 5
 const std::string kPrefix = kCamera + kMaterials + "shapes:\n";
 // Line 7: the value of radius is at column 47, that of material at column 60.
 const std::string kSphere = "  - {type: sphere, centre: [0, 0, 0], radius: 1, material: m}\n";
 
-std::string withShapes(const std::string& shapes) { return kPrefix + shapes; }
+std::string withShapes(const std::string& shapes) {
+  return kPrefix + shapes;
+}
 // One extra camera line (line 4); the sphere is then on line 8.
 std::string withCameraLine(const std::string& line) {
   return kCamera + line + kMaterials + "shapes:\n" + kSphere;
@@ -63,7 +65,7 @@ std::string sphereWith(const std::string& radius, const std::string& rest) {
 }
 std::string meshWith(const std::string& vertices, const std::string& faces) {
   return withShapes("  - type: mesh\n    material: m\n    vertices: " + vertices +  // 7, 8, 9
-                    "\n    faces: " + faces + "\n");                              // 10
+                    "\n    faces: " + faces + "\n");                                // 10
 }
 
 struct ErrorCase {
@@ -105,8 +107,8 @@ const ErrorCase kErrorCases[] = {
      "camera.resolution[0]", "[1, 32768] (limit SceneLimits::kMaxResolution)"},
     {"PixelCountBeyondLimit", withCameraLine("  resolution: [20000, 20000]\n"), 4, 15,
      "camera.resolution", "SceneLimits::kMaxPixels"},
-    {"NaN", withShapes("  - {type: sphere, centre: [0, .nan, 0], radius: 1, material: m}\n"), 7,
-     32, "shapes[0].centre[1]", "'.nan' is not a finite number"},
+    {"NaN", withShapes("  - {type: sphere, centre: [0, .nan, 0], radius: 1, material: m}\n"), 7, 32,
+     "shapes[0].centre[1]", "'.nan' is not a finite number"},
     {"Infinity", sphereWith(".inf", ", material: m"), 7, 47, "shapes[0].radius",
      "'.inf' is not a finite number"},
     {"CoordinateBeyondFloat", meshWith("[[0, 0, 0], [1e39, 0, 0], [0, 1, 0]]", "[[0, 1, 2]]"), 9,
@@ -154,7 +156,9 @@ const ErrorCase kErrorCases[] = {
      3, 63, "shapes[0].radius", "out of range"},
 };
 
-void PrintTo(const ErrorCase& c, std::ostream* os) { *os << c.name; }
+void PrintTo(const ErrorCase& c, std::ostream* os) {
+  *os << c.name;
+}
 
 class SceneLoaderErrorTest : public ::testing::TestWithParam<ErrorCase> {};
 
@@ -281,7 +285,9 @@ TEST(SceneLoaderTest, ObjMeshWithScaleAndTranslate) {
   EXPECT_EQ(scene.shapes[0].kind, ShapeDescription::Kind::kMesh);
   ASSERT_EQ(mesh.positions.size(), 3u);
   // Render space: world positions minus the camera's position.
-  auto world = [&](double x, double y, double z) { return glm::vec3(glm::dvec3(x, y, z) - scene.renderOrigin); };
+  auto world = [&](double x, double y, double z) {
+    return glm::vec3(glm::dvec3(x, y, z) - scene.renderOrigin);
+  };
   EXPECT_EQ(mesh.positions[0], world(1, 2, 3));
   EXPECT_EQ(mesh.positions[1], world(3, 2, 3));
   EXPECT_EQ(mesh.positions[2], world(1, 4, 3));
@@ -345,9 +351,9 @@ TEST(SceneLoaderTest, BlackbodyEmissionWithUnitScale) {
 
 TEST(SceneLoaderTest, LuminanceSetsAbsoluteScale) {
   TempDir dir;
-  const SceneDescription scene = loadSceneFromText(
-      sphereWith("1", ", emission: {spectrum: {illuminant: A}, luminance: 250}"), "test.yaml",
-      dir.path());
+  const SceneDescription scene =
+      loadSceneFromText(sphereWith("1", ", emission: {spectrum: {illuminant: A}, luminance: 250}"),
+                        "test.yaml", dir.path());
   EXPECT_NEAR(luminance(scene.shapes[0].emission->radiance), 250.0, 250.0 * 1e-3);
 }
 

@@ -35,7 +35,8 @@ TEST(SobolSampler, EveryPairIsAZeroMTwoNet) {
         for (const glm::vec2& p : pts)
           cells.emplace(static_cast<int>(std::ldexp(static_cast<double>(p.x), a)),
                         static_cast<int>(std::ldexp(static_cast<double>(p.y), m - a)));
-        EXPECT_EQ(static_cast<int>(cells.size()), n) << "dimension " << dimension << " m " << m << " a " << a;
+        EXPECT_EQ(static_cast<int>(cells.size()), n)
+            << "dimension " << dimension << " m " << m << " a " << a;
       }
     }
 }

@@ -26,7 +26,9 @@ namespace fs = std::filesystem;
 
 const fs::path kShipped = fs::path(CAMSIM_SOURCE_DIR) / "luts" / "config.ocio";
 
-double d(float v) { return static_cast<double>(v); }
+double d(float v) {
+  return static_cast<double>(v);
+}
 
 // A tiny valid config: one display "TestDisplay" whose view "Square root" encodes linear
 // values with an exponent 1/2; no colour space is called ACEScg, so scene_linear is the input.
@@ -85,8 +87,10 @@ class EnvGuard {
     ::unsetenv(name);
   }
   ~EnvGuard() {
-    if (old_) ::setenv(name_, old_->c_str(), 1);
-    else ::unsetenv(name_);
+    if (old_)
+      ::setenv(name_, old_->c_str(), 1);
+    else
+      ::unsetenv(name_);
   }
   EnvGuard(const EnvGuard&) = delete;
   EnvGuard& operator=(const EnvGuard&) = delete;
@@ -201,8 +205,8 @@ TEST_F(ColorManagementTest, HdrPqMidGreyIsFifteenNits) {
   // The 1000-nit ACES 1.1 output transform puts mid grey at 15 nits (its name says so).
   EXPECT_NEAR(pqToNits(d(pq[1])), 15.0, 0.5);
   // Un-tone-mapped on PQ: display reference 1.0 = 100 nits, so 0.18 → 18 nits.
-  const auto flat = ocio.pipeline({"Rec.2100-PQ", "Un-tone-mapped", ""}).applyPixel({0.18f, 0.18f,
-                                                                                    0.18f});
+  const auto flat =
+      ocio.pipeline({"Rec.2100-PQ", "Un-tone-mapped", ""}).applyPixel({0.18f, 0.18f, 0.18f});
   EXPECT_NEAR(pqToNits(d(flat[1])), 18.0, 0.1);
 }
 
@@ -218,9 +222,9 @@ TEST_F(ColorManagementTest, DisplayP3MatrixMatchesTheBuiltinP3D65) {
     return e <= 0.04045 ? e / 12.92 : std::pow((e + 0.055) / 1.055, 2.4);
   };
   // Saturated colours inside P3 (the gamma-2.6 display clamps negative values).
-  for (const std::array<float, 3>& acescg : {std::array<float, 3>{0.5f, 0.2f, 0.1f},
-                                             std::array<float, 3>{0.25f, 0.6f, 0.2f},
-                                             std::array<float, 3>{0.2f, 0.25f, 0.6f}}) {
+  for (const std::array<float, 3>& acescg :
+       {std::array<float, 3>{0.5f, 0.2f, 0.1f}, std::array<float, 3>{0.25f, 0.6f, 0.2f},
+        std::array<float, 3>{0.2f, 0.25f, 0.6f}}) {
     const auto a = p3.applyPixel(acescg);
     const auto b = g26.applyPixel(acescg);
     for (int c = 0; c < 3; ++c)
@@ -300,8 +304,9 @@ TEST_F(ColorManagementTest, UnknownNamesThrowListingTheChoices) {
   EXPECT_NE(look.find("unknown look 'cold'"), std::string::npos) << look;
   EXPECT_NE(look.find("'camsim warm'"), std::string::npos) << look;
   EXPECT_NE(inputErrorOf([&] { ocio.views("nope"); }).find("'Display P3'"), std::string::npos);
-  EXPECT_NE(inputErrorOf([&] { ocio.pipeline({"sRGB", "Raw", "camsim warm"}); })
-                .find("looks cannot apply"),
+  EXPECT_NE(inputErrorOf([&] {
+              ocio.pipeline({"sRGB", "Raw", "camsim warm"});
+            }).find("looks cannot apply"),
             std::string::npos);
   // HDR view on an SDR display.
   EXPECT_NE(inputErrorOf([&] {
@@ -324,8 +329,8 @@ TEST_F(ColorManagementTest, BadConfigsThrowInputError) {
 }
 
 TEST(Quantize, ClampsRoundsAndZeroesNaN) {
-  const std::vector<float> v{-0.5f, 0.0f, 0.51f / 255.0f, 0.49f / 255.0f, 0.5f, 1.0f, 7.0f,
-                             std::nanf("")};
+  const std::vector<float> v{-0.5f, 0.0f, 0.51f / 255.0f, 0.49f / 255.0f,
+                             0.5f,  1.0f, 7.0f,           std::nanf("")};
   EXPECT_EQ(quantizeDisplay8(v), (std::vector<std::uint8_t>{0, 0, 1, 0, 128, 255, 255, 0}));
   EXPECT_EQ(quantizeDisplay16(v),
             (std::vector<std::uint16_t>{0, 0, 131, 126, 32768, 65535, 65535, 0}));

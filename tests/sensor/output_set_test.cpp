@@ -118,7 +118,8 @@ TEST_F(OutputSetTest, AddTextWritesTheTemporaryAndFailsNamingTheFinalFile) {
     missing.addText("table.csv", "x");
     FAIL() << "no error for a missing directory";
   } catch (const std::runtime_error& e) {
-    EXPECT_NE(std::string(e.what()).find("cannot write " + (dir_ / "no" / "such" / "dir" / "table.csv").string()),
+    EXPECT_NE(std::string(e.what()).find("cannot write " +
+                                         (dir_ / "no" / "such" / "dir" / "table.csv").string()),
               std::string::npos)
         << e.what();
   }
@@ -159,7 +160,6 @@ TEST_F(OutputSetTest, UncommittedSetDoesNotTouchExistingFinalFiles) {
   EXPECT_EQ(entries(), 1u);
 }
 
-
 // A PID that belonged to a process that has exited and been reaped (a killed run's).
 pid_t deadPid() {
   const pid_t child = ::fork();
@@ -172,9 +172,9 @@ pid_t deadPid() {
 TEST(OutputSetNames, TemporaryOwnerReadsThePidOfTemporaryNamesOnly) {
   EXPECT_EQ(OutputSet::temporaryOwner(".a.exr.camsim-tmp-1234"), 1234);
   EXPECT_EQ(OutputSet::temporaryOwner(".cornell_box.partial.exr.camsim-tmp-7"), 7);
-  EXPECT_EQ(OutputSet::temporaryOwner("a.exr.camsim-tmp-1234"), -1);   // not hidden
-  EXPECT_EQ(OutputSet::temporaryOwner(".camsim-tmp-1234"), -1);        // no final name
-  EXPECT_EQ(OutputSet::temporaryOwner(".a.exr.camsim-tmp-"), -1);      // no pid
+  EXPECT_EQ(OutputSet::temporaryOwner("a.exr.camsim-tmp-1234"), -1);  // not hidden
+  EXPECT_EQ(OutputSet::temporaryOwner(".camsim-tmp-1234"), -1);       // no final name
+  EXPECT_EQ(OutputSet::temporaryOwner(".a.exr.camsim-tmp-"), -1);     // no pid
   EXPECT_EQ(OutputSet::temporaryOwner(".a.exr.camsim-tmp-12x"), -1);
   EXPECT_EQ(OutputSet::temporaryOwner(".a.exr.camsim-tmp--5"), -1);
   EXPECT_EQ(OutputSet::temporaryOwner(".a.exr.camsim-tmp-0"), -1);

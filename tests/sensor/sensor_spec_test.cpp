@@ -1,7 +1,7 @@
 // Tests for sensor/sensor_spec: the presets, the YAML format's QE forms, validation with
 // located errors, and the derived quantities (dark current, saturation).
-#include "sensor/cie.h"
 #include "sensor/sensor_spec.h"
+#include "sensor/cie.h"
 
 #include <unistd.h>
 #include <cmath>
@@ -216,8 +216,10 @@ TEST(SensorSpec, PresetsLoad) {
                        static_cast<double>((*cmf[c])(555.0f));
     for (float nm : {420.0f, 450.0f, 500.0f, 600.0f, 650.0f}) {
       if (static_cast<double>((*cmf[c])(nm)) < 1e-3) continue;  // z̄ vanishes in the red
-      EXPECT_NEAR(static_cast<double>(xyz.qe[static_cast<size_t>(c)](nm)) * static_cast<double>(nm) /
-                      static_cast<double>((*cmf[c])(nm)) / ref, 1.0, 1e-5) << c << " at " << nm;
+      EXPECT_NEAR(static_cast<double>(xyz.qe[static_cast<size_t>(c)](nm)) *
+                      static_cast<double>(nm) / static_cast<double>((*cmf[c])(nm)) / ref,
+                  1.0, 1e-5)
+          << c << " at " << nm;
     }
   }
   EXPECT_EQ(xyz.whiteLevelDn(), 65535.0);
