@@ -20,9 +20,12 @@
 #include "integrator/render.h"
 #include "integrator/scene.h"
 #include "integrator/scene_loader.h"
+#include "tests/support/text_file.h"
 
 namespace camsim {
 namespace {
+
+using test::readFile;
 
 namespace fs = std::filesystem;
 
@@ -152,13 +155,6 @@ TEST(BenchLimit, TextureLoadUpliftsEveryTexelWithinItsStatedError) {
 }
 
 // ---- the binary ------------------------------------------------------------------------
-
-std::string readFile(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
 
 int runBench(const std::string& args, const fs::path& logDir) {
   // No plot: CAMSIM_PYTHON names no interpreter (the plot script is the PtcBinary tests' kind

@@ -17,9 +17,12 @@
 #include <vector>
 
 #include "cli/args.h"
+#include "tests/support/text_file.h"
 
 namespace camsim {
 namespace {
+
+using test::readFile;
 
 namespace fs = std::filesystem;
 
@@ -68,13 +71,6 @@ std::string quote(const std::string& s) {
   std::string out = "'";
   for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
   return out + "'";
-}
-
-std::string readFile(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
 }
 
 struct PtcRun {

@@ -25,11 +25,15 @@
 #include "sensor/exr_io.h"
 #include "sensor/input_error.h"
 #include "sensor/output_set.h"
+#include "tests/support/text_file.h"
 
 extern char** environ;
 
 namespace camsim {
 namespace {
+
+using test::readFile;
+using test::writeFile;
 
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
@@ -50,19 +54,6 @@ class RenderGuards : public testing::Test {
   }
   fs::path dir_;
 };
-
-std::string readFile(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
-void writeFile(const fs::path& path, const std::string& text) {
-  std::ofstream out(path, std::ios::binary);
-  out << text;
-  ASSERT_TRUE(out.good()) << path;
-}
 
 std::vector<std::string> filesIn(const fs::path& dir) {
   std::vector<std::string> names;

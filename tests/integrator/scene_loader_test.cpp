@@ -18,28 +18,18 @@
 #include "sensor/color_space.h"
 #include "sensor/input_error.h"
 #include "sensor/rgb_uplift.h"
+#include "tests/support/text_file.h"
 
 namespace camsim {
 namespace {
+
+using test::readFile;
+using test::writeFile;
 
 namespace fs = std::filesystem;
 
 // A fresh directory under the system temp directory, removed with everything in it.
 using test::TempDir;
-
-void writeFile(const fs::path& path, const std::string& text) {
-  fs::create_directories(path.parent_path());
-  std::ofstream out(path, std::ios::binary);
-  out << text;
-  ASSERT_TRUE(out.good()) << path;
-}
-
-std::string readFile(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
 
 // Lines 1–6 of most test scenes; the shapes follow from line 7.
 const std::string kCamera =
