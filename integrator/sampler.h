@@ -7,7 +7,6 @@
 #pragma once
 
 #include <cstdint>
-#include <memory>
 
 #include <glm/vec2.hpp>
 
@@ -31,7 +30,6 @@ class Sampler {
   virtual void setDimension(int dimension) = 0;
   virtual float get1D() = 0;
   virtual glm::vec2 get2D() = 0;
-  virtual std::unique_ptr<Sampler> clone() const = 0;
 };
 
 // Independent uniform numbers: u = hash(seed, pixel, sample index, dimension), a
@@ -53,9 +51,6 @@ class IndependentSampler final : public Sampler {
   glm::vec2 get2D() override {
     const float a = get1D();
     return {a, get1D()};
-  }
-  std::unique_ptr<Sampler> clone() const override {
-    return std::make_unique<IndependentSampler>(*this);
   }
 
  private:

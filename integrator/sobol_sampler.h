@@ -22,7 +22,6 @@
 #pragma once
 
 #include <cstdint>
-#include <memory>
 
 #include "integrator/sampler.h"
 
@@ -97,7 +96,6 @@ class SobolSampler final : public Sampler {
             sobol::toUnit(sobol::reverseBits(
                 sobol::laineKarras(sobol::reversedDimension1(shuffled), seedY)))};
   }
-  std::unique_ptr<Sampler> clone() const override { return std::make_unique<SobolSampler>(*this); }
 
  private:
   // The pair's scramble seeds: one 64-bit mix of (pixel key, dimension) gives the index

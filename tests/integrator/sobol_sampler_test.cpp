@@ -67,18 +67,18 @@ TEST(SobolSampler, EveryAlignedBlockOfEveryPairIsAZeroMTwoNet) {
 // on what was drawn before; another render seed gives other points.
 TEST(SobolSampler, TwoDimensionalPairsAreDeterministic) {
   SobolSampler a(5), other(6);
-  const std::unique_ptr<Sampler> b = a.clone();
+  SobolSampler b = a;  // a copy
   int sameAcrossSeeds = 0;
   for (int i = 0; i < 64; ++i) {
     a.startPixelSample({3, 4}, i);
     a.setDimension(kDimLens);
     const glm::vec2 pa = a.get2D();
-    b->startPixelSample({3, 4}, i);
-    b->setDimension(kDimPixel);
-    b->get2D();
-    b->get1D();
-    b->setDimension(kDimLens);
-    EXPECT_EQ(pa, b->get2D()) << i;
+    b.startPixelSample({3, 4}, i);
+    b.setDimension(kDimPixel);
+    b.get2D();
+    b.get1D();
+    b.setDimension(kDimLens);
+    EXPECT_EQ(pa, b.get2D()) << i;
     other.startPixelSample({3, 4}, i);
     other.setDimension(kDimLens);
     sameAcrossSeeds += other.get2D() == pa ? 1 : 0;
