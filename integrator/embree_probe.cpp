@@ -29,6 +29,15 @@ MeshBuildProbe probeMeshBuild(const MeshData& mesh, int threads, BvhQuality qual
   MeshBuildProbe probe;
   probe.triangles = mesh.indices.size() / 3;
   EmbreeMemoryCount count;
+  // Shared buffers as in EmbreeScene, padded the same way (Embree may read 16 bytes from the
+  // last vertex and index triple); the copies are ours, so Embree counts only its own memory.
+  // Declared before the guard: they must outlive the scene that points into them.
+  std::vector<glm::vec3> positions;
+  positions.reserve(mesh.positions.size() + 1);
+  positions.assign(mesh.positions.begin(), mesh.positions.end());
+  std::vector<std::uint32_t> indices;
+  indices.reserve(mesh.indices.size() + 3);
+  indices.assign(mesh.indices.begin(), mesh.indices.end());
   DeviceGuard g;
   g.device = rtcNewDevice(nullptr);
   if (!g.device) throw std::runtime_error("cannot create Embree device");
@@ -36,14 +45,6 @@ MeshBuildProbe probeMeshBuild(const MeshData& mesh, int threads, BvhQuality qual
   g.scene = rtcNewScene(g.device);
   rtcSetSceneBuildQuality(
       g.scene, quality == BvhQuality::kHigh ? RTC_BUILD_QUALITY_HIGH : RTC_BUILD_QUALITY_MEDIUM);
-  // Shared buffers as in EmbreeScene, padded the same way (Embree may read 16 bytes from the
-  // last vertex and index triple); the copies are ours, so Embree counts only its own memory.
-  std::vector<glm::vec3> positions;
-  positions.reserve(mesh.positions.size() + 1);
-  positions.assign(mesh.positions.begin(), mesh.positions.end());
-  std::vector<std::uint32_t> indices;
-  indices.reserve(mesh.indices.size() + 3);
-  indices.assign(mesh.indices.begin(), mesh.indices.end());
   RTCGeometry geom = rtcNewGeometry(g.device, RTC_GEOMETRY_TYPE_TRIANGLE);
   rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, positions.data(),
                              0, sizeof(glm::vec3), positions.size());

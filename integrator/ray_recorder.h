@@ -7,7 +7,7 @@
 // Thread safety: record() may be called from any number of TBB worker threads at once.
 // Each thread appends to its own buffer (no locks, no shared cache lines but one counter),
 // so each buffer holds the rays of the tiles that thread rendered in the order it cast
-// them — the coherence the tracer saw. rays() concatenates the buffers.
+// them — the coherence the tracer saw. takeRays() concatenates the buffers.
 //
 // replayRays() traces recorded rays again with EmbreeScene::intersect / occluded (closest
 // hit for camera and bounce rays, any hit for shadow rays), in chunks of 256 consecutive
@@ -52,9 +52,9 @@ class RayRecorder {
     buffers_.local().push_back(RecordedRay{ray, kind});
   }
 
-  // Every stored ray, moved out (the recorder is empty afterwards; each thread's buffer is
-  // freed as it is appended, so the peak is not twice the rays): each thread's rays in the
-  // order that thread cast them.
+  // Every stored ray, each thread's in the order that thread cast them. Call once, after the
+  // render: each thread's buffer is freed once appended (not kept beside the result; while
+  // concatenating, both exist), and the recorder keeps nothing.
   std::vector<RecordedRay> takeRays();
   std::uint64_t dropped() const { return dropped_.load(); }
 

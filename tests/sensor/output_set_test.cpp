@@ -16,6 +16,8 @@
 
 #include <gtest/gtest.h>
 
+#include "sensor/input_error.h"
+
 namespace camsim {
 namespace {
 
@@ -118,6 +120,8 @@ TEST_F(OutputSetTest, AddTextWritesTheTemporaryAndFailsNamingTheFinalFile) {
     missing.addText("table.csv", "x");
     FAIL() << "no error for a missing directory";
   } catch (const std::runtime_error& e) {
+    EXPECT_EQ(dynamic_cast<const InputError*>(&e), nullptr)
+        << "an environment error, not bad input";
     EXPECT_NE(std::string(e.what()).find("cannot write " +
                                          (dir_ / "no" / "such" / "dir" / "table.csv").string()),
               std::string::npos)
