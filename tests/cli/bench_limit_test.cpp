@@ -6,10 +6,8 @@
 #include "tests/support/temp_dir.h"
 
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
 #include <algorithm>
-#include <cstdlib>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -20,6 +18,7 @@
 #include "integrator/render.h"
 #include "integrator/scene.h"
 #include "integrator/scene_loader.h"
+#include "tests/support/run_command.h"
 #include "tests/support/text_file.h"
 
 namespace camsim {
@@ -159,11 +158,9 @@ TEST(BenchLimit, TextureLoadUpliftsEveryTexelWithinItsStatedError) {
 int runBench(const std::string& args, const fs::path& logDir) {
   // No plot: CAMSIM_PYTHON names no interpreter (the plot script is the PtcBinary tests' kind
   // of concern; here only the numbers' files are checked).
-  const std::string command = "CAMSIM_PYTHON=/nonexistent " + std::string(CAMSIM_BINARY) +
-                              " bench " + args + " >" + (logDir / "stdout.txt").string() + " 2>" +
-                              (logDir / "stderr.txt").string();
-  const int status = std::system(command.c_str());
-  return status != -1 && WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return test::runCommand(
+             "CAMSIM_PYTHON=/nonexistent " + test::quote(CAMSIM_BINARY) + " bench " + args, logDir)
+      .exitCode;
 }
 
 TEST(BenchBinary, SmallRunWritesTablesAndCsvs) {

@@ -6,7 +6,6 @@
 #include "tests/support/temp_dir.h"
 
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <cstdlib>
@@ -17,12 +16,16 @@
 #include <vector>
 
 #include "cli/args.h"
+#include "tests/support/run_command.h"
 #include "tests/support/text_file.h"
 
 namespace camsim {
 namespace {
 
+using test::quote;
 using test::readFile;
+using test::runCommand;
+using test::RunResult;
 
 namespace fs = std::filesystem;
 
@@ -67,28 +70,9 @@ TEST(PtcTable, ShowsConfiguredMeasuredAndRelativeError) {
 
 using test::TempDir;
 
-std::string quote(const std::string& s) {
-  std::string out = "'";
-  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return out + "'";
-}
-
-struct PtcRun {
-  int exitCode = -1;
-  std::string out, err;
-};
-
 // `env camsim args` with stdout and stderr captured into files in logDir.
-PtcRun camsim(const std::string& env, const std::string& args, const fs::path& logDir) {
-  const fs::path out = logDir / "stdout.txt", err = logDir / "stderr.txt";
-  const std::string command = env + " " + quote(CAMSIM_BINARY) + " " + args + " >" +
-                              quote(out.string()) + " 2>" + quote(err.string());
-  const int status = std::system(command.c_str());
-  PtcRun r;
-  if (status != -1 && WIFEXITED(status)) r.exitCode = WEXITSTATUS(status);
-  r.out = readFile(out);
-  r.err = readFile(err);
-  return r;
+RunResult camsim(const std::string& env, const std::string& args, const fs::path& logDir) {
+  return runCommand(env + " " + quote(CAMSIM_BINARY) + " " + args, logDir);
 }
 
 bool hasMatplotlib() {
@@ -104,7 +88,7 @@ std::size_t lineCount(const std::string& text) {
 TEST(PtcBinary, MeasuresAPresetAndWritesCsvAndPlots) {
   TempDir dir;
   const fs::path out = dir.path() / "ptc";
-  const PtcRun r = camsim("", "ptc smartphone-1.4um -o " + quote(out.string()), dir.path());
+  const RunResult r = camsim("", "ptc smartphone-1.4um -o " + quote(out.string()), dir.path());
   ASSERT_EQ(r.exitCode, 0) << r.err;
   EXPECT_NE(r.out.find("system gain K"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("channel G"), std::string::npos) << r.out;
@@ -126,8 +110,8 @@ TEST(PtcBinary, MeasuresAPresetAndWritesCsvAndPlots) {
 TEST(PtcBinary, WithoutPythonWritesTheCsvOnly) {
   TempDir dir;
   const fs::path out = dir.path() / "ptc";
-  const PtcRun r = camsim("CAMSIM_PYTHON=/nonexistent/python3",
-                          "ptc fullframe-d850 -o " + quote(out.string()), dir.path());
+  const RunResult r = camsim("CAMSIM_PYTHON=/nonexistent/python3",
+                             "ptc fullframe-d850 -o " + quote(out.string()), dir.path());
   ASSERT_EQ(r.exitCode, 0) << r.err;
   EXPECT_NE(r.err.find("plots skipped"), std::string::npos) << r.err;
   EXPECT_TRUE(fs::exists(out / "ptc_fullframe-d850.csv"));
@@ -145,7 +129,7 @@ TEST(PtcBinary, BadSensorExitsTwoWithALocatedMessageAndWritesNothing) {
   const fs::path bad = dir.path() / "bad.yaml";
   std::ofstream(bad, std::ios::binary) << text;
   const fs::path out = dir.path() / "ptc";
-  PtcRun r = camsim("", "ptc " + quote(bad.string()) + " -o " + quote(out.string()), dir.path());
+  RunResult r = camsim("", "ptc " + quote(bad.string()) + " -o " + quote(out.string()), dir.path());
   EXPECT_EQ(r.exitCode, 2);
   EXPECT_NE(r.err.find("bad.yaml:" + std::to_string(line) + ":"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("full_well_e"), std::string::npos) << r.err;

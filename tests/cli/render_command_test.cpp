@@ -6,7 +6,6 @@
 #include "tests/support/temp_dir.h"
 
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -22,12 +21,16 @@
 #include "cli/render_command.h"
 #include "integrator/scene_loader.h"
 #include "sensor/exr_io.h"
+#include "tests/support/run_command.h"
 #include "tests/support/text_file.h"
 
 namespace camsim {
 namespace {
 
+using test::quote;
 using test::readFile;
+using test::runCommand;
+using test::RunResult;
 using test::writeFile;
 
 namespace fs = std::filesystem;
@@ -85,29 +88,9 @@ TEST(ParseArgs, BadUsageThrows) {
 
 using test::TempDir;
 
-std::string quote(const std::string& s) {
-  std::string out = "'";
-  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return out + "'";
-}
-
-struct RunResult {
-  int exitCode = -1;
-  std::string out;
-  std::string err;
-};
-
 // Runs `program args` with stdout and stderr captured into files in logDir.
 RunResult runProgram(const std::string& program, const std::string& args, const fs::path& logDir) {
-  const fs::path out = logDir / "stdout.txt", err = logDir / "stderr.txt";
-  const std::string command =
-      quote(program) + " " + args + " >" + quote(out.string()) + " 2>" + quote(err.string());
-  const int status = std::system(command.c_str());
-  RunResult r;
-  if (status != -1 && WIFEXITED(status)) r.exitCode = WEXITSTATUS(status);
-  r.out = readFile(out);
-  r.err = readFile(err);
-  return r;
+  return runCommand(quote(program) + " " + args, logDir);
 }
 
 RunResult camsim(const std::string& args, const fs::path& logDir) {
