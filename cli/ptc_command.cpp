@@ -1,8 +1,8 @@
 #include "cli/ptc_command.h"
 
 #include <cctype>
-#include <charconv>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <ostream>
@@ -88,12 +88,7 @@ PtcArgs parsePtcArgs(const std::vector<std::string>& args) {
       p.outputDir = value();
       if (p.outputDir.empty()) throw UsageError(a + " needs a non-empty directory");
     } else if (a == "--seed") {
-      const std::string& text = value();
-      std::uint64_t seed = 0;
-      const auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), seed);
-      if (ec != std::errc() || ptr != text.data() + text.size() || text.empty())
-        throw UsageError("--seed expects a non-negative integer, got '" + text + "'");
-      p.seed = seed;
+      p.seed = static_cast<std::uint64_t>(parseInteger(a, value(), 0, INT64_MAX));
     } else if (!a.empty() && a[0] == '-') {
       throw UsageError("unknown option '" + a + "' (try 'camsim ptc --help')");
     } else if (p.sensor.empty()) {
