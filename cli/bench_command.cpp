@@ -135,10 +135,16 @@ int runBench(const BenchArgs& args, std::ostream& out, std::ostream& log) {
         << s.description.camera.resolution.y << " (scene: " << s.original.x << "x" << s.original.y
         << ")\n";
     const Scene scene(s.description);
-    ReferenceRequest request{s.name, s.text, s.baseDir, s.description, plan.refSpp, plan.threads};
+    const ReferenceRequest request{s.name,
+                                   s.text,
+                                   s.baseDir,
+                                   s.description.camera.resolution,
+                                   s.description.sourceFile,
+                                   plan.refSpp,
+                                   plan.threads};
     ProgressBar bar("reference " + s.name);
     const Reference ref =
-        obtainReference(request, cacheDir, log, [&](int d, int t) { bar.update(d, t); });
+        obtainReference(request, scene, cacheDir, log, [&](int d, int t) { bar.update(d, t); });
     bar.finish();
     refs << "  " << s.name << " " << s.description.camera.resolution.x << "x"
          << s.description.camera.resolution.y << ": rMSE floor " << formatNumber(ref.noise.rmse, 3)

@@ -106,7 +106,7 @@ std::vector<std::filesystem::path> referencedFiles(const std::string& sceneText,
 
 std::string referenceKey(const ReferenceRequest& request) {
   std::ostringstream key;
-  const glm::ivec2 res = request.description.camera.resolution;
+  const glm::ivec2 res = request.resolution;
   key << kFormatTag << "\n"
       << CAMSIM_VERSION << "\n"
       << res.x << "x" << res.y << "\n"
@@ -125,8 +125,9 @@ std::string referenceKey(const ReferenceRequest& request) {
   return fnv1aHex(key.str());
 }
 
-Reference obtainReference(const ReferenceRequest& request, const std::filesystem::path& cacheDir,
-                          std::ostream& log, const std::function<void(int, int)>& progress) {
+Reference obtainReference(const ReferenceRequest& request, const Scene& scene,
+                          const std::filesystem::path& cacheDir, std::ostream& log,
+                          const std::function<void(int, int)>& progress) {
   const std::string key = referenceKey(request);
   const std::string fileName = request.name + "-" + key + ".exr";
   Reference ref;
@@ -137,7 +138,6 @@ Reference obtainReference(const ReferenceRequest& request, const std::filesystem
     log << "reference " << request.name << ": cached " << ref.file.string() << "\n";
     return ref;
   }
-  const Scene scene(request.description);
   const SpectralResponse response = SpectralResponse::cieXyz();
   const int half = std::max(1, request.spp / 2);
   auto renderHalf = [&](std::uint64_t seed, int offset) {
@@ -174,12 +174,13 @@ Reference obtainReference(const ReferenceRequest& request, const std::filesystem
   const Metadata meta = {
       {"camsim:version", CAMSIM_VERSION},
       {"camsim:bench_key", key},
-      {"camsim:scene", request.description.sourceFile},
+      {"camsim:scene", request.sceneFile},
       {"camsim:spp", std::to_string(2 * half) + " (two halves of " + std::to_string(half) +
                          ", Sobol', seeds 1001 and 1002)"},
       {"camsim:render_seconds", formatNumber(ref.seconds, 6)},
       {"camsim:units", "CIE Y of the film (lm*s per photosite)"}};
   if (std::filesystem::is_directory(cacheDir, ec)) {
+    OutputSet::cleanStaleTemporaries(cacheDir);  // of a run killed while writing a reference
     OutputSet out(cacheDir);
     writeExr(out.add(fileName), file, meta, std::nullopt);
     out.commit();

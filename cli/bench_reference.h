@@ -24,8 +24,10 @@
 #include <string>
 #include <vector>
 
+#include <glm/vec2.hpp>
 #include "cli/bench_metrics.h"
-#include "integrator/scene_description.h"
+
+#include "integrator/scene.h"
 #include "sensor/image.h"
 
 namespace camsim {
@@ -34,7 +36,8 @@ struct ReferenceRequest {
   std::string name;               // scene name (file stem)
   std::string sceneText;          // the scene file as read
   std::filesystem::path baseDir;  // where its relative paths resolve
-  SceneDescription description;   // loaded, already at the bench resolution
+  glm::ivec2 resolution{0};       // px, the bench resolution the Scene was built at
+  std::string sceneFile;          // for the reference's metadata
   int spp = 2048;                 // total: two halves of spp/2
   int threads = 0;
 };
@@ -54,10 +57,12 @@ std::vector<std::filesystem::path> referencedFiles(const std::string& sceneText,
 // The cache key (16 hex digits).
 std::string referenceKey(const ReferenceRequest& request);
 
-// Reads CACHE_DIR/NAME-KEY.exr if present and valid, else renders and writes it. `log`
-// gets one line on what happened; `progress(done, total)` follows the render's tiles.
-Reference obtainReference(const ReferenceRequest& request, const std::filesystem::path& cacheDir,
-                          std::ostream& log, const std::function<void(int, int)>& progress = {});
+// Reads CACHE_DIR/NAME-KEY.exr if present and valid, else renders `scene` (the request's
+// scene, built by the caller) and writes it. `log` gets one line on what happened;
+// `progress(done, total)` follows the render's tiles.
+Reference obtainReference(const ReferenceRequest& request, const Scene& scene,
+                          const std::filesystem::path& cacheDir, std::ostream& log,
+                          const std::function<void(int, int)>& progress = {});
 
 // The luminance channel of a film image as a one-channel "Y" image.
 Image luminanceOf(const Image& xyz);

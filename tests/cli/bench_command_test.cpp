@@ -233,10 +233,17 @@ ReferenceRequest tinyRequest(const fs::path& dir, const std::string& reflectance
   r.name = "tiny";
   r.sceneText = text;
   r.baseDir = dir;
-  r.description = loadSceneFromText(text, "tiny.yaml", dir);
+  r.resolution = loadSceneFromText(text, "tiny.yaml", dir).camera.resolution;
+  r.sceneFile = "tiny.yaml";
   r.spp = 4;
   r.threads = 1;
   return r;
+}
+
+// obtainReference with the request's scene built from its text.
+Reference obtainTiny(const ReferenceRequest& r, const fs::path& cacheDir, std::ostream& log) {
+  const Scene scene(loadSceneFromText(r.sceneText, r.sceneFile, r.baseDir));
+  return obtainReference(r, scene, cacheDir, log);
 }
 
 void writeText(const fs::path& p, const std::string& text) {
@@ -249,21 +256,21 @@ TEST(BenchReference, CachedUntilTheSceneOrItsFilesChange) {
   const fs::path cache = dir.path() / "cache";
   std::ostringstream log;
   const ReferenceRequest req = tinyRequest(dir.path(), "0.5");
-  const Reference first = obtainReference(req, cache, log);
+  const Reference first = obtainTiny(req, cache, log);
   EXPECT_FALSE(first.fromCache);
   EXPECT_TRUE(fs::is_regular_file(first.file));
   EXPECT_EQ(first.file.filename().string().rfind("tiny-", 0), 0u);
   EXPECT_EQ(first.image.width, 8);
   EXPECT_EQ(first.image.height, 6);
 
-  const Reference again = obtainReference(req, cache, log);  // unchanged: reused
+  const Reference again = obtainTiny(req, cache, log);  // unchanged: reused
   EXPECT_TRUE(again.fromCache);
   EXPECT_EQ(again.file, first.file);
   EXPECT_EQ(again.image.pixels, first.image.pixels);
   EXPECT_DOUBLE_EQ(again.noise.rmse, first.noise.rmse);
 
   const Reference edited =
-      obtainReference(tinyRequest(dir.path(), "0.6"), cache, log);  // scene text changed
+      obtainTiny(tinyRequest(dir.path(), "0.6"), cache, log);  // scene text changed
   EXPECT_FALSE(edited.fromCache);
   EXPECT_NE(edited.file, first.file);
 
@@ -276,8 +283,8 @@ TEST(BenchReference, CachedUntilTheSceneOrItsFilesChange) {
   writeText(dir.path() / "tri.obj", "v -1 -1 0\nv 1 -1 0\nv 0 2 0\nf 1 2 3\n");
   const ReferenceRequest meshEdited = tinyRequest(dir.path(), "0.5");
   EXPECT_NE(referenceKey(meshEdited), keyBefore);
-  EXPECT_FALSE(obtainReference(meshEdited, cache, log).fromCache);
-  EXPECT_TRUE(obtainReference(meshEdited, cache, log).fromCache);
+  EXPECT_FALSE(obtainTiny(meshEdited, cache, log).fromCache);
+  EXPECT_TRUE(obtainTiny(meshEdited, cache, log).fromCache);
 }
 
 TEST(BenchReference, ADamagedCacheFileIsRenderedAgain) {
@@ -285,11 +292,11 @@ TEST(BenchReference, ADamagedCacheFileIsRenderedAgain) {
   writeText(dir.path() / "tri.obj", "v -1 -1 0\nv 1 -1 0\nv 0 1 0\nf 1 2 3\n");
   std::ostringstream log;
   const ReferenceRequest req = tinyRequest(dir.path(), "0.5");
-  const Reference first = obtainReference(req, dir.path(), log);
+  const Reference first = obtainTiny(req, dir.path(), log);
   writeText(first.file, "not an exr");
-  const Reference again = obtainReference(req, dir.path(), log);
+  const Reference again = obtainTiny(req, dir.path(), log);
   EXPECT_FALSE(again.fromCache);
-  EXPECT_TRUE(obtainReference(req, dir.path(), log).fromCache);
+  EXPECT_TRUE(obtainTiny(req, dir.path(), log).fromCache);
 }
 
 TEST(BenchReference, ReferencedFilesAreFoundInBlockAndFlowStyle) {
