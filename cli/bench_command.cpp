@@ -99,11 +99,8 @@ int runBench(const BenchArgs& args, std::ostream& out, std::ostream& log) {
   const std::filesystem::path outDir(args.outputDir);
   const std::filesystem::path cacheDir =
       args.cacheDir ? std::filesystem::path(*args.cacheDir) : defaultBenchCacheDir();
-  std::error_code ec;
-  std::filesystem::create_directories(outDir, ec);
-  if (!std::filesystem::is_directory(outDir))
-    throw InputError({outDir.string(), 0, 0}, "",
-                     "cannot create output directory" + (ec ? ": " + ec.message() : ""));
+  for (const auto& stale : OutputSet::prepareDirectory(outDir))
+    log << "removed " << stale.string() << " (left by a run that was killed)\n";
   const std::string loadBefore = loadAverage();
 
   std::ostringstream report;
@@ -177,6 +174,7 @@ int runBench(const BenchArgs& args, std::ostream& out, std::ostream& log) {
     const std::filesystem::path temp =
         std::filesystem::temp_directory_path() / ("camsim-bench-" + std::to_string(::getpid()));
     std::filesystem::create_directories(temp);
+    std::error_code ec;
     try {
       if (plan.meshTriangles > 0) {
         log << "bench: building a " << plan.meshTriangles << "-triangle mesh\n";

@@ -159,11 +159,8 @@ std::vector<std::filesystem::path> runPtc(const PtcArgs& args, std::ostream& out
                                           std::ostream& log) {
   const SensorSpec sensor = loadSensorSpec(args.sensor, CAMSIM_LUTS_DIR);
   const std::filesystem::path outDir(args.outputDir);
-  std::error_code ec;
-  std::filesystem::create_directories(outDir, ec);
-  if (!std::filesystem::is_directory(outDir))
-    throw InputError({outDir.string(), 0, 0}, "",
-                     "cannot create output directory" + (ec ? ": " + ec.message() : ""));
+  for (const auto& stale : OutputSet::prepareDirectory(outDir))
+    log << "removed " << stale.string() << " (left by a run that was killed)\n";
 
   PtcOptions options;
   if (args.seed) options.seed = *args.seed;

@@ -136,12 +136,7 @@ RenderCommandResult runRender(const RenderArgs& args, std::ostream& log,
   const SceneDescription& desc = loaded.description;
   checkMemoryLimit(desc, args.maxMemoryGb);  // before any work
   const std::filesystem::path outDir(args.outputDir);
-  std::error_code ec;
-  std::filesystem::create_directories(outDir, ec);
-  if (!std::filesystem::is_directory(outDir))
-    throw InputError({outDir.string(), 0, 0}, "",
-                     "cannot create output directory" + (ec ? ": " + ec.message() : ""));
-  for (const auto& stale : OutputSet::cleanStaleTemporaries(outDir))
+  for (const auto& stale : OutputSet::prepareDirectory(outDir))
     log << "removed " << stale.string() << " (left by a run that was killed)\n";
 
   const PictureSettings picture{args.ocioConfig, {args.display, args.view, args.look}};
@@ -205,6 +200,7 @@ RenderCommandResult runRender(const RenderArgs& args, std::ostream& log,
   writeRenderOutputs({desc, scene, result, meta, picture, rerender}, outputs, log);
   outcome.files = outputs.commit();
   const std::filesystem::path stalePartial = outDir / (desc.name + ".partial.exr");
+  std::error_code ec;
   if (std::filesystem::remove(stalePartial, ec))
     log << "removed " << stalePartial.string() << " of an interrupted run\n";
 

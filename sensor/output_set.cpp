@@ -10,6 +10,8 @@
 #include <string_view>
 #include <system_error>
 
+#include "sensor/input_error.h"
+
 namespace camsim {
 namespace {
 
@@ -33,6 +35,16 @@ std::filesystem::path OutputSet::add(const std::string& fileName) {
   const auto temp = directory_ / temporaryName(fileName, static_cast<long>(::getpid()));
   files_.emplace_back(temp, directory_ / fileName);
   return temp;
+}
+
+std::vector<std::filesystem::path> OutputSet::prepareDirectory(
+    const std::filesystem::path& directory) {
+  std::error_code ec;
+  std::filesystem::create_directories(directory, ec);
+  if (!std::filesystem::is_directory(directory))
+    throw InputError({directory.string(), 0, 0}, "",
+                     "cannot create output directory" + (ec ? ": " + ec.message() : ""));
+  return cleanStaleTemporaries(directory);
 }
 
 std::filesystem::path OutputSet::addText(const std::string& fileName, const std::string& text) {

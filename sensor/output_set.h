@@ -39,6 +39,10 @@ class OutputSet {
   // the removed paths. A missing directory has nothing to clean.
   static std::vector<std::filesystem::path> cleanStaleTemporaries(
       const std::filesystem::path& directory);
+  // Creates `directory` if missing (InputError naming it if that fails or it is not a
+  // directory), then cleanStaleTemporaries(directory): what a command does before writing.
+  static std::vector<std::filesystem::path> prepareDirectory(
+      const std::filesystem::path& directory);
   // The PID in a temporary's file name, or -1 if `fileName` is not one.
   static long temporaryOwner(const std::string& fileName);
 

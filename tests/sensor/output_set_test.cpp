@@ -129,6 +129,20 @@ TEST_F(OutputSetTest, AddTextWritesTheTemporaryAndFailsNamingTheFinalFile) {
   }
 }
 
+TEST_F(OutputSetTest, PrepareDirectoryCreatesItOrNamesItInAnInputError) {
+  const std::filesystem::path nested = dir_ / "a" / "b";
+  EXPECT_TRUE(OutputSet::prepareDirectory(nested).empty());
+  EXPECT_TRUE(std::filesystem::is_directory(nested));
+  write(dir_ / "file", "x");
+  try {
+    OutputSet::prepareDirectory(dir_ / "file");
+    FAIL() << "no error for a regular file";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find((dir_ / "file").string()), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("cannot create output directory"), std::string::npos);
+  }
+}
+
 TEST_F(OutputSetTest, CommitReplacesAnExistingFile) {
   write(dir_ / "a.exr", "old");
   {
