@@ -22,30 +22,14 @@ inline constexpr float gammaBound(int n) {
   return (static_cast<float>(n) * eps) / (1.0f - static_cast<float>(n) * eps);
 }
 
-inline float nextFloatUp(float v) {
-  if (std::isinf(v) && v > 0.0f) return v;
-  if (v == -0.0f) v = 0.0f;
-  std::uint32_t bits = std::bit_cast<std::uint32_t>(v);
-  bits = v >= 0.0f ? bits + 1 : bits - 1;
-  return std::bit_cast<float>(bits);
-}
-
-inline float nextFloatDown(float v) {
-  if (std::isinf(v) && v < 0.0f) return v;
-  if (v == 0.0f) v = -0.0f;
-  std::uint32_t bits = std::bit_cast<std::uint32_t>(v);
-  bits = v > 0.0f ? bits - 1 : bits + 1;
-  return std::bit_cast<float>(bits);
-}
-
 // |v| per component. glm::abs is written as x >= 0 ? x : −x, which GCC compiles to a
 // branch per component; std::abs on a float is one mask.
 inline glm::vec3 absComponents(const glm::vec3& v) {
   return {std::abs(v.x), std::abs(v.y), std::abs(v.z)};
 }
 
-// v moved by one ulp: up if direction > 0, down if < 0, unchanged if 0 — nextFloatUp or
-// nextFloatDown without branches. Floats are mapped to integers in the same order (both
+// v moved by one ulp: up if direction > 0, down if < 0, unchanged if 0 — std::nextafter
+// towards ±∞ without branches. Floats are mapped to integers in the same order (both
 // zeros to 0), stepped, and mapped back (differences from those two, irrelevant for ray
 // origins: ±∞ stay in either direction, and −2⁻¹⁴⁹ stepped up gives +0). Ray origins are
 // offset three times per bounce with directions that change sign from one ray to the
