@@ -30,20 +30,16 @@ class Film {
   // (and adds nothing) if it is not finite.
   bool addSample(glm::ivec2 pixel, const SampledSpectrum& q, const SampledWavelengths& lambda) {
     if (!q.isFinite()) return false;
-    // q(λᵢ)/p(λᵢ) once per sample: every channel of every response weights the same values
-    // (SpectralResponse::estimate, with the division hoisted out of the channel loop).
-    SampledSpectrum w;
-    for (int i = 0; i < kWavelengthSamples; ++i)
-      w[i] = lambda.pdf(i) > 0.0f ? q[i] / lambda.pdf(i) : 0.0f;
+    // q(λᵢ)/p(λᵢ) once per sample: every channel of every response weights the same values.
+    const SampledSpectrum w = safeDiv(q, lambda.pdfs());
     double* sums = &sums_[(static_cast<size_t>(pixel.y) * static_cast<size_t>(resolution_.x) +
                            static_cast<size_t>(pixel.x)) *
                           stride_];
     for (const SpectralResponse* r : responses_) {
       if (r->isMosaic()) {
-        *sums++ += estimate(r->channel(r->mosaic().channelAt(pixel.x, pixel.y)).curve, w, lambda);
+        *sums++ += r->estimate(r->mosaic().channelAt(pixel.x, pixel.y), w, lambda);
       } else {
-        for (int c = 0; c < r->channelCount(); ++c)
-          *sums++ += estimate(r->channel(c).curve, w, lambda);
+        for (int c = 0; c < r->channelCount(); ++c) *sums++ += r->estimate(c, w, lambda);
       }
     }
     return true;
@@ -55,15 +51,6 @@ class Film {
   std::vector<Image> toImages(int samplesPerPixel) const;
 
  private:
-  // (1/N) Σᵢ r(λᵢ) wᵢ with wᵢ = q(λᵢ)/p(λᵢ) (0 where p = 0).
-  static double estimate(const Spectrum& r, const SampledSpectrum& w,
-                         const SampledWavelengths& lambda) {
-    double sum = 0.0;
-    for (int i = 0; i < kWavelengthSamples; ++i)
-      sum += static_cast<double>(r.interpolate(lambda.gridIndex(i), lambda.gridFraction(i)) * w[i]);
-    return sum / kWavelengthSamples;
-  }
-
   glm::ivec2 resolution_;
   std::vector<const SpectralResponse*> responses_;
   size_t stride_ = 0;

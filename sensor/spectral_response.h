@@ -54,14 +54,14 @@ class SpectralResponse {
   int channelCount() const { return static_cast<int>(channels_.size()); }
   const ResponseChannel& channel(int c) const { return channels_[c]; }
 
-  // (1/N) Σᵢ r_c(λᵢ) · q[i] / p(λᵢ): the Monte Carlo estimate of channel c for one path.
-  double estimate(int c, const SampledSpectrum& q, const SampledWavelengths& lambda) const {
+  // (1/N) Σᵢ r_c(λᵢ) wᵢ: the Monte Carlo estimate of channel c for one path, given its
+  // weighted quantity already divided by the wavelength pdfs, wᵢ = q(λᵢ)/p(λᵢ) (safeDiv: 0
+  // where p = 0) — divided once by the caller for all channels.
+  double estimate(int c, const SampledSpectrum& w, const SampledWavelengths& lambda) const {
     const Spectrum& r = channels_[c].curve;
     double sum = 0.0;
     for (int i = 0; i < kWavelengthSamples; ++i)
-      if (lambda.pdf(i) > 0.0f)
-        sum += static_cast<double>(r.interpolate(lambda.gridIndex(i), lambda.gridFraction(i)) *
-                                   q[i] / lambda.pdf(i));
+      sum += static_cast<double>(r.interpolate(lambda.gridIndex(i), lambda.gridFraction(i)) * w[i]);
     return sum / kWavelengthSamples;
   }
 
