@@ -51,16 +51,13 @@ float sampleVisibleWavelength(float u) {
   return std::clamp(lambda, static_cast<float>(kLambdaMinNm), static_cast<float>(kLambdaMaxNm));
 }
 
-// The same index and fraction as Spectrum::operator() computes; sampled wavelengths lie in
-// [360, 830] nm (both samplers clamp or stay inside), where that operator never returns 0.
+// Sampled wavelengths lie in [360, 830] nm (both samplers clamp or stay inside), where
+// Spectrum::operator() interpolates at exactly this position.
 void SampledWavelengths::locateOnGrid() {
   for (int i = 0; i < kWavelengthSamples; ++i) {
-    const float x = std::clamp(lambda_[i] - static_cast<float>(kLambdaMinNm), 0.0f,
-                               static_cast<float>(kSpectrumSamples - 1));
-    int index = static_cast<int>(x);
-    if (index >= kSpectrumSamples - 1) index = kSpectrumSamples - 2;
-    gridIndex_[i] = index;
-    gridFraction_[i] = x - static_cast<float>(index);
+    const Spectrum::GridPosition g = Spectrum::gridPosition(lambda_[i]);
+    gridIndex_[i] = g.index;
+    gridFraction_[i] = g.fraction;
   }
 }
 

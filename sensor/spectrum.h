@@ -7,6 +7,7 @@
 // W·m⁻²·sr⁻¹·nm⁻¹, and so on; the type carries numbers, the field names carry units.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <span>
 
@@ -37,15 +38,25 @@ class Spectrum {
   float operator()(float lambdaNm) const {
     const float x = lambdaNm - static_cast<float>(kLambdaMinNm);
     if (!(x >= 0.0f) || x > static_cast<float>(kSpectrumSamples - 1)) return 0.0f;
-    int i = static_cast<int>(x);
-    if (i >= kSpectrumSamples - 1) i = kSpectrumSamples - 2;
-    const float t = x - static_cast<float>(i);
-    return values_[i] + t * (values_[i + 1] - values_[i]);
+    const GridPosition g = gridPosition(lambdaNm);
+    return interpolate(g.index, g.fraction);
   }
 
-  // The same interpolation at a precomputed grid position: i = ⌊λ − 360⌋ (at most 469)
-  // and t = λ − 360 − i. SampledWavelengths computes (i, t) once per path, so that each of
-  // the many lookups a path makes at the same wavelengths is one lerp.
+  // Where λ falls on the 1 nm grid, clamped to [360, 830] nm: index = ⌊λ − 360⌋ (at most
+  // 469) and fraction = λ − 360 − index. SampledWavelengths computes it once per path, so
+  // that each of the many lookups a path makes at the same wavelengths is one lerp.
+  struct GridPosition {
+    int index;
+    float fraction;
+  };
+  static GridPosition gridPosition(float lambdaNm) {
+    const float x = std::clamp(lambdaNm - static_cast<float>(kLambdaMinNm), 0.0f,
+                               static_cast<float>(kSpectrumSamples - 1));
+    int i = static_cast<int>(x);
+    if (i >= kSpectrumSamples - 1) i = kSpectrumSamples - 2;
+    return {i, x - static_cast<float>(i)};
+  }
+  // The interpolation at a grid position (index, fraction).
   float interpolate(int i, float t) const { return values_[i] + t * (values_[i + 1] - values_[i]); }
 
   // Value at sample i, i.e. at (360 + i) nm.
