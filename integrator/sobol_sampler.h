@@ -78,23 +78,14 @@ class SobolSampler final : public Sampler {
 
   void startPixelSample(glm::ivec2 pixel, int sampleIndex) override;
   void setDimension(int dimension) override { dimension_ = dimension; }
-  float get1D() override {
-    const std::uint64_t key = dimensionKey(dimension_++);
-    const std::uint32_t shuffled =
-        sobol::reverseBits(sobol::laineKarras(reversedIndex_, static_cast<std::uint32_t>(key)));
-    return sobol::toUnit(
-        sobol::reverseBits(sobol::laineKarras(shuffled, static_cast<std::uint32_t>(key >> 32))));
-  }
+  float get1D() override { return first(dimensionKey(dimension_++)).x; }
   glm::vec2 get2D() override {
     const std::uint64_t key = dimensionKey(dimension_);
     dimension_ += 2;
-    const std::uint32_t shuffled =
-        sobol::reverseBits(sobol::laineKarras(reversedIndex_, static_cast<std::uint32_t>(key)));
+    const First f = first(key);
     const auto seedY = static_cast<std::uint32_t>(mix64(key) >> 32);
-    return {sobol::toUnit(sobol::reverseBits(
-                sobol::laineKarras(shuffled, static_cast<std::uint32_t>(key >> 32)))),
-            sobol::toUnit(sobol::reverseBits(
-                sobol::laineKarras(sobol::reversedDimension1(shuffled), seedY)))};
+    return {f.x, sobol::toUnit(sobol::reverseBits(
+                     sobol::laineKarras(sobol::reversedDimension1(f.shuffled), seedY)))};
   }
 
  private:
@@ -103,11 +94,21 @@ class SobolSampler final : public Sampler {
   std::uint64_t dimensionKey(int dimension) const {
     return mix64(pixelKey_ ^ (static_cast<std::uint64_t>(dimension) * 0xd6e8feb86659fd93ull));
   }
+  // The shuffled index and the pair's first coordinate x (all get1D needs).
+  struct First {
+    std::uint32_t shuffled;
+    float x;
+  };
+  First first(std::uint64_t key) const {
+    const std::uint32_t shuffled =
+        sobol::reverseBits(sobol::laineKarras(reversedIndex_, static_cast<std::uint32_t>(key)));
+    return {shuffled, sobol::toUnit(sobol::reverseBits(
+                          sobol::laineKarras(shuffled, static_cast<std::uint32_t>(key >> 32))))};
+  }
 
   std::uint64_t seed_;
   std::uint64_t pixelKey_ = 0;
-  glm::ivec2 pixel_{0};
-  bool havePixel_ = false;
+  glm::ivec2 pixel_{-1};             // no pixel yet (pixels are never negative)
   std::uint32_t reversedIndex_ = 0;  // the sample index, bit-reversed
   int dimension_ = 0;
 };
