@@ -76,17 +76,7 @@ SurfaceInteraction TriangleMesh::pointOn(size_t tri, float b1, float b2, float t
   if (steps_.count > 1) steps_.locate(time, step, f);
   const std::uint32_t i0 = indices_[3 * tri], i1 = indices_[3 * tri + 1],
                       i2 = indices_[3 * tri + 2];
-  glm::vec3 p0, p1, p2;
-  if (f == 0.0f) {
-    const glm::vec3* p = positions_[static_cast<size_t>(step)].data();
-    p0 = p[i0];
-    p1 = p[i1];
-    p2 = p[i2];
-  } else {
-    p0 = vertex(i0, step, f);
-    p1 = vertex(i1, step, f);
-    p2 = vertex(i2, step, f);
-  }
+  const glm::vec3 p0 = vertex(i0, step, f), p1 = vertex(i1, step, f), p2 = vertex(i2, step, f);
   const float b0 = 1.0f - b1 - b2;
   SurfaceInteraction si;
   si.p = b0 * p0 + b1 * p1 + b2 * p2;
@@ -103,13 +93,11 @@ SurfaceInteraction TriangleMesh::pointOn(size_t tri, float b1, float b2, float t
   si.n = n;
   si.ns = n;
   if (!normals_.empty()) {
-    const auto& n0 = normals_[static_cast<size_t>(step)];
-    glm::vec3 ns = b0 * n0[i0] + b1 * n0[i1] + b2 * n0[i2];
-    if (f != 0.0f) {
-      const auto& n1 = normals_[static_cast<size_t>(step) + 1];
-      ns = b0 * glm::mix(n0[i0], n1[i0], f) + b1 * glm::mix(n0[i1], n1[i1], f) +
-           b2 * glm::mix(n0[i2], n1[i2], f);
-    }
+    const auto normalAt = [&](std::uint32_t i) {  // as vertex(): no lerp for f = 0
+      const glm::vec3& a = normals_[static_cast<size_t>(step)][i];
+      return f == 0.0f ? a : glm::mix(a, normals_[static_cast<size_t>(step) + 1][i], f);
+    };
+    const glm::vec3 ns = b0 * normalAt(i0) + b1 * normalAt(i1) + b2 * normalAt(i2);
     const float nsLen = std::sqrt(glm::dot(ns, ns));
     if (nsLen > 0.0f && std::isfinite(nsLen)) {
       si.ns = ns / nsLen;
