@@ -1,5 +1,6 @@
-// DiscreteDistribution: picks index i with probability w_i / Σw (alias-free, by binary
-// search on the CDF). Used for choosing lights by power and triangles by area.
+// DiscreteDistribution: picks index i with probability w_i / Σw (alias-free: by counting
+// the CDF values ≤ u for a few entries, by binary search on the CDF for more). Used for
+// choosing lights by power and triangles by area.
 #pragma once
 
 #include <algorithm>
@@ -31,10 +32,6 @@ class DiscreteDistribution {
   // Index for u in [0,1); *uRemapped gets u rescaled to [0,1) within the chosen bucket.
   size_t sample(float u, float* uRemapped = nullptr) const {
     CAMSIM_CHECK(total_ > 0.0);
-    if (cdf_.size() == 2) {  // one entry (a scene with one light, a one-triangle mesh): no search
-      if (uRemapped) *uRemapped = std::min(u, 0x1.fffffep-1f);
-      return 0;
-    }
     const double uu = static_cast<double>(u);
     size_t i;
     if (cdf_.size() <= kLinearSearchMax) {

@@ -10,6 +10,7 @@
 #include <tbb/task_arena.h>
 
 #include "integrator/embree_memory.h"
+#include "integrator/triangle_mesh.h"
 
 namespace camsim {
 namespace {
@@ -33,10 +34,10 @@ MeshBuildProbe probeMeshBuild(const MeshData& mesh, int threads, BvhQuality qual
   // last vertex and index triple); the copies are ours, so Embree counts only its own memory.
   // Declared before the guard: they must outlive the scene that points into them.
   std::vector<glm::vec3> positions;
-  positions.reserve(mesh.positions.size() + 1);
+  positions.reserve(mesh.positions.size() + TriangleMesh::kSpareVertices);
   positions.assign(mesh.positions.begin(), mesh.positions.end());
   std::vector<std::uint32_t> indices;
-  indices.reserve(mesh.indices.size() + 3);
+  indices.reserve(mesh.indices.size() + TriangleMesh::kSpareIndices);
   indices.assign(mesh.indices.begin(), mesh.indices.end());
   DeviceGuard g;
   g.device = rtcNewDevice(nullptr);

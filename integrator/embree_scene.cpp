@@ -82,12 +82,12 @@ EmbreeScene::EmbreeScene(const std::vector<std::unique_ptr<Shape>>& shapes, doub
       // more than it uses; checked here because reading past it would be out of bounds.
       for (int k = 0; k < steps; ++k) {
         const std::vector<glm::vec3>& p = mesh->positions(k);
-        CAMSIM_CHECK(p.capacity() > p.size());
+        CAMSIM_CHECK(p.capacity() >= p.size() + TriangleMesh::kSpareVertices);
         rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, static_cast<unsigned>(k),
                                    RTC_FORMAT_FLOAT3, p.data(), 0, sizeof(glm::vec3), p.size());
       }
       const std::vector<std::uint32_t>& idx = mesh->indices();
-      CAMSIM_CHECK(idx.capacity() >= idx.size() + 3);
+      CAMSIM_CHECK(idx.capacity() >= idx.size() + TriangleMesh::kSpareIndices);
       rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, idx.data(), 0,
                                  3 * sizeof(std::uint32_t), mesh->triangleCount());
     } else if (const auto* sphere = dynamic_cast<const Sphere*>(shapes[id].get())) {

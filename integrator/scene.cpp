@@ -47,14 +47,14 @@ std::unique_ptr<Shape> buildShape(const ShapeDescription& s, double t0, double t
     const glm::dmat4 m = transformAt(k);
     const glm::dmat3 rotation(m);  // uniform scale: normals only need renormalising
     auto& p = positions[static_cast<size_t>(k)];
-    p.reserve(s.mesh.positions.size() + 1);  // + Embree's padding (TriangleMesh)
+    p.reserve(s.mesh.positions.size() + TriangleMesh::kSpareVertices);
     for (const glm::vec3& v : s.mesh.positions) p.emplace_back(m * glm::dvec4(glm::dvec3(v), 1.0));
     if (!normals.empty())
       for (const glm::vec3& n : s.mesh.normals)
         normals[static_cast<size_t>(k)].emplace_back(glm::normalize(rotation * glm::dvec3(n)));
   }
   std::vector<std::uint32_t> indices;
-  indices.reserve(s.mesh.indices.size() + 3);
+  indices.reserve(s.mesh.indices.size() + TriangleMesh::kSpareIndices);
   indices.assign(s.mesh.indices.begin(), s.mesh.indices.end());
   return std::make_unique<TriangleMesh>(std::move(positions), std::move(normals),
                                         std::move(indices), steps, s.mesh.uvs,

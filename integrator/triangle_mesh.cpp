@@ -30,8 +30,8 @@ TriangleMesh::TriangleMesh(std::vector<std::vector<glm::vec3>> positions,
   CAMSIM_CHECK(static_cast<int>(positions_.size()) == steps_.count);
   CAMSIM_CHECK(normals_.empty() || normals_.size() == positions_.size());
   CAMSIM_CHECK(uvs_.empty() || uvs_.size() == positions_[0].size());
-  for (auto& p : positions_) reserveSpare(p, 1);
-  reserveSpare(indices_, 3);
+  for (auto& p : positions_) reserveSpare(p, kSpareVertices);
+  reserveSpare(indices_, kSpareIndices);
   std::vector<double> areas(samplable_ ? triangleCount() : 0);
   double total = 0.0;
   for (size_t t = 0; t < triangleCount(); ++t) {

@@ -33,6 +33,12 @@ class TriangleMesh final : public Shape {
                std::vector<std::vector<glm::vec3>> normals, std::vector<std::uint32_t> indices,
                TimeSteps steps, std::vector<glm::vec2> uvs = {}, bool samplable = true);
 
+  // Embree may load 16 bytes from the last vertex (float3) and the last index triple, so
+  // the arrays it shares keep this many spare elements of capacity past their end.
+  // TriangleMesh reserves them itself; a caller that allocates them up front saves a copy.
+  static constexpr size_t kSpareVertices = 1;
+  static constexpr size_t kSpareIndices = 3;
+
   const std::vector<glm::vec3>& positions(int step = 0) const {
     return positions_[static_cast<size_t>(step)];
   }
