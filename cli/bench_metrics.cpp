@@ -43,12 +43,6 @@ ErrorMetrics metrics(int width, int height, ErrorAt error, RefAt ref, double ref
   return {se / n, ae / n};
 }
 
-std::string fixed(double v, int decimals) {
-  char buf[48];
-  std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
-  return buf;
-}
-
 std::string csvField(const std::string& s) {
   if (s.find_first_of(",\"\n") == std::string::npos) return s;
   std::string quoted = "\"";
@@ -155,18 +149,6 @@ double processCpuSeconds() {
          1e-6 * static_cast<double>(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
 }
 
-std::string formatBenchRate(double perSecond) {
-  if (perSecond >= 1e6) return fixed(perSecond * 1e-6, 2) + " M";
-  if (perSecond >= 1e3) return fixed(perSecond * 1e-3, 2) + " k";
-  return fixed(perSecond, 1) + "  ";
-}
-
-std::string formatNumber(double v, int precision) {
-  char buf[48];
-  std::snprintf(buf, sizeof buf, "%.*g", precision, v);
-  return buf;
-}
-
 std::string formatBenchTable(const std::vector<BenchRow>& rows) {
   char line[256];
   std::ostringstream out;
@@ -176,9 +158,8 @@ std::string formatBenchTable(const std::vector<BenchRow>& rows) {
   for (const BenchRow& r : rows) {
     std::snprintf(line, sizeof line, "%-13s %-11s %5d %9.3f %8.3f %10s %10s %10.3e %8.4f %s\n",
                   r.scene.c_str(), r.sampler.c_str(), r.spp, r.seconds, r.cpuSeconds,
-                  formatBenchRate(r.samplesPerSecond()).c_str(),
-                  formatBenchRate(r.raysPerSecond()).c_str(), r.error.rmse, r.error.mrae,
-                  r.inFit ? "*" : "");
+                  formatRate(r.samplesPerSecond()).c_str(), formatRate(r.raysPerSecond()).c_str(),
+                  r.error.rmse, r.error.mrae, r.inFit ? "*" : "");
     out << line;
   }
   return out.str();
@@ -194,11 +175,11 @@ std::string formatSlopeTable(const std::vector<SamplerSlopes>& slopes) {
   for (const SamplerSlopes& s : slopes) {
     const bool ok = s.vsSeconds.points >= 2;
     std::snprintf(line, sizeof line, "%-13s %-11s %16s %6s %6d %15s %14s %15s\n", s.scene.c_str(),
-                  s.sampler.c_str(), ok ? fixed(s.vsSeconds.slope, 3).c_str() : "n/a",
-                  ok ? fixed(s.vsSeconds.r2, 3).c_str() : "", s.vsSeconds.points,
-                  ok ? fixed(s.vsCpuSeconds.slope, 3).c_str() : "n/a",
-                  ok ? fixed(s.vsSpp.slope, 3).c_str() : "n/a",
-                  ok ? fixed(s.mraeVsSeconds.slope, 3).c_str() : "n/a");
+                  s.sampler.c_str(), ok ? formatFixed(s.vsSeconds.slope, 3).c_str() : "n/a",
+                  ok ? formatFixed(s.vsSeconds.r2, 3).c_str() : "", s.vsSeconds.points,
+                  ok ? formatFixed(s.vsCpuSeconds.slope, 3).c_str() : "n/a",
+                  ok ? formatFixed(s.vsSpp.slope, 3).c_str() : "n/a",
+                  ok ? formatFixed(s.mraeVsSeconds.slope, 3).c_str() : "n/a");
     out << line;
   }
   return out.str();

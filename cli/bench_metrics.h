@@ -24,6 +24,7 @@
 #include <string>
 #include <vector>
 
+#include "cli/format.h"
 #include "sensor/image.h"
 
 namespace camsim {
@@ -86,7 +87,5 @@ std::string formatSlopeTable(const std::vector<SamplerSlopes>& slopes);
 double processCpuSeconds();
 
 // "1.23 M" style rates; "%.3g"-style numbers.
-std::string formatBenchRate(double perSecond);
-std::string formatNumber(double v, int precision = 3);
 
 }  // namespace camsim

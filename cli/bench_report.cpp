@@ -31,14 +31,14 @@ std::string formatLimitTable(const std::vector<LimitResult>& results) {
       char cell[64];
       std::snprintf(cell, sizeof cell, "%5.1f%% %10s",
                     share(countOf(r.capture.rays, k), r.capture.rays.total()),
-                    formatBenchRate(r.byKind[static_cast<std::size_t>(k)].raysPerSecond()).c_str());
+                    formatRate(r.byKind[static_cast<std::size_t>(k)].raysPerSecond()).c_str());
       kinds[k] = cell;
     }
     std::snprintf(line, sizeof line, "%-13s %4d %9llu %22s %22s %22s %11s %11s %6.3f\n",
                   r.scene.c_str(), r.spp, static_cast<unsigned long long>(r.recorded),
                   kinds[0].c_str(), kinds[1].c_str(), kinds[2].c_str(),
-                  formatBenchRate(r.mix.raysPerSecond()).c_str(),
-                  formatBenchRate(r.tracerRaysPerSecond()).c_str(), r.ratio());
+                  formatRate(r.mix.raysPerSecond()).c_str(),
+                  formatRate(r.tracerRaysPerSecond()).c_str(), r.ratio());
     out << line;
     if (r.dropped > 0)
       out << "  (" << r.dropped
@@ -90,8 +90,8 @@ std::string formatScaling(const std::string& scene, const ScalingResult& s) {
       s.threads);
   out << line;
   std::snprintf(line, sizeof line, "  %-22s %10s %12s %11.2fx  (efficiency %.0f%%)\n",
-                "raw replay, rays/s", formatBenchRate(s.rawOne.raysPerSecond()).c_str(),
-                formatBenchRate(s.rawMany.raysPerSecond()).c_str(), raw, 100.0 * raw / s.threads);
+                "raw replay, rays/s", formatRate(s.rawOne.raysPerSecond()).c_str(),
+                formatRate(s.rawMany.raysPerSecond()).c_str(), raw, 100.0 * raw / s.threads);
   out << line;
   return out.str();
 }
@@ -111,8 +111,7 @@ std::string formatMotionOverhead(const std::string& scene, const MotionOverhead&
       {"moving (as in the scene)", &m.moving}};
   for (const auto& [name, st] : rows) {
     std::snprintf(line, sizeof line, "  %-40s %9.3f %11s %12.3f %13.3f\n", name, st->seconds,
-                  formatBenchRate(st->raysPerSecond()).c_str(),
-                  base > 0.0 ? st->seconds / base : 0.0,
+                  formatRate(st->raysPerSecond()).c_str(), base > 0.0 ? st->seconds / base : 0.0,
                   st->raysPerSecond() > 0.0 ? baseRate / st->raysPerSecond() : 0.0);
     out << line;
   }

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "cli/args.h"
+#include "cli/format.h"
 #include "cli/python_script.h"
 #include "sensor/input_error.h"
 #include "sensor/output_set.h"
@@ -17,16 +18,9 @@
 namespace camsim {
 namespace {
 
-// printf-style conversions of one double: 'f' fixed, 'g' general, 's' signed fixed.
-std::string format(char style, int precision, double v) {
-  char buf[64];
-  if (style == 'f')
-    std::snprintf(buf, sizeof buf, "%.*f", precision, v);
-  else if (style == 's')
-    std::snprintf(buf, sizeof buf, "%+.*f", precision, v);
-  else
-    std::snprintf(buf, sizeof buf, "%.*g", precision, v);
-  return buf;
+// Fixed with an explicit sign (deviations: "+0.12").
+std::string formatSigned(double v, int decimals) {
+  return (std::signbit(v) ? "" : "+") + formatFixed(v, decimals);  // as printf "%+.*f"
 }
 
 // Pads to `width` code points (UTF-8: continuation bytes do not count).
@@ -41,10 +35,10 @@ std::string pad(const std::string& s, std::size_t width, bool right = false) {
 std::string number(double v) {
   const double a = std::abs(v);
   if (a == 0.0) return "0";
-  if (a >= 1000.0) return format('f', 0, v);
-  if (a >= 10.0) return format('f', 2, v);
-  if (a >= 0.1) return format('f', 4, v);
-  return format('f', 5, v);
+  if (a >= 1000.0) return formatFixed(v, 0);
+  if (a >= 10.0) return formatFixed(v, 2);
+  if (a >= 0.1) return formatFixed(v, 4);
+  return formatFixed(v, 5);
 }
 
 // Characters a file name keeps; others become '_'.
@@ -129,9 +123,9 @@ std::string formatPtcTable(const PtcResult& m, const PtcConfigured& c) {
   for (const Row& r : rows) {
     std::string err;
     if (r.db)
-      err = format('s', 2, r.measured - r.configured) + (r.unit == "%" ? " pt" : " dB");
+      err = formatSigned(r.measured - r.configured, 2) + (r.unit == "%" ? " pt" : " dB");
     else if (r.configured != 0.0)
-      err = format('s', 2, 100.0 * (r.measured / r.configured - 1.0)) + " %";
+      err = formatSigned(100.0 * (r.measured / r.configured - 1.0), 2) + " %";
     out << pad(r.name, 31) << pad(r.unit, 11) << pad(number(r.configured), 12, true)
         << pad(number(r.measured), 12, true) << pad(err, 11, true) << "\n";
   }
@@ -170,11 +164,11 @@ std::vector<std::filesystem::path> runPtc(const PtcArgs& args, std::ostream& out
   const PtcConfigured c = configuredPhotonTransfer(sensor, options);
 
   out << "EMVA 1288 (Release 4.0 Linear) photon transfer of " << sensor.name << "\n"
-      << "  light " << format('f', 0, options.wavelengthNm) << " nm on channel " << m.channel
+      << "  light " << formatFixed(options.wavelengthNm, 0) << " nm on channel " << m.channel
       << " (highest QE at that wavelength): " << m.pixels << " of "
       << options.width * options.height << " photosites analysed\n"
-      << "  exposure " << format('g', 3, options.exposureTimeS * 1e3) << " ms at base ISO "
-      << format('g', 6, sensor.baseIso) << "; " << m.data.levels.size() << " levels × 2 frames; "
+      << "  exposure " << formatNumber(options.exposureTimeS * 1e3, 3) << " ms at base ISO "
+      << formatNumber(sensor.baseIso, 6) << "; " << m.data.levels.size() << " levels × 2 frames; "
       << options.spatialFrames << " dark + " << options.spatialFrames
       << " half-saturation frames; seed " << options.seed << "\n"
       << "  configured μ_e.clip = saturationElectrons(); configured μ_e.sat = where the\n"
@@ -193,9 +187,9 @@ std::vector<std::filesystem::path> runPtc(const PtcArgs& args, std::ostream& out
     out.flush();
     runPythonScript(
         *python, ptcPlotScriptFile("ptc_plot.py"),
-        {csv.string(), ptcPng.string(), snrPng.string(), sensor.name, format('g', 9, m.systemGainK),
-         format('g', 9, m.quantumEfficiency), format('g', 9, m.darkNoiseE),
-         format('g', 9, m.muPSat), format('g', 9, m.muPMin)});
+        {csv.string(), ptcPng.string(), snrPng.string(), sensor.name,
+         formatNumber(m.systemGainK, 9), formatNumber(m.quantumEfficiency, 9),
+         formatNumber(m.darkNoiseE, 9), formatNumber(m.muPSat, 9), formatNumber(m.muPMin, 9)});
   }
   const std::vector<std::filesystem::path> files = outputs.commit();
   for (const auto& f : files) log << "camsim ptc: wrote " << f.string() << "\n";

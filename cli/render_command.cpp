@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <ostream>
 
+#include "cli/format.h"
 #include "cli/progress.h"
 #include "cli/render_outputs.h"
 #include "cli/resource_guard.h"
@@ -56,10 +57,9 @@ LoadedScene load(const RenderArgs& args) {
   return loaded;
 }
 
+// Metadata values: 9 significant digits.
 std::string number(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.9g", v);
-  return buf;
+  return formatNumber(v, 9);
 }
 
 void appendCameraMetadata(const PhysicalCamera& camera, Metadata& meta) {
@@ -76,17 +76,6 @@ void appendCameraMetadata(const PhysicalCamera& camera, Metadata& meta) {
                             number(p.distortion.k1) + " " + number(p.distortion.k2) + " " +
                                 number(p.distortion.p1) + " " + number(p.distortion.p2) + " " +
                                 number(p.distortion.k3)}});
-}
-
-std::string formatRate(double perSecond) {
-  char buf[32];
-  if (perSecond >= 1e6)
-    std::snprintf(buf, sizeof buf, "%.2f M", perSecond * 1e-6);
-  else if (perSecond >= 1e3)
-    std::snprintf(buf, sizeof buf, "%.2f k", perSecond * 1e-3);
-  else
-    std::snprintf(buf, sizeof buf, "%.2f ", perSecond);
-  return buf;
 }
 
 // An interrupted render's finished tiles (each has its full spp), as NAME.partial.exr —

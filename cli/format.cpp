@@ -1,0 +1,25 @@
+#include "cli/format.h"
+
+#include <cstdio>
+
+namespace camsim {
+
+std::string formatNumber(double v, int precision) {
+  char buf[48];
+  std::snprintf(buf, sizeof buf, "%.*g", precision, v);
+  return buf;
+}
+
+std::string formatFixed(double v, int decimals) {
+  char buf[48];
+  std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
+  return buf;
+}
+
+std::string formatRate(double perSecond) {
+  if (perSecond >= 1e6) return formatFixed(perSecond * 1e-6, 2) + " M";
+  if (perSecond >= 1e3) return formatFixed(perSecond * 1e-3, 2) + " k";
+  return formatFixed(perSecond, 2) + " ";
+}
+
+}  // namespace camsim

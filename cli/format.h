@@ -1,0 +1,15 @@
+// Number formatting shared by the commands' printed reports and metadata.
+//   formatNumber(v, p)  printf "%.{p}g"  (p significant digits)
+//   formatFixed(v, d)   printf "%.{d}f"  (d decimals)
+//   formatRate(r)       "12.35 M", "4.20 k" or "17.00 " (two decimals, SI prefix; for "…/s")
+#pragma once
+
+#include <string>
+
+namespace camsim {
+
+std::string formatNumber(double v, int precision = 3);
+std::string formatFixed(double v, int decimals);
+std::string formatRate(double perSecond);
+
+}  // namespace camsim
