@@ -72,7 +72,7 @@ std::vector<BenchRow> sweep(const LoadedBenchScene& s, const Scene& scene, const
       BenchRow row;
       row.cpuSeconds = processCpuSeconds() - cpu0;
       row.scene = s.name;
-      row.sampler = kind == SamplerKind::kSobol ? "sobol" : "independent";
+      row.sampler = samplerName(kind);
       row.spp = spp;
       row.width = r.image.width;
       row.height = r.image.height;

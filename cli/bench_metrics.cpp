@@ -43,13 +43,6 @@ ErrorMetrics metrics(int width, int height, ErrorAt error, RefAt ref, double ref
   return {se / n, ae / n};
 }
 
-std::string csvField(const std::string& s) {
-  if (s.find_first_of(",\"\n") == std::string::npos) return s;
-  std::string quoted = "\"";
-  for (char c : s) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return quoted + "\"";
-}
-
 }  // namespace
 
 ErrorMetrics compareImages(const Image& image, const Image& reference, int channel) {
@@ -125,6 +118,13 @@ const std::vector<std::string>& benchCsvColumns() {
       "scene",         "sampler",    "spp",      "width", "height",       "seconds",  "cpu_seconds",
       "samples_per_s", "rays_per_s", "rmse_rel", "mrae",  "ref_rmse_rel", "ref_mrae", "in_fit"};
   return columns;
+}
+
+std::string csvField(const std::string& s) {
+  if (s.find_first_of(",\"\n") == std::string::npos) return s;
+  std::string quoted = "\"";
+  for (char c : s) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return quoted + "\"";
 }
 
 std::string formatBenchCsv(const std::vector<BenchRow>& rows) {

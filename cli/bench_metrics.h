@@ -79,6 +79,8 @@ SamplerSlopes fitRows(std::vector<BenchRow*>& rows);
 // The CSV columns, in order.
 const std::vector<std::string>& benchCsvColumns();
 std::string formatBenchCsv(const std::vector<BenchRow>& rows);
+// A CSV field: quoted (with "" for ") when it holds a comma, a quote or a newline.
+std::string csvField(const std::string& s);
 // Fixed-width text tables as printed.
 std::string formatBenchTable(const std::vector<BenchRow>& rows);
 std::string formatSlopeTable(const std::vector<SamplerSlopes>& slopes);

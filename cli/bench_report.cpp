@@ -55,12 +55,12 @@ std::string formatLimitCsv(const std::vector<LimitResult>& results) {
   out << "scene,kind,spp,threads,rays,share,raw_rays_per_s,tracer_rays_per_s,ratio\n";
   auto g = [](double v) { return formatNumber(v, 9); };
   for (const LimitResult& r : results) {
-    out << r.scene << ",mix," << r.spp << "," << r.threads << "," << r.recorded << ",1,"
+    out << csvField(r.scene) << ",mix," << r.spp << "," << r.threads << "," << r.recorded << ",1,"
         << g(r.mix.raysPerSecond()) << "," << g(r.tracerRaysPerSecond()) << "," << g(r.ratio())
         << "\n";
     for (int k = 0; k < kRayKindCount; ++k) {
       const ReplayResult& rep = r.byKind[static_cast<std::size_t>(k)];
-      out << r.scene << "," << rayKindName(static_cast<RayKind>(k)) << "," << r.spp << ","
+      out << csvField(r.scene) << "," << rayKindName(static_cast<RayKind>(k)) << "," << r.spp << ","
           << r.threads << "," << rep.rays << ","
           << g(share(countOf(r.capture.rays, k), r.capture.rays.total()) / 100.0) << ","
           << g(rep.raysPerSecond()) << ",,\n";

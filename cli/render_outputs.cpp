@@ -74,15 +74,14 @@ void writeRenderOutputs(const RenderOutputInputs& in, OutputSet& outputs, std::o
   JsonObject sidecar;
   sidecar.set("camsim_version", CAMSIM_VERSION)
       .set("scene", desc.sourceFile)
-      .set("render",
-           JsonObject()
-               .set("spp", double(desc.render.spp))
-               .set("seed", double(desc.render.seed))
-               .set("sampler", desc.render.sampler == SamplerKind::kSobol ? "sobol" : "independent")
-               .set("max_depth", double(desc.render.maxDepth))
-               .set("seconds", st.seconds)
-               .set("rejected_samples", double(st.rejectedSamples))
-               .set("modelled", st.modelled.describe()))
+      .set("render", JsonObject()
+                         .set("spp", double(desc.render.spp))
+                         .set("seed", double(desc.render.seed))
+                         .set("sampler", samplerName(desc.render.sampler))
+                         .set("max_depth", double(desc.render.maxDepth))
+                         .set("seconds", st.seconds)
+                         .set("rejected_samples", double(st.rejectedSamples))
+                         .set("modelled", st.modelled.describe()))
       .set("camera", cameraJson(in.scene.camera()));
 
   if (desc.sensor) {

@@ -30,6 +30,10 @@
 namespace camsim {
 
 enum class SamplerKind { kIndependent, kSobol };
+// "independent" / "sobol": the scene files' `render.sampler` values.
+inline const char* samplerName(SamplerKind kind) {
+  return kind == SamplerKind::kSobol ? "sobol" : "independent";
+}
 
 struct RenderSettings {
   SamplerKind sampler = SamplerKind::kSobol;  // see integrator/sobol_sampler.h
