@@ -26,15 +26,9 @@ struct Context {
 
 RenderSettings parseRender(YamlMap map) {
   RenderSettings r;
-  if (auto v = map.find("sampler")) {
-    const std::string name = v->string();
-    if (name == "sobol")
-      r.sampler = SamplerKind::kSobol;
-    else if (name == "independent")
-      r.sampler = SamplerKind::kIndependent;
-    else
-      v->fail("unknown sampler '" + name + "' (known: sobol, independent)");
-  }
+  if (auto v = map.find("sampler"))
+    r.sampler = v->choice<SamplerKind>(
+        "sampler", {{"sobol", SamplerKind::kSobol}, {"independent", SamplerKind::kIndependent}});
   if (auto v = map.find("spp")) r.spp = static_cast<int>(v->integer(1, SceneLimits::kMaxSpp));
   if (auto v = map.find("seed")) r.seed = static_cast<std::uint64_t>(v->integer(0, INT64_MAX));
   if (auto v = map.find("max_depth"))

@@ -31,24 +31,13 @@ void parseMicrofacet(YamlMap& map, MaterialDescription& m, const SpectrumSearch&
   if (auto r = map.find("roughness"))
     m.roughness = parseTexture(*r, TextureUse::kRoughness, search, baseDir);
   if (auto a = map.find("anisotropy")) m.anisotropy = static_cast<float>(a->number(-0.99, 0.99));
-  if (auto d = map.find("distribution")) {
-    const std::string v = d->string();
-    if (v == "ggx")
-      m.distribution = MicrofacetDistribution::kGgx;
-    else if (v == "beckmann")
-      m.distribution = MicrofacetDistribution::kBeckmann;
-    else
-      d->fail("unknown distribution '" + v + "' (known: ggx, beckmann)");
-  }
-  if (auto g = map.find("masking")) {
-    const std::string v = g->string();
-    if (v == "smith")
-      m.masking = MaskingModel::kSmith;
-    else if (v == "v-groove")
-      m.masking = MaskingModel::kVGroove;
-    else
-      g->fail("unknown masking '" + v + "' (known: smith, v-groove)");
-  }
+  if (auto d = map.find("distribution"))
+    m.distribution = d->choice<MicrofacetDistribution>(
+        "distribution",
+        {{"ggx", MicrofacetDistribution::kGgx}, {"beckmann", MicrofacetDistribution::kBeckmann}});
+  if (auto g = map.find("masking"))
+    m.masking = g->choice<MaskingModel>(
+        "masking", {{"smith", MaskingModel::kSmith}, {"v-groove", MaskingModel::kVGroove}});
   known.insert(known.end(), {"roughness", "anisotropy", "distribution", "masking"});
 }
 

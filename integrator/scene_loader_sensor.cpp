@@ -109,15 +109,10 @@ IspSettings parseIspSettings(YamlMap map) {
   } else if (isp.whiteBalance == IspSettings::WhiteBalance::kRegion) {
     map.self().fail("white_balance: region needs region: [x, y, width, height]");
   }
-  if (auto d = map.find("demosaic")) {
-    const std::string how = d->string();
-    if (how == "malvar")
-      isp.demosaic = DemosaicMethod::kMalvarHeCutler;
-    else if (how == "bilinear")
-      isp.demosaic = DemosaicMethod::kBilinear;
-    else
-      d->fail("unknown demosaic '" + how + "' (known: malvar, bilinear)");
-  }
+  if (auto d = map.find("demosaic"))
+    isp.demosaic = d->choice<DemosaicMethod>(
+        "demosaic",
+        {{"malvar", DemosaicMethod::kMalvarHeCutler}, {"bilinear", DemosaicMethod::kBilinear}});
   map.finish({"white_balance", "illuminant", "region", "demosaic"});
   return isp;
 }

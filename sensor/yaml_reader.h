@@ -6,9 +6,12 @@
 #pragma once
 
 #include <cstdint>
+#include <initializer_list>
 #include <optional>
 #include <set>
 #include <string>
+#include <string_view>
+#include <utility>
 #include <vector>
 
 #include <yaml-cpp/yaml.h>
@@ -45,6 +48,19 @@ class YamlValue {
   glm::dvec3 vec3() const;               // [x, y, z], finite
   std::vector<YamlValue> items() const;  // elements of a sequence
   std::vector<double> numbers() const;   // a sequence of finite numbers
+  // The value as one of the named choices; otherwise fails with
+  // "unknown WHAT 'value' (known: a, b, ...)".
+  template <typename T>
+  T choice(const std::string& what,
+           std::initializer_list<std::pair<std::string_view, T>> choices) const {
+    const std::string v = string();
+    std::string known;
+    for (const auto& [name, value] : choices) {
+      if (name == v) return value;
+      known += (known.empty() ? "" : ", ") + std::string(name);
+    }
+    fail("unknown " + what + " '" + v + "' (known: " + known + ")");
+  }
 
  private:
   YAML::Node node_;

@@ -121,6 +121,8 @@ const ErrorCase kErrorCases[] = {
     {"LuminanceAndScale", sphereWith("1", ", emission: {luminance: 100, scale: 1}"), 7, 84,
      "shapes[0].emission.scale", "not both"},
     {"MissingCamera", kMaterials + "shapes:\n" + kSphere, 1, 1, "camera", "required key"},
+    {"UnknownSampler", "render: {sampler: halton}\n" + kCamera + kMaterials + "shapes:\n" + kSphere,
+     1, 19, "render.sampler", "unknown sampler 'halton' (known: sobol, independent)"},
     {"EmptyShapes", kCamera + kMaterials + "shapes: []\n", 6, 9, "shapes", "no shapes"},
     {"DuplicateKey",
      withShapes("  - type: sphere\n    centre: [0, 0, 0]\n    radius: 1\n    radius: 2\n"
