@@ -31,6 +31,66 @@ void throwOnEmbreeError(RTCDevice device, const std::string& what) {
 
 static_assert(sizeof(glm::vec3) == 3 * sizeof(float), "Embree reads the vertices as packed float3");
 
+// The shape's first `steps` poses as an Embree geometry (committed): all of them for
+// motion-blurred geometry, one for a static shape or the static copy under an instance.
+RTCGeometry makeGeometry(RTCDevice device, const Shape& shape, int steps) {
+  RTCGeometry geom = nullptr;
+  if (const auto* mesh = dynamic_cast<const TriangleMesh*>(&shape)) {
+    geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+    rtcSetGeometryTimeStepCount(geom, static_cast<unsigned>(steps));
+    // Shared, not copied: Embree reads the mesh's arrays in place. It may load 16 bytes
+    // from the last vertex (and index triple), so TriangleMesh allocates one element
+    // more than it uses; checked here because reading past it would be out of bounds.
+    for (int k = 0; k < steps; ++k) {
+      const std::vector<glm::vec3>& p = mesh->positions(k);
+      CAMSIM_CHECK(p.capacity() >= p.size() + TriangleMesh::kSpareVertices);
+      rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, static_cast<unsigned>(k),
+                                 RTC_FORMAT_FLOAT3, p.data(), 0, sizeof(glm::vec3), p.size());
+    }
+    const std::vector<std::uint32_t>& idx = mesh->indices();
+    CAMSIM_CHECK(idx.capacity() >= idx.size() + TriangleMesh::kSpareIndices);
+    rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, idx.data(), 0,
+                               3 * sizeof(std::uint32_t), mesh->triangleCount());
+  } else if (const auto* sphere = dynamic_cast<const Sphere*>(&shape)) {
+    geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_SPHERE_POINT);
+    rtcSetGeometryTimeStepCount(geom, static_cast<unsigned>(steps));
+    for (int k = 0; k < steps; ++k) {
+      auto* v = static_cast<float*>(
+          rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, static_cast<unsigned>(k),
+                                  RTC_FORMAT_FLOAT4, sizeof(float) * 4, 1));
+      const glm::vec3& c = sphere->centres()[static_cast<size_t>(k)];
+      v[0] = c.x;
+      v[1] = c.y;
+      v[2] = c.z;
+      v[3] = sphere->radii()[static_cast<size_t>(k)];
+    }
+  } else {
+    CAMSIM_CHECK(false && "unknown shape type");
+  }
+  rtcCommitGeometry(geom);
+  return geom;
+}
+
+// `geom` (the shape's first pose; this takes over the caller's reference) in a scene of its
+// own, placed by a motion-blurred instance with one transform per rigid step. Embree
+// interpolates the transforms linearly, as the shapes interpolate their poses.
+RTCGeometry makeInstance(RTCDevice device, RTCGeometry geom, const std::vector<glm::mat4>& steps) {
+  RTCScene object = rtcNewScene(device);
+  rtcSetSceneBuildQuality(object, RTC_BUILD_QUALITY_HIGH);
+  rtcAttachGeometry(object, geom);
+  rtcReleaseGeometry(geom);
+  rtcCommitScene(object);
+  RTCGeometry instance = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_INSTANCE);
+  rtcSetGeometryInstancedScene(instance, object);
+  rtcReleaseScene(object);  // the instance holds it
+  rtcSetGeometryTimeStepCount(instance, static_cast<unsigned>(steps.size()));
+  for (size_t k = 0; k < steps.size(); ++k)
+    rtcSetGeometryTransform(instance, static_cast<unsigned>(k), RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR,
+                            &steps[k][0][0]);
+  rtcCommitGeometry(instance);
+  return instance;
+}
+
 }  // namespace
 
 bool countEmbreeMemory(void* count, ssize_t bytes, bool /*post*/) {
@@ -72,42 +132,10 @@ EmbreeScene::EmbreeScene(const std::vector<std::unique_ptr<Shape>>& shapes, doub
   rtcSetSceneBuildQuality(impl_->scene, triangles > kHighQualityTriangles ? RTC_BUILD_QUALITY_MEDIUM
                                                                           : RTC_BUILD_QUALITY_HIGH);
   for (size_t id = 0; id < shapes.size(); ++id) {
-    RTCGeometry geom = nullptr;
-    if (const auto* mesh = dynamic_cast<const TriangleMesh*>(shapes[id].get())) {
-      geom = rtcNewGeometry(impl_->device, RTC_GEOMETRY_TYPE_TRIANGLE);
-      const int steps = mesh->timeSteps().count;
-      rtcSetGeometryTimeStepCount(geom, static_cast<unsigned>(steps));
-      // Shared, not copied: Embree reads the mesh's arrays in place. It may load 16 bytes
-      // from the last vertex (and index triple), so TriangleMesh allocates one element
-      // more than it uses; checked here because reading past it would be out of bounds.
-      for (int k = 0; k < steps; ++k) {
-        const std::vector<glm::vec3>& p = mesh->positions(k);
-        CAMSIM_CHECK(p.capacity() >= p.size() + TriangleMesh::kSpareVertices);
-        rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, static_cast<unsigned>(k),
-                                   RTC_FORMAT_FLOAT3, p.data(), 0, sizeof(glm::vec3), p.size());
-      }
-      const std::vector<std::uint32_t>& idx = mesh->indices();
-      CAMSIM_CHECK(idx.capacity() >= idx.size() + TriangleMesh::kSpareIndices);
-      rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, idx.data(), 0,
-                                 3 * sizeof(std::uint32_t), mesh->triangleCount());
-    } else if (const auto* sphere = dynamic_cast<const Sphere*>(shapes[id].get())) {
-      geom = rtcNewGeometry(impl_->device, RTC_GEOMETRY_TYPE_SPHERE_POINT);
-      const int steps = sphere->timeSteps().count;
-      rtcSetGeometryTimeStepCount(geom, static_cast<unsigned>(steps));
-      for (int k = 0; k < steps; ++k) {
-        auto* v = static_cast<float*>(
-            rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, static_cast<unsigned>(k),
-                                    RTC_FORMAT_FLOAT4, sizeof(float) * 4, 1));
-        const glm::vec3& c = sphere->centres()[static_cast<size_t>(k)];
-        v[0] = c.x;
-        v[1] = c.y;
-        v[2] = c.z;
-        v[3] = sphere->radii()[static_cast<size_t>(k)];
-      }
-    } else {
-      CAMSIM_CHECK(false && "unknown shape type");
-    }
-    rtcCommitGeometry(geom);
+    const Shape& shape = *shapes[id];
+    const bool instanced = !shape.rigidSteps().empty();
+    RTCGeometry geom = makeGeometry(impl_->device, shape, instanced ? 1 : shape.timeSteps().count);
+    if (instanced) geom = makeInstance(impl_->device, geom, shape.rigidSteps());
     rtcAttachGeometryByID(impl_->scene, geom, static_cast<unsigned>(id));
     rtcReleaseGeometry(geom);
     throwOnEmbreeError(impl_->device, "adding shape " + std::to_string(id));
@@ -150,7 +178,9 @@ bool EmbreeScene::intersect(const Ray& ray, Hit& hit) const {
   rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
   rtcIntersect1(impl_->scene, &context, &rh);
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
-  hit.shape = static_cast<int>(rh.hit.geomID);
+  // A shape traced as an instance is named by the instance's id (its scene holds one geometry).
+  hit.shape = static_cast<int>(rh.hit.instID[0] != RTC_INVALID_GEOMETRY_ID ? rh.hit.instID[0]
+                                                                           : rh.hit.geomID);
   hit.prim = static_cast<int>(rh.hit.primID);
   hit.u = rh.hit.u;
   hit.v = rh.hit.v;

@@ -7,9 +7,13 @@
 // kHighQualityTriangles triangles; above, MEDIUM (binned SAH): measured on a 1 M-triangle
 // mesh, HIGH costs 3–4× the CPU time to build and a third more memory at its peak, for
 // 10–15 % faster traversal (docs/performance.md).
-// Moving shapes use Embree's motion blur: one vertex buffer per time step
-// (rtcSetGeometryTimeStepCount), steps uniform over the scene's motion span [t0, t1];
-// a ray's time t (s) is passed to Embree as (t − t0)/(t1 − t0). Nothing is rebuilt per sample.
+// Moving shapes use Embree's motion blur, with steps uniform over the scene's motion span
+// [t0, t1]; a ray's time t (s) is passed to Embree as (t − t0)/(t1 − t0). A shape that moves
+// rigidly (Shape::rigidSteps) is a static geometry of its first pose in a scene of its own,
+// placed by an instance with one transform per step (RTC_GEOMETRY_TYPE_INSTANCE, ids = shape
+// index): the top-level BVH over a few instances is cheap to traverse, where a motion-
+// blurred triangle BVH cost twice the static one per ray (docs/performance.md). Other moving
+// shapes (a changing size) get one vertex buffer per step. Nothing is rebuilt per sample.
 #pragma once
 
 #include <cstddef>

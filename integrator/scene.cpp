@@ -43,8 +43,16 @@ std::unique_ptr<Shape> buildShape(const ShapeDescription& s, double t0, double t
   std::vector<std::vector<glm::vec3>> positions(static_cast<size_t>(steps.count));
   std::vector<std::vector<glm::vec3>> normals;
   if (!s.mesh.normals.empty()) normals.resize(static_cast<size_t>(steps.count));
+  // Rigid steps (Shape) if the size stays fixed: M_k · M_0⁻¹, in double.
+  std::vector<glm::mat4> rigidSteps;
+  const glm::dmat4 first = transformAt(0);
+  const double firstScale = glm::length(glm::dvec3(first[0]));
+  const glm::dmat4 fromFirst = glm::inverse(first);
   for (int k = 0; k < steps.count; ++k) {
     const glm::dmat4 m = transformAt(k);
+    if (steps.count > 1 &&
+        std::abs(glm::length(glm::dvec3(m[0])) - firstScale) <= 1e-12 * firstScale)
+      rigidSteps.emplace_back(m * fromFirst);
     const glm::dmat3 rotation(m);  // uniform scale: normals only need renormalising
     auto& p = positions[static_cast<size_t>(k)];
     p.reserve(s.mesh.positions.size() + TriangleMesh::kSpareVertices);
@@ -53,12 +61,13 @@ std::unique_ptr<Shape> buildShape(const ShapeDescription& s, double t0, double t
       for (const glm::vec3& n : s.mesh.normals)
         normals[static_cast<size_t>(k)].emplace_back(glm::normalize(rotation * glm::dvec3(n)));
   }
+  if (rigidSteps.size() != static_cast<size_t>(steps.count)) rigidSteps.clear();
   std::vector<std::uint32_t> indices;
   indices.reserve(s.mesh.indices.size() + TriangleMesh::kSpareIndices);
   indices.assign(s.mesh.indices.begin(), s.mesh.indices.end());
   return std::make_unique<TriangleMesh>(std::move(positions), std::move(normals),
                                         std::move(indices), steps, s.mesh.uvs,
-                                        s.emission.has_value());
+                                        s.emission.has_value(), std::move(rigidSteps));
 }
 
 }  // namespace

@@ -6,6 +6,12 @@
 
 namespace camsim {
 
+glm::vec3 largestTranslation(const std::vector<glm::mat4>& steps) {
+  glm::vec3 largest(0.0f);
+  for (const glm::mat4& m : steps) largest = glm::max(largest, absComponents(glm::vec3(m[3])));
+  return largest;
+}
+
 float areaToSolidAnglePdf(float pdfArea, const glm::vec3& ref, const SurfaceInteraction& onShape) {
   const glm::vec3 d = onShape.p - ref;
   const float dist2 = lengthSquared(d);

@@ -17,6 +17,16 @@ Sphere::Sphere(std::vector<glm::vec3> centres, std::vector<float> radii, TimeSte
   CAMSIM_CHECK(!centres_.empty() && centres_.size() == radii_.size() &&
                static_cast<int>(centres_.size()) == steps_.count);
   for (float r : radii_) CAMSIM_CHECK(r > 0.0f);
+  bool fixedSize = steps_.count > 1;
+  for (float r : radii_) fixedSize = fixedSize && r == radii_[0];
+  if (fixedSize) {
+    for (const glm::vec3& c : centres_) {
+      glm::mat4 m(1.0f);
+      m[3] = glm::vec4(c - centres_[0], 1.0f);
+      rigidSteps_.push_back(m);
+    }
+    instanceTranslation_ = largestTranslation(rigidSteps_);
+  }
 }
 
 Sphere::Pose Sphere::at(float time) const {
@@ -32,12 +42,14 @@ float Sphere::area() const {
   return 4.0f * kPi * radii_[0] * radii_[0];
 }
 
-SurfaceInteraction Sphere::surfacePoint(const Pose& pose, const glm::vec3& direction, float time) {
+SurfaceInteraction Sphere::surfacePoint(const Pose& pose, const glm::vec3& direction,
+                                        float time) const {
   SurfaceInteraction si;
   si.n = glm::normalize(direction);
   si.ns = si.n;
   si.p = pose.centre + pose.radius * si.n;
   si.pError = gammaBound(5) * (glm::abs(si.p) + glm::abs(pose.centre));
+  if (!rigidSteps_.empty()) si.pError += instanceError(si.p, instanceTranslation_);
   // World up is +y: u = φ/2π about +y (φ from +z towards +x), v = 1 − θ/π (θ from +y), so
   // an image's top row (v = 1) maps to the top pole and the picture is not mirrored when
   // seen from a camera looking along +z.

@@ -3,7 +3,8 @@
 // subtends, pdf = 1 / (2π (1 − cos θmax)),  sin²θmax = r² / |c − ref|²;
 // from inside: uniform by area, pdf = d² / (|cos θ| · 4πr²).
 // Hit points are re-projected onto the surface, error bound γ(5)·|p|.
-// A moving sphere holds a centre and radius per time step, interpolated linearly.
+// A moving sphere holds a centre and radius per time step, interpolated linearly; if its
+// radius stays the same, its rigid steps (Shape) are the translations c_k − c_0.
 #pragma once
 
 #include <vector>
@@ -19,6 +20,7 @@ class Sphere final : public Shape {
   const std::vector<glm::vec3>& centres() const { return centres_; }
   const std::vector<float>& radii() const { return radii_; }
   const TimeSteps& timeSteps() const override { return steps_; }
+  const std::vector<glm::mat4>& rigidSteps() const override { return rigidSteps_; }
 
   float area() const override;
   SurfaceInteraction interaction(const Hit& hit, const Ray& ray) const override;
@@ -32,12 +34,14 @@ class Sphere final : public Shape {
     float radius;
   };
   Pose at(float time) const;
-  static SurfaceInteraction surfacePoint(const Pose& pose, const glm::vec3& direction, float time);
+  SurfaceInteraction surfacePoint(const Pose& pose, const glm::vec3& direction, float time) const;
   static bool inside(const Pose& pose, const glm::vec3& ref);
 
   std::vector<glm::vec3> centres_;
   std::vector<float> radii_;
   TimeSteps steps_;
+  std::vector<glm::mat4> rigidSteps_;
+  glm::vec3 instanceTranslation_{0.0f};  // largestTranslation(rigidSteps_)
 };
 
 }  // namespace camsim

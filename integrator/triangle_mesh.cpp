@@ -19,17 +19,22 @@ void reserveSpare(std::vector<T>& v, size_t spare) {
 TriangleMesh::TriangleMesh(std::vector<std::vector<glm::vec3>> positions,
                            std::vector<std::vector<glm::vec3>> normals,
                            std::vector<std::uint32_t> indices, TimeSteps steps,
-                           std::vector<glm::vec2> uvs, bool samplable)
+                           std::vector<glm::vec2> uvs, bool samplable,
+                           std::vector<glm::mat4> rigidSteps)
     : positions_(std::move(positions)),
       normals_(std::move(normals)),
       indices_(std::move(indices)),
       uvs_(std::move(uvs)),
       steps_(steps),
+      rigidSteps_(std::move(rigidSteps)),
+      instanceTranslation_(largestTranslation(rigidSteps_)),
       samplable_(samplable) {
   CAMSIM_CHECK(indices_.size() % 3 == 0 && !indices_.empty());
   CAMSIM_CHECK(static_cast<int>(positions_.size()) == steps_.count);
   CAMSIM_CHECK(normals_.empty() || normals_.size() == positions_.size());
   CAMSIM_CHECK(uvs_.empty() || uvs_.size() == positions_[0].size());
+  CAMSIM_CHECK(rigidSteps_.empty() ||
+               (steps_.count > 1 && rigidSteps_.size() == positions_.size()));
   for (auto& p : positions_) reserveSpare(p, kSpareVertices);
   reserveSpare(indices_, kSpareIndices);
   std::vector<double> areas(samplable_ ? triangleCount() : 0);
@@ -85,6 +90,7 @@ SurfaceInteraction TriangleMesh::pointOn(size_t tri, float b1, float b2, float t
   if (f != 0.0f)
     si.pError +=
         gammaBound(3) * (absComponents(p0) + absComponents(p1) + absComponents(p2));  // time lerp
+  if (!rigidSteps_.empty()) si.pError += instanceError(si.p, instanceTranslation_);
   const glm::vec3 cross = glm::cross(p1 - p0, p2 - p0);
   const float len = std::sqrt(glm::dot(cross, cross));
   // n in a local first: copying si.n into si.ns through memory right after the three
