@@ -31,39 +31,32 @@ void throwOnEmbreeError(RTCDevice device, const std::string& what) {
 
 static_assert(sizeof(glm::vec3) == 3 * sizeof(float), "Embree reads the vertices as packed float3");
 
-// The shape's first `steps` poses as an Embree geometry (committed): all of them for
-// motion-blurred geometry, one for a static shape or the static copy under an instance.
-RTCGeometry makeGeometry(RTCDevice device, const Shape& shape, int steps) {
+// The shape's pose at `step` as a static Embree geometry (committed).
+RTCGeometry makeGeometry(RTCDevice device, const Shape& shape, int step) {
   RTCGeometry geom = nullptr;
+  const auto k = static_cast<size_t>(step);
   if (const auto* mesh = dynamic_cast<const TriangleMesh*>(&shape)) {
     geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
-    rtcSetGeometryTimeStepCount(geom, static_cast<unsigned>(steps));
     // Shared, not copied: Embree reads the mesh's arrays in place. It may load 16 bytes
     // from the last vertex (and index triple), so TriangleMesh allocates one element
     // more than it uses; checked here because reading past it would be out of bounds.
-    for (int k = 0; k < steps; ++k) {
-      const std::vector<glm::vec3>& p = mesh->positions(k);
-      CAMSIM_CHECK(p.capacity() >= p.size() + TriangleMesh::kSpareVertices);
-      rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, static_cast<unsigned>(k),
-                                 RTC_FORMAT_FLOAT3, p.data(), 0, sizeof(glm::vec3), p.size());
-    }
+    const std::vector<glm::vec3>& p = mesh->positions(step);
+    CAMSIM_CHECK(p.capacity() >= p.size() + TriangleMesh::kSpareVertices);
+    rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, p.data(), 0,
+                               sizeof(glm::vec3), p.size());
     const std::vector<std::uint32_t>& idx = mesh->indices();
     CAMSIM_CHECK(idx.capacity() >= idx.size() + TriangleMesh::kSpareIndices);
     rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, idx.data(), 0,
                                3 * sizeof(std::uint32_t), mesh->triangleCount());
   } else if (const auto* sphere = dynamic_cast<const Sphere*>(&shape)) {
     geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_SPHERE_POINT);
-    rtcSetGeometryTimeStepCount(geom, static_cast<unsigned>(steps));
-    for (int k = 0; k < steps; ++k) {
-      auto* v = static_cast<float*>(
-          rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, static_cast<unsigned>(k),
-                                  RTC_FORMAT_FLOAT4, sizeof(float) * 4, 1));
-      const glm::vec3& c = sphere->centres()[static_cast<size_t>(k)];
-      v[0] = c.x;
-      v[1] = c.y;
-      v[2] = c.z;
-      v[3] = sphere->radii()[static_cast<size_t>(k)];
-    }
+    auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0,
+                                                          RTC_FORMAT_FLOAT4, sizeof(float) * 4, 1));
+    const glm::vec3& c = sphere->centres()[k];
+    v[0] = c.x;
+    v[1] = c.y;
+    v[2] = c.z;
+    v[3] = sphere->radii()[k];
   } else {
     CAMSIM_CHECK(false && "unknown shape type");
   }
@@ -71,22 +64,23 @@ RTCGeometry makeGeometry(RTCDevice device, const Shape& shape, int steps) {
   return geom;
 }
 
-// `geom` (the shape's first pose; this takes over the caller's reference) in a scene of its
-// own, placed by a motion-blurred instance with one transform per rigid step. Embree
-// interpolates the transforms linearly, as the shapes interpolate their poses.
-RTCGeometry makeInstance(RTCDevice device, RTCGeometry geom, const std::vector<glm::mat4>& steps) {
+// A moving shape: its reference pose in a scene of its own (built at `quality`), placed by
+// a motion-blurred instance with one transform per time step.
+RTCGeometry makeInstance(RTCDevice device, const Shape& shape, RTCBuildQuality quality) {
+  const InstanceMotion& motion = shape.instanceMotion();
   RTCScene object = rtcNewScene(device);
-  rtcSetSceneBuildQuality(object, RTC_BUILD_QUALITY_HIGH);
+  rtcSetSceneBuildQuality(object, quality);
+  RTCGeometry geom = makeGeometry(device, shape, motion.reference);
   rtcAttachGeometry(object, geom);
   rtcReleaseGeometry(geom);
   rtcCommitScene(object);
   RTCGeometry instance = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_INSTANCE);
   rtcSetGeometryInstancedScene(instance, object);
   rtcReleaseScene(object);  // the instance holds it
-  rtcSetGeometryTimeStepCount(instance, static_cast<unsigned>(steps.size()));
-  for (size_t k = 0; k < steps.size(); ++k)
+  rtcSetGeometryTimeStepCount(instance, static_cast<unsigned>(motion.steps.size()));
+  for (size_t k = 0; k < motion.steps.size(); ++k)
     rtcSetGeometryTransform(instance, static_cast<unsigned>(k), RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR,
-                            &steps[k][0][0]);
+                            &motion.steps[k][0][0]);
   rtcCommitGeometry(instance);
   return instance;
 }
@@ -129,13 +123,13 @@ EmbreeScene::EmbreeScene(const std::vector<std::unique_ptr<Shape>>& shapes, doub
   for (const auto& shape : shapes)
     if (const auto* mesh = dynamic_cast<const TriangleMesh*>(shape.get()))
       triangles += mesh->triangleCount();
-  rtcSetSceneBuildQuality(impl_->scene, triangles > kHighQualityTriangles ? RTC_BUILD_QUALITY_MEDIUM
-                                                                          : RTC_BUILD_QUALITY_HIGH);
+  const RTCBuildQuality quality =
+      triangles > kHighQualityTriangles ? RTC_BUILD_QUALITY_MEDIUM : RTC_BUILD_QUALITY_HIGH;
+  rtcSetSceneBuildQuality(impl_->scene, quality);
   for (size_t id = 0; id < shapes.size(); ++id) {
     const Shape& shape = *shapes[id];
-    const bool instanced = !shape.rigidSteps().empty();
-    RTCGeometry geom = makeGeometry(impl_->device, shape, instanced ? 1 : shape.timeSteps().count);
-    if (instanced) geom = makeInstance(impl_->device, geom, shape.rigidSteps());
+    RTCGeometry geom = shape.instanceMotion().empty() ? makeGeometry(impl_->device, shape, 0)
+                                                      : makeInstance(impl_->device, shape, quality);
     rtcAttachGeometryByID(impl_->scene, geom, static_cast<unsigned>(id));
     rtcReleaseGeometry(geom);
     throwOnEmbreeError(impl_->device, "adding shape " + std::to_string(id));

@@ -8,12 +8,12 @@
 // mesh, HIGH costs 3–4× the CPU time to build and a third more memory at its peak, for
 // 10–15 % faster traversal (docs/performance.md).
 // Moving shapes use Embree's motion blur, with steps uniform over the scene's motion span
-// [t0, t1]; a ray's time t (s) is passed to Embree as (t − t0)/(t1 − t0). A shape that moves
-// rigidly (Shape::rigidSteps) is a static geometry of its first pose in a scene of its own,
-// placed by an instance with one transform per step (RTC_GEOMETRY_TYPE_INSTANCE, ids = shape
-// index): the top-level BVH over a few instances is cheap to traverse, where a motion-
-// blurred triangle BVH cost twice the static one per ray (docs/performance.md). Other moving
-// shapes (a changing size) get one vertex buffer per step. Nothing is rebuilt per sample.
+// [t0, t1]; a ray's time t (s) is passed to Embree as (t − t0)/(t1 − t0). Each is a static
+// geometry of its reference pose in a scene of its own (same build quality), placed by a
+// motion-blurred instance with one transform per step (Shape::instanceMotion; instance id =
+// shape index): the top-level BVH over a few instances is cheap to traverse, where motion-
+// blurred triangles (one vertex buffer per step) cost twice the static BVH per ray
+// (docs/performance.md). Nothing is rebuilt per sample.
 #pragma once
 
 #include <cstddef>

@@ -23,6 +23,22 @@ int timeStepsFor(const RigidMotion& motion, double t0, double t1) {
   return std::clamp(steps, 2, 129);
 }
 
+// Instance transforms of a moving mesh (Shape): X_k = M_k · M_ref⁻¹ in double, the
+// reference being the first step of the largest scale (uniform scale: |first column|;
+// "larger" by more than 0.1 %, so that rounding does not pick a later pose of a rigid motion).
+template <typename TransformAt>
+InstanceMotion instanceMotion(const TransformAt& transformAt, int count) {
+  if (count == 1) return {};
+  const auto scale = [&](int k) { return glm::length(glm::dvec3(transformAt(k)[0])); };
+  int ref = 0;
+  for (int k = 1; k < count; ++k)
+    if (scale(k) > 1.001 * scale(ref)) ref = k;
+  const glm::dmat4 fromReference = glm::inverse(transformAt(ref));
+  std::vector<glm::mat4> transforms;
+  for (int k = 0; k < count; ++k) transforms.emplace_back(transformAt(k) * fromReference);
+  return InstanceMotion(ref, std::move(transforms));
+}
+
 std::unique_ptr<Shape> buildShape(const ShapeDescription& s, double t0, double t1, bool& moving) {
   moving = !s.motion.empty() && !s.motion.isStaticDuring(t0, t1);
   TimeSteps steps{t0, t1, moving ? timeStepsFor(s.motion, t0, t1) : 1};
@@ -43,16 +59,8 @@ std::unique_ptr<Shape> buildShape(const ShapeDescription& s, double t0, double t
   std::vector<std::vector<glm::vec3>> positions(static_cast<size_t>(steps.count));
   std::vector<std::vector<glm::vec3>> normals;
   if (!s.mesh.normals.empty()) normals.resize(static_cast<size_t>(steps.count));
-  // Rigid steps (Shape) if the size stays fixed: M_k · M_0⁻¹, in double.
-  std::vector<glm::mat4> rigidSteps;
-  const glm::dmat4 first = transformAt(0);
-  const double firstScale = glm::length(glm::dvec3(first[0]));
-  const glm::dmat4 fromFirst = glm::inverse(first);
   for (int k = 0; k < steps.count; ++k) {
     const glm::dmat4 m = transformAt(k);
-    if (steps.count > 1 &&
-        std::abs(glm::length(glm::dvec3(m[0])) - firstScale) <= 1e-12 * firstScale)
-      rigidSteps.emplace_back(m * fromFirst);
     const glm::dmat3 rotation(m);  // uniform scale: normals only need renormalising
     auto& p = positions[static_cast<size_t>(k)];
     p.reserve(s.mesh.positions.size() + TriangleMesh::kSpareVertices);
@@ -61,13 +69,12 @@ std::unique_ptr<Shape> buildShape(const ShapeDescription& s, double t0, double t
       for (const glm::vec3& n : s.mesh.normals)
         normals[static_cast<size_t>(k)].emplace_back(glm::normalize(rotation * glm::dvec3(n)));
   }
-  if (rigidSteps.size() != static_cast<size_t>(steps.count)) rigidSteps.clear();
   std::vector<std::uint32_t> indices;
   indices.reserve(s.mesh.indices.size() + TriangleMesh::kSpareIndices);
   indices.assign(s.mesh.indices.begin(), s.mesh.indices.end());
-  return std::make_unique<TriangleMesh>(std::move(positions), std::move(normals),
-                                        std::move(indices), steps, s.mesh.uvs,
-                                        s.emission.has_value(), std::move(rigidSteps));
+  return std::make_unique<TriangleMesh>(
+      std::move(positions), std::move(normals), std::move(indices), steps, s.mesh.uvs,
+      s.emission.has_value(), instanceMotion(transformAt, steps.count));
 }
 
 }  // namespace

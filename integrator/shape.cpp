@@ -6,10 +6,10 @@
 
 namespace camsim {
 
-glm::vec3 largestTranslation(const std::vector<glm::mat4>& steps) {
-  glm::vec3 largest(0.0f);
-  for (const glm::mat4& m : steps) largest = glm::max(largest, absComponents(glm::vec3(m[3])));
-  return largest;
+InstanceMotion::InstanceMotion(int referenceStep, std::vector<glm::mat4> transforms)
+    : reference(referenceStep), steps(std::move(transforms)) {
+  for (const glm::mat4& m : steps)
+    translation = glm::max(translation, absComponents(glm::vec3(m[3])));
 }
 
 float areaToSolidAnglePdf(float pdfArea, const glm::vec3& ref, const SurfaceInteraction& onShape) {

@@ -4,14 +4,11 @@
 // Lengths in metres.
 //
 // Moving shapes hold K ≥ 2 poses at time steps spread uniformly over the scene's motion
-// span [t0, t1] (TimeSteps) and interpolate them linearly, exactly as Embree does for
-// motion-blurred geometry, so hit points agree with Embree's intersection. A shape whose
-// size does not change (rotation and translation only) also lists the rigid transforms
-// from its first pose to each step's (rigidSteps): Embree then traces one static copy of
-// the first pose under a motion-blurred instance transform, which it interpolates linearly
-// as well (the same points as interpolating the poses), at a fraction of the cost of a
-// motion-blurred BVH. Such hits carry the instance transform's rounding in their error
-// bound.
+// span [t0, t1] (TimeSteps) and interpolate them linearly. Embree traces them as one
+// static copy of a reference pose under a motion-blurred instance (InstanceMotion) whose
+// transform at step k takes that pose to pose k: Embree interpolates the transforms
+// linearly, and for affine X_k, lerp(X_k, X_k+1)·p_ref = lerp(p_k, p_k+1), so hit points
+// agree with the shapes' own interpolation.
 #pragma once
 
 #include <optional>
@@ -55,6 +52,26 @@ struct TimeSteps {
   double timeOf(int step) const { return count <= 1 ? t0 : t0 + (t1 - t0) * step / (count - 1); }
 };
 
+// How a moving shape is traced: its pose at step `reference` (the pose of the largest size,
+// so that a shape growing from a speck keeps its single-precision detail) under an
+// instance whose transform at step k (render space, one per time step) is
+// X_k = M_k · M_reference⁻¹. Empty (no steps) for a static shape.
+struct InstanceMotion {
+  int reference = 0;
+  std::vector<glm::mat4> steps;
+  glm::vec3 translation{0.0f};  // largest |translation| of the steps per axis (m)
+
+  InstanceMotion() = default;
+  InstanceMotion(int referenceStep, std::vector<glm::mat4> transforms);
+  bool empty() const { return steps.empty(); }
+  // Extra absolute error bound (m) of a point p on the shape: Embree moves each ray into
+  // the instance's space with the interpolated transform, rounding at the scale of p and
+  // of the translation.
+  glm::vec3 error(const glm::vec3& p) const {
+    return gammaBound(8) * (absComponents(p) + translation);
+  }
+};
+
 struct SurfaceInteraction {
   glm::vec3 p{0.0f};       // position, m
   glm::vec3 pError{0.0f};  // absolute floating-point error bound on p, m
@@ -80,9 +97,7 @@ class Shape {
   virtual ~Shape() = default;
   virtual float area() const = 0;  // m², at rest
   virtual const TimeSteps& timeSteps() const = 0;
-  // For a moving shape of fixed size: per time step k, the transform (render space) taking
-  // the pose at step 0 to the pose at step k (step 0: identity). Empty otherwise.
-  virtual const std::vector<glm::mat4>& rigidSteps() const = 0;
+  virtual const InstanceMotion& instanceMotion() const = 0;  // empty if static
   virtual SurfaceInteraction interaction(const Hit& hit, const Ray& ray) const = 0;
   // A point on the shape at `time` seen from ref (u1 in [0,1), u2 in [0,1)²), with its
   // solid-angle pdf.
@@ -91,15 +106,6 @@ class Shape {
   // Solid-angle density of sample() producing `onShape` (at onShape.time) as seen from ref.
   virtual float pdf(const glm::vec3& ref, const SurfaceInteraction& onShape) const = 0;
 };
-
-// Extra absolute error (m) of a hit on a shape traced as an instance (see above): Embree
-// moves the ray into the instance's space with the interpolated transform, which rounds
-// at the scale of the point and of the transform's largest translation.
-inline glm::vec3 instanceError(const glm::vec3& p, const glm::vec3& translation) {
-  return gammaBound(8) * (absComponents(p) + translation);
-}
-// The largest |translation| per axis over a list of rigid step transforms.
-glm::vec3 largestTranslation(const std::vector<glm::mat4>& steps);
 
 // Solid-angle pdf of a point sampled by area with density pdfArea (m⁻²).
 float areaToSolidAnglePdf(float pdfArea, const glm::vec3& ref, const SurfaceInteraction& onShape);

@@ -17,16 +17,18 @@ Sphere::Sphere(std::vector<glm::vec3> centres, std::vector<float> radii, TimeSte
   CAMSIM_CHECK(!centres_.empty() && centres_.size() == radii_.size() &&
                static_cast<int>(centres_.size()) == steps_.count);
   for (float r : radii_) CAMSIM_CHECK(r > 0.0f);
-  bool fixedSize = steps_.count > 1;
-  for (float r : radii_) fixedSize = fixedSize && r == radii_[0];
-  if (fixedSize) {
-    for (const glm::vec3& c : centres_) {
-      glm::mat4 m(1.0f);
-      m[3] = glm::vec4(c - centres_[0], 1.0f);
-      rigidSteps_.push_back(m);
-    }
-    instanceTranslation_ = largestTranslation(rigidSteps_);
+  if (steps_.count == 1) return;
+  size_t ref = 0;  // the first of the largest radii (as buildShape picks a mesh's reference)
+  for (size_t k = 1; k < radii_.size(); ++k)
+    if (radii_[k] > 1.001f * radii_[ref]) ref = k;
+  std::vector<glm::mat4> transforms;
+  for (size_t k = 0; k < centres_.size(); ++k) {
+    const double s = static_cast<double>(radii_[k]) / static_cast<double>(radii_[ref]);
+    glm::dmat4 m(s);
+    m[3] = glm::dvec4(glm::dvec3(centres_[k]) - s * glm::dvec3(centres_[ref]), 1.0);
+    transforms.emplace_back(m);
   }
+  instance_ = InstanceMotion(static_cast<int>(ref), std::move(transforms));
 }
 
 Sphere::Pose Sphere::at(float time) const {
@@ -49,7 +51,7 @@ SurfaceInteraction Sphere::surfacePoint(const Pose& pose, const glm::vec3& direc
   si.ns = si.n;
   si.p = pose.centre + pose.radius * si.n;
   si.pError = gammaBound(5) * (glm::abs(si.p) + glm::abs(pose.centre));
-  if (!rigidSteps_.empty()) si.pError += instanceError(si.p, instanceTranslation_);
+  if (!instance_.empty()) si.pError += instance_.error(si.p);
   // World up is +y: u = φ/2π about +y (φ from +z towards +x), v = 1 − θ/π (θ from +y), so
   // an image's top row (v = 1) maps to the top pole and the picture is not mirrored when
   // seen from a camera looking along +z.

@@ -3,8 +3,8 @@
 // subtends, pdf = 1 / (2π (1 − cos θmax)),  sin²θmax = r² / |c − ref|²;
 // from inside: uniform by area, pdf = d² / (|cos θ| · 4πr²).
 // Hit points are re-projected onto the surface, error bound γ(5)·|p|.
-// A moving sphere holds a centre and radius per time step, interpolated linearly; if its
-// radius stays the same, its rigid steps (Shape) are the translations c_k − c_0.
+// A moving sphere holds a centre and radius per time step, interpolated linearly; its
+// instance transforms (Shape) are X_k = T(c_k) · S(r_k / r_ref) · T(−c_ref).
 #pragma once
 
 #include <vector>
@@ -20,7 +20,7 @@ class Sphere final : public Shape {
   const std::vector<glm::vec3>& centres() const { return centres_; }
   const std::vector<float>& radii() const { return radii_; }
   const TimeSteps& timeSteps() const override { return steps_; }
-  const std::vector<glm::mat4>& rigidSteps() const override { return rigidSteps_; }
+  const InstanceMotion& instanceMotion() const override { return instance_; }
 
   float area() const override;
   SurfaceInteraction interaction(const Hit& hit, const Ray& ray) const override;
@@ -40,8 +40,7 @@ class Sphere final : public Shape {
   std::vector<glm::vec3> centres_;
   std::vector<float> radii_;
   TimeSteps steps_;
-  std::vector<glm::mat4> rigidSteps_;
-  glm::vec3 instanceTranslation_{0.0f};  // largestTranslation(rigidSteps_)
+  InstanceMotion instance_;
 };
 
 }  // namespace camsim

@@ -19,22 +19,19 @@ void reserveSpare(std::vector<T>& v, size_t spare) {
 TriangleMesh::TriangleMesh(std::vector<std::vector<glm::vec3>> positions,
                            std::vector<std::vector<glm::vec3>> normals,
                            std::vector<std::uint32_t> indices, TimeSteps steps,
-                           std::vector<glm::vec2> uvs, bool samplable,
-                           std::vector<glm::mat4> rigidSteps)
+                           std::vector<glm::vec2> uvs, bool samplable, InstanceMotion instance)
     : positions_(std::move(positions)),
       normals_(std::move(normals)),
       indices_(std::move(indices)),
       uvs_(std::move(uvs)),
       steps_(steps),
-      rigidSteps_(std::move(rigidSteps)),
-      instanceTranslation_(largestTranslation(rigidSteps_)),
+      instance_(std::move(instance)),
       samplable_(samplable) {
   CAMSIM_CHECK(indices_.size() % 3 == 0 && !indices_.empty());
   CAMSIM_CHECK(static_cast<int>(positions_.size()) == steps_.count);
   CAMSIM_CHECK(normals_.empty() || normals_.size() == positions_.size());
   CAMSIM_CHECK(uvs_.empty() || uvs_.size() == positions_[0].size());
-  CAMSIM_CHECK(rigidSteps_.empty() ||
-               (steps_.count > 1 && rigidSteps_.size() == positions_.size()));
+  CAMSIM_CHECK(steps_.count == 1 ? instance_.empty() : instance_.steps.size() == positions_.size());
   for (auto& p : positions_) reserveSpare(p, kSpareVertices);
   reserveSpare(indices_, kSpareIndices);
   std::vector<double> areas(samplable_ ? triangleCount() : 0);
@@ -90,7 +87,7 @@ SurfaceInteraction TriangleMesh::pointOn(size_t tri, float b1, float b2, float t
   if (f != 0.0f)
     si.pError +=
         gammaBound(3) * (absComponents(p0) + absComponents(p1) + absComponents(p2));  // time lerp
-  if (!rigidSteps_.empty()) si.pError += instanceError(si.p, instanceTranslation_);
+  if (steps_.count > 1) si.pError += instance_.error(si.p);  // moving: traced as an instance
   const glm::vec3 cross = glm::cross(p1 - p0, p2 - p0);
   const float len = std::sqrt(glm::dot(cross, cross));
   // n in a local first: copying si.n into si.ns through memory right after the three

@@ -28,12 +28,12 @@ class TriangleMesh final : public Shape {
   // positions[k] / normals[k]: pose at time step k (normals may be empty). indices: 3 per
   // triangle. uvs: empty or one per vertex (they do not move). Zero-area triangles are kept
   // for intersection (Embree never hits them) and are never sampled. samplable: false for
-  // a mesh no light samples (sample() and pdf() must then not be called). rigidSteps:
-  // empty, or for a rigidly moving mesh the transform from pose 0 to pose k (Shape).
+  // a mesh no light samples (sample() and pdf() must then not be called). instance: how
+  // Embree traces a moving mesh (Shape), one transform per pose.
   TriangleMesh(std::vector<std::vector<glm::vec3>> positions,
                std::vector<std::vector<glm::vec3>> normals, std::vector<std::uint32_t> indices,
                TimeSteps steps, std::vector<glm::vec2> uvs = {}, bool samplable = true,
-               std::vector<glm::mat4> rigidSteps = {});
+               InstanceMotion instance = {});
 
   // Embree may load 16 bytes from the last vertex (float3) and the last index triple, so
   // the arrays it shares keep this many spare elements of capacity past their end.
@@ -47,7 +47,7 @@ class TriangleMesh final : public Shape {
   const std::vector<std::uint32_t>& indices() const { return indices_; }
   size_t triangleCount() const { return indices_.size() / 3; }
   const TimeSteps& timeSteps() const override { return steps_; }
-  const std::vector<glm::mat4>& rigidSteps() const override { return rigidSteps_; }
+  const InstanceMotion& instanceMotion() const override { return instance_; }
 
   float area() const override { return area_; }
   SurfaceInteraction interaction(const Hit& hit, const Ray& ray) const override;
@@ -66,8 +66,7 @@ class TriangleMesh final : public Shape {
   std::vector<std::uint32_t> indices_;
   std::vector<glm::vec2> uvs_;
   TimeSteps steps_;
-  std::vector<glm::mat4> rigidSteps_;
-  glm::vec3 instanceTranslation_{0.0f};    // largestTranslation(rigidSteps_)
+  InstanceMotion instance_;
   DiscreteDistribution areaDistribution_;  // empty unless samplable
   bool samplable_;
   float area_ = 0.0f;
