@@ -1,5 +1,6 @@
 // EmbreeScene: every ray query goes through here; this module is the only one that
-// includes Embree. Geometry id == shape index, so a Hit names its Shape directly.
+// includes Embree. Geometry id (static shapes) or instance id (moving ones) == shape index,
+// so a Hit names its Shape directly.
 // Triangle meshes become RTC_GEOMETRY_TYPE_TRIANGLE on the mesh's own vertex and index
 // arrays (shared, not copied: TriangleMesh keeps the 16 bytes of padding Embree reads past
 // the last element), spheres RTC_GEOMETRY_TYPE_SPHERE_POINT (small Embree-owned buffers).

@@ -1,5 +1,6 @@
 #include "integrator/shape.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "integrator/math.h"
@@ -9,7 +10,7 @@ namespace camsim {
 InstanceMotion::InstanceMotion(int referenceStep, std::vector<glm::mat4> transforms)
     : reference(referenceStep), steps(std::move(transforms)) {
   for (const glm::mat4& m : steps)
-    translation = glm::max(translation, absComponents(glm::vec3(m[3])));
+    for (int axis = 0; axis < 3; ++axis) translation = std::max(translation, std::abs(m[3][axis]));
 }
 
 float areaToSolidAnglePdf(float pdfArea, const glm::vec3& ref, const SurfaceInteraction& onShape) {

@@ -11,6 +11,7 @@
 // agree with the shapes' own interpolation.
 #pragma once
 
+#include <algorithm>
 #include <optional>
 #include <vector>
 
@@ -23,7 +24,7 @@
 
 namespace camsim {
 
-// What Embree reports for a hit: the shape (= geometry id), the primitive, the
+// What Embree reports for a hit: the shape (its index: the geometry or instance id), the primitive, the
 // barycentric (u, v) and the ray parameter.
 struct Hit {
   int shape = -1;
@@ -59,16 +60,19 @@ struct TimeSteps {
 struct InstanceMotion {
   int reference = 0;
   std::vector<glm::mat4> steps;
-  glm::vec3 translation{0.0f};  // largest |translation| of the steps per axis (m)
+  float translation = 0.0f;  // largest |translation component| over the steps (m)
 
   InstanceMotion() = default;
   InstanceMotion(int referenceStep, std::vector<glm::mat4> transforms);
   bool empty() const { return steps.empty(); }
   // Extra absolute error bound (m) of a point p on the shape: Embree moves each ray into
   // the instance's space with the interpolated transform, rounding at the scale of p and
-  // of the translation.
+  // of the translation. The same on every axis: a rotation carries one axis's rounding
+  // into the others (a plane through the origin would otherwise get no offset along its
+  // normal).
   glm::vec3 error(const glm::vec3& p) const {
-    return gammaBound(8) * (absComponents(p) + translation);
+    const glm::vec3 a = absComponents(p);
+    return glm::vec3(gammaBound(8) * (std::max(a.x, std::max(a.y, a.z)) + translation));
   }
 };
 

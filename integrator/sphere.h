@@ -2,7 +2,8 @@
 // Sampling from a reference point outside: uniform over the cone of directions it
 // subtends, pdf = 1 / (2π (1 − cos θmax)),  sin²θmax = r² / |c − ref|²;
 // from inside: uniform by area, pdf = d² / (|cos θ| · 4πr²).
-// Hit points are re-projected onto the surface, error bound γ(5)·|p|.
+// Hit points are re-projected onto the surface, error bound γ(5)·(|p| + |c|), plus the
+// instance term (Shape) for a moving sphere.
 // A moving sphere holds a centre and radius per time step, interpolated linearly; its
 // instance transforms (Shape) are X_k = T(c_k) · S(r_k / r_ref) · T(−c_ref).
 #pragma once

@@ -2,7 +2,8 @@
 // time steps, vertices interpolated linearly in time). Optional per-vertex normals give
 // the shading normal. Points are sampled uniformly by area: a triangle is chosen with
 // probability ∝ its area at rest, then a uniform point on it at the sample's time.
-//   p = b0·p0 + b1·p1 + b2·p2,  error bound γ(7)·(|b0 p0| + |b1 p1| + |b2 p2|)
+//   p = b0·p0 + b1·p1 + b2·p2,  error bound γ(7)·(|b0 p0| + |b1 p1| + |b2 p2|), for a
+//   moving mesh plus γ(3)·(|p0| + |p1| + |p2|) (time lerp) and the instance term (Shape)
 //   geometric normal n = normalize((p1 − p0) × (p2 − p0))  (counter-clockwise front)
 //   pdf_area(p on triangle k at t) = P(k) / area_k(t)
 //   texture coordinates uv = b0·uv0 + b1·uv1 + b2·uv2 with per-vertex uvs; a mesh without
