@@ -11,6 +11,7 @@
 #include "integrator/scene_loader_parts.h"
 #include "integrator/scene_spectra.h"
 #include "sensor/cie.h"
+#include "sensor/file_status.h"
 #include "sensor/spectral_data.h"
 #include "sensor/yaml_reader.h"
 
@@ -148,8 +149,7 @@ ShapeDescription parseShape(YamlMap map, size_t index, const Context& ctx) {
     if (file) {
       std::filesystem::path p(file->string());
       if (p.is_relative()) p = ctx.baseDir / p;
-      if (!std::filesystem::is_regular_file(p))
-        file->fail("mesh file '" + p.string() + "' not found");
+      if (!isRegularFile(p)) file->fail("mesh file '" + p.string() + "' not found");
       try {
         s.mesh = readMeshFile(p);
       } catch (const InputError& e) {
@@ -209,8 +209,7 @@ SceneDescription loadSceneFromText(const std::string& text, const std::string& d
     for (const YamlValue& p : paths->items()) {
       std::filesystem::path dir(p.string());
       if (dir.is_relative()) dir = baseDir / dir;
-      if (!std::filesystem::is_directory(dir))
-        p.fail("directory '" + dir.string() + "' does not exist");
+      if (!isDirectory(dir)) p.fail("directory '" + dir.string() + "' does not exist");
       ctx.search.directories.push_back(dir);
     }
   }
@@ -261,7 +260,7 @@ SceneDescription loadSceneFromText(const std::string& text, const std::string& d
 
 std::string readSceneFile(const std::filesystem::path& file) {
   std::ifstream in(file, std::ios::binary);
-  if (!in || std::filesystem::is_directory(file))
+  if (!in || isDirectory(file))
     throw InputError({file.string(), 0, 0}, "", "cannot open scene file");
   std::ostringstream text;
   text << in.rdbuf();

@@ -25,6 +25,7 @@
 #include "integrator/spot_light.h"
 #include "sensor/cie.h"
 #include "sensor/exr_io.h"
+#include "sensor/file_status.h"
 #include "sensor/spectral_data.h"
 
 namespace camsim {
@@ -160,8 +161,7 @@ void parseDistant(YamlMap& map, LightDescription& d, const SpectrumSearch& searc
 }
 
 std::shared_ptr<const Image> readMap(const YamlValue& file, const std::filesystem::path& path) {
-  if (!std::filesystem::is_regular_file(path))
-    file.fail("environment map '" + path.string() + "' not found");
+  if (!isRegularFile(path)) file.fail("environment map '" + path.string() + "' not found");
   ExrFile exr;
   try {
     exr = readExr(path);

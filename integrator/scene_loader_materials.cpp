@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "integrator/scene_loader_parts.h"
+#include "sensor/file_status.h"
 #include "sensor/spectral_data.h"
 
 namespace camsim {
@@ -46,7 +47,7 @@ Spectrum namedColumn(const YamlValue& name, const std::string& folder, const std
                      const SpectrumSearch& search) {
   const std::string file = folder + "/" + name.string() + ".csv";
   for (const auto& dir : search.directories) {
-    if (!std::filesystem::is_regular_file(dir / file)) continue;
+    if (!isRegularFile(dir / file)) continue;
     try {
       const SpectralTable table = readSpectralCsv(dir / file);
       return table.spectrum(table.columnIndex(column), Extrapolation::kClamp);

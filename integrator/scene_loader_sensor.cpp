@@ -4,6 +4,7 @@
 
 #include "integrator/scene_loader.h"
 #include "integrator/scene_loader_parts.h"
+#include "sensor/file_status.h"
 #include "sensor/spectral_data.h"
 
 namespace camsim {
@@ -13,7 +14,7 @@ SensorSettings parseSensorSettings(YamlMap map, const std::filesystem::path& bas
   SensorSettings s;
   const YamlValue model = map.require("model");
   std::string name = model.string();
-  if (std::filesystem::is_regular_file(baseDir / name)) name = (baseDir / name).string();
+  if (isRegularFile(baseDir / name)) name = (baseDir / name).string();
   try {
     s.spec = loadSensorSpec(name, lutsDirectory());
   } catch (const InputError& e) {

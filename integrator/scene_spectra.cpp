@@ -1,6 +1,7 @@
 #include "integrator/scene_spectra.h"
 
 #include "sensor/color_space.h"
+#include "sensor/file_status.h"
 #include "sensor/rgb_uplift.h"
 #include "sensor/spectral_data.h"
 
@@ -11,10 +12,10 @@ std::filesystem::path findTable(const YamlValue& value, const std::string& name,
                                 const SpectrumSearch& search) {
   const std::filesystem::path p(name);
   if (p.is_absolute()) {
-    if (std::filesystem::is_regular_file(p)) return p;
+    if (isRegularFile(p)) return p;
   } else {
     for (const auto& dir : search.directories)
-      if (std::filesystem::is_regular_file(dir / p)) return dir / p;
+      if (isRegularFile(dir / p)) return dir / p;
   }
   std::string dirs;
   for (const auto& dir : search.directories) dirs += (dirs.empty() ? "" : ", ") + dir.string();

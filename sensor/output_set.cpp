@@ -10,6 +10,7 @@
 #include <string_view>
 #include <system_error>
 
+#include "sensor/file_status.h"
 #include "sensor/input_error.h"
 
 namespace camsim {
@@ -41,7 +42,7 @@ std::vector<std::filesystem::path> OutputSet::prepareDirectory(
     const std::filesystem::path& directory) {
   std::error_code ec;
   std::filesystem::create_directories(directory, ec);
-  if (!std::filesystem::is_directory(directory))
+  if (!isDirectory(directory))
     throw InputError({directory.string(), 0, 0}, "",
                      "cannot create output directory" + (ec ? ": " + ec.message() : ""));
   return cleanStaleTemporaries(directory);

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "sensor/cie.h"
+#include "sensor/file_status.h"
 #include "sensor/input_error.h"
 #include "sensor/spectral_data.h"
 #include "sensor/yaml_reader.h"
@@ -37,10 +38,10 @@ SpectralTable readTable(const YamlValue& file, const std::vector<fs::path>& dirs
   const fs::path p(name);
   fs::path found;
   if (p.is_absolute()) {
-    if (fs::is_regular_file(p)) found = p;
+    if (isRegularFile(p)) found = p;
   } else {
     for (const fs::path& dir : dirs) {
-      if (fs::is_regular_file(dir / p)) {
+      if (isRegularFile(dir / p)) {
         found = dir / p;
         break;
       }

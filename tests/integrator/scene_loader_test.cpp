@@ -105,6 +105,9 @@ const ErrorCase kErrorCases[] = {
      27, "shapes[0].vertices[1]", "single-precision"},
     {"MissingMeshFile", withShapes("  - type: mesh\n    material: m\n    file: missing.obj\n"), 9,
      11, "shapes[0].file", "not found"},
+    {"MeshFileNameTooLong",  // the OS rejects the name: still "not found", not a crash
+     withShapes("  - type: mesh\n    material: m\n    file: " + std::string(300, 'm') + ".obj\n"),
+     9, 11, "shapes[0].file", "not found"},
     {"EmptyMesh", meshWith("[[0, 0, 0], [1, 0, 0], [0, 1, 0]]", "[]"), 10, 12, "shapes[0].faces",
      "no triangles"},
     {"FaceIndexOutOfRange", meshWith("[[0, 0, 0], [1, 0, 0], [0, 1, 0]]", "[[0, 1, 3]]"), 10, 20,

@@ -72,6 +72,9 @@ TEST(SensorSpec, MalformedDescriptionsAreRejectedWithLineAndKey) {
       {replaced(2, "pixel_pitch_um: -4"), "pixel_pitch_um", 2, 17},    // negative pitch
       {replaced(3, "cfa: RGBG"), "cfa", 3, 6},                         // unknown layout
       {replaced(4, "qe: {curves: cameras/nope.csv, peak_qe: 0.5}"), "qe.curves", 4, 14},
+      // A name the OS rejects (> NAME_MAX): "not found", not a filesystem_error (fuzzer).
+      {replaced(4, "qe: {curves: " + std::string(300, 'n') + ".csv, peak_qe: 0.5}"), "qe.curves", 4,
+       14},
       {replaced(4, "qe: {curves: cameras/nikon_d850.csv, peak_qe: 1.5}"), "qe.peak_qe", 4, 47},
       {replaced(4, "qe: {curves: cameras/nikon_d850.csv}"), "qe.peak_qe", 4, 5},  // missing
       {replaced(4, "qe: {ideal_xyz: true}"), "qe.ideal_xyz", 4, 17},  // RGGB is not X, Y, Z
