@@ -31,16 +31,17 @@ void throwOnEmbreeError(RTCDevice device, const std::string& what) {
 
 static_assert(sizeof(glm::vec3) == 3 * sizeof(float), "Embree reads the vertices as packed float3");
 
-// The shape's pose at `step` as a static Embree geometry (committed).
-RTCGeometry makeGeometry(RTCDevice device, const Shape& shape, int step) {
+// The shape's pose at rest, or a moving shape's reference pose, as a static Embree
+// geometry (committed).
+RTCGeometry makeGeometry(RTCDevice device, const Shape& shape) {
   RTCGeometry geom = nullptr;
-  const auto k = static_cast<size_t>(step);
+  const auto k = static_cast<size_t>(shape.instanceMotion().reference);
   if (const auto* mesh = dynamic_cast<const TriangleMesh*>(&shape)) {
     geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
     // Shared, not copied: Embree reads the mesh's arrays in place. It may load 16 bytes
     // from the last vertex (and index triple), so TriangleMesh allocates one element
     // more than it uses; checked here because reading past it would be out of bounds.
-    const std::vector<glm::vec3>& p = mesh->positions(step);
+    const std::vector<glm::vec3>& p = mesh->positions();
     CAMSIM_CHECK(p.capacity() >= p.size() + TriangleMesh::kSpareVertices);
     rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, p.data(), 0,
                                sizeof(glm::vec3), p.size());
@@ -70,7 +71,7 @@ RTCGeometry makeInstance(RTCDevice device, const Shape& shape, RTCBuildQuality q
   const InstanceMotion& motion = shape.instanceMotion();
   RTCScene object = rtcNewScene(device);
   rtcSetSceneBuildQuality(object, quality);
-  RTCGeometry geom = makeGeometry(device, shape, motion.reference);
+  RTCGeometry geom = makeGeometry(device, shape);
   rtcAttachGeometry(object, geom);
   rtcReleaseGeometry(geom);
   rtcCommitScene(object);
@@ -128,7 +129,7 @@ EmbreeScene::EmbreeScene(const std::vector<std::unique_ptr<Shape>>& shapes, doub
   rtcSetSceneBuildQuality(impl_->scene, quality);
   for (size_t id = 0; id < shapes.size(); ++id) {
     const Shape& shape = *shapes[id];
-    RTCGeometry geom = shape.instanceMotion().empty() ? makeGeometry(impl_->device, shape, 0)
+    RTCGeometry geom = shape.instanceMotion().empty() ? makeGeometry(impl_->device, shape)
                                                       : makeInstance(impl_->device, shape, quality);
     rtcAttachGeometryByID(impl_->scene, geom, static_cast<unsigned>(id));
     rtcReleaseGeometry(geom);

@@ -23,22 +23,6 @@ int timeStepsFor(const RigidMotion& motion, double t0, double t1) {
   return std::clamp(steps, 2, 129);
 }
 
-// Instance transforms of a moving mesh (Shape): X_k = M_k · M_ref⁻¹ in double, the
-// reference being the first step of the largest scale (uniform scale: |first column|;
-// "larger" by more than 0.1 %, so that rounding does not pick a later pose of a rigid motion).
-template <typename TransformAt>
-InstanceMotion instanceMotion(const TransformAt& transformAt, int count) {
-  if (count == 1) return {};
-  const auto scale = [&](int k) { return glm::length(glm::dvec3(transformAt(k)[0])); };
-  int ref = 0;
-  for (int k = 1; k < count; ++k)
-    if (scale(k) > 1.001 * scale(ref)) ref = k;
-  const glm::dmat4 fromReference = glm::inverse(transformAt(ref));
-  std::vector<glm::mat4> transforms;
-  for (int k = 0; k < count; ++k) transforms.emplace_back(transformAt(k) * fromReference);
-  return InstanceMotion(ref, std::move(transforms));
-}
-
 std::unique_ptr<Shape> buildShape(const ShapeDescription& s, double t0, double t1, bool& moving) {
   moving = !s.motion.empty() && !s.motion.isStaticDuring(t0, t1);
   TimeSteps steps{t0, t1, moving ? timeStepsFor(s.motion, t0, t1) : 1};
@@ -56,25 +40,36 @@ std::unique_ptr<Shape> buildShape(const ShapeDescription& s, double t0, double t
     }
     return std::make_unique<Sphere>(std::move(centres), std::move(radii), steps);
   }
-  std::vector<std::vector<glm::vec3>> positions(static_cast<size_t>(steps.count));
-  std::vector<std::vector<glm::vec3>> normals;
-  if (!s.mesh.normals.empty()) normals.resize(static_cast<size_t>(steps.count));
+  // A mesh stores one pose: the reference of its instance motion (Shape), or its only one.
+  std::vector<glm::dmat4> poses;
+  std::vector<double> scales;
   for (int k = 0; k < steps.count; ++k) {
-    const glm::dmat4 m = transformAt(k);
-    const glm::dmat3 rotation(m);  // uniform scale: normals only need renormalising
-    auto& p = positions[static_cast<size_t>(k)];
-    p.reserve(s.mesh.positions.size() + TriangleMesh::kSpareVertices);
-    for (const glm::vec3& v : s.mesh.positions) p.emplace_back(m * glm::dvec4(glm::dvec3(v), 1.0));
-    if (!normals.empty())
-      for (const glm::vec3& n : s.mesh.normals)
-        normals[static_cast<size_t>(k)].emplace_back(glm::normalize(rotation * glm::dvec3(n)));
+    poses.push_back(transformAt(k));
+    scales.push_back(glm::length(glm::dvec3(poses.back()[0])));  // uniform scale
   }
+  InstanceMotion instance;
+  const int ref = steps.count > 1 ? InstanceMotion::largestStep(scales) : 0;
+  const glm::dmat4& m = poses[static_cast<size_t>(ref)];
+  if (steps.count > 1) {
+    const glm::dmat4 fromReference = glm::inverse(m);
+    std::vector<glm::mat4> transforms;
+    for (const glm::dmat4& pose : poses) transforms.emplace_back(pose * fromReference);
+    instance = InstanceMotion(ref, std::move(transforms));
+  }
+  std::vector<glm::vec3> positions;
+  positions.reserve(s.mesh.positions.size() + TriangleMesh::kSpareVertices);
+  for (const glm::vec3& v : s.mesh.positions)
+    positions.emplace_back(m * glm::dvec4(glm::dvec3(v), 1.0));
+  std::vector<glm::vec3> normals;
+  const glm::dmat3 rotation(m);  // uniform scale: normals only need renormalising
+  for (const glm::vec3& n : s.mesh.normals)
+    normals.emplace_back(glm::normalize(rotation * glm::dvec3(n)));
   std::vector<std::uint32_t> indices;
   indices.reserve(s.mesh.indices.size() + TriangleMesh::kSpareIndices);
   indices.assign(s.mesh.indices.begin(), s.mesh.indices.end());
-  return std::make_unique<TriangleMesh>(
-      std::move(positions), std::move(normals), std::move(indices), steps, s.mesh.uvs,
-      s.emission.has_value(), instanceMotion(transformAt, steps.count));
+  return std::make_unique<TriangleMesh>(std::move(positions), std::move(normals),
+                                        std::move(indices), steps, s.mesh.uvs,
+                                        s.emission.has_value(), std::move(instance));
 }
 
 }  // namespace

@@ -65,6 +65,15 @@ struct InstanceMotion {
   InstanceMotion() = default;
   InstanceMotion(int referenceStep, std::vector<glm::mat4> transforms);
   bool empty() const { return steps.empty(); }
+  // The reference for poses of these sizes (any unit): the first of the largest, where
+  // "larger" means by more than 0.1 %, so that rounding does not pick a later pose of a
+  // rigid motion.
+  static int largestStep(const std::vector<double>& sizes);
+  // The transform at step i + fraction f (TimeSteps::locate), interpolated as Embree does.
+  glm::mat4 at(int i, float f) const {
+    const glm::mat4& a = steps[static_cast<size_t>(i)];
+    return f == 0.0f ? a : a + f * (steps[static_cast<size_t>(i) + 1] - a);
+  }
   // Extra absolute error bound (m) of a point p on the shape: Embree moves each ray into
   // the instance's space with the interpolated transform, rounding at the scale of p and
   // of the translation. The same on every axis: a rotation carries one axis's rounding

@@ -18,9 +18,8 @@ Sphere::Sphere(std::vector<glm::vec3> centres, std::vector<float> radii, TimeSte
                static_cast<int>(centres_.size()) == steps_.count);
   for (float r : radii_) CAMSIM_CHECK(r > 0.0f);
   if (steps_.count == 1) return;
-  size_t ref = 0;  // the first of the largest radii (as buildShape picks a mesh's reference)
-  for (size_t k = 1; k < radii_.size(); ++k)
-    if (radii_[k] > 1.001f * radii_[ref]) ref = k;
+  const auto ref = static_cast<size_t>(
+      InstanceMotion::largestStep(std::vector<double>(radii_.begin(), radii_.end())));
   std::vector<glm::mat4> transforms;
   for (size_t k = 0; k < centres_.size(); ++k) {
     const double s = static_cast<double>(radii_[k]) / static_cast<double>(radii_[ref]);

@@ -16,8 +16,7 @@ void reserveSpare(std::vector<T>& v, size_t spare) {
 
 }  // namespace
 
-TriangleMesh::TriangleMesh(std::vector<std::vector<glm::vec3>> positions,
-                           std::vector<std::vector<glm::vec3>> normals,
+TriangleMesh::TriangleMesh(std::vector<glm::vec3> positions, std::vector<glm::vec3> normals,
                            std::vector<std::uint32_t> indices, TimeSteps steps,
                            std::vector<glm::vec2> uvs, bool samplable, InstanceMotion instance)
     : positions_(std::move(positions)),
@@ -28,17 +27,22 @@ TriangleMesh::TriangleMesh(std::vector<std::vector<glm::vec3>> positions,
       instance_(std::move(instance)),
       samplable_(samplable) {
   CAMSIM_CHECK(indices_.size() % 3 == 0 && !indices_.empty());
-  CAMSIM_CHECK(static_cast<int>(positions_.size()) == steps_.count);
   CAMSIM_CHECK(normals_.empty() || normals_.size() == positions_.size());
-  CAMSIM_CHECK(uvs_.empty() || uvs_.size() == positions_[0].size());
-  CAMSIM_CHECK(steps_.count == 1 ? instance_.empty() : instance_.steps.size() == positions_.size());
-  for (auto& p : positions_) reserveSpare(p, kSpareVertices);
+  CAMSIM_CHECK(uvs_.empty() || uvs_.size() == positions_.size());
+  CAMSIM_CHECK(steps_.count == 1 ? instance_.empty()
+                                 : instance_.steps.size() == static_cast<size_t>(steps_.count));
+  reserveSpare(positions_, kSpareVertices);
   reserveSpare(indices_, kSpareIndices);
+  // Areas at rest: at the first time step.
+  const glm::dmat4 rest = instance_.empty() ? glm::dmat4(1.0) : glm::dmat4(instance_.steps[0]);
+  const auto restVertex = [&](std::uint32_t i) {
+    return glm::dvec3(rest * glm::dvec4(glm::dvec3(positions_[i]), 1.0));
+  };
   std::vector<double> areas(samplable_ ? triangleCount() : 0);
   double total = 0.0;
   for (size_t t = 0; t < triangleCount(); ++t) {
-    const glm::dvec3 p0 = positions_[0][indices_[3 * t]], p1 = positions_[0][indices_[3 * t + 1]],
-                     p2 = positions_[0][indices_[3 * t + 2]];
+    const glm::dvec3 p0 = restVertex(indices_[3 * t]), p1 = restVertex(indices_[3 * t + 1]),
+                     p2 = restVertex(indices_[3 * t + 2]);
     const double area = 0.5 * glm::length(glm::cross(p1 - p0, p2 - p0));
     if (samplable_) areas[t] = area;
     total += area;
@@ -47,19 +51,20 @@ TriangleMesh::TriangleMesh(std::vector<std::vector<glm::vec3>> positions,
   if (samplable_ && total > 0.0) areaDistribution_ = DiscreteDistribution(areas);
 }
 
-glm::vec3 TriangleMesh::vertex(std::uint32_t index, int step, float f) const {
-  const glm::vec3& a = positions_[static_cast<size_t>(step)][index];
-  if (f == 0.0f) return a;
-  return (1.0f - f) * a + f * positions_[static_cast<size_t>(step) + 1][index];
-}
-
-float TriangleMesh::triangleArea(size_t tri, float time) const {
+// Moving mesh: the instance transform at `time`.
+glm::mat4 TriangleMesh::transformAt(float time) const {
   int step;
   float f;
   steps_.locate(time, step, f);
-  const glm::vec3 p0 = vertex(indices_[3 * tri], step, f),
-                  p1 = vertex(indices_[3 * tri + 1], step, f),
-                  p2 = vertex(indices_[3 * tri + 2], step, f);
+  return instance_.at(step, f);
+}
+
+float TriangleMesh::triangleArea(size_t tri, float time) const {
+  const glm::mat4 m = transformAt(time);
+  const auto vertex = [&](size_t k) {
+    return glm::vec3(m * glm::vec4(positions_[indices_[k]], 1.0f));
+  };
+  const glm::vec3 p0 = vertex(3 * tri), p1 = vertex(3 * tri + 1), p2 = vertex(3 * tri + 2);
   return 0.5f * glm::length(glm::cross(p1 - p0, p2 - p0));
 }
 
@@ -71,23 +76,24 @@ float TriangleMesh::areaPdf(size_t tri, float time) const {
 }
 
 // Hot: every hit and every light sample on a mesh comes through here. Static meshes skip
-// the time lookup and the lerps; |x| uses absComponents (see math.h).
+// the time lookup and the transform; |x| uses absComponents (see math.h).
 SurfaceInteraction TriangleMesh::pointOn(size_t tri, float b1, float b2, float time) const {
-  int step = 0;
-  float f = 0.0f;
-  if (steps_.count > 1) steps_.locate(time, step, f);
+  const bool moving = !instance_.empty();
+  const glm::mat4 m = moving ? transformAt(time) : glm::mat4(1.0f);
   const std::uint32_t i0 = indices_[3 * tri], i1 = indices_[3 * tri + 1],
                       i2 = indices_[3 * tri + 2];
-  const glm::vec3 p0 = vertex(i0, step, f), p1 = vertex(i1, step, f), p2 = vertex(i2, step, f);
+  const auto vertex = [&](std::uint32_t i) {
+    return moving ? glm::vec3(m * glm::vec4(positions_[i], 1.0f)) : positions_[i];
+  };
+  const glm::vec3 p0 = vertex(i0), p1 = vertex(i1), p2 = vertex(i2);
   const float b0 = 1.0f - b1 - b2;
   SurfaceInteraction si;
   si.p = b0 * p0 + b1 * p1 + b2 * p2;
   si.pError =
       gammaBound(7) * (absComponents(b0 * p0) + absComponents(b1 * p1) + absComponents(b2 * p2));
-  if (f != 0.0f)
-    si.pError +=
-        gammaBound(3) * (absComponents(p0) + absComponents(p1) + absComponents(p2));  // time lerp
-  if (steps_.count > 1) si.pError += instance_.error(si.p);  // moving: traced as an instance
+  if (moving)  // the transform's rounding here and in Embree (Shape)
+    si.pError += gammaBound(3) * (absComponents(p0) + absComponents(p1) + absComponents(p2)) +
+                 instance_.error(si.p);
   const glm::vec3 cross = glm::cross(p1 - p0, p2 - p0);
   const float len = std::sqrt(glm::dot(cross, cross));
   // n in a local first: copying si.n into si.ns through memory right after the three
@@ -96,11 +102,8 @@ SurfaceInteraction TriangleMesh::pointOn(size_t tri, float b1, float b2, float t
   si.n = n;
   si.ns = n;
   if (!normals_.empty()) {
-    const auto normalAt = [&](std::uint32_t i) {  // as vertex(): no lerp for f = 0
-      const glm::vec3& a = normals_[static_cast<size_t>(step)][i];
-      return f == 0.0f ? a : glm::mix(a, normals_[static_cast<size_t>(step) + 1][i], f);
-    };
-    const glm::vec3 ns = b0 * normalAt(i0) + b1 * normalAt(i1) + b2 * normalAt(i2);
+    glm::vec3 ns = b0 * normals_[i0] + b1 * normals_[i1] + b2 * normals_[i2];
+    if (moving) ns = glm::mat3(m) * ns;  // uniform scale: renormalised below
     const float nsLen = std::sqrt(glm::dot(ns, ns));
     if (nsLen > 0.0f && std::isfinite(nsLen)) {
       si.ns = ns / nsLen;

@@ -1,5 +1,7 @@
-// TriangleMesh: indexed triangles in world space (m), possibly moving (K poses at uniform
-// time steps, vertices interpolated linearly in time). Optional per-vertex normals give
+// TriangleMesh: indexed triangles in world space (m), possibly moving: a moving mesh stores
+// one pose, the reference of its instance motion (Shape), and places it at time t with the
+// instance transform interpolated linearly between the K uniform time steps, exactly the
+// transform Embree traces it with. Optional per-vertex normals give
 // the shading normal. Points are sampled uniformly by area: a triangle is chosen with
 // probability ∝ its area at rest, then a uniform point on it at the sample's time.
 //   p = b0·p0 + b1·p1 + b2·p2,  error bound γ(7)·(|b0 p0| + |b1 p1| + |b2 p2|), for a
@@ -26,15 +28,14 @@ namespace camsim {
 
 class TriangleMesh final : public Shape {
  public:
-  // positions[k] / normals[k]: pose at time step k (normals may be empty). indices: 3 per
-  // triangle. uvs: empty or one per vertex (they do not move). Zero-area triangles are kept
-  // for intersection (Embree never hits them) and are never sampled. samplable: false for
-  // a mesh no light samples (sample() and pdf() must then not be called). instance: how
-  // Embree traces a moving mesh (Shape), one transform per pose.
-  TriangleMesh(std::vector<std::vector<glm::vec3>> positions,
-               std::vector<std::vector<glm::vec3>> normals, std::vector<std::uint32_t> indices,
-               TimeSteps steps, std::vector<glm::vec2> uvs = {}, bool samplable = true,
-               InstanceMotion instance = {});
+  // positions / normals: the stored pose (normals may be empty). indices: 3 per triangle.
+  // uvs: empty or one per vertex (they do not move). Zero-area triangles are kept for
+  // intersection (Embree never hits them) and are never sampled. samplable: false for a
+  // mesh no light samples (sample() and pdf() must then not be called). instance: for a
+  // moving mesh (steps.count > 1) one transform per step from the stored pose (Shape).
+  TriangleMesh(std::vector<glm::vec3> positions, std::vector<glm::vec3> normals,
+               std::vector<std::uint32_t> indices, TimeSteps steps, std::vector<glm::vec2> uvs = {},
+               bool samplable = true, InstanceMotion instance = {});
 
   // Embree may load 16 bytes from the last vertex (float3) and the last index triple, so
   // the arrays it shares keep this many spare elements of capacity past their end.
@@ -42,9 +43,8 @@ class TriangleMesh final : public Shape {
   static constexpr size_t kSpareVertices = 1;
   static constexpr size_t kSpareIndices = 3;
 
-  const std::vector<glm::vec3>& positions(int step = 0) const {
-    return positions_[static_cast<size_t>(step)];
-  }
+  // The stored pose (m): the mesh at rest, or the reference pose of a moving mesh.
+  const std::vector<glm::vec3>& positions() const { return positions_; }
   const std::vector<std::uint32_t>& indices() const { return indices_; }
   size_t triangleCount() const { return indices_.size() / 3; }
   const TimeSteps& timeSteps() const override { return steps_; }
@@ -57,13 +57,13 @@ class TriangleMesh final : public Shape {
   float pdf(const glm::vec3& ref, const SurfaceInteraction& onShape) const override;
 
  private:
-  glm::vec3 vertex(std::uint32_t index, int step, float f) const;
+  glm::mat4 transformAt(float time) const;
   SurfaceInteraction pointOn(size_t tri, float b1, float b2, float time) const;
   float triangleArea(size_t tri, float time) const;
   float areaPdf(size_t tri, float time) const;
 
-  std::vector<std::vector<glm::vec3>> positions_;
-  std::vector<std::vector<glm::vec3>> normals_;
+  std::vector<glm::vec3> positions_;  // the stored pose; shared with Embree
+  std::vector<glm::vec3> normals_;
   std::vector<std::uint32_t> indices_;
   std::vector<glm::vec2> uvs_;
   TimeSteps steps_;

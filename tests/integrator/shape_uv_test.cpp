@@ -16,7 +16,7 @@ namespace {
 constexpr float kTol = 1e-6f;
 
 TriangleMesh quad(std::vector<glm::vec2> uvs) {
-  std::vector<std::vector<glm::vec3>> positions = {{{0, 0, 0}, {2, 0, 0}, {2, 1, 0}, {0, 1, 0}}};
+  std::vector<glm::vec3> positions = {{0, 0, 0}, {2, 0, 0}, {2, 1, 0}, {0, 1, 0}};
   return TriangleMesh(std::move(positions), {}, {0, 1, 2, 0, 2, 3}, TimeSteps{}, std::move(uvs));
 }
 
