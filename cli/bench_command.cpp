@@ -149,10 +149,10 @@ int runBench(const BenchArgs& args, std::ostream& out, std::ostream& log) {
          << (ref.fromCache ? " (cached " : " (rendered in " + formatNumber(ref.seconds, 3) + " s, ")
          << ref.file.filename().string() << ")\n";
     std::vector<BenchRow> sceneRows = sweep(s, scene, ref, plan, log);
-    for (const char* sampler : {"independent", "sobol"}) {
+    for (SamplerKind kind : {SamplerKind::kIndependent, SamplerKind::kSobol}) {
       std::vector<BenchRow*> mine;
       for (BenchRow& r : sceneRows)
-        if (r.sampler == sampler) mine.push_back(&r);
+        if (r.sampler == samplerName(kind)) mine.push_back(&r);
       slopes.push_back(fitRows(mine));
     }
     rows.insert(rows.end(), sceneRows.begin(), sceneRows.end());
@@ -165,8 +165,8 @@ int runBench(const BenchArgs& args, std::ostream& out, std::ostream& log) {
     }
     if (s.name == "motion_blur") {
       log << "bench: motion-blur overhead on " << s.name << "\n";
-      extras << formatMotionOverhead(
-                    s.name, measureMotionOverhead(s.description, plan.featureSpp, plan.threads))
+      extras << formatMotionOverhead(s.name, measureMotionOverhead(scene, s.description,
+                                                                   plan.featureSpp, plan.threads))
              << "\n";
     }
   }

@@ -118,10 +118,10 @@ SceneDescription withoutMotion(const SceneDescription& description) {
   return d;
 }
 
-MotionOverhead measureMotionOverhead(const SceneDescription& description, int spp, int threads) {
+MotionOverhead measureMotionOverhead(const Scene& moving, const SceneDescription& description,
+                                     int spp, int threads) {
   MotionOverhead m;
   m.spp = spp;
-  const Scene moving(description);
   m.timeSteps = moving.modelled().timeSteps;
   const Scene still(withoutMotion(description));
   m.moving = fastestOf(kRepeats, moving, spp, threads, false, nullptr);

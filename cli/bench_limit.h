@@ -69,7 +69,9 @@ struct MotionOverhead {
   int timeSteps = 0;
   RenderStats moving, still, stillTimeSampled;
 };
-MotionOverhead measureMotionOverhead(const SceneDescription& description, int spp, int threads);
+// `moving` is the Scene built from `description` (the bench's own; not built again here).
+MotionOverhead measureMotionOverhead(const Scene& moving, const SceneDescription& description,
+                                     int spp, int threads);
 
 // A torus of 2·segments·rings ≥ triangles triangles with a bumpy tube.
 MeshData makeTorusMesh(std::uint64_t triangles);
