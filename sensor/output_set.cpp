@@ -57,9 +57,20 @@ std::filesystem::path OutputSet::addText(const std::string& fileName, const std:
 }
 
 std::vector<std::filesystem::path> OutputSet::commit() {
+  // A final name taken by a directory is the one failure a rename cannot recover from that
+  // the user can cause (an existing file is replaced): checked for all files before any is
+  // renamed, so none appears.
+  for (const auto& [temp, final] : files_)
+    if (isDirectory(final))
+      throw InputError({final.string(), 0, 0}, "", "cannot write: a directory has this name");
   std::vector<std::filesystem::path> finals;
   for (const auto& [temp, final] : files_) {
-    std::filesystem::rename(temp, final);
+    std::error_code ec;
+    std::filesystem::rename(temp, final, ec);
+    if (ec)
+      throw std::runtime_error("cannot rename " + temp.string() + " to " + final.string() + ": " +
+                               ec.message() + " (" + std::to_string(finals.size()) + " of " +
+                               std::to_string(files_.size()) + " outputs already in place)");
     finals.push_back(final);
   }
   committed_ = true;

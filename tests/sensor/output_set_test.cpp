@@ -17,11 +17,21 @@
 #include <gtest/gtest.h>
 
 #include "sensor/input_error.h"
+#include "tests/support/text_file.h"
 
 namespace camsim {
 namespace {
 
 // A fresh directory per test (suite, name and pid in its name), removed afterwards.
+// A PID that belonged to a process that has exited and been reaped (a killed run's).
+pid_t deadPid() {
+  const pid_t child = ::fork();
+  if (child == 0) ::_exit(0);
+  int status = 0;
+  ::waitpid(child, &status, 0);
+  return child;
+}
+
 class OutputSetTest : public testing::Test {
  protected:
   void SetUp() override {
@@ -41,18 +51,6 @@ class OutputSetTest : public testing::Test {
     return static_cast<size_t>(std::distance(std::filesystem::directory_iterator(dir_),
                                              std::filesystem::directory_iterator()));
   }
-  static void write(const std::filesystem::path& path, const std::string& text) {
-    std::ofstream out(path, std::ios::binary);
-    out << text;
-    ASSERT_TRUE(out.good()) << path;
-  }
-  static std::string read(const std::filesystem::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::ostringstream text;
-    text << in.rdbuf();
-    return text.str();
-  }
-
   std::filesystem::path dir_;
 };
 
@@ -72,8 +70,8 @@ TEST_F(OutputSetTest, UncommittedFilesAreRemovedAndNeverAppearUnderTheFinalName)
     OutputSet set(dir_);
     const std::filesystem::path a = set.add("a.exr");
     const std::filesystem::path b = set.add("b.png");
-    write(a, "aaa");
-    write(b, "bbb");
+    test::writeFile(a, "aaa");
+    test::writeFile(b, "bbb");
     EXPECT_TRUE(std::filesystem::exists(a));
     EXPECT_TRUE(std::filesystem::exists(b));
     EXPECT_FALSE(std::filesystem::exists(dir_ / "a.exr"));
@@ -92,16 +90,16 @@ TEST_F(OutputSetTest, CommitRenamesToTheFinalNames) {
     OutputSet set(dir_);
     a = set.add("a.exr");
     b = set.add("b.png");
-    write(a, "first");
-    write(b, "second");
+    test::writeFile(a, "first");
+    test::writeFile(b, "second");
     const std::vector<std::filesystem::path> finals = set.commit();
     ASSERT_EQ(finals.size(), 2u);
     EXPECT_EQ(finals[0], dir_ / "a.exr");
     EXPECT_EQ(finals[1], dir_ / "b.png");
   }
   // Still there after the set is destroyed, with their content; temporaries gone.
-  EXPECT_EQ(read(dir_ / "a.exr"), "first");
-  EXPECT_EQ(read(dir_ / "b.png"), "second");
+  EXPECT_EQ(test::readFile(dir_ / "a.exr"), "first");
+  EXPECT_EQ(test::readFile(dir_ / "b.png"), "second");
   EXPECT_FALSE(std::filesystem::exists(a));
   EXPECT_FALSE(std::filesystem::exists(b));
   EXPECT_EQ(entries(), 2u);
@@ -111,10 +109,10 @@ TEST_F(OutputSetTest, AddTextWritesTheTemporaryAndFailsNamingTheFinalFile) {
   {
     OutputSet set(dir_);
     const std::filesystem::path temp = set.addText("table.csv", "a,b\n1,2\n");
-    EXPECT_EQ(read(temp), "a,b\n1,2\n");
+    EXPECT_EQ(test::readFile(temp), "a,b\n1,2\n");
     set.commit();
   }
-  EXPECT_EQ(read(dir_ / "table.csv"), "a,b\n1,2\n");
+  EXPECT_EQ(test::readFile(dir_ / "table.csv"), "a,b\n1,2\n");
   OutputSet missing(dir_ / "no" / "such" / "dir");
   try {
     missing.addText("table.csv", "x");
@@ -133,7 +131,12 @@ TEST_F(OutputSetTest, PrepareDirectoryCreatesItOrNamesItInAnInputError) {
   const std::filesystem::path nested = dir_ / "a" / "b";
   EXPECT_TRUE(OutputSet::prepareDirectory(nested).empty());
   EXPECT_TRUE(std::filesystem::is_directory(nested));
-  write(dir_ / "file", "x");
+  // An existing directory: a killed run's temporary is cleaned and reported.
+  const std::filesystem::path stale = nested / (".a.exr.camsim-tmp-" + std::to_string(deadPid()));
+  test::writeFile(stale, "killed run");
+  EXPECT_EQ(OutputSet::prepareDirectory(nested), std::vector<std::filesystem::path>{stale});
+  EXPECT_FALSE(std::filesystem::exists(stale));
+  test::writeFile(dir_ / "file", "x");
   try {
     OutputSet::prepareDirectory(dir_ / "file");
     FAIL() << "no error for a regular file";
@@ -143,23 +146,42 @@ TEST_F(OutputSetTest, PrepareDirectoryCreatesItOrNamesItInAnInputError) {
   }
 }
 
-TEST_F(OutputSetTest, CommitReplacesAnExistingFile) {
-  write(dir_ / "a.exr", "old");
+// A final name taken by a directory: an input error naming it before any file is renamed,
+// so no output appears; the temporaries go with the set.
+TEST_F(OutputSetTest, CommitRefusesAFinalNameTakenByADirectoryBeforeRenamingAny) {
+  std::filesystem::create_directory(dir_ / "b.png");
   {
     OutputSet set(dir_);
-    write(set.add("a.exr"), "new");
-    EXPECT_EQ(read(dir_ / "a.exr"), "old");  // untouched until commit
+    test::writeFile(set.add("a.exr"), "new");
+    test::writeFile(set.add("b.png"), "new");
+    try {
+      set.commit();
+      FAIL() << "no error for a directory in the way";
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.where().file, (dir_ / "b.png").string());
+    }
+    EXPECT_FALSE(std::filesystem::exists(dir_ / "a.exr"));
+  }
+  EXPECT_EQ(entries(), 1u);  // only the directory
+}
+
+TEST_F(OutputSetTest, CommitReplacesAnExistingFile) {
+  test::writeFile(dir_ / "a.exr", "old");
+  {
+    OutputSet set(dir_);
+    test::writeFile(set.add("a.exr"), "new");
+    EXPECT_EQ(test::readFile(dir_ / "a.exr"), "old");  // untouched until commit
     set.commit();
   }
-  EXPECT_EQ(read(dir_ / "a.exr"), "new");
+  EXPECT_EQ(test::readFile(dir_ / "a.exr"), "new");
   EXPECT_EQ(entries(), 1u);
 }
 
 TEST_F(OutputSetTest, ExceptionBeforeCommitLeavesTheDirectoryEmpty) {
   try {
     OutputSet set(dir_);
-    write(set.add("a.exr"), "partial");
-    write(set.add("b.png"), "partial");
+    test::writeFile(set.add("a.exr"), "partial");
+    test::writeFile(set.add("b.png"), "partial");
     set.add("c.json");  // never written: removing it must not fail
     throw std::runtime_error("render failed");
   } catch (const std::runtime_error& e) {
@@ -169,22 +191,13 @@ TEST_F(OutputSetTest, ExceptionBeforeCommitLeavesTheDirectoryEmpty) {
 }
 
 TEST_F(OutputSetTest, UncommittedSetDoesNotTouchExistingFinalFiles) {
-  write(dir_ / "a.exr", "previous run");
+  test::writeFile(dir_ / "a.exr", "previous run");
   {
     OutputSet set(dir_);
-    write(set.add("a.exr"), "failed run");
+    test::writeFile(set.add("a.exr"), "failed run");
   }
-  EXPECT_EQ(read(dir_ / "a.exr"), "previous run");
+  EXPECT_EQ(test::readFile(dir_ / "a.exr"), "previous run");
   EXPECT_EQ(entries(), 1u);
-}
-
-// A PID that belonged to a process that has exited and been reaped (a killed run's).
-pid_t deadPid() {
-  const pid_t child = ::fork();
-  if (child == 0) ::_exit(0);
-  int status = 0;
-  ::waitpid(child, &status, 0);
-  return child;
 }
 
 TEST(OutputSetNames, TemporaryOwnerReadsThePidOfTemporaryNamesOnly) {
@@ -209,15 +222,15 @@ TEST_F(OutputSetTest, TemporariesCarryThisProcessPid) {
 TEST_F(OutputSetTest, CleanStaleTemporariesRemovesOnlyThoseOfDeadProcesses) {
   const std::string dead = std::to_string(deadPid());
   const std::string parent = std::to_string(::getppid());  // alive while we run
-  write(dir_ / (".a.exr.camsim-tmp-" + dead), "killed run");
-  write(dir_ / (".a.png.camsim-tmp-" + dead), "killed run");
-  write(dir_ / (".a.exr.camsim-tmp-" + parent), "another run, still writing");
-  write(dir_ / "a.exr", "a finished run");
-  write(dir_ / ".hidden", "not ours");
-  write(dir_ / ".a.exr.camsim-tmp-abc", "not a pid");
+  test::writeFile(dir_ / (".a.exr.camsim-tmp-" + dead), "killed run");
+  test::writeFile(dir_ / (".a.png.camsim-tmp-" + dead), "killed run");
+  test::writeFile(dir_ / (".a.exr.camsim-tmp-" + parent), "another run, still writing");
+  test::writeFile(dir_ / "a.exr", "a finished run");
+  test::writeFile(dir_ / ".hidden", "not ours");
+  test::writeFile(dir_ / ".a.exr.camsim-tmp-abc", "not a pid");
   std::filesystem::create_directory(dir_ / (".dir.camsim-tmp-" + dead));  // never descended
   OutputSet current(dir_);
-  write(current.add("b.exr"), "this run, still writing");
+  test::writeFile(current.add("b.exr"), "this run, still writing");
 
   std::vector<std::filesystem::path> removed = OutputSet::cleanStaleTemporaries(dir_);
   std::sort(removed.begin(), removed.end());
@@ -227,13 +240,13 @@ TEST_F(OutputSetTest, CleanStaleTemporariesRemovesOnlyThoseOfDeadProcesses) {
   EXPECT_FALSE(std::filesystem::exists(removed[0]));
   EXPECT_FALSE(std::filesystem::exists(removed[1]));
   EXPECT_TRUE(std::filesystem::exists(dir_ / (".a.exr.camsim-tmp-" + parent)));
-  EXPECT_EQ(read(dir_ / "a.exr"), "a finished run");
+  EXPECT_EQ(test::readFile(dir_ / "a.exr"), "a finished run");
   EXPECT_TRUE(std::filesystem::exists(dir_ / ".hidden"));
   EXPECT_TRUE(std::filesystem::exists(dir_ / ".a.exr.camsim-tmp-abc"));
   EXPECT_TRUE(std::filesystem::is_directory(dir_ / (".dir.camsim-tmp-" + dead)));
   EXPECT_EQ(entries(), 6u);  // 8 before, minus the 2 stale ones
   current.commit();
-  EXPECT_EQ(read(dir_ / "b.exr"), "this run, still writing");
+  EXPECT_EQ(test::readFile(dir_ / "b.exr"), "this run, still writing");
   EXPECT_TRUE(OutputSet::cleanStaleTemporaries(dir_).empty());  // idempotent
 }
 
