@@ -3,6 +3,7 @@
 // cache (reused while the scene and its files are unchanged, invalidated when they change).
 // No timing is asserted: the benchmark's numbers are measurements, not test outcomes.
 #include "tests/support/temp_dir.h"
+#include "tests/support/text_file.h"
 
 #include <gtest/gtest.h>
 
@@ -246,13 +247,9 @@ Reference obtainTiny(const ReferenceRequest& r, const fs::path& cacheDir, std::o
   return obtainReference(r, scene, cacheDir, log);
 }
 
-void writeText(const fs::path& p, const std::string& text) {
-  std::ofstream(p, std::ios::binary) << text;
-}
-
 TEST(BenchReference, CachedUntilTheSceneOrItsFilesChange) {
   test::TempDir dir;
-  writeText(dir.path() / "tri.obj", "v -1 -1 0\nv 1 -1 0\nv 0 1 0\nf 1 2 3\n");
+  test::writeFile(dir.path() / "tri.obj", "v -1 -1 0\nv 1 -1 0\nv 0 1 0\nf 1 2 3\n");
   const fs::path cache = dir.path() / "cache";
   std::ostringstream log;
   const ReferenceRequest req = tinyRequest(dir.path(), "0.5");
@@ -280,7 +277,7 @@ TEST(BenchReference, CachedUntilTheSceneOrItsFilesChange) {
 
   // A referenced file's content changes (same size): a new reference.
   const std::string keyBefore = referenceKey(req);
-  writeText(dir.path() / "tri.obj", "v -1 -1 0\nv 1 -1 0\nv 0 2 0\nf 1 2 3\n");
+  test::writeFile(dir.path() / "tri.obj", "v -1 -1 0\nv 1 -1 0\nv 0 2 0\nf 1 2 3\n");
   const ReferenceRequest meshEdited = tinyRequest(dir.path(), "0.5");
   EXPECT_NE(referenceKey(meshEdited), keyBefore);
   EXPECT_FALSE(obtainTiny(meshEdited, cache, log).fromCache);
@@ -289,11 +286,11 @@ TEST(BenchReference, CachedUntilTheSceneOrItsFilesChange) {
 
 TEST(BenchReference, ADamagedCacheFileIsRenderedAgain) {
   test::TempDir dir;
-  writeText(dir.path() / "tri.obj", "v -1 -1 0\nv 1 -1 0\nv 0 1 0\nf 1 2 3\n");
+  test::writeFile(dir.path() / "tri.obj", "v -1 -1 0\nv 1 -1 0\nv 0 1 0\nf 1 2 3\n");
   std::ostringstream log;
   const ReferenceRequest req = tinyRequest(dir.path(), "0.5");
   const Reference first = obtainTiny(req, dir.path(), log);
-  writeText(first.file, "not an exr");
+  test::writeFile(first.file, "not an exr");
   const Reference again = obtainTiny(req, dir.path(), log);
   EXPECT_FALSE(again.fromCache);
   EXPECT_TRUE(obtainTiny(req, dir.path(), log).fromCache);
@@ -301,7 +298,8 @@ TEST(BenchReference, ADamagedCacheFileIsRenderedAgain) {
 
 TEST(BenchReference, ReferencedFilesAreFoundInBlockAndFlowStyle) {
   test::TempDir dir;
-  for (const char* f : {"a.ply", "tex.png", "s.csv", "env.exr"}) writeText(dir.path() / f, "x");
+  for (const char* f : {"a.ply", "tex.png", "s.csv", "env.exr"})
+    test::writeFile(dir.path() / f, "x");
   const std::string text =
       "shapes:\n  - type: mesh\n    file: a.ply   # comment\n"
       "materials: {m: {type: diffuse, reflectance: {texture: tex.png, encoding: srgb}}}\n"

@@ -127,7 +127,7 @@ TEST(PtcBinary, BadSensorExitsTwoWithALocatedMessageAndWritesNothing) {
   text.insert(at + 13, "-");
   const std::size_t line = 1 + lineCount(text.substr(0, at));
   const fs::path bad = dir.path() / "bad.yaml";
-  std::ofstream(bad, std::ios::binary) << text;
+  test::writeFile(bad, text);
   const fs::path out = dir.path() / "ptc";
   RunResult r = camsim("", "ptc " + quote(bad.string()) + " -o " + quote(out.string()), dir.path());
   EXPECT_EQ(r.exitCode, 2);

@@ -23,6 +23,8 @@
 #include "sensor/cie.h"
 #include "sensor/spectral_data.h"
 #include "tests/integrator/render_test_support.h"
+#include "tests/support/temp_dir.h"
+#include "tests/support/text_file.h"
 
 namespace camsim {
 namespace {
@@ -229,16 +231,13 @@ TEST(HardCases, ShadingNormalsFacingAwayFromTheGeometry) {
       "  - {type: sphere, centre: [0, 0, 0], radius: 10, emission: {scale: 0.01, spectrum: 1, "
       "two_sided: true}}\n"
       "  - {type: mesh, material: m, file: bent.obj}\n";
-  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "camsim_bent_normals";
-  std::filesystem::create_directories(dir);
-  {
-    std::ofstream obj(dir / "bent.obj");
-    // A quad facing the camera (−z), vertex normals tilted 80°, 60°, −80° and flipped.
-    obj << "v -0.5 -0.5 0\nv 0.5 -0.5 0\nv 0.5 0.5 0\nv -0.5 0.5 0\n"
-           "vn 0.985 0 -0.174\nvn 0 0.866 -0.5\nvn -0.985 0 -0.174\nvn 0 0 1\n"
-           "f 1//1 4//4 3//3\nf 1//1 3//3 2//2\n";
-  }
-  const LuminanceImage img = renderLuminance(scene, 512, 1, dir);
+  const test::TempDir dir;  // this run's own, removed whatever happens
+  // A quad facing the camera (−z), vertex normals tilted 80°, 60°, −80° and flipped.
+  test::writeFile(dir.path() / "bent.obj",
+                  "v -0.5 -0.5 0\nv 0.5 -0.5 0\nv 0.5 0.5 0\nv -0.5 0.5 0\n"
+                  "vn 0.985 0 -0.174\nvn 0 0.866 -0.5\nvn -0.985 0 -0.174\nvn 0 0 1\n"
+                  "f 1//1 4//4 3//3\nf 1//1 3//3 2//2\n");
+  const LuminanceImage img = renderLuminance(scene, 512, 1, dir.path());
   expectClean(img);
   const double le = 0.01 * flatY();
   for (int y = 0; y < 6; ++y)
@@ -246,7 +245,6 @@ TEST(HardCases, ShadingNormalsFacingAwayFromTheGeometry) {
       EXPECT_LE(img.at(x, y) / le, 1.02) << x << "," << y;
       EXPECT_GE(img.at(x, y) / le, 0.0) << x << "," << y;
     }
-  std::filesystem::remove_all(dir);
 }
 
 // Camera → mirror (k = 0.8, 45°) → emitter: L = k·Lₑ exactly. The reference is the same

@@ -239,7 +239,8 @@ TEST(PinholeFastPath, AgreesWithTheGeneralPath) {
       "         shutter: {open: 0, close: 0.01, ramp_open: 0.002}}\n"
       "shapes: [{type: sphere, centre: [0, 0, 9], radius: 1, emission: {luminance: 1}}]\n";
   PhysicalCameraParams params = loadSceneFromText(yaml, "test.yaml", ".").camera;
-  ASSERT_TRUE(params.motion.empty());
+  // The fast path's conditions (physical_camera.cpp): else both cameras take the general one.
+  ASSERT_TRUE(params.motion.empty() && !params.aperture && params.distortion.isIdentity());
   // The loader puts the camera at the render origin; move it off so origins are compared.
   params.worldFromCamera[3] = glm::dvec4(0.3, -0.2, 1.7, 1.0);
   const PhysicalCamera fast(params);
