@@ -4,6 +4,10 @@
 #   scripts/format.sh --check  change nothing; list the files that differ, exit 1 if any
 set -euo pipefail
 cd "$(dirname "$0")/.."
+if ! command -v clang-format >/dev/null; then
+  echo "format: clang-format not found (scripts/setup.sh installs it)" >&2
+  exit 2
+fi
 mapfile -t files < <(git ls-files '*.cpp' '*.h')
 if [ "${1:-}" = "--check" ]; then
   bad=()
