@@ -12,6 +12,7 @@
 #include "cli/format.h"
 #include "cli/python_script.h"
 #include "sensor/input_error.h"
+#include "sensor/luts_directory.h"
 #include "sensor/output_set.h"
 #include "sensor/sensor_spec.h"
 
@@ -151,7 +152,7 @@ std::string formatPtcCsv(const PtcResult& m) {
 
 std::vector<std::filesystem::path> runPtc(const PtcArgs& args, std::ostream& out,
                                           std::ostream& log) {
-  const SensorSpec sensor = loadSensorSpec(args.sensor, CAMSIM_LUTS_DIR);
+  const SensorSpec sensor = loadSensorSpec(args.sensor, lutsDirectory());
   const std::filesystem::path outDir(args.outputDir);
   for (const auto& stale : OutputSet::prepareDirectory(outDir))
     log << "removed " << stale.string() << " (left by a run that was killed)\n";

@@ -190,11 +190,6 @@ ShapeDescription parseShape(YamlMap map, size_t index, const Context& ctx) {
 
 }  // namespace
 
-std::filesystem::path lutsDirectory() {
-  if (const char* env = std::getenv("CAMSIM_LUTS"); env && *env) return env;
-  return CAMSIM_LUTS_DIR;
-}
-
 SceneDescription loadSceneFromText(const std::string& text, const std::string& displayName,
                                    const std::filesystem::path& baseDir,
                                    const LoadOptions& options) {

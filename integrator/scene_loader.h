@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "integrator/scene_description.h"
+#include "sensor/luts_directory.h"  // lutsDirectory(), used with scenes
 
 namespace camsim {
 
@@ -36,9 +37,5 @@ std::filesystem::path sceneBaseDir(const std::filesystem::path& file);
 SceneDescription loadSceneFromText(const std::string& text, const std::string& displayName,
                                    const std::filesystem::path& baseDir,
                                    const LoadOptions& options = {});
-
-// The directory of luts/ used for spectral tables: $CAMSIM_LUTS if set, else the source
-// tree's luts/ this binary was built from.
-std::filesystem::path lutsDirectory();
 
 }  // namespace camsim

@@ -10,6 +10,7 @@
 
 #include "sensor/check.h"
 #include "sensor/input_error.h"
+#include "sensor/luts_directory.h"
 
 namespace camsim {
 
@@ -64,9 +65,7 @@ bool contains(const std::vector<std::string>& names, const std::string& name) {
 }  // namespace
 
 std::filesystem::path camsimOcioConfigPath() {
-  if (const char* env = std::getenv("CAMSIM_LUTS"); env && *env)
-    return std::filesystem::path(env) / "config.ocio";
-  return std::filesystem::path(CAMSIM_LUTS_DIR) / "config.ocio";
+  return lutsDirectory() / "config.ocio";
 }
 
 OcioConfigLocation resolveOcioConfig(const std::filesystem::path& explicitPath) {
