@@ -162,8 +162,6 @@ Reference obtainReference(const ReferenceRequest& request, const Scene& scene,
     ref.image.pixels[i] = 0.5f * (ref.halfA.pixels[i] + ref.halfB.pixels[i]);
   ref.noise = referenceNoise(ref.halfA, ref.halfB, 0);
 
-  std::error_code ec;
-  std::filesystem::create_directories(cacheDir, ec);
   Image file(ref.image.width, ref.image.height, {"Y", "A.Y", "B.Y"});
   for (int y = 0; y < file.height; ++y)
     for (int x = 0; x < file.width; ++x) {
@@ -179,13 +177,13 @@ Reference obtainReference(const ReferenceRequest& request, const Scene& scene,
                          ", Sobol', seeds 1001 and 1002)"},
       {"camsim:render_seconds", formatNumber(ref.seconds, 6)},
       {"camsim:units", "CIE Y of the film (lm*s per photosite)"}};
-  if (std::filesystem::is_directory(cacheDir, ec)) {
-    OutputSet::cleanStaleTemporaries(cacheDir);  // of a run killed while writing a reference
+  try {
+    OutputSet::prepareDirectory(cacheDir);  // also cleans a killed run's temporaries
     OutputSet out(cacheDir);
     writeExr(out.add(fileName), file, meta, std::nullopt);
     out.commit();
-  } else {
-    log << "warning: cannot create the reference cache " << cacheDir.string() << ": not cached\n";
+  } catch (const InputError& e) {
+    log << "warning: cannot write the reference cache (" << e.what() << "): not cached\n";
   }
   log << "reference " << request.name << ": rendered " << 2 * half << " spp in "
       << formatNumber(ref.seconds, 3) << " s (rMSE floor " << formatNumber(ref.noise.rmse, 3)
