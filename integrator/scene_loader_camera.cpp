@@ -76,13 +76,9 @@ glm::dmat4 parseMatrix(const YamlValue& m) {
 
 Shutter parseShutter(YamlMap map) {
   Shutter::Type type = Shutter::Type::kGlobal;
-  if (auto t = map.find("type")) {
-    const std::string name = t->string();
-    if (name == "rolling")
-      type = Shutter::Type::kRolling;
-    else if (name != "global")
-      t->fail("unknown shutter type '" + name + "' (known: global, rolling)");
-  }
+  if (auto t = map.find("type"))
+    type = t->choice<Shutter::Type>(
+        "shutter type", {{"global", Shutter::Type::kGlobal}, {"rolling", Shutter::Type::kRolling}});
   double rowTime = 0.0;
   if (auto r = map.find("row_time")) {
     if (type != Shutter::Type::kRolling) r->fail("row_time needs type: rolling");

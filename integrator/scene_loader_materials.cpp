@@ -16,14 +16,12 @@ namespace camsim {
 namespace {
 
 MaterialDescription::Type parseType(const YamlValue& type) {
-  const std::string t = type.string();
-  if (t == "diffuse") return MaterialDescription::Type::kDiffuse;
-  if (t == "mirror") return MaterialDescription::Type::kMirror;
-  if (t == "conductor") return MaterialDescription::Type::kConductor;
-  if (t == "dielectric") return MaterialDescription::Type::kDielectric;
-  if (t == "plastic") return MaterialDescription::Type::kPlastic;
-  type.fail("unknown material type '" + t +
-            "' (known: diffuse, mirror, conductor, dielectric, plastic)");
+  using T = MaterialDescription::Type;
+  return type.choice<T>("material type", {{"diffuse", T::kDiffuse},
+                                          {"mirror", T::kMirror},
+                                          {"conductor", T::kConductor},
+                                          {"dielectric", T::kDielectric},
+                                          {"plastic", T::kPlastic}});
 }
 
 // The microfacet keys shared by conductor, dielectric and plastic.
@@ -61,15 +59,9 @@ Spectrum namedColumn(const YamlValue& name, const std::string& folder, const std
 
 void parseConductor(YamlMap& map, MaterialDescription& m, const SpectrumSearch& search,
                     std::vector<std::string>& known) {
-  if (auto f = map.find("fresnel")) {
-    const std::string v = f->string();
-    if (v == "exact")
-      m.fresnel = FresnelModel::kExact;
-    else if (v == "schlick")
-      m.fresnel = FresnelModel::kSchlick;
-    else
-      f->fail("unknown fresnel '" + v + "' (known: exact, schlick)");
-  }
+  if (auto f = map.find("fresnel"))
+    m.fresnel = f->choice<FresnelModel>(
+        "fresnel", {{"exact", FresnelModel::kExact}, {"schlick", FresnelModel::kSchlick}});
   const auto metal = map.find("metal");
   const auto eta = map.find("eta");
   const auto k = map.find("k");

@@ -23,15 +23,10 @@ SensorSettings parseSensorSettings(YamlMap map, const std::filesystem::path& bas
   }
   s.iso = s.spec.baseIso;
   if (auto v = map.find("iso")) s.iso = v->number(1.0, 1e7);
-  if (auto v = map.find("noise")) {
-    const std::string mode = v->string();
-    if (mode == "none")
-      s.noise = NoiseMode::kNone;
-    else if (mode == "photon")
-      s.noise = NoiseMode::kPhoton;
-    else if (mode != "full")
-      v->fail("unknown noise mode '" + mode + "' (known: none, photon, full)");
-  }
+  if (auto v = map.find("noise"))
+    s.noise = v->choice<NoiseMode>(
+        "noise mode",
+        {{"none", NoiseMode::kNone}, {"photon", NoiseMode::kPhoton}, {"full", NoiseMode::kFull}});
   if (auto v = map.find("noise_seed"))
     s.noiseSeed = static_cast<std::uint64_t>(v->integer(0, INT64_MAX));
   if (auto v = map.find("frame")) s.frame = static_cast<std::uint64_t>(v->integer(0, INT64_MAX));
@@ -39,15 +34,11 @@ SensorSettings parseSensorSettings(YamlMap map, const std::filesystem::path& bas
     YamlMap ae(*v);
     AutoExposure a;
     if (auto m = ae.find("metering")) {
-      const std::string how = m->string();
-      if (how == "mean")
-        a.metering = AutoExposure::Metering::kMean;
-      else if (how == "centre_weighted")
-        a.metering = AutoExposure::Metering::kCentreWeighted;
-      else if (how == "percentile")
-        a.metering = AutoExposure::Metering::kPercentile, a.target = 0.9;
-      else
-        m->fail("unknown metering '" + how + "' (known: mean, centre_weighted, percentile)");
+      using M = AutoExposure::Metering;
+      a.metering = m->choice<M>("metering", {{"mean", M::kMean},
+                                             {"centre_weighted", M::kCentreWeighted},
+                                             {"percentile", M::kPercentile}});
+      if (a.metering == M::kPercentile) a.target = 0.9;
     }
     if (auto t = ae.find("target")) a.target = t->number(0.0, 1.0, true);
     if (auto p = ae.find("percentile")) {
@@ -81,15 +72,10 @@ SensorSettings parseSensorSettings(YamlMap map, const std::filesystem::path& bas
 IspSettings parseIspSettings(YamlMap map) {
   IspSettings isp;
   if (auto wb = map.find("white_balance")) {
-    const std::string how = wb->string();
-    if (how == "illuminant")
-      isp.whiteBalance = IspSettings::WhiteBalance::kIlluminant;
-    else if (how == "grey_world")
-      isp.whiteBalance = IspSettings::WhiteBalance::kGreyWorld;
-    else if (how == "region")
-      isp.whiteBalance = IspSettings::WhiteBalance::kRegion;
-    else
-      wb->fail("unknown white balance '" + how + "' (known: illuminant, region, grey_world)");
+    using W = IspSettings::WhiteBalance;
+    isp.whiteBalance = wb->choice<W>(
+        "white balance",
+        {{"illuminant", W::kIlluminant}, {"region", W::kRegion}, {"grey_world", W::kGreyWorld}});
   }
   if (auto ill = map.find("illuminant")) {
     isp.illuminant = ill->string();
