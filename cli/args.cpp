@@ -113,9 +113,9 @@ Command parseArgs(const std::vector<std::string>& args) {
     } else if (a == "--iso") {
       r.iso = parsePositive(a, value(), 1e7);
     } else if (a == "--noise") {
-      r.noise = value();
-      if (*r.noise != "none" && *r.noise != "photon" && *r.noise != "full")
-        throw UsageError("--noise must be none, photon or full, got '" + *r.noise + "'");
+      const std::string mode = value();
+      r.noise = noiseModeFromName(mode);
+      if (!r.noise) throw UsageError("--noise must be none, photon or full, got '" + mode + "'");
     } else if (a == "--ocio-config") {
       r.ocioConfig = value();
     } else if (a == "--display") {

@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "sensor/sensor_model.h"
+
 namespace camsim {
 
 class UsageError : public std::runtime_error {
@@ -25,8 +27,8 @@ struct RenderArgs {
   std::optional<double>
       exposureTimeS;  // effective exposure time T_eff, s (the shutter is stretched)
   std::optional<double> fNumber;
-  std::optional<double> iso;         // needs a sensor
-  std::optional<std::string> noise;  // none | photon | full; needs a sensor
+  std::optional<double> iso;       // needs a sensor
+  std::optional<NoiseMode> noise;  // needs a sensor
   std::optional<std::uint64_t> noiseSeed;
   // Output transform (OpenColorIO): empty = the config's defaults.
   std::string ocioConfig, display, view, look;

@@ -50,10 +50,7 @@ LoadedScene load(const RenderArgs& args) {
     throw UsageError("--iso, --noise and --noise-seed need a scene with a sensor");
   if (args.iso) d.sensor->iso = *args.iso;
   if (args.noiseSeed) d.sensor->noiseSeed = *args.noiseSeed;
-  if (args.noise)
-    d.sensor->noise = *args.noise == "none"     ? NoiseMode::kNone
-                      : *args.noise == "photon" ? NoiseMode::kPhoton
-                                                : NoiseMode::kFull;
+  if (args.noise) d.sensor->noise = *args.noise;
   return loaded;
 }
 

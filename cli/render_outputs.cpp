@@ -46,10 +46,6 @@ JsonObject cameraJson(const PhysicalCamera& camera) {
   return j;
 }
 
-const char* noiseName(NoiseMode m) {
-  return m == NoiseMode::kNone ? "none" : m == NoiseMode::kPhoton ? "photon" : "full";
-}
-
 }  // namespace
 
 Image xyzExrImage(const Image& xyz) {
@@ -108,7 +104,7 @@ void writeRenderOutputs(const RenderOutputInputs& in, OutputSet& outputs, std::o
     JsonObject sensorJson;
     sensorJson.set("model", sensor.spec.name)
         .set("iso", sensor.iso)
-        .set("noise", noiseName(sensor.noise))
+        .set("noise", noiseModeName(sensor.noise))
         .set("noise_seed", double(sensor.noiseSeed))
         .set("frame", double(sensor.frame))
         .set("auto_exposure",

@@ -10,6 +10,16 @@
 #include "sensor/input_error.h"
 
 namespace camsim {
+
+const char* noiseModeName(NoiseMode mode) {
+  return mode == NoiseMode::kNone ? "none" : mode == NoiseMode::kPhoton ? "photon" : "full";
+}
+
+std::optional<NoiseMode> noiseModeFromName(std::string_view name) {
+  for (NoiseMode m : {NoiseMode::kNone, NoiseMode::kPhoton, NoiseMode::kFull})
+    if (name == noiseModeName(m)) return m;
+  return std::nullopt;
+}
 namespace {
 
 // Domain tags, so that noise streams and pattern streams never share a key even when the

@@ -28,6 +28,9 @@
 
 #include <cstdint>
 
+#include <optional>
+#include <string_view>
+
 #include "sensor/image.h"
 #include "sensor/raw_image.h"
 #include "sensor/sensor_spec.h"
@@ -35,6 +38,9 @@
 namespace camsim {
 
 enum class NoiseMode { kNone, kPhoton, kFull };
+// The names scene files, --noise and the JSON sidecar use: none, photon, full.
+const char* noiseModeName(NoiseMode mode);
+std::optional<NoiseMode> noiseModeFromName(std::string_view name);  // nullopt if unknown
 
 struct ExposureSettings {
   double exposureTimeS = 1.0 / 60.0;  // for dark current (the film already holds the light)

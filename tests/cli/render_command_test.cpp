@@ -298,7 +298,7 @@ TEST(ParseArgsExposure, ExposureOverridesParseAndValidate) {
   EXPECT_DOUBLE_EQ(*c.render.exposureTimeS, 0.004);
   EXPECT_DOUBLE_EQ(*c.render.fNumber, 2.8);
   EXPECT_DOUBLE_EQ(*c.render.iso, 800.0);
-  EXPECT_EQ(*c.render.noise, "photon");
+  EXPECT_EQ(*c.render.noise, NoiseMode::kPhoton);
   EXPECT_EQ(*c.render.noiseSeed, 5u);
   for (const auto& bad : std::vector<std::vector<std::string>>{{"render", "--exposure-time", "0"},
                                                                {"render", "--f-number", "-2"},
