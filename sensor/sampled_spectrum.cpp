@@ -33,6 +33,21 @@ float wrap(float u) {
   return u - static_cast<float>(u >= 1.0f);
 }
 
+// λ = 538 + atanh(t)/a with t uniform over [tanhLo, tanhHi]; atanh(t) = ½ log((1+t)/(1−t)).
+// Also returns p(λ) = (a/Z)·sech²(a(λ − 538)) = (a/Z)·(1 − t)(1 + t): no exp needed (and
+// (1 − t)(1 + t) keeps its relative precision where 1 − t² would cancel).
+struct VisibleSample {
+  float lambda, pdf;
+};
+VisibleSample sampleVisibleWithPdf(float u) {
+  const VisibleConstants& c = visible();
+  const float t = c.tanhLo + u * c.tanhRange;
+  const float lambda = static_cast<float>(kCentre) +
+                       static_cast<float>(0.5 / kA) * std::log((1.0f + t) / (1.0f - t));
+  return {std::clamp(lambda, static_cast<float>(kLambdaMinNm), static_cast<float>(kLambdaMaxNm)),
+          c.pdfScale * ((1.0f - t) * (1.0f + t))};
+}
+
 }  // namespace
 
 // 1/cosh²(x) = 4e/(e + 1)² with e = exp(2x): one expf.
@@ -42,13 +57,8 @@ float visibleWavelengthPdf(float lambdaNm) {
   return visible().pdfScale * 4.0f * e / ((e + 1.0f) * (e + 1.0f));
 }
 
-// λ = 538 + atanh(t)/a with t uniform over [tanhLo, tanhHi]; atanh(t) = ½ log((1+t)/(1−t)).
 float sampleVisibleWavelength(float u) {
-  const VisibleConstants& c = visible();
-  const float t = c.tanhLo + u * c.tanhRange;
-  const float lambda = static_cast<float>(kCentre) +
-                       static_cast<float>(0.5 / kA) * std::log((1.0f + t) / (1.0f - t));
-  return std::clamp(lambda, static_cast<float>(kLambdaMinNm), static_cast<float>(kLambdaMaxNm));
+  return sampleVisibleWithPdf(u).lambda;
 }
 
 // Sampled wavelengths lie in [360, 830] nm (both samplers clamp or stay inside), where
@@ -65,8 +75,9 @@ SampledWavelengths SampledWavelengths::sampleVisible(float u) {
   SampledWavelengths w;
   for (int i = 0; i < kWavelengthSamples; ++i) {
     const float ui = wrap(u + static_cast<float>(i) / kWavelengthSamples);
-    w.lambda_[i] = sampleVisibleWavelength(ui);
-    w.pdf_[i] = visibleWavelengthPdf(w.lambda_[i]);
+    const VisibleSample v = sampleVisibleWithPdf(ui);
+    w.lambda_[i] = v.lambda;
+    w.pdf_[i] = v.pdf;
   }
   w.locateOnGrid();
   return w;

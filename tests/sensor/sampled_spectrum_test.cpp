@@ -91,12 +91,29 @@ TEST(SampledWavelengths, SampleVisibleIsStratifiedOverCdfQuarters) {
       // The i-th wavelength is the inverse CDF of u + i/4 (mod 1); 1e-4 as above.
       const double ui = std::fmod(static_cast<double>(u) + i / 4.0, 1.0);
       EXPECT_NEAR(cdf, ui, 1e-4) << "u = " << u << ", i = " << i;
-      // The pdf is the visible pdf at that wavelength (same float computation: equality).
-      EXPECT_EQ(w.pdf(i), visibleWavelengthPdf(w[i])) << "u = " << u << ", i = " << i;
+      // The pdf is the visible pdf at that wavelength (computed from t: see below).
+      EXPECT_NEAR(w.pdf(i), visibleWavelengthPdf(w[i]), 1e-5f * visibleWavelengthPdf(w[i]))
+          << "u = " << u << ", i = " << i;
       EXPECT_EQ(w.pdfs()[i], w.pdf(i));
     }
     for (int q = 0; q < 4; ++q) EXPECT_EQ(perQuarter[q], 1) << "u = " << u << ", quarter " << q;
   }
+}
+
+// sampleVisible takes p(λ) from t = tanh(a(λ − 538)) instead of evaluating it at λ: the
+// two must agree (relative 1e-5; an error in the sech² identity or a swapped factor
+// is off by far more: 1 − t instead of (1 − t)(1 + t) is off by up to 6×).
+TEST(SampledWavelengths, SampleVisiblePdfIsThePdfAtTheSampledWavelength) {
+  double worst = 0.0;
+  for (int k = 0; k < 4000; ++k) {
+    const SampledWavelengths w = SampledWavelengths::sampleVisible((k + 0.5f) / 4000.0f);
+    for (int i = 0; i < kWavelengthSamples; ++i) {
+      const double expected = visibleWavelengthPdf(w[i]);
+      ASSERT_GT(expected, 0.0);
+      worst = std::max(worst, std::abs(static_cast<double>(w.pdf(i)) / expected - 1.0));
+    }
+  }
+  EXPECT_LT(worst, 1e-5);
 }
 
 TEST(SampledWavelengths, SampleUniformIsStratifiedWithConstantPdf) {
