@@ -134,7 +134,7 @@ int runBench(const BenchArgs& args, std::ostream& out, std::ostream& log) {
     const Scene scene(s.description);
     const ReferenceRequest request{s.name,
                                    s.text,
-                                   s.baseDir,
+                                   s.description.inputFiles,
                                    s.description.camera.resolution,
                                    s.description.sourceFile,
                                    plan.refSpp,

@@ -3,9 +3,7 @@
 #include <algorithm>
 #include <fstream>
 #include <ostream>
-#include <set>
 #include <sstream>
-#include <string_view>
 
 #include "cli/render_command.h"
 #include "integrator/render.h"
@@ -71,39 +69,6 @@ Image luminanceOf(const Image& xyz) {
   return channelImage(xyz, y, "Y");
 }
 
-std::vector<std::filesystem::path> referencedFiles(const std::string& sceneText,
-                                                   const std::filesystem::path& baseDir) {
-  // `key: value` in block or flow style; the value may be quoted. A plain scanner, not
-  // std::regex (whose std::function internals trip GCC 12's -Wmaybe-uninitialized at -O1).
-  std::set<std::filesystem::path> found;
-  const std::string& t = sceneText;
-  for (const char* key : {"file", "texture", "csv"}) {
-    const std::string k(key);
-    for (size_t at = t.find(k); at != std::string::npos; at = t.find(k, at + 1)) {
-      if (at > 0 && std::string_view(" \t\n{,").find(t[at - 1]) == std::string_view::npos) continue;
-      size_t i = at + k.size();
-      while (i < t.size() && (t[i] == ' ' || t[i] == '\t')) ++i;
-      if (i >= t.size() || t[i] != ':') continue;
-      ++i;
-      while (i < t.size() && (t[i] == ' ' || t[i] == '\t')) ++i;
-      const char quote = i < t.size() && (t[i] == '"' || t[i] == '\'') ? t[i++] : '\0';
-      const size_t begin = i;
-      while (
-          i < t.size() && t[i] != '\n' &&
-          (quote ? t[i] != quote : std::string_view(",}]#").find(t[i]) == std::string_view::npos))
-        ++i;
-      size_t end = i;
-      while (end > begin && (t[end - 1] == ' ' || t[end - 1] == '\t')) --end;
-      if (end == begin) continue;
-      std::filesystem::path p(t.substr(begin, end - begin));
-      if (p.is_relative()) p = baseDir / p;
-      std::error_code ec;
-      if (std::filesystem::is_regular_file(p, ec)) found.insert(p.lexically_normal());
-    }
-  }
-  return {found.begin(), found.end()};
-}
-
 std::string referenceKey(const ReferenceRequest& request) {
   std::ostringstream key;
   const glm::ivec2 res = request.resolution;
@@ -112,16 +77,7 @@ std::string referenceKey(const ReferenceRequest& request) {
       << res.x << "x" << res.y << "\n"
       << request.spp << "\n"
       << request.sceneText << "\n";
-  for (const auto& f : referencedFiles(request.sceneText, request.baseDir))
-    key << fileStamp(f, true) << "\n";
-  std::vector<std::filesystem::path> luts;
-  std::error_code ec;
-  const std::filesystem::path spectra = lutsDirectory() / "spectra";
-  for (auto it = std::filesystem::recursive_directory_iterator(spectra, ec);
-       !ec && it != std::filesystem::recursive_directory_iterator(); it.increment(ec))
-    if (it->is_regular_file(ec)) luts.push_back(it->path());
-  std::sort(luts.begin(), luts.end());
-  for (const auto& f : luts) key << fileStamp(f, false) << "\n";
+  for (const auto& f : request.inputFiles) key << fileStamp(f, true) << "\n";
   return fnv1aHex(key.str());
 }
 

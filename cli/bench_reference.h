@@ -7,12 +7,12 @@
 //
 // Cache: CACHE_DIR/NAME-HASH.exr with channels Y (the reference luminance), A.Y and B.Y
 // (the halves). HASH (FNV-1a 64) covers a format tag, camsim's version, the scene file's
-// text, the bench resolution, refSpp, and every file the scene refers to — each value of a
-// `file:`, `texture:` or `csv:` key that names an existing file (relative to the scene's
-// directory), by path, size, modification time and content — plus the size and modification
-// time of every file under luts/spectra (named metals, glasses and illuminants). Any change
-// to these renders a new reference; nothing else does (a changed tracer with the same version
-// reuses the old one: delete the cache directory to force a new one). Files are written
+// text, the bench resolution, refSpp, and every file the scene loader read for the scene
+// (SceneDescription::inputFiles: meshes, textures, maps, spectral tables wherever they were
+// found — next to the scene, on its spectra_path or in luts/spectra — and the sensor's files)
+// by path, size, modification time and content. Any change to these renders a new reference;
+// nothing else does (a changed tracer with the same version reuses the old one: delete the
+// cache directory to force a new one). Files are written
 // under a temporary name and renamed (OutputSet), so a killed run never leaves a truncated
 // reference behind.
 #pragma once
@@ -33,12 +33,12 @@
 namespace camsim {
 
 struct ReferenceRequest {
-  std::string name;               // scene name (file stem)
-  std::string sceneText;          // the scene file as read
-  std::filesystem::path baseDir;  // where its relative paths resolve
-  glm::ivec2 resolution{0};       // px, the bench resolution the Scene was built at
-  std::string sceneFile;          // for the reference's metadata
-  int spp = 2048;                 // total: two halves of spp/2
+  std::string name;                               // scene name (file stem)
+  std::string sceneText;                          // the scene file as read
+  std::vector<std::filesystem::path> inputFiles;  // SceneDescription::inputFiles
+  glm::ivec2 resolution{0};                       // px, the bench resolution the Scene was built at
+  std::string sceneFile;                          // for the reference's metadata
+  int spp = 2048;                                 // total: two halves of spp/2
   int threads = 0;
 };
 
@@ -51,9 +51,6 @@ struct Reference {
   double seconds = 0.0;  // render time (0 when read from the cache)
 };
 
-// Files the scene text refers to (see above), existing ones only, sorted, unique.
-std::vector<std::filesystem::path> referencedFiles(const std::string& sceneText,
-                                                   const std::filesystem::path& baseDir);
 // The cache key (16 hex digits).
 std::string referenceKey(const ReferenceRequest& request);
 

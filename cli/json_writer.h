@@ -1,5 +1,5 @@
 // A minimal JSON writer for sidecar files: nested objects of strings, numbers, booleans
-// and arrays of numbers, written in insertion order.
+// and arrays of numbers or strings, written in insertion order.
 #pragma once
 
 #include <cmath>
@@ -21,6 +21,11 @@ class JsonObject {
   JsonObject& set(const std::string& key, const std::vector<double>& values) {
     std::string s = "[";
     for (size_t i = 0; i < values.size(); ++i) s += (i ? ", " : "") + number(values[i]);
+    return raw(key, s + "]");
+  }
+  JsonObject& set(const std::string& key, const std::vector<std::string>& values) {
+    std::string s = "[";
+    for (size_t i = 0; i < values.size(); ++i) s += (i ? ", " : "") + quote(values[i]);
     return raw(key, s + "]");
   }
   JsonObject& set(const std::string& key, const JsonObject& object) {

@@ -67,9 +67,12 @@ void writeRenderOutputs(const RenderOutputInputs& in, OutputSet& outputs, std::o
   writeExr(outputs.add(desc.name + ".exr"), xyzExrImage(in.result.image), in.metadata,
            ExrChromaticities{rec709.red(), rec709.green(), rec709.blue(), rec709.white()});
 
+  std::vector<std::string> inputFiles;
+  for (const auto& f : desc.inputFiles) inputFiles.push_back(f.string());
   JsonObject sidecar;
   sidecar.set("camsim_version", CAMSIM_VERSION)
       .set("scene", desc.sourceFile)
+      .set("input_files", inputFiles)
       .set("render", JsonObject()
                          .set("spp", double(desc.render.spp))
                          .set("seed", double(desc.render.seed))

@@ -1,5 +1,6 @@
 #include "integrator/scene_loader.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
@@ -150,6 +151,7 @@ ShapeDescription parseShape(YamlMap map, size_t index, const Context& ctx) {
       std::filesystem::path p(file->string());
       if (p.is_relative()) p = ctx.baseDir / p;
       if (!isRegularFile(p)) file->fail("mesh file '" + p.string() + "' not found");
+      ctx.search.noteRead(p);
       try {
         s.mesh = readMeshFile(p);
       } catch (const InputError& e) {
@@ -213,6 +215,7 @@ SceneDescription loadSceneFromText(const std::string& text, const std::string& d
 
   SceneDescription scene;
   scene.sourceFile = displayName;
+  ctx.search.filesRead = &scene.inputFiles;
   if (auto v = top.find("format")) {
     if (v->string() != "camsim-scene/1")
       v->fail("unsupported format '" + v->string() + "' (this camsim reads camsim-scene/1)");
@@ -227,8 +230,10 @@ SceneDescription loadSceneFromText(const std::string& text, const std::string& d
   ctx.origin = glm::dvec3(scene.camera.worldFromCamera[3]);
   scene.renderOrigin = ctx.origin;
   scene.camera.worldFromCamera[3] = glm::dvec4(0.0, 0.0, 0.0, 1.0);
-  if (auto sensor = top.find("sensor"))
+  if (auto sensor = top.find("sensor")) {
     scene.sensor = parseSensorSettings(YamlMap(*sensor), baseDir, cameraValue, scene.camera);
+    for (const auto& f : scene.sensor->spec.sourceFiles) ctx.search.noteRead(f);
+  }
   if (auto isp = top.find("isp")) {
     if (!scene.sensor) isp->fail("isp settings need a sensor");
     scene.isp = parseIspSettings(YamlMap(*isp));
@@ -250,6 +255,13 @@ SceneDescription loadSceneFromText(const std::string& text, const std::string& d
     scene.lights = parseLights(*l, ctx.search, baseDir, scene.renderOrigin);
   top.finish({"format", "name", "spectra_path", "render", "camera", "sensor", "isp", "materials",
               "shapes", "lights"});
+  ctx.search.filesRead = nullptr;
+  std::vector<std::filesystem::path> once;  // each file once, where first read
+  for (const auto& f : scene.inputFiles) {
+    const std::filesystem::path p = f.lexically_normal();
+    if (std::find(once.begin(), once.end(), p) == once.end()) once.push_back(p);
+  }
+  scene.inputFiles = std::move(once);
   return scene;
 }
 

@@ -250,6 +250,7 @@ LightDescription parseLight(YamlMap map, size_t index, const SpectrumSearch& sea
   } else if (t == "environment") {
     d.kind = LightDescription::Kind::kEnvironment;
     parseEnvironment(map, d, baseDir);
+    search.noteRead(d.file);
     known.insert(known.end(), {"file", "scale", "illuminance", "rotation"});
   } else {
     type.fail("unknown light type '" + t + "' (known: point, spot, distant, environment)");

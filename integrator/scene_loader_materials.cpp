@@ -46,6 +46,7 @@ Spectrum namedColumn(const YamlValue& name, const std::string& folder, const std
   const std::string file = folder + "/" + name.string() + ".csv";
   for (const auto& dir : search.directories) {
     if (!isRegularFile(dir / file)) continue;
+    search.noteRead(dir / file);
     try {
       const SpectralTable table = readSpectralCsv(dir / file);
       return table.spectrum(table.columnIndex(column), Extrapolation::kClamp);

@@ -106,7 +106,11 @@ TextureDescription parseTexture(const YamlValue& v, TextureUse use, const Spectr
                                 const std::filesystem::path& baseDir) {
   if (v.isMap()) {
     YamlMap map(v);
-    if (map.has("texture")) return parseImage(map, use, baseDir);
+    if (map.has("texture")) {
+      TextureDescription t = parseImage(map, use, baseDir);
+      search.noteRead(t.file);
+      return t;
+    }
     if (map.has("checkerboard")) return parseCheckerboard(map, use, search);
     if (use == TextureUse::kReflectance && !map.has("rgb") && !map.has("csv") &&
         !map.has("blackbody") && !map.has("illuminant"))

@@ -25,6 +25,7 @@ std::filesystem::path findTable(const YamlValue& value, const std::string& name,
 Spectrum fromTable(YamlMap& map, SpectrumUse use, const SpectrumSearch& search) {
   const YamlValue file = map.require("csv");
   const std::filesystem::path path = findTable(file, file.string(), search);
+  search.noteRead(path);
   const SpectralTable table = readSpectralCsv(path);
   size_t column = 0;
   if (const auto col = map.find("column")) {

@@ -30,9 +30,16 @@ namespace {
 constexpr int kMaxTileSize = 16;
 constexpr int kMaxChannels = 16;
 
+// Where the description's CSVs are looked for, and the record of those read.
+struct TableLookup {
+  std::vector<fs::path> dirs;   // in order
+  std::vector<fs::path>* read;  // each table found is appended (SensorSpec::sourceFiles)
+};
+
 // A CSV named in the description: absolute, or relative to the description's folder,
 // then lutsDir/spectra, then lutsDir.
-SpectralTable readTable(const YamlValue& file, const std::vector<fs::path>& dirs) {
+SpectralTable readTable(const YamlValue& file, const TableLookup& tables) {
+  const std::vector<fs::path>& dirs = tables.dirs;
   const std::string name = file.string();
   if (name.empty()) file.fail("empty file name");
   const fs::path p(name);
@@ -53,6 +60,7 @@ SpectralTable readTable(const YamlValue& file, const std::vector<fs::path>& dirs
     file.fail("spectral table '" + name + "' not found" +
               (p.is_absolute() ? std::string() : " (searched: " + searched + ")"));
   }
+  tables.read->push_back(found);
   try {
     return readSpectralCsv(found);
   } catch (const InputError& e) {
@@ -132,7 +140,7 @@ void scaleToPeak(std::vector<Spectrum>& qe, double peak, const YamlValue& where)
 }
 
 std::vector<Spectrum> parseQe(const YamlValue& value, const CfaLayout& cfa,
-                              const std::vector<fs::path>& dirs) {
+                              const TableLookup& tables) {
   YamlMap map(value);
   const std::vector<std::string> known = {"curves", "csv", "columns", "ideal_xyz", "peak_qe"};
   std::vector<Spectrum> qe;
@@ -162,7 +170,7 @@ std::vector<Spectrum> parseQe(const YamlValue& value, const CfaLayout& cfa,
     const double yMax = (cie.y * photonToEnergy).maxValue();
     for (Spectrum& s : qe) s *= peak / yMax;
   } else if (const auto curves = map.find("curves")) {
-    const SpectralTable table = readTable(*curves, dirs);
+    const SpectralTable table = readTable(*curves, tables);
     for (const std::string& channel : cfa.channels) {
       std::string column = channel;
       std::transform(column.begin(), column.end(), column.begin(),
@@ -171,7 +179,7 @@ std::vector<Spectrum> parseQe(const YamlValue& value, const CfaLayout& cfa,
     }
     scaleToPeak(qe, map.require("peak_qe").number(0.0, 1.0, true), *curves);
   } else if (const auto csv = map.find("csv")) {
-    const SpectralTable table = readTable(*csv, dirs);
+    const SpectralTable table = readTable(*csv, tables);
     const YamlValue columns = map.require("columns");
     const std::vector<YamlValue> names = columns.items();
     if (names.size() != cfa.channels.size())
@@ -195,10 +203,10 @@ std::vector<Spectrum> parseQe(const YamlValue& value, const CfaLayout& cfa,
 }
 
 // The IR-cut filter's transmittance T(λ) ∈ [0, 1].
-Spectrum parseIrCut(const YamlValue& value, const std::vector<fs::path>& dirs) {
+Spectrum parseIrCut(const YamlValue& value, const TableLookup& tables) {
   YamlMap map(value);
   if (const auto csv = map.find("csv")) {
-    const SpectralTable table = readTable(*csv, dirs);
+    const SpectralTable table = readTable(*csv, tables);
     std::string column;
     if (const auto c = map.find("column")) {
       column = c->string();
@@ -233,16 +241,16 @@ SensorSpec parseSensorSpec(const std::string& yamlText, const std::string& displ
   const YamlValue root = parseYaml(yamlText, displayName);
   YamlMap map(root);
   SensorSpec spec;
-  const std::vector<fs::path> dirs = {baseDir, lutsDir / "spectra", lutsDir};
+  const TableLookup tables{{baseDir, lutsDir / "spectra", lutsDir}, &spec.sourceFiles};
 
   spec.name = fs::path(displayName).stem().string();
   if (const auto v = map.find("name")) spec.name = v->string();
   spec.pixelPitchM = map.require("pixel_pitch_um").number(0.0, 1000.0, true) * 1e-6;
   if (const auto v = map.find("fill_factor")) spec.fillFactor = v->number(0.0, 1.0, true);
   if (const auto v = map.find("cfa")) spec.cfa = parseCfa(*v);
-  spec.qe = parseQe(map.require("qe"), spec.cfa, dirs);
+  spec.qe = parseQe(map.require("qe"), spec.cfa, tables);
   if (const auto v = map.find("ir_cut")) {
-    const Spectrum t = parseIrCut(*v, dirs);
+    const Spectrum t = parseIrCut(*v, tables);
     for (Spectrum& s : spec.qe) s *= t;
   }
   if (const auto v = map.find("full_well_e")) spec.fullWellE = v->number(0.0, 1e9, true);
@@ -315,7 +323,9 @@ SensorSpec loadSensorSpec(const std::string& presetOrPath, const fs::path& lutsD
   }
   std::ostringstream text;
   text << in.rdbuf();
-  return parseSensorSpec(text.str(), path.string(), path.parent_path(), lutsDir);
+  SensorSpec spec = parseSensorSpec(text.str(), path.string(), path.parent_path(), lutsDir);
+  spec.sourceFiles.insert(spec.sourceFiles.begin(), path);
+  return spec;
 }
 
 }  // namespace camsim

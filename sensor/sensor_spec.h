@@ -57,6 +57,8 @@ struct SensorSpec {
   double blackLevelDn = 0.0;
   std::uint64_t patternSeed = 1;
   bool noiseless = false;  // the ideal-xyz preset: expose() always uses NoiseMode::kNone
+  // The files it was read from: the description (loadSensorSpec) and each CSV, in order.
+  std::vector<std::filesystem::path> sourceFiles;
 
   double whiteLevelDn() const { return static_cast<double>((1u << adcBits) - 1u); }
   // Mean dark electrons per second at the operating temperature.

@@ -233,9 +233,10 @@ ReferenceRequest tinyRequest(const fs::path& dir, const std::string& reflectance
   ReferenceRequest r;
   r.name = "tiny";
   r.sceneText = text;
-  r.baseDir = dir;
-  r.resolution = loadSceneFromText(text, "tiny.yaml", dir).camera.resolution;
-  r.sceneFile = "tiny.yaml";
+  const SceneDescription d = loadSceneFromText(text, (dir / "tiny.yaml").string(), dir);
+  r.inputFiles = d.inputFiles;
+  r.resolution = d.camera.resolution;
+  r.sceneFile = (dir / "tiny.yaml").string();
   r.spp = 4;
   r.threads = 1;
   return r;
@@ -243,7 +244,8 @@ ReferenceRequest tinyRequest(const fs::path& dir, const std::string& reflectance
 
 // obtainReference with the request's scene built from its text.
 Reference obtainTiny(const ReferenceRequest& r, const fs::path& cacheDir, std::ostream& log) {
-  const Scene scene(loadSceneFromText(r.sceneText, r.sceneFile, r.baseDir));
+  const Scene scene(
+      loadSceneFromText(r.sceneText, r.sceneFile, fs::path(r.sceneFile).parent_path()));
   return obtainReference(r, scene, cacheDir, log);
 }
 
@@ -296,21 +298,31 @@ TEST(BenchReference, ADamagedCacheFileIsRenderedAgain) {
   EXPECT_TRUE(obtainTiny(req, dir.path(), log).fromCache);
 }
 
-TEST(BenchReference, ReferencedFilesAreFoundInBlockAndFlowStyle) {
+// The key covers the files the loader read, wherever it found them: a table found through
+// the scene's spectra_path (which a scan of the scene text for file names would miss, as
+// the bench's key once did) changes the key when it changes.
+TEST(BenchReference, TheKeyFollowsATableFoundOnTheSpectraPath) {
   test::TempDir dir;
-  for (const char* f : {"a.ply", "tex.png", "s.csv", "env.exr"})
-    test::writeFile(dir.path() / f, "x");
-  const std::string text =
-      "shapes:\n  - type: mesh\n    file: a.ply   # comment\n"
-      "materials: {m: {type: diffuse, reflectance: {texture: tex.png, encoding: srgb}}}\n"
-      "x: {csv: \"s.csv\", column: y}\nlights:\n  - {type: environment, file: env.exr, scale: 1}\n"
-      "  - {type: environment, file: missing.exr}\n";
-  const auto files = referencedFiles(text, dir.path());
-  ASSERT_EQ(files.size(), 4u);
-  std::vector<std::string> names;
-  for (const auto& f : files) names.push_back(f.filename().string());
-  std::sort(names.begin(), names.end());
-  EXPECT_EQ(names, (std::vector<std::string>{"a.ply", "env.exr", "s.csv", "tex.png"}));
+  test::writeFile(dir.path() / "tri.obj", "v -1 -1 0\nv 1 -1 0\nv 0 1 0\nf 1 2 3\n");
+  fs::create_directories(dir.path() / "tables");
+  test::writeFile(dir.path() / "tables" / "grey.csv", "wavelength_nm,r\n360,0.5\n830,0.5\n");
+  const auto request = [&] {
+    std::string text = kTinyScene;
+    text.replace(text.find("REFL"), 4, "{csv: grey.csv}");
+    text.insert(text.find("render:"), "spectra_path: [tables]\n");
+    ReferenceRequest r = tinyRequest(dir.path(), "0.5");
+    r.sceneText = text;
+    r.inputFiles = loadSceneFromText(text, r.sceneFile, dir.path()).inputFiles;
+    return r;
+  };
+  const ReferenceRequest before = request();
+  ASSERT_EQ(before.inputFiles.size(), 2u);
+  EXPECT_EQ(before.inputFiles[0].filename(), "grey.csv");  // materials are read first
+  EXPECT_EQ(before.inputFiles[1].filename(), "tri.obj");
+  const std::string keyBefore = referenceKey(before);
+  EXPECT_EQ(referenceKey(request()), keyBefore);
+  test::writeFile(dir.path() / "tables" / "grey.csv", "wavelength_nm,r\n360,0.6\n830,0.6\n");
+  EXPECT_NE(referenceKey(request()), keyBefore);
 }
 
 }  // namespace

@@ -241,6 +241,7 @@ TEST(CamsimBinary, RendersSmallSceneToExrAndPng) {
   EXPECT_NE(json.find("\"display\": \"sRGB\""), std::string::npos) << json;
   EXPECT_NE(json.find("\"view\": \"ACES 1.0 - SDR Video\""), std::string::npos) << json;
   EXPECT_NE(json.find("\"spp\": 2"), std::string::npos) << json;
+  EXPECT_NE(json.find("\"input_files\": []"), std::string::npos) << json;  // reads no file
   const std::string png = readFile(out / "cornell_box.png");
   ASSERT_GE(png.size(), 8u);
   EXPECT_EQ(png.substr(1, 3), "PNG");

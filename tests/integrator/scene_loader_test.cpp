@@ -16,8 +16,10 @@
 
 #include "sensor/cie.h"
 #include "sensor/color_space.h"
+#include "sensor/exr_io.h"
 #include "sensor/input_error.h"
 #include "sensor/rgb_uplift.h"
+#include "tests/integrator/texture_test_support.h"
 #include "tests/support/text_file.h"
 
 namespace camsim {
@@ -313,6 +315,43 @@ TEST(SceneLoaderTest, CsvReflectanceFoundThroughSpectraPath) {
     EXPECT_EQ(e.key(), "materials.m.reflectance.csv") << e.what();
     EXPECT_EQ(e.where().line, 5) << e.what();
   }
+}
+
+// inputFiles: every file the loader read, in the order first read, each once — the bench's
+// reference cache keys on it (cli/bench_reference.h), so a file missing here would let a
+// stale reference survive a change to it.
+TEST(SceneLoaderTest, RecordsEveryFileItReads) {
+  TempDir dir;
+  writeFile(dir.path() / "tables" / "paint.csv", "wavelength,r\n400,0.2\n700,0.8\n");
+  writeFile(dir.path() / "tri.obj", "v 0 0 1\nv 1 0 1\nv 0 1 1\nf 1 2 3\n");
+  test::writeTestPng(dir.path() / "albedo.png", 2, 2, 3, 8, std::vector<std::uint16_t>(12, 100));
+  Image env(4, 2, {"R", "G", "B"});
+  env.pixels.assign(env.pixels.size(), 1.0f);
+  writeExr(dir.path() / "sky.exr", env, {}, std::nullopt);
+  const std::string text =
+      "spectra_path: [tables]\n" + kCamera +
+      "sensor: {model: fullframe-d850}\n"
+      "materials:\n"
+      "  a: {type: diffuse, reflectance: {csv: paint.csv}}\n"
+      "  b: {type: diffuse, reflectance: {csv: ./paint.csv}}\n"  // the same file again
+      "  c: {type: conductor, metal: Au}\n"
+      "  d: {type: diffuse, reflectance: {texture: albedo.png}}\n"
+      "shapes:\n" +
+      "  - {type: mesh, file: tri.obj, material: a}\n"
+      "lights:\n  - {type: environment, file: sky.exr, scale: 1}\n";
+  const SceneDescription scene = loadSceneFromText(text, "test.yaml", dir.path());
+  const fs::path luts = fs::path(CAMSIM_SOURCE_DIR) / "luts";
+  const std::vector<fs::path> expected = {luts / "sensors" / "fullframe-d850.yaml",
+                                          luts / "spectra" / "cameras" / "nikon_d850.csv",
+                                          dir.path() / "tables" / "paint.csv",
+                                          luts / "spectra" / "metals" / "Au.csv",
+                                          dir.path() / "albedo.png",
+                                          dir.path() / "tri.obj",
+                                          dir.path() / "sky.exr"};
+  ASSERT_EQ(scene.inputFiles.size(), expected.size());
+  for (size_t i = 0; i < expected.size(); ++i)
+    EXPECT_TRUE(fs::equivalent(scene.inputFiles[i], expected[i]))
+        << i << ": " << scene.inputFiles[i] << " vs " << expected[i];
 }
 
 TEST(SceneLoaderTest, RgbReflectance) {
