@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cstdlib>
 #include <fstream>
+#include <optional>
 #include <ostream>
 #include <sstream>
 
@@ -16,6 +17,7 @@
 #include "cli/python_script.h"
 #include "integrator/scene.h"
 #include "integrator/scene_loader.h"
+#include "sensor/file_status.h"
 #include "sensor/input_error.h"
 #include "sensor/output_set.h"
 
@@ -91,6 +93,28 @@ std::vector<BenchRow> sweep(const LoadedBenchScene& s, const Scene& scene, const
 
 }  // namespace
 
+BenchScratchDirectory::BenchScratchDirectory(std::filesystem::path base) {
+  std::error_code ec;
+  if (base.empty()) base = std::filesystem::temp_directory_path(ec);
+  if (ec) {
+    const char* tmpdir = std::getenv("TMPDIR");
+    throw InputError(
+        {std::string("TMPDIR=") + (tmpdir ? tmpdir : ""), 0, 0}, "",
+        "not a usable temporary directory for the bench's generated files: " + ec.message());
+  }
+  path_ = base / ("camsim-bench-" + std::to_string(::getpid()));
+  std::filesystem::create_directories(path_, ec);
+  if (ec || !isDirectory(path_))
+    throw InputError({path_.string(), 0, 0}, "",
+                     "cannot create the bench's temporary directory" +
+                         (ec ? ": " + ec.message() : std::string()));
+}
+
+BenchScratchDirectory::~BenchScratchDirectory() {
+  std::error_code ignored;
+  std::filesystem::remove_all(path_, ignored);
+}
+
 int runBench(const BenchArgs& args, std::ostream& out, std::ostream& log) {
   const auto start = std::chrono::steady_clock::now();
   const double cpuStart = processCpuSeconds();
@@ -99,6 +123,8 @@ int runBench(const BenchArgs& args, std::ostream& out, std::ostream& log) {
   const std::filesystem::path outDir(args.outputDir);
   const std::filesystem::path cacheDir =
       args.cacheDir ? std::filesystem::path(*args.cacheDir) : defaultBenchCacheDir();
+  std::optional<BenchScratchDirectory> scratch;  // made first: fail before any output or render
+  if (plan.meshTriangles > 0 || plan.textureSize > 0) scratch.emplace();
   for (const auto& stale : OutputSet::prepareDirectory(outDir))
     log << "removed " << stale.string() << " (left by a run that was killed)\n";
   const std::string loadBefore = loadAverage();
@@ -170,25 +196,16 @@ int runBench(const BenchArgs& args, std::ostream& out, std::ostream& log) {
              << "\n";
     }
   }
-  if (plan.meshTriangles > 0 || plan.textureSize > 0) {
-    const std::filesystem::path temp =
-        std::filesystem::temp_directory_path() / ("camsim-bench-" + std::to_string(::getpid()));
-    std::filesystem::create_directories(temp);
-    std::error_code ec;
-    try {
-      if (plan.meshTriangles > 0) {
-        log << "bench: building a " << plan.meshTriangles << "-triangle mesh\n";
-        extras << formatMeshBuild(measureMeshBuild(plan.meshTriangles, plan.threads, temp));
-      }
-      if (plan.textureSize > 0) {
-        log << "bench: loading a " << plan.textureSize << "-pixel-square random-colour texture\n";
-        extras << formatTextureLoad(measureTextureLoad(plan.textureSize, plan.threads, temp));
-      }
-    } catch (...) {
-      std::filesystem::remove_all(temp, ec);
-      throw;
+  if (scratch) {
+    const std::filesystem::path& temp = scratch->path();
+    if (plan.meshTriangles > 0) {
+      log << "bench: building a " << plan.meshTriangles << "-triangle mesh\n";
+      extras << formatMeshBuild(measureMeshBuild(plan.meshTriangles, plan.threads, temp));
     }
-    std::filesystem::remove_all(temp, ec);
+    if (plan.textureSize > 0) {
+      log << "bench: loading a " << plan.textureSize << "-pixel-square random-colour texture\n";
+      extras << formatTextureLoad(measureTextureLoad(plan.textureSize, plan.threads, temp));
+    }
   }
 
   const double wall =

@@ -65,6 +65,21 @@ BenchPlan planBench(const BenchArgs& args);
 std::filesystem::path benchScenePath(const std::string& name);
 std::filesystem::path defaultBenchCacheDir();
 
+// The scratch directory of the mesh-build and texture-load measurements,
+// BASE/camsim-bench-PID (BASE: $TMPDIR, else /tmp), created; removed with everything in it
+// when the object goes. InputError naming the directory when it cannot be created.
+class BenchScratchDirectory {
+ public:
+  explicit BenchScratchDirectory(std::filesystem::path base = {});
+  ~BenchScratchDirectory();
+  BenchScratchDirectory(const BenchScratchDirectory&) = delete;
+  BenchScratchDirectory& operator=(const BenchScratchDirectory&) = delete;
+  const std::filesystem::path& path() const { return path_; }
+
+ private:
+  std::filesystem::path path_;
+};
+
 // The embedded plot script (scripts/bench_plot.py at build time).
 std::string_view benchPlotScriptFile(std::string_view relPath);
 

@@ -307,9 +307,15 @@ SensorSpec loadSensorSpec(const std::string& presetOrPath, const fs::path& lutsD
   const std::string ext = path.extension().string();
   const bool isPath = path.has_parent_path() || ext == ".yaml" || ext == ".yml" || ext == ".json";
   if (!isPath) path = lutsDir / "sensors" / (presetOrPath + ".yaml");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    if (isPath) throw InputError({path.string(), 0, 0}, "", "cannot read the sensor description");
+  const bool exists = isRegularFile(path);  // a directory would open and read as empty
+  std::ifstream in;
+  if (exists) in.open(path, std::ios::binary);
+  if (!in.is_open()) {
+    if (isPath)
+      throw InputError(
+          {path.string(), 0, 0}, "",
+          (exists ? "cannot read the sensor description '" : "no sensor description file '") +
+              path.string() + "'" + (exists ? "" : " (missing, or not a file)"));
     std::set<std::string> presets;
     std::error_code ec;
     for (const auto& entry : fs::directory_iterator(lutsDir / "sensors", ec))

@@ -18,6 +18,7 @@
 #include "cli/bench_metrics.h"
 #include "cli/bench_reference.h"
 #include "integrator/scene_loader.h"
+#include "sensor/input_error.h"
 
 namespace camsim {
 namespace {
@@ -215,6 +216,35 @@ TEST(BenchArgs, BadUsageIsAUsageError) {
   EXPECT_THROW(parseBenchArgs({"bench", "--scenes", "a,,b"}), UsageError);
   EXPECT_THROW(parseBenchArgs({"bench", "--threads", "x"}), UsageError);
   EXPECT_THROW(parseBenchArgs({"bench", "--frobnicate"}), UsageError);
+}
+
+// ---- scratch directory --------------------------------------------------------------
+
+TEST(BenchScratchDirectory, IsCreatedAndRemovedWithItsContents) {
+  test::TempDir dir;
+  fs::path made;
+  {
+    const BenchScratchDirectory scratch(dir.path());
+    made = scratch.path();
+    EXPECT_EQ(made.parent_path(), dir.path());
+    ASSERT_TRUE(fs::is_directory(made));
+    test::writeFile(made / "torus.ply", "x");
+  }
+  EXPECT_FALSE(fs::exists(made));
+}
+
+// A base that is a file (or a missing $TMPDIR): an InputError naming it (exit 2), not a
+// filesystem_error (which main would report as an internal error, exit 1).
+TEST(BenchScratchDirectory, AnUnusableBaseIsAnInputError) {
+  test::TempDir dir;
+  test::writeFile(dir.path() / "file", "x");
+  try {
+    const BenchScratchDirectory scratch(dir.path() / "file");
+    FAIL() << "no InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(e.where().file.find("camsim-bench-"), std::string::npos) << e.what();
+    EXPECT_NE(e.message().find("cannot create"), std::string::npos) << e.what();
+  }
 }
 
 // ---- reference cache -------------------------------------------------------------------

@@ -190,6 +190,10 @@ TEST(SensorSpec, CsvQeAndIrCutTablesResolveNextToTheDescription) {
   EXPECT_NEAR(s.qe[0](550.0f), 0.3, 1e-6);
   EXPECT_NEAR(s.qe[0](650.0f), (0.2 + 0.2 * 250.0 / 300.0) * 0.5, 1e-6);  // × IR cut (0.5)
   EXPECT_EQ(s.qe[0](700.0f), 0.0f);
+  // The files it was read from, in order (the bench's reference key and the render sidecar
+  // list them): the description, then its tables.
+  EXPECT_EQ(s.sourceFiles, (std::vector<fs::path>{dir.path() / "cam.yaml", dir.path() / "qe.csv",
+                                                  dir.path() / "ir.csv"}));
   // Absolute QE above 1 without peak_qe is an error, at the csv key.
   dir.write("big.csv", "wavelength_nm,y\n400,2\n700,2\n");
   try {
@@ -262,6 +266,16 @@ TEST(SensorSpec, UnknownPresetListsThePresets) {
     EXPECT_NE(e.message().find("smartphone-1.4um"), std::string::npos) << e.what();
   }
   EXPECT_THROW(loadSensorSpec("/no/such/file.yaml", kLuts), InputError);
+  // A directory with a description's name is not read as an empty (invalid) description.
+  const TempDir dir;
+  fs::create_directories(dir.path() / "folder.yaml");
+  try {
+    loadSensorSpec((dir.path() / "folder.yaml").string(), kLuts);
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_NE(e.message().find("no sensor description file"), std::string::npos) << e.what();
+    EXPECT_NE(e.message().find("folder.yaml"), std::string::npos) << e.what();
+  }
 }
 
 TEST(SensorSpec, DarkCurrentDoublesPerDoublingInterval) {
