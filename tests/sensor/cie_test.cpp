@@ -42,17 +42,22 @@ TEST(Cie1931, IlluminantAChromaticity) {
   EXPECT_NEAR(c.y, 0.40745, 2e-4);
 }
 
-// DISABLED: luts/spectra/illuminants/illuminant_D50.csv is not CIE D50. Its chromaticity
-// is (0.33681, 0.35798) instead of (0.34567, 0.35851): above 560 nm the table falls off
-// like a much bluer daylight (570 nm: 96.07, 600 nm: 91.67, 700 nm: 77.82, where CIE
-// 015:2004 Table T.1 has 97.735, 97.688, 91.604), and below 560 nm it is also off by ≈1 %
-// (400 nm: 49.664 vs 49.308, 450 nm: 88.264 vs 87.247). Re-enable once the table is
-// replaced with the CIE data (luts/ is outside this test's module).
-TEST(Cie1931, DISABLED_D50Chromaticity) {
+// luts/spectra/illuminants/illuminant_D50.csv is computed by the CIE daylight method
+// (luts/spectra/README.md). The table it replaced was not D50: (0.33681, 0.35798) — this
+// test, disabled until then, failed on it by 9e-3 in x.
+TEST(Cie1931, D50Chromaticity) {
   const Chromaticity c = xyzToChromaticity(spectrumToXyz(cieIlluminant("D50")));
   // CIE 015:2004: D50 = (0.34567, 0.35851); 2e-4 as for A.
   EXPECT_NEAR(c.x, 0.34567, 2e-4);
   EXPECT_NEAR(c.y, 0.35851, 2e-4);
+  // Spot values of CIE 015:2004 Table T.1 (relative to 100 at 560 nm), within its rounding.
+  const Spectrum d50 = cieIlluminant("D50");
+  for (const auto& [nm, value] : {std::pair{400.0f, 49.308},
+                                  {450.0f, 87.247},
+                                  {570.0f, 97.735},
+                                  {600.0f, 97.688},
+                                  {700.0f, 91.604}})
+    EXPECT_NEAR(d50(nm), value, 2e-3) << nm << " nm";
 }
 
 TEST(Cie1931, AcesD60Chromaticity) {
