@@ -21,8 +21,8 @@ std::unique_ptr<SpectrumTexture> makeSpectrumTexture(const TextureDescription& d
     case TextureDescription::Kind::kConstant:
       return std::make_unique<ConstantSpectrumTexture>(d.value);
     case TextureDescription::Kind::kImage:
-      return std::make_unique<ImageSpectrumTexture>(
-          loadTextureImage(d.file, textureEncoding(d.file, d.encoding)), d.uvScale, d.uvOffset);
+      return std::make_unique<ImageSpectrumTexture>(loadTextureImage(d.file, d.encoding), d.uvScale,
+                                                    d.uvOffset);
     case TextureDescription::Kind::kCheckerboard:
       return std::make_unique<CheckerboardSpectrumTexture>(d.checkerA, d.checkerB, d.checks,
                                                            d.uvScale, d.uvOffset);
@@ -35,11 +35,9 @@ std::unique_ptr<FloatTexture> makeFloatTexture(const TextureDescription& d) {
   switch (d.kind) {
     case TextureDescription::Kind::kConstant:
       return std::make_unique<ConstantFloatTexture>(d.value(550.0f));
-    case TextureDescription::Kind::kImage:  // scalar maps default to raw numbers
-      return std::make_unique<ImageFloatTexture>(
-          loadTextureImage(d.file,
-                           textureEncoding(d.file, d.encoding.empty() ? "raw" : d.encoding)),
-          d.uvScale, d.uvOffset);
+    case TextureDescription::Kind::kImage:
+      return std::make_unique<ImageFloatTexture>(loadTextureImage(d.file, d.encoding), d.uvScale,
+                                                 d.uvOffset);
     case TextureDescription::Kind::
         kCheckerboard:  // constants as for kConstant: the value at 550 nm
       return std::make_unique<CheckerboardFloatTexture>(d.checkerA(550.0f), d.checkerB(550.0f),

@@ -131,16 +131,12 @@ glm::vec2 transformUv(glm::vec2 uv, glm::vec2 scale, glm::vec2 offset) {
 
 }  // namespace
 
-TextureEncoding textureEncoding(const std::filesystem::path& file, const std::string& encoding) {
+TextureEncoding defaultTextureEncoding(const std::filesystem::path& file) {
   const std::string ext = lowerExtension(file);
   if (ext != ".png" && ext != ".exr")
     fail(file, "unsupported texture file type '" + file.extension().string() +
                    "' (expected .png or .exr)");
-  if (encoding.empty()) return ext == ".png" ? TextureEncoding::kSrgb : TextureEncoding::kLinear;
-  if (encoding == "srgb") return TextureEncoding::kSrgb;
-  if (encoding == "linear") return TextureEncoding::kLinear;
-  if (encoding == "raw") return TextureEncoding::kRaw;
-  fail(file, "unknown texture encoding '" + encoding + "' (known: srgb, linear, raw)");
+  return ext == ".png" ? TextureEncoding::kSrgb : TextureEncoding::kLinear;
 }
 
 TextureImage loadTextureImage(const std::filesystem::path& file, TextureEncoding encoding) {

@@ -39,6 +39,7 @@
 #include <glm/vec2.hpp>
 
 #include "integrator/texture.h"
+#include "integrator/texture_encoding.h"
 #include "sensor/rgb_uplift.h"
 
 namespace camsim {
@@ -51,11 +52,9 @@ struct TextureImage {
   std::vector<float> values;  // width·height·channels, interleaved
 };
 
-enum class TextureEncoding { kSrgb, kLinear, kRaw };
-
-// "srgb", "linear", "raw"; "" gives the default for the file's type (png: srgb, exr:
-// linear). Throws InputError naming the file for an unknown encoding or file type.
-TextureEncoding textureEncoding(const std::filesystem::path& file, const std::string& encoding);
+// The default encoding of a colour texture of this file type (png: srgb, exr: linear).
+// Throws InputError naming the file for another type.
+TextureEncoding defaultTextureEncoding(const std::filesystem::path& file);
 // Reads and decodes an image. Throws InputError naming the file (missing, unreadable,
 // unsupported type or channels, empty).
 TextureImage loadTextureImage(const std::filesystem::path& file, TextureEncoding encoding);

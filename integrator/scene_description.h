@@ -15,6 +15,8 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
+#include "integrator/texture_encoding.h"
+
 #include "integrator/fresnel.h"
 #include "integrator/mesh_io.h"
 #include "integrator/microfacet.h"
@@ -50,9 +52,9 @@ struct TextureDescription {
   Kind kind = Kind::kConstant;
   Spectrum value = Spectrum::constant(0.5);  // kConstant (scalar inputs: the constant's value)
   std::filesystem::path file;                // kImage
-  // kImage: how texel values are encoded: "srgb" (PNG default), "linear" (linear Rec.709,
-  // EXR default) or "raw" (numbers used as they are, e.g. roughness maps).
-  std::string encoding;
+  // kImage: how texel values are encoded (texture_encoding.h), resolved by the loader: the
+  // `encoding` key, else srgb for PNG and linear for EXR colour maps, raw for scalar maps.
+  TextureEncoding encoding = TextureEncoding::kSrgb;
   Spectrum checkerA = Spectrum::constant(0.8), checkerB = Spectrum::constant(0.2);  // kCheckerboard
   float checks = 8.0f;                      // kCheckerboard: squares per unit of u and v
   glm::vec2 uvScale{1.0f}, uvOffset{0.0f};  // uv' = uv · scale + offset (kImage, kCheckerboard)

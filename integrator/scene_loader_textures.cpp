@@ -53,28 +53,21 @@ TextureDescription parseImage(YamlMap& map, TextureUse use, const std::filesyste
   const YamlValue file = map.require("texture");
   t.file = file.string();
   if (t.file.is_relative()) t.file = baseDir / t.file;
-  TextureEncoding encoding = TextureEncoding::kRaw;
   try {
-    encoding = textureEncoding(t.file, "");  // checks the file type
+    t.encoding = defaultTextureEncoding(t.file);  // checks the file type
   } catch (const InputError& e) {
     file.fail(e.message());
   }
-  if (use == TextureUse::kRoughness) encoding = TextureEncoding::kRaw;
-  if (auto e = map.find("encoding")) {
-    t.encoding = e->string();
-    if (t.encoding != "srgb" && t.encoding != "linear" && t.encoding != "raw")
-      e->fail("unknown encoding '" + t.encoding + "' (known: srgb, linear, raw)");
-    encoding = textureEncoding(t.file, t.encoding);
-  } else {
-    t.encoding = encoding == TextureEncoding::kSrgb
-                     ? "srgb"
-                     : (encoding == TextureEncoding::kLinear ? "linear" : "raw");
-  }
+  if (use == TextureUse::kRoughness) t.encoding = TextureEncoding::kRaw;
+  if (auto e = map.find("encoding"))
+    t.encoding = e->choice<TextureEncoding>("encoding", {{"srgb", TextureEncoding::kSrgb},
+                                                         {"linear", TextureEncoding::kLinear},
+                                                         {"raw", TextureEncoding::kRaw}});
   std::error_code ec;
   if (!std::filesystem::is_regular_file(t.file, ec))
     file.fail("texture file '" + t.file.string() + "' not found");
   try {
-    loadTextureImage(t.file, encoding);
+    loadTextureImage(t.file, t.encoding);
   } catch (const InputError& e) {
     file.fail("texture file '" + t.file.string() + "': " + e.message());
   }

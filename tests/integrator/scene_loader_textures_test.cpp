@@ -68,7 +68,7 @@ TEST_F(TextureScene, ConstantsImagesAndCheckerboards) {
       load("{type: diffuse, reflectance: {texture: albedo.png, scale: [2, 3], offset: 0.5}}");
   EXPECT_EQ(img.reflectance.kind, TextureDescription::Kind::kImage);
   EXPECT_EQ(img.reflectance.file, dir_.path() / "albedo.png");
-  EXPECT_EQ(img.reflectance.encoding, "srgb");  // the PNG default, made explicit
+  EXPECT_EQ(img.reflectance.encoding, TextureEncoding::kSrgb);  // the PNG default
   EXPECT_EQ(img.reflectance.uvScale, glm::vec2(2.0f, 3.0f));
   EXPECT_EQ(img.reflectance.uvOffset, glm::vec2(0.5f, 0.5f));
 
@@ -82,7 +82,7 @@ TEST_F(TextureScene, ConstantsImagesAndCheckerboards) {
 
   const MaterialDescription rough = load("{type: dielectric, roughness: {texture: rough.exr}}");
   EXPECT_EQ(rough.roughness.kind, TextureDescription::Kind::kImage);
-  EXPECT_EQ(rough.roughness.encoding, "raw");  // scalar maps default to raw
+  EXPECT_EQ(rough.roughness.encoding, TextureEncoding::kRaw);  // scalar maps default to raw
   EXPECT_EQ(load("{type: dielectric, roughness: 0.25}").roughness.value(550.0f), 0.25f);
   const MaterialDescription roughBoard =
       load("{type: dielectric, roughness: {checkerboard: {a: 0.05, b: 0.4}}}");

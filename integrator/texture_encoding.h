@@ -1,0 +1,11 @@
+// How an image texture's stored numbers map to linear values (docs/scene-format.md):
+//   kSrgb    decode the sRGB transfer curve (IEC 61966-2-1) to linear (PNG default)
+//   kLinear  linear Rec.709 RGB (EXR default)
+//   kRaw     the numbers as stored (PNG: code / (2ⁿ − 1)); the default for scalar maps
+#pragma once
+
+namespace camsim {
+
+enum class TextureEncoding { kSrgb, kLinear, kRaw };
+
+}  // namespace camsim
