@@ -33,13 +33,6 @@ std::string fileStamp(const std::filesystem::path& p, bool withContent) {
   return s.str();
 }
 
-Image channelImage(const Image& source, int channel, const std::string& name) {
-  Image out(source.width, source.height, {name});
-  for (int y = 0; y < source.height; ++y)
-    for (int x = 0; x < source.width; ++x) out.at(x, y, 0) = source.at(x, y, channel);
-  return out;
-}
-
 // The cached file's three channels, or false if it is missing, unreadable or not ours.
 bool readCached(const std::filesystem::path& file, const std::string& key, Reference& ref) {
   std::error_code ec;
@@ -52,9 +45,9 @@ bool readCached(const std::filesystem::path& file, const std::string& key, Refer
               b = exr.image.channelIndex("B.Y");
     if (keyIt == exr.metadata.end() || keyIt->second != key || y < 0 || a < 0 || b < 0)
       return false;
-    ref.image = channelImage(exr.image, y, "Y");
-    ref.halfA = channelImage(exr.image, a, "Y");
-    ref.halfB = channelImage(exr.image, b, "Y");
+    ref.image = exr.image.channel(y, "Y");
+    ref.halfA = exr.image.channel(a, "Y");
+    ref.halfB = exr.image.channel(b, "Y");
     return true;
   } catch (const InputError&) {
     return false;  // a damaged file: render anew
@@ -66,7 +59,7 @@ bool readCached(const std::filesystem::path& file, const std::string& key, Refer
 Image luminanceOf(const Image& xyz) {
   const int y = xyz.channelIndex("Y");
   CAMSIM_CHECK(y >= 0 && "the film image has a Y channel");
-  return channelImage(xyz, y, "Y");
+  return xyz.channel(y, "Y");
 }
 
 std::string referenceKey(const ReferenceRequest& request) {

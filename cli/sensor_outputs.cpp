@@ -27,15 +27,6 @@ Image scaled(const Image& image, double k) {
   return out;
 }
 
-// One channel of a multi-channel image.
-Image plane(const Image& image, int c) {
-  Image out(image.width, image.height, {image.channels[static_cast<size_t>(c)]});
-  const size_t n = static_cast<size_t>(image.channelCount());
-  for (size_t p = 0; p < out.pixels.size(); ++p)
-    out.pixels[p] = image.pixels[p * n + static_cast<size_t>(c)];
-  return out;
-}
-
 }  // namespace
 
 SensorOutputs writeSensorFrames(const SensorSettings& sensor, const std::string& name,
@@ -78,7 +69,7 @@ SensorOutputs writeSensorFrames(const SensorSettings& sensor, const std::string&
     std::vector<RawImage> raws;
     for (int c = 0; c < frameElectrons.channelCount(); ++c)
       raws.push_back(
-          expose(frameElectrons.channelCount() == 1 ? frameElectrons : plane(frameElectrons, c),
+          expose(frameElectrons.channelCount() == 1 ? frameElectrons : frameElectrons.channel(c),
                  spec, settings, sensor.noise,
                  sensor.noiseSeed + static_cast<std::uint64_t>(c) * 0x9e3779b9u, sensor.frame + i));
     size_t clipped = 0, total = 0;
@@ -105,7 +96,7 @@ SensorOutputs writeSensorFrames(const SensorSettings& sensor, const std::string&
       for (size_t c = 0; c < raws.size(); ++c) {
         report.rawExrFile = stem + "_raw_" + spec.cfa.channels[c] + ".exr";
         writeRawExr(outputs.add(report.rawExrFile), raws[c],
-                    plane(frameElectrons, static_cast<int>(c)), frameMeta);
+                    frameElectrons.channel(static_cast<int>(c)), frameMeta);
       }
     }
     if (i == reference) result.referenceRaws = std::move(raws);

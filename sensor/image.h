@@ -39,6 +39,15 @@ struct Image {
       if (channels[i] == name) return static_cast<int>(i);
     return -1;
   }
+  // Channel c alone, as a one-channel image named `name` (default: its own name).
+  Image channel(int c, std::string name = {}) const {
+    CAMSIM_CHECK(c >= 0 && c < channelCount());
+    Image out(width, height, {name.empty() ? channels[static_cast<size_t>(c)] : std::move(name)});
+    const size_t n = channels.size();
+    for (size_t p = 0; p < out.pixels.size(); ++p)
+      out.pixels[p] = pixels[p * n + static_cast<size_t>(c)];
+    return out;
+  }
 };
 
 // String key/value metadata written as EXR header attributes (and JSON sidecars later).
