@@ -51,7 +51,7 @@ std::string usageText() {
          "                    units (energy per photosite, Y in lm·s), with metadata\n"
          "          NAME.png  the picture through OpenColorIO (display/view/look below)\n"
          "          NAME.json every camera, sensor, ISP and colour setting used, and the\n"
-         "                    files the scene made camsim read (input_files)\n"
+         "                    files the scene loader read (input_files)\n"
          "        and with a sensor in the scene also NAME.dng, NAME_raw.exr (raw DN + electrons)\n"
          "        and NAME_acescg.exr (the developed scene-linear ACEScg image)\n"
          "  -o, --output DIR   output directory (created if missing)\n"

@@ -96,10 +96,15 @@ std::vector<BenchRow> sweep(const LoadedBenchScene& s, const Scene& scene, const
 BenchScratchDirectory::BenchScratchDirectory(std::filesystem::path base) {
   std::error_code ec;
   if (base.empty()) base = std::filesystem::temp_directory_path(ec);
-  if (ec) {
-    const char* tmpdir = std::getenv("TMPDIR");
+  if (ec) {  // name the variable temp_directory_path took (libstdc++'s order), else /tmp
+    std::string where = "/tmp";
+    for (const char* name : {"TMPDIR", "TMP", "TEMP", "TEMPDIR"})
+      if (const char* v = std::getenv(name)) {
+        where = std::string(name) + "=" + v;
+        break;
+      }
     throw InputError(
-        {std::string("TMPDIR=") + (tmpdir ? tmpdir : ""), 0, 0}, "",
+        {where, 0, 0}, "",
         "not a usable temporary directory for the bench's generated files: " + ec.message());
   }
   path_ = base / ("camsim-bench-" + std::to_string(::getpid()));

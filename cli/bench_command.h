@@ -66,7 +66,8 @@ std::filesystem::path benchScenePath(const std::string& name);
 std::filesystem::path defaultBenchCacheDir();
 
 // The scratch directory of the mesh-build and texture-load measurements,
-// BASE/camsim-bench-PID (BASE: $TMPDIR, else /tmp), created; removed with everything in it
+// BASE/camsim-bench-PID (BASE: std::filesystem::temp_directory_path(), i.e. $TMPDIR, $TMP,
+// $TEMP, $TEMPDIR or /tmp), created; removed with everything in it
 // when the object goes. InputError naming the directory when it cannot be created.
 class BenchScratchDirectory {
  public:

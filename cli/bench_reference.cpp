@@ -12,6 +12,7 @@
 #include "sensor/exr_io.h"
 #include "sensor/input_error.h"
 #include "sensor/output_set.h"
+#include "sensor/spectral_data.h"
 
 namespace camsim {
 namespace {
@@ -62,7 +63,7 @@ Image luminanceOf(const Image& xyz) {
   return xyz.channel(y, "Y");
 }
 
-std::string referenceKey(const ReferenceRequest& request) {
+std::string referenceKeyText(const ReferenceRequest& request) {
   std::ostringstream key;
   const glm::ivec2 res = request.resolution;
   key << kFormatTag << "\n"
@@ -71,7 +72,16 @@ std::string referenceKey(const ReferenceRequest& request) {
       << request.spp << "\n"
       << request.sceneText << "\n";
   for (const auto& f : request.inputFiles) key << fileStamp(f, true) << "\n";
-  return fnv1aHex(key.str());
+  // The tables built into camsim, which no scene file names: the CIE observer (luminance
+  // Y itself) and the named illuminants.
+  key << embeddedSpectralFile("cie1931_2deg_xyz.csv") << "\n";
+  for (const std::string& name : cieIlluminantNames())
+    key << embeddedSpectralFile("illuminants/illuminant_" + name + ".csv") << "\n";
+  return key.str();
+}
+
+std::string referenceKey(const ReferenceRequest& request) {
+  return fnv1aHex(referenceKeyText(request));
 }
 
 Reference obtainReference(const ReferenceRequest& request, const Scene& scene,

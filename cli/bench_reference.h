@@ -10,7 +10,8 @@
 // text, the bench resolution, refSpp, and every file the scene loader read for the scene
 // (SceneDescription::inputFiles: meshes, textures, maps, spectral tables wherever they were
 // found — next to the scene, on its spectra_path or in luts/spectra — and the sensor's files)
-// by path, size, modification time and content. Any change to these renders a new reference;
+// by path, size, modification time and content, and the tables built into camsim (the CIE
+// observer, the named illuminants). Any change to these renders a new reference;
 // nothing else does (a changed tracer with the same version reuses the old one: delete the
 // cache directory to force a new one). Files are written
 // under a temporary name and renamed (OutputSet), so a killed run never leaves a truncated
@@ -51,8 +52,9 @@ struct Reference {
   double seconds = 0.0;  // render time (0 when read from the cache)
 };
 
-// The cache key (16 hex digits).
+// The cache key (16 hex digits): the FNV-1a hash of referenceKeyText.
 std::string referenceKey(const ReferenceRequest& request);
+std::string referenceKeyText(const ReferenceRequest& request);
 
 // Reads CACHE_DIR/NAME-KEY.exr if present and valid, else renders `scene` (the request's
 // scene, built by the caller) and writes it. `log` gets one line on what happened;

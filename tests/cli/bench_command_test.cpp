@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
@@ -19,6 +20,7 @@
 #include "cli/bench_reference.h"
 #include "integrator/scene_loader.h"
 #include "sensor/input_error.h"
+#include "sensor/spectral_data.h"
 
 namespace camsim {
 namespace {
@@ -247,6 +249,32 @@ TEST(BenchScratchDirectory, AnUnusableBaseIsAnInputError) {
   }
 }
 
+// With no base given, the scratch directory goes under std::filesystem::temp_directory_path;
+// an unusable $TMPDIR is an InputError naming the variable and its value.
+TEST(BenchScratchDirectory, AnUnusableTmpdirIsAnInputErrorNamingIt) {
+  test::TempDir dir;
+  test::writeFile(dir.path() / "file", "x");
+  const char* old = std::getenv("TMPDIR");
+  const std::string saved = old ? old : "";
+  const std::string bad = (dir.path() / "file").string();
+  ::setenv("TMPDIR", bad.c_str(), 1);
+  try {
+    const BenchScratchDirectory scratch;
+    ADD_FAILURE() << "no InputError";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.where().file, "TMPDIR=" + bad) << e.what();
+  }
+  ::setenv("TMPDIR", dir.path().c_str(), 1);  // a usable one: used
+  {
+    const BenchScratchDirectory scratch;
+    EXPECT_EQ(scratch.path().parent_path(), dir.path());
+  }
+  if (old)
+    ::setenv("TMPDIR", saved.c_str(), 1);
+  else
+    ::unsetenv("TMPDIR");
+}
+
 // ---- reference cache -------------------------------------------------------------------
 
 const char* kTinyScene =
@@ -353,6 +381,20 @@ TEST(BenchReference, TheKeyFollowsATableFoundOnTheSpectraPath) {
   EXPECT_EQ(referenceKey(request()), keyBefore);
   test::writeFile(dir.path() / "tables" / "grey.csv", "wavelength_nm,r\n360,0.6\n830,0.6\n");
   EXPECT_NE(referenceKey(request()), keyBefore);
+}
+
+// The tables built into camsim reach no inputFiles list (scenes name illuminants, and Y
+// is the CIE observer's), so the key covers their text itself.
+TEST(BenchReference, TheKeyCoversTheBuiltInTables) {
+  test::TempDir dir;
+  test::writeFile(dir.path() / "tri.obj", "v -1 -1 0\nv 1 -1 0\nv 0 1 0\nf 1 2 3\n");
+  const std::string text = referenceKeyText(tinyRequest(dir.path(), "0.5"));
+  EXPECT_NE(text.find(embeddedSpectralFile("cie1931_2deg_xyz.csv")), std::string::npos);
+  for (const std::string& name : cieIlluminantNames()) {
+    const std::string_view table = embeddedSpectralFile("illuminants/illuminant_" + name + ".csv");
+    ASSERT_FALSE(table.empty()) << name;
+    EXPECT_NE(text.find(table), std::string::npos) << name;
+  }
 }
 
 }  // namespace

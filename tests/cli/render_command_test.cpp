@@ -220,6 +220,27 @@ std::string smallCornellBox() {
   return text.replace(at, from.size(), "resolution: [32, 32]");
 }
 
+// The sidecar lists the files the scene loader read (input_files), in the order read.
+TEST(CamsimBinary, SidecarListsTheFilesTheSceneRead) {
+  TempDir dir;
+  writeFile(dir.path() / "grey.csv", "wavelength_nm,r\n360,0.5\n830,0.5\n");
+  writeFile(dir.path() / "tri.obj", "v -1 -1 0\nv 1 -1 0\nv 0 1 0\nf 1 2 3\n");
+  writeFile(dir.path() / "files.yaml",
+            "camera: {position: [0, 0, -2], look_at: [0, 0, 0], resolution: [8, 8]}\n"
+            "materials: {grey: {type: diffuse, reflectance: {csv: grey.csv}}}\n"
+            "shapes:\n  - {type: mesh, file: tri.obj, material: grey}\n"
+            "  - {type: sphere, centre: [0, 2, -1], radius: 0.3, emission: {luminance: 1000}}\n");
+  const fs::path out = dir.path() / "out";
+  const RunResult r = camsim("render " + quote((dir.path() / "files.yaml").string()) + " -o " +
+                                 quote(out.string()) + " --spp 1",
+                             dir.path());
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const std::string json = readFile(out / "files.json");
+  const std::string expected = "\"input_files\": [\"" + (dir.path() / "grey.csv").string() +
+                               "\", \"" + (dir.path() / "tri.obj").string() + "\"]";
+  EXPECT_NE(json.find(expected), std::string::npos) << expected << "\n" << json;
+}
+
 TEST(CamsimBinary, RendersSmallSceneToExrAndPng) {
   TempDir dir;
   const std::string text = smallCornellBox();
