@@ -256,10 +256,13 @@ SceneDescription loadSceneFromText(const std::string& text, const std::string& d
   top.finish({"format", "name", "spectra_path", "render", "camera", "sensor", "isp", "materials",
               "shapes", "lights"});
   ctx.search.filesRead = nullptr;
-  std::vector<std::filesystem::path> once;  // each file once, where first read
+  std::vector<std::filesystem::path> once;  // each file once (as first read), however named
   for (const auto& f : scene.inputFiles) {
-    const std::filesystem::path p = f.lexically_normal();
-    if (std::find(once.begin(), once.end(), p) == once.end()) once.push_back(p);
+    const bool seen = std::any_of(once.begin(), once.end(), [&](const auto& o) {
+      std::error_code ec;
+      return o == f || std::filesystem::equivalent(o, f, ec);
+    });
+    if (!seen) once.push_back(f);
   }
   scene.inputFiles = std::move(once);
   return scene;

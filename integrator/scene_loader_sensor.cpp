@@ -4,7 +4,6 @@
 
 #include "integrator/scene_loader.h"
 #include "integrator/scene_loader_parts.h"
-#include "sensor/file_status.h"
 #include "sensor/spectral_data.h"
 
 namespace camsim {
@@ -14,7 +13,9 @@ SensorSettings parseSensorSettings(YamlMap map, const std::filesystem::path& bas
   SensorSettings s;
   const YamlValue model = map.require("model");
   std::string name = model.string();
-  if (isRegularFile(baseDir / name)) name = (baseDir / name).string();
+  // A sensor file is relative to the scene, like every other file a scene names.
+  if (isSensorSpecPath(name) && std::filesystem::path(name).is_relative())
+    name = (baseDir / name).string();
   try {
     s.spec = loadSensorSpec(name, lutsDirectory());
   } catch (const InputError& e) {

@@ -10,8 +10,9 @@ constexpr double kCentre = 538.0;  // nm
 
 // Single precision on purpose: every pixel sample draws kWavelengthSamples wavelengths, and
 // the double-precision atanh/cosh of libm cost several times the rest of the sampling. In
-// float, λ is within ≈ 2e-4 nm of the exact inverse CDF and p(λ) within ≈ 1e-6 relative
-// (the tests bound both), far below what a 1 nm spectrum grid resolves.
+// float, λ is within ≈ 2e-4 nm of the exact inverse CDF and visibleWavelengthPdf within
+// ≈ 1e-6 relative; sampleVisible's p from t agrees with it within 1e-5 (the tests bound all
+// three), far below what a 1 nm spectrum grid resolves.
 struct VisibleConstants {
   float tanhLo, tanhRange;  // tanh(a(360 − 538)), tanh(a(830 − 538)) − tanhLo
   float pdfScale;           // a / Z
@@ -37,7 +38,8 @@ float wrap(float u) {
 // Also returns p(λ) = (a/Z)·sech²(a(λ − 538)) = (a/Z)·(1 − t)(1 + t): no exp needed (and
 // (1 − t)(1 + t) keeps its relative precision where 1 − t² would cancel).
 struct VisibleSample {
-  float lambda, pdf;
+  float lambda;  // nm
+  float pdf;     // nm⁻¹
 };
 VisibleSample sampleVisibleWithPdf(float u) {
   const VisibleConstants& c = visible();

@@ -301,11 +301,16 @@ SensorSpec parseSensorSpec(const std::string& yamlText, const std::string& displ
   return spec;
 }
 
+bool isSensorSpecPath(const std::string& presetOrPath) {
+  const fs::path path(presetOrPath);
+  const std::string ext = path.extension().string();
+  return path.has_parent_path() || ext == ".yaml" || ext == ".yml" || ext == ".json";
+}
+
 SensorSpec loadSensorSpec(const std::string& presetOrPath, const fs::path& lutsDir) {
   if (presetOrPath.empty()) throw InputError({}, "sensor", "empty sensor name");
   fs::path path(presetOrPath);
-  const std::string ext = path.extension().string();
-  const bool isPath = path.has_parent_path() || ext == ".yaml" || ext == ".yml" || ext == ".json";
+  const bool isPath = isSensorSpecPath(presetOrPath);
   if (!isPath) path = lutsDir / "sensors" / (presetOrPath + ".yaml");
   const bool exists = isRegularFile(path);  // a directory would open and read as empty
   std::ifstream in;

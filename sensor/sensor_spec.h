@@ -77,5 +77,8 @@ SensorSpec parseSensorSpec(const std::string& yamlText, const std::string& displ
                            const std::filesystem::path& lutsDir);
 // A preset name ("smartphone-1.4um", …) from lutsDir/sensors/NAME.yaml, or a file path.
 SensorSpec loadSensorSpec(const std::string& presetOrPath, const std::filesystem::path& lutsDir);
+// Whether loadSensorSpec takes this as a file path rather than a preset name: it has a
+// folder part or ends in .yaml, .yml or .json.
+bool isSensorSpecPath(const std::string& presetOrPath);
 
 }  // namespace camsim
