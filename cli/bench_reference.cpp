@@ -73,10 +73,9 @@ std::string referenceKeyText(const ReferenceRequest& request) {
       << request.sceneText << "\n";
   for (const auto& f : request.inputFiles) key << fileStamp(f, true) << "\n";
   // The tables built into camsim, which no scene file names: the CIE observer (luminance
-  // Y itself) and the named illuminants.
-  key << embeddedSpectralFile("cie1931_2deg_xyz.csv") << "\n";
-  for (const std::string& name : cieIlluminantNames())
-    key << embeddedSpectralFile("illuminants/illuminant_" + name + ".csv") << "\n";
+  // Y itself) and the named illuminants — every embedded table, by name and content.
+  for (const std::string_view name : embeddedSpectralFileNames())
+    key << name << "\n" << embeddedSpectralFile(name) << "\n";
   return key.str();
 }
 

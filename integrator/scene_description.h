@@ -143,8 +143,10 @@ struct SensorSettings {
 struct SceneDescription {
   std::string sourceFile;  // what it was loaded from ("<default>" for the embedded scene)
   // Every other file the loader read for it, in the order first read, each once: meshes,
-  // textures, environment maps, spectral tables (also named ones from luts/spectra), the
-  // sensor description and its tables. Building a Scene from it reads no other file.
+  // textures, environment maps, spectral tables (also named metals and glasses from
+  // luts/spectra), the sensor description and its tables. Named illuminants and the CIE
+  // observer are built into camsim (sensor/spectral_data.h) and not listed. Building a
+  // Scene from it reads no other file.
   std::vector<std::filesystem::path> inputFiles;
   // Render space: every position below is relative to this point of the scene file's
   // world (m) — the camera's rest position — so that scenes far from the world origin

@@ -32,6 +32,8 @@ SpectralTable readSpectralCsv(const std::filesystem::path& path);
 // Embedded copies of luts/spectra/ files, by path relative to luts/spectra/
 // (e.g. "cie1931_2deg_xyz.csv", "illuminants/illuminant_D65.csv"); empty if absent.
 std::string_view embeddedSpectralFile(std::string_view relPath);
+// The relative paths of every embedded table (sensor/CMakeLists.txt chooses them).
+std::vector<std::string_view> embeddedSpectralFileNames();
 
 // A CIE standard illuminant ("A", "D50", "D65", "F1".."F12", "ACES_D60") as tabulated
 // (relative power, 0 outside its table). Throws InputError for an unknown name.

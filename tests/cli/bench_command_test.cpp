@@ -2,6 +2,7 @@
 // fit on synthetic data, the CSV columns, argument parsing and the plan, and the reference
 // cache (reused while the scene and its files are unchanged, invalidated when they change).
 // No timing is asserted: the benchmark's numbers are measurements, not test outcomes.
+#include "tests/support/env_guard.h"
 #include "tests/support/temp_dir.h"
 #include "tests/support/text_file.h"
 
@@ -254,25 +255,18 @@ TEST(BenchScratchDirectory, AnUnusableBaseIsAnInputError) {
 TEST(BenchScratchDirectory, AnUnusableTmpdirIsAnInputErrorNamingIt) {
   test::TempDir dir;
   test::writeFile(dir.path() / "file", "x");
-  const char* old = std::getenv("TMPDIR");
-  const std::string saved = old ? old : "";
+  const test::EnvGuard tmpdir("TMPDIR");  // restored however the test ends
   const std::string bad = (dir.path() / "file").string();
-  ::setenv("TMPDIR", bad.c_str(), 1);
+  tmpdir.set(bad);
   try {
     const BenchScratchDirectory scratch;
     ADD_FAILURE() << "no InputError";
   } catch (const InputError& e) {
     EXPECT_EQ(e.where().file, "TMPDIR=" + bad) << e.what();
   }
-  ::setenv("TMPDIR", dir.path().c_str(), 1);  // a usable one: used
-  {
-    const BenchScratchDirectory scratch;
-    EXPECT_EQ(scratch.path().parent_path(), dir.path());
-  }
-  if (old)
-    ::setenv("TMPDIR", saved.c_str(), 1);
-  else
-    ::unsetenv("TMPDIR");
+  tmpdir.set(dir.path().string());  // a usable one: used
+  const BenchScratchDirectory scratch;
+  EXPECT_EQ(scratch.path().parent_path(), dir.path());
 }
 
 // ---- reference cache -------------------------------------------------------------------
@@ -395,6 +389,8 @@ TEST(BenchReference, TheKeyCoversTheBuiltInTables) {
     ASSERT_FALSE(table.empty()) << name;
     EXPECT_NE(text.find(table), std::string::npos) << name;
   }
+  const auto embedded = embeddedSpectralFileNames();  // the observer and every illuminant
+  EXPECT_EQ(embedded.size(), 1 + cieIlluminantNames().size());
 }
 
 }  // namespace

@@ -34,7 +34,8 @@ TEST(SceneLoaderSensor, ASensorFileIsRelativeToTheScene) {
   test::TempDir dir;
   const fs::path scenes = dir.path() / "scenes";
   test::writeFile(scenes / "qe.csv", "wavelength_nm,mono\n400,0.2\n700,0.4\n");
-  test::writeFile(scenes / "cam.yaml", "pixel_pitch_um: 2\ncfa: mono\nqe: {csv: qe.csv, columns: [mono]}\n");
+  test::writeFile(scenes / "cam.yaml",
+                  "pixel_pitch_um: 2\ncfa: mono\nqe: {csv: qe.csv, columns: [mono]}\n");
   const SceneDescription d =
       loadSceneFromText(sceneWithSensor("cam.yaml"), (scenes / "s.yaml").string(), scenes);
   ASSERT_TRUE(d.sensor.has_value());

@@ -18,6 +18,7 @@
 #include <gtest/gtest.h>
 
 #include "sensor/input_error.h"
+#include "tests/support/env_guard.h"
 
 namespace camsim {
 namespace {
@@ -79,27 +80,6 @@ colorspaces:
     to_scene_reference: !<BuiltinTransform> {style: ACEScg_to_ACES2065-1}
 )";
 
-// Saves an environment variable, unsets it, restores it on destruction.
-class EnvGuard {
- public:
-  explicit EnvGuard(const char* name) : name_(name) {
-    if (const char* v = std::getenv(name)) old_ = v;
-    ::unsetenv(name);
-  }
-  ~EnvGuard() {
-    if (old_)
-      ::setenv(name_, old_->c_str(), 1);
-    else
-      ::unsetenv(name_);
-  }
-  EnvGuard(const EnvGuard&) = delete;
-  EnvGuard& operator=(const EnvGuard&) = delete;
-
- private:
-  const char* name_;
-  std::optional<std::string> old_;
-};
-
 class ColorManagementTest : public ::testing::Test {
  protected:
   void SetUp() override {
@@ -124,8 +104,8 @@ class ColorManagementTest : public ::testing::Test {
   }
 
   // $OCIO and $CAMSIM_LUTS are unset for every test and restored afterwards.
-  EnvGuard ocioEnv_{"OCIO"};
-  EnvGuard lutsEnv_{"CAMSIM_LUTS"};
+  test::EnvGuard ocioEnv_{"OCIO"};
+  test::EnvGuard lutsEnv_{"CAMSIM_LUTS"};
   fs::path dir_;
 };
 
