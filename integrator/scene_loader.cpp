@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <map>
+#include <set>
 #include <sstream>
 
 #include <glm/geometric.hpp>
@@ -256,13 +257,15 @@ SceneDescription loadSceneFromText(const std::string& text, const std::string& d
   top.finish({"format", "name", "spectra_path", "render", "camera", "sensor", "isp", "materials",
               "shapes", "lights"});
   ctx.search.filesRead = nullptr;
-  std::vector<std::filesystem::path> once;  // each file once (as first read), however named
+  // Each file once (as first read), however it was named: keyed by its canonical path
+  // (symbolic links and ./.. resolved), one lookup per read.
+  std::vector<std::filesystem::path> once;
+  std::set<std::filesystem::path> seen;
   for (const auto& f : scene.inputFiles) {
-    const bool seen = std::any_of(once.begin(), once.end(), [&](const auto& o) {
-      std::error_code ec;
-      return o == f || std::filesystem::equivalent(o, f, ec);
-    });
-    if (!seen) once.push_back(f);
+    std::error_code ec;
+    std::filesystem::path canonical = std::filesystem::weakly_canonical(f, ec);
+    if (ec) canonical = f;
+    if (seen.insert(canonical).second) once.push_back(f);
   }
   scene.inputFiles = std::move(once);
   return scene;

@@ -324,6 +324,7 @@ TEST(SceneLoaderTest, RecordsEveryFileItReads) {
   TempDir dir;
   writeFile(dir.path() / "tables" / "paint.csv", "wavelength,r\n400,0.2\n700,0.8\n");
   writeFile(dir.path() / "tri.obj", "v 0 0 1\nv 1 0 1\nv 0 1 1\nf 1 2 3\n");
+  fs::create_symlink("paint.csv", dir.path() / "tables" / "alias.csv");
   test::writeTestPng(dir.path() / "albedo.png", 2, 2, 3, 8, std::vector<std::uint16_t>(12, 100));
   Image env(4, 2, {"R", "G", "B"});
   env.pixels.assign(env.pixels.size(), 1.0f);
@@ -334,6 +335,7 @@ TEST(SceneLoaderTest, RecordsEveryFileItReads) {
       "materials:\n"
       "  a: {type: diffuse, reflectance: {csv: paint.csv}}\n"
       "  b: {type: diffuse, reflectance: {csv: ./paint.csv}}\n"  // the same file again
+      "  e: {type: diffuse, reflectance: {csv: alias.csv}}\n"    // and through a link
       "  c: {type: conductor, metal: Au}\n"
       "  d: {type: diffuse, reflectance: {texture: albedo.png}}\n"
       "shapes:\n" +
