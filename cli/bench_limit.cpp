@@ -189,14 +189,21 @@ MeshBuildResult measureMeshBuild(std::uint64_t triangles, int threads,
     writeBinaryPly(ply, mesh);
   }
   m.plyMegabytes = static_cast<double>(std::filesystem::file_size(ply)) * 1e-6;
-  const std::string text =
-      "format: camsim-scene/1\nname: mesh_build\nrender: {spp: 1}\n"
-      "camera: {position: [0, 1.5, -1.5], look_at: [0, 0, 0], up: [0, 1, 0], resolution: [16, "
-      "16]}\n"
-      "materials: {grey: {type: diffuse, reflectance: 0.5}}\n"
-      "shapes:\n  - {name: torus, type: mesh, file: torus.ply, material: grey}\n"
-      "  - {name: lamp, type: sphere, centre: [0, 2, 0], radius: 0.1, emission: {luminance: "
-      "1000}}\n";
+  // The torus at rest, or moving (0.1 m and 10° over a 10 ms shutter).
+  const auto sceneText = [](bool moving) {
+    return std::string(
+               "format: camsim-scene/1\nname: mesh_build\nrender: {spp: 1}\n"
+               "camera: {position: [0, 1.5, -1.5], look_at: [0, 0, 0], up: [0, 1, 0], "
+               "resolution: [16, 16], shutter: {open: 0, close: 0.01}}\n"
+               "materials: {grey: {type: diffuse, reflectance: 0.5}}\n"
+               "shapes:\n  - {name: torus, type: mesh, file: torus.ply, material: grey") +
+           (moving ? ", motion: [{time: 0}, {time: 0.01, translate: [0.1, 0, 0], rotate: "
+                     "{axis: [0, 1, 0], angle_deg: 10}}]"
+                   : "") +
+           "}\n  - {name: lamp, type: sphere, centre: [0, 2, 0], radius: 0.1, emission: "
+           "{luminance: 1000}}\n";
+  };
+  const std::string text = sceneText(false);
   auto start = std::chrono::steady_clock::now();
   const SceneDescription desc = loadSceneFromText(text, "<bench mesh>", tempDir);
   m.loadSeconds = secondsSince(start);
@@ -215,6 +222,15 @@ MeshBuildResult measureMeshBuild(std::uint64_t triangles, int threads,
     m.rssBytesPerTriangle = (residentBytes() - before) / static_cast<double>(m.triangles);
     m.sceneEmbreeBytes = scene->geometry().embreeBytes();
     m.sceneEmbreePeakBytes = scene->geometry().embreePeakBytes();
+  }
+  {
+    const SceneDescription moving = loadSceneFromText(sceneText(true), "<bench mesh>", tempDir);
+    start = std::chrono::steady_clock::now();
+    std::unique_ptr<Scene> scene;
+    arena.execute([&] { scene = std::make_unique<Scene>(moving); });
+    m.movingSceneSeconds = secondsSince(start);
+    m.movingEmbreeBytes = scene->geometry().embreeBytes();
+    m.movingEmbreePeakBytes = scene->geometry().embreePeakBytes();
   }
   m.embreeMedium = probeMeshBuild(desc.shapes.front().mesh, threads, BvhQuality::kMedium);
   m.embreeHigh = probeMeshBuild(desc.shapes.front().mesh, threads, BvhQuality::kHigh);

@@ -88,6 +88,10 @@ struct MeshBuildResult {
   std::int64_t sceneEmbreeBytes = 0, sceneEmbreePeakBytes = 0;
   // The same mesh as a bare Embree scene at RTC_BUILD_QUALITY_MEDIUM and _HIGH.
   MeshBuildProbe embreeMedium, embreeHigh;
+  // The same mesh moving (two keyframes over the shutter: an Embree instance of one pose,
+  // whose BVH is built at the Scene's quality): Scene build time and Embree's bytes.
+  double movingSceneSeconds = 0.0;
+  std::int64_t movingEmbreeBytes = 0, movingEmbreePeakBytes = 0;
 };
 MeshBuildResult measureMeshBuild(std::uint64_t triangles, int threads,
                                  const std::filesystem::path& tempDir);
