@@ -6,10 +6,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <string>
-
-#include <unistd.h>
 
 #include "integrator/render.h"
 #include "integrator/scene.h"
@@ -17,6 +14,9 @@
 #include "sensor/exposure_control.h"
 #include "sensor/exr_io.h"
 #include "sensor/sensor_model.h"
+#include "tests/support/run_command.h"
+#include "tests/support/temp_dir.h"
+#include "tests/support/text_file.h"
 
 namespace camsim {
 namespace {
@@ -105,18 +105,18 @@ namespace {
 // `bracket_ev: [-1, 0, 1]` writes one DNG and raw EXR per frame; with noise off each stop
 // doubles the signal above black (within DN rounding).
 TEST(SensorRender, BracketWritesOneFramePerStop) {
-  const std::filesystem::path dir =
-      std::filesystem::temp_directory_path() / ("camsim_bracket_" + std::to_string(::getpid()));
-  std::filesystem::create_directories(dir);
+  const test::TempDir temp;
+  const std::filesystem::path& dir = temp.path();
   std::string scene = kFlatField;
   scene.replace(scene.find("noise: full, noise_seed: 9}"), 27,
                 "noise: none, bracket_ev: [-1, 0, 1]}");
   scene.replace(scene.find("resolution: [256, 256]"), 22, "resolution: [32, 32]");
-  { std::ofstream(dir / "bracket.yaml") << scene; }
-  const std::string cmd = std::string(CAMSIM_BINARY) + " render " +
-                          (dir / "bracket.yaml").string() + " -o " + (dir / "out").string() +
-                          " --spp 4 2> " + (dir / "log.txt").string();
-  ASSERT_EQ(std::system(cmd.c_str()), 0);
+  test::writeFile(dir / "bracket.yaml", scene);
+  const test::RunResult r = test::runCommand(
+      test::quote(CAMSIM_BINARY) + " render " + test::quote((dir / "bracket.yaml").string()) +
+          " -o " + test::quote((dir / "out").string()) + " --spp 4",
+      dir);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
   double previous = 0.0;
   for (const char* ev : {"-1", "+0", "+1"}) {
     const auto stem = dir / "out" / (std::string("bracket_ev") + ev);
@@ -134,7 +134,6 @@ TEST(SensorRender, BracketWritesOneFramePerStop) {
     }
     previous = mean;
   }
-  std::filesystem::remove_all(dir);
 }
 
 }  // namespace

@@ -13,11 +13,11 @@
 #include <fstream>
 #include <functional>
 #include <limits>
-#include <random>
 #include <string>
 #include <vector>
 
 #include "sensor/input_error.h"
+#include "tests/support/temp_dir.h"
 
 namespace camsim {
 namespace {
@@ -463,9 +463,8 @@ TEST(PlyTest, HugeListCountFailsWithoutAllocating) {
 // ---- readMeshFile and robustness --------------------------------------------------------
 
 TEST(MeshFileTest, ReadsByExtension) {
-  const auto dir = std::filesystem::temp_directory_path() /
-                   ("camsim_mesh_io_test_" + std::to_string(std::random_device()()));
-  std::filesystem::create_directories(dir);
+  const test::TempDir temp;
+  const std::filesystem::path& dir = temp.path();
   std::ofstream(dir / "a.OBJ") << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
   std::ofstream(dir / "b.ply", std::ios::binary) << binaryPly({.bigEndian = true});
   std::ofstream(dir / "c.stl") << "solid";
@@ -482,7 +481,6 @@ TEST(MeshFileTest, ReadsByExtension) {
     EXPECT_EQ(e.where().file, (dir / "d.obj").string());
     EXPECT_EQ(e.where().line, 2);
   }
-  std::filesystem::remove_all(dir);
 }
 
 // A tiny deterministic mutation fuzzer: results must be a mesh or an InputError.

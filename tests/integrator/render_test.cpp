@@ -5,15 +5,13 @@
 
 #include <cstring>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
-
-#include <unistd.h>
 
 #include "integrator/render.h"
 #include "integrator/scene.h"
 #include "integrator/scene_loader.h"
 #include "sensor/exr_io.h"
+#include "tests/support/temp_dir.h"
+#include "tests/support/text_file.h"
 
 namespace camsim {
 namespace {
@@ -34,13 +32,6 @@ RenderResult renderWith(const Scene& scene, int threads, std::uint64_t seed) {
   return render(scene, response, options);
 }
 
-std::string fileBytes(const std::filesystem::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream bytes;
-  bytes << in.rdbuf();
-  return bytes.str();
-}
-
 TEST(Render, OneAndTwoThreadsGiveBitIdenticalExrs) {
   const Scene scene(smallCornell());
   const RenderResult one = renderWith(scene, 1, 42);
@@ -52,14 +43,12 @@ TEST(Render, OneAndTwoThreadsGiveBitIdenticalExrs) {
                            one.image.pixels.size() * sizeof(float)));
   EXPECT_EQ(one.stats.rays.total(), two.stats.rays.total());
   // Through the EXR writer with the same metadata, the files are byte-identical.
-  const auto dir =
-      std::filesystem::temp_directory_path() / ("camsim_render_test_" + std::to_string(::getpid()));
-  std::filesystem::create_directories(dir);
+  const test::TempDir temp;
+  const std::filesystem::path& dir = temp.path();
   const Metadata meta = {{"camsim:seed", "42"}};
   writeExr(dir / "one.exr", one.image, meta, std::nullopt);
   writeExr(dir / "two.exr", two.image, meta, std::nullopt);
-  EXPECT_EQ(fileBytes(dir / "one.exr"), fileBytes(dir / "two.exr"));
-  std::filesystem::remove_all(dir);
+  EXPECT_EQ(test::readFile(dir / "one.exr"), test::readFile(dir / "two.exr"));
 }
 
 TEST(Render, DifferentSeedsGiveDifferentNoiseSameSeedSameImage) {

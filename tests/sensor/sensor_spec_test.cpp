@@ -3,16 +3,16 @@
 #include "sensor/sensor_spec.h"
 #include "sensor/cie.h"
 
-#include <unistd.h>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
 
 #include "sensor/input_error.h"
+#include "tests/support/temp_dir.h"
+#include "tests/support/text_file.h"
 
 namespace camsim {
 namespace {
@@ -158,31 +158,13 @@ TEST(SensorSpec, CustomTileAndIrCut) {
   EXPECT_NEAR(s.qe[1](500.0f) / plain.qe[1](500.0f), 1.0, 1e-5);
 }
 
-class TempDir {
- public:
-  TempDir() : path_(fs::temp_directory_path() / ("camsim_spec_" + std::to_string(::getpid()))) {
-    fs::create_directories(path_);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path_, ec);
-  }
-  const fs::path& path() const { return path_; }
-  void write(const std::string& name, const std::string& text) const {
-    std::ofstream(path_ / name) << text;
-  }
-
- private:
-  fs::path path_;
-};
-
 TEST(SensorSpec, CsvQeAndIrCutTablesResolveNextToTheDescription) {
-  const TempDir dir;
-  dir.write("qe.csv", "wavelength_nm,mono,other\n400,0.2,0.9\n700,0.4,0.9\n");
-  dir.write("ir.csv", "wavelength_nm,t\n400,1\n600,1\n700,0\n");
-  dir.write("cam.yaml",
-            "pixel_pitch_um: 2\ncfa: mono\nqe: {csv: qe.csv, columns: [mono]}\n"
-            "ir_cut: {csv: ir.csv}\n");
+  const test::TempDir dir;
+  test::writeFile(dir.path() / "qe.csv", "wavelength_nm,mono,other\n400,0.2,0.9\n700,0.4,0.9\n");
+  test::writeFile(dir.path() / "ir.csv", "wavelength_nm,t\n400,1\n600,1\n700,0\n");
+  test::writeFile(dir.path() / "cam.yaml",
+                  "pixel_pitch_um: 2\ncfa: mono\nqe: {csv: qe.csv, columns: [mono]}\n"
+                  "ir_cut: {csv: ir.csv}\n");
   const SensorSpec s = loadSensorSpec((dir.path() / "cam.yaml").string(), kLuts);
   EXPECT_EQ(s.name, "cam");
   ASSERT_EQ(s.qe.size(), 1u);
@@ -195,7 +177,7 @@ TEST(SensorSpec, CsvQeAndIrCutTablesResolveNextToTheDescription) {
   EXPECT_EQ(s.sourceFiles, (std::vector<fs::path>{dir.path() / "cam.yaml", dir.path() / "qe.csv",
                                                   dir.path() / "ir.csv"}));
   // Absolute QE above 1 without peak_qe is an error, at the csv key.
-  dir.write("big.csv", "wavelength_nm,y\n400,2\n700,2\n");
+  test::writeFile(dir.path() / "big.csv", "wavelength_nm,y\n400,2\n700,2\n");
   try {
     parse("pixel_pitch_um: 2\nqe: {csv: big.csv, columns: [y]}\n", dir.path());
     ADD_FAILURE() << "accepted QE > 1";
@@ -267,7 +249,7 @@ TEST(SensorSpec, UnknownPresetListsThePresets) {
   }
   EXPECT_THROW(loadSensorSpec("/no/such/file.yaml", kLuts), InputError);
   // A directory with a description's name is not read as an empty (invalid) description.
-  const TempDir dir;
+  const test::TempDir dir;
   fs::create_directories(dir.path() / "folder.yaml");
   try {
     loadSensorSpec((dir.path() / "folder.yaml").string(), kLuts);

@@ -1,15 +1,14 @@
 // Tests for sensor/spectral_data: CSV spectral tables and the embedded CIE illuminants.
 #include "sensor/spectral_data.h"
 
-#include <unistd.h>
 #include <filesystem>
 #include <fstream>
 #include <string>
-#include <system_error>
 
 #include <gtest/gtest.h>
 
 #include "sensor/input_error.h"
+#include "tests/support/temp_dir.h"
 
 namespace camsim {
 namespace {
@@ -141,10 +140,8 @@ TEST(SpectralTable, ColumnIndexOfAMissingColumnThrows) {
 }
 
 TEST(ReadSpectralCsv, ReadsAFileAndReportsItsPath) {
-  const std::filesystem::path dir = std::filesystem::temp_directory_path() /
-                                    ("camsim_spectral_data_test_" + std::to_string(::getpid()));
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
+  const test::TempDir temp;
+  const std::filesystem::path& dir = temp.path();
   const std::filesystem::path good = dir / "good.csv";
   const std::filesystem::path bad = dir / "bad.csv";
   std::ofstream(good) << "nm,v\n400,0.5\n410,0.25\n";
@@ -161,8 +158,6 @@ TEST(ReadSpectralCsv, ReadsAFileAndReportsItsPath) {
     EXPECT_EQ(e.where().line, 3);
   }
   EXPECT_THROW(readSpectralCsv(dir / "missing.csv"), InputError);
-  std::error_code ignored;
-  std::filesystem::remove_all(dir, ignored);
 }
 
 TEST(CieIlluminant, D65IsNormalisedTo100At560Nm) {
