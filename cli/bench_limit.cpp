@@ -189,25 +189,35 @@ MeshBuildResult measureMeshBuild(std::uint64_t triangles, int threads,
     writeBinaryPly(ply, mesh);
   }
   m.plyMegabytes = static_cast<double>(std::filesystem::file_size(ply)) * 1e-6;
-  // The torus at rest, or moving (0.1 m and 10° over a 10 ms shutter).
-  const auto sceneText = [](bool moving) {
-    return std::string(
-               "format: camsim-scene/1\nname: mesh_build\nrender: {spp: 1}\n"
-               "camera: {position: [0, 1.5, -1.5], look_at: [0, 0, 0], up: [0, 1, 0], "
-               "resolution: [16, 16], shutter: {open: 0, close: 0.01}}\n"
-               "materials: {grey: {type: diffuse, reflectance: 0.5}}\n"
-               "shapes:\n  - {name: torus, type: mesh, file: torus.ply, material: grey") +
-           (moving ? ", motion: [{time: 0}, {time: 0.01, translate: [0.1, 0, 0], rotate: "
-                     "{axis: [0, 1, 0], angle_deg: 10}}]"
-                   : "") +
-           "}\n  - {name: lamp, type: sphere, centre: [0, 2, 0], radius: 0.1, emission: "
-           "{luminance: 1000}}\n";
-  };
-  const std::string text = sceneText(false);
-  auto start = std::chrono::steady_clock::now();
-  const SceneDescription desc = loadSceneFromText(text, "<bench mesh>", tempDir);
+  // The torus moving (0.1 m and 10° over a 10 ms shutter); the still scene is the same
+  // description at its first keyframe (withoutMotion), so the PLY is read once.
+  const std::string text =
+      "format: camsim-scene/1\nname: mesh_build\nrender: {spp: 1}\n"
+      "camera: {position: [0, 1.5, -1.5], look_at: [0, 0, 0], up: [0, 1, 0], "
+      "resolution: [16, 16], shutter: {open: 0, close: 0.01}}\n"
+      "materials: {grey: {type: diffuse, reflectance: 0.5}}\n"
+      "shapes:\n  - {name: torus, type: mesh, file: torus.ply, material: grey, motion: "
+      "[{time: 0}, {time: 0.01, translate: [0.1, 0, 0], rotate: {axis: [0, 1, 0], "
+      "angle_deg: 10}}]}\n"
+      "  - {name: lamp, type: sphere, centre: [0, 2, 0], radius: 0.1, emission: "
+      "{luminance: 1000}}\n";
+  const auto start = std::chrono::steady_clock::now();
+  const SceneDescription moving = loadSceneFromText(text, "<bench mesh>", tempDir);
   m.loadSeconds = secondsSince(start);
+  const SceneDescription desc = withoutMotion(moving);
   tbb::task_arena arena(threads > 0 ? threads : tbb::info::default_concurrency());
+  // Builds a Scene on the arena, timed; records what its Embree device holds after the
+  // build and at its peak. Returned alive, so the resident set can be read with it.
+  const auto build = [&](const SceneDescription& d, double& seconds, std::int64_t& bytes,
+                         std::int64_t& peak) {
+    const auto t0 = std::chrono::steady_clock::now();
+    std::unique_ptr<Scene> scene;
+    arena.execute([&] { scene = std::make_unique<Scene>(d); });
+    seconds = secondsSince(t0);
+    bytes = scene->geometry().embreeBytes();
+    peak = scene->geometry().embreePeakBytes();
+    return scene;
+  };
   {
     // Large blocks straight from mmap (a fixed threshold also stops glibc from raising it
     // after big frees) and free heap pages returned: the resident set then grows by what
@@ -215,23 +225,10 @@ MeshBuildResult measureMeshBuild(std::uint64_t triangles, int threads,
     mallopt(M_MMAP_THRESHOLD, 128 * 1024);
     malloc_trim(0);
     const double before = residentBytes();
-    start = std::chrono::steady_clock::now();
-    std::unique_ptr<Scene> scene;
-    arena.execute([&] { scene = std::make_unique<Scene>(desc); });
-    m.sceneSeconds = secondsSince(start);
+    const auto still = build(desc, m.sceneSeconds, m.sceneEmbreeBytes, m.sceneEmbreePeakBytes);
     m.rssBytesPerTriangle = (residentBytes() - before) / static_cast<double>(m.triangles);
-    m.sceneEmbreeBytes = scene->geometry().embreeBytes();
-    m.sceneEmbreePeakBytes = scene->geometry().embreePeakBytes();
   }
-  {
-    const SceneDescription moving = loadSceneFromText(sceneText(true), "<bench mesh>", tempDir);
-    start = std::chrono::steady_clock::now();
-    std::unique_ptr<Scene> scene;
-    arena.execute([&] { scene = std::make_unique<Scene>(moving); });
-    m.movingSceneSeconds = secondsSince(start);
-    m.movingEmbreeBytes = scene->geometry().embreeBytes();
-    m.movingEmbreePeakBytes = scene->geometry().embreePeakBytes();
-  }
+  build(moving, m.movingSceneSeconds, m.movingEmbreeBytes, m.movingEmbreePeakBytes);
   m.embreeMedium = probeMeshBuild(desc.shapes.front().mesh, threads, BvhQuality::kMedium);
   m.embreeHigh = probeMeshBuild(desc.shapes.front().mesh, threads, BvhQuality::kHigh);
   std::error_code ec;
