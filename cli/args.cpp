@@ -116,7 +116,8 @@ Command parseArgs(const std::vector<std::string>& args) {
     } else if (a == "--noise") {
       const std::string mode = value();
       r.noise = noiseModeFromName(mode);
-      if (!r.noise) throw UsageError("--noise must be none, photon or full, got '" + mode + "'");
+      if (!r.noise)
+        throw UsageError("--noise must be one of " + noiseModeNames() + ", got '" + mode + "'");
     } else if (a == "--ocio-config") {
       r.ocioConfig = value();
     } else if (a == "--display") {

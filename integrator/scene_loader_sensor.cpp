@@ -24,10 +24,12 @@ SensorSettings parseSensorSettings(YamlMap map, const std::filesystem::path& bas
   }
   s.iso = s.spec.baseIso;
   if (auto v = map.find("iso")) s.iso = v->number(1.0, 1e7);
-  if (auto v = map.find("noise"))
-    s.noise = v->choice<NoiseMode>(
-        "noise mode",
-        {{"none", NoiseMode::kNone}, {"photon", NoiseMode::kPhoton}, {"full", NoiseMode::kFull}});
+  if (auto v = map.find("noise")) {
+    const std::optional<NoiseMode> mode = noiseModeFromName(v->string());
+    if (!mode)
+      v->fail("unknown noise mode '" + v->string() + "' (known: " + noiseModeNames() + ")");
+    s.noise = *mode;
+  }
   if (auto v = map.find("noise_seed"))
     s.noiseSeed = static_cast<std::uint64_t>(v->integer(0, INT64_MAX));
   if (auto v = map.find("frame")) s.frame = static_cast<std::uint64_t>(v->integer(0, INT64_MAX));

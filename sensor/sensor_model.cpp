@@ -15,10 +15,21 @@ const char* noiseModeName(NoiseMode mode) {
   return mode == NoiseMode::kNone ? "none" : mode == NoiseMode::kPhoton ? "photon" : "full";
 }
 
+namespace {
+constexpr NoiseMode kNoiseModes[] = {NoiseMode::kNone, NoiseMode::kPhoton, NoiseMode::kFull};
+}  // namespace
+
 std::optional<NoiseMode> noiseModeFromName(std::string_view name) {
-  for (NoiseMode m : {NoiseMode::kNone, NoiseMode::kPhoton, NoiseMode::kFull})
+  for (NoiseMode m : kNoiseModes)
     if (name == noiseModeName(m)) return m;
   return std::nullopt;
+}
+
+std::string noiseModeNames() {
+  std::string names;
+  for (NoiseMode m : kNoiseModes)
+    names += (names.empty() ? "" : ", ") + std::string(noiseModeName(m));
+  return names;
 }
 namespace {
 

@@ -29,6 +29,7 @@
 #include <cstdint>
 
 #include <optional>
+#include <string>
 #include <string_view>
 
 #include "sensor/image.h"
@@ -41,6 +42,7 @@ enum class NoiseMode { kNone, kPhoton, kFull };
 // The names scene files, --noise and the JSON sidecar use: none, photon, full.
 const char* noiseModeName(NoiseMode mode);
 std::optional<NoiseMode> noiseModeFromName(std::string_view name);  // nullopt if unknown
+std::string noiseModeNames();  // "none, photon, full", for messages
 
 struct ExposureSettings {
   double exposureTimeS = 1.0 / 60.0;  // for dark current (the film already holds the light)

@@ -30,6 +30,23 @@ TEST(SceneLoaderSensor, APresetLoadsAtItsBaseIso) {
   EXPECT_EQ(d.sensor->iso, 64.0);
 }
 
+TEST(SceneLoaderSensor, NoiseModesByName) {
+  const auto load = [](const std::string& noise) {
+    return loadSceneFromText(sceneWithSensor("ideal-xyz, noise: " + noise), "s.yaml", ".");
+  };
+  EXPECT_EQ(load("photon").sensor->noise, NoiseMode::kPhoton);
+  EXPECT_EQ(load("none").sensor->noise, NoiseMode::kNone);
+  try {
+    load("loud");
+    FAIL() << "no InputError";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.key(), "sensor.noise") << e.what();
+    EXPECT_NE(e.message().find("unknown noise mode 'loud' (known: none, photon, full)"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 TEST(SceneLoaderSensor, ASensorFileIsRelativeToTheScene) {
   test::TempDir dir;
   const fs::path scenes = dir.path() / "scenes";
