@@ -68,16 +68,17 @@ float TriangleMesh::triangleArea(size_t tri, float time) const {
   return 0.5f * glm::length(glm::cross(p1 - p0, p2 - p0));
 }
 
-// Density by area of sample() producing a point of triangle tri at `time`.
-float TriangleMesh::areaPdf(size_t tri, float time) const {
+// Density by area of sample() producing a point of triangle tri whose area at that time
+// is `area` (m²; a static mesh's density does not depend on it).
+float TriangleMesh::areaPdf(size_t tri, float area) const {
   if (steps_.count == 1) return 1.0f / area_;
-  const float area = triangleArea(tri, time);
   return area > 0.0f ? areaDistribution_.pmf(tri) / area : 0.0f;
 }
 
 // Hot: every hit and every light sample on a mesh comes through here. Static meshes skip
 // the time lookup and the transform; |x| uses absComponents (see math.h).
-SurfaceInteraction TriangleMesh::pointOn(size_t tri, float b1, float b2, float time) const {
+SurfaceInteraction TriangleMesh::pointOn(size_t tri, float b1, float b2, float time,
+                                         float* area) const {
   const bool moving = !instance_.empty();
   const glm::mat4 m = moving ? transformAt(time) : glm::mat4(1.0f);
   const std::uint32_t i0 = indices_[3 * tri], i1 = indices_[3 * tri + 1],
@@ -96,6 +97,7 @@ SurfaceInteraction TriangleMesh::pointOn(size_t tri, float b1, float b2, float t
                  instance_.error(si.p);
   const glm::vec3 cross = glm::cross(p1 - p0, p2 - p0);
   const float len = std::sqrt(glm::dot(cross, cross));
+  if (area) *area = 0.5f * len;  // the triangle's area at `time` (sample() needs it)
   // n in a local first: copying si.n into si.ns through memory right after the three
   // scalar stores stalled on store forwarding (seen with perf).
   const glm::vec3 n = len > 0.0f ? cross * (1.0f / len) : glm::vec3(0.0f, 0.0f, 1.0f);
@@ -128,8 +130,9 @@ std::optional<ShapeSample> TriangleMesh::sample(const glm::vec3& ref, float u1, 
   const size_t tri = areaDistribution_.sample(u1);
   const glm::vec2 b = sampleUniformTriangle(u2);
   ShapeSample s;
-  s.point = pointOn(tri, b.y, 1.0f - b.x - b.y, time);
-  const float pdfArea = areaPdf(tri, time);
+  float area = 0.0f;
+  s.point = pointOn(tri, b.y, 1.0f - b.x - b.y, time, &area);
+  const float pdfArea = areaPdf(tri, area);
   if (!(pdfArea > 0.0f)) return std::nullopt;
   s.pdf = areaToSolidAnglePdf(pdfArea, ref, s.point);
   if (!(s.pdf > 0.0f) || !std::isfinite(s.pdf)) return std::nullopt;
@@ -139,7 +142,8 @@ std::optional<ShapeSample> TriangleMesh::sample(const glm::vec3& ref, float u1, 
 float TriangleMesh::pdf(const glm::vec3& ref, const SurfaceInteraction& onShape) const {
   CAMSIM_CHECK(samplable_);
   if (area_ <= 0.0f || onShape.prim < 0) return 0.0f;
-  const float pdfArea = areaPdf(static_cast<size_t>(onShape.prim), onShape.time);
+  const auto tri = static_cast<size_t>(onShape.prim);
+  const float pdfArea = areaPdf(tri, steps_.count == 1 ? area_ : triangleArea(tri, onShape.time));
   if (!(pdfArea > 0.0f)) return 0.0f;
   return areaToSolidAnglePdf(pdfArea, ref, onShape);
 }

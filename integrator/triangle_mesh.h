@@ -58,9 +58,11 @@ class TriangleMesh final : public Shape {
 
  private:
   glm::mat4 transformAt(float time) const;
-  SurfaceInteraction pointOn(size_t tri, float b1, float b2, float time) const;
+  // area: if given, receives the triangle's area at `time` (m²), computed anyway.
+  SurfaceInteraction pointOn(size_t tri, float b1, float b2, float time,
+                             float* area = nullptr) const;
   float triangleArea(size_t tri, float time) const;
-  float areaPdf(size_t tri, float time) const;
+  float areaPdf(size_t tri, float area) const;
 
   std::vector<glm::vec3> positions_;  // the stored pose; shared with Embree
   std::vector<glm::vec3> normals_;
