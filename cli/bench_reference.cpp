@@ -10,6 +10,7 @@
 #include "integrator/scene.h"
 #include "integrator/scene_loader.h"
 #include "sensor/exr_io.h"
+#include "sensor/file_status.h"
 #include "sensor/input_error.h"
 #include "sensor/output_set.h"
 #include "sensor/spectral_data.h"
@@ -36,8 +37,7 @@ std::string fileStamp(const std::filesystem::path& p, bool withContent) {
 
 // The cached file's three channels, or false if it is missing, unreadable or not ours.
 bool readCached(const std::filesystem::path& file, const std::string& key, Reference& ref) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(file, ec)) return false;
+  if (!isRegularFile(file)) return false;
   try {
     const ExrFile exr = readExr(file);
     const auto keyIt = std::find_if(exr.metadata.begin(), exr.metadata.end(),

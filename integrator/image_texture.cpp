@@ -15,6 +15,7 @@
 #include "sensor/color_correction.h"
 #include "sensor/color_space.h"
 #include "sensor/exr_io.h"
+#include "sensor/file_status.h"
 #include "sensor/input_error.h"
 #include "sensor/png_io.h"
 
@@ -140,9 +141,7 @@ TextureEncoding defaultTextureEncoding(const std::filesystem::path& file) {
 }
 
 TextureImage loadTextureImage(const std::filesystem::path& file, TextureEncoding encoding) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(file, ec))
-    fail(file, "texture file does not exist or is not a regular file");
+  if (!isRegularFile(file)) fail(file, "texture file does not exist or is not a regular file");
   const std::string ext = lowerExtension(file);
   TextureImage image;
   if (ext == ".png")

@@ -10,6 +10,7 @@
 #include <string>
 #include <system_error>
 
+#include "sensor/file_status.h"
 #include "sensor/input_error.h"
 
 namespace camsim {
@@ -20,9 +21,9 @@ std::string readWholeFile(const std::filesystem::path& path);
 
 std::string readWholeFile(const std::filesystem::path& path) {
   const std::string name = path.string();
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec))
+  if (!isRegularFile(path))
     throw InputError({name, 0, 0}, "", "mesh file does not exist or is not a regular file");
+  std::error_code ec;
   const std::uintmax_t size = std::filesystem::file_size(path, ec);
   if (ec) throw InputError({name, 0, 0}, "", "cannot read mesh file size: " + ec.message());
   if (size > std::string().max_size()) throw InputError({name, 0, 0}, "", "mesh file is too large");

@@ -256,7 +256,6 @@ SceneDescription loadSceneFromText(const std::string& text, const std::string& d
     scene.lights = parseLights(*l, ctx.search, baseDir, scene.renderOrigin);
   top.finish({"format", "name", "spectra_path", "render", "camera", "sensor", "isp", "materials",
               "shapes", "lights"});
-  ctx.search.filesRead = nullptr;
   // Each file once (as first read), however it was named: keyed by its canonical path
   // (symbolic links and ./.. resolved), one lookup per read.
   std::vector<std::filesystem::path> once;

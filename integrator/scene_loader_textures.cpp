@@ -23,6 +23,7 @@
 
 #include "integrator/image_texture.h"
 #include "integrator/scene_loader_parts.h"
+#include "sensor/file_status.h"
 
 namespace camsim {
 namespace {
@@ -63,9 +64,7 @@ TextureDescription parseImage(YamlMap& map, TextureUse use, const std::filesyste
     t.encoding = e->choice<TextureEncoding>("encoding", {{"srgb", TextureEncoding::kSrgb},
                                                          {"linear", TextureEncoding::kLinear},
                                                          {"raw", TextureEncoding::kRaw}});
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(t.file, ec))
-    file.fail("texture file '" + t.file.string() + "' not found");
+  if (!isRegularFile(t.file)) file.fail("texture file '" + t.file.string() + "' not found");
   try {
     loadTextureImage(t.file, t.encoding);
   } catch (const InputError& e) {

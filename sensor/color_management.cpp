@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "sensor/check.h"
+#include "sensor/file_status.h"
 #include "sensor/input_error.h"
 #include "sensor/luts_directory.h"
 
@@ -95,9 +96,7 @@ OcioProcessor::OcioProcessor(const std::filesystem::path& explicitConfig,
   const SourceLocation where{file, 0, 0};
   const std::string from =
       " (OCIO config from " + describeOcioConfigOrigin(impl->location.origin) + ")";
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(impl->location.path, ec))
-    throw InputError(where, "", "no such file" + from);
+  if (!isRegularFile(impl->location.path)) throw InputError(where, "", "no such file" + from);
   try {
     impl->config = OCIO::Config::CreateFromFile(file.c_str());
     impl->config->validate();
