@@ -66,12 +66,18 @@ SensorOutputs writeSensorFrames(const SensorSettings& sensor, const std::string&
     report.exposureTimeS = exposureTimeS * exposureScale * k;
     const ExposureSettings settings{report.exposureTimeS, sensor.iso};
     // A mosaic is one plane; a stacked sensor exposes each channel plane (own noise seed).
+    std::vector<Image> stackedPlanes;
+    if (frameElectrons.channelCount() > 1)
+      for (int c = 0; c < frameElectrons.channelCount(); ++c)
+        stackedPlanes.push_back(frameElectrons.channel(c));
+    const auto plane = [&](size_t c) -> const Image& {
+      return stackedPlanes.empty() ? frameElectrons : stackedPlanes[c];
+    };
     std::vector<RawImage> raws;
-    for (int c = 0; c < frameElectrons.channelCount(); ++c)
-      raws.push_back(
-          expose(frameElectrons.channelCount() == 1 ? frameElectrons : frameElectrons.channel(c),
-                 spec, settings, sensor.noise,
-                 sensor.noiseSeed + static_cast<std::uint64_t>(c) * 0x9e3779b9u, sensor.frame + i));
+    for (size_t c = 0; c < static_cast<size_t>(frameElectrons.channelCount()); ++c)
+      raws.push_back(expose(plane(c), spec, settings, sensor.noise,
+                            sensor.noiseSeed + static_cast<std::uint64_t>(c) * 0x9e3779b9u,
+                            sensor.frame + i));
     size_t clipped = 0, total = 0;
     for (const RawImage& raw : raws) {
       for (std::uint16_t v : raw.dn) clipped += static_cast<double>(v) >= raw.whiteLevelDn ? 1 : 0;
@@ -95,8 +101,7 @@ SensorOutputs writeSensorFrames(const SensorSettings& sensor, const std::string&
     } else {
       for (size_t c = 0; c < raws.size(); ++c) {
         report.rawExrFile = stem + "_raw_" + spec.cfa.channels[c] + ".exr";
-        writeRawExr(outputs.add(report.rawExrFile), raws[c],
-                    frameElectrons.channel(static_cast<int>(c)), frameMeta);
+        writeRawExr(outputs.add(report.rawExrFile), raws[c], plane(c), frameMeta);
       }
     }
     if (i == reference) result.referenceRaws = std::move(raws);
