@@ -140,11 +140,12 @@ struct TargetStats {
   int selfHits = 0, spawned = 0;
 };
 
-TargetStats traceTargets(const Scene& scene, float missTolerance) {
+// Fills `stats`; a wrong hit or hit point ends it with a fatal failure (callers wrap it in
+// ASSERT_NO_FATAL_FAILURE).
+void traceTargets(const Scene& scene, float missTolerance, TargetStats& stats) {
   const EmbreeScene& geometry = scene.geometry();
   std::mt19937 rng(7);
   std::uniform_real_distribution<float> u01(0.0f, 1.0f);
-  TargetStats stats;
   for (int index = 0; index < 3; ++index)
     for (int i = 0; i < 20000; ++i) {
       const float time = kExposure * u01(rng);
@@ -162,14 +163,12 @@ TargetStats traceTargets(const Scene& scene, float missTolerance) {
       ray.d = -w;
       ray.time = time;
       Hit hit;
-      EXPECT_TRUE(geometry.intersect(ray, hit)) << "shape " << index << " sample " << i;
-      EXPECT_EQ(hit.shape, index) << "sample " << i;
-      if (hit.shape != index) return stats;
+      ASSERT_TRUE(geometry.intersect(ray, hit)) << "shape " << index << " sample " << i;
+      ASSERT_EQ(hit.shape, index) << "sample " << i;
       if (cosine >= 0.3f) {
         const float miss = glm::length(ray.at(hit.t) - target.p);
         stats.worstMiss = std::max(stats.worstMiss, miss);
-        EXPECT_LT(miss, missTolerance) << "shape " << index << " sample " << i << " time " << time;
-        if (miss >= missTolerance) return stats;
+        ASSERT_LT(miss, missTolerance) << "shape " << index << " sample " << i << " time " << time;
       }
       const SurfaceInteraction si = scene.shape(index).interaction(hit, ray);
       Ray back;
@@ -187,7 +186,6 @@ TargetStats traceTargets(const Scene& scene, float missTolerance) {
       stats.selfHits += (geometry.occluded(back) ? 1 : 0) + (onwardSelfHit ? 1 : 0);
       stats.spawned += 2;
     }
-  return stats;
 }
 
 // Near the camera (shapes 3 m away). Tolerance 1e-5 m on the hit point: float rounding at
@@ -198,7 +196,8 @@ TargetStats traceTargets(const Scene& scene, float missTolerance) {
 // below is the stronger guard.
 TEST(EmbreeScene, MovingShapesAreHitWhereTheirPosesPutThemAtTheRaysTime) {
   const Scene scene(loadSceneFromText(kYaml, "moving.yaml", "."));
-  const TargetStats stats = traceTargets(scene, 1e-5f);
+  TargetStats stats;
+  ASSERT_NO_FATAL_FAILURE(traceTargets(scene, 1e-5f, stats));
   EXPECT_EQ(stats.selfHits, 0) << "of " << stats.spawned << " spawned rays";
   char text[64];
   std::snprintf(text, sizeof text, "%.2e m", static_cast<double>(stats.worstMiss));
@@ -217,7 +216,8 @@ TEST(EmbreeScene, FarFromTheOriginSpawnedRaysStillMissTheirOwnSurface) {
   ASSERT_NE(yaml.find(from), std::string::npos);
   yaml.replace(yaml.find(from), from.size(), "camera: {position: [0, 0, -100]");
   const Scene scene(loadSceneFromText(yaml, "far.yaml", "."));
-  const TargetStats stats = traceTargets(scene, 5e-4f);
+  TargetStats stats;
+  ASSERT_NO_FATAL_FAILURE(traceTargets(scene, 5e-4f, stats));
   EXPECT_GT(stats.spawned, 100000);
   EXPECT_EQ(stats.selfHits, 0) << "of " << stats.spawned << " spawned rays";
 }

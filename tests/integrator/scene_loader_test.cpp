@@ -18,6 +18,7 @@
 #include "sensor/color_space.h"
 #include "sensor/exr_io.h"
 #include "sensor/input_error.h"
+#include "sensor/luts_directory.h"
 #include "sensor/rgb_uplift.h"
 #include "tests/integrator/texture_test_support.h"
 #include "tests/support/text_file.h"
@@ -342,7 +343,7 @@ TEST(SceneLoaderTest, RecordsEveryFileItReads) {
       "  - {type: mesh, file: tri.obj, material: a}\n"
       "lights:\n  - {type: environment, file: sky.exr, scale: 1}\n";
   const SceneDescription scene = loadSceneFromText(text, "test.yaml", dir.path());
-  const fs::path luts = fs::path(CAMSIM_SOURCE_DIR) / "luts";
+  const fs::path luts = lutsDirectory();  // as the loader finds it (honours $CAMSIM_LUTS)
   const std::vector<fs::path> expected = {luts / "sensors" / "fullframe-d850.yaml",
                                           luts / "spectra" / "cameras" / "nikon_d850.csv",
                                           dir.path() / "tables" / "paint.csv",
