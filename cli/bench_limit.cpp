@@ -29,7 +29,7 @@
 namespace camsim {
 namespace {
 
-constexpr int kRepeats = 3;  // thread scaling and motion overhead: the fastest of 3
+constexpr int kRepeats = 3;  // rounds of every timed comparison; each side keeps its fastest
 
 RenderResult renderWith(const Scene& scene, int spp, int threads, RayRecorder* recorder = nullptr,
                         bool forceTime = false) {
@@ -44,21 +44,18 @@ RenderResult renderWith(const Scene& scene, int spp, int threads, RayRecorder* r
   return render(scene, response, o);
 }
 
-// The fastest of `repeats` identical renders (short renders on a shared machine: the
-// minimum is the least disturbed), with the process CPU time of that one.
-RenderStats fastestOf(int repeats, const Scene& scene, int spp, int threads, bool forceTime,
-                      double* cpuSeconds) {
-  RenderStats best;
-  for (int i = 0; i < repeats; ++i) {
-    const double cpu0 = processCpuSeconds();
-    const RenderStats s = renderWith(scene, spp, threads, nullptr, forceTime).stats;
-    const double cpu = processCpuSeconds() - cpu0;
-    if (i == 0 || s.seconds < best.seconds) {
-      best = s;
-      if (cpuSeconds) *cpuSeconds = cpu;
-    }
+// One more render of a series: `best` becomes it if it is the first (round 0) or the
+// fastest so far (short renders on a shared machine: the minimum is the least disturbed),
+// and *cpuSeconds the process CPU time of that render.
+void keepFastest(int round, const Scene& scene, int spp, int threads, bool forceTime,
+                 RenderStats& best, double* cpuSeconds) {
+  const double cpu0 = processCpuSeconds();
+  const RenderStats s = renderWith(scene, spp, threads, nullptr, forceTime).stats;
+  const double cpu = processCpuSeconds() - cpu0;
+  if (round == 0 || s.seconds < best.seconds) {
+    best = s;
+    if (cpuSeconds) *cpuSeconds = cpu;
   }
-  return best;
 }
 
 double residentBytes() {
@@ -87,8 +84,18 @@ LimitResult measureLimit(const Scene& scene, const std::string& name, int spp, i
     r.dropped = recorder.dropped();
   }
   r.recorded = rays.size();
-  r.tracer = renderWith(scene, spp, threads).stats;
-  r.mix = replayRays(scene.geometry(), rays, threads);
+  // The tracer and the replay of its mix take turns, kRepeats rounds, so that a change in
+  // the machine's other load falls on both; each side keeps its fastest run.
+  for (int round = 0; round < kRepeats; ++round) {
+    const RenderStats tracer = renderWith(scene, spp, threads).stats;
+    const ReplayResult mix = replayRays(scene.geometry(), rays, threads);
+    if (round == 0 || tracer.seconds < r.tracer.seconds) r.tracer = tracer;
+    if (round == 0 || mix.seconds < r.mix.seconds) r.mix = mix;
+    const double ratio =
+        mix.raysPerSecond() > 0.0 ? tracer.raysPerSecond() / mix.raysPerSecond() : 0.0;
+    r.roundRatioLow = round == 0 ? ratio : std::min(r.roundRatioLow, ratio);
+    r.roundRatioHigh = round == 0 ? ratio : std::max(r.roundRatioHigh, ratio);
+  }
   for (int k = 0; k < kRayKindCount; ++k)
     r.byKind[static_cast<std::size_t>(k)] =
         replayRays(scene.geometry(), raysOfKind(rays, static_cast<RayKind>(k)), threads, 0.25);
@@ -102,8 +109,11 @@ ScalingResult measureThreadScaling(const Scene& scene, int spp, int threads) {
   RayRecorder recorder;
   renderWith(scene, std::max(1, spp / 4), s.threads, &recorder);
   const std::vector<RecordedRay> rays = recorder.takeRays();
-  s.one = fastestOf(kRepeats, scene, spp, 1, false, &s.cpuOne);
-  s.many = fastestOf(kRepeats, scene, spp, s.threads, false, &s.cpuMany);
+  // 1 and N threads take turns (see measureLimit), each keeping its fastest render.
+  for (int round = 0; round < kRepeats; ++round) {
+    keepFastest(round, scene, spp, 1, false, s.one, &s.cpuOne);
+    keepFastest(round, scene, spp, s.threads, false, s.many, &s.cpuMany);
+  }
   s.rawOne = replayRays(scene.geometry(), rays, 1);
   s.rawMany = replayRays(scene.geometry(), rays, s.threads);
   return s;
@@ -124,9 +134,11 @@ MotionOverhead measureMotionOverhead(const Scene& moving, const SceneDescription
   m.spp = spp;
   m.timeSteps = moving.modelled().timeSteps;
   const Scene still(withoutMotion(description));
-  m.moving = fastestOf(kRepeats, moving, spp, threads, false, nullptr);
-  m.still = fastestOf(kRepeats, still, spp, threads, false, nullptr);
-  m.stillTimeSampled = fastestOf(kRepeats, still, spp, threads, true, nullptr);
+  for (int round = 0; round < kRepeats; ++round) {  // taking turns, as in measureLimit
+    keepFastest(round, moving, spp, threads, false, m.moving, nullptr);
+    keepFastest(round, still, spp, threads, false, m.still, nullptr);
+    keepFastest(round, still, spp, threads, true, m.stillTimeSampled, nullptr);
+  }
   return m;
 }
 

@@ -5,15 +5,18 @@
 // ray it casts (integrator/ray_recorder.h): camera, bounce and shadow rays with their tMax
 // and time. They are replayed through the scene's own EmbreeScene (intersect for camera and
 // bounce rays, occluded for shadow rays) in 256-ray chunks over tbb::parallel_for in a
-// task_arena of the same thread count, timing only the traversal loop (median of repeated
-// passes): raw rays/s per kind and for the recorded mix in recorded order. A second render
-// of the same settings without the recorder gives the tracer's rays/s; their ratio
-// (tracer ÷ raw, same mix) is the share of the tracer's time that is traversal.
+// task_arena of the same thread count, timing only the traversal loop (fastest of repeated
+// passes): raw rays/s per kind and for the recorded mix in recorded order. Renders of the
+// same settings without the recorder give the tracer's rays/s; their ratio (tracer ÷ raw,
+// same mix) is the share of the tracer's time that is traversal.
 //
 // Thread scaling: a render and a replay at 1 and at N threads.
 // Motion overhead: the moving scene against the same scene with every motion reduced to its
 // first keyframe (a static pose), and that static scene with time sampled anyway.
-// These renders are short: each is the fastest of 3 (the least disturbed by other load).
+// Timed comparisons run in 3 rounds in which the compared runs take turns (tracer and
+// replay; 1 and N threads; moving, still and still time-sampled), so that a change in the
+// machine's other load falls on all of them; each keeps its fastest run (the least
+// disturbed). The limit also reports the range of the per-round ratios.
 // Mesh build: a generated torus of ≥ N triangles written as binary PLY to a temporary
 // directory, loaded through the scene loader (timed), then built into a Scene (timed: the
 // TriangleMesh and Embree's BVH at the quality EmbreeScene picks) with the RSS growth measured (/proc/self/statm, after
@@ -41,9 +44,12 @@ struct LimitResult {
   std::string scene;
   int spp = 0, threads = 0;
   std::uint64_t recorded = 0, dropped = 0;
-  RenderStats capture;                             // the recording render
-  RenderStats tracer;                              // the same render without the recorder (timed)
-  ReplayResult mix;                                // all recorded rays, recorded order
+  RenderStats capture;  // the recording render
+  RenderStats tracer;   // the same render without the recorder: the fastest of the rounds
+  ReplayResult mix;     // all recorded rays, recorded order: the fastest of the rounds
+  // tracer ÷ raw rays/s within each round (tracer and replay alternate): its range
+  // shows how much the machine's other load moved the ratio.
+  double roundRatioLow = 0.0, roundRatioHigh = 0.0;
   std::array<ReplayResult, kRayKindCount> byKind;  // RayKind order
   double tracerRaysPerSecond() const { return tracer.raysPerSecond(); }
   double ratio() const {

@@ -21,9 +21,9 @@ std::uint64_t countOf(const RayCounts& c, int kind) {
 std::string formatLimitTable(const std::vector<LimitResult>& results) {
   std::ostringstream out;
   char line[320];
-  std::snprintf(line, sizeof line, "%-13s %4s %9s %22s %22s %22s %11s %11s %6s\n", "scene", "spp",
-                "rays", "camera: share, raw/s", "bounce: share, raw/s", "shadow: share, raw/s",
-                "raw mix/s", "tracer/s", "ratio");
+  std::snprintf(line, sizeof line, "%-13s %4s %9s %22s %22s %22s %11s %11s %6s %13s\n", "scene",
+                "spp", "rays", "camera: share, raw/s", "bounce: share, raw/s",
+                "shadow: share, raw/s", "raw mix/s", "tracer/s", "ratio", "rounds");
   out << line;
   for (const LimitResult& r : results) {
     std::string kinds[kRayKindCount];
@@ -34,11 +34,11 @@ std::string formatLimitTable(const std::vector<LimitResult>& results) {
                     formatRate(r.byKind[static_cast<std::size_t>(k)].raysPerSecond()).c_str());
       kinds[k] = cell;
     }
-    std::snprintf(line, sizeof line, "%-13s %4d %9llu %22s %22s %22s %11s %11s %6.3f\n",
-                  r.scene.c_str(), r.spp, static_cast<unsigned long long>(r.recorded),
-                  kinds[0].c_str(), kinds[1].c_str(), kinds[2].c_str(),
-                  formatRate(r.mix.raysPerSecond()).c_str(),
-                  formatRate(r.tracerRaysPerSecond()).c_str(), r.ratio());
+    std::snprintf(
+        line, sizeof line, "%-13s %4d %9llu %22s %22s %22s %11s %11s %6.3f  %5.3f–%5.3f\n",
+        r.scene.c_str(), r.spp, static_cast<unsigned long long>(r.recorded), kinds[0].c_str(),
+        kinds[1].c_str(), kinds[2].c_str(), formatRate(r.mix.raysPerSecond()).c_str(),
+        formatRate(r.tracerRaysPerSecond()).c_str(), r.ratio(), r.roundRatioLow, r.roundRatioHigh);
     out << line;
     if (r.dropped > 0)
       out << "  (" << r.dropped
@@ -52,18 +52,19 @@ std::string formatLimitTable(const std::vector<LimitResult>& results) {
 
 std::string formatLimitCsv(const std::vector<LimitResult>& results) {
   std::ostringstream out;
-  out << "scene,kind,spp,threads,rays,share,raw_rays_per_s,tracer_rays_per_s,ratio\n";
+  out << "scene,kind,spp,threads,rays,share,raw_rays_per_s,tracer_rays_per_s,ratio,"
+         "round_ratio_min,round_ratio_max\n";
   auto g = [](double v) { return formatNumber(v, 9); };
   for (const LimitResult& r : results) {
     out << csvField(r.scene) << ",mix," << r.spp << "," << r.threads << "," << r.recorded << ",1,"
         << g(r.mix.raysPerSecond()) << "," << g(r.tracerRaysPerSecond()) << "," << g(r.ratio())
-        << "\n";
+        << "," << g(r.roundRatioLow) << "," << g(r.roundRatioHigh) << "\n";
     for (int k = 0; k < kRayKindCount; ++k) {
       const ReplayResult& rep = r.byKind[static_cast<std::size_t>(k)];
       out << csvField(r.scene) << "," << rayKindName(static_cast<RayKind>(k)) << "," << r.spp << ","
           << r.threads << "," << rep.rays << ","
           << g(share(countOf(r.capture.rays, k), r.capture.rays.total()) / 100.0) << ","
-          << g(rep.raysPerSecond()) << ",,\n";
+          << g(rep.raysPerSecond()) << ",,,,\n";
     }
   }
   return out.str();

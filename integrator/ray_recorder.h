@@ -71,13 +71,14 @@ std::vector<RecordedRay> raysOfKind(const std::vector<RecordedRay>& rays, RayKin
 struct ReplayResult {
   std::uint64_t rays = 0;
   std::uint64_t hits = 0;  // closest hits found plus shadow rays occluded
-  double seconds = 0.0;    // median wall time of one pass over all the rays
+  double seconds = 0.0;    // wall time of the fastest pass over all the rays
   int passes = 0;
   double raysPerSecond() const { return seconds > 0.0 ? static_cast<double>(rays) / seconds : 0.0; }
 };
 
 // Traces `rays` through `geometry` with `threads` threads (0: all cores), repeating whole
-// passes until minSeconds have been spent (at least 3 passes); reports the median pass.
+// passes until minSeconds have been spent (at least 3 passes); reports the fastest pass
+// (deterministic work: the fastest is the least disturbed by other load).
 ReplayResult replayRays(const EmbreeScene& geometry, const std::vector<RecordedRay>& rays,
                         int threads, double minSeconds = 0.5);
 

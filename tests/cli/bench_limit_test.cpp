@@ -1,6 +1,6 @@
 // Tests for the limit side of `camsim bench` (integrator/ray_recorder.h, cli/bench_limit.h):
 // the recorder captures exactly the rays the render counts, by kind; replaying them finds
-// the same hits; motion can be removed; the generated mesh is what the PLY reader reads
+// the same hits; the limit times the same rays in each round; motion can be removed; the generated mesh is what the PLY reader reads
 // back; and the binary runs end to end into a directory (tables, CSVs), exiting 2 after a
 // scene that does not load. No timing is asserted.
 #include "tests/support/temp_dir.h"
@@ -97,6 +97,24 @@ TEST(RayReplay, FindsTheSameHitsAsASerialLoop) {
   EXPECT_GT(cameraHits, camera.size() / 2);
   EXPECT_EQ(replayRays(scene.geometry(), camera, 1, 0.0).hits, cameraHits);
   EXPECT_EQ(replayRays(scene.geometry(), {}, 1).rays, 0u);
+}
+
+TEST(BenchLimit, TracerAndReplayAreTheSameRaysInEveryRound) {
+  const Scene scene(suiteScene("cornell_box", {16, 16}));
+  const LimitResult r = measureLimit(scene, "cornell_box", 2, 2);
+  // The timed renders are the recorded one without the recorder: the same rays.
+  EXPECT_EQ(r.tracer.rays.total(), r.capture.rays.total());
+  EXPECT_EQ(r.recorded, r.capture.rays.total());
+  EXPECT_EQ(r.mix.rays, r.recorded);
+  EXPECT_GE(r.mix.passes, 3);
+  EXPECT_GT(r.ratio(), 0.0);
+  EXPECT_GT(r.roundRatioLow, 0.0);
+  EXPECT_LE(r.roundRatioLow, r.roundRatioHigh);
+  const std::string csv = formatLimitCsv({r});
+  EXPECT_EQ(csv.substr(0, csv.find('\n')),
+            "scene,kind,spp,threads,rays,share,raw_rays_per_s,tracer_rays_per_s,ratio,"
+            "round_ratio_min,round_ratio_max");
+  EXPECT_NE(formatLimitTable({r}).find("rounds"), std::string::npos);
 }
 
 TEST(BenchLimit, WithoutMotionMakesTheMotionBlurSceneStatic) {
