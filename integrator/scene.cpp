@@ -42,20 +42,9 @@ std::unique_ptr<Shape> buildShape(const ShapeDescription& s, double t0, double t
   }
   // A mesh stores one pose: the reference of its instance motion (Shape), or its only one.
   std::vector<glm::dmat4> poses;
-  std::vector<double> scales;
-  for (int k = 0; k < steps.count; ++k) {
-    poses.push_back(transformAt(k));
-    scales.push_back(glm::length(glm::dvec3(poses.back()[0])));  // uniform scale
-  }
-  InstanceMotion instance;
-  const int ref = steps.count > 1 ? InstanceMotion::largestStep(scales) : 0;
-  const glm::dmat4& m = poses[static_cast<size_t>(ref)];
-  if (steps.count > 1) {
-    const glm::dmat4 fromReference = glm::inverse(m);
-    std::vector<glm::mat4> transforms;
-    for (const glm::dmat4& pose : poses) transforms.emplace_back(pose * fromReference);
-    instance = InstanceMotion(ref, std::move(transforms));
-  }
+  for (int k = 0; k < steps.count; ++k) poses.push_back(transformAt(k));
+  InstanceMotion instance = InstanceMotion::fromPoses(poses);
+  const glm::dmat4& m = poses[static_cast<size_t>(instance.reference)];
   std::vector<glm::vec3> positions;
   positions.reserve(s.mesh.positions.size() + TriangleMesh::kSpareVertices);
   for (const glm::vec3& v : s.mesh.positions)

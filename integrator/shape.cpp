@@ -7,17 +7,21 @@
 
 namespace camsim {
 
-InstanceMotion::InstanceMotion(int referenceStep, std::vector<glm::mat4> transforms)
-    : reference(referenceStep), steps(std::move(transforms)) {
-  for (const glm::mat4& m : steps)
-    for (int axis = 0; axis < 3; ++axis) translation = std::max(translation, std::abs(m[3][axis]));
-}
-
-int InstanceMotion::largestStep(const std::vector<double>& sizes) {
-  int ref = 0;
-  for (int k = 1; k < static_cast<int>(sizes.size()); ++k)
-    if (sizes[static_cast<size_t>(k)] > 1.001 * sizes[static_cast<size_t>(ref)]) ref = k;
-  return ref;
+InstanceMotion InstanceMotion::fromPoses(const std::vector<glm::dmat4>& poses) {
+  InstanceMotion motion;
+  if (poses.size() < 2) return motion;
+  const auto scale = [](const glm::dmat4& m) { return glm::length(glm::dvec3(m[0])); };
+  size_t ref = 0;
+  for (size_t k = 1; k < poses.size(); ++k)
+    if (scale(poses[k]) > 1.001 * scale(poses[ref])) ref = k;
+  motion.reference = static_cast<int>(ref);
+  const glm::dmat4 fromReference = glm::inverse(poses[ref]);
+  for (const glm::dmat4& pose : poses) {
+    motion.steps.emplace_back(pose * fromReference);
+    for (int axis = 0; axis < 3; ++axis)
+      motion.translation = std::max(motion.translation, std::abs(motion.steps.back()[3][axis]));
+  }
+  return motion;
 }
 
 float areaToSolidAnglePdf(float pdfArea, const glm::vec3& ref, const SurfaceInteraction& onShape) {

@@ -63,12 +63,12 @@ struct InstanceMotion {
   float translation = 0.0f;  // largest |translation component| over the steps (m)
 
   InstanceMotion() = default;
-  InstanceMotion(int referenceStep, std::vector<glm::mat4> transforms);
-  bool empty() const { return steps.empty(); }
-  // The reference for poses of these sizes (any unit): the first of the largest, where
+  // For a shape whose pose at step k is M_k = poses[k] (shape space → render space, uniform
+  // scale; one per time step): the reference is the first pose of the largest scale, where
   // "larger" means by more than 0.1 %, so that rounding does not pick a later pose of a
-  // rigid motion.
-  static int largestStep(const std::vector<double>& sizes);
+  // rigid motion; X_k = M_k · M_reference⁻¹. Empty for fewer than two poses.
+  static InstanceMotion fromPoses(const std::vector<glm::dmat4>& poses);
+  bool empty() const { return steps.empty(); }
   // The transform at step i + fraction f (TimeSteps::locate), interpolated as Embree does.
   glm::mat4 at(int i, float f) const {
     const glm::mat4& a = steps[static_cast<size_t>(i)];

@@ -18,16 +18,14 @@ Sphere::Sphere(std::vector<glm::vec3> centres, std::vector<float> radii, TimeSte
                static_cast<int>(centres_.size()) == steps_.count);
   for (float r : radii_) CAMSIM_CHECK(r > 0.0f);
   if (steps_.count == 1) return;
-  const auto ref = static_cast<size_t>(
-      InstanceMotion::largestStep(std::vector<double>(radii_.begin(), radii_.end())));
-  std::vector<glm::mat4> transforms;
+  // Pose k maps the unit sphere to the sphere of step k.
+  std::vector<glm::dmat4> poses;
   for (size_t k = 0; k < centres_.size(); ++k) {
-    const double s = static_cast<double>(radii_[k]) / static_cast<double>(radii_[ref]);
-    glm::dmat4 m(s);
-    m[3] = glm::dvec4(glm::dvec3(centres_[k]) - s * glm::dvec3(centres_[ref]), 1.0);
-    transforms.emplace_back(m);
+    glm::dmat4 m(static_cast<double>(radii_[k]));
+    m[3] = glm::dvec4(glm::dvec3(centres_[k]), 1.0);
+    poses.push_back(m);
   }
-  instance_ = InstanceMotion(static_cast<int>(ref), std::move(transforms));
+  instance_ = InstanceMotion::fromPoses(poses);
 }
 
 Sphere::Pose Sphere::at(float time) const {
