@@ -22,7 +22,7 @@ namespace {
 
 struct Context {
   std::filesystem::path baseDir;
-  SpectrumSearch search;
+  TableSearch search;
   std::map<std::string, int> materialIndex;
   glm::dvec3 origin{0.0};  // render-space origin (SceneDescription::renderOrigin)
 };

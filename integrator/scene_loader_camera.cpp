@@ -152,7 +152,7 @@ RigidMotion parseMotion(const YamlValue& value, bool forCamera) {
   return RigidMotion(std::move(keys));
 }
 
-PhysicalCameraParams parseCamera(YamlMap map, const SpectrumSearch& search) {
+PhysicalCameraParams parseCamera(YamlMap map, const TableSearch& search) {
   PhysicalCameraParams c;
   if (auto m = map.find("world_from_camera")) {
     c.worldFromCamera = parseMatrix(*m);

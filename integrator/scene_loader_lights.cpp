@@ -43,7 +43,7 @@ struct Shape {
   std::optional<YamlValue> where;
 };
 
-Shape parseShapeSpectrum(YamlMap& map, const SpectrumSearch& search) {
+Shape parseShapeSpectrum(YamlMap& map, const TableSearch& search) {
   Shape shape;
   shape.where = map.find("spectrum");
   shape.s = shape.where ? parseSpectrum(*shape.where, SpectrumUse::kEmission, search)
@@ -94,7 +94,7 @@ glm::vec3 unitDirection(const YamlValue& v) {
 }
 
 // Point and spot: intensity on the axis from cd, W or lm.
-Spectrum parseIntensity(YamlMap& map, const SpectrumSearch& search, double solidAngle) {
+Spectrum parseIntensity(YamlMap& map, const TableSearch& search, double solidAngle) {
   const Shape shape = parseShapeSpectrum(map, search);
   std::optional<YamlValue> v;
   const size_t which = oneOf(map, {"intensity", "power", "lumens"}, v);
@@ -103,14 +103,14 @@ Spectrum parseIntensity(YamlMap& map, const SpectrumSearch& search, double solid
   return scaled(shape, *v, amount, which == 2, solidAngle);
 }
 
-void parsePoint(YamlMap& map, LightDescription& d, const SpectrumSearch& search,
+void parsePoint(YamlMap& map, LightDescription& d, const TableSearch& search,
                 const glm::dvec3& origin) {
   const YamlValue position = map.require("position");
   d.position = toPoint(position, position.vec3() - origin);
   d.spectrum = parseIntensity(map, search, 4.0 * std::numbers::pi);
 }
 
-void parseSpot(YamlMap& map, LightDescription& d, const SpectrumSearch& search,
+void parseSpot(YamlMap& map, LightDescription& d, const TableSearch& search,
                const glm::dvec3& origin) {
   const YamlValue position = map.require("position");
   const glm::dvec3 p = position.vec3();
@@ -135,7 +135,7 @@ void parseSpot(YamlMap& map, LightDescription& d, const SpectrumSearch& search,
   d.spectrum = parseIntensity(map, search, SpotLight::effectiveSolidAngle(cone, start));
 }
 
-void parseDistant(YamlMap& map, LightDescription& d, const SpectrumSearch& search) {
+void parseDistant(YamlMap& map, LightDescription& d, const TableSearch& search) {
   std::optional<YamlValue> dir;
   const auto elevation = map.find("elevation");
   const auto azimuth = map.find("azimuth");
@@ -225,7 +225,7 @@ void parseEnvironment(YamlMap& map, LightDescription& d, const std::filesystem::
   d.worldFromLight = turn * base;
 }
 
-LightDescription parseLight(YamlMap map, size_t index, const SpectrumSearch& search,
+LightDescription parseLight(YamlMap map, size_t index, const TableSearch& search,
                             const std::filesystem::path& baseDir, const glm::dvec3& origin) {
   LightDescription d;
   d.label = "lights[" + std::to_string(index) + "]";
@@ -261,7 +261,7 @@ LightDescription parseLight(YamlMap map, size_t index, const SpectrumSearch& sea
 
 }  // namespace
 
-std::vector<LightDescription> parseLights(const YamlValue& lights, const SpectrumSearch& search,
+std::vector<LightDescription> parseLights(const YamlValue& lights, const TableSearch& search,
                                           const std::filesystem::path& baseDir,
                                           const glm::dvec3& renderOrigin) {
   std::vector<LightDescription> out;

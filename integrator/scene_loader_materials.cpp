@@ -25,7 +25,7 @@ MaterialDescription::Type parseType(const YamlValue& type) {
 }
 
 // The microfacet keys shared by conductor, dielectric and plastic.
-void parseMicrofacet(YamlMap& map, MaterialDescription& m, const SpectrumSearch& search,
+void parseMicrofacet(YamlMap& map, MaterialDescription& m, const TableSearch& search,
                      const std::filesystem::path& baseDir, std::vector<std::string>& known) {
   if (auto r = map.find("roughness"))
     m.roughness = parseTexture(*r, TextureUse::kRoughness, search, baseDir);
@@ -42,7 +42,7 @@ void parseMicrofacet(YamlMap& map, MaterialDescription& m, const SpectrumSearch&
 
 // A named table shipped in luts/spectra/<folder>/<name>.csv (or found on the spectra path).
 Spectrum namedColumn(const YamlValue& name, const std::string& folder, const std::string& column,
-                     const SpectrumSearch& search) {
+                     const TableSearch& search) {
   const std::string file = folder + "/" + name.string() + ".csv";
   for (const auto& dir : search.directories) {
     if (!isRegularFile(dir / file)) continue;
@@ -58,7 +58,7 @@ Spectrum namedColumn(const YamlValue& name, const std::string& folder, const std
             " on the spectra path)");
 }
 
-void parseConductor(YamlMap& map, MaterialDescription& m, const SpectrumSearch& search,
+void parseConductor(YamlMap& map, MaterialDescription& m, const TableSearch& search,
                     std::vector<std::string>& known) {
   if (auto f = map.find("fresnel"))
     m.fresnel = f->choice<FresnelModel>(
@@ -94,7 +94,7 @@ void parseConductor(YamlMap& map, MaterialDescription& m, const SpectrumSearch& 
     map.self().fail("a conductor needs η > 0 or k > 0 at every wavelength");
 }
 
-void parseDielectric(YamlMap& map, MaterialDescription& m, const SpectrumSearch& search,
+void parseDielectric(YamlMap& map, MaterialDescription& m, const TableSearch& search,
                      std::vector<std::string>& known) {
   const auto glass = map.find("glass");
   const auto ior = map.find("ior");
@@ -110,8 +110,7 @@ void parseDielectric(YamlMap& map, MaterialDescription& m, const SpectrumSearch&
 
 }  // namespace
 
-MaterialDescription parseMaterial(const std::string& name, YamlMap map,
-                                  const SpectrumSearch& search,
+MaterialDescription parseMaterial(const std::string& name, YamlMap map, const TableSearch& search,
                                   const std::filesystem::path& baseDir) {
   MaterialDescription m;
   m.name = name;

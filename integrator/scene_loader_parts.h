@@ -18,7 +18,7 @@ glm::vec3 toPoint(const YamlValue& where, const glm::dvec3& v);
 // A positive length stored in single precision: it must not underflow to 0.
 float positiveFloat(const YamlValue& where, double v);
 // `camera:` → camera parameters (see docs/scene-format.md).
-PhysicalCameraParams parseCamera(YamlMap map, const SpectrumSearch& search);
+PhysicalCameraParams parseCamera(YamlMap map, const TableSearch& search);
 // `sensor:` → sensor settings; sets the camera's sensor size and fill factor from the
 // sensor's pixel pitch (cameraMap: the camera's keys, to reject conflicting ones).
 SensorSettings parseSensorSettings(YamlMap map, const std::filesystem::path& baseDir,
@@ -29,18 +29,17 @@ IspSettings parseIspSettings(YamlMap map);
 // reflectance: a spectrum (see scene_spectra.h), {texture: …} or {checkerboard: …};
 // roughness: a number ≥ 0 or {texture: …}.
 enum class TextureUse { kReflectance, kRoughness };
-TextureDescription parseTexture(const YamlValue& v, TextureUse use, const SpectrumSearch& search,
+TextureDescription parseTexture(const YamlValue& v, TextureUse use, const TableSearch& search,
                                 const std::filesystem::path& baseDir);
 // `materials:` entry → material description (integrator/scene_loader_materials.cpp).
-MaterialDescription parseMaterial(const std::string& name, YamlMap map,
-                                  const SpectrumSearch& search,
+MaterialDescription parseMaterial(const std::string& name, YamlMap map, const TableSearch& search,
                                   const std::filesystem::path& baseDir);
 // `motion:` keyframes; `forCamera` forbids scale.
 RigidMotion parseMotion(const YamlValue& value, bool forCamera);
 // `lights:` → point, spot, distant and environment lights (scene_loader_lights.cpp);
 // positions are shifted into render space (world − renderOrigin), files resolve against
 // baseDir.
-std::vector<LightDescription> parseLights(const YamlValue& lights, const SpectrumSearch& search,
+std::vector<LightDescription> parseLights(const YamlValue& lights, const TableSearch& search,
                                           const std::filesystem::path& baseDir,
                                           const glm::dvec3& renderOrigin);
 

@@ -75,7 +75,7 @@ TextureDescription parseImage(YamlMap& map, TextureUse use, const std::filesyste
   return t;
 }
 
-TextureDescription parseCheckerboard(YamlMap& map, TextureUse use, const SpectrumSearch& search) {
+TextureDescription parseCheckerboard(YamlMap& map, TextureUse use, const TableSearch& search) {
   TextureDescription t;
   t.kind = TextureDescription::Kind::kCheckerboard;
   YamlMap board(map.require("checkerboard"));
@@ -94,7 +94,7 @@ TextureDescription parseCheckerboard(YamlMap& map, TextureUse use, const Spectru
 
 }  // namespace
 
-TextureDescription parseTexture(const YamlValue& v, TextureUse use, const SpectrumSearch& search,
+TextureDescription parseTexture(const YamlValue& v, TextureUse use, const TableSearch& search,
                                 const std::filesystem::path& baseDir) {
   if (v.isMap()) {
     YamlMap map(v);

@@ -8,24 +8,9 @@
 namespace camsim {
 namespace {
 
-std::filesystem::path findTable(const YamlValue& value, const std::string& name,
-                                const SpectrumSearch& search) {
-  const std::filesystem::path p(name);
-  if (p.is_absolute()) {
-    if (isRegularFile(p)) return p;
-  } else {
-    for (const auto& dir : search.directories)
-      if (isRegularFile(dir / p)) return dir / p;
-  }
-  std::string dirs;
-  for (const auto& dir : search.directories) dirs += (dirs.empty() ? "" : ", ") + dir.string();
-  value.fail("spectral table '" + name + "' not found (searched: " + dirs + ")");
-}
-
-Spectrum fromTable(YamlMap& map, SpectrumUse use, const SpectrumSearch& search) {
+Spectrum fromTable(YamlMap& map, SpectrumUse use, const TableSearch& search) {
   const YamlValue file = map.require("csv");
-  const std::filesystem::path path = findTable(file, file.string(), search);
-  search.noteRead(path);
+  const std::filesystem::path path = search.find(file, file.string());
   const SpectralTable table = readSpectralCsv(path);
   size_t column = 0;
   if (const auto col = map.find("column")) {
@@ -48,7 +33,7 @@ Spectrum fromTable(YamlMap& map, SpectrumUse use, const SpectrumSearch& search) 
 
 }  // namespace
 
-Spectrum parseSpectrum(const YamlValue& value, SpectrumUse use, const SpectrumSearch& search) {
+Spectrum parseSpectrum(const YamlValue& value, SpectrumUse use, const TableSearch& search) {
   const bool reflectance = use == SpectrumUse::kReflectance;
   if (use == SpectrumUse::kIndex) {
     if (value.isScalar()) return Spectrum::constant(value.number(0.0, 1e3));

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "sensor/spectrum.h"
+#include "sensor/table_search.h"
 #include "sensor/yaml_reader.h"
 
 namespace camsim {
@@ -19,18 +20,6 @@ namespace camsim {
 // (tables are clamped, not zeroed, beyond their range).
 enum class SpectrumUse { kReflectance, kEmission, kIndex };
 
-// Where spectral tables are looked for; it also carries the loader's record of every file
-// the scene made it read (tables, meshes, textures, maps, the sensor's files), which the
-// loader parts append to through noteRead.
-struct SpectrumSearch {
-  std::vector<std::filesystem::path> directories;           // in order
-  std::vector<std::filesystem::path>* filesRead = nullptr;  // SceneDescription::inputFiles
-
-  void noteRead(const std::filesystem::path& file) const {
-    if (filesRead) filesRead->push_back(file);
-  }
-};
-
-Spectrum parseSpectrum(const YamlValue& value, SpectrumUse use, const SpectrumSearch& search);
+Spectrum parseSpectrum(const YamlValue& value, SpectrumUse use, const TableSearch& search);
 
 }  // namespace camsim

@@ -11,6 +11,7 @@
 #include "sensor/file_status.h"
 #include "sensor/input_error.h"
 #include "sensor/spectral_data.h"
+#include "sensor/table_search.h"
 #include "sensor/yaml_reader.h"
 
 namespace camsim {
@@ -30,37 +31,10 @@ namespace {
 constexpr int kMaxTileSize = 16;
 constexpr int kMaxChannels = 16;
 
-// Where the description's CSVs are looked for, and the record of those read.
-struct TableLookup {
-  std::vector<fs::path> dirs;   // in order
-  std::vector<fs::path>* read;  // each table found is appended (SensorSpec::sourceFiles)
-};
-
-// A CSV named in the description: absolute, or relative to the description's folder,
-// then lutsDir/spectra, then lutsDir.
-SpectralTable readTable(const YamlValue& file, const TableLookup& tables) {
-  const std::vector<fs::path>& dirs = tables.dirs;
-  const std::string name = file.string();
-  if (name.empty()) file.fail("empty file name");
-  const fs::path p(name);
-  fs::path found;
-  if (p.is_absolute()) {
-    if (isRegularFile(p)) found = p;
-  } else {
-    for (const fs::path& dir : dirs) {
-      if (isRegularFile(dir / p)) {
-        found = dir / p;
-        break;
-      }
-    }
-  }
-  if (found.empty()) {
-    std::string searched;
-    for (const fs::path& dir : dirs) searched += (searched.empty() ? "" : ", ") + dir.string();
-    file.fail("spectral table '" + name + "' not found" +
-              (p.is_absolute() ? std::string() : " (searched: " + searched + ")"));
-  }
-  tables.read->push_back(found);
+// A CSV named in the description (TableSearch: absolute, or relative to the description's
+// folder, then lutsDir/spectra, then lutsDir), read.
+SpectralTable readTable(const YamlValue& file, const TableSearch& tables) {
+  const fs::path found = tables.find(file, file.string());
   try {
     return readSpectralCsv(found);
   } catch (const InputError& e) {
@@ -140,7 +114,7 @@ void scaleToPeak(std::vector<Spectrum>& qe, double peak, const YamlValue& where)
 }
 
 std::vector<Spectrum> parseQe(const YamlValue& value, const CfaLayout& cfa,
-                              const TableLookup& tables) {
+                              const TableSearch& tables) {
   YamlMap map(value);
   const std::vector<std::string> known = {"curves", "csv", "columns", "ideal_xyz", "peak_qe"};
   std::vector<Spectrum> qe;
@@ -203,7 +177,7 @@ std::vector<Spectrum> parseQe(const YamlValue& value, const CfaLayout& cfa,
 }
 
 // The IR-cut filter's transmittance T(λ) ∈ [0, 1].
-Spectrum parseIrCut(const YamlValue& value, const TableLookup& tables) {
+Spectrum parseIrCut(const YamlValue& value, const TableSearch& tables) {
   YamlMap map(value);
   if (const auto csv = map.find("csv")) {
     const SpectralTable table = readTable(*csv, tables);
@@ -241,7 +215,7 @@ SensorSpec parseSensorSpec(const std::string& yamlText, const std::string& displ
   const YamlValue root = parseYaml(yamlText, displayName);
   YamlMap map(root);
   SensorSpec spec;
-  const TableLookup tables{{baseDir, lutsDir / "spectra", lutsDir}, &spec.sourceFiles};
+  const TableSearch tables{{baseDir, lutsDir / "spectra", lutsDir}, &spec.sourceFiles};
 
   spec.name = fs::path(displayName).stem().string();
   if (const auto v = map.find("name")) spec.name = v->string();

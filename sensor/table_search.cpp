@@ -20,8 +20,7 @@ std::filesystem::path TableSearch::find(const YamlValue& where, const std::strin
   }
   if (found.empty()) {
     std::string searched;
-    for (const auto& dir : directories)
-      searched += (searched.empty() ? "" : ", ") + dir.string();
+    for (const auto& dir : directories) searched += (searched.empty() ? "" : ", ") + dir.string();
     where.fail("spectral table '" + name + "' not found" +
                (p.is_absolute() ? std::string() : " (searched: " + searched + ")"));
   }
