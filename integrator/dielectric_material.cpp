@@ -174,7 +174,7 @@ std::optional<BsdfSample> DielectricMaterial::sampleRough(const glm::vec3& wo, f
                                                           const MicrofacetModel& m) const {
   const glm::vec3 wm = m.sampleWm(wo, u);
   const float cosOM = glm::dot(wo, wm);
-  if (cosOM * wo.z <= 0.0f) return std::nullopt;  // a back-facing facet (Beckmann samples D cosθm)
+  if (cosOM * wo.z <= 0.0f) return std::nullopt;  // a back-facing facet (rounding at grazing wo)
   BsdfSample s;
   if (uc < fresnelDielectric(cosOM, eta)) {
     s.wi = glm::normalize(reflect(wo, wm));

@@ -13,9 +13,13 @@
 //             tan²θ G1/|cos θ| = 2 / (|wz| + √(wz² + αx² wx² + αy² wy²))     (finite at wz = 0)
 //   Beckmann  D(m) = exp(−(mx²/αx² + my²/αy²)/mz²) / (π αx αy mz⁴)
 //             Λ = (e^{−a²}/(a√π) − erfc(a)) / 2,  a = |wz| / √(αx² wx² + αy² wy²)  (double)
-//   Sampling  GGX: visible normals (Heitz 2018), pdf = G1(w) max(0, w·m) D(m) / |cos θ|
-//             Beckmann: slopes (x̃, ỹ) ~ Gaussian with σ = α/√2 (Box–Muller), which is exactly
-//             D(m) cos θm dω (Walter et al. 2007: tan²θm = −α² ln(1 − u) when isotropic)
+//   Sampling  visible normals, pdf = G1(w) max(0, w·m) D(m) / |cos θ|, both distributions:
+//             GGX by Heitz 2018 (the projected hemisphere of the stretched configuration);
+//             Beckmann by its visible slopes (Heitz & d'Eon 2014): stretched to α = 1 and
+//             seen at incidence θ, the slope x̃ along the azimuth of w has the CDF
+//               F(x̃) = (1 + erf x̃ + tanθ e^{−x̃²}/√π) / N,  N = 1 + erf(cotθ) + tanθ e^{−cot²θ}/√π
+//             on x̃ ≤ cotθ (the facets w can see), and ỹ across it is Gaussian (σ² = ½).
+//             G1/|cos θ| = 2 / (|wz| (1 + erf a) + √(αx² wx² + αy² wy²) e^{−a²}/√π)  (Beckmann)
 #include "integrator/microfacet.h"
 
 #include <algorithm>
@@ -37,6 +41,32 @@ constexpr double kSqrtPi = 1.77245385090551602730;
 // sampleWm and pdf for w below the surface: the lobe seen from the other side.
 glm::vec3 facingUp(const glm::vec3& w) {
   return w.z < 0.0f ? -w : w;
+}
+
+// Beckmann's visible slopes (x̃ along the azimuth of w, ỹ across it) in the configuration
+// stretched to α = 1, seen at incidence θ (cosθ = wz ≥ 0, sinθ ≥ 0; see the header). F is
+// inverted for b = erf x̃ by Newton steps (dF/db = (1 − x̃ tanθ)/N) kept inside a bracket
+// that shrinks with each step; the first guess is exact at normal incidence.
+glm::vec2 sampleBeckmannSlopes(float cosTheta, float sinTheta, glm::vec2 u) {
+  const float u0 = std::clamp(u.x, 1e-6f, 1.0f - 1e-6f);
+  const float y = erfInv(2.0f * std::clamp(u.y, 1e-6f, 1.0f - 1e-6f) - 1.0f);
+  if (sinTheta < 1e-6f) return {erfInv(2.0f * u0 - 1.0f), y};
+  cosTheta = std::max(cosTheta, 1e-6f);
+  const float tanTheta = sinTheta / cosTheta, cotTheta = cosTheta / sinTheta;
+  const float k = tanTheta * static_cast<float>(1.0 / kSqrtPi);
+  const float c = std::erf(cotTheta);
+  const float norm = 1.0f + c + k * std::exp(-cotTheta * cotTheta);
+  float lo = -1.0f, hi = c;
+  float b = u0 * (1.0f + c) - 1.0f;
+  for (int i = 0; i < 24; ++i) {
+    const float x = erfInv(b);
+    const float value = (1.0f + b + k * std::exp(-x * x)) / norm - u0;
+    if (std::abs(value) < 1e-6f) break;
+    (value > 0.0f ? hi : lo) = b;
+    const float next = b - value * norm / (1.0f - x * tanTheta);
+    b = next > lo && next < hi ? next : 0.5f * (lo + hi);
+  }
+  return {std::min(erfInv(b), cotTheta), y};
 }
 
 }  // namespace
@@ -108,17 +138,20 @@ float MicrofacetModel::G(const glm::vec3& wo, const glm::vec3& wi, const glm::ve
 glm::vec3 MicrofacetModel::sampleWm(const glm::vec3& wIn, glm::vec2 u) const {
   const glm::vec3 w = facingUp(wIn);
   const float u0 = std::min(u.x, 1.0f - 0x1p-24f), u1 = u.y;
-  if (distribution_ == MicrofacetDistribution::kBeckmann) {
-    // Box–Muller: slopes with density exp(−x̃²/αx² − ỹ²/αy²)/(π αx αy).
-    const float r = std::sqrt(-std::log1p(-u0));
-    const float phi = 2.0f * kPi * u1;
-    const float sx = alphaX_ * r * std::cos(phi), sy = alphaY_ * r * std::sin(phi);
-    return glm::normalize(glm::vec3(-sx, -sy, 1.0f));
-  }
-  // GGX visible normals: stretch w to the hemisphere configuration (α = 1), sample the
-  // projected disk of the hemisphere seen from wh, unstretch.
+  // Stretch w to the configuration of α = 1, sample there, unstretch.
   const glm::vec3 wh = glm::normalize(glm::vec3(alphaX_ * w.x, alphaY_ * w.y, w.z));
   const float len2 = wh.x * wh.x + wh.y * wh.y;
+  if (distribution_ == MicrofacetDistribution::kBeckmann) {
+    const float sinTheta = std::sqrt(len2);
+    const glm::vec2 slope = sampleBeckmannSlopes(wh.z, sinTheta, {u0, u1});
+    // Rotate from w's azimuth (cos φ, sin φ) = (wh.x, wh.y)/sinθ back to x, y.
+    const float cosPhi = sinTheta > 0.0f ? wh.x / sinTheta : 1.0f;
+    const float sinPhi = sinTheta > 0.0f ? wh.y / sinTheta : 0.0f;
+    const float sx = alphaX_ * (cosPhi * slope.x - sinPhi * slope.y);
+    const float sy = alphaY_ * (sinPhi * slope.x + cosPhi * slope.y);
+    return glm::normalize(glm::vec3(-sx, -sy, 1.0f));
+  }
+  // GGX: sample the projected disk of the hemisphere seen from wh.
   const glm::vec3 t1 =
       len2 > 0.0f ? glm::vec3(-wh.y, wh.x, 0.0f) / std::sqrt(len2) : glm::vec3(1.0f, 0.0f, 0.0f);
   const glm::vec3 t2 = glm::cross(wh, t1);
@@ -134,14 +167,22 @@ glm::vec3 MicrofacetModel::sampleWm(const glm::vec3& wIn, glm::vec2 u) const {
 float MicrofacetModel::pdf(const glm::vec3& wIn, const glm::vec3& wm) const {
   const float d = D(wm);
   if (d == 0.0f) return 0.0f;
-  if (distribution_ == MicrofacetDistribution::kBeckmann) return d * wm.z;
   const glm::vec3 w = facingUp(wIn);
   const float wDotM = glm::dot(w, wm);
   if (!(wDotM > 0.0f)) return 0.0f;
-  // G1(w)/cos θ written without the division by cos θ (finite at grazing w).
-  const float g1OverCos =
-      2.0f /
-      (w.z + std::sqrt(w.z * w.z + alphaX_ * alphaX_ * w.x * w.x + alphaY_ * alphaY_ * w.y * w.y));
+  // G1(w)/cos θ written without the division by cos θ (finite at grazing w);
+  // s = α(φ) sinθ.
+  const float s2 = alphaX_ * alphaX_ * w.x * w.x + alphaY_ * alphaY_ * w.y * w.y;
+  float g1OverCos;
+  if (distribution_ == MicrofacetDistribution::kGgx) {
+    g1OverCos = 2.0f / (w.z + std::sqrt(w.z * w.z + s2));
+  } else if (s2 > 0.0f) {
+    const double z = w.z, s = std::sqrt(static_cast<double>(s2)), a = z / s;
+    g1OverCos =
+        static_cast<float>(2.0 / (z * (1.0 + std::erf(a)) + s * std::exp(-a * a) / kSqrtPi));
+  } else {
+    g1OverCos = 1.0f / w.z;  // at the pole nothing is masked
+  }
   if (!std::isfinite(g1OverCos)) return 0.0f;
   return g1OverCos * wDotM * d;
 }

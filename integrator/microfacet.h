@@ -14,9 +14,10 @@
 //   V-groove (Cook–Torrance)   G(ωo, ωi) = min(1, 2 cosθm cosθo / (ωo·m), 2 cosθm cosθi / (ωi·m))
 //   Visible normals (Heitz 2018)   D_ω(m) = G1(ω) max(0, ω·m) D(m) / cosθ
 //
-// Sampling: GGX samples visible normals exactly (Heitz 2018), pdf(ω, m) = D_ω(m).
-// Beckmann samples D(m) cosθm (Walter et al. 2007), pdf(ω, m) = D(m) |cosθm|.
-// Both are valid for either masking model (the pdf does not depend on G).
+// Sampling: visible normals, exactly, pdf(ω, m) = D_ω(m): GGX by Heitz 2018, Beckmann by
+// inverting the CDF of its visible slopes (Heitz & d'Eon 2014). Every sampled normal faces
+// ω, and with Smith masking a reflection's weight f cosθi / pdf = G(ωo, ωi)/G1(ωo) ≤ 1.
+// Valid for either masking model (the pdf does not depend on G).
 // A direction w below the surface (w.z < 0) is sampled as −w: the lobe seen from the other side.
 //
 // Reflection off the microfacets (conductor, plastic's specular lobe), Fresnel left out:

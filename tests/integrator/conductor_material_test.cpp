@@ -165,7 +165,10 @@ TEST(ConductorMaterial, WhiteFurnaceAlbedoTable) {
           const std::string what =
               label(d, mask) + " α " + std::to_string(alpha) + " cos " + std::to_string(z);
           EXPECT_EQ(a.nonFinite, 0) << what;
-          EXPECT_LE(a.mean[0], 1.0 + 5.0 * a.stdErr[0]) << what;
+          // 1e-6: single-precision rounding of weights that are exactly ≤ 1 (visible-normal
+          // sampling of a narrow lobe makes them nearly constant: stdErr ≈ 0).
+          EXPECT_LE(a.mean[0], 1.0 + 5.0 * a.stdErr[0] + 1e-6)
+              << what << " mean − 1 = " << a.mean[0] - 1.0;
           if (compare) {
             EXPECT_EQ(a.unresolvedCells, 0) << what;
             EXPECT_LE(a.quadrature[0], 1.0 + 1e-4) << what;

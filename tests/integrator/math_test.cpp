@@ -1,6 +1,6 @@
 // Tests for integrator/math.h: nextFloatToward against std::nextafter (the reference it
 // replaces) over zeros, denormals, normal numbers of both signs, the largest finite values
-// and infinities; direction 0 leaves v unchanged.
+// and infinities; direction 0 leaves v unchanged. erfInv against std::erf.
 #include "integrator/math.h"
 
 #include <gtest/gtest.h>
@@ -31,6 +31,27 @@ TEST(Math, NextFloatTowardMatchesNextafter) {
   }
   EXPECT_EQ(nextFloatToward(L::infinity(), -1.0f), L::infinity());  // documented: ±∞ stay
   EXPECT_EQ(nextFloatToward(-L::infinity(), 1.0f), -L::infinity());
+}
+
+// erf(erfInv(x)) = x over (−1, 1) to within single-precision rounding of the result
+// (|Δx| ≤ erf′(y)·|y|·4e-7), odd, and finite up to 1 ∓ 1e-7.
+TEST(Math, ErfInvInvertsErf) {
+  double worst = 0.0;
+  for (int i = -99999; i <= 99999; ++i) {
+    const float x = static_cast<float>(i) * 1e-5f;
+    const double y = erfInv(x);
+    const double slope = 2.0 / std::sqrt(M_PI) * std::exp(-y * y);
+    const double error = std::abs(std::erf(y) - static_cast<double>(x));
+    worst = std::max(worst, error);
+    ASSERT_LE(error, slope * std::abs(y) * 4e-7 + 1e-12) << x;
+    ASSERT_EQ(erfInv(-x), -erfInv(x)) << x;
+  }
+  EXPECT_LT(worst, 2e-7);
+  for (float x : {1.0f - 1e-7f, 1.0f - 1e-6f}) {
+    const double y = erfInv(x);
+    EXPECT_TRUE(std::isfinite(y));
+    EXPECT_NEAR(std::erfc(y), 1.0 - static_cast<double>(x), 1e-3 * (1.0 - static_cast<double>(x)));
+  }
 }
 
 }  // namespace

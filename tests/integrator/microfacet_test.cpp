@@ -2,7 +2,8 @@
 //  - hand values of D at the pole and of V-groove G;
 //  - normalisation ∫ D(m) cos θm dωm = 1 and, for visible normals, ∫ D_ω(m) dωm = 1
 //    (which holds only with the exact Smith Λ), by adaptive quadrature;
-//  - sampleWm distributed as pdf(w, m) (χ² over the sphere of m);
+//  - sampleWm distributed as pdf(w, m) (χ² over the sphere of m), its normals facing w and
+//    Smith reflection weights ≤ 1 (visible normals, both distributions);
 //  - robustness: α from kSmoothAlpha to 1, directions at the pole and at cos θ ∈ {1e-6, 0}
 //    give finite, non-negative values and unit normals.
 #include "integrator/microfacet.h"
@@ -222,12 +223,48 @@ TEST(Microfacet, DirectionsBelowAreTakenAsTheirOpposite) {
       EXPECT_EQ(wm, m.sampleWm(-below, u)) << name(d);
       EXPECT_EQ(m.pdf(below, wm), m.pdf(-below, wm)) << name(d);
     }
-    if (d == MicrofacetDistribution::kGgx) {  // Beckmann samples D cos θm, whatever w
-      const glm::vec3 mirrored(below.x, below.y, -below.z);
-      EXPECT_NE(m.sampleWm(below, glm::vec2(0.2f, 0.3f)),
-                m.sampleWm(mirrored, glm::vec2(0.2f, 0.3f)));
-    }
+    const glm::vec3 mirrored(below.x, below.y, -below.z);
+    EXPECT_NE(m.sampleWm(below, glm::vec2(0.2f, 0.3f)), m.sampleWm(mirrored, glm::vec2(0.2f, 0.3f)))
+        << name(d);
   }
+}
+
+// Visible normals: every sampled normal faces w, and a Smith reflection's weight
+// f cosθi / pdf = G(wo, wi)/G1(wo) is at most 1 — down to grazing wo, where sampling D cos θm
+// (Beckmann's sampler before) gives back-facing normals and weights far above 1.
+TEST(Microfacet, SampledNormalsFaceWAndSmithWeightsStayAtMostOne) {
+  const std::pair<float, float> alphas[] = {
+      {0.05f, 0.05f}, {0.3f, 0.3f}, {1.0f, 1.0f}, {0.2f, 0.6f}};
+  for (MicrofacetDistribution d : kDistributions)
+    for (auto [ax, ay] : alphas)
+      for (double z : {1.0, 0.5, 0.1, 0.01, 1e-4}) {
+        const MicrofacetModel m(d, MaskingModel::kSmith, ax, ay);
+        const glm::vec3 wo = direction(z, 0.7);
+        int backFacing = 0, overweight = 0, failed = 0;
+        double largest = 0.0;
+        constexpr int n = 64;
+        for (int i = 0; i < n; ++i)
+          for (int j = 0; j < n; ++j) {
+            const glm::vec2 u((i + 0.5f) / n, (j + 0.5f) / n);
+            const glm::vec3 wm = m.sampleWm(wo, u);
+            if (!(glm::dot(wo, wm) > 0.0f)) ++backFacing;
+            const auto s = m.sampleReflection(wo, u);
+            if (!s) continue;
+            const MicrofacetModel::Reflection r = m.reflection(wo, s->wi, s->wm);
+            if (!(r.pdf > 0.0f)) {
+              ++failed;
+              continue;
+            }
+            const double weight = static_cast<double>(r.f * s->wi.z / r.pdf);
+            largest = std::max(largest, weight);
+            if (weight > 1.0 + 1e-4) ++overweight;
+          }
+        const std::string what = name(d) + " α " + std::to_string(ax) + "," + std::to_string(ay) +
+                                 " cos " + std::to_string(z);
+        EXPECT_EQ(backFacing, 0) << what;
+        EXPECT_EQ(overweight, 0) << what << " largest weight " << largest;
+        EXPECT_EQ(failed, 0) << what;
+      }
 }
 
 // The half-vector reflection shared by the conductor and the plastic's specular lobe:
