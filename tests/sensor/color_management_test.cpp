@@ -19,6 +19,9 @@
 
 #include "sensor/input_error.h"
 #include "tests/support/env_guard.h"
+#include "tests/support/run_command.h"
+#include "tests/support/temp_dir.h"
+#include "tests/support/text_file.h"
 
 namespace camsim {
 namespace {
@@ -82,17 +85,9 @@ colorspaces:
 
 class ColorManagementTest : public ::testing::Test {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("camsim_color_management_" + std::to_string(::getpid()) + "_" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
   fs::path write(const std::string& name, const std::string& text) const {
     const fs::path p = dir_ / name;
-    std::ofstream(p) << text;
+    test::writeFile(p, text);
     return p;
   }
 
@@ -106,7 +101,8 @@ class ColorManagementTest : public ::testing::Test {
   // $OCIO and $CAMSIM_LUTS are unset for every test and restored afterwards.
   test::EnvGuard ocioEnv_{"OCIO"};
   test::EnvGuard lutsEnv_{"CAMSIM_LUTS"};
-  fs::path dir_;
+  test::TempDir tmp_;
+  fs::path dir_ = tmp_.path();
 };
 
 TEST_F(ColorManagementTest, ShippedConfigLoadsByDefault) {
@@ -317,18 +313,15 @@ TEST(Quantize, ClampsRoundsAndZeroesNaN) {
 }
 
 TEST_F(ColorManagementTest, OciocheckPassesOnTheShippedConfig) {
-  if (std::system("command -v ociocheck > /dev/null 2>&1") != 0)
+  if (test::runCommand("command -v ociocheck", dir_).exitCode != 0)
     GTEST_SKIP() << "ociocheck is not on PATH";
-  const fs::path log = dir_ / "ociocheck.txt";
-  const std::string cmd =
-      "ociocheck --iconfig '" + kShipped.string() + "' > '" + log.string() + "' 2>&1";
-  const int status = std::system(cmd.c_str());
-  std::stringstream text;
-  text << std::ifstream(log).rdbuf();
-  EXPECT_EQ(status, 0) << text.str();
-  EXPECT_NE(text.str().find("passed"), std::string::npos) << text.str();
-  EXPECT_EQ(text.str().find("ERROR"), std::string::npos) << text.str();
-  EXPECT_EQ(text.str().find("WARNING"), std::string::npos) << text.str();
+  const test::RunResult r =
+      test::runCommand("ociocheck --iconfig " + test::quote(kShipped.string()), dir_);
+  const std::string text = r.out + r.err;
+  EXPECT_EQ(r.exitCode, 0) << text;
+  EXPECT_NE(text.find("passed"), std::string::npos) << text;
+  EXPECT_EQ(text.find("ERROR"), std::string::npos) << text;
+  EXPECT_EQ(text.find("WARNING"), std::string::npos) << text;
 }
 
 }  // namespace

@@ -21,6 +21,7 @@
 #include "sensor/cie.h"
 #include "sensor/input_error.h"
 #include "sensor/spectral_data.h"
+#include "tests/support/temp_dir.h"
 
 namespace camsim {
 namespace {
@@ -28,24 +29,11 @@ namespace {
 const std::filesystem::path kColorChecker =
     std::filesystem::path(CAMSIM_LUTS_DIR) / "spectra/colorchecker_classic_reflectance.csv";
 
-// A fresh directory per test (suite, name and pid in its name, '/' of parameterised names
-// replaced), removed afterwards.
+// A fresh directory per test, removed afterwards.
 class DngWriterTest : public testing::Test {
  protected:
-  void SetUp() override {
-    const testing::TestInfo* info = testing::UnitTest::GetInstance()->current_test_info();
-    std::string name = std::string("camsim_") + info->test_suite_name() + "_" + info->name() + "_" +
-                       std::to_string(::getpid());
-    std::replace(name.begin(), name.end(), '/', '_');
-    dir_ = std::filesystem::temp_directory_path() / name;
-    std::filesystem::remove_all(dir_);
-    std::filesystem::create_directories(dir_);
-  }
-  void TearDown() override {
-    std::error_code ignored;
-    std::filesystem::remove_all(dir_, ignored);
-  }
-  std::filesystem::path dir_;
+  test::TempDir tmp_;
+  std::filesystem::path dir_ = tmp_.path();
 };
 
 // The layout of a Bayer name ("RGGB": top-left R, top-right G, …) or "mono", built here so

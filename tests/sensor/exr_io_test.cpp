@@ -16,26 +16,16 @@
 #include <gtest/gtest.h>
 
 #include "sensor/input_error.h"
+#include "tests/support/temp_dir.h"
 
 namespace camsim {
 namespace {
 
-// A fresh directory per test (suite, name and pid in its name), removed afterwards.
+// A fresh directory per test, removed afterwards.
 class ExrIoTest : public testing::Test {
  protected:
-  void SetUp() override {
-    const testing::TestInfo* info = testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = std::filesystem::temp_directory_path() /
-           (std::string("camsim_") + info->test_suite_name() + "_" + info->name() + "_" +
-            std::to_string(::getpid()));
-    std::filesystem::remove_all(dir_);
-    std::filesystem::create_directories(dir_);
-  }
-  void TearDown() override {
-    std::error_code ignored;
-    std::filesystem::remove_all(dir_, ignored);
-  }
-  std::filesystem::path dir_;
+  test::TempDir tmp_;
+  std::filesystem::path dir_ = tmp_.path();
 };
 
 std::uint32_t bits(float f) {

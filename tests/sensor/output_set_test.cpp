@@ -17,12 +17,12 @@
 #include <gtest/gtest.h>
 
 #include "sensor/input_error.h"
+#include "tests/support/temp_dir.h"
 #include "tests/support/text_file.h"
 
 namespace camsim {
 namespace {
 
-// A fresh directory per test (suite, name and pid in its name), removed afterwards.
 // A PID that belonged to a process that has exited and been reaped (a killed run's).
 pid_t deadPid() {
   const pid_t child = ::fork();
@@ -32,26 +32,15 @@ pid_t deadPid() {
   return child;
 }
 
+// A fresh directory per test, removed afterwards.
 class OutputSetTest : public testing::Test {
  protected:
-  void SetUp() override {
-    const testing::TestInfo* info = testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = std::filesystem::temp_directory_path() /
-           (std::string("camsim_") + info->test_suite_name() + "_" + info->name() + "_" +
-            std::to_string(::getpid()));
-    std::filesystem::remove_all(dir_);
-    std::filesystem::create_directories(dir_);
-  }
-  void TearDown() override {
-    std::error_code ignored;
-    std::filesystem::remove_all(dir_, ignored);
-  }
-
   size_t entries() const {
     return static_cast<size_t>(std::distance(std::filesystem::directory_iterator(dir_),
                                              std::filesystem::directory_iterator()));
   }
-  std::filesystem::path dir_;
+  test::TempDir tmp_;
+  std::filesystem::path dir_ = tmp_.path();
 };
 
 TEST_F(OutputSetTest, AddGivesAHiddenTemporaryInTheDirectory) {
