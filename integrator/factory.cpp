@@ -15,14 +15,22 @@
 #include "sensor/exr_io.h"
 
 namespace camsim {
+namespace {
+
+// The texels the loader decoded, else (a description built in code) read now.
+std::shared_ptr<const TextureImage> texelsOf(const TextureDescription& d) {
+  if (d.image) return d.image;
+  return std::make_shared<const TextureImage>(loadTextureImage(d.file, d.encoding));
+}
+
+}  // namespace
 
 std::unique_ptr<SpectrumTexture> makeSpectrumTexture(const TextureDescription& d) {
   switch (d.kind) {
     case TextureDescription::Kind::kConstant:
       return std::make_unique<ConstantSpectrumTexture>(d.value);
     case TextureDescription::Kind::kImage:
-      return std::make_unique<ImageSpectrumTexture>(loadTextureImage(d.file, d.encoding), d.uvScale,
-                                                    d.uvOffset);
+      return std::make_unique<ImageSpectrumTexture>(*texelsOf(d), d.uvScale, d.uvOffset);
     case TextureDescription::Kind::kCheckerboard:
       return std::make_unique<CheckerboardSpectrumTexture>(d.checkerA, d.checkerB, d.checks,
                                                            d.uvScale, d.uvOffset);
@@ -36,8 +44,7 @@ std::unique_ptr<FloatTexture> makeFloatTexture(const TextureDescription& d) {
     case TextureDescription::Kind::kConstant:
       return std::make_unique<ConstantFloatTexture>(d.value(550.0f));
     case TextureDescription::Kind::kImage:
-      return std::make_unique<ImageFloatTexture>(loadTextureImage(d.file, d.encoding), d.uvScale,
-                                                 d.uvOffset);
+      return std::make_unique<ImageFloatTexture>(*texelsOf(d), d.uvScale, d.uvOffset);
     case TextureDescription::Kind::
         kCheckerboard:  // constants as for kConstant: the value at 550 nm
       return std::make_unique<CheckerboardFloatTexture>(d.checkerA(550.0f), d.checkerB(550.0f),

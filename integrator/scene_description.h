@@ -17,6 +17,10 @@
 
 #include "integrator/texture_encoding.h"
 
+namespace camsim {
+struct TextureImage;  // integrator/image_texture.h
+}
+
 #include "integrator/fresnel.h"
 #include "integrator/mesh_io.h"
 #include "integrator/microfacet.h"
@@ -52,6 +56,8 @@ struct TextureDescription {
   Kind kind = Kind::kConstant;
   Spectrum value = Spectrum::constant(0.5);  // kConstant (scalar inputs: the constant's value)
   std::filesystem::path file;                // kImage
+  // kImage: the decoded texels (shared, read once by the loader); null: read from `file`.
+  std::shared_ptr<const TextureImage> image;
   // kImage: how texel values are encoded (texture_encoding.h), resolved by the loader: the
   // `encoding` key, else srgb for PNG and linear for EXR colour maps, raw for scalar maps.
   TextureEncoding encoding = TextureEncoding::kSrgb;

@@ -16,8 +16,8 @@
 // | a, b         | —    | 0.8, 0.2 | reflectance spectra in [0, 1] / roughness numbers in [0, 1000]
 // |
 //
-// The image is read here once to check it (type, channels), so a bad file is reported at
-// the scene key; the renderer reads it again when it builds the texture.
+// The image is read here, once: a bad file (type, channels) is reported at the scene key,
+// and the description carries the decoded texels to the renderer.
 #include <cmath>
 #include <string>
 
@@ -66,7 +66,7 @@ TextureDescription parseImage(YamlMap& map, TextureUse use, const std::filesyste
                                                          {"raw", TextureEncoding::kRaw}});
   if (!isRegularFile(t.file)) file.fail("texture file '" + t.file.string() + "' not found");
   try {
-    loadTextureImage(t.file, t.encoding);
+    t.image = std::make_shared<const TextureImage>(loadTextureImage(t.file, t.encoding));
   } catch (const InputError& e) {
     file.fail("texture file '" + t.file.string() + "': " + e.message());
   }

@@ -1,11 +1,14 @@
 // Tests for integrator/scene_loader_textures.cpp: reflectance and roughness given as
 // constants, image textures and checkerboards load into the right TextureDescription, and
-// every bad texture input is an InputError at the offending scene key (file, line, column).
+// every bad texture input is an InputError at the offending scene key (file, line, column);
+// the decoded texels travel with the description (the file is read once).
 #include <gtest/gtest.h>
 
 #include <fstream>
 #include <string>
 
+#include "integrator/image_texture.h"
+#include "integrator/scene.h"
 #include "integrator/scene_loader.h"
 #include "sensor/exr_io.h"
 #include "sensor/input_error.h"
@@ -88,6 +91,23 @@ TEST_F(TextureScene, ConstantsImagesAndCheckerboards) {
       load("{type: dielectric, roughness: {checkerboard: {a: 0.05, b: 0.4}}}");
   EXPECT_FLOAT_EQ(roughBoard.roughness.checkerB(550.0f), 0.4f);
   EXPECT_EQ(roughBoard.roughness.checks, 8.0f);
+}
+
+// The loader reads each texture once and hands the decoded texels on: the scene is built
+// from them even after the file is gone.
+TEST_F(TextureScene, TheSceneIsBuiltFromTheTexelsTheLoaderRead) {
+  const SceneDescription d = loadSceneFromText(
+      scene("{type: plastic, reflectance: {texture: albedo.png}, roughness: {texture: rough.exr}}"),
+      "test.yaml", dir_.path());
+  const MaterialDescription& m = d.materials.at(0);
+  ASSERT_TRUE(m.reflectance.image);
+  EXPECT_EQ(m.reflectance.image->width, 2);
+  EXPECT_EQ(m.reflectance.image->channels, 3);
+  ASSERT_TRUE(m.roughness.image);
+  EXPECT_EQ(m.roughness.image->channels, 1);
+  fs::remove(dir_.path() / "albedo.png");
+  fs::remove(dir_.path() / "rough.exr");
+  EXPECT_NO_THROW(Scene{d});
 }
 
 // Columns count from the line's start: the material's value begins at column 6, so
