@@ -60,17 +60,11 @@ LoadedBenchScene loadBenchScene(const std::string& name, int longSide) {
 // The sweep of one scene: both samplers at every budget, against the reference.
 std::vector<BenchRow> sweep(const LoadedBenchScene& s, const Scene& scene, const Reference& ref,
                             const BenchPlan& plan, std::ostream& log) {
-  static const SpectralResponse response = SpectralResponse::cieXyz();
   std::vector<BenchRow> rows;
   for (const SamplerKind kind : {SamplerKind::kIndependent, SamplerKind::kSobol})
     for (const int spp : plan.budgets()) {
-      RenderOptions o;
-      o.spp = spp;
-      o.seed = 1;
-      o.threads = plan.threads;
-      o.sampler = kind;
       const double cpu0 = processCpuSeconds();
-      const RenderResult r = render(scene, response, o);
+      const RenderResult r = renderXyz(scene, benchRenderOptions(spp, 1, plan.threads, kind));
       BenchRow row;
       row.cpuSeconds = processCpuSeconds() - cpu0;
       row.scene = s.name;

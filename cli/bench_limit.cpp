@@ -17,6 +17,7 @@
 #include <tbb/task_arena.h>
 
 #include "cli/bench_metrics.h"
+#include "cli/bench_reference.h"
 #include "integrator/image_texture.h"
 #include "integrator/ray_recorder.h"
 #include "integrator/reflectance_uplift.h"
@@ -33,15 +34,10 @@ constexpr int kRepeats = 3;  // rounds of every timed comparison; each side keep
 
 RenderResult renderWith(const Scene& scene, int spp, int threads, RayRecorder* recorder = nullptr,
                         bool forceTime = false) {
-  static const SpectralResponse response = SpectralResponse::cieXyz();
-  RenderOptions o;
-  o.spp = spp;
-  o.seed = 1;
-  o.threads = threads;
-  o.sampler = SamplerKind::kSobol;
+  RenderOptions o = benchRenderOptions(spp, 1, threads, SamplerKind::kSobol);
   o.recorder = recorder;
   o.forceTime = forceTime;
-  return render(scene, response, o);
+  return renderXyz(scene, o);
 }
 
 // One more render of a series: `best` becomes it if it is the first (round 0) or the

@@ -63,6 +63,20 @@ Image luminanceOf(const Image& xyz) {
   return xyz.channel(y, "Y");
 }
 
+RenderOptions benchRenderOptions(int spp, std::uint64_t seed, int threads, SamplerKind sampler) {
+  RenderOptions o;
+  o.spp = spp;
+  o.seed = seed;
+  o.threads = threads;
+  o.sampler = sampler;
+  return o;
+}
+
+RenderResult renderXyz(const Scene& scene, const RenderOptions& options) {
+  static const SpectralResponse response = SpectralResponse::cieXyz();
+  return render(scene, response, options);
+}
+
 std::string referenceKeyText(const ReferenceRequest& request) {
   std::ostringstream key;
   const glm::ivec2 res = request.resolution;
@@ -96,19 +110,14 @@ Reference obtainReference(const ReferenceRequest& request, const Scene& scene,
     log << "reference " << request.name << ": cached " << ref.file.string() << "\n";
     return ref;
   }
-  const SpectralResponse response = SpectralResponse::cieXyz();
   const int half = std::max(1, request.spp / 2);
   auto renderHalf = [&](std::uint64_t seed, int offset) {
-    RenderOptions o;
-    o.spp = half;
-    o.seed = seed;
-    o.threads = request.threads;
-    o.sampler = SamplerKind::kSobol;
+    RenderOptions o = benchRenderOptions(half, seed, request.threads, SamplerKind::kSobol);
     if (progress)
       o.progress = [&progress, offset](int done, int total) {
         progress(offset * total + done, 2 * total);
       };
-    return render(scene, response, o);
+    return renderXyz(scene, o);
   };
   const RenderResult a = renderHalf(kSeedA, 0);
   const RenderResult b = renderHalf(kSeedB, 1);

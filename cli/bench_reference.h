@@ -28,6 +28,7 @@
 #include <glm/vec2.hpp>
 #include "cli/bench_metrics.h"
 
+#include "integrator/render.h"
 #include "integrator/scene.h"
 #include "sensor/image.h"
 
@@ -65,5 +66,11 @@ Reference obtainReference(const ReferenceRequest& request, const Scene& scene,
 
 // The luminance channel of a film image as a one-channel "Y" image.
 Image luminanceOf(const Image& xyz);
+
+// The options of every bench render (references, sweeps, the limit): spp, seed, threads and
+// sampler; the rest at RenderOptions' defaults for the caller to set.
+RenderOptions benchRenderOptions(int spp, std::uint64_t seed, int threads, SamplerKind sampler);
+// A render onto the CIE 1931 XYZ film (the bench's metrics use its Y).
+RenderResult renderXyz(const Scene& scene, const RenderOptions& options);
 
 }  // namespace camsim
