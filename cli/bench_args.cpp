@@ -1,6 +1,7 @@
 // `camsim bench` arguments, plan and paths (bench_command.h).
 #include <unistd.h>
 
+#include <cmath>
 #include <cstdlib>
 
 #include <tbb/info.h>
@@ -43,7 +44,10 @@ std::string benchUsageText() {
          "  --threads N        worker threads (default: all cores)\n"
          "  --scenes a,b       scenes to run: suite names or scene files (default: the suite)\n"
          "  --max-spp N        largest budget (default 256; --quick 64)\n"
-         "  --resolution PX    long side of the bench images in pixels (default 128; --quick 64)\n"
+         "  --resolution PX    long side of the sweeps' images in pixels (default 128; --quick "
+         "64)\n"
+         "  --feature-resolution PX  long side for the limit, thread scaling and motion overhead\n"
+         "                     (default 512: the scenes' own sizes; --quick 64)\n"
          "  --ref-spp N        reference samples per pixel (default 8 x max-spp)\n"
          "  --cache DIR        reference cache (default: bench-cache/ in the build directory)\n"
          "  --mesh-triangles N triangles of the mesh-build test (default 1000000; 0 skips it)\n"
@@ -83,6 +87,8 @@ BenchArgs parseBenchArgs(const std::vector<std::string>& args) {
       b.maxSpp = static_cast<int>(parseInteger(a, value(), 1, 65536));
     } else if (a == "--resolution") {
       b.resolution = static_cast<int>(parseInteger(a, value(), 4, 8192));
+    } else if (a == "--feature-resolution") {
+      b.featureResolution = static_cast<int>(parseInteger(a, value(), 4, 8192));
     } else if (a == "--ref-spp") {
       b.refSpp = static_cast<int>(parseInteger(a, value(), 2, 1 << 20));
     } else if (a == "--cache") {
@@ -106,15 +112,26 @@ std::vector<int> BenchPlan::budgets() const {
   return spp;
 }
 
+glm::ivec2 reducedResolution(glm::ivec2 res, int longSide) {
+  const int side = std::max(res.x, res.y);
+  if (side <= longSide) return res;
+  const auto scaled = [&](int v) {
+    return std::max(1, static_cast<int>(std::lround(static_cast<double>(v) * longSide / side)));
+  };
+  return {scaled(res.x), scaled(res.y)};
+}
+
 BenchPlan planBench(const BenchArgs& args) {
   BenchPlan p;
   if (args.quick) {
     p.longSide = 64;
     p.maxSpp = 64;
+    p.featureLongSide = 64;
     p.captureSpp = 2;
-    p.featureSpp = 16;
+    p.featureSpp = 8;
   }
   if (args.resolution) p.longSide = *args.resolution;
+  if (args.featureResolution) p.featureLongSide = *args.featureResolution;
   if (args.maxSpp) p.maxSpp = *args.maxSpp;
   p.refSpp = args.refSpp ? *args.refSpp : 8 * p.maxSpp;
   p.refSpp += p.refSpp % 2;  // two equal halves

@@ -45,15 +45,8 @@ LoadedBenchScene loadBenchScene(const std::string& name, int longSide) {
   s.text = readSceneFile(path);
   s.baseDir = sceneBaseDir(path);
   s.description = loadSceneFromText(s.text, path.string(), s.baseDir);
-  glm::ivec2& res = s.description.camera.resolution;
-  s.original = res;
-  const int side = std::max(res.x, res.y);
-  if (side > longSide) {
-    res.x =
-        std::max(1, static_cast<int>(std::lround(static_cast<double>(res.x) * longSide / side)));
-    res.y =
-        std::max(1, static_cast<int>(std::lround(static_cast<double>(res.y) * longSide / side)));
-  }
+  s.original = s.description.camera.resolution;
+  s.description.camera.resolution = reducedResolution(s.original, longSide);
   return s;
 }
 
@@ -181,16 +174,24 @@ int runBench(const BenchArgs& args, std::ostream& out, std::ostream& log) {
       slopes.push_back(fitRows(mine));
     }
     rows.insert(rows.end(), sceneRows.begin(), sceneRows.end());
-    log << "bench: " << s.name << ": recording and replaying rays\n";
-    limits.push_back(measureLimit(scene, s.name, plan.captureSpp, plan.threads));
+    // The limit, thread scaling and motion overhead: at the scene's own resolution
+    // (reduced to featureLongSide).
+    SceneDescription feature = s.description;
+    feature.camera.resolution = reducedResolution(s.original, plan.featureLongSide);
+    const Scene featureScene(feature);
+    const glm::ivec2 fr = feature.camera.resolution;
+    log << "bench: " << s.name << ": recording and replaying rays at " << fr.x << "x" << fr.y
+        << "\n";
+    limits.push_back(measureLimit(featureScene, s.name, plan.captureSpp, plan.threads));
     if (s.name == "cornell_box") {
       log << "bench: thread scaling on " << s.name << "\n";
-      extras << formatScaling(s.name, measureThreadScaling(scene, plan.featureSpp, plan.threads))
+      extras << formatScaling(s.name,
+                              measureThreadScaling(featureScene, plan.featureSpp, plan.threads))
              << "\n";
     }
     if (s.name == "motion_blur") {
       log << "bench: motion-blur overhead on " << s.name << "\n";
-      extras << formatMotionOverhead(s.name, measureMotionOverhead(scene, s.description,
+      extras << formatMotionOverhead(s.name, measureMotionOverhead(featureScene, feature,
                                                                    plan.featureSpp, plan.threads))
              << "\n";
     }

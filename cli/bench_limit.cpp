@@ -70,6 +70,7 @@ double secondsSince(std::chrono::steady_clock::time_point start) {
 LimitResult measureLimit(const Scene& scene, const std::string& name, int spp, int threads) {
   LimitResult r;
   r.scene = name;
+  r.resolution = scene.camera().resolution();
   r.spp = spp;
   r.threads = threads > 0 ? threads : tbb::info::default_concurrency();
   std::vector<RecordedRay> rays;
@@ -100,6 +101,7 @@ LimitResult measureLimit(const Scene& scene, const std::string& name, int spp, i
 
 ScalingResult measureThreadScaling(const Scene& scene, int spp, int threads) {
   ScalingResult s;
+  s.resolution = scene.camera().resolution();
   s.spp = spp;
   s.threads = threads > 0 ? threads : tbb::info::default_concurrency();
   RayRecorder recorder;
@@ -127,6 +129,7 @@ SceneDescription withoutMotion(const SceneDescription& description) {
 MotionOverhead measureMotionOverhead(const Scene& moving, const SceneDescription& description,
                                      int spp, int threads) {
   MotionOverhead m;
+  m.resolution = moving.camera().resolution();
   m.spp = spp;
   m.timeSteps = moving.modelled().timeSteps;
   const Scene still(withoutMotion(description));

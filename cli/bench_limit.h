@@ -1,7 +1,7 @@
 // `camsim bench`: how close the tracer comes to the limit of bare Embree traversal, and
 // what threads, motion blur and big meshes cost.
 //
-// Limit (per scene): one render (Sobol', the bench resolution, captureSpp) records every
+// Limit (per scene): one render (Sobol', the scene's resolution, captureSpp) records every
 // ray it casts (integrator/ray_recorder.h): camera, bounce and shadow rays with their tMax
 // and time. They are replayed through the scene's own EmbreeScene (intersect for camera and
 // bounce rays, occluded for shadow rays) in 256-ray chunks over tbb::parallel_for in a
@@ -42,6 +42,7 @@ namespace camsim {
 
 struct LimitResult {
   std::string scene;
+  glm::ivec2 resolution{0};  // px
   int spp = 0, threads = 0;
   std::uint64_t recorded = 0, dropped = 0;
   RenderStats capture;  // the recording render
@@ -60,6 +61,7 @@ struct LimitResult {
 LimitResult measureLimit(const Scene& scene, const std::string& name, int spp, int threads);
 
 struct ScalingResult {
+  glm::ivec2 resolution{0};  // px
   int threads = 0, spp = 0;
   RenderStats one, many;
   double cpuOne = 0.0, cpuMany = 0.0;  // process CPU seconds of each render
@@ -71,6 +73,7 @@ ScalingResult measureThreadScaling(const Scene& scene, int spp, int threads);
 SceneDescription withoutMotion(const SceneDescription& description);
 
 struct MotionOverhead {
+  glm::ivec2 resolution{0};  // px
   int spp = 0;
   int timeSteps = 0;
   RenderStats moving, still, stillTimeSampled;

@@ -21,8 +21,8 @@ std::uint64_t countOf(const RayCounts& c, int kind) {
 std::string formatLimitTable(const std::vector<LimitResult>& results) {
   std::ostringstream out;
   char line[320];
-  std::snprintf(line, sizeof line, "%-13s %4s %9s %22s %22s %22s %11s %11s %6s %13s\n", "scene",
-                "spp", "rays", "camera: share, raw/s", "bounce: share, raw/s",
+  std::snprintf(line, sizeof line, "%-13s %9s %4s %9s %22s %22s %22s %11s %11s %6s %13s\n", "scene",
+                "size", "spp", "rays", "camera: share, raw/s", "bounce: share, raw/s",
                 "shadow: share, raw/s", "raw mix/s", "tracer/s", "ratio", "rounds");
   out << line;
   for (const LimitResult& r : results) {
@@ -34,11 +34,13 @@ std::string formatLimitTable(const std::vector<LimitResult>& results) {
                     formatRate(r.byKind[static_cast<std::size_t>(k)].raysPerSecond()).c_str());
       kinds[k] = cell;
     }
+    const std::string size = std::to_string(r.resolution.x) + "x" + std::to_string(r.resolution.y);
     std::snprintf(
-        line, sizeof line, "%-13s %4d %9llu %22s %22s %22s %11s %11s %6.3f  %5.3f–%5.3f\n",
-        r.scene.c_str(), r.spp, static_cast<unsigned long long>(r.recorded), kinds[0].c_str(),
-        kinds[1].c_str(), kinds[2].c_str(), formatRate(r.mix.raysPerSecond()).c_str(),
-        formatRate(r.tracerRaysPerSecond()).c_str(), r.ratio(), r.roundRatioLow, r.roundRatioHigh);
+        line, sizeof line, "%-13s %9s %4d %9llu %22s %22s %22s %11s %11s %6.3f  %5.3f–%5.3f\n",
+        r.scene.c_str(), size.c_str(), r.spp, static_cast<unsigned long long>(r.recorded),
+        kinds[0].c_str(), kinds[1].c_str(), kinds[2].c_str(),
+        formatRate(r.mix.raysPerSecond()).c_str(), formatRate(r.tracerRaysPerSecond()).c_str(),
+        r.ratio(), r.roundRatioLow, r.roundRatioHigh);
     out << line;
     if (r.dropped > 0)
       out << "  (" << r.dropped
@@ -52,17 +54,18 @@ std::string formatLimitTable(const std::vector<LimitResult>& results) {
 
 std::string formatLimitCsv(const std::vector<LimitResult>& results) {
   std::ostringstream out;
-  out << "scene,kind,spp,threads,rays,share,raw_rays_per_s,tracer_rays_per_s,ratio,"
+  out << "scene,kind,width,height,spp,threads,rays,share,raw_rays_per_s,tracer_rays_per_s,ratio,"
          "round_ratio_min,round_ratio_max\n";
   auto g = [](double v) { return formatNumber(v, 9); };
   for (const LimitResult& r : results) {
-    out << csvField(r.scene) << ",mix," << r.spp << "," << r.threads << "," << r.recorded << ",1,"
-        << g(r.mix.raysPerSecond()) << "," << g(r.tracerRaysPerSecond()) << "," << g(r.ratio())
-        << "," << g(r.roundRatioLow) << "," << g(r.roundRatioHigh) << "\n";
+    const std::string size = std::to_string(r.resolution.x) + "," + std::to_string(r.resolution.y);
+    out << csvField(r.scene) << ",mix," << size << "," << r.spp << "," << r.threads << ","
+        << r.recorded << ",1," << g(r.mix.raysPerSecond()) << "," << g(r.tracerRaysPerSecond())
+        << "," << g(r.ratio()) << "," << g(r.roundRatioLow) << "," << g(r.roundRatioHigh) << "\n";
     for (int k = 0; k < kRayKindCount; ++k) {
       const ReplayResult& rep = r.byKind[static_cast<std::size_t>(k)];
-      out << csvField(r.scene) << "," << rayKindName(static_cast<RayKind>(k)) << "," << r.spp << ","
-          << r.threads << "," << rep.rays << ","
+      out << csvField(r.scene) << "," << rayKindName(static_cast<RayKind>(k)) << "," << size << ","
+          << r.spp << "," << r.threads << "," << rep.rays << ","
           << g(share(countOf(r.capture.rays, k), r.capture.rays.total()) / 100.0) << ","
           << g(rep.raysPerSecond()) << ",,,,\n";
     }
@@ -76,7 +79,8 @@ std::string formatScaling(const std::string& scene, const ScalingResult& s) {
   const double speed = s.many.seconds > 0.0 ? s.one.seconds / s.many.seconds : 0.0;
   const double raw =
       s.rawOne.raysPerSecond() > 0.0 ? s.rawMany.raysPerSecond() / s.rawOne.raysPerSecond() : 0.0;
-  out << "thread scaling, " << scene << " (Sobol', " << s.spp << " spp):\n";
+  out << "thread scaling, " << scene << " (" << s.resolution.x << "x" << s.resolution.y
+      << ", Sobol', " << s.spp << " spp):\n";
   std::snprintf(line, sizeof line, "  %-22s %10s %12s %12s\n", "", "1 thread",
                 std::to_string(s.threads).append(" threads").c_str(), "speed-up");
   out << line;
@@ -100,8 +104,8 @@ std::string formatScaling(const std::string& scene, const ScalingResult& s) {
 std::string formatMotionOverhead(const std::string& scene, const MotionOverhead& m) {
   std::ostringstream out;
   char line[256];
-  out << "motion-blur overhead, " << scene << " (Sobol', " << m.spp
-      << " spp; moving: " << m.timeSteps << " Embree time steps):\n";
+  out << "motion-blur overhead, " << scene << " (" << m.resolution.x << "x" << m.resolution.y
+      << ", Sobol', " << m.spp << " spp; moving: " << m.timeSteps << " Embree time steps):\n";
   std::snprintf(line, sizeof line, "  %-40s %9s %11s %12s %13s\n", "variant", "seconds", "rays/s",
                 "time ratio", "per-ray ratio");
   out << line;

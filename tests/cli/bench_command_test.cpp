@@ -208,6 +208,13 @@ TEST(BenchArgs, DefaultsQuickAndOptions) {
   EXPECT_EQ(q.threads, 1);
   EXPECT_EQ(q.meshTriangles, 0u);
   EXPECT_EQ(q.longSide, 64);
+  EXPECT_EQ(q.featureLongSide, 64);
+  EXPECT_EQ(planBench(parseBenchArgs({"bench"})).featureLongSide, 512);
+  EXPECT_EQ(planBench(parseBenchArgs({"bench", "--feature-resolution", "100"})).featureLongSide,
+            100);
+  EXPECT_EQ(reducedResolution({512, 512}, 512), glm::ivec2(512, 512));
+  EXPECT_EQ(reducedResolution({480, 270}, 128), glm::ivec2(128, 72));
+  EXPECT_EQ(reducedResolution({320, 213}, 64), glm::ivec2(64, 43));
   EXPECT_EQ(benchScenePath("x/y.yaml"), fs::path("x/y.yaml"));
   EXPECT_EQ(benchScenePath("cornell_box").filename(), "cornell_box.yaml");
   EXPECT_TRUE(parseBenchArgs({"bench", "--help"}).help);

@@ -106,15 +106,18 @@ TEST(BenchLimit, TracerAndReplayAreTheSameRaysInEveryRound) {
   EXPECT_EQ(r.tracer.rays.total(), r.capture.rays.total());
   EXPECT_EQ(r.recorded, r.capture.rays.total());
   EXPECT_EQ(r.mix.rays, r.recorded);
+  EXPECT_EQ(r.resolution, glm::ivec2(16, 16));
   EXPECT_GE(r.mix.passes, 3);
   EXPECT_GT(r.ratio(), 0.0);
   EXPECT_GT(r.roundRatioLow, 0.0);
   EXPECT_LE(r.roundRatioLow, r.roundRatioHigh);
   const std::string csv = formatLimitCsv({r});
   EXPECT_EQ(csv.substr(0, csv.find('\n')),
-            "scene,kind,spp,threads,rays,share,raw_rays_per_s,tracer_rays_per_s,ratio,"
+            "scene,kind,width,height,spp,threads,rays,share,raw_rays_per_s,tracer_rays_per_s,ratio,"
             "round_ratio_min,round_ratio_max");
   EXPECT_NE(formatLimitTable({r}).find("rounds"), std::string::npos);
+  EXPECT_NE(formatLimitTable({r}).find("16x16"), std::string::npos);
+  EXPECT_NE(csv.find("cornell_box,mix,16,16,2,2,"), std::string::npos) << csv;
 }
 
 TEST(BenchLimit, WithoutMotionMakesTheMotionBlurSceneStatic) {
@@ -190,7 +193,7 @@ TEST(BenchBinary, SmallRunWritesTablesAndCsvs) {
   test::TempDir dir;
   const fs::path out = dir.path() / "out";
   ASSERT_EQ(runBench("--scenes cornell_box --resolution 16 --max-spp 2 --ref-spp 4 "
-                     "--mesh-triangles 1000 --texture-size 16 --out " +
+                     "--feature-resolution 16 --mesh-triangles 1000 --texture-size 16 --out " +
                          out.string() + " --cache " + (dir.path() / "cache").string(),
                      dir.path()),
             0)
@@ -214,7 +217,7 @@ TEST(BenchBinary, AMissingSceneExitsTwoAfterTheOthers) {
   test::TempDir dir;
   const fs::path out = dir.path() / "out";
   EXPECT_EQ(runBench("--scenes cornell_box,no_such_scene --resolution 8 --max-spp 1 --ref-spp 2 "
-                     "--mesh-triangles 0 --out " +
+                     "--feature-resolution 8 --mesh-triangles 0 --out " +
                          out.string() + " --cache " + (dir.path() / "cache").string(),
                      dir.path()),
             2);
