@@ -185,8 +185,8 @@ int runBench(const BenchArgs& args, std::ostream& out, std::ostream& log) {
     limits.push_back(measureLimit(featureScene, s.name, plan.captureSpp, plan.threads));
     if (s.name == "cornell_box") {
       log << "bench: thread scaling on " << s.name << "\n";
-      extras << formatScaling(s.name,
-                              measureThreadScaling(featureScene, plan.featureSpp, plan.threads))
+      extras << formatScaling(s.name, measureThreadScaling(featureScene, plan.featureSpp,
+                                                           plan.captureSpp, plan.threads))
              << "\n";
     }
     if (s.name == "motion_blur") {

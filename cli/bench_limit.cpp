@@ -82,10 +82,12 @@ LimitResult measureLimit(const Scene& scene, const std::string& name, int spp, i
   }
   r.recorded = rays.size();
   // The tracer and the replay of its mix take turns, kRepeats rounds, so that a change in
-  // the machine's other load falls on both; each side keeps its fastest run.
+  // the machine's other load falls on both; each round times one render and one replay
+  // pass (after an untimed warm-up pass), and each side keeps its fastest of the rounds: a
+  // minimum over the same number of runs on both sides.
   for (int round = 0; round < kRepeats; ++round) {
     const RenderStats tracer = renderWith(scene, spp, threads).stats;
-    const ReplayResult mix = replayRays(scene.geometry(), rays, threads);
+    const ReplayResult mix = replayRays(scene.geometry(), rays, threads, 0.0, 1);
     if (round == 0 || tracer.seconds < r.tracer.seconds) r.tracer = tracer;
     if (round == 0 || mix.seconds < r.mix.seconds) r.mix = mix;
     const double ratio =
@@ -99,14 +101,15 @@ LimitResult measureLimit(const Scene& scene, const std::string& name, int spp, i
   return r;
 }
 
-ScalingResult measureThreadScaling(const Scene& scene, int spp, int threads) {
+ScalingResult measureThreadScaling(const Scene& scene, int spp, int captureSpp, int threads) {
   ScalingResult s;
   s.resolution = scene.camera().resolution();
   s.spp = spp;
   s.threads = threads > 0 ? threads : tbb::info::default_concurrency();
   RayRecorder recorder;
-  renderWith(scene, std::max(1, spp / 4), s.threads, &recorder);
+  renderWith(scene, captureSpp, s.threads, &recorder);
   const std::vector<RecordedRay> rays = recorder.takeRays();
+  s.dropped = recorder.dropped();
   // 1 and N threads take turns (see measureLimit), each keeping its fastest render.
   for (int round = 0; round < kRepeats; ++round) {
     keepFastest(round, scene, spp, 1, false, s.one, &s.cpuOne);

@@ -5,18 +5,20 @@
 // ray it casts (integrator/ray_recorder.h): camera, bounce and shadow rays with their tMax
 // and time. They are replayed through the scene's own EmbreeScene (intersect for camera and
 // bounce rays, occluded for shadow rays) in 256-ray chunks over tbb::parallel_for in a
-// task_arena of the same thread count, timing only the traversal loop (fastest of repeated
-// passes): raw rays/s per kind and for the recorded mix in recorded order. Renders of the
+// task_arena of the same thread count, timing only the traversal loop: raw rays/s per kind
+// (fastest of repeated passes) and for the recorded mix in recorded order. Renders of the
 // same settings without the recorder give the tracer's rays/s; their ratio (tracer ÷ raw,
 // same mix) is the share of the tracer's time that is traversal.
 //
-// Thread scaling: a render and a replay at 1 and at N threads.
+// Thread scaling: a render (spp) and a replay (the rays of a captureSpp render) at 1 and at
+// N threads.
 // Motion overhead: the moving scene against the same scene with every motion reduced to its
 // first keyframe (a static pose), and that static scene with time sampled anyway.
 // Timed comparisons run in 3 rounds in which the compared runs take turns (tracer and
 // replay; 1 and N threads; moving, still and still time-sampled), so that a change in the
-// machine's other load falls on all of them; each keeps its fastest run (the least
-// disturbed). The limit also reports the range of the per-round ratios.
+// machine's other load falls on all of them; each round times one run of each (the
+// replay: one pass after a warm-up), and each keeps its fastest (the least disturbed). The
+// limit also reports the range of the per-round ratios.
 // Mesh build: a generated torus of ≥ N triangles written as binary PLY to a temporary
 // directory, loaded through the scene loader (timed), then built into a Scene (timed: the
 // TriangleMesh and Embree's BVH at the quality EmbreeScene picks) with the RSS growth measured (/proc/self/statm, after
@@ -65,9 +67,10 @@ struct ScalingResult {
   int threads = 0, spp = 0;
   RenderStats one, many;
   double cpuOne = 0.0, cpuMany = 0.0;  // process CPU seconds of each render
-  ReplayResult rawOne, rawMany;
+  ReplayResult rawOne, rawMany;        // the rays of a captureSpp render
+  std::uint64_t dropped = 0;           // rays past the recorder's limit (not replayed)
 };
-ScalingResult measureThreadScaling(const Scene& scene, int spp, int threads);
+ScalingResult measureThreadScaling(const Scene& scene, int spp, int captureSpp, int threads);
 
 // Every shape's and the camera's motion reduced to its first keyframe.
 SceneDescription withoutMotion(const SceneDescription& description);

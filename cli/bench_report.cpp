@@ -21,7 +21,7 @@ std::uint64_t countOf(const RayCounts& c, int kind) {
 std::string formatLimitTable(const std::vector<LimitResult>& results) {
   std::ostringstream out;
   char line[320];
-  std::snprintf(line, sizeof line, "%-13s %9s %4s %9s %22s %22s %22s %11s %11s %6s %13s\n", "scene",
+  std::snprintf(line, sizeof line, "%-13s %9s %4s %9s %22s %22s %22s %11s %11s %6s %12s\n", "scene",
                 "size", "spp", "rays", "camera: share, raw/s", "bounce: share, raw/s",
                 "shadow: share, raw/s", "raw mix/s", "tracer/s", "ratio", "rounds");
   out << line;
@@ -98,6 +98,9 @@ std::string formatScaling(const std::string& scene, const ScalingResult& s) {
                 "raw replay, rays/s", formatRate(s.rawOne.raysPerSecond()).c_str(),
                 formatRate(s.rawMany.raysPerSecond()).c_str(), raw, 100.0 * raw / s.threads);
   out << line;
+  if (s.dropped > 0)
+    out << "  (" << s.dropped
+        << " rays past the recorder's limit were not recorded: the replay is a subset)\n";
   return out.str();
 }
 

@@ -84,7 +84,7 @@ std::vector<RecordedRay> raysOfKind(const std::vector<RecordedRay>& rays, RayKin
 }
 
 ReplayResult replayRays(const EmbreeScene& geometry, const std::vector<RecordedRay>& rays,
-                        int threads, double minSeconds) {
+                        int threads, double minSeconds, int minPasses) {
   ReplayResult result;
   result.rays = rays.size();
   if (rays.empty()) return result;
@@ -93,7 +93,8 @@ ReplayResult replayRays(const EmbreeScene& geometry, const std::vector<RecordedR
   replayPass(geometry, rays, arena, hits);  // warm-up: caches, TBB workers, page faults
   std::vector<double> times;
   double spent = 0.0;
-  while (times.size() < 3 || (spent < minSeconds && times.size() < 50)) {
+  const auto passes = static_cast<std::size_t>(std::max(1, minPasses));
+  while (times.size() < passes || (spent < minSeconds && times.size() < 50)) {
     times.push_back(replayPass(geometry, rays, arena, hits));
     spent += times.back();
   }

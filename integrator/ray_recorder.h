@@ -76,10 +76,11 @@ struct ReplayResult {
   double raysPerSecond() const { return seconds > 0.0 ? static_cast<double>(rays) / seconds : 0.0; }
 };
 
-// Traces `rays` through `geometry` with `threads` threads (0: all cores), repeating whole
-// passes until minSeconds have been spent (at least 3 passes); reports the fastest pass
+// Traces `rays` through `geometry` with `threads` threads (0: all cores): one untimed
+// warm-up pass, then whole passes until minSeconds have been spent and at least minPasses
+// were made (at most 50); reports the fastest pass
 // (deterministic work: the fastest is the least disturbed by other load).
 ReplayResult replayRays(const EmbreeScene& geometry, const std::vector<RecordedRay>& rays,
-                        int threads, double minSeconds = 0.5);
+                        int threads, double minSeconds = 0.5, int minPasses = 3);
 
 }  // namespace camsim
