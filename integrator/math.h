@@ -105,10 +105,11 @@ inline glm::vec2 sampleUniformTriangle(glm::vec2 u) {
   return {1.0f - su, u.y * su};
 }
 
-// erf⁻¹(x) for x in (−1, 1): M. Giles, "Approximating the erfinv function" (GPU Computing
+// erf⁻¹(x) for x in (−1, 1), ±∞ at ±1: M. Giles, "Approximating the erfinv function" (GPU Computing
 // Gems, 2011), single-precision polynomials in w = −ln(1 − x²); relative error ≈ 1e-7 (the
 // tests check erf(erfInv(x)) = x).
 inline float erfInv(float x) {
+  if (std::abs(x) >= 1.0f) return std::copysign(std::numeric_limits<float>::infinity(), x);
   float w = -std::log((1.0f - x) * (1.0f + x));
   float p;
   if (w < 5.0f) {

@@ -47,6 +47,8 @@ TEST(Math, ErfInvInvertsErf) {
     ASSERT_EQ(erfInv(-x), -erfInv(x)) << x;
   }
   EXPECT_LT(worst, 2e-7);
+  EXPECT_EQ(erfInv(1.0f), std::numeric_limits<float>::infinity());
+  EXPECT_EQ(erfInv(-1.0f), -std::numeric_limits<float>::infinity());
   for (float x : {1.0f - 1e-7f, 1.0f - 1e-6f}) {
     const double y = erfInv(x);
     EXPECT_TRUE(std::isfinite(y));
