@@ -9,7 +9,6 @@
 #include <vector>
 
 #include "integrator/scene_loader_parts.h"
-#include "sensor/file_status.h"
 #include "sensor/spectral_data.h"
 
 namespace camsim {
@@ -44,18 +43,16 @@ void parseMicrofacet(YamlMap& map, MaterialDescription& m, const TableSearch& se
 Spectrum namedColumn(const YamlValue& name, const std::string& folder, const std::string& column,
                      const TableSearch& search) {
   const std::string file = folder + "/" + name.string() + ".csv";
-  for (const auto& dir : search.directories) {
-    if (!isRegularFile(dir / file)) continue;
-    search.noteRead(dir / file);
-    try {
-      const SpectralTable table = readSpectralCsv(dir / file);
-      return table.spectrum(table.columnIndex(column), Extrapolation::kClamp);
-    } catch (const InputError& e) {
-      name.fail(e.message() + " in " + (dir / file).string());
-    }
+  const std::optional<std::filesystem::path> path = search.locate(file);
+  if (!path)
+    name.fail("no " + folder + " table '" + name.string() + "' (looked for " + file +
+              " on the spectra path)");
+  try {
+    const SpectralTable table = readSpectralCsv(*path);
+    return table.spectrum(table.columnIndex(column), Extrapolation::kClamp);
+  } catch (const InputError& e) {
+    name.fail(e.message() + " in " + path->string());
   }
-  name.fail("no " + folder + " table '" + name.string() + "' (looked for " + file +
-            " on the spectra path)");
 }
 
 void parseConductor(YamlMap& map, MaterialDescription& m, const TableSearch& search,

@@ -4,10 +4,10 @@
 
 namespace camsim {
 
-std::filesystem::path TableSearch::find(const YamlValue& where, const std::string& name) const {
-  if (name.empty()) where.fail("empty file name");
+std::optional<std::filesystem::path> TableSearch::locate(const std::string& name) const {
+  if (name.empty()) return std::nullopt;
   const std::filesystem::path p(name);
-  std::filesystem::path found;
+  std::optional<std::filesystem::path> found;
   if (p.is_absolute()) {
     if (isRegularFile(p)) found = p;
   } else {
@@ -18,14 +18,18 @@ std::filesystem::path TableSearch::find(const YamlValue& where, const std::strin
       }
     }
   }
-  if (found.empty()) {
-    std::string searched;
-    for (const auto& dir : directories) searched += (searched.empty() ? "" : ", ") + dir.string();
-    where.fail("spectral table '" + name + "' not found" +
-               (p.is_absolute() ? std::string() : " (searched: " + searched + ")"));
-  }
-  noteRead(found);
+  if (found) noteRead(*found);
   return found;
+}
+
+std::filesystem::path TableSearch::find(const YamlValue& where, const std::string& name) const {
+  if (name.empty()) where.fail("empty file name");
+  if (std::optional<std::filesystem::path> found = locate(name)) return *found;
+  std::string searched;
+  for (const auto& dir : directories) searched += (searched.empty() ? "" : ", ") + dir.string();
+  where.fail("spectral table '" + name + "' not found" +
+             (std::filesystem::path(name).is_absolute() ? std::string()
+                                                        : " (searched: " + searched + ")"));
 }
 
 }  // namespace camsim

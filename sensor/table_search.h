@@ -1,10 +1,13 @@
 // TableSearch: where the spectral tables (CSV) named in a description are looked for, and
 // the record of the files found. Scene files and sensor descriptions both name tables this
-// way: an absolute path, or a name looked up in an ordered list of folders (the
-// description's own folder first, then luts/spectra and luts/).
+// way: an absolute path, or a name looked up in an ordered list of folders. A scene
+// searches its own folder, its spectra_path, --spectra-path, then luts/spectra
+// (integrator/scene_loader.cpp); a sensor description its own folder, luts/spectra, then
+// luts/ (sensor/sensor_spec.cpp).
 #pragma once
 
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -21,9 +24,11 @@ struct TableSearch {
   void noteRead(const std::filesystem::path& file) const {
     if (filesRead) filesRead->push_back(file);
   }
-  // The table `name` (as written at `where`): itself if absolute, else the first of
-  // `directories` holding it. Records it. Fails at `where` when the name is empty or no
-  // such file exists, naming the folders searched.
+  // The file `name`: itself if absolute, else the first of `directories` holding it;
+  // recorded. Nothing if there is no such regular file (or the name is empty).
+  std::optional<std::filesystem::path> locate(const std::string& name) const;
+  // locate(name) for the table written at `where`; fails there when the name is empty or
+  // no such file exists, naming the folders searched.
   std::filesystem::path find(const YamlValue& where, const std::string& name) const;
 };
 

@@ -76,6 +76,14 @@ TEST_F(TableSearchTest, AMissingTableFailsAtItsKeyNamingTheFoldersSearched) {
   EXPECT_TRUE(read.empty());
 }
 
+TEST_F(TableSearchTest, LocateReportsAMissingFileWithoutFailing) {
+  EXPECT_EQ(search.locate("b.csv"), second() / "b.csv");
+  EXPECT_FALSE(search.locate("missing.csv"));
+  EXPECT_FALSE(search.locate("sub"));
+  EXPECT_FALSE(search.locate(""));
+  EXPECT_EQ(read, std::vector<fs::path>{second() / "b.csv"});
+}
+
 TEST(TableSearch, WithoutARecordStillFinds) {
   test::TempDir dir;
   test::writeFile(dir.path() / "t.csv", "nm,v\n400,1\n");
