@@ -118,7 +118,7 @@ std::string fnv1aHex(std::string_view data) {
 
 RenderCommandResult runRender(const RenderArgs& args, std::ostream& log,
                               const std::atomic<bool>* cancel) {
-  const LoadedScene loaded = load(args);
+  LoadedScene loaded = load(args);
   const SceneDescription& desc = loaded.description;
   checkMemoryLimit(desc, args.maxMemoryGb);  // before any work
   const std::filesystem::path outDir(args.outputDir);
@@ -128,6 +128,7 @@ RenderCommandResult runRender(const RenderArgs& args, std::ostream& log,
   const PictureSettings picture{args.ocioConfig, {args.display, args.view, args.look}};
   checkPictureSettings(picture);  // a bad config or display/view/look fails before rendering
   const Scene scene(desc);
+  loaded.description.releaseDecodedImages();  // the Scene holds its own form of them
   const SpectralResponse response = SpectralResponse::cieXyz();
   std::vector<const SpectralResponse*> responses = {&response};
   std::optional<SpectralResponse> sensorResponse;

@@ -166,6 +166,17 @@ struct SceneDescription {
   std::vector<LightDescription> lights;
   std::optional<SensorSettings> sensor;  // none: the film records CIE XYZ only
   IspSettings isp;                       // raw → picture (scenes with a sensor)
+
+  // Drops the decoded texels of image textures and environment maps. A Scene built from
+  // this description keeps them in its own form, so a render need not hold both (an 8k RGB
+  // texture is 0.8 GB of floats); a Scene built afterwards reads the files again.
+  void releaseDecodedImages() {
+    for (MaterialDescription& m : materials) {
+      m.reflectance.image.reset();
+      m.roughness.image.reset();
+    }
+    for (LightDescription& l : lights) l.image.reset();
+  }
 };
 
 }  // namespace camsim

@@ -105,9 +105,15 @@ TEST_F(TextureScene, TheSceneIsBuiltFromTheTexelsTheLoaderRead) {
   EXPECT_EQ(m.reflectance.image->channels, 3);
   ASSERT_TRUE(m.roughness.image);
   EXPECT_EQ(m.roughness.image->channels, 1);
+  SceneDescription released = d;
+  released.releaseDecodedImages();
+  EXPECT_FALSE(released.materials.at(0).reflectance.image);
+  EXPECT_FALSE(released.materials.at(0).roughness.image);
+  EXPECT_NO_THROW(Scene{released});  // the files are read again
   fs::remove(dir_.path() / "albedo.png");
   fs::remove(dir_.path() / "rough.exr");
   EXPECT_NO_THROW(Scene{d});
+  EXPECT_THROW(Scene{released}, InputError);  // …and are gone now
 }
 
 // Columns count from the line's start: the material's value begins at column 6, so
