@@ -78,6 +78,28 @@ std::vector<BenchRow> sweep(const LoadedBenchScene& s, const Scene& scene, const
   return rows;
 }
 
+// The limit, thread scaling (cornell_box) and motion overhead (motion_blur) of one scene.
+void measureFeatures(const std::string& name, const Scene& scene,
+                     const SceneDescription& description, const BenchPlan& plan,
+                     std::vector<LimitResult>& limits, std::ostream& extras, std::ostream& log) {
+  const glm::ivec2 res = scene.camera().resolution();
+  log << "bench: " << name << ": recording and replaying rays at " << res.x << "x" << res.y << "\n";
+  std::vector<RecordedRay> rays;
+  limits.push_back(measureLimit(scene, name, plan.captureSpp, plan.threads,
+                                name == "cornell_box" ? &rays : nullptr));
+  if (name == "cornell_box") {
+    log << "bench: thread scaling on " << name << "\n";
+    extras << formatScaling(name, measureThreadScaling(scene, plan.featureSpp, rays, plan.threads))
+           << "\n";
+  }
+  if (name == "motion_blur") {
+    log << "bench: motion-blur overhead on " << name << "\n";
+    extras << formatMotionOverhead(
+                  name, measureMotionOverhead(scene, description, plan.featureSpp, plan.threads))
+           << "\n";
+  }
+}
+
 }  // namespace
 
 BenchScratchDirectory::BenchScratchDirectory(std::filesystem::path base) {
@@ -149,51 +171,42 @@ int runBench(const BenchArgs& args, std::ostream& out, std::ostream& log) {
     log << "bench: " << s.name << " at " << s.description.camera.resolution.x << "x"
         << s.description.camera.resolution.y << " (scene: " << s.original.x << "x" << s.original.y
         << ")\n";
-    const Scene scene(s.description);
-    const ReferenceRequest request{s.name,
-                                   s.text,
-                                   s.description.inputFiles,
-                                   s.description.camera.resolution,
-                                   s.description.sourceFile,
-                                   plan.refSpp,
-                                   plan.threads};
-    ProgressBar bar("reference " + s.name);
-    const Reference ref =
-        obtainReference(request, scene, cacheDir, log, [&](int d, int t) { bar.update(d, t); });
-    bar.finish();
-    refs << "  " << s.name << " " << s.description.camera.resolution.x << "x"
-         << s.description.camera.resolution.y << ": rMSE floor " << formatNumber(ref.noise.rmse, 3)
-         << ", MRAE floor " << formatNumber(ref.noise.mrae, 3)
-         << (ref.fromCache ? " (cached " : " (rendered in " + formatNumber(ref.seconds, 3) + " s, ")
-         << ref.file.filename().string() << ")\n";
-    std::vector<BenchRow> sceneRows = sweep(s, scene, ref, plan, log);
-    for (SamplerKind kind : {SamplerKind::kIndependent, SamplerKind::kSobol}) {
-      std::vector<BenchRow*> mine;
-      for (BenchRow& r : sceneRows)
-        if (r.sampler == samplerName(kind)) mine.push_back(&r);
-      slopes.push_back(fitRows(mine));
+    // The limit, thread scaling and motion overhead run at the scene's own resolution
+    // (reduced to featureLongSide): on the sweep's Scene if that is the same size.
+    const glm::ivec2 featureRes = reducedResolution(s.original, plan.featureLongSide);
+    {
+      const Scene scene(s.description);
+      const ReferenceRequest request{s.name,
+                                     s.text,
+                                     s.description.inputFiles,
+                                     s.description.camera.resolution,
+                                     s.description.sourceFile,
+                                     plan.refSpp,
+                                     plan.threads};
+      ProgressBar bar("reference " + s.name);
+      const Reference ref =
+          obtainReference(request, scene, cacheDir, log, [&](int d, int t) { bar.update(d, t); });
+      bar.finish();
+      refs << "  " << s.name << " " << s.description.camera.resolution.x << "x"
+           << s.description.camera.resolution.y << ": rMSE floor "
+           << formatNumber(ref.noise.rmse, 3) << ", MRAE floor " << formatNumber(ref.noise.mrae, 3)
+           << (ref.fromCache ? " (cached "
+                             : " (rendered in " + formatNumber(ref.seconds, 3) + " s, ")
+           << ref.file.filename().string() << ")\n";
+      std::vector<BenchRow> sceneRows = sweep(s, scene, ref, plan, log);
+      for (SamplerKind kind : {SamplerKind::kIndependent, SamplerKind::kSobol}) {
+        std::vector<BenchRow*> mine;
+        for (BenchRow& r : sceneRows)
+          if (r.sampler == samplerName(kind)) mine.push_back(&r);
+        slopes.push_back(fitRows(mine));
+      }
+      rows.insert(rows.end(), sceneRows.begin(), sceneRows.end());
+      if (featureRes == s.description.camera.resolution)
+        measureFeatures(s.name, scene, s.description, plan, limits, extras, log);
     }
-    rows.insert(rows.end(), sceneRows.begin(), sceneRows.end());
-    // The limit, thread scaling and motion overhead: at the scene's own resolution
-    // (reduced to featureLongSide).
-    SceneDescription feature = s.description;
-    feature.camera.resolution = reducedResolution(s.original, plan.featureLongSide);
-    const Scene featureScene(feature);
-    const glm::ivec2 fr = feature.camera.resolution;
-    log << "bench: " << s.name << ": recording and replaying rays at " << fr.x << "x" << fr.y
-        << "\n";
-    limits.push_back(measureLimit(featureScene, s.name, plan.captureSpp, plan.threads));
-    if (s.name == "cornell_box") {
-      log << "bench: thread scaling on " << s.name << "\n";
-      extras << formatScaling(s.name, measureThreadScaling(featureScene, plan.featureSpp,
-                                                           plan.captureSpp, plan.threads))
-             << "\n";
-    }
-    if (s.name == "motion_blur") {
-      log << "bench: motion-blur overhead on " << s.name << "\n";
-      extras << formatMotionOverhead(s.name, measureMotionOverhead(featureScene, feature,
-                                                                   plan.featureSpp, plan.threads))
-             << "\n";
+    if (featureRes != s.description.camera.resolution) {
+      s.description.camera.resolution = featureRes;  // the sweep's Scene is gone by now
+      measureFeatures(s.name, Scene(s.description), s.description, plan, limits, extras, log);
     }
   }
   if (scratch) {

@@ -40,18 +40,28 @@ RenderResult renderWith(const Scene& scene, int spp, int threads, RayRecorder* r
   return renderXyz(scene, o);
 }
 
-// One more render of a series: `best` becomes it if it is the first (round 0) or the
-// fastest so far (short renders on a shared machine: the minimum is the least disturbed),
-// and *cpuSeconds the process CPU time of that render.
-void keepFastest(int round, const Scene& scene, int spp, int threads, bool forceTime,
-                 RenderStats& best, double* cpuSeconds) {
+// The fastest of a series of timed runs (short runs on a shared machine: the minimum is
+// the least disturbed), with the process CPU time of that run.
+template <typename Stats>
+struct Fastest {
+  Stats best;
+  double cpuSeconds = 0.0;
+  bool any = false;
+  void offer(const Stats& s, double cpu = 0.0) {
+    if (any && !(s.seconds < best.seconds)) return;
+    best = s;
+    cpuSeconds = cpu;
+    any = true;
+  }
+};
+
+// One more render of a series; returns its figures.
+RenderStats renderTimed(Fastest<RenderStats>& series, const Scene& scene, int spp, int threads,
+                        bool forceTime = false) {
   const double cpu0 = processCpuSeconds();
   const RenderStats s = renderWith(scene, spp, threads, nullptr, forceTime).stats;
-  const double cpu = processCpuSeconds() - cpu0;
-  if (round == 0 || s.seconds < best.seconds) {
-    best = s;
-    if (cpuSeconds) *cpuSeconds = cpu;
-  }
+  series.offer(s, processCpuSeconds() - cpu0);
+  return s;
 }
 
 double residentBytes() {
@@ -67,7 +77,8 @@ double secondsSince(std::chrono::steady_clock::time_point start) {
 
 }  // namespace
 
-LimitResult measureLimit(const Scene& scene, const std::string& name, int spp, int threads) {
+LimitResult measureLimit(const Scene& scene, const std::string& name, int spp, int threads,
+                         std::vector<RecordedRay>* raysOut) {
   LimitResult r;
   r.scene = name;
   r.resolution = scene.camera().resolution();
@@ -85,36 +96,43 @@ LimitResult measureLimit(const Scene& scene, const std::string& name, int spp, i
   // the machine's other load falls on both; each round times one render and one replay
   // pass (after an untimed warm-up pass), and each side keeps its fastest of the rounds: a
   // minimum over the same number of runs on both sides.
+  Fastest<RenderStats> tracer;
+  Fastest<ReplayResult> mix;
+  r.roundRatioLow = std::numeric_limits<double>::infinity();
+  r.roundRatioHigh = -r.roundRatioLow;
   for (int round = 0; round < kRepeats; ++round) {
-    const RenderStats tracer = renderWith(scene, spp, threads).stats;
-    const ReplayResult mix = replayRays(scene.geometry(), rays, threads, 0.0, 1);
-    if (round == 0 || tracer.seconds < r.tracer.seconds) r.tracer = tracer;
-    if (round == 0 || mix.seconds < r.mix.seconds) r.mix = mix;
-    const double ratio =
-        mix.raysPerSecond() > 0.0 ? tracer.raysPerSecond() / mix.raysPerSecond() : 0.0;
-    r.roundRatioLow = round == 0 ? ratio : std::min(r.roundRatioLow, ratio);
-    r.roundRatioHigh = round == 0 ? ratio : std::max(r.roundRatioHigh, ratio);
+    const RenderStats t = renderTimed(tracer, scene, spp, threads);
+    const ReplayResult m = replayRays(scene.geometry(), rays, threads, 0.0, 1);
+    mix.offer(m);
+    const double ratio = m.raysPerSecond() > 0.0 ? t.raysPerSecond() / m.raysPerSecond() : 0.0;
+    r.roundRatioLow = std::min(r.roundRatioLow, ratio);
+    r.roundRatioHigh = std::max(r.roundRatioHigh, ratio);
   }
+  r.tracer = tracer.best;
+  r.mix = mix.best;
   for (int k = 0; k < kRayKindCount; ++k)
     r.byKind[static_cast<std::size_t>(k)] =
         replayRays(scene.geometry(), raysOfKind(rays, static_cast<RayKind>(k)), threads, 0.25);
+  if (raysOut) *raysOut = std::move(rays);
   return r;
 }
 
-ScalingResult measureThreadScaling(const Scene& scene, int spp, int captureSpp, int threads) {
+ScalingResult measureThreadScaling(const Scene& scene, int spp,
+                                   const std::vector<RecordedRay>& rays, int threads) {
   ScalingResult s;
   s.resolution = scene.camera().resolution();
   s.spp = spp;
   s.threads = threads > 0 ? threads : tbb::info::default_concurrency();
-  RayRecorder recorder;
-  renderWith(scene, captureSpp, s.threads, &recorder);
-  const std::vector<RecordedRay> rays = recorder.takeRays();
-  s.dropped = recorder.dropped();
   // 1 and N threads take turns (see measureLimit), each keeping its fastest render.
+  Fastest<RenderStats> one, many;
   for (int round = 0; round < kRepeats; ++round) {
-    keepFastest(round, scene, spp, 1, false, s.one, &s.cpuOne);
-    keepFastest(round, scene, spp, s.threads, false, s.many, &s.cpuMany);
+    renderTimed(one, scene, spp, 1);
+    renderTimed(many, scene, spp, s.threads);
   }
+  s.one = one.best;
+  s.cpuOne = one.cpuSeconds;
+  s.many = many.best;
+  s.cpuMany = many.cpuSeconds;
   s.rawOne = replayRays(scene.geometry(), rays, 1);
   s.rawMany = replayRays(scene.geometry(), rays, s.threads);
   return s;
@@ -136,11 +154,15 @@ MotionOverhead measureMotionOverhead(const Scene& moving, const SceneDescription
   m.spp = spp;
   m.timeSteps = moving.modelled().timeSteps;
   const Scene still(withoutMotion(description));
+  Fastest<RenderStats> asIs, stillAsIs, stillTimed;
   for (int round = 0; round < kRepeats; ++round) {  // taking turns, as in measureLimit
-    keepFastest(round, moving, spp, threads, false, m.moving, nullptr);
-    keepFastest(round, still, spp, threads, false, m.still, nullptr);
-    keepFastest(round, still, spp, threads, true, m.stillTimeSampled, nullptr);
+    renderTimed(asIs, moving, spp, threads);
+    renderTimed(stillAsIs, still, spp, threads);
+    renderTimed(stillTimed, still, spp, threads, true);
   }
+  m.moving = asIs.best;
+  m.still = stillAsIs.best;
+  m.stillTimeSampled = stillTimed.best;
   return m;
 }
 

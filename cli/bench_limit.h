@@ -10,8 +10,8 @@
 // same settings without the recorder give the tracer's rays/s; their ratio (tracer ÷ raw,
 // same mix) is the share of the tracer's time that is traversal.
 //
-// Thread scaling: a render (spp) and a replay (the rays of a captureSpp render) at 1 and at
-// N threads.
+// Thread scaling: a render (spp) and a replay of the limit's recorded rays at 1 and at N
+// threads.
 // Motion overhead: the moving scene against the same scene with every motion reduced to its
 // first keyframe (a static pose), and that static scene with time sampled anyway.
 // Timed comparisons run in 3 rounds in which the compared runs take turns (tracer and
@@ -60,17 +60,20 @@ struct LimitResult {
     return raw > 0.0 ? tracerRaysPerSecond() / raw : 0.0;
   }
 };
-LimitResult measureLimit(const Scene& scene, const std::string& name, int spp, int threads);
+// raysOut, if given, receives the recorded rays (for measureThreadScaling).
+LimitResult measureLimit(const Scene& scene, const std::string& name, int spp, int threads,
+                         std::vector<RecordedRay>* raysOut = nullptr);
 
 struct ScalingResult {
   glm::ivec2 resolution{0};  // px
   int threads = 0, spp = 0;
   RenderStats one, many;
   double cpuOne = 0.0, cpuMany = 0.0;  // process CPU seconds of each render
-  ReplayResult rawOne, rawMany;        // the rays of a captureSpp render
-  std::uint64_t dropped = 0;           // rays past the recorder's limit (not replayed)
+  ReplayResult rawOne, rawMany;        // the limit's recorded rays
 };
-ScalingResult measureThreadScaling(const Scene& scene, int spp, int captureSpp, int threads);
+// rays: those measureLimit recorded on this scene (raysOut).
+ScalingResult measureThreadScaling(const Scene& scene, int spp,
+                                   const std::vector<RecordedRay>& rays, int threads);
 
 // Every shape's and the camera's motion reduced to its first keyframe.
 SceneDescription withoutMotion(const SceneDescription& description);

@@ -98,9 +98,6 @@ std::string formatScaling(const std::string& scene, const ScalingResult& s) {
                 "raw replay, rays/s", formatRate(s.rawOne.raysPerSecond()).c_str(),
                 formatRate(s.rawMany.raysPerSecond()).c_str(), raw, 100.0 * raw / s.threads);
   out << line;
-  if (s.dropped > 0)
-    out << "  (" << s.dropped
-        << " rays past the recorder's limit were not recorded: the replay is a subset)\n";
   return out.str();
 }
 

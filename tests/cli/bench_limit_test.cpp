@@ -125,12 +125,14 @@ TEST(BenchLimit, TracerAndReplayTimeTheSameRaysOnePassPerRound) {
 
 TEST(BenchLimit, ThreadScalingReplaysTheRaysOfTheCaptureRender) {
   const Scene scene(suiteScene("cornell_box", {16, 16}));
-  const ScalingResult s = measureThreadScaling(scene, 4, 1, 2);
+  std::vector<RecordedRay> rays;
+  const LimitResult limit = measureLimit(scene, "cornell_box", 1, 2, &rays);
+  const ScalingResult s = measureThreadScaling(scene, 4, rays, 2);
   // The capture: the bench's render settings at 1 spp.
   const RenderResult capture = renderXyz(scene, benchRenderOptions(1, 1, 2, SamplerKind::kSobol));
   EXPECT_EQ(s.rawOne.rays, capture.stats.rays.total());
   EXPECT_EQ(s.rawMany.rays, s.rawOne.rays);
-  EXPECT_EQ(s.dropped, 0u);
+  EXPECT_EQ(limit.dropped, 0u);
   EXPECT_EQ(s.one.rays.total(), s.many.rays.total());  // the same render at 1 and 2 threads
   EXPECT_GT(s.one.rays.total(), s.rawOne.rays);        // 4 spp against the capture's 1
   EXPECT_NE(formatScaling("cornell_box", s).find("16x16"), std::string::npos);
