@@ -19,7 +19,7 @@
 //             seen at incidence θ, the slope x̃ along the azimuth of w has the CDF
 //               F(x̃) = (1 + erf x̃ + tanθ e^{−x̃²}/√π) / N,  N = 1 + erf(cotθ) + tanθ e^{−cot²θ}/√π
 //             on x̃ ≤ cotθ (the facets w can see), and ỹ across it is Gaussian (σ² = ½).
-//             G1/|cos θ| = 2 / (|wz| (1 + erf a) + √(αx² wx² + αy² wy²) e^{−a²}/√π)  (Beckmann)
+//             Beckmann's G1/|cos θ| = 1/(|cos θ| (1 + Λ)), Λ as above
 #include "integrator/microfacet.h"
 
 #include <algorithm>
@@ -58,15 +58,16 @@ glm::vec2 sampleBeckmannSlopes(float cosTheta, float sinTheta, glm::vec2 u) {
   const float norm = 1.0f + c + k * std::exp(-cotTheta * cotTheta);
   float lo = -1.0f, hi = c;
   float b = u0 * (1.0f + c) - 1.0f;
+  float x = erfInv(b);
   for (int i = 0; i < 24; ++i) {
-    const float x = erfInv(b);
     const float value = (1.0f + b + k * std::exp(-x * x)) / norm - u0;
     if (std::abs(value) < 1e-6f) break;
     (value > 0.0f ? hi : lo) = b;
     const float next = b - value * norm / (1.0f - x * tanTheta);
     b = next > lo && next < hi ? next : 0.5f * (lo + hi);
+    x = erfInv(b);
   }
-  return {std::min(erfInv(b), cotTheta), y};
+  return {std::min(x, cotTheta), y};
 }
 
 }  // namespace
@@ -170,19 +171,12 @@ float MicrofacetModel::pdf(const glm::vec3& wIn, const glm::vec3& wm) const {
   const glm::vec3 w = facingUp(wIn);
   const float wDotM = glm::dot(w, wm);
   if (!(wDotM > 0.0f)) return 0.0f;
-  // G1(w)/cos θ written without the division by cos θ (finite at grazing w);
-  // s = α(φ) sinθ.
-  const float s2 = alphaX_ * alphaX_ * w.x * w.x + alphaY_ * alphaY_ * w.y * w.y;
-  float g1OverCos;
-  if (distribution_ == MicrofacetDistribution::kGgx) {
-    g1OverCos = 2.0f / (w.z + std::sqrt(w.z * w.z + s2));
-  } else if (s2 > 0.0f) {
-    const double z = w.z, s = std::sqrt(static_cast<double>(s2)), a = z / s;
-    g1OverCos =
-        static_cast<float>(2.0 / (z * (1.0 + std::erf(a)) + s * std::exp(-a * a) / kSqrtPi));
-  } else {
-    g1OverCos = 1.0f / w.z;  // at the pole nothing is masked
-  }
+  // G1(w)/cos θ; GGX's written without the division by cos θ (finite at grazing w).
+  const float g1OverCos =
+      distribution_ == MicrofacetDistribution::kGgx
+          ? 2.0f / (w.z + std::sqrt(w.z * w.z + alphaX_ * alphaX_ * w.x * w.x +
+                                    alphaY_ * alphaY_ * w.y * w.y))
+          : 1.0f / (w.z * (1.0f + lambda(w)));
   if (!std::isfinite(g1OverCos)) return 0.0f;
   return g1OverCos * wDotM * d;
 }
@@ -193,8 +187,13 @@ MicrofacetModel::Reflection MicrofacetModel::reflection(const glm::vec3& wo, con
   if (!(woDotWm > 0.0f) || !(wm.z > 0.0f)) return {};
   const float d = D(wm);
   if (d == 0.0f) return {};
-  const float f = d * G(wo, wi, wm) / (4.0f * wo.z * wi.z);
-  const float p = pdf(wo, wm) / (4.0f * woDotWm);
+  // Λ(wo) once, for Smith's G and for the visible-normal pdf: pdf(wo, wm)/(4 wo·wm) =
+  // G1(wo) (wo·wm) D / (cos θo · 4 wo·wm) = D / (4 cos θo (1 + Λ(wo))).
+  const float lambdaO = lambda(wo);
+  const float g =
+      masking_ == MaskingModel::kSmith ? 1.0f / (1.0f + lambdaO + lambda(wi)) : G(wo, wi, wm);
+  const float f = d * g / (4.0f * wo.z * wi.z);
+  const float p = d / (4.0f * wo.z * (1.0f + lambdaO));
   if (!std::isfinite(f) || !std::isfinite(p)) return {};
   return {f, p};
 }
