@@ -17,10 +17,14 @@
 namespace camsim {
 namespace {
 
-// The texels the loader decoded, else (a description built in code) read now.
+// The image the loader decoded, else (a description built in code, or one whose images
+// were released) read now. Shared, never copied.
+template <typename T, typename Read>
+std::shared_ptr<const T> decodedOr(const std::shared_ptr<const T>& decoded, Read read) {
+  return decoded ? decoded : std::make_shared<const T>(read());
+}
 std::shared_ptr<const TextureImage> texelsOf(const TextureDescription& d) {
-  if (d.image) return d.image;
-  return std::make_shared<const TextureImage>(loadTextureImage(d.file, d.encoding));
+  return decodedOr(d.image, [&] { return loadTextureImage(d.file, d.encoding); });
 }
 
 }  // namespace
@@ -100,8 +104,9 @@ std::unique_ptr<Light> makeLight(const LightDescription& d) {
     case LightDescription::Kind::kDistant:
       return std::make_unique<DistantLight>(d.spectrum, d.direction, d.angularDiameter);
     case LightDescription::Kind::kEnvironment:
-      return std::make_unique<EnvironmentLight>(d.image ? *d.image : readExr(d.file).image,
-                                                d.spectrum, glm::mat3(d.worldFromLight));
+      return std::make_unique<EnvironmentLight>(
+          *decodedOr(d.image, [&] { return readExr(d.file).image; }), d.spectrum,
+          glm::mat3(d.worldFromLight));
   }
   CAMSIM_CHECK(false);
   return nullptr;

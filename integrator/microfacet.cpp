@@ -172,11 +172,10 @@ float MicrofacetModel::pdf(const glm::vec3& wIn, const glm::vec3& wm) const {
   const float wDotM = glm::dot(w, wm);
   if (!(wDotM > 0.0f)) return 0.0f;
   // G1(w)/cos θ; GGX's written without the division by cos θ (finite at grazing w).
-  const float g1OverCos =
-      distribution_ == MicrofacetDistribution::kGgx
-          ? 2.0f / (w.z + std::sqrt(w.z * w.z + alphaX_ * alphaX_ * w.x * w.x +
-                                    alphaY_ * alphaY_ * w.y * w.y))
-          : 1.0f / (w.z * (1.0f + lambda(w)));
+  const float g1OverCos = distribution_ == MicrofacetDistribution::kGgx
+                              ? 2.0f / (w.z + std::sqrt(w.z * w.z + alphaX_ * alphaX_ * w.x * w.x +
+                                                        alphaY_ * alphaY_ * w.y * w.y))
+                              : 1.0f / (w.z * (1.0f + lambda(w)));
   if (!std::isfinite(g1OverCos)) return 0.0f;
   return g1OverCos * wDotM * d;
 }
