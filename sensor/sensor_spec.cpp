@@ -286,15 +286,11 @@ SensorSpec loadSensorSpec(const std::string& presetOrPath, const fs::path& lutsD
   fs::path path(presetOrPath);
   const bool isPath = isSensorSpecPath(presetOrPath);
   if (!isPath) path = lutsDir / "sensors" / (presetOrPath + ".yaml");
-  const bool exists = isRegularFile(path);  // a directory would open and read as empty
-  std::ifstream in;
-  if (exists) in.open(path, std::ios::binary);
-  if (!in.is_open()) {
+  if (!isRegularFile(path)) {  // a directory would open and read as empty
     if (isPath)
       throw InputError(
           {path.string(), 0, 0}, "",
-          (exists ? "cannot read the sensor description '" : "no sensor description file '") +
-              path.string() + "'" + (exists ? "" : " (missing, or not a file)"));
+          "no sensor description file '" + path.string() + "' (missing, or not a file)");
     std::set<std::string> presets;
     std::error_code ec;
     for (const auto& entry : fs::directory_iterator(lutsDir / "sensors", ec))
@@ -306,6 +302,10 @@ SensorSpec loadSensorSpec(const std::string& presetOrPath, const fs::path& lutsD
                          "' (presets: " + (list.empty() ? "none found" : list) +
                          "; a file path needs a '/' or a .yaml extension)");
   }
+  std::ifstream in(path, std::ios::binary);
+  if (!in)
+    throw InputError({path.string(), 0, 0}, "",
+                     "cannot read the sensor description '" + path.string() + "'");
   std::ostringstream text;
   text << in.rdbuf();
   SensorSpec spec = parseSensorSpec(text.str(), path.string(), path.parent_path(), lutsDir);
