@@ -202,9 +202,7 @@ TEST(BenchLimit, TextureLoadUpliftsEveryTexelWithinItsStatedError) {
 int runBench(const std::string& args, const fs::path& logDir) {
   // No plot: CAMSIM_PYTHON names no interpreter (the plot script is the PtcBinary tests' kind
   // of concern; here only the numbers' files are checked).
-  return test::runCommand(
-             "CAMSIM_PYTHON=/nonexistent " + test::quote(CAMSIM_BINARY) + " bench " + args, logDir)
-      .exitCode;
+  return test::runCamsim("bench " + args, logDir, "CAMSIM_PYTHON=/nonexistent").exitCode;
 }
 
 TEST(BenchBinary, SmallRunWritesTablesAndCsvs) {

@@ -72,7 +72,7 @@ using test::TempDir;
 
 // `env camsim args` with stdout and stderr captured into files in logDir.
 RunResult camsim(const std::string& env, const std::string& args, const fs::path& logDir) {
-  return runCommand(env + " " + quote(CAMSIM_BINARY) + " " + args, logDir);
+  return test::runCamsim(args, logDir, env);
 }
 
 bool hasMatplotlib() {

@@ -94,7 +94,7 @@ RunResult runProgram(const std::string& program, const std::string& args, const 
 }
 
 RunResult camsim(const std::string& args, const fs::path& logDir) {
-  return runProgram(CAMSIM_BINARY, args, logDir);
+  return test::runCamsim(args, logDir);
 }
 
 std::vector<std::string> filesIn(const fs::path& dir) {

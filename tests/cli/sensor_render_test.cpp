@@ -112,10 +112,10 @@ TEST(SensorRender, BracketWritesOneFramePerStop) {
                 "noise: none, bracket_ev: [-1, 0, 1]}");
   scene.replace(scene.find("resolution: [256, 256]"), 22, "resolution: [32, 32]");
   test::writeFile(dir / "bracket.yaml", scene);
-  const test::RunResult r = test::runCommand(
-      test::quote(CAMSIM_BINARY) + " render " + test::quote((dir / "bracket.yaml").string()) +
-          " -o " + test::quote((dir / "out").string()) + " --spp 4",
-      dir);
+  const test::RunResult r =
+      test::runCamsim("render " + test::quote((dir / "bracket.yaml").string()) + " -o " +
+                          test::quote((dir / "out").string()) + " --spp 4",
+                      dir);
   ASSERT_EQ(r.exitCode, 0) << r.err;
   double previous = 0.0;
   for (const char* ev : {"-1", "+0", "+1"}) {

@@ -37,4 +37,11 @@ inline RunResult runCommand(const std::string& commandLine, const std::filesyste
   return r;
 }
 
+// The camsim binary under test (CAMSIM_BINARY, defined for every test target) with `args`,
+// after the environment assignments `env` ("NAME=value …", may be empty).
+inline RunResult runCamsim(const std::string& args, const std::filesystem::path& logDir,
+                           const std::string& env = "") {
+  return runCommand((env.empty() ? "" : env + " ") + quote(CAMSIM_BINARY) + " " + args, logDir);
+}
+
 }  // namespace camsim::test
