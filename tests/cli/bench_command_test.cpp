@@ -286,9 +286,15 @@ const char* kTinyScene =
     "  - {name: lamp, type: sphere, centre: [0, 2, -1], radius: 0.3, emission: {luminance: "
     "1000}}\n";
 
-ReferenceRequest tinyRequest(const fs::path& dir, const std::string& reflectance) {
+// The tiny scene with its grey material's reflectance set (a YAML value).
+std::string tinyScene(const std::string& reflectance) {
   std::string text = kTinyScene;
   text.replace(text.find("REFL"), 4, reflectance);
+  return text;
+}
+
+// The reference request for scene `text` in dir (loaded once, for the files it reads).
+ReferenceRequest requestFor(const fs::path& dir, const std::string& text) {
   ReferenceRequest r;
   r.name = "tiny";
   r.sceneText = text;
@@ -299,6 +305,10 @@ ReferenceRequest tinyRequest(const fs::path& dir, const std::string& reflectance
   r.spp = 4;
   r.threads = 1;
   return r;
+}
+
+ReferenceRequest tinyRequest(const fs::path& dir, const std::string& reflectance) {
+  return requestFor(dir, tinyScene(reflectance));
 }
 
 // obtainReference with the request's scene built from its text.
@@ -365,15 +375,9 @@ TEST(BenchReference, TheKeyFollowsATableFoundOnTheSpectraPath) {
   test::writeFile(dir.path() / "tri.obj", "v -1 -1 0\nv 1 -1 0\nv 0 1 0\nf 1 2 3\n");
   fs::create_directories(dir.path() / "tables");
   test::writeFile(dir.path() / "tables" / "grey.csv", "wavelength_nm,r\n360,0.5\n830,0.5\n");
-  const auto request = [&] {
-    std::string text = kTinyScene;
-    text.replace(text.find("REFL"), 4, "{csv: grey.csv}");
-    text.insert(text.find("render:"), "spectra_path: [tables]\n");
-    ReferenceRequest r = tinyRequest(dir.path(), "0.5");
-    r.sceneText = text;
-    r.inputFiles = loadSceneFromText(text, r.sceneFile, dir.path()).inputFiles;
-    return r;
-  };
+  std::string text = tinyScene("{csv: grey.csv}");
+  text.insert(text.find("render:"), "spectra_path: [tables]\n");
+  const auto request = [&] { return requestFor(dir.path(), text); };
   const ReferenceRequest before = request();
   ASSERT_EQ(before.inputFiles.size(), 2u);
   EXPECT_EQ(before.inputFiles[0].filename(), "grey.csv");  // materials are read first
