@@ -5,10 +5,14 @@
 namespace camsim {
 
 AreaLight::AreaLight(const Shape& shape, Spectrum radiance, bool twoSided)
-    : shape_(shape), radiance_(radiance), twoSided_(twoSided) {}
+    : shape_(shape),
+      radiance_(radiance),
+      twoSided_(twoSided),
+      front_(twoSided ? std::nullopt : shape.frontPlane()) {}
 
 std::optional<LightSample> AreaLight::sample(const glm::vec3& ref, float time, float u1,
                                              glm::vec2 u2, const SampledWavelengths& lambda) const {
+  if (front_ && front_->entirelyBehind(ref)) return std::nullopt;  // L would be 0
   const std::optional<ShapeSample> ss = shape_.sample(ref, u1, u2, time);
   if (!ss) return std::nullopt;
   const glm::vec3 toLight = ss->point.p - ref;

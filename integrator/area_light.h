@@ -7,6 +7,9 @@
 //
 //   L(p, ω) = L_e(λ) if ω is on the emitting side of n, else 0
 //   Φ = π · A · ∫ L_e dλ · (2 if two-sided)
+// A one-sided planar emitter (a lamp quad) rejects a reference point behind its plane
+// before sampling a point on it (FrontPlane, shape.h): the sample would have L = 0. Same
+// images; in the Cornell box a sixth of the light samples (points on the ceiling).
 #pragma once
 
 #include "integrator/light.h"
@@ -34,6 +37,7 @@ class AreaLight final : public Light {
   const Shape& shape_;
   Spectrum radiance_;
   bool twoSided_;
+  std::optional<FrontPlane> front_;  // one-sided planar emitters: skip points behind
 };
 
 }  // namespace camsim

@@ -12,6 +12,7 @@
 #pragma once
 
 #include <algorithm>
+#include <cmath>
 #include <optional>
 #include <vector>
 
@@ -105,6 +106,34 @@ struct ShapeSample {
   float pdf = 0.0f;  // solid angle (sr⁻¹) as seen from the reference point
 };
 
+// A static shape whose points all lie in one plane and whose normals n (as interaction()
+// and sample() give them) all point to the same side:
+//   |n·x − offset| ≤ spread (m) for every point x, all x within radius (m) of centre, and
+//   every normal within tilt (chord length of unit vectors, rounding included) of n.
+// entirelyBehind(ref) is true only if ref is strictly behind every point of the shape, so
+// that a one-sided emitter cannot light it (a ceiling behind a lamp); false when unsure:
+// for any point x and normal n' of the shape, n'·(ref − x) ≤ (n·ref − offset) + spread +
+// tilt·|ref − x| (+ rounding), with |ref − x| ≤ |ref − centre| + radius.
+struct FrontPlane {
+  glm::vec3 n{0.0f};
+  float offset = 0.0f;
+  glm::vec3 centre{0.0f};
+  float radius = 0.0f;
+  float spread = 0.0f;
+  float tilt = 0.0f;
+
+  bool entirelyBehind(const glm::vec3& ref) const {
+    const float d = glm::dot(n, ref) - offset;
+    if (!(d < 0.0f)) return false;
+    const glm::vec3 r = ref - centre;
+    const float distance = std::sqrt(glm::dot(r, r)) + radius;
+    // float rounding of the dot products: a few ulps of the coordinates involved
+    const float scale =
+        std::max({std::abs(ref.x), std::abs(ref.y), std::abs(ref.z)}) + std::abs(offset) + distance;
+    return d < -(spread + tilt * distance + 1e-6f * scale);
+  }
+};
+
 class Shape {
  public:
   virtual ~Shape() = default;
@@ -118,6 +147,9 @@ class Shape {
                                             float time) const = 0;
   // Solid-angle density of sample() producing `onShape` (at onShape.time) as seen from ref.
   virtual float pdf(const glm::vec3& ref, const SurfaceInteraction& onShape) const = 0;
+  // The plane of a static planar shape with one front side (see FrontPlane); empty when
+  // the shape is not one, or not provably so.
+  virtual std::optional<FrontPlane> frontPlane() const { return std::nullopt; }
 };
 
 // Solid-angle pdf of a point sampled by area with density pdfArea (m⁻²).

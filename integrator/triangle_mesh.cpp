@@ -1,5 +1,8 @@
 #include "integrator/triangle_mesh.h"
 
+#include <algorithm>
+#include <limits>
+
 #include "integrator/math.h"
 #include "sensor/check.h"
 
@@ -49,6 +52,53 @@ TriangleMesh::TriangleMesh(std::vector<glm::vec3> positions, std::vector<glm::ve
   }
   area_ = static_cast<float>(total);
   if (samplable_ && total > 0.0) areaDistribution_ = DiscreteDistribution(areas);
+  if (samplable_ && steps_.count == 1) frontPlane_ = findFrontPlane(positions_, normals_, indices_);
+}
+
+// The plane of a static mesh's triangles, if they all lie in one with the same front. Each
+// triangle that can be sampled (area > 0) must have a normal as pointOn computes it (float
+// cross product) within ≈ 1e-3 rad of the first one's, and no vertex normal on its back
+// side (so pointOn never flips n). The bounds are measured in double over the vertices.
+std::optional<FrontPlane> TriangleMesh::findFrontPlane(const std::vector<glm::vec3>& positions,
+                                                       const std::vector<glm::vec3>& normals,
+                                                       const std::vector<std::uint32_t>& indices) {
+  std::optional<glm::dvec3> planeNormal;
+  double maxChord = 0.0;
+  glm::dvec3 lo(std::numeric_limits<double>::infinity()), hi(-lo);
+  for (size_t k = 0; k < indices.size(); k += 3) {
+    const std::uint32_t i[3] = {indices[k], indices[k + 1], indices[k + 2]};
+    const glm::dvec3 p0(positions[i[0]]), p1(positions[i[1]]), p2(positions[i[2]]);
+    if (!(glm::length(glm::cross(p1 - p0, p2 - p0)) > 0.0)) continue;  // never sampled
+    const glm::vec3 cross =
+        glm::cross(positions[i[1]] - positions[i[0]], positions[i[2]] - positions[i[0]]);
+    if (!(glm::dot(cross, cross) > 0.0f)) return std::nullopt;  // pointOn would use +z
+    const glm::dvec3 n = glm::normalize(glm::dvec3(cross));
+    if (!planeNormal) planeNormal = n;
+    maxChord = std::max(maxChord, glm::length(n - *planeNormal));
+    if (maxChord > 1e-3) return std::nullopt;
+    for (const std::uint32_t v : i) {
+      if (!normals.empty() && !(glm::dot(glm::dvec3(normals[v]), n) > 0.0)) return std::nullopt;
+      lo = glm::min(lo, glm::dvec3(positions[v]));
+      hi = glm::max(hi, glm::dvec3(positions[v]));
+    }
+  }
+  if (!planeNormal) return std::nullopt;
+  const glm::dvec3 centre = 0.5 * (lo + hi), half = 0.5 * (hi - lo);
+  const double offset = glm::dot(*planeNormal, centre);
+  double spread = 0.0;
+  for (size_t k = 0; k < indices.size(); ++k) {
+    const glm::dvec3 p(positions[indices[k]]);
+    spread = std::max(spread, std::abs(glm::dot(*planeNormal, p) - offset));
+  }
+  FrontPlane plane;
+  plane.n = glm::vec3(*planeNormal);
+  plane.offset = static_cast<float>(offset);
+  plane.centre = glm::vec3(centre);
+  plane.radius = static_cast<float>(glm::length(half)) * (1.0f + 1e-6f);
+  plane.spread = static_cast<float>(spread) * (1.0f + 1e-6f);
+  // Twice the measured chord, plus float normalisation and the float plane normal.
+  plane.tilt = static_cast<float>(2.0 * maxChord + 1e-6);
+  return plane;
 }
 
 // Moving mesh: the instance transform at `time`.

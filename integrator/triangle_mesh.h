@@ -13,7 +13,8 @@
 //
 // Memory and speed: Embree traces the mesh's own position and index arrays (shared, see
 // EmbreeScene), so they are allocated with one spare element for Embree's 16-byte loads.
-// Only a mesh that a light samples (an emitter) keeps the per-triangle area distribution.
+// Only a mesh that a light samples (an emitter) keeps the per-triangle area distribution
+// and, if it is static, planar and one-sided, its FrontPlane (shape.h).
 // A static mesh (one time step) skips the time interpolation, and its area pdf is 1/area:
 // P(k)/area_k with P(k) = area_k/area.
 #pragma once
@@ -55,8 +56,13 @@ class TriangleMesh final : public Shape {
   std::optional<ShapeSample> sample(const glm::vec3& ref, float u1, glm::vec2 u2,
                                     float time) const override;
   float pdf(const glm::vec3& ref, const SurfaceInteraction& onShape) const override;
+  std::optional<FrontPlane> frontPlane() const override { return frontPlane_; }
 
  private:
+  static std::optional<FrontPlane> findFrontPlane(const std::vector<glm::vec3>& positions,
+                                                  const std::vector<glm::vec3>& normals,
+                                                  const std::vector<std::uint32_t>& indices);
+
   glm::mat4 transformAt(float time) const;
   // area: if given, receives the triangle's area at `time` (m²), computed anyway.
   SurfaceInteraction pointOn(size_t tri, float b1, float b2, float time,
@@ -73,6 +79,7 @@ class TriangleMesh final : public Shape {
   DiscreteDistribution areaDistribution_;  // empty unless samplable
   bool samplable_;
   float area_ = 0.0f;
+  std::optional<FrontPlane> frontPlane_;  // static planar meshes only
 };
 
 }  // namespace camsim

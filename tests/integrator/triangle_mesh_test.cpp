@@ -1,6 +1,7 @@
 // Tests for integrator/triangle_mesh.cpp: a moving, emitting mesh's light samples carry
 // the density pdf() gives the same point (sample() reuses the area pointOn computed; pdf()
-// computes it from the triangle at the point's time).
+// computes it from the triangle at the point's time); a planar emitter's front plane only
+// ever rejects reference points that every sampled point faces away from.
 #include "integrator/triangle_mesh.h"
 
 #include <gtest/gtest.h>
@@ -41,6 +42,90 @@ TEST(TriangleMesh, MovingEmitterSamplesCarryThePdfOfTheirPoint) {
     ++checked;
   }
   EXPECT_GT(checked, 1900);
+}
+
+TriangleMesh staticMesh(std::vector<glm::vec3> positions, std::vector<std::uint32_t> indices,
+                        std::vector<glm::vec3> normals = {}) {
+  return TriangleMesh(std::move(positions), std::move(normals), std::move(indices), TimeSteps{});
+}
+
+TEST(TriangleMesh, UnitQuadHasAFrontPlaneThatRejectsOnlyPointsBehindIt) {
+  const TriangleMesh quad =
+      staticMesh({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}}, {0, 1, 2, 0, 2, 3});
+  const std::optional<FrontPlane> plane = quad.frontPlane();
+  ASSERT_TRUE(plane);
+  EXPECT_NEAR(plane->n.z, 1.0f, 1e-7f);
+  EXPECT_NEAR(plane->offset, 0.0f, 1e-7f);
+  EXPECT_TRUE(plane->entirelyBehind({0.5f, 0.5f, -1.0f}));
+  EXPECT_TRUE(plane->entirelyBehind({50.0f, -20.0f, -0.01f}));  // behind, beside the quad
+  EXPECT_FALSE(plane->entirelyBehind({0.5f, 0.5f, 1.0f}));
+  EXPECT_FALSE(plane->entirelyBehind({2.0f, 2.0f, 0.0f}));    // in the plane
+  EXPECT_FALSE(plane->entirelyBehind({0.5f, 0.5f, -1e-7f}));  // within the tolerance
+}
+
+TEST(TriangleMesh, NoFrontPlaneUnlessPlanarStaticAndOneSided) {
+  // A tetrahedron: not planar.
+  EXPECT_FALSE(
+      staticMesh({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}}, {0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3})
+          .frontPlane());
+  // A folded quad (one corner lifted 1 cm).
+  EXPECT_FALSE(staticMesh({{0, 0, 0}, {1, 0, 0}, {1, 1, 0.01f}, {0, 1, 0}}, {0, 1, 2, 0, 2, 3})
+                   .frontPlane());
+  // Coplanar but one triangle wound the other way: two fronts.
+  EXPECT_FALSE(
+      staticMesh({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}}, {0, 1, 2, 0, 3, 2}).frontPlane());
+  // Vertex normals on the back side: pointOn flips n towards them; the plane is not claimed.
+  EXPECT_FALSE(staticMesh({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}}, {0, 1, 2, 0, 2, 3},
+                          std::vector<glm::vec3>(4, glm::vec3(0, 0, -1)))
+                   .frontPlane());
+  // Not sampled by any light: nothing computed.
+  EXPECT_FALSE(TriangleMesh({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, {}, {0, 1, 2}, TimeSteps{}, {},
+                            /*samplable=*/false)
+                   .frontPlane());
+  // Degenerate triangles are never sampled and do not count.
+  EXPECT_TRUE(
+      staticMesh({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {5, 5, 3}}, {0, 1, 2, 3, 3, 3}).frontPlane());
+}
+
+TEST(TriangleMesh, FrontPlaneNeverRejectsAPointASampleWouldLight) {
+  // A tilted fan of triangles 800 m from the origin (large coordinates, float rounding):
+  // wherever the plane says "behind", every sampled point's normal faces away from ref,
+  // as AreaLight::L would find; and it does say so for points clearly behind.
+  const glm::vec3 centre(800.0f, -300.0f, 450.0f);
+  const glm::vec3 n = glm::normalize(glm::vec3(0.3f, -0.8f, 0.52f));
+  const glm::vec3 s = glm::normalize(glm::cross(n, glm::vec3(0, 0, 1))), t = glm::cross(n, s);
+  std::vector<glm::vec3> positions{centre};
+  std::vector<std::uint32_t> indices;
+  for (int k = 0; k < 12; ++k) {
+    const float a = 0.5236f * static_cast<float>(k);
+    positions.push_back(centre + 2.0f * (std::cos(a) * s + std::sin(a) * t));
+    indices.insert(indices.end(), {0, static_cast<std::uint32_t>(1 + k),
+                                   static_cast<std::uint32_t>(1 + (k + 1) % 12)});
+  }
+  const TriangleMesh fan = staticMesh(positions, indices);
+  const std::optional<FrontPlane> plane = fan.frontPlane();
+  ASSERT_TRUE(plane);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> u01(0.0f, 1.0f), side(-20.0f, 20.0f);
+  int behind = 0;
+  for (int i = 0; i < 4000; ++i) {
+    // Reference points up to 20 m along the plane and within ±(10 µm…10 m) of it.
+    const float depth = std::pow(10.0f, -5.0f + 6.0f * u01(rng)) * (u01(rng) < 0.5f ? -1 : 1);
+    const glm::vec3 ref = centre + side(rng) * s + side(rng) * t + depth * n;
+    if (!plane->entirelyBehind(ref)) {
+      EXPECT_GT(depth, -0.1f) << "a point 0.1 m or more behind was not rejected";
+      continue;
+    }
+    ++behind;
+    EXPECT_LT(depth, 0.0f);
+    for (int j = 0; j < 20; ++j) {
+      const std::optional<ShapeSample> smp = fan.sample(ref, u01(rng), {u01(rng), u01(rng)}, 0);
+      if (smp) {
+        EXPECT_LE(glm::dot(smp->point.n, ref - smp->point.p), 0.0f);
+      }
+    }
+  }
+  EXPECT_GT(behind, 800);
 }
 
 }  // namespace
