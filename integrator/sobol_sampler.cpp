@@ -4,8 +4,7 @@ namespace camsim {
 
 void SobolSampler::startPixelSample(glm::ivec2 pixel, int sampleIndex) {
   if (pixel != pixel_) {  // consecutive samples share the pixel's key
-    pixelKey_ =
-        hashValues(seed_, static_cast<std::uint32_t>(pixel.x), static_cast<std::uint32_t>(pixel.y));
+    pixelKey_ = pixelKeyOf(seed_, pixel);
     pixel_ = pixel;
   }
   reversedIndex_ = sobol::reverseBits(static_cast<std::uint32_t>(sampleIndex));

@@ -78,11 +78,21 @@ class SobolSampler final : public Sampler {
 
   void startPixelSample(glm::ivec2 pixel, int sampleIndex) override;
   void setDimension(int dimension) override { dimension_ = dimension; }
-  float get1D() override { return first(dimensionKey(dimension_++)).x; }
+  float get1D() override { return number1D(pixelKey_, reversedIndex_, dimension_++); }
+  // The pixel's key and the number get1D() returns at `dimension` of the sample whose index
+  // bit-reversed is reversedIndex: the same code, for loops over many pixel samples at once
+  // (bench/sobol_lanes_bench.cpp).
+  static std::uint64_t pixelKeyOf(std::uint64_t seed, glm::ivec2 pixel) {
+    return hashValues(seed, static_cast<std::uint32_t>(pixel.x),
+                      static_cast<std::uint32_t>(pixel.y));
+  }
+  static float number1D(std::uint64_t pixelKey, std::uint32_t reversedIndex, int dimension) {
+    return first(dimensionKey(pixelKey, dimension), reversedIndex).x;
+  }
   glm::vec2 get2D() override {
-    const std::uint64_t key = dimensionKey(dimension_);
+    const std::uint64_t key = dimensionKey(pixelKey_, dimension_);
     dimension_ += 2;
-    const First f = first(key);
+    const First f = first(key, reversedIndex_);
     const auto seedY = static_cast<std::uint32_t>(mix64(key) >> 32);
     return {f.x, sobol::toUnit(sobol::reverseBits(
                      sobol::laineKarras(sobol::reversedDimension1(f.shuffled), seedY)))};
@@ -91,17 +101,17 @@ class SobolSampler final : public Sampler {
  private:
   // The pair's scramble seeds: one 64-bit mix of (pixel key, dimension) gives the index
   // shuffle's and x's 32-bit seeds; y's comes from a second mix.
-  std::uint64_t dimensionKey(int dimension) const {
-    return mix64(pixelKey_ ^ (static_cast<std::uint64_t>(dimension) * 0xd6e8feb86659fd93ull));
+  static std::uint64_t dimensionKey(std::uint64_t pixelKey, int dimension) {
+    return mix64(pixelKey ^ (static_cast<std::uint64_t>(dimension) * 0xd6e8feb86659fd93ull));
   }
   // The shuffled index and the pair's first coordinate x (all get1D needs).
   struct First {
     std::uint32_t shuffled;
     float x;
   };
-  First first(std::uint64_t key) const {
+  static First first(std::uint64_t key, std::uint32_t reversedIndex) {
     const std::uint32_t shuffled =
-        sobol::reverseBits(sobol::laineKarras(reversedIndex_, static_cast<std::uint32_t>(key)));
+        sobol::reverseBits(sobol::laineKarras(reversedIndex, static_cast<std::uint32_t>(key)));
     return {shuffled, sobol::toUnit(sobol::reverseBits(
                           sobol::laineKarras(shuffled, static_cast<std::uint32_t>(key >> 32))))};
   }

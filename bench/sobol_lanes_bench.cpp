@@ -1,0 +1,145 @@
+// sobol_lanes_bench: what drawing Sobol' numbers for many paths at once would save, the
+// first measurement behind docs/performance.md "Next: several paths per thread".
+//
+// The tracer draws its ≈ 20 numbers per pixel sample one at a time (SobolSampler::get1D/
+// get2D, inlined into the path loop): a dependent chain of 64-bit mixes, 32-bit multiplies
+// and bit reversals per number. A path loop that keeps several pixel samples in flight
+// would draw the same dimension for all of them in one plain loop, which the compiler can
+// vectorise. This program times both on the same numbers:
+//   one at a time  SobolSampler::startPixelSample + get1D, as the tracer does
+//   lanes          SobolSampler::number1D in a loop over pixel samples (same code), built
+//                  for the x86-64 baseline (SSE2), and for AVX2 where the CPU has it
+// and checks that every variant gives the same numbers bit for bit (error: 0 mismatches).
+//
+// usage: sobol_lanes_bench [--rounds N]   (default 64; prints ns per number, best of 5)
+#include <algorithm>
+#include <chrono>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "integrator/sobol_sampler.h"
+
+namespace {
+
+using camsim::SobolSampler;
+
+constexpr int kTile = 64;  // pixel samples: a 64 × 64 tile, 2 samples each
+constexpr int kSamples = 2;
+constexpr int kDimensions = 32;  // ≈ a path of four bounces
+constexpr std::uint64_t kSeed = 7;
+
+struct Lanes {
+  std::vector<std::uint64_t> pixelKeys;
+  std::vector<std::uint32_t> reversedIndices;
+};
+
+Lanes makeLanes() {
+  Lanes lanes;
+  for (int y = 0; y < kTile; ++y)
+    for (int x = 0; x < kTile; ++x)
+      for (int s = 0; s < kSamples; ++s) {
+        lanes.pixelKeys.push_back(SobolSampler::pixelKeyOf(kSeed, {x, y}));
+        lanes.reversedIndices.push_back(camsim::sobol::reverseBits(static_cast<std::uint32_t>(s)));
+      }
+  return lanes;
+}
+
+// out[d·n + i]: dimension d of pixel sample i.
+void oneAtATime(std::vector<float>& out) {
+  SobolSampler sampler(kSeed);
+  const size_t n = static_cast<size_t>(kTile * kTile * kSamples);
+  size_t i = 0;
+  for (int y = 0; y < kTile; ++y)
+    for (int x = 0; x < kTile; ++x)
+      for (int s = 0; s < kSamples; ++s, ++i) {
+        sampler.startPixelSample({x, y}, s);
+        for (int d = 0; d < kDimensions; ++d) out[static_cast<size_t>(d) * n + i] = sampler.get1D();
+      }
+}
+
+// The same dimension for every pixel sample: a loop the compiler can vectorise.
+void lanesBaseline(const Lanes& lanes, std::vector<float>& out) {
+  const size_t n = lanes.pixelKeys.size();
+  for (int d = 0; d < kDimensions; ++d) {
+    float* row = out.data() + static_cast<size_t>(d) * n;
+    for (size_t i = 0; i < n; ++i)
+      row[i] = SobolSampler::number1D(lanes.pixelKeys[i], lanes.reversedIndices[i], d);
+  }
+}
+
+__attribute__((target("avx2"))) void lanesAvx2(const Lanes& lanes, std::vector<float>& out) {
+  const size_t n = lanes.pixelKeys.size();
+  for (int d = 0; d < kDimensions; ++d) {
+    float* row = out.data() + static_cast<size_t>(d) * n;
+    for (size_t i = 0; i < n; ++i)
+      row[i] = SobolSampler::number1D(lanes.pixelKeys[i], lanes.reversedIndices[i], d);
+  }
+}
+
+template <typename F>
+double bestNsPerNumber(int rounds, F&& run) {
+  const double numbers = static_cast<double>(kTile * kTile * kSamples) * kDimensions * rounds;
+  double best = std::numeric_limits<double>::infinity();
+  for (int repeat = 0; repeat < 5; ++repeat) {
+    const auto start = std::chrono::steady_clock::now();
+    for (int r = 0; r < rounds; ++r) run();
+    const double s =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    best = std::min(best, s * 1e9 / numbers);
+  }
+  return best;
+}
+
+size_t mismatches(const std::vector<float>& a, const std::vector<float>& b) {
+  size_t count = 0;
+  for (size_t i = 0; i < a.size(); ++i)
+    if (std::memcmp(&a[i], &b[i], sizeof(float)) != 0) ++count;
+  return count;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  int rounds = 64;
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    if (arg == "--rounds" && i + 1 < argc) {
+      rounds = std::atoi(argv[++i]);
+    } else {
+      std::fprintf(stderr, "usage: sobol_lanes_bench [--rounds N]\n");
+      return 2;
+    }
+  }
+  if (rounds < 1) {
+    std::fprintf(stderr, "sobol_lanes_bench: --rounds must be a positive integer\n");
+    return 2;
+  }
+  const Lanes lanes = makeLanes();
+  const size_t total = lanes.pixelKeys.size() * kDimensions;
+  std::vector<float> reference(total), baseline(total), avx2(total);
+  oneAtATime(reference);
+  lanesBaseline(lanes, baseline);
+  const bool haveAvx2 = __builtin_cpu_supports("avx2");
+  if (haveAvx2) lanesAvx2(lanes, avx2);
+
+  const double tOne = bestNsPerNumber(rounds, [&] { oneAtATime(reference); });
+  const double tBase = bestNsPerNumber(rounds, [&] { lanesBaseline(lanes, baseline); });
+  std::printf("Sobol' numbers, %zu pixel samples x %d dimensions, best of 5 x %d rounds:\n",
+              lanes.pixelKeys.size(), kDimensions, rounds);
+  std::printf("  %-34s %6.2f ns/number  1.00x\n", "one at a time (the tracer's way)", tOne);
+  std::printf("  %-34s %6.2f ns/number  %.2fx  mismatches %zu\n", "lanes, x86-64 baseline (SSE2)",
+              tBase, tOne / tBase, mismatches(reference, baseline));
+  if (haveAvx2) {
+    const double tAvx = bestNsPerNumber(rounds, [&] { lanesAvx2(lanes, avx2); });
+    std::printf("  %-34s %6.2f ns/number  %.2fx  mismatches %zu\n", "lanes, AVX2", tAvx,
+                tOne / tAvx, mismatches(reference, avx2));
+  } else {
+    std::printf("  lanes, AVX2: this CPU has no AVX2\n");
+  }
+  return 0;
+}
