@@ -1,11 +1,14 @@
 // SobolSampler: every 2D pair of the first 2^m samples of a pixel — and of every aligned
 // block of 2^m samples, i.e. each pair is a (0, 2)-sequence — is a (0, m, 2)-net (one point
 // in every elementary interval), 1D slots are stratified, 1D and 2D results are
-// deterministic, and pixels/dimensions get independent scrambles.
+// deterministic, and pixels/dimensions get independent scrambles; drawing in AVX2 blocks
+// gives the numbers of drawing one at a time, bit for bit, whatever the order of draws.
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <cmath>
 #include <memory>
+#include <random>
 #include <set>
 #include <vector>
 
@@ -124,6 +127,42 @@ TEST(SobolSampler, IntegratesSmoothFunctionsAccurately) {
     worst = std::max(worst, std::abs(sum / 1024.0 - exact));
   }
   EXPECT_LT(worst, 0.002);
+}
+
+TEST(SobolSampler, BlocksGiveTheNumbersOfOneAtATime) {
+  SobolSampler blocks(11), single(11, SobolDraw::kOneAtATime);
+  EXPECT_FALSE(single.drawsBlocks());
+  if (!blocks.drawsBlocks()) GTEST_SKIP() << "this CPU has no AVX2: no blocks to compare";
+  // Random walks through the dimensions: 1D and 2D draws, jumps forwards and backwards
+  // across block boundaries, several samples of a pixel and a change of pixel.
+  std::mt19937 rng(5);
+  int compared = 0;
+  for (int pixelSample = 0; pixelSample < 400; ++pixelSample) {
+    const glm::ivec2 pixel(pixelSample / 7, 3);
+    const int index = pixelSample % 7;
+    blocks.startPixelSample(pixel, index);
+    single.startPixelSample(pixel, index);
+    for (int draw = 0; draw < 40; ++draw) {
+      const unsigned what = rng() % 8;
+      if (what == 0) {
+        const int d = static_cast<int>(rng() % 60);
+        blocks.setDimension(d);
+        single.setDimension(d);
+      } else if (what < 5) {
+        const float a = blocks.get1D(), b = single.get1D();
+        ASSERT_EQ(std::bit_cast<std::uint32_t>(a), std::bit_cast<std::uint32_t>(b))
+            << "pixel sample " << pixelSample << " draw " << draw;
+        ++compared;
+      } else {
+        const glm::vec2 a = blocks.get2D(), b = single.get2D();
+        ASSERT_EQ(std::bit_cast<std::uint32_t>(a.x), std::bit_cast<std::uint32_t>(b.x));
+        ASSERT_EQ(std::bit_cast<std::uint32_t>(a.y), std::bit_cast<std::uint32_t>(b.y))
+            << "pixel sample " << pixelSample << " draw " << draw;
+        compared += 2;
+      }
+    }
+  }
+  EXPECT_GT(compared, 15000);
 }
 
 }  // namespace
