@@ -12,6 +12,8 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
+#include "sensor/float_math.h"
+
 namespace camsim {
 
 inline constexpr float kPi = 3.14159265358979323846f;
@@ -89,8 +91,10 @@ inline glm::vec2 sampleUniformDiskConcentric(glm::vec2 u) {
   const bool xMajor = std::abs(o.x) > std::abs(o.y);
   const float r = xMajor ? o.x : o.y;
   const float ratio = (xMajor ? o.y : o.x) / r;
-  const float theta = xMajor ? (kPi / 4.0f) * ratio : kPi / 2.0f - (kPi / 4.0f) * ratio;
-  return r * glm::vec2(std::cos(theta), std::sin(theta));
+  // θ = (π/4)·ratio (x major) or π/2 − (π/4)·ratio (y major): sin and cos of (π/4)·ratio,
+  // swapped for the y-major wedges.
+  const SinCos sc = sinCosQuarterPi((kPi / 4.0f) * ratio);
+  return r * (xMajor ? glm::vec2(sc.cos, sc.sin) : glm::vec2(sc.sin, sc.cos));
 }
 
 // Cosine-weighted direction on the +z hemisphere; pdf = cosθ/π.

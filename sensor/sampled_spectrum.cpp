@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "sensor/float_math.h"
+
 namespace camsim {
 namespace {
 
@@ -41,11 +43,11 @@ struct VisibleSample {
   float lambda;  // nm
   float pdf;     // nm⁻¹
 };
-VisibleSample sampleVisibleWithPdf(float u) {
+[[gnu::always_inline]] inline VisibleSample sampleVisibleWithPdf(float u) {
   const VisibleConstants& c = visible();
   const float t = c.tanhLo + u * c.tanhRange;
   const float lambda = static_cast<float>(kCentre) +
-                       static_cast<float>(0.5 / kA) * std::log((1.0f + t) / (1.0f - t));
+                       static_cast<float>(0.5 / kA) * logOfNormal((1.0f + t) / (1.0f - t));
   return {std::clamp(lambda, static_cast<float>(kLambdaMinNm), static_cast<float>(kLambdaMaxNm)),
           c.pdfScale * ((1.0f - t) * (1.0f + t))};
 }

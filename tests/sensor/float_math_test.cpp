@@ -1,0 +1,58 @@
+// Tests for sensor/float_math.h against double-precision libm: logOfNormal over the whole
+// normal range (and densely where the wavelength sampler uses it), sinCosQuarterPi over
+// [−π/4, π/4]. Errors in units in the last place of the float result (ulp), with an
+// absolute floor where the result crosses zero (ln x near x = 1, sin x near 0).
+#include "sensor/float_math.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+namespace camsim {
+namespace {
+
+// |got − exact| in ulps of the float nearest to exact; below `floor` absolute counts as 0.
+double ulpError(float got, double exact, double floor) {
+  const double diff = std::abs(static_cast<double>(got) - exact);
+  if (diff <= floor) return 0.0;
+  const auto e = static_cast<float>(exact);
+  const double ulp = static_cast<double>(
+      std::nextafter(std::abs(e), std::numeric_limits<float>::infinity()) - std::abs(e));
+  return diff / ulp;
+}
+
+TEST(FloatMath, LogOfNormalIsWithinTwoUlpOfLibm) {
+  double worst = 0.0, worstAt = 0.0;
+  auto check = [&](float x) {
+    const double err = ulpError(logOfNormal(x), std::log(static_cast<double>(x)), 1.5e-7);
+    if (err > worst) {
+      worst = err;
+      worstAt = static_cast<double>(x);
+    }
+  };
+  for (float x = std::numeric_limits<float>::min(); x < 1e38f; x *= 1.001f) check(x);
+  for (int i = 0; i <= 2000000; ++i) check(0.05f + 100.0f * static_cast<float>(i) / 2e6f);
+  for (int i = -100000; i <= 100000; ++i) check(1.0f + static_cast<float>(i) * 1e-7f);
+  EXPECT_LE(worst, 2.0) << "at x = " << worstAt;
+  EXPECT_EQ(logOfNormal(1.0f), 0.0f);
+  EXPECT_NEAR(logOfNormal(2.0f), 0.69314718f, 1e-7f);
+}
+
+TEST(FloatMath, SinCosQuarterPiIsWithinTwoUlpOfLibm) {
+  double worstSin = 0.0, worstCos = 0.0;
+  const double quarterPi = M_PI / 4.0;
+  for (int i = -1000000; i <= 1000000; ++i) {
+    const auto x = static_cast<float>(quarterPi * i / 1e6);
+    const SinCos sc = sinCosQuarterPi(x);
+    worstSin = std::max(worstSin, ulpError(sc.sin, std::sin(static_cast<double>(x)), 0.0));
+    worstCos = std::max(worstCos, ulpError(sc.cos, std::cos(static_cast<double>(x)), 0.0));
+  }
+  EXPECT_LE(worstSin, 2.0);
+  EXPECT_LE(worstCos, 2.0);
+  EXPECT_EQ(sinCosQuarterPi(0.0f).sin, 0.0f);
+  EXPECT_EQ(sinCosQuarterPi(0.0f).cos, 1.0f);
+}
+
+}  // namespace
+}  // namespace camsim
