@@ -6,7 +6,9 @@
 // and bit reversals per number. A path loop that keeps several pixel samples in flight
 // would draw the same dimension for all of them in one plain loop, which the compiler can
 // vectorise. This program times both on the same numbers:
-//   one at a time  SobolSampler::startPixelSample + get1D, as the tracer does
+//   get1D          SobolSampler::startPixelSample + get1D, as the tracer draws them: one at
+//                  a time (SobolDraw::kOneAtATime), and by default (blocks of 8 dimensions
+//                  with AVX2 where the CPU has it)
 //   lanes          SobolSampler::number1D in a loop over pixel samples (same code), built
 //                  for the x86-64 baseline (SSE2), and for AVX2 where the CPU has it
 // and checks that every variant gives the same numbers bit for bit (error: 0 mismatches).
@@ -26,6 +28,7 @@
 
 namespace {
 
+using camsim::SobolDraw;
 using camsim::SobolSampler;
 
 constexpr int kTile = 64;  // pixel samples: a 64 × 64 tile, 2 samples each
@@ -49,9 +52,9 @@ Lanes makeLanes() {
   return lanes;
 }
 
-// out[d·n + i]: dimension d of pixel sample i.
-void oneAtATime(std::vector<float>& out) {
-  SobolSampler sampler(kSeed);
+// out[d·n + i]: dimension d of pixel sample i, drawn through the sampler's get1D.
+void drawn(SobolDraw draw, std::vector<float>& out) {
+  SobolSampler sampler(kSeed, draw);
   const size_t n = static_cast<size_t>(kTile * kTile * kSamples);
   size_t i = 0;
   for (int y = 0; y < kTile; ++y)
@@ -62,8 +65,9 @@ void oneAtATime(std::vector<float>& out) {
       }
 }
 
-// The same dimension for every pixel sample: a loop the compiler can vectorise.
-void lanesBaseline(const Lanes& lanes, std::vector<float>& out) {
+// The same dimension for every pixel sample: a loop the compiler can vectorise. Inlined
+// into each of the two builds below.
+inline void lanes(const Lanes& lanes, std::vector<float>& out) {
   const size_t n = lanes.pixelKeys.size();
   for (int d = 0; d < kDimensions; ++d) {
     float* row = out.data() + static_cast<size_t>(d) * n;
@@ -72,13 +76,12 @@ void lanesBaseline(const Lanes& lanes, std::vector<float>& out) {
   }
 }
 
-__attribute__((target("avx2"))) void lanesAvx2(const Lanes& lanes, std::vector<float>& out) {
-  const size_t n = lanes.pixelKeys.size();
-  for (int d = 0; d < kDimensions; ++d) {
-    float* row = out.data() + static_cast<size_t>(d) * n;
-    for (size_t i = 0; i < n; ++i)
-      row[i] = SobolSampler::number1D(lanes.pixelKeys[i], lanes.reversedIndices[i], d);
-  }
+void lanesBaseline(const Lanes& l, std::vector<float>& out) {
+  lanes(l, out);
+}
+
+__attribute__((target("avx2"))) void lanesAvx2(const Lanes& l, std::vector<float>& out) {
+  lanes(l, out);
 }
 
 template <typename F>
@@ -121,17 +124,23 @@ int main(int argc, char** argv) {
   }
   const Lanes lanes = makeLanes();
   const size_t total = lanes.pixelKeys.size() * kDimensions;
-  std::vector<float> reference(total), baseline(total), avx2(total);
-  oneAtATime(reference);
+  std::vector<float> reference(total), sampler(total), baseline(total), avx2(total);
+  drawn(SobolDraw::kOneAtATime, reference);
+  drawn(SobolDraw::kAuto, sampler);
   lanesBaseline(lanes, baseline);
   const bool haveAvx2 = __builtin_cpu_supports("avx2");
   if (haveAvx2) lanesAvx2(lanes, avx2);
 
-  const double tOne = bestNsPerNumber(rounds, [&] { oneAtATime(reference); });
+  const double tOne = bestNsPerNumber(rounds, [&] { drawn(SobolDraw::kOneAtATime, reference); });
+  const double tSampler = bestNsPerNumber(rounds, [&] { drawn(SobolDraw::kAuto, sampler); });
   const double tBase = bestNsPerNumber(rounds, [&] { lanesBaseline(lanes, baseline); });
   std::printf("Sobol' numbers, %zu pixel samples x %d dimensions, best of 5 x %d rounds:\n",
               lanes.pixelKeys.size(), kDimensions, rounds);
-  std::printf("  %-34s %6.2f ns/number  1.00x\n", "one at a time (the tracer's way)", tOne);
+  std::printf("  %-34s %6.2f ns/number  1.00x\n", "get1D, one at a time", tOne);
+  std::printf("  %-34s %6.2f ns/number  %.2fx  mismatches %zu\n",
+              SobolSampler(kSeed).drawsBlocks() ? "get1D, AVX2 blocks of 8 dimensions"
+                                                : "get1D, default (no AVX2: one at a time)",
+              tSampler, tOne / tSampler, mismatches(reference, sampler));
   std::printf("  %-34s %6.2f ns/number  %.2fx  mismatches %zu\n", "lanes, x86-64 baseline (SSE2)",
               tBase, tOne / tBase, mismatches(reference, baseline));
   if (haveAvx2) {
