@@ -29,11 +29,25 @@ std::shared_ptr<const TextureImage> texelsOf(const TextureDescription& d) {
 
 }  // namespace
 
-std::unique_ptr<SpectrumTexture> makeSpectrumTexture(const TextureDescription& d) {
+std::shared_ptr<const UpliftedTexels> TextureCache::uplifted(const TextureDescription& d) {
+  CAMSIM_CHECK(d.kind == TextureDescription::Kind::kImage);
+  const auto upliftNow = [&] {
+    return std::make_shared<const UpliftedTexels>(upliftTexels(*texelsOf(d)));
+  };
+  if (d.file.empty()) return upliftNow();  // built in code: no name to share it by
+  std::shared_ptr<const UpliftedTexels>& entry = uplifted_[{d.file.string(), d.encoding}];
+  if (!entry) entry = upliftNow();
+  return entry;
+}
+
+std::unique_ptr<SpectrumTexture> makeSpectrumTexture(const TextureDescription& d,
+                                                     TextureCache* cache) {
   switch (d.kind) {
     case TextureDescription::Kind::kConstant:
       return std::make_unique<ConstantSpectrumTexture>(d.value);
     case TextureDescription::Kind::kImage:
+      if (cache)
+        return std::make_unique<ImageSpectrumTexture>(cache->uplifted(d), d.uvScale, d.uvOffset);
       return std::make_unique<ImageSpectrumTexture>(*texelsOf(d), d.uvScale, d.uvOffset);
     case TextureDescription::Kind::kCheckerboard:
       return std::make_unique<CheckerboardSpectrumTexture>(d.checkerA, d.checkerB, d.checks,
@@ -58,10 +72,10 @@ std::unique_ptr<FloatTexture> makeFloatTexture(const TextureDescription& d) {
   return nullptr;
 }
 
-std::unique_ptr<Material> makeMaterial(const MaterialDescription& d) {
+std::unique_ptr<Material> makeMaterial(const MaterialDescription& d, TextureCache* cache) {
   switch (d.type) {
     case MaterialDescription::Type::kDiffuse:
-      return std::make_unique<DiffuseMaterial>(makeSpectrumTexture(d.reflectance));
+      return std::make_unique<DiffuseMaterial>(makeSpectrumTexture(d.reflectance, cache));
     case MaterialDescription::Type::kDielectric:
       return std::make_unique<DielectricMaterial>(d.eta, makeFloatTexture(d.roughness),
                                                   d.anisotropy, d.distribution, d.masking);
@@ -74,14 +88,14 @@ std::unique_ptr<Material> makeMaterial(const MaterialDescription& d) {
       p.fresnel = d.fresnel;
       p.eta = d.eta;
       p.k = d.k;
-      if (d.fresnel == FresnelModel::kSchlick) p.r0 = makeSpectrumTexture(d.reflectance);
+      if (d.fresnel == FresnelModel::kSchlick) p.r0 = makeSpectrumTexture(d.reflectance, cache);
       return std::make_unique<ConductorMaterial>(std::move(p));
     }
     case MaterialDescription::Type::kMirror:
-      return std::make_unique<MirrorMaterial>(makeSpectrumTexture(d.reflectance));
+      return std::make_unique<MirrorMaterial>(makeSpectrumTexture(d.reflectance, cache));
     case MaterialDescription::Type::kPlastic: {
       PlasticParameters p;
-      p.reflectance = makeSpectrumTexture(d.reflectance);
+      p.reflectance = makeSpectrumTexture(d.reflectance, cache);
       p.roughness = makeFloatTexture(d.roughness);
       p.specularWeight = d.specularWeight;
       p.anisotropy = d.anisotropy;

@@ -176,13 +176,14 @@ TexelFootprint bilinearFootprint(glm::vec2 uv, int width, int height) {
   return f;
 }
 
-ImageSpectrumTexture::ImageSpectrumTexture(const TextureImage& image, glm::vec2 uvScale,
-                                           glm::vec2 uvOffset)
-    : width_(image.width), height_(image.height), scale_(uvScale), offset_(uvOffset) {
-  CAMSIM_CHECK(width_ > 0 && height_ > 0 && (image.channels == 1 || image.channels == 3));
-  const size_t texels = static_cast<size_t>(width_) * static_cast<size_t>(height_);
+UpliftedTexels upliftTexels(const TextureImage& image) {
+  CAMSIM_CHECK(image.width > 0 && image.height > 0 && (image.channels == 1 || image.channels == 3));
+  UpliftedTexels out;
+  out.width = image.width;
+  out.height = image.height;
+  const size_t texels = static_cast<size_t>(image.width) * static_cast<size_t>(image.height);
   CAMSIM_CHECK(image.values.size() == texels * static_cast<size_t>(image.channels));
-  coefficients_.assign(texels, SigmoidCoefficients{});
+  out.coefficients.assign(texels, SigmoidCoefficients{});
   // Each distinct colour is fitted once: texels sorted by their clamped RGB (bit patterns of
   // non-negative floats order like the values), the distinct colours fitted in parallel.
   const size_t n = static_cast<size_t>(image.channels);
@@ -209,18 +210,31 @@ ImageSpectrumTexture::ImageSpectrumTexture(const TextureImage& image, glm::vec2 
                               std::bit_cast<float>(bits[2])));
     maxima[d] = maxOverWavelength(p);
     for (size_t k = firsts[d]; k < firsts[d + 1]; ++k)
-      coefficients_[keys[k].texel] = SigmoidCoefficients::from(p);
+      out.coefficients[keys[k].texel] = SigmoidCoefficients::from(p);
   });
-  maxValue_ = *std::max_element(maxima.begin(), maxima.end());
+  out.maxValue = *std::max_element(maxima.begin(), maxima.end());
+  return out;
+}
+
+ImageSpectrumTexture::ImageSpectrumTexture(const TextureImage& image, glm::vec2 uvScale,
+                                           glm::vec2 uvOffset)
+    : ImageSpectrumTexture(std::make_shared<const UpliftedTexels>(upliftTexels(image)), uvScale,
+                           uvOffset) {}
+
+ImageSpectrumTexture::ImageSpectrumTexture(std::shared_ptr<const UpliftedTexels> texels,
+                                           glm::vec2 uvScale, glm::vec2 uvOffset)
+    : texels_(std::move(texels)), scale_(uvScale), offset_(uvOffset) {
+  CAMSIM_CHECK(texels_ && texels_->width > 0 && texels_->height > 0);
 }
 
 SampledSpectrum ImageSpectrumTexture::evaluate(glm::vec2 uv,
                                                const SampledWavelengths& lambda) const {
-  const TexelFootprint f = bilinearFootprint(transformUv(uv, scale_, offset_), width_, height_);
+  const TexelFootprint f =
+      bilinearFootprint(transformUv(uv, scale_, offset_), texels_->width, texels_->height);
   SampledSpectrum out;
   for (int k = 0; k < 4; ++k) {
     if (f.weight[static_cast<size_t>(k)] == 0.0f) continue;
-    const SigmoidCoefficients& c = coefficients_[f.texel[static_cast<size_t>(k)]];
+    const SigmoidCoefficients& c = texels_->coefficients[f.texel[static_cast<size_t>(k)]];
     for (int i = 0; i < kWavelengthSamples; ++i)
       out[i] += f.weight[static_cast<size_t>(k)] * c(lambda[i]);
   }
@@ -228,9 +242,9 @@ SampledSpectrum ImageSpectrumTexture::evaluate(glm::vec2 uv,
 }
 
 float ImageSpectrumTexture::texelValue(int x, int y, float lambdaNm) const {
-  CAMSIM_CHECK(x >= 0 && x < width_ && y >= 0 && y < height_);
-  return coefficients_[static_cast<size_t>(y) * static_cast<size_t>(width_) +
-                       static_cast<size_t>(x)](lambdaNm);
+  CAMSIM_CHECK(x >= 0 && x < texels_->width && y >= 0 && y < texels_->height);
+  return texels_->coefficients[static_cast<size_t>(y) * static_cast<size_t>(texels_->width) +
+                               static_cast<size_t>(x)](lambdaNm);
 }
 
 ImageFloatTexture::ImageFloatTexture(const TextureImage& image, glm::vec2 uvScale,

@@ -18,6 +18,8 @@
 // Reflectance (ImageSpectrumTexture): RGB (grey: r = g = b) clamped to [0, 1]; every texel is
 // uplifted once, at load, to a Jakob–Hanika sigmoid polynomial (integrator/reflectance_uplift.h)
 //   ρ_texel(λ) = S(c₀ t² + c₁ t + c₂),  t = (λ − 360 nm)/470 nm,   in (0, 1), smooth
+// (UpliftedTexels; the Scene's materials share one per file and encoding: TextureCache in
+// integrator/factory.h).
 // Scalar (ImageFloatTexture): the grey value, or the mean of R, G, B; negative or NaN → 0.
 //
 // Addressing: texel (x, y) of a w × h image, row y = 0 at the TOP of the picture, has its
@@ -33,6 +35,7 @@
 #include <array>
 #include <cstdint>
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -67,19 +70,31 @@ struct TexelFootprint {
 };
 TexelFootprint bilinearFootprint(glm::vec2 uv, int width, int height);
 
+// A reflectance image uplifted to spectra: one sigmoid polynomial per texel (each distinct
+// colour fitted once) and the largest reflectance over texels and wavelengths. Several
+// textures of one image (other uv transforms, other materials) can share it.
+struct UpliftedTexels {
+  int width = 0;
+  int height = 0;
+  std::vector<SigmoidCoefficients> coefficients;  // width·height, as the image's texels
+  double maxValue = 0.0;
+};
+UpliftedTexels upliftTexels(const TextureImage& image);
+
 class ImageSpectrumTexture final : public SpectrumTexture {
  public:
   ImageSpectrumTexture(const TextureImage& image, glm::vec2 uvScale, glm::vec2 uvOffset);
+  ImageSpectrumTexture(std::shared_ptr<const UpliftedTexels> texels, glm::vec2 uvScale,
+                       glm::vec2 uvOffset);
   SampledSpectrum evaluate(glm::vec2 uv, const SampledWavelengths& lambda) const override;
-  double maxValue() const override { return maxValue_; }
+  double maxValue() const override { return texels_->maxValue; }
   // The texel's fitted reflectance at λ (x, y as in the image, row 0 at the top).
   float texelValue(int x, int y, float lambdaNm) const;
+  const std::shared_ptr<const UpliftedTexels>& texels() const { return texels_; }
 
  private:
-  int width_, height_;
+  std::shared_ptr<const UpliftedTexels> texels_;
   glm::vec2 scale_, offset_;
-  std::vector<SigmoidCoefficients> coefficients_;  // per texel
-  double maxValue_ = 0.0;
 };
 
 class ImageFloatTexture final : public FloatTexture {

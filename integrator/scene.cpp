@@ -95,7 +95,8 @@ Scene::Scene(const SceneDescription& d) : settings_(d.render) {
   modelled_.cameraMoves = camera_->moves(exposureStart_, exposureEnd_);
 
   materials_.push_back(std::make_unique<DiffuseMaterial>(Spectrum::constant(0.0)));  // black
-  for (const MaterialDescription& m : d.materials) materials_.push_back(makeMaterial(m));
+  TextureCache textures;  // a texture named by several materials is uplifted once
+  for (const MaterialDescription& m : d.materials) materials_.push_back(makeMaterial(m, &textures));
 
   std::vector<double> powers;
   for (const ShapeDescription& s : d.shapes) {
