@@ -11,10 +11,7 @@ template <int N>
 void fillLanes(std::uint64_t pixelKey, std::uint32_t reversedIndex, int firstDimension, float* x,
                float* y) {
   std::uint64_t keys[N];
-  for (int i = 0; i < N; ++i) {
-    const auto d = static_cast<std::uint64_t>(firstDimension + i);
-    keys[i] = mix64(pixelKey ^ (d * 0xd6e8feb86659fd93ull));
-  }
+  for (int i = 0; i < N; ++i) keys[i] = SobolSampler::dimensionKey(pixelKey, firstDimension + i);
   for (int i = 0; i < N; ++i) {
     const glm::vec2 p = SobolSampler::pair(keys[i], reversedIndex);
     x[i] = p.x;

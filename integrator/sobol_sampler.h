@@ -119,6 +119,11 @@ class SobolSampler final : public Sampler {
   static float number1D(std::uint64_t pixelKey, std::uint32_t reversedIndex, int dimension) {
     return first(dimensionKey(pixelKey, dimension), reversedIndex).x;
   }
+  // The pair's scramble seeds: one 64-bit mix of (pixel key, dimension) gives the index
+  // shuffle's and x's 32-bit seeds; y's comes from a second mix.
+  static std::uint64_t dimensionKey(std::uint64_t pixelKey, int dimension) {
+    return mix64(pixelKey ^ (static_cast<std::uint64_t>(dimension) * 0xd6e8feb86659fd93ull));
+  }
   // What get2D() returns for a dimension whose key is `key`.
   static glm::vec2 pair(std::uint64_t key, std::uint32_t reversedIndex) {
     const First f = first(key, reversedIndex);
@@ -128,11 +133,6 @@ class SobolSampler final : public Sampler {
   }
 
  private:
-  // The pair's scramble seeds: one 64-bit mix of (pixel key, dimension) gives the index
-  // shuffle's and x's 32-bit seeds; y's comes from a second mix.
-  static std::uint64_t dimensionKey(std::uint64_t pixelKey, int dimension) {
-    return mix64(pixelKey ^ (static_cast<std::uint64_t>(dimension) * 0xd6e8feb86659fd93ull));
-  }
   // The shuffled index and the pair's first coordinate x (all get1D needs).
   struct First {
     std::uint32_t shuffled;
