@@ -31,13 +31,22 @@ std::shared_ptr<const TextureImage> texelsOf(const TextureDescription& d) {
 
 std::shared_ptr<const UpliftedTexels> TextureCache::uplifted(const TextureDescription& d) {
   CAMSIM_CHECK(d.kind == TextureDescription::Kind::kImage);
+  const std::shared_ptr<const TextureImage> image = texelsOf(d);
   const auto upliftNow = [&] {
-    return std::make_shared<const UpliftedTexels>(upliftTexels(*texelsOf(d)));
+    return std::make_shared<const UpliftedTexels>(upliftTexels(*image));
   };
   if (d.file.empty()) return upliftNow();  // built in code: no name to share it by
-  std::shared_ptr<const UpliftedTexels>& entry = uplifted_[{d.file.string(), d.encoding}];
-  if (!entry) entry = upliftNow();
-  return entry;
+  Entry& entry = entries_[{d.file.string(), d.encoding}];
+  if (!entry.texels) {
+    entry = {image, upliftNow()};
+    return entry.texels;
+  }
+  // The loader decodes a file once per material naming it: equal texels, other pointers.
+  const bool same =
+      entry.image == image ||
+      (entry.image->width == image->width && entry.image->height == image->height &&
+       entry.image->channels == image->channels && entry.image->values == image->values);
+  return same ? entry.texels : upliftNow();
 }
 
 std::unique_ptr<SpectrumTexture> makeSpectrumTexture(const TextureDescription& d,

@@ -16,20 +16,26 @@
 
 namespace camsim {
 
+struct TextureImage;
 struct UpliftedTexels;
 
 // Reflectance images uplifted once per (file, encoding) while a Scene builds its materials:
 // materials and uv transforms naming the same texture share one set of texels (the uplift
-// costs ≈ 2 µs of CPU per distinct colour; see integrator/reflectance_uplift.h).
+// costs ≈ 2 µs of CPU per distinct colour; see integrator/reflectance_uplift.h). A
+// description whose decoded texels differ from the cached ones under the same name (built
+// in code) gets an uplift of its own; so does one without a file name.
 class TextureCache {
  public:
   // The texels of an image texture's description (its decoded image, or read now).
   std::shared_ptr<const UpliftedTexels> uplifted(const TextureDescription& d);
-  size_t size() const { return uplifted_.size(); }
+  size_t size() const { return entries_.size(); }
 
  private:
-  std::map<std::pair<std::string, TextureEncoding>, std::shared_ptr<const UpliftedTexels>>
-      uplifted_;
+  struct Entry {
+    std::shared_ptr<const TextureImage> image;  // what was uplifted
+    std::shared_ptr<const UpliftedTexels> texels;
+  };
+  std::map<std::pair<std::string, TextureEncoding>, Entry> entries_;
 };
 
 // cache: shared uplifts across calls (nullptr: each image texture uplifts its own).

@@ -1,7 +1,5 @@
 #include "integrator/sobol_sampler.h"
 
-#include <limits>
-
 namespace camsim {
 namespace {
 
@@ -28,7 +26,9 @@ __attribute__((target("avx2"))) void fillLanesAvx2(std::uint64_t pixelKey,
 }  // namespace
 
 SobolSampler::SobolSampler(std::uint64_t seed, SobolDraw draw)
-    : seed_(seed), blocks_(draw == SobolDraw::kAuto && __builtin_cpu_supports("avx2")) {}
+    : seed_(seed), avx2_(__builtin_cpu_supports("avx2")) {
+  blocks_ = draw == SobolDraw::kBlocks || (draw == SobolDraw::kAuto && avx2_);
+}
 
 void SobolSampler::startPixelSample(glm::ivec2 pixel, int sampleIndex) {
   if (pixel != pixel_) {  // consecutive samples share the pixel's key
@@ -37,12 +37,15 @@ void SobolSampler::startPixelSample(glm::ivec2 pixel, int sampleIndex) {
   }
   reversedIndex_ = sobol::reverseBits(static_cast<std::uint32_t>(sampleIndex));
   dimension_ = 0;
-  blockStart_ = std::numeric_limits<int>::min() / 2;  // no block
+  blockStart_ = kNoBlock;
 }
 
 void SobolSampler::fillBlock() {
   blockStart_ = dimension_;
-  fillLanesAvx2(pixelKey_, reversedIndex_, dimension_, x_, y_);
+  if (avx2_)
+    fillLanesAvx2(pixelKey_, reversedIndex_, dimension_, x_, y_);
+  else
+    fillLanes<kBlock>(pixelKey_, reversedIndex_, dimension_, x_, y_);
 }
 
 }  // namespace camsim

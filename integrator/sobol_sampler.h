@@ -22,6 +22,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 
 #include "integrator/sampler.h"
 
@@ -67,11 +68,13 @@ inline float toUnit(std::uint32_t x) {
 
 }  // namespace sobol
 
-// How a SobolSampler computes its numbers; both give the same numbers, bit for bit.
+// How a SobolSampler computes its numbers; all give the same numbers, bit for bit.
 //   kAuto        blocks of kBlock dimensions at a time with AVX2 where the CPU has it,
 //                else kOneAtATime
 //   kOneAtATime  each number when it is drawn
-enum class SobolDraw { kAuto, kOneAtATime };
+//   kBlocks      blocks always, with AVX2 where the CPU has it (tests the block logic on
+//                any CPU)
+enum class SobolDraw { kAuto, kOneAtATime, kBlocks };
 
 // get1D/get2D are defined here so that the render loop, which is compiled for this final
 // class (see render.cpp), inlines them. With the reversals folded:
@@ -147,7 +150,8 @@ class SobolSampler final : public Sampler {
   // The slot of dimension_ in the current block, after filling a new block from dimension_
   // if it is not in it.
   int blockSlot() {
-    const unsigned slot = static_cast<unsigned>(dimension_ - blockStart_);
+    // unsigned: wraps instead of overflowing for dimensions below the block or far above
+    const unsigned slot = static_cast<unsigned>(dimension_) - static_cast<unsigned>(blockStart_);
     if (slot < static_cast<unsigned>(kBlock)) return static_cast<int>(slot);
     fillBlock();
     return 0;
@@ -159,8 +163,11 @@ class SobolSampler final : public Sampler {
   glm::ivec2 pixel_{-1};             // no pixel yet (pixels are never negative)
   std::uint32_t reversedIndex_ = 0;  // the sample index, bit-reversed
   int dimension_ = 0;
+  static constexpr int kNoBlock = std::numeric_limits<int>::min() / 2;  // far from any dimension
+
   bool blocks_ = false;
-  int blockStart_ = 0;  // first dimension of x_, y_; none valid when dimension_ − it ≥ kBlock
+  bool avx2_ = false;
+  int blockStart_ = kNoBlock;  // first dimension of x_, y_
   float x_[kBlock] = {}, y_[kBlock] = {};
 };
 

@@ -57,8 +57,8 @@ TriangleMesh::TriangleMesh(std::vector<glm::vec3> positions, std::vector<glm::ve
 
 // The plane of a static mesh's triangles, if they all lie in one with the same front. Each
 // triangle that can be sampled (area > 0) must have a normal as pointOn computes it (float
-// cross product) within ≈ 1e-3 rad of the first one's, and no vertex normal on its back
-// side (so pointOn never flips n). The bounds are measured in double over the vertices.
+// cross product) within ≈ 1e-3 rad of the first one's, and every vertex normal clearly on
+// its front side (so pointOn never flips n). The bounds are measured in double over the vertices.
 std::optional<FrontPlane> TriangleMesh::findFrontPlane(const std::vector<glm::vec3>& positions,
                                                        const std::vector<glm::vec3>& normals,
                                                        const std::vector<std::uint32_t>& indices) {
@@ -74,10 +74,16 @@ std::optional<FrontPlane> TriangleMesh::findFrontPlane(const std::vector<glm::ve
     if (!(glm::dot(cross, cross) > 0.0f)) return std::nullopt;  // pointOn would use +z
     const glm::dvec3 n = glm::normalize(glm::dvec3(cross));
     if (!planeNormal) planeNormal = n;
-    maxChord = std::max(maxChord, glm::length(n - *planeNormal));
-    if (maxChord > 1e-3) return std::nullopt;
+    const double chord = glm::length(n - *planeNormal);
+    if (!(chord <= 1e-3)) return std::nullopt;  // also NaN (an overflowing cross product)
+    maxChord = std::max(maxChord, chord);
     for (const std::uint32_t v : i) {
-      if (!normals.empty() && !(glm::dot(glm::dvec3(normals[v]), n) > 0.0)) return std::nullopt;
+      // Vertex normals clearly on the front (cos > 1e-3): pointOn's float n and interpolated
+      // ns (barycentrics a rounding off [0, 1]) then never disagree in sign.
+      if (!normals.empty()) {
+        const glm::dvec3 nv(normals[v]);
+        if (!(glm::dot(nv, n) > 1e-3 * glm::length(nv))) return std::nullopt;
+      }
       lo = glm::min(lo, glm::dvec3(positions[v]));
       hi = glm::max(hi, glm::dvec3(positions[v]));
     }

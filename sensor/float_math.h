@@ -9,7 +9,7 @@
 //                       (truncation ≤ 2 s¹¹/11 ≈ 7e-10); measured within 1.07 ulp of ln x
 //                       (libm's logf: 0.50), or 1.5e-7 absolute near x = 1
 //   sinCosQuarterPi(x)  sin x and cos x for |x| ≤ π/4: Taylor polynomials to x⁹ and x¹⁰
-//                       (truncation ≤ 3e-10 and 2.5e-9); measured within 1.12 ulp
+//                       (truncation ≤ (π/4)¹¹/11! ≈ 1.8e-9 and (π/4)¹²/12! ≈ 1.2e-10); measured within 1.12 ulp
 //                       (libm's sinf/cosf: 0.56 and 0.50)
 #pragma once
 

@@ -1,7 +1,7 @@
 // Tests for integrator/factory.cpp: a TextureCache uplifts a reflectance image once per
 // (file, encoding), so that materials and uv transforms naming the same texture share its
 // texels; another encoding of the same file is another uplift; without a cache each texture
-// uplifts its own, to the same values.
+// uplifts its own, to the same values; texels that differ under one name are not shared.
 #include "integrator/factory.h"
 
 #include <gtest/gtest.h>
@@ -13,10 +13,8 @@
 namespace camsim {
 namespace {
 
-const ImageSpectrumTexture& asImage(const std::unique_ptr<SpectrumTexture>& t) {
-  const auto* image = dynamic_cast<const ImageSpectrumTexture*>(t.get());
-  EXPECT_NE(image, nullptr);
-  return *image;
+const ImageSpectrumTexture* asImage(const std::unique_ptr<SpectrumTexture>& t) {
+  return dynamic_cast<const ImageSpectrumTexture*>(t.get());
 }
 
 TEST(TextureCache, OneUpliftPerFileAndEncoding) {
@@ -37,8 +35,10 @@ TEST(TextureCache, OneUpliftPerFileAndEncoding) {
   const auto a = makeSpectrumTexture(d, &cache);
   const auto b = makeSpectrumTexture(scaled, &cache);
   const auto c = makeSpectrumTexture(linear, &cache);
-  EXPECT_EQ(asImage(a).texels(), asImage(b).texels());
-  EXPECT_NE(asImage(a).texels(), asImage(c).texels());
+  const ImageSpectrumTexture *ia = asImage(a), *ib = asImage(b), *ic = asImage(c);
+  ASSERT_TRUE(ia && ib && ic);
+  EXPECT_EQ(ia->texels(), ib->texels());
+  EXPECT_NE(ia->texels(), ic->texels());
   EXPECT_EQ(cache.size(), 2u);
 
   // Through a material too; and without a cache, an uplift of its own with equal values.
@@ -48,13 +48,46 @@ TEST(TextureCache, OneUpliftPerFileAndEncoding) {
   EXPECT_NE(makeMaterial(m, &cache), nullptr);
   EXPECT_EQ(cache.size(), 2u);
   const auto own = makeSpectrumTexture(d);
-  EXPECT_NE(asImage(own).texels(), asImage(a).texels());
+  ASSERT_TRUE(asImage(own));
   for (int y = 0; y < 2; ++y)
     for (int x = 0; x < 2; ++x)
       for (float lambda : {400.0f, 550.0f, 700.0f})
-        EXPECT_EQ(asImage(own).texelValue(x, y, lambda), asImage(a).texelValue(x, y, lambda));
+        EXPECT_EQ(asImage(own)->texelValue(x, y, lambda), ia->texelValue(x, y, lambda));
   // sRGB and linear decodings of the same file are different reflectances.
-  EXPECT_NE(asImage(a).texelValue(0, 0, 650.0f), asImage(c).texelValue(0, 0, 650.0f));
+  EXPECT_NE(ia->texelValue(0, 0, 650.0f), ic->texelValue(0, 0, 650.0f));
+}
+
+// Descriptions built in code: decoded texels under the name of a cached texture share it
+// only if they are the same texels; without a name nothing is shared.
+TEST(TextureCache, SharesOnlyEqualTexels) {
+  const auto image = [](float red) {
+    TextureImage t;
+    t.width = 1;
+    t.height = 1;
+    t.channels = 3;
+    t.values = {red, 0.2f, 0.2f};
+    return std::make_shared<const TextureImage>(t);
+  };
+  TextureDescription d;
+  d.kind = TextureDescription::Kind::kImage;
+  d.file = "in_code.png";
+  d.encoding = TextureEncoding::kLinear;
+  d.image = image(0.8f);
+  TextureDescription sameTexels = d;
+  sameTexels.image = image(0.8f);  // another decoding of the same file
+  TextureDescription otherTexels = d;
+  otherTexels.image = image(0.1f);
+  TextureDescription unnamed = d;
+  unnamed.file.clear();
+
+  TextureCache cache;
+  const auto a = cache.uplifted(d);
+  EXPECT_EQ(cache.uplifted(sameTexels), a);
+  const auto other = cache.uplifted(otherTexels);
+  EXPECT_NE(other, a);
+  EXPECT_LT(other->coefficients[0](650.0f), a->coefficients[0](650.0f));  // less red
+  EXPECT_NE(cache.uplifted(unnamed), a);
+  EXPECT_EQ(cache.size(), 1u);
 }
 
 }  // namespace

@@ -63,6 +63,18 @@ TEST(TriangleMesh, UnitQuadHasAFrontPlaneThatRejectsOnlyPointsBehindIt) {
   EXPECT_FALSE(plane->entirelyBehind({0.5f, 0.5f, -1e-7f}));  // within the tolerance
 }
 
+TEST(TriangleMesh, VertexNormalsOnTheFrontKeepThePlane) {
+  const std::vector<glm::vec3> tilted{glm::normalize(glm::vec3(0.3f, 0.0f, 1.0f)),
+                                      glm::normalize(glm::vec3(0.0f, -0.5f, 1.0f)),
+                                      glm::vec3(0, 0, 1), glm::normalize(glm::vec3(1, 1, 1))};
+  const std::optional<FrontPlane> plane =
+      staticMesh({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}}, {0, 1, 2, 0, 2, 3}, tilted)
+          .frontPlane();
+  ASSERT_TRUE(plane);
+  EXPECT_GT(plane->n.z, 0.999f);
+  EXPECT_TRUE(plane->entirelyBehind({0.5f, 0.5f, -1.0f}));
+}
+
 TEST(TriangleMesh, NoFrontPlaneUnlessPlanarStaticAndOneSided) {
   // A tetrahedron: not planar.
   EXPECT_FALSE(
@@ -77,6 +89,12 @@ TEST(TriangleMesh, NoFrontPlaneUnlessPlanarStaticAndOneSided) {
   // Vertex normals on the back side: pointOn flips n towards them; the plane is not claimed.
   EXPECT_FALSE(staticMesh({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}}, {0, 1, 2, 0, 2, 3},
                           std::vector<glm::vec3>(4, glm::vec3(0, 0, -1)))
+                   .frontPlane());
+  // Vertex normals almost in the plane (cos 1e-4 with the face normal): interpolated in
+  // float they may flip pointOn's n; not claimed.
+  const glm::vec3 grazing = glm::normalize(glm::vec3(1.0f, 0.0f, 1e-4f));
+  EXPECT_FALSE(staticMesh({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}}, {0, 1, 2, 0, 2, 3},
+                          std::vector<glm::vec3>(4, grazing))
                    .frontPlane());
   // Not sampled by any light: nothing computed.
   EXPECT_FALSE(TriangleMesh({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, {}, {0, 1, 2}, TimeSteps{}, {},
@@ -118,6 +136,14 @@ TEST(TriangleMesh, FrontPlaneNeverRejectsAPointASampleWouldLight) {
     }
     ++behind;
     EXPECT_LT(depth, 0.0f);
+    // Exactly (double): ref is behind every triangle's plane at all three corners, so
+    // behind every point of the fan.
+    for (size_t k = 0; k < indices.size(); k += 3) {
+      const glm::dvec3 p0(positions[indices[k]]), p1(positions[indices[k + 1]]),
+          p2(positions[indices[k + 2]]);
+      const glm::dvec3 nk = glm::normalize(glm::cross(p1 - p0, p2 - p0));
+      for (const glm::dvec3& v : {p0, p1, p2}) ASSERT_LT(glm::dot(nk, glm::dvec3(ref) - v), 0.0);
+    }
     for (int j = 0; j < 20; ++j) {
       const std::optional<ShapeSample> smp = fan.sample(ref, u01(rng), {u01(rng), u01(rng)}, 0);
       if (smp) {

@@ -31,7 +31,8 @@ TEST(FloatMath, LogOfNormalIsWithinTwoUlpOfLibm) {
       worstAt = static_cast<double>(x);
     }
   };
-  for (float x = std::numeric_limits<float>::min(); x < 1e38f; x *= 1.001f) check(x);
+  for (float x = std::numeric_limits<float>::min(); x < 3.4e38f; x *= 1.001f) check(x);
+  check(std::numeric_limits<float>::max());
   for (int i = 0; i <= 2000000; ++i) check(0.05f + 100.0f * static_cast<float>(i) / 2e6f);
   for (int i = -100000; i <= 100000; ++i) check(1.0f + static_cast<float>(i) * 1e-7f);
   EXPECT_LE(worst, 2.0) << "at x = " << worstAt;
