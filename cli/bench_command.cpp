@@ -83,7 +83,8 @@ void measureFeatures(const std::string& name, const Scene& scene,
                      const SceneDescription& description, const BenchPlan& plan,
                      std::vector<LimitResult>& limits, std::ostream& extras, std::ostream& log) {
   const glm::ivec2 res = scene.camera().resolution();
-  log << "bench: " << name << ": recording and replaying rays at " << res.x << "x" << res.y << "\n";
+  log << "bench: " << name << ": recording and replaying rays at " << formatSize(res.x, res.y)
+      << "\n";
   std::vector<RecordedRay> rays;
   limits.push_back(measureLimit(scene, name, plan.captureSpp, plan.threads,
                                 name == "cornell_box" ? &rays : nullptr));
@@ -168,9 +169,9 @@ int runBench(const BenchArgs& args, std::ostream& out, std::ostream& log) {
       failed.push_back(name + ": " + e.what());
       continue;
     }
-    log << "bench: " << s.name << " at " << s.description.camera.resolution.x << "x"
-        << s.description.camera.resolution.y << " (scene: " << s.original.x << "x" << s.original.y
-        << ")\n";
+    const glm::ivec2 sweepRes = s.description.camera.resolution;
+    log << "bench: " << s.name << " at " << formatSize(sweepRes.x, sweepRes.y)
+        << " (scene: " << formatSize(s.original.x, s.original.y) << ")\n";
     // The limit, thread scaling and motion overhead run at the scene's own resolution
     // (reduced to featureLongSide): on the sweep's Scene if that is the same size.
     const glm::ivec2 featureRes = reducedResolution(s.original, plan.featureLongSide);
@@ -187,9 +188,10 @@ int runBench(const BenchArgs& args, std::ostream& out, std::ostream& log) {
       const Reference ref =
           obtainReference(request, scene, cacheDir, log, [&](int d, int t) { bar.update(d, t); });
       bar.finish();
-      refs << "  " << s.name << " " << s.description.camera.resolution.x << "x"
-           << s.description.camera.resolution.y << ": rMSE floor "
-           << formatNumber(ref.noise.rmse, 3) << ", MRAE floor " << formatNumber(ref.noise.mrae, 3)
+      refs << "  " << s.name << " "
+           << formatSize(s.description.camera.resolution.x, s.description.camera.resolution.y)
+           << ": rMSE floor " << formatNumber(ref.noise.rmse, 3) << ", MRAE floor "
+           << formatNumber(ref.noise.mrae, 3)
            << (ref.fromCache ? " (cached "
                              : " (rendered in " + formatNumber(ref.seconds, 3) + " s, ")
            << ref.file.filename().string() << ")\n";

@@ -13,9 +13,8 @@ namespace {
 
 void checkComparable(const Image& a, const Image& b, int channel) {
   if (a.width != b.width || a.height != b.height)
-    throw std::invalid_argument("images of different sizes: " + std::to_string(a.width) + "x" +
-                                std::to_string(a.height) + " and " + std::to_string(b.width) + "x" +
-                                std::to_string(b.height));
+    throw std::invalid_argument("images of different sizes: " + formatSize(a.width, a.height) +
+                                " and " + formatSize(b.width, b.height));
   if (channel < 0 || channel >= a.channelCount() || channel >= b.channelCount())
     throw std::invalid_argument("channel " + std::to_string(channel) + " missing");
   if (a.width == 0 || a.height == 0) throw std::invalid_argument("empty image");

@@ -82,7 +82,7 @@ std::string referenceKeyText(const ReferenceRequest& request) {
   const glm::ivec2 res = request.resolution;
   key << kFormatTag << "\n"
       << CAMSIM_VERSION << "\n"
-      << res.x << "x" << res.y << "\n"
+      << formatSize(res.x, res.y) << "\n"
       << request.spp << "\n"
       << request.sceneText << "\n";
   for (const auto& f : request.inputFiles) key << fileStamp(f, true) << "\n";

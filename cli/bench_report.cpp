@@ -34,7 +34,7 @@ std::string formatLimitTable(const std::vector<LimitResult>& results) {
                     formatRate(r.byKind[static_cast<std::size_t>(k)].raysPerSecond()).c_str());
       kinds[k] = cell;
     }
-    const std::string size = std::to_string(r.resolution.x) + "x" + std::to_string(r.resolution.y);
+    const std::string size = formatSize(r.resolution.x, r.resolution.y);
     std::snprintf(
         line, sizeof line, "%-13s %9s %4d %9llu %22s %22s %22s %11s %11s %6.3f  %5.3f–%5.3f\n",
         r.scene.c_str(), size.c_str(), r.spp, static_cast<unsigned long long>(r.recorded),
@@ -79,7 +79,7 @@ std::string formatScaling(const std::string& scene, const ScalingResult& s) {
   const double speed = s.many.seconds > 0.0 ? s.one.seconds / s.many.seconds : 0.0;
   const double raw =
       s.rawOne.raysPerSecond() > 0.0 ? s.rawMany.raysPerSecond() / s.rawOne.raysPerSecond() : 0.0;
-  out << "thread scaling, " << scene << " (" << s.resolution.x << "x" << s.resolution.y
+  out << "thread scaling, " << scene << " (" << formatSize(s.resolution.x, s.resolution.y)
       << ", Sobol', " << s.spp << " spp):\n";
   std::snprintf(line, sizeof line, "  %-22s %10s %12s %12s\n", "", "1 thread",
                 std::to_string(s.threads).append(" threads").c_str(), "speed-up");
@@ -104,7 +104,7 @@ std::string formatScaling(const std::string& scene, const ScalingResult& s) {
 std::string formatMotionOverhead(const std::string& scene, const MotionOverhead& m) {
   std::ostringstream out;
   char line[256];
-  out << "motion-blur overhead, " << scene << " (" << m.resolution.x << "x" << m.resolution.y
+  out << "motion-blur overhead, " << scene << " (" << formatSize(m.resolution.x, m.resolution.y)
       << ", Sobol', " << m.spp << " spp; moving: " << m.timeSteps << " Embree time steps):\n";
   std::snprintf(line, sizeof line, "  %-40s %9s %11s %12s %13s\n", "variant", "seconds", "rays/s",
                 "time ratio", "per-ray ratio");

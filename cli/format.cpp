@@ -22,4 +22,8 @@ std::string formatRate(double perSecond) {
   return formatFixed(perSecond, 2) + " ";
 }
 
+std::string formatSize(int width, int height) {
+  return std::to_string(width) + "x" + std::to_string(height);
+}
+
 }  // namespace camsim

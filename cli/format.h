@@ -2,6 +2,7 @@
 //   formatNumber(v, p)  printf "%.{p}g"  (p significant digits)
 //   formatFixed(v, d)   printf "%.{d}f"  (d decimals)
 //   formatRate(r)       "12.35 M", "4.20 k" or "17.00 " (two decimals, SI prefix; for "…/s")
+//   formatSize(w, h)    "512x512" (an image size in pixels)
 #pragma once
 
 #include <string>
@@ -11,5 +12,6 @@ namespace camsim {
 std::string formatNumber(double v, int precision = 3);
 std::string formatFixed(double v, int decimals);
 std::string formatRate(double perSecond);
+std::string formatSize(int width, int height);
 
 }  // namespace camsim

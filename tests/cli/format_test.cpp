@@ -14,6 +14,7 @@ TEST(Format, NumbersFixedAndRates) {
   EXPECT_EQ(formatRate(12345678.0), "12.35 M");
   EXPECT_EQ(formatRate(999999.0), "1000.00 k");  // below 1e6 stays in k
   EXPECT_EQ(formatRate(4200.0), "4.20 k");
+  EXPECT_EQ(formatSize(512, 213), "512x213");
   EXPECT_EQ(formatRate(17.0), "17.00 ");
 }
 
