@@ -85,10 +85,11 @@ void measureFeatures(const std::string& name, const Scene& scene,
   const glm::ivec2 res = scene.camera().resolution();
   log << "bench: " << name << ": recording and replaying rays at " << formatSize(res.x, res.y)
       << "\n";
+  const bool scaling = name == "cornell_box";  // thread scaling replays the limit's rays
   std::vector<RecordedRay> rays;
-  limits.push_back(measureLimit(scene, name, plan.captureSpp, plan.threads,
-                                name == "cornell_box" ? &rays : nullptr));
-  if (name == "cornell_box") {
+  limits.push_back(
+      measureLimit(scene, name, plan.captureSpp, plan.threads, scaling ? &rays : nullptr));
+  if (scaling) {
     log << "bench: thread scaling on " << name << "\n";
     extras << formatScaling(name, measureThreadScaling(scene, plan.featureSpp, rays, plan.threads))
            << "\n";

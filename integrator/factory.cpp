@@ -31,22 +31,14 @@ std::shared_ptr<const TextureImage> texelsOf(const TextureDescription& d) {
 
 std::shared_ptr<const UpliftedTexels> TextureCache::uplifted(const TextureDescription& d) {
   CAMSIM_CHECK(d.kind == TextureDescription::Kind::kImage);
+  Entry* entry = d.file.empty() ? nullptr : &entries_[{d.file.string(), d.encoding}];
+  // A hit: the same file read again (no decoded texels), or texels equal to the cached ones
+  // (the loader decodes a file once per material naming it: other pointers, equal values).
+  if (entry && entry->texels && (!d.image || *d.image == *entry->image)) return entry->texels;
   const std::shared_ptr<const TextureImage> image = texelsOf(d);
-  const auto upliftNow = [&] {
-    return std::make_shared<const UpliftedTexels>(upliftTexels(*image));
-  };
-  if (d.file.empty()) return upliftNow();  // built in code: no name to share it by
-  Entry& entry = entries_[{d.file.string(), d.encoding}];
-  if (!entry.texels) {
-    entry = {image, upliftNow()};
-    return entry.texels;
-  }
-  // The loader decodes a file once per material naming it: equal texels, other pointers.
-  const bool same =
-      entry.image == image ||
-      (entry.image->width == image->width && entry.image->height == image->height &&
-       entry.image->channels == image->channels && entry.image->values == image->values);
-  return same ? entry.texels : upliftNow();
+  auto texels = std::make_shared<const UpliftedTexels>(upliftTexels(*image));
+  if (entry && !entry->texels) *entry = {image, texels};
+  return texels;
 }
 
 std::unique_ptr<SpectrumTexture> makeSpectrumTexture(const TextureDescription& d,
@@ -54,10 +46,11 @@ std::unique_ptr<SpectrumTexture> makeSpectrumTexture(const TextureDescription& d
   switch (d.kind) {
     case TextureDescription::Kind::kConstant:
       return std::make_unique<ConstantSpectrumTexture>(d.value);
-    case TextureDescription::Kind::kImage:
-      if (cache)
-        return std::make_unique<ImageSpectrumTexture>(cache->uplifted(d), d.uvScale, d.uvOffset);
-      return std::make_unique<ImageSpectrumTexture>(*texelsOf(d), d.uvScale, d.uvOffset);
+    case TextureDescription::Kind::kImage: {
+      TextureCache own;  // without a shared cache: an uplift of its own
+      return std::make_unique<ImageSpectrumTexture>((cache ? *cache : own).uplifted(d), d.uvScale,
+                                                    d.uvOffset);
+    }
     case TextureDescription::Kind::kCheckerboard:
       return std::make_unique<CheckerboardSpectrumTexture>(d.checkerA, d.checkerB, d.checks,
                                                            d.uvScale, d.uvOffset);

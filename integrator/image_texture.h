@@ -53,6 +53,8 @@ struct TextureImage {
   int height = 0;
   int channels = 0;
   std::vector<float> values;  // width·height·channels, interleaved
+
+  bool operator==(const TextureImage&) const = default;
 };
 
 // The default encoding of a colour texture of this file type (png: srgb, exr: linear).

@@ -52,23 +52,24 @@ TriangleMesh::TriangleMesh(std::vector<glm::vec3> positions, std::vector<glm::ve
   }
   area_ = static_cast<float>(total);
   if (samplable_ && total > 0.0) areaDistribution_ = DiscreteDistribution(areas);
-  if (samplable_ && steps_.count == 1) frontPlane_ = findFrontPlane(positions_, normals_, indices_);
+  if (samplable_ && steps_.count == 1)
+    frontPlane_ = findFrontPlane(positions_, normals_, indices_, areas);
 }
 
 // The plane of a static mesh's triangles, if they all lie in one with the same front. Each
-// triangle that can be sampled (area > 0) must have a normal as pointOn computes it (float
+// triangle that can be sampled (areas[k] > 0, as the area distribution has it) must have a normal as pointOn computes it (float
 // cross product) within ≈ 1e-3 rad of the first one's, and every vertex normal clearly on
 // its front side (so pointOn never flips n). The bounds are measured in double over the vertices.
 std::optional<FrontPlane> TriangleMesh::findFrontPlane(const std::vector<glm::vec3>& positions,
                                                        const std::vector<glm::vec3>& normals,
-                                                       const std::vector<std::uint32_t>& indices) {
+                                                       const std::vector<std::uint32_t>& indices,
+                                                       const std::vector<double>& areas) {
   std::optional<glm::dvec3> planeNormal;
   double maxChord = 0.0;
   glm::dvec3 lo(std::numeric_limits<double>::infinity()), hi(-lo);
   for (size_t k = 0; k < indices.size(); k += 3) {
     const std::uint32_t i[3] = {indices[k], indices[k + 1], indices[k + 2]};
-    const glm::dvec3 p0(positions[i[0]]), p1(positions[i[1]]), p2(positions[i[2]]);
-    if (!(glm::length(glm::cross(p1 - p0, p2 - p0)) > 0.0)) continue;  // never sampled
+    if (!(areas[k / 3] > 0.0)) continue;  // never sampled
     const glm::vec3 cross =
         glm::cross(positions[i[1]] - positions[i[0]], positions[i[2]] - positions[i[0]]);
     if (!(glm::dot(cross, cross) > 0.0f)) return std::nullopt;  // pointOn would use +z

@@ -61,7 +61,8 @@ class TriangleMesh final : public Shape {
  private:
   static std::optional<FrontPlane> findFrontPlane(const std::vector<glm::vec3>& positions,
                                                   const std::vector<glm::vec3>& normals,
-                                                  const std::vector<std::uint32_t>& indices);
+                                                  const std::vector<std::uint32_t>& indices,
+                                                  const std::vector<double>& areas);
 
   glm::mat4 transformAt(float time) const;
   // area: if given, receives the triangle's area at `time` (m²), computed anyway.
