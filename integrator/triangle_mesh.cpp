@@ -17,6 +17,17 @@ void reserveSpare(std::vector<T>& v, size_t spare) {
   if (v.capacity() < v.size() + spare) v.reserve(v.size() + spare);
 }
 
+// The unit normal (p1 − p0) × (p2 − p0) / |…| in float, and |…| (twice the area); +z for a
+// degenerate triangle. One function for pointOn and the static meshes' stored normals,
+// so both give the same bits.
+glm::vec3 faceNormal(const glm::vec3& p0, const glm::vec3& p1, const glm::vec3& p2,
+                     float* crossLength) {
+  const glm::vec3 cross = glm::cross(p1 - p0, p2 - p0);
+  const float len = std::sqrt(glm::dot(cross, cross));
+  *crossLength = len;
+  return len > 0.0f ? cross * (1.0f / len) : glm::vec3(0.0f, 0.0f, 1.0f);
+}
+
 }  // namespace
 
 TriangleMesh::TriangleMesh(std::vector<glm::vec3> positions, std::vector<glm::vec3> normals,
@@ -51,6 +62,14 @@ TriangleMesh::TriangleMesh(std::vector<glm::vec3> positions, std::vector<glm::ve
     total += area;
   }
   area_ = static_cast<float>(total);
+  if (steps_.count == 1) {
+    faceNormals_.resize(triangleCount());
+    for (size_t t = 0; t < triangleCount(); ++t) {
+      float len;
+      faceNormals_[t] = faceNormal(positions_[indices_[3 * t]], positions_[indices_[3 * t + 1]],
+                                   positions_[indices_[3 * t + 2]], &len);
+    }
+  }
   if (samplable_ && total > 0.0) areaDistribution_ = DiscreteDistribution(areas);
   if (samplable_ && steps_.count == 1)
     frontPlane_ = findFrontPlane(positions_, normals_, indices_, areas);
@@ -133,7 +152,7 @@ float TriangleMesh::areaPdf(size_t tri, float area) const {
 }
 
 // Hot: every hit and every light sample on a mesh comes through here. Static meshes skip
-// the time lookup and the transform; |x| uses absComponents (see math.h).
+// the time lookup, the transform and the normal (stored); |x| uses absComponents (math.h).
 SurfaceInteraction TriangleMesh::pointOn(size_t tri, float b1, float b2, float time,
                                          float* area) const {
   const bool moving = !instance_.empty();
@@ -149,15 +168,19 @@ SurfaceInteraction TriangleMesh::pointOn(size_t tri, float b1, float b2, float t
   si.p = b0 * p0 + b1 * p1 + b2 * p2;
   si.pError =
       gammaBound(7) * (absComponents(b0 * p0) + absComponents(b1 * p1) + absComponents(b2 * p2));
-  if (moving)  // the transform's rounding here and in Embree (Shape)
-    si.pError += gammaBound(3) * (absComponents(p0) + absComponents(p1) + absComponents(p2)) +
-                 instance_.error(si.p);
-  const glm::vec3 cross = glm::cross(p1 - p0, p2 - p0);
-  const float len = std::sqrt(glm::dot(cross, cross));
-  if (area) *area = 0.5f * len;  // the triangle's area at `time` (sample() needs it)
   // n in a local first: copying si.n into si.ns through memory right after the three
   // scalar stores stalled on store forwarding (seen with perf).
-  const glm::vec3 n = len > 0.0f ? cross * (1.0f / len) : glm::vec3(0.0f, 0.0f, 1.0f);
+  glm::vec3 n;
+  if (moving) {
+    // the transform's rounding here and in Embree (Shape)
+    si.pError += gammaBound(3) * (absComponents(p0) + absComponents(p1) + absComponents(p2)) +
+                 instance_.error(si.p);
+    float len;
+    n = faceNormal(p0, p1, p2, &len);
+    if (area) *area = 0.5f * len;  // the triangle's area at `time` (sample() needs it)
+  } else {
+    n = faceNormals_[tri];
+  }
   si.n = n;
   si.ns = n;
   if (!normals_.empty()) {

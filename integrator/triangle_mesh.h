@@ -13,6 +13,9 @@
 //
 // Memory and speed: Embree traces the mesh's own position and index arrays (shared, see
 // EmbreeScene), so they are allocated with one spare element for Embree's 16-byte loads.
+// A static mesh also stores each triangle's unit normal (12 bytes/triangle): every hit
+// and light sample needs it, and computing it (cross product, sqrt, divide) was a long
+// latency chain in the path loop. Moving meshes compute it at the sample's time.
 // Only a mesh that a light samples (an emitter) keeps the per-triangle area distribution
 // and, if it is static, planar and one-sided, its FrontPlane (shape.h).
 // A static mesh (one time step) skips the time interpolation, and its area pdf is 1/area:
@@ -65,7 +68,8 @@ class TriangleMesh final : public Shape {
                                                   const std::vector<double>& areas);
 
   glm::mat4 transformAt(float time) const;
-  // area: if given, receives the triangle's area at `time` (m²), computed anyway.
+  // area: if given and the mesh moves, receives the triangle's area at `time` (m², computed
+  // anyway; a static mesh's area pdf does not need it).
   SurfaceInteraction pointOn(size_t tri, float b1, float b2, float time,
                              float* area = nullptr) const;
   float triangleArea(size_t tri, float time) const;
@@ -75,6 +79,7 @@ class TriangleMesh final : public Shape {
   std::vector<glm::vec3> normals_;
   std::vector<std::uint32_t> indices_;
   std::vector<glm::vec2> uvs_;
+  std::vector<glm::vec3> faceNormals_;  // static meshes: unit normal per triangle (pointOn)
   TimeSteps steps_;
   InstanceMotion instance_;
   DiscreteDistribution areaDistribution_;  // empty unless samplable

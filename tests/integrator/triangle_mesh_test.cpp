@@ -1,7 +1,8 @@
 // Tests for integrator/triangle_mesh.cpp: a moving, emitting mesh's light samples carry
 // the density pdf() gives the same point (sample() reuses the area pointOn computed; pdf()
 // computes it from the triangle at the point's time); a planar emitter's front plane only
-// ever rejects reference points that every sampled point faces away from.
+// ever rejects reference points that every sampled point faces away from; a static mesh's
+// stored normals are the bits a moving mesh computes at rest.
 #include "integrator/triangle_mesh.h"
 
 #include <gtest/gtest.h>
@@ -47,6 +48,36 @@ TEST(TriangleMesh, MovingEmitterSamplesCarryThePdfOfTheirPoint) {
 TriangleMesh staticMesh(std::vector<glm::vec3> positions, std::vector<std::uint32_t> indices,
                         std::vector<glm::vec3> normals = {}) {
   return TriangleMesh(std::move(positions), std::move(normals), std::move(indices), TimeSteps{});
+}
+
+// A static mesh stores its triangles' normals; a moving one computes them at each hit. At
+// rest (identity poses) both must give the same bits, and the exact normal within rounding;
+// a zero-area triangle gets +z.
+TEST(TriangleMesh, StoredNormalsAreTheOnesAMovingMeshComputes) {
+  const std::vector<glm::vec3> positions = {{0, 0, 0},     {1, 0, 0},          {0, 1, 0},
+                                            {0.3f, -2, 5}, {-1, 0.7f, 2},      {4, 1e-3f, -0.5f},
+                                            {2, 2, 2},     {2.5f, 2.5f, 2.5f}, {3, 3, 3}};
+  const std::vector<std::uint32_t> indices = {0, 1, 2, 3, 4, 5, 2, 5, 3, 6, 7, 8};
+  const TriangleMesh still = staticMesh(positions, indices);
+  const TriangleMesh moving(positions, {}, indices, TimeSteps{0.0, 1.0, 2}, {}, true,
+                            InstanceMotion::fromPoses({glm::dmat4(1.0), glm::dmat4(1.0)}));
+  for (int tri = 0; tri < 4; ++tri) {
+    Hit hit;
+    hit.prim = tri;
+    hit.u = 0.2f;
+    hit.v = 0.3f;
+    const Ray ray{{0, 0, -1}, {0, 0, 1}, 10.0f, 0.5f};
+    const SurfaceInteraction a = still.interaction(hit, ray), b = moving.interaction(hit, ray);
+    EXPECT_EQ(a.n, b.n) << "triangle " << tri;
+    EXPECT_EQ(a.ns, a.n) << "triangle " << tri;
+    const size_t k = 3 * static_cast<size_t>(tri);
+    const glm::dvec3 p0(positions[indices[k]]), p1(positions[indices[k + 1]]),
+        p2(positions[indices[k + 2]]);
+    const glm::dvec3 cross = glm::cross(p1 - p0, p2 - p0);
+    const glm::dvec3 exact =
+        glm::length(cross) > 0.0 ? glm::normalize(cross) : glm::dvec3(0.0, 0.0, 1.0);
+    EXPECT_LT(glm::length(glm::dvec3(a.n) - exact), 1e-6) << "triangle " << tri;
+  }
 }
 
 TEST(TriangleMesh, UnitQuadHasAFrontPlaneThatRejectsOnlyPointsBehindIt) {
