@@ -172,6 +172,21 @@ TEST(SampledSpectrum, Arithmetic) {
   EXPECT_FALSE(bad.isFinite());
 }
 
+// isZero tests each lane: a single non-zero or NaN lane anywhere makes it non-zero, and
+// −0 is zero (as the loop over floats it replaced had it).
+TEST(SampledSpectrum, IsZeroLooksAtEveryLane) {
+  for (int i = 0; i < kWavelengthSamples; ++i) {
+    for (const float v : {1e-30f, -2.0f, std::numeric_limits<float>::quiet_NaN()}) {
+      SampledSpectrum s;
+      s[i] = v;
+      EXPECT_FALSE(s.isZero()) << "lane " << i << " value " << v;
+    }
+    SampledSpectrum negativeZero;
+    negativeZero[i] = -0.0f;
+    EXPECT_TRUE(negativeZero.isZero()) << "lane " << i;
+  }
+}
+
 TEST(SampledSpectrum, SafeDivTreatsZeroDenominatorAsZero) {
   SampledSpectrum num(6.0f);
   SampledSpectrum den;
