@@ -1,7 +1,8 @@
 // Single-precision functions on bounded ranges for the per-sample hot path, in plain
-// arithmetic: no call into libm, the same bits whatever libm the binary runs with, and
-// simple enough for the compiler to vectorise a loop over them (the four wavelengths of a
-// pixel sample). Accuracy is checked against libm in tests/sensor/float_math_test.cpp.
+// arithmetic: no call into libm, the same bits whatever libm the binary runs with.
+// logOfNormal also takes a Float4 (four lanes in one SSE register), so the four
+// wavelengths of a pixel sample are computed in one pass. Accuracy is checked against libm
+// in tests/sensor/float_math_test.cpp.
 //
 //   logOfNormal(x)      ln x for normal, finite x > 0:
 //                       x = m·2^e with m in [√½, √2), s = (m − 1)/(m + 1), |s| ≤ 0.1716:
@@ -18,16 +19,47 @@
 
 namespace camsim {
 
-inline float logOfNormal(float x) {
-  const auto bits = std::bit_cast<std::int32_t>(x);
-  const std::int32_t e = (bits - 0x3f3504f3) >> 23;  // 0x3f3504f3: the bits of √½
-  const float m = std::bit_cast<float>(bits - e * (1 << 23));
-  const float s = (m - 1.0f) / (m + 1.0f);
-  const float s2 = s * s;
-  const float series =
+// Four floats / ints in one SSE register (GCC/Clang vector extension): the functions below
+// also take these, so the four wavelengths of a pixel sample are computed in one pass.
+using Float4 = float __attribute__((vector_size(16)));
+using Int4 = std::int32_t __attribute__((vector_size(16)));
+
+namespace float_math_detail {
+template <typename F>
+struct IntOf {
+  using type = std::int32_t;
+};
+template <>
+struct IntOf<Float4> {
+  using type = Int4;
+};
+inline float toFloat(std::int32_t i) {
+  return static_cast<float>(i);
+}
+inline Float4 toFloat(Int4 i) {
+  return __builtin_convertvector(i, Float4);
+}
+inline std::int32_t toInt(float x) {  // truncation
+  return static_cast<std::int32_t>(x);
+}
+inline Int4 toInt(Float4 x) {
+  return __builtin_convertvector(x, Int4);
+}
+}  // namespace float_math_detail
+
+// F: float or Float4; the same operations per lane, so the same bits either way.
+template <typename F>
+inline F logOfNormal(F x) {
+  using I = typename float_math_detail::IntOf<F>::type;
+  const auto bits = std::bit_cast<I>(x);
+  const I e = (bits - 0x3f3504f3) >> 23;  // 0x3f3504f3: the bits of √½
+  const F m = std::bit_cast<F>(bits - e * (1 << 23));
+  const F s = (m - 1.0f) / (m + 1.0f);
+  const F s2 = s * s;
+  const F series =
       s *
       (2.0f + s2 * (2.0f / 3.0f + s2 * (2.0f / 5.0f + s2 * (2.0f / 7.0f + s2 * (2.0f / 9.0f)))));
-  return static_cast<float>(e) * 0.693147182f + series;
+  return float_math_detail::toFloat(e) * 0.693147182f + series;
 }
 
 struct SinCos {

@@ -32,24 +32,30 @@ const VisibleConstants& visible() {
 }
 
 // u mod 1 for u in [0, 2), without a branch (which way it goes depends on the random u).
-float wrap(float u) {
-  return u - static_cast<float>(u >= 1.0f);
+// F: float or Float4 (float_math.h), here and below.
+template <typename F>
+F wrap(F u) {
+  return u >= 1.0f ? u - 1.0f : u;
 }
 
 // λ = 538 + atanh(t)/a with t uniform over [tanhLo, tanhHi]; atanh(t) = ½ log((1+t)/(1−t)).
 // Also returns p(λ) = (a/Z)·sech²(a(λ − 538)) = (a/Z)·(1 − t)(1 + t): no exp needed (and
 // (1 − t)(1 + t) keeps its relative precision where 1 − t² would cancel).
+template <typename F>
 struct VisibleSample {
-  float lambda;  // nm
-  float pdf;     // nm⁻¹
+  F lambda;  // nm
+  F pdf;     // nm⁻¹
 };
-[[gnu::always_inline]] inline VisibleSample sampleVisibleWithPdf(float u) {
+template <typename F>
+[[gnu::always_inline]] inline VisibleSample<F> sampleVisibleWithPdf(F u) {
   const VisibleConstants& c = visible();
-  const float t = c.tanhLo + u * c.tanhRange;
-  const float lambda = static_cast<float>(kCentre) +
-                       static_cast<float>(0.5 / kA) * logOfNormal((1.0f + t) / (1.0f - t));
-  return {std::clamp(lambda, static_cast<float>(kLambdaMinNm), static_cast<float>(kLambdaMaxNm)),
-          c.pdfScale * ((1.0f - t) * (1.0f + t))};
+  const F t = c.tanhLo + u * c.tanhRange;
+  F lambda = static_cast<float>(kCentre) +
+             static_cast<float>(0.5 / kA) * logOfNormal((1.0f + t) / (1.0f - t));
+  constexpr auto lo = static_cast<float>(kLambdaMinNm), hi = static_cast<float>(kLambdaMaxNm);
+  lambda = lambda < lo ? lo : lambda;  // std::clamp's order, lane by lane
+  lambda = hi < lambda ? hi : lambda;
+  return {lambda, c.pdfScale * ((1.0f - t) * (1.0f + t))};
 }
 
 }  // namespace
@@ -68,21 +74,15 @@ float sampleVisibleWavelength(float u) {
 // Sampled wavelengths lie in [360, 830] nm (both samplers clamp or stay inside), where
 // Spectrum::operator() interpolates at exactly this position.
 void SampledWavelengths::locateOnGrid() {
-  for (int i = 0; i < kWavelengthSamples; ++i) {
-    const Spectrum::GridPosition g = Spectrum::gridPosition(lambda_[i]);
-    gridIndex_[i] = g.index;
-    gridFraction_[i] = g.fraction;
-  }
+  Spectrum::gridPositionLanes(lambda_, gridIndex_, gridFraction_);
 }
 
+// The four wavelengths in one pass of SSE arithmetic (the same bits as one at a time).
 SampledWavelengths SampledWavelengths::sampleVisible(float u) {
+  const VisibleSample<Float4> v = sampleVisibleWithPdf(wrap(u + Float4{0.0f, 0.25f, 0.5f, 0.75f}));
   SampledWavelengths w;
-  for (int i = 0; i < kWavelengthSamples; ++i) {
-    const float ui = wrap(u + static_cast<float>(i) / kWavelengthSamples);
-    const VisibleSample v = sampleVisibleWithPdf(ui);
-    w.lambda_[i] = v.lambda;
-    w.pdf_[i] = v.pdf;
-  }
+  w.lambda_ = v.lambda;
+  w.pdf_ = v.pdf;
   w.locateOnGrid();
   return w;
 }

@@ -12,13 +12,14 @@
 #include <array>
 #include <cmath>
 
+#include "sensor/float_math.h"
 #include "sensor/spectrum.h"
 
 namespace camsim {
 
 inline constexpr int kWavelengthSamples = 4;
 
-// The values live in one 16-byte vector (GCC/Clang vector extension): the arithmetic is
+// The values live in one 16-byte vector (Float4, float_math.h): the arithmetic is
 // one SSE instruction per operation, and a SampledSpectrum is passed and returned in one
 // xmm register instead of two halves (which the x86-64 ABI gives a struct of four floats,
 // and which cost a store-forwarding stall each time they were joined again). Every
@@ -62,7 +63,7 @@ class SampledSpectrum {
   }
   // Component-wise division with 0/0 := 0 (a zero pdf never carries energy).
   friend SampledSpectrum safeDiv(SampledSpectrum a, const SampledSpectrum& b) {
-    a.v_ = b.v_ != 0.0f ? a.v_ / b.v_ : Lanes{};
+    a.v_ = b.v_ != 0.0f ? a.v_ / b.v_ : Float4{};
     return a;
   }
 
@@ -87,9 +88,8 @@ class SampledSpectrum {
   }
 
  private:
-  using Lanes = float __attribute__((vector_size(kWavelengthSamples * sizeof(float))));
   static_assert(kWavelengthSamples == 4, "the constructors spell out four lanes");
-  Lanes v_;
+  Float4 v_;
 };
 
 class SampledWavelengths {
@@ -126,10 +126,12 @@ class SampledWavelengths {
  private:
   void locateOnGrid();  // fills gridIndex_/gridFraction_ from lambda_
 
-  std::array<float, kWavelengthSamples> lambda_{};
-  std::array<float, kWavelengthSamples> pdf_{};
-  std::array<int, kWavelengthSamples> gridIndex_{};
-  std::array<float, kWavelengthSamples> gridFraction_{};
+  // One vector each (float_math.h): sampling computes all four lanes at once.
+  static_assert(kWavelengthSamples == 4, "one Float4 holds the wavelengths");
+  Float4 lambda_{};
+  Float4 pdf_{};
+  Int4 gridIndex_{};
+  Float4 gridFraction_{};
 };
 
 float visibleWavelengthPdf(float lambdaNm);

@@ -11,6 +11,8 @@
 #include <array>
 #include <span>
 
+#include "sensor/float_math.h"
+
 namespace camsim {
 
 inline constexpr int kLambdaMinNm = 360;
@@ -50,11 +52,21 @@ class Spectrum {
     float fraction;
   };
   static GridPosition gridPosition(float lambdaNm) {
-    const float x = std::clamp(lambdaNm - static_cast<float>(kLambdaMinNm), 0.0f,
-                               static_cast<float>(kSpectrumSamples - 1));
-    int i = static_cast<int>(x);
-    if (i >= kSpectrumSamples - 1) i = kSpectrumSamples - 2;
-    return {i, x - static_cast<float>(i)};
+    GridPosition g;
+    gridPositionLanes(lambdaNm, g.index, g.fraction);
+    return g;
+  }
+  // The same for F = float (I = int) or F = Float4 (I = Int4, float_math.h), lane by lane.
+  template <typename F, typename I>
+  static void gridPositionLanes(F lambdaNm, I& index, F& fraction) {
+    constexpr auto top = static_cast<float>(kSpectrumSamples - 1);
+    F x = lambdaNm - static_cast<float>(kLambdaMinNm);
+    x = x < 0.0f ? 0.0f : x;  // std::clamp(x, 0, top)
+    x = top < x ? top : x;
+    I i = float_math_detail::toInt(x);  // x ≥ 0: truncation is ⌊x⌋
+    i = i >= kSpectrumSamples - 1 ? kSpectrumSamples - 2 : i;
+    index = i;
+    fraction = x - float_math_detail::toFloat(i);
   }
   // The interpolation at a grid position (index, fraction).
   float interpolate(int i, float t) const { return values_[i] + t * (values_[i + 1] - values_[i]); }

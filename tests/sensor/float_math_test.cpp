@@ -1,12 +1,15 @@
 // Tests for sensor/float_math.h against double-precision libm: logOfNormal over the whole
 // normal range (and densely where the wavelength sampler uses it), sinCosQuarterPi over
 // [−π/4, π/4]. Errors in units in the last place of the float result (ulp), with an
-// absolute floor where the result crosses zero (ln x near x = 1, sin x near 0).
+// absolute floor where the result crosses zero (ln x near x = 1, sin x near 0). The Float4
+// form of logOfNormal gives, lane by lane, the scalar form's bits.
 #include "sensor/float_math.h"
 
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 
 namespace camsim {
@@ -53,6 +56,21 @@ TEST(FloatMath, SinCosQuarterPiIsWithinTwoUlpOfLibm) {
   EXPECT_LE(worstCos, 2.0);
   EXPECT_EQ(sinCosQuarterPi(0.0f).sin, 0.0f);
   EXPECT_EQ(sinCosQuarterPi(0.0f).cos, 1.0f);
+}
+
+TEST(FloatMath, LogOfNormalOnFourLanesGivesTheScalarBits) {
+  const float values[] = {1.0f,     0.70710677f, 0.70710683f, 1.4142135f, 1.4142137f, 2.0f,
+                          3.0e-38f, 1e-20f,      0.3f,        7.5f,       1e20f,      3.4e38f};
+  for (const float a : values) {
+    for (const float b : values) {
+      const Float4 x = {a, b, a * 0.5f, b * 1.5f};
+      const Float4 got = logOfNormal(x);
+      for (int i = 0; i < 4; ++i)
+        EXPECT_EQ(std::bit_cast<std::uint32_t>(got[i]),
+                  std::bit_cast<std::uint32_t>(logOfNormal(x[i])))
+            << "lane " << i << " x = " << x[i];
+    }
+  }
 }
 
 }  // namespace

@@ -55,6 +55,39 @@ TEST(VisibleWavelengthPdf, IsZeroOutsideAndPeaksAt538Nm) {
   EXPECT_GT(visibleWavelengthPdf(538.0f), visibleWavelengthPdf(560.0f));
 }
 
+// sampleVisible computes its four wavelengths and grid positions as one Float4: each lane
+// must be what the scalar functions give for that lane's u (u + i/4 mod 1).
+TEST(SampleVisibleWavelength, FourLanesAreTheScalarSamples) {
+  for (int k = 0; k <= 1000; ++k) {
+    const float u = k == 1000 ? 0.99999994f : static_cast<float>(k) / 1000.0f;
+    const SampledWavelengths w = SampledWavelengths::sampleVisible(u);
+    for (int i = 0; i < kWavelengthSamples; ++i) {
+      float ui = u + static_cast<float>(i) / kWavelengthSamples;
+      if (ui >= 1.0f) ui -= 1.0f;
+      const float lambda = sampleVisibleWavelength(ui);
+      EXPECT_EQ(w[i], lambda) << "u = " << u << ", lane " << i;
+      // p from t (the sampler) against p from λ (closed form): 1e-5, as the file's header
+      EXPECT_NEAR(w.pdf(i) / visibleWavelengthPdf(lambda), 1.0f, 1e-5f) << "u = " << u;
+      const Spectrum::GridPosition g = Spectrum::gridPosition(lambda);
+      EXPECT_EQ(w.gridIndex(i), g.index) << "u = " << u << ", lane " << i;
+      EXPECT_EQ(w.gridFraction(i), g.fraction) << "u = " << u << ", lane " << i;
+    }
+  }
+  // The grid's clamps, lane by lane: below, at and above both ends.
+  const Float4 lambda = {350.0f, 360.0f, 830.0f, 840.0f};
+  Int4 index;
+  Float4 fraction;
+  Spectrum::gridPositionLanes(lambda, index, fraction);
+  for (int i = 0; i < 4; ++i) {
+    const Spectrum::GridPosition g = Spectrum::gridPosition(lambda[i]);
+    EXPECT_EQ(index[i], g.index) << lambda[i];
+    EXPECT_EQ(fraction[i], g.fraction) << lambda[i];
+  }
+  EXPECT_EQ(index[0], 0);
+  EXPECT_EQ(index[3], kSpectrumSamples - 2);
+  EXPECT_EQ(fraction[3], 1.0f);
+}
+
 TEST(SampleVisibleWavelength, IsTheInverseCdf) {
   for (const float u : {0.001f, 0.05f, 0.1f, 0.25f, 0.4f, 0.5f, 0.6f, 0.75f, 0.9f, 0.99f}) {
     const float lambda = sampleVisibleWavelength(u);
