@@ -28,6 +28,7 @@ class SampledSpectrum {
  public:
   SampledSpectrum() : v_{} {}
   explicit SampledSpectrum(float c) : v_{c, c, c, c} {}
+  explicit SampledSpectrum(const Float4& v) : v_(v) {}
 
   float operator[](int i) const { return v_[i]; }
   // Vector types alias their element type (GCC, Clang), so this reference is well defined.
@@ -104,6 +105,8 @@ class SampledWavelengths {
   // λᵢ's position on Spectrum's 1 nm grid (see Spectrum::interpolate).
   int gridIndex(int i) const { return gridIndex_[i]; }
   float gridFraction(int i) const { return gridFraction_[i]; }
+  const Int4& gridIndices() const { return gridIndex_; }
+  const Float4& gridFractions() const { return gridFraction_; }
   // After a wavelength-dependent scattering event (dispersion) only the hero wavelength
   // can continue: the others get pdf 0 and the hero's pdf is divided by N, so the film's
   // estimate (1/N) Σ r q / p stays unbiased (pbrt-v4 §4.5.4).
@@ -139,10 +142,7 @@ float sampleVisibleWavelength(float u);
 
 // The spectrum's values at the path's wavelengths (equal to s(lambda[i])).
 inline SampledSpectrum sampleSpectrum(const Spectrum& s, const SampledWavelengths& lambda) {
-  SampledSpectrum out;
-  for (int i = 0; i < kWavelengthSamples; ++i)
-    out[i] = s.interpolate(lambda.gridIndex(i), lambda.gridFraction(i));
-  return out;
+  return SampledSpectrum(s.interpolateLanes(lambda.gridIndices(), lambda.gridFractions()));
 }
 
 }  // namespace camsim

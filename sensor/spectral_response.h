@@ -58,10 +58,9 @@ class SpectralResponse {
   // weighted quantity already divided by the wavelength pdfs, wᵢ = q(λᵢ)/p(λᵢ) (safeDiv: 0
   // where p = 0) — divided once by the caller for all channels.
   double estimate(int c, const SampledSpectrum& w, const SampledWavelengths& lambda) const {
-    const Spectrum& r = channels_[c].curve;
+    const SampledSpectrum rw = sampleSpectrum(channels_[c].curve, lambda) * w;
     double sum = 0.0;
-    for (int i = 0; i < kWavelengthSamples; ++i)
-      sum += static_cast<double>(r.interpolate(lambda.gridIndex(i), lambda.gridFraction(i)) * w[i]);
+    for (int i = 0; i < kWavelengthSamples; ++i) sum += static_cast<double>(rw[i]);
     return sum / kWavelengthSamples;
   }
 

@@ -70,6 +70,12 @@ class Spectrum {
   }
   // The interpolation at a grid position (index, fraction).
   float interpolate(int i, float t) const { return values_[i] + t * (values_[i + 1] - values_[i]); }
+  // Four interpolations at once (the same bits as four calls): scalar loads, vector lerp.
+  Float4 interpolateLanes(const Int4& i, const Float4& t) const {
+    const Float4 a = {values_[i[0]], values_[i[1]], values_[i[2]], values_[i[3]]};
+    const Float4 b = {values_[i[0] + 1], values_[i[1] + 1], values_[i[2] + 1], values_[i[3] + 1]};
+    return a + t * (b - a);
+  }
 
   // Value at sample i, i.e. at (360 + i) nm.
   float sample(int i) const { return values_[i]; }
