@@ -18,8 +18,9 @@
 // over the index bits, and derive a pair's three scramble seeds from one 64-bit mix of
 // (pixel key, dimension) plus one more mix; the pixel's key, and in block mode the seeds
 // of its first kCachedDimensions dimensions, are reused by consecutive samples of the same
-// pixel (Cornell box, 4 spp: the block work fell from 910 M to 716 M instructions). Measured (callgrind, Cornell box): the Sobol' sampler's extra
-// cost over the independent one fell from 4.1 k to 1.1 k instructions per pixel sample.
+// pixel (Cornell box, 4 spp: the block work fell from 910 M to 716 M instructions).
+// Measured (callgrind, Cornell box): the Sobol' sampler's extra cost over the independent
+// one fell from 4.1 k to 1.1 k instructions per pixel sample.
 #pragma once
 
 #include <cstdint>

@@ -31,8 +31,8 @@ const VisibleConstants& visible() {
   return c;
 }
 
-// u mod 1 for u in [0, 2), without a branch (which way it goes depends on the random u).
-// F: float or Float4 (float_math.h), here and below.
+// u mod 1 for u in [0, 2): a select, lane by lane for a Float4 (float_math.h).
+// F: float or Float4, here and below.
 template <typename F>
 F wrap(F u) {
   return u >= 1.0f ? u - 1.0f : u;

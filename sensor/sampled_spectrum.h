@@ -9,7 +9,6 @@
 //   Z = tanh(a (830 − 538)) − tanh(a (360 − 538)),   inverted in closed form with atanh.
 #pragma once
 
-#include <array>
 #include <cmath>
 
 #include "sensor/float_math.h"
@@ -120,11 +119,7 @@ class SampledWavelengths {
       if (pdf_[i] != 0.0f) return false;
     return true;
   }
-  SampledSpectrum pdfs() const {
-    SampledSpectrum p;
-    for (int i = 0; i < kWavelengthSamples; ++i) p[i] = pdf_[i];
-    return p;
-  }
+  SampledSpectrum pdfs() const { return SampledSpectrum(pdf_); }
 
  private:
   void locateOnGrid();  // fills gridIndex_/gridFraction_ from lambda_
