@@ -36,15 +36,20 @@ inline glm::vec3 absComponents(const glm::vec3& v) {
 // origins: ±∞ stay in either direction, and −2⁻¹⁴⁹ stepped up gives +0). Ray origins are
 // offset three times per bounce with directions that change sign from one ray to the
 // next, where the branches were mispredicted about half the time.
-inline float nextFloatToward(float v, float direction) {
-  const auto bits = std::bit_cast<std::int32_t>(v);
-  const std::int32_t ordered = bits >= 0 ? bits : std::numeric_limits<std::int32_t>::min() - bits;
-  const std::int32_t step =
-      static_cast<std::int32_t>(direction > 0.0f) - static_cast<std::int32_t>(direction < 0.0f);
-  const std::int32_t moved = ordered + step;
-  const float result =
-      std::bit_cast<float>(moved >= 0 ? moved : std::numeric_limits<std::int32_t>::min() - moved);
-  return step == 0 || std::isinf(v) ? v : result;
+// offsetRayOrigin steps its three components at once as a Float4.
+// F: float or Float4 (sensor/float_math.h, lane by lane: the same bits).
+template <typename F>
+inline F nextFloatToward(F v, F direction) {
+  using I = typename float_math_detail::IntOf<F>::type;
+  constexpr std::int32_t kMin = std::numeric_limits<std::int32_t>::min();
+  const auto bits = std::bit_cast<I>(v);
+  const I ordered = bits >= 0 ? bits : kMin - bits;
+  const I zero{}, one = zero + 1;  // scalars or broadcast lanes
+  const I step = (direction > 0.0f ? one : zero) - (direction < 0.0f ? one : zero);
+  const I moved = ordered + step;
+  const F result = std::bit_cast<F>(moved >= 0 ? moved : kMin - moved);
+  const auto infinite = (bits & 0x7fffffff) == 0x7f800000;
+  return (step == 0) | infinite ? v : result;
 }
 
 // Moves p off its surface (normal n, absolute error bound pError) to the side of w, far
@@ -54,8 +59,10 @@ inline glm::vec3 offsetRayOrigin(const glm::vec3& p, const glm::vec3& pError, co
   const float d = glm::dot(absComponents(n), pError);
   const glm::vec3 offset = (glm::dot(w, n) < 0.0f ? -d : d) * n;
   const glm::vec3 po = p + offset;
-  return {nextFloatToward(po.x, offset.x), nextFloatToward(po.y, offset.y),
-          nextFloatToward(po.z, offset.z)};
+  // The three components in one pass of SSE integer work (the fourth lane is unused).
+  const Float4 moved =
+      nextFloatToward(Float4{po.x, po.y, po.z, 0.0f}, Float4{offset.x, offset.y, offset.z, 0.0f});
+  return {moved[0], moved[1], moved[2]};
 }
 
 // Orthonormal basis around a unit vector (Duff et al. 2017).

@@ -1,6 +1,7 @@
 // Tests for integrator/math.h: nextFloatToward against std::nextafter (the reference it
 // replaces) over zeros, denormals, normal numbers of both signs, the largest finite values
-// and infinities; direction 0 leaves v unchanged. erfInv against std::erf.
+// and infinities; direction 0 leaves v unchanged; the Float4 form gives the scalar bits in
+// every lane. erfInv against std::erf.
 #include "integrator/math.h"
 
 #include <gtest/gtest.h>
@@ -31,6 +32,43 @@ TEST(Math, NextFloatTowardMatchesNextafter) {
   }
   EXPECT_EQ(nextFloatToward(L::infinity(), -1.0f), L::infinity());  // documented: ±∞ stay
   EXPECT_EQ(nextFloatToward(-L::infinity(), 1.0f), -L::infinity());
+}
+
+// offsetRayOrigin steps its three components as one Float4: each lane must be the scalar
+// function's bits, for every value above and each direction (up, down, none).
+TEST(Math, NextFloatTowardOnFourLanesGivesTheScalarBits) {
+  using L = std::numeric_limits<float>;
+  const float values[] = {0.0f,
+                          -0.0f,
+                          L::denorm_min(),
+                          -L::denorm_min(),
+                          L::min(),
+                          -L::min(),
+                          1.0f,
+                          -1.0f,
+                          0.3f,
+                          -1234.5f,
+                          1e30f,
+                          -1e-30f,
+                          L::max(),
+                          -L::max(),
+                          L::infinity(),
+                          -L::infinity()};
+  const float directions[] = {1.0f, -2.5f, 0.0f, -0.0f};
+  for (const float a : values) {
+    for (const float b : values) {
+      for (const float da : directions) {
+        for (const float db : directions) {
+          const Float4 v = {a, b, b, a}, direction = {da, db, da, db};
+          const Float4 got = nextFloatToward(v, direction);
+          for (int i = 0; i < 4; ++i)
+            ASSERT_EQ(std::bit_cast<std::uint32_t>(got[i]),
+                      std::bit_cast<std::uint32_t>(nextFloatToward(v[i], direction[i])))
+                << "lane " << i << " v = " << v[i] << " direction = " << direction[i];
+        }
+      }
+    }
+  }
 }
 
 // erf(erfInv(x)) = x over (−1, 1) to within single-precision rounding of the result
