@@ -151,41 +151,20 @@ float TriangleMesh::areaPdf(size_t tri, float area) const {
   return area > 0.0f ? areaDistribution_.pmf(tri) / area : 0.0f;
 }
 
-// Hot: every hit and every light sample on a mesh comes through here. Static meshes skip
-// the time lookup, the transform and the normal (stored); |x| uses absComponents (math.h).
-SurfaceInteraction TriangleMesh::pointOn(size_t tri, float b1, float b2, float time,
-                                         float* area) const {
-  const bool moving = !instance_.empty();
-  const glm::mat4 m = moving ? transformAt(time) : glm::mat4(1.0f);
+// Normals, texture coordinates, triangle and time of a point whose p and pError are set.
+// n: the geometric normal; m: the instance transform of a moving mesh (else null).
+[[gnu::always_inline]] inline void TriangleMesh::finish(SurfaceInteraction& si, const glm::vec3& n,
+                                                        size_t tri, float b0, float b1, float b2,
+                                                        float time, const glm::mat4* m) const {
   const std::uint32_t i0 = indices_[3 * tri], i1 = indices_[3 * tri + 1],
                       i2 = indices_[3 * tri + 2];
-  const auto vertex = [&](std::uint32_t i) {
-    return moving ? glm::vec3(m * glm::vec4(positions_[i], 1.0f)) : positions_[i];
-  };
-  const glm::vec3 p0 = vertex(i0), p1 = vertex(i1), p2 = vertex(i2);
-  const float b0 = 1.0f - b1 - b2;
-  SurfaceInteraction si;
-  si.p = b0 * p0 + b1 * p1 + b2 * p2;
-  si.pError =
-      gammaBound(7) * (absComponents(b0 * p0) + absComponents(b1 * p1) + absComponents(b2 * p2));
-  // n in a local first: copying si.n into si.ns through memory right after the three
+  // n stays in a register: copying si.n into si.ns through memory right after the three
   // scalar stores stalled on store forwarding (seen with perf).
-  glm::vec3 n;
-  if (moving) {
-    // the transform's rounding here and in Embree (Shape)
-    si.pError += gammaBound(3) * (absComponents(p0) + absComponents(p1) + absComponents(p2)) +
-                 instance_.error(si.p);
-    float len;
-    n = faceNormal(p0, p1, p2, &len);
-    if (area) *area = 0.5f * len;  // the triangle's area at `time` (sample() needs it)
-  } else {
-    n = faceNormals_[tri];
-  }
   si.n = n;
   si.ns = n;
   if (!normals_.empty()) {
     glm::vec3 ns = b0 * normals_[i0] + b1 * normals_[i1] + b2 * normals_[i2];
-    if (moving) ns = glm::mat3(m) * ns;  // uniform scale: renormalised below
+    if (m) ns = glm::mat3(*m) * ns;  // uniform scale: renormalised below
     const float nsLen = std::sqrt(glm::dot(ns, ns));
     if (nsLen > 0.0f && std::isfinite(nsLen)) {
       si.ns = ns / nsLen;
@@ -196,6 +175,45 @@ SurfaceInteraction TriangleMesh::pointOn(size_t tri, float b1, float b2, float t
   si.uv = uvs_.empty() ? glm::vec2(b1 + b2, b2) : b0 * uvs_[i0] + b1 * uvs_[i1] + b2 * uvs_[i2];
   si.prim = static_cast<int>(tri);
   si.time = time;
+}
+
+// Hot: every hit and every light sample on a mesh comes through here. A static mesh has a
+// path of its own: no time lookup, no transform, the stored normal, and few enough live
+// values that none is spilled to the stack (one function for both spilled them all).
+SurfaceInteraction TriangleMesh::pointOn(size_t tri, float b1, float b2, float time,
+                                         float* area) const {
+  if (!instance_.empty()) return pointOnMoving(tri, b1, b2, time, area);
+  const std::uint32_t i0 = indices_[3 * tri], i1 = indices_[3 * tri + 1],
+                      i2 = indices_[3 * tri + 2];
+  const glm::vec3 &p0 = positions_[i0], &p1 = positions_[i1], &p2 = positions_[i2];
+  const float b0 = 1.0f - b1 - b2;
+  SurfaceInteraction si;
+  si.p = b0 * p0 + b1 * p1 + b2 * p2;
+  si.pError =
+      gammaBound(7) * (absComponents(b0 * p0) + absComponents(b1 * p1) + absComponents(b2 * p2));
+  finish(si, faceNormals_[tri], tri, b0, b1, b2, time, nullptr);
+  return si;
+}
+
+SurfaceInteraction TriangleMesh::pointOnMoving(size_t tri, float b1, float b2, float time,
+                                               float* area) const {
+  const glm::mat4 m = transformAt(time);
+  const auto vertex = [&](size_t k) {
+    return glm::vec3(m * glm::vec4(positions_[indices_[k]], 1.0f));
+  };
+  const glm::vec3 p0 = vertex(3 * tri), p1 = vertex(3 * tri + 1), p2 = vertex(3 * tri + 2);
+  const float b0 = 1.0f - b1 - b2;
+  SurfaceInteraction si;
+  si.p = b0 * p0 + b1 * p1 + b2 * p2;
+  // The products' rounding, and the transform's here and in Embree (Shape).
+  si.pError =
+      gammaBound(7) * (absComponents(b0 * p0) + absComponents(b1 * p1) + absComponents(b2 * p2)) +
+      (gammaBound(3) * (absComponents(p0) + absComponents(p1) + absComponents(p2)) +
+       instance_.error(si.p));
+  float len;
+  const glm::vec3 n = faceNormal(p0, p1, p2, &len);
+  if (area) *area = 0.5f * len;  // the triangle's area at `time` (sample() needs it)
+  finish(si, n, tri, b0, b1, b2, time, &m);
   return si;
 }
 
