@@ -36,8 +36,8 @@ inline glm::vec3 absComponents(const glm::vec3& v) {
 // origins: ±∞ stay in either direction, and −2⁻¹⁴⁹ stepped up gives +0). Ray origins are
 // offset three times per bounce with directions that change sign from one ray to the
 // next, where the branches were mispredicted about half the time.
-// offsetRayOrigin steps its three components at once as a Float4.
-// F: float or Float4 (sensor/float_math.h, lane by lane: the same bits).
+// F: float or Float4 (sensor/float_math.h, lane by lane: the same bits); offsetRayOrigin
+// steps its three components at once as a Float4.
 template <typename F>
 inline F nextFloatToward(F v, F direction) {
   using I = typename float_math_detail::IntOf<F>::type;

@@ -151,6 +151,22 @@ float TriangleMesh::areaPdf(size_t tri, float area) const {
   return area > 0.0f ? areaDistribution_.pmf(tri) / area : 0.0f;
 }
 
+namespace {
+
+// The point b0·p0 + b1·p1 + b2·p2 and the bound on its rounding error.
+[[gnu::always_inline]] inline SurfaceInteraction interpolated(const glm::vec3& p0,
+                                                              const glm::vec3& p1,
+                                                              const glm::vec3& p2, float b0,
+                                                              float b1, float b2) {
+  SurfaceInteraction si;
+  si.p = b0 * p0 + b1 * p1 + b2 * p2;
+  si.pError =
+      gammaBound(7) * (absComponents(b0 * p0) + absComponents(b1 * p1) + absComponents(b2 * p2));
+  return si;
+}
+
+}  // namespace
+
 // Normals, texture coordinates, triangle and time of a point whose p and pError are set.
 // n: the geometric normal; m: the instance transform of a moving mesh (else null).
 [[gnu::always_inline]] inline void TriangleMesh::finish(SurfaceInteraction& si, const glm::vec3& n,
@@ -185,12 +201,8 @@ SurfaceInteraction TriangleMesh::pointOn(size_t tri, float b1, float b2, float t
   if (!instance_.empty()) return pointOnMoving(tri, b1, b2, time, area);
   const std::uint32_t i0 = indices_[3 * tri], i1 = indices_[3 * tri + 1],
                       i2 = indices_[3 * tri + 2];
-  const glm::vec3 &p0 = positions_[i0], &p1 = positions_[i1], &p2 = positions_[i2];
   const float b0 = 1.0f - b1 - b2;
-  SurfaceInteraction si;
-  si.p = b0 * p0 + b1 * p1 + b2 * p2;
-  si.pError =
-      gammaBound(7) * (absComponents(b0 * p0) + absComponents(b1 * p1) + absComponents(b2 * p2));
+  SurfaceInteraction si = interpolated(positions_[i0], positions_[i1], positions_[i2], b0, b1, b2);
   finish(si, faceNormals_[tri], tri, b0, b1, b2, time, nullptr);
   return si;
 }
@@ -203,13 +215,10 @@ SurfaceInteraction TriangleMesh::pointOnMoving(size_t tri, float b1, float b2, f
   };
   const glm::vec3 p0 = vertex(3 * tri), p1 = vertex(3 * tri + 1), p2 = vertex(3 * tri + 2);
   const float b0 = 1.0f - b1 - b2;
-  SurfaceInteraction si;
-  si.p = b0 * p0 + b1 * p1 + b2 * p2;
-  // The products' rounding, and the transform's here and in Embree (Shape).
-  si.pError =
-      gammaBound(7) * (absComponents(b0 * p0) + absComponents(b1 * p1) + absComponents(b2 * p2)) +
-      (gammaBound(3) * (absComponents(p0) + absComponents(p1) + absComponents(p2)) +
-       instance_.error(si.p));
+  SurfaceInteraction si = interpolated(p0, p1, p2, b0, b1, b2);
+  // The transform's rounding here and in Embree (Shape).
+  si.pError += gammaBound(3) * (absComponents(p0) + absComponents(p1) + absComponents(p2)) +
+               instance_.error(si.p);
   float len;
   const glm::vec3 n = faceNormal(p0, p1, p2, &len);
   if (area) *area = 0.5f * len;  // the triangle's area at `time` (sample() needs it)
