@@ -40,7 +40,7 @@ inline glm::vec3 absComponents(const glm::vec3& v) {
 // steps its three components at once as a Float4.
 template <typename F>
 inline F nextFloatToward(F v, F direction) {
-  using I = typename float_math_detail::IntOf<F>::type;
+  using I = typename lanes::IntOf<F>::type;
   constexpr std::int32_t kMin = std::numeric_limits<std::int32_t>::min();
   const auto bits = std::bit_cast<I>(v);
   const I ordered = bits >= 0 ? bits : kMin - bits;

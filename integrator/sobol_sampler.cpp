@@ -8,9 +8,9 @@ namespace {
 // with target("avx2"), for CPUs that have it (always_inline: a call into the baseline copy
 // from the AVX2 function would run baseline code).
 
-// Seeds of `count` consecutive dimensions from firstDimension.
+// Seeds of N consecutive dimensions from firstDimension.
 template <int N>
-[[gnu::always_inline]] inline void fillSeeds(std::uint64_t pixelKey, int firstDimension,
+[[gnu::always_inline]] inline void fillSeeds(std::uint64_t pixelKey, std::int64_t firstDimension,
                                              std::uint32_t* shuffle, std::uint32_t* x,
                                              std::uint32_t* y) {
   for (int i = 0; i < N; ++i) {
@@ -37,7 +37,8 @@ template <int N>
 
 constexpr int kBlock = SobolSampler::kBlock;
 
-__attribute__((target("avx2"))) void fillSeedsAvx2(std::uint64_t pixelKey, int firstDimension,
+__attribute__((target("avx2"))) void fillSeedsAvx2(std::uint64_t pixelKey,
+                                                   std::int64_t firstDimension,
                                                    std::uint32_t* shuffle, std::uint32_t* x,
                                                    std::uint32_t* y) {
   fillSeeds<kBlock>(pixelKey, firstDimension, shuffle, x, y);
@@ -86,9 +87,9 @@ void SobolSampler::fillBlock() {
   blockStart_ = dimension_;
   const std::uint32_t *shuffle, *xs, *ys;
   std::uint32_t local[3][kBlock];
-  // dimension_ ≥ 0 always (setDimension takes slots, not offsets); int64: no overflow near
-  // INT_MAX.
-  if (dimension_ >= 0 && static_cast<std::int64_t>(dimension_) + kBlock <= kCachedDimensions) {
+  // Blocks that end within the cache use it; any other dimension (negative, or up to
+  // INT_MAX: the seeds take 64-bit dimensions) computes its seeds here.
+  if (dimension_ >= 0 && dimension_ <= kCachedDimensions - kBlock) {
     cacheSeeds(dimension_ + kBlock);
     shuffle = shuffleSeeds_ + dimension_;
     xs = xSeeds_ + dimension_;

@@ -84,8 +84,9 @@ enum class SobolDraw { kAuto, kOneAtATime, kBlocks };
 //   x = owen(sobol₀(shuffled), s1) = rev(LK(shuffled, s1))            (sobol₀ = rev)
 //   y = owen(sobol₁(shuffled), s2) = rev(LK(rev(sobol₁(shuffled)), s2))
 // Blocks: the dimensions of a pixel sample are independent, so on CPUs with AVX2 the first
-// draw in a block computes x and y for its kBlock dimensions in one vectorised loop
-// (fillBlock, 8 lanes), and the draws that follow read them. Some are never used (a get2D
+// draw in a block computes x and y for its kBlock dimensions in vectorised loops
+// (fillBlock, 8 lanes: the seeds if not cached, then the numbers), and the draws that
+// follow read them. Some are never used (a get2D
 // skips a slot, paths end, a 1D slot's y), but eight at once cost less than two or three
 // one at a time (bench/sobol_lanes_bench: 4.7× per number for AVX2 lanes).
 class SobolSampler final : public Sampler {
@@ -114,16 +115,17 @@ class SobolSampler final : public Sampler {
   }
   bool drawsBlocks() const { return blocks_; }
 
-  // The pixel's key and the number get1D() returns at `dimension` of the sample whose index
-  // bit-reversed is reversedIndex: the same code, for loops over many pixel samples at once
-  // (bench/sobol_lanes_bench.cpp).
+  // The static functions below are the code get1D/get2D run, for loops over many pixel
+  // samples or dimensions at once (fillBlock, bench/sobol_lanes_bench.cpp): the pixel's
+  // key; number1D is what get1D() returns at `dimension` of the sample whose index
+  // bit-reversed is reversedIndex.
   static std::uint64_t pixelKeyOf(std::uint64_t seed, glm::ivec2 pixel) {
     return hashValues(seed, static_cast<std::uint32_t>(pixel.x),
                       static_cast<std::uint32_t>(pixel.y));
   }
   // The pair's scramble seeds: one 64-bit mix of (pixel key, dimension) gives the index
   // shuffle's and x's 32-bit seeds; y's comes from a second mix.
-  static std::uint64_t dimensionKey(std::uint64_t pixelKey, int dimension) {
+  static std::uint64_t dimensionKey(std::uint64_t pixelKey, std::int64_t dimension) {
     return mix64(pixelKey ^ (static_cast<std::uint64_t>(dimension) * 0xd6e8feb86659fd93ull));
   }
   struct Seeds {
@@ -156,9 +158,10 @@ class SobolSampler final : public Sampler {
     return {xOf(i, seeds.x), yOf(i, seeds.y)};
   }
 
-  // Block mode keeps the seeds of a pixel's first kCachedDimensions dimensions: they do not
-  // depend on the sample index, so the pixel's later samples skip the two 64-bit mixes
-  // per dimension (half of a block's work; AVX2 has no 64-bit multiply).
+  // Block mode keeps the seeds of a pixel's first kCachedDimensions dimensions (used by
+  // blocks that end within them): they do not depend on the sample index, so the pixel's
+  // later samples skip the two 64-bit mixes per dimension (half of a block's work; AVX2 has
+  // no 64-bit multiply).
   static constexpr int kCachedDimensions = 256;
 
  private:

@@ -21,10 +21,10 @@ void reserveSpare(std::vector<T>& v, size_t spare) {
 // degenerate triangle. One function for pointOn and the static meshes' stored normals,
 // so both give the same bits.
 glm::vec3 faceNormal(const glm::vec3& p0, const glm::vec3& p1, const glm::vec3& p2,
-                     float* crossLength) {
+                     float* crossLength = nullptr) {
   const glm::vec3 cross = glm::cross(p1 - p0, p2 - p0);
   const float len = std::sqrt(glm::dot(cross, cross));
-  *crossLength = len;
+  if (crossLength) *crossLength = len;
   return len > 0.0f ? cross * (1.0f / len) : glm::vec3(0.0f, 0.0f, 1.0f);
 }
 
@@ -62,13 +62,11 @@ TriangleMesh::TriangleMesh(std::vector<glm::vec3> positions, std::vector<glm::ve
     total += area;
   }
   area_ = static_cast<float>(total);
-  if (steps_.count == 1) {
+  if (instance_.empty()) {  // the test pointOn takes its static path by
     faceNormals_.resize(triangleCount());
-    for (size_t t = 0; t < triangleCount(); ++t) {
-      float len;
+    for (size_t t = 0; t < triangleCount(); ++t)
       faceNormals_[t] = faceNormal(positions_[indices_[3 * t]], positions_[indices_[3 * t + 1]],
-                                   positions_[indices_[3 * t + 2]], &len);
-    }
+                                   positions_[indices_[3 * t + 2]]);
   }
   if (samplable_ && total > 0.0) areaDistribution_ = DiscreteDistribution(areas);
   if (samplable_ && steps_.count == 1)

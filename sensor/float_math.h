@@ -19,12 +19,13 @@
 
 namespace camsim {
 
-// Four floats / ints in one SSE register (GCC/Clang vector extension): the functions below
-// also take these, so the four wavelengths of a pixel sample are computed in one pass.
+// Four floats / ints in one SSE register (GCC/Clang vector extension). Code written once
+// for F = float and F = Float4 uses the helpers in lanes:: (the int type of the same
+// shape, conversions), so its scalar and four-lane forms do the same IEEE operations.
 using Float4 = float __attribute__((vector_size(16)));
 using Int4 = std::int32_t __attribute__((vector_size(16)));
 
-namespace float_math_detail {
+namespace lanes {
 template <typename F>
 struct IntOf {
   using type = std::int32_t;
@@ -45,12 +46,12 @@ inline std::int32_t toInt(float x) {  // truncation
 inline Int4 toInt(Float4 x) {
   return __builtin_convertvector(x, Int4);
 }
-}  // namespace float_math_detail
+}  // namespace lanes
 
 // F: float or Float4; the same operations per lane, so the same bits either way.
 template <typename F>
 inline F logOfNormal(F x) {
-  using I = typename float_math_detail::IntOf<F>::type;
+  using I = typename lanes::IntOf<F>::type;
   const auto bits = std::bit_cast<I>(x);
   const I e = (bits - 0x3f3504f3) >> 23;  // 0x3f3504f3: the bits of √½
   const F m = std::bit_cast<F>(bits - e * (1 << 23));
@@ -59,7 +60,7 @@ inline F logOfNormal(F x) {
   const F series =
       s *
       (2.0f + s2 * (2.0f / 3.0f + s2 * (2.0f / 5.0f + s2 * (2.0f / 7.0f + s2 * (2.0f / 9.0f)))));
-  return float_math_detail::toFloat(e) * 0.693147182f + series;
+  return lanes::toFloat(e) * 0.693147182f + series;
 }
 
 struct SinCos {

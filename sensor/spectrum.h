@@ -63,10 +63,10 @@ class Spectrum {
     F x = lambdaNm - static_cast<float>(kLambdaMinNm);
     x = x < 0.0f ? 0.0f : x;  // std::clamp(x, 0, top)
     x = top < x ? top : x;
-    I i = float_math_detail::toInt(x);  // x ≥ 0: truncation is ⌊x⌋
+    I i = lanes::toInt(x);  // x ≥ 0: truncation is ⌊x⌋
     i = i >= kSpectrumSamples - 1 ? kSpectrumSamples - 2 : i;
     index = i;
-    fraction = x - float_math_detail::toFloat(i);
+    fraction = x - lanes::toFloat(i);
   }
   // The interpolation at a grid position (index, fraction).
   float interpolate(int i, float t) const { return values_[i] + t * (values_[i + 1] - values_[i]); }

@@ -145,7 +145,10 @@ TEST(SobolSampler, BlocksGiveTheNumbersOfOneAtATime) {
   int compared = 0;
   for (int pixelSample = 0; pixelSample < 400; ++pixelSample) {
     if (pixelSample % 50 == 25) {
-      const SobolSampler copy = blocks;  // mid-sample: the block travels with it
+      // Mid-sample, blocks is replaced by a fresh sampler and then restored from a copy:
+      // the block and the seed cache must travel with the copy.
+      const SobolSampler copy = blocks;
+      blocks = SobolSampler(11, SobolDraw::kBlocks);
       blocks = copy;
     }
     const glm::ivec2 pixel(pixelSample / 7, 3);
@@ -173,6 +176,40 @@ TEST(SobolSampler, BlocksGiveTheNumbersOfOneAtATime) {
     }
   }
   EXPECT_GT(compared, 15000);
+}
+
+// The seed cache's edge: blocks that start just below, at and above the last cached block
+// (kCachedDimensions − kBlock), and draws that walk across kCachedDimensions, over several
+// samples of each pixel (the later ones read the cache) and two pixels.
+TEST(SobolSampler, BlocksAcrossTheEndOfTheSeedCacheGiveTheNumbersOfOneAtATime) {
+  SobolSampler blocks(12, SobolDraw::kBlocks), single(12, SobolDraw::kOneAtATime);
+  constexpr int kEnd = SobolSampler::kCachedDimensions;
+  int compared = 0;
+  for (const glm::ivec2 pixel : {glm::ivec2(3, 4), glm::ivec2(4, 4)}) {
+    for (int sample = 0; sample < 4; ++sample) {
+      for (int start = kEnd - SobolSampler::kBlock - 3; start <= kEnd + 2; ++start) {
+        blocks.startPixelSample(pixel, sample);
+        single.startPixelSample(pixel, sample);
+        blocks.setDimension(start);
+        single.setDimension(start);
+        for (int draw = 0; draw < 12; ++draw) {  // 1D, 2D, 1D, … : 18 dimensions
+          if (draw % 2 == 0) {
+            ASSERT_EQ(std::bit_cast<std::uint32_t>(blocks.get1D()),
+                      std::bit_cast<std::uint32_t>(single.get1D()))
+                << "start " << start << " draw " << draw;
+            ++compared;
+          } else {
+            const glm::vec2 a = blocks.get2D(), b = single.get2D();
+            ASSERT_EQ(std::bit_cast<std::uint32_t>(a.x), std::bit_cast<std::uint32_t>(b.x));
+            ASSERT_EQ(std::bit_cast<std::uint32_t>(a.y), std::bit_cast<std::uint32_t>(b.y))
+                << "start " << start << " draw " << draw;
+            compared += 2;
+          }
+        }
+      }
+    }
+  }
+  EXPECT_EQ(compared, 2 * 4 * 14 * 18);
 }
 
 }  // namespace

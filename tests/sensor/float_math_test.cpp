@@ -63,7 +63,7 @@ TEST(FloatMath, LogOfNormalOnFourLanesGivesTheScalarBits) {
                           3.0e-38f, 1e-20f,      0.3f,        7.5f,       1e20f,      3.4e38f};
   for (const float a : values) {
     for (const float b : values) {
-      const Float4 x = {a, b, a * 0.5f, b * 1.5f};
+      const Float4 x = {a, b, a * 0.5f, b * 0.75f};  // all normal, finite, > 0
       const Float4 got = logOfNormal(x);
       for (int i = 0; i < 4; ++i)
         EXPECT_EQ(std::bit_cast<std::uint32_t>(got[i]),

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -12,6 +13,7 @@
 #include <gtest/gtest.h>
 
 #include "sensor/cie.h"
+#include "sensor/spectral_response.h"
 
 namespace camsim {
 namespace {
@@ -232,6 +234,42 @@ TEST(SampledSpectrum, SafeDivTreatsZeroDenominatorAsZero) {
   EXPECT_EQ(q[1], 0.0f);
   EXPECT_EQ(q[2], 2.0f);
   EXPECT_EQ(q[3], 0.0f);
+}
+
+// The lane forms against the scalar code they replaced, written out here: the grid
+// position with std::clamp and a scalar truncation, each lerp with Spectrum::interpolate,
+// and the film's estimate as a loop of float products summed in double.
+TEST(SampledSpectrum, LanesGiveTheBitsOfTheScalarCode) {
+  Spectrum wiggly;
+  for (int i = 0; i < kSpectrumSamples; ++i)
+    wiggly.sample(i) = 0.5f + 0.4f * std::sin(0.37f * static_cast<float>(i)) / 3.0f;
+  const SpectralResponse xyz = SpectralResponse::cieXyz();
+  const auto bits = [](float x) { return std::bit_cast<std::uint32_t>(x); };
+  for (int k = 0; k < 2000; ++k) {
+    const float u = static_cast<float>(k) / 2000.0f;
+    for (const SampledWavelengths& w :
+         {SampledWavelengths::sampleVisible(u), SampledWavelengths::sampleUniform(u)}) {
+      SampledSpectrum q;
+      for (int i = 0; i < kWavelengthSamples; ++i) {
+        const float x = std::clamp(w[i] - static_cast<float>(kLambdaMinNm), 0.0f,
+                                   static_cast<float>(kSpectrumSamples - 1));
+        const int index = std::min(static_cast<int>(x), kSpectrumSamples - 2);
+        ASSERT_EQ(w.gridIndex(i), index) << w[i];
+        ASSERT_EQ(bits(w.gridFraction(i)), bits(x - static_cast<float>(index))) << w[i];
+        q[i] = 1.0f + static_cast<float>(i) * u;
+      }
+      const SampledSpectrum s = sampleSpectrum(wiggly, w);
+      for (int i = 0; i < kWavelengthSamples; ++i)
+        ASSERT_EQ(bits(s[i]), bits(wiggly.interpolate(w.gridIndex(i), w.gridFraction(i))));
+      for (int c = 0; c < xyz.channelCount(); ++c) {
+        double sum = 0.0;
+        for (int i = 0; i < kWavelengthSamples; ++i)
+          sum += static_cast<double>(
+              xyz.channel(c).curve.interpolate(w.gridIndex(i), w.gridFraction(i)) * q[i]);
+        ASSERT_EQ(xyz.estimate(c, q, w), sum / kWavelengthSamples) << "channel " << c;
+      }
+    }
+  }
 }
 
 TEST(SampledSpectrum, SampleSpectrumEvaluatesAtTheWavelengths) {
