@@ -86,9 +86,9 @@ enum class SobolDraw { kAuto, kOneAtATime, kBlocks };
 // Blocks: the dimensions of a pixel sample are independent, so on CPUs with AVX2 the first
 // draw in a block computes x and y for its kBlock dimensions in vectorised loops
 // (fillBlock, 8 lanes: the seeds if not cached, then the numbers), and the draws that
-// follow read them. Some are never used (a get2D
-// skips a slot, paths end, a 1D slot's y), but eight at once cost less than two or three
-// one at a time (bench/sobol_lanes_bench: 4.7× per number for AVX2 lanes).
+// follow read them. Some are never used (a get2D skips a slot, paths end, a 1D slot's y),
+// but eight at once cost less than two or three one at a time (bench/sobol_lanes_bench:
+// 4.7× per number for AVX2 lanes).
 class SobolSampler final : public Sampler {
  public:
   static constexpr int kBlock = 8;
