@@ -41,13 +41,20 @@ inline glm::vec3 absComponents(const glm::vec3& v) {
 template <typename F>
 inline F nextFloatToward(F v, F direction) {
   using I = typename lanes::IntOf<F>::type;
-  constexpr std::int32_t kMin = std::numeric_limits<std::int32_t>::min();
+  using U = typename lanes::IntOf<F>::unsigned_type;
+  // INT_MIN − x, the map between negative floats and their ordered integers, in unsigned
+  // arithmetic: the Float4 select below computes it in every lane, also where x ≥ 0 and
+  // the signed difference would overflow (UBSan).
+  const auto mirror = [](I x) {
+    return std::bit_cast<I>(std::bit_cast<U>(I{} + std::numeric_limits<std::int32_t>::min()) -
+                            std::bit_cast<U>(x));
+  };
   const auto bits = std::bit_cast<I>(v);
-  const I ordered = bits >= 0 ? bits : kMin - bits;
+  const I ordered = bits >= 0 ? bits : mirror(bits);
   const I zero{}, one = zero + 1;  // scalars or broadcast lanes
   const I step = (direction > 0.0f ? one : zero) - (direction < 0.0f ? one : zero);
   const I moved = ordered + step;
-  const F result = std::bit_cast<F>(moved >= 0 ? moved : kMin - moved);
+  const F result = std::bit_cast<F>(moved >= 0 ? moved : mirror(moved));
   const auto infinite = (bits & 0x7fffffff) == 0x7f800000;
   return (step == 0) | infinite ? v : result;
 }
