@@ -129,6 +129,24 @@ TEST(SobolSampler, IntegratesSmoothFunctionsAccurately) {
   EXPECT_LT(worst, 0.002);
 }
 
+// One draw (1D or 2D) from both samplers; the numbers must agree bit for bit. Returns how
+// many numbers were compared.
+testing::AssertionResult sameDraw(SobolSampler& blocks, SobolSampler& single, bool twoD,
+                                  int& compared) {
+  const auto bits = [](float x) { return std::bit_cast<std::uint32_t>(x); };
+  if (!twoD) {
+    const float a = blocks.get1D(), b = single.get1D();
+    ++compared;
+    if (bits(a) == bits(b)) return testing::AssertionSuccess();
+    return testing::AssertionFailure() << "1D: " << a << " (blocks) != " << b;
+  }
+  const glm::vec2 a = blocks.get2D(), b = single.get2D();
+  compared += 2;
+  if (bits(a.x) == bits(b.x) && bits(a.y) == bits(b.y)) return testing::AssertionSuccess();
+  return testing::AssertionFailure()
+         << "2D: (" << a.x << ", " << a.y << ") (blocks) != (" << b.x << ", " << b.y << ")";
+}
+
 TEST(SobolSampler, BlocksGiveTheNumbersOfOneAtATime) {
   // kBlocks: blocks on any CPU (the AVX2 fill where there is AVX2, else the same loop for
   // the baseline), so the block logic is tested everywhere.
@@ -161,17 +179,9 @@ TEST(SobolSampler, BlocksGiveTheNumbersOfOneAtATime) {
         const int d = draw == 20 ? 2000000000 : static_cast<int>(rng() % 60);
         blocks.setDimension(d);
         single.setDimension(d);
-      } else if (what < 5) {
-        const float a = blocks.get1D(), b = single.get1D();
-        ASSERT_EQ(std::bit_cast<std::uint32_t>(a), std::bit_cast<std::uint32_t>(b))
-            << "pixel sample " << pixelSample << " draw " << draw;
-        ++compared;
       } else {
-        const glm::vec2 a = blocks.get2D(), b = single.get2D();
-        ASSERT_EQ(std::bit_cast<std::uint32_t>(a.x), std::bit_cast<std::uint32_t>(b.x));
-        ASSERT_EQ(std::bit_cast<std::uint32_t>(a.y), std::bit_cast<std::uint32_t>(b.y))
+        ASSERT_TRUE(sameDraw(blocks, single, what >= 5, compared))
             << "pixel sample " << pixelSample << " draw " << draw;
-        compared += 2;
       }
     }
   }
@@ -192,20 +202,9 @@ TEST(SobolSampler, BlocksAcrossTheEndOfTheSeedCacheGiveTheNumbersOfOneAtATime) {
         single.startPixelSample(pixel, sample);
         blocks.setDimension(start);
         single.setDimension(start);
-        for (int draw = 0; draw < 12; ++draw) {  // 1D, 2D, 1D, … : 18 dimensions
-          if (draw % 2 == 0) {
-            ASSERT_EQ(std::bit_cast<std::uint32_t>(blocks.get1D()),
-                      std::bit_cast<std::uint32_t>(single.get1D()))
-                << "start " << start << " draw " << draw;
-            ++compared;
-          } else {
-            const glm::vec2 a = blocks.get2D(), b = single.get2D();
-            ASSERT_EQ(std::bit_cast<std::uint32_t>(a.x), std::bit_cast<std::uint32_t>(b.x));
-            ASSERT_EQ(std::bit_cast<std::uint32_t>(a.y), std::bit_cast<std::uint32_t>(b.y))
-                << "start " << start << " draw " << draw;
-            compared += 2;
-          }
-        }
+        for (int draw = 0; draw < 12; ++draw)  // 1D, 2D, 1D, … : 18 dimensions
+          ASSERT_TRUE(sameDraw(blocks, single, draw % 2 == 1, compared))
+              << "start " << start << " draw " << draw;
       }
     }
   }
