@@ -53,21 +53,19 @@ TriangleMesh::TriangleMesh(std::vector<glm::vec3> positions, std::vector<glm::ve
     return glm::dvec3(rest * glm::dvec4(glm::dvec3(positions_[i]), 1.0));
   };
   std::vector<double> areas(samplable_ ? triangleCount() : 0);
+  // Stored normals for the meshes pointOn takes its static path for (no instance).
+  faceNormals_.resize(instance_.empty() ? triangleCount() : 0);
   double total = 0.0;
   for (size_t t = 0; t < triangleCount(); ++t) {
-    const glm::dvec3 p0 = restVertex(indices_[3 * t]), p1 = restVertex(indices_[3 * t + 1]),
-                     p2 = restVertex(indices_[3 * t + 2]);
+    const std::uint32_t i0 = indices_[3 * t], i1 = indices_[3 * t + 1], i2 = indices_[3 * t + 2];
+    const glm::dvec3 p0 = restVertex(i0), p1 = restVertex(i1), p2 = restVertex(i2);
     const double area = 0.5 * glm::length(glm::cross(p1 - p0, p2 - p0));
     if (samplable_) areas[t] = area;
     total += area;
+    if (!faceNormals_.empty())
+      faceNormals_[t] = faceNormal(positions_[i0], positions_[i1], positions_[i2]);
   }
   area_ = static_cast<float>(total);
-  if (instance_.empty()) {  // the test pointOn takes its static path by
-    faceNormals_.resize(triangleCount());
-    for (size_t t = 0; t < triangleCount(); ++t)
-      faceNormals_[t] = faceNormal(positions_[indices_[3 * t]], positions_[indices_[3 * t + 1]],
-                                   positions_[indices_[3 * t + 2]]);
-  }
   if (samplable_ && total > 0.0) areaDistribution_ = DiscreteDistribution(areas);
   if (samplable_ && steps_.count == 1)
     frontPlane_ = findFrontPlane(positions_, normals_, indices_, areas);
@@ -135,10 +133,12 @@ glm::mat4 TriangleMesh::transformAt(float time) const {
 
 float TriangleMesh::triangleArea(size_t tri, float time) const {
   const glm::mat4 m = transformAt(time);
-  const auto vertex = [&](size_t k) {
-    return glm::vec3(m * glm::vec4(positions_[indices_[k]], 1.0f));
+  const std::uint32_t i0 = indices_[3 * tri], i1 = indices_[3 * tri + 1],
+                      i2 = indices_[3 * tri + 2];
+  const auto vertex = [&](std::uint32_t i) {
+    return glm::vec3(m * glm::vec4(positions_[i], 1.0f));
   };
-  const glm::vec3 p0 = vertex(3 * tri), p1 = vertex(3 * tri + 1), p2 = vertex(3 * tri + 2);
+  const glm::vec3 p0 = vertex(i0), p1 = vertex(i1), p2 = vertex(i2);
   return 0.5f * glm::length(glm::cross(p1 - p0, p2 - p0));
 }
 
@@ -167,11 +167,12 @@ namespace {
 
 // Normals, texture coordinates, triangle and time of a point whose p and pError are set.
 // n: the geometric normal; m: the instance transform of a moving mesh (else null).
+// i0, i1, i2: the triangle's vertex indices (the caller has loaded them already).
 [[gnu::always_inline]] inline void TriangleMesh::finish(SurfaceInteraction& si, const glm::vec3& n,
-                                                        size_t tri, float b0, float b1, float b2,
-                                                        float time, const glm::mat4* m) const {
-  const std::uint32_t i0 = indices_[3 * tri], i1 = indices_[3 * tri + 1],
-                      i2 = indices_[3 * tri + 2];
+                                                        size_t tri, std::uint32_t i0,
+                                                        std::uint32_t i1, std::uint32_t i2,
+                                                        float b0, float b1, float b2, float time,
+                                                        const glm::mat4* m) const {
   // n stays in a register: copying si.n into si.ns through memory right after the three
   // scalar stores stalled on store forwarding (seen with perf).
   si.n = n;
@@ -201,17 +202,19 @@ SurfaceInteraction TriangleMesh::pointOn(size_t tri, float b1, float b2, float t
                       i2 = indices_[3 * tri + 2];
   const float b0 = 1.0f - b1 - b2;
   SurfaceInteraction si = interpolated(positions_[i0], positions_[i1], positions_[i2], b0, b1, b2);
-  finish(si, faceNormals_[tri], tri, b0, b1, b2, time, nullptr);
+  finish(si, faceNormals_[tri], tri, i0, i1, i2, b0, b1, b2, time, nullptr);
   return si;
 }
 
 SurfaceInteraction TriangleMesh::pointOnMoving(size_t tri, float b1, float b2, float time,
                                                float* area) const {
   const glm::mat4 m = transformAt(time);
-  const auto vertex = [&](size_t k) {
-    return glm::vec3(m * glm::vec4(positions_[indices_[k]], 1.0f));
+  const std::uint32_t i0 = indices_[3 * tri], i1 = indices_[3 * tri + 1],
+                      i2 = indices_[3 * tri + 2];
+  const auto vertex = [&](std::uint32_t i) {
+    return glm::vec3(m * glm::vec4(positions_[i], 1.0f));
   };
-  const glm::vec3 p0 = vertex(3 * tri), p1 = vertex(3 * tri + 1), p2 = vertex(3 * tri + 2);
+  const glm::vec3 p0 = vertex(i0), p1 = vertex(i1), p2 = vertex(i2);
   const float b0 = 1.0f - b1 - b2;
   SurfaceInteraction si = interpolated(p0, p1, p2, b0, b1, b2);
   // The transform's rounding here and in Embree (Shape).
@@ -220,7 +223,7 @@ SurfaceInteraction TriangleMesh::pointOnMoving(size_t tri, float b1, float b2, f
   float len;
   const glm::vec3 n = faceNormal(p0, p1, p2, &len);
   if (area) *area = 0.5f * len;  // the triangle's area at `time` (sample() needs it)
-  finish(si, n, tri, b0, b1, b2, time, &m);
+  finish(si, n, tri, i0, i1, i2, b0, b1, b2, time, &m);
   return si;
 }
 

@@ -73,8 +73,9 @@ class TriangleMesh final : public Shape {
   SurfaceInteraction pointOn(size_t tri, float b1, float b2, float time,
                              float* area = nullptr) const;
   SurfaceInteraction pointOnMoving(size_t tri, float b1, float b2, float time, float* area) const;
-  void finish(SurfaceInteraction& si, const glm::vec3& n, size_t tri, float b0, float b1, float b2,
-              float time, const glm::mat4* m) const;
+  void finish(SurfaceInteraction& si, const glm::vec3& n, size_t tri, std::uint32_t i0,
+              std::uint32_t i1, std::uint32_t i2, float b0, float b1, float b2, float time,
+              const glm::mat4* m) const;
   float triangleArea(size_t tri, float time) const;
   float areaPdf(size_t tri, float area) const;
 
