@@ -1,7 +1,8 @@
 // Sampler: the uniform numbers one pixel sample consumes, by dimension.
 // startPixelSample() fixes the stream for (pixel, sample index); numbers are addressed by
 // dimension, so a sample's numbers depend neither on the thread nor on which *other*
-// dimensions were drawn. The render loop gives each dimension of the measurement integral
+// dimensions were drawn. Every draw, get1D or get2D, takes one dimension: a 2D draw is one
+// pair (for the Sobol' sampler a (0,2)-sequence), not two 1D draws. The render loop gives each dimension of the measurement integral
 // a fixed slot (SampleDimension), so switching, say, time sampling on or off leaves every
 // other number unchanged.
 #pragma once
@@ -17,10 +18,10 @@ namespace camsim {
 // Fixed dimension slots of a camera sample; path tracing uses kPath onwards.
 enum SampleDimension : int {
   kDimWavelength = 0,
-  kDimPixel = 1,  // 2 numbers
-  kDimLens = 3,   // 2 numbers
-  kDimTime = 5,
-  kDimPath = 6,
+  kDimPixel = 1,  // 2D
+  kDimLens = 2,   // 2D
+  kDimTime = 3,
+  kDimPath = 4,
 };
 
 class Sampler {
@@ -44,16 +45,18 @@ class IndependentSampler final : public Sampler {
     dimension_ = 0;
   }
   void setDimension(int dimension) override { dimension_ = static_cast<std::uint64_t>(dimension); }
-  float get1D() override {
-    const std::uint64_t h = mix64(key_ + 0x9e3779b97f4a7c15ull * (++dimension_));
-    return static_cast<float>(h >> 40) * 0x1p-24f;
-  }
+  float get1D() override { return toUnit(next() >> 40); }
+  // Two 24-bit numbers from disjoint bits of one 64-bit hash.
   glm::vec2 get2D() override {
-    const float a = get1D();
-    return {a, get1D()};
+    const std::uint64_t h = next();
+    return {toUnit(h >> 40), toUnit(h >> 16)};
   }
 
  private:
+  std::uint64_t next() { return mix64(key_ + 0x9e3779b97f4a7c15ull * (++dimension_)); }
+  // The low 24 bits of x as a float in [0, 1).
+  static float toUnit(std::uint64_t x) { return static_cast<float>(x & 0xFFFFFFu) * 0x1p-24f; }
+
   std::uint64_t seed_;
   std::uint64_t key_ = 0;
   std::uint64_t dimension_ = 0;

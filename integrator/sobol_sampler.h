@@ -86,7 +86,7 @@ enum class SobolDraw { kAuto, kOneAtATime, kBlocks };
 // Blocks: the dimensions of a pixel sample are independent, so on CPUs with AVX2 the first
 // draw in a block computes x and y for its kBlock dimensions in vectorised loops
 // (fillBlock, 8 lanes: the seeds if not cached, then the numbers), and the draws that
-// follow read them. Some are never used (a get2D skips a slot, paths end, a 1D slot's y),
+// follow read them. Some are never used (paths end, a 1D draw leaves its y),
 // but eight at once cost less than two or three one at a time (bench/sobol_lanes_bench:
 // 4.7× per number for AVX2 lanes).
 class SobolSampler final : public Sampler {
@@ -105,12 +105,10 @@ class SobolSampler final : public Sampler {
   }
   glm::vec2 get2D() override {
     if (!blocks_) {
-      const std::uint64_t key = dimensionKey(pixelKey_, dimension_);
-      dimension_ += 2;
-      return pair(key, reversedIndex_);
+      return pair(dimensionKey(pixelKey_, dimension_++), reversedIndex_);
     }
     const int slot = blockSlot();
-    dimension_ += 2;
+    ++dimension_;
     return {x_[slot], y_[slot]};
   }
   bool drawsBlocks() const { return blocks_; }
