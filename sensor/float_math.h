@@ -52,6 +52,15 @@ inline std::int32_t toInt(float x) {  // truncation
 inline Int4 toInt(Float4 x) {
   return __builtin_convertvector(x, Int4);
 }
+// Whether any lane of a comparison's result (−1 true, 0 false) is true: one movmskps on
+// x86 (extracting the four lanes to OR them took eight instructions).
+inline bool any(Int4 mask) {
+#if defined(__SSE__)
+  return __builtin_ia32_movmskps(std::bit_cast<Float4>(mask)) != 0;
+#else
+  return (mask[0] | mask[1] | mask[2] | mask[3]) != 0;
+#endif
+}
 }  // namespace lanes
 
 // F: float or Float4; the same operations per lane, so the same bits either way.

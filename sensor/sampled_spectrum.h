@@ -9,6 +9,7 @@
 //   Z = tanh(a (830 − 538)) − tanh(a (360 − 538)),   inverted in closed form with atanh.
 #pragma once
 
+#include <bit>
 #include <cmath>
 
 #include "sensor/float_math.h"
@@ -68,13 +69,10 @@ class SampledSpectrum {
   }
 
   bool isZero() const {
-    const auto nonZero = v_ != 0.0f;  // -1 where true; NaN counts as non-zero
-    return (nonZero[0] | nonZero[1] | nonZero[2] | nonZero[3]) == 0;
-  }
-  bool isFinite() const {
-    for (int i = 0; i < kWavelengthSamples; ++i)
-      if (!std::isfinite(v_[i])) return false;
-    return true;
+    return !lanes::any(v_ != 0.0f);
+  }                        // NaN counts as non-zero
+  bool isFinite() const {  // no lane has the exponent of ±∞ and NaN
+    return !lanes::any((std::bit_cast<Int4>(v_) & 0x7f800000) == 0x7f800000);
   }
   float maxComponent() const {
     float m = v_[0];

@@ -222,6 +222,25 @@ TEST(SampledSpectrum, IsZeroLooksAtEveryLane) {
   }
 }
 
+// isFinite tests each lane: ±∞ or NaN in any one lane makes the spectrum not finite; the
+// largest finite float, denormals and −0 do not.
+TEST(SampledSpectrum, IsFiniteLooksAtEveryLane) {
+  constexpr float kInf = std::numeric_limits<float>::infinity();
+  for (int i = 0; i < kWavelengthSamples; ++i) {
+    for (const float v : {kInf, -kInf, std::numeric_limits<float>::quiet_NaN()}) {
+      SampledSpectrum s(1.0f);
+      s[i] = v;
+      EXPECT_FALSE(s.isFinite()) << "lane " << i << " value " << v;
+    }
+    for (const float v : {std::numeric_limits<float>::max(), -std::numeric_limits<float>::max(),
+                          std::numeric_limits<float>::denorm_min(), -0.0f}) {
+      SampledSpectrum s(1.0f);
+      s[i] = v;
+      EXPECT_TRUE(s.isFinite()) << "lane " << i << " value " << v;
+    }
+  }
+}
+
 TEST(SampledSpectrum, SafeDivTreatsZeroDenominatorAsZero) {
   SampledSpectrum num(6.0f);
   SampledSpectrum den;
