@@ -23,11 +23,16 @@ class DiscreteDistribution {
     total_ = cdf_.back();
     if (total_ > 0.0)
       for (double& c : cdf_) c /= total_;
+    pmf_.reserve(weights.size());
+    for (size_t i = 0; i < weights.size(); ++i) {
+      pmf_.push_back(static_cast<float>(cdf_[i + 1] - cdf_[i]));
+      someZero_ = someZero_ || pmf_.back() == 0.0f;
+    }
   }
 
   size_t size() const { return cdf_.empty() ? 0 : cdf_.size() - 1; }
   double total() const { return total_; }
-  float pmf(size_t i) const { return static_cast<float>(cdf_[i + 1] - cdf_[i]); }
+  float pmf(size_t i) const { return pmf_[i]; }
 
   // Index for u in [0,1); *uRemapped gets u rescaled to [0,1) within the chosen bucket.
   size_t sample(float u, float* uRemapped = nullptr) const {
@@ -44,7 +49,8 @@ class DiscreteDistribution {
           1;
     }
     i = std::min(i, size() - 1);
-    while (pmf(i) == 0.0f && i > 0) --i;  // never pick a zero-weight entry at a boundary
+    if (someZero_)
+      while (pmf(i) == 0.0f && i > 0) --i;  // never pick a zero-weight entry at a boundary
     if (uRemapped) {
       const double width = cdf_[i + 1] - cdf_[i];
       *uRemapped = width > 0.0
@@ -57,6 +63,8 @@ class DiscreteDistribution {
  private:
   static constexpr size_t kLinearSearchMax = 9;
   std::vector<double> cdf_;
+  std::vector<float> pmf_;  // (cdf_[i + 1] − cdf_[i]) in float, looked up on the hot path
+  bool someZero_ = false;   // a zero pmf: sample() steps back from those
   double total_ = 0.0;
 };
 
