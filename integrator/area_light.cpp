@@ -15,11 +15,8 @@ std::optional<LightSample> AreaLight::sample(const glm::vec3& ref, float time, f
   if (front_ && front_->entirelyBehind(ref)) return std::nullopt;  // L would be 0
   const std::optional<ShapeSample> ss = shape_.sample(ref, u1, u2, time);
   if (!ss) return std::nullopt;
-  const glm::vec3 toLight = ss->point.p - ref;
-  const float dist2 = lengthSquared(toLight);
-  if (dist2 == 0.0f) return std::nullopt;
   LightSample ls;
-  ls.wi = toLight / std::sqrt(dist2);
+  ls.wi = ss->wi;
   ls.L = L(ss->point, -ls.wi, lambda);
   if (ls.L.isZero()) return std::nullopt;
   ls.pdf = ss->pdf;

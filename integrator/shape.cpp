@@ -24,13 +24,4 @@ InstanceMotion InstanceMotion::fromPoses(const std::vector<glm::dmat4>& poses) {
   return motion;
 }
 
-float areaToSolidAnglePdf(float pdfArea, const glm::vec3& ref, const SurfaceInteraction& onShape) {
-  const glm::vec3 d = onShape.p - ref;
-  const float dist2 = lengthSquared(d);
-  if (dist2 == 0.0f) return 0.0f;
-  const float cosTheta = std::abs(glm::dot(onShape.n, d)) / std::sqrt(dist2);
-  if (cosTheta == 0.0f) return 0.0f;
-  return pdfArea * dist2 / cosTheta;
-}
-
 }  // namespace camsim

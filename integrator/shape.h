@@ -103,8 +103,32 @@ struct SurfaceInteraction {
 
 struct ShapeSample {
   SurfaceInteraction point;
-  float pdf = 0.0f;  // solid angle (sr⁻¹) as seen from the reference point
+  glm::vec3 wi{0.0f};  // unit direction from the reference point to point.p
+  float pdf = 0.0f;    // solid angle (sr⁻¹) as seen from the reference point
 };
+
+// From a reference point to a point p: the vector d = p − ref (m), the unit direction, the
+// distance (m) and its square (m²). Computed once per light sample, for the direction and
+// for the pdf.
+struct Towards {
+  glm::vec3 d, wi;
+  float dist, dist2;
+};
+inline std::optional<Towards> towards(const glm::vec3& ref, const glm::vec3& p) {
+  const glm::vec3 d = p - ref;
+  const float dist2 = lengthSquared(d);
+  if (dist2 == 0.0f) return std::nullopt;
+  const float dist = std::sqrt(dist2);
+  return Towards{d, d / dist, dist, dist2};
+}
+
+// Solid-angle pdf (sr⁻¹) of a point with normal n, sampled by area with density pdfArea
+// (m⁻²), seen along t: pdfArea·dist² / |cos θ|, and 0 when seen edge-on.
+inline float solidAnglePdf(float pdfArea, const Towards& t, const glm::vec3& n) {
+  const float cosTheta = std::abs(glm::dot(n, t.d)) / t.dist;
+  if (cosTheta == 0.0f) return 0.0f;
+  return pdfArea * t.dist2 / cosTheta;
+}
 
 // A static shape whose points all lie in one plane and whose normals n (as interaction()
 // and sample() give them) all point to the same side:
@@ -152,7 +176,11 @@ class Shape {
   virtual std::optional<FrontPlane> frontPlane() const { return std::nullopt; }
 };
 
-// Solid-angle pdf of a point sampled by area with density pdfArea (m⁻²).
-float areaToSolidAnglePdf(float pdfArea, const glm::vec3& ref, const SurfaceInteraction& onShape);
+// Solid-angle pdf of a point sampled by area with density pdfArea (m⁻²), seen from ref.
+inline float areaToSolidAnglePdf(float pdfArea, const glm::vec3& ref,
+                                 const SurfaceInteraction& onShape) {
+  const std::optional<Towards> t = towards(ref, onShape.p);
+  return t ? solidAnglePdf(pdfArea, *t, onShape.n) : 0.0f;
+}
 
 }  // namespace camsim

@@ -97,7 +97,9 @@ std::optional<ShapeSample> Sphere::sample(const glm::vec3& ref, float /*u1*/, gl
     s.point = surfacePoint(pose, ref + t * w - pose.centre, time);
     s.pdf = 1.0f / (2.0f * kPi * oneMinusCosMax);
   }
-  if (!(s.pdf > 0.0f) || !std::isfinite(s.pdf)) return std::nullopt;
+  const std::optional<Towards> t = towards(ref, s.point.p);
+  if (!t || !(s.pdf > 0.0f) || !std::isfinite(s.pdf)) return std::nullopt;
+  s.wi = t->wi;
   return s;
 }
 

@@ -242,7 +242,10 @@ std::optional<ShapeSample> TriangleMesh::sample(const glm::vec3& ref, float u1, 
   s.point = pointOn(tri, b.y, 1.0f - b.x - b.y, time, &area);
   const float pdfArea = areaPdf(tri, area);
   if (!(pdfArea > 0.0f)) return std::nullopt;
-  s.pdf = areaToSolidAnglePdf(pdfArea, ref, s.point);
+  const std::optional<Towards> t = towards(ref, s.point.p);
+  if (!t) return std::nullopt;
+  s.wi = t->wi;
+  s.pdf = solidAnglePdf(pdfArea, *t, s.point.n);
   if (!(s.pdf > 0.0f) || !std::isfinite(s.pdf)) return std::nullopt;
   return s;
 }
