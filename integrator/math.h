@@ -114,7 +114,11 @@ inline glm::vec2 sampleUniformDiskConcentric(glm::vec2 u) {
 // Cosine-weighted direction on the +z hemisphere; pdf = cosθ/π.
 inline glm::vec3 sampleCosineHemisphere(glm::vec2 u) {
   const glm::vec2 d = sampleUniformDiskConcentric(u);
-  return {d.x, d.y, safeSqrt(1.0f - d.x * d.x - d.y * d.y)};
+  // z = √(1 − r²) from the disk radius r = max(|2u − 1|) rather than from d: the same
+  // value, computed alongside the sine and cosine instead of after them.
+  const glm::vec2 o = 2.0f * u - 1.0f;
+  const float r = std::max(std::abs(o.x), std::abs(o.y));
+  return {d.x, d.y, safeSqrt(1.0f - r * r)};
 }
 
 // Uniform barycentrics on a triangle (b0, b1); b2 = 1 − b0 − b1.

@@ -10,8 +10,9 @@
 //                       (truncation ≤ 2 s¹¹/11 ≈ 7e-10); measured within 1.07 ulp of ln x
 //                       (libm's logf: 0.50), or 1.5e-7 absolute near x = 1
 //   sinCosQuarterPi(x)  sin x and cos x for |x| ≤ π/4: Taylor polynomials to x⁹ and x¹⁰
-//                       (truncation ≤ (π/4)¹¹/11! ≈ 1.8e-9 and (π/4)¹²/12! ≈ 1.2e-10); measured within 1.12 ulp
-//                       (libm's sinf/cosf: 0.56 and 0.50)
+//                       (truncation ≤ (π/4)¹¹/11! ≈ 1.8e-9 and (π/4)¹²/12! ≈ 1.2e-10) by
+//                       Estrin's scheme; measured within 0.70 and 0.98 ulp (libm's
+//                       sinf/cosf: 0.56 and 0.50)
 #pragma once
 
 #include <bit>
@@ -83,14 +84,17 @@ struct SinCos {
 };
 
 inline SinCos sinCosQuarterPi(float x) {
-  const float x2 = x * x;
-  const float sin =
-      x * (1.0f + x2 * (-1.0f / 6.0f +
-                        x2 * (1.0f / 120.0f + x2 * (-1.0f / 5040.0f + x2 * (1.0f / 362880.0f)))));
-  const float cos =
-      1.0f +
-      x2 * (-0.5f + x2 * (1.0f / 24.0f + x2 * (-1.0f / 720.0f + x2 * (1.0f / 40320.0f +
-                                                                      x2 * (-1.0f / 3628800.0f)))));
+  // Estrin's scheme: the terms pair up on x², x⁴, x⁸, so the chain is four multiplies and
+  // three adds deep instead of Horner's five multiply-adds (it ends a bounce's direction).
+  const float x2 = x * x, x4 = x2 * x2, x8 = x4 * x4;
+  // The small terms are summed first and 1 (or x) added last: within 0.70 / 0.98 ulp (Horner
+  // with 1 inside: 1.12).
+  const float sinTail = x2 * (-1.0f / 6.0f) +
+                        (x4 * (1.0f / 120.0f + x2 * (-1.0f / 5040.0f)) + x8 * (1.0f / 362880.0f));
+  const float cosTail = x2 * -0.5f + (x4 * (1.0f / 24.0f + x2 * (-1.0f / 720.0f)) +
+                                      x8 * (1.0f / 40320.0f + x2 * (-1.0f / 3628800.0f)));
+  const float sin = x + x * sinTail;
+  const float cos = 1.0f + cosTail;
   return {sin, cos};
 }
 

@@ -43,7 +43,7 @@ TEST(FloatMath, LogOfNormalIsWithinTwoUlpOfLibm) {
   EXPECT_NEAR(logOfNormal(2.0f), 0.69314718f, 1e-7f);
 }
 
-TEST(FloatMath, SinCosQuarterPiIsWithinTwoUlpOfLibm) {
+TEST(FloatMath, SinCosQuarterPiIsWithinOneUlp) {
   double worstSin = 0.0, worstCos = 0.0;
   const double quarterPi = M_PI / 4.0;
   for (int i = -1000000; i <= 1000000; ++i) {
@@ -52,8 +52,8 @@ TEST(FloatMath, SinCosQuarterPiIsWithinTwoUlpOfLibm) {
     worstSin = std::max(worstSin, ulpError(sc.sin, std::sin(static_cast<double>(x)), 0.0));
     worstCos = std::max(worstCos, ulpError(sc.cos, std::cos(static_cast<double>(x)), 0.0));
   }
-  EXPECT_LE(worstSin, 2.0);
-  EXPECT_LE(worstCos, 2.0);
+  EXPECT_LE(worstSin, 1.0);  // measured 0.70 and 0.98 (Horner's order: 1.12)
+  EXPECT_LE(worstCos, 1.0);
   EXPECT_EQ(sinCosQuarterPi(0.0f).sin, 0.0f);
   EXPECT_EQ(sinCosQuarterPi(0.0f).cos, 1.0f);
 }
