@@ -107,25 +107,24 @@ struct ShapeSample {
   float pdf = 0.0f;    // solid angle (sr⁻¹) as seen from the reference point
 };
 
-// From a reference point to a point p: the vector d = p − ref (m), the unit direction, the
-// distance (m) and its square (m²). Computed once per light sample, for the direction and
-// for the pdf.
+// From a reference point to a point p: the unit direction, the distance (m) and its square
+// (m²), computed once per light sample for the direction and the pdf (one division: the
+// divider is the light sample's bottleneck).
 struct Towards {
-  glm::vec3 d, wi;
-  float dist, dist2;
+  glm::vec3 wi;
+  float dist2;
 };
 inline std::optional<Towards> towards(const glm::vec3& ref, const glm::vec3& p) {
   const glm::vec3 d = p - ref;
   const float dist2 = lengthSquared(d);
   if (dist2 == 0.0f) return std::nullopt;
-  const float dist = std::sqrt(dist2);
-  return Towards{d, d / dist, dist, dist2};
+  return Towards{d * (1.0f / std::sqrt(dist2)), dist2};
 }
 
 // Solid-angle pdf (sr⁻¹) of a point with normal n, sampled by area with density pdfArea
 // (m⁻²), seen along t: pdfArea·dist² / |cos θ|, and 0 when seen edge-on.
 inline float solidAnglePdf(float pdfArea, const Towards& t, const glm::vec3& n) {
-  const float cosTheta = std::abs(glm::dot(n, t.d)) / t.dist;
+  const float cosTheta = std::abs(glm::dot(n, t.wi));
   if (cosTheta == 0.0f) return 0.0f;
   return pdfArea * t.dist2 / cosTheta;
 }
