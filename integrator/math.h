@@ -30,46 +30,19 @@ inline glm::vec3 absComponents(const glm::vec3& v) {
   return {std::abs(v.x), std::abs(v.y), std::abs(v.z)};
 }
 
-// v moved by one ulp: up if direction > 0, down if < 0, unchanged if 0 — std::nextafter
-// towards ±∞ without branches. Floats are mapped to integers in the same order (both
-// zeros to 0), stepped, and mapped back (differences from those two, irrelevant for ray
-// origins: ±∞ stay in either direction, and −2⁻¹⁴⁹ stepped up gives +0). Ray origins are
-// offset three times per bounce with directions that change sign from one ray to the
-// next, where the branches were mispredicted about half the time.
-// F: float or Float4 (sensor/float_math.h, lane by lane: the same bits); offsetRayOrigin
-// steps its three components at once as a Float4.
-template <typename F>
-inline F nextFloatToward(F v, F direction) {
-  using I = typename lanes::IntOf<F>::type;
-  using U = typename lanes::IntOf<F>::unsigned_type;
-  // INT_MIN − x, the map between negative floats and their ordered integers, in unsigned
-  // arithmetic: the Float4 select below computes it in every lane, also where x ≥ 0 and
-  // the signed difference would overflow (UBSan).
-  const auto mirror = [](I x) {
-    return std::bit_cast<I>(std::bit_cast<U>(I{} + std::numeric_limits<std::int32_t>::min()) -
-                            std::bit_cast<U>(x));
-  };
-  const auto bits = std::bit_cast<I>(v);
-  const I ordered = bits >= 0 ? bits : mirror(bits);
-  const I zero{}, one = zero + 1;  // scalars or broadcast lanes
-  const I step = (direction > 0.0f ? one : zero) - (direction < 0.0f ? one : zero);
-  const I moved = ordered + step;
-  const F result = std::bit_cast<F>(moved >= 0 ? moved : mirror(moved));
-  const auto infinite = (bits & 0x7fffffff) == 0x7f800000;
-  return (step == 0) | infinite ? v : result;
-}
-
 // Moves p off its surface (normal n, absolute error bound pError) to the side of w, far
-// enough that a ray leaving from it cannot re-hit the surface it started on.
+// enough that a ray leaving from it cannot re-hit the surface it started on: along n by
+// the error box's extent d = |n|·pError plus a margin for the rounding of p + offset. Each
+// coordinate of the sum rounds by at most 2⁻²⁴ of its magnitude, which moves the point
+// along the unit n by at most √3·2⁻²⁴·max|pᵢ + offsetᵢ|; the margin, 2⁻²¹·(max|pᵢ| + d),
+// is more than twice that. (pbrt-v4, §6.8.6, instead steps each coordinate one ulp away
+// from p: three times the instructions for three origins per bounce.)
 inline glm::vec3 offsetRayOrigin(const glm::vec3& p, const glm::vec3& pError, const glm::vec3& n,
                                  const glm::vec3& w) {
-  const float d = glm::dot(absComponents(n), pError);
-  const glm::vec3 offset = (glm::dot(w, n) < 0.0f ? -d : d) * n;
-  const glm::vec3 po = p + offset;
-  // The three components in one pass of SSE integer work (the fourth lane is unused).
-  const Float4 moved =
-      nextFloatToward(Float4{po.x, po.y, po.z, 0.0f}, Float4{offset.x, offset.y, offset.z, 0.0f});
-  return {moved[0], moved[1], moved[2]};
+  const glm::vec3 a = absComponents(p);
+  float d = glm::dot(absComponents(n), pError);
+  d += (std::max(std::max(a.x, a.y), a.z) + d) * 0x1p-21f;
+  return p + (glm::dot(w, n) < 0.0f ? -d : d) * n;
 }
 
 // Orthonormal basis around a unit vector (Duff et al. 2017).

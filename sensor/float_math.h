@@ -25,21 +25,18 @@ namespace camsim {
 // shape, conversions), so its scalar and four-lane forms do the same IEEE operations.
 using Float4 = float __attribute__((vector_size(16)));
 using Int4 = std::int32_t __attribute__((vector_size(16)));
-using UInt4 = std::uint32_t __attribute__((vector_size(16)));
 
 namespace lanes {
-// The signed and unsigned int types of F's shape. A select on Float4 lanes (a ? b : c)
-// evaluates both b and c in every lane: arithmetic that may overflow in the lanes not
-// selected must be done unsigned (it wraps).
+// The int type of F's shape. A select on Float4 lanes (a ? b : c) evaluates both b and c
+// in every lane: integer arithmetic that may overflow in the lanes not selected must be
+// done unsigned.
 template <typename F>
 struct IntOf {
   using type = std::int32_t;
-  using unsigned_type = std::uint32_t;
 };
 template <>
 struct IntOf<Float4> {
   using type = Int4;
-  using unsigned_type = UInt4;
 };
 inline float toFloat(std::int32_t i) {
   return static_cast<float>(i);

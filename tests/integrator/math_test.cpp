@@ -1,7 +1,5 @@
-// Tests for integrator/math.h: nextFloatToward against std::nextafter (the reference it
-// replaces) over zeros, denormals, normal numbers of both signs, the largest finite values
-// and infinities; direction 0 leaves v unchanged; the Float4 form gives the scalar bits in
-// every lane. erfInv against std::erf.
+// Tests for integrator/math.h: offsetRayOrigin moves a point out of its error box, along the
+// normal, to the requested side; erfInv against std::erf.
 #include "integrator/math.h"
 
 #include <gtest/gtest.h>
@@ -10,65 +8,41 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <random>
 
 namespace camsim {
 namespace {
 
-TEST(Math, NextFloatTowardMatchesNextafter) {
-  using L = std::numeric_limits<float>;
-  const float values[] = {
-      0.0f, -0.0f,    L::denorm_min(), -L::denorm_min(), L::min(), -L::min(), 1.0f, -1.0f,
-      0.3f, -1234.5f, 1e30f,           -1e-30f,          L::max(), -L::max()};
-  const auto bits = [](float x) { return std::bit_cast<std::uint32_t>(x); };
-  for (float v : values) {
-    // Bit patterns (EXPECT_EQ would take −0 for +0), except the documented difference:
-    // −2⁻¹⁴⁹ stepped up gives +0, std::nextafter −0.
-    const float up = std::nextafter(v, L::infinity());
-    EXPECT_EQ(bits(nextFloatToward(v, 1.0f)), bits(v == -L::denorm_min() ? 0.0f : up)) << v;
-    EXPECT_EQ(bits(nextFloatToward(v, -2.5f)), bits(std::nextafter(v, -L::infinity()))) << v;
-    EXPECT_EQ(std::bit_cast<std::uint32_t>(nextFloatToward(v, 0.0f)),
-              std::bit_cast<std::uint32_t>(v))
-        << v;
-  }
-  EXPECT_EQ(nextFloatToward(L::infinity(), -1.0f), L::infinity());  // documented: ±∞ stay
-  EXPECT_EQ(nextFloatToward(-L::infinity(), 1.0f), -L::infinity());
-}
-
-// offsetRayOrigin steps its three components as one Float4: each lane must be the scalar
-// function's bits, for every value above and each direction (up, down, none).
-TEST(Math, NextFloatTowardOnFourLanesGivesTheScalarBits) {
-  using L = std::numeric_limits<float>;
-  const float values[] = {0.0f,
-                          -0.0f,
-                          L::denorm_min(),
-                          -L::denorm_min(),
-                          L::min(),
-                          -L::min(),
-                          1.0f,
-                          -1.0f,
-                          0.3f,
-                          -1234.5f,
-                          1e30f,
-                          -1e-30f,
-                          L::max(),
-                          -L::max(),
-                          L::infinity(),
-                          -L::infinity()};
-  const float directions[] = {1.0f, -2.5f, 0.0f, -0.0f};
-  for (const float a : values) {
-    for (const float b : values) {
-      for (const float da : directions) {
-        for (const float db : directions) {
-          const Float4 v = {a, b, b, a}, direction = {da, db, da, db};
-          const Float4 got = nextFloatToward(v, direction);
-          for (int i = 0; i < 4; ++i)
-            ASSERT_EQ(std::bit_cast<std::uint32_t>(got[i]),
-                      std::bit_cast<std::uint32_t>(nextFloatToward(v[i], direction[i])))
-                << "lane " << i << " v = " << v[i] << " direction = " << direction[i];
-        }
+// The offset origin lies strictly on w's side of the slab the error box spans along n,
+// measured in double: for points from 1e-6 to 1e4 m from the origin (and at it), error
+// bounds from 0 to 1e-3 of the coordinates, random unit normals and both sides.
+TEST(Math, OffsetRayOriginLeavesTheErrorBox) {
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+  const float scales[] = {0.0f, 1e-6f, 1e-2f, 1.0f, 37.0f, 1e4f};
+  const float errors[] = {0.0f, 1e-7f, 1e-5f, 1e-3f};
+  int checked = 0;
+  for (const float scale : scales)
+    for (const float relError : errors)
+      for (int k = 0; k < 2000; ++k) {
+        const glm::vec3 p(u(rng) * scale, u(rng) * scale, u(rng) * scale);
+        const glm::vec3 pError = relError * absComponents(p) +
+                                 glm::vec3(1e-9f * std::abs(u(rng)));  // some absolute error
+        glm::vec3 n(u(rng), u(rng), u(rng));
+        if (glm::dot(n, n) < 1e-4f) continue;
+        n = glm::normalize(n);
+        const glm::vec3 w = (k % 2 ? 1.0f : -1.0f) * n + 0.3f * glm::vec3(u(rng), u(rng), u(rng));
+        const glm::vec3 o = offsetRayOrigin(p, pError, n, w);
+        const double side = glm::dot(glm::dvec3(w), glm::dvec3(n)) < 0.0 ? -1.0 : 1.0;
+        const double along = side * glm::dot(glm::dvec3(o) - glm::dvec3(p), glm::dvec3(n));
+        const double extent = glm::dot(glm::abs(glm::dvec3(n)), glm::dvec3(pError));
+        ASSERT_GT(along, extent) << "p " << p.x << " " << p.y << " " << p.z << " pError "
+                                 << pError.x << " n " << n.x << " " << n.y << " " << n.z;
+        // and not much further: the margin is 2⁻²¹ ≈ 4.8e-7 of the coordinates, plus rounding
+        ASSERT_LT(along, extent * (1.0 + 1e-5) + 8e-7 * (static_cast<double>(scale) + extent));
+        ++checked;
       }
-    }
-  }
+  EXPECT_GT(checked, 40000);
 }
 
 // erf(erfInv(x)) = x over (−1, 1) to within single-precision rounding of the result
