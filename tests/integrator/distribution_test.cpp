@@ -4,6 +4,7 @@
 // pick the same entries.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -51,6 +52,18 @@ TEST(DiscreteDistribution, SamplesFollowTheWeightsFewEntries) {
   expectSamplesFollowWeights({1.0, 0.0, 3.0, 4.0});
   expectSamplesFollowWeights({2.0, 2.0});
   expectSamplesFollowWeights({5.0});
+}
+
+// One entry takes a shortcut: the same index and remapped u as the general path (which
+// divides by the bucket's width, 1), bit for bit, also at u = 1 and below 0.
+TEST(DiscreteDistribution, OneEntryRemapsUAsTheGeneralPath) {
+  const DiscreteDistribution one(std::vector<double>{2.5});
+  for (const float u : {0.0f, 1e-30f, 0.3f, 0.5f, 0x1.fffffep-1f, 1.0f, -0.25f}) {
+    float remapped = -1.0f;
+    EXPECT_EQ(one.sample(u, &remapped), 0u);
+    const auto uu = static_cast<double>(u);
+    EXPECT_EQ(remapped, static_cast<float>(std::clamp(uu / 1.0, 0.0, 0x1.fffffep-1))) << u;
+  }
 }
 
 TEST(DiscreteDistribution, SamplesFollowTheWeightsManyEntries) {  // the binary search
