@@ -8,14 +8,14 @@ namespace {
 // with target("avx2"), for CPUs that have it (always_inline: a call into the baseline copy
 // from the AVX2 function would run baseline code).
 
-// Seeds of N consecutive dimensions from firstDimension.
+// Seeds of N consecutive dimensions from firstDimension (unsigned: wraps as seedsOf does).
 template <int N>
-[[gnu::always_inline]] inline void fillSeeds(std::uint64_t pixelKey, std::int64_t firstDimension,
+[[gnu::always_inline]] inline void fillSeeds(std::uint64_t pixelKey, std::uint32_t firstDimension,
                                              std::uint32_t* shuffle, std::uint32_t* x,
                                              std::uint32_t* y) {
   for (int i = 0; i < N; ++i) {
     const SobolSampler::Seeds s =
-        SobolSampler::seedsOf(SobolSampler::dimensionKey(pixelKey, firstDimension + i));
+        SobolSampler::seedsOf(pixelKey, firstDimension + static_cast<std::uint32_t>(i));
     shuffle[i] = s.shuffle;
     x[i] = s.x;
     y[i] = s.y;
@@ -38,7 +38,7 @@ template <int N>
 constexpr int kBlock = SobolSampler::kBlock;
 
 __attribute__((target("avx2"))) void fillSeedsAvx2(std::uint64_t pixelKey,
-                                                   std::int64_t firstDimension,
+                                                   std::uint32_t firstDimension,
                                                    std::uint32_t* shuffle, std::uint32_t* x,
                                                    std::uint32_t* y) {
   fillSeeds<kBlock>(pixelKey, firstDimension, shuffle, x, y);
@@ -76,9 +76,9 @@ void SobolSampler::cacheSeeds(int end) {
     std::uint32_t* x = xSeeds_ + cachedEnd_;
     std::uint32_t* y = ySeeds_ + cachedEnd_;
     if (avx2_)
-      fillSeedsAvx2(pixelKey_, cachedEnd_, shuffle, x, y);
+      fillSeedsAvx2(pixelKey_, static_cast<std::uint32_t>(cachedEnd_), shuffle, x, y);
     else
-      fillSeeds<kBlock>(pixelKey_, cachedEnd_, shuffle, x, y);
+      fillSeeds<kBlock>(pixelKey_, static_cast<std::uint32_t>(cachedEnd_), shuffle, x, y);
   }
 }
 
@@ -88,7 +88,8 @@ void SobolSampler::fillBlock() {
   const std::uint32_t *shuffle, *xs, *ys;
   std::uint32_t local[3][kBlock];
   // Blocks that end within the cache use it; any other dimension (negative, or up to
-  // INT_MAX: the seeds take 64-bit dimensions) computes its seeds here.
+  // INT_MAX, whose block's lanes go past it: unsigned dimensions wrap) computes its seeds
+  // here.
   if (dimension_ >= 0 && dimension_ <= kCachedDimensions - kBlock) {
     cacheSeeds(dimension_ + kBlock);
     shuffle = shuffleSeeds_ + dimension_;
@@ -96,9 +97,11 @@ void SobolSampler::fillBlock() {
     ys = ySeeds_ + dimension_;
   } else {
     if (avx2_)
-      fillSeedsAvx2(pixelKey_, dimension_, local[0], local[1], local[2]);
+      fillSeedsAvx2(pixelKey_, static_cast<std::uint32_t>(dimension_), local[0], local[1],
+                    local[2]);
     else
-      fillSeeds<kBlock>(pixelKey_, dimension_, local[0], local[1], local[2]);
+      fillSeeds<kBlock>(pixelKey_, static_cast<std::uint32_t>(dimension_), local[0], local[1],
+                        local[2]);
     shuffle = local[0];
     xs = local[1];
     ys = local[2];

@@ -2,8 +2,9 @@
 // dimension slot ("padded" Sobol', Burley 2020, "Practical Hash-based Owen Scrambling").
 //
 // For dimension d of pixel p and sample index i:
-//   key     = mix64(hash(render seed, p) ⊕ d·K),   s0, s1 = its low and high 32 bits,
-//   s2      = high 32 bits of mix64(key)
+//   (lo, hi) = the two halves of the pixel key hash(render seed, p)
+//   k       = h(h(d ⊕ hi) ⊕ lo),   s0 = h(k ⊕ hi),   s1 = h(k + C₁),   s2 = h(k + C₂)
+//             (h: a 32-bit integer hash, sobol::hash32)
 //   i'      = owen(i, s0)                      (shuffles which sample gets which point)
 //   (x, y)  = (owen(sobol₀(i'), s1), owen(sobol₁(i'), s2))
 // sobol₀ is the van der Corput sequence (bit reversal) and sobol₁ the second Sobol'
@@ -15,8 +16,9 @@
 //
 // Cost: this sits on the hot path (≈ 20 numbers per pixel sample), so get1D/get2D fold the
 // bit reversals that cancel (sobol₀ is itself a reversal), compute sobol₁ without a loop
-// over the index bits, and derive a pair's three scramble seeds from one 64-bit mix of
-// (pixel key, dimension) plus one more mix; the pixel's key, and in block mode the seeds
+// over the index bits, and derive a pair's three scramble seeds with 32-bit hashes (which
+// vectorise 8-wide in AVX2; 64-bit mixes, used until 2026-11, do not); the pixel's key, and
+// in block mode the seeds
 // of its first kCachedDimensions dimensions, are reused by consecutive samples of the same
 // pixel (Cornell box, 4 spp: the block work fell from 910 M to 716 M instructions).
 // Measured (callgrind, Cornell box): the Sobol' sampler's extra cost over the independent
@@ -64,6 +66,17 @@ inline std::uint32_t reversedDimension1(std::uint32_t i) {
   return i;
 }
 
+// A 32-bit integer hash with full avalanche: two multiply–xorshift rounds (the constants
+// of C. Wellons' "lowbias32").
+inline std::uint32_t hash32(std::uint32_t x) {
+  x ^= x >> 16;
+  x *= 0x21f0aaadu;
+  x ^= x >> 15;
+  x *= 0xd35a2d97u;
+  x ^= x >> 15;
+  return x;
+}
+
 inline float toUnit(std::uint32_t x) {
   return static_cast<float>(x >> 8) * 0x1p-24f;
 }
@@ -105,7 +118,7 @@ class SobolSampler final : public Sampler {
   }
   glm::vec2 get2D() override {
     if (!blocks_) {
-      return pair(dimensionKey(pixelKey_, dimension_++), reversedIndex_);
+      return pair(pixelKey_, reversedIndex_, dimension_++);
     }
     const int slot = blockSlot();
     ++dimension_;
@@ -121,17 +134,16 @@ class SobolSampler final : public Sampler {
     return hashValues(seed, static_cast<std::uint32_t>(pixel.x),
                       static_cast<std::uint32_t>(pixel.y));
   }
-  // The pair's scramble seeds: one 64-bit mix of (pixel key, dimension) gives the index
-  // shuffle's and x's 32-bit seeds; y's comes from a second mix.
-  static std::uint64_t dimensionKey(std::uint64_t pixelKey, std::int64_t dimension) {
-    return mix64(pixelKey ^ (static_cast<std::uint64_t>(dimension) * 0xd6e8feb86659fd93ull));
-  }
+  // The pair's three scramble seeds from (pixel key, dimension); see the top of the file.
+  // The dimension as unsigned 32 bits (a negative int wraps; blocks of lanes wrap alike).
   struct Seeds {
     std::uint32_t shuffle, x, y;
   };
-  static Seeds seedsOf(std::uint64_t key) {
-    return {static_cast<std::uint32_t>(key), static_cast<std::uint32_t>(key >> 32),
-            static_cast<std::uint32_t>(mix64(key) >> 32)};
+  static Seeds seedsOf(std::uint64_t pixelKey, std::uint32_t dimension) {
+    const auto lo = static_cast<std::uint32_t>(pixelKey);
+    const auto hi = static_cast<std::uint32_t>(pixelKey >> 32);
+    const std::uint32_t k = sobol::hash32(sobol::hash32(dimension ^ hi) ^ lo);
+    return {sobol::hash32(k ^ hi), sobol::hash32(k + 0x5bd1e995u), sobol::hash32(k + 0x68e31da4u)};
   }
   // The three steps of a pair from its seeds (get1D needs only the first two).
   static std::uint32_t shuffled(std::uint32_t shuffleSeed, std::uint32_t reversedIndex) {
@@ -145,21 +157,19 @@ class SobolSampler final : public Sampler {
         sobol::reverseBits(sobol::laineKarras(sobol::reversedDimension1(shuffledIndex), ySeed)));
   }
   static float number1D(std::uint64_t pixelKey, std::uint32_t reversedIndex, int dimension) {
-    const std::uint64_t key = dimensionKey(pixelKey, dimension);
-    return xOf(shuffled(static_cast<std::uint32_t>(key), reversedIndex),
-               static_cast<std::uint32_t>(key >> 32));
+    const Seeds seeds = seedsOf(pixelKey, static_cast<std::uint32_t>(dimension));
+    return xOf(shuffled(seeds.shuffle, reversedIndex), seeds.x);
   }
-  // What get2D() returns for a dimension whose key is `key`.
-  static glm::vec2 pair(std::uint64_t key, std::uint32_t reversedIndex) {
-    const Seeds seeds = seedsOf(key);
+  // What get2D() returns at `dimension`.
+  static glm::vec2 pair(std::uint64_t pixelKey, std::uint32_t reversedIndex, int dimension) {
+    const Seeds seeds = seedsOf(pixelKey, static_cast<std::uint32_t>(dimension));
     const std::uint32_t i = shuffled(seeds.shuffle, reversedIndex);
     return {xOf(i, seeds.x), yOf(i, seeds.y)};
   }
 
   // Block mode keeps the seeds of a pixel's first kCachedDimensions dimensions (used by
   // blocks that end within them): they do not depend on the sample index, so the pixel's
-  // later samples skip the two 64-bit mixes per dimension (half of a block's work; AVX2 has
-  // no 64-bit multiply).
+  // later samples skip the four hashes per dimension.
   static constexpr int kCachedDimensions = 256;
 
  private:
