@@ -12,16 +12,20 @@ AreaLight::AreaLight(const Shape& shape, Spectrum radiance, bool twoSided)
 
 std::optional<LightSample> AreaLight::sample(const glm::vec3& ref, float time, float u1,
                                              glm::vec2 u2, const SampledWavelengths& lambda) const {
-  if (front_ && front_->entirelyBehind(ref)) return std::nullopt;  // L would be 0
+  // Every return returns `out`, so it is built in the caller's slot (no copy of the
+  // light point on the hot path).
+  std::optional<LightSample> out;
+  if (front_ && front_->entirelyBehind(ref)) return out;  // L would be 0
   const std::optional<ShapeSample> ss = shape_.sample(ref, u1, u2, time);
-  if (!ss) return std::nullopt;
-  LightSample ls;
+  if (!ss) return out;
+  const SampledSpectrum L = this->L(ss->point, -ss->wi, lambda);
+  if (L.isZero()) return out;
+  LightSample& ls = out.emplace();
+  ls.L = L;
   ls.wi = ss->wi;
-  ls.L = L(ss->point, -ls.wi, lambda);
-  if (ls.L.isZero()) return std::nullopt;
   ls.pdf = ss->pdf;
   ls.point = ss->point;
-  return ls;
+  return out;
 }
 
 float AreaLight::pdf(const glm::vec3& ref, const SurfaceInteraction& onLight) const {
