@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "integrator/sampler.h"
+#include "tests/integrator/sampler_contract.h"
 
 namespace camsim {
 namespace {
@@ -30,19 +31,9 @@ TEST(IndependentSampler, NumbersDependOnlyOnPixelSampleAndDimension) {
   EXPECT_EQ(sameAcrossSeeds, 0);
 }
 
-TEST(IndependentSampler, EveryDrawTakesOneDimension) {
+TEST(IndependentSampler, EveryDrawTakesOneDimension) {  // sampler_contract.h
   IndependentSampler a(2), b(2);
-  for (int i = 0; i < 32; ++i) {
-    a.startPixelSample({1, 1}, i);
-    b.startPixelSample({1, 1}, i);
-    a.setDimension(kDimPath);
-    const glm::vec2 p = a.get2D();
-    const float next = a.get1D();
-    b.setDimension(kDimPath);
-    EXPECT_EQ(p.x, b.get1D()) << i;  // x: the 1D number of the same dimension
-    b.setDimension(kDimPath + 1);
-    EXPECT_EQ(next, b.get1D()) << i;
-  }
+  expectEveryDrawTakesOneDimension(a, b);
 }
 
 // 2^16 pairs: each coordinate's mean (σ = 1/√(12·65536) ≈ 0.0011) within 0.005 of 1/2, its

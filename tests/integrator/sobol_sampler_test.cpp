@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "integrator/sobol_sampler.h"
+#include "tests/integrator/sampler_contract.h"
 
 namespace camsim {
 namespace {
@@ -89,23 +90,11 @@ TEST(SobolSampler, TwoDimensionalPairsAreDeterministic) {
   EXPECT_EQ(sameAcrossSeeds, 0);
 }
 
-// Every draw takes one dimension, 1D or 2D: the number after a 2D draw at d is the one at
-// d + 1, and a 2D draw's x is the 1D draw of the same dimension. Both in blocks and one at a
-// time.
+// The Sampler contract (sampler_contract.h), in blocks and one at a time.
 TEST(SobolSampler, EveryDrawTakesOneDimension) {
   for (const SobolDraw draw : {SobolDraw::kBlocks, SobolDraw::kOneAtATime}) {
     SobolSampler a(9, draw), b(9, draw);
-    for (int i = 0; i < 32; ++i) {
-      a.startPixelSample({5, 6}, i);
-      b.startPixelSample({5, 6}, i);
-      a.setDimension(kDimPath);
-      const glm::vec2 p = a.get2D();
-      const float next = a.get1D();
-      b.setDimension(kDimPath);
-      EXPECT_EQ(p.x, b.get1D()) << i;
-      b.setDimension(kDimPath + 1);
-      EXPECT_EQ(next, b.get1D()) << i;
-    }
+    expectEveryDrawTakesOneDimension(a, b);
   }
 }
 
