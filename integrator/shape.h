@@ -107,9 +107,9 @@ struct ShapeSample {
   float pdf = 0.0f;    // solid angle (sr⁻¹) as seen from the reference point
 };
 
-// From a reference point to a point p: the unit direction, the distance (m) and its square
-// (m²), computed once per light sample for the direction and the pdf (one division: the
-// divider is the light sample's bottleneck).
+// From a reference point to a point p: the unit direction and the squared distance (m²),
+// computed once per light sample for both the direction and the pdf, with one division
+// (the light sample's divides queue on one divider).
 struct Towards {
   glm::vec3 wi;
   float dist2;
