@@ -45,11 +45,11 @@ struct ShadingPoint {
 
 // One light sample, MIS-weighted against BSDF sampling. Returns the contribution to L
 // before multiplying by the path throughput.
+// uLight chooses the light; the point on it is the sampler's next 2D draw.
 template <typename SamplerT>
 SampledSpectrum sampleLight(const Scene& scene, const ShadingPoint& sp,
-                            const SampledWavelengths& lambda, SamplerT& sampler, RayCounts& counts,
-                            RayRecorder* recorder) {
-  const float uLight = sampler.get1D();
+                            const SampledWavelengths& lambda, float uLight, SamplerT& sampler,
+                            RayCounts& counts, RayRecorder* recorder) {
   const glm::vec2 uPoint = sampler.get2D();
   float uRemapped = 0.0f;
   const size_t index = scene.lightDistribution().sample(uLight, &uRemapped);
@@ -121,12 +121,14 @@ SampledSpectrum trace(const Scene& scene, Ray ray, SampledWavelengths& lambda, S
 
     const Frame frame = Frame::fromZ(si.ns);
     const ShadingPoint sp{si, frame, wo, frame.toLocal(wo), material, BsdfContext{si.uv}};
+    // The bounce's two 1D choices, which light and which BSDF lobe, share one 2D draw (one
+    // sampler dimension instead of two).
+    const glm::vec2 uChoice = sampler.get2D();
     if (haveLights && material.hasNonSpecular())
-      L += beta * sampleLight(scene, sp, lambda, sampler, counts, recorder);
+      L += beta * sampleLight(scene, sp, lambda, uChoice.x, sampler, counts, recorder);
 
-    const float uc = sampler.get1D();
     const std::optional<BsdfSample> bs =
-        material.sample(sp.woLocal, uc, sampler.get2D(), lambda, sp.ctx);
+        material.sample(sp.woLocal, uChoice.y, sampler.get2D(), lambda, sp.ctx);
     if (!bs || !(bs->pdf > 0.0f) || bs->f.isZero()) break;
     const glm::vec3 wi = frame.toWorld(bs->wi);
     if (!sidesAgree(si.n, wo, wi, sp.woLocal, bs->wi)) break;
