@@ -13,7 +13,7 @@ ConductorMaterial::ConductorMaterial(ConductorParameters p) : p_(std::move(p)) {
   CAMSIM_CHECK(p_.fresnel == FresnelModel::kExact || p_.r0 != nullptr);
   // A constant roughness below the smooth threshold makes the material a pure mirror.
   if (dynamic_cast<const ConstantFloatTexture*>(p_.roughness.get()) != nullptr)
-    hasNonSpecular_ = !model(BsdfContext{}).effectivelySmooth();
+    traits_.nonSpecular = !model(BsdfContext{}).effectivelySmooth();
 }
 
 MicrofacetModel ConductorMaterial::model(const BsdfContext& ctx) const {

@@ -48,7 +48,6 @@ class ConductorMaterial final : public Material {
                                    const BsdfContext& ctx) const override;
   float pdf(const glm::vec3& wo, const glm::vec3& wi, const SampledWavelengths& lambda,
             const BsdfContext& ctx) const override;
-  bool hasNonSpecular() const override { return hasNonSpecular_; }
 
  private:
   MicrofacetModel model(const BsdfContext& ctx) const;
@@ -56,7 +55,6 @@ class ConductorMaterial final : public Material {
                           const BsdfContext& ctx) const;
 
   ConductorParameters p_;
-  bool hasNonSpecular_ = true;
 };
 
 }  // namespace camsim

@@ -94,17 +94,16 @@ DielectricMaterial::DielectricMaterial(Spectrum eta, std::unique_ptr<FloatTextur
       roughness_(std::move(roughness)),
       anisotropy_(anisotropy),
       distribution_(distribution),
-      masking_(masking),
-      dispersive_(eta_.maxValue() != eta_.minValue()),
-      hasNonSpecular_(true) {
+      masking_(masking) {
+  traits_.dispersive = eta_.maxValue() != eta_.minValue();
   CAMSIM_CHECK(roughness_ != nullptr);
   CAMSIM_CHECK(eta_.minValue() > 0.0);
   CAMSIM_CHECK(anisotropy_ > -1.0f && anisotropy_ < 1.0f);
   // A constant roughness tells up front whether every lobe is a delta (then light sampling
   // is skipped); a varying one may be rough somewhere.
   if (dynamic_cast<const ConstantFloatTexture*>(roughness_.get()) != nullptr) {
-    const bool indexMatched = !dispersive_ && eta_.maxValue() == 1.0;
-    hasNonSpecular_ = !indexMatched && !microfacet(BsdfContext{}).effectivelySmooth();
+    const bool indexMatched = !traits_.dispersive && eta_.maxValue() == 1.0;
+    traits_.nonSpecular = !indexMatched && !microfacet(BsdfContext{}).effectivelySmooth();
   }
 }
 

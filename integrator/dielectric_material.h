@@ -78,8 +78,6 @@ class DielectricMaterial final : public Material {
                                    const BsdfContext& ctx) const override;
   float pdf(const glm::vec3& wo, const glm::vec3& wi, const SampledWavelengths& lambda,
             const BsdfContext& ctx) const override;
-  bool hasNonSpecular() const override { return hasNonSpecular_; }
-  bool dispersive() const override { return dispersive_; }
 
   // η at the hero wavelength lambda[0].
   float etaAt(const SampledWavelengths& lambda) const { return eta_(lambda[0]); }
@@ -99,8 +97,6 @@ class DielectricMaterial final : public Material {
   float anisotropy_;
   MicrofacetDistribution distribution_;
   MaskingModel masking_;
-  bool dispersive_;
-  bool hasNonSpecular_;
 };
 
 }  // namespace camsim

@@ -7,7 +7,9 @@
 namespace camsim {
 
 DiffuseMaterial::DiffuseMaterial(std::unique_ptr<SpectrumTexture> reflectance)
-    : reflectance_(std::move(reflectance)), reflects_(reflectance_->maxValue() > 0.0) {}
+    : reflectance_(std::move(reflectance)) {
+  traits_.reflects = reflectance_->maxValue() > 0.0;
+}
 
 DiffuseMaterial::DiffuseMaterial(Spectrum reflectance)
     : DiffuseMaterial(std::make_unique<ConstantSpectrumTexture>(std::move(reflectance))) {}

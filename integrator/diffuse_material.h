@@ -27,11 +27,9 @@ class DiffuseMaterial final : public Material {
                                    const BsdfContext& ctx) const override;
   float pdf(const glm::vec3& wo, const glm::vec3& wi, const SampledWavelengths& lambda,
             const BsdfContext& ctx) const override;
-  bool reflects() const override { return reflects_; }
 
  private:
   std::unique_ptr<SpectrumTexture> reflectance_;
-  bool reflects_;
 };
 
 }  // namespace camsim

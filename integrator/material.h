@@ -45,12 +45,22 @@ class Material {
                                            const BsdfContext& ctx) const = 0;
   virtual float pdf(const glm::vec3& wo, const glm::vec3& wi, const SampledWavelengths& lambda,
                     const BsdfContext& ctx) const = 0;
-  // False for a material that reflects nothing (lets the integrator stop a path).
-  virtual bool reflects() const { return true; }
-  // False when every lobe is a delta (mirror, smooth glass): light sampling is skipped.
-  virtual bool hasNonSpecular() const { return true; }
-  // True when η depends on wavelength (see above).
-  virtual bool dispersive() const { return false; }
+  // What the path loop asks at every bounce, fixed when the material is made (plain
+  // members, not virtual calls):
+  // false for a material that reflects nothing (lets the integrator stop a path);
+  bool reflects() const { return traits_.reflects; }
+  // false when every lobe is a delta (mirror, smooth glass): light sampling is skipped;
+  bool hasNonSpecular() const { return traits_.nonSpecular; }
+  // true when η depends on wavelength (see above).
+  bool dispersive() const { return traits_.dispersive; }
+
+ protected:
+  struct Traits {
+    bool reflects = true;
+    bool nonSpecular = true;
+    bool dispersive = false;
+  };
+  Traits traits_;  // set by the constructors of the materials
 };
 
 }  // namespace camsim

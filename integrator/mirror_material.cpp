@@ -9,7 +9,8 @@ namespace camsim {
 MirrorMaterial::MirrorMaterial(std::unique_ptr<SpectrumTexture> reflectance)
     : reflectance_(std::move(reflectance)) {
   CAMSIM_CHECK(reflectance_ != nullptr);
-  reflects_ = reflectance_->maxValue() > 0.0;
+  traits_.reflects = reflectance_->maxValue() > 0.0;
+  traits_.nonSpecular = false;
 }
 
 MirrorMaterial::MirrorMaterial(Spectrum reflectance)

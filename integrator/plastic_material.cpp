@@ -13,7 +13,7 @@ namespace camsim {
 PlasticMaterial::PlasticMaterial(PlasticParameters p) : p_(std::move(p)) {
   CAMSIM_CHECK(p_.reflectance != nullptr && p_.roughness != nullptr);
   CAMSIM_CHECK(p_.specularWeight >= 0.0f && p_.specularWeight <= 1.0f);
-  reflects_ = p_.specularWeight > 0.0f || p_.reflectance->maxValue() > 0.0;
+  traits_.reflects = p_.specularWeight > 0.0f || p_.reflectance->maxValue() > 0.0;
 }
 
 PlasticMaterial::Lobes PlasticMaterial::lobes(const SampledWavelengths& lambda,

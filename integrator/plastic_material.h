@@ -47,7 +47,6 @@ class PlasticMaterial final : public Material {
                                    const BsdfContext& ctx) const override;
   float pdf(const glm::vec3& wo, const glm::vec3& wi, const SampledWavelengths& lambda,
             const BsdfContext& ctx) const override;
-  bool reflects() const override { return reflects_; }
 
  private:
   struct Lobes {              // everything that depends on the surface point and wavelengths
@@ -65,7 +64,6 @@ class PlasticMaterial final : public Material {
                 const glm::vec3& wm) const;
 
   PlasticParameters p_;
-  bool reflects_;
 };
 
 }  // namespace camsim
