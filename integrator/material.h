@@ -46,12 +46,12 @@ class Material {
   virtual float pdf(const glm::vec3& wo, const glm::vec3& wi, const SampledWavelengths& lambda,
                     const BsdfContext& ctx) const = 0;
   // What the path loop asks at every bounce, fixed when the material is made (plain
-  // members, not virtual calls):
-  // false for a material that reflects nothing (lets the integrator stop a path);
+  // members, not virtual calls).
+  // False for a material that reflects nothing (lets the integrator stop a path).
   bool reflects() const { return traits_.reflects; }
-  // false when every lobe is a delta (mirror, smooth glass): light sampling is skipped;
+  // False when every lobe is a delta (mirror, smooth glass): light sampling is skipped.
   bool hasNonSpecular() const { return traits_.nonSpecular; }
-  // true when η depends on wavelength (see above).
+  // True when η depends on wavelength (see above).
   bool dispersive() const { return traits_.dispersive; }
 
  protected:

@@ -43,9 +43,9 @@ struct ShadingPoint {
   BsdfContext ctx;
 };
 
-// One light sample, MIS-weighted against BSDF sampling. Returns the contribution to L
-// before multiplying by the path throughput.
-// uLight chooses the light; the point on it is the sampler's next 2D draw.
+// One light sample, MIS-weighted against BSDF sampling: uLight chooses the light, the
+// sampler's next 2D draw the point on it. Returns the contribution to L before multiplying
+// by the path throughput.
 template <typename SamplerT>
 SampledSpectrum sampleLight(const Scene& scene, const ShadingPoint& sp,
                             const SampledWavelengths& lambda, float uLight, SamplerT& sampler,

@@ -2,9 +2,9 @@
 // startPixelSample() fixes the stream for (pixel, sample index); numbers are addressed by
 // dimension, so a sample's numbers depend neither on the thread nor on which *other*
 // dimensions were drawn. Every draw, get1D or get2D, takes one dimension: a 2D draw is one
-// pair (for the Sobol' sampler a (0,2)-sequence), not two 1D draws. The render loop gives each dimension of the measurement integral
-// a fixed slot (SampleDimension), so switching, say, time sampling on or off leaves every
-// other number unchanged.
+// pair (for the Sobol' sampler a (0,2)-sequence), not two 1D draws. The render loop gives
+// each dimension of the measurement integral a fixed slot (SampleDimension), so switching,
+// say, time sampling on or off leaves every other number unchanged.
 #pragma once
 
 #include <cstdint>
