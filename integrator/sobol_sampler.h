@@ -19,8 +19,8 @@
 // over the index bits, and derive a pair's three scramble seeds with 32-bit hashes (which
 // vectorise 8-wide in AVX2; 64-bit mixes, used until 2026-11, do not); the pixel's key, and
 // in block mode the seeds of its first kCachedDimensions dimensions, are reused by
-// consecutive samples of the same
-// pixel (Cornell box, 4 spp: the block work fell from 910 M to 716 M instructions).
+// consecutive samples of the same pixel (Cornell box, 4 spp: the block work fell from 910 M
+// to 716 M instructions).
 // Measured (callgrind, Cornell box): the Sobol' sampler's extra cost over the independent
 // one fell from 4.1 k to 1.1 k instructions per pixel sample.
 #pragma once
