@@ -70,9 +70,12 @@ inline float lengthSquared(const glm::vec3& v) {
   return glm::dot(v, v);
 }
 
-// Concentric map of the unit square to the unit disk (Shirley & Chiu).
-inline glm::vec2 sampleUniformDiskConcentric(glm::vec2 u) {
+// Concentric map of the unit square to the unit disk (Shirley & Chiu). *radius, if given,
+// gets the point's distance from the centre, max(|2u − 1|), known before the sine and
+// cosine are.
+inline glm::vec2 sampleUniformDiskConcentric(glm::vec2 u, float* radius = nullptr) {
   const glm::vec2 o = 2.0f * u - 1.0f;
+  if (radius) *radius = std::max(std::abs(o.x), std::abs(o.y));
   if (o.x == 0.0f && o.y == 0.0f) return {0.0f, 0.0f};
   // Selects rather than an if/else: which wedge a random point falls in is a coin toss.
   const bool xMajor = std::abs(o.x) > std::abs(o.y);
@@ -84,13 +87,12 @@ inline glm::vec2 sampleUniformDiskConcentric(glm::vec2 u) {
   return r * (xMajor ? glm::vec2(sc.cos, sc.sin) : glm::vec2(sc.sin, sc.cos));
 }
 
-// Cosine-weighted direction on the +z hemisphere; pdf = cosθ/π.
+// Cosine-weighted direction on the +z hemisphere; pdf = cosθ/π. z = √(1 − r²) from the disk
+// radius rather than from the point (equal up to rounding), so that it is computed
+// alongside the sine and cosine instead of after them.
 inline glm::vec3 sampleCosineHemisphere(glm::vec2 u) {
-  const glm::vec2 d = sampleUniformDiskConcentric(u);
-  // z = √(1 − r²) from the disk radius r = max(|2u − 1|) rather than from d: the same
-  // value, computed alongside the sine and cosine instead of after them.
-  const glm::vec2 o = 2.0f * u - 1.0f;
-  const float r = std::max(std::abs(o.x), std::abs(o.y));
+  float r;
+  const glm::vec2 d = sampleUniformDiskConcentric(u, &r);
   return {d.x, d.y, safeSqrt(1.0f - r * r)};
 }
 

@@ -70,15 +70,21 @@ void SobolSampler::startPixelSample(glm::ivec2 pixel, int sampleIndex) {
   blockStart_ = kNoBlock;
 }
 
+void SobolSampler::seedsOfBlock(int firstDimension, std::uint32_t* shuffle, std::uint32_t* x,
+                                std::uint32_t* y) const {
+  const auto first = static_cast<std::uint32_t>(firstDimension);  // wraps, as seedsOf
+  if (avx2_)
+    fillSeedsAvx2(pixelKey_, first, shuffle, x, y);
+  else
+    fillSeeds<kBlock>(pixelKey_, first, shuffle, x, y);
+}
+
 void SobolSampler::cacheSeeds(int end) {
   for (; cachedEnd_ < end; cachedEnd_ += kBlock) {
     std::uint32_t* shuffle = shuffleSeeds_ + cachedEnd_;
     std::uint32_t* x = xSeeds_ + cachedEnd_;
     std::uint32_t* y = ySeeds_ + cachedEnd_;
-    if (avx2_)
-      fillSeedsAvx2(pixelKey_, static_cast<std::uint32_t>(cachedEnd_), shuffle, x, y);
-    else
-      fillSeeds<kBlock>(pixelKey_, static_cast<std::uint32_t>(cachedEnd_), shuffle, x, y);
+    seedsOfBlock(cachedEnd_, shuffle, x, y);
   }
 }
 
@@ -96,12 +102,7 @@ void SobolSampler::fillBlock() {
     xs = xSeeds_ + dimension_;
     ys = ySeeds_ + dimension_;
   } else {
-    if (avx2_)
-      fillSeedsAvx2(pixelKey_, static_cast<std::uint32_t>(dimension_), local[0], local[1],
-                    local[2]);
-    else
-      fillSeeds<kBlock>(pixelKey_, static_cast<std::uint32_t>(dimension_), local[0], local[1],
-                        local[2]);
+    seedsOfBlock(dimension_, local[0], local[1], local[2]);
     shuffle = local[0];
     xs = local[1];
     ys = local[2];

@@ -185,6 +185,9 @@ class SobolSampler final : public Sampler {
   void fillBlock();  // x_, y_ for dimensions dimension_ … dimension_ + kBlock − 1
   // The cached seeds of dimensions up to `end` (≤ kCachedDimensions).
   void cacheSeeds(int end);
+  // The seeds of the kBlock dimensions from firstDimension, with AVX2 where the CPU has it.
+  void seedsOfBlock(int firstDimension, std::uint32_t* shuffle, std::uint32_t* x,
+                    std::uint32_t* y) const;
 
   std::uint64_t seed_;
   std::uint64_t pixelKey_ = 0;
