@@ -12,23 +12,9 @@
 namespace camsim {
 namespace {
 
-TEST(IndependentSampler, NumbersDependOnlyOnPixelSampleAndDimension) {
+TEST(IndependentSampler, NumbersDependOnlyOnPixelSampleAndDimension) {  // sampler_contract.h
   IndependentSampler a(4), b(4), other(5);
-  int sameAcrossSeeds = 0;
-  for (int i = 0; i < 64; ++i) {
-    a.startPixelSample({7, 8}, i);
-    a.setDimension(kDimLens);
-    const glm::vec2 pa = a.get2D();
-    b.startPixelSample({7, 8}, i);
-    b.setDimension(kDimWavelength);
-    b.get1D();
-    b.get2D();  // kDimPixel
-    EXPECT_EQ(pa, b.get2D()) << i;
-    other.startPixelSample({7, 8}, i);
-    other.setDimension(kDimLens);
-    sameAcrossSeeds += other.get2D() == pa ? 1 : 0;
-  }
-  EXPECT_EQ(sameAcrossSeeds, 0);
+  expectNumbersDependOnlyOnPixelSampleAndDimension(a, b, other);
 }
 
 TEST(IndependentSampler, EveryDrawTakesOneDimension) {  // sampler_contract.h
