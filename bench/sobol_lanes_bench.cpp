@@ -9,7 +9,7 @@
 //   get1D          SobolSampler::startPixelSample + get1D (1D draws of every dimension: no
 //                  slot skipped, which flatters the blocks against the tracer's mix of 1D
 //                  and 2D draws): one at
-//                  a time (SobolDraw::kOneAtATime), and by default (blocks of 8 dimensions
+//                  a time (SobolDraw::kOneAtATime), and by default (blocks of kBlock dimensions
 //                  with AVX2 where the CPU has it)
 //   lanes          SobolSampler::number1D in a loop over pixel samples (same code), built
 //                  for the x86-64 baseline (SSE2), and for AVX2 where the CPU has it
@@ -140,7 +140,7 @@ int main(int argc, char** argv) {
               lanes.pixelKeys.size(), kDimensions, rounds);
   std::printf("  %-34s %6.2f ns/number  1.00x\n", "get1D, one at a time", tOne);
   std::printf("  %-34s %6.2f ns/number  %.2fx  mismatches %zu\n",
-              SobolSampler(kSeed).drawsBlocks() ? "get1D, AVX2 blocks of 8 dimensions"
+              SobolSampler(kSeed).drawsBlocks() ? "get1D, AVX2 blocks"
                                                 : "get1D, default (no AVX2: one at a time)",
               tSampler, tOne / tSampler, mismatches(reference, sampler));
   std::printf("  %-34s %6.2f ns/number  %.2fx  mismatches %zu\n", "lanes, x86-64 baseline (SSE2)",
