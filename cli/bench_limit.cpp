@@ -30,7 +30,8 @@
 namespace camsim {
 namespace {
 
-constexpr int kRepeats = 3;  // rounds of every timed comparison; each side keeps its fastest
+constexpr int kRepeats = 3;       // rounds of every timed comparison; each side keeps its fastest
+constexpr int kMotionRounds = 9;  // the motion overhead's (see bench_limit.h)
 
 RenderResult renderWith(const Scene& scene, int spp, int threads, RayRecorder* recorder = nullptr,
                         bool forceTime = false) {
@@ -147,22 +148,36 @@ SceneDescription withoutMotion(const SceneDescription& description) {
   return d;
 }
 
+RatioSpread spreadOf(std::vector<double> ratios) {
+  if (ratios.empty()) return {};
+  std::sort(ratios.begin(), ratios.end());
+  const std::size_t n = ratios.size();
+  const double median = n % 2 == 1 ? ratios[n / 2] : 0.5 * (ratios[n / 2 - 1] + ratios[n / 2]);
+  return {median, ratios.front(), ratios.back()};
+}
+
 MotionOverhead measureMotionOverhead(const Scene& moving, const SceneDescription& description,
                                      int spp, int threads) {
   MotionOverhead m;
   m.resolution = moving.camera().resolution();
   m.spp = spp;
   m.timeSteps = moving.modelled().timeSteps;
+  m.rounds = kMotionRounds;
   const Scene still(withoutMotion(description));
-  Fastest<RenderStats> asIs, stillAsIs, stillTimed;
-  for (int round = 0; round < kRepeats; ++round) {  // taking turns, as in measureLimit
-    renderTimed(asIs, moving, spp, threads);
-    renderTimed(stillAsIs, still, spp, threads);
-    renderTimed(stillTimed, still, spp, threads, true);
+  Fastest<RenderStats> series[3];                        // static, static time-sampled, moving
+  for (int round = 0; round < kMotionRounds; ++round) {  // taking turns, as in measureLimit
+    double seconds[3];
+    for (int k = 0; k < 3; ++k) {  // each round starts with the next variant
+      const int v = (round + k) % 3;
+      seconds[v] = renderTimed(series[v], v == 2 ? moving : still, spp, threads, v == 1).seconds;
+    }
+    if (!(seconds[0] > 0.0)) continue;  // a clock too coarse for the render: no ratio
+    m.stillTimeSampledRatios.push_back(seconds[1] / seconds[0]);
+    m.movingRatios.push_back(seconds[2] / seconds[0]);
   }
-  m.moving = asIs.best;
-  m.still = stillAsIs.best;
-  m.stillTimeSampled = stillTimed.best;
+  m.still = series[0].best;
+  m.stillTimeSampled = series[1].best;
+  m.moving = series[2].best;
   return m;
 }
 

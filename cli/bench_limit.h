@@ -14,11 +14,15 @@
 // threads.
 // Motion overhead: the moving scene against the same scene with every motion reduced to its
 // first keyframe (a static pose), and that static scene with time sampled anyway.
-// Timed comparisons run in 3 rounds in which the compared runs take turns (tracer and
+// Timed comparisons run in rounds in which the compared runs take turns (tracer and
 // replay; 1 and N threads; moving, still and still time-sampled), so that a change in the
 // machine's other load falls on all of them; each round times one run of each (the
 // replay: one pass after a warm-up), and each keeps its fastest (the least disturbed). The
-// limit also reports the range of the per-round ratios.
+// limit also reports the range of the per-round ratios. The limit and thread scaling take 3
+// rounds; the motion overhead, whose renders are short and whose variants differ by less
+// than the host's noise on one render, takes 9, starting each with the next variant, and
+// reports the median of its per-round ratios (each render ÷ its round's static render)
+// with their range.
 // Mesh build: a generated torus of ≥ N triangles written as binary PLY to a temporary
 // directory, loaded through the scene loader (timed), then built into a Scene (timed: the
 // TriangleMesh and Embree's BVH at the quality EmbreeScene picks) with the RSS growth measured (/proc/self/statm, after
@@ -78,11 +82,20 @@ ScalingResult measureThreadScaling(const Scene& scene, int spp,
 // Every shape's and the camera's motion reduced to its first keyframe.
 SceneDescription withoutMotion(const SceneDescription& description);
 
+// The median, lowest and highest of a set of ratios (all 0 if it is empty).
+struct RatioSpread {
+  double median = 0.0, low = 0.0, high = 0.0;
+};
+RatioSpread spreadOf(std::vector<double> ratios);
+
 struct MotionOverhead {
   glm::ivec2 resolution{0};  // px
   int spp = 0;
   int timeSteps = 0;
-  RenderStats moving, still, stillTimeSampled;
+  int rounds = 0;
+  RenderStats moving, still, stillTimeSampled;  // the fastest of the rounds
+  // Per round: seconds ÷ that round's static render.
+  std::vector<double> movingRatios, stillTimeSampledRatios;
 };
 // `moving` is the Scene built from `description` (the bench's own; not built again here).
 MotionOverhead measureMotionOverhead(const Scene& moving, const SceneDescription& description,

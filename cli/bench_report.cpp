@@ -105,21 +105,31 @@ std::string formatMotionOverhead(const std::string& scene, const MotionOverhead&
   std::ostringstream out;
   char line[256];
   out << "motion-blur overhead, " << scene << " (" << formatSize(m.resolution.x, m.resolution.y)
-      << ", Sobol', " << m.spp << " spp; moving: " << m.timeSteps << " Embree time steps):\n";
-  std::snprintf(line, sizeof line, "  %-40s %9s %11s %12s %13s\n", "variant", "seconds", "rays/s",
-                "time ratio", "per-ray ratio");
+      << ", Sobol', " << m.spp << " spp; moving: " << m.timeSteps << " Embree time steps; "
+      << m.rounds << " rounds):\n";
+  std::snprintf(line, sizeof line, "  %-40s %9s %11s %12s %13s %11s\n", "variant", "seconds",
+                "rays/s", "time ratio", "rounds", "per-ray");
   out << line;
-  const double base = m.still.seconds, baseRate = m.still.raysPerSecond();
-  const std::pair<const char*, const RenderStats*> rows[] = {
-      {"static (every motion at its first key)", &m.still},
-      {"static, time sampled anyway", &m.stillTimeSampled},
-      {"moving (as in the scene)", &m.moving}};
-  for (const auto& [name, st] : rows) {
-    std::snprintf(line, sizeof line, "  %-40s %9.3f %11s %12.3f %13.3f\n", name, st->seconds,
-                  formatRate(st->raysPerSecond()).c_str(), base > 0.0 ? st->seconds / base : 0.0,
-                  st->raysPerSecond() > 0.0 ? baseRate / st->raysPerSecond() : 0.0);
+  const double baseRate = m.still.raysPerSecond();
+  const RatioSpread one{1.0, 1.0, 1.0};
+  const struct {
+    const char* name;
+    const RenderStats* stats;
+    RatioSpread ratio;
+  } rows[] = {
+      {"static (every motion at its first key)", &m.still, one},
+      {"static, time sampled anyway", &m.stillTimeSampled, spreadOf(m.stillTimeSampledRatios)},
+      {"moving (as in the scene)", &m.moving, spreadOf(m.movingRatios)}};
+  for (const auto& row : rows) {
+    const double rate = row.stats->raysPerSecond();
+    std::snprintf(line, sizeof line, "  %-40s %9.3f %11s %12.3f %6.3f–%.3f %11.3f\n", row.name,
+                  row.stats->seconds, formatRate(rate).c_str(), row.ratio.median, row.ratio.low,
+                  row.ratio.high, rate > 0.0 ? baseRate / rate : 0.0);
     out << line;
   }
+  out << "  seconds: the fastest of the rounds; time ratio: the median over the rounds of\n"
+         "  seconds ÷ that round's static render, rounds: their range; per-ray: static rays/s ÷\n"
+         "  rays/s of the fastest renders\n";
   return out.str();
 }
 

@@ -153,6 +153,38 @@ TEST(BenchLimit, WithoutMotionMakesTheMotionBlurSceneStatic) {
   }
 }
 
+TEST(BenchLimit, SpreadOfRatiosIsTheirMedianAndRange) {
+  const RatioSpread odd = spreadOf({1.3, 0.9, 1.1, 2.0, 1.0});
+  EXPECT_DOUBLE_EQ(odd.median, 1.1);
+  EXPECT_DOUBLE_EQ(odd.low, 0.9);
+  EXPECT_DOUBLE_EQ(odd.high, 2.0);
+  EXPECT_DOUBLE_EQ(spreadOf({1.0, 2.0, 4.0, 3.0}).median, 2.5);
+  const RatioSpread none = spreadOf({});
+  EXPECT_EQ(none.median, 0.0);
+  EXPECT_EQ(none.high, 0.0);
+}
+
+// Every round renders the three variants; the time-sampled static render traces the same
+// paths as the static one (time has its own sampler dimension, and nothing moves).
+TEST(BenchLimit, MotionOverheadComparesTheVariantsRoundByRound) {
+  const SceneDescription description = suiteScene("motion_blur", {32, 21});
+  const Scene moving(description);
+  const MotionOverhead m = measureMotionOverhead(moving, description, 2, 2);
+  EXPECT_EQ(m.resolution, glm::ivec2(32, 21));
+  EXPECT_GT(m.timeSteps, 1);
+  EXPECT_GE(m.rounds, 5);
+  EXPECT_EQ(m.movingRatios.size(), static_cast<std::size_t>(m.rounds));
+  EXPECT_EQ(m.stillTimeSampledRatios.size(), static_cast<std::size_t>(m.rounds));
+  EXPECT_EQ(m.still.rays.total(), m.stillTimeSampled.rays.total());
+  EXPECT_TRUE(m.moving.modelled.time);
+  EXPECT_TRUE(m.stillTimeSampled.modelled.time);
+  EXPECT_FALSE(m.still.modelled.time);
+  for (const double r : m.movingRatios) EXPECT_GT(r, 0.0);
+  const std::string table = formatMotionOverhead("motion_blur", m);
+  EXPECT_NE(table.find("32x21"), std::string::npos) << table;
+  EXPECT_NE(table.find("rounds"), std::string::npos) << table;
+}
+
 TEST(BenchLimit, TorusMeshRoundTripsThroughBinaryPly) {
   const MeshData mesh = makeTorusMesh(5000);
   EXPECT_GE(mesh.indices.size() / 3, 5000u);
