@@ -155,18 +155,16 @@ namespace {
 
 // The point b0·p0 + b1·p1 + b2·p2 and the bound on its rounding error, with the three
 // coordinates in Float4 lanes (the fourth is 0): the same operations in the same order as
-// on glm::vec3, so the same bits, in a third of the instructions.
-[[gnu::always_inline]] inline SurfaceInteraction interpolated(Float4 p0, Float4 p1, Float4 p2,
-                                                              float b0, float b1, float b2) {
+// on glm::vec3, so the same bits, in a third of the instructions. Sets si.p and si.pError.
+[[gnu::always_inline]] inline void interpolate(SurfaceInteraction& si, Float4 p0, Float4 p1,
+                                               Float4 p2, float b0, float b1, float b2) {
   const Float4 t0 = b0 * p0, t1 = b1 * p1, t2 = b2 * p2;
   const Float4 p = t0 + t1 + t2;
   const Int4 noSign = Int4{} + 0x7fffffff;
   const auto abs = [&](Float4 v) { return std::bit_cast<Float4>(std::bit_cast<Int4>(v) & noSign); };
   const Float4 error = gammaBound(7) * (abs(t0) + abs(t1) + abs(t2));
-  SurfaceInteraction si;
   si.p = {p[0], p[1], p[2]};
   si.pError = {error[0], error[1], error[2]};
-  return si;
 }
 
 Float4 lanesOf(const glm::vec3& v) {
@@ -205,9 +203,12 @@ Float4 lanesOf(const glm::vec3& v) {
 // Hot: every hit and every light sample on a mesh comes through here. A static mesh has a
 // path of its own: no time lookup, no transform, the stored normal, and few enough live
 // values that none is spilled to the stack (one function for both spilled them all).
-SurfaceInteraction TriangleMesh::pointOn(size_t tri, float b1, float b2, float time,
-                                         float* area) const {
-  if (!instance_.empty()) return pointOnMoving(tri, b1, b2, time, area);
+// It writes into the caller's point: returned by value, the point was copied into the
+// light sample in 16-byte loads of fields just stored in 4 bytes (stalled store
+// forwarding).
+void TriangleMesh::pointOn(size_t tri, float b1, float b2, float time, float* area,
+                           SurfaceInteraction& si) const {
+  if (!instance_.empty()) return pointOnMoving(tri, b1, b2, time, area, si);
   const std::uint32_t i0 = indices_[3 * tri], i1 = indices_[3 * tri + 1],
                       i2 = indices_[3 * tri + 2];
   // Each vertex in one 16-byte load, the fourth lane (the next vertex's x, or the spare
@@ -218,13 +219,12 @@ SurfaceInteraction TriangleMesh::pointOn(size_t tri, float b1, float b2, float t
     return std::bit_cast<Float4>(std::bit_cast<Int4>(v) & Int4{-1, -1, -1, 0});
   };
   const float b0 = 1.0f - b1 - b2;
-  SurfaceInteraction si = interpolated(vertex(i0), vertex(i1), vertex(i2), b0, b1, b2);
+  interpolate(si, vertex(i0), vertex(i1), vertex(i2), b0, b1, b2);
   finish(si, faceNormals_[tri], tri, i0, i1, i2, b0, b1, b2, time, nullptr);
-  return si;
 }
 
-SurfaceInteraction TriangleMesh::pointOnMoving(size_t tri, float b1, float b2, float time,
-                                               float* area) const {
+void TriangleMesh::pointOnMoving(size_t tri, float b1, float b2, float time, float* area,
+                                 SurfaceInteraction& si) const {
   const glm::mat4 m = transformAt(time);
   const std::uint32_t i0 = indices_[3 * tri], i1 = indices_[3 * tri + 1],
                       i2 = indices_[3 * tri + 2];
@@ -233,7 +233,7 @@ SurfaceInteraction TriangleMesh::pointOnMoving(size_t tri, float b1, float b2, f
   };
   const glm::vec3 p0 = vertex(i0), p1 = vertex(i1), p2 = vertex(i2);
   const float b0 = 1.0f - b1 - b2;
-  SurfaceInteraction si = interpolated(lanesOf(p0), lanesOf(p1), lanesOf(p2), b0, b1, b2);
+  interpolate(si, lanesOf(p0), lanesOf(p1), lanesOf(p2), b0, b1, b2);
   // The transform's rounding here and in Embree (Shape).
   si.pError += gammaBound(3) * (absComponents(p0) + absComponents(p1) + absComponents(p2)) +
                instance_.error(si.p);
@@ -241,11 +241,12 @@ SurfaceInteraction TriangleMesh::pointOnMoving(size_t tri, float b1, float b2, f
   const glm::vec3 n = faceNormal(p0, p1, p2, &len);
   if (area) *area = 0.5f * len;  // the triangle's area at `time` (sample() needs it)
   finish(si, n, tri, i0, i1, i2, b0, b1, b2, time, &m);
-  return si;
 }
 
 SurfaceInteraction TriangleMesh::interaction(const Hit& hit, const Ray& ray) const {
-  return pointOn(static_cast<size_t>(hit.prim), hit.u, hit.v, ray.time);
+  SurfaceInteraction si;
+  pointOn(static_cast<size_t>(hit.prim), hit.u, hit.v, ray.time, nullptr, si);
+  return si;
 }
 
 std::optional<ShapeSample> TriangleMesh::sample(const glm::vec3& ref, float u1, glm::vec2 u2,
@@ -253,14 +254,14 @@ std::optional<ShapeSample> TriangleMesh::sample(const glm::vec3& ref, float u1, 
   CAMSIM_CHECK(samplable_);
   // Every return returns `out`, so the sample is built in the caller's slot. Built in a
   // local and returned, it was copied out in 16-byte loads of fields just stored in 4 and 8
-  // bytes: stalled store forwarding, a third of this function's time.
+  // bytes: stalled store forwarding, a third of this function's time (pointOn likewise).
   std::optional<ShapeSample> out;
   if (area_ <= 0.0f) return out;
   const size_t tri = areaDistribution_.sample(u1);
   const glm::vec2 b = sampleUniformTriangle(u2);
   ShapeSample& s = out.emplace();
   float area = 0.0f;
-  s.point = pointOn(tri, b.y, 1.0f - b.x - b.y, time, &area);
+  pointOn(tri, b.y, 1.0f - b.x - b.y, time, &area, s.point);
   const float pdfArea = areaPdf(tri, area);
   const std::optional<Towards> t = pdfArea > 0.0f ? towards(ref, s.point.p) : std::nullopt;
   if (t) {

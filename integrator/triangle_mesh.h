@@ -68,11 +68,13 @@ class TriangleMesh final : public Shape {
                                                   const std::vector<double>& areas);
 
   glm::mat4 transformAt(float time) const;
-  // area: if given and the mesh moves, receives the triangle's area at `time` (m², computed
-  // anyway; a static mesh's area pdf does not need it).
-  SurfaceInteraction pointOn(size_t tri, float b1, float b2, float time,
-                             float* area = nullptr) const;
-  SurfaceInteraction pointOnMoving(size_t tri, float b1, float b2, float time, float* area) const;
+  // The point of triangle tri at barycentrics (1 − b1 − b2, b1, b2) and `time`, into si
+  // (every field set). area: if given and the mesh moves, receives the triangle's area at
+  // `time` (m², computed anyway; a static mesh's area pdf does not need it).
+  void pointOn(size_t tri, float b1, float b2, float time, float* area,
+               SurfaceInteraction& si) const;
+  void pointOnMoving(size_t tri, float b1, float b2, float time, float* area,
+                     SurfaceInteraction& si) const;
   void finish(SurfaceInteraction& si, const glm::vec3& n, size_t tri, std::uint32_t i0,
               std::uint32_t i1, std::uint32_t i2, float b0, float b1, float b2, float time,
               const glm::mat4* m) const;
