@@ -69,7 +69,7 @@ class TriangleMesh final : public Shape {
 
   glm::mat4 transformAt(float time) const;
   // The point of triangle tri at barycentrics (1 − b1 − b2, b1, b2) and `time`, into si
-  // (every field set). area: if given and the mesh moves, receives the triangle's area at
+  // (every field but `shape`, which the caller keeps). area: if given and the mesh moves, receives the triangle's area at
   // `time` (m², computed anyway; a static mesh's area pdf does not need it).
   void pointOn(size_t tri, float b1, float b2, float time, float* area,
                SurfaceInteraction& si) const;
