@@ -2,15 +2,13 @@
 // first measurement behind docs/performance.md "Next: several paths per thread".
 //
 // The tracer draws its ≈ 20 numbers per pixel sample one at a time (SobolSampler::get1D/
-// get2D, inlined into the path loop): a dependent chain of 64-bit mixes, 32-bit multiplies
-// and bit reversals per number. A path loop that keeps several pixel samples in flight
+// get2D, inlined into the path loop): a dependent chain of 32-bit hashes, multiplies and
+// bit reversals per number (in blocks of dimensions where the CPU has AVX2). A path loop that keeps several pixel samples in flight
 // would draw the same dimension for all of them in one plain loop, which the compiler can
 // vectorise. This program times both on the same numbers:
-//   get1D          SobolSampler::startPixelSample + get1D (1D draws of every dimension: no
-//                  slot skipped, which flatters the blocks against the tracer's mix of 1D
-//                  and 2D draws): one at
-//                  a time (SobolDraw::kOneAtATime), and by default (blocks of kBlock dimensions
-//                  with AVX2 where the CPU has it)
+//   get1D          SobolSampler::startPixelSample + get1D over every dimension: one at a
+//                  time (SobolDraw::kOneAtATime), and by default (blocks of kBlock
+//                  dimensions with AVX2 where the CPU has it)
 //   lanes          SobolSampler::number1D in a loop over pixel samples (same code), built
 //                  for the x86-64 baseline (SSE2), and for AVX2 where the CPU has it
 // and checks that every variant gives the same numbers bit for bit (error: 0 mismatches).
@@ -35,7 +33,7 @@ using camsim::SobolSampler;
 
 constexpr int kTile = 64;  // pixel samples: a 64 × 64 tile, 2 samples each
 constexpr int kSamples = 2;
-constexpr int kDimensions = 32;  // ≈ a path of four bounces
+constexpr int kDimensions = 32;  // ≈ a path of seven bounces (4 dimensions each)
 constexpr std::uint64_t kSeed = 7;
 
 struct Lanes {

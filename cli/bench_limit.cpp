@@ -30,8 +30,8 @@
 namespace camsim {
 namespace {
 
-constexpr int kRepeats = 3;       // rounds of every timed comparison; each side keeps its fastest
-constexpr int kMotionRounds = 9;  // the motion overhead's (see bench_limit.h)
+constexpr int kRepeats = 3;       // rounds of the limit and thread scaling (see bench_limit.h)
+constexpr int kMotionRounds = 9;  // rounds of the motion overhead
 
 RenderResult renderWith(const Scene& scene, int spp, int threads, RayRecorder* recorder = nullptr,
                         bool forceTime = false) {
@@ -99,16 +99,16 @@ LimitResult measureLimit(const Scene& scene, const std::string& name, int spp, i
   // minimum over the same number of runs on both sides.
   Fastest<RenderStats> tracer;
   Fastest<ReplayResult> mix;
-  r.roundRatioLow = std::numeric_limits<double>::infinity();
-  r.roundRatioHigh = -r.roundRatioLow;
+  std::vector<double> ratios;
   for (int round = 0; round < kRepeats; ++round) {
     const RenderStats t = renderTimed(tracer, scene, spp, threads);
     const ReplayResult m = replayRays(scene.geometry(), rays, threads, 0.0, 1);
     mix.offer(m);
-    const double ratio = m.raysPerSecond() > 0.0 ? t.raysPerSecond() / m.raysPerSecond() : 0.0;
-    r.roundRatioLow = std::min(r.roundRatioLow, ratio);
-    r.roundRatioHigh = std::max(r.roundRatioHigh, ratio);
+    ratios.push_back(m.raysPerSecond() > 0.0 ? t.raysPerSecond() / m.raysPerSecond() : 0.0);
   }
+  const RatioSpread spread = spreadOf(std::move(ratios));
+  r.roundRatioLow = spread.low;
+  r.roundRatioHigh = spread.high;
   r.tracer = tracer.best;
   r.mix = mix.best;
   for (int k = 0; k < kRayKindCount; ++k)
@@ -162,7 +162,6 @@ MotionOverhead measureMotionOverhead(const Scene& moving, const SceneDescription
   m.resolution = moving.camera().resolution();
   m.spp = spp;
   m.timeSteps = moving.modelled().timeSteps;
-  m.rounds = kMotionRounds;
   const Scene still(withoutMotion(description));
   Fastest<RenderStats> series[3];                        // static, static time-sampled, moving
   for (int round = 0; round < kMotionRounds; ++round) {  // taking turns, as in measureLimit
@@ -175,6 +174,7 @@ MotionOverhead measureMotionOverhead(const Scene& moving, const SceneDescription
     m.stillTimeSampledRatios.push_back(seconds[1] / seconds[0]);
     m.movingRatios.push_back(seconds[2] / seconds[0]);
   }
+  m.rounds = static_cast<int>(m.movingRatios.size());
   m.still = series[0].best;
   m.stillTimeSampled = series[1].best;
   m.moving = series[2].best;

@@ -92,7 +92,7 @@ struct MotionOverhead {
   glm::ivec2 resolution{0};  // px
   int spp = 0;
   int timeSteps = 0;
-  int rounds = 0;
+  int rounds = 0;                               // rounds with a ratio (all, but for a 0 s clock)
   RenderStats moving, still, stillTimeSampled;  // the fastest of the rounds
   // Per round: seconds ÷ that round's static render.
   std::vector<double> movingRatios, stillTimeSampledRatios;

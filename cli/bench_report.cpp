@@ -111,20 +111,24 @@ std::string formatMotionOverhead(const std::string& scene, const MotionOverhead&
                 "rays/s", "time ratio", "rounds", "per-ray");
   out << line;
   const double baseRate = m.still.raysPerSecond();
-  const RatioSpread one{1.0, 1.0, 1.0};
   const struct {
     const char* name;
     const RenderStats* stats;
-    RatioSpread ratio;
-  } rows[] = {
-      {"static (every motion at its first key)", &m.still, one},
-      {"static, time sampled anyway", &m.stillTimeSampled, spreadOf(m.stillTimeSampledRatios)},
-      {"moving (as in the scene)", &m.moving, spreadOf(m.movingRatios)}};
+    const std::vector<double>* ratios;  // null: the static render, every ratio's base
+  } rows[] = {{"static (every motion at its first key)", &m.still, nullptr},
+              {"static, time sampled anyway", &m.stillTimeSampled, &m.stillTimeSampledRatios},
+              {"moving (as in the scene)", &m.moving, &m.movingRatios}};
   for (const auto& row : rows) {
     const double rate = row.stats->raysPerSecond();
-    std::snprintf(line, sizeof line, "  %-40s %9.3f %11s %12.3f %6.3f–%.3f %11.3f\n", row.name,
-                  row.stats->seconds, formatRate(rate).c_str(), row.ratio.median, row.ratio.low,
-                  row.ratio.high, rate > 0.0 ? baseRate / rate : 0.0);
+    const RatioSpread ratio = row.ratios ? spreadOf(*row.ratios) : RatioSpread{1.0, 1.0, 1.0};
+    char range[32];  // 13 columns wide, as the header
+    if (row.ratios)
+      std::snprintf(range, sizeof range, "%7.3f–%.3f", ratio.low, ratio.high);
+    else
+      std::snprintf(range, sizeof range, "%13s", "(base)");
+    std::snprintf(line, sizeof line, "  %-40s %9.3f %11s %12.3f %s %11.3f\n", row.name,
+                  row.stats->seconds, formatRate(rate).c_str(), ratio.median, range,
+                  rate > 0.0 ? baseRate / rate : 0.0);
     out << line;
   }
   out << "  seconds: the fastest of the rounds; time ratio: the median over the rounds of\n"

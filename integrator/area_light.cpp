@@ -12,16 +12,16 @@ AreaLight::AreaLight(const Shape& shape, Spectrum radiance, bool twoSided)
 
 std::optional<LightSample> AreaLight::sample(const glm::vec3& ref, float time, float u1,
                                              glm::vec2 u2, const SampledWavelengths& lambda) const {
-  // Every return returns `out`, so it is built in the caller's slot (no copy of the
-  // light point on the hot path).
+  // Every return returns `out`, so it is built in the caller's slot (the light point is
+  // copied once, from the shape's sample).
   std::optional<LightSample> out;
   if (front_ && front_->entirelyBehind(ref)) return out;  // L would be 0
   const std::optional<ShapeSample> ss = shape_.sample(ref, u1, u2, time);
   if (!ss) return out;
-  const SampledSpectrum L = this->L(ss->point, -ss->wi, lambda);
-  if (L.isZero()) return out;
+  const SampledSpectrum Le = L(ss->point, -ss->wi, lambda);
+  if (Le.isZero()) return out;
   LightSample& ls = out.emplace();
-  ls.L = L;
+  ls.L = Le;
   ls.wi = ss->wi;
   ls.pdf = ss->pdf;
   ls.point = ss->point;

@@ -37,7 +37,7 @@ class DiscreteDistribution {
   // Index for u in [0,1); *uRemapped gets u rescaled to [0,1) within the chosen bucket.
   size_t sample(float u, float* uRemapped = nullptr) const {
     CAMSIM_CHECK(total_ > 0.0);
-    if (pmf_.size() == 1) {  // one light: what the general path gives, without its divide
+    if (pmf_.size() == 1) {  // one light, triangle, …: what the general path gives, no divide
       if (uRemapped) *uRemapped = std::clamp(u, 0.0f, 0x1.fffffep-1f);
       return 0;
     }

@@ -3,9 +3,7 @@
 //   γ(n) = n·ε / (1 − n·ε),  ε = 2⁻²⁴ (float unit roundoff).
 #pragma once
 
-#include <bit>
 #include <cmath>
-#include <cstdint>
 #include <limits>
 
 #include <glm/geometric.hpp>

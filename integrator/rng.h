@@ -23,6 +23,11 @@ std::uint64_t hashValues(std::uint64_t a, std::uint64_t b, Rest... rest) {
   return hashValues(hashValues(a, b), static_cast<std::uint64_t>(rest)...);
 }
 
+// The high 24 bits of x as a float in [0, 1): exact, never 1 (every generator's numbers).
+inline float unitFloat(std::uint32_t x) {
+  return static_cast<float>(x >> 8) * 0x1p-24f;
+}
+
 class Pcg32 {
  public:
   Pcg32() { seed(0, 0); }
@@ -45,7 +50,7 @@ class Pcg32 {
   }
 
   // Uniform in [0, 1): 24 random mantissa bits, never 1.
-  float uniform() { return static_cast<float>(next() >> 8) * 0x1p-24f; }
+  float uniform() { return unitFloat(next()); }
 
  private:
   std::uint64_t state_ = 0, inc_ = 1;

@@ -45,17 +45,16 @@ class IndependentSampler final : public Sampler {
     dimension_ = 0;
   }
   void setDimension(int dimension) override { dimension_ = static_cast<std::uint64_t>(dimension); }
-  float get1D() override { return toUnit(next() >> 40); }
-  // Two 24-bit numbers from disjoint bits of one 64-bit hash.
+  float get1D() override { return unitFloat(static_cast<std::uint32_t>(next() >> 32)); }
+  // Two 24-bit numbers from disjoint bits of one 64-bit hash (bits 40–63 and 16–39).
   glm::vec2 get2D() override {
     const std::uint64_t h = next();
-    return {toUnit(h >> 40), toUnit(h >> 16)};
+    return {unitFloat(static_cast<std::uint32_t>(h >> 32)),
+            unitFloat(static_cast<std::uint32_t>(h >> 8))};
   }
 
  private:
   std::uint64_t next() { return mix64(key_ + 0x9e3779b97f4a7c15ull * (++dimension_)); }
-  // The low 24 bits of x as a float in [0, 1).
-  static float toUnit(std::uint64_t x) { return static_cast<float>(x & 0xFFFFFFu) * 0x1p-24f; }
 
   std::uint64_t seed_;
   std::uint64_t key_ = 0;

@@ -19,10 +19,10 @@
 // over the index bits, and derive a pair's three scramble seeds with 32-bit hashes (which
 // vectorise 8-wide in AVX2; 64-bit mixes, used until 2026-11, do not); the pixel's key, and
 // in block mode the seeds of its first kCachedDimensions dimensions, are reused by
-// consecutive samples of the same pixel (Cornell box, 4 spp: the block work fell from 910 M
-// to 716 M instructions).
-// Measured (callgrind, Cornell box): the Sobol' sampler's extra cost over the independent
-// one fell from 4.1 k to 1.1 k instructions per pixel sample.
+// consecutive samples of the same pixel (Cornell box, 4 spp, with the 64-bit mixes and blocks
+// of 8 used then: the block work fell from 910 M to 716 M instructions, and the Sobol'
+// sampler's extra cost over the independent one from 4.1 k to 1.1 k instructions per pixel
+// sample; docs/performance.md has the later figures).
 #pragma once
 
 #include <cstdint>
@@ -75,10 +75,6 @@ inline std::uint32_t hash32(std::uint32_t x) {
   x *= 0xd35a2d97u;
   x ^= x >> 15;
   return x;
-}
-
-inline float toUnit(std::uint32_t x) {
-  return static_cast<float>(x >> 8) * 0x1p-24f;
 }
 
 }  // namespace sobol
@@ -153,10 +149,10 @@ class SobolSampler final : public Sampler {
     return sobol::reverseBits(sobol::laineKarras(reversedIndex, shuffleSeed));
   }
   static float xOf(std::uint32_t shuffledIndex, std::uint32_t xSeed) {
-    return sobol::toUnit(sobol::reverseBits(sobol::laineKarras(shuffledIndex, xSeed)));
+    return unitFloat(sobol::reverseBits(sobol::laineKarras(shuffledIndex, xSeed)));
   }
   static float yOf(std::uint32_t shuffledIndex, std::uint32_t ySeed) {
-    return sobol::toUnit(
+    return unitFloat(
         sobol::reverseBits(sobol::laineKarras(sobol::reversedDimension1(shuffledIndex), ySeed)));
   }
   static float number1D(std::uint64_t pixelKey, std::uint32_t reversedIndex, int dimension) {
@@ -172,7 +168,7 @@ class SobolSampler final : public Sampler {
 
   // Block mode keeps the seeds of a pixel's first kCachedDimensions dimensions (used by
   // blocks that end within them): they do not depend on the sample index, so the pixel's
-  // later samples skip the four hashes per dimension.
+  // later samples skip the five hashes per dimension.
   static constexpr int kCachedDimensions = 256;
 
  private:

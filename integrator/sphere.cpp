@@ -72,12 +72,13 @@ std::optional<ShapeSample> Sphere::sample(const glm::vec3& ref, float /*u1*/, gl
                                           float time) const {
   const Pose pose = at(time);
   ShapeSample s;
-  if (inside(pose, ref)) {
+  const bool insideSphere = inside(pose, ref);
+  if (insideSphere) {
     const float z = 1.0f - 2.0f * u2.x;
     const float r = safeSqrt(1.0f - z * z);
     const float phi = 2.0f * kPi * u2.y;
     s.point = surfacePoint(pose, {r * std::cos(phi), r * std::sin(phi), z}, time);
-    s.pdf = areaToSolidAnglePdf(1.0f / (4.0f * kPi * pose.radius * pose.radius), ref, s.point);
+    s.pdf = 1.0f / (4.0f * kPi * pose.radius * pose.radius);  // by area (m⁻²), for now
   } else {
     const glm::vec3 toCentre = pose.centre - ref;
     const float dc = glm::length(toCentre);
@@ -98,8 +99,10 @@ std::optional<ShapeSample> Sphere::sample(const glm::vec3& ref, float /*u1*/, gl
     s.pdf = 1.0f / (2.0f * kPi * oneMinusCosMax);
   }
   const std::optional<Towards> t = towards(ref, s.point.p);
-  if (!t || !(s.pdf > 0.0f) || !std::isfinite(s.pdf)) return std::nullopt;
+  if (!t) return std::nullopt;
+  if (insideSphere) s.pdf = solidAnglePdf(s.pdf, *t, s.point.n);
   s.wi = t->wi;
+  if (!(s.pdf > 0.0f) || !std::isfinite(s.pdf)) return std::nullopt;
   return s;
 }
 

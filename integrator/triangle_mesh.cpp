@@ -263,11 +263,13 @@ std::optional<ShapeSample> TriangleMesh::sample(const glm::vec3& ref, float u1, 
   float area = 0.0f;
   pointOn(tri, b.y, 1.0f - b.x - b.y, time, &area, s.point);
   const float pdfArea = areaPdf(tri, area);
-  const std::optional<Towards> t = pdfArea > 0.0f ? towards(ref, s.point.p) : std::nullopt;
-  if (t) {
-    s.wi = t->wi;
-    s.pdf = solidAnglePdf(pdfArea, *t, s.point.n);
+  const std::optional<Towards> t = towards(ref, s.point.p);
+  if (!t || !(pdfArea > 0.0f)) {
+    out.reset();
+    return out;
   }
+  s.wi = t->wi;
+  s.pdf = solidAnglePdf(pdfArea, *t, s.point.n);
   if (!(s.pdf > 0.0f) || !std::isfinite(s.pdf)) out.reset();
   return out;
 }

@@ -27,9 +27,7 @@ using Float4 = float __attribute__((vector_size(16)));
 using Int4 = std::int32_t __attribute__((vector_size(16)));
 
 namespace lanes {
-// The int type of F's shape. A select on Float4 lanes (a ? b : c) evaluates both b and c
-// in every lane: integer arithmetic that may overflow in the lanes not selected must be
-// done unsigned.
+// The int type of F's shape (logOfNormal works on the bits).
 template <typename F>
 struct IntOf {
   using type = std::int32_t;

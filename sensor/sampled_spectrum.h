@@ -68,10 +68,12 @@ class SampledSpectrum {
     return a;
   }
 
+  // NaN counts as non-zero.
   bool isZero() const {
     return !lanes::any(v_ != 0.0f);
-  }                        // NaN counts as non-zero
-  bool isFinite() const {  // no lane has the exponent of ±∞ and NaN
+  }
+  // No lane has the exponent of ±∞ and NaN.
+  bool isFinite() const {
     return !lanes::any((std::bit_cast<Int4>(v_) & 0x7f800000) == 0x7f800000);
   }
   float maxComponent() const {
