@@ -100,7 +100,8 @@ TextureImage fromExr(const std::filesystem::path& file, TextureEncoding encoding
   for (size_t t = 0; t < texels; ++t) {
     glm::dvec3 v(0.0);
     for (size_t c = 0; c < source.size(); ++c)
-      v[static_cast<int>(c)] = in.pixels[t * in.channels.size() + static_cast<size_t>(source[c])];
+      v[static_cast<int>(c)] =
+          static_cast<double>(in.pixels[t * in.channels.size() + static_cast<size_t>(source[c])]);
     if (convert) v = m * v;
     for (size_t c = 0; c < source.size(); ++c)
       image.values[t * source.size() + c] = decode(v[static_cast<int>(c)], encoding);

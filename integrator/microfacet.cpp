@@ -93,8 +93,9 @@ bool MicrofacetModel::effectivelySmooth() const {
 
 float MicrofacetModel::D(const glm::vec3& wm) const {
   if (!(wm.z > 0.0f)) return 0.0f;
-  const double ax = alphaX_, ay = alphaY_;
-  const double x = wm.x, y = wm.y, z = wm.z;
+  const double ax = static_cast<double>(alphaX_), ay = static_cast<double>(alphaY_);
+  const double x = static_cast<double>(wm.x), y = static_cast<double>(wm.y),
+               z = static_cast<double>(wm.z);
   const double slope2 = x * x / (ax * ax) + y * y / (ay * ay);  // tan²θ·(…)·cos²θ
   if (distribution_ == MicrofacetDistribution::kGgx) {
     const double d = slope2 + z * z;
@@ -107,7 +108,8 @@ float MicrofacetModel::D(const glm::vec3& wm) const {
 
 float MicrofacetModel::lambda(const glm::vec3& w) const {
   const double z = std::abs(static_cast<double>(w.z));
-  const double x = w.x, y = w.y, ax = alphaX_, ay = alphaY_;
+  const double x = static_cast<double>(w.x), y = static_cast<double>(w.y);
+  const double ax = static_cast<double>(alphaX_), ay = static_cast<double>(alphaY_);
   const double a2s2 = ax * ax * x * x + ay * ay * y * y;  // α(φ)² sin²θ
   if (a2s2 == 0.0) return 0.0f;                           // at the pole: nothing is masked
   if (z == 0.0) return std::numeric_limits<float>::infinity();
