@@ -35,6 +35,7 @@ JsonObject cameraJson(const PhysicalCamera& camera) {
            p.aperture ? (p.aperture->blades() ? std::to_string(p.aperture->blades()) + " blades"
                                               : "circular")
                       : "pinhole")
+      .set("pupil", p.pupil == LensPupil::kFlat ? "flat" : "aplanatic")
       .set("shutter_open_s", p.shutter.open())
       .set("shutter_close_s", p.shutter.close())
       .set("exposure_time_s", p.shutter.effectiveTime())
@@ -85,9 +86,13 @@ void writeRenderOutputs(const RenderOutputInputs& in, OutputSet& outputs, std::o
 
   if (desc.sensor) {
     const SensorSettings& sensor = *desc.sensor;
-    const SensorOutputs frames =
-        writeSensorFrames(sensor, desc.name, desc.camera.shutter.effectiveTime(), st.modelled.time,
-                          in.result.images[1], in.rerender, in.metadata, outputs, log);
+    DngCapture capture;
+    capture.fNumber = desc.camera.fNumber;
+    capture.focalLengthMm = desc.camera.focalLength * 1e3;
+    capture.dateTimeOriginal = "2000:01:01 00:00:00";  // fixed: same scene, same bytes
+    const SensorOutputs frames = writeSensorFrames(
+        sensor, desc.isp, capture, desc.name, desc.camera.shutter.effectiveTime(), st.modelled.time,
+        in.result.images[1], in.rerender, in.metadata, outputs, log);
     for (const auto& f : frames.frames)
       if (f.clippedFraction > 0.01)
         log << "note: " << (f.dngFile.empty() ? f.rawExrFile : f.dngFile) << ": "
@@ -124,6 +129,10 @@ void writeRenderOutputs(const RenderOutputInputs& in, OutputSet& outputs, std::o
                     .set("white_balance", wb[static_cast<int>(desc.isp.whiteBalance)])
                     .set("illuminant", desc.isp.illuminant)
                     .set("white_balance_gains", dev.whiteBalance)
+                    .set("chromatic_adaptation",
+                         sensor.spec.cfa.isStacked()
+                             ? "Bradford from the white's XYZ to D65 (ccm_camera_to_xyz_d65)"
+                             : "Bradford to D65, in the CCM fit")
                     .set("demosaic", desc.isp.demosaic == DemosaicMethod::kMalvarHeCutler
                                          ? "malvar-he-cutler"
                                          : "bilinear")

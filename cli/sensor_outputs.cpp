@@ -8,6 +8,7 @@
 #include "integrator/scene_loader.h"
 #include "sensor/dng_writer.h"
 #include "sensor/exr_io.h"
+#include "sensor/isp_pipeline.h"
 #include "sensor/sensor_model.h"
 #include "sensor/spectral_data.h"
 
@@ -29,7 +30,8 @@ Image scaled(const Image& image, double k) {
 
 }  // namespace
 
-SensorOutputs writeSensorFrames(const SensorSettings& sensor, const std::string& name,
+SensorOutputs writeSensorFrames(const SensorSettings& sensor, const IspSettings& isp,
+                                const DngCapture& capture, const std::string& name,
                                 double exposureTimeS, bool sceneMoves, const Image& electrons,
                                 const std::function<Image(double)>& rerender, const Metadata& meta,
                                 OutputSet& outputs, std::ostream& log) {
@@ -48,9 +50,11 @@ SensorOutputs writeSensorFrames(const SensorSettings& sensor, const std::string&
   }
   const bool bracketed = !sensor.bracketEv.empty();
   const std::vector<double> evs = bracketed ? sensor.bracketEv : std::vector<double>{0.0};
-  const DngColor color =
+  // The DNG's colour follows the ISP's white balance: matrices for its illuminant (and D65),
+  // AsShotNeutral from the gains it applies to each frame.
+  DngColor color =
       spec.qe.size() == 3 && !spec.cfa.isStacked()
-          ? dngColorFromQe(spec.qe, cieIlluminant("D65"),
+          ? dngColorFromQe(spec.qe, isp.illuminant,
                            lutsDirectory() / "spectra" / "colorchecker_classic_reflectance.csv")
           : DngColor{};
   const size_t reference =
@@ -95,7 +99,12 @@ SensorOutputs writeSensorFrames(const SensorSettings& sensor, const std::string&
     const std::string stem = name + evSuffix(evs[i], bracketed);
     if (!spec.cfa.isStacked()) {
       report.dngFile = stem + ".dng";
-      writeDng(outputs.add(report.dngFile), raws.front(), color, frameMeta);
+      if (spec.qe.size() == 3)
+        color.asShotNeutral = dngNeutralFromGains(whiteBalanceGains(raws, spec, isp));
+      DngCapture frameCapture = capture;
+      frameCapture.exposureTimeS = report.exposureTimeS;
+      frameCapture.iso = sensor.iso;
+      writeDng(outputs.add(report.dngFile), raws.front(), color, frameMeta, frameCapture);
       report.rawExrFile = stem + "_raw.exr";
       writeRawExr(outputs.add(report.rawExrFile), raws.front(), frameElectrons, frameMeta);
     } else {

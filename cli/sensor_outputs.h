@@ -9,7 +9,9 @@
 #include <vector>
 
 #include "integrator/scene_description.h"
+#include "sensor/dng_writer.h"
 #include "sensor/image.h"
+#include "sensor/isp_pipeline.h"
 #include "sensor/output_set.h"
 #include "sensor/raw_image.h"
 
@@ -32,8 +34,11 @@ struct SensorOutputs {
 // rerender(k): renders again with the shutter stretched by k and returns the new
 // electrons — used only when the scene moves (motion blur depends on the exposure);
 // static scenes scale linearly. Writes NAME[_evX].dng and NAME[_evX]_raw.exr (a stacked
-// sensor: NAME[_evX]_raw_<channel>.exr per plane, no DNG).
-SensorOutputs writeSensorFrames(const SensorSettings& sensor, const std::string& name,
+// sensor: NAME[_evX]_raw_<channel>.exr per plane, no DNG). Each DNG carries the white
+// balance `isp` develops that frame with and capture's EXIF fields, with the frame's own
+// exposure time and ISO.
+SensorOutputs writeSensorFrames(const SensorSettings& sensor, const IspSettings& isp,
+                                const DngCapture& capture, const std::string& name,
                                 double exposureTimeS, bool sceneMoves, const Image& electrons,
                                 const std::function<Image(double)>& rerender, const Metadata& meta,
                                 OutputSet& outputs, std::ostream& log);

@@ -40,12 +40,12 @@ std::string readWholeFile(const std::filesystem::path& path) {
 
 }  // namespace mesh_io_detail
 
-MeshData readMeshFile(const std::filesystem::path& path) {
+MeshData readMeshFile(const std::filesystem::path& path, const MeshPlacement& placement) {
   std::string ext = path.extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  if (ext == ".obj") return readObj(path);
-  if (ext == ".ply") return readPly(path);
+  if (ext == ".obj") return readObj(path, placement);
+  if (ext == ".ply") return readPly(path, placement);
   throw InputError(
       {path.string(), 0, 0}, "",
       "unknown mesh file extension '" + path.extension().string() + "' (expected .obj or .ply)");

@@ -17,6 +17,7 @@
 // coordinates) throw InputError with file and line (for binary PLY: the element index).
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <filesystem>
 #include <string_view>
@@ -27,6 +28,22 @@
 
 namespace camsim {
 
+// Where a file's vertices go: p = scale · p_file + offset, computed in double as each
+// vertex is read and only then stored in float, so that a mesh modelled or placed 10⁶ m
+// from the origin keeps its precision in render space (the loader passes its `scale` and
+// `translate` minus the render origin). A placed position beyond the float range is an
+// InputError at its line.
+struct MeshPlacement {
+  double scale = 1.0;
+  glm::dvec3 offset{0.0};
+
+  // The placed position in float; false if it leaves the float range.
+  bool place(const glm::dvec3& p, glm::vec3& out) const {
+    out = glm::vec3(p * scale + offset);
+    return std::isfinite(out.x) && std::isfinite(out.y) && std::isfinite(out.z);
+  }
+};
+
 struct MeshData {
   std::vector<glm::vec3> positions;
   std::vector<glm::vec3> normals;      // empty, or one per position
@@ -34,11 +51,13 @@ struct MeshData {
   std::vector<std::uint32_t> indices;  // 3 per triangle, into positions
 };
 
-MeshData readObj(const std::filesystem::path& path);
-MeshData parseObj(std::string_view text, const std::string& sourceName);
-MeshData readPly(const std::filesystem::path& path);
-MeshData parsePly(std::string_view bytes, const std::string& sourceName);
+MeshData readObj(const std::filesystem::path& path, const MeshPlacement& placement = {});
+MeshData parseObj(std::string_view text, const std::string& sourceName,
+                  const MeshPlacement& placement = {});
+MeshData readPly(const std::filesystem::path& path, const MeshPlacement& placement = {});
+MeshData parsePly(std::string_view bytes, const std::string& sourceName,
+                  const MeshPlacement& placement = {});
 // By extension (.obj / .ply, case-insensitive); InputError otherwise.
-MeshData readMeshFile(const std::filesystem::path& path);
+MeshData readMeshFile(const std::filesystem::path& path, const MeshPlacement& placement = {});
 
 }  // namespace camsim

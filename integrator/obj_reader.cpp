@@ -66,14 +66,15 @@ const char* parseReal(const char* p, const char* end, double& out) {
 
 class ObjParser {
  public:
-  ObjParser(std::string_view text, const std::string& source) : text_(text), source_(source) {}
+  ObjParser(std::string_view text, const std::string& source, const MeshPlacement& placement)
+      : text_(text), source_(source), placement_(placement) {}
   MeshData run();
 
  private:
   void parseLine(const char* p, const char* end);
-  glm::vec3 parseVec3(const char* p, const char* end, const char* what);
+  glm::dvec3 parseVec3(const char* p, const char* end, const char* what);
   glm::vec2 parseUv(const char* p, const char* end);
-  float parseCoord(const char*& p, const char* end, const char* what);
+  double parseCoord(const char*& p, const char* end, const char* what);
   void splitByUv(MeshData& mesh) const;
   void parseFace(const char* p, const char* end);
   const char* parseIndex(const char* p, const char* end, const char* tokenStart, std::int64_t& out);
@@ -84,6 +85,7 @@ class ObjParser {
 
   std::string_view text_;
   const std::string& source_;
+  const MeshPlacement& placement_;
   std::int64_t line_ = 0;
   const char* lineStart_ = nullptr;
   const char* lineEnd_ = nullptr;
@@ -170,10 +172,13 @@ void ObjParser::parseLine(const char* p, const char* end) {
   const std::string_view kw(keyword, static_cast<std::size_t>(p - keyword));
   if (kw == "v") {
     if (positions_.size() >= kMaxCount) fail(keyword, "more than 100000000 vertices");
-    positions_.push_back(parseVec3(p, end, "vertex"));
+    glm::vec3 placed;
+    if (!placement_.place(parseVec3(p, end, "vertex"), placed))
+      fail(keyword, "vertex leaves the single-precision range once scaled and translated");
+    positions_.push_back(placed);
   } else if (kw == "vn") {
     if (normals_.size() >= kMaxCount) fail(keyword, "more than 100000000 normals");
-    normals_.push_back(parseVec3(p, end, "normal"));
+    normals_.push_back(glm::vec3(parseVec3(p, end, "normal")));
   } else if (kw == "vt") {
     if (texcoords_.size() >= kMaxCount) fail(keyword, "more than 100000000 texture coordinates");
     texcoords_.push_back(parseUv(p, end));
@@ -183,21 +188,21 @@ void ObjParser::parseLine(const char* p, const char* end) {
   // Everything else (vp, o, g, s, usemtl, mtllib, l, p, comments, ...) is ignored.
 }
 
-// One finite float coordinate at p (after spaces); advances p past it.
-float ObjParser::parseCoord(const char*& p, const char* end, const char* what) {
+// One coordinate at p (after spaces), finite in float; advances p past it.
+double ObjParser::parseCoord(const char*& p, const char* end, const char* what) {
   double d = 0.0;
   const char* next = parseReal(p, end, d);
   if (next == nullptr) fail(p, "'" + tokenAt(p, end) + "' is not a number");
   if (!std::isfinite(d) || std::fabs(d) > static_cast<double>(std::numeric_limits<float>::max()))
     fail(p, std::string(what) + " coordinate '" + tokenAt(p, end) + "' is not a finite float");
   p = next;
-  return static_cast<float>(d);
+  return d;
 }
 
 // Reads three coordinates; further tokens (w, vertex colours) are ignored.
-glm::vec3 ObjParser::parseVec3(const char* p, const char* end, const char* what) {
-  float xyz[3] = {};
-  for (float& c : xyz) {
+glm::dvec3 ObjParser::parseVec3(const char* p, const char* end, const char* what) {
+  double xyz[3] = {};
+  for (double& c : xyz) {
     while (p < end && isSpace(*p)) ++p;
     if (p == end || *p == '#') fail(p, std::string(what) + " needs 3 coordinates");
     c = parseCoord(p, end, what);
@@ -214,7 +219,7 @@ glm::vec2 ObjParser::parseUv(const char* p, const char* end) {
       if (i == 0) fail(p, "texture coordinate needs at least 1 value");
       break;
     }
-    uv[i] = parseCoord(p, end, "texture");
+    uv[i] = static_cast<float>(parseCoord(p, end, "texture"));
   }
   return {uv[0], uv[1]};
 }
@@ -314,13 +319,14 @@ void ObjParser::trackNormal(std::uint32_t position, std::uint32_t normal, bool h
 
 }  // namespace
 
-MeshData parseObj(std::string_view text, const std::string& sourceName) {
-  return ObjParser(text, sourceName).run();
+MeshData parseObj(std::string_view text, const std::string& sourceName,
+                  const MeshPlacement& placement) {
+  return ObjParser(text, sourceName, placement).run();
 }
 
-MeshData readObj(const std::filesystem::path& path) {
+MeshData readObj(const std::filesystem::path& path, const MeshPlacement& placement) {
   const std::string text = mesh_io_detail::readWholeFile(path);
-  return parseObj(text, path.string());
+  return parseObj(text, path.string(), placement);
 }
 
 }  // namespace camsim

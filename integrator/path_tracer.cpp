@@ -79,7 +79,7 @@ template <typename SamplerT>
 SampledSpectrum trace(const Scene& scene, Ray ray, SampledWavelengths& lambda, SamplerT& sampler,
                       RayCounts& counts, RayRecorder* recorder) {
   const RenderSettings& settings = scene.settings();
-  const bool haveLights = scene.lightCount() > 0;
+  const bool haveLights = scene.hasPoweredLights();
   SampledSpectrum L(0.0f), beta(1.0f);
   float prevBsdfPdf = 0.0f;
   bool prevSpecular = true;  // the camera ray: emitters seen directly get full weight

@@ -83,8 +83,10 @@ std::optional<CameraRay> PhysicalCamera::generateRay(const CameraSample& sample,
     direction = p_.focusDistance > 0.0 ? chief * p_.focusDistance - origin : chief;
   }
 
-  // Measurement weight: film point (−s, −z_i) to lens point (lens, 0).
-  const glm::dvec3 v(lens.x + s.x, lens.y + s.y, zi);
+  // Measurement weight: film point (−s, −z_i) to the lens centre (aplanatic) or to the
+  // lens point (lens, 0) (flat pupil).
+  const glm::dvec3 v = p_.pupil == LensPupil::kFlat ? glm::dvec3(lens.x + s.x, lens.y + s.y, zi)
+                                                    : glm::dvec3(s.x, s.y, zi);
   const double d2 = glm::dot(v, v);
   const double geometric = apertureArea_ * zi * zi / (d2 * d2);  // A · cos⁴θ / z_i²
   const double scale = pixelArea_ * p_.shutter.effectiveTime() * geometric;

@@ -397,7 +397,7 @@ class AsciiReader {
 
 template <class Reader>
 MeshData readBody(const Header& h, Reader& in, const std::string& src, std::uint64_t vertexCount,
-                  bool hasNormals, bool hasUvs) {
+                  bool hasNormals, bool hasUvs, const MeshPlacement& placement) {
   MeshData mesh;
   for (const Element& e : h.elements) {
     if (e.properties.empty() || e.count == 0) continue;
@@ -418,7 +418,7 @@ MeshData readBody(const Header& h, Reader& in, const std::string& src, std::uint
     }
     for (std::uint64_t row = 0; row < e.count; ++row) {
       if (!in.beginRow()) rowFail(src, in.line(), e, row, "file ends before this row");
-      float v[8] = {};
+      double v[8] = {};  // x y z (placed in double), nx ny nz, u v
       for (const Property& p : e.properties) {
         std::int64_t n = 0;  // list length
         double d = 0.0;      // scalar value
@@ -450,14 +450,18 @@ MeshData readBody(const Header& h, Reader& in, const std::string& src, std::uint
           if (!std::isfinite(d) ||
               std::fabs(d) > static_cast<double>(std::numeric_limits<float>::max()))
             rowFail(src, in.line(), e, row, "'" + p.name + "' is not a finite float");
-          v[p.slot] = static_cast<float>(d);
+          v[p.slot] = d;
         }
       }
       if (!in.endRow()) rowFail(src, in.line(), e, row, "too many values on the line");
       if (isVertex) {
-        mesh.positions.emplace_back(v[0], v[1], v[2]);
-        if (hasNormals) mesh.normals.emplace_back(v[3], v[4], v[5]);
-        if (hasUvs) mesh.uvs.emplace_back(v[6], v[7]);
+        glm::vec3 placed;
+        if (!placement.place({v[0], v[1], v[2]}, placed))
+          rowFail(src, in.line(), e, row,
+                  "vertex leaves the single-precision range once scaled and translated");
+        mesh.positions.push_back(placed);
+        if (hasNormals) mesh.normals.emplace_back(glm::dvec3(v[3], v[4], v[5]));
+        if (hasUvs) mesh.uvs.emplace_back(glm::dvec2(v[6], v[7]));
       }
     }
   }
@@ -467,7 +471,8 @@ MeshData readBody(const Header& h, Reader& in, const std::string& src, std::uint
 
 }  // namespace
 
-MeshData parsePly(std::string_view bytes, const std::string& sourceName) {
+MeshData parsePly(std::string_view bytes, const std::string& sourceName,
+                  const MeshPlacement& placement) {
   Header header = parseHeader(bytes, sourceName);
   bool hasNormals = false, hasUvs = false;
   const std::uint64_t vertexCount = assignSlots(header, sourceName, hasNormals, hasUvs);
@@ -475,18 +480,18 @@ MeshData parsePly(std::string_view bytes, const std::string& sourceName) {
   MeshData mesh;
   if (header.format == Format::kAscii) {
     AsciiReader reader(body, header.lines);
-    mesh = readBody(header, reader, sourceName, vertexCount, hasNormals, hasUvs);
+    mesh = readBody(header, reader, sourceName, vertexCount, hasNormals, hasUvs, placement);
   } else {
     BinaryReader reader(body, header.format == Format::kBinaryBig);
-    mesh = readBody(header, reader, sourceName, vertexCount, hasNormals, hasUvs);
+    mesh = readBody(header, reader, sourceName, vertexCount, hasNormals, hasUvs, placement);
   }
   if (mesh.indices.empty()) failAt(sourceName, 0, "PLY file has no faces (no triangles)");
   return mesh;
 }
 
-MeshData readPly(const std::filesystem::path& path) {
+MeshData readPly(const std::filesystem::path& path, const MeshPlacement& placement) {
   const std::string bytes = mesh_io_detail::readWholeFile(path);
-  return parsePly(bytes, path.string());
+  return parsePly(bytes, path.string(), placement);
 }
 
 }  // namespace camsim

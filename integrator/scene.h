@@ -51,6 +51,10 @@ class Scene {
   const AreaLight* areaLight(int shape) const { return lightOfShape_[static_cast<size_t>(shape)]; }
 
   size_t lightCount() const { return lights_.size(); }
+  // Whether next-event estimation has a light to pick: some light has power > 0. A scene
+  // whose lights are all dark (luminance 0, scale 0, a zero spectrum) renders black
+  // without light samples; emitters hit by BSDF sampling then emit nothing either.
+  bool hasPoweredLights() const { return lightDistribution_.total() > 0.0; }
   // Indices of the lights that rays escaping the scene see (sun, environment).
   const std::vector<size_t>& infiniteLights() const { return infiniteLights_; }
   // Bounding sphere of the geometry at rest (m).

@@ -111,11 +111,9 @@ ShapeDescription parseShape(YamlMap map, size_t index, const Context& ctx) {
   const std::string t = type.string();
   std::vector<std::string> known = {"type", "name", "material", "emission", "motion"};
   if (auto m = map.find("motion")) {
-    // Keyframes carry the world position: shift them into render space; the geometry
-    // itself is then in object space.
-    std::vector<Keyframe> keys = parseMotion(*m, false).keys();
-    for (Keyframe& k : keys) k.translate -= ctx.origin;
-    s.motion = RigidMotion(std::move(keys));
+    // Keyframes carry the world position, shifted into render space (in double); the
+    // geometry itself is then in object space.
+    s.motion = parseMotion(*m, false, ctx.origin);
   }
   // Render-space position of a point given in the scene file.
   const glm::dvec3 shift = s.motion.empty() ? ctx.origin : glm::dvec3(0.0);
@@ -153,17 +151,16 @@ ShapeDescription parseShape(YamlMap map, size_t index, const Context& ctx) {
       if (p.is_relative()) p = ctx.baseDir / p;
       if (!isRegularFile(p)) file->fail("mesh file '" + p.string() + "' not found");
       ctx.search.noteRead(p);
+      MeshPlacement placement;  // applied in double as the file is read
+      if (auto sc = map.find("scale")) placement.scale = sc->number(0.0, 1e12, true);
+      if (auto tr = map.find("translate")) placement.offset = tr->vec3();
+      placement.offset -= shift;
       try {
-        s.mesh = readMeshFile(p);
+        s.mesh = readMeshFile(p, placement);
       } catch (const InputError& e) {
         if (e.where().line > 0) throw;
         file->fail(e.what());
       }
-      double scale = 1.0;
-      if (auto sc = map.find("scale")) scale = sc->number(0.0, 1e12, true);
-      glm::dvec3 translate(0.0);
-      if (auto tr = map.find("translate")) translate = tr->vec3();
-      for (glm::vec3& p3 : s.mesh.positions) p3 = point(*file, glm::dvec3(p3) * scale + translate);
       checkMesh(*file, s.mesh);
     } else if (vertices) {
       for (const YamlValue& v : vertices->items()) s.mesh.positions.push_back(point(v, v.vec3()));

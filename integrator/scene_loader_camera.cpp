@@ -119,7 +119,7 @@ Shutter parseShutter(YamlMap map) {
 
 }  // namespace
 
-RigidMotion parseMotion(const YamlValue& value, bool forCamera) {
+RigidMotion parseMotion(const YamlValue& value, bool forCamera, const glm::dvec3& origin) {
   std::vector<Keyframe> keys;
   for (const YamlValue& item : value.items()) {
     YamlMap map(item);
@@ -128,7 +128,12 @@ RigidMotion parseMotion(const YamlValue& value, bool forCamera) {
     k.time = time.number(-1e6, 1e6);
     if (!keys.empty() && k.time <= keys.back().time)
       time.fail("keyframe times must be strictly increasing");
-    if (auto t = map.find("translate")) k.translate = glm::dvec3(toPoint(*t, t->vec3()));
+    if (auto t = map.find("translate")) {
+      // Shifted in double and kept double: a float of a world coordinate near 10⁶ m is
+      // only good to 6 cm. toPoint only checks that render space holds it.
+      k.translate = t->vec3() - origin;
+      toPoint(*t, k.translate);
+    }
     if (auto r = map.find("rotate")) {
       YamlMap rm(*r);
       const YamlValue axisValue = rm.require("axis");
@@ -194,7 +199,10 @@ PhysicalCameraParams parseCamera(YamlMap map, const TableSearch& search) {
       if (blades > 0 && blades < 3) b->fail("blades must be 0 (circular) or at least 3");
     }
     if (auto r = am.find("rotation_deg")) rotation = glm::radians(r->number(-360.0, 360.0));
-    am.finish({"blades", "rotation_deg"});
+    if (auto pu = am.find("pupil"))
+      c.pupil = pu->choice<LensPupil>(
+          "pupil", {{"aplanatic", LensPupil::kAplanatic}, {"flat", LensPupil::kFlat}});
+    am.finish({"blades", "rotation_deg", "pupil"});
     c.aperture.emplace(c.focalLength / c.fNumber, blades, rotation);
   }
   if (auto t = map.find("lens_transmittance"))
@@ -209,7 +217,7 @@ PhysicalCameraParams parseCamera(YamlMap map, const TableSearch& search) {
     dm.finish({"k1", "k2", "k3", "p1", "p2"});
   }
   if (auto s = map.find("shutter")) c.shutter = parseShutter(YamlMap(*s));
-  if (auto m = map.find("motion")) c.motion = parseMotion(*m, true);
+  if (auto m = map.find("motion")) c.motion = parseMotion(*m, true, glm::dvec3(0.0));
   map.finish({"position", "look_at", "up", "world_from_camera", "sensor_width_mm",
               "sensor_height_mm", "resolution", "fill_factor", "focal_length_mm", "f_number",
               "focus_distance_m", "aperture", "lens_transmittance", "distortion", "shutter",

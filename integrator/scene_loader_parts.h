@@ -34,8 +34,10 @@ TextureDescription parseTexture(const YamlValue& v, TextureUse use, const TableS
 // `materials:` entry → material description (integrator/scene_loader_materials.cpp).
 MaterialDescription parseMaterial(const std::string& name, YamlMap map, const TableSearch& search,
                                   const std::filesystem::path& baseDir);
-// `motion:` keyframes; `forCamera` forbids scale.
-RigidMotion parseMotion(const YamlValue& value, bool forCamera);
+// `motion:` keyframes; `forCamera` forbids scale. Each `translate` minus `origin` (in
+// double): shapes pass the render origin (their keyframes are world positions), the
+// camera zero (its keyframes are offsets from its rest position).
+RigidMotion parseMotion(const YamlValue& value, bool forCamera, const glm::dvec3& origin);
 // `lights:` → point, spot, distant and environment lights (scene_loader_lights.cpp);
 // positions are shifted into render space (world − renderOrigin), files resolve against
 // baseDir.

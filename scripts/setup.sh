@@ -9,7 +9,7 @@ packages=(
   cmake ninja-build g++ pkg-config git
   libembree-dev libtbb-dev libopenexr-dev openexr libopencolorio-dev opencolorio-tools
   libglm-dev libgtest-dev libgmock-dev libyaml-cpp-dev libpng-dev libtiff-dev
-  libraw-bin python3-matplotlib clang libclang-rt-14-dev clang-format
+  libraw-bin dcraw libimage-exiftool-perl python3-matplotlib clang libclang-rt-14-dev clang-format
 )
 missing=()
 for p in "${packages[@]}"; do

@@ -10,6 +10,7 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include <glm/matrix.hpp>
 
@@ -58,30 +59,61 @@ std::string metadataValue(const Metadata& meta, const std::string& key) {
 
 }  // namespace
 
-DngColor dngColorFromQe(const std::vector<Spectrum>& qe, const Spectrum& illuminant,
+namespace {
+
+// The shared chart fit (sensor/color_correction.h), in the XYZ → camera direction, under
+// one calibration illuminant.
+DngCalibration calibrationUnder(const std::vector<Spectrum>& qe, const std::string& illuminant,
+                                int lightSource, const std::filesystem::path& colorCheckerCsv) {
+  const ChartSamples chart = colorCheckerSamples(qe, cieIlluminant(illuminant), colorCheckerCsv);
+  glm::dmat3 m = fitLinearMap(chart.xyz, chart.camera);
+  const glm::dvec3 whiteCamera = m * chart.xyzWhite;
+  const double peak = std::max({whiteCamera.x, whiteCamera.y, whiteCamera.z});
+  if (!(peak > 0.0))
+    throw InputError({}, "qe", "the sensor does not respond to the " + illuminant + " white");
+  return {m / peak, lightSource};
+}
+
+}  // namespace
+
+int exifLightSource(const std::string& name) {
+  static const std::pair<const char*, int> codes[] = {
+      {"D50", 23}, {"D55", 20}, {"D65", 21}, {"D75", 22}, {"A", 17},  {"F1", 12},
+      {"F5", 12},  {"F7", 12},  {"F8", 13},  {"F10", 13}, {"F2", 14}, {"F6", 14},
+      {"F9", 14},  {"F11", 14}, {"F3", 15},  {"F4", 16},  {"F12", 16}};
+  for (const auto& [n, code] : codes)
+    if (name == n) return code;
+  return 0;
+}
+
+DngColor dngColorFromQe(const std::vector<Spectrum>& qe, const std::string& illuminant,
                         const std::filesystem::path& colorCheckerCsv) {
   if (qe.size() != 3)
     throw InputError({}, "qe",
                      "DNG colour needs 3 QE curves (R, G, B), got " + std::to_string(qe.size()));
-  // The shared chart fit (sensor/color_correction.h), here in the XYZ → camera direction.
-  const ChartSamples chart = colorCheckerSamples(qe, cieIlluminant("D65"), colorCheckerCsv);
-  glm::dmat3 m = fitLinearMap(chart.xyz, chart.camera);
-  const glm::dvec3 whiteCamera = m * chart.xyzWhite;
-  const double peak = std::max({whiteCamera.x, whiteCamera.y, whiteCamera.z});
-  if (!(peak > 0.0)) throw InputError({}, "qe", "the sensor does not respond to the D65 white");
-  m /= peak;
-
   DngColor color;
-  color.xyzToCamera = m;
-  const std::vector<double> neutral = cameraResponse(qe, Spectrum::constant(1.0), illuminant);
+  const int code = exifLightSource(illuminant);
+  if (illuminant != "D65" && code != 0) {
+    color.calibration1 = calibrationUnder(qe, illuminant, code, colorCheckerCsv);
+    color.calibration2 = calibrationUnder(qe, "D65", 21, colorCheckerCsv);
+  } else {
+    color.calibration1 = calibrationUnder(qe, "D65", 21, colorCheckerCsv);
+  }
+  const std::vector<double> neutral =
+      cameraResponse(qe, Spectrum::constant(1.0), cieIlluminant(illuminant));
   if (!(neutral[1] > 0.0))
     throw InputError({}, "qe", "the G channel does not respond to the illuminant");
   color.asShotNeutral = glm::dvec3(neutral[0], neutral[1], neutral[2]) / neutral[1];
   return color;
 }
 
+glm::dvec3 dngNeutralFromGains(const std::vector<double>& gains) {
+  CAMSIM_CHECK(gains.size() == 3 && gains[0] > 0.0 && gains[1] > 0.0 && gains[2] > 0.0);
+  return glm::dvec3(gains[1] / gains[0], 1.0, gains[1] / gains[2]);
+}
+
 void writeDng(const std::filesystem::path& path, const RawImage& raw, const DngColor& color,
-              const Metadata& meta) {
+              const Metadata& meta, const DngCapture& capture) {
   CAMSIM_CHECK(raw.width > 0 && raw.height > 0 &&
                raw.dn.size() == static_cast<size_t>(raw.width) * static_cast<size_t>(raw.height));
   const CfaLayout& cfa = raw.cfa;
@@ -115,6 +147,26 @@ void writeDng(const std::filesystem::path& path, const RawImage& raw, const DngC
   if (!tif) fail("cannot open");
   TIFF* t = tif.get();
   bool ok = true;
+
+  // The EXIF IFD first (TIFFCreateEXIFDirectory returns 0 on success), then IFD0 pointing
+  // at it: written in this order, no directory has to be rewritten.
+  std::uint64_t exifOffset = 0;
+  if (TIFFCreateEXIFDirectory(t) != 0) fail("cannot create the EXIF directory");
+  if (capture.exposureTimeS > 0.0)
+    ok = ok && TIFFSetField(t, EXIFTAG_EXPOSURETIME, capture.exposureTimeS) == 1;
+  if (capture.fNumber > 0.0) ok = ok && TIFFSetField(t, EXIFTAG_FNUMBER, capture.fNumber) == 1;
+  if (capture.focalLengthMm > 0.0)
+    ok = ok && TIFFSetField(t, EXIFTAG_FOCALLENGTH, capture.focalLengthMm) == 1;
+  if (capture.iso > 0.0) {
+    const std::uint16_t iso[1] = {
+        static_cast<std::uint16_t>(std::lround(std::min(capture.iso, 65535.0)))};
+    ok = ok && TIFFSetField(t, EXIFTAG_ISOSPEEDRATINGS, 1, iso) == 1;
+  }
+  if (!capture.dateTimeOriginal.empty())
+    ok = ok && TIFFSetField(t, EXIFTAG_DATETIMEORIGINAL, capture.dateTimeOriginal.c_str()) == 1;
+  if (!ok || TIFFWriteCustomDirectory(t, &exifOffset) != 1) fail("cannot write the EXIF directory");
+  TIFFFreeDirectory(t);
+  if (TIFFCreateDirectory(t) != 0) fail("cannot start IFD0");
   // Scalars go through varargs: pass them as the promoted type libtiff reads (int/uint32).
   const auto setU32 = [&](uint32_t tag, std::uint32_t v) {
     ok = ok && TIFFSetField(t, tag, v) == 1;
@@ -135,6 +187,7 @@ void writeDng(const std::filesystem::path& path, const RawImage& raw, const DngC
   setU16(TIFFTAG_ORIENTATION, ORIENTATION_TOPLEFT);
   setU16(TIFFTAG_PHOTOMETRIC, mono ? kPhotometricLinearRaw : PHOTOMETRIC_CFA);
   setU32(TIFFTAG_ROWSPERSTRIP, TIFFDefaultStripSize(t, 0));
+  ok = ok && TIFFSetField(t, TIFFTAG_EXIFIFD, exifOffset) == 1;
 
   const std::string sensor = metadataValue(meta, "camsim:sensor");
   const std::string model = sensor.empty() ? "camsim" : "camsim " + sensor;
@@ -167,16 +220,21 @@ void writeDng(const std::filesystem::path& path, const RawImage& raw, const DngC
          TIFFSetField(t, TIFFTAG_CFAPATTERN, static_cast<int>(pattern.size()), pattern.data()) == 1;
     ok = ok && TIFFSetField(t, TIFFTAG_CFAPLANECOLOR, 3, planeColor) == 1;
     setU16(TIFFTAG_CFALAYOUT, 1);
-    float matrix[9];
-    for (int row = 0; row < 3; ++row)
-      for (int col = 0; col < 3; ++col)
-        matrix[row * 3 + col] =
-            static_cast<float>(color.xyzToCamera[col][row]);  // glm: [column][row]
+    const auto setMatrix = [&](uint32_t matrixTag, uint32_t illuminantTag,
+                               const DngCalibration& c) {
+      float matrix[9];
+      for (int row = 0; row < 3; ++row)
+        for (int col = 0; col < 3; ++col)
+          matrix[row * 3 + col] = static_cast<float>(c.xyzToCamera[col][row]);  // glm: [col][row]
+      ok = ok && TIFFSetField(t, matrixTag, 9, matrix) == 1;
+      setU16(illuminantTag, c.lightSource);
+    };
+    setMatrix(TIFFTAG_COLORMATRIX1, TIFFTAG_CALIBRATIONILLUMINANT1, color.calibration1);
+    if (color.calibration2)
+      setMatrix(TIFFTAG_COLORMATRIX2, TIFFTAG_CALIBRATIONILLUMINANT2, *color.calibration2);
     const float neutral[3] = {static_cast<float>(color.asShotNeutral.x),
                               static_cast<float>(color.asShotNeutral.y),
                               static_cast<float>(color.asShotNeutral.z)};
-    ok = ok && TIFFSetField(t, TIFFTAG_COLORMATRIX1, 9, matrix) == 1;
-    setU16(TIFFTAG_CALIBRATIONILLUMINANT1, 21);  // D65
     ok = ok && TIFFSetField(t, TIFFTAG_ASSHOTNEUTRAL, 3, neutral) == 1;
   }
   if (!ok) fail("cannot set a DNG tag");

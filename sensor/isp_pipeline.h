@@ -12,7 +12,11 @@
 //                     QE curves (never hard-coded), W = XYZ(D65) → working space
 //   5. exposure:      × 1 (values are fractions of the sensor's saturation; 0.18 ≈ the
 //                     auto-exposure target)
-// An ideal XYZ (stacked) sensor skips demosaic and the CCM: its channels are XYZ.
+// An ideal XYZ (stacked) sensor skips demosaic and the CCM: its channels are XYZ. Its white
+// balance is a chromatic adaptation: the gains (from the illuminant, a region or grey world,
+// as for a mosaic) give the XYZ of the scene white, w = (1/g_X, 1, 1/g_Z), and the planes
+// go through Bradford B(w → D65 white) — the adaptation the Bayer path's CCM builds in —
+// so its greys come out neutral under any illuminant.
 #pragma once
 
 #include <filesystem>
@@ -39,8 +43,13 @@ struct IspSettings {
 struct DevelopedImage {
   Image working;                     // R, G, B in the working space (ACEScg)
   std::vector<double> whiteBalance;  // gains per camera channel (reference channel = 1)
-  ColorCorrection colorCorrection;   // the fitted CCM and matrices used
+  ColorCorrection colorCorrection;   // the fitted CCM (stacked: the adaptation) and matrices
 };
+
+// The white-balance gains developRaw applies, per camera channel (G, else Y, = 1), from the
+// same raws: a raw converter's AsShotNeutral is 1/g (sensor/dng_writer.h).
+std::vector<double> whiteBalanceGains(const std::vector<RawImage>& raws, const SensorSpec& sensor,
+                                      const IspSettings& settings);
 
 // raws: one RawImage for a mosaic sensor, one per channel for a stacked sensor.
 DevelopedImage developRaw(const std::vector<RawImage>& raws, const SensorSpec& sensor,

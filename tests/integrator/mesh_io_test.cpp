@@ -514,7 +514,7 @@ TEST(MeshFuzzTest, MutatedInputsFailCleanly) {
       }
       for (auto* parse : {&parseObj, &parsePly}) {
         try {
-          const MeshData m = parse(s, "fuzz");
+          const MeshData m = parse(s, "fuzz", MeshPlacement{});
           ASSERT_FALSE(m.indices.empty());
           ASSERT_EQ(m.indices.size() % 3, 0u);
           for (std::uint32_t i : m.indices) ASSERT_LT(i, m.positions.size());

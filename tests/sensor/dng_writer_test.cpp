@@ -145,7 +145,7 @@ std::string linesAfter(const std::string& text, const std::string& header, int n
 
 DngColor someColor() {
   DngColor color;
-  color.xyzToCamera = glm::dmat3(0.9, -0.3, 0.05, -0.4, 1.2, 0.2, -0.05, 0.1, 0.8);
+  color.calibration1.xyzToCamera = glm::dmat3(0.9, -0.3, 0.05, -0.4, 1.2, 0.2, -0.05, 0.1, 0.8);
   color.asShotNeutral = {0.5, 1.0, 0.7};
   return color;
 }
@@ -161,12 +161,13 @@ TEST_P(DngLayoutTest, LibRawReadsDimensionsPatternLevelsAndValues) {
   const RawImage raw = gradient(name, 64, 48);
   const std::filesystem::path path = dir_ / ("gradient_" + name + ".dng");
   writeDng(path, raw, someColor(),
-           {{"camsim:sensor", "test-" + name}, {"camsim:scene", "gradient"}});
+           {{"camsim:sensor", "test-" + name}, {"camsim:scene", "gradient"}},
+           DngCapture{1.0 / 125.0, 5.6, 35.0, 400.0, "2000:01:01 00:00:00"});
   ASSERT_TRUE(std::filesystem::exists(path));
   EXPECT_GT(std::filesystem::file_size(path), 64u * 48u * 2u);
-  if (!onPath("raw-identify"))
-    GTEST_SKIP() << "raw-identify (Debian package libraw-bin) is not on PATH: the DNG was written "
-                    "but not checked by an independent reader";
+  ASSERT_TRUE(onPath("raw-identify"))
+      << "raw-identify (Debian package libraw-bin, installed by scripts/setup.sh) is not on PATH: "
+         "the DNG was written but cannot be checked by an independent reader";
 
   const std::string info = run("raw-identify -v " + quoted(path) + " 2>&1");
   SCOPED_TRACE(info);
@@ -178,6 +179,11 @@ TEST_P(DngLayoutTest, LibRawReadsDimensionsPatternLevelsAndValues) {
   EXPECT_EQ(field(info, "Image flip"), "0");
   EXPECT_EQ(field(info, "black"), "256");
   EXPECT_EQ(field(info, "BlackLevelRepeatDim"), "1 x 1");
+  // The EXIF IFD, as LibRaw reports it.
+  EXPECT_EQ(field(info, "ISO speed"), "400");
+  EXPECT_EQ(field(info, "Shutter"), "1/125.0");
+  EXPECT_EQ(field(info, "Aperture"), "f/5.6");
+  EXPECT_EQ(field(info, "Focal length"), "35.0 mm");
   if (mono) {
     EXPECT_EQ(field(info, "Raw colors"), "1");
     EXPECT_EQ(field(info, "Filter pattern"), "");
@@ -193,7 +199,8 @@ TEST_P(DngLayoutTest, LibRawReadsDimensionsPatternLevelsAndValues) {
     EXPECT_NE(info.find("As shot                   2 1 1.42857 0"), std::string::npos);
   }
 
-  if (onPath("unprocessed_raw")) {
+  ASSERT_TRUE(onPath("unprocessed_raw")) << "unprocessed_raw (libraw-bin) is not on PATH";
+  {
     // The unscaled raw values (black not subtracted), written next to the input as FILE.pgm.
     run("unprocessed_raw -q " + quoted(path) + " 2>&1");
     const Pnm pnm = readPnm16(path.string() + ".pgm");
@@ -201,7 +208,7 @@ TEST_P(DngLayoutTest, LibRawReadsDimensionsPatternLevelsAndValues) {
     ASSERT_EQ(pnm.height, raw.height);
     EXPECT_EQ(pnm.values, raw.dn);
   }
-  if (!onPath("dcraw_emu")) GTEST_SKIP() << "dcraw_emu (libraw-bin) is not on PATH";
+  ASSERT_TRUE(onPath("dcraw_emu")) << "dcraw_emu (libraw-bin) is not on PATH";
   // Linear 16-bit, raw colour, unit white balance, no maximum adjustment, bilinear
   // demosaic (each photosite keeps its own channel): out = (DN − black)·65535/(white − black).
   const std::filesystem::path scaled = dir_ / "scaled.pnm";
@@ -253,17 +260,19 @@ std::vector<Spectrum> idealXyzQe(bool photonCorrected) {
 
 TEST(DngColorFromQe, IdealXyzSensorGivesTheNormalisedIdentity) {
   const Spectrum d65 = cieIlluminant("D65");
-  const DngColor color = dngColorFromQe(idealXyzQe(true), d65, kColorChecker);
+  const DngColor color = dngColorFromQe(idealXyzQe(true), "D65", kColorChecker);
+  EXPECT_EQ(color.calibration1.lightSource, 21);
+  EXPECT_FALSE(color.calibration2.has_value());
   // Identity scaled so that the D65 white (Y = 1) has max component 1: the largest of
   // X, Y, Z = (0.9505, 1, 1.089) is Z, so the scale is 1 / Z_D65.
   const glm::dvec3 white = reflectanceToXyz(Spectrum::constant(1.0), d65);
   const double scale = 1.0 / std::max({white.x, white.y, white.z});
   for (int r = 0; r < 3; ++r)
     for (int c = 0; c < 3; ++c)
-      EXPECT_NEAR(color.xyzToCamera[c][r], r == c ? scale : 0.0, 1e-3)
+      EXPECT_NEAR(color.calibration1.xyzToCamera[c][r], r == c ? scale : 0.0, 1e-3)
           << "row " << r << " col " << c;
   // The D65 white maps to max component 1 exactly.
-  const glm::dvec3 w = color.xyzToCamera * white;
+  const glm::dvec3 w = color.calibration1.xyzToCamera * white;
   EXPECT_NEAR(std::max({w.x, w.y, w.z}), 1.0, 1e-12);
   // AsShotNeutral under D65 = XYZ of the D65 white / Y.
   EXPECT_NEAR(color.asShotNeutral.x, white.x, 1e-6);
@@ -273,8 +282,8 @@ TEST(DngColorFromQe, IdealXyzSensorGivesTheNormalisedIdentity) {
 
 TEST(DngColorFromQe, PlainCmfQeIsCloseToButNotExactlyTheIdentity) {
   // QE = x̄ȳz̄ counts photons (∝ energy·λ): the fit absorbs the λ weighting, not exactly.
-  const DngColor color = dngColorFromQe(idealXyzQe(false), cieIlluminant("D65"), kColorChecker);
-  const glm::dmat3& m = color.xyzToCamera;
+  const DngColor color = dngColorFromQe(idealXyzQe(false), "D65", kColorChecker);
+  const glm::dmat3& m = color.calibration1.xyzToCamera;
   for (int r = 0; r < 3; ++r)
     for (int c = 0; c < 3; ++c) {
       if (r == c) continue;
@@ -282,13 +291,26 @@ TEST(DngColorFromQe, PlainCmfQeIsCloseToButNotExactlyTheIdentity) {
     }
 }
 
-TEST(DngColorFromQe, AsShotNeutralFollowsTheIlluminant) {
+TEST(DngColorFromQe, CalibrationsAndAsShotNeutralFollowTheIlluminant) {
   const auto qe = idealXyzQe(true);
-  const DngColor a = dngColorFromQe(qe, cieIlluminant("A"), kColorChecker);
-  const DngColor d65 = dngColorFromQe(qe, cieIlluminant("D65"), kColorChecker);
-  // The matrix is the D65 calibration whatever the scene illuminant.
+  const DngColor a = dngColorFromQe(qe, "A", kColorChecker);
+  const DngColor d65 = dngColorFromQe(qe, "D65", kColorChecker);
+  // Illuminant A (EXIF 17) is calibration 1, D65 calibration 2 with the D65-only matrix.
+  EXPECT_EQ(a.calibration1.lightSource, 17);
+  ASSERT_TRUE(a.calibration2.has_value());
+  EXPECT_EQ(a.calibration2->lightSource, 21);
   for (int c = 0; c < 3; ++c)
-    for (int r = 0; r < 3; ++r) EXPECT_DOUBLE_EQ(a.xyzToCamera[c][r], d65.xyzToCamera[c][r]);
+    for (int r = 0; r < 3; ++r)
+      EXPECT_DOUBLE_EQ(a.calibration2->xyzToCamera[c][r], d65.calibration1.xyzToCamera[c][r]);
+  // The A matrix maps the A white to a camera value of largest component 1.
+  const glm::dvec3 wA =
+      a.calibration1.xyzToCamera * reflectanceToXyz(Spectrum::constant(1.0), cieIlluminant("A"));
+  EXPECT_NEAR(std::max({wA.x, wA.y, wA.z}), 1.0, 1e-12);
+  // No EXIF code: D65 alone.
+  EXPECT_FALSE(dngColorFromQe(qe, "ACES_D60", kColorChecker).calibration2.has_value());
+  EXPECT_EQ(exifLightSource("F11"), 14);
+  EXPECT_EQ(exifLightSource("D50"), 23);
+  EXPECT_EQ(exifLightSource("ACES_D60"), 0);
   const glm::dvec3 whiteA = reflectanceToXyz(Spectrum::constant(1.0), cieIlluminant("A"));
   EXPECT_NEAR(a.asShotNeutral.x, whiteA.x, 1e-6);  // ≈ 1.0985: tungsten is red
   EXPECT_NEAR(a.asShotNeutral.z, whiteA.z, 1e-6);  // ≈ 0.3558
@@ -296,8 +318,15 @@ TEST(DngColorFromQe, AsShotNeutralFollowsTheIlluminant) {
 
 TEST(DngColorFromQe, NeedsThreeCurves) {
   const auto qe = idealXyzQe(true);
-  EXPECT_THROW(dngColorFromQe({qe[0], qe[1]}, cieIlluminant("D65"), kColorChecker), InputError);
-  EXPECT_THROW(dngColorFromQe(qe, cieIlluminant("D65"), "/nonexistent/chart.csv"), InputError);
+  EXPECT_THROW(dngColorFromQe({qe[0], qe[1]}, "D65", kColorChecker), InputError);
+  EXPECT_THROW(dngColorFromQe(qe, "D65", "/nonexistent/chart.csv"), InputError);
+}
+
+TEST(DngColorFromQe, NeutralFromGainsIsTheirInverse) {
+  const glm::dvec3 n = dngNeutralFromGains({2.0, 1.0, 1.25});
+  EXPECT_DOUBLE_EQ(n.x, 0.5);
+  EXPECT_DOUBLE_EQ(n.y, 1.0);
+  EXPECT_DOUBLE_EQ(n.z, 0.8);
 }
 
 }  // namespace
