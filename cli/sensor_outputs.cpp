@@ -90,6 +90,12 @@ SensorOutputs writeSensorFrames(const SensorSettings& sensor, const IspSettings&
     report.clippedFraction =
         total == 0 ? 0.0 : static_cast<double>(clipped) / static_cast<double>(total);
     Metadata frameMeta = meta;
+    for (auto& [key, value] : frameMeta)
+      if (key == "camsim:units")
+        value =
+            "raw.DN: raw digital numbers as the ADC gives them, black level "
+            "included; electrons.<channel>: the noise-free expected photo-electrons per "
+            "photosite at this frame's exposure";
     frameMeta.insert(frameMeta.end(),
                      {{"camsim:sensor", spec.name},
                       {"camsim:iso", std::to_string(sensor.iso)},

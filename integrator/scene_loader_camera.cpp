@@ -71,6 +71,15 @@ glm::dmat4 parseMatrix(const YamlValue& m) {
       std::abs(glm::dot(x, z)) > 1e-4 || std::abs(glm::length(x) - 1.0) > 1e-4 ||
       std::abs(glm::length(y) - 1.0) > 1e-4 || std::abs(glm::length(z) - 1.0) > 1e-4)
     m.fail("the rotation part must be orthonormal (columns right, up, forward)");
+  // In camsim's right-handed world the camera's axes right, up, forward satisfy
+  // right = forward × up (what look_at builds), so their matrix has determinant −1. A proper
+  // rotation (+1) has right = up × forward, pointing left: the image would be mirrored.
+  if (glm::dot(glm::cross(x, y), z) > 0.0)
+    m.fail(
+        "the rotation part has determinant +1: camsim's columns are right, up, forward "
+        "with right = forward × up (determinant −1, as look_at builds); this matrix's "
+        "first column points left and would mirror the image (negate it; from an OpenCV "
+        "pose [x right, y down, z forward] negate the second column instead)");
   return out;
 }
 
@@ -188,7 +197,9 @@ PhysicalCameraParams parseCamera(YamlMap map, const TableSearch& search) {
   if (auto v = map.find("focus_distance_m")) {
     c.focusDistance = v->number(0.0, 1e12, true);
     if (!(c.focusDistance > c.focalLength * 1.0001))
-      v->fail("focus distance must exceed the focal length");
+      v->fail("focus distance must exceed 1.0001 × the focal length (" +
+              std::to_string(c.focalLength * 1.0001) + " m): closer, the image distance " +
+              "f·z/(z − f) is unbounded");
   }
   if (auto a = map.find("aperture")) {
     YamlMap am(*a);

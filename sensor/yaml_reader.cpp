@@ -6,6 +6,7 @@
 #include <cctype>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <sstream>
 #include <string_view>
@@ -44,11 +45,22 @@ double YamlValue::number() const {
   return value;
 }
 
+namespace {
+
+// A range bound as a reader wrote it: 1e+30, 0.5, 1000 (not 1000000000000000019884624838656.000000).
+std::string bound(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.10g", v);
+  return text;
+}
+
+}  // namespace
+
 double YamlValue::number(double lo, double hi, bool loOpen) const {
   const double v = number();
   if (v < lo || v > hi || (loOpen && v == lo)) {
-    fail("value " + node_.Scalar() + " is out of range " + (loOpen ? "(" : "[") +
-         std::to_string(lo) + ", " + std::to_string(hi) + "]");
+    fail("value " + node_.Scalar() + " is out of range " + (loOpen ? "(" : "[") + bound(lo) + ", " +
+         bound(hi) + "]");
   }
   return v;
 }

@@ -51,7 +51,8 @@ std::vector<double> ppmMeans(const std::string& bytes) {
   std::vector<double> sum(3, 0.0);
   const auto* p = reinterpret_cast<const unsigned char*>(bytes.data() + start);
   for (int i = 0; i < w * h; ++i)
-    for (int c = 0; c < 3; ++c) sum[static_cast<size_t>(c)] += p[6 * i + 2 * c] * 256 + p[6 * i + 2 * c + 1];
+    for (int c = 0; c < 3; ++c)
+      sum[static_cast<size_t>(c)] += p[6 * i + 2 * c] * 256 + p[6 * i + 2 * c + 1];
   for (double& s : sum) s /= w * h;
   return sum;
 }
@@ -62,16 +63,19 @@ TEST(DngWhiteBalance, DcrawDevelopsAGreyCardUnderIlluminantANeutral) {
       << "exiftool is not installed (Debian package libimage-exiftool-perl; scripts/setup.sh)";
   test::TempDir dir;
   test::writeFile(dir.path() / "card.yaml", greyUnder("A"));
-  const test::RunResult r = test::runCamsim(
-      "render " + test::quote((dir.path() / "card.yaml").string()) + " -o " +
-          test::quote((dir.path() / "out").string()),
-      dir.path());
+  const test::RunResult r =
+      test::runCamsim("render " + test::quote((dir.path() / "card.yaml").string()) + " -o " +
+                          test::quote((dir.path() / "out").string()),
+                      dir.path());
   ASSERT_EQ(r.exitCode, 0) << r.err;
   const std::string dng = (dir.path() / "out" / "card.dng").string();
+  // The raw EXR says what it holds (DN and electrons, not the film's lm·s).
+  const std::string rawExr = test::readFile(dir.path() / "out" / "card_raw.exr");
+  EXPECT_NE(rawExr.find("raw.DN: raw digital numbers"), std::string::npos);
+  EXPECT_EQ(rawExr.find("lm*s"), std::string::npos);
 
   // -w: the camera's white balance (AsShotNeutral); -4: linear 16 bit; -c: to stdout.
-  const test::RunResult dev =
-      test::runCommand("dcraw -w -4 -c " + test::quote(dng), dir.path());
+  const test::RunResult dev = test::runCommand("dcraw -w -4 -c " + test::quote(dng), dir.path());
   ASSERT_EQ(dev.exitCode, 0) << dev.err;
   const std::vector<double> m = ppmMeans(dev.out);
   ASSERT_EQ(m.size(), 3u) << "dcraw did not write a 16-bit PPM";
@@ -94,8 +98,7 @@ TEST(DngWhiteBalance, DcrawDevelopsAGreyCardUnderIlluminantANeutral) {
   EXPECT_NE(exif.out.find("DateTimeOriginal                : 2000:01:01 00:00:00"),
             std::string::npos);
   EXPECT_NE(exif.out.find("FocalLength                     : 8.0 mm"), std::string::npos);
-  EXPECT_NE(exif.out.find("CalibrationIlluminant1          : Standard Light A"),
-            std::string::npos);
+  EXPECT_NE(exif.out.find("CalibrationIlluminant1          : Standard Light A"), std::string::npos);
   EXPECT_NE(exif.out.find("CalibrationIlluminant2          : D65"), std::string::npos);
 }
 

@@ -86,6 +86,14 @@ const ErrorCase kErrorCases[] = {
     {"UnknownShapeKey", sphereWith("1", ", material: m, colour: red"), 7, 63, "shapes[0].colour",
      "unknown key"},
     {"UnknownCameraKey", withCameraLine("  fov: 40\n"), 4, 3, "camera.fov", "unknown key"},
+    {"WorldFromCameraProperRotationMirrors",
+     "camera:\n  world_from_camera: [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1]\n" +
+         kMaterials + "shapes:\n" + kSphere,
+     2, 22, "camera.world_from_camera", "determinant +1"},
+    {"FocusInsideTheFocalLength", withCameraLine("  focus_distance_m: 0.05\n"), 4, 21,
+     "camera.focus_distance_m", "must exceed 1.0001 × the focal length (0.050005 m)"},
+    {"BoundPrintedAsWritten", sphereWith("1", ", emission: {scale: 1e31}"), 7, 68,
+     "shapes[0].emission.scale", "out of range [0, 1e+30]"},
     {"WrongTypeStringForNumber", sphereWith("big", ", material: m"), 7, 47, "shapes[0].radius",
      "'big' is not a number"},
     {"WrongTypeNumberForList", withShapes("  - {type: sphere, centre: 5, radius: 1}\n"), 7, 28,
@@ -224,6 +232,21 @@ TEST(SceneLoaderTest, EmptyText) {
 }
 
 // ---- valid scenes ----------------------------------------------------------------------
+
+// world_from_camera with columns right, up, forward (right = forward × up, determinant −1)
+// is the pose look_at builds: the same camera from the origin towards +z.
+TEST(SceneLoaderTest, WorldFromCameraMatchesLookAt) {
+  const SceneDescription a = loadSceneFromText(
+      "camera:\n  world_from_camera: [-1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1]\n" +
+          kMaterials + "shapes:\n" + kSphere,
+      "a.yaml", ".");
+  const SceneDescription b = loadSceneFromText(
+      "camera: {position: [0, 0, 0], look_at: [0, 0, 1]}\n" + kMaterials + "shapes:\n" + kSphere,
+      "b.yaml", ".");
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 4; ++r)
+      EXPECT_EQ(a.camera.worldFromCamera[c][r], b.camera.worldFromCamera[c][r]) << c << r;
+}
 
 TEST(SceneLoaderTest, CornellBoxLoads) {
   const fs::path file = fs::path(CAMSIM_SOURCE_DIR) / "scenes" / "cornell_box.yaml";

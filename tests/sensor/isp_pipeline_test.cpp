@@ -42,7 +42,8 @@ std::vector<RawImage> greyCardRaws(const SensorSpec& spec, const std::string& il
     Image mosaic(16, 16, {"e"});
     for (int y = 0; y < 16; ++y)
       for (int x = 0; x < 16; ++x)
-        mosaic.at(x, y, 0) = static_cast<float>(c[static_cast<size_t>(spec.cfa.channelAt(x, y))] * k);
+        mosaic.at(x, y, 0) =
+            static_cast<float>(c[static_cast<size_t>(spec.cfa.channelAt(x, y))] * k);
     raws.push_back(expose(mosaic, spec, exposure, NoiseMode::kNone, 0, 0));
   }
   return raws;
@@ -53,9 +54,9 @@ class GreyUnderF11 : public testing::TestWithParam<std::string> {};
 TEST_P(GreyUnderF11, EveryWhiteBalanceMakesItNeutral) {
   const SensorSpec spec = loadSensorSpec(GetParam(), kLuts);
   const std::vector<RawImage> raws = greyCardRaws(spec, "F11");
-  for (const auto method : {IspSettings::WhiteBalance::kIlluminant,
-                            IspSettings::WhiteBalance::kRegion,
-                            IspSettings::WhiteBalance::kGreyWorld}) {
+  for (const auto method :
+       {IspSettings::WhiteBalance::kIlluminant, IspSettings::WhiteBalance::kRegion,
+        IspSettings::WhiteBalance::kGreyWorld}) {
     IspSettings isp;
     isp.illuminant = "F11";
     isp.whiteBalance = method;
@@ -65,8 +66,7 @@ TEST_P(GreyUnderF11, EveryWhiteBalanceMakesItNeutral) {
     double gainSpread = 0.0;
     for (double g : dev.whiteBalance) gainSpread = std::max(gainSpread, std::abs(g - 1.0));
     EXPECT_GT(gainSpread, 0.05) << "F11 is not D65: some gain must differ from 1";
-    const glm::dvec3 rgb(dev.working.at(8, 8, 0), dev.working.at(8, 8, 1),
-                         dev.working.at(8, 8, 2));
+    const glm::dvec3 rgb(dev.working.at(8, 8, 0), dev.working.at(8, 8, 1), dev.working.at(8, 8, 2));
     std::printf("[measured] %s, F11, method %d: ACEScg R/G %.5f B/G %.5f\n", GetParam().c_str(),
                 static_cast<int>(method), rgb.x / rgb.y, rgb.z / rgb.y);
     EXPECT_NEAR(rgb.x / rgb.y, 1.0, 1e-3) << static_cast<int>(method);
