@@ -24,7 +24,7 @@
 #include <string>
 #include <vector>
 
-#include "integrator/sobol_sampler.h"
+#include "integrator/sampling/sobol_sampler.h"
 
 namespace {
 

@@ -3,7 +3,7 @@
 #include <charconv>
 #include <cmath>
 
-#include "integrator/scene_loader.h"
+#include "integrator/scene/scene_loader.h"
 
 namespace camsim {
 namespace {

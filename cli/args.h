@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "sensor/sensor_model.h"
+#include "sensor/model/sensor_model.h"
 
 namespace camsim {
 

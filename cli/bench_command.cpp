@@ -15,11 +15,11 @@
 #include "cli/bench_reference.h"
 #include "cli/progress.h"
 #include "cli/python_script.h"
-#include "integrator/scene.h"
-#include "integrator/scene_loader.h"
-#include "sensor/file_status.h"
-#include "sensor/input_error.h"
-#include "sensor/output_set.h"
+#include "integrator/scene/scene.h"
+#include "integrator/scene/scene_loader.h"
+#include "sensor/base/file_status.h"
+#include "sensor/base/input_error.h"
+#include "sensor/io/output_set.h"
 
 namespace camsim {
 namespace {

@@ -2,7 +2,7 @@
 // what threads, motion blur and big meshes cost.
 //
 // Limit (per scene): one render (Sobol', the scene's resolution, captureSpp) records every
-// ray it casts (integrator/ray_recorder.h): camera, bounce and shadow rays with their tMax
+// ray it casts (integrator/render/ray_recorder.h): camera, bounce and shadow rays with their tMax
 // and time. They are replayed through the scene's own EmbreeScene (intersect for camera and
 // bounce rays, occluded for shadow rays) in 256-ray chunks over tbb::parallel_for in a
 // task_arena of the same thread count, timing only the traversal loop: raw rays/s per kind
@@ -29,7 +29,7 @@
 // malloc_trim and with glibc's mmap threshold fixed at 128 KiB, so that large buffers get
 // fresh pages rather than reusing freed ones); and built
 // again as a bare Embree scene, at medium and at high BVH quality, with Embree's memory
-// monitor counting its bytes (integrator/embree_probe.h).
+// monitor counting its bytes (integrator/geometry/embree_probe.h).
 #pragma once
 
 #include <array>
@@ -38,11 +38,11 @@
 #include <string>
 #include <vector>
 
-#include "integrator/embree_probe.h"
-#include "integrator/mesh_io.h"
-#include "integrator/ray_recorder.h"
-#include "integrator/render.h"
-#include "integrator/scene_description.h"
+#include "integrator/geometry/embree_probe.h"
+#include "integrator/geometry/mesh_io.h"
+#include "integrator/render/ray_recorder.h"
+#include "integrator/render/render.h"
+#include "integrator/scene/scene_description.h"
 
 namespace camsim {
 

@@ -25,7 +25,7 @@
 #include <vector>
 
 #include "cli/format.h"
-#include "sensor/image.h"
+#include "sensor/base/image.h"
 
 namespace camsim {
 

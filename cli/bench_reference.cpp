@@ -6,14 +6,14 @@
 #include <sstream>
 
 #include "cli/render_command.h"
-#include "integrator/render.h"
-#include "integrator/scene.h"
-#include "integrator/scene_loader.h"
-#include "sensor/exr_io.h"
-#include "sensor/file_status.h"
-#include "sensor/input_error.h"
-#include "sensor/output_set.h"
-#include "sensor/spectral_data.h"
+#include "integrator/render/render.h"
+#include "integrator/scene/scene.h"
+#include "integrator/scene/scene_loader.h"
+#include "sensor/io/exr_io.h"
+#include "sensor/base/file_status.h"
+#include "sensor/base/input_error.h"
+#include "sensor/io/output_set.h"
+#include "sensor/spectra/spectral_data.h"
 
 namespace camsim {
 namespace {

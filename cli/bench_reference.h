@@ -28,9 +28,9 @@
 #include <glm/vec2.hpp>
 #include "cli/bench_metrics.h"
 
-#include "integrator/render.h"
-#include "integrator/scene.h"
-#include "sensor/image.h"
+#include "integrator/render/render.h"
+#include "integrator/scene/scene.h"
+#include "sensor/base/image.h"
 
 namespace camsim {
 

@@ -9,7 +9,7 @@
 #include "cli/bench_command.h"
 #include "cli/ptc_command.h"
 #include "cli/render_command.h"
-#include "sensor/input_error.h"
+#include "sensor/base/input_error.h"
 
 namespace {
 

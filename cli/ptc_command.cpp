@@ -11,10 +11,10 @@
 #include "cli/args.h"
 #include "cli/format.h"
 #include "cli/python_script.h"
-#include "sensor/input_error.h"
-#include "sensor/luts_directory.h"
-#include "sensor/output_set.h"
-#include "sensor/sensor_spec.h"
+#include "sensor/base/input_error.h"
+#include "sensor/base/luts_directory.h"
+#include "sensor/io/output_set.h"
+#include "sensor/model/sensor_spec.h"
 
 namespace camsim {
 namespace {

@@ -1,5 +1,5 @@
 // `camsim ptc SENSOR [-o DIR] [--seed N]`: the EMVA 1288 photon-transfer measurement of a
-// sensor preset or YAML file (sensor/photon_transfer.h). Prints the measured parameters next
+// sensor preset or YAML file (sensor/model/photon_transfer.h). Prints the measured parameters next
 // to the values the configuration implies, writes DIR/ptc_<sensor>.csv (one row per
 // irradiation step) and, when /usr/bin/python3 has matplotlib, the plots
 // DIR/ptc_<sensor>_ptc.png and DIR/ptc_<sensor>_snr.png (scripts/ptc_plot.py, embedded).
@@ -15,7 +15,7 @@
 #include <string_view>
 #include <vector>
 
-#include "sensor/photon_transfer.h"
+#include "sensor/model/photon_transfer.h"
 
 namespace camsim {
 

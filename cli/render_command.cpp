@@ -7,14 +7,14 @@
 #include "cli/progress.h"
 #include "cli/render_outputs.h"
 #include "cli/resource_guard.h"
-#include "integrator/render.h"
-#include "integrator/scene.h"
-#include "integrator/scene_loader.h"
-#include "sensor/display_image.h"
-#include "sensor/exr_io.h"
-#include "sensor/input_error.h"
-#include "sensor/output_set.h"
-#include "sensor/png_io.h"
+#include "integrator/render/render.h"
+#include "integrator/scene/scene.h"
+#include "integrator/scene/scene_loader.h"
+#include "sensor/isp/display_image.h"
+#include "sensor/io/exr_io.h"
+#include "sensor/base/input_error.h"
+#include "sensor/io/output_set.h"
+#include "sensor/io/png_io.h"
 
 namespace camsim {
 namespace {

@@ -4,11 +4,11 @@
 
 #include "cli/json_writer.h"
 #include "cli/sensor_outputs.h"
-#include "integrator/scene_loader.h"
-#include "sensor/color_space.h"
-#include "sensor/display_image.h"
-#include "sensor/exr_io.h"
-#include "sensor/isp_pipeline.h"
+#include "integrator/scene/scene_loader.h"
+#include "sensor/spectra/color_space.h"
+#include "sensor/isp/display_image.h"
+#include "sensor/io/exr_io.h"
+#include "sensor/isp/isp_pipeline.h"
 
 namespace camsim {
 namespace {

@@ -9,9 +9,9 @@
 #include <string>
 
 #include "cli/picture_outputs.h"
-#include "integrator/render.h"
-#include "integrator/scene.h"
-#include "sensor/output_set.h"
+#include "integrator/render/render.h"
+#include "integrator/scene/scene.h"
+#include "sensor/io/output_set.h"
 
 namespace camsim {
 

@@ -5,7 +5,7 @@
 #include <cstdio>
 #include <string>
 
-#include "sensor/input_error.h"
+#include "sensor/base/input_error.h"
 
 namespace camsim {
 namespace {

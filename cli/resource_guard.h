@@ -1,14 +1,14 @@
 // Resource guard of `camsim render`, checked after the scene has loaded and before any
 // work (no output directory, no Embree scene, no render): the memory the run will need,
 // estimated from the scene, against a limit. The scene loader already bounds resolution,
-// spp and inline mesh size (integrator/scene_loader.h, SceneLimits); this catches scenes
+// spp and inline mesh size (integrator/scene/scene_loader.h, SceneLimits); this catches scenes
 // within those bounds that still do not fit the machine.
 #pragma once
 
 #include <cstdint>
 #include <optional>
 
-#include "integrator/scene_description.h"
+#include "integrator/scene/scene_description.h"
 
 namespace camsim {
 

@@ -5,12 +5,12 @@
 #include <cstdio>
 #include <ostream>
 
-#include "integrator/scene_loader.h"
-#include "sensor/dng_writer.h"
-#include "sensor/exr_io.h"
-#include "sensor/isp_pipeline.h"
-#include "sensor/sensor_model.h"
-#include "sensor/spectral_data.h"
+#include "integrator/scene/scene_loader.h"
+#include "sensor/io/dng_writer.h"
+#include "sensor/io/exr_io.h"
+#include "sensor/isp/isp_pipeline.h"
+#include "sensor/model/sensor_model.h"
+#include "sensor/spectra/spectral_data.h"
 
 namespace camsim {
 namespace {

@@ -8,12 +8,12 @@
 #include <string>
 #include <vector>
 
-#include "integrator/scene_description.h"
-#include "sensor/dng_writer.h"
-#include "sensor/image.h"
-#include "sensor/isp_pipeline.h"
-#include "sensor/output_set.h"
-#include "sensor/raw_image.h"
+#include "integrator/scene/scene_description.h"
+#include "sensor/io/dng_writer.h"
+#include "sensor/base/image.h"
+#include "sensor/isp/isp_pipeline.h"
+#include "sensor/io/output_set.h"
+#include "sensor/model/raw_image.h"
 
 namespace camsim {
 

@@ -7,7 +7,7 @@
 #include <cstdio>
 #include <cstdlib>
 
-#include "integrator/mesh_io.h"
+#include "integrator/geometry/mesh_io.h"
 
 #define FUZZ_CHECK(cond)                                                                      \
   do {                                                                                        \

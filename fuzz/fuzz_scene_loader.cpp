@@ -1,5 +1,5 @@
 // libFuzzer harness: scene files (YAML / JSON) → camsim::loadSceneFromText
-// (integrator/scene_loader.h). Bad input must end in InputError; anything else (crash,
+// (integrator/scene/scene_loader.h). Bad input must end in InputError; anything else (crash,
 // sanitizer report, another exception, an abort) is a finding.
 //
 // Relative paths in the scene (mesh files, CSV tables) resolve against an empty private
@@ -18,8 +18,8 @@
 #include <system_error>
 
 #include "fuzz/fuzz_check.h"
-#include "integrator/scene_loader.h"
-#include "sensor/input_error.h"
+#include "integrator/scene/scene_loader.h"
+#include "sensor/base/input_error.h"
 
 namespace {
 

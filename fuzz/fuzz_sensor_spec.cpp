@@ -1,5 +1,5 @@
 // libFuzzer harness: sensor descriptions (YAML/JSON) → camsim::parseSensorSpec
-// (sensor/sensor_spec.h), then the quantities the sensor model derives from them. Bad
+// (sensor/model/sensor_spec.h), then the quantities the sensor model derives from them. Bad
 // input must end in InputError; anything else (crash, sanitizer report, non-finite
 // derived value) is a finding. Relative CSV paths resolve against camsim's luts/ only.
 #include <cmath>
@@ -8,8 +8,8 @@
 #include <string>
 
 #include "fuzz/fuzz_check.h"
-#include "sensor/input_error.h"
-#include "sensor/sensor_spec.h"
+#include "sensor/base/input_error.h"
+#include "sensor/model/sensor_spec.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);

@@ -1,5 +1,5 @@
 // libFuzzer harness: spectral CSV tables → camsim::parseSpectralCsv
-// (sensor/spectral_data.h), then every column resampled to a Spectrum as the scene loader
+// (sensor/spectra/spectral_data.h), then every column resampled to a Spectrum as the scene loader
 // does. Bad input must end in InputError; anything else is a finding.
 #include <cmath>
 #include <cstddef>
@@ -7,8 +7,8 @@
 #include <string_view>
 
 #include "fuzz/fuzz_check.h"
-#include "sensor/input_error.h"
-#include "sensor/spectral_data.h"
+#include "sensor/base/input_error.h"
+#include "sensor/spectra/spectral_data.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string_view text(reinterpret_cast<const char*>(data), size);

@@ -19,9 +19,9 @@
 #include "cli/bench_command.h"
 #include "cli/bench_metrics.h"
 #include "cli/bench_reference.h"
-#include "integrator/scene_loader.h"
-#include "sensor/input_error.h"
-#include "sensor/spectral_data.h"
+#include "integrator/scene/scene_loader.h"
+#include "sensor/base/input_error.h"
+#include "sensor/spectra/spectral_data.h"
 
 namespace camsim {
 namespace {

@@ -1,4 +1,4 @@
-// Tests for the limit side of `camsim bench` (integrator/ray_recorder.h, cli/bench_limit.h):
+// Tests for the limit side of `camsim bench` (integrator/render/ray_recorder.h, cli/bench_limit.h):
 // the recorder captures exactly the rays the render counts, by kind; replaying them finds
 // the same hits; the limit times the same rays in each round; motion can be removed; the generated mesh is what the PLY reader reads
 // back; and the binary runs end to end into a directory (tables, CSVs), exiting 2 after a
@@ -16,9 +16,9 @@
 #include "cli/bench_limit.h"
 #include "cli/bench_metrics.h"
 #include "cli/bench_reference.h"
-#include "integrator/render.h"
-#include "integrator/scene.h"
-#include "integrator/scene_loader.h"
+#include "integrator/render/render.h"
+#include "integrator/scene/scene.h"
+#include "integrator/scene/scene_loader.h"
 #include "tests/support/run_command.h"
 #include "tests/support/text_file.h"
 

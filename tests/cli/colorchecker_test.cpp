@@ -10,15 +10,15 @@
 
 #include <glm/matrix.hpp>
 
-#include "integrator/render.h"
-#include "integrator/scene.h"
-#include "integrator/scene_loader.h"
-#include "sensor/cie.h"
-#include "sensor/color_difference.h"
-#include "sensor/exposure_control.h"
-#include "sensor/isp_pipeline.h"
-#include "sensor/sensor_model.h"
-#include "sensor/spectral_data.h"
+#include "integrator/render/render.h"
+#include "integrator/scene/scene.h"
+#include "integrator/scene/scene_loader.h"
+#include "sensor/spectra/cie.h"
+#include "sensor/isp/color_difference.h"
+#include "sensor/model/exposure_control.h"
+#include "sensor/isp/isp_pipeline.h"
+#include "sensor/model/sensor_model.h"
+#include "sensor/spectra/spectral_data.h"
 
 namespace camsim {
 namespace {

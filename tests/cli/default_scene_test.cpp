@@ -5,9 +5,9 @@
 #include <cmath>
 
 #include "cli/render_command.h"
-#include "integrator/render.h"
-#include "integrator/scene.h"
-#include "integrator/scene_loader.h"
+#include "integrator/render/render.h"
+#include "integrator/scene/scene.h"
+#include "integrator/scene/scene_loader.h"
 
 namespace camsim {
 namespace {

@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
-#include "integrator/scene_loader.h"
-#include "sensor/input_error.h"
+#include "integrator/scene/scene_loader.h"
+#include "sensor/base/input_error.h"
 #include "tests/support/run_command.h"
 #include "tests/support/temp_dir.h"
 #include "tests/support/text_file.h"

@@ -19,8 +19,8 @@
 #include <vector>
 
 #include "cli/render_command.h"
-#include "integrator/scene_loader.h"
-#include "sensor/exr_io.h"
+#include "integrator/scene/scene_loader.h"
+#include "sensor/io/exr_io.h"
 #include "tests/support/run_command.h"
 #include "tests/support/text_file.h"
 

@@ -1,5 +1,5 @@
 // Tests for the guards around `camsim render` (cli/resource_guard.cpp, cli/render_command.cpp,
-// cli/main.cpp, sensor/output_set.cpp), mostly on the real binary (CAMSIM_BINARY) run as a
+// cli/main.cpp, sensor/io/output_set.cpp), mostly on the real binary (CAMSIM_BINARY) run as a
 // child process: resource limits fail at once with exit code 2 before any work; SIGINT
 // stops a render mid-way with exit code 130 and no file under a final name (only
 // NAME.partial.exr); SIGKILL leaves at most temporaries, which the next run removes.
@@ -21,10 +21,10 @@
 #include <vector>
 
 #include "cli/resource_guard.h"
-#include "integrator/scene_loader.h"
-#include "sensor/exr_io.h"
-#include "sensor/input_error.h"
-#include "sensor/output_set.h"
+#include "integrator/scene/scene_loader.h"
+#include "sensor/io/exr_io.h"
+#include "sensor/base/input_error.h"
+#include "sensor/io/output_set.h"
 #include "tests/support/text_file.h"
 
 extern char** environ;

@@ -8,12 +8,12 @@
 #include <filesystem>
 #include <string>
 
-#include "integrator/render.h"
-#include "integrator/scene.h"
-#include "integrator/scene_loader.h"
-#include "sensor/exposure_control.h"
-#include "sensor/exr_io.h"
-#include "sensor/sensor_model.h"
+#include "integrator/render/render.h"
+#include "integrator/scene/scene.h"
+#include "integrator/scene/scene_loader.h"
+#include "sensor/model/exposure_control.h"
+#include "sensor/io/exr_io.h"
+#include "sensor/model/sensor_model.h"
 #include "tests/support/run_command.h"
 #include "tests/support/temp_dir.h"
 #include "tests/support/text_file.h"

@@ -34,8 +34,8 @@
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 
-#include "integrator/material.h"
-#include "integrator/rng.h"
+#include "integrator/materials/material.h"
+#include "integrator/sampling/rng.h"
 #include "tests/integrator/bsdf_check_quadrature.h"
 
 namespace camsim::bsdfcheck {

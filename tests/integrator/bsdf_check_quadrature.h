@@ -20,7 +20,7 @@
 
 #include <glm/vec3.hpp>
 
-#include "sensor/sampled_spectrum.h"
+#include "sensor/spectra/sampled_spectrum.h"
 
 namespace camsim::bsdfcheck {
 inline constexpr double kTwoPi = 6.283185307179586476925;

@@ -4,7 +4,7 @@
 // film's energy units.
 #pragma once
 
-#include "integrator/physical_camera.h"
+#include "integrator/camera/physical_camera.h"
 
 namespace camsim {
 

@@ -13,10 +13,10 @@
 #include <filesystem>
 #include <string>
 
-#include "integrator/render.h"
-#include "integrator/scene.h"
-#include "integrator/scene_loader.h"
-#include "sensor/cie.h"
+#include "integrator/render/render.h"
+#include "integrator/scene/scene.h"
+#include "integrator/scene/scene_loader.h"
+#include "sensor/spectra/cie.h"
 #include "tests/integrator/camera_weight.h"
 
 namespace camsim::test {

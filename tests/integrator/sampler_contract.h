@@ -1,4 +1,4 @@
-// What every Sampler (integrator/sampler.h) promises, checked the same way for each:
+// What every Sampler (integrator/sampling/sampler.h) promises, checked the same way for each:
 // numbers depend only on (seed, pixel, sample index, dimension) — not on the draws before
 // nor on the sampler object — and another seed gives other numbers; a draw, 1D or 2D, takes
 // one dimension — the number after a 2D draw at d is the one at d + 1, and a 2D draw's x is
@@ -7,7 +7,7 @@
 
 #include <gtest/gtest.h>
 
-#include "integrator/sampler.h"
+#include "integrator/sampling/sampler.h"
 
 namespace camsim {
 

@@ -1,0 +1,45 @@
+// Camera: maps a CameraSample (a point on the film, a point on the lens, a time) to a ray
+// leaving the camera and the weight that ray carries in the pixel measurement.
+//
+// Film coordinates: pixels, continuous, origin at the top-left corner of the image,
+// x right, y down; pixel (i, j) covers [i, i+1) × [j, j+1). The image is stored upright
+// (the optical inversion is undone).
+// Camera space: x right, y up, z forward (the viewing direction), origin at the pinhole /
+// lens centre; worldFromCamera maps it to the (right-handed) world, in metres.
+#pragma once
+
+#include <optional>
+
+#include <glm/mat4x4.hpp>
+#include <glm/vec2.hpp>
+
+#include "integrator/geometry/ray.h"
+#include "sensor/spectra/sampled_spectrum.h"
+
+namespace camsim {
+
+class Shutter;
+
+struct CameraSample {
+  glm::vec2 pFilm{0.0f};  // pixels
+  glm::vec2 pLens{0.5f};  // [0,1)², used only by cameras with an aperture
+  double time = 0.0;      // s
+};
+
+struct CameraRay {
+  Ray ray;
+  SampledSpectrum weight{1.0f};  // measurement weight: radiance → the film's quantity
+};
+
+class Camera {
+ public:
+  virtual ~Camera() = default;
+  virtual std::optional<CameraRay> generateRay(const CameraSample& sample,
+                                               const SampledWavelengths& lambda) const = 0;
+  virtual glm::ivec2 resolution() const = 0;
+  virtual bool hasAperture() const = 0;
+  virtual bool moves(double t0, double t1) const = 0;
+  virtual const Shutter& shutter() const = 0;
+};
+
+}  // namespace camsim

@@ -1,0 +1,119 @@
+// Sphere (see sphere.h). Texture coordinates of a point with unit normal n (from the
+// centre): u = φ/2π in [0, 1) with φ = atan2(n.y, n.x) about +z, v = θ/π with θ = acos(n.z)
+// from +z (v = 0 at the +z pole, 1 at −z). The axes are the world's (a sphere has no
+// orientation of its own).
+#include "integrator/geometry/sphere.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "integrator/geometry/math.h"
+#include "sensor/base/check.h"
+
+namespace camsim {
+
+Sphere::Sphere(std::vector<glm::vec3> centres, std::vector<float> radii, TimeSteps steps)
+    : centres_(std::move(centres)), radii_(std::move(radii)), steps_(steps) {
+  CAMSIM_CHECK(!centres_.empty() && centres_.size() == radii_.size() &&
+               static_cast<int>(centres_.size()) == steps_.count);
+  for (float r : radii_) CAMSIM_CHECK(r > 0.0f);
+  if (steps_.count == 1) return;
+  // Pose k maps the unit sphere to the sphere of step k.
+  std::vector<glm::dmat4> poses;
+  for (size_t k = 0; k < centres_.size(); ++k) {
+    glm::dmat4 m(static_cast<double>(radii_[k]));
+    m[3] = glm::dvec4(glm::dvec3(centres_[k]), 1.0);
+    poses.push_back(m);
+  }
+  instance_ = InstanceMotion::fromPoses(poses);
+}
+
+Sphere::Pose Sphere::at(float time) const {
+  int i;
+  float f;
+  steps_.locate(time, i, f);
+  const size_t k = static_cast<size_t>(i);
+  if (f == 0.0f) return {centres_[k], radii_[k]};
+  return {glm::mix(centres_[k], centres_[k + 1], f), (1.0f - f) * radii_[k] + f * radii_[k + 1]};
+}
+
+float Sphere::area() const {
+  return 4.0f * kPi * radii_[0] * radii_[0];
+}
+
+SurfaceInteraction Sphere::surfacePoint(const Pose& pose, const glm::vec3& direction,
+                                        float time) const {
+  SurfaceInteraction si;
+  si.n = glm::normalize(direction);
+  si.ns = si.n;
+  si.p = pose.centre + pose.radius * si.n;
+  si.pError = gammaBound(5) * (glm::abs(si.p) + glm::abs(pose.centre));
+  if (!instance_.empty()) si.pError += instance_.error(si.p);
+  // World up is +y: u = φ/2π about +y (φ from +z towards +x), v = 1 − θ/π (θ from +y), so
+  // an image's top row (v = 1) maps to the top pole and the picture is not mirrored when
+  // seen from a camera looking along +z.
+  float u = std::atan2(si.n.x, si.n.z) / (2.0f * kPi);
+  if (u < 0.0f) u += 1.0f;
+  si.uv = {u < 1.0f ? u : 0.0f, 1.0f - std::acos(std::clamp(si.n.y, -1.0f, 1.0f)) / kPi};
+  si.time = time;
+  return si;
+}
+
+bool Sphere::inside(const Pose& pose, const glm::vec3& ref) {
+  return lengthSquared(ref - pose.centre) <= pose.radius * pose.radius * (1.0f + 1e-4f);
+}
+
+SurfaceInteraction Sphere::interaction(const Hit& hit, const Ray& ray) const {
+  const Pose pose = at(ray.time);
+  return surfacePoint(pose, ray.at(hit.t) - pose.centre, ray.time);
+}
+
+std::optional<ShapeSample> Sphere::sample(const glm::vec3& ref, float /*u1*/, glm::vec2 u2,
+                                          float time) const {
+  const Pose pose = at(time);
+  ShapeSample s;
+  const bool insideSphere = inside(pose, ref);
+  if (insideSphere) {
+    const float z = 1.0f - 2.0f * u2.x;
+    const float r = safeSqrt(1.0f - z * z);
+    const float phi = 2.0f * kPi * u2.y;
+    s.point = surfacePoint(pose, {r * std::cos(phi), r * std::sin(phi), z}, time);
+    s.pdf = 1.0f / (4.0f * kPi * pose.radius * pose.radius);  // by area (m⁻²), for now
+  } else {
+    const glm::vec3 toCentre = pose.centre - ref;
+    const float dc = glm::length(toCentre);
+    const float sin2Max = pose.radius * pose.radius / (dc * dc);
+    const float cosMax = safeSqrt(1.0f - sin2Max);
+    const float oneMinusCosMax = sin2Max / (1.0f + cosMax);  // 1 − cosθmax without cancellation
+    // Uniform cone direction, then the point where it meets the sphere (nearest hit).
+    const float cosTheta = 1.0f - u2.x * oneMinusCosMax;
+    const float sinTheta = safeSqrt(1.0f - cosTheta * cosTheta);
+    const float phi = 2.0f * kPi * u2.y;
+    const Frame frame = Frame::fromZ(toCentre / dc);
+    const glm::vec3 w =
+        frame.toWorld({sinTheta * std::cos(phi), sinTheta * std::sin(phi), cosTheta});
+    // |ref + t w − c|² = r²: t = dc cosθ − √(r² − dc² sin²θ)
+    const float t =
+        dc * cosTheta - safeSqrt(pose.radius * pose.radius - dc * dc * sinTheta * sinTheta);
+    s.point = surfacePoint(pose, ref + t * w - pose.centre, time);
+    s.pdf = 1.0f / (2.0f * kPi * oneMinusCosMax);
+  }
+  const std::optional<Towards> t = towards(ref, s.point.p);
+  if (!t) return std::nullopt;
+  if (insideSphere) s.pdf = solidAnglePdf(s.pdf, *t, s.point.n);
+  s.wi = t->wi;
+  if (!(s.pdf > 0.0f) || !std::isfinite(s.pdf)) return std::nullopt;
+  return s;
+}
+
+float Sphere::pdf(const glm::vec3& ref, const SurfaceInteraction& onShape) const {
+  const Pose pose = at(onShape.time);
+  if (inside(pose, ref))
+    return areaToSolidAnglePdf(1.0f / (4.0f * kPi * pose.radius * pose.radius), ref, onShape);
+  const float dc2 = lengthSquared(pose.centre - ref);
+  const float sin2Max = pose.radius * pose.radius / dc2;
+  const float cosMax = safeSqrt(1.0f - sin2Max);
+  return 1.0f / (2.0f * kPi * (sin2Max / (1.0f + cosMax)));
+}
+
+}  // namespace camsim

@@ -1,0 +1,97 @@
+// TriangleMesh: indexed triangles in world space (m), possibly moving: a moving mesh stores
+// one pose, the reference of its instance motion (Shape), and places it at time t with the
+// instance transform interpolated linearly between the K uniform time steps, exactly the
+// transform Embree traces it with. Optional per-vertex normals give
+// the shading normal. Points are sampled uniformly by area: a triangle is chosen with
+// probability ∝ its area at rest, then a uniform point on it at the sample's time.
+//   p = b0·p0 + b1·p1 + b2·p2,  error bound γ(7)·(|b0 p0| + |b1 p1| + |b2 p2|), for a
+//   moving mesh plus γ(3)·(|p0| + |p1| + |p2|) (time lerp) and the instance term (Shape)
+//   geometric normal n = normalize((p1 − p0) × (p2 − p0))  (counter-clockwise front)
+//   pdf_area(p on triangle k at t) = P(k) / area_k(t)
+//   texture coordinates uv = b0·uv0 + b1·uv1 + b2·uv2 with per-vertex uvs; a mesh without
+//   them uses (0,0), (1,0), (1,1) at each triangle's corners: uv = (b1 + b2, b2) (pbrt)
+//
+// Memory and speed: Embree traces the mesh's own position and index arrays (shared, see
+// EmbreeScene), so they are allocated with one spare element for Embree's 16-byte loads.
+// A static mesh also stores each triangle's unit normal (12 bytes/triangle): every hit
+// and light sample needs it, and computing it (cross product, sqrt, divide) was a long
+// latency chain in the path loop. Moving meshes compute it at the sample's time.
+// Only a mesh that a light samples (an emitter) keeps the per-triangle area distribution
+// and, if it is static, planar and one-sided, its FrontPlane (shape.h).
+// A static mesh (one time step) skips the time interpolation, and its area pdf is 1/area:
+// P(k)/area_k with P(k) = area_k/area.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "integrator/sampling/distribution.h"
+#include "integrator/geometry/shape.h"
+
+namespace camsim {
+
+class TriangleMesh final : public Shape {
+ public:
+  // positions / normals: the stored pose (normals may be empty). indices: 3 per triangle.
+  // uvs: empty or one per vertex (they do not move). Zero-area triangles are kept for
+  // intersection (Embree never hits them) and are never sampled. samplable: false for a
+  // mesh no light samples (sample() and pdf() must then not be called). instance: for a
+  // moving mesh (steps.count > 1) one transform per step from the stored pose (Shape).
+  TriangleMesh(std::vector<glm::vec3> positions, std::vector<glm::vec3> normals,
+               std::vector<std::uint32_t> indices, TimeSteps steps, std::vector<glm::vec2> uvs = {},
+               bool samplable = true, InstanceMotion instance = {});
+
+  // Embree may load 16 bytes from the last vertex (float3) and the last index triple, so
+  // the arrays it shares keep this many spare elements of capacity past their end.
+  // TriangleMesh reserves them itself; a caller that allocates them up front saves a copy.
+  static constexpr size_t kSpareVertices = 1;
+  static constexpr size_t kSpareIndices = 3;
+
+  // The stored pose (m): the mesh at rest, or the reference pose of a moving mesh.
+  const std::vector<glm::vec3>& positions() const { return positions_; }
+  const std::vector<std::uint32_t>& indices() const { return indices_; }
+  size_t triangleCount() const { return indices_.size() / 3; }
+  const TimeSteps& timeSteps() const override { return steps_; }
+  const InstanceMotion& instanceMotion() const override { return instance_; }
+
+  float area() const override { return area_; }
+  SurfaceInteraction interaction(const Hit& hit, const Ray& ray) const override;
+  std::optional<ShapeSample> sample(const glm::vec3& ref, float u1, glm::vec2 u2,
+                                    float time) const override;
+  float pdf(const glm::vec3& ref, const SurfaceInteraction& onShape) const override;
+  std::optional<FrontPlane> frontPlane() const override { return frontPlane_; }
+
+ private:
+  static std::optional<FrontPlane> findFrontPlane(const std::vector<glm::vec3>& positions,
+                                                  const std::vector<glm::vec3>& normals,
+                                                  const std::vector<std::uint32_t>& indices,
+                                                  const std::vector<double>& areas);
+
+  glm::mat4 transformAt(float time) const;
+  // The point of triangle tri at barycentrics (1 − b1 − b2, b1, b2) and `time`, into si
+  // (every field but `shape`, which the caller keeps). area: if given and the mesh moves, receives the triangle's area at
+  // `time` (m², computed anyway; a static mesh's area pdf does not need it).
+  void pointOn(size_t tri, float b1, float b2, float time, float* area,
+               SurfaceInteraction& si) const;
+  void pointOnMoving(size_t tri, float b1, float b2, float time, float* area,
+                     SurfaceInteraction& si) const;
+  void finish(SurfaceInteraction& si, const glm::vec3& n, size_t tri, std::uint32_t i0,
+              std::uint32_t i1, std::uint32_t i2, float b0, float b1, float b2, float time,
+              const glm::mat4* m) const;
+  float triangleArea(size_t tri, float time) const;
+  float areaPdf(size_t tri, float area) const;
+
+  std::vector<glm::vec3> positions_;  // the stored pose; shared with Embree
+  std::vector<glm::vec3> normals_;
+  std::vector<std::uint32_t> indices_;
+  std::vector<glm::vec2> uvs_;
+  std::vector<glm::vec3> faceNormals_;  // static meshes: unit normal per triangle (pointOn)
+  TimeSteps steps_;
+  InstanceMotion instance_;
+  DiscreteDistribution areaDistribution_;  // empty unless samplable
+  bool samplable_;
+  float area_ = 0.0f;
+  std::optional<FrontPlane> frontPlane_;  // static planar meshes only
+};
+
+}  // namespace camsim

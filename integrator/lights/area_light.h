@@ -1,0 +1,43 @@
+// AreaLight: a shape that emits.
+//
+// | parameter | unit             | default |
+// |-----------|------------------|---------|
+// | radiance  | W·m⁻²·sr⁻¹·nm⁻¹  | —       |  L_e(λ), uniform over the surface (Lambertian)
+// | two_sided | —                | false   |  one-sided lights emit on the normal's side
+//
+//   L(p, ω) = L_e(λ) if ω is on the emitting side of n, else 0
+//   Φ = π · A · ∫ L_e dλ · (2 if two-sided)
+// A one-sided planar emitter (a lamp quad) rejects a reference point behind its plane
+// before sampling a point on it (FrontPlane, shape.h): the sample would have L = 0. Same
+// images; in the Cornell box a sixth of the light samples (points on the ceiling).
+#pragma once
+
+#include "integrator/lights/light.h"
+#include "sensor/spectra/spectrum.h"
+
+namespace camsim {
+
+class AreaLight final : public Light {
+ public:
+  AreaLight(const Shape& shape, Spectrum radiance, bool twoSided);
+
+  // Radiance leaving the light point along w (unit, away from the surface).
+  SampledSpectrum L(const SurfaceInteraction& onLight, const glm::vec3& w,
+                    const SampledWavelengths& lambda) const {
+    if (!twoSided_ && glm::dot(onLight.n, w) <= 0.0f) return SampledSpectrum(0.0f);
+    return sampleSpectrum(radiance_, lambda);
+  }
+
+  std::optional<LightSample> sample(const glm::vec3& ref, float time, float u1, glm::vec2 u2,
+                                    const SampledWavelengths& lambda) const override;
+  float pdf(const glm::vec3& ref, const SurfaceInteraction& onLight) const override;
+  double power() const override;
+
+ private:
+  const Shape& shape_;
+  Spectrum radiance_;
+  bool twoSided_;
+  std::optional<FrontPlane> front_;  // one-sided planar emitters: skip points behind
+};
+
+}  // namespace camsim

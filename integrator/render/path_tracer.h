@@ -1,0 +1,49 @@
+// The spectral path tracer: estimates the radiance L(x, ω, λ) arriving along a camera ray
+// at the path's sampled wavelengths, solving the rendering equation
+//
+//   L(x, ωo) = Le(x, ωo) + ∫ f(x, ωo, ωi) L(x', −ωi) |cos θi| dωi
+//
+// with next-event estimation (one light sample per bounce, lights chosen ∝ power) and
+// BSDF sampling, combined by multiple importance sampling (power heuristic, β = 2), and
+// Russian roulette after settings.rrDepth bounces (survival ∝ max throughput).
+#pragma once
+
+#include <cstdint>
+
+#include "integrator/geometry/ray.h"
+#include "integrator/sampling/sampler.h"
+#include "integrator/scene/scene.h"
+#include "sensor/spectra/sampled_spectrum.h"
+
+namespace camsim {
+
+class RayRecorder;  // integrator/render/ray_recorder.h
+class SobolSampler;
+
+struct RayCounts {
+  std::uint64_t camera = 0;  // primary rays
+  std::uint64_t bounce = 0;  // closest-hit rays after a scattering event
+  std::uint64_t shadow = 0;  // occlusion rays for next-event estimation
+
+  std::uint64_t total() const { return camera + bounce + shadow; }
+  RayCounts& operator+=(const RayCounts& o) {
+    camera += o.camera;
+    bounce += o.bounce;
+    shadow += o.shadow;
+    return *this;
+  }
+};
+
+// Radiance (W·m⁻²·sr⁻¹·nm⁻¹) along `ray` at the wavelengths `lambda`. A dispersive
+// material on the path terminates the secondary wavelengths (lambda is updated: the film
+// must use it). A recorder, if given, gets every bounce and shadow ray cast.
+// Compiled per concrete sampler (what the render loop uses): its numbers are drawn through
+// inlined, not virtual, calls.
+SampledSpectrum traceRadiance(const Scene& scene, Ray ray, SampledWavelengths& lambda,
+                              SobolSampler& sampler, RayCounts& counts,
+                              RayRecorder* recorder = nullptr);
+SampledSpectrum traceRadiance(const Scene& scene, Ray ray, SampledWavelengths& lambda,
+                              IndependentSampler& sampler, RayCounts& counts,
+                              RayRecorder* recorder = nullptr);
+
+}  // namespace camsim

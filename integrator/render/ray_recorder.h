@@ -1,0 +1,86 @@
+// RayRecorder: captures the rays the path tracer casts during one render (camera, bounce
+// and shadow rays, with their tMax and time), so that `camsim bench` can replay exactly
+// that workload through EmbreeScene alone and compare the tracer's ray rate with the rate
+// of bare traversal ("the limit"). Hooked in through RenderOptions::recorder, which the
+// render loop passes to traceRadiance; null (the default) costs one branch per ray.
+//
+// Thread safety: record() may be called from any number of TBB worker threads at once.
+// Each thread appends to its own buffer (no locks, no shared cache lines but one counter),
+// so each buffer holds the rays of the tiles that thread rendered in the order it cast
+// them — the coherence the tracer saw. takeRays() concatenates the buffers.
+//
+// replayRays() traces recorded rays again with EmbreeScene::intersect / occluded (closest
+// hit for camera and bounce rays, any hit for shadow rays), in chunks of 256 consecutive
+// rays (one 16×16 tile's worth) scheduled by tbb::parallel_for in a task_arena of the
+// given thread count. Only the traversal loop is timed: the rays are in memory already,
+// and nothing is shaded.
+#pragma once
+
+#include <atomic>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include <tbb/enumerable_thread_specific.h>
+
+#include "integrator/geometry/embree_scene.h"
+#include "integrator/geometry/ray.h"
+
+namespace camsim {
+
+enum class RayKind : std::uint8_t { kCamera = 0, kBounce = 1, kShadow = 2 };
+inline constexpr int kRayKindCount = 3;
+const char* rayKindName(RayKind kind);  // "camera", "bounce", "shadow"
+
+struct RecordedRay {
+  Ray ray;
+  RayKind kind = RayKind::kCamera;
+};
+
+class RayRecorder {
+ public:
+  // Keeps at most maxRays rays (those past it are counted in dropped(), not stored).
+  explicit RayRecorder(std::size_t maxRays = std::size_t{1} << 22);
+  RayRecorder(const RayRecorder&) = delete;
+  RayRecorder& operator=(const RayRecorder&) = delete;
+
+  void record(RayKind kind, const Ray& ray) {
+    if (taken_.fetch_add(1, std::memory_order_relaxed) >= maxRays_) {
+      dropped_.fetch_add(1, std::memory_order_relaxed);
+      return;
+    }
+    buffers_.local().push_back(RecordedRay{ray, kind});
+  }
+
+  // Every stored ray, each thread's in the order that thread cast them. Call once, after the
+  // render: each thread's buffer is freed once appended (not kept beside the result; while
+  // concatenating, both exist), and the recorder keeps nothing.
+  std::vector<RecordedRay> takeRays();
+  std::uint64_t dropped() const { return dropped_.load(); }
+
+ private:
+  std::size_t maxRays_;
+  std::atomic<std::size_t> taken_{0};
+  std::atomic<std::uint64_t> dropped_{0};
+  tbb::enumerable_thread_specific<std::vector<RecordedRay>> buffers_;
+};
+
+// The rays of one kind, in their recorded order.
+std::vector<RecordedRay> raysOfKind(const std::vector<RecordedRay>& rays, RayKind kind);
+
+struct ReplayResult {
+  std::uint64_t rays = 0;
+  std::uint64_t hits = 0;  // closest hits found plus shadow rays occluded
+  double seconds = 0.0;    // wall time of the fastest pass over all the rays
+  int passes = 0;
+  double raysPerSecond() const { return seconds > 0.0 ? static_cast<double>(rays) / seconds : 0.0; }
+};
+
+// Traces `rays` through `geometry` with `threads` threads (0: all cores): one untimed
+// warm-up pass, then whole passes until minSeconds have been spent and at least minPasses
+// were made (at most 50); reports the fastest pass
+// (deterministic work: the fastest is the least disturbed by other load).
+ReplayResult replayRays(const EmbreeScene& geometry, const std::vector<RecordedRay>& rays,
+                        int threads, double minSeconds = 0.5, int minPasses = 3);
+
+}  // namespace camsim

@@ -1,0 +1,140 @@
+#include "integrator/render/render.h"
+
+#include <chrono>
+#include <cmath>
+#include <mutex>
+
+#include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/info.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include "integrator/render/film.h"
+#include "integrator/render/ray_recorder.h"
+#include "integrator/sampling/sobol_sampler.h"
+
+namespace camsim {
+namespace {
+
+constexpr int kTileSize = 16;
+
+struct TileStats {
+  std::uint64_t samples = 0, rejected = 0;
+  RayCounts rays;
+};
+
+// Compiled for each concrete sampler (final classes), so that drawing a number is an
+// inlined call, not a virtual one.
+template <typename SamplerT>
+void renderTile(const Scene& scene, Film& film, const RenderOptions& options,
+                const ModelledDimensions& dims, glm::ivec2 lo, glm::ivec2 hi, SamplerT& sampler,
+                TileStats& stats) {
+  const PhysicalCamera& camera = scene.camera();
+  const Shutter& shutter = camera.shutter();
+  // The photosensitive area: centred in the pixel, sides scaled by √fill.
+  const float side = static_cast<float>(std::sqrt(camera.params().fillFactor));
+  for (int y = lo.y; y < hi.y; ++y) {
+    for (int x = lo.x; x < hi.x; ++x) {
+      const glm::ivec2 pixel(x, y);
+      for (int s = 0; s < options.spp; ++s) {
+        sampler.startPixelSample(pixel, s);
+        sampler.setDimension(kDimWavelength);
+        SampledWavelengths lambda = SampledWavelengths::sampleVisible(sampler.get1D());
+        CameraSample cs;
+        sampler.setDimension(kDimPixel);
+        cs.pFilm = glm::vec2(pixel) + 0.5f + (sampler.get2D() - 0.5f) * side;
+        if (dims.aperture) {
+          sampler.setDimension(kDimLens);
+          cs.pLens = sampler.get2D();
+        }
+        cs.time = shutter.open();
+        if (dims.time) {
+          sampler.setDimension(kDimTime);
+          cs.time = shutter.sample(static_cast<double>(sampler.get1D())) + shutter.rowOffset(y);
+        }
+        sampler.setDimension(kDimPath);
+        const std::optional<CameraRay> cr = camera.generateRay(cs, lambda);
+        ++stats.samples;
+        if (!cr) continue;
+        ++stats.rays.camera;
+        if (options.recorder) options.recorder->record(RayKind::kCamera, cr->ray);
+        const SampledSpectrum L =
+            traceRadiance(scene, cr->ray, lambda, sampler, stats.rays, options.recorder);
+        if (!film.addSample(pixel, L * cr->weight, lambda)) ++stats.rejected;
+      }
+    }
+  }
+}
+
+}  // namespace
+
+RenderResult render(const Scene& scene, const SpectralResponse& response,
+                    const RenderOptions& options) {
+  return render(scene, std::vector<const SpectralResponse*>{&response}, options);
+}
+
+RenderResult render(const Scene& scene, const std::vector<const SpectralResponse*>& responses,
+                    const RenderOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  const glm::ivec2 res = scene.camera().resolution();
+  ModelledDimensions dims = scene.modelled();
+  dims.time = dims.time || options.forceTime;
+  Film film(res, responses);
+  const int tilesX = (res.x + kTileSize - 1) / kTileSize;
+  const int tilesY = (res.y + kTileSize - 1) / kTileSize;
+  const int tileCount = tilesX * tilesY;
+  const int threads = options.threads > 0 ? options.threads : tbb::info::default_concurrency();
+
+  const SamplerKind kind = options.sampler.value_or(scene.settings().sampler);
+  tbb::enumerable_thread_specific<TileStats> perThread;
+  std::atomic<int> tilesDone{0};
+  std::mutex progressMutex;
+  std::atomic<bool> cancelled{false};
+
+  // prototype: a SobolSampler or an IndependentSampler, copied per range of tiles.
+  auto renderAll = [&](const auto& prototype) {
+    tbb::parallel_for(
+        tbb::blocked_range<int>(0, tileCount, 1), [&](const tbb::blocked_range<int>& range) {
+          auto sampler = prototype;
+          for (int tile = range.begin(); tile != range.end(); ++tile) {
+            if (options.cancel && options.cancel->load(std::memory_order_relaxed)) {
+              cancelled = true;
+              return;
+            }
+            const glm::ivec2 lo((tile % tilesX) * kTileSize, (tile / tilesX) * kTileSize);
+            const glm::ivec2 hi = glm::min(lo + kTileSize, res);
+            renderTile(scene, film, options, dims, lo, hi, sampler, perThread.local());
+            const int done = ++tilesDone;
+            if (options.progress) {
+              std::lock_guard<std::mutex> lock(progressMutex);
+              options.progress(done, tileCount);
+            }
+          }
+        });
+  };
+  tbb::task_arena arena(threads);
+  arena.execute([&] {
+    if (kind == SamplerKind::kSobol)
+      renderAll(SobolSampler(options.seed));
+    else
+      renderAll(IndependentSampler(options.seed));
+  });
+
+  RenderResult result;
+  result.images = film.toImages(options.spp);
+  result.image = result.images.front();
+  for (const TileStats& t : perThread) {
+    result.stats.samples += t.samples;
+    result.stats.rejectedSamples += t.rejected;
+    result.stats.rays += t.rays;
+  }
+  result.stats.threads = threads;
+  result.stats.modelled = dims;
+  result.stats.cancelled = cancelled;
+  result.stats.seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+}  // namespace camsim

@@ -1,0 +1,48 @@
+// The integrator's one factory: builds materials, textures and lights from their plain
+// descriptions (scene_description.h). Explicit switches over the small closed sets; no
+// registration. Descriptions are validated by the scene loader, so anything invalid here
+// is a programming error (CAMSIM_CHECK).
+#pragma once
+
+#include <map>
+#include <memory>
+#include <string>
+#include <utility>
+
+#include "integrator/lights/light.h"
+#include "integrator/materials/material.h"
+#include "integrator/scene/scene_description.h"
+#include "integrator/textures/texture.h"
+
+namespace camsim {
+
+struct TextureImage;
+struct UpliftedTexels;
+
+// Reflectance images uplifted once per (file, encoding) while a Scene builds its materials:
+// materials and uv transforms naming the same texture share one set of texels (the uplift
+// costs ≈ 2 µs of CPU per distinct colour; see integrator/textures/reflectance_uplift.h). A
+// description whose decoded texels differ from the cached ones under the same name (built
+// in code) gets an uplift of its own; so does one without a file name.
+class TextureCache {
+ public:
+  // The texels of an image texture's description (its decoded image, or read now).
+  std::shared_ptr<const UpliftedTexels> uplifted(const TextureDescription& d);
+  size_t size() const { return entries_.size(); }
+
+ private:
+  struct Entry {
+    std::shared_ptr<const TextureImage> image;  // what was uplifted
+    std::shared_ptr<const UpliftedTexels> texels;
+  };
+  std::map<std::pair<std::string, TextureEncoding>, Entry> entries_;
+};
+
+// cache: shared uplifts across calls (nullptr: each image texture uplifts its own).
+std::unique_ptr<SpectrumTexture> makeSpectrumTexture(const TextureDescription& d,
+                                                     TextureCache* cache = nullptr);
+std::unique_ptr<FloatTexture> makeFloatTexture(const TextureDescription& d);
+std::unique_ptr<Material> makeMaterial(const MaterialDescription& d, TextureCache* cache = nullptr);
+std::unique_ptr<Light> makeLight(const LightDescription& d);
+
+}  // namespace camsim

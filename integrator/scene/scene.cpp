@@ -1,0 +1,139 @@
+#include "integrator/scene/scene.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "integrator/materials/diffuse_material.h"
+#include "integrator/scene/factory.h"
+#include "integrator/geometry/sphere.h"
+#include "integrator/geometry/triangle_mesh.h"
+
+namespace camsim {
+namespace {
+
+// Time steps for a moving shape: linear interpolation between steps must follow the
+// keyframed rotation closely (≤ 2° per step: chord error < 1.6e-4 of the radius) and
+// must not skip keyframes (≥ 4 steps per key interval inside the span). At most 129, Embree's
+// RTC_MAX_TIME_STEP_COUNT (more fails in rtcSetGeometryTimeStepCount).
+int timeStepsFor(const RigidMotion& motion, double t0, double t1) {
+  const double degrees = motion.rotationAngleDuring(t0, t1) * 180.0 / M_PI;
+  int keysInside = 0;
+  for (const Keyframe& k : motion.keys()) keysInside += (k.time > t0 && k.time < t1) ? 1 : 0;
+  const int steps = 1 + std::max(static_cast<int>(std::ceil(degrees / 2.0)), 4 * (keysInside + 1));
+  return std::clamp(steps, 2, 129);
+}
+
+std::unique_ptr<Shape> buildShape(const ShapeDescription& s, double t0, double t1, bool& moving) {
+  moving = !s.motion.empty() && !s.motion.isStaticDuring(t0, t1);
+  TimeSteps steps{t0, t1, moving ? timeStepsFor(s.motion, t0, t1) : 1};
+  auto transformAt = [&](int k) {
+    return s.motion.empty() ? glm::dmat4(1.0) : s.motion.at(steps.timeOf(k));
+  };
+  if (s.kind == ShapeDescription::Kind::kSphere) {
+    std::vector<glm::vec3> centres;
+    std::vector<float> radii;
+    for (int k = 0; k < steps.count; ++k) {
+      const glm::dmat4 m = transformAt(k);
+      centres.emplace_back(m * glm::dvec4(glm::dvec3(s.centre), 1.0));
+      radii.push_back(
+          static_cast<float>(glm::length(glm::dvec3(m[0])) * static_cast<double>(s.radius)));
+    }
+    return std::make_unique<Sphere>(std::move(centres), std::move(radii), steps);
+  }
+  // A mesh stores one pose: the reference of its instance motion (Shape), or its only one.
+  std::vector<glm::dmat4> poses;
+  for (int k = 0; k < steps.count; ++k) poses.push_back(transformAt(k));
+  InstanceMotion instance = InstanceMotion::fromPoses(poses);
+  const glm::dmat4& m = poses[static_cast<size_t>(instance.reference)];
+  std::vector<glm::vec3> positions;
+  positions.reserve(s.mesh.positions.size() + TriangleMesh::kSpareVertices);
+  for (const glm::vec3& v : s.mesh.positions)
+    positions.emplace_back(m * glm::dvec4(glm::dvec3(v), 1.0));
+  std::vector<glm::vec3> normals;
+  const glm::dmat3 rotation(m);  // uniform scale: normals only need renormalising
+  for (const glm::vec3& n : s.mesh.normals)
+    normals.emplace_back(glm::normalize(rotation * glm::dvec3(n)));
+  std::vector<std::uint32_t> indices;
+  indices.reserve(s.mesh.indices.size() + TriangleMesh::kSpareIndices);
+  indices.assign(s.mesh.indices.begin(), s.mesh.indices.end());
+  return std::make_unique<TriangleMesh>(std::move(positions), std::move(normals),
+                                        std::move(indices), steps, s.mesh.uvs,
+                                        s.emission.has_value(), std::move(instance));
+}
+
+}  // namespace
+
+std::string ModelledDimensions::describe() const {
+  std::string out;
+  if (aperture)
+    out +=
+        blades > 0 ? "aperture (" + std::to_string(blades) + " blades), " : "aperture (circular), ";
+  else
+    out += "pinhole, ";
+  if (time) {
+    std::string why;
+    if (movingObjects > 0)
+      why += std::to_string(movingObjects) +
+             (movingObjects == 1 ? " moving object" : " moving objects");
+    if (cameraMoves) why += std::string(why.empty() ? "" : ", ") + "moving camera";
+    if (rollingShutter) why += ", rolling shutter";
+    out += "time (" + why + "; " + std::to_string(timeSteps) + " motion steps), ";
+  } else {
+    out += "static (no time sampling), ";
+  }
+  return out + std::to_string(wavelengths) + " wavelengths";
+}
+
+Scene::Scene(const SceneDescription& d) : settings_(d.render) {
+  camera_ = std::make_unique<PhysicalCamera>(d.camera);
+  const Shutter& shutter = camera_->shutter();
+  exposureStart_ = shutter.open();
+  exposureEnd_ = shutter.close() + shutter.rowOffset(camera_->resolution().y - 1);
+
+  modelled_.aperture = camera_->hasAperture();
+  modelled_.blades = d.camera.aperture ? d.camera.aperture->blades() : 0;
+  modelled_.cameraMoves = camera_->moves(exposureStart_, exposureEnd_);
+
+  materials_.push_back(std::make_unique<DiffuseMaterial>(Spectrum::constant(0.0)));  // black
+  TextureCache textures;  // a texture named by several materials is uplifted once
+  for (const MaterialDescription& m : d.materials) materials_.push_back(makeMaterial(m, &textures));
+
+  std::vector<double> powers;
+  for (const ShapeDescription& s : d.shapes) {
+    bool moving = false;
+    shapes_.push_back(buildShape(s, exposureStart_, exposureEnd_, moving));
+    if (moving) {
+      ++modelled_.movingObjects;
+      modelled_.timeSteps = std::max(modelled_.timeSteps, shapes_.back()->timeSteps().count);
+    }
+    materialOfShape_.push_back(s.material < 0 ? 0 : static_cast<size_t>(s.material) + 1);
+    lightOfShape_.push_back(nullptr);
+    lightIndexOfShape_.push_back(0);
+    if (s.emission) {
+      auto light =
+          std::make_unique<AreaLight>(*shapes_.back(), s.emission->radiance, s.emission->twoSided);
+      lightOfShape_.back() = light.get();
+      lightIndexOfShape_.back() = lights_.size();
+      powers.push_back(light->power());
+      lights_.push_back(std::move(light));
+    }
+  }
+  modelled_.time = modelled_.cameraMoves || modelled_.movingObjects > 0;
+  modelled_.rollingShutter = modelled_.time && shutter.type() == Shutter::Type::kRolling;
+  geometry_ = std::make_unique<EmbreeScene>(shapes_, exposureStart_, exposureEnd_);
+  if (geometry_->boundsLower().x <= geometry_->boundsUpper().x) {
+    boundsCentre_ = 0.5f * (geometry_->boundsLower() + geometry_->boundsUpper());
+    boundsRadius_ = 0.5f * glm::length(geometry_->boundsUpper() - geometry_->boundsLower());
+  }
+  for (const LightDescription& l : d.lights) {
+    lights_.push_back(makeLight(l));
+    if (lights_.back()->isInfinite()) infiniteLights_.push_back(lights_.size() - 1);
+  }
+  for (size_t i = powers.size(); i < lights_.size(); ++i) {
+    lights_[i]->setSceneBounds(boundsCentre_, boundsRadius_);
+    powers.push_back(lights_[i]->power());
+  }
+  if (!powers.empty()) lightDistribution_ = DiscreteDistribution(powers);
+}
+
+}  // namespace camsim

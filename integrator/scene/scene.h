@@ -1,0 +1,88 @@
+// Scene: the renderable objects built from a SceneDescription — camera, shapes on Embree,
+// materials, lights and the light-selection distribution (∝ power) — and the analysis of
+// which dimensions of the measurement integral the scene needs (ModelledDimensions).
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "integrator/lights/area_light.h"
+#include "integrator/sampling/distribution.h"
+#include "integrator/geometry/embree_scene.h"
+#include "integrator/materials/material.h"
+#include "integrator/camera/physical_camera.h"
+#include "integrator/scene/scene_description.h"
+
+namespace camsim {
+
+// What the renderer integrates over, beyond pixel area: only what can change the image.
+struct ModelledDimensions {
+  bool aperture = false;  // lens positions (thin lens); false: pinhole
+  int blades = 0;         // 0: circular stop
+  bool time = false;      // shutter time: something moves during the exposure
+  int movingObjects = 0;
+  bool cameraMoves = false;
+  bool rollingShutter = false;
+  int wavelengths = kWavelengthSamples;
+  int timeSteps = 1;  // Embree motion time steps (largest over shapes)
+
+  // e.g. "aperture (6 blades), time (2 moving objects, rolling shutter), 4 wavelengths"
+  std::string describe() const;
+};
+
+class Scene {
+ public:
+  explicit Scene(const SceneDescription& description);
+
+  const PhysicalCamera& camera() const { return *camera_; }
+  const RenderSettings& settings() const { return settings_; }
+  const ModelledDimensions& modelled() const { return modelled_; }
+  // The interval ray times fall in: shutter open → close of the last row.
+  double exposureStart() const { return exposureStart_; }
+  double exposureEnd() const { return exposureEnd_; }
+  const EmbreeScene& geometry() const { return *geometry_; }
+  const Shape& shape(int index) const { return *shapes_[static_cast<size_t>(index)]; }
+  // Never null: shapes without a reflecting material get a black one.
+  const Material& material(int shape) const {
+    return *materials_[materialOfShape_[static_cast<size_t>(shape)]];
+  }
+  // The area light of a shape, or null if it does not emit.
+  const AreaLight* areaLight(int shape) const { return lightOfShape_[static_cast<size_t>(shape)]; }
+
+  size_t lightCount() const { return lights_.size(); }
+  // Whether next-event estimation has a light to pick: some light has power > 0. A scene
+  // whose lights are all dark (luminance 0, scale 0, a zero spectrum) renders black
+  // without light samples; emitters hit by BSDF sampling then emit nothing either.
+  bool hasPoweredLights() const { return lightDistribution_.total() > 0.0; }
+  // Indices of the lights that rays escaping the scene see (sun, environment).
+  const std::vector<size_t>& infiniteLights() const { return infiniteLights_; }
+  // Bounding sphere of the geometry at rest (m).
+  glm::vec3 boundsCentre() const { return boundsCentre_; }
+  float boundsRadius() const { return boundsRadius_; }
+  const Light& light(size_t i) const { return *lights_[i]; }
+  const DiscreteDistribution& lightDistribution() const { return lightDistribution_; }
+  // Probability that NEE picks the light of an emitting shape.
+  float lightPmfOfShape(int shape) const {
+    return lightDistribution_.pmf(lightIndexOfShape_[static_cast<size_t>(shape)]);
+  }
+
+ private:
+  std::unique_ptr<PhysicalCamera> camera_;
+  RenderSettings settings_;
+  ModelledDimensions modelled_;
+  double exposureStart_ = 0.0, exposureEnd_ = 0.0;
+  std::vector<std::unique_ptr<Shape>> shapes_;
+  std::vector<std::unique_ptr<Material>> materials_;
+  std::vector<size_t> materialOfShape_;
+  std::vector<std::unique_ptr<Light>> lights_;
+  std::vector<size_t> infiniteLights_;
+  glm::vec3 boundsCentre_{0.0f};
+  float boundsRadius_ = 0.0f;
+  std::vector<const AreaLight*> lightOfShape_;
+  std::vector<size_t> lightIndexOfShape_;
+  DiscreteDistribution lightDistribution_;
+  std::unique_ptr<EmbreeScene> geometry_;
+};
+
+}  // namespace camsim

@@ -1,0 +1,182 @@
+// SceneDescription: a loaded, validated scene as plain data in SI units (m, s, nm,
+// W·m⁻²·sr⁻¹·nm⁻¹). The loader produces it from a scene file; Scene builds the renderable
+// objects from it. Nothing here refers to a file format.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/mat3x3.hpp>
+#include <glm/mat4x4.hpp>
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+#include "integrator/textures/texture_encoding.h"
+
+namespace camsim {
+struct TextureImage;  // integrator/textures/image_texture.h
+}
+
+#include "integrator/materials/fresnel.h"
+#include "integrator/geometry/mesh_io.h"
+#include "integrator/materials/microfacet.h"
+#include "integrator/geometry/motion.h"
+#include "integrator/camera/physical_camera.h"
+#include "sensor/model/exposure_control.h"
+#include "sensor/base/image.h"
+#include "sensor/isp/isp_pipeline.h"
+#include "sensor/model/sensor_model.h"
+#include "sensor/model/sensor_spec.h"
+#include "sensor/spectra/spectrum.h"
+
+namespace camsim {
+
+enum class SamplerKind { kIndependent, kSobol };
+// "independent" / "sobol": the scene files' `render.sampler` values.
+inline const char* samplerName(SamplerKind kind) {
+  return kind == SamplerKind::kSobol ? "sobol" : "independent";
+}
+
+struct RenderSettings {
+  SamplerKind sampler = SamplerKind::kSobol;  // see integrator/sampling/sobol_sampler.h
+  int spp = 64;                               // samples per pixel
+  std::uint64_t seed = 0;                     // render seed
+  int maxDepth = 16;                          // maximum number of scattering events on a path
+  int rrDepth = 3;                            // Russian roulette starts after this many bounces
+};
+
+// A material input that may vary over the surface: a constant (spectrum or scalar), an
+// image (EXR/PNG) or a procedural checkerboard. See integrator/textures/texture.h.
+struct TextureDescription {
+  enum class Kind { kConstant, kImage, kCheckerboard };
+  Kind kind = Kind::kConstant;
+  Spectrum value = Spectrum::constant(0.5);  // kConstant (scalar inputs: the constant's value)
+  std::filesystem::path file;                // kImage
+  // kImage: the decoded texels (shared, read once by the loader); null: read from `file`.
+  std::shared_ptr<const TextureImage> image;
+  // kImage: how texel values are encoded (texture_encoding.h), resolved by the loader: the
+  // `encoding` key, else srgb for PNG and linear for EXR colour maps, raw for scalar maps.
+  TextureEncoding encoding = TextureEncoding::kSrgb;
+  Spectrum checkerA = Spectrum::constant(0.8), checkerB = Spectrum::constant(0.2);  // kCheckerboard
+  float checks = 8.0f;                      // kCheckerboard: squares per unit of u and v
+  glm::vec2 uvScale{1.0f}, uvOffset{0.0f};  // uv' = uv · scale + offset (kImage, kCheckerboard)
+
+  static TextureDescription constant(double v) {
+    TextureDescription t;
+    t.value = Spectrum::constant(v);
+    return t;
+  }
+};
+
+struct MaterialDescription {
+  enum class Type { kDiffuse, kConductor, kMirror, kDielectric, kPlastic };
+  std::string name;
+  Type type = Type::kDiffuse;
+  // diffuse/plastic: diffuse reflectance ρ(λ); mirror: reflectance; conductor with
+  // Schlick Fresnel: normal-incidence reflectance R0(λ). Dimensionless, in [0, 1].
+  TextureDescription reflectance;
+  // conductor/dielectric/plastic: microfacet α (dimensionless, ≥ 0; 0 = smooth). A
+  // constant is given as a flat spectrum; only its value matters.
+  TextureDescription roughness = TextureDescription::constant(0.0);
+  float anisotropy = 0.0f;  // αx = α (1 + a), αy = α (1 − a); a in (−1, 1)
+  MicrofacetDistribution distribution = MicrofacetDistribution::kGgx;
+  MaskingModel masking = MaskingModel::kSmith;
+  FresnelModel fresnel = FresnelModel::kExact;  // conductor
+  Spectrum eta =
+      Spectrum::constant(1.5);  // conductor η(λ); dielectric/plastic: index inside / outside
+  Spectrum k = Spectrum::constant(0.0);  // conductor extinction k(λ)
+  float specularWeight = 0.1f;           // plastic ks (kd = 1 − ks)
+};
+
+// Lights that are not shapes (`lights:` in the scene file; units in docs/scene-format.md).
+// World up is +y (as the scenes' cameras): the loader builds `direction` from
+// elevation/azimuth and `worldFromLight` from the rotation about +y.
+struct LightDescription {
+  enum class Kind { kPoint, kSpot, kDistant, kEnvironment };
+  Kind kind = Kind::kPoint;
+  std::string label;  // for messages
+  // point/spot:  radiant intensity I(λ), W·sr⁻¹·nm⁻¹ (spot: on its axis)
+  // distant:     spectral irradiance E(λ) on a plane facing the light, W·m⁻²·nm⁻¹
+  // environment: dimensionless spectral scale s(λ) of the map's uplifted texels (a texel
+  //              (1, 1, 1) is D65/Σ D65 ȳ W·m⁻²·sr⁻¹·nm⁻¹, luminance 683 cd/m², at s = 1)
+  Spectrum spectrum = Spectrum::constant(0.0);
+  glm::vec3 position{0.0f};                // point/spot, m
+  glm::vec3 direction{0.0f, 0.0f, -1.0f};  // spot axis / the way sunlight travels (unit)
+  float coneAngle = 0.5f;                  // spot: half-angle where the light ends, rad
+  float falloffStart = 0.4f;  // spot: half-angle where the smooth falloff begins, rad (≤ coneAngle)
+  float angularDiameter = 0.0f;  // distant: apparent diameter of the disc, rad (0 = delta)
+  std::filesystem::path file;    // environment: lat-long EXR (linear Rec.709 R, G, B)
+  // environment: the map's texels as loaded (shared, read once by the loader); null: the
+  // factory reads `file`.
+  std::shared_ptr<const Image> image;
+  // environment: rotation, map space → world. Map space has +z at the zenith (row 0);
+  // see integrator/lights/environment_light.h for the lat-long mapping.
+  glm::dmat3 worldFromLight{1.0};
+};
+
+struct EmissionDescription {
+  Spectrum radiance;  // L_e(λ), W·m⁻²·sr⁻¹·nm⁻¹
+  bool twoSided = false;
+};
+
+struct ShapeDescription {
+  enum class Kind { kMesh, kSphere };
+  Kind kind = Kind::kMesh;
+  std::string label;  // for messages: the user's name or "shapes[i]"
+  int material = -1;  // index into SceneDescription::materials; -1 = black (reflects nothing)
+  std::optional<EmissionDescription> emission;
+  MeshData mesh;           // kMesh, object space (m)
+  glm::vec3 centre{0.0f};  // kSphere, object space (m)
+  float radius = 0.0f;     // kSphere (m)
+  RigidMotion motion;      // object → world over time; empty = identity
+};
+
+// `sensor:` — the camera's sensor and how it is exposed and read out.
+struct SensorSettings {
+  SensorSpec spec;
+  double iso = 100.0;
+  NoiseMode noise = NoiseMode::kFull;
+  std::uint64_t noiseSeed = 0;
+  std::uint64_t frame = 0;
+  std::optional<AutoExposure> autoExposure;
+  std::vector<double> bracketEv;  // exposure offsets in stops; empty: one exposure
+};
+
+struct SceneDescription {
+  std::string sourceFile;  // what it was loaded from ("<default>" for the embedded scene)
+  // Every other file the loader read for it, in the order first read, each once: meshes,
+  // textures, environment maps, spectral tables (also named metals and glasses from
+  // luts/spectra), the sensor description and its tables. Named illuminants and the CIE
+  // observer are built into camsim (sensor/spectra/spectral_data.h) and not listed. Building a
+  // Scene from it reads no other file.
+  std::vector<std::filesystem::path> inputFiles;
+  // Render space: every position below is relative to this point of the scene file's
+  // world (m) — the camera's rest position — so that scenes far from the world origin
+  // keep single-precision accuracy near the camera (world = render + renderOrigin).
+  glm::dvec3 renderOrigin{0.0};
+  std::string name;  // output base name
+  PhysicalCameraParams camera;
+  RenderSettings render;
+  std::vector<MaterialDescription> materials;
+  std::vector<ShapeDescription> shapes;
+  std::vector<LightDescription> lights;
+  std::optional<SensorSettings> sensor;  // none: the film records CIE XYZ only
+  IspSettings isp;                       // raw → picture (scenes with a sensor)
+
+  // Drops the decoded texels of image textures and environment maps. A Scene built from
+  // this description keeps them in its own form, so a render need not hold both (an 8k RGB
+  // texture is 0.8 GB of floats); a Scene built afterwards reads the files again.
+  void releaseDecodedImages() {
+    for (MaterialDescription& m : materials) {
+      m.reflectance.image.reset();
+      m.roughness.image.reset();
+    }
+    for (LightDescription& l : lights) l.image.reset();
+  }
+};
+
+}  // namespace camsim

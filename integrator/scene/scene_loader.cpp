@@ -1,0 +1,287 @@
+#include "integrator/scene/scene_loader.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include <glm/geometric.hpp>
+
+#include "integrator/scene/scene_loader_parts.h"
+#include "integrator/scene/scene_spectra.h"
+#include "sensor/spectra/cie.h"
+#include "sensor/base/file_status.h"
+#include "sensor/spectra/spectral_data.h"
+#include "sensor/base/yaml_reader.h"
+
+namespace camsim {
+namespace {
+
+struct Context {
+  std::filesystem::path baseDir;
+  TableSearch search;
+  std::map<std::string, int> materialIndex;
+  glm::dvec3 origin{0.0};  // render-space origin (SceneDescription::renderOrigin)
+};
+
+RenderSettings parseRender(YamlMap map) {
+  RenderSettings r;
+  if (auto v = map.find("sampler"))
+    r.sampler = v->choice<SamplerKind>(
+        "sampler", {{"sobol", SamplerKind::kSobol}, {"independent", SamplerKind::kIndependent}});
+  if (auto v = map.find("spp")) r.spp = static_cast<int>(v->integer(1, SceneLimits::kMaxSpp));
+  if (auto v = map.find("seed")) r.seed = static_cast<std::uint64_t>(v->integer(0, INT64_MAX));
+  if (auto v = map.find("max_depth"))
+    r.maxDepth = static_cast<int>(v->integer(0, SceneLimits::kMaxDepth));
+  if (auto v = map.find("rr_depth"))
+    r.rrDepth = static_cast<int>(v->integer(1, SceneLimits::kMaxDepth));
+  map.finish({"sampler", "spp", "seed", "max_depth", "rr_depth"});
+  return r;
+}
+
+EmissionDescription parseEmission(YamlMap map, const Context& ctx) {
+  EmissionDescription e;
+  const auto spectrum = map.find("spectrum");
+  const Spectrum shape = spectrum ? parseSpectrum(*spectrum, SpectrumUse::kEmission, ctx.search)
+                                  : cieIlluminant("D65");
+  const auto lum = map.find("luminance");
+  const auto scale = map.find("scale");
+  if (lum && scale) scale->fail("give either luminance (cd/m²) or scale, not both");
+  if (lum) {
+    const double target = lum->number(0.0, 1e15);
+    const double shapeLuminance = luminance(shape);
+    if (target > 0.0 && !(shapeLuminance > 0.0))
+      (spectrum ? *spectrum : *lum)
+          .fail("this spectrum has no visible power, so it cannot have a luminance");
+    e.radiance = target > 0.0 ? shape * (target / shapeLuminance) : Spectrum::constant(0.0);
+  } else if (scale) {
+    e.radiance = shape * scale->number(0.0, 1e30);
+  } else {
+    map.self().fail(
+        "emission needs 'luminance' (cd/m²) or 'scale' (W·m⁻²·sr⁻¹·nm⁻¹ per spectrum unit)");
+  }
+  if (!std::isfinite(e.radiance.maxValue()))
+    (lum ? *lum : *scale).fail("the radiance exceeds the single-precision range");
+  if (auto t = map.find("two_sided")) e.twoSided = t->boolean();
+  map.finish({"spectrum", "luminance", "scale", "two_sided"});
+  return e;
+}
+
+std::vector<std::uint32_t> parseFaces(const YamlValue& faces, size_t vertexCount) {
+  std::vector<std::uint32_t> indices;
+  for (const YamlValue& face : faces.items()) {
+    const std::vector<YamlValue> idx = face.items();
+    if (idx.size() < 3) face.fail("a face needs at least 3 vertex indices");
+    std::vector<std::uint32_t> poly;
+    for (const YamlValue& i : idx)
+      poly.push_back(
+          static_cast<std::uint32_t>(i.integer(0, static_cast<std::int64_t>(vertexCount) - 1)));
+    for (size_t k = 1; k + 1 < poly.size(); ++k)
+      indices.insert(indices.end(), {poly[0], poly[k], poly[k + 1]});
+    if (indices.size() / 3 > static_cast<size_t>(SceneLimits::kMaxTrianglesInline))
+      faces.fail("too many triangles for an inline mesh: use a mesh file");
+  }
+  return indices;
+}
+
+// Twice the total area, computed from the single-precision positions the renderer uses.
+double meshArea2(const MeshData& mesh) {
+  double area = 0.0;
+  for (size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
+    const glm::dvec3 a = mesh.positions[mesh.indices[t]], b = mesh.positions[mesh.indices[t + 1]],
+                     c = mesh.positions[mesh.indices[t + 2]];
+    area += glm::length(glm::cross(b - a, c - a));
+  }
+  return area;
+}
+
+void checkMesh(const YamlValue& where, const MeshData& mesh) {
+  if (mesh.indices.empty()) where.fail("mesh has no triangles");
+  if (!(meshArea2(mesh) > 0.0)) where.fail("mesh has zero area");
+}
+
+ShapeDescription parseShape(YamlMap map, size_t index, const Context& ctx) {
+  ShapeDescription s;
+  s.label = "shapes[" + std::to_string(index) + "]";
+  if (auto n = map.find("name")) s.label = n->string();
+  const YamlValue type = map.require("type");
+  const std::string t = type.string();
+  std::vector<std::string> known = {"type", "name", "material", "emission", "motion"};
+  if (auto m = map.find("motion")) {
+    // Keyframes carry the world position, shifted into render space (in double); the
+    // geometry itself is then in object space.
+    s.motion = parseMotion(*m, false, ctx.origin);
+  }
+  // Render-space position of a point given in the scene file.
+  const glm::dvec3 shift = s.motion.empty() ? ctx.origin : glm::dvec3(0.0);
+  auto point = [&](const YamlValue& where, const glm::dvec3& v) {
+    return toPoint(where, v - shift);
+  };
+  if (t == "sphere") {
+    s.kind = ShapeDescription::Kind::kSphere;
+    const YamlValue centre = map.require("centre");
+    s.centre = point(centre, centre.vec3());
+    const YamlValue radius = map.require("radius");
+    s.radius = positiveFloat(radius, radius.number(0.0, 1e12, true));
+    known.insert(known.end(), {"centre", "radius"});
+  } else if (t == "rectangle") {
+    const YamlValue cv = map.require("corner");
+    const glm::dvec3 corner = cv.vec3();
+    // Look both edges up before requiring either, so that a missing edge_u is not taken
+    // for a misspelling of edge_v.
+    map.find("edge_u");
+    map.find("edge_v");
+    const YamlValue eu = map.require("edge_u"), ev = map.require("edge_v");
+    const glm::dvec3 u = eu.vec3(), v = ev.vec3();
+    s.mesh.positions = {point(cv, corner), point(eu, corner + u), point(ev, corner + u + v),
+                        point(ev, corner + v)};
+    s.mesh.indices = {0, 1, 2, 0, 2, 3};
+    s.mesh.uvs = {{0.0f, 0.0f}, {1.0f, 0.0f}, {1.0f, 1.0f}, {0.0f, 1.0f}};  // corner, +u, +u+v, +v
+    if (!(meshArea2(s.mesh) > 0.0)) ev.fail("edge_u and edge_v must span a non-zero area");
+    known.insert(known.end(), {"corner", "edge_u", "edge_v"});
+  } else if (t == "mesh") {
+    const auto file = map.find("file");
+    const auto vertices = map.find("vertices");
+    if (file && vertices) vertices->fail("give either 'file' or 'vertices', not both");
+    if (file) {
+      std::filesystem::path p(file->string());
+      if (p.is_relative()) p = ctx.baseDir / p;
+      if (!isRegularFile(p)) file->fail("mesh file '" + p.string() + "' not found");
+      ctx.search.noteRead(p);
+      MeshPlacement placement;  // applied in double as the file is read
+      if (auto sc = map.find("scale")) placement.scale = sc->number(0.0, 1e12, true);
+      if (auto tr = map.find("translate")) placement.offset = tr->vec3();
+      placement.offset -= shift;
+      try {
+        s.mesh = readMeshFile(p, placement);
+      } catch (const InputError& e) {
+        if (e.where().line > 0) throw;
+        file->fail(e.what());
+      }
+      checkMesh(*file, s.mesh);
+    } else if (vertices) {
+      for (const YamlValue& v : vertices->items()) s.mesh.positions.push_back(point(v, v.vec3()));
+      if (s.mesh.positions.size() < 3) vertices->fail("a mesh needs at least 3 vertices");
+      const YamlValue faces = map.require("faces");
+      s.mesh.indices = parseFaces(faces, s.mesh.positions.size());
+      checkMesh(faces, s.mesh);
+    } else {
+      map.self().fail("a mesh needs 'file' or 'vertices' and 'faces'");
+    }
+    known.insert(known.end(), {"file", "scale", "translate", "vertices", "faces"});
+  } else {
+    type.fail("unknown shape type '" + t + "' (known: sphere, rectangle, mesh)");
+  }
+  if (auto e = map.find("emission")) s.emission = parseEmission(YamlMap(*e), ctx);
+  if (auto m = map.find("material")) {
+    const std::string name = m->string();
+    const auto it = ctx.materialIndex.find(name);
+    if (it == ctx.materialIndex.end()) m->fail("no material named '" + name + "'");
+    s.material = it->second;
+  } else if (!s.emission) {
+    map.self().fail("shape needs a 'material' (only emitters may omit it: they are then black)");
+  }
+  map.finish(known);
+  return s;
+}
+
+}  // namespace
+
+SceneDescription loadSceneFromText(const std::string& text, const std::string& displayName,
+                                   const std::filesystem::path& baseDir,
+                                   const LoadOptions& options) {
+  const YamlValue root = parseYaml(text, displayName);
+  if (!root.node() || root.node().IsNull())
+    throw InputError({displayName, 1, 1}, "", "the scene file is empty");
+  YamlMap top(root);
+  Context ctx;
+  ctx.baseDir = baseDir;
+  ctx.search.directories.push_back(baseDir);
+  if (auto paths = top.find("spectra_path")) {
+    for (const YamlValue& p : paths->items()) {
+      std::filesystem::path dir(p.string());
+      if (dir.is_relative()) dir = baseDir / dir;
+      if (!isDirectory(dir)) p.fail("directory '" + dir.string() + "' does not exist");
+      ctx.search.directories.push_back(dir);
+    }
+  }
+  for (const auto& dir : options.spectraPath) ctx.search.directories.push_back(dir);
+  ctx.search.directories.push_back(lutsDirectory() / "spectra");
+
+  SceneDescription scene;
+  scene.sourceFile = displayName;
+  ctx.search.filesRead = &scene.inputFiles;
+  if (auto v = top.find("format")) {
+    if (v->string() != "camsim-scene/1")
+      v->fail("unsupported format '" + v->string() + "' (this camsim reads camsim-scene/1)");
+  }
+  scene.name = std::filesystem::path(displayName).stem().string();
+  if (auto v = top.find("name")) scene.name = v->string();
+  if (scene.name.empty() || scene.name.find_first_of("/\\") != std::string::npos)
+    top.self().fail("name must be a non-empty file name without '/'");
+  if (auto v = top.find("render")) scene.render = parseRender(YamlMap(*v));
+  const YamlValue cameraValue = top.require("camera");
+  scene.camera = parseCamera(YamlMap(cameraValue), ctx.search);
+  ctx.origin = glm::dvec3(scene.camera.worldFromCamera[3]);
+  scene.renderOrigin = ctx.origin;
+  scene.camera.worldFromCamera[3] = glm::dvec4(0.0, 0.0, 0.0, 1.0);
+  if (auto sensor = top.find("sensor")) {
+    scene.sensor = parseSensorSettings(YamlMap(*sensor), baseDir, cameraValue, scene.camera);
+    for (const auto& f : scene.sensor->spec.sourceFiles) ctx.search.noteRead(f);
+  }
+  if (auto isp = top.find("isp")) {
+    if (!scene.sensor) isp->fail("isp settings need a sensor");
+    scene.isp = parseIspSettings(YamlMap(*isp));
+  }
+  if (auto mats = top.find("materials")) {
+    YamlMap mmap(*mats);
+    for (const std::string& name : mmap.keys()) {
+      ctx.materialIndex[name] = static_cast<int>(scene.materials.size());
+      scene.materials.push_back(
+          parseMaterial(name, YamlMap(*mmap.find(name)), ctx.search, ctx.baseDir));
+    }
+  }
+  const YamlValue shapes = top.require("shapes");
+  const std::vector<YamlValue> items = shapes.items();
+  if (items.empty()) shapes.fail("the scene has no shapes");
+  for (size_t i = 0; i < items.size(); ++i)
+    scene.shapes.push_back(parseShape(YamlMap(items[i]), i, ctx));
+  if (auto l = top.find("lights"))
+    scene.lights = parseLights(*l, ctx.search, baseDir, scene.renderOrigin);
+  top.finish({"format", "name", "spectra_path", "render", "camera", "sensor", "isp", "materials",
+              "shapes", "lights"});
+  // Each file once (as first read), however it was named: keyed by its canonical path
+  // (symbolic links and ./.. resolved), one lookup per read.
+  std::vector<std::filesystem::path> once;
+  std::set<std::filesystem::path> seen;
+  for (const auto& f : scene.inputFiles) {
+    std::error_code ec;
+    std::filesystem::path canonical = std::filesystem::weakly_canonical(f, ec);
+    if (ec) canonical = f;
+    if (seen.insert(canonical).second) once.push_back(f);
+  }
+  scene.inputFiles = std::move(once);
+  return scene;
+}
+
+std::string readSceneFile(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in || isDirectory(file))
+    throw InputError({file.string(), 0, 0}, "", "cannot open scene file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+std::filesystem::path sceneBaseDir(const std::filesystem::path& file) {
+  return file.parent_path().empty() ? std::filesystem::path(".") : file.parent_path();
+}
+
+SceneDescription loadScene(const std::filesystem::path& file, const LoadOptions& options) {
+  return loadSceneFromText(readSceneFile(file), file.string(), sceneBaseDir(file), options);
+}
+
+}  // namespace camsim

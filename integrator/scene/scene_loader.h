@@ -1,0 +1,41 @@
+// Scene loader: scene files (YAML; JSON parses too) → SceneDescription.
+// The format is documented in docs/scene-format.md. Every error — syntax, unknown key,
+// wrong type, out-of-range value, missing file — is an InputError naming file, line,
+// column and key. Nothing is rendered or written before the whole scene has loaded.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "integrator/scene/scene_description.h"
+#include "sensor/base/luts_directory.h"  // lutsDirectory(), used with scenes
+
+namespace camsim {
+
+struct LoadOptions {
+  // Extra directories searched for spectral CSV tables, after the scene's own directory
+  // and its `spectra_path`, before the installed luts/spectra/.
+  std::vector<std::filesystem::path> spectraPath;
+};
+
+// Limits checked before any work starts (resource guards). Raise them only knowingly.
+struct SceneLimits {
+  static constexpr std::int64_t kMaxResolution = 32768;  // px per side
+  static constexpr std::int64_t kMaxPixels = 268435456;  // 2^28 px (16k × 16k)
+  static constexpr std::int64_t kMaxSpp = 1 << 20;
+  static constexpr std::int64_t kMaxDepth = 10000;
+  static constexpr std::int64_t kMaxTrianglesInline = 10000000;
+};
+
+SceneDescription loadScene(const std::filesystem::path& file, const LoadOptions& options = {});
+// The text of a scene file (InputError naming the file if it cannot be read) and the
+// directory its relative paths resolve against ("." for a bare file name).
+std::string readSceneFile(const std::filesystem::path& file);
+std::filesystem::path sceneBaseDir(const std::filesystem::path& file);
+// `displayName` names the text in messages; relative paths resolve against baseDir.
+SceneDescription loadSceneFromText(const std::string& text, const std::string& displayName,
+                                   const std::filesystem::path& baseDir,
+                                   const LoadOptions& options = {});
+
+}  // namespace camsim

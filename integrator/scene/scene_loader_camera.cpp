@@ -1,0 +1,239 @@
+// The scene loader's camera part: pose, sensor, lens, aperture, distortion, shutter and
+// motion keyframes (docs/scene-format.md, `camera:`).
+#include <algorithm>
+#include <cmath>
+
+#include <glm/geometric.hpp>
+
+#include "integrator/scene/scene_loader.h"
+#include "integrator/scene/scene_loader_parts.h"
+#include "sensor/spectra/spectrum.h"
+
+namespace camsim {
+
+// Geometry is stored in single precision: a point finite as a double can still overflow.
+glm::vec3 toPoint(const YamlValue& where, const glm::dvec3& v) {
+  const glm::vec3 p(v);
+  if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+    where.fail("coordinates exceed the single-precision range (about ±3.4e38)");
+  return p;
+}
+
+// A positive length stored in single precision: it must not underflow to 0.
+float positiveFloat(const YamlValue& where, double v) {
+  const float f = static_cast<float>(v);
+  if (!(f > 0.0f)) where.fail("value is too small (it is 0 in single precision)");
+  return f;
+}
+
+namespace {
+
+// Pixels per side, with the limit named in the message.
+int resolutionSide(const YamlValue& v) {
+  const std::int64_t n = v.integer(INT64_MIN, INT64_MAX);
+  if (n < 1 || n > SceneLimits::kMaxResolution)
+    v.fail("value " + std::to_string(n) + " is out of range [1, " +
+           std::to_string(SceneLimits::kMaxResolution) + "] (limit SceneLimits::kMaxResolution)");
+  return static_cast<int>(n);
+}
+
+glm::dmat4 lookAt(const YamlValue& where, const YamlValue& positionWhere, glm::dvec3 position,
+                  glm::dvec3 target, glm::dvec3 up) {
+  const glm::dvec3 toTarget = target - position;
+  if (glm::length(toTarget) == 0.0) where.fail("look_at equals position");
+  const glm::dvec3 forward = glm::normalize(toTarget);
+  // Right-handed world: right = forward × up (looking along +z with +y up, right is −x).
+  const glm::dvec3 rightRaw = glm::cross(forward, up);
+  if (glm::length(rightRaw) < 1e-9 * glm::length(up))
+    where.fail("up is parallel to the viewing direction");
+  const glm::dvec3 right = glm::normalize(rightRaw);
+  const glm::dvec3 trueUp = glm::cross(right, forward);
+  glm::dmat4 m(1.0);
+  m[0] = glm::dvec4(right, 0.0);
+  m[1] = glm::dvec4(trueUp, 0.0);
+  m[2] = glm::dvec4(forward, 0.0);
+  toPoint(positionWhere, position);  // range check only: the position stays double
+  m[3] = glm::dvec4(position, 1.0);
+  return m;
+}
+
+glm::dmat4 parseMatrix(const YamlValue& m) {
+  const std::vector<double> v = m.numbers();
+  if (v.size() != 16) m.fail("expected 16 numbers (a 4×4 matrix, row by row)");
+  glm::dmat4 out(1.0);
+  for (int row = 0; row < 4; ++row)
+    for (int col = 0; col < 4; ++col) out[col][row] = v[static_cast<size_t>(row * 4 + col)];
+  if (v[12] != 0.0 || v[13] != 0.0 || v[14] != 0.0 || v[15] != 1.0)
+    m.fail("last row must be [0, 0, 0, 1]");
+  toPoint(m, glm::dvec3(v[3], v[7], v[11]));
+  const glm::dvec3 x(out[0]), y(out[1]), z(out[2]);
+  if (std::abs(glm::dot(x, y)) > 1e-4 || std::abs(glm::dot(y, z)) > 1e-4 ||
+      std::abs(glm::dot(x, z)) > 1e-4 || std::abs(glm::length(x) - 1.0) > 1e-4 ||
+      std::abs(glm::length(y) - 1.0) > 1e-4 || std::abs(glm::length(z) - 1.0) > 1e-4)
+    m.fail("the rotation part must be orthonormal (columns right, up, forward)");
+  // In camsim's right-handed world the camera's axes right, up, forward satisfy
+  // right = forward × up (what look_at builds), so their matrix has determinant −1. A proper
+  // rotation (+1) has right = up × forward, pointing left: the image would be mirrored.
+  if (glm::dot(glm::cross(x, y), z) > 0.0)
+    m.fail(
+        "the rotation part has determinant +1: camsim's columns are right, up, forward "
+        "with right = forward × up (determinant −1, as look_at builds); this matrix's "
+        "first column points left and would mirror the image (negate it; from an OpenCV "
+        "pose [x right, y down, z forward] negate the second column instead)");
+  return out;
+}
+
+Shutter parseShutter(YamlMap map) {
+  Shutter::Type type = Shutter::Type::kGlobal;
+  if (auto t = map.find("type"))
+    type = t->choice<Shutter::Type>(
+        "shutter type", {{"global", Shutter::Type::kGlobal}, {"rolling", Shutter::Type::kRolling}});
+  double rowTime = 0.0;
+  if (auto r = map.find("row_time")) {
+    if (type != Shutter::Type::kRolling) r->fail("row_time needs type: rolling");
+    rowTime = r->number(0.0, 1.0);
+  }
+  if (auto curve = map.find("curve")) {
+    std::vector<double> times, values;
+    for (const YamlValue& point : curve->items()) {
+      const std::vector<double> tv = point.numbers();
+      if (tv.size() != 2) point.fail("expected [time_s, efficiency]");
+      if (!times.empty() && tv[0] <= times.back()) point.fail("times must be strictly increasing");
+      if (tv[1] < 0.0 || tv[1] > 1.0) point.fail("efficiency must lie in [0, 1]");
+      times.push_back(tv[0]);
+      values.push_back(tv[1]);
+    }
+    if (times.size() < 2) curve->fail("a shutter curve needs at least 2 points");
+    double area = 0.0;
+    for (size_t i = 1; i < times.size(); ++i)
+      area += 0.5 * (values[i] + values[i - 1]) * (times[i] - times[i - 1]);
+    if (!(area > 0.0)) curve->fail("the shutter curve lets no light through");
+    map.finish({"type", "row_time", "curve"});
+    return Shutter(std::move(times), std::move(values), type, rowTime);
+  }
+  double open = 0.0, close = 1.0 / 60.0, rampOpen = 0.0, rampClose = 0.0;
+  if (auto v = map.find("open")) open = v->number(-1e6, 1e6);
+  const auto closeValue = map.find("close");
+  if (closeValue) close = closeValue->number(-1e6, 1e6);
+  if (!(close > open))
+    (closeValue ? *closeValue : map.self()).fail("close must be later than open");
+  if (auto v = map.find("ramp_open")) rampOpen = v->number(0.0, close - open);
+  const auto rc = map.find("ramp_close");
+  if (rc) rampClose = rc->number(0.0, close - open);
+  if (rampOpen + rampClose > close - open)
+    rc->fail("ramp_open + ramp_close exceed the exposure (close − open)");
+  map.finish({"type", "row_time", "open", "close", "ramp_open", "ramp_close"});
+  return Shutter::trapezoid(open, close, rampOpen, rampClose, type, rowTime);
+}
+
+}  // namespace
+
+RigidMotion parseMotion(const YamlValue& value, bool forCamera, const glm::dvec3& origin) {
+  std::vector<Keyframe> keys;
+  for (const YamlValue& item : value.items()) {
+    YamlMap map(item);
+    Keyframe k;
+    const YamlValue time = map.require("time");
+    k.time = time.number(-1e6, 1e6);
+    if (!keys.empty() && k.time <= keys.back().time)
+      time.fail("keyframe times must be strictly increasing");
+    if (auto t = map.find("translate")) {
+      // Shifted in double and kept double: a float of a world coordinate near 10⁶ m is
+      // only good to 6 cm. toPoint only checks that render space holds it.
+      k.translate = t->vec3() - origin;
+      toPoint(*t, k.translate);
+    }
+    if (auto r = map.find("rotate")) {
+      YamlMap rm(*r);
+      const YamlValue axisValue = rm.require("axis");
+      const glm::dvec3 axis = axisValue.vec3();
+      if (!(glm::length(axis) > 0.0)) axisValue.fail("rotation axis must not be zero");
+      const double degrees = rm.require("angle_deg").number(-1e6, 1e6);
+      rm.finish({"axis", "angle_deg"});
+      k.rotate = glm::angleAxis(glm::radians(degrees), glm::normalize(axis));
+    }
+    if (auto sc = map.find("scale")) {
+      if (forCamera) sc->fail("a camera cannot be scaled");
+      k.scale = sc->number(0.0, 1e12, true);
+    }
+    map.finish(forCamera ? std::vector<std::string>{"time", "translate", "rotate"}
+                         : std::vector<std::string>{"time", "translate", "rotate", "scale"});
+    if (!keys.empty() && std::abs(glm::dot(k.rotate, keys.back().rotate)) < 1e-9)
+      item.fail("consecutive keyframes rotate by 180° or more: add keyframes in between");
+    keys.push_back(k);
+  }
+  if (keys.empty()) value.fail("motion needs at least one keyframe");
+  return RigidMotion(std::move(keys));
+}
+
+PhysicalCameraParams parseCamera(YamlMap map, const TableSearch& search) {
+  PhysicalCameraParams c;
+  if (auto m = map.find("world_from_camera")) {
+    c.worldFromCamera = parseMatrix(*m);
+  } else {
+    const YamlValue position = map.require("position");
+    const YamlValue target = map.require("look_at");
+    glm::dvec3 up(0.0, 1.0, 0.0);
+    if (auto u = map.find("up")) up = u->vec3();
+    c.worldFromCamera = lookAt(target, position, position.vec3(), target.vec3(), up);
+  }
+  if (auto v = map.find("sensor_width_mm"))
+    c.sensorSize.x = static_cast<double>(positiveFloat(*v, v->number(0.0, 1000.0, true) * 1e-3));
+  if (auto v = map.find("sensor_height_mm"))
+    c.sensorSize.y = static_cast<double>(positiveFloat(*v, v->number(0.0, 1000.0, true) * 1e-3));
+  if (auto v = map.find("resolution")) {
+    const std::vector<YamlValue> items = v->items();
+    if (items.size() != 2) v->fail("expected [width, height] in pixels");
+    c.resolution.x = resolutionSide(items[0]);
+    c.resolution.y = resolutionSide(items[1]);
+    if (std::int64_t(c.resolution.x) * c.resolution.y > SceneLimits::kMaxPixels)
+      v->fail("more than " + std::to_string(SceneLimits::kMaxPixels) +
+              " pixels (limit SceneLimits::kMaxPixels)");
+  }
+  if (auto v = map.find("fill_factor")) c.fillFactor = v->number(0.0, 1.0, true);
+  if (auto v = map.find("focal_length_mm"))
+    c.focalLength = static_cast<double>(positiveFloat(*v, v->number(0.0, 1e5, true) * 1e-3));
+  if (auto v = map.find("f_number")) c.fNumber = v->number(0.5, 1e4);
+  if (auto v = map.find("focus_distance_m")) {
+    c.focusDistance = v->number(0.0, 1e12, true);
+    if (!(c.focusDistance > c.focalLength * 1.0001))
+      v->fail("focus distance must exceed 1.0001 × the focal length (" +
+              std::to_string(c.focalLength * 1.0001) + " m): closer, the image distance " +
+              "f·z/(z − f) is unbounded");
+  }
+  if (auto a = map.find("aperture")) {
+    YamlMap am(*a);
+    int blades = 0;
+    double rotation = 0.0;
+    if (auto b = am.find("blades")) {
+      blades = static_cast<int>(b->integer(0, 64));
+      if (blades > 0 && blades < 3) b->fail("blades must be 0 (circular) or at least 3");
+    }
+    if (auto r = am.find("rotation_deg")) rotation = glm::radians(r->number(-360.0, 360.0));
+    if (auto pu = am.find("pupil"))
+      c.pupil = pu->choice<LensPupil>(
+          "pupil", {{"aplanatic", LensPupil::kAplanatic}, {"flat", LensPupil::kFlat}});
+    am.finish({"blades", "rotation_deg", "pupil"});
+    c.aperture.emplace(c.focalLength / c.fNumber, blades, rotation);
+  }
+  if (auto t = map.find("lens_transmittance"))
+    c.lensTransmittance = parseSpectrum(*t, SpectrumUse::kReflectance, search);
+  if (auto d = map.find("distortion")) {
+    YamlMap dm(*d);
+    double* fields[] = {&c.distortion.k1, &c.distortion.k2, &c.distortion.k3, &c.distortion.p1,
+                        &c.distortion.p2};
+    const char* names[] = {"k1", "k2", "k3", "p1", "p2"};
+    for (int i = 0; i < 5; ++i)
+      if (auto v = dm.find(names[i])) *fields[i] = v->number(-1e3, 1e3);
+    dm.finish({"k1", "k2", "k3", "p1", "p2"});
+  }
+  if (auto s = map.find("shutter")) c.shutter = parseShutter(YamlMap(*s));
+  if (auto m = map.find("motion")) c.motion = parseMotion(*m, true, glm::dvec3(0.0));
+  map.finish({"position", "look_at", "up", "world_from_camera", "sensor_width_mm",
+              "sensor_height_mm", "resolution", "fill_factor", "focal_length_mm", "f_number",
+              "focus_distance_m", "aperture", "lens_transmittance", "distortion", "shutter",
+              "motion"});
+  return c;
+}
+
+}  // namespace camsim

@@ -1,0 +1,48 @@
+// Internal pieces of the scene loader shared between its files (not a public API).
+#pragma once
+
+#include <filesystem>
+
+#include <glm/vec3.hpp>
+
+#include "integrator/geometry/motion.h"
+#include "integrator/camera/physical_camera.h"
+#include "integrator/scene/scene_description.h"
+#include "integrator/scene/scene_spectra.h"
+#include "sensor/base/yaml_reader.h"
+
+namespace camsim {
+
+// Geometry is stored in single precision: a point finite as a double can still overflow.
+glm::vec3 toPoint(const YamlValue& where, const glm::dvec3& v);
+// A positive length stored in single precision: it must not underflow to 0.
+float positiveFloat(const YamlValue& where, double v);
+// `camera:` → camera parameters (see docs/scene-format.md).
+PhysicalCameraParams parseCamera(YamlMap map, const TableSearch& search);
+// `sensor:` → sensor settings; sets the camera's sensor size and fill factor from the
+// sensor's pixel pitch (cameraMap: the camera's keys, to reject conflicting ones).
+SensorSettings parseSensorSettings(YamlMap map, const std::filesystem::path& baseDir,
+                                   const YamlValue& camera, PhysicalCameraParams& cameraParams);
+// `isp:` → image-pipeline settings (white balance, demosaic).
+IspSettings parseIspSettings(YamlMap map);
+// A material input that may be a texture (integrator/scene/scene_loader_textures.cpp):
+// reflectance: a spectrum (see scene_spectra.h), {texture: …} or {checkerboard: …};
+// roughness: a number ≥ 0 or {texture: …}.
+enum class TextureUse { kReflectance, kRoughness };
+TextureDescription parseTexture(const YamlValue& v, TextureUse use, const TableSearch& search,
+                                const std::filesystem::path& baseDir);
+// `materials:` entry → material description (integrator/scene/scene_loader_materials.cpp).
+MaterialDescription parseMaterial(const std::string& name, YamlMap map, const TableSearch& search,
+                                  const std::filesystem::path& baseDir);
+// `motion:` keyframes; `forCamera` forbids scale. Each `translate` minus `origin` (in
+// double): shapes pass the render origin (their keyframes are world positions), the
+// camera zero (its keyframes are offsets from its rest position).
+RigidMotion parseMotion(const YamlValue& value, bool forCamera, const glm::dvec3& origin);
+// `lights:` → point, spot, distant and environment lights (scene_loader_lights.cpp);
+// positions are shifted into render space (world − renderOrigin), files resolve against
+// baseDir.
+std::vector<LightDescription> parseLights(const YamlValue& lights, const TableSearch& search,
+                                          const std::filesystem::path& baseDir,
+                                          const glm::dvec3& renderOrigin);
+
+}  // namespace camsim

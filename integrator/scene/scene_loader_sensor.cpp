@@ -1,0 +1,110 @@
+// The scene loader's `sensor:` block (docs/scene-format.md): which sensor, ISO, noise,
+// auto-exposure and brackets. The sensor description itself is parsed by sensor/.
+#include <cmath>
+
+#include "integrator/scene/scene_loader.h"
+#include "integrator/scene/scene_loader_parts.h"
+#include "sensor/spectra/spectral_data.h"
+
+namespace camsim {
+
+SensorSettings parseSensorSettings(YamlMap map, const std::filesystem::path& baseDir,
+                                   const YamlValue& camera, PhysicalCameraParams& cameraParams) {
+  SensorSettings s;
+  const YamlValue model = map.require("model");
+  std::string name = model.string();
+  // A sensor file is relative to the scene, like every other file a scene names.
+  if (isSensorSpecPath(name) && std::filesystem::path(name).is_relative())
+    name = (baseDir / name).string();
+  try {
+    s.spec = loadSensorSpec(name, lutsDirectory());
+  } catch (const InputError& e) {
+    if (e.where().line > 0) throw;  // an error inside the sensor file names its own location
+    model.fail(e.message());
+  }
+  s.iso = s.spec.baseIso;
+  if (auto v = map.find("iso")) s.iso = v->number(1.0, 1e7);
+  if (auto v = map.find("noise")) {
+    const std::optional<NoiseMode> mode = noiseModeFromName(v->string());
+    if (!mode)
+      v->fail("unknown noise mode '" + v->string() + "' (known: " + noiseModeNames() + ")");
+    s.noise = *mode;
+  }
+  if (auto v = map.find("noise_seed"))
+    s.noiseSeed = static_cast<std::uint64_t>(v->integer(0, INT64_MAX));
+  if (auto v = map.find("frame")) s.frame = static_cast<std::uint64_t>(v->integer(0, INT64_MAX));
+  if (auto v = map.find("auto_exposure")) {
+    YamlMap ae(*v);
+    AutoExposure a;
+    if (auto m = ae.find("metering")) {
+      using M = AutoExposure::Metering;
+      a.metering = m->choice<M>("metering", {{"mean", M::kMean},
+                                             {"centre_weighted", M::kCentreWeighted},
+                                             {"percentile", M::kPercentile}});
+      if (a.metering == M::kPercentile) a.target = 0.9;
+    }
+    if (auto t = ae.find("target")) a.target = t->number(0.0, 1.0, true);
+    if (auto p = ae.find("percentile")) {
+      if (a.metering != AutoExposure::Metering::kPercentile)
+        p->fail("percentile needs metering: percentile");
+      a.percentile = p->number(0.0, 100.0, true);
+    }
+    ae.finish({"metering", "target", "percentile"});
+    s.autoExposure = a;
+  }
+  if (auto b = map.find("bracket_ev")) {
+    s.bracketEv = b->numbers();
+    if (s.bracketEv.empty() || s.bracketEv.size() > 16)
+      b->fail("give 1 to 16 exposure offsets in stops");
+    for (double ev : s.bracketEv)
+      if (std::abs(ev) > 20.0) b->fail("exposure offsets must lie within ±20 stops");
+  }
+  map.finish({"model", "iso", "noise", "noise_seed", "frame", "auto_exposure", "bracket_ev"});
+
+  // The sensor sets the pixel geometry; the camera must not contradict it.
+  YamlMap cameraKeys(camera);
+  for (const char* key : {"sensor_width_mm", "sensor_height_mm", "fill_factor"})
+    if (auto v = cameraKeys.find(key))
+      v->fail(std::string(key) +
+              " conflicts with the sensor's pixel pitch and fill factor: remove it");
+  cameraParams.sensorSize = glm::dvec2(cameraParams.resolution) * s.spec.pixelPitchM;
+  cameraParams.fillFactor = s.spec.fillFactor;
+  return s;
+}
+
+IspSettings parseIspSettings(YamlMap map) {
+  IspSettings isp;
+  if (auto wb = map.find("white_balance")) {
+    using W = IspSettings::WhiteBalance;
+    isp.whiteBalance = wb->choice<W>(
+        "white balance",
+        {{"illuminant", W::kIlluminant}, {"region", W::kRegion}, {"grey_world", W::kGreyWorld}});
+  }
+  if (auto ill = map.find("illuminant")) {
+    isp.illuminant = ill->string();
+    try {
+      cieIlluminant(isp.illuminant);
+    } catch (const InputError& e) {
+      ill->fail(e.message());
+    }
+  }
+  if (auto r = map.find("region")) {
+    if (isp.whiteBalance != IspSettings::WhiteBalance::kRegion)
+      r->fail("region needs white_balance: region");
+    const std::vector<YamlValue> v = r->items();
+    if (v.size() != 4) r->fail("expected [x, y, width, height] in pixels");
+    isp.region = {
+        static_cast<int>(v[0].integer(0, 1 << 20)), static_cast<int>(v[1].integer(0, 1 << 20)),
+        static_cast<int>(v[2].integer(1, 1 << 20)), static_cast<int>(v[3].integer(1, 1 << 20))};
+  } else if (isp.whiteBalance == IspSettings::WhiteBalance::kRegion) {
+    map.self().fail("white_balance: region needs region: [x, y, width, height]");
+  }
+  if (auto d = map.find("demosaic"))
+    isp.demosaic = d->choice<DemosaicMethod>(
+        "demosaic",
+        {{"malvar", DemosaicMethod::kMalvarHeCutler}, {"bilinear", DemosaicMethod::kBilinear}});
+  map.finish({"white_balance", "illuminant", "region", "demosaic"});
+  return isp;
+}
+
+}  // namespace camsim

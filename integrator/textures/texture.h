@@ -1,0 +1,53 @@
+// Textures: values that vary over a surface with its texture coordinates (u, v) in [0, 1)²
+// (meshes: per-vertex uv, or (0,0), (1,0), (1,1) per triangle without them; spheres:
+// u = φ/2π about +y, v = 1 − θ/π from the top pole — see docs/scene-format.md).
+// Small closed set: constant, image (EXR/PNG), checkerboard.
+//   SpectrumTexture  reflectance-like spectra, dimensionless, evaluated at the path's λ
+//   FloatTexture     scalars such as roughness
+#pragma once
+
+#include <memory>
+
+#include <glm/vec2.hpp>
+
+#include "sensor/spectra/sampled_spectrum.h"
+#include "sensor/spectra/spectrum.h"
+
+namespace camsim {
+
+class SpectrumTexture {
+ public:
+  virtual ~SpectrumTexture() = default;
+  virtual SampledSpectrum evaluate(glm::vec2 uv, const SampledWavelengths& lambda) const = 0;
+  // Largest value anywhere (0 means the texture is black everywhere).
+  virtual double maxValue() const = 0;
+};
+
+class FloatTexture {
+ public:
+  virtual ~FloatTexture() = default;
+  virtual float evaluate(glm::vec2 uv) const = 0;
+};
+
+class ConstantSpectrumTexture final : public SpectrumTexture {
+ public:
+  explicit ConstantSpectrumTexture(Spectrum value) : value_(std::move(value)) {}
+  SampledSpectrum evaluate(glm::vec2, const SampledWavelengths& lambda) const override {
+    return sampleSpectrum(value_, lambda);
+  }
+  double maxValue() const override { return value_.maxValue(); }
+
+ private:
+  Spectrum value_;
+};
+
+class ConstantFloatTexture final : public FloatTexture {
+ public:
+  explicit ConstantFloatTexture(float value) : value_(value) {}
+  float evaluate(glm::vec2) const override { return value_; }
+
+ private:
+  float value_;
+};
+
+}  // namespace camsim

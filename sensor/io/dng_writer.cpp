@@ -1,0 +1,254 @@
+#include "sensor/io/dng_writer.h"
+
+#include <tiffio.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdarg>
+#include <cstdint>
+#include <cstdio>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+#include <glm/matrix.hpp>
+
+#include "sensor/base/check.h"
+#include "sensor/isp/color_correction.h"
+#include "sensor/base/input_error.h"
+#include "sensor/spectra/spectral_data.h"
+#include "sensor/isp/white_balance.h"
+
+namespace camsim {
+namespace {
+
+constexpr int kPhotometricLinearRaw = 34892;  // DNG; libtiff's tiff.h does not name it
+
+// DNG CFAPlaneColor code of a channel name (R, G, B only), -1 otherwise.
+int planeColorCode(const std::string& name) {
+  if (name == "R") return 0;
+  if (name == "G") return 1;
+  if (name == "B") return 2;
+  return -1;
+}
+
+// libtiff's per-file error handler: keeps the first message for the exception. Declared
+// printf-like so compilers check the forwarding of libtiff's format string.
+__attribute__((format(printf, 4, 0))) int captureTiffError(TIFF*, void* userData,
+                                                           const char* module, const char* fmt,
+                                                           va_list ap) {
+  auto* message = static_cast<std::string*>(userData);
+  if (message->empty()) {
+    char buffer[512];
+    std::vsnprintf(buffer, sizeof buffer, fmt, ap);
+    *message = std::string(module ? module : "libtiff") + ": " + buffer;
+  }
+  return 1;
+}
+
+int ignoreTiffWarning(TIFF*, void*, const char*, const char*, va_list) {
+  return 1;
+}
+
+std::string metadataValue(const Metadata& meta, const std::string& key) {
+  for (const auto& [k, v] : meta)
+    if (k == key) return v;
+  return {};
+}
+
+}  // namespace
+
+namespace {
+
+// The shared chart fit (sensor/isp/color_correction.h), in the XYZ → camera direction, under
+// one calibration illuminant.
+DngCalibration calibrationUnder(const std::vector<Spectrum>& qe, const std::string& illuminant,
+                                int lightSource, const std::filesystem::path& colorCheckerCsv) {
+  const ChartSamples chart = colorCheckerSamples(qe, cieIlluminant(illuminant), colorCheckerCsv);
+  glm::dmat3 m = fitLinearMap(chart.xyz, chart.camera);
+  const glm::dvec3 whiteCamera = m * chart.xyzWhite;
+  const double peak = std::max({whiteCamera.x, whiteCamera.y, whiteCamera.z});
+  if (!(peak > 0.0))
+    throw InputError({}, "qe", "the sensor does not respond to the " + illuminant + " white");
+  return {m / peak, lightSource};
+}
+
+}  // namespace
+
+int exifLightSource(const std::string& name) {
+  static const std::pair<const char*, int> codes[] = {
+      {"D50", 23}, {"D55", 20}, {"D65", 21}, {"D75", 22}, {"A", 17},  {"F1", 12},
+      {"F5", 12},  {"F7", 12},  {"F8", 13},  {"F10", 13}, {"F2", 14}, {"F6", 14},
+      {"F9", 14},  {"F11", 14}, {"F3", 15},  {"F4", 16},  {"F12", 16}};
+  for (const auto& [n, code] : codes)
+    if (name == n) return code;
+  return 0;
+}
+
+DngColor dngColorFromQe(const std::vector<Spectrum>& qe, const std::string& illuminant,
+                        const std::filesystem::path& colorCheckerCsv) {
+  if (qe.size() != 3)
+    throw InputError({}, "qe",
+                     "DNG colour needs 3 QE curves (R, G, B), got " + std::to_string(qe.size()));
+  DngColor color;
+  const int code = exifLightSource(illuminant);
+  if (illuminant != "D65" && code != 0) {
+    color.calibration1 = calibrationUnder(qe, illuminant, code, colorCheckerCsv);
+    color.calibration2 = calibrationUnder(qe, "D65", 21, colorCheckerCsv);
+  } else {
+    color.calibration1 = calibrationUnder(qe, "D65", 21, colorCheckerCsv);
+  }
+  const std::vector<double> neutral =
+      cameraResponse(qe, Spectrum::constant(1.0), cieIlluminant(illuminant));
+  if (!(neutral[1] > 0.0))
+    throw InputError({}, "qe", "the G channel does not respond to the illuminant");
+  color.asShotNeutral = glm::dvec3(neutral[0], neutral[1], neutral[2]) / neutral[1];
+  return color;
+}
+
+glm::dvec3 dngNeutralFromGains(const std::vector<double>& gains) {
+  CAMSIM_CHECK(gains.size() == 3 && gains[0] > 0.0 && gains[1] > 0.0 && gains[2] > 0.0);
+  return glm::dvec3(gains[1] / gains[0], 1.0, gains[1] / gains[2]);
+}
+
+void writeDng(const std::filesystem::path& path, const RawImage& raw, const DngColor& color,
+              const Metadata& meta, const DngCapture& capture) {
+  CAMSIM_CHECK(raw.width > 0 && raw.height > 0 &&
+               raw.dn.size() == static_cast<size_t>(raw.width) * static_cast<size_t>(raw.height));
+  const CfaLayout& cfa = raw.cfa;
+  const bool mono = cfa.isMonochrome();
+  std::vector<std::uint8_t> pattern;
+  if (!mono) {
+    CAMSIM_CHECK(cfa.width > 0 && cfa.height > 0 &&
+                 cfa.tile.size() ==
+                     static_cast<size_t>(cfa.width) * static_cast<size_t>(cfa.height));
+    for (const int channel : cfa.tile) {
+      const int code = planeColorCode(cfa.channels.at(static_cast<size_t>(channel)));
+      if (code < 0)
+        throw InputError(
+            {}, "cfa",
+            "DNG output supports R, G, B colour filter arrays only, not '" + cfa.name + "'");
+      pattern.push_back(static_cast<std::uint8_t>(code));
+    }
+  }
+
+  std::string error;
+  std::unique_ptr<TIFFOpenOptions, void (*)(TIFFOpenOptions*)> options(TIFFOpenOptionsAlloc(),
+                                                                       &TIFFOpenOptionsFree);
+  TIFFOpenOptionsSetErrorHandlerExtR(options.get(), &captureTiffError, &error);
+  TIFFOpenOptionsSetWarningHandlerExtR(options.get(), &ignoreTiffWarning, nullptr);
+  std::unique_ptr<TIFF, void (*)(TIFF*)> tif(TIFFOpenExt(path.c_str(), "w", options.get()),
+                                             &TIFFClose);
+  const auto fail = [&](const std::string& what) {
+    throw std::runtime_error("cannot write DNG " + path.string() + ": " + what +
+                             (error.empty() ? "" : " (" + error + ")"));
+  };
+  if (!tif) fail("cannot open");
+  TIFF* t = tif.get();
+  bool ok = true;
+
+  // The EXIF IFD first (TIFFCreateEXIFDirectory returns 0 on success), then IFD0 pointing
+  // at it: written in this order, no directory has to be rewritten.
+  std::uint64_t exifOffset = 0;
+  if (TIFFCreateEXIFDirectory(t) != 0) fail("cannot create the EXIF directory");
+  if (capture.exposureTimeS > 0.0)
+    ok = ok && TIFFSetField(t, EXIFTAG_EXPOSURETIME, capture.exposureTimeS) == 1;
+  if (capture.fNumber > 0.0) ok = ok && TIFFSetField(t, EXIFTAG_FNUMBER, capture.fNumber) == 1;
+  if (capture.focalLengthMm > 0.0)
+    ok = ok && TIFFSetField(t, EXIFTAG_FOCALLENGTH, capture.focalLengthMm) == 1;
+  if (capture.iso > 0.0) {
+    const std::uint16_t iso[1] = {
+        static_cast<std::uint16_t>(std::lround(std::min(capture.iso, 65535.0)))};
+    ok = ok && TIFFSetField(t, EXIFTAG_ISOSPEEDRATINGS, 1, iso) == 1;
+  }
+  if (!capture.dateTimeOriginal.empty())
+    ok = ok && TIFFSetField(t, EXIFTAG_DATETIMEORIGINAL, capture.dateTimeOriginal.c_str()) == 1;
+  if (!ok || TIFFWriteCustomDirectory(t, &exifOffset) != 1) fail("cannot write the EXIF directory");
+  TIFFFreeDirectory(t);
+  if (TIFFCreateDirectory(t) != 0) fail("cannot start IFD0");
+  // Scalars go through varargs: pass them as the promoted type libtiff reads (int/uint32).
+  const auto setU32 = [&](uint32_t tag, std::uint32_t v) {
+    ok = ok && TIFFSetField(t, tag, v) == 1;
+  };
+  const auto setU16 = [&](uint32_t tag, int v) { ok = ok && TIFFSetField(t, tag, v) == 1; };
+  const auto setText = [&](uint32_t tag, const std::string& s) {
+    ok = ok && TIFFSetField(t, tag, s.c_str()) == 1;
+  };
+
+  setU32(TIFFTAG_SUBFILETYPE, 0);
+  setU32(TIFFTAG_IMAGEWIDTH, static_cast<std::uint32_t>(raw.width));
+  setU32(TIFFTAG_IMAGELENGTH, static_cast<std::uint32_t>(raw.height));
+  setU16(TIFFTAG_BITSPERSAMPLE, 16);
+  setU16(TIFFTAG_SAMPLESPERPIXEL, 1);
+  setU16(TIFFTAG_SAMPLEFORMAT, SAMPLEFORMAT_UINT);
+  setU16(TIFFTAG_COMPRESSION, COMPRESSION_NONE);
+  setU16(TIFFTAG_PLANARCONFIG, PLANARCONFIG_CONTIG);
+  setU16(TIFFTAG_ORIENTATION, ORIENTATION_TOPLEFT);
+  setU16(TIFFTAG_PHOTOMETRIC, mono ? kPhotometricLinearRaw : PHOTOMETRIC_CFA);
+  setU32(TIFFTAG_ROWSPERSTRIP, TIFFDefaultStripSize(t, 0));
+  ok = ok && TIFFSetField(t, TIFFTAG_EXIFIFD, exifOffset) == 1;
+
+  const std::string sensor = metadataValue(meta, "camsim:sensor");
+  const std::string model = sensor.empty() ? "camsim" : "camsim " + sensor;
+  setText(TIFFTAG_MAKE, "camsim");
+  setText(TIFFTAG_MODEL, model);
+  setText(TIFFTAG_UNIQUECAMERAMODEL, model);
+  setText(TIFFTAG_SOFTWARE, std::string("camsim ") + CAMSIM_VERSION);
+  std::string description;
+  for (const auto& [key, value] : meta) description += key + ": " + value + "\n";
+  if (!description.empty()) setText(TIFFTAG_IMAGEDESCRIPTION, description);
+
+  const std::uint8_t dngVersion[4] = {1, 4, 0, 0};
+  const std::uint8_t dngBackward[4] = {1, 1, 0, 0};
+  ok = ok && TIFFSetField(t, TIFFTAG_DNGVERSION, dngVersion) == 1;
+  ok = ok && TIFFSetField(t, TIFFTAG_DNGBACKWARDVERSION, dngBackward) == 1;
+
+  const std::uint16_t repeatOne[2] = {1, 1};
+  const float black[1] = {static_cast<float>(raw.blackLevelDn)};
+  const std::uint32_t white[1] = {static_cast<std::uint32_t>(std::lround(raw.whiteLevelDn))};
+  ok = ok && TIFFSetField(t, TIFFTAG_BLACKLEVELREPEATDIM, repeatOne) == 1;
+  ok = ok && TIFFSetField(t, TIFFTAG_BLACKLEVEL, 1, black) == 1;
+  ok = ok && TIFFSetField(t, TIFFTAG_WHITELEVEL, 1, white) == 1;
+
+  if (!mono) {
+    const std::uint16_t repeat[2] = {static_cast<std::uint16_t>(cfa.height),
+                                     static_cast<std::uint16_t>(cfa.width)};
+    const std::uint8_t planeColor[3] = {0, 1, 2};
+    ok = ok && TIFFSetField(t, TIFFTAG_CFAREPEATPATTERNDIM, repeat) == 1;
+    ok = ok &&
+         TIFFSetField(t, TIFFTAG_CFAPATTERN, static_cast<int>(pattern.size()), pattern.data()) == 1;
+    ok = ok && TIFFSetField(t, TIFFTAG_CFAPLANECOLOR, 3, planeColor) == 1;
+    setU16(TIFFTAG_CFALAYOUT, 1);
+    const auto setMatrix = [&](uint32_t matrixTag, uint32_t illuminantTag,
+                               const DngCalibration& c) {
+      float matrix[9];
+      for (int row = 0; row < 3; ++row)
+        for (int col = 0; col < 3; ++col)
+          matrix[row * 3 + col] = static_cast<float>(c.xyzToCamera[col][row]);  // glm: [col][row]
+      ok = ok && TIFFSetField(t, matrixTag, 9, matrix) == 1;
+      setU16(illuminantTag, c.lightSource);
+    };
+    setMatrix(TIFFTAG_COLORMATRIX1, TIFFTAG_CALIBRATIONILLUMINANT1, color.calibration1);
+    if (color.calibration2)
+      setMatrix(TIFFTAG_COLORMATRIX2, TIFFTAG_CALIBRATIONILLUMINANT2, *color.calibration2);
+    const float neutral[3] = {static_cast<float>(color.asShotNeutral.x),
+                              static_cast<float>(color.asShotNeutral.y),
+                              static_cast<float>(color.asShotNeutral.z)};
+    ok = ok && TIFFSetField(t, TIFFTAG_ASSHOTNEUTRAL, 3, neutral) == 1;
+  }
+  if (!ok) fail("cannot set a DNG tag");
+
+  std::vector<std::uint16_t> row(static_cast<size_t>(raw.width));
+  for (int y = 0; y < raw.height; ++y) {
+    const auto begin = raw.dn.begin() + static_cast<std::ptrdiff_t>(y) * raw.width;
+    std::copy(begin, begin + raw.width, row.begin());
+    if (TIFFWriteScanline(t, row.data(), static_cast<std::uint32_t>(y), 0) != 1)
+      fail("cannot write pixels");
+  }
+  if (TIFFFlush(t) != 1) fail("cannot flush");
+  tif.reset();
+  if (!error.empty()) fail("libtiff error");
+}
+
+}  // namespace camsim

@@ -1,0 +1,121 @@
+#include "sensor/io/output_set.h"
+
+#include <signal.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <charconv>
+#include <fstream>
+#include <stdexcept>
+#include <string_view>
+#include <system_error>
+
+#include "sensor/base/file_status.h"
+#include "sensor/base/input_error.h"
+
+namespace camsim {
+namespace {
+
+constexpr std::string_view kTempMarker = ".camsim-tmp-";
+
+std::filesystem::path temporaryName(const std::string& fileName, long pid) {
+  return "." + fileName + std::string(kTempMarker) + std::to_string(pid);
+}
+
+}  // namespace
+
+OutputSet::OutputSet(std::filesystem::path directory) : directory_(std::move(directory)) {}
+
+OutputSet::~OutputSet() {
+  if (committed_) return;
+  std::error_code ignored;
+  for (const auto& [temp, final] : files_) std::filesystem::remove(temp, ignored);
+}
+
+std::filesystem::path OutputSet::add(const std::string& fileName) {
+  const auto temp = directory_ / temporaryName(fileName, static_cast<long>(::getpid()));
+  files_.emplace_back(temp, directory_ / fileName);
+  return temp;
+}
+
+std::vector<std::filesystem::path> OutputSet::prepareDirectory(
+    const std::filesystem::path& directory) {
+  std::error_code ec;
+  std::filesystem::create_directories(directory, ec);
+  if (!isDirectory(directory))
+    throw InputError({directory.string(), 0, 0}, "",
+                     "cannot create output directory" + (ec ? ": " + ec.message() : ""));
+  return cleanStaleTemporaries(directory);
+}
+
+std::filesystem::path OutputSet::addText(const std::string& fileName, const std::string& text) {
+  const std::filesystem::path temp = add(fileName);
+  std::ofstream f(temp, std::ios::binary);
+  f << text;
+  if (!f.flush()) throw std::runtime_error("cannot write " + (directory_ / fileName).string());
+  return temp;
+}
+
+std::vector<std::filesystem::path> OutputSet::commit() {
+  // A final name taken by a directory is the one failure a rename cannot recover from that
+  // the user can cause (an existing file is replaced): checked for all files before any is
+  // renamed, so none appears.
+  for (const auto& [temp, final] : files_)
+    if (isDirectory(final))
+      throw InputError({final.string(), 0, 0}, "", "cannot write: a directory has this name");
+  std::vector<std::filesystem::path> finals;
+  for (const auto& [temp, final] : files_) {
+    std::error_code ec;
+    std::filesystem::rename(temp, final, ec);
+    if (ec)
+      throw std::runtime_error("cannot rename " + temp.string() + " to " + final.string() + ": " +
+                               ec.message() + " (" + std::to_string(finals.size()) + " of " +
+                               std::to_string(files_.size()) + " outputs already in place)");
+    finals.push_back(final);
+  }
+  committed_ = true;
+  return finals;
+}
+
+long OutputSet::temporaryOwner(const std::string& fileName) {
+  const size_t marker = fileName.rfind(kTempMarker);
+  // "." + at least one character of the final name + marker + digits.
+  if (fileName.size() < 2 || fileName[0] != '.' || marker == std::string::npos || marker < 2)
+    return -1;
+  const char* first = fileName.data() + marker + kTempMarker.size();
+  const char* last = fileName.data() + fileName.size();
+  long pid = 0;
+  const auto [ptr, ec] = std::from_chars(first, last, pid);
+  if (first == last || ec != std::errc() || ptr != last || pid <= 0) return -1;
+  return pid;
+}
+
+std::vector<std::filesystem::path> OutputSet::cleanStaleTemporaries(
+    const std::filesystem::path& directory) {
+  // Collect first, remove afterwards: no removal while the directory is being read.
+  std::vector<std::filesystem::path> stale;
+  const long self = static_cast<long>(::getpid());
+  std::error_code ec;
+  for (std::filesystem::directory_iterator it(directory, ec), end; !ec && it != end;
+       it.increment(ec)) {
+    const long pid = temporaryOwner(it->path().filename().string());
+    if (pid < 0 || pid == self) continue;
+    // Never follow or descend: a temporary is a regular file (or a link, removed as such).
+    std::error_code typeError;
+    const auto type = it->symlink_status(typeError).type();
+    if (typeError || (type != std::filesystem::file_type::regular &&
+                      type != std::filesystem::file_type::symlink))
+      continue;
+    // Alive, or alive under another user (EPERM): not stale.
+    if (::kill(static_cast<pid_t>(pid), 0) == 0 || errno != ESRCH) continue;
+    stale.push_back(it->path());
+  }
+  std::vector<std::filesystem::path> removed;
+  for (const auto& path : stale) {
+    std::error_code removeError;
+    if (std::filesystem::remove(path, removeError)) removed.push_back(path);
+  }
+  return removed;
+}
+
+}  // namespace camsim

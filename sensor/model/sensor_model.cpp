@@ -1,0 +1,215 @@
+#include "sensor/model/sensor_model.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <vector>
+
+#include "sensor/base/check.h"
+#include "sensor/base/counter_rng.h"
+#include "sensor/base/input_error.h"
+
+namespace camsim {
+
+const char* noiseModeName(NoiseMode mode) {
+  return mode == NoiseMode::kNone ? "none" : mode == NoiseMode::kPhoton ? "photon" : "full";
+}
+
+namespace {
+constexpr NoiseMode kNoiseModes[] = {NoiseMode::kNone, NoiseMode::kPhoton, NoiseMode::kFull};
+}  // namespace
+
+std::optional<NoiseMode> noiseModeFromName(std::string_view name) {
+  for (NoiseMode m : kNoiseModes)
+    if (name == noiseModeName(m)) return m;
+  return std::nullopt;
+}
+
+std::string noiseModeNames() {
+  std::string names;
+  for (NoiseMode m : kNoiseModes)
+    names += (names.empty() ? "" : ", ") + std::string(noiseModeName(m));
+  return names;
+}
+namespace {
+
+// Domain tags, so that noise streams and pattern streams never share a key even when the
+// noise seed equals the pattern seed.
+constexpr std::uint64_t kNoiseDomain = 0x6e6f697365ull;    // "noise"
+constexpr std::uint64_t kPatternDomain = 0x7061747465ull;  // "patte"
+constexpr std::uint64_t kShotTag = 1, kReadTag = 2;
+constexpr std::uint64_t kPrnuTag = 1, kDsnuTag = 2, kRowTag = 3, kColumnTag = 4;
+
+constexpr double kMaxPoissonMean = 0x1p52;              // larger means are clamped (see the header)
+constexpr double kLogSqrt2Pi = 0.91893853320467274178;  // ½ log 2π
+
+// δ(k) = log k! − [(k + ½) log k − k + ½ log 2π], Stirling's error, for k ≥ 1.
+double stirlingError(double k) {
+  if (k < 16.0) return std::lgamma(k + 1.0) - (k + 0.5) * std::log(k) + k - kLogSqrt2Pi;
+  const double inv = 1.0 / k, inv2 = inv * inv;
+  return inv * (1.0 / 12.0 - inv2 * (1.0 / 360.0 - inv2 * (1.0 / 1260.0 - inv2 / 1680.0)));
+}
+
+// k log(k/μ) + μ − k without cancellation when k ≈ μ: with v = (k − μ)/(k + μ) it equals
+// (k − μ) v + 2k Σ_{j≥1} v^(2j+1)/(2j+1).
+double deviance(double k, double mu) {
+  if (std::abs(k - mu) < 0.1 * (k + mu)) {
+    const double v = (k - mu) / (k + mu), v2 = v * v;
+    double sum = (k - mu) * v;
+    double term = 2.0 * k * v;
+    for (int j = 1; j < 100; ++j) {
+      term *= v2;
+      const double next = sum + term / (2 * j + 1);
+      if (next == sum) break;
+      sum = next;
+    }
+    return sum;
+  }
+  return k * std::log(k / mu) + mu - k;
+}
+
+// log P(k; μ), accurate to a few ulps for every k and μ (no log k! − k log μ cancellation).
+double logPoissonPmf(double k, double mu) {
+  if (k == 0.0) return -mu;
+  return -stirlingError(k) - deviance(k, mu) - 0.5 * std::log(k) - kLogSqrt2Pi;
+}
+
+// Inversion by sequential search: exact up to rounding, ~μ + 1 steps (used for μ < 10).
+std::uint64_t poissonInversion(double mu, CounterRng& rng) {
+  const double u = rng.uniformOpen();
+  double p = std::exp(-mu), cdf = p;
+  std::uint64_t k = 0;
+  while (u > cdf) {
+    ++k;
+    p *= mu / static_cast<double>(k);
+    cdf += p;
+    if (p < cdf * 1e-17) break;  // rounding left the cdf just below u: the tail is empty
+  }
+  return k;
+}
+
+// Hörmann (1993), "The transformed rejection method for generating Poisson random
+// variables", algorithm PTRS; exact (a rejection method) for μ ≥ 10.
+std::uint64_t poissonPtrs(double mu, CounterRng& rng) {
+  const double sqrtMu = std::sqrt(mu);
+  const double b = 0.931 + 2.53 * sqrtMu;
+  const double a = -0.059 + 0.02483 * b;
+  const double invAlpha = 1.1239 + 1.1328 / (b - 3.4);
+  const double vr = 0.9277 - 3.6224 / (b - 2.0);
+  for (;;) {
+    const double u = rng.uniformOpen() - 0.5;
+    const double v = rng.uniformOpen();
+    const double us = 0.5 - std::abs(u);  // > 0: the uniforms are never 0 or 1
+    const double k = std::floor((2.0 * a / us + b) * u + mu + 0.43);
+    if (us >= 0.07 && v <= vr) return static_cast<std::uint64_t>(k);
+    if (k < 0.0 || (us < 0.013 && v > us)) continue;
+    if (std::log(v * invAlpha / (a / (us * us) + b)) <= logPoissonPmf(k, mu))
+      return static_cast<std::uint64_t>(k);
+  }
+}
+
+std::uint64_t poisson(double mean, CounterRng& rng) {
+  if (!(mean > 0.0)) return 0;
+  mean = std::min(mean, kMaxPoissonMean);
+  return mean < 10.0 ? poissonInversion(mean, rng) : poissonPtrs(mean, rng);
+}
+
+// A fixed-pattern N(0, 1) value: depends on the pattern seed and position only.
+double patternNormal(std::uint64_t patternSeed, std::uint64_t tag, std::uint64_t x,
+                     std::uint64_t y) {
+  return CounterRng(streamKey(kPatternDomain, patternSeed, tag, x, y)).normal();
+}
+
+void checkSettings(const ExposureSettings& settings) {
+  if (!(settings.iso > 0.0) || !std::isfinite(settings.iso))
+    throw InputError({}, "iso", "ISO must be a finite number > 0");
+  if (!(settings.exposureTimeS >= 0.0) || !std::isfinite(settings.exposureTimeS))
+    throw InputError({}, "exposure_time", "exposure time must be a finite number ≥ 0");
+}
+
+}  // namespace
+
+std::uint64_t samplePoisson(double mean, std::uint64_t key) {
+  CounterRng rng(key);
+  return poisson(mean, rng);
+}
+
+double expectedDn(double electrons, const SensorSpec& sensor, const ExposureSettings& settings) {
+  checkSettings(settings);
+  const double mu =
+      std::max(0.0, electrons) + sensor.darkCurrentAtTemperature() * settings.exposureTimeS;
+  const double y = std::min(mu, sensor.fullWellE) * sensor.systemGain(settings.iso);
+  return std::clamp(y + sensor.blackLevelDn, 0.0, sensor.whiteLevelDn());
+}
+
+RawImage expose(const Image& expectedElectrons, const SensorSpec& sensor,
+                const ExposureSettings& settings, NoiseMode mode, std::uint64_t noiseSeed,
+                std::uint64_t frame) {
+  CAMSIM_CHECK(expectedElectrons.channelCount() == 1);
+  CAMSIM_CHECK(sensor.adcBits >= 1 && sensor.adcBits <= 16);
+  checkSettings(settings);
+  if (sensor.noiseless) mode = NoiseMode::kNone;
+  const int width = expectedElectrons.width, height = expectedElectrons.height;
+
+  RawImage raw;
+  raw.width = width;
+  raw.height = height;
+  raw.dn.resize(static_cast<size_t>(width) * static_cast<size_t>(height));
+  raw.cfa = sensor.cfa;
+  raw.blackLevelDn = sensor.blackLevelDn;
+  raw.whiteLevelDn = sensor.whiteLevelDn();
+  raw.adcBits = sensor.adcBits;
+
+  const double darkE = sensor.darkCurrentAtTemperature() * settings.exposureTimeS;
+  const double gain = sensor.systemGain(settings.iso);
+  const double white = sensor.whiteLevelDn();
+  const bool full = mode == NoiseMode::kFull;
+
+  // Row and column offsets (step 3), one N(0, 1) each, drawn once per image.
+  std::vector<double> rowOffset(static_cast<size_t>(height), 0.0);
+  std::vector<double> columnOffset(static_cast<size_t>(width), 0.0);
+  if (full && sensor.rowFpnE > 0.0) {
+    for (int y = 0; y < height; ++y)
+      rowOffset[static_cast<size_t>(y)] =
+          sensor.rowFpnE *
+          patternNormal(sensor.patternSeed, kRowTag, 0, static_cast<std::uint64_t>(y));
+  }
+  if (full && sensor.columnFpnE > 0.0) {
+    for (int x = 0; x < width; ++x)
+      columnOffset[static_cast<size_t>(x)] =
+          sensor.columnFpnE *
+          patternNormal(sensor.patternSeed, kColumnTag, static_cast<std::uint64_t>(x), 0);
+  }
+
+  for (int y = 0; y < height; ++y) {
+    const auto uy = static_cast<std::uint64_t>(y);
+    for (int x = 0; x < width; ++x) {
+      const auto ux = static_cast<std::uint64_t>(x);
+      double mu = static_cast<double>(expectedElectrons.at(x, y, 0));
+      if (!(mu > 0.0)) mu = 0.0;  // also NaN
+      mu = std::min(mu, kMaxPoissonMean);
+      double n = mu + darkE;  // step 1
+      if (mode != NoiseMode::kNone) {
+        const std::uint64_t key = streamKey(kNoiseDomain, noiseSeed, frame, ux, uy);
+        CounterRng shot(streamKey(key, kShotTag));
+        n = static_cast<double>(poisson(n, shot));  // step 2
+        if (full) {
+          if (sensor.prnuFraction > 0.0)  // step 3
+            n *= 1.0 + sensor.prnuFraction * patternNormal(sensor.patternSeed, kPrnuTag, ux, uy);
+          if (sensor.dsnuE > 0.0)
+            n += sensor.dsnuE * patternNormal(sensor.patternSeed, kDsnuTag, ux, uy);
+          n += rowOffset[static_cast<size_t>(y)] + columnOffset[static_cast<size_t>(x)];
+          if (sensor.readNoiseE > 0.0)
+            n += sensor.readNoiseE * CounterRng(streamKey(key, kReadTag)).normal();
+        }
+      }
+      n = std::min(n, sensor.fullWellE);                                   // step 5
+      const double dn = std::floor(n * gain + sensor.blackLevelDn + 0.5);  // steps 6, 7
+      raw.dn[static_cast<size_t>(y) * static_cast<size_t>(width) + static_cast<size_t>(x)] =
+          static_cast<std::uint16_t>(std::clamp(dn, 0.0, white));
+    }
+  }
+  return raw;
+}
+
+}  // namespace camsim

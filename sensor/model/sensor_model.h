@@ -1,0 +1,69 @@
+// The sensor stage: expected electrons per photosite → digital numbers, EMVA 1288's model.
+// In this order, for photosite (x, y) with expected photo-electrons μ_e (noise-free, from
+// the film: photons × QE):
+//
+//   1. dark:      μ_d = I_dark(T) · t_exp,   I_dark(T) = I_ref · 2^((T − T_ref)/T_double)
+//   2. shot:      n = Poisson(μ_e + μ_d)              (exact Poisson for every mean)
+//   3. PRNU/DSNU: n' = n · (1 + σ_prnu · a(x,y)) + σ_dsnu · b(x,y) + σ_row · r(y) + σ_col · c(x)
+//                 a, b, r, c ~ N(0,1), fixed: drawn from (pattern_seed, x, y), identical every frame
+//   4. read:      n'' = n' + N(0, σ_read²)
+//   5. clip:      n''' = min(n'', full well)   (no clamp at 0 e⁻: read noise, DSNU and FPN
+//                 may take a dark pixel below the black level, as in real raw data; step 7
+//                 clamps at 0 DN, so nothing wraps around)
+//   6. gain:      y = n''' · K,  K = (ISO / base ISO) / conversion gain   [DN/e⁻]
+//   7. ADC:       DN = clamp(round(y + black level), 0, 2^bits − 1)
+//
+// Noise modes: none (steps 2–4 skipped: μ instead of random values), photon (only 2),
+// full (all). A noiseless sensor (SensorSpec::noiseless) always behaves as none. Random
+// numbers come from a counter-based generator (sensor/base/counter_rng.h) keyed by
+// (noise seed, frame, x, y): results do not depend on threads, tile order or image size
+// (a crop at the origin reads the same values). The fixed patterns a, b, r, c are keyed by
+// (pattern_seed, x, y) only. Rounding in step 7 is half-up: floor(v + 0.5).
+//
+// A stacked sensor (cfa "xyz", CfaLayout::isStacked()) records every channel at every
+// photosite: call expose() once per channel image (all with the same spec); use a
+// different noiseSeed per channel so that the channels' temporal noise is independent
+// (the fixed patterns are shared: they belong to the photosite).
+#pragma once
+
+#include <cstdint>
+
+#include <optional>
+#include <string>
+#include <string_view>
+
+#include "sensor/base/image.h"
+#include "sensor/model/raw_image.h"
+#include "sensor/model/sensor_spec.h"
+
+namespace camsim {
+
+enum class NoiseMode { kNone, kPhoton, kFull };
+// The names scene files, --noise and the JSON sidecar use: none, photon, full.
+const char* noiseModeName(NoiseMode mode);
+std::optional<NoiseMode> noiseModeFromName(std::string_view name);  // nullopt if unknown
+std::string noiseModeNames();  // "none, photon, full", for messages
+
+struct ExposureSettings {
+  double exposureTimeS = 1.0 / 60.0;  // for dark current (the film already holds the light)
+  double iso = 100.0;
+};
+
+// expectedElectrons: one channel, the noise-free photo-electrons per photosite.
+RawImage expose(const Image& expectedElectrons, const SensorSpec& sensor,
+                const ExposureSettings& settings, NoiseMode mode, std::uint64_t noiseSeed,
+                std::uint64_t frame);
+
+// The noise-free output in DN before rounding (mode none): electrons plus the mean dark
+// signal, clipped at the full well, times K, plus the black level, within [0, white level].
+// Throws InputError for an ISO ≤ 0 or a negative exposure time (as expose() does).
+double expectedDn(double electrons, const SensorSpec& sensor, const ExposureSettings& settings);
+
+// One Poisson draw with mean `mean` from the counter-based stream named by `key` (exposed
+// for tests). Exact for every mean: inversion by sequential search for mean < 10,
+// Hörmann's PTRS transformed rejection (with a cancellation-free log-pmf) for mean ≥ 10;
+// no normal approximation. Means ≤ 0 or NaN give 0; means above 2^52 are clamped to 2^52
+// (far beyond any full well). Deterministic: the same (mean, key) gives the same draw.
+std::uint64_t samplePoisson(double mean, std::uint64_t key);
+
+}  // namespace camsim

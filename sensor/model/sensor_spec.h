@@ -1,0 +1,84 @@
+// SensorSpec: a camera sensor described by its EMVA 1288 parameters (plain data, SI and
+// camera units), loaded from YAML (luts/sensors/*.yaml, documented in docs/sensor-format.md).
+//
+// | field                  | unit         | meaning |
+// |------------------------|--------------|---------|
+// | name                   | —            | display name (default: the file's stem) |
+// | pixel_pitch_um         | µm           | photosite pitch (the camera's sensor size must agree) |
+// | fill_factor            | —            | photosensitive fraction of the pixel area |
+// | cfa                    | —            | RGGB, BGGR, GRBG, GBRG, mono, xyz (stacked), custom tile |
+// | qe                     | e⁻/photon    | per channel: relative curve × peak_qe, or ideal CIE XYZ, or a CSV |
+// | ir_cut                 | —            | optional transmittance multiplying every channel's QE |
+// | full_well_e            | e⁻           | full-well capacity |
+// | conversion_gain_e_per_dn | e⁻/DN      | at base ISO (1/K) |
+// | base_iso               | —            | ISO at which the conversion gain applies; analog gain g = ISO / base_iso |
+// | read_noise_e           | e⁻ rms       | temporal read noise (at the sense node, before gain) |
+// | dark_current_e_per_s   | e⁻/s         | at dark_reference_c, doubling every dark_doubling_c |
+// | dark_reference_c, dark_doubling_c | °C | reference temperature (25), doubling interval (6) |
+// | temperature_c          | °C           | operating temperature |
+// | dsnu_e                 | e⁻ rms       | dark signal non-uniformity (fixed offset pattern) |
+// | prnu_percent           | %            | photo-response non-uniformity (fixed gain pattern) |
+// | row_fpn_e, column_fpn_e| e⁻ rms       | fixed row/column offsets (optional) |
+// | adc_bits               | bits         | ADC resolution; white level = 2^bits − 1 |
+// | black_level_dn         | DN           | offset added before quantisation |
+// | pattern_seed           | —            | seed of the fixed patterns (PRNU, DSNU, FPN): same sensor ⇒ same pattern |
+// | noiseless              | —            | true: expose() never adds noise (NoiseMode none) |
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "sensor/model/cfa.h"
+#include "sensor/spectra/spectrum.h"
+
+namespace camsim {
+
+struct SensorSpec {
+  std::string name;
+  double pixelPitchM = 4e-6;
+  double fillFactor = 1.0;
+  CfaLayout cfa;
+  std::vector<Spectrum>
+      qe;  // per CFA channel: absolute quantum efficiency QE(λ) in [0, 1], IR cut included
+  double fullWellE = 20000.0;
+  double conversionGainEPerDn = 1.0;  // e⁻/DN at base ISO
+  double baseIso = 100.0;
+  double readNoiseE = 2.0;
+  double darkCurrentEPerS = 0.0;
+  double darkReferenceC = 25.0;
+  double darkDoublingC = 6.0;
+  double temperatureC = 25.0;
+  double dsnuE = 0.0;
+  double prnuFraction = 0.0;  // prnu_percent / 100
+  double rowFpnE = 0.0, columnFpnE = 0.0;
+  int adcBits = 12;
+  double blackLevelDn = 0.0;
+  std::uint64_t patternSeed = 1;
+  bool noiseless = false;  // the ideal-xyz preset: expose() always uses NoiseMode::kNone
+  // The files it was read from: the description (loadSensorSpec) and each CSV, in order.
+  std::vector<std::filesystem::path> sourceFiles;
+
+  double whiteLevelDn() const { return static_cast<double>((1u << adcBits) - 1u); }
+  // Mean dark electrons per second at the operating temperature.
+  double darkCurrentAtTemperature() const;
+  // System gain K (DN/e⁻) at an ISO.
+  double systemGain(double iso) const { return (iso / baseIso) / conversionGainEPerDn; }
+  // Electrons at which the output saturates at an ISO: min(full well, ADC range / K),
+  // ADC range = white level − black level.
+  double saturationElectrons(double iso) const;
+};
+
+// Parses a sensor description; relative CSV paths resolve against baseDir then lutsDir.
+// Errors: InputError with file, line, column and key.
+SensorSpec parseSensorSpec(const std::string& yamlText, const std::string& displayName,
+                           const std::filesystem::path& baseDir,
+                           const std::filesystem::path& lutsDir);
+// A preset name ("smartphone-1.4um", …) from lutsDir/sensors/NAME.yaml, or a file path.
+SensorSpec loadSensorSpec(const std::string& presetOrPath, const std::filesystem::path& lutsDir);
+// Whether loadSensorSpec takes this as a file path rather than a preset name: it has a
+// folder part or ends in .yaml, .yml or .json.
+bool isSensorSpecPath(const std::string& presetOrPath);
+
+}  // namespace camsim

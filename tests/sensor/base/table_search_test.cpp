@@ -1,0 +1,95 @@
+// Tests for sensor/base/table_search.h: how scene files and sensor descriptions find the
+// spectral tables they name — absolute paths as they are, relative names in the first
+// folder that holds them — that every table found is recorded, and that a missing or empty
+// name fails at its key, naming the folders searched.
+#include "sensor/base/table_search.h"
+
+#include <gtest/gtest.h>
+
+#include "sensor/base/input_error.h"
+#include "tests/support/temp_dir.h"
+#include "tests/support/text_file.h"
+
+namespace camsim {
+namespace {
+
+namespace fs = std::filesystem;
+
+// The value of key `csv` in a one-line document naming `name`.
+YamlValue csvValue(const std::string& name) {
+  return *YamlMap(parseYaml("csv: \"" + name + "\"\n", "scene.yaml")).find("csv");
+}
+
+class TableSearchTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    fs::create_directories(first() / "sub");
+    fs::create_directories(second());
+    test::writeFile(first() / "a.csv", "nm,v\n400,1\n");
+    test::writeFile(second() / "a.csv", "nm,v\n400,2\n");
+    test::writeFile(second() / "b.csv", "nm,v\n400,3\n");
+    search.directories = {first(), second()};
+    search.filesRead = &read;
+  }
+  fs::path first() const { return dir.path() / "first"; }
+  fs::path second() const { return dir.path() / "second"; }
+
+  test::TempDir dir;
+  std::vector<fs::path> read;
+  TableSearch search;
+};
+
+TEST_F(TableSearchTest, FindsARelativeNameInTheFirstFolderHoldingItAndRecordsIt) {
+  EXPECT_EQ(search.find(csvValue("a.csv"), "a.csv"), first() / "a.csv");
+  EXPECT_EQ(search.find(csvValue("b.csv"), "b.csv"), second() / "b.csv");
+  EXPECT_EQ(read, (std::vector<fs::path>{first() / "a.csv", second() / "b.csv"}));
+}
+
+TEST_F(TableSearchTest, TakesAnAbsolutePathAsItIs) {
+  const fs::path absolute = second() / "a.csv";
+  EXPECT_EQ(search.find(csvValue(absolute.string()), absolute.string()), absolute);
+  EXPECT_EQ(read, std::vector<fs::path>{absolute});
+}
+
+TEST_F(TableSearchTest, AMissingTableFailsAtItsKeyNamingTheFoldersSearched) {
+  try {
+    search.find(csvValue("missing.csv"), "missing.csv");
+    FAIL() << "expected an InputError";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.where().file, "scene.yaml");
+    EXPECT_EQ(e.where().line, 1);
+    EXPECT_EQ(e.key(), "csv");
+    EXPECT_NE(e.message().find("'missing.csv' not found"), std::string::npos) << e.what();
+    EXPECT_NE(e.message().find(first().string() + ", " + second().string()), std::string::npos)
+        << e.what();
+  }
+  // A folder is not a table.
+  EXPECT_THROW(search.find(csvValue("sub"), "sub"), InputError);
+  EXPECT_THROW(search.find(csvValue(""), ""), InputError);
+  const fs::path absent = dir.path() / "absent.csv";
+  try {
+    search.find(csvValue(absent.string()), absent.string());
+    FAIL() << "expected an InputError";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.message().find("searched"), std::string::npos) << e.what();
+  }
+  EXPECT_TRUE(read.empty());
+}
+
+TEST_F(TableSearchTest, LocateReportsAMissingFileWithoutFailing) {
+  EXPECT_EQ(search.locate("b.csv"), second() / "b.csv");
+  EXPECT_FALSE(search.locate("missing.csv"));
+  EXPECT_FALSE(search.locate("sub"));
+  EXPECT_FALSE(search.locate(""));
+  EXPECT_EQ(read, std::vector<fs::path>{second() / "b.csv"});
+}
+
+TEST(TableSearch, WithoutARecordStillFinds) {
+  test::TempDir dir;
+  test::writeFile(dir.path() / "t.csv", "nm,v\n400,1\n");
+  const TableSearch search{{dir.path()}, nullptr};
+  EXPECT_EQ(search.find(csvValue("t.csv"), "t.csv"), dir.path() / "t.csv");
+}
+
+}  // namespace
+}  // namespace camsim
