@@ -18,11 +18,11 @@
 
 #include "cli/bench_metrics.h"
 #include "cli/bench_reference.h"
-#include "integrator/textures/image_texture.h"
 #include "integrator/render/ray_recorder.h"
-#include "integrator/textures/reflectance_uplift.h"
 #include "integrator/scene/scene.h"
 #include "integrator/scene/scene_loader.h"
+#include "integrator/textures/image_texture.h"
+#include "integrator/textures/reflectance_uplift.h"
 #include "sensor/io/png_io.h"
 #include "sensor/spectra/rgb_uplift.h"
 #include "sensor/spectra/spectrum.h"

@@ -9,9 +9,9 @@
 #include "integrator/render/render.h"
 #include "integrator/scene/scene.h"
 #include "integrator/scene/scene_loader.h"
-#include "sensor/io/exr_io.h"
 #include "sensor/base/file_status.h"
 #include "sensor/base/input_error.h"
+#include "sensor/io/exr_io.h"
 #include "sensor/io/output_set.h"
 #include "sensor/spectra/spectral_data.h"
 

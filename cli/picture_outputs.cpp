@@ -2,10 +2,10 @@
 
 #include <cmath>
 
-#include "sensor/isp/color_correction.h"
-#include "sensor/spectra/color_space.h"
 #include "sensor/io/exr_io.h"
 #include "sensor/io/png_io.h"
+#include "sensor/isp/color_correction.h"
+#include "sensor/spectra/color_space.h"
 
 namespace camsim {
 

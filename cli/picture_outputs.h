@@ -6,9 +6,9 @@
 #include <string>
 
 #include "cli/json_writer.h"
-#include "sensor/isp/color_management.h"
 #include "sensor/base/image.h"
 #include "sensor/io/output_set.h"
+#include "sensor/isp/color_management.h"
 
 namespace camsim {
 

@@ -10,11 +10,11 @@
 #include "integrator/render/render.h"
 #include "integrator/scene/scene.h"
 #include "integrator/scene/scene_loader.h"
-#include "sensor/isp/display_image.h"
-#include "sensor/io/exr_io.h"
 #include "sensor/base/input_error.h"
+#include "sensor/io/exr_io.h"
 #include "sensor/io/output_set.h"
 #include "sensor/io/png_io.h"
+#include "sensor/isp/display_image.h"
 
 namespace camsim {
 namespace {

@@ -5,10 +5,10 @@
 #include "cli/json_writer.h"
 #include "cli/sensor_outputs.h"
 #include "integrator/scene/scene_loader.h"
-#include "sensor/spectra/color_space.h"
-#include "sensor/isp/display_image.h"
 #include "sensor/io/exr_io.h"
+#include "sensor/isp/display_image.h"
 #include "sensor/isp/isp_pipeline.h"
+#include "sensor/spectra/color_space.h"
 
 namespace camsim {
 namespace {

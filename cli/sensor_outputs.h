@@ -9,10 +9,10 @@
 #include <vector>
 
 #include "integrator/scene/scene_description.h"
-#include "sensor/io/dng_writer.h"
 #include "sensor/base/image.h"
-#include "sensor/isp/isp_pipeline.h"
+#include "sensor/io/dng_writer.h"
 #include "sensor/io/output_set.h"
+#include "sensor/isp/isp_pipeline.h"
 #include "sensor/model/raw_image.h"
 
 namespace camsim {

@@ -45,8 +45,8 @@
 #include "integrator/camera/aperture.h"
 #include "integrator/camera/camera.h"
 #include "integrator/camera/lens_distortion.h"
-#include "integrator/geometry/motion.h"
 #include "integrator/camera/shutter.h"
+#include "integrator/geometry/motion.h"
 #include "sensor/spectra/spectrum.h"
 
 namespace camsim {

@@ -25,8 +25,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "integrator/sampling/distribution.h"
 #include "integrator/geometry/shape.h"
+#include "integrator/sampling/distribution.h"
 
 namespace camsim {
 

@@ -15,8 +15,8 @@
 //   Φ = π r² ∫ E dλ  (W through a disc of the scene's bounding radius r)
 #pragma once
 
-#include "integrator/lights/light.h"
 #include "integrator/geometry/math.h"
+#include "integrator/lights/light.h"
 #include "sensor/spectra/spectrum.h"
 
 namespace camsim {

@@ -28,9 +28,9 @@
 
 #include <glm/mat3x3.hpp>
 
-#include "integrator/sampling/distribution_2d.h"
 #include "integrator/lights/light.h"
 #include "integrator/lights/rgb_emission_table.h"
+#include "integrator/sampling/distribution_2d.h"
 #include "sensor/base/image.h"
 #include "sensor/spectra/spectrum.h"
 

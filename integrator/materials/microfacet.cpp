@@ -28,8 +28,8 @@
 
 #include <glm/geometric.hpp>
 
-#include "integrator/materials/fresnel.h"
 #include "integrator/geometry/math.h"
+#include "integrator/materials/fresnel.h"
 
 namespace camsim {
 namespace {

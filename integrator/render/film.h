@@ -17,8 +17,8 @@
 #include <glm/vec2.hpp>
 
 #include "sensor/base/image.h"
-#include "sensor/spectra/sampled_spectrum.h"
 #include "sensor/model/spectral_response.h"
+#include "sensor/spectra/sampled_spectrum.h"
 
 namespace camsim {
 

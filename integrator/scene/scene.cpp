@@ -3,10 +3,10 @@
 #include <algorithm>
 #include <cmath>
 
-#include "integrator/materials/diffuse_material.h"
-#include "integrator/scene/factory.h"
 #include "integrator/geometry/sphere.h"
 #include "integrator/geometry/triangle_mesh.h"
+#include "integrator/materials/diffuse_material.h"
+#include "integrator/scene/factory.h"
 
 namespace camsim {
 namespace {

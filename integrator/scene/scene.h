@@ -7,11 +7,11 @@
 #include <string>
 #include <vector>
 
-#include "integrator/lights/area_light.h"
-#include "integrator/sampling/distribution.h"
-#include "integrator/geometry/embree_scene.h"
-#include "integrator/materials/material.h"
 #include "integrator/camera/physical_camera.h"
+#include "integrator/geometry/embree_scene.h"
+#include "integrator/lights/area_light.h"
+#include "integrator/materials/material.h"
+#include "integrator/sampling/distribution.h"
 #include "integrator/scene/scene_description.h"
 
 namespace camsim {

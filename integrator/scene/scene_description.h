@@ -21,14 +21,14 @@ namespace camsim {
 struct TextureImage;  // integrator/textures/image_texture.h
 }
 
-#include "integrator/materials/fresnel.h"
-#include "integrator/geometry/mesh_io.h"
-#include "integrator/materials/microfacet.h"
-#include "integrator/geometry/motion.h"
 #include "integrator/camera/physical_camera.h"
-#include "sensor/model/exposure_control.h"
+#include "integrator/geometry/mesh_io.h"
+#include "integrator/geometry/motion.h"
+#include "integrator/materials/fresnel.h"
+#include "integrator/materials/microfacet.h"
 #include "sensor/base/image.h"
 #include "sensor/isp/isp_pipeline.h"
+#include "sensor/model/exposure_control.h"
 #include "sensor/model/sensor_model.h"
 #include "sensor/model/sensor_spec.h"
 #include "sensor/spectra/spectrum.h"

@@ -12,10 +12,10 @@
 
 #include "integrator/scene/scene_loader_parts.h"
 #include "integrator/scene/scene_spectra.h"
-#include "sensor/spectra/cie.h"
 #include "sensor/base/file_status.h"
-#include "sensor/spectra/spectral_data.h"
 #include "sensor/base/yaml_reader.h"
+#include "sensor/spectra/cie.h"
+#include "sensor/spectra/spectral_data.h"
 
 namespace camsim {
 namespace {

@@ -21,11 +21,11 @@
 #include <glm/geometric.hpp>
 
 #include "integrator/lights/environment_light.h"
-#include "integrator/scene/scene_loader_parts.h"
 #include "integrator/lights/spot_light.h"
-#include "sensor/spectra/cie.h"
-#include "sensor/io/exr_io.h"
+#include "integrator/scene/scene_loader_parts.h"
 #include "sensor/base/file_status.h"
+#include "sensor/io/exr_io.h"
+#include "sensor/spectra/cie.h"
 #include "sensor/spectra/spectral_data.h"
 
 namespace camsim {

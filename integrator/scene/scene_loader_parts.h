@@ -5,8 +5,8 @@
 
 #include <glm/vec3.hpp>
 
-#include "integrator/geometry/motion.h"
 #include "integrator/camera/physical_camera.h"
+#include "integrator/geometry/motion.h"
 #include "integrator/scene/scene_description.h"
 #include "integrator/scene/scene_spectra.h"
 #include "sensor/base/yaml_reader.h"

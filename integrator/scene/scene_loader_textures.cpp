@@ -21,8 +21,8 @@
 #include <cmath>
 #include <string>
 
-#include "integrator/textures/image_texture.h"
 #include "integrator/scene/scene_loader_parts.h"
+#include "integrator/textures/image_texture.h"
 #include "sensor/base/file_status.h"
 
 namespace camsim {

@@ -1,7 +1,7 @@
 #include "integrator/scene/scene_spectra.h"
 
-#include "sensor/spectra/color_space.h"
 #include "sensor/base/file_status.h"
+#include "sensor/spectra/color_space.h"
 #include "sensor/spectra/rgb_uplift.h"
 #include "sensor/spectra/spectral_data.h"
 

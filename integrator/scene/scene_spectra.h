@@ -10,9 +10,9 @@
 #include <filesystem>
 #include <vector>
 
-#include "sensor/spectra/spectrum.h"
 #include "sensor/base/table_search.h"
 #include "sensor/base/yaml_reader.h"
+#include "sensor/spectra/spectrum.h"
 
 namespace camsim {
 

@@ -12,12 +12,12 @@
 #include <glm/matrix.hpp>
 
 #include "integrator/textures/reflectance_uplift.h"
-#include "sensor/isp/color_correction.h"
-#include "sensor/spectra/color_space.h"
-#include "sensor/io/exr_io.h"
 #include "sensor/base/file_status.h"
 #include "sensor/base/input_error.h"
+#include "sensor/io/exr_io.h"
 #include "sensor/io/png_io.h"
+#include "sensor/isp/color_correction.h"
+#include "sensor/spectra/color_space.h"
 
 namespace camsim {
 namespace {

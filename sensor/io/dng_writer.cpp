@@ -15,10 +15,10 @@
 #include <glm/matrix.hpp>
 
 #include "sensor/base/check.h"
-#include "sensor/isp/color_correction.h"
 #include "sensor/base/input_error.h"
-#include "sensor/spectra/spectral_data.h"
+#include "sensor/isp/color_correction.h"
 #include "sensor/isp/white_balance.h"
+#include "sensor/spectra/spectral_data.h"
 
 namespace camsim {
 namespace {

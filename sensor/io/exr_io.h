@@ -5,9 +5,9 @@
 #include <filesystem>
 #include <optional>
 
-#include "sensor/spectra/cie.h"
 #include "sensor/base/image.h"
 #include "sensor/model/raw_image.h"
+#include "sensor/spectra/cie.h"
 
 namespace camsim {
 

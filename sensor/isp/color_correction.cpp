@@ -6,11 +6,11 @@
 
 #include <glm/matrix.hpp>
 
-#include "sensor/spectra/cie.h"
-#include "sensor/isp/color_difference.h"
 #include "sensor/base/input_error.h"
-#include "sensor/spectra/spectral_data.h"
+#include "sensor/isp/color_difference.h"
 #include "sensor/isp/white_balance.h"
+#include "sensor/spectra/cie.h"
+#include "sensor/spectra/spectral_data.h"
 
 namespace camsim {
 namespace {

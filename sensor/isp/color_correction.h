@@ -41,8 +41,8 @@
 #include <glm/mat3x3.hpp>
 #include <glm/vec3.hpp>
 
-#include "sensor/spectra/color_space.h"
 #include "sensor/base/image.h"
+#include "sensor/spectra/color_space.h"
 #include "sensor/spectra/spectrum.h"
 
 namespace camsim {

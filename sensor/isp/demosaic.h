@@ -33,8 +33,8 @@
 // unchanged. Any other non-Bayer tile (RGBW, RCCB, …) is an InputError.
 #pragma once
 
-#include "sensor/model/cfa.h"
 #include "sensor/base/image.h"
+#include "sensor/model/cfa.h"
 
 namespace camsim {
 

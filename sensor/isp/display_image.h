@@ -3,8 +3,8 @@
 // Pictures go through OpenColorIO (sensor/isp/color_management.h).
 #pragma once
 
-#include "sensor/spectra/color_space.h"
 #include "sensor/base/image.h"
+#include "sensor/spectra/color_space.h"
 
 namespace camsim {
 

@@ -3,8 +3,8 @@
 #include <algorithm>
 
 #include "sensor/base/check.h"
-#include "sensor/spectra/color_space.h"
 #include "sensor/isp/isp_black_level.h"
+#include "sensor/spectra/color_space.h"
 #include "sensor/spectra/spectral_data.h"
 
 namespace camsim {

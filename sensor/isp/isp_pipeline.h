@@ -23,12 +23,12 @@
 #include <string>
 #include <vector>
 
+#include "sensor/base/image.h"
 #include "sensor/isp/color_correction.h"
 #include "sensor/isp/demosaic.h"
-#include "sensor/base/image.h"
+#include "sensor/isp/white_balance.h"
 #include "sensor/model/raw_image.h"
 #include "sensor/model/sensor_spec.h"
-#include "sensor/isp/white_balance.h"
 
 namespace camsim {
 

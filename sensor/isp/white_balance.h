@@ -31,8 +31,8 @@
 #include <string>
 #include <vector>
 
-#include "sensor/model/cfa.h"
 #include "sensor/base/image.h"
+#include "sensor/model/cfa.h"
 #include "sensor/model/sensor_spec.h"
 #include "sensor/spectra/spectrum.h"
 

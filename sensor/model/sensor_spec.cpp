@@ -7,12 +7,12 @@
 #include <set>
 #include <sstream>
 
-#include "sensor/spectra/cie.h"
 #include "sensor/base/file_status.h"
 #include "sensor/base/input_error.h"
-#include "sensor/spectra/spectral_data.h"
 #include "sensor/base/table_search.h"
 #include "sensor/base/yaml_reader.h"
+#include "sensor/spectra/cie.h"
+#include "sensor/spectra/spectral_data.h"
 
 namespace camsim {
 namespace fs = std::filesystem;

@@ -13,11 +13,11 @@
 #include "integrator/render/render.h"
 #include "integrator/scene/scene.h"
 #include "integrator/scene/scene_loader.h"
-#include "sensor/spectra/cie.h"
 #include "sensor/isp/color_difference.h"
-#include "sensor/model/exposure_control.h"
 #include "sensor/isp/isp_pipeline.h"
+#include "sensor/model/exposure_control.h"
 #include "sensor/model/sensor_model.h"
+#include "sensor/spectra/cie.h"
 #include "sensor/spectra/spectral_data.h"
 
 namespace camsim {

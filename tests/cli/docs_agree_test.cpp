@@ -89,17 +89,17 @@ TEST(DocsAgree, OutputDocListsEveryFileRenderWrites) {
   test::TempDir dir;
   const std::vector<std::pair<std::string, std::string>> scenes = {
       {"plain", scene("", "", "")},
-      {"bayer", scene("", "sensor: {model: smartphone-1.4um, noise: none, bracket_ev: [-1, 0]}",
-                      "")},
+      {"bayer",
+       scene("", "sensor: {model: smartphone-1.4um, noise: none, bracket_ev: [-1, 0]}", "")},
       {"stacked", scene("", "sensor: {model: ideal-xyz}", "")}};
   std::set<std::string> suffixes;
   for (const auto& [name, text] : scenes) {
     test::writeFile(dir.path() / (name + ".yaml"), "name: " + name + "\n" + text);
     const std::filesystem::path out = dir.path() / ("out_" + name);
-    const test::RunResult r = test::runCamsim(
-        "render " + test::quote((dir.path() / (name + ".yaml")).string()) + " -o " +
-            test::quote(out.string()),
-        dir.path());
+    const test::RunResult r =
+        test::runCamsim("render " + test::quote((dir.path() / (name + ".yaml")).string()) + " -o " +
+                            test::quote(out.string()),
+                        dir.path());
     ASSERT_EQ(r.exitCode, 0) << name << ": " << r.err;
     for (const auto& f : std::filesystem::directory_iterator(out)) {
       std::string file = f.path().filename().string();
@@ -111,9 +111,10 @@ TEST(DocsAgree, OutputDocListsEveryFileRenderWrites) {
   }
   EXPECT_GE(suffixes.size(), 8u);
   for (const std::string& s : suffixes) {
-    const bool listed = doc.find("`NAME" + s + "`") != std::string::npos ||
-                        doc.find("`" + s + "`") != std::string::npos ||
-                        (s.rfind("_ev±X", 0) == 0 && doc.find("`NAME_ev±X.*`") != std::string::npos);
+    const bool listed =
+        doc.find("`NAME" + s + "`") != std::string::npos ||
+        doc.find("`" + s + "`") != std::string::npos ||
+        (s.rfind("_ev±X", 0) == 0 && doc.find("`NAME_ev±X.*`") != std::string::npos);
     EXPECT_TRUE(listed) << "docs/output.md has no row for NAME" << s;
   }
 }

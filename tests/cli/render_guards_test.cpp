@@ -22,8 +22,8 @@
 
 #include "cli/resource_guard.h"
 #include "integrator/scene/scene_loader.h"
-#include "sensor/io/exr_io.h"
 #include "sensor/base/input_error.h"
+#include "sensor/io/exr_io.h"
 #include "sensor/io/output_set.h"
 #include "tests/support/text_file.h"
 

@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
-#include "sensor/spectra/cie.h"
 #include "sensor/io/png_io.h"
+#include "sensor/spectra/cie.h"
 #include "tests/integrator/render_test_support.h"  // renderLuminance, MaxError
 
 namespace camsim::test {

@@ -4,8 +4,8 @@
 #include <algorithm>
 #include <vector>
 
-#include "integrator/sampling/rng.h"
 #include "integrator/camera/shutter.h"
+#include "integrator/sampling/rng.h"
 
 namespace camsim {
 namespace {

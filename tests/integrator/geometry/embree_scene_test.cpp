@@ -14,10 +14,10 @@
 #include <string>
 #include <utility>
 
-#include "integrator/scene/scene.h"
-#include "integrator/scene/scene_loader.h"
 #include "integrator/geometry/sphere.h"
 #include "integrator/geometry/triangle_mesh.h"
+#include "integrator/scene/scene.h"
+#include "integrator/scene/scene_loader.h"
 
 namespace camsim {
 namespace {

@@ -6,9 +6,9 @@
 #include <cmath>
 #include <vector>
 
-#include "integrator/scene/scene_loader.h"
 #include "integrator/geometry/sphere.h"
 #include "integrator/geometry/triangle_mesh.h"
+#include "integrator/scene/scene_loader.h"
 
 namespace camsim {
 namespace {

@@ -17,9 +17,9 @@
 #include <vector>
 
 #include "integrator/lights/environment_light.h"
+#include "sensor/io/exr_io.h"
 #include "sensor/spectra/cie.h"
 #include "sensor/spectra/color_space.h"
-#include "sensor/io/exr_io.h"
 #include "tests/integrator/render_test_support.h"
 #include "tests/support/temp_dir.h"
 

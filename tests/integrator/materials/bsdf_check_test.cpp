@@ -7,8 +7,8 @@
 
 #include <cmath>
 
-#include "integrator/materials/diffuse_material.h"
 #include "integrator/geometry/math.h"
+#include "integrator/materials/diffuse_material.h"
 
 namespace camsim {
 namespace {

@@ -9,8 +9,8 @@
 
 #include <gtest/gtest.h>
 
-#include "integrator/scene/factory.h"
 #include "integrator/sampling/rng.h"
+#include "integrator/scene/factory.h"
 #include "sensor/spectra/spectral_data.h"
 #include "tests/integrator/bsdf_check.h"
 

@@ -16,8 +16,8 @@
 
 #include <glm/vec3.hpp>
 
-#include "integrator/materials/fresnel.h"  // camsim::reflect (glm::reflect has the opposite sign)
 #include "integrator/geometry/math.h"
+#include "integrator/materials/fresnel.h"  // camsim::reflect (glm::reflect has the opposite sign)
 #include "integrator/sampling/rng.h"
 #include "tests/integrator/bsdf_check.h"
 

@@ -9,12 +9,12 @@
 #include <string>
 
 #include "integrator/lights/environment_light.h"
+#include "integrator/lights/spot_light.h"
 #include "integrator/scene/factory.h"
 #include "integrator/scene/scene_loader.h"
-#include "integrator/lights/spot_light.h"
-#include "sensor/spectra/cie.h"
-#include "sensor/io/exr_io.h"
 #include "sensor/base/input_error.h"
+#include "sensor/io/exr_io.h"
+#include "sensor/spectra/cie.h"
 #include "sensor/spectra/spectral_data.h"
 #include "tests/support/temp_dir.h"
 

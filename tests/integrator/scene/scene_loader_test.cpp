@@ -14,11 +14,11 @@
 #include <sstream>
 #include <string>
 
-#include "sensor/spectra/cie.h"
-#include "sensor/spectra/color_space.h"
-#include "sensor/io/exr_io.h"
 #include "sensor/base/input_error.h"
 #include "sensor/base/luts_directory.h"
+#include "sensor/io/exr_io.h"
+#include "sensor/spectra/cie.h"
+#include "sensor/spectra/color_space.h"
 #include "sensor/spectra/rgb_uplift.h"
 #include "tests/integrator/texture_test_support.h"
 #include "tests/support/text_file.h"

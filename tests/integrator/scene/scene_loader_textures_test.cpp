@@ -7,11 +7,11 @@
 #include <fstream>
 #include <string>
 
-#include "integrator/textures/image_texture.h"
 #include "integrator/scene/scene.h"
 #include "integrator/scene/scene_loader.h"
-#include "sensor/io/exr_io.h"
+#include "integrator/textures/image_texture.h"
 #include "sensor/base/input_error.h"
+#include "sensor/io/exr_io.h"
 #include "tests/integrator/texture_test_support.h"
 #include "tests/support/temp_dir.h"
 

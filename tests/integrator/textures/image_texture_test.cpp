@@ -13,9 +13,9 @@
 #include <sstream>
 
 #include "integrator/textures/reflectance_uplift.h"
-#include "sensor/spectra/color_space.h"
-#include "sensor/io/exr_io.h"
 #include "sensor/base/input_error.h"
+#include "sensor/io/exr_io.h"
+#include "sensor/spectra/color_space.h"
 #include "sensor/spectra/rgb_uplift.h"
 #include "tests/integrator/texture_test_support.h"
 #include "tests/support/temp_dir.h"

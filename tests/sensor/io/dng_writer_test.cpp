@@ -18,8 +18,8 @@
 
 #include <gtest/gtest.h>
 
-#include "sensor/spectra/cie.h"
 #include "sensor/base/input_error.h"
+#include "sensor/spectra/cie.h"
 #include "sensor/spectra/spectral_data.h"
 #include "tests/support/temp_dir.h"
 

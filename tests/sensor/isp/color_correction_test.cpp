@@ -10,14 +10,14 @@
 #include <gtest/gtest.h>
 #include <glm/matrix.hpp>
 
-#include "sensor/spectra/cie.h"
+#include "sensor/base/input_error.h"
 #include "sensor/isp/color_difference.h"
 #include "sensor/isp/demosaic.h"
-#include "sensor/base/input_error.h"
 #include "sensor/isp/isp_black_level.h"
-#include "sensor/model/sensor_model.h"
-#include "sensor/spectra/spectral_data.h"
 #include "sensor/isp/white_balance.h"
+#include "sensor/model/sensor_model.h"
+#include "sensor/spectra/cie.h"
+#include "sensor/spectra/spectral_data.h"
 
 namespace camsim {
 namespace {

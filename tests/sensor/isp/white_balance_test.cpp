@@ -10,11 +10,11 @@
 
 #include <gtest/gtest.h>
 
-#include "sensor/spectra/cie.h"
-#include "sensor/isp/demosaic.h"
 #include "sensor/base/input_error.h"
+#include "sensor/isp/demosaic.h"
 #include "sensor/isp/isp_black_level.h"
 #include "sensor/model/sensor_model.h"
+#include "sensor/spectra/cie.h"
 #include "sensor/spectra/spectral_data.h"
 
 namespace camsim {

@@ -12,8 +12,8 @@
 
 #include <gtest/gtest.h>
 
-#include "sensor/spectra/cie.h"
 #include "sensor/model/spectral_response.h"
+#include "sensor/spectra/cie.h"
 
 namespace camsim {
 namespace {
