@@ -34,6 +34,10 @@ struct LightSample {
   bool delta = false;        // point/spot/delta sun: no MIS, L is irradiance (see above)
   bool infinite = false;     // sun/environment: shadow ray from ref along wi to infinity
 };
+// Zeroed twice per light sample (optional<LightSample>): CMakeLists.txt's -mmemset-strategy
+// keeps zeroings up to 256 bytes as plain stores (docs/performance.md).
+static_assert(sizeof(std::optional<LightSample>) <= 256,
+              "LightSample outgrew CMakeLists.txt's -mmemset-strategy threshold (256 bytes)");
 
 class Light {
  public:

@@ -164,6 +164,7 @@ std::optional<BsdfSample> DielectricMaterial::sampleSmooth(const glm::vec3& wo, 
   s.f = SampledSpectrum(T / (std::abs(s.wi.z) * sqr(r->etap)));
   s.pdf = T;
   s.transmission = true;
+  s.etap = r->etap;
   if (!finitePositive(s.pdf) || !s.f.isFinite()) return std::nullopt;
   return s;
 }
@@ -184,6 +185,7 @@ std::optional<BsdfSample> DielectricMaterial::sampleRough(const glm::vec3& wo, f
     s.wi = glm::normalize(r->wt);
     if (s.wi.z * wo.z >= 0.0f) return std::nullopt;
     s.transmission = true;
+    s.etap = r->etap;
   }
   // f and pdf from (wo, wi) exactly as f() and pdf() compute them, so the three agree to
   // the last bit (MIS relies on it), also where they are ill-conditioned (V-groove G at

@@ -33,6 +33,10 @@ struct BsdfSample {
   float pdf = 0.0f;       // sr⁻¹; for a delta lobe: the probability of choosing the lobe
   bool specular = false;  // delta lobe (mirror, smooth glass): no MIS with light sampling
   bool transmission = false;
+  // Relative index of refraction η_t/η_i crossed by a transmission (1 for a reflection):
+  // radiance along the path scales by 1/etap² there, which the path's Russian roulette
+  // undoes (pbrt-v4's etaScale) so that paths inside glass are not killed for it.
+  float etap = 1.0f;
 };
 
 class Material {

@@ -81,6 +81,7 @@ SampledSpectrum trace(const Scene& scene, Ray ray, SampledWavelengths& lambda, S
   const RenderSettings& settings = scene.settings();
   const bool haveLights = scene.hasPoweredLights();
   SampledSpectrum L(0.0f), beta(1.0f);
+  float etaScale = 1.0f;  // Π etap² of the transmissions so far: beta·etaScale has no η² factors
   float prevBsdfPdf = 0.0f;
   bool prevSpecular = true;  // the camera ray: emitters seen directly get full weight
   glm::vec3 prevP(0.0f);
@@ -133,6 +134,7 @@ SampledSpectrum trace(const Scene& scene, Ray ray, SampledWavelengths& lambda, S
     const glm::vec3 wi = frame.toWorld(bs->wi);
     if (!sidesAgree(si.n, wo, wi, sp.woLocal, bs->wi)) break;
     beta *= bs->f * (std::abs(bs->wi.z) / bs->pdf);
+    etaScale *= bs->etap * bs->etap;
     prevBsdfPdf = bs->pdf;
     prevSpecular = bs->specular;
     prevP = si.p;
@@ -141,7 +143,9 @@ SampledSpectrum trace(const Scene& scene, Ray ray, SampledWavelengths& lambda, S
     if (recorder) recorder->record(RayKind::kBounce, ray);
 
     if (depth + 1 >= settings.rrDepth) {
-      const float q = std::max(0.0f, 1.0f - beta.maxComponent());
+      // Survival ∝ the throughput without the 1/η² of refraction: inside glass beta is
+      // η² smaller although the path carries as much light out again.
+      const float q = std::max(0.0f, 1.0f - beta.maxComponent() * etaScale);
       if (sampler.get1D() < q) break;
       beta /= 1.0f - q;
     }
