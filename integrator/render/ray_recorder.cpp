@@ -5,6 +5,7 @@
 
 #include <tbb/blocked_range.h>
 #include <tbb/combinable.h>
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/info.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
@@ -62,14 +63,29 @@ const char* rayKindName(RayKind kind) {
   return "?";
 }
 
-RayRecorder::RayRecorder(std::size_t maxRays) : maxRays_(maxRays) {}
+struct RayRecorder::Buffers {
+  tbb::enumerable_thread_specific<std::vector<RecordedRay>> perThread;
+};
+
+RayRecorder::RayRecorder(std::size_t maxRays)
+    : maxRays_(maxRays), buffers_(std::make_unique<Buffers>()) {}
+
+RayRecorder::~RayRecorder() = default;
+
+void RayRecorder::record(RayKind kind, const Ray& ray) {
+  if (taken_.fetch_add(1, std::memory_order_relaxed) >= maxRays_) {
+    dropped_.fetch_add(1, std::memory_order_relaxed);
+    return;
+  }
+  buffers_->perThread.local().push_back(RecordedRay{ray, kind});
+}
 
 std::vector<RecordedRay> RayRecorder::takeRays() {
   std::size_t total = 0;
-  for (const auto& buffer : buffers_) total += buffer.size();
+  for (const auto& buffer : buffers_->perThread) total += buffer.size();
   std::vector<RecordedRay> all;
   all.reserve(total);
-  for (auto& buffer : buffers_) {
+  for (auto& buffer : buffers_->perThread) {
     all.insert(all.end(), buffer.begin(), buffer.end());
     std::vector<RecordedRay>().swap(buffer);
   }

@@ -5,7 +5,9 @@
 // render loop passes to traceRadiance; null (the default) costs one branch per ray.
 //
 // Thread safety: record() may be called from any number of TBB worker threads at once.
-// Each thread appends to its own buffer (no locks, no shared cache lines but one counter),
+// Each thread appends to its own buffer (no locks, no shared cache lines but one counter;
+// the buffers are TBB thread-local storage, kept in ray_recorder.cpp so that this header
+// exposes no TBB type; record() is a call per ray, paid only while recording),
 // so each buffer holds the rays of the tiles that thread rendered in the order it cast
 // them — the coherence the tracer saw. takeRays() concatenates the buffers.
 //
@@ -19,9 +21,8 @@
 #include <atomic>
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <vector>
-
-#include <tbb/enumerable_thread_specific.h>
 
 #include "integrator/geometry/embree_scene.h"
 #include "integrator/geometry/ray.h"
@@ -41,16 +42,11 @@ class RayRecorder {
  public:
   // Keeps at most maxRays rays (those past it are counted in dropped(), not stored).
   explicit RayRecorder(std::size_t maxRays = std::size_t{1} << 22);
+  ~RayRecorder();
   RayRecorder(const RayRecorder&) = delete;
   RayRecorder& operator=(const RayRecorder&) = delete;
 
-  void record(RayKind kind, const Ray& ray) {
-    if (taken_.fetch_add(1, std::memory_order_relaxed) >= maxRays_) {
-      dropped_.fetch_add(1, std::memory_order_relaxed);
-      return;
-    }
-    buffers_.local().push_back(RecordedRay{ray, kind});
-  }
+  void record(RayKind kind, const Ray& ray);
 
   // Every stored ray, each thread's in the order that thread cast them. Call once, after the
   // render: each thread's buffer is freed once appended (not kept beside the result; while
@@ -62,7 +58,8 @@ class RayRecorder {
   std::size_t maxRays_;
   std::atomic<std::size_t> taken_{0};
   std::atomic<std::uint64_t> dropped_{0};
-  tbb::enumerable_thread_specific<std::vector<RecordedRay>> buffers_;
+  struct Buffers;  // one std::vector<RecordedRay> per thread (ray_recorder.cpp)
+  std::unique_ptr<Buffers> buffers_;
 };
 
 // The rays of one kind, in their recorded order.

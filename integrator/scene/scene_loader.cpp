@@ -194,8 +194,7 @@ SceneDescription loadSceneFromText(const std::string& text, const std::string& d
                                    const std::filesystem::path& baseDir,
                                    const LoadOptions& options) {
   const YamlValue root = parseYaml(text, displayName);
-  if (!root.node() || root.node().IsNull())
-    throw InputError({displayName, 1, 1}, "", "the scene file is empty");
+  if (root.isNull()) throw InputError({displayName, 1, 1}, "", "the scene file is empty");
   YamlMap top(root);
   Context ctx;
   ctx.baseDir = baseDir;

@@ -1,6 +1,7 @@
 #include "sensor/base/yaml_reader.h"
 
 #include <yaml-cpp/eventhandler.h>
+#include <yaml-cpp/yaml.h>
 
 #include <algorithm>
 #include <cctype>
@@ -13,9 +14,33 @@
 
 namespace camsim {
 
+YamlValue::YamlValue(const YAML::Node& node, std::string key, std::string file)
+    : YamlValue(node, std::move(key), std::move(file), node.Mark()) {}
+
+YamlValue::YamlValue(const YAML::Node& node, std::string key, std::string file,
+                     const YAML::Mark& mark)
+    : node_(std::make_shared<const YAML::Node>(node)),
+      key_(std::move(key)),
+      file_(std::move(file)),
+      line_(mark.line),
+      column_(mark.column) {}
+
+bool YamlValue::isNull() const {
+  return !*node_ || node_->IsNull();
+}
+bool YamlValue::isMap() const {
+  return node_->IsMap();
+}
+bool YamlValue::isSequence() const {
+  return node_->IsSequence();
+}
+bool YamlValue::isScalar() const {
+  return node_->IsScalar();
+}
+
 SourceLocation YamlValue::where() const {
-  if (mark_.line < 0) return {file_, 0, 0};
-  return {file_, mark_.line + 1, mark_.column + 1};
+  if (line_ < 0) return {file_, 0, 0};
+  return {file_, line_ + 1, column_ + 1};
 }
 
 void YamlValue::fail(const std::string& message) const {
@@ -23,13 +48,13 @@ void YamlValue::fail(const std::string& message) const {
 }
 
 std::string YamlValue::string() const {
-  if (!node_.IsScalar()) fail("expected a string");
-  return node_.Scalar();
+  if (!node_->IsScalar()) fail("expected a string");
+  return node_->Scalar();
 }
 
 double YamlValue::number() const {
-  if (!node_.IsScalar()) fail("expected a number");
-  const std::string& s = node_.Scalar();
+  if (!node_->IsScalar()) fail("expected a number");
+  const std::string& s = node_->Scalar();
   double value = 0.0;
   const char* begin = s.data();
   if (!s.empty() && s.front() == '+') ++begin;
@@ -59,15 +84,15 @@ std::string bound(double v) {
 double YamlValue::number(double lo, double hi, bool loOpen) const {
   const double v = number();
   if (v < lo || v > hi || (loOpen && v == lo)) {
-    fail("value " + node_.Scalar() + " is out of range " + (loOpen ? "(" : "[") + bound(lo) + ", " +
-         bound(hi) + "]");
+    fail("value " + node_->Scalar() + " is out of range " + (loOpen ? "(" : "[") + bound(lo) +
+         ", " + bound(hi) + "]");
   }
   return v;
 }
 
 std::int64_t YamlValue::integer(std::int64_t lo, std::int64_t hi) const {
-  if (!node_.IsScalar()) fail("expected an integer");
-  const std::string& s = node_.Scalar();
+  if (!node_->IsScalar()) fail("expected an integer");
+  const std::string& s = node_->Scalar();
   std::int64_t value = 0;
   const auto [ptr, ec] = std::from_chars(s.data(), s.data() + s.size(), value);
   if (ec == std::errc::result_out_of_range) fail("integer " + s + " is out of range");
@@ -79,8 +104,8 @@ std::int64_t YamlValue::integer(std::int64_t lo, std::int64_t hi) const {
 }
 
 bool YamlValue::boolean() const {
-  if (node_.IsScalar()) {
-    const std::string& s = node_.Scalar();
+  if (node_->IsScalar()) {
+    const std::string& s = node_->Scalar();
     if (s == "true" || s == "True" || s == "yes") return true;
     if (s == "false" || s == "False" || s == "no") return false;
   }
@@ -88,11 +113,11 @@ bool YamlValue::boolean() const {
 }
 
 std::vector<YamlValue> YamlValue::items() const {
-  if (!node_.IsSequence()) fail("expected a list");
+  if (!node_->IsSequence()) fail("expected a list");
   std::vector<YamlValue> out;
-  out.reserve(node_.size());
-  for (size_t i = 0; i < node_.size(); ++i)
-    out.emplace_back(node_[i], key_ + "[" + std::to_string(i) + "]", file_);
+  out.reserve(node_->size());
+  for (size_t i = 0; i < node_->size(); ++i)
+    out.push_back(YamlValue((*node_)[i], key_ + "[" + std::to_string(i) + "]", file_));
   return out;
 }
 
@@ -103,7 +128,7 @@ std::vector<double> YamlValue::numbers() const {
 }
 
 glm::dvec3 YamlValue::vec3() const {
-  if (!node_.IsSequence() || node_.size() != 3) fail("expected a list of 3 numbers [x, y, z]");
+  if (!node_->IsSequence() || node_->size() != 3) fail("expected a list of 3 numbers [x, y, z]");
   const std::vector<double> v = numbers();
   return {v[0], v[1], v[2]};
 }

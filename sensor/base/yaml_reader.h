@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <initializer_list>
+#include <memory>
 #include <optional>
 #include <set>
 #include <string>
@@ -14,31 +15,36 @@
 #include <utility>
 #include <vector>
 
-#include <yaml-cpp/yaml.h>
 #include <glm/vec3.hpp>
 
 #include "sensor/base/input_error.h"
+
+// yaml-cpp stays in yaml_reader.cpp: its types are only declared here.
+namespace YAML {
+class Node;
+struct Mark;
+}  // namespace YAML
 
 namespace camsim {
 
 class YamlValue {
  public:
-  YamlValue(YAML::Node node, std::string key, std::string file)
-      : node_(std::move(node)), key_(std::move(key)), file_(std::move(file)), mark_(node_.Mark()) {}
+  YamlValue(const YAML::Node& node, std::string key, std::string file);
   // `mark` overrides the node's own location (used for keys given without a value, whose
   // null node yaml-cpp places at the next token, often on a later line).
-  YamlValue(YAML::Node node, std::string key, std::string file, YAML::Mark mark)
-      : node_(std::move(node)), key_(std::move(key)), file_(std::move(file)), mark_(mark) {}
+  YamlValue(const YAML::Node& node, std::string key, std::string file, const YAML::Mark& mark);
 
-  const YAML::Node& node() const { return node_; }
+  // The yaml-cpp node, for yaml_reader.cpp (the only file that sees its definition).
+  const YAML::Node& node() const { return *node_; }
+  bool isNull() const;  // no value: an empty document, a key given without one
   const std::string& key() const { return key_; }
   const std::string& file() const { return file_; }
   SourceLocation where() const;
   [[noreturn]] void fail(const std::string& message) const;
 
-  bool isMap() const { return node_.IsMap(); }
-  bool isSequence() const { return node_.IsSequence(); }
-  bool isScalar() const { return node_.IsScalar(); }
+  bool isMap() const;
+  bool isSequence() const;
+  bool isScalar() const;
 
   std::string string() const;
   double number() const;                                           // finite
@@ -63,10 +69,10 @@ class YamlValue {
   }
 
  private:
-  YAML::Node node_;
+  std::shared_ptr<const YAML::Node> node_;
   std::string key_;
   std::string file_;
-  YAML::Mark mark_;
+  int line_ = -1, column_ = -1;  // 0-based, as yaml-cpp marks them; −1: unknown
 };
 
 class YamlMap {
