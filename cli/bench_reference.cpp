@@ -18,7 +18,9 @@
 namespace camsim {
 namespace {
 
-constexpr const char* kFormatTag = "camsim-bench-reference/1";
+// Part of every cache key: bumped when the renderer's expectation changes, so that no cached
+// reference of the old estimator is reused (2: the aplanatic pupil, 2026-12-01).
+constexpr const char* kFormatTag = "camsim-bench-reference/2";
 constexpr std::uint64_t kSeedA = 1001, kSeedB = 1002;
 
 std::string fileStamp(const std::filesystem::path& p, bool withContent) {
