@@ -6,7 +6,6 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
-#include <regex>
 #include <set>
 #include <string>
 #include <vector>
@@ -49,11 +48,17 @@ std::vector<std::string> allowedKeys(const std::string& text) {
     const size_t at = m.find("allowed here: ");
     if (at == std::string::npos) return {};
     std::vector<std::string> keys;
+    // Words of [a-z0-9_] (no std::regex: GCC 12 -O1 warns inside its std::function).
     const std::string list = m.substr(at + 14, m.find(')', at) - at - 14);
-    const std::regex word("[a-z_0-9]+");
-    for (auto it = std::sregex_iterator(list.begin(), list.end(), word);
-         it != std::sregex_iterator(); ++it)
-      keys.push_back(it->str());
+    std::string word;
+    for (const char c : list + " ") {
+      if ((c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_') {
+        word += c;
+      } else if (!word.empty()) {
+        keys.push_back(word);
+        word.clear();
+      }
+    }
     return keys;
   }
   return {};
@@ -105,7 +110,10 @@ TEST(DocsAgree, OutputDocListsEveryFileRenderWrites) {
       std::string file = f.path().filename().string();
       ASSERT_EQ(file.rfind(name, 0), 0u) << file;
       std::string suffix = file.substr(name.size());
-      suffix = std::regex_replace(suffix, std::regex("^_ev[-+0-9]+"), "_ev±X");
+      if (suffix.rfind("_ev", 0) == 0) {  // _ev-1.dng, _ev+0_raw.exr → _ev±X…
+        const size_t end = suffix.find_first_not_of("-+0123456789", 3);
+        suffix = "_ev±X" + suffix.substr(end);
+      }
       suffixes.insert(suffix);
     }
   }
