@@ -5,8 +5,8 @@
 #include <exception>
 #include <iostream>
 
+#include "bench/bench_command.h"
 #include "cli/args.h"
-#include "cli/bench_command.h"
 #include "cli/ptc_command.h"
 #include "cli/render_command.h"
 #include "sensor/base/input_error.h"

@@ -9,8 +9,8 @@
 #include <sstream>
 
 #include "cli/args.h"
-#include "cli/format.h"
 #include "cli/python_script.h"
+#include "sensor/base/format.h"
 #include "sensor/base/input_error.h"
 #include "sensor/base/luts_directory.h"
 #include "sensor/io/output_set.h"

@@ -1,199 +1,98 @@
+// `camsim render`: parse → capture (the library call) → write → print.
 #include "cli/render_command.h"
 
-#include <cstdio>
 #include <ostream>
 
-#include "cli/format.h"
 #include "cli/progress.h"
-#include "cli/render_outputs.h"
 #include "cli/resource_guard.h"
-#include "integrator/render/render.h"
-#include "integrator/scene/scene.h"
+#include "integrator/capture/capture_writer.h"
 #include "integrator/scene/scene_loader.h"
+#include "sensor/base/format.h"
 #include "sensor/base/input_error.h"
-#include "sensor/io/exr_io.h"
 #include "sensor/io/output_set.h"
-#include "sensor/io/png_io.h"
-#include "sensor/isp/display_image.h"
+#include "sensor/model/exposure_control.h"
 
 namespace camsim {
 namespace {
 
-struct LoadedScene {
-  SceneDescription description;
-  std::string text;
-};
-
-LoadedScene load(const RenderArgs& args) {
-  LoadedScene loaded;
+// The scene with the command line's overrides applied.
+SceneDescription load(const RenderArgs& args) {
+  SceneDescription d;
   if (!args.scene) {
-    loaded.text = std::string(defaultSceneText());
-    loaded.description = loadSceneFromText(loaded.text, "<default: scenes/cornell_box.yaml>", ".");
+    d = loadSceneFromText(std::string(defaultSceneText()), "<default: scenes/cornell_box.yaml>",
+                          ".");
   } else {
     const std::filesystem::path path(*args.scene);
-    loaded.text = readSceneFile(path);
-    loaded.description = loadSceneFromText(loaded.text, path.string(), sceneBaseDir(path));
+    d = loadSceneFromText(readSceneFile(path), path.string(), sceneBaseDir(path));
   }
-  SceneDescription& d = loaded.description;
   if (args.spp) d.render.spp = *args.spp;
   if (args.seed) d.render.seed = *args.seed;
   if (args.exposureTimeS)
     d.camera.shutter =
         d.camera.shutter.scaled(*args.exposureTimeS / d.camera.shutter.effectiveTime());
-  if (args.fNumber) {
-    d.camera.fNumber = *args.fNumber;
-    if (d.camera.aperture)
-      d.camera.aperture.emplace(d.camera.focalLength / d.camera.fNumber,
-                                d.camera.aperture->blades(), d.camera.aperture->rotation());
-  }
+  if (args.fNumber) d.camera.fNumber = *args.fNumber;  // the stop follows (apertureDiameter)
   if ((args.iso || args.noise || args.noiseSeed) && !d.sensor)
     throw UsageError("--iso, --noise and --noise-seed need a scene with a sensor");
   if (args.iso) d.sensor->iso = *args.iso;
   if (args.noiseSeed) d.sensor->noiseSeed = *args.noiseSeed;
   if (args.noise) d.sensor->noise = *args.noise;
-  return loaded;
+  return d;
 }
 
-// Metadata values: 9 significant digits.
-std::string number(double v) {
-  return formatNumber(v, 9);
-}
-
-void appendCameraMetadata(const PhysicalCamera& camera, Metadata& meta) {
-  const PhysicalCameraParams& p = camera.params();
-  const glm::dvec4 k = camera.intrinsics();
-  meta.insert(meta.end(), {{"camsim:exposure_time_s", number(p.shutter.effectiveTime())},
-                           {"camsim:f_number", number(p.fNumber)},
-                           {"camsim:focal_length_m", number(p.focalLength)},
-                           {"camsim:image_distance_m", number(camera.imageDistance())},
-                           {"camsim:pixel_area_m2", number(camera.pixelArea())},
-                           {"camsim:opencv_fx_fy_cx_cy", number(k.x) + " " + number(k.y) + " " +
-                                                             number(k.z) + " " + number(k.w)},
-                           {"camsim:opencv_k1_k2_p1_p2_k3",
-                            number(p.distortion.k1) + " " + number(p.distortion.k2) + " " +
-                                number(p.distortion.p1) + " " + number(p.distortion.p2) + " " +
-                                number(p.distortion.k3)}});
-}
-
-// An interrupted render's finished tiles (each has its full spp), as NAME.partial.exr —
-// never a final name, so a partial image is not taken for a finished one. Nothing when no
-// tile had finished.
-std::vector<std::filesystem::path> writePartialExr(const SceneDescription& desc,
-                                                   const std::filesystem::path& outDir,
-                                                   const Image& xyz, int done, int total,
-                                                   std::ostream& log) {
-  if (done <= 0) {
-    log << "render interrupted before a tile had finished: no output written\n";
-    return {};
+void printCapture(const CaptureResult& r, std::ostream& log) {
+  const SceneDescription& desc = r.description;
+  if (desc.sensor && desc.sensor->autoExposure) {
+    const AutoExposure& ae = *desc.sensor->autoExposure;
+    log << "auto-exposure (" << meteringName(ae.metering) << ", target " << ae.target
+        << " of saturation): exposure time "
+        << desc.camera.shutter.effectiveTime() * r.exposureScale << " s (x" << r.exposureScale
+        << " the scene's), ISO " << desc.sensor->iso << "\n";
   }
-  const std::string what = std::to_string(done) + " of " + std::to_string(total) + " tiles";
-  const Metadata meta = {{"camsim:version", CAMSIM_VERSION},
-                         {"camsim:scene", desc.sourceFile},
-                         {"camsim:spp", std::to_string(desc.render.spp)},
-                         {"camsim:seed", std::to_string(desc.render.seed)},
-                         {"camsim:partial", "interrupted after " + what +
-                                                " (16x16 px each, all spp); other pixels are 0"}};
-  const auto& cs = RgbColorSpace::linearRec709();
-  OutputSet outputs(outDir);
-  writeExr(outputs.add(desc.name + ".partial.exr"), xyzExrImage(xyz), meta,
-           ExrChromaticities{cs.red(), cs.green(), cs.blue(), cs.white()});
-  std::vector<std::filesystem::path> files = outputs.commit();
-  log << "render interrupted after " << what << ": wrote " << files.front().string()
-      << " (unfinished tiles are 0); no final output written\n";
-  return files;
+  for (std::size_t i = 0; i < r.frames.size(); ++i)
+    if (r.frames[i].clippedFraction > 0.01)
+      log << "note: " << captureFrameFile(r, i) << ": " << 100.0 * r.frames[i].clippedFraction
+          << " % of photosites clipped\n";
 }
 
 }  // namespace
 
-std::string fnv1aHex(std::string_view data) {
-  std::uint64_t h = 0xcbf29ce484222325ull;
-  for (unsigned char c : data) {
-    h ^= c;
-    h *= 0x100000001b3ull;
-  }
-  char buf[17];
-  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
-  return buf;
-}
-
 RenderCommandResult runRender(const RenderArgs& args, std::ostream& log,
                               const std::atomic<bool>* cancel) {
-  LoadedScene loaded = load(args);
-  const SceneDescription& desc = loaded.description;
+  SceneDescription desc = load(args);
   checkMemoryLimit(desc, args.maxMemoryGb);  // before any work
-  const std::filesystem::path outDir(args.outputDir);
-  for (const auto& stale : OutputSet::prepareDirectory(outDir))
+  CaptureOutputOptions out{args.outputDir, {args.ocioConfig, {args.display, args.view, args.look}}};
+  for (const auto& stale : OutputSet::prepareDirectory(out.directory))
     log << "removed " << stale.string() << " (left by a run that was killed)\n";
+  checkPictureSettings(out.picture);  // a bad config or display/view/look fails before rendering
 
-  const PictureSettings picture{args.ocioConfig, {args.display, args.view, args.look}};
-  checkPictureSettings(picture);  // a bad config or display/view/look fails before rendering
-  const Scene scene(desc);
-  loaded.description.releaseDecodedImages();  // the Scene holds its own form of them
-  const SpectralResponse response = SpectralResponse::cieXyz();
-  std::vector<const SpectralResponse*> responses = {&response};
-  std::optional<SpectralResponse> sensorResponse;
-  if (desc.sensor) {
-    const SensorSpec& spec = desc.sensor->spec;
-    const bool mosaic = !spec.cfa.isStacked();
-    sensorResponse =
-        SpectralResponse::electrons(spec.cfa.channels, spec.qe, mosaic ? &spec.cfa : nullptr);
-    responses.push_back(&*sensorResponse);
-  }
   ProgressBar progress("rendering " + desc.name);
-  RenderOptions options;
-  options.spp = desc.render.spp;
-  options.seed = desc.render.seed;
+  CaptureOptions options;
   options.threads = args.threads;
   options.cancel = cancel;
-  std::atomic<int> tilesDone{0}, tilesTotal{0};
-  options.progress = [&](int done, int total) {
-    progress.update(done, total);
-    tilesDone = done;
-    tilesTotal = total;
-  };
-  const RenderResult result = render(scene, responses, options);
+  options.progress = [&](int done, int total) { progress.update(done, total); };
+  const CaptureResult result = capture(std::move(desc), options);
   progress.finish();
-  RenderCommandResult outcome;
-  if (result.stats.cancelled) {
-    outcome.cancelled = true;
-    outcome.files = writePartialExr(desc, outDir, result.image, tilesDone, tilesTotal, log);
+  printCapture(result, log);
+  const WrittenCapture written = writeCapture(result, out);
+
+  RenderCommandResult outcome{written.files, result.cancelled};
+  const std::string& name = result.description.name;
+  if (result.cancelled) {
+    const std::string what =
+        std::to_string(result.tilesDone) + " of " + std::to_string(result.tilesTotal) + " tiles";
+    if (written.files.empty())
+      log << "render interrupted before a tile had finished: no output written\n";
+    else
+      log << "render interrupted after " << what << ": wrote " << written.files.front().string()
+          << " (unfinished tiles are 0); no final output written\n";
     return outcome;
   }
-
+  for (const auto& f : written.removed)
+    log << "removed " << f.string() << " of an interrupted run\n";
   const RenderStats& st = result.stats;
-  Metadata meta = {{"camsim:version", CAMSIM_VERSION},
-                   {"camsim:scene", desc.sourceFile},
-                   {"camsim:scene_fnv1a64", fnv1aHex(loaded.text)},
-                   {"camsim:spp", std::to_string(desc.render.spp)},
-                   {"camsim:seed", std::to_string(desc.render.seed)},
-                   {"camsim:render_seconds", std::to_string(st.seconds)},
-                   {"camsim:rejected_samples", std::to_string(st.rejectedSamples)},
-                   {"camsim:modelled", st.modelled.describe()},
-                   {"camsim:units",
-                    "energy on each photosite weighted by the CIE 1931 observer x 683 lm/W: "
-                    "XYZ.Y is luminous energy in lm*s (talbot); R,G,B: linear Rec.709 on the "
-                    "same scale (1,1,1 has Y = 1 lm*s)"}};
-  appendCameraMetadata(scene.camera(), meta);
-  OutputSet outputs(outDir);
-  // Re-render only for moving scenes, whose motion blur depends on the exposure time.
-  auto rerender = [&](double k) {
-    SceneDescription longer = desc;
-    longer.camera.shutter = desc.camera.shutter.scaled(k);
-    const Scene s2(longer);
-    RenderOptions o = options;
-    o.progress = nullptr;
-    return render(s2, *sensorResponse, o).image;
-  };
-  writeRenderOutputs({desc, scene, result, meta, picture, rerender}, outputs, log);
-  outcome.files = outputs.commit();
-  const std::filesystem::path stalePartial = outDir / (desc.name + ".partial.exr");
-  std::error_code ec;
-  if (std::filesystem::remove(stalePartial, ec))
-    log << "removed " << stalePartial.string() << " of an interrupted run\n";
-
   log << "modelled: " << st.modelled.describe() << "\n";
-  log << "rendered " << desc.name << ": " << result.image.width << "x" << result.image.height
-      << ", " << desc.render.spp << " spp, " << st.threads << " threads, "
+  log << "rendered " << name << ": " << result.film.width << "x" << result.film.height << ", "
+      << result.description.render.spp << " spp, " << st.threads << " threads, "
       << formatSeconds(st.seconds) << " (" << formatRate(st.samplesPerSecond()) << "samples/s, "
       << formatRate(st.raysPerSecond())
       << "rays/s), rejected samples (NaN/Inf): " << st.rejectedSamples << "\n";

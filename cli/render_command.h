@@ -1,4 +1,5 @@
-// `camsim render`: load → build → render → write, with all outputs appearing atomically.
+// `camsim render`: parse the scene and overrides → capture() → writeCapture() → print
+// (integrator/capture/): all outputs appear atomically.
 #pragma once
 
 #include <atomic>
@@ -18,9 +19,6 @@ std::string_view defaultSceneFile(std::string_view relPath);
 inline std::string_view defaultSceneText() {
   return defaultSceneFile("cornell_box.yaml");
 }
-
-// 64-bit FNV-1a, as 16 hex digits: identifies the scene text in output metadata.
-std::string fnv1aHex(std::string_view data);
 
 struct RenderCommandResult {
   std::vector<std::filesystem::path> files;  // written, final names

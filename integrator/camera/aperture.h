@@ -14,6 +14,14 @@
 
 namespace camsim {
 
+// The stop as a scene describes it: its shape. Its diameter is not stored but follows
+// from the f-number and focal length (PhysicalCameraParams::apertureDiameter), so a changed
+// f-number changes the stop.
+struct ApertureShape {
+  int blades = 0;         // 0: circular; N >= 3: a regular N-gon
+  double rotation = 0.0;  // rad, as Aperture's
+};
+
 class Aperture {
  public:
   Aperture(double diameter, int blades, double rotation);

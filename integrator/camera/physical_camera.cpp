@@ -15,8 +15,9 @@ PhysicalCamera::PhysicalCamera(PhysicalCameraParams params) : p_(std::move(param
   imageDistance_ = p_.focusDistance > 0.0 ? f * p_.focusDistance / (p_.focusDistance - f) : f;
   const glm::dvec2 pitch = p_.sensorSize / glm::dvec2(p_.resolution);
   pixelArea_ = pitch.x * pitch.y * p_.fillFactor;
-  const double diameter = f / p_.fNumber;
-  apertureArea_ = p_.aperture ? p_.aperture->area() : M_PI * 0.25 * diameter * diameter;
+  const double diameter = p_.apertureDiameter();
+  if (p_.aperture) stop_.emplace(diameter, p_.aperture->blades, p_.aperture->rotation);
+  apertureArea_ = stop_ ? stop_->area() : M_PI * 0.25 * diameter * diameter;
   transmittanceIsOne_ =
       p_.lensTransmittance.minValue() == 1.0 && p_.lensTransmittance.maxValue() == 1.0;
   fastPinhole_ =
@@ -77,7 +78,7 @@ std::optional<CameraRay> PhysicalCamera::generateRay(const CameraSample& sample,
   glm::dvec3 origin(0.0), direction = chief;
   glm::dvec2 lens(0.0);
   if (p_.aperture) {
-    lens = glm::dvec2(p_.aperture->sample(sample.pLens));
+    lens = glm::dvec2(stop_->sample(sample.pLens));
     origin = glm::dvec3(lens, 0.0);
     // Every ray from this film point meets the chief ray on the plane of focus.
     direction = p_.focusDistance > 0.0 ? chief * p_.focusDistance - origin : chief;

@@ -61,12 +61,15 @@ struct PhysicalCameraParams {
   double fillFactor = 1.0;
   double focalLength = 0.050;
   double fNumber = 8.0;
-  double focusDistance = 0.0;        // 0 = infinity
-  std::optional<Aperture> aperture;  // none: pinhole
+  double focusDistance = 0.0;             // 0 = infinity
+  std::optional<ApertureShape> aperture;  // none: pinhole
   LensPupil pupil = LensPupil::kAplanatic;
   Spectrum lensTransmittance = Spectrum::constant(1.0);
   LensDistortion distortion;
   Shutter shutter = Shutter::box(0.0, 1.0 / 60.0);
+
+  // D = f/N (m): the entrance pupil's diameter — the one place it is derived.
+  double apertureDiameter() const { return focalLength / fNumber; }
 };
 
 class PhysicalCamera final : public Camera {
@@ -92,6 +95,7 @@ class PhysicalCamera final : public Camera {
   std::optional<CameraRay> generatePinholeRay(const CameraSample& sample) const;
 
   PhysicalCameraParams p_;
+  std::optional<Aperture> stop_;  // from p_.aperture and p_.apertureDiameter()
   double imageDistance_;
   double pixelArea_;
   double apertureArea_;

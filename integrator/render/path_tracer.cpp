@@ -1,7 +1,6 @@
 #include "integrator/render/path_tracer.h"
 
 #include "integrator/geometry/math.h"
-#include "integrator/render/ray_recorder.h"
 #include "integrator/sampling/sobol_sampler.h"
 
 namespace camsim {
@@ -48,8 +47,7 @@ struct ShadingPoint {
 // by the path throughput.
 template <typename SamplerT>
 SampledSpectrum sampleLight(const Scene& scene, const ShadingPoint& sp,
-                            const SampledWavelengths& lambda, float uLight, SamplerT& sampler,
-                            RayCounts& counts, RayRecorder* recorder) {
+                            const SampledWavelengths& lambda, float uLight, SamplerT& sampler) {
   const glm::vec2 uPoint = sampler.get2D();
   float uRemapped = 0.0f;
   const size_t index = scene.lightDistribution().sample(uLight, &uRemapped);
@@ -62,9 +60,8 @@ SampledSpectrum sampleLight(const Scene& scene, const ShadingPoint& sp,
   const SampledSpectrum f =
       sp.material.f(sp.woLocal, wiLocal, lambda, sp.ctx) * std::abs(wiLocal.z);
   if (f.isZero()) return SampledSpectrum(0.0f);
-  ++counts.shadow;
   const Ray shadow = ls->infinite ? escapeRay(sp.si, ls->wi) : shadowRay(sp.si, ls->point);
-  if (recorder) recorder->record(RayKind::kShadow, shadow);
+  countRay(RayKind::kShadow, shadow);
   if (scene.geometry().occluded(shadow)) return SampledSpectrum(0.0f);
   const float lightPdf = pmf * ls->pdf;
   const float weight =
@@ -76,8 +73,7 @@ SampledSpectrum sampleLight(const Scene& scene, const ShadingPoint& sp,
 // The path loop, compiled once per sampler type: for the final samplers the ≈ 20 numbers
 // a path draws are direct, inlined calls instead of virtual ones.
 template <typename SamplerT>
-SampledSpectrum trace(const Scene& scene, Ray ray, SampledWavelengths& lambda, SamplerT& sampler,
-                      RayCounts& counts, RayRecorder* recorder) {
+SampledSpectrum trace(const Scene& scene, Ray ray, SampledWavelengths& lambda, SamplerT& sampler) {
   const RenderSettings& settings = scene.settings();
   const bool haveLights = scene.hasPoweredLights();
   SampledSpectrum L(0.0f), beta(1.0f);
@@ -126,7 +122,7 @@ SampledSpectrum trace(const Scene& scene, Ray ray, SampledWavelengths& lambda, S
     // sampler dimension instead of two).
     const glm::vec2 uChoice = sampler.get2D();
     if (haveLights && material.hasNonSpecular())
-      L += beta * sampleLight(scene, sp, lambda, uChoice.x, sampler, counts, recorder);
+      L += beta * sampleLight(scene, sp, lambda, uChoice.x, sampler);
 
     const std::optional<BsdfSample> bs =
         material.sample(sp.woLocal, uChoice.y, sampler.get2D(), lambda, sp.ctx);
@@ -139,8 +135,7 @@ SampledSpectrum trace(const Scene& scene, Ray ray, SampledWavelengths& lambda, S
     prevSpecular = bs->specular;
     prevP = si.p;
     ray = Ray{si.spawnOrigin(wi), wi, std::numeric_limits<float>::infinity(), ray.time};
-    ++counts.bounce;
-    if (recorder) recorder->record(RayKind::kBounce, ray);
+    countRay(RayKind::kBounce, ray);
 
     if (depth + 1 >= settings.rrDepth) {
       // Survival ∝ the throughput without the 1/η² of refraction: inside glass beta is
@@ -156,14 +151,13 @@ SampledSpectrum trace(const Scene& scene, Ray ray, SampledWavelengths& lambda, S
 }  // namespace
 
 SampledSpectrum traceRadiance(const Scene& scene, Ray ray, SampledWavelengths& lambda,
-                              SobolSampler& sampler, RayCounts& counts, RayRecorder* recorder) {
-  return trace(scene, ray, lambda, sampler, counts, recorder);
+                              SobolSampler& sampler) {
+  return trace(scene, ray, lambda, sampler);
 }
 
 SampledSpectrum traceRadiance(const Scene& scene, Ray ray, SampledWavelengths& lambda,
-                              IndependentSampler& sampler, RayCounts& counts,
-                              RayRecorder* recorder) {
-  return trace(scene, ray, lambda, sampler, counts, recorder);
+                              IndependentSampler& sampler) {
+  return trace(scene, ray, lambda, sampler);
 }
 
 }  // namespace camsim

@@ -12,39 +12,23 @@
 #include <cstdint>
 
 #include "integrator/geometry/ray.h"
+#include "integrator/render/ray_stats.h"
 #include "integrator/sampling/sampler.h"
 #include "integrator/scene/scene.h"
 #include "sensor/spectra/sampled_spectrum.h"
 
 namespace camsim {
 
-class RayRecorder;  // integrator/render/ray_recorder.h
 class SobolSampler;
-
-struct RayCounts {
-  std::uint64_t camera = 0;  // primary rays
-  std::uint64_t bounce = 0;  // closest-hit rays after a scattering event
-  std::uint64_t shadow = 0;  // occlusion rays for next-event estimation
-
-  std::uint64_t total() const { return camera + bounce + shadow; }
-  RayCounts& operator+=(const RayCounts& o) {
-    camera += o.camera;
-    bounce += o.bounce;
-    shadow += o.shadow;
-    return *this;
-  }
-};
 
 // Radiance (W·m⁻²·sr⁻¹·nm⁻¹) along `ray` at the wavelengths `lambda`. A dispersive
 // material on the path terminates the secondary wavelengths (lambda is updated: the film
-// must use it). A recorder, if given, gets every bounce and shadow ray cast.
+// must use it). Every bounce and shadow ray cast is counted (ray_stats.h).
 // Compiled per concrete sampler (what the render loop uses): its numbers are drawn through
 // inlined, not virtual, calls.
 SampledSpectrum traceRadiance(const Scene& scene, Ray ray, SampledWavelengths& lambda,
-                              SobolSampler& sampler, RayCounts& counts,
-                              RayRecorder* recorder = nullptr);
+                              SobolSampler& sampler);
 SampledSpectrum traceRadiance(const Scene& scene, Ray ray, SampledWavelengths& lambda,
-                              IndependentSampler& sampler, RayCounts& counts,
-                              RayRecorder* recorder = nullptr);
+                              IndependentSampler& sampler);
 
 }  // namespace camsim

@@ -51,18 +51,6 @@ double replayPass(const EmbreeScene& geometry, const std::vector<RecordedRay>& r
 
 }  // namespace
 
-const char* rayKindName(RayKind kind) {
-  switch (kind) {
-    case RayKind::kCamera:
-      return "camera";
-    case RayKind::kBounce:
-      return "bounce";
-    case RayKind::kShadow:
-      return "shadow";
-  }
-  return "?";
-}
-
 struct RayRecorder::Buffers {
   tbb::enumerable_thread_specific<std::vector<RecordedRay>> perThread;
 };

@@ -1,8 +1,8 @@
 // RayRecorder: captures the rays the path tracer casts during one render (camera, bounce
 // and shadow rays, with their tMax and time), so that `camsim bench` can replay exactly
 // that workload through EmbreeScene alone and compare the tracer's ray rate with the rate
-// of bare traversal ("the limit"). Hooked in through RenderOptions::recorder, which the
-// render loop passes to traceRadiance; null (the default) costs one branch per ray.
+// of bare traversal ("the limit"). It is a RayObserver (ray_stats.h), hooked in through
+// RenderOptions::rayObserver; none (the default) costs one branch per ray.
 //
 // Thread safety: record() may be called from any number of TBB worker threads at once.
 // Each thread appends to its own buffer (no locks, no shared cache lines but one counter;
@@ -26,19 +26,16 @@
 
 #include "integrator/geometry/embree_scene.h"
 #include "integrator/geometry/ray.h"
+#include "integrator/render/ray_stats.h"
 
 namespace camsim {
-
-enum class RayKind : std::uint8_t { kCamera = 0, kBounce = 1, kShadow = 2 };
-inline constexpr int kRayKindCount = 3;
-const char* rayKindName(RayKind kind);  // "camera", "bounce", "shadow"
 
 struct RecordedRay {
   Ray ray;
   RayKind kind = RayKind::kCamera;
 };
 
-class RayRecorder {
+class RayRecorder final : public RayObserver {
  public:
   // Keeps at most maxRays rays (those past it are counted in dropped(), not stored).
   explicit RayRecorder(std::size_t maxRays = std::size_t{1} << 22);
@@ -47,6 +44,7 @@ class RayRecorder {
   RayRecorder& operator=(const RayRecorder&) = delete;
 
   void record(RayKind kind, const Ray& ray);
+  void observe(RayKind kind, const Ray& ray) override { record(kind, ray); }
 
   // Every stored ray, each thread's in the order that thread cast them. Call once, after the
   // render: each thread's buffer is freed once appended (not kept beside the result; while

@@ -11,7 +11,6 @@
 #include <tbb/task_arena.h>
 
 #include "integrator/render/film.h"
-#include "integrator/render/ray_recorder.h"
 #include "integrator/sampling/sobol_sampler.h"
 
 namespace camsim {
@@ -57,10 +56,8 @@ void renderTile(const Scene& scene, Film& film, const RenderOptions& options,
         const std::optional<CameraRay> cr = camera.generateRay(cs, lambda);
         ++stats.samples;
         if (!cr) continue;
-        ++stats.rays.camera;
-        if (options.recorder) options.recorder->record(RayKind::kCamera, cr->ray);
-        const SampledSpectrum L =
-            traceRadiance(scene, cr->ray, lambda, sampler, stats.rays, options.recorder);
+        countRay(RayKind::kCamera, cr->ray);
+        const SampledSpectrum L = traceRadiance(scene, cr->ray, lambda, sampler);
         if (!film.addSample(pixel, L * cr->weight, lambda)) ++stats.rejected;
       }
     }
@@ -97,6 +94,13 @@ RenderResult render(const Scene& scene, const std::vector<const SpectralResponse
     tbb::parallel_for(
         tbb::blocked_range<int>(0, tileCount, 1), [&](const tbb::blocked_range<int>& range) {
           auto sampler = prototype;
+          const RayStatsScope rays(options.rayObserver);
+          TileStats& stats = perThread.local();
+          struct AddRays {  // on every exit, also a cancelled one
+            const RayStatsScope& scope;
+            TileStats& stats;
+            ~AddRays() { stats.rays += scope.rays(); }
+          } addRays{rays, stats};
           for (int tile = range.begin(); tile != range.end(); ++tile) {
             if (options.cancel && options.cancel->load(std::memory_order_relaxed)) {
               cancelled = true;
@@ -104,7 +108,7 @@ RenderResult render(const Scene& scene, const std::vector<const SpectralResponse
             }
             const glm::ivec2 lo((tile % tilesX) * kTileSize, (tile / tilesX) * kTileSize);
             const glm::ivec2 hi = glm::min(lo + kTileSize, res);
-            renderTile(scene, film, options, dims, lo, hi, sampler, perThread.local());
+            renderTile(scene, film, options, dims, lo, hi, sampler, stats);
             const int done = ++tilesDone;
             if (options.progress) {
               std::lock_guard<std::mutex> lock(progressMutex);

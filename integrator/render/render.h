@@ -34,8 +34,9 @@ struct RenderOptions {
   bool forceTime = false;
   // Overrides the scene's render.sampler (benchmarks compare samplers).
   std::optional<SamplerKind> sampler;
-  // When set, every ray cast is also recorded (camsim bench replays them: ray_recorder.h).
-  RayRecorder* recorder = nullptr;
+  // When set, sees every ray cast, from the thread that casts it (ray_stats.h; camsim
+  // bench records them with a RayRecorder and replays them).
+  RayObserver* rayObserver = nullptr;
 };
 
 struct RenderStats {

@@ -91,7 +91,7 @@ Scene::Scene(const SceneDescription& d) : settings_(d.render) {
   exposureEnd_ = shutter.close() + shutter.rowOffset(camera_->resolution().y - 1);
 
   modelled_.aperture = camera_->hasAperture();
-  modelled_.blades = d.camera.aperture ? d.camera.aperture->blades() : 0;
+  modelled_.blades = d.camera.aperture ? d.camera.aperture->blades : 0;
   modelled_.cameraMoves = camera_->moves(exposureStart_, exposureEnd_);
 
   materials_.push_back(std::make_unique<DiffuseMaterial>(Spectrum::constant(0.0)));  // black

@@ -147,7 +147,8 @@ struct SensorSettings {
 };
 
 struct SceneDescription {
-  std::string sourceFile;  // what it was loaded from ("<default>" for the embedded scene)
+  std::string sourceFile;   // what it was loaded from ("<default>" for the embedded scene)
+  std::string sourceFnv1a;  // FNV-1a 64 of the scene text (sensor/base/fnv1a.h)
   // Every other file the loader read for it, in the order first read, each once: meshes,
   // textures, environment maps, spectral tables (also named metals and glasses from
   // luts/spectra), the sensor description and its tables. Named illuminants and the CIE

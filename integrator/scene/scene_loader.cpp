@@ -13,6 +13,7 @@
 #include "integrator/scene/scene_loader_parts.h"
 #include "integrator/scene/scene_spectra.h"
 #include "sensor/base/file_status.h"
+#include "sensor/base/fnv1a.h"
 #include "sensor/base/yaml_reader.h"
 #include "sensor/spectra/cie.h"
 #include "sensor/spectra/spectral_data.h"
@@ -212,6 +213,7 @@ SceneDescription loadSceneFromText(const std::string& text, const std::string& d
 
   SceneDescription scene;
   scene.sourceFile = displayName;
+  scene.sourceFnv1a = fnv1aHex(text);
   ctx.search.filesRead = &scene.inputFiles;
   if (auto v = top.find("format")) {
     if (v->string() != "camsim-scene/1")

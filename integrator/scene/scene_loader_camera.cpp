@@ -214,7 +214,7 @@ PhysicalCameraParams parseCamera(YamlMap map, const TableSearch& search) {
       c.pupil = pu->choice<LensPupil>(
           "pupil", {{"aplanatic", LensPupil::kAplanatic}, {"flat", LensPupil::kFlat}});
     am.finish({"blades", "rotation_deg", "pupil"});
-    c.aperture.emplace(c.focalLength / c.fNumber, blades, rotation);
+    c.aperture = ApertureShape{blades, rotation};
   }
   if (auto t = map.find("lens_transmittance"))
     c.lensTransmittance = parseSpectrum(*t, SpectrumUse::kReflectance, search);

@@ -313,4 +313,9 @@ SensorSpec loadSensorSpec(const std::string& presetOrPath, const fs::path& lutsD
   return spec;
 }
 
+SpectralResponse sensorResponse(const SensorSpec& spec) {
+  return SpectralResponse::electrons(spec.cfa.channels, spec.qe,
+                                     spec.cfa.isStacked() ? nullptr : &spec.cfa);
+}
+
 }  // namespace camsim

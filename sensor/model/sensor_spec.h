@@ -31,6 +31,7 @@
 #include <vector>
 
 #include "sensor/model/cfa.h"
+#include "sensor/model/spectral_response.h"
 #include "sensor/spectra/spectrum.h"
 
 namespace camsim {
@@ -80,5 +81,9 @@ SensorSpec loadSensorSpec(const std::string& presetOrPath, const std::filesystem
 // Whether loadSensorSpec takes this as a file path rather than a preset name: it has a
 // folder part or ends in .yaml, .yml or .json.
 bool isSensorSpecPath(const std::string& presetOrPath);
+
+// The film response recording this sensor's expected electrons: through its CFA (one
+// plane), or one plane per channel for a stacked sensor.
+SpectralResponse sensorResponse(const SensorSpec& spec);
 
 }  // namespace camsim

@@ -20,6 +20,7 @@
 
 #include "cli/render_command.h"
 #include "integrator/scene/scene_loader.h"
+#include "sensor/base/fnv1a.h"
 #include "sensor/io/exr_io.h"
 #include "tests/support/run_command.h"
 #include "tests/support/text_file.h"

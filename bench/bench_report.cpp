@@ -2,8 +2,8 @@
 #include <cstdio>
 #include <sstream>
 
-#include "cli/bench_limit.h"
-#include "cli/bench_metrics.h"
+#include "bench/bench_limit.h"
+#include "bench/bench_metrics.h"
 
 namespace camsim {
 namespace {

@@ -1,4 +1,4 @@
-#include "cli/bench_metrics.h"
+#include "bench/bench_metrics.h"
 
 #include <sys/resource.h>
 

@@ -1,5 +1,5 @@
-// Tests for cli/format: the shared number formatting of the commands' reports.
-#include "cli/format.h"
+// Tests for sensor/base/format: the shared number formatting of reports and metadata.
+#include "sensor/base/format.h"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-// Tests for the limit side of `camsim bench` (integrator/render/ray_recorder.h, cli/bench_limit.h):
+// Tests for the limit side of `camsim bench` (integrator/render/ray_recorder.h, bench/bench_limit.h):
 // the recorder captures exactly the rays the render counts, by kind; replaying them finds
 // the same hits; the limit times the same rays in each round; motion can be removed; the generated mesh is what the PLY reader reads
 // back; and the binary runs end to end into a directory (tables, CSVs), exiting 2 after a
@@ -12,10 +12,10 @@
 #include <sstream>
 #include <string>
 
-#include "cli/bench_command.h"
-#include "cli/bench_limit.h"
-#include "cli/bench_metrics.h"
-#include "cli/bench_reference.h"
+#include "bench/bench_command.h"
+#include "bench/bench_limit.h"
+#include "bench/bench_metrics.h"
+#include "bench/bench_reference.h"
 #include "integrator/render/render.h"
 #include "integrator/scene/scene.h"
 #include "integrator/scene/scene_loader.h"
@@ -40,7 +40,7 @@ RenderResult renderRecorded(const Scene& scene, int spp, int threads, RayRecorde
   o.spp = spp;
   o.seed = 3;
   o.threads = threads;
-  o.recorder = recorder;
+  o.rayObserver = recorder;
   return render(scene, SpectralResponse::cieXyz(), o);
 }
 

@@ -1,10 +1,7 @@
-#include "cli/picture_outputs.h"
-
-#include <cmath>
+#include "sensor/io/picture_writer.h"
 
 #include "sensor/io/exr_io.h"
 #include "sensor/io/png_io.h"
-#include "sensor/isp/color_correction.h"
 #include "sensor/spectra/color_space.h"
 
 namespace camsim {
@@ -12,19 +9,6 @@ namespace camsim {
 DisplayChoice checkPictureSettings(const PictureSettings& settings) {
   const OcioProcessor ocio(settings.ocioConfig);
   return ocio.resolve(settings.choice);
-}
-
-Image xyzToExposedAcescg(const Image& xyz, double& exposure) {
-  double sum = 0.0;
-  size_t n = 0;
-  const int y = xyz.channelIndex("Y");
-  for (int j = 0; j < xyz.height; ++j)
-    for (int i = 0; i < xyz.width; ++i)
-      if (const float v = xyz.at(i, j, y); std::isfinite(v)) sum += static_cast<double>(v), ++n;
-  const double mean = n ? sum / static_cast<double>(n) : 0.0;
-  exposure = mean > 0.0 ? 0.18 / mean : 1.0;
-  return applyColorMatrix(xyz, xyzD65ToWorkingSpace(RgbColorSpace::acesCg()) * exposure,
-                          {"R", "G", "B"});
 }
 
 JsonObject writePicture(const Image& acescg, const std::string& name,

@@ -24,7 +24,7 @@
 #include <string>
 #include <vector>
 
-#include "cli/format.h"
+#include "sensor/base/format.h"
 #include "sensor/base/image.h"
 
 namespace camsim {

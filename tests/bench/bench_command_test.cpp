@@ -1,4 +1,4 @@
-// Tests for `camsim bench` (cli/bench_*.cpp): the error metrics on known images, the slope
+// Tests for `camsim bench` (bench/bench_*.cpp): the error metrics on known images, the slope
 // fit on synthetic data, the CSV columns, argument parsing and the plan, and the reference
 // cache (reused while the scene and its files are unchanged, invalidated when they change).
 // No timing is asserted: the benchmark's numbers are measurements, not test outcomes.
@@ -15,10 +15,10 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "bench/bench_command.h"
+#include "bench/bench_metrics.h"
+#include "bench/bench_reference.h"
 #include "cli/args.h"
-#include "cli/bench_command.h"
-#include "cli/bench_metrics.h"
-#include "cli/bench_reference.h"
 #include "integrator/scene/scene_loader.h"
 #include "sensor/base/input_error.h"
 #include "sensor/spectra/spectral_data.h"

@@ -1,6 +1,6 @@
-// The whole chain on the ColorChecker scene: render (spectral) → sensor electrons →
-// expose (noise off) → ISP (white balance, demosaic, CCM fitted from the sensor's QE) →
-// ACEScg, measured per patch and compared in CIELAB (D65 white) with the closed-form
+// The whole chain on the ColorChecker scene, through the capture library call (capture.h):
+// render (spectral) → sensor electrons → auto-exposure → expose (noise off) → ISP (white
+// balance, demosaic, CCM fitted from the sensor's QE) → ACEScg, measured per patch and compared in CIELAB (D65 white) with the closed-form
 // colour of each patch: reflectance × illuminant × CMFs (Bradford-adapted to D65).
 #include <gtest/gtest.h>
 
@@ -10,11 +10,10 @@
 
 #include <glm/matrix.hpp>
 
-#include "integrator/render/render.h"
-#include "integrator/scene/scene.h"
+#include "integrator/capture/capture.h"
 #include "integrator/scene/scene_loader.h"
+#include "sensor/isp/color_correction.h"
 #include "sensor/isp/color_difference.h"
-#include "sensor/isp/isp_pipeline.h"
 #include "sensor/model/exposure_control.h"
 #include "sensor/model/sensor_model.h"
 #include "sensor/spectra/cie.h"
@@ -46,38 +45,19 @@ ChartResult measureChart(const std::string& sensorName, const std::string& illum
       d.camera.sensorSize.x / 0.3;  // the 0.3 m wide chart fills the frame at 1 m
   const Spectrum light = cieIlluminant(illuminant);
   d.shapes[0].emission->radiance = light * (1000.0 / luminance(light));  // the dome, 1000 cd/m²
-  const Scene scene(d);
-  const SensorSpec& spec = sensor.spec;
-  const SpectralResponse response = SpectralResponse::electrons(
-      spec.cfa.channels, spec.qe, spec.cfa.isStacked() ? nullptr : &spec.cfa);
-  RenderOptions options;
-  options.spp = 64;  // render noise under spiky F2 needs it: neutral patches move by ~0.5 at 16 spp
-  const RenderResult r = render(scene, response, options);
-  // Expose on the white patch (19, bottom left): its brightest photosite at 70 % of
+  // Exposed on the brightest photosites — the white patch (19, bottom left) — at 70 % of
   // saturation, as one exposes a chart.
-  double whiteMax = 0.0;
-  for (int y = 165; y < 185; ++y)
-    for (int x = 15; x < 35; ++x)
-      for (int c = 0; c < r.image.channelCount(); ++c)
-        whiteMax = std::max(whiteMax, static_cast<double>(r.image.at(x, y, c)));
-  const double k = 0.7 * spec.saturationElectrons(sensor.iso) / whiteMax;
-  std::vector<RawImage> raws;
-  for (int c = 0; c < r.image.channelCount(); ++c) {
-    Image plane(r.image.width, r.image.height, {r.image.channels[static_cast<size_t>(c)]});
-    for (size_t p = 0; p < plane.pixels.size(); ++p)
-      plane.pixels[p] = static_cast<float>(
-          static_cast<double>(r.image.pixels[p * static_cast<size_t>(r.image.channelCount()) +
-                                             static_cast<size_t>(c)]) *
-          k);
-    raws.push_back(expose(plane, spec, {0.01, sensor.iso}, NoiseMode::kNone, 0, 0));
-  }
-  IspSettings isp;
-  isp.illuminant = illuminant;
+  sensor.autoExposure = AutoExposure{AutoExposure::Metering::kPercentile, 0.7, 100.0};
+  d.sensor = sensor;
+  d.render.spp =
+      64;  // render noise under spiky F2 needs it: neutral patches move by ~0.5 at 16 spp
+  d.isp.illuminant = illuminant;
   if (balanceOnGreyCard) {  // patch 20, "neutral 8": row 3, column 1
-    isp.whiteBalance = IspSettings::WhiteBalance::kRegion;
-    isp.region = {65, 165, 20, 20};
+    d.isp.whiteBalance = IspSettings::WhiteBalance::kRegion;
+    d.isp.region = {65, 165, 20, 20};
   }
-  const DevelopedImage dev = developRaw(raws, spec, isp, kChartCsv);
+  const CaptureResult captured = capture(d);
+  const DevelopedImage& dev = *captured.developed;
   const glm::dmat3 workingToXyz = glm::inverse(xyzD65ToWorkingSpace(RgbColorSpace::acesCg()));
 
   // Reference: each patch's XYZ under the illuminant (white Y = 1), adapted to D65.

@@ -26,7 +26,7 @@
 #include <vector>
 
 #include <glm/vec2.hpp>
-#include "cli/bench_metrics.h"
+#include "bench/bench_metrics.h"
 
 #include "integrator/render/render.h"
 #include "integrator/scene/scene.h"

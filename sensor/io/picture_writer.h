@@ -5,8 +5,8 @@
 #include <filesystem>
 #include <string>
 
-#include "cli/json_writer.h"
 #include "sensor/base/image.h"
+#include "sensor/io/json_writer.h"
 #include "sensor/io/output_set.h"
 #include "sensor/isp/color_management.h"
 
@@ -25,8 +25,5 @@ DisplayChoice checkPictureSettings(const PictureSettings& settings);
 JsonObject writePicture(const Image& acescg, const std::string& name,
                         const PictureSettings& settings, bool writeExr, const Metadata& meta,
                         OutputSet& outputs);
-
-// CIE XYZ (D65-referred, absolute) → ACEScg with the mean luminance exposed to 0.18.
-Image xyzToExposedAcescg(const Image& xyz, double& exposure);
 
 }  // namespace camsim

@@ -1,15 +1,15 @@
-#include "cli/bench_reference.h"
+#include "bench/bench_reference.h"
 
 #include <algorithm>
 #include <fstream>
 #include <ostream>
 #include <sstream>
 
-#include "cli/render_command.h"
 #include "integrator/render/render.h"
 #include "integrator/scene/scene.h"
 #include "integrator/scene/scene_loader.h"
 #include "sensor/base/file_status.h"
+#include "sensor/base/fnv1a.h"
 #include "sensor/base/input_error.h"
 #include "sensor/io/exr_io.h"
 #include "sensor/io/output_set.h"

@@ -1,4 +1,4 @@
-#include "cli/bench_command.h"
+#include "bench/bench_command.h"
 
 #include <unistd.h>
 
@@ -9,10 +9,10 @@
 #include <ostream>
 #include <sstream>
 
+#include "bench/bench_limit.h"
+#include "bench/bench_metrics.h"
+#include "bench/bench_reference.h"
 #include "cli/args.h"
-#include "cli/bench_limit.h"
-#include "cli/bench_metrics.h"
-#include "cli/bench_reference.h"
 #include "cli/progress.h"
 #include "cli/python_script.h"
 #include "integrator/scene/scene.h"

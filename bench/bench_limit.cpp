@@ -1,4 +1,4 @@
-#include "cli/bench_limit.h"
+#include "bench/bench_limit.h"
 
 #include <malloc.h>
 #include <unistd.h>
@@ -16,8 +16,8 @@
 #include <tbb/info.h>
 #include <tbb/task_arena.h>
 
-#include "cli/bench_metrics.h"
-#include "cli/bench_reference.h"
+#include "bench/bench_metrics.h"
+#include "bench/bench_reference.h"
 #include "integrator/render/ray_recorder.h"
 #include "integrator/scene/scene.h"
 #include "integrator/scene/scene_loader.h"
@@ -36,7 +36,7 @@ constexpr int kMotionRounds = 9;  // rounds of the motion overhead
 RenderResult renderWith(const Scene& scene, int spp, int threads, RayRecorder* recorder = nullptr,
                         bool forceTime = false) {
   RenderOptions o = benchRenderOptions(spp, 1, threads, SamplerKind::kSobol);
-  o.recorder = recorder;
+  o.rayObserver = recorder;
   o.forceTime = forceTime;
   return renderXyz(scene, o);
 }

@@ -1,4 +1,4 @@
-// Number formatting shared by the commands' printed reports and metadata.
+// Number formatting shared by the commands' printed reports and output metadata.
 //   formatNumber(v, p)  printf "%.{p}g"  (p significant digits)
 //   formatFixed(v, d)   printf "%.{d}f"  (d decimals)
 //   formatRate(r)       "12.35 M", "4.20 k" or "17.00 " (two decimals, SI prefix; for "…/s")

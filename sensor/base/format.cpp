@@ -1,4 +1,4 @@
-#include "cli/format.h"
+#include "sensor/base/format.h"
 
 #include <cstdio>
 

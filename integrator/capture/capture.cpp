@@ -1,0 +1,149 @@
+#include "integrator/capture/capture.h"
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+
+#include "integrator/scene/scene.h"
+#include "sensor/base/luts_directory.h"
+#include "sensor/isp/color_correction.h"
+#include "sensor/model/exposure_control.h"
+#include "sensor/model/sensor_model.h"
+#include "sensor/spectra/color_space.h"
+
+namespace camsim {
+namespace {
+
+Image scaled(const Image& image, double k) {
+  Image out = image;
+  for (float& v : out.pixels) v = static_cast<float>(static_cast<double>(v) * k);
+  return out;
+}
+
+// Step 5 for one frame: a mosaic is one plane, a stacked sensor exposes each channel plane
+// with its own noise stream.
+std::vector<RawImage> exposeFrame(const Image& electrons, const SensorSettings& sensor,
+                                  double exposureTimeS, std::uint64_t frameIndex) {
+  const ExposureSettings settings{exposureTimeS, sensor.iso};
+  if (electrons.channelCount() == 1)
+    return {expose(electrons, sensor.spec, settings, sensor.noise, sensor.noiseSeed, frameIndex)};
+  std::vector<RawImage> raws;
+  for (int c = 0; c < electrons.channelCount(); ++c)
+    raws.push_back(expose(electrons.channel(c), sensor.spec, settings, sensor.noise,
+                          sensor.noiseSeed + static_cast<std::uint64_t>(c) * 0x9e3779b9u,
+                          frameIndex));
+  return raws;
+}
+
+double clippedFraction(const std::vector<RawImage>& raws) {
+  std::size_t clipped = 0, total = 0;
+  for (const RawImage& raw : raws) {
+    for (std::uint16_t v : raw.dn) clipped += static_cast<double>(v) >= raw.whiteLevelDn ? 1 : 0;
+    total += raw.dn.size();
+  }
+  return total == 0 ? 0.0 : static_cast<double>(clipped) / static_cast<double>(total);
+}
+
+Image greyRgb(const Image& plane) {
+  Image grey(plane.width, plane.height, {"R", "G", "B"});
+  for (std::size_t p = 0; p < plane.pixels.size(); ++p)
+    for (std::size_t c = 0; c < 3; ++c) grey.pixels[p * 3 + c] = plane.pixels[p];
+  return grey;
+}
+
+// Steps 2–6 on the render's sensor film.
+void exposeAndDevelop(CaptureResult& out, const RenderOptions& renderOptions) {
+  const SceneDescription& desc = out.description;
+  const SensorSettings& sensor = *desc.sensor;
+  const SensorSpec& spec = sensor.spec;
+  const double sceneTime = desc.camera.shutter.effectiveTime();
+  const bool moves = out.stats.modelled.time;
+  // The film at the scene's exposure stretched by k: rendered again when something moves.
+  const auto filmAt = [&](double k) {
+    if (!moves) return scaled(out.sensorFilm, k);
+    SceneDescription longer = desc;
+    longer.camera.shutter = desc.camera.shutter.scaled(k);
+    const Scene scene(longer);
+    RenderOptions o = renderOptions;
+    o.progress = nullptr;
+    return render(scene, sensorResponse(spec), o).image;
+  };
+  if (sensor.autoExposure)
+    out.exposureScale = autoExposureScale(out.sensorFilm, *sensor.autoExposure,
+                                          spec.saturationElectrons(sensor.iso));
+  const bool bracketed = !sensor.bracketEv.empty();
+  const std::vector<double> evs = bracketed ? sensor.bracketEv : std::vector<double>{0.0};
+  const auto zero = std::find(evs.begin(), evs.end(), 0.0);
+  out.referenceFrame = zero == evs.end() ? 0 : static_cast<std::size_t>(zero - evs.begin());
+  const Image base = out.exposureScale == 1.0 ? out.sensorFilm : filmAt(out.exposureScale);
+  for (std::size_t i = 0; i < evs.size(); ++i) {
+    CaptureFrame frame;
+    frame.ev = evs[i];
+    const double k = std::exp2(evs[i]);
+    frame.exposureTimeS = sceneTime * out.exposureScale * k;
+    frame.frameIndex = sensor.frame + i;
+    frame.electrons =
+        evs[i] == 0.0 ? base : (moves ? filmAt(out.exposureScale * k) : scaled(base, k));
+    frame.raws = exposeFrame(frame.electrons, sensor, frame.exposureTimeS, frame.frameIndex);
+    frame.clippedFraction = clippedFraction(frame.raws);
+    frame.whiteBalanceGains = whiteBalanceGains(frame.raws, spec, desc.isp);
+    out.frames.push_back(std::move(frame));
+  }
+  out.developed = developRaw(out.frames[out.referenceFrame].raws, spec, desc.isp,
+                             lutsDirectory() / "spectra" / "colorchecker_classic_reflectance.csv");
+  out.picture = out.developed->working.channelCount() == 1 ? greyRgb(out.developed->working)
+                                                           : out.developed->working;
+}
+
+}  // namespace
+
+Image xyzToExposedAcescg(const Image& xyz, double& exposure) {
+  double sum = 0.0;
+  std::size_t n = 0;
+  const int y = xyz.channelIndex("Y");
+  for (int j = 0; j < xyz.height; ++j)
+    for (int i = 0; i < xyz.width; ++i)
+      if (const float v = xyz.at(i, j, y); std::isfinite(v)) sum += static_cast<double>(v), ++n;
+  const double mean = n ? sum / static_cast<double>(n) : 0.0;
+  exposure = mean > 0.0 ? 0.18 / mean : 1.0;
+  return applyColorMatrix(xyz, xyzD65ToWorkingSpace(RgbColorSpace::acesCg()) * exposure,
+                          {"R", "G", "B"});
+}
+
+CaptureResult capture(SceneDescription description, const CaptureOptions& options) {
+  CaptureResult out;
+  out.description = std::move(description);
+  const SceneDescription& desc = out.description;
+  auto scene = std::make_unique<const Scene>(desc);
+  out.description.releaseDecodedImages();  // the Scene holds its own form of them
+
+  const SpectralResponse xyz = SpectralResponse::cieXyz();
+  std::vector<const SpectralResponse*> responses = {&xyz};
+  std::optional<SpectralResponse> electrons;
+  if (desc.sensor) responses.push_back(&electrons.emplace(sensorResponse(desc.sensor->spec)));
+  RenderOptions renderOptions;
+  renderOptions.spp = desc.render.spp;
+  renderOptions.seed = desc.render.seed;
+  renderOptions.threads = options.threads;
+  renderOptions.cancel = options.cancel;
+  renderOptions.progress = [&](int done, int total) {
+    out.tilesDone = done;
+    out.tilesTotal = total;
+    if (options.progress) options.progress(done, total);
+  };
+  RenderResult film = render(*scene, responses, renderOptions);
+  scene.reset();  // a re-render builds its own
+  out.stats = film.stats;
+  out.cancelled = film.stats.cancelled;
+  out.film = std::move(film.images[0]);
+  if (desc.sensor) out.sensorFilm = std::move(film.images[1]);
+  if (out.cancelled) return out;
+
+  if (desc.sensor)
+    exposeAndDevelop(out, renderOptions);
+  else
+    out.picture = xyzToExposedAcescg(out.film, out.displayExposure);
+  return out;
+}
+
+}  // namespace camsim

@@ -1,0 +1,86 @@
+// capture(): the capture sequence as one library call, from a loaded scene to everything a
+// capture produces, writing nothing (capture_writer.h writes it). Every front end (the
+// CLI, the Python module) calls it; its steps, as ISETCam's sensorCompute lists them:
+//
+//   1. render       the spectral film: CIE XYZ (absolute, lm·s per photosite) and, with a
+//                   sensor, the noise-free expected electrons at the scene's exposure
+//   2. meter        auto-exposure on the noise-free electrons (sensor/model/exposure_control.h):
+//                   a factor k on the exposure time, ISO kept
+//   3. bracket      one frame per bracket EV (or one at 0 EV), at T·k·2^EV
+//   4. re-render    only when something moves during the exposure (motion blur depends on
+//                   the exposure time): the film again with the shutter stretched; a static
+//                   scene's electrons scale linearly
+//   5. expose       photons → electrons → noise → ADC per frame (sensor::expose), noise from
+//                   sensor.noiseSeed, frame index sensor.frame + bracket index; a stacked
+//                   sensor exposes each channel plane with its own stream
+//   6. develop      the reference frame (0 EV, else the first) through the ISP
+//                   (isp_pipeline.h) to scene-linear ACEScg
+// Without a sensor, step 6 is XYZ → ACEScg with the mean luminance exposed to 0.18.
+//
+// | option     | unit | default | meaning |
+// |------------|------|---------|---------|
+// | threads    | —    | 0       | 0: all hardware threads; the result is the same for any count |
+// | progress   | —    | none    | (tiles done, tiles total) of the main render, from worker threads |
+// | cancel     | —    | none    | checked between tiles; a cancelled capture has only the finished tiles |
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <vector>
+
+#include "integrator/render/render.h"
+#include "integrator/scene/scene_description.h"
+#include "sensor/base/image.h"
+#include "sensor/isp/isp_pipeline.h"
+#include "sensor/model/raw_image.h"
+
+namespace camsim {
+
+struct CaptureOptions {
+  int threads = 0;
+  std::function<void(int, int)> progress;
+  const std::atomic<bool>* cancel = nullptr;
+};
+
+struct CaptureFrame {
+  double ev = 0.0;               // bracket offset (0 without brackets)
+  double exposureTimeS = 0.0;    // effective exposure time T·k·2^EV (s)
+  std::uint64_t frameIndex = 0;  // the noise stream's frame: sensor.frame + bracket index
+  Image electrons;               // expected e⁻ per photosite at this exposure, noise-free
+  std::vector<RawImage> raws;    // mosaic: one; stacked: one per channel plane
+  // The white-balance gains the ISP applies to this frame (one per camera channel; the
+  // reference channel G or Y is 1): a raw converter's AsShotNeutral is 1/g.
+  std::vector<double> whiteBalanceGains;
+  double clippedFraction = 0.0;  // photosites at the white level
+};
+
+struct CaptureResult {
+  SceneDescription description;  // what was captured (decoded texels released)
+  RenderStats stats;             // of the main render
+  // Cancelled: only tiles that finished hold values (others are 0) and nothing after the
+  // render ran (no frames, no picture).
+  bool cancelled = false;
+  int tilesDone = 0, tilesTotal = 0;
+  Image film;        // CIE XYZ: energy × 683 lm/W per photosite (Y in lm·s), absolute
+  Image sensorFilm;  // with a sensor: expected e⁻ at the scene's exposure time; else empty
+
+  double exposureScale = 1.0;               // auto-exposure's factor on every frame's exposure time
+  std::vector<CaptureFrame> frames;         // with a sensor: one per bracket, in the scene's order
+  std::size_t referenceFrame = 0;           // the frame developed (0 EV, else the first)
+  std::optional<DevelopedImage> developed;  // with a sensor
+
+  // Scene-linear ACEScg (R, G, B; 0.18 = mid-grey): the developed image (a monochrome
+  // sensor's plane as grey RGB), or without a sensor the exposed XYZ film.
+  Image picture;
+  double displayExposure = 1.0;  // without a sensor: the factor on XYZ (0.18 / mean Y)
+};
+
+// Throws InputError for inputs only the capture discovers (a file a re-render reads again).
+CaptureResult capture(SceneDescription description, const CaptureOptions& options = {});
+
+// CIE XYZ (D65-referred, absolute) → ACEScg with the mean luminance exposed to 0.18.
+Image xyzToExposedAcescg(const Image& xyz, double& exposure);
+
+}  // namespace camsim

@@ -1,0 +1,171 @@
+#include "integrator/capture/capture_writer.h"
+
+#include <cstdio>
+
+#include "integrator/camera/physical_camera.h"
+#include "integrator/capture/capture_sidecar.h"
+#include "sensor/base/format.h"
+#include "sensor/base/luts_directory.h"
+#include "sensor/io/dng_writer.h"
+#include "sensor/io/exr_io.h"
+#include "sensor/isp/display_image.h"
+#include "sensor/spectra/color_space.h"
+
+namespace camsim {
+namespace {
+
+// Metadata values: 9 significant digits.
+std::string number(double v) {
+  return formatNumber(v, 9);
+}
+
+ExrChromaticities rec709Chromaticities() {
+  const auto& cs = RgbColorSpace::linearRec709();
+  return {cs.red(), cs.green(), cs.blue(), cs.white()};
+}
+
+Metadata filmMetadata(const CaptureResult& r) {
+  const SceneDescription& desc = r.description;
+  const RenderStats& st = r.stats;
+  Metadata meta = {{"camsim:version", CAMSIM_VERSION},
+                   {"camsim:scene", desc.sourceFile},
+                   {"camsim:scene_fnv1a64", desc.sourceFnv1a},
+                   {"camsim:spp", std::to_string(desc.render.spp)},
+                   {"camsim:seed", std::to_string(desc.render.seed)},
+                   {"camsim:render_seconds", std::to_string(st.seconds)},
+                   {"camsim:rejected_samples", std::to_string(st.rejectedSamples)},
+                   {"camsim:modelled", st.modelled.describe()},
+                   {"camsim:units",
+                    "energy on each photosite weighted by the CIE 1931 observer x 683 lm/W: "
+                    "XYZ.Y is luminous energy in lm*s (talbot); R,G,B: linear Rec.709 on the "
+                    "same scale (1,1,1 has Y = 1 lm*s)"}};
+  const PhysicalCamera camera(desc.camera);
+  const PhysicalCameraParams& p = camera.params();
+  const glm::dvec4 k = camera.intrinsics();
+  meta.insert(meta.end(), {{"camsim:exposure_time_s", number(p.shutter.effectiveTime())},
+                           {"camsim:f_number", number(p.fNumber)},
+                           {"camsim:focal_length_m", number(p.focalLength)},
+                           {"camsim:image_distance_m", number(camera.imageDistance())},
+                           {"camsim:pixel_area_m2", number(camera.pixelArea())},
+                           {"camsim:opencv_fx_fy_cx_cy", number(k.x) + " " + number(k.y) + " " +
+                                                             number(k.z) + " " + number(k.w)},
+                           {"camsim:opencv_k1_k2_p1_p2_k3",
+                            number(p.distortion.k1) + " " + number(p.distortion.k2) + " " +
+                                number(p.distortion.p1) + " " + number(p.distortion.p2) + " " +
+                                number(p.distortion.k3)}});
+  return meta;
+}
+
+std::string frameStem(const CaptureResult& r, std::size_t i) {
+  if (r.description.sensor->bracketEv.empty()) return r.description.name;
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "_ev%+g", r.frames[i].ev);
+  return r.description.name + buf;
+}
+
+// NAME[_evX].dng and NAME[_evX]_raw.exr per frame (a stacked sensor: a raw EXR per plane).
+void writeFrames(const CaptureResult& r, const Metadata& meta, OutputSet& outputs) {
+  const SceneDescription& desc = r.description;
+  const SensorSettings& sensor = *desc.sensor;
+  const SensorSpec& spec = sensor.spec;
+  // The DNG's colour follows the ISP's white balance: matrices for its illuminant (and
+  // D65), AsShotNeutral from the gains it applies to each frame.
+  DngColor color =
+      spec.qe.size() == 3 && !spec.cfa.isStacked()
+          ? dngColorFromQe(spec.qe, desc.isp.illuminant,
+                           lutsDirectory() / "spectra" / "colorchecker_classic_reflectance.csv")
+          : DngColor{};
+  for (std::size_t i = 0; i < r.frames.size(); ++i) {
+    const CaptureFrame& frame = r.frames[i];
+    Metadata frameMeta = meta;
+    for (auto& [key, value] : frameMeta)
+      if (key == "camsim:units")
+        value =
+            "raw.DN: raw digital numbers as the ADC gives them, black level "
+            "included; electrons.<channel>: the noise-free expected photo-electrons per "
+            "photosite at this frame's exposure";
+    frameMeta.insert(frameMeta.end(),
+                     {{"camsim:sensor", spec.name},
+                      {"camsim:iso", std::to_string(sensor.iso)},
+                      {"camsim:exposure_time_s", std::to_string(frame.exposureTimeS)},
+                      {"camsim:noise_seed", std::to_string(sensor.noiseSeed)},
+                      {"camsim:frame", std::to_string(frame.frameIndex)}});
+    const std::string stem = frameStem(r, i);
+    if (spec.cfa.isStacked()) {
+      for (std::size_t c = 0; c < frame.raws.size(); ++c)
+        writeRawExr(outputs.add(stem + "_raw_" + spec.cfa.channels[c] + ".exr"), frame.raws[c],
+                    frame.electrons.channel(static_cast<int>(c)), frameMeta);
+      continue;
+    }
+    if (spec.qe.size() == 3) color.asShotNeutral = dngNeutralFromGains(frame.whiteBalanceGains);
+    DngCapture dng;
+    dng.fNumber = desc.camera.fNumber;
+    dng.focalLengthMm = desc.camera.focalLength * 1e3;
+    dng.dateTimeOriginal = "2000:01:01 00:00:00";  // fixed: same scene, same bytes
+    dng.exposureTimeS = frame.exposureTimeS;
+    dng.iso = sensor.iso;
+    writeDng(outputs.add(stem + ".dng"), frame.raws.front(), color, frameMeta, dng);
+    writeRawExr(outputs.add(stem + "_raw.exr"), frame.raws.front(), frame.electrons, frameMeta);
+  }
+}
+
+// An interrupted capture's finished tiles (each has its full spp) as NAME.partial.exr —
+// never a final name, so a partial image is not taken for a finished one.
+WrittenCapture writePartial(const CaptureResult& r, const std::filesystem::path& dir) {
+  if (r.tilesDone <= 0) return {};
+  const SceneDescription& desc = r.description;
+  const std::string what =
+      std::to_string(r.tilesDone) + " of " + std::to_string(r.tilesTotal) + " tiles";
+  const Metadata meta = {{"camsim:version", CAMSIM_VERSION},
+                         {"camsim:scene", desc.sourceFile},
+                         {"camsim:spp", std::to_string(desc.render.spp)},
+                         {"camsim:seed", std::to_string(desc.render.seed)},
+                         {"camsim:partial", "interrupted after " + what +
+                                                " (16x16 px each, all spp); other pixels are 0"}};
+  OutputSet outputs(dir);
+  writeExr(outputs.add(desc.name + ".partial.exr"), xyzExrImage(r.film), meta,
+           rec709Chromaticities());
+  return {outputs.commit(), {}};
+}
+
+}  // namespace
+
+Image xyzExrImage(const Image& xyz) {
+  const Image rgb = xyzToRgb(xyz, RgbColorSpace::linearRec709());
+  Image out(xyz.width, xyz.height, {"R", "G", "B", "XYZ.X", "XYZ.Y", "XYZ.Z"});
+  for (int y = 0; y < xyz.height; ++y)
+    for (int x = 0; x < xyz.width; ++x)
+      for (int c = 0; c < 3; ++c) {
+        out.at(x, y, c) = rgb.at(x, y, c);
+        out.at(x, y, 3 + c) = xyz.at(x, y, c);
+      }
+  return out;
+}
+
+std::string captureFrameFile(const CaptureResult& result, std::size_t frame) {
+  const bool stacked = result.description.sensor->spec.cfa.isStacked();
+  return frameStem(result, frame) +
+         (stacked ? "_raw_" + result.description.sensor->spec.cfa.channels.back() + ".exr"
+                  : ".dng");
+}
+
+WrittenCapture writeCapture(const CaptureResult& result, const CaptureOutputOptions& options) {
+  if (result.cancelled) return writePartial(result, options.directory);
+  const SceneDescription& desc = result.description;
+  const Metadata meta = filmMetadata(result);
+  OutputSet outputs(options.directory);
+  writeExr(outputs.add(desc.name + ".exr"), xyzExrImage(result.film), meta, rec709Chromaticities());
+  JsonObject sidecar = captureSidecar(result);
+  if (desc.sensor) writeFrames(result, meta, outputs);
+  sidecar.set("color", writePicture(result.picture, desc.name, options.picture,
+                                    desc.sensor.has_value(), meta, outputs));
+  outputs.addText(desc.name + ".json", sidecar.str() + "\n");
+  WrittenCapture written;
+  written.files = outputs.commit();
+  const std::filesystem::path stalePartial = options.directory / (desc.name + ".partial.exr");
+  std::error_code ec;
+  if (std::filesystem::remove(stalePartial, ec)) written.removed.push_back(stalePartial);
+  return written;
+}
+
+}  // namespace camsim
