@@ -13,15 +13,14 @@
 #include <vector>
 
 #include "tests/support/run_command.h"
+#include "tests/support/scene_text.h"
 #include "tests/support/temp_dir.h"
 #include "tests/support/text_file.h"
 
 namespace camsim {
 namespace {
 
-bool onPath(const std::string& tool) {
-  return std::system(("command -v " + tool + " >/dev/null 2>&1").c_str()) == 0;
-}
+using test::onPath;
 
 // A camera inside a dome that glows with illuminant A: every photosite sees the A white
 // (a grey card under A, up to a constant). Noise off, so the card is exactly uniform.

@@ -29,20 +29,16 @@
 #include "integrator/render/render.h"
 #include "integrator/scene/scene.h"
 #include "integrator/scene/scene_loader.h"
+#include "tests/support/scene_text.h"
 
 namespace camsim {
 namespace {
 
+using test::num;
+
 constexpr double kFocal = 0.050;  // m
 constexpr double kFNumber = 8.0;  // f/8: the camera equation's cos⁴θ varies < 1 % over the stop
 constexpr double kPitch = 6.25e-6;  // m
-
-std::string num(double v) {
-  std::ostringstream s;
-  s.precision(17);
-  s << v;
-  return s.str();
-}
 
 double imageDistance(double sf) {
   return kFocal * sf / (sf - kFocal);

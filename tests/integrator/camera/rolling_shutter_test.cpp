@@ -22,9 +22,12 @@
 #include "integrator/render/render.h"
 #include "integrator/scene/scene.h"
 #include "integrator/scene/scene_loader.h"
+#include "tests/support/scene_text.h"
 
 namespace camsim {
 namespace {
+
+using test::num;
 
 constexpr double kFocal = 0.050;    // m
 constexpr double kPitch = 20e-6;    // m
@@ -33,13 +36,6 @@ constexpr double kV = 2.0;          // m/s
 constexpr double kRowTime = 1e-4;   // s per row
 constexpr double kExposure = 1e-3;  // s per row (box)
 constexpr int kWidth = 96, kHeight = 64;
-
-std::string num(double v) {
-  std::ostringstream s;
-  s.precision(17);
-  s << v;
-  return s.str();
-}
 
 double pixelsPerMetre() {
   return kFocal / (kZ * kPitch);

@@ -23,9 +23,12 @@
 #include "integrator/render/render.h"
 #include "integrator/scene/scene.h"
 #include "integrator/scene/scene_loader.h"
+#include "tests/support/scene_text.h"
 
 namespace camsim {
 namespace {
+
+using test::num;
 
 constexpr double kFocal = 0.050;  // m
 constexpr double kPitch = 20e-6;  // m
@@ -34,13 +37,6 @@ constexpr double kT = 0.01;       // s, exposure (open 0 → close T)
 constexpr double kV = 2.4;        // m/s: v·T = 24 mm, 60 px
 constexpr double kEmitterPx = 3.0;
 constexpr int kWidth = 80, kHeight = 16;
-
-std::string num(double v) {
-  std::ostringstream s;
-  s.precision(17);
-  s << v;
-  return s.str();
-}
 
 double pixelsPerMetre() {
   return kFocal / (kZ * kPitch);

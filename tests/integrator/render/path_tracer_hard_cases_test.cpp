@@ -23,11 +23,14 @@
 #include "sensor/spectra/cie.h"
 #include "sensor/spectra/spectral_data.h"
 #include "tests/integrator/render_test_support.h"
+#include "tests/support/scene_text.h"
 #include "tests/support/temp_dir.h"
 #include "tests/support/text_file.h"
 
 namespace camsim {
 namespace {
+
+using test::num;
 
 using test::flatY;
 using test::LuminanceImage;
@@ -44,12 +47,6 @@ void expectClean(const LuminanceImage& img) {
   EXPECT_EQ(img.stats.rejectedSamples, 0u);
   for (int y = 0; y < img.y.height; ++y)
     for (int x = 0; x < img.y.width; ++x) ASSERT_TRUE(std::isfinite(img.at(x, y))) << x << "," << y;
-}
-
-std::string num(double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.17g", v);
-  return buf;
 }
 
 // A closed sphere of radius 2 m (centre c), emitting Lₑ = 0.01 on both sides with

@@ -15,20 +15,17 @@
 #include <string>
 
 #include "tests/integrator/render_test_support.h"
+#include "tests/support/scene_text.h"
 #include "tests/support/temp_dir.h"
 #include "tests/support/text_file.h"
 
 namespace camsim {
 namespace {
 
+using test::num;
+
 using test::LuminanceImage;
 using test::renderLuminance;
-
-std::string num(double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.17g", v);
-  return buf;
-}
 
 // A floor under one emitter of the given emission, seen from 1 m.
 std::string darkRoom(const std::string& emission) {

@@ -1,6 +1,7 @@
 // Tests for sensor/dng_writer: DNGs checked by an independent reader (LibRaw's raw-identify,
 // unprocessed_raw and dcraw_emu, Debian package libraw-bin) and the least-squares colour fit.
 #include "sensor/io/dng_writer.h"
+#include "tests/support/scene_text.h"
 
 #include <unistd.h>
 #include <algorithm>
@@ -25,6 +26,8 @@
 
 namespace camsim {
 namespace {
+
+using test::onPath;
 
 const std::filesystem::path kColorChecker =
     std::filesystem::path(CAMSIM_LUTS_DIR) / "spectra/colorchecker_classic_reflectance.csv";
@@ -64,16 +67,6 @@ RawImage gradient(const std::string& cfaName, int width, int height) {
       raw.dn.push_back(static_cast<std::uint16_t>(256 + (x * 7 + y * 131) % range));
   raw.dn.back() = 4095;
   return raw;
-}
-
-bool onPath(const std::string& program) {
-  const char* path = std::getenv("PATH");
-  std::stringstream dirs(path ? path : "");
-  std::string dir;
-  while (std::getline(dirs, dir, ':'))
-    if (!dir.empty() && ::access((std::filesystem::path(dir) / program).c_str(), X_OK) == 0)
-      return true;
-  return false;
 }
 
 // stdout of a shell command.

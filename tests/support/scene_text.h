@@ -1,0 +1,22 @@
+// Helpers for tests that write scene text or call outside tools.
+#pragma once
+
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+
+namespace camsim::test {
+
+// A number as scene text that reads back as the same double ("%.17g").
+inline std::string num(double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.17g", v);
+  return buf;
+}
+
+// Whether `program` is on PATH (e.g. dcraw, exiftool for checks with the real tools).
+inline bool onPath(const std::string& program) {
+  return std::system(("command -v '" + program + "' >/dev/null 2>&1").c_str()) == 0;
+}
+
+}  // namespace camsim::test
