@@ -19,7 +19,7 @@ namespace camsim {
 namespace {
 
 // Part of every cache key: bumped when the renderer's expectation changes, so that no cached
-// reference of the old estimator is reused (2: the aplanatic pupil, 2026-12-01).
+// reference of the old estimator is reused (2: the aplanatic pupil).
 constexpr const char* kFormatTag = "camsim-bench-reference/2";
 constexpr std::uint64_t kSeedA = 1001, kSeedB = 1002;
 

@@ -5,9 +5,9 @@
 // arrays (shared, not copied: TriangleMesh keeps the 16 bytes of padding Embree reads past
 // the last element), spheres RTC_GEOMETRY_TYPE_SPHERE_POINT (small Embree-owned buffers).
 // BVH quality: RTC_BUILD_QUALITY_HIGH (spatial splits, the fastest traversal) up to
-// kHighQualityTriangles triangles; above, MEDIUM (binned SAH): measured on a 1 M-triangle
-// mesh, HIGH costs 3–4× the CPU time to build and a third more memory at its peak, for
-// 10–15 % faster traversal (docs/performance.md).
+// kHighQualityTriangles triangles; above, MEDIUM (binned SAH): on large meshes HIGH's build
+// time and peak memory outweigh its faster traversal (figures: docs/performance.md, "What was
+// changed, and why").
 // Moving shapes use Embree's motion blur, with steps uniform over the scene's motion span
 // [t0, t1]; a ray's time t (s) is passed to Embree as (t − t0)/(t1 − t0). Each is a static
 // geometry of its reference pose in a scene of its own (same build quality), placed by a

@@ -17,12 +17,9 @@
 // Cost: this sits on the hot path (≈ 20 numbers per pixel sample), so get1D/get2D fold the
 // bit reversals that cancel (sobol₀ is itself a reversal), compute sobol₁ without a loop
 // over the index bits, and derive a pair's three scramble seeds with 32-bit hashes (which
-// vectorise 8-wide in AVX2; 64-bit mixes, used until 2026-11, do not); the pixel's key, and
-// in block mode the seeds of its first kCachedDimensions dimensions, are reused by
-// consecutive samples of the same pixel (Cornell box, 4 spp, with the 64-bit mixes and blocks
-// of 8 used then: the block work fell from 910 M to 716 M instructions, and the Sobol'
-// sampler's extra cost over the independent one from 4.1 k to 1.1 k instructions per pixel
-// sample; docs/performance.md has the later figures).
+// vectorise 8-wide in AVX2, where 64-bit mixes do not); the pixel's key, and in block mode
+// the seeds of its first kCachedDimensions dimensions, are reused by consecutive samples of
+// the same pixel. What each of these saved: docs/performance.md.
 #pragma once
 
 #include <cstdint>
