@@ -10,7 +10,9 @@
 //                  time (SobolDraw::kOneAtATime), and by default (blocks of kBlock
 //                  dimensions with AVX2 where the CPU has it)
 //   lanes          SobolSampler::number1D in a loop over pixel samples (same code), built
-//                  for the x86-64 baseline (SSE2), and for AVX2 where the CPU has it
+//                  for the build's target (x86-64: the SSE2 baseline), and for AVX2 where
+//                  the CPU has it (CAMSIM_TARGET_AVX2, sensor/base/simd.h; not in the
+//                  portable build, CAMSIM_SIMD=OFF)
 // and checks that every variant gives the same numbers bit for bit (error: 0 mismatches).
 //
 // usage: sobol_lanes_bench [--rounds N]   (default 64; prints ns per number, best of 5)
@@ -25,6 +27,7 @@
 #include <vector>
 
 #include "integrator/sampling/sobol_sampler.h"
+#include "sensor/base/simd.h"
 
 namespace {
 
@@ -80,7 +83,8 @@ void lanesBaseline(const Lanes& l, std::vector<float>& out) {
   lanes(l, out);
 }
 
-__attribute__((target("avx2"))) void lanesAvx2(const Lanes& l, std::vector<float>& out) {
+// Called only if simd::cpuHasAvx2() (in the portable build: never, and without the target).
+CAMSIM_TARGET_AVX2 void lanesAvx2(const Lanes& l, std::vector<float>& out) {
   lanes(l, out);
 }
 
@@ -128,7 +132,7 @@ int main(int argc, char** argv) {
   drawn(SobolDraw::kOneAtATime, reference);
   drawn(SobolDraw::kAuto, sampler);
   lanesBaseline(lanes, baseline);
-  const bool haveAvx2 = __builtin_cpu_supports("avx2");
+  const bool haveAvx2 = camsim::simd::cpuHasAvx2();
   if (haveAvx2) lanesAvx2(lanes, avx2);
 
   const double tOne = bestNsPerNumber(rounds, [&] { drawn(SobolDraw::kOneAtATime, reference); });
@@ -141,14 +145,15 @@ int main(int argc, char** argv) {
               SobolSampler(kSeed).drawsBlocks() ? "get1D, AVX2 blocks"
                                                 : "get1D, default (no AVX2: one at a time)",
               tSampler, tOne / tSampler, mismatches(reference, sampler));
-  std::printf("  %-34s %6.2f ns/number  %.2fx  mismatches %zu\n", "lanes, x86-64 baseline (SSE2)",
+  std::printf("  %-34s %6.2f ns/number  %.2fx  mismatches %zu\n", "lanes, the build's target",
               tBase, tOne / tBase, mismatches(reference, baseline));
   if (haveAvx2) {
     const double tAvx = bestNsPerNumber(rounds, [&] { lanesAvx2(lanes, avx2); });
     std::printf("  %-34s %6.2f ns/number  %.2fx  mismatches %zu\n", "lanes, AVX2", tAvx,
                 tOne / tAvx, mismatches(reference, avx2));
   } else {
-    std::printf("  lanes, AVX2: this CPU has no AVX2\n");
+    std::printf("  lanes, AVX2: %s\n",
+                CAMSIM_SIMD_X86 ? "this CPU has no AVX2" : "not built (portable build)");
   }
   const bool equal = mismatches(reference, sampler) == 0 && mismatches(reference, baseline) == 0 &&
                      (!haveAvx2 || mismatches(reference, avx2) == 0);

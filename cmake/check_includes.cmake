@@ -6,6 +6,10 @@
 # 2. No header includes a heavy dependency (Embree, OpenEXR/Imath, OpenColorIO, libtiff,
 #    libpng, TBB, yaml-cpp): each lives in the .cpp files of the module that owns it.
 #    KNOWN_HEADER_LEAKS would list accepted exceptions: there are none.
+# 3. x86-specific code (builtins, target attributes, intrinsics headers and names) appears
+#    only in sensor/base/simd.h, which has a portable path for each (CAMSIM_SIMD=OFF):
+#    checked on every .h/.cpp of integrator/, sensor/, cli/, bench/, fuzz/ and tests/
+#    (not tests/data/, whose fixtures break the rules on purpose).
 # Prints what it checked; any violation is a SEND_ERROR (the test fails, naming file, line
 # and include).
 cmake_minimum_required(VERSION 3.22)
@@ -37,6 +41,11 @@ set(ALLOWED_integrator/capture integrator/sampling integrator/geometry integrato
 
 set(HEAVY "embree3/|OpenEXR/|Imath/|Imf|OpenColorIO|tiffio|tiff\\.h|png\\.h|tbb/|oneapi/|yaml-cpp/")
 set(KNOWN_HEADER_LEAKS "")
+
+set(SIMD_HEADER sensor/base/simd.h)
+set(X86_ONLY "__builtin_ia32_|__builtin_cpu_(supports|is|init)|target(_clones)?\\(\"")
+string(APPEND X86_ONLY "|#include <[a-z0-9]*(intrin|cpuid)\\.h>|(^|[^A-Za-z0-9_])_mm(256|512)?_")
+string(APPEND X86_ONLY "|__m(128|256|512)")
 
 file(GLOB_RECURSE files RELATIVE "${SOURCE_DIR}" "${SOURCE_DIR}/integrator/*.h"
      "${SOURCE_DIR}/integrator/*.cpp" "${SOURCE_DIR}/sensor/*.h" "${SOURCE_DIR}/sensor/*.cpp")
@@ -74,4 +83,24 @@ foreach(f IN LISTS files)
     endif()
   endforeach()
 endforeach()
-message(STATUS "include rules: ${checked} files checked, ${violations} violations")
+
+file(GLOB_RECURSE all_sources RELATIVE "${SOURCE_DIR}" "${SOURCE_DIR}/integrator/*.h"
+     "${SOURCE_DIR}/integrator/*.cpp" "${SOURCE_DIR}/sensor/*.h" "${SOURCE_DIR}/sensor/*.cpp"
+     "${SOURCE_DIR}/cli/*.h" "${SOURCE_DIR}/cli/*.cpp" "${SOURCE_DIR}/bench/*.h"
+     "${SOURCE_DIR}/bench/*.cpp" "${SOURCE_DIR}/fuzz/*.h" "${SOURCE_DIR}/fuzz/*.cpp"
+     "${SOURCE_DIR}/tests/*.h" "${SOURCE_DIR}/tests/*.cpp")
+set(x86_checked 0)
+foreach(f IN LISTS all_sources)
+  if(f STREQUAL SIMD_HEADER OR f MATCHES "^tests/data/")
+    continue()
+  endif()
+  math(EXPR x86_checked "${x86_checked} + 1")
+  file(STRINGS "${SOURCE_DIR}/${f}" hits REGEX "${X86_ONLY}")
+  foreach(line IN LISTS hits)
+    string(STRIP "${line}" line)
+    message(SEND_ERROR "${f}: '${line}': x86-specific code belongs in ${SIMD_HEADER}")
+    math(EXPR violations "${violations} + 1")
+  endforeach()
+endforeach()
+message(STATUS "include rules: ${checked} files checked, x86 rule: ${x86_checked} files; "
+               "${violations} violations")

@@ -1,12 +1,15 @@
 #!/usr/bin/env bash
 # Sets up and builds (scripts/setup.sh), then runs every quality gate (docs/testing.md):
-#   1. the test suite (CTest) on the Release build in build/; then every tracked .cpp/.h is
-#      checked to be clang-formatted (scripts/format.sh --check, a few seconds);
+#   1. the test suite (CTest) on the Release build in build/ (the SIMD path, CAMSIM_SIMD=ON);
+#      then every tracked .cpp/.h is checked to be clang-formatted (scripts/format.sh
+#      --check, a few seconds);
 #   2. the same suite built with AddressSanitizer + UndefinedBehaviorSanitizer (GCC,
 #      CAMSIM_SANITIZE=ON, -O1 -g1: line tables for the reports, a quarter faster to compile
-#      than -g) in build-asan/, less two slow statistical tests (see below);
-#   3. the libFuzzer harnesses (Clang, CAMSIM_FUZZ=ON) in build-fuzz/: every seed and
-#      regression input replayed once (CTest), then each harness fuzzed for
+#      than -g) in build-asan/, less three slow tests (see below); built portable
+#      (CAMSIM_SIMD=OFF: sensor/base/simd.h's portable path, no AVX2 copy, no x86 flag), so
+#      the whole suite runs on both paths without a build stage of its own;
+#   3. the libFuzzer harnesses (Clang, CAMSIM_FUZZ=ON, the SIMD path) in build-fuzz/: every
+#      seed and regression input replayed once (CTest), then each harness fuzzed for
 #      CAMSIM_FUZZ_SECONDS (default 45) by scripts/fuzz.sh.
 # Every stage runs even when an earlier one failed; the script fails if any did.
 # Environment: CAMSIM_BUILD_DIR, CAMSIM_ASAN_BUILD_DIR, CAMSIM_FUZZ_BUILD_DIR (build
@@ -54,7 +57,7 @@ asan_suite() {
   local slow='^(ColorChecker\.(MeasuredCameraWithFittedCcm|WhiteBalanceMakesNeutralPatchesNeutral)|DepthOfField\.AplanaticBlurDiscIsUniformlyLit)$'
   cmake -S . -B "$asan_dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
     -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" -DCAMSIM_SANITIZE=ON \
-    -DCAMSIM_BUILD_BENCH=OFF >/dev/null &&
+    -DCAMSIM_SIMD=OFF -DCAMSIM_BUILD_BENCH=OFF >/dev/null &&
     cmake --build "$asan_dir" -j"$jobs" &&
     ASAN_OPTIONS=${ASAN_OPTIONS:-$asan} \
       UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1} \

@@ -106,11 +106,12 @@ struct ShapeSample {
   glm::vec3 wi{0.0f};  // unit direction from the reference point to point.p
   float pdf = 0.0f;    // solid angle (sr⁻¹) as seen from the reference point
 };
-// CMakeLists.txt's -mmemset-strategy zeroes up to 256 bytes with plain stores (GCC's default
-// above 80 bytes is `rep stos`, slow to start: docs/performance.md). A light sample zeroes
-// optional<ShapeSample> once per light sample: past 256 bytes it would call memset again.
-static_assert(sizeof(std::optional<ShapeSample>) <= 256,
-              "ShapeSample outgrew CMakeLists.txt's -mmemset-strategy threshold (256 bytes)");
+// CMakeLists.txt's -mmemset-strategy zeroes up to CAMSIM_MEMSET_INLINE_BYTES (a compile
+// definition from the same CMake variable) with plain stores (GCC's default above 80 bytes
+// is `rep stos`, slow to start: docs/performance.md). A light sample zeroes
+// optional<ShapeSample> once per light sample: past the threshold it would call memset.
+static_assert(sizeof(std::optional<ShapeSample>) <= CAMSIM_MEMSET_INLINE_BYTES,
+              "ShapeSample outgrew CMakeLists.txt's -mmemset-strategy threshold");
 
 // From a reference point to a point p: the unit direction and the squared distance (m²),
 // computed once per light sample for both the direction and the pdf, with one division

@@ -35,9 +35,10 @@ struct LightSample {
   bool infinite = false;     // sun/environment: shadow ray from ref along wi to infinity
 };
 // Zeroed twice per light sample (optional<LightSample>): CMakeLists.txt's -mmemset-strategy
-// keeps zeroings up to 256 bytes as plain stores (docs/performance.md).
-static_assert(sizeof(std::optional<LightSample>) <= 256,
-              "LightSample outgrew CMakeLists.txt's -mmemset-strategy threshold (256 bytes)");
+// keeps zeroings up to CAMSIM_MEMSET_INLINE_BYTES (its compile definition) as plain stores
+// (docs/performance.md).
+static_assert(sizeof(std::optional<LightSample>) <= CAMSIM_MEMSET_INLINE_BYTES,
+              "LightSample outgrew CMakeLists.txt's -mmemset-strategy threshold");
 
 class Light {
  public:

@@ -1,12 +1,15 @@
 #include "integrator/sampling/sobol_sampler.h"
 
+#include "sensor/base/simd.h"
+
 namespace camsim {
 namespace {
 
 // The loops below are the same arithmetic as get1D/get2D written over the lanes, for the
-// compiler to vectorise (8 × 32-bit lanes in AVX2); each is compiled for the baseline and,
-// with target("avx2"), for CPUs that have it (always_inline: a call into the baseline copy
-// from the AVX2 function would run baseline code).
+// compiler to vectorise (8 × 32-bit lanes in AVX2). The plain templates are the reference,
+// compiled for the build's target; with CAMSIM_SIMD_X86 each also has a copy compiled with
+// CAMSIM_TARGET_AVX2, used on CPUs that have it (always_inline: a call into the baseline
+// copy from the AVX2 function would run baseline code).
 
 // Seeds of N consecutive dimensions from firstDimension (unsigned: wraps as seedsOf does).
 template <int N>
@@ -35,27 +38,25 @@ template <int N>
   }
 }
 
+#if CAMSIM_SIMD_X86
 constexpr int kBlock = SobolSampler::kBlock;
 
-__attribute__((target("avx2"))) void fillSeedsAvx2(std::uint64_t pixelKey,
-                                                   std::uint32_t firstDimension,
-                                                   std::uint32_t* shuffle, std::uint32_t* x,
-                                                   std::uint32_t* y) {
+CAMSIM_TARGET_AVX2 void fillSeedsAvx2(std::uint64_t pixelKey, std::uint32_t firstDimension,
+                                      std::uint32_t* shuffle, std::uint32_t* x, std::uint32_t* y) {
   fillSeeds<kBlock>(pixelKey, firstDimension, shuffle, x, y);
 }
 
-__attribute__((target("avx2"))) void fillLanesAvx2(const std::uint32_t* shuffleSeeds,
-                                                   const std::uint32_t* xSeeds,
-                                                   const std::uint32_t* ySeeds,
-                                                   std::uint32_t reversedIndex, float* x,
-                                                   float* y) {
+CAMSIM_TARGET_AVX2 void fillLanesAvx2(const std::uint32_t* shuffleSeeds,
+                                      const std::uint32_t* xSeeds, const std::uint32_t* ySeeds,
+                                      std::uint32_t reversedIndex, float* x, float* y) {
   fillLanes<kBlock>(shuffleSeeds, xSeeds, ySeeds, reversedIndex, x, y);
 }
+#endif
 
 }  // namespace
 
 SobolSampler::SobolSampler(std::uint64_t seed, SobolDraw draw)
-    : seed_(seed), avx2_(__builtin_cpu_supports("avx2")) {
+    : seed_(seed), avx2_(simd::cpuHasAvx2()) {
   blocks_ = draw == SobolDraw::kBlocks || (draw == SobolDraw::kAuto && avx2_);
 }
 
@@ -73,10 +74,14 @@ void SobolSampler::startPixelSample(glm::ivec2 pixel, int sampleIndex) {
 void SobolSampler::seedsOfBlock(int firstDimension, std::uint32_t* shuffle, std::uint32_t* x,
                                 std::uint32_t* y) const {
   const auto first = static_cast<std::uint32_t>(firstDimension);  // wraps, as seedsOf
+#if CAMSIM_SIMD_X86
   if (avx2_)
     fillSeedsAvx2(pixelKey_, first, shuffle, x, y);
   else
     fillSeeds<kBlock>(pixelKey_, first, shuffle, x, y);
+#else
+  fillSeeds<kBlock>(pixelKey_, first, shuffle, x, y);
+#endif
 }
 
 void SobolSampler::cacheSeeds(int end) {
@@ -107,10 +112,14 @@ void SobolSampler::fillBlock() {
     xs = local[1];
     ys = local[2];
   }
+#if CAMSIM_SIMD_X86
   if (avx2_)
     fillLanesAvx2(shuffle, xs, ys, reversedIndex_, x_, y_);
   else
     fillLanes<kBlock>(shuffle, xs, ys, reversedIndex_, x_, y_);
+#else
+  fillLanes<kBlock>(shuffle, xs, ys, reversedIndex_, x_, y_);
+#endif
 }
 
 }  // namespace camsim

@@ -77,11 +77,11 @@ inline std::uint32_t hash32(std::uint32_t x) {
 }  // namespace sobol
 
 // How a SobolSampler computes its numbers; all give the same numbers, bit for bit.
-//   kAuto        blocks of kBlock dimensions at a time with AVX2 where the CPU has it,
-//                else kOneAtATime
+//   kAuto        blocks of kBlock dimensions at a time with AVX2 where the CPU has it
+//                (and the build has the SIMD path, sensor/base/simd.h), else kOneAtATime
 //   kOneAtATime  each number when it is drawn
-//   kBlocks      blocks always, with AVX2 where the CPU has it (tests the block logic on
-//                any CPU)
+//   kBlocks      blocks always, with AVX2 where kAuto would use it (tests the block
+//                logic on any CPU and in the portable build)
 enum class SobolDraw { kAuto, kOneAtATime, kBlocks };
 
 // get1D/get2D are defined here so that the render loop, which is compiled for this final
@@ -181,7 +181,7 @@ class SobolSampler final : public Sampler {
   void fillBlock();  // x_, y_ for dimensions dimension_ … dimension_ + kBlock − 1
   // The cached seeds of dimensions up to `end` (≤ kCachedDimensions).
   void cacheSeeds(int end);
-  // The seeds of the kBlock dimensions from firstDimension, with AVX2 where the CPU has it.
+  // The seeds of the kBlock dimensions from firstDimension, with AVX2 if avx2_.
   void seedsOfBlock(int firstDimension, std::uint32_t* shuffle, std::uint32_t* x,
                     std::uint32_t* y) const;
 
@@ -193,7 +193,7 @@ class SobolSampler final : public Sampler {
   static constexpr int kNoBlock = std::numeric_limits<int>::min() / 2;  // far from any dimension
 
   bool blocks_ = false;
-  bool avx2_ = false;
+  bool avx2_ = false;          // simd::cpuHasAvx2(): the SIMD build on a CPU with AVX2
   int blockStart_ = kNoBlock;  // first dimension of x_, y_
   float x_[kBlock] = {}, y_[kBlock] = {};
   int cachedEnd_ = 0;  // dimensions [0, cachedEnd_) of pixel_ have their seeds below

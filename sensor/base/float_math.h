@@ -1,6 +1,6 @@
 // Single-precision functions on bounded ranges for the per-sample hot path, in plain
 // arithmetic: no call into libm, the same bits whatever libm the binary runs with.
-// logOfNormal also takes a Float4 (four lanes in one SSE register), so the four
+// logOfNormal also takes a Float4 (four lanes in one vector register), so the four
 // wavelengths of a pixel sample are computed in one pass. Accuracy is checked against libm
 // in tests/sensor/base/float_math_test.cpp.
 //
@@ -18,13 +18,13 @@
 #include <bit>
 #include <cstdint>
 
+#include "sensor/base/simd.h"
+
 namespace camsim {
 
-// Four floats / ints in one SSE register (GCC/Clang vector extension). Code written once
+// Float4 / Int4 (sensor/base/simd.h): four floats / ints in one vector. Code written once
 // for F = float and F = Float4 uses the helpers in lanes:: (the int type of the same
 // shape, conversions), so its scalar and four-lane forms do the same IEEE operations.
-using Float4 = float __attribute__((vector_size(16)));
-using Int4 = std::int32_t __attribute__((vector_size(16)));
 
 namespace lanes {
 // The int type of F's shape (logOfNormal works on the bits).
@@ -48,14 +48,9 @@ inline std::int32_t toInt(float x) {  // truncation
 inline Int4 toInt(Float4 x) {
   return __builtin_convertvector(x, Int4);
 }
-// Whether any lane of a comparison's result (−1 true, 0 false) is true: one movmskps on
-// x86 (extracting the four lanes to OR them took eight instructions).
+// Whether any lane of a comparison's result (−1 true, 0 false) is true.
 inline bool any(Int4 mask) {
-#if defined(__SSE__)
-  return __builtin_ia32_movmskps(std::bit_cast<Float4>(mask)) != 0;
-#else
-  return (mask[0] | mask[1] | mask[2] | mask[3]) != 0;
-#endif
+  return simd::anyLane(mask);
 }
 }  // namespace lanes
 

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "integrator/sampling/sobol_sampler.h"
+#include "sensor/base/simd.h"
 #include "tests/integrator/sampler_contract.h"
 
 namespace camsim {
@@ -144,11 +145,13 @@ testing::AssertionResult sameDraw(SobolSampler& blocks, SobolSampler& single, bo
 }
 
 TEST(SobolSampler, BlocksGiveTheNumbersOfOneAtATime) {
-  // kBlocks: blocks on any CPU (the AVX2 fill where there is AVX2, else the same loop for
-  // the baseline), so the block logic is tested everywhere.
+  // kBlocks: blocks on any CPU (the AVX2 fill where there is AVX2 and the SIMD build, else
+  // the same loop for the build's target), so the block logic is tested everywhere.
   SobolSampler blocks(11, SobolDraw::kBlocks), single(11, SobolDraw::kOneAtATime);
   EXPECT_TRUE(blocks.drawsBlocks());
   EXPECT_FALSE(single.drawsBlocks());
+  // kAuto: blocks exactly where the AVX2 fill is built and the CPU has AVX2.
+  EXPECT_EQ(SobolSampler(11).drawsBlocks(), simd::cpuHasAvx2());
   // Draws before the first startPixelSample: pixel key 0, index 0, from dimension 0.
   EXPECT_EQ(std::bit_cast<std::uint32_t>(blocks.get1D()),
             std::bit_cast<std::uint32_t>(single.get1D()));
