@@ -137,6 +137,7 @@ CaptureResult capture(SceneDescription description, const CaptureOptions& option
   out.cancelled = film.stats.cancelled;
   out.film = std::move(film.images[0]);
   if (desc.sensor) out.sensorFilm = std::move(film.images[1]);
+  out.aovs = std::move(film.aovs);
   if (out.cancelled) return out;
 
   if (desc.sensor)

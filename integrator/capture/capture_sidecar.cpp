@@ -84,6 +84,12 @@ JsonObject ispJson(const CaptureResult& r) {
   return j;
 }
 
+std::vector<std::string> aovNames(const std::vector<Aov>& aovs) {
+  std::vector<std::string> names;
+  for (Aov a : aovs) names.emplace_back(aovName(a));
+  return names;
+}
+
 }  // namespace
 
 JsonObject captureSidecar(const CaptureResult& r) {
@@ -102,7 +108,8 @@ JsonObject captureSidecar(const CaptureResult& r) {
                          .set("max_depth", double(desc.render.maxDepth))
                          .set("seconds", st.seconds)
                          .set("rejected_samples", double(st.rejectedSamples))
-                         .set("modelled", st.modelled.describe()))
+                         .set("modelled", st.modelled.describe())
+                         .set("aovs", aovNames(desc.render.aovs)))
       .set("camera", cameraJson(PhysicalCamera(desc.camera)));
   if (desc.sensor)
     sidecar.set("sensor", sensorJson(r)).set("isp", ispJson(r));

@@ -128,6 +128,20 @@ WrittenCapture writePartial(const CaptureResult& r, const std::filesystem::path&
   return {outputs.commit(), {}};
 }
 
+// The image's channels followed by the ground-truth layers (none when aovs is empty).
+Image withLayers(const Image& image, const Image& aovs) {
+  if (aovs.pixels.empty()) return image;
+  std::vector<std::string> channels = image.channels;
+  channels.insert(channels.end(), aovs.channels.begin(), aovs.channels.end());
+  Image out(image.width, image.height, channels);
+  const std::size_t a = image.channels.size(), b = aovs.channels.size();
+  for (std::size_t p = 0; p < static_cast<std::size_t>(image.width * image.height); ++p) {
+    for (std::size_t c = 0; c < a; ++c) out.pixels[p * (a + b) + c] = image.pixels[p * a + c];
+    for (std::size_t c = 0; c < b; ++c) out.pixels[p * (a + b) + a + c] = aovs.pixels[p * b + c];
+  }
+  return out;
+}
+
 }  // namespace
 
 Image xyzExrImage(const Image& xyz) {
@@ -154,7 +168,8 @@ WrittenCapture writeCapture(const CaptureResult& result, const CaptureOutputOpti
   const SceneDescription& desc = result.description;
   const Metadata meta = filmMetadata(result);
   OutputSet outputs(options.directory);
-  writeExr(outputs.add(desc.name + ".exr"), xyzExrImage(result.film), meta, rec709Chromaticities());
+  writeExr(outputs.add(desc.name + ".exr"), withLayers(xyzExrImage(result.film), result.aovs), meta,
+           rec709Chromaticities());
   JsonObject sidecar = captureSidecar(result);
   if (desc.sensor) writeFrames(result, meta, outputs);
   sidecar.set("color", writePicture(result.picture, desc.name, options.picture,

@@ -11,7 +11,7 @@
 //   NAME.png              the picture through OpenColorIO's display/view/look
 //   NAME.json             every setting used, the modelled dimensions, the ISP's matrices
 // A cancelled capture writes only NAME.partial.exr with the tiles that finished (nothing
-// when none had), never a final name. docs/output-files.md lists every key.
+// when none had), never a final name. docs/output.md lists every key.
 #pragma once
 
 #include <cstddef>

@@ -73,4 +73,8 @@ std::optional<BsdfSample> ConductorMaterial::sample(const glm::vec3& woIn, float
   return s;
 }
 
+SurfaceAov ConductorMaterial::aov(const SampledWavelengths& lambda, const BsdfContext& ctx) const {
+  return {fresnel(1.0f, lambda, ctx), p_.roughness->evaluate(ctx.uv)};
+}
+
 }  // namespace camsim

@@ -48,6 +48,7 @@ class ConductorMaterial final : public Material {
                                    const BsdfContext& ctx) const override;
   float pdf(const glm::vec3& wo, const glm::vec3& wi, const SampledWavelengths& lambda,
             const BsdfContext& ctx) const override;
+  SurfaceAov aov(const SampledWavelengths& lambda, const BsdfContext& ctx) const override;
 
  private:
   MicrofacetModel model(const BsdfContext& ctx) const;

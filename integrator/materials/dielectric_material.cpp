@@ -197,4 +197,8 @@ std::optional<BsdfSample> DielectricMaterial::sampleRough(const glm::vec3& wo, f
   return s;
 }
 
+SurfaceAov DielectricMaterial::aov(const SampledWavelengths&, const BsdfContext& ctx) const {
+  return {SampledSpectrum(1.0f), roughness_->evaluate(ctx.uv)};
+}
+
 }  // namespace camsim

@@ -78,6 +78,7 @@ class DielectricMaterial final : public Material {
                                    const BsdfContext& ctx) const override;
   float pdf(const glm::vec3& wo, const glm::vec3& wi, const SampledWavelengths& lambda,
             const BsdfContext& ctx) const override;
+  SurfaceAov aov(const SampledWavelengths& lambda, const BsdfContext& ctx) const override;
 
   // η at the hero wavelength lambda[0].
   float etaAt(const SampledWavelengths& lambda) const { return eta_(lambda[0]); }

@@ -41,4 +41,8 @@ float DiffuseMaterial::pdf(const glm::vec3& wo, const glm::vec3& wi,
   return std::abs(wi.z) * kInvPi;
 }
 
+SurfaceAov DiffuseMaterial::aov(const SampledWavelengths& lambda, const BsdfContext& ctx) const {
+  return {reflectance_->evaluate(ctx.uv, lambda), 1.0f};
+}
+
 }  // namespace camsim

@@ -39,6 +39,15 @@ struct BsdfSample {
   float etap = 1.0f;
 };
 
+// What a first hit reports as ground truth (integrator/render/aov_film.h): the reflectance
+// the surface shows at λ — a diffuse or plastic surface's ρ, a mirror's ρ, a metal's
+// normal-incidence Fresnel reflectance F(0), 1 for (lossless) glass — and its roughness α
+// as the scene gives it (diffuse 1; a mirror 0).
+struct SurfaceAov {
+  SampledSpectrum albedo;
+  float roughness = 0.0f;
+};
+
 class Material {
  public:
   virtual ~Material() = default;
@@ -49,6 +58,7 @@ class Material {
                                            const BsdfContext& ctx) const = 0;
   virtual float pdf(const glm::vec3& wo, const glm::vec3& wi, const SampledWavelengths& lambda,
                     const BsdfContext& ctx) const = 0;
+  virtual SurfaceAov aov(const SampledWavelengths& lambda, const BsdfContext& ctx) const = 0;
   // What the path loop asks at every bounce, fixed when the material is made (plain
   // members, not virtual calls).
   // False for a material that reflects nothing (lets the integrator stop a path).

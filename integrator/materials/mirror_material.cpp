@@ -41,4 +41,8 @@ float MirrorMaterial::pdf(const glm::vec3& /*wo*/, const glm::vec3& /*wi*/,
   return 0.0f;
 }
 
+SurfaceAov MirrorMaterial::aov(const SampledWavelengths& lambda, const BsdfContext& ctx) const {
+  return {reflectance_->evaluate(ctx.uv, lambda), 0.0f};
+}
+
 }  // namespace camsim

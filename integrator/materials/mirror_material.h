@@ -29,6 +29,7 @@ class MirrorMaterial final : public Material {
                                    const BsdfContext& ctx) const override;
   float pdf(const glm::vec3& wo, const glm::vec3& wi, const SampledWavelengths& lambda,
             const BsdfContext& ctx) const override;
+  SurfaceAov aov(const SampledWavelengths& lambda, const BsdfContext& ctx) const override;
 
  private:
   std::unique_ptr<SpectrumTexture> reflectance_;

@@ -85,4 +85,8 @@ std::optional<BsdfSample> PlasticMaterial::sample(const glm::vec3& woIn, float u
   return s;
 }
 
+SurfaceAov PlasticMaterial::aov(const SampledWavelengths& lambda, const BsdfContext& ctx) const {
+  return {p_.reflectance->evaluate(ctx.uv, lambda), p_.roughness->evaluate(ctx.uv)};
+}
+
 }  // namespace camsim

@@ -47,6 +47,7 @@ class PlasticMaterial final : public Material {
                                    const BsdfContext& ctx) const override;
   float pdf(const glm::vec3& wo, const glm::vec3& wi, const SampledWavelengths& lambda,
             const BsdfContext& ctx) const override;
+  SurfaceAov aov(const SampledWavelengths& lambda, const BsdfContext& ctx) const override;
 
  private:
   struct Lobes {              // everything that depends on the surface point and wavelengths

@@ -73,7 +73,8 @@ SampledSpectrum sampleLight(const Scene& scene, const ShadingPoint& sp,
 // The path loop, compiled once per sampler type: for the final samplers the ≈ 20 numbers
 // a path draws are direct, inlined calls instead of virtual ones.
 template <typename SamplerT>
-SampledSpectrum trace(const Scene& scene, Ray ray, SampledWavelengths& lambda, SamplerT& sampler) {
+SampledSpectrum trace(const Scene& scene, Ray ray, SampledWavelengths& lambda, SamplerT& sampler,
+                      VisibleSurface* visible) {
   const RenderSettings& settings = scene.settings();
   const bool haveLights = scene.hasPoweredLights();
   SampledSpectrum L(0.0f), beta(1.0f);
@@ -99,6 +100,10 @@ SampledSpectrum trace(const Scene& scene, Ray ray, SampledWavelengths& lambda, S
     }
     const SurfaceInteraction si = scene.shape(hit.shape).interaction(hit, ray);
     const glm::vec3 wo = -glm::normalize(ray.d);
+    if (depth == 0 && visible) [[unlikely]] {
+      const SurfaceAov aov = scene.material(hit.shape).aov(lambda, BsdfContext{si.uv});
+      *visible = {true, si.p, si.n, si.ns, glm::length(si.p - ray.o), aov.albedo, aov.roughness};
+    }
 
     if (const AreaLight* light = scene.areaLight(hit.shape)) {
       const SampledSpectrum Le = light->L(si, wo, lambda);
@@ -151,13 +156,13 @@ SampledSpectrum trace(const Scene& scene, Ray ray, SampledWavelengths& lambda, S
 }  // namespace
 
 SampledSpectrum traceRadiance(const Scene& scene, Ray ray, SampledWavelengths& lambda,
-                              SobolSampler& sampler) {
-  return trace(scene, ray, lambda, sampler);
+                              SobolSampler& sampler, VisibleSurface* visible) {
+  return trace(scene, ray, lambda, sampler, visible);
 }
 
 SampledSpectrum traceRadiance(const Scene& scene, Ray ray, SampledWavelengths& lambda,
-                              IndependentSampler& sampler) {
-  return trace(scene, ray, lambda, sampler);
+                              IndependentSampler& sampler, VisibleSurface* visible) {
+  return trace(scene, ray, lambda, sampler, visible);
 }
 
 }  // namespace camsim

@@ -21,14 +21,27 @@ namespace camsim {
 
 class SobolSampler;
 
+// The camera ray's first hit, for the ground-truth outputs (aov_film.h), as pbrt-v4's
+// VisibleSurface: filled by traceRadiance when asked for, at no cost otherwise.
+struct VisibleSurface {
+  bool hit = false;
+  glm::vec3 p{0.0f};       // render space, m
+  glm::vec3 n{0.0f};       // geometric normal, unit, on the shape's front side
+  glm::vec3 ns{0.0f};      // shading normal, unit
+  float distance = 0.0f;   // from the ray's origin, m
+  SampledSpectrum albedo;  // the material's SurfaceAov at the path's wavelengths
+  float roughness = 0.0f;
+};
+
 // Radiance (W·m⁻²·sr⁻¹·nm⁻¹) along `ray` at the wavelengths `lambda`. A dispersive
 // material on the path terminates the secondary wavelengths (lambda is updated: the film
-// must use it). Every bounce and shadow ray cast is counted (ray_stats.h).
+// must use it). Every bounce and shadow ray cast is counted (ray_stats.h). With `visible`,
+// the first hit is recorded there (visible->hit stays false on a miss).
 // Compiled per concrete sampler (what the render loop uses): its numbers are drawn through
 // inlined, not virtual, calls.
 SampledSpectrum traceRadiance(const Scene& scene, Ray ray, SampledWavelengths& lambda,
-                              SobolSampler& sampler);
+                              SobolSampler& sampler, VisibleSurface* visible = nullptr);
 SampledSpectrum traceRadiance(const Scene& scene, Ray ray, SampledWavelengths& lambda,
-                              IndependentSampler& sampler);
+                              IndependentSampler& sampler, VisibleSurface* visible = nullptr);
 
 }  // namespace camsim

@@ -10,6 +10,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
+#include "integrator/render/aov_film.h"
 #include "integrator/render/film.h"
 #include "integrator/sampling/sobol_sampler.h"
 
@@ -28,7 +29,7 @@ struct TileStats {
 template <typename SamplerT>
 void renderTile(const Scene& scene, Film& film, const RenderOptions& options,
                 const ModelledDimensions& dims, glm::ivec2 lo, glm::ivec2 hi, SamplerT& sampler,
-                TileStats& stats) {
+                TileStats& stats, AovFilm& aovs) {
   const PhysicalCamera& camera = scene.camera();
   const Shutter& shutter = camera.shutter();
   // The photosensitive area: centred in the pixel, sides scaled by √fill.
@@ -57,8 +58,17 @@ void renderTile(const Scene& scene, Film& film, const RenderOptions& options,
         ++stats.samples;
         if (!cr) continue;
         countRay(RayKind::kCamera, cr->ray);
-        const SampledSpectrum L = traceRadiance(scene, cr->ray, lambda, sampler);
+        if (!aovs.enabled()) {
+          const SampledSpectrum L = traceRadiance(scene, cr->ray, lambda, sampler);
+          if (!film.addSample(pixel, L * cr->weight, lambda)) ++stats.rejected;
+          continue;
+        }
+        VisibleSurface visible;
+        const SampledWavelengths lambdaAtCamera = lambda;  // before a dispersive hit ends some
+        const SampledSpectrum L = traceRadiance(scene, cr->ray, lambda, sampler, &visible);
         if (!film.addSample(pixel, L * cr->weight, lambda)) ++stats.rejected;
+        aovs.addSample(pixel, visible, camera.worldFromCameraAt(cs.time), scene.renderOrigin(),
+                       lambdaAtCamera);
       }
     }
   }
@@ -78,6 +88,7 @@ RenderResult render(const Scene& scene, const std::vector<const SpectralResponse
   ModelledDimensions dims = scene.modelled();
   dims.time = dims.time || options.forceTime;
   Film film(res, responses);
+  AovFilm aovs(res, scene.settings().aovs);
   const int tilesX = (res.x + kTileSize - 1) / kTileSize;
   const int tilesY = (res.y + kTileSize - 1) / kTileSize;
   const int tileCount = tilesX * tilesY;
@@ -108,7 +119,7 @@ RenderResult render(const Scene& scene, const std::vector<const SpectralResponse
             }
             const glm::ivec2 lo((tile % tilesX) * kTileSize, (tile / tilesX) * kTileSize);
             const glm::ivec2 hi = glm::min(lo + kTileSize, res);
-            renderTile(scene, film, options, dims, lo, hi, sampler, stats);
+            renderTile(scene, film, options, dims, lo, hi, sampler, stats, aovs);
             const int done = ++tilesDone;
             if (options.progress) {
               std::lock_guard<std::mutex> lock(progressMutex);
@@ -128,6 +139,7 @@ RenderResult render(const Scene& scene, const std::vector<const SpectralResponse
   RenderResult result;
   result.images = film.toImages(options.spp);
   result.image = result.images.front();
+  if (aovs.enabled()) result.aovs = aovs.toImage(options.spp);
   for (const TileStats& t : perThread) {
     result.stats.samples += t.samples;
     result.stats.rejectedSamples += t.rejected;

@@ -59,6 +59,7 @@ struct RenderStats {
 struct RenderResult {
   Image image;                // the first response's image (pixel means)
   std::vector<Image> images;  // one per response, in order
+  Image aovs;                 // the scene's render.aovs (aov_film.h); empty without
   RenderStats stats;
 };
 

@@ -84,7 +84,7 @@ std::string ModelledDimensions::describe() const {
   return out + std::to_string(wavelengths) + " wavelengths";
 }
 
-Scene::Scene(const SceneDescription& d) : settings_(d.render) {
+Scene::Scene(const SceneDescription& d) : settings_(d.render), renderOrigin_(d.renderOrigin) {
   camera_ = std::make_unique<PhysicalCamera>(d.camera);
   const Shutter& shutter = camera_->shutter();
   exposureStart_ = shutter.open();

@@ -37,6 +37,8 @@ class Scene {
 
   const PhysicalCamera& camera() const { return *camera_; }
   const RenderSettings& settings() const { return settings_; }
+  // World position of render space's origin (SceneDescription::renderOrigin), m.
+  const glm::dvec3& renderOrigin() const { return renderOrigin_; }
   const ModelledDimensions& modelled() const { return modelled_; }
   // The interval ray times fall in: shutter open → close of the last row.
   double exposureStart() const { return exposureStart_; }
@@ -70,6 +72,7 @@ class Scene {
  private:
   std::unique_ptr<PhysicalCamera> camera_;
   RenderSettings settings_;
+  glm::dvec3 renderOrigin_{0.0};
   ModelledDimensions modelled_;
   double exposureStart_ = 0.0, exposureEnd_ = 0.0;
   std::vector<std::unique_ptr<Shape>> shapes_;

@@ -41,12 +41,23 @@ inline const char* samplerName(SamplerKind kind) {
   return kind == SamplerKind::kSobol ? "sobol" : "independent";
 }
 
+// Ground truth from the first hit of the image's own camera samples (AOVs; the layers and
+// their conventions: docs/output.md#ground-truth-aovs, integrator/render/aov_film.h).
+enum class Aov : std::uint8_t { kDepth, kDistance, kPosition, kNormal, kAlbedo, kRoughness };
+inline constexpr int kAovCount = 6;
+inline const char* aovName(Aov a) {
+  constexpr const char* names[kAovCount] = {"depth",  "distance", "position",
+                                            "normal", "albedo",   "roughness"};
+  return names[static_cast<int>(a)];
+}
+
 struct RenderSettings {
   SamplerKind sampler = SamplerKind::kSobol;  // see integrator/sampling/sobol_sampler.h
   int spp = 64;                               // samples per pixel
   std::uint64_t seed = 0;                     // render seed
   int maxDepth = 16;                          // maximum number of scattering events on a path
   int rrDepth = 3;                            // Russian roulette starts after this many bounces
+  std::vector<Aov> aovs;  // none by default: a plain render records no first hit
 };
 
 // A material input that may vary over the surface: a constant (spectrum or scalar), an

@@ -39,7 +39,20 @@ RenderSettings parseRender(YamlMap map) {
     r.maxDepth = static_cast<int>(v->integer(0, SceneLimits::kMaxDepth));
   if (auto v = map.find("rr_depth"))
     r.rrDepth = static_cast<int>(v->integer(1, SceneLimits::kMaxDepth));
-  map.finish({"sampler", "spp", "seed", "max_depth", "rr_depth"});
+  if (auto v = map.find("aovs")) {
+    for (const YamlValue& item : v->items()) {
+      const Aov aov = item.choice<Aov>("aov", {{"depth", Aov::kDepth},
+                                               {"distance", Aov::kDistance},
+                                               {"position", Aov::kPosition},
+                                               {"normal", Aov::kNormal},
+                                               {"albedo", Aov::kAlbedo},
+                                               {"roughness", Aov::kRoughness}});
+      if (std::find(r.aovs.begin(), r.aovs.end(), aov) != r.aovs.end())
+        item.fail(std::string("aov '") + aovName(aov) + "' is listed twice");
+      r.aovs.push_back(aov);
+    }
+  }
+  map.finish({"sampler", "spp", "seed", "max_depth", "rr_depth", "aovs"});
   return r;
 }
 

@@ -10,7 +10,9 @@
 
 #include "integrator/capture/capture_writer.h"
 #include "integrator/scene/scene_loader.h"
+#include "sensor/io/exr_io.h"
 #include "tests/support/temp_dir.h"
+#include "tests/support/text_file.h"
 
 namespace camsim {
 namespace {
@@ -131,6 +133,23 @@ TEST(Capture, WithoutASensorThePictureIsTheFilmExposedToMidGrey) {
   const double meanY = mean(r.film.channel(1));
   EXPECT_NEAR(r.displayExposure, 0.18 / meanY, 1e-9 / meanY);
   EXPECT_EQ(r.picture.channelCount(), 3);
+}
+
+// Ground truth asked for lands in NAME.exr beside the image, which keeps its bytes.
+TEST(Capture, AovsAreLayersOfTheFilmExr) {
+  SceneDescription d = plane("");
+  d.render.aovs = {Aov::kDepth, Aov::kNormal};
+  const CaptureResult r = capture(d);
+  camsim::test::TempDir dir;
+  writeCapture(r, {dir.path(), {}});
+  const ExrFile exr = readExr(dir.path() / (r.description.name + ".exr"));
+  for (const char* c : {"R", "XYZ.Y", "coverage.A", "depth.Z", "N.X", "Ng_cam.Z"})
+    EXPECT_GE(exr.image.channelIndex(c), 0) << c;
+  EXPECT_EQ(exr.image.channelCount(), 6 + 1 + 1 + 12);
+  // The centre pixel sees the square 2 m away.
+  EXPECT_FLOAT_EQ(exr.image.at(16, 12, exr.image.channelIndex("depth.Z")), 2.0f);
+  const std::string json = camsim::test::readFile(dir.path() / (r.description.name + ".json"));
+  EXPECT_NE(json.find("\"aovs\": [\"depth\", \"normal\"]"), std::string::npos) << json;
 }
 
 }  // namespace

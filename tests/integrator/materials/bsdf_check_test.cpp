@@ -38,6 +38,7 @@ class WrongPdfMaterial final : public Material {
             const BsdfContext&) const override {
     return wo.z * wi.z > 0.0f ? 0.5f * kInvPi : 0.0f;
   }
+  SurfaceAov aov(const SampledWavelengths&, const BsdfContext&) const override { return {}; }
 };
 
 TEST(BsdfCheck, PValueMatchesClosedForms) {

@@ -59,6 +59,7 @@ class NormalSampler final : public Material {
             const BsdfContext&) const override {
     return m_.pdf(w, wm);
   }
+  SurfaceAov aov(const SampledWavelengths&, const BsdfContext&) const override { return {}; }
 
  private:
   MicrofacetModel m_;

@@ -137,6 +137,10 @@ const ErrorCase kErrorCases[] = {
     {"MissingCamera", kMaterials + "shapes:\n" + kSphere, 1, 1, "camera", "required key"},
     {"UnknownSampler", "render: {sampler: halton}\n" + kCamera + kMaterials + "shapes:\n" + kSphere,
      1, 19, "render.sampler", "unknown sampler 'halton' (known: sobol, independent)"},
+    {"UnknownAov", "render: {aovs: [depth, flow]}\n" + kCamera + kMaterials + "shapes:\n" + kSphere,
+     1, 24, "render.aovs[1]", "unknown aov 'flow' (known: depth, distance, position, normal"},
+    {"AovTwice", "render: {aovs: [depth, depth]}\n" + kCamera + kMaterials + "shapes:\n" + kSphere,
+     1, 24, "render.aovs[1]", "aov 'depth' is listed twice"},
     {"EmptyShapes", kCamera + kMaterials + "shapes: []\n", 6, 9, "shapes", "no shapes"},
     {"DuplicateKey",
      withShapes("  - type: sphere\n    centre: [0, 0, 0]\n    radius: 1\n    radius: 2\n"
