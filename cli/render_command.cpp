@@ -1,6 +1,7 @@
 // `camsim render`: parse → capture (the library call) → write → print.
 #include "cli/render_command.h"
 
+#include <atomic>
 #include <ostream>
 
 #include "cli/progress.h"
@@ -54,6 +55,58 @@ void printCapture(const CaptureResult& r, std::ostream& log) {
           << " % of photosites clipped\n";
 }
 
+void printInterrupted(const CaptureResult& r, const WrittenCapture& written, std::ostream& log) {
+  const std::string what =
+      std::to_string(r.tilesDone) + " of " + std::to_string(r.tilesTotal) + " tiles";
+  if (written.files.empty())
+    log << "render interrupted before a tile had finished: no output written\n";
+  else
+    log << "render interrupted after " << what << ": wrote " << written.files.front().string()
+        << " (unfinished tiles are 0); no final output written\n";
+}
+
+void printRendered(const CaptureResult& r, std::ostream& log) {
+  const RenderStats& st = r.stats;
+  log << "modelled: " << st.modelled.describe() << "\n";
+  log << "rendered " << r.description.name << ": " << r.film.width << "x" << r.film.height << ", "
+      << r.description.render.spp << " spp, " << st.threads << " threads, "
+      << formatSeconds(st.seconds) << " (" << formatRate(st.samplesPerSecond()) << "samples/s, "
+      << formatRate(st.raysPerSecond())
+      << "rays/s), rejected samples (NaN/Inf): " << st.rejectedSamples << "\n";
+  if (st.rejectedSamples > 0)
+    log << "warning: " << st.rejectedSamples << " samples had NaN/Inf radiance and were dropped\n";
+}
+
+// A sequence: each frame written (atomically, NAME_NNNN.*) as soon as it is captured.
+RenderCommandResult runSequence(SceneDescription desc, const CaptureOutputOptions& out,
+                                CaptureOptions options, std::ostream& log) {
+  const int count = desc.frames->count;
+  ProgressBar progress("rendering " + desc.name + " (" + std::to_string(count) + " frames)");
+  std::atomic<int> frame{0};
+  options.progress = [&](int done, int total) {
+    progress.update(frame * total + done, count * total);
+  };
+  RenderCommandResult outcome;
+  const SequenceSummary summary =
+      captureSequence(std::move(desc), options, [&](CaptureResult&& r, int k) {
+        printCapture(r, log);
+        const WrittenCapture written = writeCapture(r, out);
+        outcome.files.insert(outcome.files.end(), written.files.begin(), written.files.end());
+        if (r.cancelled) printInterrupted(r, written, log);
+        frame = k + 1;
+      });
+  progress.finish();
+  outcome.cancelled = summary.cancelled;
+  if (summary.cancelled) return outcome;
+  log << "sequence: " << summary.frames << " frames, " << summary.rendered
+      << (summary.rendered == summary.frames
+              ? " rendered"
+              : " rendered (nothing moves: the others reuse its film)")
+      << "\n";
+  for (const auto& f : outcome.files) log << "wrote " << f.string() << "\n";
+  return outcome;
+}
+
 }  // namespace
 
 RenderCommandResult runRender(const RenderArgs& args, std::ostream& log,
@@ -65,39 +118,25 @@ RenderCommandResult runRender(const RenderArgs& args, std::ostream& log,
     log << "removed " << stale.string() << " (left by a run that was killed)\n";
   checkPictureSettings(out.picture);  // a bad config or display/view/look fails before rendering
 
-  ProgressBar progress("rendering " + desc.name);
   CaptureOptions options;
   options.threads = args.threads;
   options.cancel = cancel;
+  if (desc.frames) return runSequence(std::move(desc), out, options, log);
+
+  ProgressBar progress("rendering " + desc.name);
   options.progress = [&](int done, int total) { progress.update(done, total); };
   const CaptureResult result = capture(std::move(desc), options);
   progress.finish();
   printCapture(result, log);
   const WrittenCapture written = writeCapture(result, out);
-
   RenderCommandResult outcome{written.files, result.cancelled};
-  const std::string& name = result.description.name;
   if (result.cancelled) {
-    const std::string what =
-        std::to_string(result.tilesDone) + " of " + std::to_string(result.tilesTotal) + " tiles";
-    if (written.files.empty())
-      log << "render interrupted before a tile had finished: no output written\n";
-    else
-      log << "render interrupted after " << what << ": wrote " << written.files.front().string()
-          << " (unfinished tiles are 0); no final output written\n";
+    printInterrupted(result, written, log);
     return outcome;
   }
   for (const auto& f : written.removed)
     log << "removed " << f.string() << " of an interrupted run\n";
-  const RenderStats& st = result.stats;
-  log << "modelled: " << st.modelled.describe() << "\n";
-  log << "rendered " << name << ": " << result.film.width << "x" << result.film.height << ", "
-      << result.description.render.spp << " spp, " << st.threads << " threads, "
-      << formatSeconds(st.seconds) << " (" << formatRate(st.samplesPerSecond()) << "samples/s, "
-      << formatRate(st.raysPerSecond())
-      << "rays/s), rejected samples (NaN/Inf): " << st.rejectedSamples << "\n";
-  if (st.rejectedSamples > 0)
-    log << "warning: " << st.rejectedSamples << " samples had NaN/Inf radiance and were dropped\n";
+  printRendered(result, log);
   for (const auto& f : outcome.files) log << "wrote " << f.string() << "\n";
   return outcome;
 }

@@ -41,6 +41,12 @@ Shutter Shutter::scaled(double k) const {
   return Shutter(std::move(t), values_, type_, rowTime_);
 }
 
+Shutter Shutter::shifted(double dt) const {
+  std::vector<double> t = times_;
+  for (double& v : t) v += dt;
+  return Shutter(std::move(t), values_, type_, rowTime_);
+}
+
 double Shutter::efficiency(double t) const {
   if (t < times_.front() || t > times_.back()) return 0.0;
   const size_t i = std::min<size_t>(

@@ -31,6 +31,8 @@ class Shutter {
 
   // The same curve stretched in time by k about the opening time (exposure × k).
   Shutter scaled(double k) const;
+  // The same curve moved later by dt seconds (a frame of a sequence).
+  Shutter shifted(double dt) const;
 
   double open() const { return times_.front(); }
   double close() const { return times_.back(); }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <memory>
 
 #include "integrator/scene/scene.h"
@@ -110,41 +111,119 @@ Image xyzToExposedAcescg(const Image& xyz, double& exposure) {
                           {"R", "G", "B"});
 }
 
-CaptureResult capture(SceneDescription description, const CaptureOptions& options) {
-  CaptureResult out;
-  out.description = std::move(description);
-  const SceneDescription& desc = out.description;
-  auto scene = std::make_unique<const Scene>(desc);
-  out.description.releaseDecodedImages();  // the Scene holds its own form of them
+namespace {
 
+RenderOptions renderOptionsFor(const SceneDescription& desc, const CaptureOptions& options,
+                               CaptureResult& out) {
+  RenderOptions o;
+  o.spp = desc.render.spp;
+  o.seed = desc.render.seed;
+  o.threads = options.threads;
+  o.cancel = options.cancel;
+  o.progress = [&out, progress = options.progress](int done, int total) {
+    out.tilesDone = done;
+    out.tilesTotal = total;
+    if (progress) progress(done, total);
+  };
+  return o;
+}
+
+// Step 1 on a built scene, into out (film, sensor film, AOVs, stats).
+void renderFilm(const Scene& scene, const RenderOptions& o, CaptureResult& out) {
+  const SceneDescription& desc = out.description;
   const SpectralResponse xyz = SpectralResponse::cieXyz();
   std::vector<const SpectralResponse*> responses = {&xyz};
   std::optional<SpectralResponse> electrons;
   if (desc.sensor) responses.push_back(&electrons.emplace(sensorResponse(desc.sensor->spec)));
-  RenderOptions renderOptions;
-  renderOptions.spp = desc.render.spp;
-  renderOptions.seed = desc.render.seed;
-  renderOptions.threads = options.threads;
-  renderOptions.cancel = options.cancel;
-  renderOptions.progress = [&](int done, int total) {
-    out.tilesDone = done;
-    out.tilesTotal = total;
-    if (options.progress) options.progress(done, total);
-  };
-  RenderResult film = render(*scene, responses, renderOptions);
-  scene.reset();  // a re-render builds its own
+  RenderResult film = render(scene, responses, o);
   out.stats = film.stats;
   out.cancelled = film.stats.cancelled;
   out.film = std::move(film.images[0]);
   if (desc.sensor) out.sensorFilm = std::move(film.images[1]);
   out.aovs = std::move(film.aovs);
-  if (out.cancelled) return out;
+}
 
-  if (desc.sensor)
-    exposeAndDevelop(out, renderOptions);
+// Steps 2–6 once the film is there.
+void finish(CaptureResult& out, const RenderOptions& o) {
+  if (out.cancelled) return;
+  if (out.description.sensor)
+    exposeAndDevelop(out, o);
   else
     out.picture = xyzToExposedAcescg(out.film, out.displayExposure);
+}
+
+}  // namespace
+
+CaptureResult capture(SceneDescription description, const CaptureOptions& options) {
+  CaptureResult out;
+  out.description = std::move(description);
+  const RenderOptions o = renderOptionsFor(out.description, options, out);
+  {
+    const Scene scene(out.description);
+    out.description.releaseDecodedImages();  // the Scene holds its own form of them
+    renderFilm(scene, o, out);
+  }  // a re-render for auto-exposure or brackets builds its own
+  finish(out, o);
   return out;
+}
+
+SequenceSummary captureSequence(SceneDescription description, const CaptureOptions& options,
+                                const std::function<void(CaptureResult&&, int)>& onFrame) {
+  const FrameSequence seq = description.frames.value_or(FrameSequence{});
+  description.frames = seq;
+  // The sequence's whole exposure: geometry and motion are built over it once.
+  const auto window = [&](int k) {
+    const PhysicalCamera c(description.frameCamera(k));
+    return glm::dvec2(c.shutter().open(),
+                      c.shutter().close() + c.shutter().rowOffset(c.resolution().y - 1));
+  };
+  const glm::dvec2 span(window(0).x, window(seq.count - 1).y);
+  Scene scene(description, span);
+  description.releaseDecodedImages();
+  // Nothing moves anywhere in the sequence: every frame's film is frame 0's (the shutter
+  // curve is the same), so it is rendered once; only the sensor's temporal noise differs.
+  PhysicalCameraParams whole = description.frameCamera(0);
+  whole.shutter = Shutter::box(span.x, span.y);
+  scene.setCamera(whole);
+  const bool anythingMoves = scene.modelled().time;
+  SequenceSummary summary;
+  summary.frames = seq.count;
+  CaptureResult first;
+  for (int k = 0; k < seq.count; ++k) {
+    CaptureResult out;
+    out.description = description;
+    out.description.camera = description.frameCamera(k);
+    char suffix[16];
+    std::snprintf(suffix, sizeof suffix, "_%04d", seq.first + k);
+    out.description.name += suffix;
+    // Bracketed frames take several noise frames each: sequence frame k starts at
+    // sensor.frame + k · (brackets or 1).
+    if (out.description.sensor)
+      out.description.sensor->frame +=
+          static_cast<std::uint64_t>(k) *
+          std::max<std::uint64_t>(1, out.description.sensor->bracketEv.size());
+    const RenderOptions o = renderOptionsFor(out.description, options, out);
+    if (k == 0 || anythingMoves) {
+      scene.setCamera(out.description.camera);
+      renderFilm(scene, o, out);
+      ++summary.rendered;
+    } else {
+      out.stats = first.stats;
+      out.film = first.film;
+      out.sensorFilm = first.sensorFilm;
+      out.aovs = first.aovs;
+      out.tilesDone = out.tilesTotal = first.tilesTotal;
+    }
+    if (out.cancelled) {
+      summary.cancelled = true;
+      onFrame(std::move(out), k);
+      return summary;
+    }
+    finish(out, o);
+    if (k == 0 && !anythingMoves) first = out;
+    onFrame(std::move(out), k);
+  }
+  return summary;
 }
 
 }  // namespace camsim

@@ -81,6 +81,22 @@ struct CaptureResult {
 // Throws InputError for inputs only the capture discovers (a file a re-render reads again).
 CaptureResult capture(SceneDescription description, const CaptureOptions& options = {});
 
+struct SequenceSummary {
+  int frames = 0;    // handed to onFrame
+  int rendered = 0;  // of them rendered; the others reuse frame 0's film (nothing moves)
+  bool cancelled = false;
+};
+
+// A frame sequence (description.frames; none: one frame at the camera's shutter): frame k
+// is captured as capture() would at description.frameCamera(k), named NAME_NNNN (the
+// sequence frame number first + k), its sensor noise frame sensor.frame + k·(brackets or 1)
+// — temporal noise differs per frame, the fixed pattern (noise seed) does not — and handed
+// to onFrame(result, k) as soon as it is done. Geometry and motion are built once, over the
+// whole sequence's exposure; when nothing moves anywhere in it, frame 0's film is reused
+// for every frame (one render). A cancelled frame is handed on (cancelled) and ends it.
+SequenceSummary captureSequence(SceneDescription description, const CaptureOptions& options,
+                                const std::function<void(CaptureResult&&, int)>& onFrame);
+
 // CIE XYZ (D65-referred, absolute) → ACEScg with the mean luminance exposed to 0.18.
 Image xyzToExposedAcescg(const Image& xyz, double& exposure);
 

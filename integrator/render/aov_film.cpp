@@ -51,12 +51,11 @@ AovFilm::AovFilm(glm::ivec2 resolution, const std::vector<Aov>& aovs)
   for (std::size_t c = 0; c < channels_.size(); ++c)
     if (channels_[c] == "albedo.R") albedoChannel_ = c;
   if (albedoChannel_ > 0)
-    albedoWhite_.assign(static_cast<std::size_t>(resolution.x) *
-                            static_cast<std::size_t>(resolution.y) * 3,
-                        0.0);
-  sums_.assign(static_cast<std::size_t>(resolution.x) * static_cast<std::size_t>(resolution.y) *
-                   stride_,
-               0.0);
+    albedoWhite_.assign(
+        static_cast<std::size_t>(resolution.x) * static_cast<std::size_t>(resolution.y) * 3, 0.0);
+  sums_.assign(
+      static_cast<std::size_t>(resolution.x) * static_cast<std::size_t>(resolution.y) * stride_,
+      0.0);
 }
 
 void AovFilm::addSample(glm::ivec2 pixel, const VisibleSurface& v,
@@ -107,7 +106,8 @@ void AovFilm::addSample(glm::ivec2 pixel, const VisibleSurface& v,
 
 Image AovFilm::toImage(int samplesPerPixel) const {
   Image out(resolution_.x, resolution_.y, channels_);
-  const std::size_t n = static_cast<std::size_t>(resolution_.x) * static_cast<std::size_t>(resolution_.y);
+  const std::size_t n =
+      static_cast<std::size_t>(resolution_.x) * static_cast<std::size_t>(resolution_.y);
   for (std::size_t px = 0; px < n; ++px) {
     const double* s = &sums_[px * stride_];
     const double hits = s[0];

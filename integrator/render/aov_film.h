@@ -37,9 +37,8 @@ class AovFilm {
   bool enabled() const { return !aovs_.empty(); }
   // One camera sample: its first hit (visible.hit false: a miss), the camera pose at the
   // sample's time (render space) and the render origin (world = render + origin).
-  void addSample(glm::ivec2 pixel, const VisibleSurface& visible,
-                 const glm::dmat4& worldFromCamera, const glm::dvec3& renderOrigin,
-                 const SampledWavelengths& lambda);
+  void addSample(glm::ivec2 pixel, const VisibleSurface& visible, const glm::dmat4& worldFromCamera,
+                 const glm::dvec3& renderOrigin, const SampledWavelengths& lambda);
   // The channels in the table's order of the scene's aovs, coverage.A first.
   Image toImage(int samplesPerPixel) const;
 

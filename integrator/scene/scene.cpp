@@ -7,6 +7,7 @@
 #include "integrator/geometry/triangle_mesh.h"
 #include "integrator/materials/diffuse_material.h"
 #include "integrator/scene/factory.h"
+#include "sensor/base/check.h"
 
 namespace camsim {
 namespace {
@@ -84,15 +85,44 @@ std::string ModelledDimensions::describe() const {
   return out + std::to_string(wavelengths) + " wavelengths";
 }
 
-Scene::Scene(const SceneDescription& d) : settings_(d.render), renderOrigin_(d.renderOrigin) {
-  camera_ = std::make_unique<PhysicalCamera>(d.camera);
-  const Shutter& shutter = camera_->shutter();
-  exposureStart_ = shutter.open();
-  exposureEnd_ = shutter.close() + shutter.rowOffset(camera_->resolution().y - 1);
+namespace {
 
+// The interval ray times fall in: shutter open → close of the last row.
+glm::dvec2 exposureWindow(const PhysicalCamera& camera) {
+  const Shutter& shutter = camera.shutter();
+  return {shutter.open(), shutter.close() + shutter.rowOffset(camera.resolution().y - 1)};
+}
+
+}  // namespace
+
+Scene::Scene(const SceneDescription& d) : Scene(d, exposureWindow(PhysicalCamera(d.camera))) {}
+
+void Scene::setCamera(const PhysicalCameraParams& camera) {
+  camera_ = std::make_unique<PhysicalCamera>(camera);
+  const glm::dvec2 w = exposureWindow(*camera_);
+  CAMSIM_CHECK(w.x >= motionSpan_.x && w.y <= motionSpan_.y);
+  analyseExposure();
+}
+
+void Scene::analyseExposure() {
+  const glm::dvec2 w = exposureWindow(*camera_);
+  exposureStart_ = w.x;
+  exposureEnd_ = w.y;
   modelled_.aperture = camera_->hasAperture();
-  modelled_.blades = d.camera.aperture ? d.camera.aperture->blades : 0;
+  modelled_.blades = camera_->params().aperture ? camera_->params().aperture->blades : 0;
   modelled_.cameraMoves = camera_->moves(exposureStart_, exposureEnd_);
+  modelled_.movingObjects = 0;
+  for (const RigidMotion& m : motions_)
+    modelled_.movingObjects += !m.empty() && !m.isStaticDuring(exposureStart_, exposureEnd_);
+  modelled_.time = modelled_.cameraMoves || modelled_.movingObjects > 0;
+  modelled_.rollingShutter = modelled_.time && camera_->shutter().type() == Shutter::Type::kRolling;
+}
+
+Scene::Scene(const SceneDescription& d, glm::dvec2 motionSpan)
+    : motionSpan_(motionSpan), settings_(d.render), renderOrigin_(d.renderOrigin) {
+  camera_ = std::make_unique<PhysicalCamera>(d.camera);
+  exposureStart_ = motionSpan.x;  // the shapes' motion is built over the whole span
+  exposureEnd_ = motionSpan.y;
 
   materials_.push_back(std::make_unique<DiffuseMaterial>(Spectrum::constant(0.0)));  // black
   TextureCache textures;  // a texture named by several materials is uplifted once
@@ -102,10 +132,9 @@ Scene::Scene(const SceneDescription& d) : settings_(d.render), renderOrigin_(d.r
   for (const ShapeDescription& s : d.shapes) {
     bool moving = false;
     shapes_.push_back(buildShape(s, exposureStart_, exposureEnd_, moving));
-    if (moving) {
-      ++modelled_.movingObjects;
+    motions_.push_back(s.motion);
+    if (moving)
       modelled_.timeSteps = std::max(modelled_.timeSteps, shapes_.back()->timeSteps().count);
-    }
     materialOfShape_.push_back(s.material < 0 ? 0 : static_cast<size_t>(s.material) + 1);
     lightOfShape_.push_back(nullptr);
     lightIndexOfShape_.push_back(0);
@@ -118,8 +147,6 @@ Scene::Scene(const SceneDescription& d) : settings_(d.render), renderOrigin_(d.r
       lights_.push_back(std::move(light));
     }
   }
-  modelled_.time = modelled_.cameraMoves || modelled_.movingObjects > 0;
-  modelled_.rollingShutter = modelled_.time && shutter.type() == Shutter::Type::kRolling;
   geometry_ = std::make_unique<EmbreeScene>(shapes_, exposureStart_, exposureEnd_);
   if (geometry_->boundsLower().x <= geometry_->boundsUpper().x) {
     boundsCentre_ = 0.5f * (geometry_->boundsLower() + geometry_->boundsUpper());
@@ -134,6 +161,7 @@ Scene::Scene(const SceneDescription& d) : settings_(d.render), renderOrigin_(d.r
     powers.push_back(lights_[i]->power());
   }
   if (!powers.empty()) lightDistribution_ = DiscreteDistribution(powers);
+  analyseExposure();
 }
 
 }  // namespace camsim

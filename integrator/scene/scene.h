@@ -34,6 +34,12 @@ struct ModelledDimensions {
 class Scene {
  public:
   explicit Scene(const SceneDescription& description);
+  // For a sequence: geometry and motion built once over [span.x, span.y] (s), the whole
+  // sequence's exposure; setCamera() then moves to each frame's camera and shutter.
+  Scene(const SceneDescription& description, glm::dvec2 motionSpan);
+  // The camera of another frame (its shutter inside the motion span): the exposure window
+  // and what is modelled (time, moving objects, rolling shutter) follow it.
+  void setCamera(const PhysicalCameraParams& camera);
 
   const PhysicalCamera& camera() const { return *camera_; }
   const RenderSettings& settings() const { return settings_; }
@@ -70,7 +76,11 @@ class Scene {
   }
 
  private:
+  void analyseExposure();  // exposure window and modelled_ from camera_ and motions_
+
   std::unique_ptr<PhysicalCamera> camera_;
+  std::vector<RigidMotion> motions_;  // of each shape (empty: static)
+  glm::dvec2 motionSpan_{0.0};
   RenderSettings settings_;
   glm::dvec3 renderOrigin_{0.0};
   ModelledDimensions modelled_;

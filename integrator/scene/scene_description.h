@@ -60,6 +60,18 @@ struct RenderSettings {
   std::vector<Aov> aovs;  // none by default: a plain render records no first hit
 };
 
+// A frame sequence (the scene's `frames` block): frame k (0-based) is sequence frame
+// first + k, exposed from t_k = (first + k) / rate with the camera's shutter curve moved to
+// start there, or a box of (angle / 360°) / rate when an angle is given. Keyframed motion
+// runs on the same clock, so it spans the whole sequence.
+struct FrameSequence {
+  int count = 1;
+  double rateHz = 24.0;
+  int first = 0;
+  std::optional<double> shutterAngleDeg;  // none: the camera's shutter, moved
+  double startTime(int k) const { return (first + k) / rateHz; }
+};
+
 // A material input that may vary over the surface: a constant (spectrum or scalar), an
 // image (EXR/PNG) or a procedural checkerboard. See integrator/textures/texture.h.
 struct TextureDescription {
@@ -178,6 +190,17 @@ struct SceneDescription {
   std::vector<LightDescription> lights;
   std::optional<SensorSettings> sensor;  // none: the film records CIE XYZ only
   IspSettings isp;                       // raw → picture (scenes with a sensor)
+  std::optional<FrameSequence> frames;   // none: one capture at the camera's shutter
+
+  // The camera of sequence frame k (0-based): its shutter moved to the frame's start.
+  PhysicalCameraParams frameCamera(int k) const {
+    PhysicalCameraParams c = camera;
+    if (!frames) return c;
+    if (frames->shutterAngleDeg)
+      c.shutter = Shutter::box(0.0, *frames->shutterAngleDeg / 360.0 / frames->rateHz);
+    c.shutter = c.shutter.shifted(frames->startTime(k) - c.shutter.open());
+    return c;
+  }
 
   // Drops the decoded texels of image textures and environment maps. A Scene built from
   // this description keeps them in its own form, so a render need not hold both (an 8k RGB

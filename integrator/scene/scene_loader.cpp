@@ -28,6 +28,16 @@ struct Context {
   glm::dvec3 origin{0.0};  // render-space origin (SceneDescription::renderOrigin)
 };
 
+FrameSequence parseFrames(YamlMap map) {
+  FrameSequence f;
+  if (auto v = map.find("count")) f.count = static_cast<int>(v->integer(1, 100000));
+  if (auto v = map.find("rate_hz")) f.rateHz = v->number(1e-3, 1e6);
+  if (auto v = map.find("first")) f.first = static_cast<int>(v->integer(0, 10000000));
+  if (auto v = map.find("shutter_angle_deg")) f.shutterAngleDeg = v->number(1e-3, 360.0);
+  map.finish({"count", "rate_hz", "first", "shutter_angle_deg"});
+  return f;
+}
+
 RenderSettings parseRender(YamlMap map) {
   RenderSettings r;
   if (auto v = map.find("sampler"))
@@ -265,8 +275,9 @@ SceneDescription loadSceneFromText(const std::string& text, const std::string& d
     scene.shapes.push_back(parseShape(YamlMap(items[i]), i, ctx));
   if (auto l = top.find("lights"))
     scene.lights = parseLights(*l, ctx.search, baseDir, scene.renderOrigin);
+  if (auto f = top.find("frames")) scene.frames = parseFrames(YamlMap(*f));
   top.finish({"format", "name", "spectra_path", "render", "camera", "sensor", "isp", "materials",
-              "shapes", "lights"});
+              "shapes", "lights", "frames"});
   // Each file once (as first read), however it was named: keyed by its canonical path
   // (symbolic links and ./.. resolved), one lookup per read.
   std::vector<std::filesystem::path> once;

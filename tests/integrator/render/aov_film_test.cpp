@@ -28,13 +28,12 @@ constexpr const char* kAllAovs = "[depth, distance, position, normal, albedo, ro
 RenderResult renderAovs(const std::string& shapes, const std::string& materials,
                         const std::string& aovs = kAllAovs, int threads = 0,
                         const std::string& camera = "position: [0, 0, 0], look_at: [0, 0, 100]") {
-  const std::string text =
-      "camera: {" + camera + ", up: [0, 1, 0], resolution: [" +
-      std::to_string(kRes) + ", " + std::to_string(kRes) +
-      "], sensor_width_mm: 24, sensor_height_mm: 24, focal_length_mm: 20}\n"
-      "render: {spp: 64, max_depth: 1, aovs: " +
-      aovs + "}\nmaterials: {" + materials + "}\nshapes:\n" + shapes +
-      "lights:\n  - {type: point, position: [0, 0, 0], intensity: 1}\n";
+  const std::string text = "camera: {" + camera + ", up: [0, 1, 0], resolution: [" +
+                           std::to_string(kRes) + ", " + std::to_string(kRes) +
+                           "], sensor_width_mm: 24, sensor_height_mm: 24, focal_length_mm: 20}\n"
+                           "render: {spp: 64, max_depth: 1, aovs: " +
+                           aovs + "}\nmaterials: {" + materials + "}\nshapes:\n" + shapes +
+                           "lights:\n  - {type: point, position: [0, 0, 0], intensity: 1}\n";
   const SceneDescription d = loadSceneFromText(text, "aov.yaml", ".");
   RenderOptions o;
   o.spp = d.render.spp;
@@ -108,8 +107,8 @@ TEST(Aovs, TiltedPlaneDepthIsTheFootprintMean) {
   const std::string shapes = "  - {type: rectangle, corner: [" + num(-3 * c) + ", -3, " +
                              num(2 - 3 * s) + "], edge_u: [0, 6, 0], edge_v: [" + num(6 * c) +
                              ", 0, " + num(6 * s) + "], material: m}\n";
-  const RenderResult r =
-      renderAovs(shapes, "m: {type: plastic, reflectance: 0.3, roughness: 0.2}", "[depth, normal, roughness]");
+  const RenderResult r = renderAovs(shapes, "m: {type: plastic, reflectance: 0.3, roughness: 0.2}",
+                                    "[depth, normal, roughness]");
   const Image& a = r.aovs;
   for (int y = 0; y < kRes; ++y)
     for (int x = 0; x < kRes; ++x) {
@@ -132,9 +131,9 @@ TEST(Aovs, TiltedPlaneDepthIsTheFootprintMean) {
 // of their change across the pixel; the edge pixels' coverage is fractional; pixels beside
 // it are empty.
 TEST(Aovs, SphereFootprintMeans) {
-  const RenderResult r = renderAovs(
-      "  - {type: sphere, centre: [0, 0, 4], radius: 1, material: m}\n",
-      "m: {type: mirror, reflectance: 0.9}", "[position, normal, albedo, roughness]");
+  const RenderResult r =
+      renderAovs("  - {type: sphere, centre: [0, 0, 4], radius: 1, material: m}\n",
+                 "m: {type: mirror, reflectance: 0.9}", "[position, normal, albedo, roughness]");
   const Image& a = r.aovs;
   const glm::dvec3 centre(0, 0, 4);
   // The hit of the ray along camera direction d (world x = −camera x); t < 0: a miss.

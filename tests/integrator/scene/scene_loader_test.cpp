@@ -141,6 +141,11 @@ const ErrorCase kErrorCases[] = {
      1, 24, "render.aovs[1]", "unknown aov 'flow' (known: depth, distance, position, normal"},
     {"AovTwice", "render: {aovs: [depth, depth]}\n" + kCamera + kMaterials + "shapes:\n" + kSphere,
      1, 24, "render.aovs[1]", "aov 'depth' is listed twice"},
+    {"ZeroFrames", "frames: {count: 0}\n" + kCamera + kMaterials + "shapes:\n" + kSphere, 1, 17,
+     "frames.count", "out of range"},
+    {"UnknownFramesKey",
+     "frames: {count: 2, fps: 30}\n" + kCamera + kMaterials + "shapes:\n" + kSphere, 1, 20,
+     "frames.fps", "unknown key"},
     {"EmptyShapes", kCamera + kMaterials + "shapes: []\n", 6, 9, "shapes", "no shapes"},
     {"DuplicateKey",
      withShapes("  - type: sphere\n    centre: [0, 0, 0]\n    radius: 1\n    radius: 2\n"
