@@ -7,6 +7,7 @@
 #include "cli/progress.h"
 #include "cli/resource_guard.h"
 #include "integrator/capture/capture_writer.h"
+#include "integrator/capture/dataset_writer.h"
 #include "integrator/scene/scene_loader.h"
 #include "sensor/base/format.h"
 #include "sensor/base/input_error.h"
@@ -87,10 +88,12 @@ RenderCommandResult runSequence(SceneDescription desc, const CaptureOutputOption
     progress.update(frame * total + done, count * total);
   };
   RenderCommandResult outcome;
+  std::vector<DatasetFrame> dataset;
   const SequenceSummary summary =
       captureSequence(std::move(desc), options, [&](CaptureResult&& r, int k) {
         printCapture(r, log);
         const WrittenCapture written = writeCapture(r, out);
+        if (!r.cancelled) dataset.push_back(datasetFrame(r));
         outcome.files.insert(outcome.files.end(), written.files.begin(), written.files.end());
         if (r.cancelled) printInterrupted(r, written, log);
         frame = k + 1;
@@ -98,6 +101,7 @@ RenderCommandResult runSequence(SceneDescription desc, const CaptureOutputOption
   progress.finish();
   outcome.cancelled = summary.cancelled;
   if (summary.cancelled) return outcome;
+  for (auto& f : writeDatasetMetadata(dataset, out.directory)) outcome.files.push_back(f);
   log << "sequence: " << summary.frames << " frames, " << summary.rendered
       << (summary.rendered == summary.frames
               ? " rendered"

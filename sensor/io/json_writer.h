@@ -31,6 +31,22 @@ class JsonObject {
   JsonObject& set(const std::string& key, const JsonObject& object) {
     return raw(key, object.str());
   }
+  JsonObject& set(const std::string& key, const std::vector<JsonObject>& objects) {
+    std::string s = "[";
+    for (size_t i = 0; i < objects.size(); ++i)
+      s += (i ? ",\n  " : "\n  ") + indented(objects[i].str(), 2);
+    return raw(key, s + (objects.empty() ? "]" : "\n]"));
+  }
+  // A matrix, row by row (rows of numbers).
+  JsonObject& set(const std::string& key, const std::vector<std::vector<double>>& rows) {
+    std::string s = "[";
+    for (size_t r = 0; r < rows.size(); ++r) {
+      s += r ? ", [" : "[";
+      for (size_t c = 0; c < rows[r].size(); ++c) s += (c ? ", " : "") + number(rows[r][c]);
+      s += "]";
+    }
+    return raw(key, s + "]");
+  }
 
   std::string str(int indent = 0) const {
     const std::string pad(static_cast<size_t>(indent + 2), ' ');
@@ -45,6 +61,11 @@ class JsonObject {
   }
 
  private:
+  static std::string indented(std::string text, int by) {
+    for (size_t p = text.find('\n'); p != std::string::npos; p = text.find('\n', p + 1))
+      text.insert(p + 1, std::string(static_cast<size_t>(by), ' '));
+    return text;
+  }
   JsonObject& raw(const std::string& key, std::string value) {
     fields_.emplace_back(key, std::move(value));
     return *this;

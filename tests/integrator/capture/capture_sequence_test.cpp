@@ -21,28 +21,34 @@ constexpr double kPitch = 1.4e-6, kFocal = 0.001, kZ = 3.0;
 // the smartphone sensor with full noise.
 SceneDescription ballSequence(bool moving, const std::string& render = "spp: 16") {
   const std::string motion =
-      moving ? ", motion: [{time: 0, translate: [-0.08, 0, 0]}, {time: 0.3, translate: [0.07, 0, 0]}]"
-             : "";
+      moving
+          ? ", motion: [{time: 0, translate: [-0.08, 0, 0]}, {time: 0.3, translate: [0.07, 0, 0]}]"
+          : "";
   const std::string text =
       "camera: {position: [0, 0, 0], look_at: [0, 0, 1], resolution: [" + std::to_string(kW) +
-      ", " + std::to_string(kH) + "], focal_length_mm: 1, f_number: 2}\n"
+      ", " + std::to_string(kH) +
+      "], focal_length_mm: 1, f_number: 2}\n"
       "sensor: {model: smartphone-1.4um, iso: 100, noise: full, noise_seed: 7}\n"
-      "render: {" + render + ", max_depth: 1, aovs: [position]}\n"
+      "render: {" +
+      render +
+      ", max_depth: 1, aovs: [position]}\n"
       "frames: {count: 3, rate_hz: 10, shutter_angle_deg: 36}\n"
       "materials: {white: {type: diffuse, reflectance: 0.8}}\n"
       "shapes:\n"
-      "  - {type: sphere, centre: [0, 0, " + test::num(kZ) + "], radius: 0.02, material: white" +
-      motion + "}\n"
+      "  - {type: sphere, centre: [0, 0, " +
+      test::num(kZ) + "], radius: 0.02, material: white" + motion +
+      "}\n"
       "lights:\n  - {type: point, position: [0, 0, 0], intensity: 50}\n";
   return loadSceneFromText(text, "balls.yaml", ".");
 }
 
-std::vector<CaptureResult> run(SceneDescription d, int threads = 0, SequenceSummary* summary = nullptr) {
+std::vector<CaptureResult> run(SceneDescription d, int threads = 0,
+                               SequenceSummary* summary = nullptr) {
   std::vector<CaptureResult> frames;
   CaptureOptions o;
   o.threads = threads;
-  const SequenceSummary s =
-      captureSequence(std::move(d), o, [&](CaptureResult&& r, int) { frames.push_back(std::move(r)); });
+  const SequenceSummary s = captureSequence(
+      std::move(d), o, [&](CaptureResult&& r, int) { frames.push_back(std::move(r)); });
   if (summary) *summary = s;
   return frames;
 }
@@ -89,7 +95,8 @@ TEST(Sequence, AStaticSequenceRendersOnceAndOnlyTheTemporalNoiseDiffers) {
   ASSERT_EQ(frames.size(), 3u);
   EXPECT_EQ(summary.rendered, 1);
   for (int k = 0; k < 3; ++k) {
-    EXPECT_EQ(frames[static_cast<size_t>(k)].frames.at(0).frameIndex, static_cast<std::uint64_t>(k));
+    EXPECT_EQ(frames[static_cast<size_t>(k)].frames.at(0).frameIndex,
+              static_cast<std::uint64_t>(k));
     EXPECT_EQ(frames[static_cast<size_t>(k)].sensorFilm.pixels, frames[0].sensorFilm.pixels);
   }
   EXPECT_NE(frames[1].frames[0].raws[0].dn, frames[0].frames[0].raws[0].dn);

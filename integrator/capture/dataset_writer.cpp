@@ -1,0 +1,158 @@
+#include "integrator/capture/dataset_writer.h"
+
+#include <cmath>
+#include <cstdio>
+
+#include <glm/gtc/quaternion.hpp>
+#include <glm/matrix.hpp>
+
+#include "integrator/camera/physical_camera.h"
+#include "sensor/io/json_writer.h"
+#include "sensor/io/output_set.h"
+
+namespace camsim {
+namespace {
+
+double referenceTime(const PhysicalCameraParams& c) {
+  return 0.5 * (c.shutter.open() + c.shutter.close());
+}
+
+std::vector<std::vector<double>> rows(const glm::dmat4& m) {
+  std::vector<std::vector<double>> r(4, std::vector<double>(4));
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j) r[static_cast<size_t>(i)][static_cast<size_t>(j)] = m[j][i];
+  return r;
+}
+
+// OpenGL / Blender axes: x right, y up, z backward.
+glm::dmat4 toOpenGl(glm::dmat4 m) {
+  m[1] = -m[1];
+  m[2] = -m[2];
+  return m;
+}
+
+std::string fixed(double v) {
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.12g", v);
+  return buf;
+}
+
+}  // namespace
+
+DatasetFrame datasetFrame(const CaptureResult& r) {
+  DatasetFrame f;
+  f.image = r.description.name + ".png";
+  f.camera = r.description.camera;
+  f.renderOrigin = r.description.renderOrigin;
+  f.exposureTimeS = r.description.camera.shutter.effectiveTime();
+  if (r.description.sensor) {
+    f.isoValue = r.description.sensor->iso;
+    f.systemGainDnPerE = r.description.sensor->spec.systemGain(f.isoValue);
+    if (!r.frames.empty()) f.exposureTimeS = r.frames[r.referenceFrame].exposureTimeS;
+  }
+  return f;
+}
+
+glm::dmat4 worldFromCameraOpenCv(const DatasetFrame& frame) {
+  const PhysicalCamera camera(frame.camera);
+  glm::dmat4 m = camera.worldFromCameraAt(referenceTime(frame.camera));
+  m[1] = -m[1];  // camsim's up → OpenCV's down
+  m[3] += glm::dvec4(frame.renderOrigin, 0.0);
+  return m;
+}
+
+std::vector<std::filesystem::path> writeDatasetMetadata(const std::vector<DatasetFrame>& frames,
+                                                        const std::filesystem::path& directory) {
+  std::vector<JsonObject> cameraFrames, nerfFrames;
+  std::string images;
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    const DatasetFrame& f = frames[i];
+    const PhysicalCamera camera(f.camera);
+    const glm::dvec4 k = camera.intrinsics();
+    const PhysicalCameraParams& p = f.camera;
+    const glm::dmat4 cv = worldFromCameraOpenCv(f);
+    cameraFrames.push_back(
+        JsonObject()
+            .set("image", f.image)
+            .set("width", double(p.resolution.x))
+            .set("height", double(p.resolution.y))
+            .set("fx", k.x)
+            .set("fy", k.y)
+            .set("cx", k.z)
+            .set("cy", k.w)
+            .set("k1", p.distortion.k1)
+            .set("k2", p.distortion.k2)
+            .set("p1", p.distortion.p1)
+            .set("p2", p.distortion.p2)
+            .set("k3", p.distortion.k3)
+            .set("world_from_camera_opencv", rows(cv))
+            .set("world_from_camera_opengl", rows(toOpenGl(cv)))
+            .set("time_s", referenceTime(p))
+            .set("shutter_open_s", p.shutter.open())
+            .set("shutter_close_s", p.shutter.close())
+            .set("row_time_s", p.shutter.rowTime())
+            .set("readout_s", p.shutter.rowTime() * p.resolution.y)
+            .set("exposure_time_s", f.exposureTimeS)
+            .set("f_number", p.fNumber)
+            .set("iso", f.isoValue)
+            .set("system_gain_dn_per_e", f.systemGainDnPerE));
+    nerfFrames.push_back(JsonObject()
+                             .set("file_path", f.image)
+                             .set("transform_matrix", rows(toOpenGl(cv))));
+    // COLMAP: camera-from-world (OpenCV axes) as a unit quaternion and translation.
+    const glm::dmat3 worldFromCam(cv);
+    const glm::dmat3 camFromWorld = glm::transpose(worldFromCam);
+    const glm::dquat q = glm::quat_cast(camFromWorld);
+    const glm::dvec3 t = -(camFromWorld * glm::dvec3(cv[3]));
+    images += std::to_string(i + 1) + " " + fixed(q.w) + " " + fixed(q.x) + " " + fixed(q.y) +
+              " " + fixed(q.z) + " " + fixed(t.x) + " " + fixed(t.y) + " " + fixed(t.z) + " " +
+              std::to_string(i + 1) + " " + f.image + "\n\n";
+  }
+  JsonObject cameras;
+  cameras.set("convention",
+              "world_from_camera_opencv: columns x right, y down, z forward, position (m, the "
+              "scene's world); _opengl: x right, y up, z backward; cx, cy with pixel centres at "
+              "integers; pose at time_s, the shutter window's centre (row 0)")
+      .set("frames", cameraFrames);
+  const DatasetFrame& first = frames.front();
+  const glm::dvec4 k0 = PhysicalCamera(first.camera).intrinsics();
+  JsonObject nerf;
+  nerf.set("camera_model", "OPENCV")
+      .set("fl_x", k0.x)
+      .set("fl_y", k0.y)
+      .set("cx", k0.z + 0.5)
+      .set("cy", k0.w + 0.5)
+      .set("w", double(first.camera.resolution.x))
+      .set("h", double(first.camera.resolution.y))
+      .set("k1", first.camera.distortion.k1)
+      .set("k2", first.camera.distortion.k2)
+      .set("p1", first.camera.distortion.p1)
+      .set("p2", first.camera.distortion.p2)
+      .set("frames", nerfFrames);
+  // One COLMAP camera per frame (a frame's intrinsics may differ: focus, resolution).
+  std::string camerasTxt = "# CAMERA_ID MODEL WIDTH HEIGHT fx fy cx cy k1 k2 p1 p2 k3 k4 k5 k6\n";
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    const PhysicalCameraParams& p = frames[i].camera;
+    const glm::dvec4 k = PhysicalCamera(p).intrinsics();
+    camerasTxt += std::to_string(i + 1) + " FULL_OPENCV " + std::to_string(p.resolution.x) + " " +
+                  std::to_string(p.resolution.y) + " " + fixed(k.x) + " " + fixed(k.y) + " " +
+                  fixed(k.z + 0.5) + " " + fixed(k.w + 0.5) + " " + fixed(p.distortion.k1) + " " +
+                  fixed(p.distortion.k2) + " " + fixed(p.distortion.p1) + " " +
+                  fixed(p.distortion.p2) + " " + fixed(p.distortion.k3) + " 0 0 0\n";
+  }
+  // colmap/ is a set of its own (OutputSet names temporaries beside their final names).
+  std::filesystem::create_directories(directory / "colmap");
+  OutputSet colmap(directory / "colmap");
+  colmap.addText("cameras.txt", camerasTxt);
+  colmap.addText("images.txt",
+                 "# IMAGE_ID QW QX QY QZ TX TY TZ CAMERA_ID NAME (then a line of points)\n" + images);
+  colmap.addText("points3D.txt", "# no points: poses and intrinsics only\n");
+  OutputSet outputs(directory);
+  outputs.addText("cameras.json", cameras.str() + "\n");
+  outputs.addText("transforms.json", nerf.str() + "\n");
+  std::vector<std::filesystem::path> files = colmap.commit();
+  for (auto& f : outputs.commit()) files.push_back(std::move(f));
+  return files;
+}
+
+}  // namespace camsim

@@ -1,0 +1,49 @@
+// Camera metadata of a capture or a sequence, in the formats SfM and NeRF tools read,
+// written beside the frames (one OutputSet: all files at once):
+//
+//   cameras.json             every frame: intrinsics and distortion (OpenCV), world-from-camera
+//                            in the OpenCV (x right, y down, z forward) and OpenGL/Blender
+//                            (x right, y up, z backward) conventions, exposure (T, N, ISO,
+//                            gain), the frame's reference time and its rows' readout times
+//   transforms.json          NeRF (instant-ngp, nerfstudio): fl_x, fl_y, cx, cy, w, h,
+//                            k1, k2, p1, p2; frames[].file_path, transform_matrix (OpenGL
+//                            camera-to-world)
+//   colmap/cameras.txt, images.txt, points3D.txt (empty)   a COLMAP text model
+//
+// The pose is the camera's at the frame's reference time: the centre of its shutter
+// window (of row 0 for a rolling shutter; row r is read out r · row_time later). World is
+// the scene file's frame (render space plus the render origin). Pixel coordinates: OpenCV's
+// cx, cy put pixel centres at integers (cameras.json); COLMAP and NeRF put the image's
+// corner at 0, so their cx, cy are OpenCV's + 0.5.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <glm/mat4x4.hpp>
+
+#include "integrator/capture/capture.h"
+
+namespace camsim {
+
+struct DatasetFrame {
+  std::string image;                // the frame's picture, relative to the directory
+  PhysicalCameraParams camera;      // the frame's camera (its shutter moved to the frame)
+  glm::dvec3 renderOrigin{0.0};     // world = render + origin
+  double isoValue = 0.0;            // 0 without a sensor
+  double systemGainDnPerE = 0.0;    // 0 without a sensor
+  double exposureTimeS = 0.0;       // of the developed frame
+};
+
+DatasetFrame datasetFrame(const CaptureResult& result);
+
+// World-from-camera at the frame's reference time, OpenCV axes (columns x right, y down,
+// z forward, position), world coordinates.
+glm::dmat4 worldFromCameraOpenCv(const DatasetFrame& frame);
+
+// Writes cameras.json, transforms.json and colmap/*.txt into directory; returns the files.
+std::vector<std::filesystem::path> writeDatasetMetadata(const std::vector<DatasetFrame>& frames,
+                                                        const std::filesystem::path& directory);
+
+}  // namespace camsim
