@@ -71,48 +71,47 @@ std::vector<std::filesystem::path> writeDatasetMetadata(const std::vector<Datase
     const glm::dvec4 k = camera.intrinsics();
     const PhysicalCameraParams& p = f.camera;
     const glm::dmat4 cv = worldFromCameraOpenCv(f);
-    cameraFrames.push_back(
-        JsonObject()
-            .set("image", f.image)
-            .set("width", double(p.resolution.x))
-            .set("height", double(p.resolution.y))
-            .set("fx", k.x)
-            .set("fy", k.y)
-            .set("cx", k.z)
-            .set("cy", k.w)
-            .set("k1", p.distortion.k1)
-            .set("k2", p.distortion.k2)
-            .set("p1", p.distortion.p1)
-            .set("p2", p.distortion.p2)
-            .set("k3", p.distortion.k3)
-            .set("world_from_camera_opencv", rows(cv))
-            .set("world_from_camera_opengl", rows(toOpenGl(cv)))
-            .set("time_s", referenceTime(p))
-            .set("shutter_open_s", p.shutter.open())
-            .set("shutter_close_s", p.shutter.close())
-            .set("row_time_s", p.shutter.rowTime())
-            .set("readout_s", p.shutter.rowTime() * p.resolution.y)
-            .set("exposure_time_s", f.exposureTimeS)
-            .set("f_number", p.fNumber)
-            .set("iso", f.isoValue)
-            .set("system_gain_dn_per_e", f.systemGainDnPerE));
-    nerfFrames.push_back(JsonObject()
-                             .set("file_path", f.image)
-                             .set("transform_matrix", rows(toOpenGl(cv))));
+    cameraFrames.push_back(JsonObject()
+                               .set("image", f.image)
+                               .set("width", double(p.resolution.x))
+                               .set("height", double(p.resolution.y))
+                               .set("fx", k.x)
+                               .set("fy", k.y)
+                               .set("cx", k.z)
+                               .set("cy", k.w)
+                               .set("k1", p.distortion.k1)
+                               .set("k2", p.distortion.k2)
+                               .set("p1", p.distortion.p1)
+                               .set("p2", p.distortion.p2)
+                               .set("k3", p.distortion.k3)
+                               .set("world_from_camera_opencv", rows(cv))
+                               .set("world_from_camera_opengl", rows(toOpenGl(cv)))
+                               .set("time_s", referenceTime(p))
+                               .set("shutter_open_s", p.shutter.open())
+                               .set("shutter_close_s", p.shutter.close())
+                               .set("row_time_s", p.shutter.rowTime())
+                               .set("readout_s", p.shutter.rowTime() * p.resolution.y)
+                               .set("exposure_time_s", f.exposureTimeS)
+                               .set("f_number", p.fNumber)
+                               .set("iso", f.isoValue)
+                               .set("system_gain_dn_per_e", f.systemGainDnPerE));
+    nerfFrames.push_back(
+        JsonObject().set("file_path", f.image).set("transform_matrix", rows(toOpenGl(cv))));
     // COLMAP: camera-from-world (OpenCV axes) as a unit quaternion and translation.
     const glm::dmat3 worldFromCam(cv);
     const glm::dmat3 camFromWorld = glm::transpose(worldFromCam);
     const glm::dquat q = glm::quat_cast(camFromWorld);
     const glm::dvec3 t = -(camFromWorld * glm::dvec3(cv[3]));
-    images += std::to_string(i + 1) + " " + fixed(q.w) + " " + fixed(q.x) + " " + fixed(q.y) +
-              " " + fixed(q.z) + " " + fixed(t.x) + " " + fixed(t.y) + " " + fixed(t.z) + " " +
+    images += std::to_string(i + 1) + " " + fixed(q.w) + " " + fixed(q.x) + " " + fixed(q.y) + " " +
+              fixed(q.z) + " " + fixed(t.x) + " " + fixed(t.y) + " " + fixed(t.z) + " " +
               std::to_string(i + 1) + " " + f.image + "\n\n";
   }
   JsonObject cameras;
-  cameras.set("convention",
-              "world_from_camera_opencv: columns x right, y down, z forward, position (m, the "
-              "scene's world); _opengl: x right, y up, z backward; cx, cy with pixel centres at "
-              "integers; pose at time_s, the shutter window's centre (row 0)")
+  cameras
+      .set("convention",
+           "world_from_camera_opencv: columns x right, y down, z forward, position (m, the "
+           "scene's world); _opengl: x right, y up, z backward; cx, cy with pixel centres at "
+           "integers; pose at time_s, the shutter window's centre (row 0)")
       .set("frames", cameraFrames);
   const DatasetFrame& first = frames.front();
   const glm::dvec4 k0 = PhysicalCamera(first.camera).intrinsics();
@@ -144,8 +143,9 @@ std::vector<std::filesystem::path> writeDatasetMetadata(const std::vector<Datase
   std::filesystem::create_directories(directory / "colmap");
   OutputSet colmap(directory / "colmap");
   colmap.addText("cameras.txt", camerasTxt);
-  colmap.addText("images.txt",
-                 "# IMAGE_ID QW QX QY QZ TX TY TZ CAMERA_ID NAME (then a line of points)\n" + images);
+  colmap.addText(
+      "images.txt",
+      "# IMAGE_ID QW QX QY QZ TX TY TZ CAMERA_ID NAME (then a line of points)\n" + images);
   colmap.addText("points3D.txt", "# no points: poses and intrinsics only\n");
   OutputSet outputs(directory);
   outputs.addText("cameras.json", cameras.str() + "\n");

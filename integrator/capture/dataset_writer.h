@@ -28,12 +28,12 @@
 namespace camsim {
 
 struct DatasetFrame {
-  std::string image;                // the frame's picture, relative to the directory
-  PhysicalCameraParams camera;      // the frame's camera (its shutter moved to the frame)
-  glm::dvec3 renderOrigin{0.0};     // world = render + origin
-  double isoValue = 0.0;            // 0 without a sensor
-  double systemGainDnPerE = 0.0;    // 0 without a sensor
-  double exposureTimeS = 0.0;       // of the developed frame
+  std::string image;              // the frame's picture, relative to the directory
+  PhysicalCameraParams camera;    // the frame's camera (its shutter moved to the frame)
+  glm::dvec3 renderOrigin{0.0};   // world = render + origin
+  double isoValue = 0.0;          // 0 without a sensor
+  double systemGainDnPerE = 0.0;  // 0 without a sensor
+  double exposureTimeS = 0.0;     // of the developed frame
 };
 
 DatasetFrame datasetFrame(const CaptureResult& result);

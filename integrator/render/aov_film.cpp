@@ -39,10 +39,10 @@ glm::dvec3 toCameraCv(const glm::dmat4& worldFromCamera, const glm::dvec3& v) {
 }  // namespace
 
 AovFilm::AovFilm(glm::ivec2 resolution, const std::vector<Aov>& aovs)
-    : resolution_(resolution),
-      aovs_(aovs),
-      xyz_(SpectralResponse::cieXyz()),
-      d65_(cieIlluminant("D65")) {
+    : resolution_(resolution), aovs_(aovs) {
+  const SpectralResponse xyz = SpectralResponse::cieXyz();
+  const Spectrum d65 = cieIlluminant("D65");
+  for (int c = 0; c < 3; ++c) whiteXyz_[static_cast<std::size_t>(c)] = xyz.channel(c).curve * d65;
   if (aovs_.empty()) return;
   channels_ = {"coverage.A"};
   for (Aov a : aovs_)
@@ -89,11 +89,17 @@ void AovFilm::addSample(glm::ivec2 pixel, const VisibleSurface& v,
       case Aov::kAlbedo: {
         // Numerators here, the white's denominators beside: divided in toImage (a ratio
         // of the pixel's sums, not a mean of per-sample ratios, which is biased for colour).
-        const SampledSpectrum white = safeDiv(sampleSpectrum(d65_, lambda), lambda.pdfs());
         double* den = &albedoWhite_[static_cast<std::size_t>(s - sums_.data()) / stride_ * 3];
         for (int c = 0; c < 3; ++c) {
-          *s++ += xyz_.estimate(c, white * v.albedo, lambda);
-          den[c] += xyz_.estimate(c, white, lambda);
+          // r_c·D65/p at the sample's wavelengths (the 1/N of the estimate cancels).
+          const SampledSpectrum white =
+              safeDiv(sampleSpectrum(whiteXyz_[c], lambda), lambda.pdfs());
+          const SampledSpectrum lit = white * v.albedo;
+          for (int i = 0; i < kWavelengthSamples; ++i) {
+            *s += static_cast<double>(lit[i]);
+            den[c] += static_cast<double>(white[i]);
+          }
+          ++s;
         }
         break;
       }

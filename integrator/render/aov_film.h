@@ -15,6 +15,7 @@
 // | roughness  | roughness.Y                  | —    | the material's α as the scene gives it (diffuse 1, mirror 0) |
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <vector>
 
@@ -48,10 +49,9 @@ class AovFilm {
   std::vector<std::string> channels_;
   std::size_t stride_ = 0;  // sums per pixel: hit count, then one per channel
   std::vector<double> sums_;
-  std::size_t albedoChannel_ = 0;    // of albedo.R (0: no albedo)
-  std::vector<double> albedoWhite_;  // per pixel: the D65 white's X, Y, Z sums
-  SpectralResponse xyz_;
-  Spectrum d65_;
+  std::size_t albedoChannel_ = 0;     // of albedo.R (0: no albedo)
+  std::vector<double> albedoWhite_;   // per pixel: the D65 white's X, Y, Z sums
+  std::array<Spectrum, 3> whiteXyz_;  // x̄·D65, ȳ·D65, z̄·D65
 };
 
 }  // namespace camsim

@@ -64,8 +64,8 @@ TEST(DatasetExport, OpenCvProjectsRenderedPointsOntoTheirPixels) {
   points.close();
   EXPECT_GT(n, 100);
   const test::RunResult check = test::runCommand(
-      "/usr/bin/python3 " + test::quote(std::string(CAMSIM_SOURCE_DIR) +
-                                         "/tests/cli/check_opencv_projection.py") +
+      "/usr/bin/python3 " +
+          test::quote(std::string(CAMSIM_SOURCE_DIR) + "/tests/cli/check_opencv_projection.py") +
           " " + test::quote((dir.path() / "out" / "cameras.json").string()) + " " +
           test::quote((dir.path() / "points.csv").string()) + " 0.05",
       dir.path());
@@ -73,7 +73,8 @@ TEST(DatasetExport, OpenCvProjectsRenderedPointsOntoTheirPixels) {
   EXPECT_EQ(check.exitCode, 0) << check.out << check.err;
 
   // COLMAP reads the text model (and writes it back as binary).
-  ASSERT_TRUE(onPath("colmap")) << "colmap is not installed (Debian package colmap; scripts/setup.sh)";
+  ASSERT_TRUE(onPath("colmap"))
+      << "colmap is not installed (Debian package colmap; scripts/setup.sh)";
   std::filesystem::create_directories(dir.path() / "bin");
   const test::RunResult colmap = test::runCommand(
       "QT_QPA_PLATFORM=offscreen colmap model_converter --input_path " +
