@@ -90,8 +90,10 @@ void exposeAndDevelop(CaptureResult& out, const RenderOptions& renderOptions) {
     frame.whiteBalanceGains = whiteBalanceGains(frame.raws, spec, desc.isp);
     out.frames.push_back(std::move(frame));
   }
-  out.developed = developRaw(out.frames[out.referenceFrame].raws, spec, desc.isp,
-                             lutsDirectory() / "spectra" / "colorchecker_classic_reflectance.csv");
+  const CaptureFrame& reference = out.frames[out.referenceFrame];
+  out.developed = developRaw(reference.raws, spec, desc.isp,
+                             lutsDirectory() / "spectra" / "colorchecker_classic_reflectance.csv",
+                             &reference.whiteBalanceGains);
   out.picture = out.developed->working.channelCount() == 1 ? greyRgb(out.developed->working)
                                                            : out.developed->working;
 }
@@ -173,9 +175,7 @@ SequenceSummary captureSequence(SceneDescription description, const CaptureOptio
   description.frames = seq;
   // The sequence's whole exposure: geometry and motion are built over it once.
   const auto window = [&](int k) {
-    const PhysicalCamera c(description.frameCamera(k));
-    return glm::dvec2(c.shutter().open(),
-                      c.shutter().close() + c.shutter().rowOffset(c.resolution().y - 1));
+    return exposureWindow(PhysicalCamera(description.frameCamera(k)));
   };
   const glm::dvec2 span(window(0).x, window(seq.count - 1).y);
   Scene scene(description, span);
@@ -188,7 +188,7 @@ SequenceSummary captureSequence(SceneDescription description, const CaptureOptio
   const bool anythingMoves = scene.modelled().time;
   SequenceSummary summary;
   summary.frames = seq.count;
-  CaptureResult first;
+  CaptureResult first;  // when nothing moves: frame 0's render (film, sensor film, AOVs) only
   for (int k = 0; k < seq.count; ++k) {
     CaptureResult out;
     out.description = description;
@@ -220,7 +220,13 @@ SequenceSummary captureSequence(SceneDescription description, const CaptureOptio
       return summary;
     }
     finish(out, o);
-    if (k == 0 && !anythingMoves) first = out;
+    if (k == 0 && !anythingMoves) {
+      first.stats = out.stats;
+      first.film = out.film;
+      first.sensorFilm = out.sensorFilm;
+      first.aovs = out.aovs;
+      first.tilesTotal = out.tilesTotal;
+    }
     onFrame(std::move(out), k);
   }
   return summary;

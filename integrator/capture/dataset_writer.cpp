@@ -54,7 +54,10 @@ DatasetFrame datasetFrame(const CaptureResult& r) {
 }
 
 glm::dmat4 worldFromCameraOpenCv(const DatasetFrame& frame) {
-  const PhysicalCamera camera(frame.camera);
+  return worldFromCameraOpenCv(frame, PhysicalCamera(frame.camera));
+}
+
+glm::dmat4 worldFromCameraOpenCv(const DatasetFrame& frame, const PhysicalCamera& camera) {
   glm::dmat4 m = camera.worldFromCameraAt(referenceTime(frame.camera));
   m[1] = -m[1];  // camsim's up → OpenCV's down
   m[3] += glm::dvec4(frame.renderOrigin, 0.0);
@@ -64,13 +67,14 @@ glm::dmat4 worldFromCameraOpenCv(const DatasetFrame& frame) {
 std::vector<std::filesystem::path> writeDatasetMetadata(const std::vector<DatasetFrame>& frames,
                                                         const std::filesystem::path& directory) {
   std::vector<JsonObject> cameraFrames, nerfFrames;
+  std::vector<glm::dvec4> intrinsics;  // per frame: fx, fy, cx, cy (OpenCV)
   std::string images;
   for (std::size_t i = 0; i < frames.size(); ++i) {
     const DatasetFrame& f = frames[i];
     const PhysicalCamera camera(f.camera);
-    const glm::dvec4 k = camera.intrinsics();
+    const glm::dvec4 k = intrinsics.emplace_back(camera.intrinsics());
     const PhysicalCameraParams& p = f.camera;
-    const glm::dmat4 cv = worldFromCameraOpenCv(f);
+    const glm::dmat4 cv = worldFromCameraOpenCv(f, camera);
     cameraFrames.push_back(JsonObject()
                                .set("image", f.image)
                                .set("width", double(p.resolution.x))
@@ -114,7 +118,7 @@ std::vector<std::filesystem::path> writeDatasetMetadata(const std::vector<Datase
            "integers; pose at time_s, the shutter window's centre (row 0)")
       .set("frames", cameraFrames);
   const DatasetFrame& first = frames.front();
-  const glm::dvec4 k0 = PhysicalCamera(first.camera).intrinsics();
+  const glm::dvec4& k0 = intrinsics.front();
   JsonObject nerf;
   nerf.set("camera_model", "OPENCV")
       .set("fl_x", k0.x)
@@ -132,7 +136,7 @@ std::vector<std::filesystem::path> writeDatasetMetadata(const std::vector<Datase
   std::string camerasTxt = "# CAMERA_ID MODEL WIDTH HEIGHT fx fy cx cy k1 k2 p1 p2 k3 k4 k5 k6\n";
   for (std::size_t i = 0; i < frames.size(); ++i) {
     const PhysicalCameraParams& p = frames[i].camera;
-    const glm::dvec4 k = PhysicalCamera(p).intrinsics();
+    const glm::dvec4& k = intrinsics[i];
     camerasTxt += std::to_string(i + 1) + " FULL_OPENCV " + std::to_string(p.resolution.x) + " " +
                   std::to_string(p.resolution.y) + " " + fixed(k.x) + " " + fixed(k.y) + " " +
                   fixed(k.z + 0.5) + " " + fixed(k.w + 0.5) + " " + fixed(p.distortion.k1) + " " +

@@ -23,6 +23,7 @@
 
 #include <glm/mat4x4.hpp>
 
+#include "integrator/camera/physical_camera.h"
 #include "integrator/capture/capture.h"
 
 namespace camsim {
@@ -41,6 +42,8 @@ DatasetFrame datasetFrame(const CaptureResult& result);
 // World-from-camera at the frame's reference time, OpenCV axes (columns x right, y down,
 // z forward, position), world coordinates.
 glm::dmat4 worldFromCameraOpenCv(const DatasetFrame& frame);
+// The same with the frame's camera already built (PhysicalCamera(frame.camera)).
+glm::dmat4 worldFromCameraOpenCv(const DatasetFrame& frame, const PhysicalCamera& camera);
 
 // Writes cameras.json, transforms.json and colmap/*.txt into directory; returns the files.
 std::vector<std::filesystem::path> writeDatasetMetadata(const std::vector<DatasetFrame>& frames,

@@ -85,15 +85,10 @@ std::string ModelledDimensions::describe() const {
   return out + std::to_string(wavelengths) + " wavelengths";
 }
 
-namespace {
-
-// The interval ray times fall in: shutter open → close of the last row.
 glm::dvec2 exposureWindow(const PhysicalCamera& camera) {
   const Shutter& shutter = camera.shutter();
   return {shutter.open(), shutter.close() + shutter.rowOffset(camera.resolution().y - 1)};
 }
-
-}  // namespace
 
 Scene::Scene(const SceneDescription& d) : Scene(d, exposureWindow(PhysicalCamera(d.camera))) {}
 

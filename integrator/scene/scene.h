@@ -31,6 +31,9 @@ struct ModelledDimensions {
   std::string describe() const;
 };
 
+// The interval ray times fall in: shutter open → close of the last row (s).
+glm::dvec2 exposureWindow(const PhysicalCamera& camera);
+
 class Scene {
  public:
   explicit Scene(const SceneDescription& description);

@@ -41,12 +41,12 @@ std::vector<double> whiteBalanceGains(const std::vector<RawImage>& raws, const S
 }
 
 DevelopedImage developRaw(const std::vector<RawImage>& raws, const SensorSpec& sensor,
-                          const IspSettings& settings,
-                          const std::filesystem::path& colorCheckerCsv) {
+                          const IspSettings& settings, const std::filesystem::path& colorCheckerCsv,
+                          const std::vector<double>* gains) {
   DevelopedImage out;
   const Spectrum illuminant = cieIlluminant(settings.illuminant);
   Image mosaic = normalised(raws, sensor);
-  out.whiteBalance = gainsOf(mosaic, sensor, settings);
+  out.whiteBalance = gains ? *gains : gainsOf(mosaic, sensor, settings);
   if (sensor.cfa.isStacked()) {
     // X, Y, Z planes: no demosaic, no CCM; the white's XYZ adapted to the D65 white (Y
     // kept: both have Y = 1), then XYZ(D65) → working space.

@@ -51,9 +51,10 @@ struct DevelopedImage {
 std::vector<double> whiteBalanceGains(const std::vector<RawImage>& raws, const SensorSpec& sensor,
                                       const IspSettings& settings);
 
-// raws: one RawImage for a mosaic sensor, one per channel for a stacked sensor.
+// raws: one RawImage for a mosaic sensor, one per channel for a stacked sensor. gains:
+// whiteBalanceGains() of the same raws and settings when the caller has them already.
 DevelopedImage developRaw(const std::vector<RawImage>& raws, const SensorSpec& sensor,
-                          const IspSettings& settings,
-                          const std::filesystem::path& colorCheckerCsv);
+                          const IspSettings& settings, const std::filesystem::path& colorCheckerCsv,
+                          const std::vector<double>* gains = nullptr);
 
 }  // namespace camsim
