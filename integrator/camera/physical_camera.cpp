@@ -59,6 +59,17 @@ glm::dvec4 PhysicalCamera::intrinsics() const {
           0.5 * p_.resolution.y - 0.5};
 }
 
+std::optional<glm::dvec2> PhysicalCamera::project(const glm::dvec3& p, double t) const {
+  const glm::dmat4 m = worldFromCameraAt(t);
+  const glm::dvec3 d = p - glm::dvec3(m[3]);
+  const double z = glm::dot(d, glm::dvec3(m[2]));
+  if (!(z > 0.0)) return std::nullopt;
+  const glm::dvec2 xn(glm::dot(d, glm::dvec3(m[0])) / z, -glm::dot(d, glm::dvec3(m[1])) / z);
+  const glm::dvec2 xd = p_.distortion.isIdentity() ? xn : p_.distortion.distort(xn);
+  const glm::dvec4 k = intrinsics();
+  return glm::dvec2(k.x * xd.x + k.z, k.y * xd.y + k.w);
+}
+
 std::optional<CameraRay> PhysicalCamera::generateRay(const CameraSample& sample,
                                                      const SampledWavelengths& lambda) const {
   if (fastPinhole_) return generatePinholeRay(sample);

@@ -90,6 +90,10 @@ class PhysicalCamera final : public Camera {
   glm::dmat4 worldFromCameraAt(double t) const;
   // OpenCV intrinsics (pixels): fx, fy, cx, cy.
   glm::dvec4 intrinsics() const;
+  // Where the chief ray images the render-space point p at time t: OpenCV pixel
+  // coordinates (x right, y down, pixel centres at integers) through intrinsics() and the
+  // distortion; none for a point on or behind the lens plane.
+  std::optional<glm::dvec2> project(const glm::dvec3& p, double t) const;
 
  private:
   std::optional<CameraRay> generatePinholeRay(const CameraSample& sample) const;

@@ -36,6 +36,9 @@ class Shutter {
 
   double open() const { return times_.front(); }
   double close() const { return times_.back(); }
+  // The frame's reference time (s): the middle of open → close; poses in the dataset
+  // metadata and the motion field's frame times are taken here.
+  double centre() const { return 0.5 * (open() + close()); }
   double effectiveTime() const { return total_; }  // T_eff, s
   Type type() const { return type_; }
   double rowTime() const { return type_ == Type::kRolling ? rowTime_ : 0.0; }

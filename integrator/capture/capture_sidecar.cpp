@@ -1,9 +1,13 @@
 #include "integrator/capture/capture_sidecar.h"
 
+#include <algorithm>
+
 #include <string>
 #include <vector>
 
 #include "integrator/camera/physical_camera.h"
+#include "integrator/render/cryptomatte.h"
+#include "integrator/scene/scene_ids.h"
 #include "sensor/model/exposure_control.h"
 #include "sensor/model/sensor_model.h"
 
@@ -90,6 +94,28 @@ std::vector<std::string> aovNames(const std::vector<Aov>& aovs) {
   return names;
 }
 
+// The id tables of the scene's id aovs: per kind, each entry's dominant-id number, name
+// and Cryptomatte id (the hex of the float, as in the EXR manifest).
+JsonObject idsJson(const SceneDescription& desc) {
+  JsonObject j;
+  const SceneIds ids = sceneIds(desc);
+  for (IdKind k : {IdKind::kInstance, IdKind::kClass, IdKind::kMaterial}) {
+    if (std::find(desc.render.aovs.begin(), desc.render.aovs.end(), aovOf(k)) ==
+        desc.render.aovs.end())
+      continue;
+    std::vector<JsonObject> entries;
+    const IdTable& t = ids[k];
+    for (std::size_t e = 1; e < t.names.size(); ++e)
+      entries.push_back(JsonObject()
+                            .set("number", double(t.numbers[e]))
+                            .set("name", t.names[e])
+                            .set("cryptomatte", cryptomatteHex(cryptomatteId(t.names[e]))));
+    j.set(idKindName(k),
+          JsonObject().set("cryptomatte_type", cryptomatteTypeName(k)).set("entries", entries));
+  }
+  return j;
+}
+
 }  // namespace
 
 JsonObject captureSidecar(const CaptureResult& r) {
@@ -109,7 +135,8 @@ JsonObject captureSidecar(const CaptureResult& r) {
                          .set("seconds", st.seconds)
                          .set("rejected_samples", double(st.rejectedSamples))
                          .set("modelled", st.modelled.describe())
-                         .set("aovs", aovNames(desc.render.aovs)))
+                         .set("aovs", aovNames(desc.render.aovs))
+                         .set("ids", idsJson(desc)))
       .set("camera", cameraJson(PhysicalCamera(desc.camera)));
   if (desc.sensor)
     sidecar.set("sensor", sensorJson(r)).set("isp", ispJson(r));

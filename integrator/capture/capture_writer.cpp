@@ -1,9 +1,12 @@
 #include "integrator/capture/capture_writer.h"
 
+#include <algorithm>
 #include <cstdio>
 
 #include "integrator/camera/physical_camera.h"
 #include "integrator/capture/capture_sidecar.h"
+#include "integrator/render/cryptomatte.h"
+#include "integrator/scene/scene_ids.h"
 #include "sensor/base/format.h"
 #include "sensor/base/luts_directory.h"
 #include "sensor/io/dng_writer.h"
@@ -142,6 +145,19 @@ Image withLayers(const Image& image, const Image& aovs) {
   return out;
 }
 
+// The Cryptomatte header attributes of the scene's id aovs (cryptomatte.h) after meta.
+Metadata withCryptomatte(Metadata meta, const SceneDescription& desc) {
+  const SceneIds ids = sceneIds(desc);
+  for (IdKind k : {IdKind::kInstance, IdKind::kClass, IdKind::kMaterial}) {
+    if (std::find(desc.render.aovs.begin(), desc.render.aovs.end(), aovOf(k)) ==
+        desc.render.aovs.end())
+      continue;
+    const Metadata m = cryptomatteMetadata(cryptomatteTypeName(k), ids[k].names);
+    meta.insert(meta.end(), m.begin(), m.end());
+  }
+  return meta;
+}
+
 }  // namespace
 
 Image xyzExrImage(const Image& xyz) {
@@ -168,8 +184,8 @@ WrittenCapture writeCapture(const CaptureResult& result, const CaptureOutputOpti
   const SceneDescription& desc = result.description;
   const Metadata meta = filmMetadata(result);
   OutputSet outputs(options.directory);
-  writeExr(outputs.add(desc.name + ".exr"), withLayers(xyzExrImage(result.film), result.aovs), meta,
-           rec709Chromaticities());
+  writeExr(outputs.add(desc.name + ".exr"), withLayers(xyzExrImage(result.film), result.aovs),
+           withCryptomatte(meta, desc), rec709Chromaticities());
   JsonObject sidecar = captureSidecar(result);
   if (desc.sensor) writeFrames(result, meta, outputs);
   sidecar.set("color", writePicture(result.picture, desc.name, options.picture,

@@ -14,7 +14,7 @@ namespace camsim {
 namespace {
 
 double referenceTime(const PhysicalCameraParams& c) {
-  return 0.5 * (c.shutter.open() + c.shutter.close());
+  return c.shutter.centre();
 }
 
 std::vector<std::vector<double>> rows(const glm::dmat4& m) {

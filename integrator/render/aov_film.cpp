@@ -1,6 +1,7 @@
 #include "integrator/render/aov_film.h"
 
 #include <glm/geometric.hpp>
+#include <glm/matrix.hpp>
 
 #include "sensor/spectra/color_space.h"
 #include "sensor/spectra/spectral_data.h"
@@ -26,6 +27,13 @@ std::vector<std::string> channelsOf(Aov aov) {
       return {"albedo.R", "albedo.G", "albedo.B"};
     case Aov::kRoughness:
       return {"roughness.Y"};
+    case Aov::kMotion:
+      return {"motion_fw.X", "motion_fw.Y", "motion_bw.X", "motion_bw.Y", "flow_fw.X",
+              "flow_fw.Y",   "flow_fw.Z",   "flow_bw.X",   "flow_bw.Y",   "flow_bw.Z"};
+    case Aov::kInstanceId:
+    case Aov::kClassId:
+    case Aov::kMaterialId:
+      return {};  // IdFilm's channels
   }
   return {};
 }
@@ -36,36 +44,90 @@ glm::dvec3 toCameraCv(const glm::dmat4& worldFromCamera, const glm::dvec3& v) {
           glm::dot(v, glm::dvec3(worldFromCamera[2]))};
 }
 
-}  // namespace
-
-AovFilm::AovFilm(glm::ivec2 resolution, const std::vector<Aov>& aovs)
-    : resolution_(resolution), aovs_(aovs) {
-  const SpectralResponse xyz = SpectralResponse::cieXyz();
-  const Spectrum d65 = cieIlluminant("D65");
-  for (int c = 0; c < 3; ++c) whiteXyz_[static_cast<std::size_t>(c)] = xyz.channel(c).curve * d65;
-  if (aovs_.empty()) return;
-  channels_ = {"coverage.A"};
-  for (Aov a : aovs_)
-    for (std::string& c : channelsOf(a)) channels_.push_back(std::move(c));
-  stride_ = channels_.size();  // slot 0: the hit count (coverage.A once divided by spp)
-  for (std::size_t c = 0; c < channels_.size(); ++c)
-    if (channels_[c] == "albedo.R") albedoChannel_ = c;
-  if (albedoChannel_ > 0)
-    albedoWhite_.assign(
-        static_cast<std::size_t>(resolution.x) * static_cast<std::size_t>(resolution.y) * 3, 0.0);
-  sums_.assign(
-      static_cast<std::size_t>(resolution.x) * static_cast<std::size_t>(resolution.y) * stride_,
-      0.0);
+bool isIdAov(Aov a) {
+  return a == Aov::kInstanceId || a == Aov::kClassId || a == Aov::kMaterialId;
 }
 
-void AovFilm::addSample(glm::ivec2 pixel, const VisibleSurface& v,
-                        const glm::dmat4& worldFromCamera, const glm::dvec3& renderOrigin,
-                        const SampledWavelengths& lambda) {
+IdKind idKindOf(Aov a) {
+  return a == Aov::kInstanceId ? IdKind::kInstance
+                               : (a == Aov::kClassId ? IdKind::kClass : IdKind::kMaterial);
+}
+
+}  // namespace
+
+AovFilm::AovFilm(const Scene& scene)
+    : scene_(scene), resolution_(scene.camera().resolution()), aovs_(scene.settings().aovs) {
+  if (aovs_.empty()) return;
+  const std::size_t pixels =
+      static_cast<std::size_t>(resolution_.x) * static_cast<std::size_t>(resolution_.y);
+  channels_ = {"coverage.A"};
+  for (Aov a : aovs_) {
+    if (isIdAov(a)) {
+      const IdKind kind = idKindOf(a);
+      idFilms_.push_back(std::make_unique<IdFilm>(resolution_, kind, scene.ids()[kind]));
+      idKinds_.push_back(kind);
+    }
+    for (std::string& c : channelsOf(a)) channels_.push_back(std::move(c));
+  }
+  stride_ = channels_.size();  // slot 0: the hit count (coverage.A once divided by spp)
+  for (std::size_t c = 0; c < channels_.size(); ++c) {
+    if (channels_[c] == "albedo.R") albedoChannel_ = c;
+    if (channels_[c] == "motion_fw.X") motionChannel_ = c;
+  }
+  if (albedoChannel_ > 0) {
+    const SpectralResponse xyz = SpectralResponse::cieXyz();
+    const Spectrum d65 = cieIlluminant("D65");
+    for (int c = 0; c < 3; ++c) whiteXyz_[static_cast<std::size_t>(c)] = xyz.channel(c).curve * d65;
+    albedoWhite_.assign(pixels * 3, 0.0);
+  }
+  if (motionChannel_ > 0) {
+    motionCount_.assign(pixels, 0.0);
+    const double t = scene.camera().shutter().centre(), dt = scene.frameInterval();
+    frameTimes_ = {t - dt, t, t + dt};
+  }
+  sums_.assign(pixels * stride_, 0.0);
+}
+
+void AovFilm::addMotion(double* sums, const AovSample& s) {
+  const VisibleSurface& v = s.visible;
+  const RigidMotion& motion = scene_.motion(v.shape);
+  const glm::dvec3 p(v.p);
+  // The hit in object space (at the sample's time), then at each frame's reference time.
+  const glm::dvec3 object =
+      motion.empty() ? p : glm::dvec3(glm::inverse(motion.at(s.time)) * glm::dvec4(p, 1.0));
+  std::array<glm::dvec3, 3> at;
+  std::array<glm::dvec2, 3> pixel;
+  for (std::size_t j = 0; j < 3; ++j) {
+    at[j] = motion.empty() ? p : glm::dvec3(motion.at(frameTimes_[j]) * glm::dvec4(object, 1.0));
+    const std::optional<glm::dvec2> q = scene_.camera().project(at[j], frameTimes_[j]);
+    if (!q) return;
+    pixel[j] = *q;
+  }
+  const std::size_t px = static_cast<std::size_t>(sums - sums_.data()) / stride_;
+  motionCount_[px] += 1.0;
+  double* m = sums + motionChannel_;
+  const glm::dvec2 fw = pixel[2] - pixel[1], bw = pixel[0] - pixel[1];
+  const glm::dvec3 flowFw = at[2] - at[1], flowBw = at[0] - at[1];
+  const double values[10] = {fw.x,     fw.y,     bw.x,     bw.y,     flowFw.x,
+                             flowFw.y, flowFw.z, flowBw.x, flowBw.y, flowBw.z};
+  for (double x : values) *m++ += x;
+}
+
+void AovFilm::addSample(const AovSample& sample) {
+  const glm::ivec2 pixel = sample.pixel;
+  const VisibleSurface& v = sample.visible;
+  for (std::size_t k = 0; k < idFilms_.size(); ++k)
+    idFilms_[k]->add(
+        pixel, v.hit ? scene_.ids()[idKinds_[k]].ofShape[static_cast<std::size_t>(v.shape)] : 0u);
   if (!v.hit) return;
   double* s = &sums_[(static_cast<std::size_t>(pixel.y) * static_cast<std::size_t>(resolution_.x) +
                       static_cast<std::size_t>(pixel.x)) *
                      stride_];
+  double* const pixelSums = s;
   *s++ += 1.0;
+  const glm::dmat4 worldFromCamera = scene_.camera().worldFromCameraAt(sample.time);
+  const glm::dvec3& renderOrigin = scene_.renderOrigin();
+  const SampledWavelengths& lambda = sample.lambda;
   const glm::dvec3 p(v.p);
   for (Aov a : aovs_) {
     switch (a) {
@@ -106,24 +168,45 @@ void AovFilm::addSample(glm::ivec2 pixel, const VisibleSurface& v,
       case Aov::kRoughness:
         *s++ += static_cast<double>(v.roughness);
         break;
+      case Aov::kMotion:
+        addMotion(pixelSums, sample);
+        s += 10;
+        break;
+      case Aov::kInstanceId:
+      case Aov::kClassId:
+      case Aov::kMaterialId:
+        break;
     }
   }
 }
 
 Image AovFilm::toImage(int samplesPerPixel) const {
-  Image out(resolution_.x, resolution_.y, channels_);
+  std::vector<std::string> names = channels_;
+  for (const auto& f : idFilms_)
+    names.insert(names.end(), f->channels().begin(), f->channels().end());
+  Image out(resolution_.x, resolution_.y, names);
   const std::size_t n =
       static_cast<std::size_t>(resolution_.x) * static_cast<std::size_t>(resolution_.y);
+  const std::size_t width = names.size();
+  const RgbColorSpace& rec709 = RgbColorSpace::linearRec709();
   for (std::size_t px = 0; px < n; ++px) {
     const double* s = &sums_[px * stride_];
+    float* o = &out.pixels[px * width];
     const double hits = s[0];
-    out.pixels[px * stride_] = static_cast<float>(hits / samplesPerPixel);
+    o[0] = static_cast<float>(hits / samplesPerPixel);
     for (std::size_t c = 1; c < stride_; ++c)
-      out.pixels[px * stride_ + c] = hits > 0.0 ? static_cast<float>(s[c] / hits) : 0.0f;
+      o[c] = hits > 0.0 ? static_cast<float>(s[c] / hits) : 0.0f;
+    if (motionChannel_ > 0)
+      for (std::size_t c = motionChannel_; c < motionChannel_ + 10; ++c)
+        o[c] = motionCount_[px] > 0.0 ? static_cast<float>(s[c] / motionCount_[px]) : 0.0f;
+    float* ids = o + stride_;
+    for (const auto& f : idFilms_) {
+      f->pixel(px, samplesPerPixel, ids);
+      ids += f->channels().size();
+    }
     if (albedoChannel_ == 0 || hits == 0.0) continue;
     // Albedo: the ratio of each XYZ sum to the D65 white's, times the white's XYZ (Y = 1),
     // to Rec.709 (white (1, 1, 1)).
-    const RgbColorSpace& rec709 = RgbColorSpace::linearRec709();
     glm::dvec3 ratio;
     for (int c = 0; c < 3; ++c) {
       const double den = albedoWhite_[px * 3 + static_cast<std::size_t>(c)];
@@ -131,8 +214,7 @@ Image AovFilm::toImage(int samplesPerPixel) const {
     }
     const glm::dvec3 rgb = rec709.fromXyz(ratio * rec709.toXyz(glm::dvec3(1.0)));
     for (int c = 0; c < 3; ++c)
-      out.pixels[px * stride_ + albedoChannel_ + static_cast<std::size_t>(c)] =
-          static_cast<float>(rgb[c]);
+      o[albedoChannel_ + static_cast<std::size_t>(c)] = static_cast<float>(rgb[c]);
   }
   return out;
 }

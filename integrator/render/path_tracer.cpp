@@ -102,7 +102,8 @@ SampledSpectrum trace(const Scene& scene, Ray ray, SampledWavelengths& lambda, S
     const glm::vec3 wo = -glm::normalize(ray.d);
     if (depth == 0 && visible) [[unlikely]] {
       const SurfaceAov aov = scene.material(hit.shape).aov(lambda, BsdfContext{si.uv});
-      *visible = {true, si.p, si.n, si.ns, glm::length(si.p - ray.o), aov.albedo, aov.roughness};
+      *visible = {true,       si.p,          si.n,     si.ns, glm::length(si.p - ray.o),
+                  aov.albedo, aov.roughness, hit.shape};
     }
 
     if (const AreaLight* light = scene.areaLight(hit.shape)) {

@@ -31,6 +31,7 @@ struct VisibleSurface {
   float distance = 0.0f;   // from the ray's origin, m
   SampledSpectrum albedo;  // the material's SurfaceAov at the path's wavelengths
   float roughness = 0.0f;
+  int shape = -1;  // the shape hit (Scene::shape)
 };
 
 // Radiance (W·m⁻²·sr⁻¹·nm⁻¹) along `ray` at the wavelengths `lambda`. A dispersive

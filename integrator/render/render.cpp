@@ -56,7 +56,10 @@ void renderTile(const Scene& scene, Film& film, const RenderOptions& options,
         sampler.setDimension(kDimPath);
         const std::optional<CameraRay> cr = camera.generateRay(cs, lambda);
         ++stats.samples;
-        if (!cr) continue;
+        if (!cr) {
+          if (aovs.enabled()) aovs.addSample({pixel, VisibleSurface{}, cs.time, lambda});
+          continue;
+        }
         countRay(RayKind::kCamera, cr->ray);
         if (!aovs.enabled()) {
           const SampledSpectrum L = traceRadiance(scene, cr->ray, lambda, sampler);
@@ -67,8 +70,7 @@ void renderTile(const Scene& scene, Film& film, const RenderOptions& options,
         const SampledWavelengths lambdaAtCamera = lambda;  // before a dispersive hit ends some
         const SampledSpectrum L = traceRadiance(scene, cr->ray, lambda, sampler, &visible);
         if (!film.addSample(pixel, L * cr->weight, lambda)) ++stats.rejected;
-        aovs.addSample(pixel, visible, camera.worldFromCameraAt(cs.time), scene.renderOrigin(),
-                       lambdaAtCamera);
+        aovs.addSample({pixel, visible, cs.time, lambdaAtCamera});
       }
     }
   }
@@ -88,7 +90,7 @@ RenderResult render(const Scene& scene, const std::vector<const SpectralResponse
   ModelledDimensions dims = scene.modelled();
   dims.time = dims.time || options.forceTime;
   Film film(res, responses);
-  AovFilm aovs(res, scene.settings().aovs);
+  AovFilm aovs(scene);
   const int tilesX = (res.x + kTileSize - 1) / kTileSize;
   const int tilesY = (res.y + kTileSize - 1) / kTileSize;
   const int tileCount = tilesX * tilesY;

@@ -114,7 +114,11 @@ void Scene::analyseExposure() {
 }
 
 Scene::Scene(const SceneDescription& d, glm::dvec2 motionSpan)
-    : motionSpan_(motionSpan), settings_(d.render), renderOrigin_(d.renderOrigin) {
+    : motionSpan_(motionSpan),
+      settings_(d.render),
+      renderOrigin_(d.renderOrigin),
+      ids_(sceneIds(d)),
+      frameInterval_(d.frames ? 1.0 / d.frames->rateHz : 0.0) {
   camera_ = std::make_unique<PhysicalCamera>(d.camera);
   exposureStart_ = motionSpan.x;  // the shapes' motion is built over the whole span
   exposureEnd_ = motionSpan.y;

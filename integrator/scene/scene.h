@@ -13,6 +13,7 @@
 #include "integrator/materials/material.h"
 #include "integrator/sampling/distribution.h"
 #include "integrator/scene/scene_description.h"
+#include "integrator/scene/scene_ids.h"
 
 namespace camsim {
 
@@ -54,6 +55,13 @@ class Scene {
   double exposureEnd() const { return exposureEnd_; }
   const EmbreeScene& geometry() const { return *geometry_; }
   const Shape& shape(int index) const { return *shapes_[static_cast<size_t>(index)]; }
+  // A shape's keyframed motion, object → render space (empty: static).
+  const RigidMotion& motion(int shape) const { return motions_[static_cast<size_t>(shape)]; }
+  // The ids of what rays hit, for the ID mattes (scene_ids.h).
+  const SceneIds& ids() const { return ids_; }
+  // Time from one frame's reference time to the next (s): 1 / frames.rate_hz; 0 without
+  // a frames block.
+  double frameInterval() const { return frameInterval_; }
   // Never null: shapes without a reflecting material get a black one.
   const Material& material(int shape) const {
     return *materials_[materialOfShape_[static_cast<size_t>(shape)]];
@@ -86,6 +94,8 @@ class Scene {
   glm::dvec2 motionSpan_{0.0};
   RenderSettings settings_;
   glm::dvec3 renderOrigin_{0.0};
+  SceneIds ids_;
+  double frameInterval_ = 0.0;
   ModelledDimensions modelled_;
   double exposureStart_ = 0.0, exposureEnd_ = 0.0;
   std::vector<std::unique_ptr<Shape>> shapes_;

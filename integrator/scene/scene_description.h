@@ -43,11 +43,23 @@ inline const char* samplerName(SamplerKind kind) {
 
 // Ground truth from the first hit of the image's own camera samples (AOVs; the layers and
 // their conventions: docs/output.md#ground-truth-aovs, integrator/render/aov_film.h).
-enum class Aov : std::uint8_t { kDepth, kDistance, kPosition, kNormal, kAlbedo, kRoughness };
-inline constexpr int kAovCount = 6;
+enum class Aov : std::uint8_t {
+  kDepth,
+  kDistance,
+  kPosition,
+  kNormal,
+  kAlbedo,
+  kRoughness,
+  kInstanceId,  // ID mattes (Cryptomatte) and the dominant id: the shape hit
+  kClassId,     // the same for the shapes' `class:`
+  kMaterialId,  // the same for their material
+  kMotion,      // 2-D motion vectors and 3-D scene flow to the previous and next frame
+};
+inline constexpr int kAovCount = 10;
 inline const char* aovName(Aov a) {
-  constexpr const char* names[kAovCount] = {"depth",  "distance", "position",
-                                            "normal", "albedo",   "roughness"};
+  constexpr const char* names[kAovCount] = {"depth",       "distance",  "position",    "normal",
+                                            "albedo",      "roughness", "instance_id", "class_id",
+                                            "material_id", "motion"};
   return names[static_cast<int>(a)];
 }
 
@@ -149,7 +161,11 @@ struct EmissionDescription {
 struct ShapeDescription {
   enum class Kind { kMesh, kSphere };
   Kind kind = Kind::kMesh;
-  std::string label;  // for messages: the user's name or "shapes[i]"
+  std::string label;  // for messages: the user's name or "shapes[i]"; the instance's id name
+  // `class:` — the semantic class: its name (an integer's decimal text, or a word) and, for
+  // an integer, its number (≥ 1); empty name: unlabelled (class 0, as the background).
+  std::string className;
+  std::optional<std::uint32_t> classNumber;
   int material = -1;  // index into SceneDescription::materials; -1 = black (reflects nothing)
   std::optional<EmissionDescription> emission;
   MeshData mesh;           // kMesh, object space (m)

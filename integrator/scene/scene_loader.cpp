@@ -56,7 +56,11 @@ RenderSettings parseRender(YamlMap map) {
                                                {"position", Aov::kPosition},
                                                {"normal", Aov::kNormal},
                                                {"albedo", Aov::kAlbedo},
-                                               {"roughness", Aov::kRoughness}});
+                                               {"roughness", Aov::kRoughness},
+                                               {"instance_id", Aov::kInstanceId},
+                                               {"class_id", Aov::kClassId},
+                                               {"material_id", Aov::kMaterialId},
+                                               {"motion", Aov::kMotion}});
       if (std::find(r.aovs.begin(), r.aovs.end(), aov) != r.aovs.end())
         item.fail(std::string("aov '") + aovName(aov) + "' is listed twice");
       r.aovs.push_back(aov);
@@ -133,7 +137,18 @@ ShapeDescription parseShape(YamlMap map, size_t index, const Context& ctx) {
   if (auto n = map.find("name")) s.label = n->string();
   const YamlValue type = map.require("type");
   const std::string t = type.string();
-  std::vector<std::string> known = {"type", "name", "material", "emission", "motion"};
+  std::vector<std::string> known = {"type", "name", "class", "material", "emission", "motion"};
+  if (auto c = map.find("class")) {
+    // An integer ≥ 1 is the class number itself; any other text names a class that
+    // scene_ids.h numbers.
+    s.className = c->string();
+    const bool digits =
+        !s.className.empty() && s.className.find_first_not_of("0123456789") == std::string::npos;
+    if (digits) s.classNumber = static_cast<std::uint32_t>(c->integer(1, UINT32_MAX));
+    if (s.className.empty()) c->fail("class must be a non-empty name or an integer >= 1");
+    if (s.className.find_first_not_of("-0123456789") == std::string::npos && !digits)
+      c->integer(1, UINT32_MAX);  // a negative number: the range error names it
+  }
   if (auto m = map.find("motion")) {
     // Keyframes carry the world position, shifted into render space (in double); the
     // geometry itself is then in object space.
@@ -276,6 +291,13 @@ SceneDescription loadSceneFromText(const std::string& text, const std::string& d
   if (auto l = top.find("lights"))
     scene.lights = parseLights(*l, ctx.search, baseDir, scene.renderOrigin);
   if (auto f = top.find("frames")) scene.frames = parseFrames(YamlMap(*f));
+  const std::vector<Aov>& aovs = scene.render.aovs;
+  if (!scene.frames && std::find(aovs.begin(), aovs.end(), Aov::kMotion) != aovs.end())
+    YamlMap(*top.find("render"))
+        .find("aovs")
+        ->fail(
+            "aov 'motion' needs a frames block: its vectors point to the previous and the next "
+            "frame");
   top.finish({"format", "name", "spectra_path", "render", "camera", "sensor", "isp", "materials",
               "shapes", "lights", "frames"});
   // Each file once (as first read), however it was named: keyed by its canonical path
