@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <map>
 
 #include <glm/gtc/quaternion.hpp>
 #include <glm/matrix.hpp>
@@ -37,6 +38,55 @@ std::string fixed(double v) {
   return buf;
 }
 
+std::vector<double> box(const glm::dvec4& b) {
+  return {b.x, b.y, b.z, b.w};
+}
+
+// COCO: one image per frame (id = frame index + 1), the classes seen as categories, one
+// annotation per frame and visible labelled instance.
+std::string cocoJson(const std::vector<DatasetFrame>& frames) {
+  std::vector<JsonObject> images, annotations, categories;
+  std::map<std::uint32_t, std::string> seen;
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    const DatasetFrame& f = frames[i];
+    images.push_back(JsonObject()
+                         .set("id", double(i + 1))
+                         .set("file_name", f.image)
+                         .set("width", double(f.camera.resolution.x))
+                         .set("height", double(f.camera.resolution.y)));
+    for (const InstanceAnnotation& a : f.annotations) {
+      seen.emplace(a.category, a.categoryName);
+      std::vector<double> counts(a.rle.begin(), a.rle.end());
+      JsonObject j;
+      j.set("id", double(annotations.size() + 1))
+          .set("image_id", double(i + 1))
+          .set("category_id", double(a.category))
+          .set("bbox", box(a.bbox))
+          .set("area", double(a.area))
+          .set("iscrowd", 0.0)
+          .set("segmentation", JsonObject()
+                                   .set("size", std::vector<double>{double(f.camera.resolution.y),
+                                                                    double(f.camera.resolution.x)})
+                                   .set("counts", counts))
+          .set("instance_id", double(a.instance))
+          .set("instance_name", a.name);
+      if (a.bbox3d) j.set("bbox_3d", box(*a.bbox3d));
+      annotations.push_back(std::move(j));
+    }
+  }
+  for (const auto& [id, name] : seen)
+    categories.push_back(JsonObject().set("id", double(id)).set("name", name));
+  return JsonObject()
+             .set("info", JsonObject().set("description",
+                                           "camsim ground truth: boxes and masks from the "
+                                           "dominant instance ids (docs/output.md)"))
+             .set("images", images)
+             .set("categories", categories)
+             .set("annotations", annotations)
+             .str() +
+         "\n";
+}
+
 }  // namespace
 
 DatasetFrame datasetFrame(const CaptureResult& r) {
@@ -45,6 +95,8 @@ DatasetFrame datasetFrame(const CaptureResult& r) {
   f.camera = r.description.camera;
   f.renderOrigin = r.description.renderOrigin;
   f.exposureTimeS = r.description.camera.shutter.effectiveTime();
+  f.annotated = r.aovs.channelIndex("instance.id") >= 0;
+  f.annotations = annotateFrame(r);
   if (r.description.sensor) {
     f.isoValue = r.description.sensor->iso;
     f.systemGainDnPerE = r.description.sensor->spec.systemGain(f.isoValue);
@@ -154,6 +206,7 @@ std::vector<std::filesystem::path> writeDatasetMetadata(const std::vector<Datase
   OutputSet outputs(directory);
   outputs.addText("cameras.json", cameras.str() + "\n");
   outputs.addText("transforms.json", nerf.str() + "\n");
+  if (first.annotated) outputs.addText("annotations.json", cocoJson(frames));
   std::vector<std::filesystem::path> files = colmap.commit();
   for (auto& f : outputs.commit()) files.push_back(std::move(f));
   return files;

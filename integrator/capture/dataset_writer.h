@@ -9,6 +9,9 @@
 //                            k1, k2, p1, p2; frames[].file_path, transform_matrix (OpenGL
 //                            camera-to-world)
 //   colmap/cameras.txt, images.txt, points3D.txt (empty)   a COLMAP text model
+//   annotations.json         COCO (with the instance_id AOV): images, categories (the
+//                            classes), per visible labelled instance and frame its box, the
+//                            box of its projected 3-D bounds and its RLE mask (annotations.h)
 //
 // The pose is the camera's at the frame's reference time: the centre of its shutter
 // window (of row 0 for a rolling shutter; row r is read out r · row_time later). World is
@@ -24,6 +27,7 @@
 #include <glm/mat4x4.hpp>
 
 #include "integrator/camera/physical_camera.h"
+#include "integrator/capture/annotations.h"
 #include "integrator/capture/capture.h"
 
 namespace camsim {
@@ -35,6 +39,8 @@ struct DatasetFrame {
   double isoValue = 0.0;          // 0 without a sensor
   double systemGainDnPerE = 0.0;  // 0 without a sensor
   double exposureTimeS = 0.0;     // of the developed frame
+  bool annotated = false;         // rendered with the instance_id AOV
+  std::vector<InstanceAnnotation> annotations;
 };
 
 DatasetFrame datasetFrame(const CaptureResult& result);

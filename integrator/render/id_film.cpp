@@ -31,9 +31,10 @@ void IdFilm::pixel(std::size_t px, int samplesPerPixel, float* out) const {
   for (int r = 0; r < kRanks; ++r) {
     const bool used = s[static_cast<std::size_t>(r)].count > 0;
     out[2 * r] = used ? ids_[s[static_cast<std::size_t>(r)].entry] : 0.0f;
-    out[2 * r + 1] = used ? static_cast<float>(static_cast<double>(s[static_cast<std::size_t>(r)].count) /
-                                               samplesPerPixel)
-                          : 0.0f;
+    out[2 * r + 1] =
+        used ? static_cast<float>(static_cast<double>(s[static_cast<std::size_t>(r)].count) /
+                                  samplesPerPixel)
+             : 0.0f;
   }
   out[2 * kRanks] = s[0].count > 0 ? static_cast<float>(numbers_[s[0].entry]) : 0.0f;
 }

@@ -56,8 +56,8 @@ class IdFilm {
   };
   glm::ivec2 resolution_;
   std::vector<std::string> channels_;
-  std::vector<float> ids_;               // per entry: cryptomatteId(name)
-  std::vector<std::uint32_t> numbers_;   // per entry: the dominant-id number
+  std::vector<float> ids_;              // per entry: cryptomatteId(name)
+  std::vector<std::uint32_t> numbers_;  // per entry: the dominant-id number
   std::vector<Slot> slots_;
 };
 

@@ -89,5 +89,60 @@ TEST(DatasetExport, OpenCvProjectsRenderedPointsOntoTheirPixels) {
     EXPECT_NE(transforms.find(key), std::string::npos) << key;
 }
 
+// COCO annotations from the dominant instance ids: a ball (class "ball") rolling past a box
+// (class 4) in front of an unlabelled wall, 2 frames; the masks, areas and boxes of
+// annotations.json are checked against the EXRs' instance.id by tests/cli/check_coco.py.
+TEST(DatasetExport, CocoMasksAndBoxesMatchTheInstanceIds) {
+  ASSERT_EQ(std::system("/usr/bin/python3 -c 'import numpy' 2>/dev/null"), 0)
+      << "python3-numpy is not installed (scripts/setup.sh)";
+  test::TempDir dir;
+  test::writeFile(
+      dir.path() / "coco.yaml",
+      "name: coco\n"
+      "camera: {position: [0, 0, 0], look_at: [0, 0, 1], resolution: [64, 48], "
+      "sensor_width_mm: 36, sensor_height_mm: 27, focal_length_mm: 35}\n"
+      "render: {spp: 16, max_depth: 1, aovs: [instance_id, class_id]}\n"
+      "frames: {count: 2, rate_hz: 10, shutter_angle_deg: 10}\n"
+      "materials: {grey: {type: diffuse, reflectance: 0.5}}\n"
+      "shapes:\n"
+      "  - {name: wall, type: rectangle, corner: [-5, -5, 3], edge_u: [0, 10, 0], edge_v: "
+      "[10, 0, 0], material: grey}\n"
+      "  - {name: crate, class: 4, type: mesh, vertices: [[-0.5, -0.3, 2], [-0.1, -0.3, 2], "
+      "[-0.1, 0.2, 2], [-0.5, 0.2, 2]], faces: [[0, 1, 2, 3]], material: grey}\n"
+      "  - {name: ball, class: ball, type: sphere, centre: [0.2, 0, 2.5], radius: 0.25, "
+      "material: grey, motion: [{time: 0, translate: [0, 0, 0]}, {time: 0.2, translate: "
+      "[-0.6, 0, 0]}]}\n"
+      "lights:\n  - {type: point, position: [0, 0, 0], intensity: 10}\n");
+  const test::RunResult r =
+      test::runCamsim("render " + test::quote((dir.path() / "coco.yaml").string()) + " -o " +
+                          test::quote((dir.path() / "out").string()),
+                      dir.path());
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  std::ofstream ids(dir.path() / "ids.txt");
+  for (int k = 0; k < 2; ++k) {
+    const Image im = readExr(dir.path() / "out" / ("coco_000" + std::to_string(k) + ".exr")).image;
+    const int c = im.channelIndex("instance.id");
+    ASSERT_GE(c, 0);
+    for (int y = 0; y < im.height; ++y) {
+      ids << k << " " << y;
+      for (int x = 0; x < im.width; ++x) ids << " " << im.at(x, y, c);
+      ids << "\n";
+    }
+  }
+  ids.close();
+  const test::RunResult check = test::runCommand(
+      "/usr/bin/python3 " +
+          test::quote(std::string(CAMSIM_SOURCE_DIR) + "/tests/cli/check_coco.py") + " " +
+          test::quote((dir.path() / "out" / "annotations.json").string()) + " " +
+          test::quote((dir.path() / "ids.txt").string()),
+      dir.path());
+  std::printf("%s", check.out.c_str());
+  EXPECT_EQ(check.exitCode, 0) << check.out << check.err;
+  const std::string coco = test::readFile(dir.path() / "out" / "annotations.json");
+  EXPECT_NE(coco.find("\"name\": \"ball\""), std::string::npos);
+  EXPECT_NE(coco.find("\"instance_name\": \"crate\""), std::string::npos);
+  EXPECT_EQ(coco.find("\"instance_name\": \"wall\""), std::string::npos);  // unlabelled
+}
+
 }  // namespace
 }  // namespace camsim

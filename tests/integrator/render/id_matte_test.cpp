@@ -58,7 +58,8 @@ SceneDescription edgeScene(const std::string& camera, const std::string& card,
       std::to_string(kW) + ", " + std::to_string(kH) +
       "], sensor_width_mm: 6, sensor_height_mm: 0.5, focal_length_mm: 20" + camera +
       "}\n"
-      "render: {spp: 1024, max_depth: 1, aovs: [instance_id, class_id, material_id]}\n" + extra +
+      "render: {spp: 1024, max_depth: 1, aovs: [instance_id, class_id, material_id]}\n" +
+      extra +
       "materials: {grey: {type: diffuse, reflectance: 0.5}, paper: {type: diffuse, "
       "reflectance: 0.8}}\n"
       "shapes:\n"
@@ -209,11 +210,12 @@ TEST(IdMattes, ClassNumbering) {
   EXPECT_EQ(c.names[1], "car");
   EXPECT_EQ(ids[IdKind::kInstance].names[3], "shapes[2]");
   for (const char* bad : {"0", "-2", "''"}) {
-    const std::string t = "camera: {position: [0, 0, 0], look_at: [0, 0, -1]}\n"
-                          "materials: {m: {type: diffuse, reflectance: 0.5}}\n"
-                          "shapes:\n  - {type: sphere, centre: [0, 0, -5], radius: 1, "
-                          "material: m, class: " +
-                          std::string(bad) + "}\n";
+    const std::string t =
+        "camera: {position: [0, 0, 0], look_at: [0, 0, -1]}\n"
+        "materials: {m: {type: diffuse, reflectance: 0.5}}\n"
+        "shapes:\n  - {type: sphere, centre: [0, 0, -5], radius: 1, "
+        "material: m, class: " +
+        std::string(bad) + "}\n";
     try {
       loadSceneFromText(t, "bad.yaml", ".");
       ADD_FAILURE() << bad << " was accepted";

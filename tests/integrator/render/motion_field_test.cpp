@@ -95,9 +95,10 @@ TEST(MotionField, SpinningPlane) {
       std::string(kPlane) +
       ", motion: [{time: 0, rotate: {axis: [0, 0, 1], angle_deg: 0}}, {time: 0.1, rotate: "
       "{axis: [0, 0, 1], angle_deg: " +
-      num(omega * 0.1 * 180.0 / M_PI) + "}}, {time: 0.2, rotate: {axis: [0, 0, 1], angle_deg: " +
-      num(omega * 0.2 * 180.0 / M_PI) + "}}, {time: 0.3, rotate: {axis: [0, 0, 1], angle_deg: " +
-      num(omega * 0.3 * 180.0 / M_PI) + "}}]}\n");
+      num(omega * 0.1 * 180.0 / M_PI) +
+      "}}, {time: 0.2, rotate: {axis: [0, 0, 1], angle_deg: " + num(omega * 0.2 * 180.0 / M_PI) +
+      "}}, {time: 0.3, rotate: {axis: [0, 0, 1], angle_deg: " + num(omega * 0.3 * 180.0 / M_PI) +
+      "}}]}\n");
   const Image a = renderFrame(d, 1);
   const double th = omega * kDt, c = std::cos(th), s = std::sin(th);
   double worst = 0.0;
