@@ -51,10 +51,12 @@ release_suite() {
 # render -> expose -> develop chain runs under ASan in
 # ColorChecker.IdealXyzSensorMatchesSpectralColorimetry and the sensor/ ISP unit tests.
 # DepthOfField.AplanaticBlurDiscIsUniformlyLit (two 200x200 renders at 256 spp) is left out
-# too: the same lens code runs under ASan in the other depth-of-field and camera tests.
+# too: the same lens code runs under ASan in the other depth-of-field and camera tests. So is
+# ColmapTriangulation.PointsLieOnTheTrueSurfaces (the example sequence, 6 frames with every
+# AOV, then COLMAP): the sequence, AOV and metadata code runs under ASan in their own tests.
 asan_suite() {
   local asan=detect_leaks=1:strict_init_order=1:detect_stack_use_after_return=1
-  local slow='^(ColorChecker\.(MeasuredCameraWithFittedCcm|WhiteBalanceMakesNeutralPatchesNeutral)|DepthOfField\.AplanaticBlurDiscIsUniformlyLit)$'
+  local slow='^(ColorChecker\.(MeasuredCameraWithFittedCcm|WhiteBalanceMakesNeutralPatchesNeutral)|DepthOfField\.AplanaticBlurDiscIsUniformlyLit|ColmapTriangulation\.PointsLieOnTheTrueSurfaces)$'
   cmake -S . -B "$asan_dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
     -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" -DCAMSIM_SANITIZE=ON \
     -DCAMSIM_SIMD=OFF -DCAMSIM_BUILD_BENCH=OFF >/dev/null &&

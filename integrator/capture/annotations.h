@@ -28,9 +28,9 @@ struct InstanceAnnotation {
   std::uint32_t category = 0;  // its class number
   std::string categoryName;
   std::uint64_t area = 0;
-  glm::dvec4 bbox{0.0};                // x, y, w, h
-  std::optional<glm::dvec4> bbox3d;    // x, y, w, h
-  std::vector<std::uint64_t> rle;      // COCO counts
+  glm::dvec4 bbox{0.0};              // x, y, w, h
+  std::optional<glm::dvec4> bbox3d;  // x, y, w, h
+  std::vector<std::uint64_t> rle;    // COCO counts
 };
 
 // The annotations of a frame rendered with the instance_id AOV (none without it).
