@@ -5,7 +5,7 @@
 #      --check, a few seconds);
 #   2. the same suite built with AddressSanitizer + UndefinedBehaviorSanitizer (GCC,
 #      CAMSIM_SANITIZE=ON, -O1 -g1: line tables for the reports, a quarter faster to compile
-#      than -g) in build-asan/, less three slow tests (see below); built portable
+#      than -g) in build-asan/, less seven slow tests (see below); built portable
 #      (CAMSIM_SIMD=OFF: sensor/base/simd.h's portable path, no AVX2 copy, no x86 flag), so
 #      the whole suite runs on both paths without a build stage of its own;
 #   3. the libFuzzer harnesses (Clang, CAMSIM_FUZZ=ON, the SIMD path) in build-fuzz/: every
@@ -54,9 +54,15 @@ release_suite() {
 # too: the same lens code runs under ASan in the other depth-of-field and camera tests. So is
 # ColmapTriangulation.PointsLieOnTheTrueSurfaces (the example sequence, 6 frames with every
 # AOV, then COLMAP): the sequence, AOV and metadata code runs under ASan in their own tests.
+# Three more statistical tests of 30–45 s under ASan whose code cheaper tests run there:
+# DielectricMaterial.ChiSquareRoughGlassAllModels (rough glass sampling: also
+# DielectricMaterial.SampledAlbedoMatchesQuadrature and FurnaceEnergyAtMostOne),
+# ConductorMaterial.WhiteFurnaceAlbedoTable (also ConductorMaterial.SamplesFollowPdfOverTheSphere)
+# and DepthOfField.SixBladesGiveHexagonOfRightOrientationAndArea (the bladed stop: also the
+# camera and aperture unit tests).
 asan_suite() {
   local asan=detect_leaks=1:strict_init_order=1:detect_stack_use_after_return=1
-  local slow='^(ColorChecker\.(MeasuredCameraWithFittedCcm|WhiteBalanceMakesNeutralPatchesNeutral)|DepthOfField\.AplanaticBlurDiscIsUniformlyLit|ColmapTriangulation\.PointsLieOnTheTrueSurfaces)$'
+  local slow='^(ColorChecker\.(MeasuredCameraWithFittedCcm|WhiteBalanceMakesNeutralPatchesNeutral)|DepthOfField\.AplanaticBlurDiscIsUniformlyLit|ColmapTriangulation\.PointsLieOnTheTrueSurfaces|DielectricMaterial\.ChiSquareRoughGlassAllModels|ConductorMaterial\.WhiteFurnaceAlbedoTable|DepthOfField\.SixBladesGiveHexagonOfRightOrientationAndArea)$'
   cmake -S . -B "$asan_dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
     -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" -DCAMSIM_SANITIZE=ON \
     -DCAMSIM_SIMD=OFF -DCAMSIM_BUILD_BENCH=OFF >/dev/null &&
