@@ -59,8 +59,8 @@ glm::dvec4 PhysicalCamera::intrinsics() const {
           0.5 * p_.resolution.y - 0.5};
 }
 
-std::optional<glm::dvec2> PhysicalCamera::project(const glm::dvec3& p, double t) const {
-  const glm::dmat4 m = worldFromCameraAt(t);
+std::optional<glm::dvec2> PhysicalCamera::projectFrom(const glm::dmat4& m,
+                                                      const glm::dvec3& p) const {
   const glm::dvec3 d = p - glm::dvec3(m[3]);
   const double z = glm::dot(d, glm::dvec3(m[2]));
   if (!(z > 0.0)) return std::nullopt;

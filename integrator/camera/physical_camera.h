@@ -93,7 +93,12 @@ class PhysicalCamera final : public Camera {
   // Where the chief ray images the render-space point p at time t: OpenCV pixel
   // coordinates (x right, y down, pixel centres at integers) through intrinsics() and the
   // distortion; none for a point on or behind the lens plane.
-  std::optional<glm::dvec2> project(const glm::dvec3& p, double t) const;
+  std::optional<glm::dvec2> project(const glm::dvec3& p, double t) const {
+    return projectFrom(worldFromCameraAt(t), p);
+  }
+  // The same from a pose worldFromCameraAt(t) already computed.
+  std::optional<glm::dvec2> projectFrom(const glm::dmat4& worldFromCamera,
+                                        const glm::dvec3& p) const;
 
  private:
   std::optional<CameraRay> generatePinholeRay(const CameraSample& sample) const;

@@ -81,9 +81,23 @@ AovFilm::AovFilm(const Scene& scene)
     albedoWhite_.assign(pixels * 3, 0.0);
   }
   if (motionChannel_ > 0) {
+    // The frame times' poses once, not per sample.
     motionCount_.assign(pixels, 0.0);
     const double t = scene.camera().shutter().centre(), dt = scene.frameInterval();
     frameTimes_ = {t - dt, t, t + dt};
+    for (std::size_t j = 0; j < 3; ++j)
+      cameraAt_[j] = scene.camera().worldFromCameraAt(frameTimes_[j]);
+    const std::size_t shapes = scene.ids()[IdKind::kInstance].ofShape.size();
+    shapeAt_.resize(shapes);
+    for (std::size_t s = 0; s < shapes; ++s) {
+      const RigidMotion& m = scene.motion(static_cast<int>(s));
+      if (!m.empty())
+        for (std::size_t j = 0; j < 3; ++j) shapeAt_[s][j] = m.at(frameTimes_[j]);
+    }
+  }
+  for (Aov a : aovs_) {
+    wantsMaterial_ = wantsMaterial_ || a == Aov::kAlbedo || a == Aov::kRoughness;
+    wantsCamera_ = wantsCamera_ || a == Aov::kDepth || a == Aov::kNormal;
   }
   sums_.assign(pixels * stride_, 0.0);
 }
@@ -125,7 +139,8 @@ void AovFilm::addSample(const AovSample& sample) {
                      stride_];
   double* const pixelSums = s;
   *s++ += 1.0;
-  const glm::dmat4 worldFromCamera = scene_.camera().worldFromCameraAt(sample.time);
+  const glm::dmat4 worldFromCamera =
+      wantsCamera_ ? scene_.camera().worldFromCameraAt(sample.time) : glm::dmat4(1.0);
   const glm::dvec3& renderOrigin = scene_.renderOrigin();
   const SampledWavelengths& lambda = sample.lambda;
   const glm::dvec3 p(v.p);

@@ -30,6 +30,7 @@
 #include <memory>
 #include <vector>
 
+#include <glm/mat4x4.hpp>
 #include <glm/vec2.hpp>
 
 #include "integrator/render/id_film.h"
@@ -55,6 +56,8 @@ class AovFilm {
   explicit AovFilm(const Scene& scene);
 
   bool enabled() const { return !aovs_.empty(); }
+  // Whether traceRadiance must evaluate the hit's material (albedo, roughness).
+  bool wantsMaterial() const { return wantsMaterial_; }
   void addSample(const AovSample& sample);
   // coverage.A, each averaged aov's channels in the scene's order (table above), then each
   // id aov's (id_film.h), in the scene's order.
@@ -69,12 +72,16 @@ class AovFilm {
   std::vector<std::string> channels_;  // of the averaged aovs (all but the ids)
   std::size_t stride_ = 0;             // sums per pixel: hit count, then one per channel
   std::vector<double> sums_;
-  std::size_t albedoChannel_ = 0;                 // of albedo.R (0: no albedo)
-  std::vector<double> albedoWhite_;               // per pixel: the D65 white's X, Y, Z sums
-  std::array<Spectrum, 3> whiteXyz_;              // x̄·D65, ȳ·D65, z̄·D65
-  std::size_t motionChannel_ = 0;                 // of motion_fw.X (0: no motion)
-  std::vector<double> motionCount_;               // per pixel: samples in the motion mean
-  std::array<double, 3> frameTimes_{};            // previous, this, next frame's reference time, s
+  std::size_t albedoChannel_ = 0;         // of albedo.R (0: no albedo)
+  std::vector<double> albedoWhite_;       // per pixel: the D65 white's X, Y, Z sums
+  std::array<Spectrum, 3> whiteXyz_;      // x̄·D65, ȳ·D65, z̄·D65
+  std::size_t motionChannel_ = 0;         // of motion_fw.X (0: no motion)
+  std::vector<double> motionCount_;       // per pixel: samples in the motion mean
+  std::array<double, 3> frameTimes_{};    // previous, this, next frame's reference time, s
+  std::array<glm::dmat4, 3> cameraAt_{};  // the camera's pose at each frame time
+  std::vector<std::array<glm::dmat4, 3>> shapeAt_;  // per shape: its motion at each (moving)
+  bool wantsMaterial_ = false;
+  bool wantsCamera_ = false;  // depth or normals: the camera's pose at the sample's time
   std::vector<std::unique_ptr<IdFilm>> idFilms_;  // in the scene's order of the id aovs
   std::vector<IdKind> idKinds_;                   // of each IdFilm
 };

@@ -101,9 +101,17 @@ SampledSpectrum trace(const Scene& scene, Ray ray, SampledWavelengths& lambda, S
     const SurfaceInteraction si = scene.shape(hit.shape).interaction(hit, ray);
     const glm::vec3 wo = -glm::normalize(ray.d);
     if (depth == 0 && visible) [[unlikely]] {
-      const SurfaceAov aov = scene.material(hit.shape).aov(lambda, BsdfContext{si.uv});
-      *visible = {true,       si.p,          si.n,     si.ns, glm::length(si.p - ray.o),
-                  aov.albedo, aov.roughness, hit.shape};
+      visible->hit = true;
+      visible->p = si.p;
+      visible->n = si.n;
+      visible->ns = si.ns;
+      visible->distance = glm::length(si.p - ray.o);
+      visible->shape = hit.shape;
+      if (visible->wantMaterial) {
+        const SurfaceAov aov = scene.material(hit.shape).aov(lambda, BsdfContext{si.uv});
+        visible->albedo = aov.albedo;
+        visible->roughness = aov.roughness;
+      }
     }
 
     if (const AreaLight* light = scene.areaLight(hit.shape)) {

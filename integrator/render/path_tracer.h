@@ -24,12 +24,13 @@ class SobolSampler;
 // The camera ray's first hit, for the ground-truth outputs (aov_film.h), as pbrt-v4's
 // VisibleSurface: filled by traceRadiance when asked for, at no cost otherwise.
 struct VisibleSurface {
+  bool wantMaterial = false;  // in: also evaluate the material's albedo and roughness
   bool hit = false;
   glm::vec3 p{0.0f};       // render space, m
   glm::vec3 n{0.0f};       // geometric normal, unit, on the shape's front side
   glm::vec3 ns{0.0f};      // shading normal, unit
   float distance = 0.0f;   // from the ray's origin, m
-  SampledSpectrum albedo;  // the material's SurfaceAov at the path's wavelengths
+  SampledSpectrum albedo;  // the material's SurfaceAov at the path's wavelengths (wantMaterial)
   float roughness = 0.0f;
   int shape = -1;  // the shape hit (Scene::shape)
 };

@@ -67,6 +67,7 @@ void renderTile(const Scene& scene, Film& film, const RenderOptions& options,
           continue;
         }
         VisibleSurface visible;
+        visible.wantMaterial = aovs.wantsMaterial();
         const SampledWavelengths lambdaAtCamera = lambda;  // before a dispersive hit ends some
         const SampledSpectrum L = traceRadiance(scene, cr->ray, lambda, sampler, &visible);
         if (!film.addSample(pixel, L * cr->weight, lambda)) ++stats.rejected;

@@ -92,7 +92,8 @@ TEST(ColmapTriangulation, PointsLieOnTheTrueSurfaces) {
   std::map<long, std::vector<double>> perPoint;
   for (const auto& [image, kps] : keypoints) {
     const Image& im = frames.at(image);
-    const int p = im.channelIndex("P.X"), n = im.channelIndex("Ng.X"), c = im.channelIndex("coverage.A");
+    const int p = im.channelIndex("P.X"), n = im.channelIndex("Ng.X"),
+              c = im.channelIndex("coverage.A");
     for (const auto& [xy, point] : kps) {
       if (point < 0 || !points.count(point)) continue;
       const int x = static_cast<int>(xy.x), y = static_cast<int>(xy.y);
@@ -107,9 +108,10 @@ TEST(ColmapTriangulation, PointsLieOnTheTrueSurfaces) {
   for (auto& [point, d] : perPoint) distances.push_back(percentile(d, 0.5));
   ASSERT_GT(distances.size(), 100u);
   const double median = percentile(distances, 0.5), p90 = percentile(distances, 0.9);
-  std::printf("COLMAP points: %zu triangulated, %zu checked; distance to the true surface: "
-              "median %.2f mm, 90th percentile %.2f mm\n",
-              points.size(), distances.size(), median * 1e3, p90 * 1e3);
+  std::printf(
+      "COLMAP points: %zu triangulated, %zu checked; distance to the true surface: "
+      "median %.2f mm, 90th percentile %.2f mm\n",
+      points.size(), distances.size(), median * 1e3, p90 * 1e3);
   RecordProperty("median_mm", std::to_string(median * 1e3));
   RecordProperty("p90_mm", std::to_string(p90 * 1e3));
   // What two views can resolve: the wall is 5 m away and the camera moves 37.5 cm between
