@@ -40,6 +40,7 @@ std::string usageText() {
          "                [--max-memory-gb X] [--exposure-time S] [--f-number N] [--iso N]\n"
          "                [--noise none|photon|full] [--noise-seed N]\n"
          "                [--ocio-config FILE] [--display D] [--view V] [--look L]\n"
+         "                [--aov-previews]\n"
          "  camsim ptc SENSOR [-o DIR] [--seed N]   (photon transfer: camsim ptc --help)\n"
          "  camsim bench [--quick] [--out DIR] [--scenes a,b] [--max-spp N] ...\n"
          "                                          (speed against error: camsim bench --help)\n"
@@ -68,6 +69,8 @@ std::string usageText() {
          "luts/config.ocio)\n"
          "  --display D, --view V, --look L   output transform (default: the config's sRGB,\n"
          "                     'ACES 1.0 - SDR Video', no look; see docs/color-management.md)\n"
+         "  --aov-previews     also write NAME_<layer>.png false-colour quick looks of the\n"
+         "                     scene's ground-truth layers (depth, normal, ids, motion…)\n"
          "  --max-memory-gb X  refuse to start a render whose estimated memory exceeds X GB\n"
          "                     (default: 75 % of physical memory)\n"
          "\n"
@@ -126,6 +129,8 @@ Command parseArgs(const std::vector<std::string>& args) {
       r.view = value();
     } else if (a == "--look") {
       r.look = value();
+    } else if (a == "--aov-previews") {
+      r.aovPreviews = true;
     } else if (a == "--noise-seed") {
       r.noiseSeed = static_cast<std::uint64_t>(parseInteger(a, value(), 0, INT64_MAX));
     } else if (!a.empty() && a[0] == '-') {

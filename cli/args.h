@@ -32,6 +32,7 @@ struct RenderArgs {
   std::optional<std::uint64_t> noiseSeed;
   // Output transform (OpenColorIO): empty = the config's defaults.
   std::string ocioConfig, display, view, look;
+  bool aovPreviews = false;  // --aov-previews
 };
 
 struct Command {

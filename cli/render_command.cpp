@@ -117,7 +117,8 @@ RenderCommandResult runRender(const RenderArgs& args, std::ostream& log,
                               const std::atomic<bool>* cancel) {
   SceneDescription desc = load(args);
   checkMemoryLimit(desc, args.maxMemoryGb);  // before any work
-  CaptureOutputOptions out{args.outputDir, {args.ocioConfig, {args.display, args.view, args.look}}};
+  CaptureOutputOptions out{
+      args.outputDir, {args.ocioConfig, {args.display, args.view, args.look}}, args.aovPreviews};
   for (const auto& stale : OutputSet::prepareDirectory(out.directory))
     log << "removed " << stale.string() << " (left by a run that was killed)\n";
   checkPictureSettings(out.picture);  // a bad config or display/view/look fails before rendering

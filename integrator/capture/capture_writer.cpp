@@ -4,6 +4,7 @@
 #include <cstdio>
 
 #include "integrator/camera/physical_camera.h"
+#include "integrator/capture/aov_previews.h"
 #include "integrator/capture/capture_sidecar.h"
 #include "integrator/render/cryptomatte.h"
 #include "integrator/scene/scene_ids.h"
@@ -11,6 +12,7 @@
 #include "sensor/base/luts_directory.h"
 #include "sensor/io/dng_writer.h"
 #include "sensor/io/exr_io.h"
+#include "sensor/io/png_io.h"
 #include "sensor/isp/display_image.h"
 #include "sensor/spectra/color_space.h"
 
@@ -186,6 +188,9 @@ WrittenCapture writeCapture(const CaptureResult& result, const CaptureOutputOpti
   OutputSet outputs(options.directory);
   writeExr(outputs.add(desc.name + ".exr"), withLayers(xyzExrImage(result.film), result.aovs),
            withCryptomatte(meta, desc), rec709Chromaticities());
+  if (options.aovPreviews && !result.aovs.pixels.empty())
+    for (const AovPreview& p : aovPreviews(result.aovs))
+      writePng8(outputs.add(desc.name + "_" + p.suffix + ".png"), p.width, p.height, p.rgb, p.srgb);
   JsonObject sidecar = captureSidecar(result);
   if (desc.sensor) writeFrames(result, meta, outputs);
   sidecar.set("color", writePicture(result.picture, desc.name, options.picture,

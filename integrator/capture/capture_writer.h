@@ -10,6 +10,7 @@
 //   NAME_acescg.exr       with a sensor: the developed scene-linear ACEScg image
 //   NAME.png              the picture through OpenColorIO's display/view/look
 //   NAME.json             every setting used, the modelled dimensions, the ISP's matrices
+//   NAME_<layer>.png      with aovPreviews: false-colour quick looks of the AOVs
 // A cancelled capture writes only NAME.partial.exr with the tiles that finished (nothing
 // when none had), never a final name. docs/output.md lists every key.
 #pragma once
@@ -27,6 +28,7 @@ namespace camsim {
 struct CaptureOutputOptions {
   std::filesystem::path directory;  // created if missing
   PictureSettings picture;          // OCIO config and display/view/look of NAME.png
+  bool aovPreviews = false;         // also NAME_<layer>.png quick looks (aov_previews.h)
 };
 
 struct WrittenCapture {
