@@ -14,7 +14,7 @@ std::uint8_t byte(double v) {
 double percentile(std::vector<double> v, double p) {
   if (v.empty()) return 0.0;
   std::sort(v.begin(), v.end());
-  return v[static_cast<std::size_t>(p * static_cast<double>(v.size() - 1))];
+  return v[static_cast<std::size_t>(p * static_cast<double>(v.size() - 1) + 0.5)];
 }
 
 // HSV (h in [0, 1)) to RGB.
@@ -22,12 +22,18 @@ std::array<double, 3> hsv(double h, double s, double v) {
   const double i = std::floor(h * 6.0), f = h * 6.0 - i;
   const double p = v * (1 - s), q = v * (1 - s * f), t = v * (1 - s * (1 - f));
   switch (static_cast<int>(i) % 6) {
-    case 0: return {v, t, p};
-    case 1: return {q, v, p};
-    case 2: return {p, v, t};
-    case 3: return {p, q, v};
-    case 4: return {t, p, v};
-    default: return {v, p, q};
+    case 0:
+      return {v, t, p};
+    case 1:
+      return {q, v, p};
+    case 2:
+      return {p, v, t};
+    case 3:
+      return {p, q, v};
+    case 4:
+      return {t, p, v};
+    default:
+      return {v, p, q};
   }
 }
 
@@ -88,19 +94,22 @@ std::vector<AovPreview> aovPreviews(const Image& a) {
       if (v == 0) continue;
       // Golden-ratio hues: neighbouring ids get distant colours.
       const std::array<double, 3> rgb = hsv(std::fmod(v * 0.618033988749895, 1.0), 0.75, 0.95);
-      for (int c = 0; c < 3; ++c) p.rgb[px * 3 + static_cast<std::size_t>(c)] = byte(rgb[static_cast<std::size_t>(c)]);
+      for (int c = 0; c < 3; ++c)
+        p.rgb[px * 3 + static_cast<std::size_t>(c)] = byte(rgb[static_cast<std::size_t>(c)]);
     }
   }
   if (const int mx = a.channelIndex("motion_fw.X"); mx >= 0) {
     std::vector<double> lengths;
-    for (std::size_t px = 0; px < n; ++px) lengths.push_back(std::hypot(value(px, mx), value(px, mx + 1)));
+    for (std::size_t px = 0; px < n; ++px)
+      lengths.push_back(std::hypot(value(px, mx), value(px, mx + 1)));
     const double scale = std::max(percentile(lengths, 0.99), 1e-6);
     AovPreview& p = make("motion");
     for (std::size_t px = 0; px < n; ++px) {
       const double dx = value(px, mx), dy = value(px, mx + 1);
       const double h = std::atan2(-dy, dx) / (2.0 * M_PI) + 0.5;
       const std::array<double, 3> rgb = hsv(h, std::min(1.0, std::hypot(dx, dy) / scale), 1.0);
-      for (int c = 0; c < 3; ++c) p.rgb[px * 3 + static_cast<std::size_t>(c)] = byte(rgb[static_cast<std::size_t>(c)]);
+      for (int c = 0; c < 3; ++c)
+        p.rgb[px * 3 + static_cast<std::size_t>(c)] = byte(rgb[static_cast<std::size_t>(c)]);
     }
   }
   return out;
