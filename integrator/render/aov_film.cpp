@@ -95,6 +95,15 @@ AovFilm::AovFilm(const Scene& scene)
         for (std::size_t j = 0; j < 3; ++j) shapeAt_[s][j] = m.at(frameTimes_[j]);
     }
   }
+  const std::size_t shapeCount = scene.ids()[IdKind::kInstance].ofShape.size();
+  for (std::size_t s = 0; s < shapeCount; ++s)
+    for (IdKind k : idKinds_) idEntries_.push_back(scene.ids()[k].ofShape[s]);
+  // Whether the camera turns or moves during this frame's exposure: if not, the camera-axes
+  // normals are the world means rotated once per pixel.
+  cameraTurns_ = scene.camera().moves(scene.exposureStart(), scene.exposureEnd());
+  worldFromCamera_ = scene.camera().worldFromCameraAt(scene.exposureStart());
+  for (std::size_t c = 0; c < channels_.size(); ++c)
+    if (channels_[c] == "N.X") normalChannel_ = c;
   for (Aov a : aovs_) {
     wantsMaterial_ = wantsMaterial_ || a == Aov::kAlbedo || a == Aov::kRoughness;
     wantsCamera_ = wantsCamera_ || a == Aov::kDepth || a == Aov::kNormal;
@@ -130,9 +139,10 @@ void AovFilm::addMotion(double* sums, const AovSample& s) {
 void AovFilm::addSample(const AovSample& sample) {
   const glm::ivec2 pixel = sample.pixel;
   const VisibleSurface& v = sample.visible;
+  const std::uint32_t* entries =
+      v.hit ? &idEntries_[static_cast<std::size_t>(v.shape) * idFilms_.size()] : nullptr;
   for (std::size_t k = 0; k < idFilms_.size(); ++k)
-    idFilms_[k]->add(
-        pixel, v.hit ? scene_.ids()[idKinds_[k]].ofShape[static_cast<std::size_t>(v.shape)] : 0u);
+    idFilms_[k]->add(pixel, entries ? entries[k] : 0u);
   if (!v.hit) return;
   double* s = &sums_[(static_cast<std::size_t>(pixel.y) * static_cast<std::size_t>(resolution_.x) +
                       static_cast<std::size_t>(pixel.x)) *
@@ -157,10 +167,16 @@ void AovFilm::addSample(const AovSample& sample) {
         break;
       case Aov::kNormal: {
         const glm::dvec3 n(v.ns), ng(v.n);
-        const glm::dvec3 all[4] = {n, ng, toCameraCv(worldFromCamera, n),
-                                   toCameraCv(worldFromCamera, ng)};
-        for (const glm::dvec3& d : all)
-          for (int i = 0; i < 3; ++i) *s++ += d[i];
+        for (int i = 0; i < 3; ++i) s[i] += n[i];
+        for (int i = 0; i < 3; ++i) s[3 + i] += ng[i];
+        if (!cameraTurns_) {  // camera axes from the world means in toImage (linear)
+          s += 12;
+          break;
+        }
+        const glm::dvec3 nc = toCameraCv(worldFromCamera, n), ngc = toCameraCv(worldFromCamera, ng);
+        for (int i = 0; i < 3; ++i) s[6 + i] += nc[i];
+        for (int i = 0; i < 3; ++i) s[9 + i] += ngc[i];
+        s += 12;
         break;
       }
       case Aov::kAlbedo: {
@@ -171,12 +187,10 @@ void AovFilm::addSample(const AovSample& sample) {
           // r_c·D65/p at the sample's wavelengths (the 1/N of the estimate cancels).
           const SampledSpectrum white =
               safeDiv(sampleSpectrum(whiteXyz_[c], lambda), lambda.pdfs());
-          const SampledSpectrum lit = white * v.albedo;
-          for (int i = 0; i < kWavelengthSamples; ++i) {
-            *s += static_cast<double>(lit[i]);
-            den[c] += static_cast<double>(white[i]);
-          }
-          ++s;
+          // The sample's wavelengths averaged in float (the 1/4 cancels in the ratio), the
+          // pixel's samples summed in double.
+          *s++ += static_cast<double>((white * v.albedo).average());
+          den[c] += static_cast<double>(white.average());
         }
         break;
       }
@@ -211,6 +225,14 @@ Image AovFilm::toImage(int samplesPerPixel) const {
     o[0] = static_cast<float>(hits / samplesPerPixel);
     for (std::size_t c = 1; c < stride_; ++c)
       o[c] = hits > 0.0 ? static_cast<float>(s[c] / hits) : 0.0f;
+    if (normalChannel_ > 0 && !cameraTurns_ && hits > 0.0)
+      for (std::size_t layer = 0; layer < 2; ++layer) {  // N, Ng → N_cam, Ng_cam
+        const double* w = s + normalChannel_ + 3 * layer;
+        const glm::dvec3 c = toCameraCv(worldFromCamera_, glm::dvec3(w[0], w[1], w[2]) / hits);
+        for (int i = 0; i < 3; ++i)
+          o[normalChannel_ + 6 + 3 * layer + static_cast<std::size_t>(i)] =
+              static_cast<float>(c[i]);
+      }
     if (motionChannel_ > 0)
       for (std::size_t c = motionChannel_; c < motionChannel_ + 10; ++c)
         o[c] = motionCount_[px] > 0.0 ? static_cast<float>(s[c] / motionCount_[px]) : 0.0f;

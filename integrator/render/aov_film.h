@@ -84,6 +84,10 @@ class AovFilm {
   bool wantsCamera_ = false;  // depth or normals: the camera's pose at the sample's time
   std::vector<std::unique_ptr<IdFilm>> idFilms_;  // in the scene's order of the id aovs
   std::vector<IdKind> idKinds_;                   // of each IdFilm
+  std::vector<std::uint32_t> idEntries_;          // per shape, per IdFilm: the shape's table entry
+  bool cameraTurns_ = false;                      // the camera moves during the exposure
+  glm::dmat4 worldFromCamera_{1.0};               // its pose when it does not
+  std::size_t normalChannel_ = 0;                 // of N.X (0: no normals)
 };
 
 }  // namespace camsim

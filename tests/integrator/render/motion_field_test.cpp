@@ -119,11 +119,13 @@ TEST(MotionField, SpinningPlane) {
 }
 
 // The camera moving +x at 0.5 m/s past a static plane at 2 m: the image moves left by
-// fx · 0.05 / 2 px per frame; the scene flow of a static plane is 0.
+// fx · 0.05 / 2 px per frame; the scene flow of a static plane is 0; camera-axes normals
+// (taken per sample for a moving camera) point back along −z.
 TEST(MotionField, MovingCamera) {
   const SceneDescription d =
       scene(std::string(kPlane) + "}\n",
-            ", motion: [{time: 0, translate: [0, 0, 0]}, {time: 1, translate: [0.5, 0, 0]}]");
+            ", motion: [{time: 0, translate: [0, 0, 0]}, {time: 1, translate: [0.5, 0, 0]}]",
+            "[motion, depth, normal]");
   const Image a = renderFrame(d, 1);
   const double shift = kFx * 0.05 / 2.0;
   for (int y = 0; y < kRes; ++y)
@@ -132,6 +134,9 @@ TEST(MotionField, MovingCamera) {
       ASSERT_NEAR(at(a, x, y, "motion_bw.X"), shift, 1e-4);
       ASSERT_NEAR(at(a, x, y, "motion_fw.Y"), 0.0, 1e-4);
       ASSERT_EQ(at(a, x, y, "flow_fw.X"), 0.0);
+      // The camera moves: its axes per sample. The plane faces it: −z in OpenCV axes.
+      ASSERT_NEAR(at(a, x, y, "Ng_cam.Z"), -1.0, 1e-6);
+      ASSERT_NEAR(at(a, x, y, "Ng_cam.X"), 0.0, 1e-6);
     }
 }
 
