@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <array>
-#include <cstdio>
 
 #include "integrator/render/cryptomatte.h"
 
@@ -12,8 +11,7 @@ IdFilm::IdFilm(glm::ivec2 resolution, IdKind kind, const IdTable& table)
     : resolution_(resolution), numbers_(table.numbers) {
   const std::string type = cryptomatteTypeName(kind);
   for (int layer = 0; layer < kRanks / 2; ++layer) {
-    char suffix[4];
-    std::snprintf(suffix, sizeof suffix, "%02d", layer);
+    const std::string suffix = "0" + std::to_string(layer);  // 00, 01, 02 (kRanks ≤ 20)
     for (const char* c : {".R", ".G", ".B", ".A"}) channels_.push_back(type + suffix + c);
   }
   channels_.push_back(std::string(idKindName(kind)) + ".id");

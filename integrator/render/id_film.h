@@ -30,6 +30,7 @@ class IdFilm {
  public:
   static constexpr int kSlots = 8;
   static constexpr int kRanks = 6;
+  static_assert(kRanks % 2 == 0 && kRanks <= 20, "two ranks per layer, layers 00 … 09");
 
   IdFilm(glm::ivec2 resolution, IdKind kind, const IdTable& table);
 
