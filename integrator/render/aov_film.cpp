@@ -139,10 +139,12 @@ void AovFilm::addMotion(double* sums, const AovSample& s) {
 void AovFilm::addSample(const AovSample& sample) {
   const glm::ivec2 pixel = sample.pixel;
   const VisibleSurface& v = sample.visible;
-  const std::uint32_t* entries =
-      v.hit ? &idEntries_[static_cast<std::size_t>(v.shape) * idFilms_.size()] : nullptr;
-  for (std::size_t k = 0; k < idFilms_.size(); ++k)
-    idFilms_[k]->add(pixel, entries ? entries[k] : 0u);
+  if (!idFilms_.empty()) {
+    const std::uint32_t* entries =
+        v.hit ? &idEntries_[static_cast<std::size_t>(v.shape) * idFilms_.size()] : nullptr;
+    for (std::size_t k = 0; k < idFilms_.size(); ++k)
+      idFilms_[k]->add(pixel, entries ? entries[k] : 0u);
+  }
   if (!v.hit) return;
   double* s = &sums_[(static_cast<std::size_t>(pixel.y) * static_cast<std::size_t>(resolution_.x) +
                       static_cast<std::size_t>(pixel.x)) *
