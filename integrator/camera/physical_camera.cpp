@@ -73,6 +73,13 @@ std::optional<glm::dvec2> PhysicalCamera::projectFrom(const glm::dmat4& m,
 std::optional<CameraRay> PhysicalCamera::generateRay(const CameraSample& sample,
                                                      const SampledWavelengths& lambda) const {
   if (fastPinhole_) return generatePinholeRay(sample);
+  return generateRay(sample, lambda, worldFromCameraAt(sample.time));
+}
+
+std::optional<CameraRay> PhysicalCamera::generateRay(const CameraSample& sample,
+                                                     const SampledWavelengths& lambda,
+                                                     const glm::dmat4& m) const {
+  if (fastPinhole_) return generatePinholeRay(sample);
   // Sensor point, upright image coordinates (m): x right, y up, origin at the centre.
   const glm::dvec2 ndc = glm::dvec2(sample.pFilm) / glm::dvec2(p_.resolution);
   const glm::dvec2 s((ndc.x - 0.5) * p_.sensorSize.x, (0.5 - ndc.y) * p_.sensorSize.y);
@@ -103,7 +110,6 @@ std::optional<CameraRay> PhysicalCamera::generateRay(const CameraSample& sample,
   const double geometric = apertureArea_ * zi * zi / (d2 * d2);  // A · cos⁴θ / z_i²
   const double scale = pixelArea_ * p_.shutter.effectiveTime() * geometric;
 
-  const glm::dmat4 m = worldFromCameraAt(sample.time);
   CameraRay cr;
   cr.ray.o = glm::vec3(m * glm::dvec4(origin, 1.0));
   cr.ray.d = glm::vec3(glm::normalize(glm::dvec3(m * glm::dvec4(direction, 0.0))));

@@ -78,6 +78,10 @@ class PhysicalCamera final : public Camera {
 
   std::optional<CameraRay> generateRay(const CameraSample& sample,
                                        const SampledWavelengths& lambda) const override;
+  // The same with the camera's pose at sample.time already computed (worldFromCameraAt):
+  // the render loop shares it with the ground-truth outputs.
+  std::optional<CameraRay> generateRay(const CameraSample& sample, const SampledWavelengths& lambda,
+                                       const glm::dmat4& worldFromCamera) const;
   glm::ivec2 resolution() const override { return p_.resolution; }
   bool hasAperture() const override { return p_.aperture.has_value(); }
   bool moves(double t0, double t1) const override { return !p_.motion.isStaticDuring(t0, t1); }

@@ -151,8 +151,10 @@ void AovFilm::addSample(const AovSample& sample) {
                      stride_];
   double* const pixelSums = s;
   *s++ += 1.0;
-  const glm::dmat4 worldFromCamera =
-      wantsCamera_ ? scene_.camera().worldFromCameraAt(sample.time) : glm::dmat4(1.0);
+  const glm::dmat4 worldFromCamera = !wantsCamera_ ? glm::dmat4(1.0)
+                                     : sample.worldFromCamera
+                                         ? *sample.worldFromCamera
+                                         : scene_.camera().worldFromCameraAt(sample.time);
   const glm::dvec3& renderOrigin = scene_.renderOrigin();
   const SampledWavelengths& lambda = sample.lambda;
   const glm::dvec3 p(v.p);

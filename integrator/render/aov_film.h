@@ -47,6 +47,7 @@ struct AovSample {
   const VisibleSurface& visible;     // its first hit (visible.hit false: a miss, or no ray)
   double time = 0.0;                 // the sample's time, s
   const SampledWavelengths& lambda;  // as the camera ray started (before a dispersive hit)
+  const glm::dmat4* worldFromCamera = nullptr;  // the camera's pose at `time` when wantsCamera()
 };
 
 class AovFilm {
@@ -58,6 +59,8 @@ class AovFilm {
   bool enabled() const { return !aovs_.empty(); }
   // Whether traceRadiance must evaluate the hit's material (albedo, roughness).
   bool wantsMaterial() const { return wantsMaterial_; }
+  // Whether addSample needs the camera's pose at the sample's time (depth, normals).
+  bool wantsCamera() const { return wantsCamera_; }
   void addSample(const AovSample& sample);
   // coverage.A, each averaged aov's channels in the scene's order (table above), then each
   // id aov's (id_film.h), in the scene's order.

@@ -54,10 +54,17 @@ void renderTile(const Scene& scene, Film& film, const RenderOptions& options,
           cs.time = shutter.sample(static_cast<double>(sampler.get1D())) + shutter.rowOffset(y);
         }
         sampler.setDimension(kDimPath);
-        const std::optional<CameraRay> cr = camera.generateRay(cs, lambda);
+        // The ground truth's depth and normals need the camera's pose at the sample's time:
+        // computed once for the ray and for them.
+        const bool sharePose = aovs.wantsCamera();
+        glm::dmat4 pose;
+        if (sharePose) pose = camera.worldFromCameraAt(cs.time);
+        const glm::dmat4* posePtr = sharePose ? &pose : nullptr;
+        const std::optional<CameraRay> cr =
+            sharePose ? camera.generateRay(cs, lambda, pose) : camera.generateRay(cs, lambda);
         ++stats.samples;
         if (!cr) {
-          if (aovs.enabled()) aovs.addSample({pixel, VisibleSurface{}, cs.time, lambda});
+          if (aovs.enabled()) aovs.addSample({pixel, VisibleSurface{}, cs.time, lambda, posePtr});
           continue;
         }
         countRay(RayKind::kCamera, cr->ray);
@@ -71,7 +78,7 @@ void renderTile(const Scene& scene, Film& film, const RenderOptions& options,
         const SampledWavelengths lambdaAtCamera = lambda;  // before a dispersive hit ends some
         const SampledSpectrum L = traceRadiance(scene, cr->ray, lambda, sampler, &visible);
         if (!film.addSample(pixel, L * cr->weight, lambda)) ++stats.rejected;
-        aovs.addSample({pixel, visible, cs.time, lambdaAtCamera});
+        aovs.addSample({pixel, visible, cs.time, lambdaAtCamera, posePtr});
       }
     }
   }
