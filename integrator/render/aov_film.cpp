@@ -118,11 +118,13 @@ void AovFilm::addMotion(double* sums, const AovSample& s) {
   // The hit in object space (at the sample's time), then at each frame's reference time.
   const glm::dvec3 object =
       motion.empty() ? p : glm::dvec3(glm::inverse(motion.at(s.time)) * glm::dvec4(p, 1.0));
+  // The shape's and the camera's poses at the frame times were computed once (constructor).
+  const std::array<glm::dmat4, 3>& shapeAt = shapeAt_[static_cast<std::size_t>(v.shape)];
   std::array<glm::dvec3, 3> at;
   std::array<glm::dvec2, 3> pixel;
   for (std::size_t j = 0; j < 3; ++j) {
-    at[j] = motion.empty() ? p : glm::dvec3(motion.at(frameTimes_[j]) * glm::dvec4(object, 1.0));
-    const std::optional<glm::dvec2> q = scene_.camera().project(at[j], frameTimes_[j]);
+    at[j] = motion.empty() ? p : glm::dvec3(shapeAt[j] * glm::dvec4(object, 1.0));
+    const std::optional<glm::dvec2> q = scene_.camera().projectFrom(cameraAt_[j], at[j]);
     if (!q) return;
     pixel[j] = *q;
   }
