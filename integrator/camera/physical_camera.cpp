@@ -15,6 +15,8 @@ PhysicalCamera::PhysicalCamera(PhysicalCameraParams params) : p_(std::move(param
   imageDistance_ = p_.focusDistance > 0.0 ? f * p_.focusDistance / (p_.focusDistance - f) : f;
   const glm::dvec2 pitch = p_.sensorSize / glm::dvec2(p_.resolution);
   pixelArea_ = pitch.x * pitch.y * p_.fillFactor;
+  intrinsics_ = {imageDistance_ / pitch.x, imageDistance_ / pitch.y, 0.5 * p_.resolution.x - 0.5,
+                 0.5 * p_.resolution.y - 0.5};
   const double diameter = p_.apertureDiameter();
   if (p_.aperture) stop_.emplace(diameter, p_.aperture->blades, p_.aperture->rotation);
   apertureArea_ = stop_ ? stop_->area() : M_PI * 0.25 * diameter * diameter;
@@ -53,20 +55,13 @@ glm::dmat4 PhysicalCamera::worldFromCameraAt(double t) const {
   return m;
 }
 
-glm::dvec4 PhysicalCamera::intrinsics() const {
-  const glm::dvec2 pitch = p_.sensorSize / glm::dvec2(p_.resolution);
-  return {imageDistance_ / pitch.x, imageDistance_ / pitch.y, 0.5 * p_.resolution.x - 0.5,
-          0.5 * p_.resolution.y - 0.5};
-}
-
 std::optional<glm::dvec2> PhysicalCamera::projectFrom(const glm::dmat4& m,
                                                       const glm::dvec3& p) const {
-  const glm::dvec3 d = p - glm::dvec3(m[3]);
-  const double z = glm::dot(d, glm::dvec3(m[2]));
-  if (!(z > 0.0)) return std::nullopt;
-  const glm::dvec2 xn(glm::dot(d, glm::dvec3(m[0])) / z, -glm::dot(d, glm::dvec3(m[1])) / z);
+  const glm::dvec3 c = cameraCvFromWorld(m, p - glm::dvec3(m[3]));
+  if (!(c.z > 0.0)) return std::nullopt;
+  const glm::dvec2 xn(c.x / c.z, c.y / c.z);
   const glm::dvec2 xd = p_.distortion.isIdentity() ? xn : p_.distortion.distort(xn);
-  const glm::dvec4 k = intrinsics();
+  const glm::dvec4& k = intrinsics_;
   return glm::dvec2(k.x * xd.x + k.z, k.y * xd.y + k.w);
 }
 

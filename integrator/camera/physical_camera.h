@@ -42,6 +42,9 @@
 
 #include <optional>
 
+#include <glm/geometric.hpp>
+#include <glm/mat4x4.hpp>
+
 #include "integrator/camera/aperture.h"
 #include "integrator/camera/camera.h"
 #include "integrator/camera/lens_distortion.h"
@@ -72,6 +75,13 @@ struct PhysicalCameraParams {
   double apertureDiameter() const { return focalLength / fNumber; }
 };
 
+// A world-axes vector in the camera's OpenCV axes (x right, y down, z forward) — the axes of
+// the exported metadata, the camera-space normals and project().
+inline glm::dvec3 cameraCvFromWorld(const glm::dmat4& worldFromCamera, const glm::dvec3& v) {
+  return {glm::dot(v, glm::dvec3(worldFromCamera[0])), -glm::dot(v, glm::dvec3(worldFromCamera[1])),
+          glm::dot(v, glm::dvec3(worldFromCamera[2]))};
+}
+
 class PhysicalCamera final : public Camera {
  public:
   explicit PhysicalCamera(PhysicalCameraParams params);
@@ -92,8 +102,8 @@ class PhysicalCamera final : public Camera {
   double pixelArea() const { return pixelArea_; }          // photosensitive area, m²
   double apertureArea() const { return apertureArea_; }    // m²
   glm::dmat4 worldFromCameraAt(double t) const;
-  // OpenCV intrinsics (pixels): fx, fy, cx, cy.
-  glm::dvec4 intrinsics() const;
+  // OpenCV intrinsics (pixels): fx, fy, cx, cy (fixed when the camera is made).
+  const glm::dvec4& intrinsics() const { return intrinsics_; }
   // Where the chief ray images the render-space point p at time t: OpenCV pixel
   // coordinates (x right, y down, pixel centres at integers) through intrinsics() and the
   // distortion; none for a point on or behind the lens plane.
@@ -112,6 +122,7 @@ class PhysicalCamera final : public Camera {
   double imageDistance_;
   double pixelArea_;
   double apertureArea_;
+  glm::dvec4 intrinsics_;
   bool transmittanceIsOne_;
   // The static pinhole without distortion (the common case) generates its rays in float
   // from constants fixed here, instead of the double matrix and weight math per sample:

@@ -56,39 +56,49 @@ std::vector<InstanceAnnotation> annotateFrame(const CaptureResult& r) {
   const SceneDescription& d = r.description;
   const SceneIds ids = sceneIds(d);
   const IdTable& classes = ids[IdKind::kClass];
+  // One pass down the columns (COCO's RLE order): each pixel's dominant instance extends
+  // its mask. Per instance: its annotation and its current run of 1s [runStart, end).
+  struct Mask {
+    InstanceAnnotation ann;
+    std::uint64_t runStart = 0, end = 0;
+    int x0 = 0, y0 = 0, x1 = -1, y1 = -1;
+  };
+  std::vector<Mask> masks(d.shapes.size());
+  for (int x = 0; x < a.width; ++x)
+    for (int y = 0; y < a.height; ++y) {
+      const auto number = static_cast<std::size_t>(a.at(x, y, channel));  // shape index + 1
+      if (number == 0 || classes.ofShape[number - 1] == 0) continue;      // nothing, unlabelled
+      Mask& m = masks[number - 1];
+      const std::uint64_t i = static_cast<std::uint64_t>(x) * static_cast<std::uint64_t>(a.height) +
+                              static_cast<std::uint64_t>(y);
+      if (m.ann.area == 0 || m.end != i) {  // a new run of 1s after a run of 0s
+        if (m.ann.area > 0) m.ann.rle.push_back(m.end - m.runStart);
+        m.ann.rle.push_back(i - m.end);
+        m.runStart = i;
+      }
+      m.end = i + 1;
+      if (m.ann.area++ == 0) m.x0 = x, m.y0 = y;
+      m.x0 = std::min(m.x0, x), m.y0 = std::min(m.y0, y), m.x1 = std::max(m.x1, x),
+      m.y1 = std::max(m.y1, y);
+    }
   const PhysicalCamera camera(d.camera);
   const double t = d.camera.shutter.centre();
+  const std::uint64_t pixels =
+      static_cast<std::uint64_t>(a.width) * static_cast<std::uint64_t>(a.height);
   std::vector<InstanceAnnotation> out;
-  for (std::size_t s = 0; s < d.shapes.size(); ++s) {
+  for (std::size_t s = 0; s < masks.size(); ++s) {
+    Mask& m = masks[s];
+    if (m.ann.area == 0) continue;
+    m.ann.rle.push_back(m.end - m.runStart);
+    if (m.end < pixels) m.ann.rle.push_back(pixels - m.end);
     const std::uint32_t cls = classes.ofShape[s];
-    if (cls == 0) continue;
-    const auto number = static_cast<float>(s + 1);  // the instance's dominant-id value
-    InstanceAnnotation ann;
-    int x0 = a.width, y0 = a.height, x1 = -1, y1 = -1;
-    bool inside = false;
-    std::uint64_t run = 0;
-    for (int x = 0; x < a.width; ++x)
-      for (int y = 0; y < a.height; ++y) {
-        const bool on = a.at(x, y, channel) == number;
-        if (on != inside) {
-          ann.rle.push_back(run);
-          run = 0;
-          inside = on;
-        }
-        ++run;
-        if (!on) continue;
-        ++ann.area;
-        x0 = std::min(x0, x), y0 = std::min(y0, y), x1 = std::max(x1, x), y1 = std::max(y1, y);
-      }
-    if (ann.area == 0) continue;
-    ann.rle.push_back(run);
-    ann.instance = static_cast<std::uint32_t>(s + 1);
-    ann.name = d.shapes[s].label;
-    ann.category = classes.numbers[cls];
-    ann.categoryName = classes.names[cls];
-    ann.bbox = {x0, y0, x1 - x0 + 1, y1 - y0 + 1};
-    ann.bbox3d = projectedBox(d.shapes[s], camera, t);
-    out.push_back(std::move(ann));
+    m.ann.instance = static_cast<std::uint32_t>(s + 1);
+    m.ann.name = d.shapes[s].label;
+    m.ann.category = classes.numbers[cls];
+    m.ann.categoryName = classes.names[cls];
+    m.ann.bbox = {m.x0, m.y0, m.x1 - m.x0 + 1, m.y1 - m.y0 + 1};
+    m.ann.bbox3d = projectedBox(d.shapes[s], camera, t);
+    out.push_back(std::move(m.ann));
   }
   return out;
 }

@@ -99,10 +99,7 @@ std::vector<std::string> aovNames(const std::vector<Aov>& aovs) {
 JsonObject idsJson(const SceneDescription& desc) {
   JsonObject j;
   const SceneIds ids = sceneIds(desc);
-  for (IdKind k : {IdKind::kInstance, IdKind::kClass, IdKind::kMaterial}) {
-    if (std::find(desc.render.aovs.begin(), desc.render.aovs.end(), aovOf(k)) ==
-        desc.render.aovs.end())
-      continue;
+  for (IdKind k : idKindsOf(desc.render.aovs)) {
     std::vector<JsonObject> entries;
     const IdTable& t = ids[k];
     for (std::size_t e = 1; e < t.names.size(); ++e)

@@ -150,10 +150,7 @@ Image withLayers(const Image& image, const Image& aovs) {
 // The Cryptomatte header attributes of the scene's id aovs (cryptomatte.h) after meta.
 Metadata withCryptomatte(Metadata meta, const SceneDescription& desc) {
   const SceneIds ids = sceneIds(desc);
-  for (IdKind k : {IdKind::kInstance, IdKind::kClass, IdKind::kMaterial}) {
-    if (std::find(desc.render.aovs.begin(), desc.render.aovs.end(), aovOf(k)) ==
-        desc.render.aovs.end())
-      continue;
+  for (IdKind k : idKindsOf(desc.render.aovs)) {
     const Metadata m = cryptomatteMetadata(cryptomatteTypeName(k), ids[k].names);
     meta.insert(meta.end(), m.begin(), m.end());
   }

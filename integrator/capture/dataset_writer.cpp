@@ -14,10 +14,6 @@
 namespace camsim {
 namespace {
 
-double referenceTime(const PhysicalCameraParams& c) {
-  return c.shutter.centre();
-}
-
 std::vector<std::vector<double>> rows(const glm::dmat4& m) {
   std::vector<std::vector<double>> r(4, std::vector<double>(4));
   for (int i = 0; i < 4; ++i)
@@ -105,12 +101,8 @@ DatasetFrame datasetFrame(const CaptureResult& r) {
   return f;
 }
 
-glm::dmat4 worldFromCameraOpenCv(const DatasetFrame& frame) {
-  return worldFromCameraOpenCv(frame, PhysicalCamera(frame.camera));
-}
-
 glm::dmat4 worldFromCameraOpenCv(const DatasetFrame& frame, const PhysicalCamera& camera) {
-  glm::dmat4 m = camera.worldFromCameraAt(referenceTime(frame.camera));
+  glm::dmat4 m = camera.worldFromCameraAt(frame.camera.shutter.centre());
   m[1] = -m[1];  // camsim's up → OpenCV's down
   m[3] += glm::dvec4(frame.renderOrigin, 0.0);
   return m;
@@ -142,7 +134,7 @@ std::vector<std::filesystem::path> writeDatasetMetadata(const std::vector<Datase
                                .set("k3", p.distortion.k3)
                                .set("world_from_camera_opencv", rows(cv))
                                .set("world_from_camera_opengl", rows(toOpenGl(cv)))
-                               .set("time_s", referenceTime(p))
+                               .set("time_s", p.shutter.centre())
                                .set("shutter_open_s", p.shutter.open())
                                .set("shutter_close_s", p.shutter.close())
                                .set("row_time_s", p.shutter.rowTime())

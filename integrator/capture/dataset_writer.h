@@ -46,9 +46,7 @@ struct DatasetFrame {
 DatasetFrame datasetFrame(const CaptureResult& result);
 
 // World-from-camera at the frame's reference time, OpenCV axes (columns x right, y down,
-// z forward, position), world coordinates.
-glm::dmat4 worldFromCameraOpenCv(const DatasetFrame& frame);
-// The same with the frame's camera already built (PhysicalCamera(frame.camera)).
+// z forward, position), world coordinates; camera is PhysicalCamera(frame.camera).
 glm::dmat4 worldFromCameraOpenCv(const DatasetFrame& frame, const PhysicalCamera& camera);
 
 // Writes cameras.json, transforms.json and colmap/*.txt into directory; returns the files.

@@ -38,21 +38,6 @@ std::vector<std::string> channelsOf(Aov aov) {
   return {};
 }
 
-// World axes → camera axes in the OpenCV convention (x right, y down, z forward).
-glm::dvec3 toCameraCv(const glm::dmat4& worldFromCamera, const glm::dvec3& v) {
-  return {glm::dot(v, glm::dvec3(worldFromCamera[0])), -glm::dot(v, glm::dvec3(worldFromCamera[1])),
-          glm::dot(v, glm::dvec3(worldFromCamera[2]))};
-}
-
-bool isIdAov(Aov a) {
-  return a == Aov::kInstanceId || a == Aov::kClassId || a == Aov::kMaterialId;
-}
-
-IdKind idKindOf(Aov a) {
-  return a == Aov::kInstanceId ? IdKind::kInstance
-                               : (a == Aov::kClassId ? IdKind::kClass : IdKind::kMaterial);
-}
-
 }  // namespace
 
 AovFilm::AovFilm(const Scene& scene)
@@ -62,10 +47,9 @@ AovFilm::AovFilm(const Scene& scene)
       static_cast<std::size_t>(resolution_.x) * static_cast<std::size_t>(resolution_.y);
   channels_ = {"coverage.A"};
   for (Aov a : aovs_) {
-    if (isIdAov(a)) {
-      const IdKind kind = idKindOf(a);
-      idFilms_.push_back(std::make_unique<IdFilm>(resolution_, kind, scene.ids()[kind]));
-      idKinds_.push_back(kind);
+    if (const std::optional<IdKind> kind = idKindOf(a)) {
+      idFilms_.push_back(std::make_unique<IdFilm>(resolution_, *kind, scene.ids()[*kind]));
+      idKinds_.push_back(*kind);
     }
     for (std::string& c : channelsOf(a)) channels_.push_back(std::move(c));
   }
@@ -87,16 +71,14 @@ AovFilm::AovFilm(const Scene& scene)
     frameTimes_ = {t - dt, t, t + dt};
     for (std::size_t j = 0; j < 3; ++j)
       cameraAt_[j] = scene.camera().worldFromCameraAt(frameTimes_[j]);
-    const std::size_t shapes = scene.ids()[IdKind::kInstance].ofShape.size();
-    shapeAt_.resize(shapes);
-    for (std::size_t s = 0; s < shapes; ++s) {
+    shapeAt_.resize(scene.shapeCount());
+    for (std::size_t s = 0; s < scene.shapeCount(); ++s) {
       const RigidMotion& m = scene.motion(static_cast<int>(s));
       if (!m.empty())
         for (std::size_t j = 0; j < 3; ++j) shapeAt_[s][j] = m.at(frameTimes_[j]);
     }
   }
-  const std::size_t shapeCount = scene.ids()[IdKind::kInstance].ofShape.size();
-  for (std::size_t s = 0; s < shapeCount; ++s)
+  for (std::size_t s = 0; s < scene.shapeCount(); ++s)
     for (IdKind k : idKinds_) idEntries_.push_back(scene.ids()[k].ofShape[s]);
   // Whether the camera turns or moves during this frame's exposure: if not, the camera-axes
   // normals are the world means rotated once per pixel.
@@ -153,10 +135,8 @@ void AovFilm::addSample(const AovSample& sample) {
                      stride_];
   double* const pixelSums = s;
   *s++ += 1.0;
-  const glm::dmat4 worldFromCamera = !wantsCamera_ ? glm::dmat4(1.0)
-                                     : sample.worldFromCamera
-                                         ? *sample.worldFromCamera
-                                         : scene_.camera().worldFromCameraAt(sample.time);
+  // The camera's pose at the sample's time, from the render loop (wantsCamera()).
+  const glm::dmat4& worldFromCamera = wantsCamera_ ? *sample.worldFromCamera : worldFromCamera_;
   const glm::dvec3& renderOrigin = scene_.renderOrigin();
   const SampledWavelengths& lambda = sample.lambda;
   const glm::dvec3 p(v.p);
@@ -179,7 +159,8 @@ void AovFilm::addSample(const AovSample& sample) {
           s += 12;
           break;
         }
-        const glm::dvec3 nc = toCameraCv(worldFromCamera, n), ngc = toCameraCv(worldFromCamera, ng);
+        const glm::dvec3 nc = cameraCvFromWorld(worldFromCamera, n),
+                         ngc = cameraCvFromWorld(worldFromCamera, ng);
         for (int i = 0; i < 3; ++i) s[6 + i] += nc[i];
         for (int i = 0; i < 3; ++i) s[9 + i] += ngc[i];
         s += 12;
@@ -234,7 +215,8 @@ Image AovFilm::toImage(int samplesPerPixel) const {
     if (normalChannel_ > 0 && !cameraTurns_ && hits > 0.0)
       for (std::size_t layer = 0; layer < 2; ++layer) {  // N, Ng → N_cam, Ng_cam
         const double* w = s + normalChannel_ + 3 * layer;
-        const glm::dvec3 c = toCameraCv(worldFromCamera_, glm::dvec3(w[0], w[1], w[2]) / hits);
+        const glm::dvec3 c =
+            cameraCvFromWorld(worldFromCamera_, glm::dvec3(w[0], w[1], w[2]) / hits);
         for (int i = 0; i < 3; ++i)
           o[normalChannel_ + 6 + 3 * layer + static_cast<std::size_t>(i)] =
               static_cast<float>(c[i]);

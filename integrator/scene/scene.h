@@ -55,6 +55,7 @@ class Scene {
   double exposureEnd() const { return exposureEnd_; }
   const EmbreeScene& geometry() const { return *geometry_; }
   const Shape& shape(int index) const { return *shapes_[static_cast<size_t>(index)]; }
+  std::size_t shapeCount() const { return shapes_.size(); }
   // A shape's keyframed motion, object → render space (empty: static).
   const RigidMotion& motion(int shape) const { return motions_[static_cast<size_t>(shape)]; }
   // The ids of what rays hit, for the ID mattes (scene_ids.h).

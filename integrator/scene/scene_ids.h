@@ -13,6 +13,7 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -31,10 +32,25 @@ inline const char* cryptomatteTypeName(IdKind k) {
   constexpr const char* names[kIdKindCount] = {"CryptoObject", "CryptoClass", "CryptoMaterial"};
   return names[static_cast<int>(k)];
 }
-// The AOV that asks for a kind.
-inline Aov aovOf(IdKind k) {
-  constexpr Aov aovs[kIdKindCount] = {Aov::kInstanceId, Aov::kClassId, Aov::kMaterialId};
-  return aovs[static_cast<int>(k)];
+// The id kind an AOV asks for (none: not an id AOV).
+inline std::optional<IdKind> idKindOf(Aov a) {
+  switch (a) {
+    case Aov::kInstanceId:
+      return IdKind::kInstance;
+    case Aov::kClassId:
+      return IdKind::kClass;
+    case Aov::kMaterialId:
+      return IdKind::kMaterial;
+    default:
+      return std::nullopt;
+  }
+}
+// The id kinds `aovs` asks for, in their order.
+inline std::vector<IdKind> idKindsOf(const std::vector<Aov>& aovs) {
+  std::vector<IdKind> kinds;
+  for (Aov a : aovs)
+    if (const std::optional<IdKind> k = idKindOf(a)) kinds.push_back(*k);
+  return kinds;
 }
 
 struct IdTable {
