@@ -24,7 +24,7 @@ MicrofacetModel ConductorMaterial::model(const BsdfContext& ctx) const {
 SampledSpectrum ConductorMaterial::fresnel(float cosTheta, const SampledWavelengths& lambda,
                                            const BsdfContext& ctx) const {
   if (p_.fresnel == FresnelModel::kSchlick)
-    return fresnelSchlick(cosTheta, p_.r0->evaluate(ctx.uv, lambda));
+    return fresnelSchlick(cosTheta, ctx.lookup(*p_.r0, lambda));
   return fresnelConductor(cosTheta, sampleSpectrum(p_.eta, lambda), sampleSpectrum(p_.k, lambda));
 }
 

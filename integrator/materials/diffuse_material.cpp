@@ -17,7 +17,7 @@ DiffuseMaterial::DiffuseMaterial(Spectrum reflectance)
 SampledSpectrum DiffuseMaterial::f(const glm::vec3& wo, const glm::vec3& wi,
                                    const SampledWavelengths& lambda, const BsdfContext& ctx) const {
   if (wo.z * wi.z <= 0.0f) return SampledSpectrum(0.0f);
-  return reflectance_->evaluate(ctx.uv, lambda) * kInvPi;
+  return ctx.lookup(*reflectance_, lambda) * kInvPi;
 }
 
 std::optional<BsdfSample> DiffuseMaterial::sample(const glm::vec3& wo, float /*uc*/, glm::vec2 u,
@@ -29,7 +29,7 @@ std::optional<BsdfSample> DiffuseMaterial::sample(const glm::vec3& wo, float /*u
   const float pdfValue = std::abs(wi.z) * kInvPi;
   if (pdfValue == 0.0f) return std::nullopt;
   BsdfSample s;
-  s.f = reflectance_->evaluate(ctx.uv, lambda) * kInvPi;
+  s.f = ctx.lookup(*reflectance_, lambda) * kInvPi;
   s.wi = wi;
   s.pdf = pdfValue;
   return s;
@@ -42,7 +42,7 @@ float DiffuseMaterial::pdf(const glm::vec3& wo, const glm::vec3& wi,
 }
 
 SurfaceAov DiffuseMaterial::aov(const SampledWavelengths& lambda, const BsdfContext& ctx) const {
-  return {reflectance_->evaluate(ctx.uv, lambda), 1.0f};
+  return {ctx.lookup(*reflectance_, lambda), 1.0f};
 }
 
 }  // namespace camsim

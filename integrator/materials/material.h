@@ -13,18 +13,56 @@
 // evaluates η at the hero wavelength lambda[0] only.
 #pragma once
 
+#include <array>
 #include <optional>
 
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
+#include "integrator/textures/texture.h"
 #include "sensor/spectra/sampled_spectrum.h"
 
 namespace camsim {
 
-// What a material may look up besides the directions: texture coordinates.
+// What a material may look up besides the directions: texture coordinates, and a memo of
+// its spectral texture there. At one shading point the path tracer asks f and pdf (light
+// sample), sample and, at the first hit, aov — each needs the same reflectance (or F0); an
+// image texture lookup (four texels' sigmoid spectra) is the costliest part of a textured
+// bounce, so it is done once per point. The memo is keyed by texture, uv and wavelengths:
+// a context reused elsewhere (tests, other wavelengths) looks the texture up again. A
+// context lives at one point and must not outlive the materials it was used with.
 struct BsdfContext {
+  BsdfContext() = default;
+  explicit BsdfContext(glm::vec2 uvAtPoint) : uv(uvAtPoint) {}
+
   glm::vec2 uv{0.0f};
+
+  SampledSpectrum lookup(const SpectrumTexture& texture, const SampledWavelengths& lambda) const {
+    bool same = memo_.texture == &texture && memo_.uv == uv;
+    for (int i = 0; i < kWavelengthSamples; ++i)
+      same = same && memo_.lambda[static_cast<std::size_t>(i)] == lambda[i];
+    if (!same) {
+      memo_.value = texture.evaluate(uv, lambda);
+      memo_.texture = &texture;
+      memo_.uv = uv;
+      for (int i = 0; i < kWavelengthSamples; ++i)
+        memo_.lambda[static_cast<std::size_t>(i)] = lambda[i];
+      ++memo_.misses;
+    }
+    return memo_.value;
+  }
+  // How many lookups evaluated the texture (tests check that a bounce does it once).
+  int textureEvaluations() const { return memo_.misses; }
+
+ private:
+  struct Memo {
+    const SpectrumTexture* texture = nullptr;
+    glm::vec2 uv{0.0f};
+    std::array<float, kWavelengthSamples> lambda{};
+    SampledSpectrum value;
+    int misses = 0;
+  };
+  mutable Memo memo_;
 };
 
 struct BsdfSample {

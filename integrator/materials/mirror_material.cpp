@@ -29,7 +29,7 @@ std::optional<BsdfSample> MirrorMaterial::sample(const glm::vec3& wo, float /*uc
   if (!(cosTheta > 0.0f)) return std::nullopt;
   BsdfSample s;
   s.wi = glm::vec3(-wo.x, -wo.y, wo.z);
-  s.f = reflectance_->evaluate(ctx.uv, lambda) / cosTheta;
+  s.f = ctx.lookup(*reflectance_, lambda) / cosTheta;
   if (!s.f.isFinite()) return std::nullopt;  // cos θ below ~1e-38: nothing usable
   s.pdf = 1.0f;
   s.specular = true;
@@ -42,7 +42,7 @@ float MirrorMaterial::pdf(const glm::vec3& /*wo*/, const glm::vec3& /*wi*/,
 }
 
 SurfaceAov MirrorMaterial::aov(const SampledWavelengths& lambda, const BsdfContext& ctx) const {
-  return {reflectance_->evaluate(ctx.uv, lambda), 0.0f};
+  return {ctx.lookup(*reflectance_, lambda), 0.0f};
 }
 
 }  // namespace camsim

@@ -19,7 +19,7 @@ PlasticMaterial::PlasticMaterial(PlasticParameters p) : p_(std::move(p)) {
 PlasticMaterial::Lobes PlasticMaterial::lobes(const SampledWavelengths& lambda,
                                               const BsdfContext& ctx) const {
   const float ks = p_.specularWeight, kd = 1.0f - ks;
-  const SampledSpectrum rho = p_.reflectance->evaluate(ctx.uv, lambda);
+  const SampledSpectrum rho = ctx.lookup(*p_.reflectance, lambda);
   const float diffuseWeight = kd * std::max(0.0f, rho.maxComponent());
   const float total = diffuseWeight + ks;
   return {rho * (kd * kInvPi), total > 0.0f ? diffuseWeight / total : 0.0f,
@@ -86,7 +86,7 @@ std::optional<BsdfSample> PlasticMaterial::sample(const glm::vec3& woIn, float u
 }
 
 SurfaceAov PlasticMaterial::aov(const SampledWavelengths& lambda, const BsdfContext& ctx) const {
-  return {p_.reflectance->evaluate(ctx.uv, lambda), p_.roughness->evaluate(ctx.uv)};
+  return {ctx.lookup(*p_.reflectance, lambda), p_.roughness->evaluate(ctx.uv)};
 }
 
 }  // namespace camsim

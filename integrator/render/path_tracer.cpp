@@ -39,7 +39,7 @@ struct ShadingPoint {
   const glm::vec3& wo;
   glm::vec3 woLocal;
   const Material& material;
-  BsdfContext ctx;
+  const BsdfContext& ctx;
 };
 
 // One light sample, MIS-weighted against BSDF sampling: uLight chooses the light, the
@@ -100,6 +100,7 @@ SampledSpectrum trace(const Scene& scene, Ray ray, SampledWavelengths& lambda, S
     }
     const SurfaceInteraction si = scene.shape(hit.shape).interaction(hit, ray);
     const glm::vec3 wo = -glm::normalize(ray.d);
+    const BsdfContext ctx{si.uv};  // one per point: its texture memo serves aov, f, pdf, sample
     if (depth == 0 && visible) [[unlikely]] {
       visible->hit = true;
       visible->p = si.p;
@@ -108,7 +109,7 @@ SampledSpectrum trace(const Scene& scene, Ray ray, SampledWavelengths& lambda, S
       visible->distance = glm::length(si.p - ray.o);
       visible->shape = hit.shape;
       if (visible->wantMaterial) {
-        const SurfaceAov aov = scene.material(hit.shape).aov(lambda, BsdfContext{si.uv});
+        const SurfaceAov aov = scene.material(hit.shape).aov(lambda, ctx);
         visible->albedo = aov.albedo;
         visible->roughness = aov.roughness;
       }
@@ -131,7 +132,7 @@ SampledSpectrum trace(const Scene& scene, Ray ray, SampledWavelengths& lambda, S
     if (material.dispersive()) lambda.terminateSecondary();
 
     const Frame frame = Frame::fromZ(si.ns);
-    const ShadingPoint sp{si, frame, wo, frame.toLocal(wo), material, BsdfContext{si.uv}};
+    const ShadingPoint sp{si, frame, wo, frame.toLocal(wo), material, ctx};
     // The bounce's two 1D choices, which light and which BSDF lobe, share one 2D draw (one
     // sampler dimension instead of two).
     const glm::vec2 uChoice = sampler.get2D();
