@@ -115,25 +115,26 @@ JsonObject idsJson(const SceneDescription& desc) {
 
 }  // namespace
 
-JsonObject captureSidecar(const CaptureResult& r) {
+JsonObject captureSidecar(const CaptureResult& r, bool reproducible) {
   const SceneDescription& desc = r.description;
   const RenderStats& st = r.stats;
   std::vector<std::string> inputFiles;
   for (const auto& f : desc.inputFiles) inputFiles.push_back(f.string());
+  JsonObject render;
+  render.set("spp", double(desc.render.spp))
+      .set("seed", double(desc.render.seed))
+      .set("sampler", samplerName(desc.render.sampler))
+      .set("max_depth", double(desc.render.maxDepth));
+  if (!reproducible) render.set("seconds", st.seconds);
+  render.set("rejected_samples", double(st.rejectedSamples))
+      .set("modelled", st.modelled.describe())
+      .set("aovs", aovNames(desc.render.aovs))
+      .set("ids", idsJson(desc));
   JsonObject sidecar;
   sidecar.set("camsim_version", CAMSIM_VERSION)
       .set("scene", desc.sourceFile)
       .set("input_files", inputFiles)
-      .set("render", JsonObject()
-                         .set("spp", double(desc.render.spp))
-                         .set("seed", double(desc.render.seed))
-                         .set("sampler", samplerName(desc.render.sampler))
-                         .set("max_depth", double(desc.render.maxDepth))
-                         .set("seconds", st.seconds)
-                         .set("rejected_samples", double(st.rejectedSamples))
-                         .set("modelled", st.modelled.describe())
-                         .set("aovs", aovNames(desc.render.aovs))
-                         .set("ids", idsJson(desc)))
+      .set("render", render)
       .set("camera", cameraJson(PhysicalCamera(desc.camera)));
   if (desc.sensor)
     sidecar.set("sensor", sensorJson(r)).set("isp", ispJson(r));

@@ -7,6 +7,8 @@
 
 namespace camsim {
 
-JsonObject captureSidecar(const CaptureResult& result);
+// reproducible: leave out the render's wall time (render.seconds), the one value that
+// differs between two runs of the same scene, seed and build.
+JsonObject captureSidecar(const CaptureResult& result, bool reproducible = false);
 
 }  // namespace camsim

@@ -29,7 +29,7 @@ ExrChromaticities rec709Chromaticities() {
   return {cs.red(), cs.green(), cs.blue(), cs.white()};
 }
 
-Metadata filmMetadata(const CaptureResult& r) {
+Metadata filmMetadata(const CaptureResult& r, bool reproducible) {
   const SceneDescription& desc = r.description;
   const RenderStats& st = r.stats;
   Metadata meta = {{"camsim:version", CAMSIM_VERSION},
@@ -37,7 +37,6 @@ Metadata filmMetadata(const CaptureResult& r) {
                    {"camsim:scene_fnv1a64", desc.sourceFnv1a},
                    {"camsim:spp", std::to_string(desc.render.spp)},
                    {"camsim:seed", std::to_string(desc.render.seed)},
-                   {"camsim:render_seconds", std::to_string(st.seconds)},
                    {"camsim:rejected_samples", std::to_string(st.rejectedSamples)},
                    {"camsim:modelled", st.modelled.describe()},
                    {"camsim:units",
@@ -58,6 +57,7 @@ Metadata filmMetadata(const CaptureResult& r) {
                             number(p.distortion.k1) + " " + number(p.distortion.k2) + " " +
                                 number(p.distortion.p1) + " " + number(p.distortion.p2) + " " +
                                 number(p.distortion.k3)}});
+  if (!reproducible) meta.push_back({"camsim:render_seconds", std::to_string(st.seconds)});
   return meta;
 }
 
@@ -181,14 +181,14 @@ std::string captureFrameFile(const CaptureResult& result, std::size_t frame) {
 WrittenCapture writeCapture(const CaptureResult& result, const CaptureOutputOptions& options) {
   if (result.cancelled) return writePartial(result, options.directory);
   const SceneDescription& desc = result.description;
-  const Metadata meta = filmMetadata(result);
+  const Metadata meta = filmMetadata(result, options.reproducible);
   OutputSet outputs(options.directory);
   writeExr(outputs.add(desc.name + ".exr"), withLayers(xyzExrImage(result.film), result.aovs),
            withCryptomatte(meta, desc), rec709Chromaticities());
   if (options.aovPreviews && !result.aovs.pixels.empty())
     for (const AovPreview& p : aovPreviews(result.aovs))
       writePng8(outputs.add(desc.name + "_" + p.suffix + ".png"), p.width, p.height, p.rgb, p.srgb);
-  JsonObject sidecar = captureSidecar(result);
+  JsonObject sidecar = captureSidecar(result, options.reproducible);
   if (desc.sensor) writeFrames(result, meta, outputs);
   sidecar.set("color", writePicture(result.picture, desc.name, options.picture,
                                     desc.sensor.has_value(), meta, outputs));

@@ -29,6 +29,9 @@ struct CaptureOutputOptions {
   std::filesystem::path directory;  // created if missing
   PictureSettings picture;          // OCIO config and display/view/look of NAME.png
   bool aovPreviews = false;         // also NAME_<layer>.png quick looks (aov_previews.h)
+  // Same scene, seed and build → the same bytes in every file: the render's wall time
+  // (camsim:render_seconds, render.seconds) is left out. Datasets and tile merges set it.
+  bool reproducible = false;
 };
 
 struct WrittenCapture {
