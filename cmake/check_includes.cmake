@@ -38,6 +38,9 @@ set(ALLOWED_integrator/render integrator/sampling integrator/geometry integrator
 set(ALLOWED_integrator/capture integrator/sampling integrator/geometry integrator/textures
     integrator/camera integrator/materials integrator/lights integrator/scene integrator/render
     ${SENSOR_ALL})
+set(ALLOWED_integrator/dataset integrator/sampling integrator/geometry integrator/textures
+    integrator/camera integrator/materials integrator/lights integrator/scene integrator/render
+    integrator/capture ${SENSOR_ALL})
 
 set(HEAVY "embree3/|OpenEXR/|Imath/|Imf|OpenColorIO|tiffio|tiff\\.h|png\\.h|tbb/|oneapi/|yaml-cpp/")
 set(KNOWN_HEADER_LEAKS "")

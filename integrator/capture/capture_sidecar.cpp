@@ -56,7 +56,7 @@ JsonObject sensorJson(const CaptureResult& r) {
   j.set("model", sensor.spec.name)
       .set("iso", sensor.iso)
       .set("noise", noiseModeName(sensor.noise))
-      .set("noise_seed", double(sensor.noiseSeed))
+      .setInteger("noise_seed", sensor.noiseSeed)
       .set("frame", double(sensor.frame))
       .set("auto_exposure",
            sensor.autoExposure ? meteringName(sensor.autoExposure->metering) : "off")
@@ -122,7 +122,7 @@ JsonObject captureSidecar(const CaptureResult& r, bool reproducible) {
   for (const auto& f : desc.inputFiles) inputFiles.push_back(f.string());
   JsonObject render;
   render.set("spp", double(desc.render.spp))
-      .set("seed", double(desc.render.seed))
+      .setInteger("seed", desc.render.seed)
       .set("sampler", samplerName(desc.render.sampler))
       .set("max_depth", double(desc.render.maxDepth));
   if (!reproducible) render.set("seconds", st.seconds);

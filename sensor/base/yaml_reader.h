@@ -19,7 +19,7 @@
 
 #include "sensor/base/input_error.h"
 
-// yaml-cpp stays in yaml_reader.cpp: its types are only declared here.
+// yaml-cpp stays in yaml_reader.cpp (and yaml_edit.cpp): its types are only declared here.
 namespace YAML {
 class Node;
 struct Mark;

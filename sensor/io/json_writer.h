@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <string>
 #include <utility>
@@ -46,6 +47,34 @@ class JsonObject {
       s += "]";
     }
     return raw(key, s + "]");
+  }
+
+  // An integer exactly (a 64-bit seed; set(key, double) keeps 10 significant digits).
+  JsonObject& setInteger(const std::string& key, std::uint64_t value) {
+    return raw(key, std::to_string(value));
+  }
+  // A value that is already JSON text (a number as written, a nested array).
+  JsonObject& setJson(const std::string& key, std::string json) {
+    return raw(key, std::move(json));
+  }
+  // A string as a JSON string literal.
+  static std::string quoted(const std::string& s) { return quote(s); }
+  // The object on one line (JSON Lines): the layout's newlines and indents dropped
+  // (strings hold none: quote() escapes them).
+  std::string line() const {
+    const std::string text = str();
+    std::string out;
+    for (size_t i = 0; i < text.size(); ++i) {
+      if (text[i] != '\n') {
+        out += text[i];
+        continue;
+      }
+      while (i + 1 < text.size() && text[i + 1] == ' ') ++i;
+      if (!out.empty() && out.back() != '{' && out.back() != '[' && i + 1 < text.size() &&
+          text[i + 1] != '}' && text[i + 1] != ']')
+        out += ' ';
+    }
+    return out;
   }
 
   std::string str(int indent = 0) const {

@@ -1,0 +1,200 @@
+#include "cli/dataset_command.h"
+
+#include <cstdlib>
+#include <memory>
+#include <ostream>
+
+#include "cli/args.h"
+#include "cli/progress.h"
+#include "integrator/dataset/dataset_item.h"
+#include "integrator/dataset/dataset_run.h"
+#include "sensor/base/input_error.h"
+#include "sensor/io/picture_writer.h"
+
+namespace camsim {
+namespace {
+
+std::size_t count(const std::string& flag, const std::string& text, std::size_t lo) {
+  return static_cast<std::size_t>(parseInteger(flag, text, static_cast<std::int64_t>(lo), 1 << 30));
+}
+
+std::string itemList(const std::vector<std::size_t>& items) {
+  std::string s;
+  for (std::size_t i = 0; i < items.size() && i < 20; ++i) s += (i ? " " : "") + std::to_string(items[i]);
+  if (items.size() > 20) s += " …";
+  return s;
+}
+
+}  // namespace
+
+std::string datasetUsageText() {
+  return "usage: camsim dataset MANIFEST [-o DIR] [--shard i/N | --shards N] [--resume]\n"
+         "                      [--item N] [--threads N] [--check]\n"
+         "                      [--ocio-config FILE] [--display D] [--view V] [--look L]\n"
+         "       camsim dataset --status DIR\n"
+         "\n"
+         "dataset  renders the items of MANIFEST (docs/dataset-format.md) into DIR (default out/):\n"
+         "         DIR/items/NNNNNN/ per item (its outputs, scene.yaml, params.json, item.json),\n"
+         "         DIR/index.jsonl (one line per item that ended), DIR/dataset.json.\n"
+         "         Every item is checked before the first renders; same manifest, seed and build:\n"
+         "         same bytes, on any shard.\n"
+         "  -o, --output DIR  the dataset folder (created if missing)\n"
+         "  --shard i/N       render items i, i+N, i+2N, … (0 <= i < N); without it, Slurm's\n"
+         "                    SLURM_ARRAY_TASK_ID - SLURM_ARRAY_TASK_MIN of SLURM_ARRAY_TASK_COUNT,\n"
+         "                    or Kubernetes' JOB_COMPLETION_INDEX of --shards N (or\n"
+         "                    CAMSIM_SHARD_COUNT); else all items\n"
+         "  --resume          skip items whose outputs exist and whose recorded hash matches the\n"
+         "                    item's resolved scene and camsim version; remove temporaries of\n"
+         "                    killed runs\n"
+         "  --item N          render only item N (of this shard)\n"
+         "  --threads N       worker threads (default: all cores)\n"
+         "  --check           check the manifest and every item, print the item count, render nothing\n"
+         "  --status DIR      summarise DIR: done, failed, missing items\n"
+         "exit codes: 0 done, 2 bad input (do not retry), 130/143 interrupted by SIGINT/SIGTERM\n"
+         "(retry with --resume), 1 an item failed inside camsim (docs/cluster.md)\n";
+}
+
+DatasetArgs parseDatasetArgs(const std::vector<std::string>& args) {
+  DatasetArgs a;
+  auto value = [&](std::size_t& i) -> const std::string& {
+    if (i + 1 >= args.size()) throw UsageError(args[i] + " needs a value");
+    return args[++i];
+  };
+  for (std::size_t i = 1; i < args.size(); ++i) {
+    const std::string& f = args[i];
+    if (f == "-h" || f == "--help") a.help = true;
+    else if (f == "-o" || f == "--output") a.outputDir = value(i);
+    else if (f == "--shard") a.shard = value(i);
+    else if (f == "--shards") a.shards = count(f, value(i), 1);
+    else if (f == "--item") a.item = count(f, value(i), 0);
+    else if (f == "--threads") a.threads = static_cast<int>(parseInteger(f, value(i), 0, 4096));
+    else if (f == "--resume") a.resume = true;
+    else if (f == "--check") a.check = true;
+    else if (f == "--status") a.status = value(i);
+    else if (f == "--ocio-config") a.ocioConfig = value(i);
+    else if (f == "--display") a.display = value(i);
+    else if (f == "--view") a.view = value(i);
+    else if (f == "--look") a.look = value(i);
+    else if (!f.empty() && f[0] == '-') throw UsageError("unknown option '" + f + "' (camsim dataset --help)");
+    else if (a.manifest.empty()) a.manifest = f;
+    else throw UsageError("one manifest only; unexpected '" + f + "'");
+  }
+  if (!a.help && !a.status && a.manifest.empty())
+    throw UsageError("camsim dataset needs a MANIFEST (or --status DIR)");
+  if (a.status && !a.manifest.empty()) throw UsageError("--status DIR takes no manifest");
+  if (a.shard && a.shards) throw UsageError("give --shard i/N or --shards N, not both");
+  return a;
+}
+
+Shard resolveShard(const DatasetArgs& args, const std::map<std::string, std::string>& env) {
+  auto get = [&](const char* name) -> std::optional<std::string> {
+    const auto it = env.find(name);
+    if (it == env.end() || it->second.empty()) return std::nullopt;
+    return it->second;
+  };
+  Shard s;
+  if (args.shard) {
+    const std::size_t slash = args.shard->find('/');
+    if (slash == std::string::npos) throw UsageError("--shard expects i/N, got '" + *args.shard + "'");
+    s.count = count("--shard N", args.shard->substr(slash + 1), 1);
+    s.index = static_cast<std::size_t>(parseInteger("--shard i", args.shard->substr(0, slash), 0,
+                                                    static_cast<std::int64_t>(s.count) - 1));
+    s.source = "--shard";
+  } else if (auto id = get("SLURM_ARRAY_TASK_ID")) {
+    const auto n = get("SLURM_ARRAY_TASK_COUNT");
+    if (!n) throw UsageError("SLURM_ARRAY_TASK_ID is set but SLURM_ARRAY_TASK_COUNT is not");
+    s.count = count("SLURM_ARRAY_TASK_COUNT", *n, 1);
+    const std::size_t task = count("SLURM_ARRAY_TASK_ID", *id, 0);
+    const std::size_t min = get("SLURM_ARRAY_TASK_MIN") ? count("SLURM_ARRAY_TASK_MIN", *get("SLURM_ARRAY_TASK_MIN"), 0) : 0;
+    if (task < min || task - min >= s.count)
+      throw UsageError("array task " + *id + " is not in " + std::to_string(min) + ".." +
+                       std::to_string(min + s.count - 1) +
+                       ": submit a contiguous array (--array=0-" + std::to_string(s.count - 1) + ")");
+    s.index = task - min;
+    s.source = "SLURM_ARRAY_TASK_ID";
+  } else if (auto k = get("JOB_COMPLETION_INDEX")) {
+    std::optional<std::size_t> n = args.shards;
+    if (!n && get("CAMSIM_SHARD_COUNT")) n = count("CAMSIM_SHARD_COUNT", *get("CAMSIM_SHARD_COUNT"), 1);
+    if (!n) throw UsageError("JOB_COMPLETION_INDEX is set: give the shard count (--shards N or CAMSIM_SHARD_COUNT)");
+    s.count = *n;
+    s.index = static_cast<std::size_t>(parseInteger("JOB_COMPLETION_INDEX", *k, 0,
+                                                    static_cast<std::int64_t>(s.count) - 1));
+    s.source = "JOB_COMPLETION_INDEX";
+  } else if (args.shards) {
+    throw UsageError("--shards N needs JOB_COMPLETION_INDEX (a Kubernetes Indexed Job); else use --shard i/N");
+  }
+  return s;
+}
+
+int runDatasetCommand(const std::vector<std::string>& args, std::ostream& out, std::ostream& log,
+                      const std::atomic<bool>* cancel, const std::atomic<int>* signal) {
+  const DatasetArgs a = parseDatasetArgs(args);
+  if (a.help) {
+    out << datasetUsageText();
+    return 0;
+  }
+  if (a.status) {
+    const DatasetStatus s = datasetStatus(*a.status);
+    out << *a.status << ": " << s.total << " items: " << s.done << " done, " << s.failed
+        << " failed, " << s.missing << " missing";
+    if (s.temporaries) out << ", " << s.temporaries << " temporaries of killed runs";
+    out << "\n";
+    if (!s.failedItems.empty()) out << "failed: " << itemList(s.failedItems) << "\n";
+    if (!s.missingItems.empty()) out << "missing: " << itemList(s.missingItems) << "\n";
+    return s.done == s.total ? 0 : 1;
+  }
+  std::map<std::string, std::string> env;
+  for (const char* name : {"SLURM_ARRAY_TASK_ID", "SLURM_ARRAY_TASK_COUNT", "SLURM_ARRAY_TASK_MIN",
+                           "JOB_COMPLETION_INDEX", "CAMSIM_SHARD_COUNT"})
+    if (const char* v = std::getenv(name)) env[name] = v;
+  const Shard shard = resolveShard(a, env);
+  const Manifest manifest = loadManifest(a.manifest);
+
+  DatasetRunOptions o;
+  o.directory = a.outputDir;
+  o.shard = {shard.index, shard.count};
+  o.resume = a.resume;
+  o.onlyItem = a.item;
+  o.threads = a.threads;
+  o.picture = {a.ocioConfig, {a.display, a.view, a.look}};
+  o.cancel = cancel;
+  (void)checkPictureSettings(o.picture);
+  ProgressBar checking("checking " + std::to_string(manifest.items.size()) + " items");
+  o.onChecked = [&](std::size_t done, std::size_t total) {
+    checking.update(static_cast<int>(done), static_cast<int>(total));
+  };
+  if (a.check) {
+    o.onlyItem.reset();
+    checkBaseScene(manifest);
+    for (const DatasetItem& item : manifest.items) (void)resolveItem(manifest, item, "");
+    checking.finish();
+    out << manifest.file.string() << ": " << manifest.items.size() << " items, all valid\n";
+    return 0;
+  }
+  std::unique_ptr<ProgressBar> rendering;
+  o.progress = [&](std::size_t done, std::size_t total, double fraction) {
+    if (!rendering) {
+      checking.finish();
+      rendering = std::make_unique<ProgressBar>("dataset shard " + std::to_string(shard.index) + "/" +
+                                                std::to_string(shard.count) + " (" + std::to_string(total) + " items)");
+    }
+    rendering->update(static_cast<int>(1000 * (static_cast<double>(done) + fraction)),
+                      static_cast<int>(1000 * total));
+  };
+  o.onItem = [&](const ItemReport& r) {
+    if (r.status == ItemStatus::kFailed)
+      log << "item " << r.index << " failed: " << r.message << "\n";
+  };
+  const DatasetRunSummary s = runDataset(manifest, o);
+  checking.finish();
+  if (rendering) rendering->finish();
+  for (const auto& f : s.removed) log << "removed " << f.string() << " (left by a run that was killed)\n";
+  log << "dataset " << manifest.file.filename().string() << ", shard " << shard.index << "/"
+      << shard.count << (shard.source.empty() ? "" : " (" + shard.source + ")") << ": " << s.items
+      << " of " << manifest.items.size() << " items: " << s.done << " rendered, " << s.skipped
+      << " up to date, " << s.failed << " failed" << (s.cancelled ? "; interrupted" : "") << "\n";
+  if (s.cancelled) return 128 + (signal && signal->load() ? signal->load() : 2);
+  return s.failed > 0 ? 1 : 0;
+}
+
+}  // namespace camsim

@@ -1,0 +1,80 @@
+#include "integrator/dataset/dataset_item.h"
+
+#include <cstdio>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include "integrator/scene/scene_loader.h"
+#include "sensor/base/fnv1a.h"
+#include "sensor/base/input_error.h"
+#include "sensor/base/yaml_reader.h"
+
+namespace camsim {
+namespace {
+
+// Whether loader key `key` lies at or below the canonical path `path`.
+bool under(const std::string& key, const std::string& path) {
+  if (path.empty() || key.compare(0, path.size(), path) != 0) return false;
+  return key.size() == path.size() || key[path.size()] == '.' || key[path.size()] == '[';
+}
+
+std::string fileContentHash(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return fnv1aHex(text.str());
+}
+
+}  // namespace
+
+std::string itemFolderName(std::size_t index) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%06zu", index);
+  return buf;
+}
+
+void checkBaseScene(const Manifest& manifest) {
+  (void)loadSceneFromText(manifest.sceneText, manifest.scene.string(),
+                          sceneBaseDir(manifest.scene));
+}
+
+ResolvedItem resolveItem(const Manifest& manifest, const DatasetItem& item,
+                         const std::string& outputKey) {
+  ResolvedItem r;
+  r.index = item.index;
+  std::vector<YamlEdit> edits = item.edits;
+  // The scene's name stays its own (the loader would take it from the display name).
+  const YamlValue base = parseYaml(manifest.sceneText, manifest.scene.string());
+  if (!YamlMap(base).has("name"))
+    edits.insert(edits.begin(), {"name", manifest.scene.stem().string(), item.where, "scene"});
+  const EditedYaml edited = applyYamlEdits(manifest.sceneText, manifest.scene.string(), edits);
+  r.sceneText = edited.text;
+  const std::string itemName = "item " + std::to_string(item.index);
+  // Stable across runs, shards and machines (it is written into the outputs).
+  const std::string displayName = manifest.scene.filename().string() + " (dataset " +
+                                  manifest.file.filename().string() + ", " + itemName + ")";
+  try {
+    r.description = loadSceneFromText(r.sceneText, displayName, sceneBaseDir(manifest.scene));
+  } catch (const InputError& e) {
+    for (std::size_t k = edits.size(); k-- > 0;)
+      if (under(e.key(), edited.canonicalPaths[k]))
+        throw InputError(edits[k].where, edits[k].key,
+                         itemName + ": " + e.key() + " = " + edits[k].value + ": " + e.message());
+    throw InputError(item.where, e.key(),
+                     itemName + " (the base scene with this item's values): " + e.message());
+  }
+  std::map<std::string, std::string> last;
+  for (std::size_t k = 0; k < edits.size(); ++k) {
+    if (edited.canonicalPaths[k].empty() || edits[k].path == "name") continue;
+    if (!last.count(edits[k].path)) r.parameters.emplace_back(edits[k].path, "");
+    last[edits[k].path] = edits[k].value;
+  }
+  for (auto& [path, value] : r.parameters) value = last[path];
+  std::string key = std::string(CAMSIM_VERSION) + "\n" + outputKey + "\n" + r.sceneText;
+  for (const auto& f : r.description.inputFiles) key += "\n" + f.string() + " " + fileContentHash(f);
+  r.hash = fnv1aHex(key);
+  return r;
+}
+
+}  // namespace camsim

@@ -1,0 +1,41 @@
+// One dataset item resolved: the manifest's base scene with the item's edits applied and
+// loaded, and the hash that says whether its outputs on disk are still its outputs.
+//
+// Errors name the manifest: an error the loader reports at a key an edit set (or below it)
+// is reported at that edit's line in the manifest ("sweep.yaml:14:7: key
+// 'grid.camera.f_number': item 3: …"); any other error of an item names the item's manifest
+// entry and the scene key. The base scene alone is checked first, with its own lines.
+#pragma once
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "integrator/dataset/manifest.h"
+#include "integrator/scene/scene_description.h"
+
+namespace camsim {
+
+struct ResolvedItem {
+  std::size_t index = 0;
+  std::string sceneText;  // the resolved scene (written as the item's scene.yaml)
+  SceneDescription description;
+  // The key paths the item sets (seeds included), last value wins, as YAML text.
+  std::vector<std::pair<std::string, std::string>> parameters;
+  // FNV-1a 64 over camsim's version, `outputKey`, the resolved scene and the content of
+  // every file it reads (meshes, textures, tables): a changed base scene, asset or option
+  // changes it.
+  std::string hash;
+};
+
+// Checks that the base scene loads on its own (InputError with its own file:line).
+void checkBaseScene(const Manifest& manifest);
+
+// outputKey: the output options that change the files (OCIO config, display, view, …).
+ResolvedItem resolveItem(const Manifest& manifest, const DatasetItem& item,
+                         const std::string& outputKey);
+
+// The item's folder name: six digits (000042), more when the index needs them.
+std::string itemFolderName(std::size_t index);
+
+}  // namespace camsim
