@@ -1,5 +1,6 @@
 // camsim: command-line entry point. The only place that turns errors into exit codes:
-// 0 success, 1 internal error, 2 bad input, 130 interrupted.
+// 0 success, 1 internal error, 2 bad input, 128 + signal when interrupted (130 SIGINT,
+// 143 SIGTERM).
 #include <csignal>
 #include <cstdio>
 #include <exception>
@@ -7,6 +8,7 @@
 
 #include "bench/bench_command.h"
 #include "cli/args.h"
+#include "cli/dataset_command.h"
 #include "cli/ptc_command.h"
 #include "cli/render_command.h"
 #include "sensor/base/input_error.h"
@@ -14,13 +16,26 @@
 namespace {
 
 std::atomic<bool> gCancel{false};
+std::atomic<int> gSignal{0};  // the signal that set gCancel
 
 // The first SIGINT/SIGTERM asks the render to stop (it checks between tiles, then writes
-// NAME.partial.exr and exits with 130); a second one, e.g. a second Ctrl-C, kills at once
+// NAME.partial.exr and exits with 128 + the signal: 130, 143); a second one, e.g. a second Ctrl-C, kills at once
 // (temporaries left behind are removed by the next run into the same directory).
 extern "C" void onSignal(int sig) {
+  gSignal.store(sig);
   gCancel.store(true);
   std::signal(sig, SIG_DFL);  // async-signal-safe
+}
+
+void catchSignals() {
+  std::signal(SIGINT, onSignal);
+  std::signal(SIGTERM, onSignal);
+  static_assert(std::atomic<bool>::is_always_lock_free && std::atomic<int>::is_always_lock_free,
+                "set from a signal handler");
+}
+
+int interruptedExitCode() {
+  return 128 + (gSignal.load() ? gSignal.load() : SIGINT);
 }
 
 }  // namespace
@@ -29,6 +44,10 @@ int main(int argc, char** argv) {
   std::vector<std::string> args(argv + 1, argv + argc);
   try {
     if (!args.empty() && args[0] == "ptc") return camsim::runPtcCommand(args, std::cout, std::cerr);
+    if (!args.empty() && args[0] == "dataset") {
+      catchSignals();
+      return camsim::runDatasetCommand(args, std::cout, std::cerr, &gCancel, &gSignal);
+    }
     if (!args.empty() && args[0] == "bench")
       return camsim::runBenchCommand(args, std::cout, std::cerr);
     const camsim::Command cmd = camsim::parseArgs(args);
@@ -40,11 +59,9 @@ int main(int argc, char** argv) {
         std::cout << "camsim " << CAMSIM_VERSION << "\n";
         return 0;
       case camsim::Command::Kind::kRender: {
-        std::signal(SIGINT, onSignal);
-        std::signal(SIGTERM, onSignal);
-        static_assert(std::atomic<bool>::is_always_lock_free, "set from a signal handler");
+        catchSignals();
         const auto result = camsim::runRender(cmd.render, std::cerr, &gCancel);
-        return result.cancelled ? 130 : 0;
+        return result.cancelled ? interruptedExitCode() : 0;
       }
     }
   } catch (const camsim::UsageError& e) {

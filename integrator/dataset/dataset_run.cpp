@@ -55,7 +55,11 @@ std::vector<fs::path> removeTemporaries(const fs::path& items, std::size_t index
 // (a list, a name) as its YAML text in a string.
 std::string jsonValue(const std::string& yaml) {
   static const std::regex number(R"(-?(0|[1-9][0-9]*)(\.[0-9]+)?([eE][-+]?[0-9]+)?)");
-  return std::regex_match(yaml, number) ? yaml : JsonObject::quoted(yaml);
+  static const std::regex numbers(
+      R"(\[ *(-?(0|[1-9][0-9]*)(\.[0-9]+)?([eE][-+]?[0-9]+)?( *, *)?)* *\])");
+  if (yaml == "~" || yaml == "null") return "null";
+  return std::regex_match(yaml, number) || std::regex_match(yaml, numbers) ? yaml
+                                                                          : JsonObject::quoted(yaml);
 }
 
 JsonObject parametersJson(const ResolvedItem& item) {
@@ -95,6 +99,7 @@ void appendLine(const fs::path& file, const std::string& line) {
 struct Rendered {
   std::vector<fs::path> files;
   bool cancelled = false;
+  double renderSeconds = 0.0;  // in render(): the rest of the item's time is overhead
 };
 
 // The item's capture or sequence, written into `dir` (reproducible bytes).
@@ -108,8 +113,9 @@ Rendered renderItem(SceneDescription desc, const fs::path& dir, const DatasetRun
   if (!desc.frames) {
     co.progress = [&](int done, int total) { fraction(static_cast<double>(done) / total); };
     const CaptureResult result = capture(std::move(desc), co);
-    if (result.cancelled) return {{}, true};
+    if (result.cancelled) return {{}, true, 0.0};
     r.files = writeCapture(result, out).files;
+    r.renderSeconds = result.stats.seconds;
     return r;
   }
   const int count = desc.frames->count;
@@ -121,10 +127,11 @@ Rendered renderItem(SceneDescription desc, const fs::path& dir, const DatasetRun
   const SequenceSummary s = captureSequence(std::move(desc), co, [&](CaptureResult&& c, int k) {
     frame = k + 1;
     if (c.cancelled) return;
+    r.renderSeconds += c.stats.seconds;
     for (auto& f : writeCapture(c, out).files) r.files.push_back(f);
     frames.push_back(datasetFrame(c));
   });
-  if (s.cancelled) return {{}, true};
+  if (s.cancelled) return {{}, true, 0.0};
   for (auto& f : writeDatasetMetadata(frames, dir)) r.files.push_back(f);
   return r;
 }
@@ -246,6 +253,7 @@ DatasetRunSummary runDataset(const Manifest& manifest, const DatasetRunOptions& 
       report.seconds =
           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       report.files = files.size();
+      report.renderSeconds = r.renderSeconds;
       OutputSet last(tmp);
       last.addText("item.json", JsonObject()
                                     .setInteger("item", index)
@@ -271,6 +279,7 @@ DatasetRunSummary runDataset(const Manifest& manifest, const DatasetRunOptions& 
       line.set("status", "failed").set("error", std::string(e.what()));
     }
     line.set("seconds", report.seconds)
+        .set("render_seconds", report.renderSeconds)
         .set("shard", shardText)
         .set("parameters", parametersJson(item));
     appendLine(options.directory / "index.jsonl", line.line());

@@ -5,7 +5,8 @@
 //   DIR/dataset.json             the manifest's name, hash and item count (for --status)
 //   DIR/index.jsonl              one JSON line per item that ended (done or failed): item,
 //                                status, parameters, files with their FNV-1a hashes,
-//                                hash of the resolved item, seconds, shard
+//                                hash of the resolved item, seconds (wall) and
+//                                render_seconds (in render()), shard
 //   DIR/items/NNNNNN/            the item's capture (or sequence) outputs, written with
 //                                reproducible bytes, plus scene.yaml (the resolved scene),
 //                                params.json (what the item sets) and item.json (written
@@ -49,7 +50,8 @@ const char* itemStatusName(ItemStatus status);
 struct ItemReport {
   std::size_t index = 0;
   ItemStatus status = ItemStatus::kDone;
-  double seconds = 0.0;       // render and write
+  double seconds = 0.0;        // the item's wall time: load, render, write, hash
+  double renderSeconds = 0.0;  // of it in render() (a sequence: summed over frames)
   std::size_t files = 0;      // written
   std::string message;        // why it failed
 };

@@ -20,10 +20,39 @@ struct Draw {
   SourceLocation where;
   double lo = 0.0, hi = 0.0;                     // uniform, log_uniform; normal: min, max
   double mean = 0.0, sd = 1.0;                   // normal
-  std::vector<std::string> choices;              // choice: values as YAML text
+  std::vector<std::vector<std::string>> choices;  // choice: per option the values (YAML text)
+  std::vector<std::string> paths;                 // choice over "a, b": the zipped key paths
   glm::dvec3 centre{0.0};                        // orbit
   std::pair<double, double> radius, azimuth, elevation;
 };
+
+// A key "a.b, c.d" names several key paths set together (zipped): a grid axis or a choice
+// whose every value is a list with one entry per path.
+std::vector<std::string> zippedPaths(const std::string& key, const YamlValue& where) {
+  std::vector<std::string> paths;
+  std::size_t start = 0;
+  while (true) {
+    const std::size_t comma = key.find(',', start);
+    std::string p = key.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+    while (!p.empty() && p.front() == ' ') p.erase(p.begin());
+    while (!p.empty() && p.back() == ' ') p.pop_back();
+    (void)parseKeyPath(p, where.where(), where.key());
+    paths.push_back(p);
+    if (comma == std::string::npos) break;
+    start = comma + 1;
+  }
+  return paths;
+}
+
+std::vector<std::string> zippedValues(const std::vector<std::string>& paths, const YamlValue& v) {
+  if (paths.size() == 1) return {yamlFlowText(v)};
+  const std::vector<YamlValue> items = v.isSequence() ? v.items() : std::vector<YamlValue>{};
+  if (items.size() != paths.size())
+    v.fail("expected a list of " + std::to_string(paths.size()) + " values, one per key path");
+  std::vector<std::string> out;
+  for (const YamlValue& x : items) out.push_back(yamlFlowText(x));
+  return out;
+}
 
 // [lo, hi] with lo ≤ hi (and lo > 0 when positive is asked).
 std::pair<double, double> range(const YamlValue& v, bool positive = false) {
@@ -50,6 +79,8 @@ Draw parseDraw(const std::string& path, const YamlValue& spec) {
               "{normal: {mean, sd, min, max}}, {choice: [...]}, {orbit: {...}}");
   const std::string kind = keys.front();
   const YamlValue v = *m.find(kind);
+  if (path.find(',') != std::string::npos && kind != "choice")
+    v.fail("several key paths at once (\"a, b\") take a choice of lists");
   if (kind == "uniform") {
     d.kind = Draw::Kind::kUniform;
     std::tie(d.lo, d.hi) = range(v);
@@ -70,11 +101,13 @@ Draw parseDraw(const std::string& path, const YamlValue& spec) {
       v.fail("[min, max] keeps less than 0.1 % of this normal distribution");
   } else if (kind == "choice") {
     d.kind = Draw::Kind::kChoice;
-    for (const YamlValue& c : v.items()) d.choices.push_back(yamlFlowText(c));
+    d.paths = zippedPaths(path, spec);
+    for (const YamlValue& c : v.items()) d.choices.push_back(zippedValues(d.paths, c));
     if (d.choices.empty()) v.fail("a choice needs at least one value");
   } else if (kind == "orbit") {
     d.kind = Draw::Kind::kOrbit;
     const std::string suffix = "position";
+    if (path.find(',') != std::string::npos) v.fail("an orbit draws one key path");
     if (path.size() < suffix.size() || path.compare(path.size() - suffix.size(), suffix.size(),
                                                     suffix) != 0)
       v.fail("an orbit draws a camera position: its key path ends in 'position'");
@@ -122,8 +155,10 @@ std::vector<YamlEdit> drawValue(const Draw& d, std::uint64_t seed, std::size_t i
     case Draw::Kind::kChoice: {
       const auto n = static_cast<double>(d.choices.size());
       const auto k = static_cast<std::size_t>(std::min(n - 1.0, std::floor(rng.uniformOpen() * n)));
-      value = d.choices[k];
-      break;
+      std::vector<YamlEdit> edits;
+      for (std::size_t p = 0; p < d.paths.size(); ++p)
+        edits.push_back({d.paths[p], d.choices[k][p], d.where, d.key});
+      return edits;
     }
     case Draw::Kind::kOrbit: {
       const double r = uniform(d.radius.first, d.radius.second);
@@ -185,16 +220,22 @@ Manifest parseManifest(const std::string& text, const std::string& displayName,
     for (const YamlValue& item : v->items()) explicitItems.emplace_back(editsOf(item), item.where());
 
   // The grid: key paths and their value lists, as combinations (first key slowest).
-  std::vector<std::vector<YamlEdit>> axes;
+  std::vector<std::vector<std::vector<YamlEdit>>> axes;  // per axis, per value: its edits
   std::optional<SourceLocation> gridWhere;
   if (auto v = top.find("grid")) {
     gridWhere = v->where();
     YamlMap g(*v);
     for (const std::string& path : g.keys()) {
       const YamlValue values = *g.find(path);
-      (void)parseKeyPath(path, values.where(), values.key());
-      std::vector<YamlEdit> axis;
-      for (const YamlValue& x : values.items()) axis.push_back({path, yamlFlowText(x), x.where(), x.key()});
+      const std::vector<std::string> paths = zippedPaths(path, values);
+      std::vector<std::vector<YamlEdit>> axis;
+      for (const YamlValue& x : values.items()) {
+        const std::vector<std::string> texts = zippedValues(paths, x);
+        std::vector<YamlEdit> cell;
+        for (std::size_t p = 0; p < paths.size(); ++p)
+          cell.push_back({paths[p], texts[p], x.where(), x.key()});
+        axis.push_back(std::move(cell));
+      }
       if (axis.empty()) values.fail("a grid axis needs at least one value");
       axes.push_back(std::move(axis));
     }
@@ -211,7 +252,7 @@ Manifest parseManifest(const std::string& text, const std::string& displayName,
       YamlMap dm(*d);
       for (const std::string& path : dm.keys()) {
         const YamlValue spec = *dm.find(path);
-        (void)parseKeyPath(path, spec.where(), spec.key());
+        if (path.find(',') == std::string::npos) (void)parseKeyPath(path, spec.where(), spec.key());
         draws.push_back(parseDraw(path, spec));
       }
     }
@@ -256,7 +297,8 @@ Manifest parseManifest(const std::string& text, const std::string& displayName,
     std::vector<YamlEdit> cell;
     std::size_t rest = c;
     for (std::size_t a = axes.size(); a-- > 0;) {  // last axis fastest
-      cell.insert(cell.begin(), axes[a][rest % axes[a].size()]);
+      const std::vector<YamlEdit>& value = axes[a][rest % axes[a].size()];
+      cell.insert(cell.begin(), value.begin(), value.end());
       rest /= axes[a].size();
     }
     for (std::size_t r = 0; r < perCombination; ++r) {

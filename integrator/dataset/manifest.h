@@ -17,6 +17,9 @@
 // | random.draw    | —    | {}       | key path → {uniform: [a, b]} | {log_uniform: [a, b]} | |
 // |                |      |          | {normal: {mean, sd, min, max}} | {choice: [v, …]} |    |
 // |                |      |          | {orbit: {centre, radius, azimuth_deg, elevation_deg}} |
+// A grid or choice key "a.b, c.d" sets several key paths together: each value is a list with
+// one entry per path (e.g. a sensor and the focal length that keeps the field of view).
+// A null value removes the key from the base scene.
 // Item order: the explicit items, then for each grid combination its random.count draws.
 // Draw j of item i uses the stream CounterRng(streamKey(seed, i, j + 1)); the item's seeds
 // are streamKey(seed, i, 0) and streamKey(seed, i, kNoiseStream), halved to fit int64 — so

@@ -117,7 +117,10 @@ EditedYaml applyYamlEdits(const std::string& text, const std::string& file,
         canonical += (canonical.empty() ? "" : ".") + s.text;
         walked += (walked.empty() ? "" : ".") + s.text;
         if (last) {
-          node[s.text] = value;
+          if (value.IsNull())
+            node.remove(s.text);  // null: the key goes, the loader's default applies
+          else
+            node[s.text] = value;
         } else {
           if (!node[s.text]) node[s.text] = YAML::Node(YAML::NodeType::Map);
           node.reset(node[s.text]);  // rebinds (operator= would overwrite the value)

@@ -8,6 +8,7 @@
 // Keys are letters, digits and '_'. Every key and element up to the last must exist but a
 // missing map key is created (empty map) so that a path may add a block the base scene
 // does not have, e.g. sensor.auto_exposure.target; the scene loader then checks the result.
+// A null value (~ or null) on a map key removes the key (the loader's default applies).
 // Errors (InputError at the edit's location, naming the edit's key):
 //   a malformed path, an index past the end, no element of that name, a key inside a
 //   scalar, a value that is not YAML.

@@ -1,0 +1,195 @@
+// `camsim dataset` (cli/dataset_command.cpp, integrator/dataset/dataset_run.cpp) on the real
+// binary:
+//  - shards 0..N−1 together write exactly the items of an unsharded run, byte for byte, each
+//    item once in the index;
+//  - a bad manifest exits 2 naming the manifest's file:line and writes nothing;
+//  - SIGKILL mid-item, then --resume: every item done once, byte-identical to a clean run,
+//    no temporary left; a second --resume renders nothing; a changed base scene renders
+//    again; SIGTERM exits 143;
+//  - the shard from Slurm's and Kubernetes' environment variables, and its errors.
+#include "cli/dataset_command.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <map>
+#include <set>
+
+#include "cli/args.h"
+#include "tests/support/child_process.h"
+#include "tests/support/run_command.h"
+#include "tests/support/temp_dir.h"
+#include "tests/support/text_file.h"
+
+namespace camsim {
+namespace {
+
+namespace fs = std::filesystem;
+using test::readFile;
+using test::writeFile;
+
+// A small scene with a sensor (noise on): each item is a fraction of a second.
+std::string baseScene(int spp) {
+  return "format: camsim-scene/1\nname: probe\nrender: {spp: " + std::to_string(spp) +
+         "}\n"
+         "camera: {position: [0, 0, -3], look_at: [0, 0, 0], resolution: [24, 24], "
+         "focal_length_mm: 0.05, shutter: {open: 0, close: 0.01}}\n"
+         "sensor: {model: smartphone-1.4um, iso: 200, noise: full}\n"
+         "materials: {grey: {type: diffuse, reflectance: 0.5}}\n"
+         "shapes:\n"
+         "  - {name: lamp, type: sphere, centre: [0, 2, 0], radius: 0.5, emission: {luminance: 20000}}\n"
+         "  - {name: ball, type: sphere, centre: [0, 0, 0], radius: 1, material: grey}\n";
+}
+
+const char* kManifest =
+    "format: camsim-dataset/1\nscene: base.yaml\nseed: 11\n"
+    "random:\n  count: 6\n  draw:\n"
+    "    camera.position: {orbit: {centre: [0, 0, 0], radius: [2.5, 3.5], azimuth_deg: [-40, 40]}}\n"
+    "    sensor.iso: {choice: [100, 400]}\n";
+
+// Every file under dir (relative path → content), temporaries included.
+std::map<std::string, std::string> tree(const fs::path& dir, bool withIndex = false) {
+  std::map<std::string, std::string> files;
+  for (const auto& e : fs::recursive_directory_iterator(dir)) {
+    if (!e.is_regular_file()) continue;
+    const std::string rel = fs::relative(e.path(), dir).string();
+    if (!withIndex && rel == "index.jsonl") continue;
+    files[rel] = readFile(e.path());
+  }
+  return files;
+}
+
+std::multiset<std::string> indexItems(const fs::path& dir, const std::string& status) {
+  std::multiset<std::string> items;
+  std::istringstream in(readFile(dir / "index.jsonl"));
+  for (std::string line; std::getline(in, line);)
+    if (line.find("\"status\": \"" + status + "\"") != std::string::npos)
+      items.insert(line.substr(0, line.find(',')));
+  return items;
+}
+
+class DatasetCommand : public testing::Test {
+ protected:
+  void SetUp() override {
+    writeFile(dir_.path() / "base.yaml", baseScene(4));
+    writeFile(manifest_, kManifest);
+  }
+  test::RunResult run(const std::string& args) {
+    return test::runCamsim("dataset " + test::quote(manifest_.string()) + " " + args, dir_.path());
+  }
+  test::TempDir dir_;
+  fs::path manifest_ = dir_.path() / "sweep.yaml";
+};
+
+TEST_F(DatasetCommand, ShardsTogetherWriteExactlyTheItemsOfOneRun) {
+  const fs::path whole = dir_.path() / "whole", parts = dir_.path() / "parts";
+  const auto r = run("-o " + whole.string() + " --threads 2");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  for (int k = 0; k < 4; ++k) {
+    const auto s = run("-o " + parts.string() + " --shard " + std::to_string(k) + "/4 --threads 1");
+    ASSERT_EQ(s.exitCode, 0) << s.err;
+  }
+  const auto a = tree(whole), b = tree(parts);
+  ASSERT_EQ(a.size(), b.size());
+  EXPECT_EQ(a.size(), 1u + 6u * 9u);  // dataset.json + per item 6 outputs, scene, params, item
+  for (const auto& [name, content] : a) {
+    ASSERT_TRUE(b.count(name)) << name;
+    EXPECT_TRUE(b.at(name) == content) << name << " differs";
+  }
+  const auto done = indexItems(parts, "done");
+  EXPECT_EQ(done.size(), 6u);
+  EXPECT_EQ(std::set<std::string>(done.begin(), done.end()).size(), 6u);  // no item twice
+}
+
+TEST_F(DatasetCommand, ABadManifestExitsTwoNamingItsLineAndWritesNothing) {
+  writeFile(manifest_, std::string(kManifest) + "    camera.f_number: {uniform: [-2, 1]}\n");
+  const fs::path out = dir_.path() / "out";
+  const auto r = run("-o " + out.string());
+  EXPECT_EQ(r.exitCode, 2) << r.err;
+  EXPECT_NE(r.err.find(manifest_.string() + ":9:"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("camera.f_number"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(out));
+}
+
+TEST_F(DatasetCommand, KilledMidItemResumesWithNothingLostOrTwice) {
+  writeFile(dir_.path() / "base.yaml", baseScene(2048));  // ~0.5-1 s per item
+  const fs::path clean = dir_.path() / "clean", out = dir_.path() / "out";
+  ASSERT_EQ(run("-o " + clean.string()).exitCode, 0);
+  {
+    test::Child child({"dataset", manifest_.string(), "-o", out.string(), "--threads", "1"},
+                      dir_.path() / "killed");
+    // Kill it while an item is in progress: after two items are done.
+    while (child.running() && indexItems(out, "done").size() < 2 && child.secondsSinceStart() < 120)
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    ASSERT_TRUE(child.running()) << "finished before it could be killed";
+    child.signal(SIGKILL);
+    ASSERT_TRUE(child.wait(std::chrono::seconds(10)));
+  }
+  const auto r = run("-o " + out.string() + " --resume");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_NE(r.err.find("removed"), std::string::npos) << "no temporary was left? " << r.err;
+  const auto a = tree(clean), b = tree(out);
+  ASSERT_EQ(a.size(), b.size());
+  for (const auto& [name, content] : a) {
+    ASSERT_TRUE(b.count(name)) << name;
+    EXPECT_TRUE(b.at(name) == content) << name << " differs";
+  }
+  for (const auto& [name, content] : b) EXPECT_EQ(name.find("camsim-tmp"), std::string::npos) << name;
+  const auto done = indexItems(out, "done");
+  EXPECT_EQ(done.size(), 6u);
+  EXPECT_EQ(std::set<std::string>(done.begin(), done.end()).size(), 6u);
+
+  // Up to date: nothing rendered. A changed base scene: every item again.
+  const auto again = run("-o " + out.string() + " --resume");
+  EXPECT_NE(again.err.find("0 rendered, 6 up to date"), std::string::npos) << again.err;
+  writeFile(dir_.path() / "base.yaml", baseScene(8));
+  const auto changed = run("-o " + out.string() + " --resume");
+  EXPECT_NE(changed.err.find("6 rendered, 0 up to date"), std::string::npos) << changed.err;
+  const auto status = test::runCamsim("dataset --status " + out.string(), dir_.path());
+  EXPECT_EQ(status.exitCode, 0);
+  EXPECT_NE(status.out.find("6 items: 6 done, 0 failed, 0 missing"), std::string::npos) << status.out;
+}
+
+TEST_F(DatasetCommand, SigtermStopsWithExitCode143AndTheItemInProgressDropped) {
+  writeFile(dir_.path() / "base.yaml", baseScene(4096));
+  const fs::path out = dir_.path() / "out";
+  test::Child child({"dataset", manifest_.string(), "-o", out.string(), "--threads", "1"},
+                    dir_.path() / "term");
+  while (child.running() && child.cpuSeconds() < 1.0 && child.secondsSinceStart() < 60)
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  ASSERT_TRUE(child.running());
+  child.signal(SIGTERM);
+  const auto status = child.wait(std::chrono::seconds(60));
+  ASSERT_TRUE(status);
+  EXPECT_EQ(test::exitCode(*status), 143) << child.err();
+  for (const auto& [name, content] : tree(out)) EXPECT_EQ(name.find("camsim-tmp"), std::string::npos) << name;
+  const auto st = test::runCamsim("dataset --status " + out.string(), dir_.path());
+  EXPECT_EQ(st.exitCode, 1) << st.out;  // not all done
+  EXPECT_NE(st.out.find("missing"), std::string::npos) << st.out;
+}
+
+TEST(DatasetShard, FromFlagsSlurmAndKubernetes) {
+  DatasetArgs a;
+  a.manifest = "m.yaml";
+  EXPECT_EQ(resolveShard(a, {}).count, 1u);
+  const Shard slurm = resolveShard(
+      a, {{"SLURM_ARRAY_TASK_ID", "7"}, {"SLURM_ARRAY_TASK_MIN", "5"}, {"SLURM_ARRAY_TASK_COUNT", "4"}});
+  EXPECT_EQ(slurm.index, 2u);
+  EXPECT_EQ(slurm.count, 4u);
+  EXPECT_THROW(resolveShard(a, {{"SLURM_ARRAY_TASK_ID", "9"}, {"SLURM_ARRAY_TASK_COUNT", "4"}}),
+               UsageError);  // not a contiguous 0-based array
+  EXPECT_THROW(resolveShard(a, {{"SLURM_ARRAY_TASK_ID", "1"}}), UsageError);
+  EXPECT_THROW(resolveShard(a, {{"JOB_COMPLETION_INDEX", "1"}}), UsageError);  // no count
+  const Shard k8s = resolveShard(a, {{"JOB_COMPLETION_INDEX", "3"}, {"CAMSIM_SHARD_COUNT", "5"}});
+  EXPECT_EQ(k8s.index, 3u);
+  EXPECT_EQ(k8s.count, 5u);
+  a.shard = "1/3";  // the flag wins over the environment
+  const Shard flag = resolveShard(a, {{"SLURM_ARRAY_TASK_ID", "0"}, {"SLURM_ARRAY_TASK_COUNT", "2"}});
+  EXPECT_EQ(flag.index, 1u);
+  EXPECT_EQ(flag.count, 3u);
+  a.shard = "3/3";
+  EXPECT_THROW(resolveShard(a, {}), UsageError);
+}
+
+}  // namespace
+}  // namespace camsim
