@@ -18,6 +18,16 @@ double parsePositive(const std::string& flag, const std::string& text, double hi
   return v;
 }
 
+// "k/M" with 0 ≤ k < M.
+std::pair<int, int> parseTiles(const std::string& flag, const std::string& text) {
+  const std::size_t slash = text.find('/');
+  if (slash == std::string::npos)
+    throw UsageError(flag + " expects k/M (share k of M, 0 <= k < M), got '" + text + "'");
+  const int m = static_cast<int>(parseInteger(flag + " M", text.substr(slash + 1), 1, 1 << 20));
+  const int k = static_cast<int>(parseInteger(flag + " k", text.substr(0, slash), 0, m - 1));
+  return {k, m};
+}
+
 }  // namespace
 
 std::int64_t parseInteger(const std::string& flag, const std::string& text, std::int64_t lo,
@@ -40,7 +50,10 @@ std::string usageText() {
          "                [--max-memory-gb X] [--exposure-time S] [--f-number N] [--iso N]\n"
          "                [--noise none|photon|full] [--noise-seed N]\n"
          "                [--ocio-config FILE] [--display D] [--view V] [--look L]\n"
-         "                [--aov-previews]\n"
+         "                [--aov-previews] [--reproducible] [--tiles k/M]\n"
+         "  camsim merge PART... [-o DIR] [--scene FILE] [--ocio-config FILE] [--display D]\n"
+         "               [--view V] [--look L] [--aov-previews]\n"
+         "                                          (render --tiles parts: camsim merge --help)\n"
          "  camsim ptc SENSOR [-o DIR] [--seed N]   (photon transfer: camsim ptc --help)\n"
          "  camsim bench [--quick] [--out DIR] [--scenes a,b] [--max-spp N] ...\n"
          "                                          (speed against error: camsim bench --help)\n"
@@ -73,6 +86,12 @@ std::string usageText() {
          "                     scene's ground-truth layers (depth, normal, ids, motion…)\n"
          "  --max-memory-gb X  refuse to start a render whose estimated memory exceeds X GB\n"
          "                     (default: 75 % of physical memory)\n"
+         "  --reproducible     leave the render time out of NAME.exr and NAME.json, so that the\n"
+         "                     same scene, seed and build give the same bytes in every file\n"
+         "  --tiles k/M        render only share k of M of the image's 16x16 tiles (those t\n"
+         "                     with t % M == k) and write just DIR/NAME.part-k-of-M.exr;\n"
+         "                     camsim merge PART... assembles the M parts and writes exactly\n"
+         "                     what render --reproducible writes (docs/output.md)\n"
          "\n"
          "exit codes: 0 success, 1 internal error, 2 bad input (scene, files or arguments),\n"
          "            130 interrupted\n";
@@ -131,6 +150,10 @@ Command parseArgs(const std::vector<std::string>& args) {
       r.look = value();
     } else if (a == "--aov-previews") {
       r.aovPreviews = true;
+    } else if (a == "--reproducible") {
+      r.reproducible = true;
+    } else if (a == "--tiles") {
+      r.tiles = parseTiles(a, value());
     } else if (a == "--noise-seed") {
       r.noiseSeed = static_cast<std::uint64_t>(parseInteger(a, value(), 0, INT64_MAX));
     } else if (!a.empty() && a[0] == '-') {
@@ -141,6 +164,11 @@ Command parseArgs(const std::vector<std::string>& args) {
       throw UsageError("more than one scene given: '" + *r.scene + "' and '" + a + "'");
     }
   }
+  if (r.tiles && (r.aovPreviews || !r.ocioConfig.empty() || !r.display.empty() || !r.view.empty() ||
+                  !r.look.empty()))
+    throw UsageError(
+        "--aov-previews, --ocio-config, --display, --view and --look shape the files camsim "
+        "merge writes: give them to camsim merge, not to render --tiles");
   return cmd;
 }
 

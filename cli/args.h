@@ -5,6 +5,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "sensor/model/sensor_model.h"
@@ -33,6 +34,10 @@ struct RenderArgs {
   // Output transform (OpenColorIO): empty = the config's defaults.
   std::string ocioConfig, display, view, look;
   bool aovPreviews = false;  // --aov-previews
+  // --reproducible: no render time in NAME.exr and NAME.json (CaptureOutputOptions).
+  bool reproducible = false;
+  // --tiles k/M: (k, M), render share k of M of the tiles into a part (tile_parts.h).
+  std::optional<std::pair<int, int>> tiles;
 };
 
 struct Command {

@@ -2,12 +2,14 @@
 #include "cli/render_command.h"
 
 #include <atomic>
+#include <charconv>
 #include <ostream>
 
 #include "cli/progress.h"
 #include "cli/resource_guard.h"
 #include "integrator/capture/capture_writer.h"
 #include "integrator/capture/dataset_writer.h"
+#include "integrator/capture/tile_parts.h"
 #include "integrator/scene/scene_loader.h"
 #include "sensor/base/format.h"
 #include "sensor/base/input_error.h"
@@ -17,43 +19,10 @@
 namespace camsim {
 namespace {
 
-// The scene with the command line's overrides applied.
-SceneDescription load(const RenderArgs& args) {
-  SceneDescription d;
-  if (!args.scene) {
-    d = loadSceneFromText(std::string(defaultSceneText()), "<default: scenes/cornell_box.yaml>",
-                          ".");
-  } else {
-    const std::filesystem::path path(*args.scene);
-    d = loadSceneFromText(readSceneFile(path), path.string(), sceneBaseDir(path));
-  }
-  if (args.spp) d.render.spp = *args.spp;
-  if (args.seed) d.render.seed = *args.seed;
-  if (args.exposureTimeS)
-    d.camera.shutter =
-        d.camera.shutter.scaled(*args.exposureTimeS / d.camera.shutter.effectiveTime());
-  if (args.fNumber) d.camera.fNumber = *args.fNumber;  // the stop follows (apertureDiameter)
-  if ((args.iso || args.noise || args.noiseSeed) && !d.sensor)
-    throw UsageError("--iso, --noise and --noise-seed need a scene with a sensor");
-  if (args.iso) d.sensor->iso = *args.iso;
-  if (args.noiseSeed) d.sensor->noiseSeed = *args.noiseSeed;
-  if (args.noise) d.sensor->noise = *args.noise;
-  return d;
-}
-
-void printCapture(const CaptureResult& r, std::ostream& log) {
-  const SceneDescription& desc = r.description;
-  if (desc.sensor && desc.sensor->autoExposure) {
-    const AutoExposure& ae = *desc.sensor->autoExposure;
-    log << "auto-exposure (" << meteringName(ae.metering) << ", target " << ae.target
-        << " of saturation): exposure time "
-        << desc.camera.shutter.effectiveTime() * r.exposureScale << " s (x" << r.exposureScale
-        << " the scene's), ISO " << desc.sensor->iso << "\n";
-  }
-  for (std::size_t i = 0; i < r.frames.size(); ++i)
-    if (r.frames[i].clippedFraction > 0.01)
-      log << "note: " << captureFrameFile(r, i) << ": " << 100.0 * r.frames[i].clippedFraction
-          << " % of photosites clipped\n";
+std::string shortest(double v) {
+  char buffer[32];
+  const auto result = std::to_chars(buffer, buffer + sizeof buffer, v);
+  return std::string(buffer, result.ptr);
 }
 
 void printInterrupted(const CaptureResult& r, const WrittenCapture& written, std::ostream& log) {
@@ -91,7 +60,7 @@ RenderCommandResult runSequence(SceneDescription desc, const CaptureOutputOption
   std::vector<DatasetFrame> dataset;
   const SequenceSummary summary =
       captureSequence(std::move(desc), options, [&](CaptureResult&& r, int k) {
-        printCapture(r, log);
+        printCaptureNotes(r, log);
         const WrittenCapture written = writeCapture(r, out);
         if (!r.cancelled) dataset.push_back(datasetFrame(r));
         outcome.files.insert(outcome.files.end(), written.files.begin(), written.files.end());
@@ -111,28 +80,113 @@ RenderCommandResult runSequence(SceneDescription desc, const CaptureOutputOption
   return outcome;
 }
 
+// --tiles k/M: share k of the tiles' films as DIR/NAME.part-k-of-M.exr, nothing else.
+RenderCommandResult runTilePart(SceneDescription desc, const RenderArgs& args,
+                                CaptureOptions options, std::ostream& log) {
+  const TileShare share{args.tiles->first, args.tiles->second};
+  options.tiles = share;
+  const std::string what = "part " + std::to_string(share.index) + " of " +
+                           std::to_string(share.count) + " of " + desc.name;
+  ProgressBar progress("rendering " + what);
+  options.progress = [&](int done, int total) { progress.update(done, total); };
+  const CaptureResult r = renderCaptureFilms(std::move(desc), options);
+  progress.finish();
+  if (r.cancelled) {
+    log << "render interrupted after " << r.tilesDone << " of " << r.tilesTotal << " tiles of "
+        << what << ": no part written\n";
+    return {{}, true};
+  }
+  const std::filesystem::path file =
+      writeTilePart(r, share, {args.outputDir, renderOverrides(args), args.reproducible});
+  const RenderStats& st = r.stats;
+  log << "modelled: " << st.modelled.describe() << "\n";
+  log << "rendered " << what << ": "
+      << share.tilesOf(renderTileCount({r.film.width, r.film.height})) << " of "
+      << renderTileCount({r.film.width, r.film.height}) << " tiles of " << r.film.width << "x"
+      << r.film.height << ", " << r.description.render.spp << " spp, " << st.threads << " threads, "
+      << formatSeconds(st.seconds) << ", rejected samples (NaN/Inf): " << st.rejectedSamples
+      << "\n";
+  log << "wrote " << file.string() << " (camsim merge assembles the " << share.count << " parts)\n";
+  return {{file}, false};
+}
+
 }  // namespace
+
+SceneDescription loadRenderScene(const RenderArgs& args) {
+  SceneDescription d;
+  if (!args.scene) {
+    d = loadSceneFromText(std::string(defaultSceneText()), std::string(kDefaultSceneName), ".");
+  } else {
+    const std::filesystem::path path(*args.scene);
+    d = loadSceneFromText(readSceneFile(path), path.string(), sceneBaseDir(path));
+  }
+  if (args.spp) d.render.spp = *args.spp;
+  if (args.seed) d.render.seed = *args.seed;
+  if (args.exposureTimeS)
+    d.camera.shutter =
+        d.camera.shutter.scaled(*args.exposureTimeS / d.camera.shutter.effectiveTime());
+  if (args.fNumber) d.camera.fNumber = *args.fNumber;  // the stop follows (apertureDiameter)
+  if ((args.iso || args.noise || args.noiseSeed) && !d.sensor)
+    throw UsageError("--iso, --noise and --noise-seed need a scene with a sensor");
+  if (args.iso) d.sensor->iso = *args.iso;
+  if (args.noiseSeed) d.sensor->noiseSeed = *args.noiseSeed;
+  if (args.noise) d.sensor->noise = *args.noise;
+  return d;
+}
+
+std::string renderOverrides(const RenderArgs& args) {
+  std::string out;
+  const auto add = [&out](const char* flag, const std::string& value) {
+    out += (out.empty() ? "" : " ") + std::string(flag) + " " + value;
+  };
+  if (args.spp) add("--spp", std::to_string(*args.spp));
+  if (args.seed) add("--seed", std::to_string(*args.seed));
+  if (args.exposureTimeS) add("--exposure-time", shortest(*args.exposureTimeS));
+  if (args.fNumber) add("--f-number", shortest(*args.fNumber));
+  if (args.iso) add("--iso", shortest(*args.iso));
+  if (args.noise) add("--noise", noiseModeName(*args.noise));
+  if (args.noiseSeed) add("--noise-seed", std::to_string(*args.noiseSeed));
+  return out;
+}
+
+void printCaptureNotes(const CaptureResult& r, std::ostream& log) {
+  const SceneDescription& desc = r.description;
+  if (desc.sensor && desc.sensor->autoExposure) {
+    const AutoExposure& ae = *desc.sensor->autoExposure;
+    log << "auto-exposure (" << meteringName(ae.metering) << ", target " << ae.target
+        << " of saturation): exposure time "
+        << desc.camera.shutter.effectiveTime() * r.exposureScale << " s (x" << r.exposureScale
+        << " the scene's), ISO " << desc.sensor->iso << "\n";
+  }
+  for (std::size_t i = 0; i < r.frames.size(); ++i)
+    if (r.frames[i].clippedFraction > 0.01)
+      log << "note: " << captureFrameFile(r, i) << ": " << 100.0 * r.frames[i].clippedFraction
+          << " % of photosites clipped\n";
+}
 
 RenderCommandResult runRender(const RenderArgs& args, std::ostream& log,
                               const std::atomic<bool>* cancel) {
-  SceneDescription desc = load(args);
+  SceneDescription desc = loadRenderScene(args);
   checkMemoryLimit(desc, args.maxMemoryGb);  // before any work
   CaptureOutputOptions out{
       args.outputDir, {args.ocioConfig, {args.display, args.view, args.look}}, args.aovPreviews};
-  for (const auto& stale : OutputSet::prepareDirectory(out.directory))
-    log << "removed " << stale.string() << " (left by a run that was killed)\n";
-  checkPictureSettings(out.picture);  // a bad config or display/view/look fails before rendering
-
+  out.reproducible = args.reproducible;
   CaptureOptions options;
   options.threads = args.threads;
   options.cancel = cancel;
+  if (args.tiles && desc.frames) checkTileable(desc, ModelledDimensions{});  // before any file
+  for (const auto& stale : OutputSet::prepareDirectory(out.directory))
+    log << "removed " << stale.string() << " (left by a run that was killed)\n";
+  if (args.tiles) return runTilePart(std::move(desc), args, options, log);
+  checkPictureSettings(out.picture);  // a bad config or display/view/look fails before rendering
+
   if (desc.frames) return runSequence(std::move(desc), out, options, log);
 
   ProgressBar progress("rendering " + desc.name);
   options.progress = [&](int done, int total) { progress.update(done, total); };
   const CaptureResult result = capture(std::move(desc), options);
   progress.finish();
-  printCapture(result, log);
+  printCaptureNotes(result, log);
   const WrittenCapture written = writeCapture(result, out);
   RenderCommandResult outcome{written.files, result.cancelled};
   if (result.cancelled) {

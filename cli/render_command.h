@@ -1,5 +1,7 @@
 // `camsim render`: parse the scene and overrides → capture() → writeCapture() → print
-// (integrator/capture/): all outputs appear atomically.
+// (integrator/capture/): all outputs appear atomically. With --tiles k/M only that share
+// of the tiles is rendered (renderCaptureFilms) and written as DIR/NAME.part-k-of-M.exr
+// (integrator/capture/tile_parts.h), for camsim merge (merge_command.h).
 #pragma once
 
 #include <atomic>
@@ -19,6 +21,21 @@ std::string_view defaultSceneFile(std::string_view relPath);
 inline std::string_view defaultSceneText() {
   return defaultSceneFile("cornell_box.yaml");
 }
+
+struct CaptureResult;
+struct SceneDescription;
+
+// The display name of the embedded default scene (NAME.json's "scene").
+inline constexpr std::string_view kDefaultSceneName = "<default: scenes/cornell_box.yaml>";
+
+// args.scene (none: the default scene) loaded, with the command line's overrides applied.
+// InputError for a bad scene, UsageError for an override the scene cannot take.
+SceneDescription loadRenderScene(const RenderArgs& args);
+// The overrides of the loaded scene in args as render flags ("--spp 4 --iso 200"; numbers
+// in their shortest round-trip form), for a tile part: parseArgs of them gives them back.
+std::string renderOverrides(const RenderArgs& args);
+// The notes a capture prints: auto-exposure's choice, frames with clipped photosites.
+void printCaptureNotes(const CaptureResult& result, std::ostream& log);
 
 struct RenderCommandResult {
   std::vector<std::filesystem::path> files;  // written, final names

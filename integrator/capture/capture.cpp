@@ -6,6 +6,8 @@
 #include <memory>
 
 #include "integrator/scene/scene.h"
+#include "sensor/base/check.h"
+#include "sensor/base/input_error.h"
 #include "sensor/base/luts_directory.h"
 #include "sensor/isp/color_correction.h"
 #include "sensor/model/exposure_control.h"
@@ -156,16 +158,58 @@ void finish(CaptureResult& out, const RenderOptions& o) {
 
 }  // namespace
 
-CaptureResult capture(SceneDescription description, const CaptureOptions& options) {
+void checkTileable(const SceneDescription& desc, const ModelledDimensions& modelled) {
+  const SourceLocation where{desc.sourceFile, 0, 0};
+  if (desc.frames)
+    throw InputError(where, "frames",
+                     "a frame sequence cannot be split into tiles (--tiles): each frame is a "
+                     "capture of its own; render the sequence in one process");
+  if (!desc.sensor || !modelled.time) return;
+  const SensorSettings& sensor = *desc.sensor;
+  const bool bracketMoves = std::any_of(sensor.bracketEv.begin(), sensor.bracketEv.end(),
+                                        [](double ev) { return ev != 0.0; });
+  if (!sensor.autoExposure && !bracketMoves) return;
+  const std::string moving = "something moves during the exposure (" + modelled.describe() +
+                             "), so motion blur depends on the exposure time and ";
+  if (sensor.autoExposure)
+    throw InputError(where, "sensor.auto_exposure",
+                     "this capture cannot be split into tiles (--tiles): " + moving +
+                         "auto-exposure renders the film again at the exposure time it meters "
+                         "on the whole first film; render it in one process, or give a fixed "
+                         "exposure time instead of auto_exposure");
+  throw InputError(where, "sensor.bracket_ev",
+                   "this capture cannot be split into tiles (--tiles): " + moving +
+                       "each bracket EV != 0 is rendered again at its own exposure time, a "
+                       "film the parts do not carry; render it in one process, or leave the "
+                       "brackets out");
+}
+
+CaptureResult renderCaptureFilms(SceneDescription description, const CaptureOptions& options) {
   CaptureResult out;
   out.description = std::move(description);
-  const RenderOptions o = renderOptionsFor(out.description, options, out);
-  {
-    const Scene scene(out.description);
-    out.description.releaseDecodedImages();  // the Scene holds its own form of them
-    renderFilm(scene, o, out);
-  }  // a re-render for auto-exposure or brackets builds its own
+  RenderOptions o = renderOptionsFor(out.description, options, out);
+  if (options.tiles) {
+    o.tiles = *options.tiles;
+    checkTileable(out.description, ModelledDimensions{});  // a sequence: before the scene
+  }
+  // This scene is gone before a re-render for auto-exposure or brackets builds its own.
+  const Scene scene(out.description);
+  if (options.tiles) checkTileable(out.description, scene.modelled());
+  out.description.releaseDecodedImages();  // the Scene holds its own form of them
+  renderFilm(scene, o, out);
+  return out;
+}
+
+void finishCapture(CaptureResult& out, const CaptureOptions& options) {
+  RenderOptions o = renderOptionsFor(out.description, options, out);
+  o.progress = nullptr;
   finish(out, o);
+}
+
+CaptureResult capture(SceneDescription description, const CaptureOptions& options) {
+  CAMSIM_CHECK(!options.tiles);
+  CaptureResult out = renderCaptureFilms(std::move(description), options);
+  finishCapture(out, options);
   return out;
 }
 

@@ -17,11 +17,21 @@
 //                   (isp_pipeline.h) to scene-linear ACEScg
 // Without a sensor, step 6 is XYZ → ACEScg with the mean luminance exposed to 0.18.
 //
+// capture() is renderCaptureFilms() (step 1) then finishCapture() (steps 2–6), so that the
+// later steps can run on films rendered elsewhere: one frame split across processes as
+// tile shares (render.h TileShare; camsim render --tiles, assembled by camsim merge:
+// tile_parts.h). Step 1 is per pixel (film, sensor film and every AOV channel, ID mattes
+// included, depend on the pixel's own samples only), steps 2–6 need the whole image. A
+// capture that renders again in step 4 — something moves during the exposure and
+// auto-exposure or a bracket changes the exposure time — needs the whole film before it
+// can render, so it cannot be tiled (checkTileable); nor can a frame sequence.
+//
 // | option     | unit | default | meaning |
 // |------------|------|---------|---------|
 // | threads    | —    | 0       | 0: all hardware threads; the result is the same for any count |
 // | progress   | —    | none    | (tiles done, tiles total) of the main render, from worker threads |
 // | cancel     | —    | none    | checked between tiles; a cancelled capture has only the finished tiles |
+// | tiles      | —    | none    | renderCaptureFilms only: render this share of the tiles (render.h) |
 #pragma once
 
 #include <atomic>
@@ -42,6 +52,7 @@ struct CaptureOptions {
   int threads = 0;
   std::function<void(int, int)> progress;
   const std::atomic<bool>* cancel = nullptr;
+  std::optional<TileShare> tiles;
 };
 
 struct CaptureFrame {
@@ -79,7 +90,23 @@ struct CaptureResult {
 };
 
 // Throws InputError for inputs only the capture discovers (a file a re-render reads again).
+// options.tiles must be empty (a share is finished only once its film is whole).
 CaptureResult capture(SceneDescription description, const CaptureOptions& options = {});
+
+// Step 1 alone: description (decoded texels released), stats, film, sensor film, AOVs and
+// the tile counts; nothing after the render ran. With options.tiles only that share's
+// tiles hold values (the others are 0), the stats count its samples, and a scene that
+// cannot be tiled is an InputError (checkTileable) before any rendering.
+CaptureResult renderCaptureFilms(SceneDescription description, const CaptureOptions& options = {});
+// Steps 2–6 on result.film, sensorFilm and stats.modelled (nothing when result.cancelled):
+// fills exposureScale, frames, referenceFrame, developed, picture, displayExposure. A
+// re-render (step 4) builds the scene from result.description and renders the whole image.
+void finishCapture(CaptureResult& result, const CaptureOptions& options = {});
+
+// InputError (naming the scene file and the key) when a capture of `description`, which
+// integrates `modelled`, cannot be split into tile shares: a frame sequence (`frames`), or
+// a re-render after metering (step 4: modelled.time with auto-exposure or a bracket EV ≠ 0).
+void checkTileable(const SceneDescription& description, const ModelledDimensions& modelled);
 
 struct SequenceSummary {
   int frames = 0;    // handed to onFrame

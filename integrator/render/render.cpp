@@ -13,11 +13,10 @@
 #include "integrator/render/aov_film.h"
 #include "integrator/render/film.h"
 #include "integrator/sampling/sobol_sampler.h"
+#include "sensor/base/check.h"
 
 namespace camsim {
 namespace {
-
-constexpr int kTileSize = 16;
 
 struct TileStats {
   std::uint64_t samples = 0, rejected = 0;
@@ -86,6 +85,20 @@ void renderTile(const Scene& scene, Film& film, const RenderOptions& options,
 
 }  // namespace
 
+int renderTileCount(glm::ivec2 resolution) {
+  const int tilesX = (resolution.x + kRenderTileSize - 1) / kRenderTileSize;
+  const int tilesY = (resolution.y + kRenderTileSize - 1) / kRenderTileSize;
+  return tilesX * tilesY;
+}
+
+TileRect renderTileRect(glm::ivec2 resolution, int tile) {
+  const int tilesX = (resolution.x + kRenderTileSize - 1) / kRenderTileSize;
+  TileRect r;
+  r.lo = glm::ivec2((tile % tilesX) * kRenderTileSize, (tile / tilesX) * kRenderTileSize);
+  r.hi = glm::min(r.lo + kRenderTileSize, resolution);
+  return r;
+}
+
 RenderResult render(const Scene& scene, const SpectralResponse& response,
                     const RenderOptions& options) {
   return render(scene, std::vector<const SpectralResponse*>{&response}, options);
@@ -99,9 +112,9 @@ RenderResult render(const Scene& scene, const std::vector<const SpectralResponse
   dims.time = dims.time || options.forceTime;
   Film film(res, responses);
   AovFilm aovs(scene);
-  const int tilesX = (res.x + kTileSize - 1) / kTileSize;
-  const int tilesY = (res.y + kTileSize - 1) / kTileSize;
-  const int tileCount = tilesX * tilesY;
+  const TileShare share = options.tiles;
+  CAMSIM_CHECK(share.count >= 1 && share.index >= 0 && share.index < share.count);
+  const int tileCount = share.tilesOf(renderTileCount(res));  // of this share
   const int threads = options.threads > 0 ? options.threads : tbb::info::default_concurrency();
 
   const SamplerKind kind = options.sampler.value_or(scene.settings().sampler);
@@ -122,14 +135,13 @@ RenderResult render(const Scene& scene, const std::vector<const SpectralResponse
             TileStats& stats;
             ~AddRays() { stats.rays += scope.rays(); }
           } addRays{rays, stats};
-          for (int tile = range.begin(); tile != range.end(); ++tile) {
+          for (int i = range.begin(); i != range.end(); ++i) {
             if (options.cancel && options.cancel->load(std::memory_order_relaxed)) {
               cancelled = true;
               return;
             }
-            const glm::ivec2 lo((tile % tilesX) * kTileSize, (tile / tilesX) * kTileSize);
-            const glm::ivec2 hi = glm::min(lo + kTileSize, res);
-            renderTile(scene, film, options, dims, lo, hi, sampler, stats, aovs);
+            const TileRect rect = renderTileRect(res, share.tile(i));
+            renderTile(scene, film, options, dims, rect.lo, rect.hi, sampler, stats, aovs);
             const int done = ++tilesDone;
             if (options.progress) {
               std::lock_guard<std::mutex> lock(progressMutex);

@@ -6,6 +6,15 @@
 // over the photosite → lens position (only if the camera has an aperture) → time from the
 // shutter curve, offset by the row for a rolling shutter (only if something moves) →
 // camera ray and its measurement weight → traceRadiance → film.
+//
+// Tiles are numbered row by row from the top left: tile t covers x from (t % tilesX)·16 and
+// y from (t / tilesX)·16, clipped to the image. RenderOptions::tiles renders a share of
+// them (one frame split across processes: camsim render --tiles, docs/output.md): share k
+// of M holds the tiles t with t % M == k — interleaved, so that every share gets some of
+// each region of the image and the shares take about the same time. Its pixels are the
+// whole render's, bit for bit, since a pixel's samples depend only on (seed, pixel, sample
+// index); the other pixels stay 0, and the stats count its own samples only. A share may
+// hold no tile (M larger than the tile count): an image of zeros.
 #pragma once
 
 #include <atomic>
@@ -20,6 +29,26 @@
 #include "sensor/model/spectral_response.h"
 
 namespace camsim {
+
+constexpr int kRenderTileSize = 16;  // px per tile side
+
+struct TileRect {
+  glm::ivec2 lo{0}, hi{0};  // pixels lo ≤ p < hi
+};
+int renderTileCount(glm::ivec2 resolution);
+TileRect renderTileRect(glm::ivec2 resolution, int tile);
+
+// Share `index` of `count` of an image's tiles (above); {0, 1} is the whole image.
+struct TileShare {
+  int index = 0, count = 1;
+
+  bool owns(int tile) const { return tile % count == index; }
+  // How many of tileCount tiles the share holds, and its i-th one (0 ≤ i < that).
+  int tilesOf(int tileCount) const {
+    return index < tileCount ? (tileCount - index + count - 1) / count : 0;
+  }
+  int tile(int i) const { return index + i * count; }
+};
 
 struct RenderOptions {
   int spp = 16;
@@ -37,6 +66,8 @@ struct RenderOptions {
   // When set, sees every ray cast, from the thread that casts it (ray_stats.h; camsim
   // bench records them with a RayRecorder and replays them).
   RayObserver* rayObserver = nullptr;
+  // The tiles to render (above); the others stay 0. Progress counts the share's tiles.
+  TileShare tiles;
 };
 
 struct RenderStats {

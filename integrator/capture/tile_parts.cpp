@@ -1,0 +1,384 @@
+// Tile parts (tile_parts.h): a share's films written as one float EXR, read back, checked
+// against the other parts and the scene, and assembled tile by tile.
+#include "integrator/capture/tile_parts.h"
+
+#include <algorithm>
+#include <charconv>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include "sensor/base/input_error.h"
+#include "sensor/io/exr_io.h"
+#include "sensor/io/output_set.h"
+
+namespace camsim {
+namespace {
+
+// The three images of a part and the prefixes of their channels in the EXR.
+constexpr const char* kPrefixes[3] = {"film.", "sensor.", "aov."};
+constexpr const char* kChannelKeys[3] = {"camsim:film_channels", "camsim:sensor_channels",
+                                         "camsim:aov_channels"};
+// The attributes that differ between the parts of one render; all others must agree.
+const std::set<std::string> kPerPart = {"camsim:tile_index", "camsim:tiles", "camsim:samples",
+                                        "camsim:rejected_samples", "camsim:render_seconds"};
+
+constexpr int kMaxTileCount = 1 << 20;  // as camsim render --tiles takes M
+
+// Compared first, so that a part of another render is told by what matters most.
+constexpr const char* kFirstCompared[] = {
+    "camsim:tile_count", "camsim:scene", "camsim:scene_fnv1a64", "camsim:resolution",
+    "camsim:spp",        "camsim:seed",  "camsim:overrides",     "camsim:name"};
+
+std::string joined(const std::vector<std::string>& names, const std::string& scene) {
+  std::string out;
+  for (const std::string& n : names) {
+    if (n.find(',') != std::string::npos)
+      throw InputError({scene, 0, 0}, "",
+                       "channel name '" + n + "' has a comma: it cannot go into a tile part");
+    out += (out.empty() ? "" : ",") + n;
+  }
+  return out;
+}
+
+std::vector<std::string> split(const std::string& text) {
+  std::vector<std::string> out;
+  if (text.empty()) return out;
+  std::string item;
+  std::istringstream in(text);
+  while (std::getline(in, item, ',')) out.push_back(item);
+  return out;
+}
+
+template <typename T>
+std::optional<T> parseNumber(const std::string& text) {
+  T v{};
+  const auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+  if (ec != std::errc() || ptr != text.data() + text.size()) return std::nullopt;
+  return v;
+}
+
+// Copies the pixels of `rect` from `from` to `to` (same size and channels).
+void copyRect(const Image& from, Image& to, TileRect rect) {
+  const std::size_t n = from.channels.size();
+  if (n == 0) return;
+  for (int y = rect.lo.y; y < rect.hi.y; ++y) {
+    const std::size_t begin = from.index(rect.lo.x, y, 0);
+    const std::size_t count = static_cast<std::size_t>(rect.hi.x - rect.lo.x) * n;
+    std::copy_n(from.pixels.begin() + static_cast<std::ptrdiff_t>(begin), count,
+                to.pixels.begin() + static_cast<std::ptrdiff_t>(begin));
+  }
+}
+
+struct ReadPart {
+  std::map<std::string, std::string> attrs;  // camsim:* attributes
+  TilePartHeader header;
+  int index = 0;
+  std::uint64_t samples = 0, rejected = 0;
+  std::optional<double> seconds;
+  Image images[3];  // film, sensor film, aovs
+};
+
+ReadPart readPart(const std::filesystem::path& file) {
+  const ExrFile exr = readExr(file);
+  ReadPart p;
+  for (const auto& [key, value] : exr.metadata)
+    if (key.rfind("camsim:", 0) == 0) p.attrs[key] = value;
+  const auto get = [&](const std::string& key) -> const std::string& {
+    const auto it = p.attrs.find(key);
+    if (it == p.attrs.end())
+      throw InputError({file.string(), 0, 0}, key,
+                       "not a camsim tile part (camsim render --tiles k/M writes them): no " + key +
+                           " attribute");
+    return it->second;
+  };
+  const auto bad = [&](const std::string& key) {
+    return InputError({file.string(), 0, 0}, key, "unreadable value '" + get(key) + "'");
+  };
+  const auto integer = [&](const std::string& key, std::int64_t lo) {
+    const std::optional<std::int64_t> v = parseNumber<std::int64_t>(get(key));
+    if (!v || *v < lo) throw bad(key);
+    return *v;
+  };
+  TilePartHeader& h = p.header;
+  const std::int64_t count = integer("camsim:tile_count", 1);
+  if (count > kMaxTileCount) throw bad("camsim:tile_count");
+  const std::int64_t index = integer("camsim:tile_index", 0);
+  if (index >= count) throw bad("camsim:tile_index");
+  h.tileCount = static_cast<int>(count);
+  p.index = static_cast<int>(index);
+  h.version = get("camsim:version");
+  if (h.version != CAMSIM_VERSION)
+    throw InputError({file.string(), 0, 0}, "camsim:version",
+                     "rendered by camsim " + h.version +
+                         ", this is camsim " CAMSIM_VERSION
+                         ": merge the parts with the build that rendered them (the bytes depend on "
+                         "it)");
+  h.name = get("camsim:name");
+  h.scene = get("camsim:scene");
+  h.sceneFnv1a = get("camsim:scene_fnv1a64");
+  h.overrides = get("camsim:overrides");
+  h.spp = static_cast<int>(integer("camsim:spp", 1));
+  h.seed = static_cast<std::uint64_t>(integer("camsim:seed", 0));
+  if (integer("camsim:tile_size", 1) != kRenderTileSize) throw bad("camsim:tile_size");
+  std::istringstream res(get("camsim:resolution"));
+  if (!(res >> h.resolution.x >> h.resolution.y) ||
+      h.resolution != glm::ivec2(exr.image.width, exr.image.height))
+    throw bad("camsim:resolution");
+  const std::optional<ModelledDimensions> dims = parseModelledDims(get("camsim:modelled_dims"));
+  if (!dims) throw bad("camsim:modelled_dims");
+  h.modelled = *dims;
+  p.samples = static_cast<std::uint64_t>(integer("camsim:samples", 0));
+  p.rejected = static_cast<std::uint64_t>(integer("camsim:rejected_samples", 0));
+  if (p.attrs.count("camsim:render_seconds"))
+    p.seconds = parseNumber<double>(get("camsim:render_seconds"));
+  std::vector<std::string>* lists[3] = {&h.filmChannels, &h.sensorChannels, &h.aovChannels};
+  for (int i = 0; i < 3; ++i) {
+    *lists[i] = split(get(kChannelKeys[i]));
+    if (lists[i]->empty()) continue;
+    Image& image = p.images[i];
+    image = Image(h.resolution.x, h.resolution.y, *lists[i]);
+    const std::size_t n = lists[i]->size(), m = exr.image.channels.size();
+    for (std::size_t c = 0; c < n; ++c) {
+      const int from = exr.image.channelIndex(kPrefixes[i] + (*lists[i])[c]);
+      if (from < 0)
+        throw InputError({file.string(), 0, 0}, kChannelKeys[i],
+                         "no channel " + std::string(kPrefixes[i]) + (*lists[i])[c]);
+      for (std::size_t px = 0; px < image.pixels.size() / n; ++px)
+        image.pixels[px * n + c] = exr.image.pixels[px * m + static_cast<std::size_t>(from)];
+    }
+  }
+  if (h.filmChannels.empty()) throw bad("camsim:film_channels");
+  return p;
+}
+
+std::string shareName(int k, int m) {
+  return "part " + std::to_string(k) + " of " + std::to_string(m);
+}
+
+}  // namespace
+
+std::string tilePartFileName(const std::string& name, TileShare share) {
+  return name + ".part-" + std::to_string(share.index) + "-of-" + std::to_string(share.count) +
+         ".exr";
+}
+
+std::string modelledDimsText(const ModelledDimensions& m) {
+  return "aperture=" + std::to_string(int(m.aperture)) + " blades=" + std::to_string(m.blades) +
+         " time=" + std::to_string(int(m.time)) +
+         " moving_objects=" + std::to_string(m.movingObjects) +
+         " camera_moves=" + std::to_string(int(m.cameraMoves)) +
+         " rolling_shutter=" + std::to_string(int(m.rollingShutter)) +
+         " wavelengths=" + std::to_string(m.wavelengths) +
+         " time_steps=" + std::to_string(m.timeSteps);
+}
+
+std::optional<ModelledDimensions> parseModelledDims(const std::string& text) {
+  ModelledDimensions m;
+  std::istringstream in(text);
+  std::string item;
+  int fields = 0;
+  while (in >> item) {
+    const std::size_t eq = item.find('=');
+    if (eq == std::string::npos) return std::nullopt;
+    const std::optional<int> v = parseNumber<int>(item.substr(eq + 1));
+    if (!v) return std::nullopt;
+    const std::string key = item.substr(0, eq);
+    if (key == "aperture")
+      m.aperture = *v != 0;
+    else if (key == "blades")
+      m.blades = *v;
+    else if (key == "time")
+      m.time = *v != 0;
+    else if (key == "moving_objects")
+      m.movingObjects = *v;
+    else if (key == "camera_moves")
+      m.cameraMoves = *v != 0;
+    else if (key == "rolling_shutter")
+      m.rollingShutter = *v != 0;
+    else if (key == "wavelengths")
+      m.wavelengths = *v;
+    else if (key == "time_steps")
+      m.timeSteps = *v;
+    else
+      return std::nullopt;
+    ++fields;
+  }
+  if (fields != 8) return std::nullopt;
+  return m;
+}
+
+std::filesystem::path writeTilePart(const CaptureResult& r, TileShare share,
+                                    const TilePartOptions& options) {
+  CAMSIM_CHECK(!r.cancelled && !r.film.pixels.empty());
+  const SceneDescription& desc = r.description;
+  const Image* images[3] = {&r.film, &r.sensorFilm, &r.aovs};
+  std::vector<std::string> names;
+  std::string lists[3];
+  for (int i = 0; i < 3; ++i) {
+    lists[i] = joined(images[i]->channels, desc.sourceFile);
+    for (const std::string& c : images[i]->channels) names.push_back(kPrefixes[i] + c);
+  }
+  const int w = r.film.width, h = r.film.height;
+  Image part(w, h, names);
+  const std::size_t n = names.size();
+  for (std::size_t px = 0; px < static_cast<std::size_t>(w) * static_cast<std::size_t>(h); ++px) {
+    std::size_t c = 0;
+    for (const Image* image : images) {
+      const std::size_t m = image->channels.size();
+      for (std::size_t k = 0; k < m; ++k) part.pixels[px * n + c++] = image->pixels[px * m + k];
+    }
+  }
+  const int tiles = renderTileCount({w, h});
+  Metadata meta = {
+      {"camsim:version", CAMSIM_VERSION},
+      {"camsim:name", desc.name},
+      {"camsim:scene", desc.sourceFile},
+      {"camsim:scene_fnv1a64", desc.sourceFnv1a},
+      {"camsim:overrides", options.overrides},
+      {"camsim:spp", std::to_string(desc.render.spp)},
+      {"camsim:seed", std::to_string(desc.render.seed)},
+      {"camsim:resolution", std::to_string(w) + " " + std::to_string(h)},
+      {"camsim:tile_size", std::to_string(kRenderTileSize)},
+      {"camsim:tile_count", std::to_string(share.count)},
+      {"camsim:tile_index", std::to_string(share.index)},
+      {"camsim:tiles", std::to_string(share.tilesOf(tiles)) + " of the image's " +
+                           std::to_string(tiles) + " tiles (" + std::to_string(kRenderTileSize) +
+                           " px square, numbered by rows): those t with t % " +
+                           std::to_string(share.count) + " == " + std::to_string(share.index) +
+                           "; other pixels are 0"},
+      {"camsim:modelled", r.stats.modelled.describe()},
+      {"camsim:modelled_dims", modelledDimsText(r.stats.modelled)},
+      {"camsim:film_channels", lists[0]},
+      {"camsim:sensor_channels", lists[1]},
+      {"camsim:aov_channels", lists[2]},
+      {"camsim:samples", std::to_string(r.stats.samples)},
+      {"camsim:rejected_samples", std::to_string(r.stats.rejectedSamples)},
+      {"camsim:units",
+       "a tile part of one frame (camsim merge assembles them): film.* the CIE XYZ film "
+       "(NAME.exr's XYZ), sensor.* the expected electrons at the scene's exposure, aov.* the "
+       "ground-truth layers of NAME.exr"}};
+  if (!options.reproducible)
+    meta.push_back({"camsim:render_seconds", std::to_string(r.stats.seconds)});
+  OutputSet outputs(options.directory);
+  writeExr(outputs.add(tilePartFileName(desc.name, share)), part, meta, std::nullopt);
+  return outputs.commit().front();
+}
+
+AssembledTiles assembleTileParts(const std::vector<std::filesystem::path>& files) {
+  CAMSIM_CHECK(!files.empty());
+  AssembledTiles out;
+  std::map<std::string, std::string> first;  // the first part's shared attributes
+  std::vector<std::optional<std::filesystem::path>> byShare;
+  for (const std::filesystem::path& file : files) {
+    ReadPart p = readPart(file);
+    std::map<std::string, std::string> shared;
+    for (const auto& [key, value] : p.attrs)
+      if (!kPerPart.count(key)) shared[key] = value;
+    if (byShare.empty()) {
+      first = shared;
+      out.header = p.header;
+      byShare.resize(static_cast<std::size_t>(p.header.tileCount));
+      Image* images[3] = {&out.film, &out.sensorFilm, &out.aovs};
+      for (int i = 0; i < 3; ++i)
+        if (!p.images[i].channels.empty())
+          *images[i] = Image(p.header.resolution.x, p.header.resolution.y, p.images[i].channels);
+    } else {
+      // Every attribute of the first part, the same here (the telling ones first); and
+      // none that it lacks.
+      std::vector<std::pair<std::string, std::string>> order;
+      for (const char* key : kFirstCompared)
+        if (first.count(key)) order.emplace_back(key, first.at(key));
+      order.insert(order.end(), first.begin(), first.end());
+      for (const auto& [key, value] : order) {
+        const auto it = shared.find(key);
+        const std::string here = it == shared.end() ? "(none)" : it->second;
+        if (here != value)
+          throw InputError({file.string(), 0, 0}, key,
+                           "not a part of the same render as " + files.front().string() + ": " +
+                               key + " is '" + here + "' here, '" + value + "' there");
+      }
+      for (const auto& [key, value] : shared)
+        if (!first.count(key))
+          throw InputError({file.string(), 0, 0}, key,
+                           "not a part of the same render as " + files.front().string() +
+                               ": it has " + key + " '" + value + "', that one has none");
+    }
+    std::optional<std::filesystem::path>& slot = byShare[static_cast<std::size_t>(p.index)];
+    if (slot)
+      throw InputError(
+          {file.string(), 0, 0}, "camsim:tile_index",
+          shareName(p.index, p.header.tileCount) + " given twice: also " + slot->string());
+    slot = file;
+    const TileShare share{p.index, p.header.tileCount};
+    const int tiles = renderTileCount(p.header.resolution);
+    Image* images[3] = {&out.film, &out.sensorFilm, &out.aovs};
+    for (int i = 0; i < share.tilesOf(tiles); ++i)
+      for (int k = 0; k < 3; ++k)
+        copyRect(p.images[k], *images[k], renderTileRect(p.header.resolution, share.tile(i)));
+    out.samples += p.samples;
+    out.rejectedSamples += p.rejected;
+    if (p.seconds) out.renderSeconds += *p.seconds;
+  }
+  std::string given;
+  for (std::size_t k = 0; k < byShare.size(); ++k)
+    if (byShare[k]) given += (given.empty() ? "" : ", ") + std::to_string(k);
+  for (std::size_t k = 0; k < byShare.size(); ++k)
+    if (!byShare[k]) {
+      const TileShare share{static_cast<int>(k), out.header.tileCount};
+      const std::filesystem::path missing =
+          files.front().parent_path() / tilePartFileName(out.header.name, share);
+      throw InputError({missing.string(), 0, 0}, "camsim:tile_index",
+                       shareName(share.index, share.count) + " is missing (given: part" +
+                           (given.find(',') == std::string::npos ? " " : "s ") + given + ")");
+    }
+  for (const auto& f : byShare) out.files.push_back(*f);
+  return out;
+}
+
+CaptureResult mergedCapture(AssembledTiles tiles, SceneDescription description) {
+  const TilePartHeader& h = tiles.header;
+  const SourceLocation where{description.sourceFile, 0, 0};
+  const std::string parts = tiles.files.front().string();
+  if (description.sourceFnv1a != h.sceneFnv1a)
+    throw InputError(where, "",
+                     "the scene file changed since the parts were rendered: its FNV-1a is " +
+                         description.sourceFnv1a + ", the parts' (" + parts + ") " + h.sceneFnv1a +
+                         "; restore it or render the parts again");
+  const auto differs = [&](const std::string& what, const std::string& here,
+                           const std::string& there) {
+    return InputError(where, "",
+                      "not the scene of the parts (" + parts + "): " + what + " " + here +
+                          " here, " + there + " there");
+  };
+  const glm::ivec2 res = description.camera.resolution;
+  if (description.name != h.name) throw differs("name", description.name, h.name);
+  if (res != h.resolution)
+    throw differs("resolution", std::to_string(res.x) + "x" + std::to_string(res.y),
+                  std::to_string(h.resolution.x) + "x" + std::to_string(h.resolution.y));
+  if (description.render.spp != h.spp)
+    throw differs("spp", std::to_string(description.render.spp), std::to_string(h.spp));
+  if (description.render.seed != h.seed)
+    throw differs("seed", std::to_string(description.render.seed), std::to_string(h.seed));
+  if (description.sensor.has_value() != !h.sensorChannels.empty())
+    throw differs("sensor", description.sensor ? "one" : "none",
+                  h.sensorChannels.empty() ? "none" : "one");
+  if (description.render.aovs.empty() != h.aovChannels.empty())
+    throw differs("aovs", description.render.aovs.empty() ? "none" : "some",
+                  h.aovChannels.empty() ? "none" : "some");
+  checkTileable(description, h.modelled);
+  CaptureResult out;
+  out.description = std::move(description);
+  out.description.releaseDecodedImages();
+  out.stats.samples = tiles.samples;
+  out.stats.rejectedSamples = tiles.rejectedSamples;
+  out.stats.modelled = h.modelled;
+  out.stats.seconds = tiles.renderSeconds;
+  out.tilesDone = out.tilesTotal = renderTileCount(h.resolution);
+  out.film = std::move(tiles.film);
+  out.sensorFilm = std::move(tiles.sensorFilm);
+  out.aovs = std::move(tiles.aovs);
+  return out;
+}
+
+}  // namespace camsim

@@ -1,0 +1,96 @@
+// Tile parts (integrator/capture/tile_parts.h) in-process: what was modelled survives the
+// header's text form, and the split of a capture — renderCaptureFilms per share, each
+// written as a part, assembled, finished — is the one-process capture() bit for bit (the
+// binary's byte-for-byte checks are in tests/cli/tile_merge_test.cpp).
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include "integrator/capture/tile_parts.h"
+#include "integrator/scene/scene_loader.h"
+#include "sensor/base/input_error.h"
+#include "tests/support/temp_dir.h"
+
+namespace camsim {
+namespace {
+
+TEST(TileParts, ModelledDimensionsRoundTrip) {
+  ModelledDimensions m;
+  m.aperture = true;
+  m.blades = 6;
+  m.time = true;
+  m.movingObjects = 2;
+  m.cameraMoves = true;
+  m.rollingShutter = true;
+  m.wavelengths = 4;
+  m.timeSteps = 3;
+  const std::optional<ModelledDimensions> back = parseModelledDims(modelledDimsText(m));
+  ASSERT_TRUE(back.has_value());
+  EXPECT_EQ(back->describe(), m.describe());
+  EXPECT_EQ(modelledDimsText(*back), modelledDimsText(m));
+  EXPECT_EQ(modelledDimsText(*parseModelledDims(modelledDimsText({}))), modelledDimsText({}));
+  for (const char* bad : {"", "aperture=1",
+                          "aperture=x blades=0 time=0 moving_objects=0 "
+                          "camera_moves=0 rolling_shutter=0 wavelengths=4 time_steps=1",
+                          "colour=1 blades=0 time=0 moving_objects=0 camera_moves=0 "
+                          "rolling_shutter=0 wavelengths=4 time_steps=1"})
+    EXPECT_FALSE(parseModelledDims(bad).has_value()) << bad;
+}
+
+const char* kScene =
+    "name: split\n"
+    "camera: {position: [0, 0, 0], look_at: [0, 0, -1], resolution: [36, 20], focal_length_mm: "
+    "0.05}\n"
+    "sensor: {model: smartphone-1.4um, noise: full, auto_exposure: {metering: mean}}\n"
+    "render: {spp: 2, max_depth: 1, aovs: [instance_id]}\n"
+    "materials: {grey: {type: diffuse, reflectance: 0.5}}\n"
+    "shapes:\n"
+    "  - {name: lamp, type: sphere, centre: [0, 2, -3], radius: 0.5, emission: {luminance: "
+    "500}}\n"
+    "  - {name: ball, type: sphere, centre: [0.2, 0, -2], radius: 0.5, material: grey}\n";
+
+bool sameBits(const Image& a, const Image& b) {
+  return a.channels == b.channels && a.pixels.size() == b.pixels.size() &&
+         std::memcmp(a.pixels.data(), b.pixels.data(), a.pixels.size() * sizeof(float)) == 0;
+}
+
+TEST(TileParts, SplitCaptureEqualsTheWholeCapture) {
+  const test::TempDir dir;
+  const SceneDescription desc = loadSceneFromText(kScene, "split.yaml", ".");
+  const CaptureResult whole = capture(desc);
+  std::vector<std::filesystem::path> files;
+  for (int k = 0; k < 4; ++k) {  // 6 tiles in 4 shares
+    CaptureOptions options;
+    options.tiles = TileShare{k, 4};
+    const CaptureResult part = renderCaptureFilms(desc, options);
+    EXPECT_TRUE(part.frames.empty() && part.picture.pixels.empty());
+    files.push_back(writeTilePart(part, {k, 4}, {dir.path(), "--spp 2", true}));
+    EXPECT_EQ(files.back().filename(), tilePartFileName("split", {k, 4}));
+  }
+  std::swap(files[0], files[3]);  // any order
+  AssembledTiles tiles = assembleTileParts(files);
+  EXPECT_EQ(tiles.header.overrides, "--spp 2");
+  EXPECT_EQ(tiles.files[0].filename(), "split.part-0-of-4.exr");
+  CaptureResult merged = mergedCapture(std::move(tiles), desc);
+  finishCapture(merged);
+  EXPECT_TRUE(sameBits(merged.film, whole.film));
+  EXPECT_TRUE(sameBits(merged.sensorFilm, whole.sensorFilm));
+  EXPECT_TRUE(sameBits(merged.aovs, whole.aovs));
+  EXPECT_EQ(merged.exposureScale, whole.exposureScale);
+  ASSERT_EQ(merged.frames.size(), 1u);
+  EXPECT_EQ(merged.frames[0].raws[0].dn, whole.frames[0].raws[0].dn);
+  EXPECT_TRUE(sameBits(merged.picture, whole.picture));
+  EXPECT_EQ(merged.stats.samples, whole.stats.samples);
+
+  // The scene of another seed is not the parts' scene.
+  SceneDescription other = desc;
+  other.render.seed = 1;
+  EXPECT_THROW(mergedCapture(assembleTileParts(files), other), InputError);
+  files.pop_back();
+  EXPECT_THROW(assembleTileParts(files), InputError);  // a share missing
+}
+
+}  // namespace
+}  // namespace camsim
