@@ -20,7 +20,8 @@ std::size_t count(const std::string& flag, const std::string& text, std::size_t 
 
 std::string itemList(const std::vector<std::size_t>& items) {
   std::string s;
-  for (std::size_t i = 0; i < items.size() && i < 20; ++i) s += (i ? " " : "") + std::to_string(items[i]);
+  for (std::size_t i = 0; i < items.size() && i < 20; ++i)
+    s += (i ? " " : "") + std::to_string(items[i]);
   if (items.size() > 20) s += " …";
   return s;
 }
@@ -33,14 +34,16 @@ std::string datasetUsageText() {
          "                      [--ocio-config FILE] [--display D] [--view V] [--look L]\n"
          "       camsim dataset --status DIR\n"
          "\n"
-         "dataset  renders the items of MANIFEST (docs/dataset-format.md) into DIR (default out/):\n"
+         "dataset  renders the items of MANIFEST (docs/dataset-format.md) into DIR (default "
+         "out/):\n"
          "         DIR/items/NNNNNN/ per item (its outputs, scene.yaml, params.json, item.json),\n"
          "         DIR/index.jsonl (one line per item that ended), DIR/dataset.json.\n"
          "         Every item is checked before the first renders; same manifest, seed and build:\n"
          "         same bytes, on any shard.\n"
          "  -o, --output DIR  the dataset folder (created if missing)\n"
          "  --shard i/N       render items i, i+N, i+2N, … (0 <= i < N); without it, Slurm's\n"
-         "                    SLURM_ARRAY_TASK_ID - SLURM_ARRAY_TASK_MIN of SLURM_ARRAY_TASK_COUNT,\n"
+         "                    SLURM_ARRAY_TASK_ID - SLURM_ARRAY_TASK_MIN of "
+         "SLURM_ARRAY_TASK_COUNT,\n"
          "                    or Kubernetes' JOB_COMPLETION_INDEX of --shards N (or\n"
          "                    CAMSIM_SHARD_COUNT); else all items\n"
          "  --resume          skip items whose outputs exist and whose recorded hash matches the\n"
@@ -48,7 +51,8 @@ std::string datasetUsageText() {
          "                    killed runs\n"
          "  --item N          render only item N (of this shard)\n"
          "  --threads N       worker threads (default: all cores)\n"
-         "  --check           check the manifest and every item, print the item count, render nothing\n"
+         "  --check           check the manifest and every item, print the item count, render "
+         "nothing\n"
          "  --status DIR      summarise DIR: done, failed, missing items\n"
          "exit codes: 0 done, 2 bad input (do not retry), 130/143 interrupted by SIGINT/SIGTERM\n"
          "(retry with --resume), 1 an item failed inside camsim (docs/cluster.md)\n";
@@ -62,22 +66,38 @@ DatasetArgs parseDatasetArgs(const std::vector<std::string>& args) {
   };
   for (std::size_t i = 1; i < args.size(); ++i) {
     const std::string& f = args[i];
-    if (f == "-h" || f == "--help") a.help = true;
-    else if (f == "-o" || f == "--output") a.outputDir = value(i);
-    else if (f == "--shard") a.shard = value(i);
-    else if (f == "--shards") a.shards = count(f, value(i), 1);
-    else if (f == "--item") a.item = count(f, value(i), 0);
-    else if (f == "--threads") a.threads = static_cast<int>(parseInteger(f, value(i), 0, 4096));
-    else if (f == "--resume") a.resume = true;
-    else if (f == "--check") a.check = true;
-    else if (f == "--status") a.status = value(i);
-    else if (f == "--ocio-config") a.ocioConfig = value(i);
-    else if (f == "--display") a.display = value(i);
-    else if (f == "--view") a.view = value(i);
-    else if (f == "--look") a.look = value(i);
-    else if (!f.empty() && f[0] == '-') throw UsageError("unknown option '" + f + "' (camsim dataset --help)");
-    else if (a.manifest.empty()) a.manifest = f;
-    else throw UsageError("one manifest only; unexpected '" + f + "'");
+    if (f == "-h" || f == "--help")
+      a.help = true;
+    else if (f == "-o" || f == "--output")
+      a.outputDir = value(i);
+    else if (f == "--shard")
+      a.shard = value(i);
+    else if (f == "--shards")
+      a.shards = count(f, value(i), 1);
+    else if (f == "--item")
+      a.item = count(f, value(i), 0);
+    else if (f == "--threads")
+      a.threads = static_cast<int>(parseInteger(f, value(i), 0, 4096));
+    else if (f == "--resume")
+      a.resume = true;
+    else if (f == "--check")
+      a.check = true;
+    else if (f == "--status")
+      a.status = value(i);
+    else if (f == "--ocio-config")
+      a.ocioConfig = value(i);
+    else if (f == "--display")
+      a.display = value(i);
+    else if (f == "--view")
+      a.view = value(i);
+    else if (f == "--look")
+      a.look = value(i);
+    else if (!f.empty() && f[0] == '-')
+      throw UsageError("unknown option '" + f + "' (camsim dataset --help)");
+    else if (a.manifest.empty())
+      a.manifest = f;
+    else
+      throw UsageError("one manifest only; unexpected '" + f + "'");
   }
   if (!a.help && !a.status && a.manifest.empty())
     throw UsageError("camsim dataset needs a MANIFEST (or --status DIR)");
@@ -95,7 +115,8 @@ Shard resolveShard(const DatasetArgs& args, const std::map<std::string, std::str
   Shard s;
   if (args.shard) {
     const std::size_t slash = args.shard->find('/');
-    if (slash == std::string::npos) throw UsageError("--shard expects i/N, got '" + *args.shard + "'");
+    if (slash == std::string::npos)
+      throw UsageError("--shard expects i/N, got '" + *args.shard + "'");
     s.count = count("--shard N", args.shard->substr(slash + 1), 1);
     s.index = static_cast<std::size_t>(parseInteger("--shard i", args.shard->substr(0, slash), 0,
                                                     static_cast<std::int64_t>(s.count) - 1));
@@ -105,23 +126,30 @@ Shard resolveShard(const DatasetArgs& args, const std::map<std::string, std::str
     if (!n) throw UsageError("SLURM_ARRAY_TASK_ID is set but SLURM_ARRAY_TASK_COUNT is not");
     s.count = count("SLURM_ARRAY_TASK_COUNT", *n, 1);
     const std::size_t task = count("SLURM_ARRAY_TASK_ID", *id, 0);
-    const std::size_t min = get("SLURM_ARRAY_TASK_MIN") ? count("SLURM_ARRAY_TASK_MIN", *get("SLURM_ARRAY_TASK_MIN"), 0) : 0;
+    const std::size_t min = get("SLURM_ARRAY_TASK_MIN")
+                                ? count("SLURM_ARRAY_TASK_MIN", *get("SLURM_ARRAY_TASK_MIN"), 0)
+                                : 0;
     if (task < min || task - min >= s.count)
       throw UsageError("array task " + *id + " is not in " + std::to_string(min) + ".." +
                        std::to_string(min + s.count - 1) +
-                       ": submit a contiguous array (--array=0-" + std::to_string(s.count - 1) + ")");
+                       ": submit a contiguous array (--array=0-" + std::to_string(s.count - 1) +
+                       ")");
     s.index = task - min;
     s.source = "SLURM_ARRAY_TASK_ID";
   } else if (auto k = get("JOB_COMPLETION_INDEX")) {
     std::optional<std::size_t> n = args.shards;
-    if (!n && get("CAMSIM_SHARD_COUNT")) n = count("CAMSIM_SHARD_COUNT", *get("CAMSIM_SHARD_COUNT"), 1);
-    if (!n) throw UsageError("JOB_COMPLETION_INDEX is set: give the shard count (--shards N or CAMSIM_SHARD_COUNT)");
+    if (!n && get("CAMSIM_SHARD_COUNT"))
+      n = count("CAMSIM_SHARD_COUNT", *get("CAMSIM_SHARD_COUNT"), 1);
+    if (!n)
+      throw UsageError(
+          "JOB_COMPLETION_INDEX is set: give the shard count (--shards N or CAMSIM_SHARD_COUNT)");
     s.count = *n;
-    s.index = static_cast<std::size_t>(parseInteger("JOB_COMPLETION_INDEX", *k, 0,
-                                                    static_cast<std::int64_t>(s.count) - 1));
+    s.index = static_cast<std::size_t>(
+        parseInteger("JOB_COMPLETION_INDEX", *k, 0, static_cast<std::int64_t>(s.count) - 1));
     s.source = "JOB_COMPLETION_INDEX";
   } else if (args.shards) {
-    throw UsageError("--shards N needs JOB_COMPLETION_INDEX (a Kubernetes Indexed Job); else use --shard i/N");
+    throw UsageError(
+        "--shards N needs JOB_COMPLETION_INDEX (a Kubernetes Indexed Job); else use --shard i/N");
   }
   return s;
 }
@@ -175,8 +203,9 @@ int runDatasetCommand(const std::vector<std::string>& args, std::ostream& out, s
   o.progress = [&](std::size_t done, std::size_t total, double fraction) {
     if (!rendering) {
       checking.finish();
-      rendering = std::make_unique<ProgressBar>("dataset shard " + std::to_string(shard.index) + "/" +
-                                                std::to_string(shard.count) + " (" + std::to_string(total) + " items)");
+      rendering = std::make_unique<ProgressBar>("dataset shard " + std::to_string(shard.index) +
+                                                "/" + std::to_string(shard.count) + " (" +
+                                                std::to_string(total) + " items)");
     }
     rendering->update(static_cast<int>(1000 * (static_cast<double>(done) + fraction)),
                       static_cast<int>(1000 * total));
@@ -188,7 +217,8 @@ int runDatasetCommand(const std::vector<std::string>& args, std::ostream& out, s
   const DatasetRunSummary s = runDataset(manifest, o);
   checking.finish();
   if (rendering) rendering->finish();
-  for (const auto& f : s.removed) log << "removed " << f.string() << " (left by a run that was killed)\n";
+  for (const auto& f : s.removed)
+    log << "removed " << f.string() << " (left by a run that was killed)\n";
   log << "dataset " << manifest.file.filename().string() << ", shard " << shard.index << "/"
       << shard.count << (shard.source.empty() ? "" : " (" + shard.source + ")") << ": " << s.items
       << " of " << manifest.items.size() << " items: " << s.done << " rendered, " << s.skipped

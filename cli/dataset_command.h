@@ -26,13 +26,13 @@ namespace camsim {
 struct DatasetArgs {
   std::string manifest;
   std::string outputDir = "out";
-  std::optional<std::string> shard;           // "i/N"
-  std::optional<std::size_t> shards;          // --shards N (with JOB_COMPLETION_INDEX)
+  std::optional<std::string> shard;   // "i/N"
+  std::optional<std::size_t> shards;  // --shards N (with JOB_COMPLETION_INDEX)
   std::optional<std::size_t> item;
   bool resume = false;
   bool check = false;
   bool help = false;
-  std::optional<std::string> status;          // --status DIR
+  std::optional<std::string> status;  // --status DIR
   int threads = 0;
   std::string ocioConfig, display, view, look;
 };

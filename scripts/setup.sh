@@ -10,7 +10,7 @@ packages=(
   libembree-dev libtbb-dev libopenexr-dev openexr libopencolorio-dev opencolorio-tools
   libglm-dev libgtest-dev libgmock-dev libyaml-cpp-dev libpng-dev libtiff-dev
   libraw-bin dcraw libimage-exiftool-perl python3-matplotlib clang libclang-rt-14-dev clang-format
-  colmap python3-opencv python3-numpy libmurmurhash-dev
+  colmap python3-opencv python3-numpy libmurmurhash-dev slurm-wlm munge
 )
 missing=()
 for p in "${packages[@]}"; do

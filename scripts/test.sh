@@ -3,6 +3,9 @@
 #   1. the test suite (CTest) on the Release build in build/ (the SIMD path, CAMSIM_SIMD=ON);
 #      then every tracked .cpp/.h is checked to be clang-formatted (scripts/format.sh
 #      --check, a few seconds);
+#      then `camsim dataset` on a real single-node Slurm cluster started from Debian's
+#      slurm-wlm and munge (tests/cluster/slurm_dataset_test.sh, about a minute; needs root:
+#      it fails, saying why, where the daemons cannot start);
 #   2. the same suite built with AddressSanitizer + UndefinedBehaviorSanitizer (GCC,
 #      CAMSIM_SANITIZE=ON, -O1 -g1: line tables for the reports, a quarter faster to compile
 #      than -g) in build-asan/, less seven slow tests (see below); built portable
@@ -86,6 +89,8 @@ fuzz_run() {
 
 stage "Release test suite ($build_dir)" release_suite
 stage "clang-format check" scripts/format.sh --check
+stage "Slurm: camsim dataset on a single-node cluster" \
+  tests/cluster/slurm_dataset_test.sh "$build_dir/camsim" "$build_dir/slurm-test"
 stage "ASan+UBSan test suite ($asan_dir)" asan_suite
 stage "fuzz corpus and regression replay ($fuzz_dir)" fuzz_replay
 if ((fuzz_seconds > 0)); then

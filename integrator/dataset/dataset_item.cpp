@@ -72,7 +72,8 @@ ResolvedItem resolveItem(const Manifest& manifest, const DatasetItem& item,
   }
   for (auto& [path, value] : r.parameters) value = last[path];
   std::string key = std::string(CAMSIM_VERSION) + "\n" + outputKey + "\n" + r.sceneText;
-  for (const auto& f : r.description.inputFiles) key += "\n" + f.string() + " " + fileContentHash(f);
+  for (const auto& f : r.description.inputFiles)
+    key += "\n" + f.string() + " " + fileContentHash(f);
   r.hash = fnv1aHex(key);
   return r;
 }

@@ -58,8 +58,9 @@ std::string jsonValue(const std::string& yaml) {
   static const std::regex numbers(
       R"(\[ *(-?(0|[1-9][0-9]*)(\.[0-9]+)?([eE][-+]?[0-9]+)?( *, *)?)* *\])");
   if (yaml == "~" || yaml == "null") return "null";
-  return std::regex_match(yaml, number) || std::regex_match(yaml, numbers) ? yaml
-                                                                          : JsonObject::quoted(yaml);
+  return std::regex_match(yaml, number) || std::regex_match(yaml, numbers)
+             ? yaml
+             : JsonObject::quoted(yaml);
 }
 
 JsonObject parametersJson(const ResolvedItem& item) {
@@ -140,30 +141,35 @@ Rendered renderItem(SceneDescription desc, const fs::path& dir, const DatasetRun
 
 const char* itemStatusName(ItemStatus status) {
   switch (status) {
-    case ItemStatus::kDone: return "done";
-    case ItemStatus::kSkipped: return "skipped";
-    case ItemStatus::kFailed: return "failed";
-    case ItemStatus::kInterrupted: return "interrupted";
+    case ItemStatus::kDone:
+      return "done";
+    case ItemStatus::kSkipped:
+      return "skipped";
+    case ItemStatus::kFailed:
+      return "failed";
+    case ItemStatus::kInterrupted:
+      return "interrupted";
   }
   return "?";
 }
 
 DatasetRunSummary runDataset(const Manifest& manifest, const DatasetRunOptions& options) {
   CAMSIM_CHECK(options.shard.count >= 1 && options.shard.index < options.shard.count);
-  const std::string outputKey = "ocio=" + options.picture.ocioConfig.string() +
-                                " display=" + options.picture.choice.display +
-                                " view=" + options.picture.choice.view +
-                                " looks=" + options.picture.choice.looks;
+  const std::string outputKey =
+      "ocio=" + options.picture.ocioConfig.string() + " display=" + options.picture.choice.display +
+      " view=" + options.picture.choice.view + " looks=" + options.picture.choice.looks;
   if (options.onlyItem) {
     if (*options.onlyItem >= manifest.items.size())
       throw InputError({manifest.file.string(), 0, 0}, "",
-                       "item " + std::to_string(*options.onlyItem) + " does not exist (the manifest has " +
+                       "item " + std::to_string(*options.onlyItem) +
+                           " does not exist (the manifest has " +
                            std::to_string(manifest.items.size()) + " items: 0 to " +
                            std::to_string(manifest.items.size() - 1) + ")");
     if (!options.shard.owns(*options.onlyItem))
       throw InputError({manifest.file.string(), 0, 0}, "",
                        "item " + std::to_string(*options.onlyItem) + " is not in shard " +
-                           std::to_string(options.shard.index) + "/" + std::to_string(options.shard.count));
+                           std::to_string(options.shard.index) + "/" +
+                           std::to_string(options.shard.count));
   }
   // Every item checked before anything is written or rendered.
   checkBaseScene(manifest);
@@ -179,17 +185,19 @@ DatasetRunSummary runDataset(const Manifest& manifest, const DatasetRunOptions& 
   DatasetRunSummary summary;
   summary.items = mine.size();
   const fs::path items = options.directory / "items";
-  for (const auto& stale : OutputSet::prepareDirectory(options.directory)) summary.removed.push_back(stale);
+  for (const auto& stale : OutputSet::prepareDirectory(options.directory))
+    summary.removed.push_back(stale);
   (void)OutputSet::prepareDirectory(items);
   {
     OutputSet record(options.directory);
     record.addText("dataset.json", JsonObject()
-                                       .set("format", "camsim-dataset-output/1")
-                                       .set("manifest", manifest.file.filename().string())
-                                       .set("manifest_fnv1a64", fnv1aHex(manifest.text))
-                                       .set("camsim_version", CAMSIM_VERSION)
-                                       .setInteger("items", manifest.items.size())
-                                       .str() + "\n");
+                                           .set("format", "camsim-dataset-output/1")
+                                           .set("manifest", manifest.file.filename().string())
+                                           .set("manifest_fnv1a64", fnv1aHex(manifest.text))
+                                           .set("camsim_version", CAMSIM_VERSION)
+                                           .setInteger("items", manifest.items.size())
+                                           .str() +
+                                       "\n");
     record.commit();
   }
   const std::string shardText =
@@ -236,14 +244,15 @@ DatasetRunSummary runDataset(const Manifest& manifest, const DatasetRunOptions& 
       }
       OutputSet extra(tmp);
       extra.addText("scene.yaml", "# camsim dataset " + manifest.file.filename().string() +
-                                      ", item " + std::to_string(index) +
-                                      ": the base scene " + manifest.scene.filename().string() +
+                                      ", item " + std::to_string(index) + ": the base scene " +
+                                      manifest.scene.filename().string() +
                                       " with the item's values; its relative paths resolve "
-                                      "against the base scene's folder\n" + item.sceneText);
-      extra.addText("params.json", JsonObject()
-                                       .setInteger("item", index)
-                                       .set("parameters", parametersJson(item))
-                                       .str() + "\n");
+                                      "against the base scene's folder\n" +
+                                      item.sceneText);
+      extra.addText(
+          "params.json",
+          JsonObject().setInteger("item", index).set("parameters", parametersJson(item)).str() +
+              "\n");
       for (auto& f : extra.commit()) r.files.push_back(f);
       std::vector<JsonObject> files;
       for (const fs::path& f : r.files)
@@ -256,12 +265,13 @@ DatasetRunSummary runDataset(const Manifest& manifest, const DatasetRunOptions& 
       report.renderSeconds = r.renderSeconds;
       OutputSet last(tmp);
       last.addText("item.json", JsonObject()
-                                    .setInteger("item", index)
-                                    .set("status", "done")
-                                    .set("hash", item.hash)
-                                    .set("camsim_version", CAMSIM_VERSION)
-                                    .set("files", files)
-                                    .str() + "\n");
+                                        .setInteger("item", index)
+                                        .set("status", "done")
+                                        .set("hash", item.hash)
+                                        .set("camsim_version", CAMSIM_VERSION)
+                                        .set("files", files)
+                                        .str() +
+                                    "\n");
       last.commit();
       std::error_code ec;
       fs::remove_all(finalDir, ec);  // an older version of the item
@@ -323,7 +333,8 @@ DatasetStatus datasetStatus(const fs::path& directory) {
   }
   if (fs::is_directory(directory / "items", ec))
     for (const auto& entry : fs::directory_iterator(directory / "items", ec))
-      if (entry.path().filename().string().find(".camsim-tmp-") != std::string::npos) ++s.temporaries;
+      if (entry.path().filename().string().find(".camsim-tmp-") != std::string::npos)
+        ++s.temporaries;
   return s;
 }
 

@@ -52,8 +52,8 @@ struct ItemReport {
   ItemStatus status = ItemStatus::kDone;
   double seconds = 0.0;        // the item's wall time: load, render, write, hash
   double renderSeconds = 0.0;  // of it in render() (a sequence: summed over frames)
-  std::size_t files = 0;      // written
-  std::string message;        // why it failed
+  std::size_t files = 0;       // written
+  std::string message;         // why it failed
 };
 
 struct DatasetRunOptions {

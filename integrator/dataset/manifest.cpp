@@ -11,18 +11,18 @@
 namespace camsim {
 namespace {
 
-constexpr std::size_t kMaxItems = 10000000;
+constexpr std::size_t kMaxItems = 100000;  // items are expanded up front (~1 kB each)
 
 // One `random.draw` entry: how to draw the value at `path` (checked when parsed).
 struct Draw {
   enum class Kind { kUniform, kLogUniform, kNormal, kChoice, kOrbit } kind = Kind::kUniform;
   std::string path, key;
   SourceLocation where;
-  double lo = 0.0, hi = 0.0;                     // uniform, log_uniform; normal: min, max
-  double mean = 0.0, sd = 1.0;                   // normal
+  double lo = 0.0, hi = 0.0;                      // uniform, log_uniform; normal: min, max
+  double mean = 0.0, sd = 1.0;                    // normal
   std::vector<std::vector<std::string>> choices;  // choice: per option the values (YAML text)
   std::vector<std::string> paths;                 // choice over "a, b": the zipped key paths
-  glm::dvec3 centre{0.0};                        // orbit
+  glm::dvec3 centre{0.0};                         // orbit
   std::pair<double, double> radius, azimuth, elevation;
 };
 
@@ -33,7 +33,8 @@ std::vector<std::string> zippedPaths(const std::string& key, const YamlValue& wh
   std::size_t start = 0;
   while (true) {
     const std::size_t comma = key.find(',', start);
-    std::string p = key.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+    std::string p =
+        key.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
     while (!p.empty() && p.front() == ' ') p.erase(p.begin());
     while (!p.empty() && p.back() == ' ') p.pop_back();
     (void)parseKeyPath(p, where.where(), where.key());
@@ -75,8 +76,9 @@ Draw parseDraw(const std::string& path, const YamlValue& spec) {
   YamlMap m(spec);
   const std::vector<std::string> keys = m.keys();
   if (keys.size() != 1)
-    spec.fail("a draw is one of {uniform: [a, b]}, {log_uniform: [a, b]}, "
-              "{normal: {mean, sd, min, max}}, {choice: [...]}, {orbit: {...}}");
+    spec.fail(
+        "a draw is one of {uniform: [a, b]}, {log_uniform: [a, b]}, "
+        "{normal: {mean, sd, min, max}}, {choice: [...]}, {orbit: {...}}");
   const std::string kind = keys.front();
   const YamlValue v = *m.find(kind);
   if (path.find(',') != std::string::npos && kind != "choice")
@@ -97,8 +99,7 @@ Draw parseDraw(const std::string& path, const YamlValue& spec) {
     n.finish({"mean", "sd", "min", "max"});
     if (!(d.lo < d.hi)) v.fail("expected min < max");
     const double mass = normalCdf((d.hi - d.mean) / d.sd) - normalCdf((d.lo - d.mean) / d.sd);
-    if (!(mass >= 1e-3))
-      v.fail("[min, max] keeps less than 0.1 % of this normal distribution");
+    if (!(mass >= 1e-3)) v.fail("[min, max] keeps less than 0.1 % of this normal distribution");
   } else if (kind == "choice") {
     d.kind = Draw::Kind::kChoice;
     d.paths = zippedPaths(path, spec);
@@ -108,8 +109,8 @@ Draw parseDraw(const std::string& path, const YamlValue& spec) {
     d.kind = Draw::Kind::kOrbit;
     const std::string suffix = "position";
     if (path.find(',') != std::string::npos) v.fail("an orbit draws one key path");
-    if (path.size() < suffix.size() || path.compare(path.size() - suffix.size(), suffix.size(),
-                                                    suffix) != 0)
+    if (path.size() < suffix.size() ||
+        path.compare(path.size() - suffix.size(), suffix.size(), suffix) != 0)
       v.fail("an orbit draws a camera position: its key path ends in 'position'");
     YamlMap o(v);
     d.centre = o.require("centre").vec3();
@@ -131,7 +132,8 @@ std::string vec3Text(const glm::dvec3& v) {
 }
 
 // Draw j of item i: its edits (an orbit sets position and look_at).
-std::vector<YamlEdit> drawValue(const Draw& d, std::uint64_t seed, std::size_t item, std::size_t j) {
+std::vector<YamlEdit> drawValue(const Draw& d, std::uint64_t seed, std::size_t item,
+                                std::size_t j) {
   CounterRng rng(streamKey(seed, item, j + 1));
   auto uniform = [&](double lo, double hi) { return lo + (hi - lo) * rng.uniformOpen(); };
   std::string value;
@@ -164,10 +166,11 @@ std::vector<YamlEdit> drawValue(const Draw& d, std::uint64_t seed, std::size_t i
       const double r = uniform(d.radius.first, d.radius.second);
       const double a = uniform(d.azimuth.first, d.azimuth.second) * std::numbers::pi / 180.0;
       const double e = uniform(d.elevation.first, d.elevation.second) * std::numbers::pi / 180.0;
-      const glm::dvec3 p =
-          d.centre + r * glm::dvec3(std::sin(a) * std::cos(e), std::sin(e), -std::cos(a) * std::cos(e));
+      const glm::dvec3 p = d.centre + r * glm::dvec3(std::sin(a) * std::cos(e), std::sin(e),
+                                                     -std::cos(a) * std::cos(e));
       const std::string parent = d.path.substr(0, d.path.size() - std::string("position").size());
-      return {{d.path, vec3Text(p), d.where, d.key}, {parent + "look_at", vec3Text(d.centre), d.where, d.key}};
+      return {{d.path, vec3Text(p), d.where, d.key},
+              {parent + "look_at", vec3Text(d.centre), d.where, d.key}};
     }
   }
   return {{d.path, value, d.where, d.key}};
@@ -201,7 +204,8 @@ Manifest parseManifest(const std::string& text, const std::string& displayName,
   YamlMap top(root);
   const YamlValue format = top.require("format");
   if (format.string() != "camsim-dataset/1")
-    format.fail("unsupported format '" + format.string() + "' (this camsim reads camsim-dataset/1)");
+    format.fail("unsupported format '" + format.string() +
+                "' (this camsim reads camsim-dataset/1)");
   const YamlValue scene = top.require("scene");
   m.scene = baseDir / scene.string();
   try {
@@ -217,7 +221,8 @@ Manifest parseManifest(const std::string& text, const std::string& displayName,
   if (auto v = top.find("set")) common = editsOf(*v);
   std::vector<std::pair<std::vector<YamlEdit>, SourceLocation>> explicitItems;
   if (auto v = top.find("items"))
-    for (const YamlValue& item : v->items()) explicitItems.emplace_back(editsOf(item), item.where());
+    for (const YamlValue& item : v->items())
+      explicitItems.emplace_back(editsOf(item), item.where());
 
   // The grid: key paths and their value lists, as combinations (first key slowest).
   std::vector<std::vector<std::vector<YamlEdit>>> axes;  // per axis, per value: its edits
@@ -262,23 +267,27 @@ Manifest parseManifest(const std::string& text, const std::string& displayName,
 
   std::size_t combinations = axes.empty() ? (randomWhere ? 1 : 0) : 1;
   for (const auto& axis : axes) {
-    if (combinations > kMaxItems / axis.size()) top.self().fail("the grid has more than 10^7 items");
+    if (combinations > kMaxItems / axis.size())
+      top.self().fail(
+          "the grid has more than 100000 items (split the dataset into several manifests)");
     combinations *= axis.size();
   }
   const std::size_t perCombination = randomWhere ? drawCount : 1;
   if (combinations > 0 && perCombination > kMaxItems / combinations)
-    top.self().fail("the manifest has more than 10^7 items");
+    top.self().fail(
+        "the manifest has more than 100000 items (split the dataset into several manifests)");
   const std::size_t total = explicitItems.size() + combinations * perCombination;
   if (total == 0) top.self().fail("the manifest has no items: give items, grid or random");
-  if (total > kMaxItems) top.self().fail("the manifest has more than 10^7 items");
+  if (total > kMaxItems)
+    top.self().fail(
+        "the manifest has more than 100000 items (split the dataset into several manifests)");
 
   auto finishItem = [&](DatasetItem& item) {
     if (!m.seedsPerItem) return;
     // First, so that an item's own render.seed or sensor.noise_seed wins.
     const std::string seedKey = "seeds (dataset seed " + std::to_string(m.seed) + ")";
     const std::vector<YamlEdit> seeds = {
-        {"render.seed", std::to_string(streamKey(m.seed, item.index, 0) >> 1), item.where,
-         seedKey},
+        {"render.seed", std::to_string(streamKey(m.seed, item.index, 0) >> 1), item.where, seedKey},
         {"sensor.noise_seed", std::to_string(streamKey(m.seed, item.index, kNoiseStream) >> 1),
          item.where, seedKey, true}};
     item.edits.insert(item.edits.begin(), seeds.begin(), seeds.end());

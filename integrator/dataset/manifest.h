@@ -48,10 +48,10 @@ struct DatasetItem {
 };
 
 struct Manifest {
-  std::filesystem::path file;        // as given
-  std::string text;                  // the manifest's own text
-  std::filesystem::path scene;       // the base scene, resolved against the manifest's folder
-  std::string sceneText;             // its text
+  std::filesystem::path file;   // as given
+  std::string text;             // the manifest's own text
+  std::filesystem::path scene;  // the base scene, resolved against the manifest's folder
+  std::string sceneText;        // its text
   std::uint64_t seed = 0;
   bool seedsPerItem = true;
   std::vector<DatasetItem> items;

@@ -127,7 +127,8 @@ EditedYaml applyYamlEdits(const std::string& text, const std::string& file,
         }
         continue;
       }
-      if (!node.IsSequence()) fail(e, here + " is not a list, so it has no element [" + s.text + "]");
+      if (!node.IsSequence())
+        fail(e, here + " is not a list, so it has no element [" + s.text + "]");
       std::size_t index = s.index;
       if (s.kind == KeyPathSegment::Kind::kName) {
         index = node.size();

@@ -24,10 +24,10 @@ namespace camsim {
 class YamlValue;
 
 struct YamlEdit {
-  std::string path;       // a key path (above)
-  std::string value;      // the new value as YAML text: "2.8", "[0, 1, 2]", "{open: 0, close: 0.01}"
-  SourceLocation where;   // where the edit was written (errors name it)
-  std::string key;        // how errors name it, e.g. "grid.camera.f_number"
+  std::string path;      // a key path (above)
+  std::string value;     // the new value as YAML text: "2.8", "[0, 1, 2]", "{open: 0, close: 0.01}"
+  SourceLocation where;  // where the edit was written (errors name it)
+  std::string key;       // how errors name it, e.g. "grid.camera.f_number"
   // Applied only where everything but the last key exists (e.g. sensor.noise_seed on a
   // scene with a sensor); skipped otherwise (its canonical path is then empty).
   bool ifParentExists = false;

@@ -37,14 +37,16 @@ std::string baseScene(int spp) {
          "sensor: {model: smartphone-1.4um, iso: 200, noise: full}\n"
          "materials: {grey: {type: diffuse, reflectance: 0.5}}\n"
          "shapes:\n"
-         "  - {name: lamp, type: sphere, centre: [0, 2, 0], radius: 0.5, emission: {luminance: 20000}}\n"
+         "  - {name: lamp, type: sphere, centre: [0, 2, 0], radius: 0.5, emission: {luminance: "
+         "20000}}\n"
          "  - {name: ball, type: sphere, centre: [0, 0, 0], radius: 1, material: grey}\n";
 }
 
 const char* kManifest =
     "format: camsim-dataset/1\nscene: base.yaml\nseed: 11\n"
     "random:\n  count: 6\n  draw:\n"
-    "    camera.position: {orbit: {centre: [0, 0, 0], radius: [2.5, 3.5], azimuth_deg: [-40, 40]}}\n"
+    "    camera.position: {orbit: {centre: [0, 0, 0], radius: [2.5, 3.5], azimuth_deg: [-40, "
+    "40]}}\n"
     "    sensor.iso: {choice: [100, 400]}\n";
 
 // Every file under dir (relative path → content), temporaries included.
@@ -134,7 +136,8 @@ TEST_F(DatasetCommand, KilledMidItemResumesWithNothingLostOrTwice) {
     ASSERT_TRUE(b.count(name)) << name;
     EXPECT_TRUE(b.at(name) == content) << name << " differs";
   }
-  for (const auto& [name, content] : b) EXPECT_EQ(name.find("camsim-tmp"), std::string::npos) << name;
+  for (const auto& [name, content] : b)
+    EXPECT_EQ(name.find("camsim-tmp"), std::string::npos) << name;
   const auto done = indexItems(out, "done");
   EXPECT_EQ(done.size(), 6u);
   EXPECT_EQ(std::set<std::string>(done.begin(), done.end()).size(), 6u);
@@ -147,7 +150,8 @@ TEST_F(DatasetCommand, KilledMidItemResumesWithNothingLostOrTwice) {
   EXPECT_NE(changed.err.find("6 rendered, 0 up to date"), std::string::npos) << changed.err;
   const auto status = test::runCamsim("dataset --status " + out.string(), dir_.path());
   EXPECT_EQ(status.exitCode, 0);
-  EXPECT_NE(status.out.find("6 items: 6 done, 0 failed, 0 missing"), std::string::npos) << status.out;
+  EXPECT_NE(status.out.find("6 items: 6 done, 0 failed, 0 missing"), std::string::npos)
+      << status.out;
 }
 
 TEST_F(DatasetCommand, SigtermStopsWithExitCode143AndTheItemInProgressDropped) {
@@ -162,7 +166,8 @@ TEST_F(DatasetCommand, SigtermStopsWithExitCode143AndTheItemInProgressDropped) {
   const auto status = child.wait(std::chrono::seconds(60));
   ASSERT_TRUE(status);
   EXPECT_EQ(test::exitCode(*status), 143) << child.err();
-  for (const auto& [name, content] : tree(out)) EXPECT_EQ(name.find("camsim-tmp"), std::string::npos) << name;
+  for (const auto& [name, content] : tree(out))
+    EXPECT_EQ(name.find("camsim-tmp"), std::string::npos) << name;
   const auto st = test::runCamsim("dataset --status " + out.string(), dir_.path());
   EXPECT_EQ(st.exitCode, 1) << st.out;  // not all done
   EXPECT_NE(st.out.find("missing"), std::string::npos) << st.out;
@@ -172,8 +177,9 @@ TEST(DatasetShard, FromFlagsSlurmAndKubernetes) {
   DatasetArgs a;
   a.manifest = "m.yaml";
   EXPECT_EQ(resolveShard(a, {}).count, 1u);
-  const Shard slurm = resolveShard(
-      a, {{"SLURM_ARRAY_TASK_ID", "7"}, {"SLURM_ARRAY_TASK_MIN", "5"}, {"SLURM_ARRAY_TASK_COUNT", "4"}});
+  const Shard slurm = resolveShard(a, {{"SLURM_ARRAY_TASK_ID", "7"},
+                                       {"SLURM_ARRAY_TASK_MIN", "5"},
+                                       {"SLURM_ARRAY_TASK_COUNT", "4"}});
   EXPECT_EQ(slurm.index, 2u);
   EXPECT_EQ(slurm.count, 4u);
   EXPECT_THROW(resolveShard(a, {{"SLURM_ARRAY_TASK_ID", "9"}, {"SLURM_ARRAY_TASK_COUNT", "4"}}),
@@ -184,7 +190,8 @@ TEST(DatasetShard, FromFlagsSlurmAndKubernetes) {
   EXPECT_EQ(k8s.index, 3u);
   EXPECT_EQ(k8s.count, 5u);
   a.shard = "1/3";  // the flag wins over the environment
-  const Shard flag = resolveShard(a, {{"SLURM_ARRAY_TASK_ID", "0"}, {"SLURM_ARRAY_TASK_COUNT", "2"}});
+  const Shard flag =
+      resolveShard(a, {{"SLURM_ARRAY_TASK_ID", "0"}, {"SLURM_ARRAY_TASK_COUNT", "2"}});
   EXPECT_EQ(flag.index, 1u);
   EXPECT_EQ(flag.count, 3u);
   a.shard = "3/3";

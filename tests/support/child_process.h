@@ -99,6 +99,5 @@ inline int exitCode(int status) {
   return WIFEXITED(status) ? WEXITSTATUS(status) : -WTERMSIG(status);
 }
 
-
 }  // namespace test
 }  // namespace camsim

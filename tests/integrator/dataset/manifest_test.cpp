@@ -5,7 +5,8 @@
 //    seed, item): the same manifest gives the same items, another seed other ones;
 //  - an orbit puts the camera at its radius from the centre, looking at it; zipped keys
 //    set their paths together; null removes a key;
-//  - ten malformed manifests are rejected with the manifest's file:line and key.
+//  - ten malformed manifests are rejected with the manifest's file:line and key;
+//  - every manifest shipped in scenes/ resolves.
 #include "integrator/dataset/dataset_item.h"
 
 #include <gtest/gtest.h>
@@ -27,7 +28,8 @@ const char* kScene =
     "materials: {grey: {type: diffuse, reflectance: 0.5}}\n"
     "shapes:\n"
     "  - {name: ball, type: sphere, centre: [0, 0, 0], radius: 1, emission: {luminance: 100}}\n"
-    "  - {name: floor, type: rectangle, corner: [-2, -1, -2], edge_u: [0, 0, 4], edge_v: [4, 0, 0], material: grey}\n";
+    "  - {name: floor, type: rectangle, corner: [-2, -1, -2], edge_u: [0, 0, 4], edge_v: [4, 0, "
+    "0], material: grey}\n";
 
 class ManifestTest : public testing::Test {
  protected:
@@ -50,7 +52,8 @@ TEST_F(ManifestTest, SetItemsGridAndDrawsResolveInTheDocumentedOrder) {
       "format: camsim-dataset/1\nscene: base.yaml\nseed: 5\n"
       "set: {render.spp: 2}\n"
       "items:\n  - {camera.f_number: 2}\n  - {camera.f_number: 11, 'shapes[ball].radius': 0.5}\n"
-      "grid:\n  camera.f_number: [4, 8]\n  shapes[1].corner: [[-2, -1, -2], [-3, -1, -3], [-4, -1, -4]]\n"
+      "grid:\n  camera.f_number: [4, 8]\n  shapes[1].corner: [[-2, -1, -2], [-3, -1, -3], [-4, -1, "
+      "-4]]\n"
       "random:\n  count: 2\n  draw:\n    shapes[ball].emission.luminance: {uniform: [10, 20]}\n");
   ASSERT_EQ(m.items.size(), 2u + 2u * 3u * 2u);
   const ResolvedItem a = resolve(m, 1);
@@ -126,7 +129,8 @@ TEST_F(ManifestTest, OrbitZippedKeysAndNull) {
     EXPECT_TRUE(pairA || pairB) << r.sceneText;
     EXPECT_EQ(r.description.render.seed, 0u);  // seeds: fixed keeps the scene's
   }
-  const Manifest n = parse("format: camsim-dataset/1\nscene: base.yaml\nitems: [{camera.f_number: null}]\n");
+  const Manifest n =
+      parse("format: camsim-dataset/1\nscene: base.yaml\nitems: [{camera.f_number: null}]\n");
   EXPECT_EQ(resolve(n, 0).sceneText.find("f_number"), std::string::npos);
 }
 
@@ -157,29 +161,30 @@ TEST_P(MalformedManifest, IsRejectedWithTheManifestsLineAndKey) {
 
 INSTANTIATE_TEST_SUITE_P(
     Cases, MalformedManifest,
-    testing::Values(
-        BadManifest{"UnknownKeyPath", "items:\n  - {camera.f_numbr: 2}\n", 4, "camera.f_numbr",
-                    "unknown key"},
-        BadManifest{"ImpossibleValue", "grid:\n  camera.f_number: [2, -1]\n", 4,
-                    "grid.camera.f_number", "item 1"},
-        BadManifest{"NoSuchShapeName", "items:\n  - {'shapes[lamp].radius': 2}\n", 4,
-                    "shapes[lamp].radius", "no element named 'lamp'"},
-        BadManifest{"IndexPastTheEnd", "items:\n  - {'shapes[7].radius': 2}\n", 4, "shapes[7].radius",
-                    "past the end"},
-        BadManifest{"MalformedPath", "items:\n  - {camera..f_number: 2}\n", 4, "camera..f_number",
-                    "malformed key path"},
-        BadManifest{"EmptyRange", "random:\n  draw:\n    camera.f_number: {uniform: [4, 2]}\n", 5,
-                    "random.draw.camera.f_number", "lo <= hi"},
-        BadManifest{"UnknownDraw", "random:\n  draw:\n    camera.f_number: {gaussian: [4, 2]}\n", 5,
-                    "random.draw.camera.f_number", "unknown draw 'gaussian'"},
-        BadManifest{"NegativeLogRange",
-                    "random:\n  draw:\n    camera.f_number: {log_uniform: [0, 2]}\n", 5,
-                    "random.draw.camera.f_number", "positive"},
-        BadManifest{"ZippedValueOfWrongLength",
-                    "grid:\n  'camera.f_number, render.spp': [[2, 4], [8]]\n", 4,
-                    "grid.camera.f_number, render.spp", "a list of 2 values"},
-        BadManifest{"UnknownTopLevelKey", "grids:\n  camera.f_number: [2]\n", 3, "grids",
-                    "unknown key"}),
+    testing::Values(BadManifest{"UnknownKeyPath", "items:\n  - {camera.f_numbr: 2}\n", 4,
+                                "camera.f_numbr", "unknown key"},
+                    BadManifest{"ImpossibleValue", "grid:\n  camera.f_number: [2, -1]\n", 4,
+                                "grid.camera.f_number", "item 1"},
+                    BadManifest{"NoSuchShapeName", "items:\n  - {'shapes[lamp].radius': 2}\n", 4,
+                                "shapes[lamp].radius", "no element named 'lamp'"},
+                    BadManifest{"IndexPastTheEnd", "items:\n  - {'shapes[7].radius': 2}\n", 4,
+                                "shapes[7].radius", "past the end"},
+                    BadManifest{"MalformedPath", "items:\n  - {camera..f_number: 2}\n", 4,
+                                "camera..f_number", "malformed key path"},
+                    BadManifest{"EmptyRange",
+                                "random:\n  draw:\n    camera.f_number: {uniform: [4, 2]}\n", 5,
+                                "random.draw.camera.f_number", "lo <= hi"},
+                    BadManifest{"UnknownDraw",
+                                "random:\n  draw:\n    camera.f_number: {gaussian: [4, 2]}\n", 5,
+                                "random.draw.camera.f_number", "unknown draw 'gaussian'"},
+                    BadManifest{"NegativeLogRange",
+                                "random:\n  draw:\n    camera.f_number: {log_uniform: [0, 2]}\n", 5,
+                                "random.draw.camera.f_number", "positive"},
+                    BadManifest{"ZippedValueOfWrongLength",
+                                "grid:\n  'camera.f_number, render.spp': [[2, 4], [8]]\n", 4,
+                                "grid.camera.f_number, render.spp", "a list of 2 values"},
+                    BadManifest{"UnknownTopLevelKey", "grids:\n  camera.f_number: [2]\n", 3,
+                                "grids", "unknown key"}),
     [](const testing::TestParamInfo<BadManifest>& p) { return std::string(p.param.name); });
 
 TEST_F(ManifestTest, AManifestWithoutItemsOrAMissingSceneIsAnError) {
@@ -191,6 +196,24 @@ TEST_F(ManifestTest, AManifestWithoutItemsOrAMissingSceneIsAnError) {
     EXPECT_EQ(e.where().line, 2) << e.what();
     EXPECT_NE(std::string(e.what()).find("nowhere.yaml"), std::string::npos) << e.what();
   }
+}
+
+// Every dataset manifest shipped in scenes/ resolves, every item loading.
+TEST(ExampleManifests, EveryShippedManifestResolves) {
+  int manifests = 0;
+  for (const auto& e :
+       std::filesystem::directory_iterator(std::filesystem::path(CAMSIM_SOURCE_DIR) / "scenes")) {
+    if (e.path().extension() != ".yaml" ||
+        test::readFile(e.path()).find("format: camsim-dataset/1") == std::string::npos)
+      continue;
+    ++manifests;
+    const Manifest m = loadManifest(e.path());
+    checkBaseScene(m);
+    EXPECT_GE(m.items.size(), 1u) << e.path();
+    for (const DatasetItem& item : m.items)
+      EXPECT_NO_THROW((void)resolveItem(m, item, "")) << e.path();
+  }
+  EXPECT_GE(manifests, 1);
 }
 
 }  // namespace
