@@ -1,18 +1,27 @@
 #include "integrator/dataset/dataset_run.h"
 
-#include <fcntl.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <chrono>
+#include <exception>
+#include <future>
+#include <memory>
+#include <mutex>
+#include <thread>
+#include <utility>
+
 #include <fstream>
-#include <regex>
 #include <set>
 #include <sstream>
+
+#include <tbb/parallel_for.h>
 
 #include "integrator/capture/capture.h"
 #include "integrator/capture/capture_writer.h"
 #include "integrator/capture/dataset_writer.h"
 #include "integrator/dataset/dataset_item.h"
+#include "integrator/dataset/item_writer.h"
 #include "sensor/base/fnv1a.h"
 #include "sensor/base/input_error.h"
 #include "sensor/base/yaml_reader.h"
@@ -23,13 +32,6 @@ namespace fs = std::filesystem;
 
 namespace camsim {
 namespace {
-
-std::string readAll(const fs::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
 
 // A temporary item folder's prefix: ".NNNNNN.camsim-tmp-" (the PID follows).
 std::string temporaryPrefix(std::size_t index) {
@@ -51,74 +53,23 @@ std::vector<fs::path> removeTemporaries(const fs::path& items, std::size_t index
   return removed;
 }
 
-// A parameter value as JSON: a number as written when it is a JSON number, anything else
-// (a list, a name) as its YAML text in a string.
-std::string jsonValue(const std::string& yaml) {
-  static const std::regex number(R"(-?(0|[1-9][0-9]*)(\.[0-9]+)?([eE][-+]?[0-9]+)?)");
-  static const std::regex numbers(
-      R"(\[ *(-?(0|[1-9][0-9]*)(\.[0-9]+)?([eE][-+]?[0-9]+)?( *, *)?)* *\])");
-  if (yaml == "~" || yaml == "null") return "null";
-  return std::regex_match(yaml, number) || std::regex_match(yaml, numbers)
-             ? yaml
-             : JsonObject::quoted(yaml);
-}
-
-JsonObject parametersJson(const ResolvedItem& item) {
-  JsonObject p;
-  for (const auto& [path, value] : item.parameters) p.setJson(path, jsonValue(value));
-  return p;
-}
-
-// Whether the item's recorded outputs are still its outputs: item.json's hash and files.
-bool upToDate(const fs::path& dir, const std::string& hash) {
-  const fs::path record = dir / "item.json";
-  std::error_code ec;
-  if (!fs::is_regular_file(record, ec)) return false;
-  try {
-    YamlMap j(parseYaml(readAll(record), record.string()));
-    if (j.require("hash").string() != hash || j.require("status").string() != "done") return false;
-    for (const YamlValue& f : j.require("files").items())
-      if (!fs::is_regular_file(dir / YamlMap(f).require("path").string(), ec)) return false;
-    return true;
-  } catch (const InputError&) {
-    return false;  // unreadable: render again
-  }
-}
-
-// One line appended with a single write(2) on an O_APPEND descriptor: lines of processes
-// writing at once do not interleave (a local or NFS-with-locking file system).
-void appendLine(const fs::path& file, const std::string& line) {
-  const int fd = ::open(file.c_str(), O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC, 0644);
-  if (fd < 0) throw InputError({file.string(), 0, 0}, "", "cannot open the dataset index");
-  const std::string text = line + "\n";
-  const ssize_t n = ::write(fd, text.data(), text.size());
-  ::close(fd);
-  if (n != static_cast<ssize_t>(text.size()))
-    throw InputError({file.string(), 0, 0}, "", "cannot append to the dataset index");
-}
-
-struct Rendered {
-  std::vector<fs::path> files;
-  bool cancelled = false;
-  double renderSeconds = 0.0;  // in render(): the rest of the item's time is overhead
-};
-
-// The item's capture or sequence, written into `dir` (reproducible bytes).
-Rendered renderItem(SceneDescription desc, const fs::path& dir, const DatasetRunOptions& options,
-                    const std::function<void(double)>& fraction) {
-  CaptureOutputOptions out{dir, options.picture, false, true};
+// Renders the item into w: a single capture is kept for the writer (w.capture), a
+// sequence's frames are written into w.tmp as they finish. False when cancelled.
+bool renderItem(SceneDescription desc, ItemWork& w, const DatasetRunOptions& options,
+                const std::function<void(double)>& fraction) {
+  CaptureOutputOptions out{w.tmp, options.picture, false, true};
   CaptureOptions co;
   co.threads = options.threads;
   co.cancel = options.cancel;
-  Rendered r;
   if (!desc.frames) {
     co.progress = [&](int done, int total) { fraction(static_cast<double>(done) / total); };
-    const CaptureResult result = capture(std::move(desc), co);
-    if (result.cancelled) return {{}, true, 0.0};
-    r.files = writeCapture(result, out).files;
-    r.renderSeconds = result.stats.seconds;
-    return r;
+    CaptureResult result = capture(std::move(desc), co);
+    if (result.cancelled) return false;
+    w.renderSeconds = result.stats.seconds;
+    w.capture = std::move(result);
+    return true;
   }
+  ItemWork& r = w;
   const int count = desc.frames->count;
   int frame = 0;
   co.progress = [&](int done, int total) {
@@ -132,9 +83,38 @@ Rendered renderItem(SceneDescription desc, const fs::path& dir, const DatasetRun
     for (auto& f : writeCapture(c, out).files) r.files.push_back(f);
     frames.push_back(datasetFrame(c));
   });
-  if (s.cancelled) return {{}, true, 0.0};
-  for (auto& f : writeDatasetMetadata(frames, dir)) r.files.push_back(f);
-  return r;
+  if (s.cancelled) return false;
+  for (auto& f : writeDatasetMetadata(frames, w.tmp)) r.files.push_back(f);
+  return true;
+}
+
+void count(DatasetRunSummary& s, const ItemReport& r) {
+  if (r.status == ItemStatus::kDone) ++s.done;
+  if (r.status == ItemStatus::kSkipped) ++s.skipped;
+  if (r.status == ItemStatus::kFailed) ++s.failed;
+}
+
+// Every item resolved and loaded, on all cores; the first error (in item order) is thrown.
+void checkItems(const Manifest& manifest, const std::string& outputKey,
+                const DatasetRunOptions& options) {
+  const std::size_t n = manifest.items.size();
+  std::vector<std::exception_ptr> errors(n);
+  std::atomic<std::size_t> done{0};
+  std::mutex progress;
+  tbb::parallel_for(std::size_t{0}, n, [&](std::size_t i) {
+    try {
+      (void)resolveItem(manifest, manifest.items[i], outputKey);
+    } catch (...) {
+      errors[i] = std::current_exception();
+    }
+    const std::size_t d = ++done;
+    if (options.onChecked) {
+      std::lock_guard<std::mutex> lock(progress);
+      options.onChecked(d, n);
+    }
+  });
+  for (const auto& e : errors)
+    if (e) std::rethrow_exception(e);
 }
 
 }  // namespace
@@ -173,10 +153,7 @@ DatasetRunSummary runDataset(const Manifest& manifest, const DatasetRunOptions& 
   }
   // Every item checked before anything is written or rendered.
   checkBaseScene(manifest);
-  for (const DatasetItem& item : manifest.items) {
-    (void)resolveItem(manifest, item, outputKey);
-    if (options.onChecked) options.onChecked(item.index + 1, manifest.items.size());
-  }
+  checkItems(manifest, outputKey, options);
   std::vector<std::size_t> mine;
   for (const DatasetItem& item : manifest.items)
     if (options.shard.owns(item.index) && (!options.onlyItem || *options.onlyItem == item.index))
@@ -202,6 +179,35 @@ DatasetRunSummary runDataset(const Manifest& manifest, const DatasetRunOptions& 
   }
   const std::string shardText =
       std::to_string(options.shard.index) + "/" + std::to_string(options.shard.count);
+  // Item n is written on the writer thread, and item n + 2 loaded, while item n + 1 renders
+  // (single captures; a sequence writes its frames as they finish). Reports and progress
+  // come from this thread.
+  std::thread writer;
+  std::exception_ptr writerError;
+  std::future<ResolvedItem> next;  // item n + 1, loaded while item n renders
+  std::optional<ItemReport> written;
+  std::size_t finished = 0;
+  auto collect = [&]() {
+    if (!writer.joinable()) return;
+    writer.join();
+    if (writerError) std::rethrow_exception(std::exchange(writerError, nullptr));
+    count(summary, *written);
+    if (options.onItem) options.onItem(*written);
+    ++finished;
+    if (options.progress) options.progress(finished, mine.size(), 0.0);
+  };
+  struct JoinOnExit {  // an exception in this thread: the writer finishes first
+    std::thread& t;
+    ~JoinOnExit() {
+      if (t.joinable()) t.join();
+    }
+  } joinOnExit{writer};
+  struct WaitOnExit {  // nor may the loading of the next item outlive this call
+    std::future<ResolvedItem>& f;
+    ~WaitOnExit() {
+      if (f.valid()) f.wait();
+    }
+  } waitOnExit{next};
   for (std::size_t n = 0; n < mine.size(); ++n) {
     const std::size_t index = mine[n];
     if (options.cancel && options.cancel->load()) {
@@ -209,93 +215,73 @@ DatasetRunSummary runDataset(const Manifest& manifest, const DatasetRunOptions& 
       break;
     }
     for (auto& t : removeTemporaries(items, index)) summary.removed.push_back(t);
-    const ResolvedItem item = resolveItem(manifest, manifest.items[index], outputKey);
-    const fs::path finalDir = items / itemFolderName(index);
-    ItemReport report;
-    report.index = index;
-    if (options.resume && upToDate(finalDir, item.hash)) {
-      report.status = ItemStatus::kSkipped;
-      ++summary.skipped;
-      if (options.onItem) options.onItem(report);
-      if (options.progress) options.progress(n + 1, mine.size(), 0.0);
+    auto work = std::make_shared<ItemWork>();
+    // Loaded while the previous item rendered (the first: now).
+    work->item = n == 0 ? resolveItem(manifest, manifest.items[index], outputKey) : next.get();
+    if (n + 1 < mine.size())
+      next = std::async(std::launch::async, [&manifest, &outputKey, i = mine[n + 1]] {
+        return resolveItem(manifest, manifest.items[i], outputKey);
+      });
+    work->finalDir = items / itemFolderName(index);
+    work->indexFile = options.directory / "index.jsonl";
+    work->shard = shardText;
+    work->picture = options.picture;
+    work->start = std::chrono::steady_clock::now();
+    if (options.resume && itemUpToDate(work->finalDir, work->item.hash)) {
+      collect();
+      ItemReport skipped;
+      skipped.index = index;
+      skipped.status = ItemStatus::kSkipped;
+      count(summary, skipped);
+      if (options.onItem) options.onItem(skipped);
+      ++finished;
+      if (options.progress) options.progress(finished, mine.size(), 0.0);
       continue;
     }
-    const auto start = std::chrono::steady_clock::now();
-    const fs::path tmp = items / (temporaryPrefix(index) + std::to_string(::getpid()));
-    fs::create_directories(tmp);
-    struct RemoveOnExit {  // an exception or a cancel leaves no temporary behind
-      fs::path dir;
-      ~RemoveOnExit() {
-        std::error_code ec;
-        if (!dir.empty()) fs::remove_all(dir, ec);
-      }
-    } cleanup{tmp};
-    JsonObject line;
-    line.setInteger("item", index);
+    work->tmp = items / (temporaryPrefix(index) + std::to_string(::getpid()));
+    fs::create_directories(work->tmp);
+    bool rendered = false;
     try {
-      Rendered r = renderItem(item.description, tmp, options, [&](double f) {
-        if (options.progress) options.progress(n, mine.size(), f);
+      rendered = renderItem(work->item.description, *work, options, [&](double f) {
+        if (options.progress) options.progress(finished, mine.size(), f);
       });
-      if (r.cancelled) {
-        report.status = ItemStatus::kInterrupted;
-        summary.cancelled = true;
-        if (options.onItem) options.onItem(report);
-        break;
-      }
-      OutputSet extra(tmp);
-      extra.addText("scene.yaml", "# camsim dataset " + manifest.file.filename().string() +
-                                      ", item " + std::to_string(index) + ": the base scene " +
-                                      manifest.scene.filename().string() +
-                                      " with the item's values; its relative paths resolve "
-                                      "against the base scene's folder\n" +
-                                      item.sceneText);
-      extra.addText(
-          "params.json",
-          JsonObject().setInteger("item", index).set("parameters", parametersJson(item)).str() +
-              "\n");
-      for (auto& f : extra.commit()) r.files.push_back(f);
-      std::vector<JsonObject> files;
-      for (const fs::path& f : r.files)
-        files.push_back(JsonObject()
-                            .set("path", f.filename().string())
-                            .set("fnv1a64", fnv1aHex(readAll(tmp / f.filename()))));
-      report.seconds =
-          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      report.files = files.size();
-      report.renderSeconds = r.renderSeconds;
-      OutputSet last(tmp);
-      last.addText("item.json", JsonObject()
-                                        .setInteger("item", index)
-                                        .set("status", "done")
-                                        .set("hash", item.hash)
-                                        .set("camsim_version", CAMSIM_VERSION)
-                                        .set("files", files)
-                                        .str() +
-                                    "\n");
-      last.commit();
-      std::error_code ec;
-      fs::remove_all(finalDir, ec);  // an older version of the item
-      fs::rename(tmp, finalDir);
-      cleanup.dir.clear();
-      report.status = ItemStatus::kDone;
-      ++summary.done;
-      line.set("status", "done").set("hash", item.hash).set("files", files);
     } catch (const InputError&) {
-      throw;  // bad input: the whole run stops (exit 2), the temporary is removed
+      std::error_code ec;
+      fs::remove_all(work->tmp, ec);
+      throw;
     } catch (const std::exception& e) {
-      report.status = ItemStatus::kFailed;
-      report.message = e.what();
-      ++summary.failed;
-      line.set("status", "failed").set("error", std::string(e.what()));
+      work->capture.reset();
+      work->files.clear();
+      work->renderSeconds = 0.0;
+      collect();
+      ItemReport failed = recordFailure(*work, e.what());
+      count(summary, failed);
+      if (options.onItem) options.onItem(failed);
+      ++finished;
+      continue;
     }
-    line.set("seconds", report.seconds)
-        .set("render_seconds", report.renderSeconds)
-        .set("shard", shardText)
-        .set("parameters", parametersJson(item));
-    appendLine(options.directory / "index.jsonl", line.line());
-    if (options.onItem) options.onItem(report);
-    if (options.progress) options.progress(n + 1, mine.size(), 0.0);
+    if (!rendered) {
+      std::error_code ec;
+      fs::remove_all(work->tmp, ec);
+      collect();
+      ItemReport interrupted;
+      interrupted.index = index;
+      interrupted.status = ItemStatus::kInterrupted;
+      summary.cancelled = true;
+      if (options.onItem) options.onItem(interrupted);
+      break;
+    }
+    collect();  // the previous item's files are complete before this one's are written
+    writer = std::thread([&manifest, work, &written, &writerError] {
+      try {
+        written = writeItem(manifest, *work);
+      } catch (...) {
+        writerError = std::current_exception();
+      }
+    });
+    if (work->item.description.frames) collect();  // a sequence: nothing to overlap
   }
+  collect();
   return summary;
 }
 
@@ -306,8 +292,9 @@ DatasetStatus datasetStatus(const fs::path& directory) {
     throw InputError({directory.string(), 0, 0}, "",
                      "not a camsim dataset folder (no dataset.json: nothing has run into it)");
   DatasetStatus s;
-  s.total = static_cast<std::size_t>(
-      YamlMap(parseYaml(readAll(record), record.string())).require("items").integer(0, INT64_MAX));
+  s.total = static_cast<std::size_t>(YamlMap(parseYaml(readWholeFile(record), record.string()))
+                                         .require("items")
+                                         .integer(0, INT64_MAX));
   std::set<std::size_t> failed;
   std::ifstream index(directory / "index.jsonl");
   for (std::string text; std::getline(index, text);) {

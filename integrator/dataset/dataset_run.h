@@ -22,8 +22,10 @@
 // |           |         | all exist                                                           |
 // | only_item | none    | render just this item (it must belong to the shard)                 |
 // | cancel    | none    | checked between tiles; the item in progress is dropped             |
-// Every item of the manifest (not only the shard's) is resolved and loaded before the first
-// renders, so bad input fails every shard alike, with nothing written.
+// Every item of the manifest (not only the shard's) is resolved and loaded (on all cores)
+// before the first renders, so bad input fails every shard alike, with nothing written.
+// Pipelined: while item n renders, item n − 1 is written (a writer thread) and item n + 1
+// loaded (a task); a frame sequence writes each frame as it finishes.
 #pragma once
 
 #include <atomic>

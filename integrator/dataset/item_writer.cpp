@@ -1,0 +1,166 @@
+#include "integrator/dataset/item_writer.h"
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <fstream>
+#include <regex>
+#include <sstream>
+
+#include "integrator/capture/capture_writer.h"
+#include "sensor/base/fnv1a.h"
+#include "sensor/base/input_error.h"
+#include "sensor/base/yaml_reader.h"
+#include "sensor/io/json_writer.h"
+#include "sensor/io/output_set.h"
+
+namespace fs = std::filesystem;
+
+namespace camsim {
+namespace {
+
+// A parameter value as JSON: a number or a list of numbers as written, null as null,
+// anything else (a name, a nested list) as its YAML text in a string.
+std::string jsonValue(const std::string& yaml) {
+  static const std::regex number(R"(-?(0|[1-9][0-9]*)(\.[0-9]+)?([eE][-+]?[0-9]+)?)");
+  static const std::regex numbers(
+      R"(\[ *(-?(0|[1-9][0-9]*)(\.[0-9]+)?([eE][-+]?[0-9]+)?( *, *)?)* *\])");
+  if (yaml == "~" || yaml == "null") return "null";
+  return std::regex_match(yaml, number) || std::regex_match(yaml, numbers)
+             ? yaml
+             : JsonObject::quoted(yaml);
+}
+
+JsonObject parametersJson(const ResolvedItem& item) {
+  JsonObject p;
+  for (const auto& [path, value] : item.parameters) p.setJson(path, jsonValue(value));
+  return p;
+}
+
+// One line appended with a single write(2) on an O_APPEND descriptor: lines of processes
+// writing at once do not interleave (a local or NFS-with-locking file system).
+void appendLine(const fs::path& file, const std::string& line) {
+  const int fd = ::open(file.c_str(), O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC, 0644);
+  if (fd < 0) throw InputError({file.string(), 0, 0}, "", "cannot open the dataset index");
+  const std::string text = line + "\n";
+  const ssize_t n = ::write(fd, text.data(), text.size());
+  ::close(fd);
+  if (n != static_cast<ssize_t>(text.size()))
+    throw InputError({file.string(), 0, 0}, "", "cannot append to the dataset index");
+}
+
+}  // namespace
+
+std::string readWholeFile(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+bool itemUpToDate(const fs::path& dir, const std::string& hash) {
+  const fs::path record = dir / "item.json";
+  std::error_code ec;
+  if (!fs::is_regular_file(record, ec)) return false;
+  try {
+    YamlMap j(parseYaml(readWholeFile(record), record.string()));
+    if (j.require("hash").string() != hash || j.require("status").string() != "done") return false;
+    for (const YamlValue& f : j.require("files").items())
+      if (!fs::is_regular_file(dir / YamlMap(f).require("path").string(), ec)) return false;
+    return true;
+  } catch (const InputError&) {
+    return false;  // unreadable: render again
+  }
+}
+
+namespace {
+
+void appendItemLine(const ItemWork& w, const ItemReport& report, JsonObject line) {
+  line.set("seconds", report.seconds)
+      .set("render_seconds", report.renderSeconds)
+      .set("shard", w.shard)
+      .set("parameters", parametersJson(w.item));
+  appendLine(w.indexFile, line.line());
+}
+
+double secondsSince(std::chrono::steady_clock::time_point t) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+}
+
+}  // namespace
+
+ItemReport recordFailure(ItemWork& w, const std::string& why) {
+  std::error_code ec;
+  fs::remove_all(w.tmp, ec);
+  ItemReport r;
+  r.index = w.item.index;
+  r.status = ItemStatus::kFailed;
+  r.message = why;
+  r.seconds = secondsSince(w.start);
+  JsonObject line;
+  line.setInteger("item", r.index).set("status", "failed").set("error", why);
+  appendItemLine(w, r, line);
+  return r;
+}
+
+ItemReport writeItem(const Manifest& manifest, ItemWork& w) {
+  const std::size_t index = w.item.index;
+  ItemReport report;
+  report.index = index;
+  report.renderSeconds = w.renderSeconds;
+  JsonObject line;
+  line.setInteger("item", index);
+  std::error_code ec;
+  try {
+    if (w.capture) {
+      for (auto& f : writeCapture(*w.capture, {w.tmp, w.picture, false, true}).files)
+        w.files.push_back(f);
+      w.capture.reset();
+    }
+    OutputSet extra(w.tmp);
+    extra.addText("scene.yaml", "# camsim dataset " + manifest.file.filename().string() +
+                                    ", item " + std::to_string(index) + ": the base scene " +
+                                    manifest.scene.filename().string() +
+                                    " with the item's values; its relative paths resolve "
+                                    "against the base scene's folder\n" +
+                                    w.item.sceneText);
+    extra.addText(
+        "params.json",
+        JsonObject().setInteger("item", index).set("parameters", parametersJson(w.item)).str() +
+            "\n");
+    for (auto& f : extra.commit()) w.files.push_back(f);
+    std::vector<JsonObject> files;
+    for (const fs::path& f : w.files)
+      files.push_back(JsonObject()
+                          .set("path", f.filename().string())
+                          .set("fnv1a64", fnv1aHex(readWholeFile(w.tmp / f.filename()))));
+    OutputSet last(w.tmp);
+    last.addText("item.json", JsonObject()
+                                  .setInteger("item", index)
+                                  .set("status", "done")
+                                  .set("hash", w.item.hash)
+                                  .set("camsim_version", CAMSIM_VERSION)
+                                  .set("files", files)
+                                  .str() +
+                                  "\n");
+    last.commit();
+    fs::remove_all(w.finalDir, ec);  // an older version of the item
+    fs::rename(w.tmp, w.finalDir);
+    report.status = ItemStatus::kDone;
+    report.files = files.size();
+    line.set("status", "done").set("hash", w.item.hash).set("files", files);
+  } catch (const InputError&) {
+    fs::remove_all(w.tmp, ec);
+    throw;  // bad input (an unwritable folder): the run stops with exit 2
+  } catch (const std::exception& e) {
+    fs::remove_all(w.tmp, ec);
+    report.status = ItemStatus::kFailed;
+    report.message = e.what();
+    line.set("status", "failed").set("error", std::string(e.what()));
+  }
+  report.seconds = secondsSince(w.start);
+  appendItemLine(w, report, line);
+  return report;
+}
+
+}  // namespace camsim

@@ -1,0 +1,45 @@
+// Writing one rendered dataset item (the layout of dataset_run.h): the capture's files,
+// scene.yaml, params.json and item.json (last) into the item's temporary folder, then the
+// folder renamed into place and the item's line appended to index.jsonl. runDataset runs it
+// on a writer thread of its own for single captures, so that item n is written while item
+// n + 1 renders.
+#pragma once
+
+#include <chrono>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "integrator/capture/capture.h"
+#include "integrator/dataset/dataset_item.h"
+#include "integrator/dataset/dataset_run.h"
+
+namespace camsim {
+
+struct ItemWork {
+  ResolvedItem item;
+  std::optional<CaptureResult> capture;       // a single capture, still to write
+  std::vector<std::filesystem::path> files;   // already written (a sequence's frames)
+  double renderSeconds = 0.0;
+  std::filesystem::path tmp, finalDir, indexFile;
+  std::string shard;  // "i/N", for the index
+  PictureSettings picture;
+  std::chrono::steady_clock::time_point start;
+};
+
+// Done, or failed (an exception inside camsim: recorded in the index, the temporary
+// removed). An InputError (a file that cannot be written) is rethrown after the cleanup.
+ItemReport writeItem(const Manifest& manifest, ItemWork& work);
+
+// An item that failed while rendering (an exception inside camsim): its temporary removed,
+// its index line appended.
+ItemReport recordFailure(ItemWork& work, const std::string& why);
+
+// Whether dir holds the item's outputs: item.json with this hash, every listed file present.
+bool itemUpToDate(const std::filesystem::path& dir, const std::string& hash);
+
+// The whole file (empty if unreadable).
+std::string readWholeFile(const std::filesystem::path& file);
+
+}  // namespace camsim
