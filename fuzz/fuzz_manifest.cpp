@@ -43,7 +43,8 @@ extern "C" int LLVMFuzzerInitialize(int*, char***) {
          "materials: {grey: {type: diffuse, reflectance: 0.5}}\n"
          "shapes:\n"
          "  - {name: ball, type: sphere, centre: [0, 0, 0], radius: 1, material: grey}\n"
-         "  - {name: lamp, type: sphere, centre: [0, 2, 0], radius: 0.5, emission: {luminance: 10}}\n";
+         "  - {name: lamp, type: sphere, centre: [0, 2, 0], radius: 0.5, emission: {luminance: "
+         "10}}\n";
   return 0;
 }
 

@@ -4,7 +4,6 @@
 #include <unistd.h>
 
 #include <fstream>
-#include <regex>
 #include <sstream>
 
 #include "integrator/capture/capture_writer.h"
@@ -19,21 +18,59 @@ namespace fs = std::filesystem;
 namespace camsim {
 namespace {
 
-// A parameter value as JSON: a number or a list of numbers as written, null as null,
-// anything else (a name, a nested list) as its YAML text in a string.
-std::string jsonValue(const std::string& yaml) {
-  static const std::regex number(R"(-?(0|[1-9][0-9]*)(\.[0-9]+)?([eE][-+]?[0-9]+)?)");
-  static const std::regex numbers(
-      R"(\[ *(-?(0|[1-9][0-9]*)(\.[0-9]+)?([eE][-+]?[0-9]+)?( *, *)?)* *\])");
-  if (yaml == "~" || yaml == "null") return "null";
-  return std::regex_match(yaml, number) || std::regex_match(yaml, numbers)
-             ? yaml
-             : JsonObject::quoted(yaml);
+// Length of the JSON number (RFC 8259 grammar) at text[i], or 0 if none starts there.
+size_t jsonNumberLength(const std::string& text, size_t i) {
+  const size_t start = i;
+  auto digits = [&] {
+    const size_t from = i;
+    while (i < text.size() && text[i] >= '0' && text[i] <= '9') ++i;
+    return i - from;
+  };
+  if (i < text.size() && text[i] == '-') ++i;
+  if (i < text.size() && text[i] == '0') {
+    ++i;
+  } else if (digits() == 0) {
+    return 0;
+  }
+  if (i < text.size() && text[i] == '.') {
+    ++i;
+    if (digits() == 0) return 0;
+  }
+  if (i < text.size() && (text[i] == 'e' || text[i] == 'E')) {
+    ++i;
+    if (i < text.size() && (text[i] == '+' || text[i] == '-')) ++i;
+    if (digits() == 0) return 0;
+  }
+  return i - start;
+}
+
+// True if yaml is one JSON number or a flow list "[n, n, ...]" of them.
+bool isJsonNumberOrList(const std::string& yaml) {
+  if (const size_t n = jsonNumberLength(yaml, 0); n > 0) return n == yaml.size();
+  if (yaml.size() < 2 || yaml.front() != '[' || yaml.back() != ']') return false;
+  size_t i = 1;
+  const size_t end = yaml.size() - 1;
+  auto spaces = [&] {
+    while (i < end && yaml[i] == ' ') ++i;
+  };
+  spaces();
+  while (i < end) {
+    const size_t n = jsonNumberLength(yaml, i);
+    if (n == 0 || i + n > end) return false;
+    i += n;
+    spaces();
+    if (i == end) break;
+    if (yaml[i] != ',') return false;
+    ++i;
+    spaces();
+    if (i == end) return false;  // a trailing comma is not JSON
+  }
+  return true;
 }
 
 JsonObject parametersJson(const ResolvedItem& item) {
   JsonObject p;
-  for (const auto& [path, value] : item.parameters) p.setJson(path, jsonValue(value));
+  for (const auto& [path, value] : item.parameters) p.setJson(path, parameterJson(value));
   return p;
 }
 
@@ -50,6 +87,11 @@ void appendLine(const fs::path& file, const std::string& line) {
 }
 
 }  // namespace
+
+std::string parameterJson(const std::string& yaml) {
+  if (yaml == "~" || yaml == "null") return "null";
+  return isJsonNumberOrList(yaml) ? yaml : JsonObject::quoted(yaml);
+}
 
 std::string readWholeFile(const fs::path& file) {
   std::ifstream in(file, std::ios::binary);

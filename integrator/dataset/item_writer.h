@@ -39,6 +39,11 @@ ItemReport recordFailure(ItemWork& work, const std::string& why);
 // Whether dir holds the item's outputs: item.json with this hash, every listed file present.
 bool itemUpToDate(const std::filesystem::path& dir, const std::string& hash);
 
+// A parameter value (its YAML flow text) as the JSON of params.json and index.jsonl: a
+// number or a flow list of numbers as written, "~" and "null" as null, anything else (a
+// name, a nested list, a map) as a JSON string of the YAML text.
+std::string parameterJson(const std::string& yaml);
+
 // The whole file (empty if unreadable).
 std::string readWholeFile(const std::filesystem::path& file);
 
