@@ -178,12 +178,12 @@ ItemReport writeItem(const Manifest& manifest, ItemWork& w) {
                           .set("fnv1a64", fnv1aHex(readWholeFile(w.tmp / f.filename()))));
     OutputSet last(w.tmp);
     last.addText("item.json", JsonObject()
-                                  .setInteger("item", index)
-                                  .set("status", "done")
-                                  .set("hash", w.item.hash)
-                                  .set("camsim_version", CAMSIM_VERSION)
-                                  .set("files", files)
-                                  .str() +
+                                      .setInteger("item", index)
+                                      .set("status", "done")
+                                      .set("hash", w.item.hash)
+                                      .set("camsim_version", CAMSIM_VERSION)
+                                      .set("files", files)
+                                      .str() +
                                   "\n");
     last.commit();
     fs::remove_all(w.finalDir, ec);  // an older version of the item

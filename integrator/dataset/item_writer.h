@@ -19,8 +19,8 @@ namespace camsim {
 
 struct ItemWork {
   ResolvedItem item;
-  std::optional<CaptureResult> capture;       // a single capture, still to write
-  std::vector<std::filesystem::path> files;   // already written (a sequence's frames)
+  std::optional<CaptureResult> capture;      // a single capture, still to write
+  std::vector<std::filesystem::path> files;  // already written (a sequence's frames)
   double renderSeconds = 0.0;
   std::filesystem::path tmp, finalDir, indexFile;
   std::string shard;  // "i/N", for the index
