@@ -27,15 +27,8 @@ Image scaled(const Image& image, double k) {
 // with its own noise stream.
 std::vector<RawImage> exposeFrame(const Image& electrons, const SensorSettings& sensor,
                                   double exposureTimeS, std::uint64_t frameIndex) {
-  const ExposureSettings settings{exposureTimeS, sensor.iso};
-  if (electrons.channelCount() == 1)
-    return {expose(electrons, sensor.spec, settings, sensor.noise, sensor.noiseSeed, frameIndex)};
-  std::vector<RawImage> raws;
-  for (int c = 0; c < electrons.channelCount(); ++c)
-    raws.push_back(expose(electrons.channel(c), sensor.spec, settings, sensor.noise,
-                          sensor.noiseSeed + static_cast<std::uint64_t>(c) * 0x9e3779b9u,
-                          frameIndex));
-  return raws;
+  return exposeChannels(electrons, sensor.spec, ExposureSettings{exposureTimeS, sensor.iso},
+                        sensor.noise, sensor.noiseSeed, frameIndex);
 }
 
 double clippedFraction(const std::vector<RawImage>& raws) {

@@ -134,6 +134,18 @@ std::uint64_t samplePoisson(double mean, std::uint64_t key) {
   return poisson(mean, rng);
 }
 
+std::vector<RawImage> exposeChannels(const Image& expectedElectrons, const SensorSpec& sensor,
+                                     const ExposureSettings& settings, NoiseMode mode,
+                                     std::uint64_t noiseSeed, std::uint64_t frame) {
+  if (expectedElectrons.channelCount() == 1)
+    return {expose(expectedElectrons, sensor, settings, mode, noiseSeed, frame)};
+  std::vector<RawImage> raws;
+  for (int c = 0; c < expectedElectrons.channelCount(); ++c)
+    raws.push_back(expose(expectedElectrons.channel(c), sensor, settings, mode,
+                          noiseSeed + static_cast<std::uint64_t>(c) * 0x9e3779b9u, frame));
+  return raws;
+}
+
 double expectedDn(double electrons, const SensorSpec& sensor, const ExposureSettings& settings) {
   checkSettings(settings);
   const double mu =

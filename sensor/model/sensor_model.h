@@ -31,6 +31,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "sensor/base/image.h"
 #include "sensor/model/raw_image.h"
@@ -53,6 +54,15 @@ struct ExposureSettings {
 RawImage expose(const Image& expectedElectrons, const SensorSpec& sensor,
                 const ExposureSettings& settings, NoiseMode mode, std::uint64_t noiseSeed,
                 std::uint64_t frame);
+
+// Every channel of expectedElectrons: one RawImage for a one-channel (mosaic) image, one
+// per channel for a stacked sensor's planes, channel c with noise seed
+// noiseSeed + c·0x9e3779b9 so that the planes' temporal noise is independent (the fixed
+// patterns are the photosite's and shared). What a capture's expose step and the Python
+// module's camsim.expose() call, so both give the same DN for the same (seed, frame).
+std::vector<RawImage> exposeChannels(const Image& expectedElectrons, const SensorSpec& sensor,
+                                     const ExposureSettings& settings, NoiseMode mode,
+                                     std::uint64_t noiseSeed, std::uint64_t frame);
 
 // The noise-free output in DN before rounding (mode none): electrons plus the mean dark
 // signal, clipped at the full well, times K, plus the black level, within [0, white level].
