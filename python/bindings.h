@@ -1,0 +1,52 @@
+// The Python module's parts (module.cpp assembles them): each binds one area of camsim.
+// Only python/ includes pybind11; these functions call the libraries and hold no state
+// between calls (a Scene owns its own description; a capture's arrays own their result).
+#pragma once
+
+#include <string>
+
+#include <pybind11/pybind11.h>
+
+#include "integrator/scene/scene_description.h"
+
+namespace camsim::python {
+
+// A loaded scene: the description the loader produced, with the overrides applied since.
+// What a render reads; capture() renders a copy, so one Scene can be captured again and again.
+struct PyScene {
+  SceneDescription description;
+};
+
+// Scene, load(), default_scene(), Scene.from_dict/from_yaml and the overrides.
+void bindSceneFunctions(pybind11::module_& m);
+// capture() and Scene.render(): a capture's arrays and its metadata.
+void bindCaptureFunctions(pybind11::module_& m);
+// read_exr() and read_png(): the project's own readers, for comparing with the CLI's files.
+void bindFileFunctions(pybind11::module_& m);
+// expose(), develop(), display() (issue 23 item 4).
+void bindSensorFunctions(pybind11::module_& m);
+
+// The Python exception camsim.InputError (a ValueError), created by module.cpp.
+pybind11::handle inputErrorType();
+
+// Overrides of a loaded scene (scene_overrides.cpp). Each throws InputError naming the key
+// ("<override>" as its file) for a bad value; none reads a file but set_sensor's sensor
+// description, and none touches shapes, materials, textures or lights.
+void overrideSeed(SceneDescription& d, std::uint64_t seed);
+void overrideSpp(SceneDescription& d, long long spp);
+void overrideExposureTime(SceneDescription& d, double seconds);
+void overrideFNumber(SceneDescription& d, double fNumber);
+void overrideIso(SceneDescription& d, double iso);
+void overrideNoise(SceneDescription& d, const std::string& mode);
+void overrideNoiseSeed(SceneDescription& d, std::uint64_t seed);
+void overrideSensor(SceneDescription& d, const std::string& presetOrPath);
+// The camera's pose in the scene file's world coordinates (world_from_camera: columns
+// right, up, forward, position, as the scene format's key); checked by the scene loader.
+void overridePoseLookAt(SceneDescription& d, const glm::dvec3& position, const glm::dvec3& lookAt,
+                        const glm::dvec3& up);
+void overridePoseMatrix(SceneDescription& d, const glm::dmat4& worldFromCamera);
+// The overrides dict of load() (the CLI's render flags): spp, seed, exposure_time_s,
+// f_number, iso, noise, noise_seed, sensor.
+void applyOverrides(SceneDescription& d, const pybind11::dict& overrides);
+
+}  // namespace camsim::python

@@ -1,0 +1,159 @@
+// camsim.capture(scene) and Scene.render(): the capture library call (integrator/capture)
+// on a worker thread while the calling thread, holding the GIL only for moments, polls for
+// signals every 50 ms (Ctrl-C: the capture is cancelled between tiles and KeyboardInterrupt
+// raised; nothing is written, ever) and reports progress. The arrays come back without a
+// copy (capture_arrays.h).
+#include <chrono>
+#include <future>
+#include <optional>
+
+#include "cli/progress.h"
+#include "python/bindings.h"
+#include "python/capture_arrays.h"
+
+namespace camsim::python {
+namespace {
+
+namespace py = pybind11;
+
+// One capture's shared state between the worker and the calling thread.
+struct CaptureJob {
+  SceneDescription description;
+  PictureSettings picture;
+  int threads = 0;
+  std::atomic<bool> cancel{false};
+  std::atomic<int> done{0}, total{0}, frame{0};
+  int frames = 1;
+  std::vector<std::shared_ptr<CaptureBuffers>> results;  // one per frame, in order
+  std::exception_ptr error;
+};
+
+std::shared_ptr<CaptureBuffers> keep(CaptureResult&& r, const PictureSettings& picture) {
+  auto b = std::make_shared<CaptureBuffers>();
+  b->result = std::move(r);
+  deriveBuffers(*b, picture);
+  return b;
+}
+
+// The worker: capture() or, with a frames block, captureSequence(); no Python here.
+void runJob(CaptureJob& job) {
+  try {
+    CaptureOptions options;
+    options.threads = job.threads;
+    options.cancel = &job.cancel;
+    options.progress = [&job](int done, int total) {
+      job.total = total;
+      job.done = done;
+    };
+    if (job.description.frames) {
+      captureSequence(std::move(job.description), options, [&job](CaptureResult&& r, int k) {
+        if (r.cancelled) return;
+        job.results.push_back(keep(std::move(r), job.picture));
+        job.frame = k + 1;
+      });
+    } else {
+      CaptureResult r = capture(std::move(job.description), options);
+      if (!r.cancelled) job.results.push_back(keep(std::move(r), job.picture));
+    }
+  } catch (...) {
+    job.error = std::current_exception();
+  }
+}
+
+py::object runCapture(const PyScene& scene, int threads, const py::object& progress,
+                      const std::string& display, const std::string& view, const std::string& look,
+                      const std::string& ocioConfig) {
+  if (threads < 0) throw py::value_error("threads must be ≥ 0 (0: all hardware threads)");
+  auto job = std::make_shared<CaptureJob>();
+  job->picture = PictureSettings{ocioConfig, DisplayChoice{display, view, look}};
+  job->threads = threads;
+  const bool sequence = scene.description.frames.has_value();
+  job->frames = sequence ? scene.description.frames->count : 1;
+  std::optional<ProgressBar> bar;  // on stderr, drawn only when it is a terminal
+  if (progress.is_none()) bar.emplace("rendering " + scene.description.name);
+  bool stopped = false;  // a Python exception (KeyboardInterrupt, the callback's) is pending
+  {
+    py::gil_scoped_release release;
+    job->description = scene.description;  // the worker's copy (meshes copied in memory)
+    checkPictureSettings(job->picture);    // a bad config or display fails before rendering
+    std::future<void> worker = std::async(std::launch::async, [job] { runJob(*job); });
+    int reported = -1;
+    while (worker.wait_for(std::chrono::milliseconds(50)) != std::future_status::ready) {
+      py::gil_scoped_acquire acquire;
+      if (PyErr_CheckSignals() != 0) {
+        stopped = true;
+        break;
+      }
+      const int total = job->total, done = job->done, frame = job->frame;
+      const int all = total * job->frames, now = frame * total + done;
+      if (total == 0 || now == reported) continue;
+      reported = now;
+      if (bar) {
+        bar->update(now, all);
+      } else {
+        try {
+          progress(now, all);
+        } catch (py::error_already_set& e) {
+          e.restore();
+          stopped = true;
+          break;
+        }
+      }
+    }
+    if (stopped) job->cancel = true;
+    worker.wait();  // a cancelled capture returns after the tiles in flight
+  }
+  if (bar) bar->finish();
+  if (stopped) throw py::error_already_set();
+  if (job->error) std::rethrow_exception(job->error);
+  if (!bar && job->total > 0) progress(job->total * job->frames, job->total * job->frames);
+  if (!sequence) return captureDict(job->results.front());
+  py::list frames;
+  for (const auto& b : job->results) frames.append(captureDict(b));
+  return frames;
+}
+
+constexpr const char* kCaptureDoc = R"doc(Captures the scene as `camsim render` does (render → auto-exposure → brackets → expose →
+develop → display), writing nothing, and returns a dict of NumPy arrays that view camsim's
+own buffers (no copy; each array keeps the whole capture alive, docs/python.md):
+
+  xyz        float32 (H, W, 3)  CIE XYZ per photosite × 683 lm/W (Y: lm·s), NAME.exr's XYZ
+  rgb        float32 (H, W, 3)  linear Rec.709, same scale (strided view), NAME.exr's R, G, B
+  acescg     float32 (H, W, 3)  scene-linear ACEScg, 0.18 mid-grey (with a sensor: developed)
+  display    float32 (H, W, 3)  through OpenColorIO's display/view/look (sRGB: 0–1)
+  display8   uint8   (H, W, 3)  display quantised: NAME.png's pixels
+  aovs       dict layer → array (depth (H, W) m, P (H, W, 3) m, N …, instance (H, W) uint32 …)
+with a sensor also
+  electrons  float32 (H, W, C)  expected e⁻ per photosite of the developed frame, noise-free
+  raw        uint16  (H, W)     its digital numbers (DN; a stacked sensor: dict plane → array)
+  brackets   list per bracket of {ev, exposure_time_s, frame_index, white_balance_gains,
+             clipped_fraction, electrons, raw}
+  sensor_film float32 (H, W, C) expected e⁻ at the scene's own exposure time
+and
+  meta       dict: NAME.json's content (scene, input files, render incl. "modelled", camera
+             with intrinsics, sensor, isp), "pose" (world_from_camera_opencv, intrinsics,
+             exposure), "color" (the OCIO config, display, view, look)
+
+A scene with a frames block returns a list of such dicts, one per frame.
+threads: worker threads (0: all); the arrays are the same for any count. progress: called
+as progress(done, total) with the GIL held, at most every 50 ms (no callback: a progress
+bar on stderr when it is a terminal). The GIL is released while rendering; Ctrl-C cancels
+the capture between tiles and raises KeyboardInterrupt (within about 0.1 s plus one tile).
+display/view/look/ocio_config: as camsim render's --display, --view, --look, --ocio-config.
+Raises camsim.InputError for a bad display choice or a file a capture reads again.)doc";
+
+}  // namespace
+
+void bindCaptureFunctions(py::module_& m) {
+  m.def("capture", &runCapture, py::arg("scene"), py::kw_only(), py::arg("threads") = 0,
+        py::arg("progress") = py::none(), py::arg("display") = "", py::arg("view") = "",
+        py::arg("look") = "", py::arg("ocio_config") = "", kCaptureDoc);
+  py::object scene = m.attr("Scene");
+  scene.attr("render") = py::cpp_function(
+      &runCapture, py::name("render"), py::is_method(scene), py::kw_only(),
+      py::arg("threads") = 0, py::arg("progress") = py::none(), py::arg("display") = "",
+      py::arg("view") = "", py::arg("look") = "", py::arg("ocio_config") = "",
+      ("scene.render(...) is camsim.capture(scene, ...):\n\n" + std::string(kCaptureDoc)).c_str());
+}
+
+}  // namespace camsim::python

@@ -1,0 +1,79 @@
+// The Python module `camsim` (docs/python.md): its docstring, camsim.InputError, and the
+// parts of bindings.h. Library code throws camsim::InputError; this front end turns it into
+// the Python exception camsim.InputError, a ValueError whose message is the library's text
+// ("file:line:column: key 'k': message", a dict scene "<dict>: key 'k': message").
+#include <pybind11/pybind11.h>
+
+#include "python/bindings.h"
+#include "sensor/base/input_error.h"
+
+namespace camsim::python {
+namespace {
+
+namespace py = pybind11;
+
+constexpr const char* kModuleDoc = R"doc(camsim: a camera-sensor physically based spectral path tracer, from Python.
+
+Scenes: camsim.load(path), camsim.default_scene(), camsim.Scene.from_dict(dict) and
+Scene.from_yaml(text), the keys of docs/scene-format.md; cheap overrides on a loaded Scene
+(set_pose, set_exposure, set_sensor, set_seed, set_spp). Captures: camsim.capture(scene) or
+scene.render() return a dict of NumPy arrays that view camsim's own buffers (no copy).
+
+Units (SI unless said):
+  lengths m, times s, wavelengths nm; radiance W·m⁻²·sr⁻¹·nm⁻¹
+  "xyz"        CIE 1931 XYZ energy per photosite × 683 lm/W: Y in lm·s (absolute)
+  "rgb"        linear Rec.709 on the same scale ((1, 1, 1) has Y = 1 lm·s)
+  "electrons"  expected (noise-free) photo-electrons per photosite, e⁻
+  "raw"        digital numbers (DN, uint16) as the ADC gives them, black level included
+  "acescg"     scene-linear ACEScg, exposed so that 0.18 is mid-grey
+  "display"    display-encoded RGB through OpenColorIO (sRGB: [0, 1]); "display8" its PNG bytes
+  AOVs         depth/distance/position in m, motion vectors in px, ids uint32
+Errors in scenes and overrides raise camsim.InputError (a ValueError). docs/python.md has
+the whole API, array shapes and lifetimes, threads, the GIL and Ctrl-C.)doc";
+
+py::handle gInputError;  // the type object, owned by the module (module attribute)
+
+}  // namespace
+
+py::handle inputErrorType() {
+  return gInputError;
+}
+
+}  // namespace camsim::python
+
+PYBIND11_MODULE(camsim, m) {
+  namespace py = pybind11;
+  using namespace camsim::python;
+  m.doc() = kModuleDoc;
+  m.attr("__version__") = CAMSIM_VERSION;
+
+  // camsim.InputError(ValueError): str(e) is the library's text; e.file, e.line, e.column
+  // (0: unknown), e.key (the dotted key path, "" if none) and e.detail (the message alone).
+  PyObject* type = PyErr_NewExceptionWithDoc(
+      "camsim.InputError",
+      "Bad input: a scene, an override, a sensor or a file. A ValueError whose text names the "
+      "file, line and column (a dict scene: \"<dict>\"), and the key path. Attributes: file, "
+      "line, column (0 when unknown), key (\"\" when none), detail (the message alone).",
+      PyExc_ValueError, nullptr);
+  if (type == nullptr) throw py::error_already_set();
+  m.add_object("InputError", py::reinterpret_steal<py::object>(type));
+  gInputError = m.attr("InputError");
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const camsim::InputError& e) {
+      py::object error = inputErrorType()(py::str(e.what()));
+      error.attr("file") = e.where().file;
+      error.attr("line") = e.where().line;
+      error.attr("column") = e.where().column;
+      error.attr("key") = e.key();
+      error.attr("detail") = e.message();
+      PyErr_SetObject(inputErrorType().ptr(), error.ptr());
+    }
+  });
+
+  bindSceneFunctions(m);
+  bindCaptureFunctions(m);
+  bindFileFunctions(m);
+  bindSensorFunctions(m);
+}
