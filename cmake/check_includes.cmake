@@ -10,6 +10,8 @@
 #    only in sensor/base/simd.h, which has a portable path for each (CAMSIM_SIMD=OFF):
 #    checked on every .h/.cpp of integrator/, sensor/, cli/, bench/, fuzz/ and tests/
 #    (not tests/data/, whose fixtures break the rules on purpose).
+# 4. pybind11 (and Python.h) is included only in python/, the Python module: no library,
+#    CLI, benchmark, fuzz or test file includes it (python/ files are checked by rule 3).
 # Prints what it checked; any violation is a SEND_ERROR (the test fails, naming file, line
 # and include).
 cmake_minimum_required(VERSION 3.22)
@@ -91,7 +93,8 @@ file(GLOB_RECURSE all_sources RELATIVE "${SOURCE_DIR}" "${SOURCE_DIR}/integrator
      "${SOURCE_DIR}/integrator/*.cpp" "${SOURCE_DIR}/sensor/*.h" "${SOURCE_DIR}/sensor/*.cpp"
      "${SOURCE_DIR}/cli/*.h" "${SOURCE_DIR}/cli/*.cpp" "${SOURCE_DIR}/bench/*.h"
      "${SOURCE_DIR}/bench/*.cpp" "${SOURCE_DIR}/fuzz/*.h" "${SOURCE_DIR}/fuzz/*.cpp"
-     "${SOURCE_DIR}/tests/*.h" "${SOURCE_DIR}/tests/*.cpp")
+     "${SOURCE_DIR}/tests/*.h" "${SOURCE_DIR}/tests/*.cpp" "${SOURCE_DIR}/python/*.h"
+     "${SOURCE_DIR}/python/*.cpp")
 set(x86_checked 0)
 foreach(f IN LISTS all_sources)
   if(f STREQUAL SIMD_HEADER OR f MATCHES "^tests/data/")
@@ -104,6 +107,13 @@ foreach(f IN LISTS all_sources)
     message(SEND_ERROR "${f}: '${line}': x86-specific code belongs in ${SIMD_HEADER}")
     math(EXPR violations "${violations} + 1")
   endforeach()
+  if(NOT f MATCHES "^python/")
+    file(STRINGS "${SOURCE_DIR}/${f}" py REGEX "^#include [<\"](pybind11/|Python\.h)")
+    foreach(line IN LISTS py)
+      message(SEND_ERROR "${f}: '${line}': only python/ includes pybind11")
+      math(EXPR violations "${violations} + 1")
+    endforeach()
+  endif()
 endforeach()
 message(STATUS "include rules: ${checked} files checked, x86 rule: ${x86_checked} files; "
                "${violations} violations")

@@ -6,6 +6,7 @@
 #include "python/capture_arrays.h"
 
 #include <pybind11/numpy.h>
+#include <pybind11/stl.h>
 
 #include "integrator/camera/physical_camera.h"
 #include "integrator/capture/capture_sidecar.h"
@@ -25,7 +26,8 @@ template <typename T>
 py::array view(const Owner& owner, const T* data, std::vector<py::ssize_t> shape,
                std::vector<py::ssize_t> stridesInElements) {
   std::vector<py::ssize_t> strides;
-  for (py::ssize_t s : stridesInElements) strides.push_back(s * static_cast<py::ssize_t>(sizeof(T)));
+  for (py::ssize_t s : stridesInElements)
+    strides.push_back(s * static_cast<py::ssize_t>(sizeof(T)));
   auto keep = std::make_unique<Owner>(owner);
   py::capsule base(keep.get(), [](void* p) { std::unique_ptr<Owner>(static_cast<Owner*>(p)); });
   keep.release();  // now the capsule's
@@ -51,7 +53,8 @@ py::object raws(const Owner& o, const CaptureFrame& f, const SensorSettings& sen
   };
   if (!sensor.spec.cfa.isStacked()) return plane(f.raws.front());
   py::dict out;
-  for (std::size_t c = 0; c < f.raws.size(); ++c) out[py::str(sensor.spec.cfa.channels[c])] = plane(f.raws[c]);
+  for (std::size_t c = 0; c < f.raws.size(); ++c)
+    out[py::str(sensor.spec.cfa.channels[c])] = plane(f.raws[c]);
   return out;
 }
 
@@ -96,9 +99,11 @@ void deriveBuffers(CaptureBuffers& b, const PictureSettings& picture) {
   for (int c = 0; c < a.channelCount(); ++c) {
     const std::string& name = a.channels[static_cast<std::size_t>(c)];
     if (name.size() < 3 || name.compare(name.size() - 3, 3, ".id") != 0) continue;
-    std::vector<std::uint32_t> ids(static_cast<std::size_t>(a.width) * static_cast<std::size_t>(a.height));
+    std::vector<std::uint32_t> ids(static_cast<std::size_t>(a.width) *
+                                   static_cast<std::size_t>(a.height));
     for (std::size_t p = 0; p < ids.size(); ++p)
-      ids[p] = static_cast<std::uint32_t>(a.pixels[p * a.channels.size() + static_cast<std::size_t>(c)]);
+      ids[p] =
+          static_cast<std::uint32_t>(a.pixels[p * a.channels.size() + static_cast<std::size_t>(c)]);
     b.idLayers.push_back(name);
     b.ids.push_back(std::move(ids));
   }
@@ -109,7 +114,8 @@ void deriveBuffers(CaptureBuffers& b, const PictureSettings& picture) {
   const glm::dmat4 cv = worldFromCameraOpenCv(frame, camera);
   std::vector<std::vector<double>> rows(4, std::vector<double>(4));
   for (int i = 0; i < 4; ++i)
-    for (int j = 0; j < 4; ++j) rows[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)] = cv[j][i];
+    for (int j = 0; j < 4; ++j)
+      rows[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)] = cv[j][i];
   const glm::dvec4 k = camera.intrinsics();
   JsonObject pose;
   pose.set("world_from_camera_opencv", rows)

@@ -113,7 +113,8 @@ py::object runCapture(const PyScene& scene, int threads, const py::object& progr
   return frames;
 }
 
-constexpr const char* kCaptureDoc = R"doc(Captures the scene as `camsim render` does (render → auto-exposure → brackets → expose →
+constexpr const char* kCaptureDoc =
+    R"doc(Captures the scene as `camsim render` does (render → auto-exposure → brackets → expose →
 develop → display), writing nothing, and returns a dict of NumPy arrays that view camsim's
 own buffers (no copy; each array keeps the whole capture alive, docs/python.md):
 
@@ -150,9 +151,9 @@ void bindCaptureFunctions(py::module_& m) {
         py::arg("look") = "", py::arg("ocio_config") = "", kCaptureDoc);
   py::object scene = m.attr("Scene");
   scene.attr("render") = py::cpp_function(
-      &runCapture, py::name("render"), py::is_method(scene), py::kw_only(),
-      py::arg("threads") = 0, py::arg("progress") = py::none(), py::arg("display") = "",
-      py::arg("view") = "", py::arg("look") = "", py::arg("ocio_config") = "",
+      &runCapture, py::name("render"), py::is_method(scene), py::kw_only(), py::arg("threads") = 0,
+      py::arg("progress") = py::none(), py::arg("display") = "", py::arg("view") = "",
+      py::arg("look") = "", py::arg("ocio_config") = "",
       ("scene.render(...) is camsim.capture(scene, ...):\n\n" + std::string(kCaptureDoc)).c_str());
 }
 

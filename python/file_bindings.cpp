@@ -17,10 +17,11 @@ std::filesystem::path toPath(const py::object& p) {
 }
 
 py::dict readExrFile(const py::object& path) {
+  const std::filesystem::path file = toPath(path);
   ExrFile f;
   {
     py::gil_scoped_release release;
-    f = readExr(toPath(path));
+    f = readExr(file);
   }
   const Image& img = f.image;
   py::dict channels;
@@ -28,7 +29,8 @@ py::dict readExrFile(const py::object& path) {
   for (std::size_t c = 0; c < n; ++c) {
     py::array_t<float> a({img.height, img.width});
     float* out = a.mutable_data();
-    for (std::size_t p = 0; p < static_cast<std::size_t>(img.width) * static_cast<std::size_t>(img.height); ++p)
+    for (std::size_t p = 0;
+         p < static_cast<std::size_t>(img.width) * static_cast<std::size_t>(img.height); ++p)
       out[p] = img.pixels[p * n + c];
     channels[py::str(img.channels[c])] = a;
   }
@@ -41,10 +43,11 @@ py::dict readExrFile(const py::object& path) {
 }
 
 py::array readPngFile(const py::object& path) {
+  const std::filesystem::path file = toPath(path);
   PngImage png;
   {
     py::gil_scoped_release release;
-    png = readPng(toPath(path));
+    png = readPng(file);
   }
   const std::vector<py::ssize_t> shape = {png.height, png.width, png.channels};
   if (png.bitDepth == 16) {
@@ -54,7 +57,8 @@ py::array readPngFile(const py::object& path) {
   }
   py::array_t<std::uint8_t> a(shape);
   std::uint8_t* out = a.mutable_data();
-  for (std::size_t i = 0; i < png.samples.size(); ++i) out[i] = static_cast<std::uint8_t>(png.samples[i]);
+  for (std::size_t i = 0; i < png.samples.size(); ++i)
+    out[i] = static_cast<std::uint8_t>(png.samples[i]);
   return a;
 }
 

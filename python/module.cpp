@@ -12,7 +12,8 @@ namespace {
 
 namespace py = pybind11;
 
-constexpr const char* kModuleDoc = R"doc(camsim: a camera-sensor physically based spectral path tracer, from Python.
+constexpr const char* kModuleDoc =
+    R"doc(camsim: a camera-sensor physically based spectral path tracer, from Python.
 
 Scenes: camsim.load(path), camsim.default_scene(), camsim.Scene.from_dict(dict) and
 Scene.from_yaml(text), the keys of docs/scene-format.md; cheap overrides on a loaded Scene

@@ -88,7 +88,8 @@ PyScene withOverrides(SceneDescription d, const std::optional<py::dict>& overrid
 }
 
 PyScene loadPath(const py::object& path, const std::optional<py::dict>& overrides) {
-  const std::filesystem::path p(std::string(py::str(py::module_::import("os").attr("fspath")(path))));
+  const std::filesystem::path p(
+      std::string(py::str(py::module_::import("os").attr("fspath")(path))));
   SceneDescription d;
   {
     py::gil_scoped_release release;  // meshes and textures are read here
@@ -98,9 +99,9 @@ PyScene loadPath(const py::object& path, const std::optional<py::dict>& override
 }
 
 PyScene loadDefault(const std::optional<py::dict>& overrides) {
-  return withOverrides(loadSceneFromText(std::string(defaultSceneText()),
-                                         std::string(kDefaultSceneName), "."),
-                       overrides);
+  return withOverrides(
+      loadSceneFromText(std::string(defaultSceneText()), std::string(kDefaultSceneName), "."),
+      overrides);
 }
 
 PyScene loadDict(const py::dict& scene, const py::object& baseDir,
@@ -185,10 +186,9 @@ and column (a dict: the key path) and the key.)doc";
                                 "`camsim render` without a scene.\n") +
                     overridesDoc)
                        .c_str());
-  scene.def_static(
-      "from_dict", &loadDict, py::arg("scene"), py::kw_only(), py::arg("base_dir") = ".",
-      py::arg("overrides") = py::none(),
-      (std::string(R"doc(A scene from a dict with the keys of the YAML format, e.g.
+  scene.def_static("from_dict", &loadDict, py::arg("scene"), py::kw_only(),
+                   py::arg("base_dir") = ".", py::arg("overrides") = py::none(),
+                   (std::string(R"doc(A scene from a dict with the keys of the YAML format, e.g.
   {"camera": {"position": [0, 0, -1], "look_at": [0, 0, 0]},
    "materials": {"m": {"type": "diffuse"}},
    "shapes": [{"type": "sphere", "centre": [0, 0, 0], "radius": 1, "material": "m"}]}
@@ -198,7 +198,7 @@ errors are identical; an error names "<dict>" and the key path, e.g.
   <dict>: key 'shapes[0].radius': value -1 is out of range ...
 base_dir: the directory relative file names (meshes, textures, spectra) resolve against.
 )doc") + overridesDoc)
-          .c_str());
+                       .c_str());
   scene.def_static("from_yaml", &loadText, py::arg("text"), py::kw_only(),
                    py::arg("name") = "<text>", py::arg("base_dir") = ".",
                    py::arg("overrides") = py::none(),
@@ -207,8 +207,9 @@ base_dir: the directory relative file names (meshes, textures, spectra) resolve 
                     overridesDoc)
                        .c_str());
 
-  scene.def("copy", [](const PyScene& s) { return PyScene{s.description}; },
-            "An independent copy (meshes and decoded textures are copied in memory).");
+  scene.def(
+      "copy", [](const PyScene& s) { return PyScene{s.description}; },
+      "An independent copy (meshes and decoded textures are copied in memory).");
   scene.def(
       "set_pose",
       [](PyScene& s, std::optional<std::vector<double>> position,
@@ -225,7 +226,8 @@ base_dir: the directory relative file names (meshes, textures, spectra) resolve 
           auto a = matrix->unchecked<2>();
           glm::dmat4 w(1.0);
           for (py::ssize_t r = 0; r < 4; ++r)
-            for (py::ssize_t c = 0; c < 4; ++c) w[static_cast<int>(c)][static_cast<int>(r)] = a(r, c);
+            for (py::ssize_t c = 0; c < 4; ++c)
+              w[static_cast<int>(c)][static_cast<int>(r)] = a(r, c);
           overridePoseMatrix(s.description, w);
         } else {
           if (!position || !lookAt)
@@ -237,8 +239,8 @@ base_dir: the directory relative file names (meshes, textures, spectra) resolve 
         return s;
       },
       py::kw_only(), py::arg("position") = py::none(), py::arg("look_at") = py::none(),
-      py::arg("up") = std::vector<double>{0.0, 1.0, 0.0},
-      py::arg("world_from_camera") = py::none(), py::return_value_policy::reference_internal,
+      py::arg("up") = std::vector<double>{0.0, 1.0, 0.0}, py::arg("world_from_camera") = py::none(),
+      py::return_value_policy::reference_internal,
       R"doc(The camera's rest pose, in the scene file's world coordinates (m): position and look_at
 (and up, default +y), or world_from_camera, a 4×4 matrix whose columns are right, up,
 forward, position with right = forward × up (determinant −1), as the scene format's
@@ -295,8 +297,9 @@ description. Returns the Scene.)doc");
       py::arg("spp"), py::return_value_policy::reference_internal,
       "Samples per pixel (render.spp). Returns the Scene.");
 
-  scene.def_property_readonly("name", [](const PyScene& s) { return s.description.name; },
-                              "The output base name (the scene's name, else its file's stem).");
+  scene.def_property_readonly(
+      "name", [](const PyScene& s) { return s.description.name; },
+      "The output base name (the scene's name, else its file's stem).");
   scene.def_property_readonly(
       "source_file", [](const PyScene& s) { return s.description.sourceFile; },
       "What it was loaded from (a path, \"<dict>\", or the default scene's name).");
@@ -314,16 +317,17 @@ description. Returns the Scene.)doc");
         return py::make_tuple(s.description.camera.resolution.x, s.description.camera.resolution.y);
       },
       "(width, height) in pixels.");
-  scene.def_property_readonly("spp", [](const PyScene& s) { return s.description.render.spp; },
-                              "Samples per pixel.");
-  scene.def_property_readonly("seed", [](const PyScene& s) { return s.description.render.seed; },
-                              "The render seed.");
+  scene.def_property_readonly(
+      "spp", [](const PyScene& s) { return s.description.render.spp; }, "Samples per pixel.");
+  scene.def_property_readonly(
+      "seed", [](const PyScene& s) { return s.description.render.seed; }, "The render seed.");
   scene.def_property_readonly(
       "exposure_time_s",
       [](const PyScene& s) { return s.description.camera.shutter.effectiveTime(); },
       "The effective exposure time of the shutter (s).");
-  scene.def_property_readonly("f_number", [](const PyScene& s) { return s.description.camera.fNumber; },
-                              "The lens f-number N.");
+  scene.def_property_readonly(
+      "f_number", [](const PyScene& s) { return s.description.camera.fNumber; },
+      "The lens f-number N.");
   scene.def_property_readonly(
       "sensor",
       [](const PyScene& s) -> py::object {
@@ -334,7 +338,8 @@ description. Returns the Scene.)doc");
   scene.def_property_readonly(
       "iso",
       [](const PyScene& s) -> py::object {
-        return s.description.sensor ? py::object(py::float_(s.description.sensor->iso)) : py::none();
+        return s.description.sensor ? py::object(py::float_(s.description.sensor->iso))
+                                    : py::none();
       },
       "The sensor's ISO, or None without a sensor.");
   scene.def_property_readonly(

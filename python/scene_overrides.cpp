@@ -4,12 +4,12 @@
 // (a camera-only scene text), so its checks and messages are the loader's.
 #include <algorithm>
 #include <charconv>
-#include <iterator>
-#include <optional>
-#include <vector>
 #include <cmath>
 #include <cstdint>
+#include <iterator>
 #include <limits>
+#include <optional>
+#include <vector>
 
 #include "integrator/scene/scene_loader.h"
 #include "python/bindings.h"
@@ -39,8 +39,8 @@ std::string vec(const glm::dvec3& v) {
 void checkRange(const std::string& key, double v, double lo, double hi) {
   if (!std::isfinite(v)) fail(key, "'" + shortest(v) + "' is not a finite number");
   if (!(v > lo && v <= hi))
-    fail(key, "value " + shortest(v) + " is out of range (" + shortest(lo) + ", " + shortest(hi) +
-                  "]");
+    fail(key,
+         "value " + shortest(v) + " is out of range (" + shortest(lo) + ", " + shortest(hi) + "]");
 }
 
 // The pose the loader builds from `camera: <cameraYaml>`, moved into d's render space
@@ -48,7 +48,9 @@ void checkRange(const std::string& key, double v, double lo, double hi) {
 void setPose(SceneDescription& d, const std::string& cameraYaml) {
   SceneDescription probe;
   try {
-    probe = loadSceneFromText("camera: " + cameraYaml + "\nshapes: [{type: sphere, centre: [0, 0, 0], radius: 1}]\n",
+    probe = loadSceneFromText("camera: " + cameraYaml +
+                                  "\nmaterials: {m: {type: diffuse}}\nshapes: [{type: sphere, "
+                                  "centre: [0, 0, 0], radius: 1, material: m}]\n",
                               "<override>", ".");
   } catch (const InputError& e) {
     fail(e.key(), e.message());  // its line and column are those of the probe text
@@ -106,7 +108,8 @@ void overrideIso(SceneDescription& d, double iso) {
 void overrideNoise(SceneDescription& d, const std::string& mode) {
   if (!d.sensor) fail("sensor.noise", "needs a scene with a sensor (set_sensor or sensor:)");
   const std::optional<NoiseMode> m = noiseModeFromName(mode);
-  if (!m) fail("sensor.noise", "unknown noise mode '" + mode + "' (known: " + noiseModeNames() + ")");
+  if (!m)
+    fail("sensor.noise", "unknown noise mode '" + mode + "' (known: " + noiseModeNames() + ")");
   d.sensor->noise = *m;
 }
 
@@ -139,7 +142,8 @@ void overrideSensor(SceneDescription& d, const std::string& presetOrPath) {
 
 void overridePoseLookAt(SceneDescription& d, const glm::dvec3& position, const glm::dvec3& lookAt,
                         const glm::dvec3& up) {
-  setPose(d, "{position: " + vec(position) + ", look_at: " + vec(lookAt) + ", up: " + vec(up) + "}");
+  setPose(d,
+          "{position: " + vec(position) + ", look_at: " + vec(lookAt) + ", up: " + vec(up) + "}");
 }
 
 void overridePoseMatrix(SceneDescription& d, const glm::dmat4& worldFromCamera) {
@@ -151,7 +155,7 @@ void overridePoseMatrix(SceneDescription& d, const glm::dmat4& worldFromCamera) 
 }
 
 void applyOverrides(SceneDescription& d, const py::dict& overrides) {
-  static const char* const kKnown[] = {"sensor", "spp",   "seed",  "exposure_time_s",
+  static const char* const kKnown[] = {"sensor",   "spp", "seed",  "exposure_time_s",
                                        "f_number", "iso", "noise", "noise_seed"};
   for (const auto& [k, v] : overrides) {
     const std::string key = py::str(k);
@@ -167,12 +171,15 @@ void applyOverrides(SceneDescription& d, const py::dict& overrides) {
                                    : py::object();
   };
   const std::string o = "overrides.";
-  if (auto v = get("sensor")) overrideSensor(d, castOverride<std::string>(v, o + "sensor", "a str"));
+  if (auto v = get("sensor"))
+    overrideSensor(d, castOverride<std::string>(v, o + "sensor", "a str"));
   if (auto v = get("spp")) overrideSpp(d, castOverride<long long>(v, o + "spp", "an int"));
-  if (auto v = get("seed")) overrideSeed(d, castOverride<std::uint64_t>(v, o + "seed", "an int ≥ 0"));
+  if (auto v = get("seed"))
+    overrideSeed(d, castOverride<std::uint64_t>(v, o + "seed", "an int ≥ 0"));
   if (auto v = get("exposure_time_s"))
     overrideExposureTime(d, castOverride<double>(v, o + "exposure_time_s", "a number"));
-  if (auto v = get("f_number")) overrideFNumber(d, castOverride<double>(v, o + "f_number", "a number"));
+  if (auto v = get("f_number"))
+    overrideFNumber(d, castOverride<double>(v, o + "f_number", "a number"));
   if (auto v = get("iso")) overrideIso(d, castOverride<double>(v, o + "iso", "a number"));
   if (auto v = get("noise")) overrideNoise(d, castOverride<std::string>(v, o + "noise", "a str"));
   if (auto v = get("noise_seed"))

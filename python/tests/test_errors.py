@@ -1,0 +1,114 @@
+"""Every malformed-scene case of the loader's C++ tests (tests/integrator/scene/
+scene_loader_error_cases.h, printed by the scene_error_cases program) raises
+camsim.InputError with the same location text; as a dict, with the same key path."""
+import json
+import math
+import os
+import subprocess
+
+import pytest
+import yaml
+
+import camsim
+
+
+def _cases():
+    exe = os.environ.get("CAMSIM_SCENE_ERROR_CASES")
+    if not exe:
+        return [pytest.param(None, id="no-cases")]  # each test then fails, saying why
+    out = subprocess.run([exe], check=True, capture_output=True, text=True).stdout
+    cases = [json.loads(line) for line in out.splitlines()]
+    assert len(cases) >= 40
+    return [pytest.param(c, id=c["name"]) for c in cases]
+
+
+CASES = _cases()
+
+
+def require(case):
+    if case is None:
+        pytest.fail("$CAMSIM_SCENE_ERROR_CASES is not set (CTest sets it; see conftest.py)")
+
+
+def expected_text(c, file):
+    where = f"{file}:{c['line']}" + (f":{c['column']}" if c["column"] else "")
+    return where + ": " + (f"key '{c['key']}': " if c["key"] else "")
+
+
+@pytest.mark.parametrize("case", CASES)
+def test_text_case_raises_input_error_at_the_same_location(case, tmp_path):
+    require(case)
+    with pytest.raises(camsim.InputError) as info:
+        camsim.Scene.from_yaml(case["text"], name="test.yaml", base_dir=tmp_path)
+    e = info.value
+    assert isinstance(e, ValueError)
+    assert (e.file, e.line, e.column, e.key) == ("test.yaml", case["line"], case["column"],
+                                                 case["key"])
+    assert case["message"] in e.detail
+    assert str(e) == expected_text(case, "test.yaml") + e.detail
+
+
+@pytest.mark.parametrize("case", CASES)
+def test_file_case_names_the_file(case, tmp_path):
+    require(case)
+    path = tmp_path / "test.yaml"
+    path.write_text(case["text"])
+    with pytest.raises(camsim.InputError) as info:
+        camsim.load(path)
+    assert str(info.value).startswith(expected_text(case, str(path)))
+
+
+def _as_dict(text):
+    """The case as a Python dict, or None where the text is no single YAML mapping to
+    PyYAML (the syntax errors and the second document)."""
+    try:
+        d = yaml.safe_load(text)
+    except yaml.YAMLError:
+        return None
+    if not isinstance(d, dict):
+        return None
+    return d
+
+
+@pytest.mark.parametrize("case", CASES)
+def test_dict_case_raises_input_error_naming_the_key_path(case, tmp_path):
+    require(case)
+    d = _as_dict(case["text"])
+    if d is None or case["name"] in DICT_DIFFERS:
+        pytest.skip("not a single YAML mapping to PyYAML, or read differently by it")
+    with pytest.raises(camsim.InputError) as info:
+        camsim.Scene.from_dict(d, base_dir=tmp_path)
+    e = info.value
+    assert (e.file, e.line, e.column, e.key) == ("<dict>", 0, 0, case["key"])
+    assert case["message"] in e.detail
+    assert str(e) == "<dict>: " + (f"key '{case['key']}': " if case["key"] else "") + e.detail
+
+
+# PyYAML reads this one differently from camsim's loader (yaml-cpp): it keeps the second of
+# two equal keys silently, so the dict is a valid scene (a dict cannot hold a key twice).
+DICT_DIFFERS = {"DuplicateKey"}
+
+
+def test_dict_key_path_of_a_nested_error():
+    with pytest.raises(camsim.InputError, match=r"^<dict>: key 'shapes\[0\]\.radius': ") as info:
+        camsim.Scene.from_dict({
+            "camera": {"position": [0, 0, -1], "look_at": [0, 0, 0]},
+            "shapes": [{"type": "sphere", "centre": [0, 0, 0], "radius": -1}]})
+    assert info.value.key == "shapes[0].radius"
+    with pytest.raises(camsim.InputError, match=r"key 'shapes\[0\]\.centre\[1\]'.*not a finite"):
+        camsim.Scene.from_dict({
+            "camera": {"position": [0, 0, -1], "look_at": [0, 0, 0]},
+            "shapes": [{"type": "sphere", "centre": [0, math.nan, 0], "radius": 1}]})
+
+
+def test_bad_overrides_name_the_key():
+    with pytest.raises(camsim.InputError, match="key 'overrides.spp'"):
+        camsim.default_scene(overrides={"spp": "many"})
+    with pytest.raises(camsim.InputError, match="key 'overrides.frobnicate'"):
+        camsim.default_scene(overrides={"frobnicate": 1})
+    with pytest.raises(camsim.InputError, match="key 'sensor.iso'.*needs a scene with a sensor"):
+        camsim.default_scene().set_exposure(iso=200)
+    with pytest.raises(camsim.InputError, match="key 'camera.look_at'.*look_at equals position"):
+        camsim.default_scene().set_pose(position=[1, 1, 1], look_at=[1, 1, 1])
+    with pytest.raises(camsim.InputError, match="key 'sensor.model'"):
+        camsim.default_scene().set_sensor("no-such-sensor")

@@ -1,0 +1,149 @@
+// The scene loader's malformed-scene cases: each a scene text and where the loader must
+// report the error (loaded as "test.yaml" with a temporary directory as its base). Read by
+// scene_loader_test.cpp (SceneLoaderErrorTest) and, through scene_error_cases_main.cpp, by
+// the Python module's tests (python/tests/test_errors.py): one list for both front ends.
+#pragma once
+
+#include <string>
+
+namespace camsim::test {
+
+// Lines 1–6 of most test scenes; the shapes follow from line 7.
+inline const std::string kCamera =
+    "camera:\n"                 // 1
+    "  position: [0, 0, -1]\n"  // 2
+    "  look_at: [0, 0, 0]\n";   // 3
+inline const std::string kMaterials =
+    "materials:\n"             // 4
+    "  m: {type: diffuse}\n";  // 5
+inline const std::string kPrefix = kCamera + kMaterials + "shapes:\n";
+// Line 7: the value of radius is at column 47, that of material at column 60.
+inline const std::string kSphere =
+    "  - {type: sphere, centre: [0, 0, 0], radius: 1, material: m}\n";
+
+inline std::string withShapes(const std::string& shapes) {
+  return kPrefix + shapes;
+}
+// One extra camera line (line 4); the sphere is then on line 8.
+inline std::string withCameraLine(const std::string& line) {
+  return kCamera + line + kMaterials + "shapes:\n" + kSphere;
+}
+inline std::string sphereWith(const std::string& radius, const std::string& rest) {
+  return withShapes("  - {type: sphere, centre: [0, 0, 0], radius: " + radius + rest + "}\n");
+}
+inline std::string meshWith(const std::string& vertices, const std::string& faces) {
+  return withShapes("  - type: mesh\n    material: m\n    vertices: " + vertices +  // 7, 8, 9
+                    "\n    faces: " + faces + "\n");                                // 10
+}
+
+struct ErrorCase {
+  const char* name;
+  std::string text;
+  int line;
+  int column;
+  std::string key;
+  std::string message;  // a part of the message
+};
+
+inline const ErrorCase kErrorCases[] = {
+    {"SyntaxUnclosedBracket",
+     withShapes("  - type: sphere\n    centre: [0, 0, 0\n    radius: 1\n    material: m\n"), 8, 13,
+     "", "'[' is never closed"},
+    {"SyntaxUnclosedBracketAtEnd", kCamera + kMaterials + "shapes: [\n", 6, 9, "", "never closed"},
+    {"SyntaxUnclosedQuote", "name: \"box\n" + kPrefix + kSphere, 1, 7, "", "never closed"},
+    {"SyntaxBadIndentation", kCamera + " up: [0, 1, 0]\n" + kMaterials + "shapes:\n" + kSphere, 4,
+     2, "", "YAML syntax error"},
+    {"UnknownTopLevelKey", withShapes(kSphere) + "lamps: []\n", 8, 1, "lamps", "unknown key"},
+    {"MisspeltShapeKey",
+     withShapes(kSphere +
+                "  - type: sphere\n    centre: [0, 0, 0]\n    radus: 1\n    material: m\n"),
+     10, 5, "shapes[1].radus", "did you mean 'radius'"},
+    {"UnknownShapeKey", sphereWith("1", ", material: m, colour: red"), 7, 63, "shapes[0].colour",
+     "unknown key"},
+    {"UnknownCameraKey", withCameraLine("  fov: 40\n"), 4, 3, "camera.fov", "unknown key"},
+    {"WorldFromCameraProperRotationMirrors",
+     "camera:\n  world_from_camera: [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1]\n" +
+         kMaterials + "shapes:\n" + kSphere,
+     2, 22, "camera.world_from_camera", "determinant +1"},
+    {"FocusInsideTheFocalLength", withCameraLine("  focus_distance_m: 0.05\n"), 4, 21,
+     "camera.focus_distance_m", "must exceed 1.0001 × the focal length (0.050005 m)"},
+    {"BoundPrintedAsWritten", sphereWith("1", ", emission: {scale: 1e31}"), 7, 68,
+     "shapes[0].emission.scale", "out of range [0, 1e+30]"},
+    {"WrongTypeStringForNumber", sphereWith("big", ", material: m"), 7, 47, "shapes[0].radius",
+     "'big' is not a number"},
+    {"WrongTypeNumberForList", withShapes("  - {type: sphere, centre: 5, radius: 1}\n"), 7, 28,
+     "shapes[0].centre", "expected a list of 3 numbers"},
+    {"NegativeRadius", sphereWith("-1", ", material: m"), 7, 47, "shapes[0].radius",
+     "out of range"},
+    {"RadiusUnderflowsFloat", sphereWith("1e-300", ", material: m"), 7, 47, "shapes[0].radius",
+     "too small"},
+    {"ZeroResolution", withCameraLine("  resolution: [0, 480]\n"), 4, 16, "camera.resolution[0]",
+     "out of range"},
+    {"ResolutionBeyondLimit", withCameraLine("  resolution: [1000000, 1000000]\n"), 4, 16,
+     "camera.resolution[0]", "[1, 32768] (limit SceneLimits::kMaxResolution)"},
+    {"PixelCountBeyondLimit", withCameraLine("  resolution: [20000, 20000]\n"), 4, 15,
+     "camera.resolution", "SceneLimits::kMaxPixels"},
+    {"NaN", withShapes("  - {type: sphere, centre: [0, .nan, 0], radius: 1, material: m}\n"), 7, 32,
+     "shapes[0].centre[1]", "'.nan' is not a finite number"},
+    {"Infinity", sphereWith(".inf", ", material: m"), 7, 47, "shapes[0].radius",
+     "'.inf' is not a finite number"},
+    {"CoordinateBeyondFloat", meshWith("[[0, 0, 0], [1e39, 0, 0], [0, 1, 0]]", "[[0, 1, 2]]"), 9,
+     27, "shapes[0].vertices[1]", "single-precision"},
+    {"MissingMeshFile", withShapes("  - type: mesh\n    material: m\n    file: missing.obj\n"), 9,
+     11, "shapes[0].file", "not found"},
+    {"MeshFileNameTooLong",  // the OS rejects the name: still "not found", not a crash
+     withShapes("  - type: mesh\n    material: m\n    file: " + std::string(300, 'm') + ".obj\n"),
+     9, 11, "shapes[0].file", "not found"},
+    {"EmptyMesh", meshWith("[[0, 0, 0], [1, 0, 0], [0, 1, 0]]", "[]"), 10, 12, "shapes[0].faces",
+     "no triangles"},
+    {"FaceIndexOutOfRange", meshWith("[[0, 0, 0], [1, 0, 0], [0, 1, 0]]", "[[0, 1, 3]]"), 10, 20,
+     "shapes[0].faces[0][2]", "out of range [0, 2]"},
+    {"ZeroAreaMesh", meshWith("[[0, 0, 0], [1, 0, 0], [2, 0, 0]]", "[[0, 1, 2]]"), 10, 12,
+     "shapes[0].faces", "zero area"},
+    {"UnknownMaterial", sphereWith("1", ", material: paint"), 7, 60, "shapes[0].material",
+     "no material named 'paint'"},
+    {"ReflectanceAboveOne",
+     kCamera + "materials:\n  m: {type: diffuse, reflectance: 1.5}\nshapes:\n" + kSphere, 5, 35,
+     "materials.m.reflectance", "out of range"},
+    {"UnknownIlluminant", sphereWith("1", ", emission: {spectrum: {illuminant: D99}, scale: 1}"), 7,
+     84, "shapes[0].emission.spectrum.illuminant", "unknown CIE illuminant 'D99'"},
+    {"LuminanceAndScale", sphereWith("1", ", emission: {luminance: 100, scale: 1}"), 7, 84,
+     "shapes[0].emission.scale", "not both"},
+    {"MissingCamera", kMaterials + "shapes:\n" + kSphere, 1, 1, "camera", "required key"},
+    {"UnknownSampler", "render: {sampler: halton}\n" + kCamera + kMaterials + "shapes:\n" + kSphere,
+     1, 19, "render.sampler", "unknown sampler 'halton' (known: sobol, independent)"},
+    {"UnknownAov", "render: {aovs: [depth, flow]}\n" + kCamera + kMaterials + "shapes:\n" + kSphere,
+     1, 24, "render.aovs[1]", "unknown aov 'flow' (known: depth, distance, position, normal"},
+    {"AovTwice", "render: {aovs: [depth, depth]}\n" + kCamera + kMaterials + "shapes:\n" + kSphere,
+     1, 24, "render.aovs[1]", "aov 'depth' is listed twice"},
+    {"ZeroFrames", "frames: {count: 0}\n" + kCamera + kMaterials + "shapes:\n" + kSphere, 1, 17,
+     "frames.count", "out of range"},
+    {"UnknownFramesKey",
+     "frames: {count: 2, fps: 30}\n" + kCamera + kMaterials + "shapes:\n" + kSphere, 1, 20,
+     "frames.fps", "unknown key"},
+    {"EmptyShapes", kCamera + kMaterials + "shapes: []\n", 6, 9, "shapes", "no shapes"},
+    {"DuplicateKey",
+     withShapes("  - type: sphere\n    centre: [0, 0, 0]\n    radius: 1\n    radius: 2\n"
+                "    material: m\n"),
+     10, 5, "shapes[0].radius", "duplicate key (first given at line 9)"},
+    {"KeyWithoutValue",
+     withShapes("  - type: sphere\n    centre: [0, 0, 0]\n    radius:\n    material: m\n"), 9, 5,
+     "shapes[0].radius", "expected a number"},
+    {"SecondDocument", withShapes(kSphere) + "---\nshapes: []\n", 9, 1, "", "one YAML document"},
+    {"JsonSyntaxError",
+     "{\"camera\": {\"position\": [0, 0, -1], \"look_at\": [0, 0, 0]},\n"
+     " \"materials\": {\"m\": {\"type\": \"diffuse\"}},\n"
+     " \"shapes\": [{\"type\": \"sphere\", \"centre\": [0, 0, 0], \"radius\": 1, "
+     "\"material\": \"m\"}\n"
+     "}\n",
+     4, 1, "", "YAML syntax error"},
+    {"JsonNegativeRadius",
+     "{\"camera\": {\"position\": [0, 0, -1], \"look_at\": [0, 0, 0]},\n"
+     " \"materials\": {\"m\": {\"type\": \"diffuse\"}},\n"
+     " \"shapes\": [{\"type\": \"sphere\", \"centre\": [0, 0, 0], \"radius\": -1, "
+     "\"material\": \"m\"}]\n"
+     "}\n",
+     3, 63, "shapes[0].radius", "out of range"},
+};
+
+}  // namespace camsim::test
