@@ -1,6 +1,396 @@
-// The sensor on its own — expose/develop/display: issue 23 item 4 (written there; this is
-// the hook module.cpp calls).
-#include "python/bindings.h"
+// The sensor on its own (docs/python.md, "The sensor on its own"): camsim.Sensor, expose(),
+// develop() and display(), so that one noise-free render feeds many noise draws, ISOs and
+// sensors. They call the same library functions as a capture's steps 5 and 6 and the CLI's
+// display output (sensor/model/sensor_model.h exposeChannels, sensor/isp/isp_pipeline.h
+// developRaw, sensor/isp/color_management.h OcioProcessor), so for the same inputs they give
+// the capture's bytes:
+//
+// | function  | input                                 | output |
+// |-----------|---------------------------------------|--------|
+// | expose    | expected e⁻ per photosite, float (h, w); stacked (h, w, C) | raw DN uint16 (h, w) / (h, w, C); frames=n: (n, …) |
+// | develop   | raw DN uint16 (h, w); stacked (h, w, C) or a capture's dict | scene-linear ACEScg float32 (h, w, 3) |
+// | display   | ACEScg float (h, w, 3)                | display-encoded RGB float32, or uint8/uint16 code values |
+//
+// Each releases the GIL while it computes; expose() checks for Ctrl-C between groups of
+// frames and raises KeyboardInterrupt.
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
-// expose/develop/display: issue 23 item 4
-void camsim::python::bindSensorFunctions([[maybe_unused]] pybind11::module_& m) {}
+#include <pybind11/numpy.h>
+#include <pybind11/stl.h>
+#include <cmath>
+#include <cstring>
+#include <optional>
+
+#include "python/bindings.h"
+#include "sensor/base/input_error.h"
+#include "sensor/base/luts_directory.h"
+#include "sensor/isp/color_management.h"
+#include "sensor/isp/isp_pipeline.h"
+#include "sensor/model/sensor_model.h"
+#include "sensor/model/sensor_spec.h"
+
+namespace camsim::python {
+namespace {
+
+namespace py = pybind11;
+
+// At most this many frames per expose() call (each a full raw image in memory).
+constexpr long long kMaxFrames = 100000;
+
+[[noreturn]] void fail(const char* function, const std::string& key, const std::string& message) {
+  throw InputError(SourceLocation{function, 0, 0}, key, message);
+}
+
+// A float image of one or C channels from a NumPy array (h, w) or (h, w, C), any real dtype;
+// every value finite and ≥ 0 (electrons). Copies, with the GIL held.
+Image electronsImage(const py::array& input, const SensorSpec& spec) {
+  const auto a = py::array_t<float, py::array::c_style | py::array::forcecast>::ensure(input);
+  if (!a) fail("<expose>", "electrons", "expected a NumPy array of numbers");
+  const int planes = spec.cfa.isStacked() ? static_cast<int>(spec.cfa.channels.size()) : 1;
+  const bool ok = planes == 1 ? a.ndim() == 2 : a.ndim() == 3 && a.shape(2) == planes;
+  if (!ok || a.shape(0) == 0 || a.shape(1) == 0)
+    fail("<expose>", "electrons",
+         planes == 1
+             ? "expected a 2-D array (height, width) of electrons for sensor '" + spec.name + "'"
+             : "expected a 3-D array (height, width, " + std::to_string(planes) +
+                   ") of electrons for the stacked sensor '" + spec.name + "'");
+  if (a.shape(0) > (1 << 20) || a.shape(1) > (1 << 20))
+    fail("<expose>", "electrons", "image larger than 2^20 photosites per side");
+  std::vector<std::string> names = planes == 1 ? std::vector<std::string>{"e"} : spec.cfa.channels;
+  Image img(static_cast<int>(a.shape(1)), static_cast<int>(a.shape(0)), std::move(names));
+  std::memcpy(img.pixels.data(), a.data(), img.pixels.size() * sizeof(float));
+  for (std::size_t i = 0; i < img.pixels.size(); ++i) {
+    const float v = img.pixels[i];
+    if (std::isfinite(v) && v >= 0.0f) continue;
+    const std::size_t p = i / static_cast<std::size_t>(planes);
+    fail("<expose>", "electrons",
+         "value " + std::to_string(v) + " at row " +
+             std::to_string(p / static_cast<std::size_t>(img.width)) + ", column " +
+             std::to_string(p % static_cast<std::size_t>(img.width)) +
+             ": electrons must be finite and ≥ 0");
+  }
+  return img;
+}
+
+NoiseMode noiseMode(const std::string& name) {
+  if (auto m = noiseModeFromName(name)) return *m;
+  fail("<expose>", "noise", "unknown noise mode '" + name + "' (one of " + noiseModeNames() + ")");
+}
+
+// Writes raws (one per plane) into out at frame f: (h, w) per mosaic frame, (h, w, C) per
+// stacked frame, as NumPy's row-major layout.
+void storeFrame(const std::vector<RawImage>& raws, std::uint16_t* out) {
+  if (raws.size() == 1) {
+    std::memcpy(out, raws[0].dn.data(), raws[0].dn.size() * sizeof(std::uint16_t));
+    return;
+  }
+  const std::size_t c = raws.size();
+  for (std::size_t k = 0; k < c; ++k)
+    for (std::size_t p = 0; p < raws[k].dn.size(); ++p) out[p * c + k] = raws[k].dn[p];
+}
+
+py::array_t<std::uint16_t> exposeFrames(const py::array& electrons, const SensorSpec& sensor,
+                                        std::uint64_t seed, std::optional<long long> frames,
+                                        std::uint64_t firstFrame, double exposureTimeS,
+                                        std::optional<double> iso, const std::string& noise,
+                                        int threads) {
+  const Image img = electronsImage(electrons, sensor);
+  const NoiseMode mode = noiseMode(noise);
+  const long long n = frames.value_or(1);
+  if (n < 1 || n > kMaxFrames)
+    fail("<expose>", "frames", "expected 1 to " + std::to_string(kMaxFrames) + " frames");
+  if (threads < 0) fail("<expose>", "threads", "expected 0 (all cores) or a positive count");
+  const ExposureSettings settings{exposureTimeS, iso.value_or(sensor.baseIso)};
+  // expose() checks the settings (InputError for ISO ≤ 0, a negative time); check them here
+  // once, before the output is allocated, with this function's name.
+  try {
+    (void)expectedDn(0.0, sensor, settings);
+  } catch (const InputError& e) {
+    fail("<expose>", e.key().empty() ? "iso" : e.key(), e.message());
+  }
+
+  std::vector<py::ssize_t> shape{img.height, img.width};
+  if (img.channelCount() > 1) shape.push_back(img.channelCount());
+  if (frames) shape.insert(shape.begin(), static_cast<py::ssize_t>(n));
+  py::array_t<std::uint16_t> out(shape);
+  std::uint16_t* data = out.mutable_data();
+  const std::size_t frameSize = img.pixels.size();
+
+  tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
+  const long long group = std::max(1, arena.max_concurrency());
+  for (long long first = 0; first < n; first += group) {
+    const long long last = std::min(n, first + group);
+    {
+      py::gil_scoped_release release;
+      arena.execute([&] {
+        tbb::parallel_for(first, last, [&](long long f) {
+          const auto raws = exposeChannels(img, sensor, settings, mode, seed,
+                                           firstFrame + static_cast<std::uint64_t>(f));
+          storeFrame(raws, data + static_cast<std::size_t>(f) * frameSize);
+        });
+      });
+    }
+    if (PyErr_CheckSignals() != 0) throw py::error_already_set();  // Ctrl-C: KeyboardInterrupt
+  }
+  return out;
+}
+
+// One raw frame as the RawImages developRaw takes: a uint16 (h, w) mosaic, a stacked
+// sensor's (h, w, C) array, or a capture's dict {channel: (h, w)}.
+std::vector<RawImage> rawImages(const py::object& raw, const SensorSpec& spec) {
+  const auto empty = [&](py::ssize_t h, py::ssize_t w) {
+    RawImage r;
+    r.width = static_cast<int>(w);
+    r.height = static_cast<int>(h);
+    r.cfa = spec.cfa;
+    r.blackLevelDn = spec.blackLevelDn;
+    r.whiteLevelDn = spec.whiteLevelDn();
+    r.adcBits = spec.adcBits;
+    return r;
+  };
+  const auto plane = [&](const py::handle& h, const std::string& key) {
+    const auto a = py::array_t<std::uint16_t, py::array::c_style>::ensure(h);
+    if (!a || a.ndim() != 2 || a.shape(0) == 0 || a.shape(1) == 0)
+      fail("<develop>", key, "expected a 2-D uint16 array (height, width) of raw DN");
+    RawImage r = empty(a.shape(0), a.shape(1));
+    r.dn.assign(a.data(), a.data() + a.size());
+    return r;
+  };
+  std::vector<RawImage> raws;
+  if (!spec.cfa.isStacked()) {
+    raws.push_back(plane(raw, "raw"));
+  } else if (py::isinstance<py::dict>(raw)) {
+    const py::dict d = raw.cast<py::dict>();
+    for (const std::string& c : spec.cfa.channels) {
+      if (!d.contains(c))
+        fail("<develop>", "raw[" + c + "]", "missing plane of the stacked sensor");
+      raws.push_back(plane(d[py::str(c)], "raw[" + c + "]"));
+    }
+  } else {
+    const auto a = py::array_t<std::uint16_t, py::array::c_style>::ensure(raw);
+    const py::ssize_t c = static_cast<py::ssize_t>(spec.cfa.channels.size());
+    if (!a || a.ndim() != 3 || a.shape(2) != c || a.shape(0) == 0 || a.shape(1) == 0)
+      fail("<develop>", "raw",
+           "expected a uint16 array (height, width, " + std::to_string(c) +
+               ") or a dict of planes for the stacked sensor '" + spec.name + "'");
+    for (py::ssize_t k = 0; k < c; ++k) {
+      RawImage r = empty(a.shape(0), a.shape(1));
+      r.dn.resize(static_cast<std::size_t>(a.shape(0) * a.shape(1)));
+      for (std::size_t p = 0; p < r.dn.size(); ++p)
+        r.dn[p] = a.data()[p * static_cast<std::size_t>(c) + static_cast<std::size_t>(k)];
+      raws.push_back(std::move(r));
+    }
+  }
+  for (const RawImage& r : raws) {
+    const double white = spec.whiteLevelDn();
+    for (std::uint16_t v : r.dn)
+      if (v > white)
+        fail("<develop>", "raw",
+             "value " + std::to_string(v) + " above the sensor's white level " +
+                 std::to_string(static_cast<int>(white)) + " DN (" + std::to_string(spec.adcBits) +
+                 "-bit ADC)");
+  }
+  return raws;
+}
+
+IspSettings ispSettings(const std::string& whiteBalance, const std::string& illuminant,
+                        const std::optional<std::vector<int>>& region,
+                        const std::string& demosaic) {
+  using W = IspSettings::WhiteBalance;
+  IspSettings isp;
+  if (whiteBalance == "illuminant")
+    isp.whiteBalance = W::kIlluminant;
+  else if (whiteBalance == "grey_world")
+    isp.whiteBalance = W::kGreyWorld;
+  else if (whiteBalance == "region")
+    isp.whiteBalance = W::kRegion;
+  else
+    fail("<develop>", "white_balance", "expected illuminant, grey_world or region");
+  isp.illuminant = illuminant;
+  if (region) {
+    if (isp.whiteBalance != W::kRegion)
+      fail("<develop>", "region", "region needs white_balance='region'");
+    if (region->size() != 4 || (*region)[0] < 0 || (*region)[1] < 0 || (*region)[2] < 1 ||
+        (*region)[3] < 1)
+      fail("<develop>", "region", "expected (x, y, width, height) in pixels, width and height ≥ 1");
+    isp.region = {(*region)[0], (*region)[1], (*region)[2], (*region)[3]};
+  } else if (isp.whiteBalance == W::kRegion) {
+    fail("<develop>", "region", "white_balance='region' needs region=(x, y, width, height)");
+  }
+  if (demosaic == "malvar" || demosaic == "malvar-he-cutler")
+    isp.demosaic = DemosaicMethod::kMalvarHeCutler;
+  else if (demosaic == "bilinear")
+    isp.demosaic = DemosaicMethod::kBilinear;
+  else
+    fail("<develop>", "demosaic", "expected malvar (or malvar-he-cutler) or bilinear");
+  return isp;
+}
+
+// A new float32 array holding img's pixels, (h, w, C).
+py::array_t<float> toArray(const Image& img) {
+  py::array_t<float> out({static_cast<py::ssize_t>(img.height), static_cast<py::ssize_t>(img.width),
+                          static_cast<py::ssize_t>(img.channelCount())});
+  std::memcpy(out.mutable_data(), img.pixels.data(), img.pixels.size() * sizeof(float));
+  return out;
+}
+
+py::array_t<float> developFrame(const py::object& raw, const SensorSpec& sensor,
+                                const std::string& whiteBalance, const std::string& illuminant,
+                                const std::optional<std::vector<int>>& region,
+                                const std::string& demosaic) {
+  const std::vector<RawImage> raws = rawImages(raw, sensor);
+  const IspSettings isp = ispSettings(whiteBalance, illuminant, region, demosaic);
+  if (isp.whiteBalance == IspSettings::WhiteBalance::kRegion &&
+      (isp.region.x + isp.region.width > raws[0].width ||
+       isp.region.y + isp.region.height > raws[0].height))
+    fail("<develop>", "region",
+         "extends outside the " + std::to_string(raws[0].width) + "×" +
+             std::to_string(raws[0].height) + " image");
+  Image working;
+  {
+    py::gil_scoped_release release;
+    working = developRaw(raws, sensor, isp,
+                         lutsDirectory() / "spectra" / "colorchecker_classic_reflectance.csv")
+                  .working;
+  }
+  if (working.channelCount() == 1) {  // monochrome: grey RGB, as a capture's picture
+    Image rgb(working.width, working.height, {"R", "G", "B"});
+    for (std::size_t p = 0; p < working.pixels.size(); ++p)
+      for (std::size_t c = 0; c < 3; ++c) rgb.pixels[p * 3 + c] = working.pixels[p];
+    working = std::move(rgb);
+  }
+  return toArray(working);
+}
+
+py::array displayImage(const py::array& input, const std::string& config,
+                       const std::string& display, const std::string& view, const std::string& look,
+                       const std::string& dtype) {
+  const auto a = py::array_t<float, py::array::c_style | py::array::forcecast>::ensure(input);
+  if (!a || a.ndim() != 3 || a.shape(2) != 3 || a.shape(0) == 0 || a.shape(1) == 0)
+    fail("<display>", "image", "expected a float array (height, width, 3) of ACEScg");
+  if (dtype != "float32" && dtype != "uint8" && dtype != "uint16")
+    fail("<display>", "dtype", "expected float32, uint8 or uint16");
+  Image img(static_cast<int>(a.shape(1)), static_cast<int>(a.shape(0)), {"R", "G", "B"});
+  std::memcpy(img.pixels.data(), a.data(), img.pixels.size() * sizeof(float));
+  const OcioProcessor ocio(config);
+  Image shown;
+  {
+    py::gil_scoped_release release;
+    shown = ocio.toDisplay(img, DisplayChoice{display, view, look});
+  }
+  if (dtype == "float32") return toArray(shown);
+  const std::vector<py::ssize_t> shape{shown.height, shown.width, 3};
+  if (dtype == "uint8") {
+    const auto q = quantizeDisplay8(shown.pixels);
+    py::array_t<std::uint8_t> out(shape);
+    std::memcpy(out.mutable_data(), q.data(), q.size());
+    return out;
+  }
+  const auto q = quantizeDisplay16(shown.pixels);
+  py::array_t<std::uint16_t> out(shape);
+  std::memcpy(out.mutable_data(), q.data(), q.size() * sizeof(std::uint16_t));
+  return out;
+}
+
+}  // namespace
+
+void bindSensorFunctions(py::module_& m) {
+  py::class_<SensorSpec>(m, "Sensor",
+                         R"doc(A camera sensor: EMVA 1288 parameters (docs/sensor-format.md).
+
+Sensor(name_or_path): a preset of luts/sensors ("smartphone-1.4um", ...) or a sensor YAML
+file; Sensor.of(scene): the scene's sensor. Read-only attributes in camera units:
+pixel_pitch_m (m), full_well_e (e-), conversion_gain_e_per_dn (e-/DN at base ISO),
+base_iso, read_noise_e (e- rms), dark_current_e_per_s (e-/s at temperature_c), dsnu_e
+(e- rms), prnu (fraction), adc_bits, black_level_dn, white_level_dn (DN), cfa (name),
+channels, stacked, noiseless, pattern_seed.)doc")
+      .def(py::init([](const std::string& nameOrPath) {
+             return loadSensorSpec(nameOrPath, lutsDirectory());
+           }),
+           py::arg("name_or_path"))
+      .def_static(
+          "of",
+          [](const PyScene& scene) {
+            if (!scene.description.sensor)
+              fail("<sensor>", "sensor", "the scene has no sensor (scene key sensor.model)");
+            return scene.description.sensor->spec;
+          },
+          py::arg("scene"), "The sensor of a loaded scene (InputError if it has none).")
+      .def_readonly("name", &SensorSpec::name)
+      .def_readonly("pixel_pitch_m", &SensorSpec::pixelPitchM)
+      .def_readonly("fill_factor", &SensorSpec::fillFactor)
+      .def_readonly("full_well_e", &SensorSpec::fullWellE)
+      .def_readonly("conversion_gain_e_per_dn", &SensorSpec::conversionGainEPerDn)
+      .def_readonly("base_iso", &SensorSpec::baseIso)
+      .def_readonly("read_noise_e", &SensorSpec::readNoiseE)
+      .def_property_readonly("dark_current_e_per_s", &SensorSpec::darkCurrentAtTemperature)
+      .def_readonly("temperature_c", &SensorSpec::temperatureC)
+      .def_readonly("dsnu_e", &SensorSpec::dsnuE)
+      .def_readonly("prnu", &SensorSpec::prnuFraction)
+      .def_readonly("row_fpn_e", &SensorSpec::rowFpnE)
+      .def_readonly("column_fpn_e", &SensorSpec::columnFpnE)
+      .def_readonly("adc_bits", &SensorSpec::adcBits)
+      .def_readonly("black_level_dn", &SensorSpec::blackLevelDn)
+      .def_property_readonly("white_level_dn", &SensorSpec::whiteLevelDn)
+      .def_readonly("pattern_seed", &SensorSpec::patternSeed)
+      .def_readonly("noiseless", &SensorSpec::noiseless)
+      .def_property_readonly("cfa", [](const SensorSpec& s) { return s.cfa.name; })
+      .def_property_readonly("channels", [](const SensorSpec& s) { return s.cfa.channels; })
+      .def_property_readonly("stacked", [](const SensorSpec& s) { return s.cfa.isStacked(); })
+      .def("system_gain", &SensorSpec::systemGain, py::arg("iso"),
+           "System gain K at an ISO, DN/e- ((iso / base_iso) / conversion gain).")
+      .def("saturation_electrons", &SensorSpec::saturationElectrons, py::arg("iso"),
+           "Electrons at which the output saturates at an ISO: min(full well, ADC range / K).")
+      .def("__repr__", [](const SensorSpec& s) { return "<camsim.Sensor '" + s.name + "'>"; });
+
+  m.def(
+      "expose", &exposeFrames, py::arg("electrons"), py::arg("sensor"), py::kw_only(),
+      py::arg("seed"), py::arg("frames") = py::none(), py::arg("first_frame") = 0,
+      py::arg("exposure_time") = 1.0 / 60.0, py::arg("iso") = py::none(), py::arg("noise") = "full",
+      py::arg("threads") = 0,
+      R"doc(Raw frames from noise-free electrons: photons -> electrons -> noise -> ADC (EMVA 1288).
+
+electrons: expected photo-electrons per photosite (e-), float (height, width); a stacked
+  sensor's (height, width, C) — e.g. capture(...)["electrons"], or any array of your own.
+sensor: a camsim.Sensor. seed: the noise seed (temporal noise: shot, read; with
+  first_frame + f the frame's stream). The fixed patterns (PRNU, DSNU, row/column FPN) are
+  the sensor's own (sensor.pattern_seed): identical in every frame and for every seed.
+frames: None -> one frame, uint16 (height, width[, C]); n -> uint16 (n, height, width[, C]),
+  frame f drawn with frame index first_frame + f.
+exposure_time (s): for the dark signal only (the electrons already hold the light).
+iso: None -> the sensor's base ISO; gain K = (iso / base_iso) / conversion gain (DN/e-).
+noise: "full" (all), "photon" (shot noise only) or "none" (rounded mean).
+threads: 0 -> all cores; the bytes do not depend on it.
+With a capture's seed (meta["sensor"]["noise_seed"]), frame index, exposure time, ISO and
+noise mode this gives that capture's raw bytes. Releases the GIL; Ctrl-C raises
+KeyboardInterrupt between groups of frames. Bad input raises camsim.InputError.)doc");
+
+  m.def("develop", &developFrame, py::arg("raw"), py::arg("sensor"), py::kw_only(),
+        py::arg("white_balance") = "illuminant", py::arg("illuminant") = "D65",
+        py::arg("region") = py::none(), py::arg("demosaic") = "malvar",
+        R"doc(One raw frame through the ISP to scene-linear ACEScg, float32 (height, width, 3).
+
+raw: uint16 DN (height, width) of a mosaic sensor; a stacked sensor's (height, width, C)
+  array or a capture's dict {channel: (height, width)}; black level and white level are
+  the sensor's. Steps (sensor/isp/isp_pipeline.h): normalise, white balance
+  ("illuminant" from the CIE illuminant `illuminant`, "grey_world", or "region" over
+  region=(x, y, width, height) px), demosaic ("malvar" — also "malvar-he-cutler", as meta
+  writes it — or "bilinear"), the colour matrix
+  fitted from the sensor's QE on the ColorChecker under `illuminant`. 0.18 is mid-grey when
+  the exposure put it there; a monochrome sensor gives grey RGB. The same settings as a
+  scene's isp: block give that capture's "acescg" bytes. Releases the GIL.)doc");
+
+  m.def("display", &displayImage, py::arg("image"), py::kw_only(), py::arg("config") = "",
+        py::arg("display") = "", py::arg("view") = "", py::arg("look") = "",
+        py::arg("dtype") = "float32",
+        R"doc(ACEScg (height, width, 3) through OpenColorIO to a display encoding.
+
+config: an OCIO config file ("" -> $OCIO, else camsim's luts/config.ocio); display, view,
+look: the config's names ("" -> its default display, that display's default view, no
+look; unknown names raise camsim.InputError listing the valid ones). dtype: "float32"
+(display-encoded values, sRGB in [0, 1]), "uint8" or "uint16" (clamped, rounded code
+values: a capture's "display8" and PNG bytes). Releases the GIL.)doc");
+}
+
+}  // namespace camsim::python
