@@ -166,6 +166,8 @@ py::dict captureDict(const Owner& o) {
   color["look"] = o->choice.looks;
   meta["color"] = color;
   meta["reference_frame"] = r.referenceFrame;
+  meta["threads"] = r.stats.threads;         // the render's worker threads
+  meta["render_seconds"] = r.stats.seconds;  // wall time (not in the reproducible sidecar)
   out["meta"] = meta;
   return out;
 }

@@ -14,7 +14,8 @@ from conftest import small_scene
 
 
 def long_scene():
-    return camsim.Scene.from_dict(small_scene(spp=4096, resolution=(128, 96)))
+    # 192 tiles of 16 × 16 px at 1024 spp: several seconds in all, a fraction of one per tile.
+    return camsim.Scene.from_dict(small_scene(spp=1024, resolution=(256, 192)))
 
 
 def test_gil_is_released_while_rendering():

@@ -33,6 +33,21 @@ def test_same_seed_same_arrays_for_any_thread_count():
     np.testing.assert_array_equal(a["xyz"], b["xyz"])
     assert not np.array_equal(a["xyz"], c["xyz"])
     assert a["meta"]["render"]["spp"] == 8
+    assert (a["meta"]["threads"], b["meta"]["threads"]) == (1, 2)  # threads= honoured
+
+
+def test_a_sequence_returns_one_result_per_frame():
+    d = small_scene(spp=2)
+    d["frames"] = {"count": 3, "rate_hz": 24}
+    d["shapes"][0]["motion"] = [{"time": 0, "translate": [0, 0, 0]},
+                                {"time": 0.2, "translate": [0.3, 0, 0]}]
+    calls = []
+    frames = camsim.Scene.from_dict(d).render(progress=lambda done, total: calls.append(total))
+    assert isinstance(frames, list) and len(frames) == 3
+    assert not np.array_equal(frames[0]["xyz"], frames[2]["xyz"])  # the sphere moved
+    t = [f["meta"]["pose"]["reference_time_s"] for f in frames]
+    assert t[0] < t[1] < t[2]
+    assert calls and calls[-1] == calls[0]
 
 
 def test_pose_override_reads_no_mesh_again(tmp_path):

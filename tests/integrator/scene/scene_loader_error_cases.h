@@ -4,6 +4,7 @@
 // the Python module's tests (python/tests/test_errors.py): one list for both front ends.
 #pragma once
 
+#include <ostream>
 #include <string>
 
 namespace camsim::test {
@@ -145,5 +146,10 @@ inline const ErrorCase kErrorCases[] = {
      "}\n",
      3, 63, "shapes[0].radius", "out of range"},
 };
+
+// GoogleTest prints a case by its name (found by ADL: here, beside ErrorCase).
+inline void PrintTo(const ErrorCase& c, std::ostream* os) {
+  *os << c.name;
+}
 
 }  // namespace camsim::test

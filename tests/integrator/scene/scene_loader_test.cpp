@@ -46,10 +46,6 @@ using test::sphereWith;
 using test::withCameraLine;
 using test::withShapes;
 
-void PrintTo(const ErrorCase& c, std::ostream* os) {
-  *os << c.name;
-}
-
 class SceneLoaderErrorTest : public ::testing::TestWithParam<ErrorCase> {};
 
 TEST_P(SceneLoaderErrorTest, ThrowsInputErrorWithLocation) {
