@@ -3,8 +3,9 @@
 # test command runs it (scripts/test.sh, stage "slurm"; needs root):
 #   1. a 4-task array (scripts/slurm/camsim_array.sbatch) over a 12-item manifest completes,
 #      its files byte-identical to a local run, every item done once;
-#   2. one task requeued mid-run (scontrol requeue: SIGTERM, then Slurm restarts it) finishes
-#      with nothing lost: the item in progress is dropped and rendered again on the restart;
+#   2. one task cancelled mid-run (scancel: SIGTERM, camsim exits 143, the task ends
+#      CANCELLED) and then requeued (scontrol requeue) finishes with nothing lost: the item
+#      in progress is dropped and rendered again when the task runs again;
 #   3. a manifest with a bad key fails every task with exit code 2, none restarted, nothing
 #      written.
 # Fails, saying why, if the cluster cannot start. Usage: slurm_dataset_test.sh CAMSIM [WORKDIR]
@@ -56,7 +57,19 @@ say "submitted array $job (4 tasks)"
 requeued=0
 for _ in $(seq 600); do
   if [ "$requeued" = 0 ] && [ -f cluster/index.jsonl ] && grep -q '"shard": "2/4"' cluster/index.jsonl; then
-    scontrol requeue "${job}_2" && requeued=1 && say "requeued task ${job}_2 mid-run after its first item ($(($(date +%s) - start)) s)"
+    # The operator's way: scancel the running task (SIGTERM: camsim stops, exit 143, the
+    # task ends CANCELLED and stays so), then requeue it by hand; it resumes.
+    scancel "${job}_2" || fail "scancel ${job}_2 refused"
+    say "cancelled task ${job}_2 mid-run after its first item ($(($(date +%s) - start)) s)"
+    for _ in $(seq 120); do
+      scontrol show job "${job}_2" | grep -q "JobState=CANCELLED" && break
+      sleep 0.5
+    done
+    scontrol show job "${job}_2" | grep -q "JobState=CANCELLED" ||
+      fail "task ${job}_2 did not end CANCELLED: $(scontrol show job "${job}_2" | grep -o 'JobState=[A-Z]*')"
+    scontrol requeue "${job}_2" || fail "scontrol requeue of the cancelled task ${job}_2 refused"
+    requeued=1
+    say "task ${job}_2 CANCELLED, then requeued ($(($(date +%s) - start)) s)"
   fi
   [ -z "$(squeue -h -j "$job" 2>/dev/null)" ] && break
   sleep 0.5
@@ -76,7 +89,7 @@ done_lines=$(grep -c '"status": "done"' cluster/index.jsonl)
 distinct=$(grep '"status": "done"' cluster/index.jsonl | cut -d, -f1 | sort -u | wc -l)
 [ "$done_lines" = 12 ] && [ "$distinct" = 12 ] || fail "index: $done_lines done lines, $distinct distinct items (expected 12, 12)"
 [ -z "$(find cluster -name '*camsim-tmp*')" ] || fail "temporaries left: $(find cluster -name '*camsim-tmp*')"
-say "array: 12 items byte-identical to the local run, each done once; task 2 requeued and resumed ($(($(date +%s) - start)) s so far)"
+say "array: 12 items byte-identical to the local run, each done once; task 2 cancelled, requeued and resumed ($(($(date +%s) - start)) s so far)"
 
 # 3: a bad key fails every task with exit 2 and no restart.
 sed 's/sensor.iso:/sensor.isoo:/' m.yaml >bad.yaml
