@@ -3,18 +3,30 @@
 // between calls (a Scene owns its own description; a capture's arrays own their result).
 #pragma once
 
+#include <memory>
 #include <string>
+#include <utility>
 
 #include <pybind11/pybind11.h>
 
+#include "integrator/capture/scene_cache.h"
 #include "integrator/scene/scene_description.h"
 
 namespace camsim::python {
 
 // A loaded scene: the description the loader produced, with the overrides applied since.
 // What a render reads; capture() renders a copy, so one Scene can be captured again and again.
+// `built` keeps the renderable Scene (BVH, materials, lights) of its last capture, which the
+// next capture reuses when Scene::canRetarget allows (scene_cache.h). It is the Scene's
+// own, never shared: copy() starts without one. Every override here changes only what a
+// built Scene can be retargeted to (camera, spp, seed, sensor); one that changed shapes,
+// materials, lights, textures or the render origin would have to reset `built`.
 struct PyScene {
+  explicit PyScene(SceneDescription d) : description(std::move(d)) {}
   SceneDescription description;
+  // Null while a capture has it (taken with the GIL held, given back after): two captures of
+  // one Scene at once never share it; the second builds its own.
+  std::unique_ptr<SceneCache> built = std::make_unique<SceneCache>();
 };
 
 // Scene, load(), default_scene(), Scene.from_dict/from_yaml and the overrides.

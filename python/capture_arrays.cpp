@@ -168,6 +168,9 @@ py::dict captureDict(const Owner& o) {
   meta["reference_frame"] = r.referenceFrame;
   meta["threads"] = r.stats.threads;         // the render's worker threads
   meta["render_seconds"] = r.stats.seconds;  // wall time (not in the reproducible sidecar)
+  // Whether the render ran on the Scene's renderable scene (BVH) built by an earlier
+  // capture, not a new one (capture(reuse=)): the renderer says what it modelled.
+  meta["scene_reused"] = r.sceneReused;
   out["meta"] = meta;
   return out;
 }

@@ -26,6 +26,9 @@ struct CaptureJob {
   int frames = 1;
   std::vector<std::shared_ptr<CaptureBuffers>> results;  // one per frame, in order
   std::exception_ptr error;
+  // The Scene's built renderable scene, lent for this capture (null: reuse=False, build
+  // afresh and keep nothing); a sequence builds its own for all its frames.
+  std::unique_ptr<SceneCache> built;
 };
 
 std::shared_ptr<CaptureBuffers> keep(CaptureResult&& r, const PictureSettings& picture) {
@@ -45,6 +48,7 @@ void runJob(CaptureJob& job) {
       job.total = total;
       job.done = done;
     };
+    options.sceneCache = job.built.get();
     if (job.description.frames) {
       captureSequence(std::move(job.description), options, [&job](CaptureResult&& r, int k) {
         if (r.cancelled) return;
@@ -60,11 +64,24 @@ void runJob(CaptureJob& job) {
   }
 }
 
-py::object runCapture(const PyScene& scene, int threads, const py::object& progress,
+py::object runCapture(PyScene& scene, int threads, const py::object& progress,
                       const std::string& display, const std::string& view, const std::string& look,
-                      const std::string& ocioConfig) {
+                      const std::string& ocioConfig, bool reuse) {
   if (threads < 0) throw py::value_error("threads must be ≥ 0 (0: all hardware threads)");
   auto job = std::make_shared<CaptureJob>();
+  // Taken with the GIL held: a capture of this Scene running at the same time (another
+  // Python thread) finds none and builds its own.
+  if (reuse) job->built = scene.built ? std::move(scene.built) : std::make_unique<SceneCache>();
+  scene.built.reset();  // reuse=False keeps nothing either
+  // Given back however this returns (still valid after a cancel or an error; a Scene that
+  // failed to build is not in it); of two captures at once, the last to finish wins.
+  struct GiveBack {
+    PyScene& scene;
+    CaptureJob& job;
+    ~GiveBack() {
+      if (job.built) scene.built = std::move(job.built);
+    }
+  } giveBack{scene, *job};
   job->picture = PictureSettings{ocioConfig, DisplayChoice{display, view, look}};
   job->threads = threads;
   const bool sequence = scene.description.frames.has_value();
@@ -141,6 +158,10 @@ as progress(done, total) with the GIL held, at most every 50 ms (no callback: a 
 bar on stderr when it is a terminal). The GIL is released while rendering; Ctrl-C cancels
 the capture between tiles and raises KeyboardInterrupt (within about 0.1 s plus one tile).
 display/view/look/ocio_config: as camsim render's --display, --view, --look, --ocio-config.
+reuse: render on the renderable scene (Embree BVH, materials, lights) the Scene's previous
+capture built, when only its camera, exposure, f-number, ISO, sensor, seeds or spp changed
+(the same bytes as a fresh build; meta["scene_reused"] says whether it was); False: build
+it afresh and keep nothing.
 Raises camsim.InputError for a bad display choice or a file a capture reads again.)doc";
 
 }  // namespace
@@ -148,12 +169,12 @@ Raises camsim.InputError for a bad display choice or a file a capture reads agai
 void bindCaptureFunctions(py::module_& m) {
   m.def("capture", &runCapture, py::arg("scene"), py::kw_only(), py::arg("threads") = 0,
         py::arg("progress") = py::none(), py::arg("display") = "", py::arg("view") = "",
-        py::arg("look") = "", py::arg("ocio_config") = "", kCaptureDoc);
+        py::arg("look") = "", py::arg("ocio_config") = "", py::arg("reuse") = true, kCaptureDoc);
   py::object scene = m.attr("Scene");
   scene.attr("render") = py::cpp_function(
       &runCapture, py::name("render"), py::is_method(scene), py::kw_only(), py::arg("threads") = 0,
       py::arg("progress") = py::none(), py::arg("display") = "", py::arg("view") = "",
-      py::arg("look") = "", py::arg("ocio_config") = "",
+      py::arg("look") = "", py::arg("ocio_config") = "", py::arg("reuse") = true,
       ("scene.render(...) is camsim.capture(scene, ...):\n\n" + std::string(kCaptureDoc)).c_str());
 }
 

@@ -162,9 +162,13 @@ file's world coordinates.
 Make one with camsim.load(path), camsim.default_scene(), Scene.from_dict(d) or
 Scene.from_yaml(text). The set_* overrides change it in place and return it (chainable);
 they touch no geometry, so no mesh, texture or environment map is read again: the meshes,
-decoded textures and spectra stay in memory in the Scene. Each render builds the Embree
-BVH from them again (camsim builds the renderable scene per capture; nothing is cached
-between captures, so two Scenes never share state). copy() gives an independent Scene.
+decoded textures and spectra stay in memory in the Scene. The Scene also keeps what its
+last capture built (Embree BVH, materials, lights) and the next capture renders on it when
+only the camera pose, exposure, f-number, ISO, sensor, seeds or spp changed — the same
+bytes as a fresh build; it is rebuilt when something with keyframed motion would need
+another exposure window (docs/python.md, "Cheap overrides"). meta["scene_reused"] says which
+happened; capture(reuse=False) builds afresh. Two Scenes never share state: copy() gives an
+independent Scene (without the built one).
 )doc");
 
   const auto overridesDoc = R"doc(
@@ -209,7 +213,8 @@ base_dir: the directory relative file names (meshes, textures, spectra) resolve 
 
   scene.def(
       "copy", [](const PyScene& s) { return PyScene{s.description}; },
-      "An independent copy (meshes and decoded textures are copied in memory).");
+      "An independent copy (meshes and decoded textures are copied in memory; the built "
+      "renderable scene is not shared: the copy's first capture builds its own).");
   scene.def(
       "set_pose",
       [](PyScene& s, std::optional<std::vector<double>> position,

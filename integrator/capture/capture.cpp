@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <memory>
 
+#include "integrator/capture/scene_cache.h"
 #include "integrator/scene/scene.h"
 #include "sensor/base/check.h"
 #include "sensor/base/input_error.h"
@@ -185,8 +186,12 @@ CaptureResult renderCaptureFilms(SceneDescription description, const CaptureOpti
     o.tiles = *options.tiles;
     checkTileable(out.description, ModelledDimensions{});  // a sequence: before the scene
   }
-  // This scene is gone before a re-render for auto-exposure or brackets builds its own.
-  const Scene scene(out.description);
+  // This scene is gone before a re-render for auto-exposure or brackets builds its own
+  // (unless the caller's cache keeps it).
+  std::optional<Scene> built;
+  const Scene& scene = options.sceneCache ? options.sceneCache->sceneFor(out.description)
+                                          : built.emplace(out.description);
+  out.sceneReused = options.sceneCache && options.sceneCache->reused();
   if (options.tiles) checkTileable(out.description, scene.modelled());
   out.description.releaseDecodedImages();  // the Scene holds its own form of them
   renderFilm(scene, o, out);

@@ -32,6 +32,7 @@
 // | progress   | —    | none    | (tiles done, tiles total) of the main render, from worker threads |
 // | cancel     | —    | none    | checked between tiles; a cancelled capture has only the finished tiles |
 // | tiles      | —    | none    | renderCaptureFilms only: render this share of the tiles (render.h) |
+// | sceneCache | —    | none    | the caller's SceneCache: step 1 renders on the Scene built by an earlier capture when only the camera, spp, seed, sensor or ISP changed (scene_cache.h; same bytes); none: built here |
 #pragma once
 
 #include <atomic>
@@ -48,11 +49,16 @@
 
 namespace camsim {
 
+class SceneCache;  // scene_cache.h
+
 struct CaptureOptions {
   int threads = 0;
   std::function<void(int, int)> progress;
   const std::atomic<bool>* cancel = nullptr;
   std::optional<TileShare> tiles;
+  // Not used by captureSequence (it builds one Scene for all its frames) nor by step 4's
+  // re-render (something moves: a Scene of its own at the stretched shutter).
+  SceneCache* sceneCache = nullptr;
 };
 
 struct CaptureFrame {
@@ -74,7 +80,8 @@ struct CaptureResult {
   // render ran (no frames, no picture).
   bool cancelled = false;
   int tilesDone = 0, tilesTotal = 0;
-  Image film;        // CIE XYZ: energy × 683 lm/W per photosite (Y in lm·s), absolute
+  bool sceneReused = false;  // step 1 rendered on options.sceneCache's Scene, not a new one
+  Image film;                // CIE XYZ: energy × 683 lm/W per photosite (Y in lm·s), absolute
   Image sensorFilm;  // with a sensor: expected e⁻ at the scene's exposure time; else empty
   Image aovs;        // the ground truth render.aovs asks for (aov_film.h); else empty
 

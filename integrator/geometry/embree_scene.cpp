@@ -111,10 +111,7 @@ struct EmbreeScene::Impl {
 EmbreeScene::EmbreeScene(const std::vector<std::unique_ptr<Shape>>& shapes, double motionStart,
                          double motionEnd)
     : impl_(std::make_unique<Impl>()) {
-  if (motionEnd > motionStart) {
-    timeOffset_ = motionStart;
-    timeScale_ = 1.0 / (motionEnd - motionStart);
-  }
+  setMotionSpan(motionStart, motionEnd);
   impl_->device = rtcNewDevice(nullptr);
   if (!impl_->device) throw std::runtime_error("cannot create Embree device");
   rtcSetDeviceErrorFunction(impl_->device, reportEmbreeError, nullptr);
@@ -129,6 +126,7 @@ EmbreeScene::EmbreeScene(const std::vector<std::unique_ptr<Shape>>& shapes, doub
   rtcSetSceneBuildQuality(impl_->scene, quality);
   for (size_t id = 0; id < shapes.size(); ++id) {
     const Shape& shape = *shapes[id];
+    hasInstances_ = hasInstances_ || !shape.instanceMotion().empty();
     RTCGeometry geom = shape.instanceMotion().empty() ? makeGeometry(impl_->device, shape)
                                                       : makeInstance(impl_->device, shape, quality);
     rtcAttachGeometryByID(impl_->scene, geom, static_cast<unsigned>(id));
@@ -144,6 +142,16 @@ EmbreeScene::EmbreeScene(const std::vector<std::unique_ptr<Shape>>& shapes, doub
 }
 
 EmbreeScene::~EmbreeScene() = default;
+
+void EmbreeScene::setMotionSpan(double motionStart, double motionEnd) {
+  CAMSIM_CHECK(!hasInstances_);
+  timeOffset_ = 0.0;
+  timeScale_ = 0.0;
+  if (motionEnd > motionStart) {
+    timeOffset_ = motionStart;
+    timeScale_ = 1.0 / (motionEnd - motionStart);
+  }
+}
 
 std::int64_t EmbreeScene::embreeBytes() const {
   return impl_->memory.bytes.load();

@@ -48,12 +48,18 @@ class EmbreeScene {
   std::int64_t embreeBytes() const;
   std::int64_t embreePeakBytes() const;
 
+  // Moves the motion span to [motionStart, motionEnd] (s), as if built over it: only for a
+  // scene without moving shapes (no instances), whose BVH does not depend on the span — the
+  // ray-time mapping is then all that changes (Scene::retarget).
+  void setMotionSpan(double motionStart, double motionEnd);
+
   static constexpr std::size_t kHighQualityTriangles = 250000;
 
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;
   double timeOffset_ = 0.0, timeScale_ = 0.0;
+  bool hasInstances_ = false;  // some shape moves: its steps cover the span it was built over
   glm::vec3 lower_{1.0f}, upper_{-1.0f};
 };
 

@@ -99,6 +99,37 @@ void Scene::setCamera(const PhysicalCameraParams& camera) {
   analyseExposure();
 }
 
+bool Scene::canRetarget(const SceneDescription& next) const {
+  const RenderSettings& a = settings_;
+  const RenderSettings& b = next.render;
+  if (a.sampler != b.sampler || a.maxDepth != b.maxDepth || a.rrDepth != b.rrDepth ||
+      a.aovs != b.aovs)
+    return false;
+  if (next.renderOrigin != renderOrigin_ ||
+      (next.frames ? 1.0 / next.frames->rateHz : 0.0) != frameInterval_)
+    return false;
+  std::size_t emitters = 0;
+  for (const ShapeDescription& shape : next.shapes) emitters += shape.emission ? 1 : 0;
+  if (next.shapes.size() != shapes_.size() || next.materials.size() + 1 != materials_.size() ||
+      next.lights.size() + emitters != lights_.size())
+    return false;
+  const glm::dvec2 w = exposureWindow(PhysicalCamera(next.camera));
+  if (w == motionSpan_) return true;
+  return std::all_of(motions_.begin(), motions_.end(),
+                     [](const RigidMotion& m) { return m.empty(); });
+}
+
+void Scene::retarget(const SceneDescription& next) {
+  CAMSIM_CHECK(canRetarget(next));
+  camera_ = std::make_unique<PhysicalCamera>(next.camera);
+  if (const glm::dvec2 w = exposureWindow(*camera_); w != motionSpan_) {
+    motionSpan_ = w;  // nothing has keyframed motion (canRetarget): only Embree's time map moves
+    geometry_->setMotionSpan(w.x, w.y);
+  }
+  settings_ = next.render;
+  analyseExposure();
+}
+
 void Scene::analyseExposure() {
   const glm::dvec2 w = exposureWindow(*camera_);
   exposureStart_ = w.x;

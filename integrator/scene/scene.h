@@ -45,6 +45,21 @@ class Scene {
   // and what is modelled (time, moving objects, rolling shutter) follow it.
   void setCamera(const PhysicalCameraParams& camera);
 
+  // Reuse for another capture (SceneCache, integrator/capture/scene_cache.h). Whether this
+  // Scene renders `next` exactly as Scene(next) would, once retarget(next) has run, given
+  // what the caller vouches for: `next` differs from the description this was built from
+  // at most in its camera, render.spp and render.seed (and its sensor, ISP and name, which
+  // a Scene does not hold) — the same shapes, materials and lights. Checked here, so that
+  // a capture the rule does not cover is rebuilt: the render origin, the other render
+  // settings, the frames block, the counts of shapes, materials and lights; and time: the
+  // camera's exposure window must be the span the shapes were built over, unless no shape
+  // has keyframed motion (only then does no built shape depend on the span).
+  bool canRetarget(const SceneDescription& next) const;
+  // next's camera (exposure window and modelled dimensions follow, as setCamera) and render
+  // settings; the motion span becomes next's exposure window, as Scene(next) builds it.
+  // CAMSIM_CHECK: canRetarget(next).
+  void retarget(const SceneDescription& next);
+
   const PhysicalCamera& camera() const { return *camera_; }
   const RenderSettings& settings() const { return settings_; }
   // World position of render space's origin (SceneDescription::renderOrigin), m.

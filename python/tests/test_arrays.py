@@ -53,7 +53,7 @@ def test_raw_electrons_acescg_and_picture_equal_the_cli_files(cli_box, py_box):
 def test_meta_is_the_cli_sidecar(cli_box, py_box):
     sidecar = json.loads((cli_box / "box_sensor.json").read_text())
     meta = dict(py_box["meta"])
-    for key in ("pose", "color", "reference_frame", "threads", "render_seconds"):
+    for key in ("pose", "color", "reference_frame", "threads", "render_seconds", "scene_reused"):
         meta.pop(key)
     sidecar.pop("color")
     assert meta == sidecar

@@ -1,0 +1,44 @@
+// SceneCache: a built Scene (Embree BVH, shapes, materials, lights) kept by the caller of
+// capture() between captures of one scene, so that a capture which changes only the camera
+// (pose, shutter, f-number, sensor size), render.spp, render.seed, the sensor or the ISP
+// renders on the Scene built before instead of building it again. The result is the same,
+// bit for bit, as a capture that builds its own Scene (tests/integrator/capture/
+// scene_cache_test.cpp): Scene::retarget sets exactly what Scene(description) would.
+//
+// The caller vouches that between captures through one cache the shapes, materials,
+// lights and textures are unchanged (comparing meshes would cost what the cache saves);
+// anything else changed: clear() first. Scene::canRetarget checks what can be checked
+// cheaply (render origin, other render settings, frames, counts, the exposure window when
+// something has keyframed motion) and a capture it rejects builds a new Scene, which the
+// cache then keeps. The cache is the caller's object, never shared: no global state, and
+// one cache must not serve two captures at once (retarget changes the Scene in place).
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "integrator/scene/scene.h"
+#include "integrator/scene/scene_description.h"
+
+namespace camsim {
+
+class SceneCache {
+ public:
+  // The Scene to render `d` with: the kept one retargeted to d when it can render d
+  // (reused() is then true), else a new one built from d and kept.
+  const Scene& sceneFor(const SceneDescription& d);
+  // Whether the last sceneFor() reused the kept Scene (false before any).
+  bool reused() const { return reused_; }
+  bool empty() const { return !scene_; }
+  void clear() {
+    scene_.reset();
+    reused_ = false;
+  }
+
+ private:
+  std::unique_ptr<Scene> scene_;
+  std::string sourceFnv1a_;  // of the description it was built from: another scene is rebuilt
+  bool reused_ = false;
+};
+
+}  // namespace camsim
