@@ -10,6 +10,7 @@
 #include "cli/progress.h"
 #include "python/bindings.h"
 #include "python/capture_arrays.h"
+#include "python/worker_threads.h"
 
 namespace camsim::python {
 namespace {
@@ -93,7 +94,7 @@ py::object runCapture(PyScene& scene, int threads, const py::object& progress,
     py::gil_scoped_release release;
     job->description = scene.description;  // the worker's copy (meshes copied in memory)
     checkPictureSettings(job->picture);    // a bad config or display fails before rendering
-    std::future<void> worker = std::async(std::launch::async, [job] { runJob(*job); });
+    std::future<void> worker = runOnWorkerThread([job] { runJob(*job); });
     int reported = -1;
     while (worker.wait_for(std::chrono::milliseconds(50)) != std::future_status::ready) {
       py::gil_scoped_acquire acquire;
