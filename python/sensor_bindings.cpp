@@ -247,20 +247,12 @@ py::array_t<float> developFrame(const py::object& raw, const SensorSpec& sensor,
     fail("<develop>", "region",
          "extends outside the " + std::to_string(raws[0].width) + "×" +
              std::to_string(raws[0].height) + " image");
-  Image working;
+  Image rgb;
   {
     py::gil_scoped_release release;
-    working = developRaw(raws, sensor, isp,
-                         lutsDirectory() / "spectra" / "colorchecker_classic_reflectance.csv")
-                  .working;
+    rgb = workingRgb(developRaw(raws, sensor, isp, colorCheckerCsvPath()));
   }
-  if (working.channelCount() == 1) {  // monochrome: grey RGB, as a capture's picture
-    Image rgb(working.width, working.height, {"R", "G", "B"});
-    for (std::size_t p = 0; p < working.pixels.size(); ++p)
-      for (std::size_t c = 0; c < 3; ++c) rgb.pixels[p * 3 + c] = working.pixels[p];
-    working = std::move(rgb);
-  }
-  return toArray(working);
+  return toArray(rgb);
 }
 
 py::array displayImage(const py::array& input, const std::string& config,

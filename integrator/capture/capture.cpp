@@ -41,13 +41,6 @@ double clippedFraction(const std::vector<RawImage>& raws) {
   return total == 0 ? 0.0 : static_cast<double>(clipped) / static_cast<double>(total);
 }
 
-Image greyRgb(const Image& plane) {
-  Image grey(plane.width, plane.height, {"R", "G", "B"});
-  for (std::size_t p = 0; p < plane.pixels.size(); ++p)
-    for (std::size_t c = 0; c < 3; ++c) grey.pixels[p * 3 + c] = plane.pixels[p];
-  return grey;
-}
-
 // Steps 2–6 on the render's sensor film.
 void exposeAndDevelop(CaptureResult& out, const RenderOptions& renderOptions) {
   const SceneDescription& desc = out.description;
@@ -87,11 +80,9 @@ void exposeAndDevelop(CaptureResult& out, const RenderOptions& renderOptions) {
     out.frames.push_back(std::move(frame));
   }
   const CaptureFrame& reference = out.frames[out.referenceFrame];
-  out.developed = developRaw(reference.raws, spec, desc.isp,
-                             lutsDirectory() / "spectra" / "colorchecker_classic_reflectance.csv",
+  out.developed = developRaw(reference.raws, spec, desc.isp, colorCheckerCsvPath(),
                              &reference.whiteBalanceGains);
-  out.picture = out.developed->working.channelCount() == 1 ? greyRgb(out.developed->working)
-                                                           : out.developed->working;
+  out.picture = workingRgb(*out.developed);
 }
 
 }  // namespace

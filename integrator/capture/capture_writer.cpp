@@ -75,11 +75,9 @@ void writeFrames(const CaptureResult& r, const Metadata& meta, OutputSet& output
   const SensorSpec& spec = sensor.spec;
   // The DNG's colour follows the ISP's white balance: matrices for its illuminant (and
   // D65), AsShotNeutral from the gains it applies to each frame.
-  DngColor color =
-      spec.qe.size() == 3 && !spec.cfa.isStacked()
-          ? dngColorFromQe(spec.qe, desc.isp.illuminant,
-                           lutsDirectory() / "spectra" / "colorchecker_classic_reflectance.csv")
-          : DngColor{};
+  DngColor color = spec.qe.size() == 3 && !spec.cfa.isStacked()
+                       ? dngColorFromQe(spec.qe, desc.isp.illuminant, colorCheckerCsvPath())
+                       : DngColor{};
   for (std::size_t i = 0; i < r.frames.size(); ++i) {
     const CaptureFrame& frame = r.frames[i];
     Metadata frameMeta = meta;

@@ -9,4 +9,8 @@ std::filesystem::path lutsDirectory() {
   return CAMSIM_LUTS_DIR;
 }
 
+std::filesystem::path colorCheckerCsvPath() {
+  return lutsDirectory() / "spectra" / "colorchecker_classic_reflectance.csv";
+}
+
 }  // namespace camsim

@@ -9,4 +9,8 @@ namespace camsim {
 
 std::filesystem::path lutsDirectory();
 
+// The 24 ColorChecker Classic reflectances the ISP fits its colour matrix on (developRaw,
+// the DNG's matrices): lutsDirectory()/spectra/colorchecker_classic_reflectance.csv.
+std::filesystem::path colorCheckerCsvPath();
+
 }  // namespace camsim

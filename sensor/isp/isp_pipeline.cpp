@@ -78,4 +78,13 @@ DevelopedImage developRaw(const std::vector<RawImage>& raws, const SensorSpec& s
   return out;
 }
 
+Image workingRgb(const DevelopedImage& developed) {
+  const Image& plane = developed.working;
+  if (plane.channelCount() != 1) return plane;
+  Image grey(plane.width, plane.height, {"R", "G", "B"});
+  for (std::size_t p = 0; p < plane.pixels.size(); ++p)
+    for (std::size_t c = 0; c < 3; ++c) grey.pixels[p * 3 + c] = plane.pixels[p];
+  return grey;
+}
+
 }  // namespace camsim

@@ -57,4 +57,8 @@ DevelopedImage developRaw(const std::vector<RawImage>& raws, const SensorSpec& s
                           const IspSettings& settings, const std::filesystem::path& colorCheckerCsv,
                           const std::vector<double>* gains = nullptr);
 
+// The developed image as R, G, B: the working image itself, or a monochrome sensor's one
+// plane as grey RGB (a capture's picture, camsim.develop()).
+Image workingRgb(const DevelopedImage& developed);
+
 }  // namespace camsim
