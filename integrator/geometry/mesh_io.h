@@ -25,6 +25,7 @@
 
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
 
 namespace camsim {
 
@@ -49,6 +50,9 @@ struct MeshData {
   std::vector<glm::vec3> normals;      // empty, or one per position
   std::vector<glm::vec2> uvs;          // empty, or one per position (texture coordinates)
   std::vector<std::uint32_t> indices;  // 3 per triangle, into positions
+  // empty, or one per position: xyz the unit tangent along ∂p/∂u, w = ±1 the bitangent's
+  // sign (bitangent = w · normal × tangent), glTF's TANGENT convention (normal maps)
+  std::vector<glm::vec4> tangents;
 };
 
 MeshData readObj(const std::filesystem::path& path, const MeshPlacement& placement = {});

@@ -105,6 +105,8 @@ std::unique_ptr<Material> makeMaterial(const MaterialDescription& d, TextureCach
       p.masking = d.masking;
       return std::make_unique<PlasticMaterial>(std::move(p));
     }
+    case MaterialDescription::Type::kMetallicRoughness:
+      break;  // no loader makes it yet (issue 24)
   }
   CAMSIM_CHECK(false);
   return nullptr;

@@ -99,6 +99,10 @@ struct TextureDescription {
   Spectrum checkerA = Spectrum::constant(0.8), checkerB = Spectrum::constant(0.2);  // kCheckerboard
   float checks = 8.0f;                      // kCheckerboard: squares per unit of u and v
   glm::vec2 uvScale{1.0f}, uvOffset{0.0f};  // uv' = uv · scale + offset (kImage, kCheckerboard)
+  // kImage scalar maps: the channel read (0 = R, 1 = G, 2 = B, 3 = A), e.g. a glTF
+  // metallic-roughness map packs roughness in G and metalness in B; −1: the default
+  // reading of a scalar map (integrator/textures/image_texture.h).
+  int channel = -1;
 
   static TextureDescription constant(double v) {
     TextureDescription t;
@@ -108,7 +112,7 @@ struct TextureDescription {
 };
 
 struct MaterialDescription {
-  enum class Type { kDiffuse, kConductor, kMirror, kDielectric, kPlastic };
+  enum class Type { kDiffuse, kConductor, kMirror, kDielectric, kPlastic, kMetallicRoughness };
   std::string name;
   Type type = Type::kDiffuse;
   // diffuse/plastic: diffuse reflectance ρ(λ); mirror: reflectance; conductor with
@@ -125,6 +129,23 @@ struct MaterialDescription {
       Spectrum::constant(1.5);  // conductor η(λ); dielectric/plastic: index inside / outside
   Spectrum k = Spectrum::constant(0.0);  // conductor extinction k(λ)
   float specularWeight = 0.1f;           // plastic ks (kd = 1 − ks)
+  // metallic_roughness (glTF 2.0 Appendix B): `reflectance` is the base colour, `roughness`
+  // glTF's perceptual roughness r in [0, 1] (α = r²), `metallic` the metalness in [0, 1].
+  TextureDescription metallic = TextureDescription::constant(0.0);
+  // Tangent-space normal map (any material on a mesh with texture coordinates): linear RGB
+  // texels c, n_tangent = normalize((2c − 1) · (scale, scale, 1)), glTF's convention (+x
+  // along the tangent = ∂p/∂u, +y along the bitangent = ∂p/∂v with v as the file stores it).
+  std::optional<TextureDescription> normalMap;
+  float normalScale = 1.0f;
+  // Alpha cut-out (glTF alphaMode MASK; BLEND is treated as MASK at 0.5): a hit whose alpha
+  // = factor · texel(channel, usually 3 of the base-colour image) is below `cutoff` is not a
+  // hit, for camera, bounce and shadow rays alike.
+  struct AlphaCutout {
+    std::optional<TextureDescription> texture;  // none: alpha = factor everywhere
+    float factor = 1.0f;
+    float cutoff = 0.5f;
+  };
+  std::optional<AlphaCutout> alphaCutout;
 };
 
 // Lights that are not shapes (`lights:` in the scene file; units in docs/scene-format.md).
@@ -172,6 +193,13 @@ struct ShapeDescription {
   glm::vec3 centre{0.0f};  // kSphere, object space (m)
   float radius = 0.0f;     // kSphere (m)
   RigidMotion motion;      // object → world over time; empty = identity
+  // kMesh instanced (glTF nodes sharing a mesh, the YAML `instances:` list): when set, the
+  // geometry is this mesh in its own object space, stored once however many shapes point
+  // to it, and `mesh` is empty. It is placed by motion.at(t) · placement (object → render
+  // space): `placement` is any invertible affine matrix (non-uniform scale and mirroring
+  // included); a static instance has an empty motion.
+  std::shared_ptr<const MeshData> sharedMesh;
+  glm::dmat4 placement{1.0};
 };
 
 // `sensor:` — the camera's sensor and how it is exposed and read out.
@@ -207,6 +235,11 @@ struct SceneDescription {
   std::optional<SensorSettings> sensor;  // none: the film records CIE XYZ only
   IspSettings isp;                       // raw → picture (scenes with a sensor)
   std::optional<FrameSequence> frames;   // none: one capture at the camera's shutter
+  // What the loader left out or changed, one sentence each naming the file and the JSON
+  // path (or line) and key: features of imported assets that camsim ignores or approximates
+  // (docs/scene-format.md lists them). The CLI prints them; the sidecar lists them as
+  // "import_notes".
+  std::vector<std::string> notes;
 
   // The camera of sequence frame k (0-based): its shutter moved to the frame's start.
   PhysicalCameraParams frameCamera(int k) const {
