@@ -44,7 +44,7 @@ set(ALLOWED_integrator/dataset integrator/sampling integrator/geometry integrato
     integrator/camera integrator/materials integrator/lights integrator/scene integrator/render
     integrator/capture ${SENSOR_ALL})
 
-set(HEAVY "embree3/|OpenEXR/|Imath/|Imf|OpenColorIO|tiffio|tiff\\.h|png\\.h|tbb/|oneapi/|yaml-cpp/")
+set(HEAVY "embree3/|OpenEXR/|Imath/|Imf|OpenColorIO|tiffio|tiff\\.h|png\\.h|tbb/|oneapi/|yaml-cpp/|tiny_gltf|nlohmann/")
 set(KNOWN_HEADER_LEAKS "")
 
 set(SIMD_HEADER sensor/base/simd.h)
@@ -77,6 +77,11 @@ foreach(f IN LISTS files)
       endif()
     elseif(line MATCHES "^#include \"(integrator|sensor)/")
       message(SEND_ERROR "${f}: '${line}': include a file in its sub-area folder")
+      math(EXPR violations "${violations} + 1")
+    endif()
+    # tinygltf and its JSON library belong to the glTF reader alone.
+    if(line MATCHES "^#include <(tiny_gltf|nlohmann/)" AND NOT f MATCHES "^integrator/scene/gltf_[a-z_]+\\.cpp$")
+      message(SEND_ERROR "${f}: '${line}': only integrator/scene/gltf_*.cpp include tinygltf")
       math(EXPR violations "${violations} + 1")
     endif()
     if(f MATCHES "\\.h$" AND line MATCHES "^#include <(${HEAVY})")

@@ -133,8 +133,8 @@ struct MaterialDescription {
   // glTF's perceptual roughness r in [0, 1] (α = r²), `metallic` the metalness in [0, 1].
   TextureDescription metallic = TextureDescription::constant(0.0);
   // Tangent-space normal map (any material on a mesh with texture coordinates): linear RGB
-  // texels c, n_tangent = normalize((2c − 1) · (scale, scale, 1)), glTF's convention (+x
-  // along the tangent = ∂p/∂u, +y along the bitangent = ∂p/∂v with v as the file stores it).
+  // texels c, n_tangent = normalize((2c − 1) · (scale, scale, 1)), glTF's convention: +x
+  // along the tangent ∂p/∂u, +y along the bitangent ∂p/∂v with camsim's v (up the image).
   std::optional<TextureDescription> normalMap;
   float normalScale = 1.0f;
   // Alpha cut-out (glTF alphaMode MASK; BLEND is treated as MASK at 0.5): a hit whose alpha
@@ -254,10 +254,17 @@ struct SceneDescription {
   // Drops the decoded texels of image textures and environment maps. A Scene built from
   // this description keeps them in its own form, so a render need not hold both (an 8k RGB
   // texture is 0.8 GB of floats); a Scene built afterwards reads the files again.
+  // Texels that came from no file (a glTF asset's decoded and converted images) are kept.
   void releaseDecodedImages() {
+    auto release = [](TextureDescription& t) {
+      if (!t.file.empty()) t.image.reset();
+    };
     for (MaterialDescription& m : materials) {
-      m.reflectance.image.reset();
-      m.roughness.image.reset();
+      release(m.reflectance);
+      release(m.roughness);
+      release(m.metallic);
+      if (m.normalMap) release(*m.normalMap);
+      if (m.alphaCutout && m.alphaCutout->texture) release(*m.alphaCutout->texture);
     }
     for (LightDescription& l : lights) l.image.reset();
   }

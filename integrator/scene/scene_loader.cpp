@@ -10,6 +10,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "integrator/scene/gltf_convert.h"
 #include "integrator/scene/scene_loader_parts.h"
 #include "integrator/scene/scene_spectra.h"
 #include "sensor/base/file_status.h"
@@ -262,14 +263,27 @@ SceneDescription loadSceneFromText(const std::string& text, const std::string& d
   if (scene.name.empty() || scene.name.find_first_of("/\\") != std::string::npos)
     top.self().fail("name must be a non-empty file name without '/'");
   if (auto v = top.find("render")) scene.render = parseRender(YamlMap(*v));
+  std::vector<GltfInclude> includes;
+  if (auto inc = top.find("include")) includes = parseGltfIncludes(*inc, baseDir, ctx.search);
   const YamlValue cameraValue = top.require("camera");
   scene.camera = parseCamera(YamlMap(cameraValue), ctx.search);
+  std::optional<double> gltfYfov;
+  if (auto g = YamlMap(cameraValue).find("gltf"))
+    gltfYfov = applyGltfCamera(*g, includes, scene.camera, scene.notes);
   ctx.origin = glm::dvec3(scene.camera.worldFromCamera[3]);
   scene.renderOrigin = ctx.origin;
   scene.camera.worldFromCamera[3] = glm::dvec4(0.0, 0.0, 0.0, 1.0);
   if (auto sensor = top.find("sensor")) {
     scene.sensor = parseSensorSettings(YamlMap(*sensor), baseDir, cameraValue, scene.camera);
     for (const auto& f : scene.sensor->spec.sourceFiles) ctx.search.noteRead(f);
+  }
+  if (gltfYfov) {  // on the sensor's height, now that the sensor has set it
+    scene.camera.focalLength = 0.5 * scene.camera.sensorSize.y / std::tan(0.5 * *gltfYfov);
+    if (scene.camera.focusDistance > 0.0 &&
+        !(scene.camera.focusDistance > scene.camera.focalLength * 1.0001))
+      YamlMap(cameraValue)
+          .find("focus_distance_m")
+          ->fail("focus distance must exceed 1.0001 × the glTF camera's focal length");
   }
   if (auto isp = top.find("isp")) {
     if (!scene.sensor) isp->fail("isp settings need a sensor");
@@ -283,13 +297,22 @@ SceneDescription loadSceneFromText(const std::string& text, const std::string& d
           parseMaterial(name, YamlMap(*mmap.find(name)), ctx.search, ctx.baseDir));
     }
   }
-  const YamlValue shapes = top.require("shapes");
-  const std::vector<YamlValue> items = shapes.items();
-  if (items.empty()) shapes.fail("the scene has no shapes");
+  std::vector<YamlValue> items;
+  if (auto shapes = top.find("shapes"))
+    items = shapes->items();
+  else if (includes.empty())
+    top.require("shapes");
   for (size_t i = 0; i < items.size(); ++i)
     scene.shapes.push_back(parseShape(YamlMap(items[i]), i, ctx));
-  if (auto l = top.find("lights"))
-    scene.lights = parseLights(*l, ctx.search, baseDir, scene.renderOrigin);
+  addGltfIncludes(includes, scene);
+  if (scene.shapes.empty())
+    (top.find("shapes") ? *top.find("shapes") : *top.find("include"))
+        .fail("the scene has no shapes");
+  if (auto l = top.find("lights")) {
+    // The scene's own lights first, then the included assets' (added with their shapes).
+    std::vector<LightDescription> own = parseLights(*l, ctx.search, baseDir, scene.renderOrigin);
+    scene.lights.insert(scene.lights.begin(), own.begin(), own.end());
+  }
   if (auto f = top.find("frames")) scene.frames = parseFrames(YamlMap(*f));
   const std::vector<Aov>& aovs = scene.render.aovs;
   if (!scene.frames && std::find(aovs.begin(), aovs.end(), Aov::kMotion) != aovs.end())
@@ -299,7 +322,7 @@ SceneDescription loadSceneFromText(const std::string& text, const std::string& d
             "aov 'motion' needs a frames block: its vectors point to the previous and the next "
             "frame");
   top.finish({"format", "name", "spectra_path", "render", "camera", "sensor", "isp", "materials",
-              "shapes", "lights", "frames"});
+              "shapes", "lights", "frames", "include"});
   // Each file once (as first read), however it was named: keyed by its canonical path
   // (symbolic links and ./.. resolved), one lookup per read.
   std::vector<std::filesystem::path> once;

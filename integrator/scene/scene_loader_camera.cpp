@@ -168,7 +168,14 @@ RigidMotion parseMotion(const YamlValue& value, bool forCamera, const glm::dvec3
 
 PhysicalCameraParams parseCamera(YamlMap map, const TableSearch& search) {
   PhysicalCameraParams c;
-  if (auto m = map.find("world_from_camera")) {
+  if (auto g = map.find("gltf")) {
+    // The pose and focal length come from a glTF camera (the loader applies it).
+    for (const char* key : {"world_from_camera", "position", "look_at", "up", "focal_length_mm"})
+      if (map.has(key))
+        map.find(key)->fail(std::string("the camera's pose and focal length come from its glTF "
+                                        "camera: remove '") +
+                            key + "'");
+  } else if (auto m = map.find("world_from_camera")) {
     c.worldFromCamera = parseMatrix(*m);
   } else {
     const YamlValue position = map.require("position");
@@ -232,7 +239,7 @@ PhysicalCameraParams parseCamera(YamlMap map, const TableSearch& search) {
   map.finish({"position", "look_at", "up", "world_from_camera", "sensor_width_mm",
               "sensor_height_mm", "resolution", "fill_factor", "focal_length_mm", "f_number",
               "focus_distance_m", "aperture", "lens_transmittance", "distortion", "shutter",
-              "motion"});
+              "motion", "gltf"});
   return c;
 }
 

@@ -45,4 +45,17 @@ std::vector<LightDescription> parseLights(const YamlValue& lights, const TableSe
                                           const std::filesystem::path& baseDir,
                                           const glm::dvec3& renderOrigin);
 
+// `include:` entries (glTF assets, scene_loader_gltf.cpp): each file read and checked.
+struct GltfInclude;
+std::vector<GltfInclude> parseGltfIncludes(const YamlValue& list,
+                                           const std::filesystem::path& baseDir,
+                                           TableSearch& search);
+// `camera: {gltf: {include, camera}}`: the camera's pose from the glTF camera's node;
+// returns its vertical field of view (rad), which sets the focal length on the sensor's
+// height once the sensor is known: f = (h/2) / tan(yfov/2).
+double applyGltfCamera(const YamlValue& spec, const std::vector<GltfInclude>& includes,
+                       PhysicalCameraParams& camera, std::vector<std::string>& notes);
+// The includes' shapes, materials and lights, appended to scene (render space).
+void addGltfIncludes(std::vector<GltfInclude>& includes, SceneDescription& scene);
+
 }  // namespace camsim

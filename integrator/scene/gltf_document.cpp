@@ -1,0 +1,361 @@
+// Reads a glTF 2.0 file through tinygltf (Debian's libtinygltf) after gltf_validate.cpp
+// has checked its structure, and copies what camsim uses into GltfDocument. Accessor data
+// is read here with the checks that need the values: index values inside the vertex
+// count, finite positions, normals and keys, increasing key times.
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <fstream>
+#include <limits>
+#include <set>
+#include <sstream>
+
+#include <tiny_gltf.h>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/type_ptr.hpp>
+
+#include "integrator/scene/gltf_document.h"
+#include "sensor/base/input_error.h"
+
+namespace camsim {
+
+glm::dmat4 GltfNode::local() const {
+  if (hasMatrix) return matrix;
+  return glm::translate(glm::dmat4(1.0), translation) * glm::mat4_cast(rotation) *
+         glm::scale(glm::dmat4(1.0), scale);
+}
+
+void readGltfMeshes(const tinygltf::Model& model, GltfDocument& doc, const std::string& name);
+void readGltfAnimations(const tinygltf::Model& model, GltfDocument& doc, const std::string& name);
+
+namespace {
+
+std::uint32_t le32(const std::string& b, size_t at) {
+  std::uint32_t v = 0;
+  for (int i = 3; i >= 0; --i)
+    v = (v << 8) | static_cast<unsigned char>(b[at + static_cast<size_t>(i)]);
+  return v;
+}
+
+double number(const tinygltf::Value& obj, const char* key, double fallback) {
+  if (!obj.IsObject() || !obj.Has(key)) return fallback;
+  const tinygltf::Value& v = obj.Get(key);
+  return v.IsNumber() ? v.GetNumberAsDouble() : fallback;
+}
+
+std::string at(const char* array, size_t i) {
+  return std::string(array) + "[" + std::to_string(i) + "]";
+}
+
+GltfTextureRef textureRef(const tinygltf::Model& model, int textureIndex, int texCoord,
+                          double scale, std::string path) {
+  GltfTextureRef r;
+  if (textureIndex < 0) return r;
+  r.image = model.textures[static_cast<size_t>(textureIndex)].source;
+  r.texCoord = texCoord;
+  r.scale = scale;
+  r.path = std::move(path);
+  return r;
+}
+
+void readMaterials(const tinygltf::Model& model, GltfDocument& doc, const std::string& name) {
+  for (size_t i = 0; i < model.materials.size(); ++i) {
+    const tinygltf::Material& m = model.materials[i];
+    GltfMaterial g;
+    g.name = m.name;
+    g.path = at("materials", i);
+    const auto& pbr = m.pbrMetallicRoughness;
+    for (size_t c = 0; c < 4 && c < pbr.baseColorFactor.size(); ++c)
+      g.baseColorFactor[static_cast<int>(c)] = pbr.baseColorFactor[c];
+    g.metallicFactor = pbr.metallicFactor;
+    g.roughnessFactor = pbr.roughnessFactor;
+    g.baseColorTexture =
+        textureRef(model, pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord, 1.0,
+                   g.path + ".pbrMetallicRoughness.baseColorTexture");
+    g.metallicRoughnessTexture =
+        textureRef(model, pbr.metallicRoughnessTexture.index, pbr.metallicRoughnessTexture.texCoord,
+                   1.0, g.path + ".pbrMetallicRoughness.metallicRoughnessTexture");
+    g.normalTexture = textureRef(model, m.normalTexture.index, m.normalTexture.texCoord,
+                                 m.normalTexture.scale, g.path + ".normalTexture");
+    g.occlusionTexture = textureRef(model, m.occlusionTexture.index, m.occlusionTexture.texCoord,
+                                    m.occlusionTexture.strength, g.path + ".occlusionTexture");
+    g.emissiveTexture = textureRef(model, m.emissiveTexture.index, m.emissiveTexture.texCoord, 1.0,
+                                   g.path + ".emissiveTexture");
+    for (size_t c = 0; c < 3 && c < m.emissiveFactor.size(); ++c)
+      g.emissiveFactor[static_cast<int>(c)] = m.emissiveFactor[c];
+    if (m.alphaMode == "MASK")
+      g.alphaMode = GltfMaterial::AlphaMode::kMask;
+    else if (m.alphaMode == "BLEND")
+      g.alphaMode = GltfMaterial::AlphaMode::kBlend;
+    else if (m.alphaMode != "OPAQUE")
+      throw InputError({name, 0, 0}, g.path + ".alphaMode",
+                       "must be OPAQUE, MASK or BLEND (it is '" + m.alphaMode + "')");
+    g.alphaCutoff = m.alphaCutoff;
+    g.doubleSided = m.doubleSided;
+    for (const auto& [ext, value] : m.extensions) {
+      if (ext == "KHR_materials_emissive_strength")
+        g.emissiveStrength = number(value, "emissiveStrength", 1.0);
+      else if (ext == "KHR_materials_transmission")
+        g.transmission = number(value, "transmissionFactor", 0.0);
+      else if (ext == "KHR_materials_ior")
+        g.ior = number(value, "ior", 1.5);
+      else
+        g.otherExtensions.push_back(ext);
+    }
+    for (const auto& [key, v] : std::initializer_list<std::pair<const char*, double>>{
+             {"metallicFactor", g.metallicFactor},
+             {"roughnessFactor", g.roughnessFactor},
+             {"alphaCutoff", g.alphaCutoff},
+             {"emissiveStrength", g.emissiveStrength},
+             {"ior", g.ior}})
+      if (!std::isfinite(v) || v < 0.0)
+        throw InputError({name, 0, 0}, g.path + "." + key, "must be a finite number >= 0");
+    if (g.ior < 1.0 && g.ior != 0.0)
+      throw InputError({name, 0, 0}, g.path + ".extensions.KHR_materials_ior.ior",
+                       "must be >= 1 (or 0)");
+    doc.materials.push_back(std::move(g));
+  }
+}
+
+void readImages(const tinygltf::Model& model, GltfDocument& doc, const std::string& name,
+                const std::filesystem::path& baseDir) {
+  for (size_t i = 0; i < model.images.size(); ++i) {
+    const tinygltf::Image& im = model.images[i];
+    GltfImage g;
+    g.path = at("images", i);
+    g.name = im.name;
+    if (!im.uri.empty() && im.uri.rfind("data:", 0) != 0) g.file = baseDir / im.uri;
+    if (im.image.empty() || im.width <= 0 || im.height <= 0 || im.component <= 0 ||
+        (im.bits != 8 && im.bits != 16))
+      throw InputError({name, 0, 0}, g.path,
+                       "the image could not be decoded (camsim reads PNG and JPEG images)");
+    auto texels = std::make_shared<TextureImage>();
+    texels->width = im.width;
+    texels->height = im.height;
+    texels->channels = 4;
+    const size_t n = static_cast<size_t>(im.width) * static_cast<size_t>(im.height);
+    const size_t comps = static_cast<size_t>(im.component);
+    const size_t bytes = static_cast<size_t>(im.bits / 8);
+    if (im.image.size() < n * comps * bytes)
+      throw InputError({name, 0, 0}, g.path, "decoded image is shorter than its size");
+    texels->values.resize(n * 4);
+    const double scale = im.bits == 8 ? 1.0 / 255.0 : 1.0 / 65535.0;
+    for (size_t p = 0; p < n; ++p) {
+      for (size_t c = 0; c < 4; ++c) {
+        double v = 1.0;  // missing alpha is opaque
+        if (c < comps) {
+          const size_t o = (p * comps + c) * bytes;
+          const unsigned raw = bytes == 1 ? im.image[o]
+                                          : static_cast<unsigned>(im.image[o]) |
+                                                static_cast<unsigned>(im.image[o + 1]) << 8;
+          v = raw * scale;
+        } else if (c < 3 && comps < 3) {
+          v = texels->values[p * 4];  // grey: R = G = B
+        }
+        texels->values[p * 4 + c] = static_cast<float>(v);
+      }
+    }
+    g.texels = std::move(texels);
+    doc.images.push_back(std::move(g));
+  }
+}
+
+void readCamerasAndLights(const tinygltf::Model& model, GltfDocument& doc,
+                          const std::string& name) {
+  for (size_t i = 0; i < model.cameras.size(); ++i) {
+    const tinygltf::Camera& c = model.cameras[i];
+    GltfCamera g;
+    g.name = c.name;
+    g.path = at("cameras", i);
+    if (c.type == "perspective") {
+      g.yfov = c.perspective.yfov;
+      g.aspectRatio = c.perspective.aspectRatio;
+      g.znear = c.perspective.znear;
+      g.zfar = c.perspective.zfar;
+      if (!(g.yfov > 0.0 && g.yfov < 3.14159))
+        throw InputError({name, 0, 0}, g.path + ".perspective.yfov", "must lie in (0, π) radians");
+      if (!(g.aspectRatio >= 0.0) || !std::isfinite(g.aspectRatio))
+        throw InputError({name, 0, 0}, g.path + ".perspective.aspectRatio", "must be > 0");
+    } else if (c.type == "orthographic") {
+      g.perspective = false;
+    } else {
+      throw InputError({name, 0, 0}, g.path + ".type",
+                       "must be perspective or orthographic (it is '" + c.type + "')");
+    }
+    doc.cameras.push_back(g);
+  }
+  for (size_t i = 0; i < model.lights.size(); ++i) {
+    const tinygltf::Light& l = model.lights[i];
+    GltfLight g;
+    g.name = l.name;
+    g.path = "extensions.KHR_lights_punctual." + at("lights", i);
+    if (l.type == "point")
+      g.type = GltfLight::Type::kPoint;
+    else if (l.type == "spot")
+      g.type = GltfLight::Type::kSpot;
+    else if (l.type == "directional")
+      g.type = GltfLight::Type::kDirectional;
+    else
+      throw InputError({name, 0, 0}, g.path + ".type",
+                       "must be point, spot or directional (it is '" + l.type + "')");
+    for (size_t c = 0; c < 3 && c < l.color.size(); ++c) g.color[static_cast<int>(c)] = l.color[c];
+    g.intensity = l.intensity;
+    g.range = l.range;
+    g.innerConeAngle = l.spot.innerConeAngle;
+    g.outerConeAngle = l.spot.outerConeAngle;
+    if (!(g.intensity >= 0.0) || !std::isfinite(g.intensity))
+      throw InputError({name, 0, 0}, g.path + ".intensity", "must be a finite number >= 0");
+    for (int c = 0; c < 3; ++c)
+      if (!(g.color[c] >= 0.0) || !std::isfinite(g.color[c]))
+        throw InputError({name, 0, 0}, g.path + ".color", "components must be finite and >= 0");
+    if (g.type == GltfLight::Type::kSpot &&
+        !(g.innerConeAngle >= 0.0 && g.innerConeAngle < g.outerConeAngle &&
+          g.outerConeAngle <= 1.5707963267948966))
+      throw InputError({name, 0, 0}, g.path + ".spot",
+                       "needs 0 <= innerConeAngle < outerConeAngle <= π/2");
+    doc.lights.push_back(g);
+  }
+}
+
+void readNodes(const tinygltf::Model& model, GltfDocument& doc, const std::string& name) {
+  for (size_t i = 0; i < model.nodes.size(); ++i) {
+    const tinygltf::Node& n = model.nodes[i];
+    GltfNode g;
+    g.name = n.name;
+    g.path = at("nodes", i);
+    auto bad = [&](const char* key, const char* what) {
+      throw InputError({name, 0, 0}, g.path + "." + key, what);
+    };
+    auto finite = [](const std::vector<double>& v) {
+      for (double x : v)
+        if (!std::isfinite(x)) return false;
+      return true;
+    };
+    if (!n.matrix.empty()) {
+      if (n.matrix.size() != 16 || !finite(n.matrix)) bad("matrix", "needs 16 finite numbers");
+      g.matrix = glm::make_mat4(n.matrix.data());  // column-major, as glTF stores it
+      g.hasMatrix = true;
+    }
+    if (!n.translation.empty()) {
+      if (n.translation.size() != 3 || !finite(n.translation))
+        bad("translation", "needs 3 finite numbers");
+      g.translation = glm::dvec3(n.translation[0], n.translation[1], n.translation[2]);
+    }
+    if (!n.rotation.empty()) {
+      if (n.rotation.size() != 4 || !finite(n.rotation)) bad("rotation", "needs 4 finite numbers");
+      g.rotation = glm::dquat(n.rotation[3], n.rotation[0], n.rotation[1], n.rotation[2]);
+      const double len = glm::length(g.rotation);
+      if (!(std::abs(len - 1.0) < 1e-2)) bad("rotation", "must be a unit quaternion (x, y, z, w)");
+      g.rotation /= len;
+    }
+    if (!n.scale.empty()) {
+      if (n.scale.size() != 3 || !finite(n.scale)) bad("scale", "needs 3 finite numbers");
+      g.scale = glm::dvec3(n.scale[0], n.scale[1], n.scale[2]);
+    }
+    g.children = n.children;
+    g.mesh = n.mesh;
+    g.camera = n.camera;
+    g.skinned = n.skin >= 0;
+    g.morphed = !n.weights.empty();
+    if (const auto ext = n.extensions.find("KHR_lights_punctual"); ext != n.extensions.end())
+      g.light = static_cast<int>(number(ext->second, "light", -1.0));
+    doc.nodes.push_back(std::move(g));
+  }
+  for (const tinygltf::Scene& s : model.scenes) doc.scenes.push_back(s.nodes);
+  doc.defaultScene = model.defaultScene >= 0 ? model.defaultScene : 0;
+  // A node may have one parent and must not be its own ancestor.
+  std::vector<int> parent(doc.nodes.size(), -1);
+  for (size_t i = 0; i < doc.nodes.size(); ++i)
+    for (int c : doc.nodes[i].children) {
+      if (parent[static_cast<size_t>(c)] >= 0 || c == static_cast<int>(i))
+        throw InputError({name, 0, 0}, doc.nodes[i].path + ".children",
+                         "node " + std::to_string(c) + " has more than one parent, or is its own");
+      parent[static_cast<size_t>(c)] = static_cast<int>(i);
+    }
+  for (size_t i = 0; i < doc.nodes.size(); ++i) {
+    size_t steps = 0;
+    for (int p = parent[i]; p >= 0; p = parent[static_cast<size_t>(p)])
+      if (++steps > doc.nodes.size())
+        throw InputError({name, 0, 0}, doc.nodes[i].path, "the node hierarchy has a cycle");
+  }
+}
+
+}  // namespace
+
+GltfDocument parseGltf(const std::string& bytes, const std::string& displayName,
+                       const std::filesystem::path& baseDir) {
+  const bool glb = bytes.size() >= 4 && bytes.compare(0, 4, "glTF") == 0;
+  std::string json;
+  size_t binBytes = 0;
+  if (glb) {
+    auto fail = [&](const std::string& m) { throw InputError({displayName, 0, 0}, "", m); };
+    if (bytes.size() < 20) fail("truncated .glb: " + std::to_string(bytes.size()) + " bytes");
+    if (le32(bytes, 4) != 2)
+      fail("a .glb of version " + std::to_string(le32(bytes, 4)) + " (camsim reads 2)");
+    if (le32(bytes, 8) != bytes.size())
+      fail("truncated .glb: its header says " + std::to_string(le32(bytes, 8)) +
+           " bytes, the file has " + std::to_string(bytes.size()));
+    const size_t jsonBytes = le32(bytes, 12);
+    if (le32(bytes, 16) != 0x4E4F534Au || 20 + jsonBytes > bytes.size())
+      fail("malformed .glb: the first chunk must be JSON and fit in the file");
+    json = bytes.substr(20, jsonBytes);
+    const size_t bin = 20 + ((jsonBytes + 3) & ~size_t(3));
+    if (bin + 8 <= bytes.size()) {
+      if (le32(bytes, bin + 4) != 0x004E4942u) fail("malformed .glb: the second chunk must be BIN");
+      binBytes = le32(bytes, bin);
+      if (bin + 8 + binBytes > bytes.size())
+        fail("truncated .glb: the BIN chunk of " + std::to_string(binBytes) +
+             " bytes does not fit");
+    }
+  } else {
+    json = bytes;
+  }
+  validateGltfJson(json, displayName, baseDir, binBytes, glb);
+
+  tinygltf::TinyGLTF loader;
+  tinygltf::Model model;
+  std::string err, warn;
+  const bool ok =
+      glb ? loader.LoadBinaryFromMemory(&model, &err, &warn,
+                                        reinterpret_cast<const unsigned char*>(bytes.data()),
+                                        static_cast<unsigned>(bytes.size()), baseDir.string())
+          : loader.LoadASCIIFromString(&model, &err, &warn, json.data(),
+                                       static_cast<unsigned>(json.size()), baseDir.string());
+  if (!ok) {
+    while (!err.empty() && (err.back() == '\n' || err.back() == ' ')) err.pop_back();
+    throw InputError({displayName, 0, 0}, "", "tinygltf: " + err);
+  }
+  GltfDocument doc;
+  doc.file = displayName;
+  std::set<std::string> seen;
+  auto noteFile = [&](const std::string& uri) {
+    if (!uri.empty() && uri.rfind("data:", 0) != 0 && seen.insert(uri).second)
+      doc.filesRead.push_back(baseDir / uri);
+  };
+  for (const tinygltf::Buffer& b : model.buffers) noteFile(b.uri);
+  for (const tinygltf::Image& im : model.images) noteFile(im.uri);
+  for (const std::string& ext : model.extensionsRequired)
+    if (ext != "KHR_lights_punctual" && ext != "KHR_materials_emissive_strength" &&
+        ext != "KHR_materials_transmission" && ext != "KHR_materials_ior")
+      throw InputError({displayName, 0, 0}, "extensionsRequired",
+                       "requires " + ext + ", which camsim does not read");
+  readImages(model, doc, displayName, baseDir);
+  readMaterials(model, doc, displayName);
+  readCamerasAndLights(model, doc, displayName);
+  readNodes(model, doc, displayName);
+  readGltfMeshes(model, doc, displayName);
+  readGltfAnimations(model, doc, displayName);
+  return doc;
+}
+
+GltfDocument readGltf(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw InputError({file.string(), 0, 0}, "", "cannot open glTF file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  const std::filesystem::path dir = file.parent_path().empty() ? "." : file.parent_path();
+  return parseGltf(text.str(), file.string(), dir);
+}
+
+}  // namespace camsim

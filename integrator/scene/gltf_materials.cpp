@@ -1,0 +1,222 @@
+// glTF materials and KHR_lights_punctual lights as camsim's (docs/scene-format.md, "glTF
+// assets", lists every mapping):
+//
+// | glTF                                   | camsim                                          |
+// |----------------------------------------|-------------------------------------------------|
+// | pbrMetallicRoughness                   | metallic_roughness material (Appendix B)        |
+// | baseColorFactor × baseColorTexture     | base colour: texels sRGB-decoded, × factor, uplifted |
+// | metallicRoughnessTexture B, G × factor | metallic, roughness maps (one channel each)     |
+// | normalTexture, .scale                  | normal map, normal scale                        |
+// | occlusionTexture                       | ignored (a path tracer computes occlusion; noted) |
+// | emissiveFactor × strength × texture    | uniform emission of the shapes: luminance =      |
+// |                                        | emissive_luminance · Y(emissive) (texture: mean) |
+// | alphaMode MASK / BLEND, alphaCutoff    | alpha cut-out (BLEND as MASK at 0.5, noted)      |
+// | KHR_materials_transmission > 0, _ior   | dielectric, η = ior, α = roughness²              |
+// | point / spot light, intensity (cd)     | point / spot light, I_v = intensity · Y(color)   |
+// | directional light (lx)                 | distant light, E_v = intensity · Y(color)        |
+// | light range                            | ignored (inverse-square falloff kept; noted)     |
+// Y(c) = 0.2126 r + 0.7152 g + 0.0722 b (linear Rec.709); colours become spectra through
+// rgbToEmissionShape (lights) and the reflectance uplift (textures, constants).
+#include <cmath>
+
+#include <glm/geometric.hpp>
+
+#include "integrator/scene/gltf_convert.h"
+#include "integrator/textures/texture_encoding.h"
+#include "sensor/base/input_error.h"
+#include "sensor/spectra/cie.h"
+#include "sensor/spectra/color_space.h"
+#include "sensor/spectra/rgb_uplift.h"
+
+namespace camsim {
+namespace {
+
+double lumaOf(const glm::dvec3& c) {
+  return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b;
+}
+
+// A texture of the given channels of a glTF image, each value f(texel), as camsim's
+// decoded texels (no file: the description keeps them, see releaseDecodedImages).
+template <typename F>
+TextureDescription imageTexture(const GltfImage& image, int channels, F f) {
+  auto out = std::make_shared<TextureImage>();
+  out->width = image.texels->width;
+  out->height = image.texels->height;
+  out->channels = channels;
+  const size_t n = static_cast<size_t>(out->width) * static_cast<size_t>(out->height);
+  out->values.resize(n * static_cast<size_t>(channels));
+  for (size_t p = 0; p < n; ++p)
+    for (int c = 0; c < channels; ++c)
+      out->values[p * static_cast<size_t>(channels) + static_cast<size_t>(c)] =
+          static_cast<float>(f(&image.texels->values[p * 4], c));
+  TextureDescription d;
+  d.kind = TextureDescription::Kind::kImage;
+  d.image = std::move(out);
+  d.encoding = TextureEncoding::kLinear;
+  return d;
+}
+
+void note(SceneDescription& scene, const GltfInclude& inc, const std::string& what) {
+  scene.notes.push_back(inc.where + ": " + what);
+}
+
+MaterialDescription convert(const GltfInclude& inc, const GltfMaterial& m, const std::string& name,
+                            SceneDescription& scene) {
+  MaterialDescription d;
+  d.name = name;
+  d.type = MaterialDescription::Type::kMetallicRoughness;
+  const glm::dvec3 base(m.baseColorFactor);
+  if (m.baseColorTexture.image >= 0) {
+    const GltfImage& im = inc.doc.images[static_cast<size_t>(m.baseColorTexture.image)];
+    d.reflectance = imageTexture(im, 3, [&](const float* t, int c) {
+      return std::clamp(srgbDecode(static_cast<double>(t[c])) * base[c], 0.0, 1.0);
+    });
+  } else {
+    for (int c = 0; c < 3; ++c)
+      if (base[c] < 0.0 || base[c] > 1.0)
+        throw InputError({inc.doc.file.string(), 0, 0},
+                         m.path + ".pbrMetallicRoughness.baseColorFactor",
+                         "components must lie in [0, 1]");
+    d.reflectance.value = rgbToReflectance(base, RgbColorSpace::linearRec709());
+  }
+  const double metallic = std::clamp(m.metallicFactor, 0.0, 1.0);
+  const double roughness = std::clamp(m.roughnessFactor, 0.0, 1.0);
+  if (m.metallicRoughnessTexture.image >= 0) {
+    const GltfImage& im = inc.doc.images[static_cast<size_t>(m.metallicRoughnessTexture.image)];
+    d.metallic = imageTexture(
+        im, 1, [&](const float* t, int) { return static_cast<double>(t[2]) * metallic; });
+    d.roughness = imageTexture(
+        im, 1, [&](const float* t, int) { return static_cast<double>(t[1]) * roughness; });
+    d.metallic.encoding = d.roughness.encoding = TextureEncoding::kRaw;
+  } else {
+    d.metallic = TextureDescription::constant(metallic);
+    d.roughness = TextureDescription::constant(roughness);
+  }
+  if (m.normalTexture.image >= 0) {
+    const GltfImage& im = inc.doc.images[static_cast<size_t>(m.normalTexture.image)];
+    d.normalMap = imageTexture(im, 3, [](const float* t, int c) { return t[c]; });
+    d.normalMap->encoding = TextureEncoding::kRaw;
+    d.normalScale = static_cast<float>(m.normalTexture.scale);
+  }
+  if (m.occlusionTexture.image >= 0)
+    note(scene, inc, m.path + ".occlusionTexture: ignored (the path tracer computes occlusion)");
+  if (m.alphaMode != GltfMaterial::AlphaMode::kOpaque) {
+    MaterialDescription::AlphaCutout a;
+    a.factor = static_cast<float>(m.baseColorFactor.a);
+    a.cutoff =
+        m.alphaMode == GltfMaterial::AlphaMode::kMask ? static_cast<float>(m.alphaCutoff) : 0.5f;
+    if (m.baseColorTexture.image >= 0)
+      a.texture = imageTexture(inc.doc.images[static_cast<size_t>(m.baseColorTexture.image)], 1,
+                               [](const float* t, int) { return t[3]; });
+    if (a.texture) a.texture->encoding = TextureEncoding::kRaw;
+    d.alphaCutout = a;
+    if (m.alphaMode == GltfMaterial::AlphaMode::kBlend)
+      note(scene, inc, m.path + ".alphaMode: BLEND is treated as MASK with alphaCutoff 0.5");
+  }
+  if (m.transmission > 0.0) {
+    d.type = MaterialDescription::Type::kDielectric;
+    d.eta = Spectrum::constant(m.ior > 0.0 ? m.ior : 1.5);
+    d.roughness = TextureDescription::constant(roughness * roughness);
+    note(scene, inc,
+         m.path + ": KHR_materials_transmission " + std::to_string(m.transmission) +
+             " → a clear dielectric (η " + std::to_string(m.ior) +
+             "); the base colour tint and partial transmission are not modelled");
+    d.normalMap.reset();
+  }
+  for (const std::string& ext : m.otherExtensions)
+    note(scene, inc, m.path + ".extensions." + ext + ": not supported, ignored");
+  if (m.doubleSided) {
+    // camsim's metallic-roughness surface is two-sided already; single-sided culling is a
+    // rasteriser's optimisation, not a material property.
+  }
+  return d;
+}
+
+}  // namespace
+
+std::vector<int> addGltfMaterials(const GltfInclude& inc, SceneDescription& scene) {
+  std::vector<int> index;
+  auto unique = [&](std::string name) {
+    std::string n = name;
+    for (int k = 2;; ++k) {
+      bool clash = false;
+      for (const MaterialDescription& m : scene.materials) clash = clash || m.name == n;
+      if (!clash) return n;
+      n = name + "#" + std::to_string(k);
+    }
+  };
+  for (const GltfMaterial& m : inc.doc.materials) {
+    index.push_back(static_cast<int>(scene.materials.size()));
+    const std::string name = unique(inc.label + ":" + (m.name.empty() ? m.path : m.name));
+    scene.materials.push_back(convert(inc, m, name, scene));
+  }
+  // glTF's default material (§3.9.6): base colour 1, metallic 1, roughness 1.
+  index.push_back(static_cast<int>(scene.materials.size()));
+  GltfMaterial fallback;
+  fallback.path = "default material";
+  scene.materials.push_back(convert(inc, fallback, unique(inc.label + ":default"), scene));
+  return index;
+}
+
+std::optional<EmissionDescription> gltfEmission(const GltfInclude& inc, int material,
+                                                SceneDescription& scene) {
+  if (material < 0) return std::nullopt;
+  const GltfMaterial& m = inc.doc.materials[static_cast<size_t>(material)];
+  glm::dvec3 e = m.emissiveFactor * m.emissiveStrength;
+  if (m.emissiveTexture.image >= 0 && lumaOf(e) > 0.0) {
+    const TextureImage& t = *inc.doc.images[static_cast<size_t>(m.emissiveTexture.image)].texels;
+    glm::dvec3 mean(0.0);
+    const size_t n = static_cast<size_t>(t.width) * static_cast<size_t>(t.height);
+    for (size_t p = 0; p < n; ++p)
+      for (int c = 0; c < 3; ++c)
+        mean[c] += srgbDecode(static_cast<double>(t.values[p * 4 + static_cast<size_t>(c)]));
+    e *= mean / static_cast<double>(n);
+    note(scene, inc,
+         m.emissiveTexture.path + ": camsim's emitters are uniform; the texture's mean (" +
+             std::to_string(mean.r / n) + ", " + std::to_string(mean.g / n) + ", " +
+             std::to_string(mean.b / n) + ") scales emissiveFactor");
+  }
+  if (!(lumaOf(e) > 0.0)) return std::nullopt;
+  EmissionDescription d;
+  const Spectrum shape = rgbToEmissionShape(e, RgbColorSpace::linearRec709());
+  d.radiance = shape * (inc.emissiveLuminance * lumaOf(e) / luminance(shape));
+  d.twoSided = m.doubleSided;
+  return d;
+}
+
+LightDescription gltfLight(const GltfInclude& inc, const GltfLight& l,
+                           const glm::dmat4& renderFromNode, SceneDescription& scene) {
+  LightDescription d;
+  d.label = inc.label + ":" + (l.name.empty() ? l.path : l.name);
+  d.position = glm::vec3(renderFromNode[3]);
+  const glm::dvec3 dir = -glm::dvec3(renderFromNode[2]);
+  if (!(glm::length(dir) > 0.0))
+    throw InputError({inc.doc.file.string(), 0, 0}, l.path, "the light's node has a zero scale");
+  d.direction = glm::vec3(glm::normalize(dir));
+  const double photometric = l.intensity * lumaOf(l.color);
+  if (!(photometric > 0.0)) {
+    d.spectrum = Spectrum::constant(0.0);
+  } else {
+    const Spectrum shape = rgbToEmissionShape(l.color, RgbColorSpace::linearRec709());
+    // luminance() is 683 Σ S ȳ Δλ: per sr for intensity, per m² for illuminance alike.
+    d.spectrum = shape * (photometric / luminance(shape));
+  }
+  switch (l.type) {
+    case GltfLight::Type::kPoint:
+      d.kind = LightDescription::Kind::kPoint;
+      break;
+    case GltfLight::Type::kSpot:
+      d.kind = LightDescription::Kind::kSpot;
+      d.coneAngle = static_cast<float>(l.outerConeAngle);
+      d.falloffStart = static_cast<float>(l.innerConeAngle);
+      break;
+    case GltfLight::Type::kDirectional:
+      d.kind = LightDescription::Kind::kDistant;
+      break;
+  }
+  if (l.range > 0.0)
+    note(scene, inc, l.path + ".range: ignored (camsim keeps the physical inverse-square falloff)");
+  return d;
+}
+
+}  // namespace camsim

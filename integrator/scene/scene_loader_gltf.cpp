@@ -1,0 +1,307 @@
+// The scene loader's `include:` part: glTF 2.0 assets placed in a camsim scene, with their
+// node hierarchy, materials, lights, cameras and animation (docs/scene-format.md, "glTF
+// assets"). Each (node, primitive) becomes a mesh shape:
+//   static, mesh used by one node   positions baked into render space (in double)
+//   static, mesh used by ≥ 2 nodes  an instance of the primitive's one stored mesh
+//                                   (ShapeDescription::sharedMesh, placement)
+//   under an animated node          the mesh in the animated node's space, keyframed
+//                                   (gltf_motion.cpp); one animated node per chain
+// Render space is world − renderOrigin; the include's placement maps asset → world.
+#include <functional>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/quaternion.hpp>
+#include <glm/matrix.hpp>
+
+#include "integrator/scene/gltf_convert.h"
+#include "integrator/scene/scene_loader_parts.h"
+#include "sensor/base/file_status.h"
+
+namespace camsim {
+namespace {
+
+struct Walk {
+  const GltfInclude& inc;
+  SceneDescription& scene;
+  std::vector<int> materials;  // glTF material → camsim index; last: the default
+  std::vector<bool> animated;
+  std::vector<int> meshUses;  // static nodes using each mesh
+  std::map<std::pair<int, int>, std::shared_ptr<const MeshData>> shared;  // (mesh, primitive)
+
+  // Node n under renderFromParent; below an animated node `anim` (−1: none), `below` is
+  // the transform from the animated node's space (its residual scale included) and motion
+  // the animated node's keyframes.
+  void node(int n, const glm::dmat4& renderFromParent, int anim, const glm::dmat4& belowParent,
+            const RigidMotion* motion) {
+    const GltfNode& g = inc.doc.nodes[static_cast<size_t>(n)];
+    const std::string file = inc.doc.file.string();
+    const glm::dmat4 renderFromNode = renderFromParent * g.local();
+    glm::dmat4 below = anim >= 0 ? belowParent * g.local() : glm::dmat4(1.0);
+    RigidMotion own;
+    if (animated[static_cast<size_t>(n)]) {
+      if (anim >= 0)
+        throw InputError({file, 0, 0}, g.path,
+                         "is animated under the animated " +
+                             inc.doc.nodes[static_cast<size_t>(anim)].path +
+                             ": camsim moves one node per chain");
+      own = gltfNodeMotion(inc, n, renderFromParent, below);  // below: the residual scale
+      motion = &own;
+      anim = n;
+    }
+    if (g.mesh >= 0) {
+      if (g.skinned)
+        throw InputError({file, 0, 0}, g.path + ".skin", "skinned meshes are not supported");
+      const GltfMesh& mesh = inc.doc.meshes[static_cast<size_t>(g.mesh)];
+      for (size_t k = 0; k < mesh.primitives.size(); ++k)
+        addPrimitive(g, mesh, k, anim >= 0 ? below : renderFromNode, motion);
+    }
+    if (g.light >= 0 && inc.lights) {
+      if (anim >= 0)
+        scene.notes.push_back(inc.where + ": " + g.path +
+                              ": an animated light is placed at its rest pose");
+      scene.lights.push_back(
+          gltfLight(inc, inc.doc.lights[static_cast<size_t>(g.light)], renderFromNode, scene));
+    }
+    for (int c : g.children) node(c, renderFromNode, anim, below, motion);
+  }
+
+  glm::dmat4 renderFromAsset() const {
+    return glm::translate(glm::dmat4(1.0), -scene.renderOrigin) * inc.worldFromAsset;
+  }
+
+  void addPrimitive(const GltfNode& g, const GltfMesh& mesh, size_t k, const glm::dmat4& m,
+                    const RigidMotion* motion) {
+    const GltfPrimitive& p = mesh.primitives[k];
+    ShapeDescription s;
+    s.kind = ShapeDescription::Kind::kMesh;
+    s.label = inc.label + ":" + (g.name.empty() ? g.path : g.name) +
+              (mesh.primitives.size() > 1 ? "/" + std::to_string(k) : "");
+    s.className = inc.className;
+    s.classNumber = inc.classNumber;
+    s.material = p.material >= 0 ? materials[static_cast<size_t>(p.material)] : materials.back();
+    s.emission = gltfEmission(inc, p.material, scene);
+    if (motion) s.motion = *motion;
+    if (!motion && meshUses[static_cast<size_t>(g.mesh)] > 1) {
+      auto& sharedMesh = shared[{g.mesh, static_cast<int>(k)}];
+      if (!sharedMesh) sharedMesh = std::make_shared<const MeshData>(p.mesh);
+      s.sharedMesh = sharedMesh;
+      s.placement = m;
+    } else {
+      s.mesh = transformed(p.mesh, m, p.path);
+    }
+    if (p.hasColors)
+      scene.notes.push_back(inc.where + ": " + p.path +
+                            ".attributes.COLOR_0: vertex colours are ignored");
+    scene.shapes.push_back(std::move(s));
+  }
+
+  // The mesh under an affine m (in double): normals by the inverse transpose, tangents by m,
+  // and a mirroring m (det < 0) reverses the winding so the front stays the front.
+  MeshData transformed(const MeshData& in, const glm::dmat4& m, const std::string& path) const {
+    MeshData out = in;
+    const glm::dmat3 linear(m), normalMatrix = glm::transpose(glm::inverse(linear));
+    const double det = glm::determinant(linear);
+    if (!(std::abs(det) > 0.0) || !std::isfinite(det))
+      throw InputError({inc.doc.file.string(), 0, 0}, path, "its node's transform is singular");
+    for (size_t i = 0; i < in.positions.size(); ++i) {
+      const glm::dvec3 q = glm::dvec3(m * glm::dvec4(glm::dvec3(in.positions[i]), 1.0));
+      out.positions[i] = glm::vec3(q);
+      if (!std::isfinite(out.positions[i].x) || !std::isfinite(out.positions[i].y) ||
+          !std::isfinite(out.positions[i].z))
+        throw InputError({inc.doc.file.string(), 0, 0}, path,
+                         "a placed position leaves the float range");
+    }
+    for (glm::vec3& n : out.normals) n = glm::vec3(glm::normalize(normalMatrix * glm::dvec3(n)));
+    for (glm::vec4& t : out.tangents) {
+      const glm::vec3 d = glm::vec3(glm::normalize(linear * glm::dvec3(t)));
+      t = glm::vec4(d, det < 0.0 ? -t.w : t.w);
+    }
+    if (det < 0.0)
+      for (size_t i = 0; i + 2 < out.indices.size(); i += 3)
+        std::swap(out.indices[i + 1], out.indices[i + 2]);
+    return out;
+  }
+};
+
+}  // namespace
+
+std::vector<GltfInclude> parseGltfIncludes(const YamlValue& list,
+                                           const std::filesystem::path& baseDir,
+                                           TableSearch& search) {
+  std::vector<GltfInclude> out;
+  const std::vector<YamlValue> items = list.items();
+  for (size_t i = 0; i < items.size(); ++i) {
+    YamlMap map(items[i]);
+    GltfInclude inc;
+    const YamlValue fileValue = map.require("gltf");
+    std::filesystem::path file(fileValue.string());
+    if (file.is_relative()) file = baseDir / file;
+    if (!isRegularFile(file)) fileValue.fail("glTF file '" + file.string() + "' not found");
+    search.noteRead(file);
+    inc.doc = readGltf(file);
+    for (const auto& f : inc.doc.filesRead) search.noteRead(f);
+    inc.where = "include[" + std::to_string(i) + "] (" + file.filename().string() + ")";
+    inc.label = file.stem().string();
+    if (auto n = map.find("name")) inc.label = n->string();
+    // Placement: matrix, or T · R · S.
+    const auto matrix = map.find("matrix");
+    if (matrix) {
+      for (const char* key : {"translate", "rotate", "scale"})
+        if (map.has(key)) map.find(key)->fail("give either 'matrix' or translate/rotate/scale");
+      const std::vector<double> v = matrix->numbers();
+      if (v.size() != 16) matrix->fail("expected 16 numbers (a 4×4 matrix, row by row)");
+      for (int r = 0; r < 4; ++r)
+        for (int c = 0; c < 4; ++c) inc.worldFromAsset[c][r] = v[static_cast<size_t>(r * 4 + c)];
+      if (v[12] != 0.0 || v[13] != 0.0 || v[14] != 0.0 || v[15] != 1.0)
+        matrix->fail("last row must be [0, 0, 0, 1]");
+      if (!(std::abs(glm::determinant(glm::dmat3(inc.worldFromAsset))) > 1e-12))
+        matrix->fail("the matrix is singular");
+    } else {
+      glm::dvec3 t(0.0), sc(1.0);
+      glm::dquat q(1.0, 0.0, 0.0, 0.0);
+      if (auto v = map.find("translate")) t = v->vec3();
+      if (auto v = map.find("rotate")) {
+        YamlMap rm(*v);
+        const YamlValue axisValue = rm.require("axis");
+        const glm::dvec3 axis = axisValue.vec3();
+        if (!(glm::length(axis) > 0.0)) axisValue.fail("rotation axis must not be zero");
+        const double degrees = rm.require("angle_deg").number(-1e6, 1e6);
+        rm.finish({"axis", "angle_deg"});
+        q = glm::angleAxis(glm::radians(degrees), glm::normalize(axis));
+      }
+      if (auto v = map.find("scale")) {
+        if (v->isSequence()) {
+          sc = v->vec3();
+          for (int c = 0; c < 3; ++c)
+            if (!(sc[c] != 0.0)) v->fail("scale components must not be zero");
+        } else {
+          sc = glm::dvec3(v->number(0.0, 1e12, true));
+        }
+      }
+      inc.worldFromAsset =
+          glm::translate(glm::dmat4(1.0), t) * glm::mat4_cast(q) * glm::scale(glm::dmat4(1.0), sc);
+    }
+    inc.scene = inc.doc.defaultScene;
+    if (auto v = map.find("scene")) {
+      if (inc.doc.scenes.empty()) v->fail("the file has no scenes");
+      inc.scene =
+          static_cast<int>(v->integer(0, static_cast<std::int64_t>(inc.doc.scenes.size()) - 1));
+    }
+    if (!inc.doc.scenes.empty() && inc.scene >= static_cast<int>(inc.doc.scenes.size()))
+      fileValue.fail("the file's default scene " + std::to_string(inc.scene) + " does not exist");
+    inc.animation = inc.doc.animations.empty() ? -1 : 0;
+    if (auto v = map.find("animation")) {
+      const std::string a = v->string();
+      inc.animation = -2;
+      if (a == "none") inc.animation = -1;
+      for (size_t k = 0; k < inc.doc.animations.size(); ++k)
+        if (inc.doc.animations[k].name == a || std::to_string(k) == a)
+          inc.animation = static_cast<int>(k);
+      if (inc.animation == -2)
+        v->fail("no animation '" + a +
+                "' in the file (give its index, its name or none; the file has " +
+                std::to_string(inc.doc.animations.size()) + ")");
+    } else if (inc.doc.animations.size() > 1) {
+      inc.doc.notes.push_back("animations: the file has " +
+                              std::to_string(inc.doc.animations.size()) +
+                              " animations; the first plays (choose one with `animation:`)");
+    }
+    if (auto v = map.find("lights")) inc.lights = v->boolean();
+    if (auto v = map.find("emissive_luminance")) inc.emissiveLuminance = v->number(0.0, 1e12);
+    if (auto c = map.find("class")) {
+      inc.className = c->string();
+      if (inc.className.empty()) c->fail("class must be a non-empty name or an integer >= 1");
+      if (inc.className.find_first_not_of("0123456789") == std::string::npos)
+        inc.classNumber = static_cast<std::uint32_t>(c->integer(1, UINT32_MAX));
+    }
+    map.finish({"gltf", "name", "matrix", "translate", "rotate", "scale", "scene", "animation",
+                "lights", "emissive_luminance", "class"});
+    out.push_back(std::move(inc));
+  }
+  return out;
+}
+
+double applyGltfCamera(const YamlValue& spec, const std::vector<GltfInclude>& includes,
+                       PhysicalCameraParams& camera, std::vector<std::string>& notes) {
+  YamlMap map(spec);
+  size_t which = 0;
+  if (auto v = map.find("include")) {
+    if (includes.empty()) v->fail("the scene has no include: entries");
+    which = static_cast<size_t>(v->integer(0, static_cast<std::int64_t>(includes.size()) - 1));
+  } else if (includes.empty()) {
+    spec.fail("camera.gltf needs an include: entry with a glTF camera");
+  }
+  const GltfInclude& inc = includes[which];
+  const GltfDocument& doc = inc.doc;
+  int cam = doc.cameras.empty() ? -1 : 0;
+  const auto name = map.find("camera");
+  if (name) {
+    const std::string c = name->string();
+    cam = -1;
+    for (size_t k = 0; k < doc.cameras.size(); ++k)
+      if (doc.cameras[k].name == c || std::to_string(k) == c) cam = static_cast<int>(k);
+  }
+  map.finish({"include", "camera"});
+  if (cam < 0) (name ? *name : spec).fail("no such camera in " + doc.file.string());
+  const GltfCamera& gc = doc.cameras[static_cast<size_t>(cam)];
+  if (!gc.perspective)
+    (name ? *name : spec)
+        .fail(gc.path +
+              " is orthographic: camsim's cameras are perspective (thin lens or pinhole)");
+  // The first node of the chosen scene's hierarchy that holds the camera.
+  std::function<bool(int, const glm::dmat4&)> find = [&](int n, const glm::dmat4& parent) {
+    const glm::dmat4 m = parent * doc.nodes[static_cast<size_t>(n)].local();
+    if (doc.nodes[static_cast<size_t>(n)].camera == cam) {
+      // glTF cameras look down −z with +y up; camsim's columns are right, up, forward.
+      camera.worldFromCamera = glm::dmat4(glm::dvec4(glm::normalize(glm::dvec3(m[0])), 0.0),
+                                          glm::dvec4(glm::normalize(glm::dvec3(m[1])), 0.0),
+                                          glm::dvec4(-glm::normalize(glm::dvec3(m[2])), 0.0), m[3]);
+      return true;
+    }
+    for (int c : doc.nodes[static_cast<size_t>(n)].children)
+      if (find(c, m)) return true;
+    return false;
+  };
+  bool placed = false;
+  if (!doc.scenes.empty())
+    for (int r : doc.scenes[static_cast<size_t>(inc.scene)])
+      placed = placed || find(r, inc.worldFromAsset);
+  if (!placed) spec.fail(gc.path + " is not used by any node of the included scene");
+  if (gc.aspectRatio > 0.0)
+    notes.push_back(inc.where + ": " + gc.path + ": aspectRatio " + std::to_string(gc.aspectRatio) +
+                    " is not used: the vertical field of view is kept on the camera's sensor (" +
+                    "its own aspect ratio)");
+  if (gc.znear > 0.0 || gc.zfar > 0.0)
+    notes.push_back(inc.where + ": " + gc.path +
+                    ": znear/zfar are ignored (a camera sees all depths)");
+  return gc.yfov;
+}
+
+void addGltfIncludes(std::vector<GltfInclude>& includes, SceneDescription& scene) {
+  for (GltfInclude& inc : includes) {
+    Walk w{inc, scene, addGltfMaterials(inc, scene), gltfAnimatedNodes(inc), {}, {}};
+    w.meshUses.assign(inc.doc.meshes.size(), 0);
+    // Count static uses of each mesh (nodes outside animated chains).
+    std::function<void(int, bool)> count = [&](int n, bool moving) {
+      const GltfNode& g = inc.doc.nodes[static_cast<size_t>(n)];
+      moving = moving || w.animated[static_cast<size_t>(n)];
+      if (g.mesh >= 0 && !moving) ++w.meshUses[static_cast<size_t>(g.mesh)];
+      for (int c : g.children) count(c, moving);
+    };
+    const std::vector<int>& roots = inc.doc.scenes.empty()
+                                        ? std::vector<int>{}
+                                        : inc.doc.scenes[static_cast<size_t>(inc.scene)];
+    for (int r : roots) count(r, false);
+    const size_t shapesBefore = scene.shapes.size();
+    for (int r : roots) w.node(r, w.renderFromAsset(), -1, glm::dmat4(1.0), nullptr);
+    bool emits = false;
+    for (size_t i = shapesBefore; i < scene.shapes.size(); ++i)
+      emits = emits || scene.shapes[i].emission;
+    if (emits)
+      scene.notes.push_back(inc.where + ": glTF emission is relative: emissive (1, 1, 1) is " +
+                            std::to_string(inc.emissiveLuminance) + " cd/m² (emissive_luminance)");
+    for (const std::string& n : inc.doc.notes) scene.notes.push_back(inc.where + ": " + n);
+  }
+}
+
+}  // namespace camsim
