@@ -38,6 +38,23 @@ std::uint32_t le32(const std::string& b, size_t at) {
   return v;
 }
 
+// tinygltf names objects as "image[1]", "accessor[0]": the JSON path "images[1]", if any.
+std::string jsonPathIn(const std::string& message) {
+  for (const char* kind : {"image", "buffer", "accessor", "bufferView", "texture", "material",
+                           "mesh", "node", "animation", "camera"}) {
+    const std::string tag = std::string(kind) + "[";
+    const size_t at = message.find(tag);
+    if (at == std::string::npos) continue;
+    const size_t close = message.find(']', at);
+    const std::string digits = message.substr(at + tag.size(), close - at - tag.size());
+    if (close == std::string::npos || digits.empty() ||
+        digits.find_first_not_of("0123456789") != std::string::npos)
+      continue;
+    return std::string(kind) + "s[" + digits + "]";
+  }
+  return "";
+}
+
 double number(const tinygltf::Value& obj, const char* key, double fallback) {
   if (!obj.IsObject() || !obj.Has(key)) return fallback;
   const tinygltf::Value& v = obj.Get(key);
@@ -324,7 +341,7 @@ GltfDocument parseGltf(const std::string& bytes, const std::string& displayName,
                                        static_cast<unsigned>(json.size()), baseDir.string());
   if (!ok) {
     while (!err.empty() && (err.back() == '\n' || err.back() == ' ')) err.pop_back();
-    throw InputError({displayName, 0, 0}, "", "tinygltf: " + err);
+    throw InputError({displayName, 0, 0}, jsonPathIn(err), "tinygltf: " + err);
   }
   GltfDocument doc;
   doc.file = displayName;

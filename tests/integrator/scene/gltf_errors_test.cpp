@@ -1,0 +1,232 @@
+// Malformed glTF files: each is refused with an InputError naming the file and the JSON
+// path of what is wrong (integrator/scene/gltf_validate.cpp, gltf_document.cpp,
+// gltf_accessors.cpp, scene_loader_gltf.cpp, gltf_motion.cpp).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <sstream>
+#include <string>
+
+#include "integrator/scene/gltf_document.h"
+#include "integrator/scene/scene_loader.h"
+#include "sensor/base/input_error.h"
+#include "tests/integrator/scene/gltf_test_support.h"
+
+namespace camsim {
+namespace {
+
+namespace fs = std::filesystem;
+const fs::path kData = fs::path(CAMSIM_TEST_DATA_DIR) / "gltf";
+
+struct Refusal {
+  std::string file, key, message;
+};
+
+Refusal refusal(const fs::path& file) {
+  try {
+    readGltf(file);
+  } catch (const InputError& e) {
+    return {e.where().file, e.key(), e.message()};
+  }
+  ADD_FAILURE() << file << " was accepted";
+  return {};
+}
+
+fs::path scratch(const std::string& name) {
+  const fs::path dir = fs::temp_directory_path() / ("camsim_gltf_errors_" + name);
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+std::string readBytes(const fs::path& f) {
+  std::ifstream in(f, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+TEST(GltfErrors, BoundsCheckingFilesNameTheirJsonPath) {
+  const fs::path dir = kData / "BoundsChecking";
+  const struct {
+    const char* file;
+    const char* key;
+    const char* says;
+  } cases[] = {
+      {"integer-out-of-bounds.gltf", "bufferViews[0].byteLength", "must be an integer"},
+      {"invalid-buffer-index.gltf", "bufferViews[1].buffer", "must be an integer in [0, 0]"},
+      // These two also have an empty buffers array, which is found first.
+      {"invalid-buffer-view-index.gltf", "bufferViews[0].buffer",
+       "refers to buffers, which is empty"},
+      {"invalid-primitive-indices.gltf", "bufferViews[0].buffer",
+       "refers to buffers, which is empty"},
+  };
+  for (const auto& c : cases) {
+    const Refusal r = refusal(dir / c.file);
+    EXPECT_EQ(r.file, (dir / c.file).string());
+    EXPECT_EQ(r.key, c.key) << c.file << ": " << r.message;
+    EXPECT_NE(r.message.find(c.says), std::string::npos) << c.file << ": " << r.message;
+  }
+}
+
+TEST(GltfErrors, TruncatedGlb) {
+  const std::string bytes = readBytes(kData / "box01.glb");
+  for (size_t keep : {size_t(3), size_t(19), bytes.size() / 2, bytes.size() - 1}) {
+    const fs::path f = scratch("glb") / "cut.glb";
+    test::writeText(f, bytes.substr(0, keep));
+    const Refusal r = refusal(f);
+    EXPECT_NE(r.message.find(keep < 4 ? "not valid JSON" : "truncated"), std::string::npos)
+        << keep << ": " << r.message;
+  }
+}
+
+TEST(GltfErrors, MissingBinAndMissingTexture) {
+  const fs::path dir = scratch("missing");
+  fs::copy_file(kData / "Cube/Cube.gltf", dir / "Cube.gltf");
+  Refusal r = refusal(dir / "Cube.gltf");
+  EXPECT_EQ(r.key, "buffers[0].uri");
+  EXPECT_NE(r.message.find("Cube.bin' not found"), std::string::npos) << r.message;
+  fs::copy_file(kData / "Cube/Cube.bin", dir / "Cube.bin");
+  fs::copy_file(kData / "Cube/Cube_BaseColor.png", dir / "Cube_BaseColor.png");
+  r = refusal(dir / "Cube.gltf");
+  EXPECT_EQ(r.key, "images[1].uri");
+  EXPECT_NE(r.message.find("Cube_MetallicRoughness.png' not found"), std::string::npos)
+      << r.message;
+}
+
+TEST(GltfErrors, CorruptImageIsRefused) {
+  const fs::path dir = scratch("corrupt");
+  fs::copy_file(kData / "Cube/Cube.gltf", dir / "Cube.gltf");
+  fs::copy_file(kData / "Cube/Cube.bin", dir / "Cube.bin");
+  fs::copy_file(kData / "Cube/Cube_BaseColor.png", dir / "Cube_BaseColor.png");
+  test::writeText(dir / "Cube_MetallicRoughness.png", "not a png");
+  const Refusal r = refusal(dir / "Cube.gltf");
+  EXPECT_EQ(r.key, "images[1]");
+  EXPECT_NE(r.message.find("cannot decode image data"), std::string::npos) << r.message;
+}
+
+// One triangle whose POSITION data (and optionally indices) the test chooses.
+fs::path triangleFile(const std::string& name, const std::vector<float>& positions,
+                      const std::vector<std::uint16_t>& indices, const std::string& extra = "",
+                      const std::string& node = R"({"mesh":0})") {
+  test::GltfBuilder b;
+  b.floats(positions, "VEC3");
+  std::string prim = R"({"attributes":{"POSITION":0})";
+  if (!indices.empty()) prim += ",\"indices\":" + std::to_string(b.u16(indices));
+  prim += "}";
+  const fs::path f = scratch(name) / (name + ".gltf");
+  test::writeText(f, b.json(R"("meshes":[{"primitives":[)" + prim + R"(]}],"nodes":[)" + node +
+                            R"(],"scenes":[{"nodes":[0]}])" + extra));
+  return f;
+}
+
+TEST(GltfErrors, NanPositionAndIndexOutOfRange) {
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  Refusal r = refusal(triangleFile("nan", {0, 0, 0, 1, nan, 0, 0, 1, 0}, {}));
+  EXPECT_EQ(r.key, "accessors[0]");
+  EXPECT_NE(r.message.find("element 1 is not finite"), std::string::npos) << r.message;
+  r = refusal(triangleFile("index", {0, 0, 0, 1, 0, 0, 0, 1, 0}, {0, 1, 7}));
+  EXPECT_EQ(r.key, "accessors[1]");
+  EXPECT_NE(r.message.find("index 7 at element 2 is out of range: the primitive has 3 vertices"),
+            std::string::npos)
+      << r.message;
+}
+
+TEST(GltfErrors, InvalidJsonNamesTheLine) {
+  const fs::path f = scratch("json") / "bad.gltf";
+  test::writeText(f, "{\n  \"asset\": {\"version\": \"2.0\"},\n  \"nodes\": [,]\n}");
+  try {
+    readGltf(f);
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.where().line, 3) << e.what();
+    EXPECT_NE(std::string(e.what()).find("not valid JSON"), std::string::npos);
+  }
+}
+
+TEST(GltfErrors, UnsupportedFeaturesAreRefusedClearly) {
+  const std::vector<float> tri = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+  auto viaScene = [](const fs::path& f) -> std::string {
+    try {
+      loadSceneFromText("camera: {position: [0, 0, 5], look_at: [0, 0, 0]}\ninclude:\n  - gltf: " +
+                            f.string() + "\n",
+                        "test.yaml", ".");
+    } catch (const InputError& e) {
+      return e.what();
+    }
+    return "accepted";
+  };
+  // A skin on a mesh node.
+  EXPECT_NE(viaScene(triangleFile("skin", tri, {}, R"(,"skins":[{"joints":[0]}])",
+                                  R"({"mesh":0,"skin":0})"))
+                .find("nodes[0].skin': skinned meshes are not supported"),
+            std::string::npos);
+  // A required extension camsim does not read.
+  EXPECT_NE(
+      viaScene(
+          triangleFile(
+              "ext", tri, {},
+              R"(,"extensionsRequired":["KHR_draco_mesh_compression"],"extensionsUsed":["KHR_draco_mesh_compression"])"))
+          .find("requires KHR_draco_mesh_compression"),
+      std::string::npos);
+  // Morph targets.
+  {
+    test::GltfBuilder b;
+    b.floats(tri, "VEC3");
+    b.floats(tri, "VEC3");
+    const fs::path f = scratch("morph") / "morph.gltf";
+    test::writeText(
+        f,
+        b.json(
+            R"("meshes":[{"primitives":[{"attributes":{"POSITION":0},"targets":[{"POSITION":1}]}]}],)"
+            R"("nodes":[{"mesh":0}],"scenes":[{"nodes":[0]}])"));
+    EXPECT_NE(viaScene(f).find("morph targets are not supported"), std::string::npos)
+        << viaScene(f);
+  }
+  // A non-uniform animated scale, and an animated node under an animated node.
+  {
+    test::GltfBuilder b;
+    b.floats(tri, "VEC3");
+    const int t = b.floats({0, 1}, "SCALAR");
+    const int s = b.floats({1, 1, 1, 2, 1, 1}, "VEC3");
+    const int tr = b.floats({0, 0, 0, 1, 0, 0}, "VEC3");
+    const std::string meshes = R"("meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],)";
+    const std::string samplers = R"("samplers":[{"input":)" + std::to_string(t) + R"(,"output":)" +
+                                 std::to_string(s) + R"(},{"input":)" + std::to_string(t) +
+                                 R"(,"output":)" + std::to_string(tr) + "}]";
+    fs::path f = scratch("scale") / "scale.gltf";
+    test::writeText(
+        f,
+        b.json(meshes + R"("nodes":[{"mesh":0}],"scenes":[{"nodes":[0]}],"animations":[{)" +
+               samplers + R"(,"channels":[{"sampler":0,"target":{"node":0,"path":"scale"}}]}])"));
+    EXPECT_NE(viaScene(f).find("nodes[0].scale': an animated scale must be uniform"),
+              std::string::npos)
+        << viaScene(f);
+    f = scratch("nested") / "nested.gltf";
+    test::writeText(
+        f,
+        b.json(meshes +
+               R"("nodes":[{"children":[1]},{"mesh":0}],"scenes":[{"nodes":[0]}],"animations":[{)" +
+               samplers +
+               R"(,"channels":[{"sampler":1,"target":{"node":0,"path":"translation"}},)" +
+               R"({"sampler":1,"target":{"node":1,"path":"translation"}}]}])"));
+    EXPECT_NE(viaScene(f).find("is animated under the animated nodes[0]"), std::string::npos)
+        << viaScene(f);
+  }
+  // Lines are not surfaces.
+  {
+    test::GltfBuilder b;
+    b.floats(tri, "VEC3");
+    const fs::path f = scratch("lines") / "lines.gltf";
+    test::writeText(f,
+                    b.json(R"("meshes":[{"primitives":[{"attributes":{"POSITION":0},"mode":1}]}],)"
+                           R"("nodes":[{"mesh":0}],"scenes":[{"nodes":[0]}])"));
+    EXPECT_NE(viaScene(f).find("primitives[0].mode"), std::string::npos) << viaScene(f);
+  }
+}
+
+}  // namespace
+}  // namespace camsim
