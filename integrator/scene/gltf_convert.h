@@ -30,9 +30,10 @@ struct GltfInclude {
 };
 
 // The glTF materials as camsim materials, appended to scene.materials; returns the index of
-// each glTF material, and last the index of glTF's default material (used by primitives
-// without one). Notes go to scene.notes.
+// each. Notes go to scene.notes.
 std::vector<int> addGltfMaterials(const GltfInclude& inc, SceneDescription& scene);
+// glTF's default material (for primitives without one), appended; returns its index.
+int addGltfDefaultMaterial(const GltfInclude& inc, SceneDescription& scene);
 // The emission of a glTF material, if it emits (emissiveFactor · strength · texture mean).
 std::optional<EmissionDescription> gltfEmission(const GltfInclude& inc, int material,
                                                 SceneDescription& scene);

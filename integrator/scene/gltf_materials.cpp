@@ -150,12 +150,22 @@ std::vector<int> addGltfMaterials(const GltfInclude& inc, SceneDescription& scen
     const std::string name = unique(inc.label + ":" + (m.name.empty() ? m.path : m.name));
     scene.materials.push_back(convert(inc, m, name, scene));
   }
+  return index;
+}
+
+int addGltfDefaultMaterial(const GltfInclude& inc, SceneDescription& scene) {
   // glTF's default material (§3.9.6): base colour 1, metallic 1, roughness 1.
-  index.push_back(static_cast<int>(scene.materials.size()));
   GltfMaterial fallback;
   fallback.path = "default material";
-  scene.materials.push_back(convert(inc, fallback, unique(inc.label + ":default"), scene));
-  return index;
+  std::string name = inc.label + ":default";
+  for (int k = 2;; ++k) {
+    bool clash = false;
+    for (const MaterialDescription& m : scene.materials) clash = clash || m.name == name;
+    if (!clash) break;
+    name = inc.label + ":default#" + std::to_string(k);
+  }
+  scene.materials.push_back(convert(inc, fallback, name, scene));
+  return static_cast<int>(scene.materials.size()) - 1;
 }
 
 std::optional<EmissionDescription> gltfEmission(const GltfInclude& inc, int material,

@@ -23,7 +23,8 @@ namespace {
 struct Walk {
   const GltfInclude& inc;
   SceneDescription& scene;
-  std::vector<int> materials;  // glTF material → camsim index; last: the default
+  std::vector<int> materials;  // glTF material → camsim index
+  int defaultMaterial = -1;    // glTF's default material, added when a primitive needs it
   std::vector<bool> animated;
   std::vector<int> meshUses;  // static nodes using each mesh
   std::map<std::pair<int, int>, std::shared_ptr<const MeshData>> shared;  // (mesh, primitive)
@@ -78,7 +79,8 @@ struct Walk {
               (mesh.primitives.size() > 1 ? "/" + std::to_string(k) : "");
     s.className = inc.className;
     s.classNumber = inc.classNumber;
-    s.material = p.material >= 0 ? materials[static_cast<size_t>(p.material)] : materials.back();
+    if (p.material < 0 && defaultMaterial < 0) defaultMaterial = addGltfDefaultMaterial(inc, scene);
+    s.material = p.material >= 0 ? materials[static_cast<size_t>(p.material)] : defaultMaterial;
     s.emission = gltfEmission(inc, p.material, scene);
     if (motion) s.motion = *motion;
     if (!motion && meshUses[static_cast<size_t>(g.mesh)] > 1) {
@@ -279,7 +281,7 @@ double applyGltfCamera(const YamlValue& spec, const std::vector<GltfInclude>& in
 
 void addGltfIncludes(std::vector<GltfInclude>& includes, SceneDescription& scene) {
   for (GltfInclude& inc : includes) {
-    Walk w{inc, scene, addGltfMaterials(inc, scene), gltfAnimatedNodes(inc), {}, {}};
+    Walk w{inc, scene, addGltfMaterials(inc, scene), -1, gltfAnimatedNodes(inc), {}, {}};
     w.meshUses.assign(inc.doc.meshes.size(), 0);
     // Count static uses of each mesh (nodes outside animated chains).
     std::function<void(int, bool)> count = [&](int n, bool moving) {
