@@ -254,6 +254,9 @@ double applyGltfCamera(const YamlValue& spec, const std::vector<GltfInclude>& in
   std::function<bool(int, const glm::dmat4&)> find = [&](int n, const glm::dmat4& parent) {
     const glm::dmat4 m = parent * doc.nodes[static_cast<size_t>(n)].local();
     if (doc.nodes[static_cast<size_t>(n)].camera == cam) {
+      if (gltfAnimatedNodes(inc)[static_cast<size_t>(n)])
+        notes.push_back(inc.where + ": " + doc.nodes[static_cast<size_t>(n)].path +
+                        ": the camera's animation is not used; it stays at its rest pose");
       // glTF cameras look down −z with +y up; camsim's columns are right, up, forward.
       camera.worldFromCamera = glm::dmat4(glm::dvec4(glm::normalize(glm::dvec3(m[0])), 0.0),
                                           glm::dvec4(glm::normalize(glm::dvec3(m[1])), 0.0),
