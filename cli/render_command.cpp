@@ -167,7 +167,8 @@ void printCaptureNotes(const CaptureResult& r, std::ostream& log) {
 RenderCommandResult runRender(const RenderArgs& args, std::ostream& log,
                               const std::atomic<bool>* cancel) {
   SceneDescription desc = loadRenderScene(args);
-  checkMemoryLimit(desc, args.maxMemoryGb);  // before any work
+  for (const std::string& note : desc.notes) log << "note: " << note << "\n";  // import notes
+  checkMemoryLimit(desc, args.maxMemoryGb);                                    // before any work
   CaptureOutputOptions out{
       args.outputDir, {args.ocioConfig, {args.display, args.view, args.look}}, args.aovPreviews};
   out.reproducible = args.reproducible;

@@ -28,6 +28,13 @@ inline void checkMesh(const MeshData& mesh) {
   FUZZ_CHECK(mesh.normals.empty() || mesh.normals.size() == mesh.positions.size());
   for (const auto& p : mesh.positions)
     FUZZ_CHECK(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z));
+  // OBJ usemtl groups: none empty, back to back, covering every triangle (or none at all).
+  std::size_t next = 0;
+  for (const MeshMaterialGroup& g : mesh.materialGroups) {
+    FUZZ_CHECK(g.triangleCount > 0 && g.firstTriangle == next);
+    next += g.triangleCount;
+  }
+  FUZZ_CHECK(mesh.materialGroups.empty() || next == mesh.indices.size() / 3);
 }
 
 }  // namespace camsim::fuzz

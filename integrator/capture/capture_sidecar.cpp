@@ -134,6 +134,7 @@ JsonObject captureSidecar(const CaptureResult& r, bool reproducible) {
   sidecar.set("camsim_version", CAMSIM_VERSION)
       .set("scene", desc.sourceFile)
       .set("input_files", inputFiles)
+      .set("import_notes", desc.notes)  // always present, [] when the loader noted nothing
       .set("render", render)
       .set("camera", cameraJson(PhysicalCamera(desc.camera)));
   if (desc.sensor)

@@ -16,6 +16,11 @@
 // first uv stays with the original vertex, every further (position, uv) pair gets a new
 // vertex (a copy of the position and its normal) appended after the file's positions.
 // Positions used by no face get uv (0, 0).
+//
+// Materials: `mtllib` lines are recorded as written and `usemtl` starts a new triangle group
+// (MeshData::materialGroups, in triangle order; groups left empty are dropped). The .mtl
+// files are not read here: the scene loader reads them only when the shape has no material
+// of its own (integrator/scene/scene_loader_mtl.cpp).
 #include <charconv>
 #include <cmath>
 #include <cstdint>
@@ -72,6 +77,8 @@ class ObjParser {
 
  private:
   void parseLine(const char* p, const char* end);
+  std::string restOfLine(const char* p, const char* end) const;
+  void startGroup(std::string name);
   glm::dvec3 parseVec3(const char* p, const char* end, const char* what);
   glm::vec2 parseUv(const char* p, const char* end);
   double parseCoord(const char*& p, const char* end, const char* what);
@@ -97,6 +104,8 @@ class ObjParser {
   std::vector<glm::vec2> texcoords_;
   std::vector<std::uint32_t> cornerUv_;  // per entry of indices_: its vt index
   bool uvsUsable_ = true;
+  std::vector<MeshMaterialGroup> groups_;  // firstTriangle set; counts filled in by run()
+  std::vector<MeshMaterialLibrary> libraries_;
 };
 
 void ObjParser::fail(const char* at, const std::string& message) const {
@@ -129,6 +138,14 @@ MeshData ObjParser::run() {
     throw InputError({source_, 0, 0}, "", "OBJ file has no faces (no triangles)");
 
   MeshData mesh;
+  const auto triangles = static_cast<std::uint32_t>(indices_.size() / 3);
+  for (std::size_t g = 0; g < groups_.size(); ++g) {
+    MeshMaterialGroup& group = groups_[g];
+    const std::uint32_t next = g + 1 < groups_.size() ? groups_[g + 1].firstTriangle : triangles;
+    group.triangleCount = next - group.firstTriangle;
+    if (group.triangleCount > 0) mesh.materialGroups.push_back(std::move(group));
+  }
+  mesh.materialLibraries = std::move(libraries_);
   mesh.positions = std::move(positions_);
   mesh.indices = std::move(indices_);
   if (normalsUsable_ && !normals_.empty()) {
@@ -184,8 +201,34 @@ void ObjParser::parseLine(const char* p, const char* end) {
     texcoords_.push_back(parseUv(p, end));
   } else if (kw == "f") {
     parseFace(p, end);
+  } else if (kw == "usemtl") {
+    startGroup(restOfLine(p, end));
+  } else if (kw == "mtllib") {
+    std::string files = restOfLine(p, end);
+    if (files.empty()) fail(keyword, "mtllib needs a file name");
+    libraries_.push_back({std::move(files), static_cast<int>(std::min<std::int64_t>(
+                                                line_, std::numeric_limits<int>::max()))});
   }
-  // Everything else (vp, o, g, s, usemtl, mtllib, l, p, comments, ...) is ignored.
+  // Everything else (vp, o, g, s, l, p, comments, ...) is ignored.
+}
+
+// The text after the keyword without surrounding white space (names and file names may
+// contain spaces; a '#' is part of them).
+std::string ObjParser::restOfLine(const char* p, const char* end) const {
+  while (p < end && isSpace(*p)) ++p;
+  while (end > p && isSpace(end[-1])) --end;
+  return std::string(p, static_cast<std::size_t>(end - p));
+}
+
+// `usemtl NAME`: the triangles from here on use NAME. The first one also opens a group ""
+// for the triangles before it.
+void ObjParser::startGroup(std::string name) {
+  const auto first = static_cast<std::uint32_t>(indices_.size() / 3);
+  if (groups_.empty() && first > 0) groups_.push_back({"", 0, 0, 0});
+  if (groups_.size() >= kMaxCount) fail(lineStart_, "more than 100000000 usemtl statements");
+  if (!groups_.empty() && groups_.back().firstTriangle == first) groups_.pop_back();  // empty
+  const int line = static_cast<int>(std::min<std::int64_t>(line_, std::numeric_limits<int>::max()));
+  groups_.push_back({std::move(name), first, 0, line});
 }
 
 // One coordinate at p (after spaces), finite in float; advances p past it.

@@ -4,7 +4,8 @@
 // left before anything is reserved, so a hostile file fails with InputError instead of
 // allocating or looping without bound. ASCII bodies hold one element row per line (blank
 // lines are skipped) and must not have data after the last row; trailing bytes after a
-// binary body are ignored.
+// binary body are ignored. Faces are fan-triangulated and triangle strips (the `tristrips`
+// element) unrolled with alternating winding as the rows are read (mesh_io.h).
 #include <algorithm>
 #include <bit>
 #include <charconv>
@@ -12,12 +13,14 @@
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
+#include <initializer_list>
 #include <limits>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "integrator/geometry/mesh_io.h"
+#include "integrator/geometry/ply_values.h"
 #include "sensor/base/input_error.h"
 
 namespace camsim {
@@ -27,26 +30,20 @@ std::string readWholeFile(const std::filesystem::path& path);  // mesh_io.cpp
 
 namespace {
 
+using ply_detail::AsciiReader;
+using ply_detail::BinaryReader;
+using ply_detail::Element;
+using ply_detail::info;
+using ply_detail::isInteger;
+using ply_detail::kTypes;
+using ply_detail::Property;
+using ply_detail::Type;
+
 constexpr std::uint64_t kMaxElementCount = 100'000'000;
 constexpr int kIndicesSlot = 8;  // vertex slots 0..7 are x y z nx ny nz u v
+constexpr int kStripSlot = 9;    // tristrips vertex_indices
 
-enum class Type : std::uint8_t { kInt8, kUint8, kInt16, kUint16, kInt32, kUint32, kFloat, kDouble };
 enum class Format : std::uint8_t { kAscii, kBinaryLittle, kBinaryBig };
-
-struct Property {
-  std::string name;
-  Type type = Type::kFloat;  // scalar type, or the item type of a list
-  bool isList = false;
-  Type countType = Type::kUint8;
-  int slot = -1;  // where the value goes (see kIndicesSlot); -1 = skipped
-};
-
-struct Element {
-  std::string name;
-  std::uint64_t count = 0;
-  int line = 0;  // header line declaring it
-  std::vector<Property> properties;
-};
 
 struct Header {
   Format format = Format::kAscii;
@@ -54,28 +51,6 @@ struct Header {
   std::size_t bodyOffset = 0;
   int lines = 0;
 };
-
-struct TypeInfo {
-  std::string_view name, alias;
-  std::size_t size;
-  std::int64_t min, max;  // integer types only
-};
-// Indexed by Type.
-constexpr TypeInfo kTypes[] = {{"char", "int8", 1, INT8_MIN, INT8_MAX},
-                               {"uchar", "uint8", 1, 0, UINT8_MAX},
-                               {"short", "int16", 2, INT16_MIN, INT16_MAX},
-                               {"ushort", "uint16", 2, 0, UINT16_MAX},
-                               {"int", "int32", 4, INT32_MIN, INT32_MAX},
-                               {"uint", "uint32", 4, 0, UINT32_MAX},
-                               {"float", "float32", 4, 0, 0},
-                               {"double", "float64", 8, 0, 0}};
-
-const TypeInfo& info(Type t) {
-  return kTypes[static_cast<std::size_t>(t)];
-}
-bool isInteger(Type t) {
-  return t != Type::kFloat && t != Type::kDouble;
-}
 
 bool parseType(std::string_view s, Type& t) {
   for (std::size_t i = 0; i < std::size(kTypes); ++i) {
@@ -186,6 +161,20 @@ Header parseHeader(std::string_view bytes, const std::string& src) {
   }
 }
 
+// The element's integer list property `names[0]` (or names[1]) gets `slot`; InputError if it
+// has none or it is not a list of integers.
+void assignIndexList(Element& e, std::initializer_list<std::string_view> names, int slot,
+                     const std::string& src) {
+  for (Property& p : e.properties) {
+    if (std::find(names.begin(), names.end(), p.name) == names.end()) continue;
+    if (!p.isList || !isInteger(p.type))
+      failAt(src, e.line, e.name + " property '" + p.name + "' must be a list of integers");
+    p.slot = slot;
+    return;
+  }
+  failAt(src, e.line, e.name + " element has no 'vertex_indices' list property");
+}
+
 // Marks the properties we use (Property::slot) and checks that they are present and usable.
 // Returns the vertex count; sets hasNormals and hasUvs.
 std::uint64_t assignSlots(Header& h, const std::string& src, bool& hasNormals, bool& hasUvs) {
@@ -199,7 +188,7 @@ std::uint64_t assignSlots(Header& h, const std::string& src, bool& hasNormals, b
                                                           {"u", "s", "texture_u"},
                                                           {"v", "t", "texture_v"}};
   const Element* vertex = nullptr;
-  const Element* face = nullptr;
+  bool haveTriangles = false;  // a face or a tristrips element
   for (Element& e : h.elements) {
     if (e.name == "vertex") {
       vertex = &e;
@@ -223,21 +212,16 @@ std::uint64_t assignSlots(Header& h, const std::string& src, bool& hasNormals, b
       if (found[6] != found[7])
         failAt(src, e.line, "vertex element has only one texture coordinate (need u and v)");
     } else if (e.name == "face") {
-      face = &e;
-      for (Property& p : e.properties) {
-        if (p.name != "vertex_indices" && p.name != "vertex_index") continue;
-        if (!p.isList || !isInteger(p.type))
-          failAt(src, e.line, "face property '" + p.name + "' must be a list of integers");
-        p.slot = kIndicesSlot;
-        break;
-      }
-      if (std::none_of(e.properties.begin(), e.properties.end(),
-                       [](const Property& p) { return p.slot == kIndicesSlot; }))
-        failAt(src, e.line, "face element has no 'vertex_indices' list property");
+      assignIndexList(e, {"vertex_indices", "vertex_index"}, kIndicesSlot, src);
+      haveTriangles = true;
+    } else if (e.name == "tristrips") {
+      assignIndexList(e, {"vertex_indices"}, kStripSlot, src);
+      haveTriangles = true;
     }
   }
   if (vertex == nullptr) failAt(src, h.lines, "PLY file has no 'vertex' element");
-  if (face == nullptr) failAt(src, h.lines, "PLY file has no 'face' element (no triangles)");
+  if (!haveTriangles)
+    failAt(src, h.lines, "PLY file has no 'face' or 'tristrips' element (no triangles)");
   return vertex->count;
 }
 
@@ -246,154 +230,67 @@ std::uint64_t assignSlots(Header& h, const std::string& src, bool& hasNormals, b
   failAt(src, line, "element '" + e.name + "' index " + std::to_string(row) + ": " + message);
 }
 
-// Reader interface used by readBody: beginRow/endRow delimit a row, number/integer/skip/
-// skipList consume values (false = missing, malformed or out of range for the type),
-// line() is the current line (0 for binary), moreRows() reports leftover data.
-class BinaryReader {
- public:
-  BinaryReader(std::string_view body, bool bigEndian)
-      : p_(body.data()),
-        end_(body.data() + body.size()),
-        swap_(bigEndian != (std::endian::native == std::endian::big)) {}
+template <class Reader>
+std::int64_t readIndex(Reader& in, const Property& p, const std::string& src, const Element& e,
+                       std::uint64_t row, std::uint64_t vertexCount) {
+  std::int64_t index = 0;
+  if (!in.integer(p.type, index))
+    rowFail(src, in.line(), e, row, "missing or malformed vertex index");
+  const bool strip = p.slot == kStripSlot;
+  if (strip && (index == -1 || (p.type == Type::kUint32 && index == UINT32_MAX))) return -1;
+  if (index < 0 || static_cast<std::uint64_t>(index) >= vertexCount)
+    rowFail(src, in.line(), e, row,
+            "vertex index " + std::to_string(index) + " out of range (" +
+                std::to_string(vertexCount) + " vertices" +
+                (strip ? "; −1 restarts a strip)" : ")"));
+  return index;
+}
 
-  bool beginRow() { return true; }
-  bool endRow() { return true; }
-  bool moreRows() { return false; }  // trailing bytes are ignored
-  int line() const { return 0; }
-  std::size_t bytesLeft() const { return static_cast<std::size_t>(end_ - p_); }
-  static std::size_t minRowBytes(const Element& e) {
-    std::size_t n = 0;
-    for (const Property& p : e.properties) n += info(p.isList ? p.countType : p.type).size;
-    return n;
+// A face list of n indices, fan-triangulated: (v₀ v₁ v₂), (v₀ v₂ v₃), …
+template <class Reader>
+void readFace(Reader& in, const Property& p, std::int64_t n, const std::string& src,
+              const Element& e, std::uint64_t row, std::uint64_t vertexCount,
+              std::vector<std::uint32_t>& indices) {
+  if (n < 3)
+    rowFail(src, in.line(), e, row,
+            "face has " + std::to_string(n) + " vertices (at least 3 needed)");
+  std::uint32_t first = 0;
+  std::uint32_t prev = 0;
+  for (std::int64_t k = 0; k < n; ++k) {  // bounded: every index consumes input
+    const auto u = static_cast<std::uint32_t>(readIndex(in, p, src, e, row, vertexCount));
+    if (k == 0) first = u;
+    if (k >= 2) indices.insert(indices.end(), {first, prev, u});
+    prev = u;
   }
+}
 
-  bool number(Type t, double& out) { return read(t, out); }
-  bool integer(Type t, std::int64_t& out) { return isInteger(t) && read(t, out); }
-  bool skip(Type t) { return skipList(t, 1); }
-  bool skipList(Type t, std::uint64_t n) {
-    if (n > bytesLeft() / info(t).size) return false;
-    p_ += n * info(t).size;
-    return true;
-  }
-
- private:
-  template <class Out>
-  bool read(Type t, Out& out) {
-    // clang-format off
-    switch (t) {
-      case Type::kInt8: return load<std::int8_t>(out);
-      case Type::kUint8: return load<std::uint8_t>(out);
-      case Type::kInt16: return load<std::int16_t>(out);
-      case Type::kUint16: return load<std::uint16_t>(out);
-      case Type::kInt32: return load<std::int32_t>(out);
-      case Type::kUint32: return load<std::uint32_t>(out);
-      case Type::kFloat: return load<float>(out);
-      case Type::kDouble: return load<double>(out);
+// A strip list of n indices (mesh_io.h): run position j ≥ 2 gives (s[j−2], s[j−1], s[j]) for
+// even j and (s[j−1], s[j−2], s[j]) for odd j, so all triangles keep the first one's
+// orientation; −1 starts a new run; a triangle with a repeated index is dropped.
+template <class Reader>
+void readStrip(Reader& in, const Property& p, std::int64_t n, const std::string& src,
+               const Element& e, std::uint64_t row, std::uint64_t vertexCount,
+               std::vector<std::uint32_t>& indices) {
+  std::int64_t j = 0;                     // position in the current run
+  std::uint32_t a = 0, b = 0;             // s[j−2], s[j−1]
+  for (std::int64_t k = 0; k < n; ++k) {  // bounded: every index consumes input
+    const std::int64_t index = readIndex(in, p, src, e, row, vertexCount);
+    if (index < 0) {
+      j = 0;
+      continue;
     }
-    // clang-format on
-    return false;
-  }
-
-  template <class T, class Out>
-  bool load(Out& out) {
-    if (bytesLeft() < sizeof(T)) return false;
-    unsigned char buf[sizeof(T)];
-    std::memcpy(buf, p_, sizeof(T));
-    if (swap_) std::reverse(buf, buf + sizeof(T));
-    T v;
-    std::memcpy(&v, buf, sizeof(T));
-    p_ += sizeof(T);
-    out = static_cast<Out>(v);
-    return true;
-  }
-
-  const char* p_;
-  const char* end_;
-  bool swap_;
-};
-
-// One element row per line; blank lines are skipped.
-class AsciiReader {
- public:
-  AsciiReader(std::string_view body, int headerLines)
-      : next_(body.data()), end_(body.data() + body.size()), line_(headerLines) {}
-
-  bool beginRow() {  // moves to the next non-blank line
-    while (next_ < end_) {
-      const void* nl = std::memchr(next_, '\n', static_cast<std::size_t>(end_ - next_));
-      cur_ = next_;
-      lineEnd_ = nl != nullptr ? static_cast<const char*>(nl) : end_;
-      next_ = nl != nullptr ? lineEnd_ + 1 : end_;
-      if (line_ < std::numeric_limits<int>::max()) ++line_;
-      skipSpace();
-      if (cur_ != lineEnd_) return true;
+    const auto c = static_cast<std::uint32_t>(index);
+    if (j >= 2 && a != b && b != c && a != c) {
+      if (j % 2 == 0)
+        indices.insert(indices.end(), {a, b, c});
+      else
+        indices.insert(indices.end(), {b, a, c});
     }
-    return false;
+    a = b;
+    b = c;
+    ++j;
   }
-  bool endRow() {
-    skipSpace();
-    return cur_ == lineEnd_;
-  }
-  bool moreRows() { return beginRow(); }
-  int line() const { return line_; }
-  std::size_t bytesLeft() const { return static_cast<std::size_t>(end_ - next_) + 1; }
-  // Each value takes at least one character and one separator.
-  static std::size_t minRowBytes(const Element& e) { return 2 * e.properties.size(); }
-
-  bool number(Type t, double& out) {
-    if (isInteger(t)) {
-      std::int64_t i = 0;
-      const bool ok = integer(t, i);
-      out = static_cast<double>(i);
-      return ok;
-    }
-    const std::string_view tok = token();
-    const char* first = tok.data();
-    const char* last = first + tok.size();
-    if (last - first > 1 && *first == '+' && first[1] != '-') ++first;
-    auto [ptr, ec] = std::from_chars(first, last, out);
-    if (ec == std::errc::result_out_of_range) {  // rare: let strtod decide (inf or tiny)
-      out = std::strtod(std::string(first, last).c_str(), nullptr);
-      ec = std::errc();
-    }
-    return !tok.empty() && ec == std::errc() && ptr == last;
-  }
-  bool integer(Type t, std::int64_t& out) {
-    const std::string_view tok = token();
-    auto [ptr, ec] = std::from_chars(tok.data(), tok.data() + tok.size(), out);
-    if (tok.empty() || ec != std::errc() || ptr != tok.data() + tok.size()) return false;
-    return isInteger(t) && out >= info(t).min && out <= info(t).max;
-  }
-  bool skip(Type t) {
-    double d = 0.0;
-    return number(t, d);
-  }
-  bool skipList(Type t, std::uint64_t n) {
-    for (std::uint64_t i = 0; i < n; ++i)  // bounded: each value consumes a token of the line
-      if (!skip(t)) return false;
-    return true;
-  }
-
- private:
-  static bool isSpace(char c) {
-    return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f';
-  }
-  void skipSpace() {
-    while (cur_ < lineEnd_ && isSpace(*cur_)) ++cur_;
-  }
-  std::string_view token() {
-    skipSpace();
-    const char* start = cur_;
-    while (cur_ < lineEnd_ && !isSpace(*cur_)) ++cur_;
-    return {start, static_cast<std::size_t>(cur_ - start)};
-  }
-
-  const char* next_;
-  const char* end_;
-  const char* cur_ = nullptr;
-  const char* lineEnd_ = nullptr;
-  int line_;
-};
+}
 
 template <class Reader>
 MeshData readBody(const Header& h, Reader& in, const std::string& src, std::uint64_t vertexCount,
@@ -424,25 +321,10 @@ MeshData readBody(const Header& h, Reader& in, const std::string& src, std::uint
         double d = 0.0;      // scalar value
         if (p.isList && (!in.integer(p.countType, n) || n < 0)) {
           rowFail(src, in.line(), e, row, "missing or malformed list count for '" + p.name + "'");
-        } else if (p.isList && p.slot == kIndicesSlot) {  // fan-triangulate the polygon
-          if (n < 3)
-            rowFail(src, in.line(), e, row,
-                    "face has " + std::to_string(n) + " vertices (at least 3 needed)");
-          std::uint32_t first = 0;
-          std::uint32_t prev = 0;
-          for (std::int64_t k = 0; k < n; ++k) {  // bounded: every index consumes input
-            std::int64_t index = 0;
-            if (!in.integer(p.type, index))
-              rowFail(src, in.line(), e, row, "missing or malformed vertex index");
-            if (index < 0 || static_cast<std::uint64_t>(index) >= vertexCount)
-              rowFail(src, in.line(), e, row,
-                      "vertex index " + std::to_string(index) + " out of range (" +
-                          std::to_string(vertexCount) + " vertices)");
-            const auto u = static_cast<std::uint32_t>(index);
-            if (k == 0) first = u;
-            if (k >= 2) mesh.indices.insert(mesh.indices.end(), {first, prev, u});
-            prev = u;
-          }
+        } else if (p.isList && p.slot == kIndicesSlot) {
+          readFace(in, p, n, src, e, row, vertexCount, mesh.indices);
+        } else if (p.isList && p.slot == kStripSlot) {
+          readStrip(in, p, n, src, e, row, vertexCount, mesh.indices);
         } else if (p.isList ? !in.skipList(p.type, static_cast<std::uint64_t>(n))
                             : !in.number(p.type, d)) {
           rowFail(src, in.line(), e, row, "missing or malformed value for '" + p.name + "'");
@@ -485,7 +367,8 @@ MeshData parsePly(std::string_view bytes, const std::string& sourceName,
     BinaryReader reader(body, header.format == Format::kBinaryBig);
     mesh = readBody(header, reader, sourceName, vertexCount, hasNormals, hasUvs, placement);
   }
-  if (mesh.indices.empty()) failAt(sourceName, 0, "PLY file has no faces (no triangles)");
+  if (mesh.indices.empty())
+    failAt(sourceName, 0, "PLY file has no triangles (no faces, or only degenerate strips)");
   return mesh;
 }
 

@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <set>
 #include <sstream>
 
@@ -20,13 +21,26 @@
 #include "sensor/spectra/spectral_data.h"
 
 namespace camsim {
+
+// Computed from the single-precision positions the renderer uses.
+double meshArea2(const MeshData& mesh) {
+  double area = 0.0;
+  for (size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
+    const glm::dvec3 a = mesh.positions[mesh.indices[t]], b = mesh.positions[mesh.indices[t + 1]],
+                     c = mesh.positions[mesh.indices[t + 2]];
+    area += glm::length(glm::cross(b - a, c - a));
+  }
+  return area;
+}
+
 namespace {
 
 struct Context {
   std::filesystem::path baseDir;
   TableSearch search;
-  std::map<std::string, int> materialIndex;
-  glm::dvec3 origin{0.0};  // render-space origin (SceneDescription::renderOrigin)
+  std::map<std::string, int> materialIndex;  // the scene's `materials:`
+  ImportedMaterials imported;                // those of mesh files (OBJ .mtl)
+  glm::dvec3 origin{0.0};                    // render-space origin (SceneDescription::renderOrigin)
 };
 
 FrameSequence parseFrames(YamlMap map) {
@@ -116,23 +130,14 @@ std::vector<std::uint32_t> parseFaces(const YamlValue& faces, size_t vertexCount
   return indices;
 }
 
-// Twice the total area, computed from the single-precision positions the renderer uses.
-double meshArea2(const MeshData& mesh) {
-  double area = 0.0;
-  for (size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
-    const glm::dvec3 a = mesh.positions[mesh.indices[t]], b = mesh.positions[mesh.indices[t + 1]],
-                     c = mesh.positions[mesh.indices[t + 2]];
-    area += glm::length(glm::cross(b - a, c - a));
-  }
-  return area;
-}
-
 void checkMesh(const YamlValue& where, const MeshData& mesh) {
   if (mesh.indices.empty()) where.fail("mesh has no triangles");
   if (!(meshArea2(mesh) > 0.0)) where.fail("mesh has zero area");
 }
 
-ShapeDescription parseShape(YamlMap map, size_t index, const Context& ctx) {
+// One shape, or several when a mesh file brings its own materials (scene_loader_mtl.cpp).
+std::vector<ShapeDescription> parseShape(YamlMap map, size_t index, Context& ctx,
+                                         SceneDescription& scene) {
   ShapeDescription s;
   s.label = "shapes[" + std::to_string(index) + "]";
   if (auto n = map.find("name")) s.label = n->string();
@@ -160,6 +165,8 @@ ShapeDescription parseShape(YamlMap map, size_t index, const Context& ctx) {
   auto point = [&](const YamlValue& where, const glm::dvec3& v) {
     return toPoint(where, v - shift);
   };
+  std::optional<YamlValue> meshFile;  // a mesh file's `file:` and its path
+  std::filesystem::path meshPath;
   if (t == "sphere") {
     s.kind = ShapeDescription::Kind::kSphere;
     const YamlValue centre = map.require("centre");
@@ -202,6 +209,8 @@ ShapeDescription parseShape(YamlMap map, size_t index, const Context& ctx) {
         file->fail(e.what());
       }
       checkMesh(*file, s.mesh);
+      meshFile = file;
+      meshPath = p;
     } else if (vertices) {
       for (const YamlValue& v : vertices->items()) s.mesh.positions.push_back(point(v, v.vec3()));
       if (s.mesh.positions.size() < 3) vertices->fail("a mesh needs at least 3 vertices");
@@ -221,11 +230,21 @@ ShapeDescription parseShape(YamlMap map, size_t index, const Context& ctx) {
     const auto it = ctx.materialIndex.find(name);
     if (it == ctx.materialIndex.end()) m->fail("no material named '" + name + "'");
     s.material = it->second;
+  } else if (meshFile && !s.mesh.materialGroups.empty()) {
+    map.finish(known);
+    return splitByFileMaterials(std::move(s), meshPath, *meshFile, ctx.imported, ctx.materialIndex,
+                                ctx.search, scene);
   } else if (!s.emission) {
-    map.self().fail("shape needs a 'material' (only emitters may omit it: they are then black)");
+    map.self().fail(
+        "shape needs a 'material' (only emitters may omit it: they are then black; an OBJ file "
+        "may name its own with usemtl)");
   }
   map.finish(known);
-  return s;
+  s.mesh.materialGroups.clear();  // a `material:` overrides the file's
+  s.mesh.materialLibraries.clear();
+  std::vector<ShapeDescription> one;
+  one.push_back(std::move(s));
+  return one;
 }
 
 }  // namespace
@@ -303,7 +322,8 @@ SceneDescription loadSceneFromText(const std::string& text, const std::string& d
   else if (includes.empty())
     top.require("shapes");
   for (size_t i = 0; i < items.size(); ++i)
-    scene.shapes.push_back(parseShape(YamlMap(items[i]), i, ctx));
+    for (ShapeDescription& s : parseShape(YamlMap(items[i]), i, ctx, scene))
+      scene.shapes.push_back(std::move(s));
   addGltfIncludes(includes, scene);
   if (scene.shapes.empty())
     (top.find("shapes") ? *top.find("shapes") : *top.find("include"))

@@ -2,6 +2,10 @@
 #pragma once
 
 #include <filesystem>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
 
 #include <glm/vec3.hpp>
 
@@ -34,6 +38,26 @@ TextureDescription parseTexture(const YamlValue& v, TextureUse use, const TableS
 // `materials:` entry → material description (integrator/scene/scene_loader_materials.cpp).
 MaterialDescription parseMaterial(const std::string& name, YamlMap map, const TableSearch& search,
                                   const std::filesystem::path& baseDir);
+// Twice the total area of a mesh, from its single-precision positions (scene_loader.cpp).
+double meshArea2(const MeshData& mesh);
+// The materials a scene imported from mesh files (OBJ .mtl), shared by the shapes naming the
+// same file: scene name "FILE:NAME" (FILE: the shape's `file:` as written) → index into
+// SceneDescription::materials; and the map_Kd images decoded so far.
+struct ImportedMaterials {
+  std::map<std::string, int> index;
+  std::map<std::filesystem::path, std::shared_ptr<const TextureImage>> images;
+};
+// A mesh shape without `material:` whose OBJ has usemtl groups (scene_loader_mtl.cpp): reads
+// its mtllib files (relative to objPath's folder), maps each material used to a camsim
+// material (appended to scene.materials once per scene name, never clashing with
+// sceneMaterials) and returns one shape per material, each with the vertices it uses
+// (label "LABEL/NAME" when there are several). Ignored and approximated .mtl statements are
+// appended to scene.notes. InputError: a missing .mtl or map_Kd file, an unknown usemtl,
+// triangles without a material on a shape that does not emit, a malformed .mtl.
+std::vector<ShapeDescription> splitByFileMaterials(
+    ShapeDescription shape, const std::filesystem::path& objPath, const YamlValue& file,
+    ImportedMaterials& imported, const std::map<std::string, int>& sceneMaterials,
+    const TableSearch& search, SceneDescription& scene);
 // `motion:` keyframes; `forCamera` forbids scale. Each `translate` minus `origin` (in
 // double): shapes pass the render origin (their keyframes are world positions), the
 // camera zero (its keyframes are offsets from its rest position).

@@ -215,7 +215,7 @@ TEST(PlyTest, MalformedHeader) {
   expectPlyError(withHeaderLine("list uchar int", "list float int"), 9, "count type");
   expectPlyError(withHeaderLine("list uchar int", "list uchar float"), 8, "list of integers");
   expectPlyError(withHeaderLine("element face 2\nproperty list uchar int vertex_indices\n", ""), 8,
-                 "no 'face' element");
+                 "no 'face' or 'tristrips' element");
 }
 
 TEST(PlyTest, MalformedAsciiBody) {
