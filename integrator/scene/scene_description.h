@@ -258,6 +258,8 @@ struct SceneDescription {
     for (MaterialDescription& m : materials) {
       m.reflectance.image.reset();
       m.roughness.image.reset();
+      m.metallic.image.reset();
+      if (m.normalMap) m.normalMap->image.reset();
     }
     for (LightDescription& l : lights) l.image.reset();
   }

@@ -186,6 +186,7 @@ TexelFootprint bilinearFootprint(glm::vec2 uv, int width, int height) {
   const std::uint32_t w = static_cast<std::uint32_t>(width);
   f.texel = {y0 * w + x0, y0 * w + x1, y1 * w + x0, y1 * w + x1};
   f.weight = {(1.0f - ax) * (1.0f - ay), ax * (1.0f - ay), (1.0f - ax) * ay, ax * ay};
+  f.fraction = {ax, ay};
   return f;
 }
 

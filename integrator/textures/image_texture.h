@@ -73,8 +73,9 @@ TextureImage loadTextureImage(const std::filesystem::path& file, TextureEncoding
 // The four texels a lookup blends (indices into width·height, row-major from the top)
 // and their weights (sum 1).
 struct TexelFootprint {
-  std::array<std::uint32_t, 4> texel{};
+  std::array<std::uint32_t, 4> texel{};  // (x0, y0), (x1, y0), (x0, y1), (x1, y1)
   std::array<float, 4> weight{};
+  glm::vec2 fraction{0.0f};  // (fx, fy): weight = products of (1 − fx, fx) and (1 − fy, fy)
 };
 TexelFootprint bilinearFootprint(glm::vec2 uv, int width, int height);
 

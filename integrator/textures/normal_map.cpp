@@ -39,8 +39,12 @@ NormalMap::NormalMap(const TextureImage& image, glm::vec2 uvScale, glm::vec2 uvO
 
 glm::vec3 NormalMap::tangentSpaceNormal(glm::vec2 uv) const {
   const TexelFootprint f = bilinearFootprint(uv * scale_ + offset_, width_, height_);
-  glm::vec3 c(0.0f);
-  for (size_t k = 0; k < 4; ++k) c += f.weight[k] * texels_[f.texel[k]];
+  // Bilinear as a + f (b − a): equal texels (a flat region) give their value exactly, so a
+  // flat map bends nothing (weights summing to 1 only to rounding would not).
+  const auto lerp = [](const glm::vec3& a, const glm::vec3& b, float t) { return a + t * (b - a); };
+  const glm::vec3 c =
+      lerp(lerp(texels_[f.texel[0]], texels_[f.texel[1]], f.fraction.x),
+           lerp(texels_[f.texel[2]], texels_[f.texel[3]], f.fraction.x), f.fraction.y);
   const glm::vec3 n = (2.0f * c - 1.0f) * glm::vec3(strength_, strength_, 1.0f);
   if (n.x == 0.0f && n.y == 0.0f) return {0.0f, 0.0f, n.z < 0.0f ? -1.0f : 1.0f};
   const float len = std::sqrt(glm::dot(n, n));
