@@ -22,11 +22,15 @@
 //   The diffuse lobe keeps the specification's (1 − F_d(wo·h)) weight, so it is not exactly
 //   Lambertian; f is reciprocal (|wo·h| = |wi·h|). Single scattering: the rough specular
 //   lobe loses the energy of multiple bounces between microfacets, as the spec's model does.
+//   Not energy conserving (the specification says so, B.3.5): the diffuse lobe is not dimmed
+//   by what the specular lobe reflects, so a white dielectric's albedo exceeds 1 at grazing
+//   view (1.53 at cos θo = 0.1, r = 0.1; docs/scene-format.md). It stays ≤ c + the specular
+//   layer's albedo; metals (m = 1) stay ≤ 1.
 //
 // Sampling: the diffuse lobe (cosine-weighted) with probability pd, else the specular lobe
-//   (GGX visible normals, microfacet.h sampleWm, reflected). pd uses the lobe weights at
-//   normal-ish incidence: with s = (1 − cos θo)⁵, cmax the largest c over the path's
-//   wavelengths,
+//   (GGX visible normals, microfacet.h sampleWm, reflected). pd weighs the lobes as they
+//   are in wo's mirror direction (h = n): with s = (1 − cos θo)⁵, cmax the largest c over
+//   the path's wavelengths,
 //     w_diffuse = (1 − m)(1 − (0.04 + 0.96 s)) cmax,
 //     w_specular = (1 − m)(0.04 + 0.96 s) + m (cmax + (1 − cmax) s),
 //     pd = w_diffuse / (w_diffuse + w_specular)       (0 when both are 0)
