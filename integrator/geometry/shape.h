@@ -101,6 +101,14 @@ struct SurfaceInteraction {
   glm::vec3 spawnOrigin(const glm::vec3& w) const { return offsetRayOrigin(p, pError, n, w); }
 };
 
+// The surface's tangent directions at a hit, for tangent-space normal maps (render space;
+// neither unit nor orthogonal to the shading normal: integrator/textures/normal_map.h
+// orthonormalises them): `tangent` along ∂p/∂u, `bitangent` on the side of ∂p/∂v.
+struct SurfaceTangents {
+  glm::vec3 tangent{0.0f};
+  glm::vec3 bitangent{0.0f};
+};
+
 struct ShapeSample {
   SurfaceInteraction point;
   glm::vec3 wi{0.0f};  // unit direction from the reference point to point.p
@@ -170,6 +178,13 @@ class Shape {
   virtual const TimeSteps& timeSteps() const = 0;
   virtual const InstanceMotion& instanceMotion() const = 0;  // empty if static
   virtual SurfaceInteraction interaction(const Hit& hit, const Ray& ray) const = 0;
+  // The tangent frame at a hit whose interaction() is si, computed only when a normal map
+  // needs it (not part of SurfaceInteraction: light samples copy that). None: the shape
+  // has no (u, v) frame there, and a normal map leaves the shading normal as it is.
+  virtual std::optional<SurfaceTangents> tangentFrame(const Hit& /*hit*/,
+                                                      const SurfaceInteraction& /*si*/) const {
+    return std::nullopt;
+  }
   // A point on the shape at `time` seen from ref (u1 in [0,1), u2 in [0,1)²), with its
   // solid-angle pdf.
   virtual std::optional<ShapeSample> sample(const glm::vec3& ref, float u1, glm::vec2 u2,

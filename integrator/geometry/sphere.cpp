@@ -68,6 +68,14 @@ SurfaceInteraction Sphere::interaction(const Hit& hit, const Ray& ray) const {
   return surfacePoint(pose, ray.at(hit.t) - pose.centre, ray.time);
 }
 
+// n = (sinθ sinφ, cosθ, sinθ cosφ): ∂n/∂φ = (n.z, 0, −n.x); v = 1 − θ/π grows towards +y,
+// along −∂n/∂θ ∝ (−n.x n.y, 1 − n.y², −n.y n.z) (both scaled by sinθ; only directions count).
+std::optional<SurfaceTangents> Sphere::tangentFrame(const Hit& /*hit*/,
+                                                    const SurfaceInteraction& si) const {
+  const glm::vec3& n = si.n;
+  return SurfaceTangents{{n.z, 0.0f, -n.x}, {-n.x * n.y, 1.0f - n.y * n.y, -n.y * n.z}};
+}
+
 std::optional<ShapeSample> Sphere::sample(const glm::vec3& ref, float /*u1*/, glm::vec2 u2,
                                           float time) const {
   const Pose pose = at(time);

@@ -25,6 +25,10 @@ class Sphere final : public Shape {
 
   float area() const override;
   SurfaceInteraction interaction(const Hit& hit, const Ray& ray) const override;
+  // ∂p/∂u along the parallel (∝ (z, 0, −x) of n) and ∂p/∂v towards the top pole;
+  // zero at the poles (a normal map does not bend there).
+  std::optional<SurfaceTangents> tangentFrame(const Hit& hit,
+                                              const SurfaceInteraction& si) const override;
   std::optional<ShapeSample> sample(const glm::vec3& ref, float u1, glm::vec2 u2,
                                     float time) const override;
   float pdf(const glm::vec3& ref, const SurfaceInteraction& onShape) const override;

@@ -34,17 +34,20 @@ glm::vec3 faceNormal(const glm::vec3& p0, const glm::vec3& p1, const glm::vec3& 
 
 TriangleMesh::TriangleMesh(std::vector<glm::vec3> positions, std::vector<glm::vec3> normals,
                            std::vector<std::uint32_t> indices, TimeSteps steps,
-                           std::vector<glm::vec2> uvs, bool samplable, InstanceMotion instance)
+                           std::vector<glm::vec2> uvs, bool samplable, InstanceMotion instance,
+                           std::vector<glm::vec4> tangents)
     : positions_(std::move(positions)),
       normals_(std::move(normals)),
       indices_(std::move(indices)),
       uvs_(std::move(uvs)),
+      tangents_(std::move(tangents)),
       steps_(steps),
       instance_(std::move(instance)),
       samplable_(samplable) {
   CAMSIM_CHECK(indices_.size() % 3 == 0 && !indices_.empty());
   CAMSIM_CHECK(normals_.empty() || normals_.size() == positions_.size());
   CAMSIM_CHECK(uvs_.empty() || uvs_.size() == positions_.size());
+  CAMSIM_CHECK(tangents_.empty() || tangents_.size() == positions_.size());
   CAMSIM_CHECK(steps_.count == 1 ? instance_.empty()
                                  : instance_.steps.size() == static_cast<size_t>(steps_.count));
   reserveSpare(positions_, kSpareVertices);
@@ -247,6 +250,30 @@ SurfaceInteraction TriangleMesh::interaction(const Hit& hit, const Ray& ray) con
   SurfaceInteraction si;
   pointOn(static_cast<size_t>(hit.prim), hit.u, hit.v, ray.time, nullptr, si);
   return si;
+}
+
+std::optional<SurfaceTangents> TriangleMesh::tangentFrame(const Hit& hit,
+                                                          const SurfaceInteraction& si) const {
+  const auto tri = static_cast<size_t>(hit.prim);
+  const std::uint32_t i0 = indices_[3 * tri], i1 = indices_[3 * tri + 1],
+                      i2 = indices_[3 * tri + 2];
+  const float b1 = hit.u, b2 = hit.v, b0 = 1.0f - b1 - b2;
+  const glm::mat3 turn = instance_.empty() ? glm::mat3(1.0f) : glm::mat3(transformAt(si.time));
+  if (!tangents_.empty()) {
+    const glm::vec4 t = b0 * tangents_[i0] + b1 * tangents_[i1] + b2 * tangents_[i2];
+    const glm::vec3 tangent = turn * glm::vec3(t);
+    return SurfaceTangents{tangent, (t.w < 0.0f ? -1.0f : 1.0f) * glm::cross(si.ns, tangent)};
+  }
+  const glm::vec2 uv0 = uvs_.empty() ? glm::vec2(0.0f) : uvs_[i0];
+  const glm::vec2 uv1 = uvs_.empty() ? glm::vec2(1.0f, 0.0f) : uvs_[i1];
+  const glm::vec2 uv2 = uvs_.empty() ? glm::vec2(1.0f) : uvs_[i2];
+  const glm::vec2 d02 = uv0 - uv2, d12 = uv1 - uv2;
+  const float det = d02.x * d12.y - d02.y * d12.x;
+  if (!(std::abs(det) > 1e-12f) || !std::isfinite(det)) return std::nullopt;
+  const glm::vec3 p02 = turn * (positions_[i0] - positions_[i2]);
+  const glm::vec3 p12 = turn * (positions_[i1] - positions_[i2]);
+  const float inv = 1.0f / det;
+  return SurfaceTangents{(d12.y * p02 - d02.y * p12) * inv, (d02.x * p12 - d12.x * p02) * inv};
 }
 
 std::optional<ShapeSample> TriangleMesh::sample(const glm::vec3& ref, float u1, glm::vec2 u2,

@@ -11,6 +11,13 @@
 //   texture coordinates uv = b0·uv0 + b1·uv1 + b2·uv2 with per-vertex uvs; a mesh without
 //   them uses (0,0), (1,0), (1,1) at each triangle's corners: uv = (b1 + b2, b2) (pbrt)
 //
+// Tangent frame (normal maps, tangentFrame()): with per-vertex tangents (xyz along ∂p/∂u,
+// w = ±1, glTF's TANGENT) tangent = Σ bᵢ tᵢ.xyz, bitangent = sign(Σ bᵢ tᵢ.w) · ns × tangent;
+// without them ∂p/∂u and ∂p/∂v of the triangle from its uvs (pbrt):
+//   [∂p/∂u ∂p/∂v] = [p0 − p2, p1 − p2] · [uv0 − uv2, uv1 − uv2]⁻¹
+// (none where the uvs are degenerate, |det| ≤ 1e-12 or not finite). A moving mesh turns
+// both by its instance transform at the hit's time.
+//
 // Memory and speed: Embree traces the mesh's own position and index arrays (shared, see
 // EmbreeScene), so they are allocated with one spare element for Embree's 16-byte loads.
 // A static mesh also stores each triangle's unit normal (12 bytes/triangle): every hit
@@ -25,6 +32,8 @@
 #include <cstdint>
 #include <vector>
 
+#include <glm/vec4.hpp>
+
 #include "integrator/geometry/shape.h"
 #include "integrator/sampling/distribution.h"
 
@@ -37,9 +46,11 @@ class TriangleMesh final : public Shape {
   // intersection (Embree never hits them) and are never sampled. samplable: false for a
   // mesh no light samples (sample() and pdf() must then not be called). instance: for a
   // moving mesh (steps.count > 1) one transform per step from the stored pose (Shape).
+  // tangents: empty or one per vertex, in the stored pose (MeshData::tangents).
   TriangleMesh(std::vector<glm::vec3> positions, std::vector<glm::vec3> normals,
                std::vector<std::uint32_t> indices, TimeSteps steps, std::vector<glm::vec2> uvs = {},
-               bool samplable = true, InstanceMotion instance = {});
+               bool samplable = true, InstanceMotion instance = {},
+               std::vector<glm::vec4> tangents = {});
 
   // Embree may load 16 bytes from the last vertex (float3) and the last index triple, so
   // the arrays it shares keep this many spare elements of capacity past their end.
@@ -56,6 +67,8 @@ class TriangleMesh final : public Shape {
 
   float area() const override { return area_; }
   SurfaceInteraction interaction(const Hit& hit, const Ray& ray) const override;
+  std::optional<SurfaceTangents> tangentFrame(const Hit& hit,
+                                              const SurfaceInteraction& si) const override;
   std::optional<ShapeSample> sample(const glm::vec3& ref, float u1, glm::vec2 u2,
                                     float time) const override;
   float pdf(const glm::vec3& ref, const SurfaceInteraction& onShape) const override;
@@ -85,6 +98,7 @@ class TriangleMesh final : public Shape {
   std::vector<glm::vec3> normals_;
   std::vector<std::uint32_t> indices_;
   std::vector<glm::vec2> uvs_;
+  std::vector<glm::vec4> tangents_;     // empty, or one per vertex (tangentFrame)
   std::vector<glm::vec3> faceNormals_;  // static meshes: unit normal per triangle (pointOn)
   TimeSteps steps_;
   InstanceMotion instance_;

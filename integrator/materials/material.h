@@ -14,11 +14,13 @@
 #pragma once
 
 #include <array>
+#include <memory>
 #include <optional>
 
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
+#include "integrator/textures/normal_map.h"
 #include "integrator/textures/texture.h"
 #include "sensor/spectra/sampled_spectrum.h"
 
@@ -105,6 +107,11 @@ class Material {
   bool hasNonSpecular() const { return traits_.nonSpecular; }
   // True when η depends on wavelength (see above).
   bool dispersive() const { return traits_.dispersive; }
+  // The tangent-space normal map that bends the shading normal before the integrator
+  // builds the shading frame (integrator/textures/normal_map.h), or null. Any material may
+  // have one: it changes the frame, not the BSDF. Set by the factory.
+  const NormalMap* normalMap() const { return normalMap_.get(); }
+  void setNormalMap(std::unique_ptr<const NormalMap> map) { normalMap_ = std::move(map); }
 
  protected:
   struct Traits {
@@ -113,6 +120,9 @@ class Material {
     bool dispersive = false;
   };
   Traits traits_;  // set by the constructors of the materials
+
+ private:
+  std::unique_ptr<const NormalMap> normalMap_;
 };
 
 }  // namespace camsim

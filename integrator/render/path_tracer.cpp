@@ -33,6 +33,19 @@ bool sidesAgree(const glm::vec3& n, const glm::vec3& wo, const glm::vec3& wi,
   return geometricReflection == shadingReflection;
 }
 
+// The shading normal at a hit: the shape's, bent by the material's normal map if it has
+// one (integrator/textures/normal_map.h), in the shape's tangent frame (none: unbent).
+glm::vec3 shadingNormal(const Shape& shape, const Hit& hit, const SurfaceInteraction& si,
+                        const Material& material) {
+  const NormalMap* map = material.normalMap();
+  if (!map) [[likely]]
+    return si.ns;
+  const std::optional<SurfaceTangents> t = shape.tangentFrame(hit, si);
+  if (!t) return si.ns;
+  return perturbShadingNormal(si.ns, si.n, t->tangent, t->bitangent,
+                              map->tangentSpaceNormal(si.uv));
+}
+
 struct ShadingPoint {
   const SurfaceInteraction& si;
   const Frame& frame;
@@ -98,7 +111,10 @@ SampledSpectrum trace(const Scene& scene, Ray ray, SampledWavelengths& lambda, S
       }
       break;
     }
-    const SurfaceInteraction si = scene.shape(hit.shape).interaction(hit, ray);
+    const Shape& shape = scene.shape(hit.shape);
+    const Material& material = scene.material(hit.shape);
+    SurfaceInteraction si = shape.interaction(hit, ray);
+    si.ns = shadingNormal(shape, hit, si, material);
     const glm::vec3 wo = -glm::normalize(ray.d);
     const BsdfContext ctx{si.uv};  // one per point: its texture memo serves aov, f, pdf, sample
     if (depth == 0 && visible) [[unlikely]] {
@@ -109,7 +125,7 @@ SampledSpectrum trace(const Scene& scene, Ray ray, SampledWavelengths& lambda, S
       visible->distance = glm::length(si.p - ray.o);
       visible->shape = hit.shape;
       if (visible->wantMaterial) {
-        const SurfaceAov aov = scene.material(hit.shape).aov(lambda, ctx);
+        const SurfaceAov aov = material.aov(lambda, ctx);
         visible->albedo = aov.albedo;
         visible->roughness = aov.roughness;
       }
@@ -127,7 +143,6 @@ SampledSpectrum trace(const Scene& scene, Ray ray, SampledWavelengths& lambda, S
       }
     }
     if (depth >= settings.maxDepth) break;
-    const Material& material = scene.material(hit.shape);
     if (!material.reflects()) break;
     if (material.dispersive()) lambda.terminateSecondary();
 

@@ -7,6 +7,7 @@
 #include "integrator/materials/conductor_material.h"
 #include "integrator/materials/dielectric_material.h"
 #include "integrator/materials/diffuse_material.h"
+#include "integrator/materials/metallic_roughness_material.h"
 #include "integrator/materials/mirror_material.h"
 #include "integrator/materials/plastic_material.h"
 #include "integrator/textures/checkerboard_texture.h"
@@ -64,7 +65,7 @@ std::unique_ptr<FloatTexture> makeFloatTexture(const TextureDescription& d) {
     case TextureDescription::Kind::kConstant:
       return std::make_unique<ConstantFloatTexture>(d.value(550.0f));
     case TextureDescription::Kind::kImage:
-      return std::make_unique<ImageFloatTexture>(*texelsOf(d), d.uvScale, d.uvOffset);
+      return std::make_unique<ImageFloatTexture>(*texelsOf(d), d.uvScale, d.uvOffset, d.channel);
     case TextureDescription::Kind::
         kCheckerboard:  // constants as for kConstant: the value at 550 nm
       return std::make_unique<CheckerboardFloatTexture>(d.checkerA(550.0f), d.checkerB(550.0f),
@@ -74,7 +75,9 @@ std::unique_ptr<FloatTexture> makeFloatTexture(const TextureDescription& d) {
   return nullptr;
 }
 
-std::unique_ptr<Material> makeMaterial(const MaterialDescription& d, TextureCache* cache) {
+namespace {
+
+std::unique_ptr<Material> makeBsdf(const MaterialDescription& d, TextureCache* cache) {
   switch (d.type) {
     case MaterialDescription::Type::kDiffuse:
       return std::make_unique<DiffuseMaterial>(makeSpectrumTexture(d.reflectance, cache));
@@ -105,11 +108,29 @@ std::unique_ptr<Material> makeMaterial(const MaterialDescription& d, TextureCach
       p.masking = d.masking;
       return std::make_unique<PlasticMaterial>(std::move(p));
     }
-    case MaterialDescription::Type::kMetallicRoughness:
-      break;  // no loader makes it yet (issue 24)
+    case MaterialDescription::Type::kMetallicRoughness: {
+      MetallicRoughnessParameters p;
+      p.baseColor = makeSpectrumTexture(d.reflectance, cache);
+      p.metallic = makeFloatTexture(d.metallic);
+      p.roughness = makeFloatTexture(d.roughness);
+      return std::make_unique<MetallicRoughnessMaterial>(std::move(p));
+    }
   }
   CAMSIM_CHECK(false);
   return nullptr;
+}
+
+}  // namespace
+
+std::unique_ptr<NormalMap> makeNormalMap(const TextureDescription& d, float strength) {
+  CAMSIM_CHECK(d.kind == TextureDescription::Kind::kImage);
+  return std::make_unique<NormalMap>(*texelsOf(d), d.uvScale, d.uvOffset, strength);
+}
+
+std::unique_ptr<Material> makeMaterial(const MaterialDescription& d, TextureCache* cache) {
+  std::unique_ptr<Material> m = makeBsdf(d, cache);
+  if (d.normalMap) m->setNormalMap(makeNormalMap(*d.normalMap, d.normalScale));
+  return m;
 }
 
 std::unique_ptr<Light> makeLight(const LightDescription& d) {

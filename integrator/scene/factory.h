@@ -42,6 +42,10 @@ class TextureCache {
 std::unique_ptr<SpectrumTexture> makeSpectrumTexture(const TextureDescription& d,
                                                      TextureCache* cache = nullptr);
 std::unique_ptr<FloatTexture> makeFloatTexture(const TextureDescription& d);
+// A tangent-space normal map from an image texture's description (3 channels, raw values)
+// and glTF's normalTexture.scale.
+std::unique_ptr<NormalMap> makeNormalMap(const TextureDescription& d, float strength);
+// The material's BSDF, with its normal map (d.normalMap) if it has one.
 std::unique_ptr<Material> makeMaterial(const MaterialDescription& d, TextureCache* cache = nullptr);
 std::unique_ptr<Light> makeLight(const LightDescription& d);
 

@@ -54,12 +54,18 @@ std::unique_ptr<Shape> buildShape(const ShapeDescription& s, double t0, double t
   const glm::dmat3 rotation(m);  // uniform scale: normals only need renormalising
   for (const glm::vec3& n : s.mesh.normals)
     normals.emplace_back(glm::normalize(rotation * glm::dvec3(n)));
+  std::vector<glm::vec4> tangents;  // turned like the normals; w (the handedness) kept
+  for (const glm::vec4& t : s.mesh.tangents) {
+    const glm::dvec3 turned = rotation * glm::dvec3(t);
+    const double len = glm::length(turned);
+    tangents.emplace_back(glm::vec3(len > 0.0 ? turned / len : turned), t.w);
+  }
   std::vector<std::uint32_t> indices;
   indices.reserve(s.mesh.indices.size() + TriangleMesh::kSpareIndices);
   indices.assign(s.mesh.indices.begin(), s.mesh.indices.end());
-  return std::make_unique<TriangleMesh>(std::move(positions), std::move(normals),
-                                        std::move(indices), steps, s.mesh.uvs,
-                                        s.emission.has_value(), std::move(instance));
+  return std::make_unique<TriangleMesh>(
+      std::move(positions), std::move(normals), std::move(indices), steps, s.mesh.uvs,
+      s.emission.has_value(), std::move(instance), std::move(tangents));
 }
 
 }  // namespace

@@ -5,6 +5,8 @@
 //               roughness, anisotropy, distribution, masking
 //   dielectric  glass | ior, roughness, anisotropy, distribution, masking
 //   plastic     reflectance, specular (ks), roughness, anisotropy, distribution, masking
+//   metallic_roughness  base_color, metallic, roughness (perceptual, α = r²)
+//   every type  normal_map (an RGB image read raw), normal_scale
 #include <string>
 #include <vector>
 
@@ -20,7 +22,8 @@ MaterialDescription::Type parseType(const YamlValue& type) {
                                           {"mirror", T::kMirror},
                                           {"conductor", T::kConductor},
                                           {"dielectric", T::kDielectric},
-                                          {"plastic", T::kPlastic}});
+                                          {"plastic", T::kPlastic},
+                                          {"metallic_roughness", T::kMetallicRoughness}});
 }
 
 // The microfacet keys shared by conductor, dielectric and plastic.
@@ -105,6 +108,31 @@ void parseDielectric(YamlMap& map, MaterialDescription& m, const TableSearch& se
     (glass ? *glass : *ior).fail("the index of refraction must be > 0");
 }
 
+// glTF's metallic-roughness: the base colour, metalness and perceptual roughness, each a
+// constant or a texture (scalars in [0, 1]).
+void parseMetallicRoughness(YamlMap& map, MaterialDescription& m, const TableSearch& search,
+                            const std::filesystem::path& baseDir, std::vector<std::string>& known) {
+  if (auto c = map.find("base_color"))
+    m.reflectance = parseTexture(*c, TextureUse::kReflectance, search, baseDir);
+  if (auto v = map.find("metallic"))
+    m.metallic = parseTexture(*v, TextureUse::kFraction, search, baseDir);
+  if (auto r = map.find("roughness"))
+    m.roughness = parseTexture(*r, TextureUse::kFraction, search, baseDir);
+  known.insert(known.end(), {"base_color", "metallic", "roughness"});
+}
+
+// Any material: a tangent-space normal map and glTF's normalTexture.scale.
+void parseNormalMap(YamlMap& map, MaterialDescription& m, const TableSearch& search,
+                    const std::filesystem::path& baseDir, std::vector<std::string>& known) {
+  const auto scale = map.find("normal_scale");
+  if (auto n = map.find("normal_map"))
+    m.normalMap = parseTexture(*n, TextureUse::kNormalMap, search, baseDir);
+  else if (scale)
+    scale->fail("'normal_scale' needs a 'normal_map'");
+  if (scale) m.normalScale = static_cast<float>(scale->number(-100.0, 100.0));
+  known.insert(known.end(), {"normal_map", "normal_scale"});
+}
+
 }  // namespace
 
 MaterialDescription parseMaterial(const std::string& name, YamlMap map, const TableSearch& search,
@@ -115,7 +143,7 @@ MaterialDescription parseMaterial(const std::string& name, YamlMap map, const Ta
   std::vector<std::string> known = {"type"};
   using Type = MaterialDescription::Type;
   if (m.type == Type::kMirror) m.reflectance = TextureDescription::constant(1.0);
-  if (m.type != Type::kDielectric) {
+  if (m.type != Type::kDielectric && m.type != Type::kMetallicRoughness) {
     if (auto r = map.find("reflectance"))
       m.reflectance = parseTexture(*r, TextureUse::kReflectance, search, baseDir);
     known.push_back("reflectance");
@@ -128,6 +156,8 @@ MaterialDescription parseMaterial(const std::string& name, YamlMap map, const Ta
     if (auto ks = map.find("specular")) m.specularWeight = static_cast<float>(ks->number(0.0, 1.0));
     known.push_back("specular");
   }
+  if (m.type == Type::kMetallicRoughness) parseMetallicRoughness(map, m, search, baseDir, known);
+  parseNormalMap(map, m, search, baseDir, known);
   map.finish(known);
   return m;
 }

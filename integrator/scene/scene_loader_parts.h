@@ -31,8 +31,10 @@ SensorSettings parseSensorSettings(YamlMap map, const std::filesystem::path& bas
 IspSettings parseIspSettings(YamlMap map);
 // A material input that may be a texture (integrator/scene/scene_loader_textures.cpp):
 // reflectance: a spectrum (see scene_spectra.h), {texture: …} or {checkerboard: …};
-// roughness: a number ≥ 0 or {texture: …}.
-enum class TextureUse { kReflectance, kRoughness };
+// roughness: a number ≥ 0 (≤ 1000) or {texture: …} or {checkerboard: …}; fraction: the
+// same with numbers in [0, 1] (metallic, perceptual roughness); normal map: {texture: …}
+// only, an RGB image read raw. Scalar image textures (roughness, fraction) take `channel`.
+enum class TextureUse { kReflectance, kRoughness, kFraction, kNormalMap };
 TextureDescription parseTexture(const YamlValue& v, TextureUse use, const TableSearch& search,
                                 const std::filesystem::path& baseDir);
 // `materials:` entry → material description (integrator/scene/scene_loader_materials.cpp).

@@ -1,15 +1,16 @@
 // Material inputs that may vary over a surface (docs/scene-format.md, "Textures"):
 //
-// | form                                                    | reflectance | roughness |
-// |---------------------------------------------------------|-------------|-----------|
-// | a spectrum (scene_spectra.h) / a number ≥ 0             | constant    | constant  |
-// | {texture: FILE, encoding: E, scale: [su, sv], offset: [ou, ov]} | image | image |
-// | {checkerboard: {a: A, b: B, checks: N}, scale, offset}  | spectra A, B | numbers A, B |
+// | form                                                    | reflectance | roughness / fraction | normal map |
+// |---------------------------------------------------------|-------------|-----------|------------|
+// | a spectrum (scene_spectra.h) / a number                 | constant    | constant (≥ 0, ≤ 1000 / in [0, 1]) | — |
+// | {texture: FILE, encoding: E, channel: C, scale: [su, sv], offset: [ou, ov]} | image | image | image (RGB, raw; no encoding, no channel) |
+// | {checkerboard: {a: A, b: B, checks: N}, scale, offset}  | spectra A, B | numbers A, B | — |
 //
 // | key          | unit | default | meaning |
 // |--------------|------|---------|---------|
 // | texture      | —    | —       | .png or .exr, relative to the scene file |
-// | encoding     | —    | reflectance: png srgb, exr linear; roughness: raw | srgb, linear, raw |
+// | encoding     | —    | reflectance: png srgb, exr linear; roughness, fraction: raw | srgb, linear, raw |
+// | channel      | —    | −1 (grey, or the mean of R, G, B) | scalar maps: 0 R, 1 G, 2 B, 3 A (image_texture.h) |
 // | scale        | —    | [1, 1]  | uv' = uv · scale + offset (a number: both) |
 // | offset       | —    | [0, 0]  | |
 // | checks       | —    | 8       | squares per unit of u and v, in (0, 10⁶] |
@@ -20,6 +21,7 @@
 // and the description carries the decoded texels to the renderer.
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "integrator/scene/scene_loader_parts.h"
 #include "integrator/textures/image_texture.h"
@@ -29,6 +31,14 @@ namespace camsim {
 namespace {
 
 constexpr double kMaxRoughness = 1e3;
+
+// The largest constant of a scalar input.
+double maxScalar(TextureUse use) {
+  return use == TextureUse::kFraction ? 1.0 : kMaxRoughness;
+}
+bool scalar(TextureUse use) {
+  return use == TextureUse::kRoughness || use == TextureUse::kFraction;
+}
 
 // [x, y] (or one number for both), finite and within single precision.
 glm::vec2 parseVec2(const YamlValue& v) {
@@ -59,19 +69,33 @@ TextureDescription parseImage(YamlMap& map, TextureUse use, const std::filesyste
   } catch (const InputError& e) {
     file.fail(e.message());
   }
-  if (use == TextureUse::kRoughness) t.encoding = TextureEncoding::kRaw;
-  if (auto e = map.find("encoding"))
-    t.encoding = e->choice<TextureEncoding>("encoding", {{"srgb", TextureEncoding::kSrgb},
-                                                         {"linear", TextureEncoding::kLinear},
-                                                         {"raw", TextureEncoding::kRaw}});
+  if (use != TextureUse::kReflectance) t.encoding = TextureEncoding::kRaw;
+  std::vector<std::string> known = {"texture", "scale", "offset"};
+  if (use != TextureUse::kNormalMap) {  // a normal map's numbers are never decoded
+    known.push_back("encoding");
+    if (auto e = map.find("encoding"))
+      t.encoding = e->choice<TextureEncoding>("encoding", {{"srgb", TextureEncoding::kSrgb},
+                                                           {"linear", TextureEncoding::kLinear},
+                                                           {"raw", TextureEncoding::kRaw}});
+  }
+  if (scalar(use)) {
+    known.push_back("channel");
+    if (auto c = map.find("channel")) t.channel = static_cast<int>(c->integer(0, 3));
+  } else if (auto c = map.find("channel")) {
+    c->fail("'channel' selects one channel of a scalar map (roughness, metallic), not of " +
+            std::string(use == TextureUse::kNormalMap ? "a normal map" : "a colour texture"));
+  }
   if (!isRegularFile(t.file)) file.fail("texture file '" + t.file.string() + "' not found");
   try {
     t.image = std::make_shared<const TextureImage>(loadTextureImage(t.file, t.encoding));
   } catch (const InputError& e) {
     file.fail("texture file '" + t.file.string() + "': " + e.message());
   }
+  if (use == TextureUse::kNormalMap && t.image->channels != 3)
+    file.fail("texture file '" + t.file.string() +
+              "': a normal map needs R, G and B channels (it has one grey channel)");
   parseUvTransform(map, t);
-  map.finish({"texture", "encoding", "scale", "offset"});
+  map.finish(known);
   return t;
 }
 
@@ -80,7 +104,7 @@ TextureDescription parseCheckerboard(YamlMap& map, TextureUse use, const TableSe
   t.kind = TextureDescription::Kind::kCheckerboard;
   YamlMap board(map.require("checkerboard"));
   auto value = [&](const YamlValue& v) {
-    if (use == TextureUse::kRoughness) return Spectrum::constant(v.number(0.0, kMaxRoughness));
+    if (scalar(use)) return Spectrum::constant(v.number(0.0, maxScalar(use)));
     return parseSpectrum(v, SpectrumUse::kReflectance, search);
   };
   if (auto a = board.find("a")) t.checkerA = value(*a);
@@ -103,6 +127,7 @@ TextureDescription parseTexture(const YamlValue& v, TextureUse use, const TableS
       search.noteRead(t.file);
       return t;
     }
+    if (use == TextureUse::kNormalMap) v.fail("expected {texture: FILE, …} (an RGB normal map)");
     if (map.has("checkerboard")) return parseCheckerboard(map, use, search);
     if (use == TextureUse::kReflectance && !map.has("rgb") && !map.has("csv") &&
         !map.has("blackbody") && !map.has("illuminant"))
@@ -110,9 +135,13 @@ TextureDescription parseTexture(const YamlValue& v, TextureUse use, const TableS
           "expected a number in [0, 1], {rgb: […]}, {csv: …}, {texture: FILE, …} or {checkerboard: "
           "{…}}");
   }
-  if (use == TextureUse::kRoughness) {
-    if (!v.isScalar()) v.fail("expected a number ≥ 0, {texture: FILE, …} or {checkerboard: {…}}");
-    return TextureDescription::constant(v.number(0.0, kMaxRoughness));
+  if (use == TextureUse::kNormalMap) v.fail("expected {texture: FILE, …} (an RGB normal map)");
+  if (scalar(use)) {
+    if (!v.isScalar())
+      v.fail(std::string(use == TextureUse::kFraction ? "expected a number in [0, 1]"
+                                                      : "expected a number ≥ 0") +
+             ", {texture: FILE, …} or {checkerboard: {…}}");
+    return TextureDescription::constant(v.number(0.0, maxScalar(use)));
   }
   TextureDescription t;
   t.value = parseSpectrum(v, SpectrumUse::kReflectance, search);

@@ -55,6 +55,13 @@ TextureImage fromPng(const std::filesystem::path& file, TextureEncoding encoding
     for (size_t c = 0; c < static_cast<size_t>(image.channels); ++c)
       image.values[t * static_cast<size_t>(image.channels) + c] =
           lut[png.samples[t * static_cast<size_t>(png.channels) + c]];
+  if (png.channels == 2 || png.channels == 4) {  // alpha: the last sample, linear
+    const size_t a = static_cast<size_t>(png.channels) - 1;
+    image.alpha.resize(texels);
+    for (size_t t = 0; t < texels; ++t)
+      image.alpha[t] = static_cast<float>(
+          static_cast<double>(png.samples[t * static_cast<size_t>(png.channels) + a]) / maxCode);
+  }
   return image;
 }
 
@@ -105,6 +112,11 @@ TextureImage fromExr(const std::filesystem::path& file, TextureEncoding encoding
     if (convert) v = m * v;
     for (size_t c = 0; c < source.size(); ++c)
       image.values[t * source.size() + c] = decode(v[static_cast<int>(c)], encoding);
+  }
+  if (const int a = in.channelIndex("A"); a >= 0) {
+    image.alpha.resize(texels);
+    for (size_t t = 0; t < texels; ++t)
+      image.alpha[t] = in.pixels[t * in.channels.size() + static_cast<size_t>(a)];
   }
   return image;
 }
@@ -174,6 +186,7 @@ TexelFootprint bilinearFootprint(glm::vec2 uv, int width, int height) {
   const std::uint32_t w = static_cast<std::uint32_t>(width);
   f.texel = {y0 * w + x0, y0 * w + x1, y1 * w + x0, y1 * w + x1};
   f.weight = {(1.0f - ax) * (1.0f - ay), ax * (1.0f - ay), (1.0f - ax) * ay, ax * ay};
+  f.fraction = {ax, ay};
   return f;
 }
 
@@ -249,16 +262,25 @@ float ImageSpectrumTexture::texelValue(int x, int y, float lambdaNm) const {
 }
 
 ImageFloatTexture::ImageFloatTexture(const TextureImage& image, glm::vec2 uvScale,
-                                     glm::vec2 uvOffset)
+                                     glm::vec2 uvOffset, int channel)
     : width_(image.width), height_(image.height), scale_(uvScale), offset_(uvOffset) {
   CAMSIM_CHECK(width_ > 0 && height_ > 0 && (image.channels == 1 || image.channels == 3));
+  CAMSIM_CHECK(channel >= -1 && channel <= 3);
   const size_t n = static_cast<size_t>(image.channels);
   CAMSIM_CHECK(image.values.size() % n == 0);
   values_.assign(image.values.size() / n, 0.0f);
+  CAMSIM_CHECK(image.alpha.empty() || image.alpha.size() == values_.size());
   for (size_t t = 0; t < values_.size(); ++t) {
-    float sum = 0.0f;
-    for (size_t c = 0; c < n; ++c) sum += image.values[t * n + c];
-    const float v = sum / static_cast<float>(n);
+    float v = 0.0f;
+    if (channel == 3) {
+      v = image.alpha.empty() ? 1.0f : image.alpha[t];
+    } else if (channel >= 0) {  // R, G or B; a grey image's grey for each
+      v = image.values[t * n + (n == 3 ? static_cast<size_t>(channel) : 0)];
+    } else {
+      float sum = 0.0f;
+      for (size_t c = 0; c < n; ++c) sum += image.values[t * n + c];
+      v = sum / static_cast<float>(n);
+    }
     values_[t] = v > 0.0f ? v : 0.0f;  // negative and NaN → 0
   }
 }

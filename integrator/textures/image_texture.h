@@ -12,15 +12,19 @@
 //   linear: value = e, linear Rec.709 RGB (an EXR with other `chromaticities` is converted
 //           to Rec.709: its RGB → XYZ, Bradford to D65, → Rec.709)
 //   raw:    value = e, used as it is (roughness maps)
-// Channels: EXR R, G, B (by name) or one grey channel (Y, or the only channel); PNG grey,
-//   grey+alpha, RGB, RGBA or palette. Alpha is ignored. Anything else is an InputError.
+// Channels: EXR R, G, B (by name) or one grey channel (Y, or the only channel), and A if
+//   present; PNG grey, grey+alpha, RGB, RGBA or palette. Anything else is an InputError.
+//   Alpha is kept apart (TextureImage::alpha, never sRGB-decoded: PNG and EXR store it
+//   linear); only a scalar texture's `channel` 3 reads it.
 //
 // Reflectance (ImageSpectrumTexture): RGB (grey: r = g = b) clamped to [0, 1]; every texel is
 // uplifted once, at load, to a Jakob–Hanika sigmoid polynomial (integrator/textures/reflectance_uplift.h)
 //   ρ_texel(λ) = S(c₀ t² + c₁ t + c₂),  t = (λ − 360 nm)/470 nm,   in (0, 1), smooth
 // (UpliftedTexels; the Scene's materials share one per file and encoding: TextureCache in
 // integrator/scene/factory.h).
-// Scalar (ImageFloatTexture): the grey value, or the mean of R, G, B; negative or NaN → 0.
+// Scalar (ImageFloatTexture): channel −1 (default): the grey value, or the mean of R, G, B;
+//   channel 0, 1, 2: R, G, B (a grey image: its grey for each); channel 3: alpha (1 for an
+//   image without one), as a GPU samples a texture. Negative or NaN → 0.
 //
 // Addressing: texel (x, y) of a w × h image, row y = 0 at the TOP of the picture, has its
 // centre at u = (x + ½)/w, v = 1 − (y + ½)/h: v = 0 is the image's bottom edge (the OBJ /
@@ -47,12 +51,14 @@
 
 namespace camsim {
 
-// A decoded texture image: 1 (grey) or 3 (R, G, B) channels, rows top to bottom.
+// A decoded texture image: 1 (grey) or 3 (R, G, B) channels, rows top to bottom, and the
+// alpha channel apart when the file has one.
 struct TextureImage {
   int width = 0;
   int height = 0;
   int channels = 0;
   std::vector<float> values;  // width·height·channels, interleaved
+  std::vector<float> alpha;   // width·height (linear, as stored), or empty: no alpha
 
   bool operator==(const TextureImage&) const = default;
 };
@@ -67,8 +73,9 @@ TextureImage loadTextureImage(const std::filesystem::path& file, TextureEncoding
 // The four texels a lookup blends (indices into width·height, row-major from the top)
 // and their weights (sum 1).
 struct TexelFootprint {
-  std::array<std::uint32_t, 4> texel{};
+  std::array<std::uint32_t, 4> texel{};  // (x0, y0), (x1, y0), (x0, y1), (x1, y1)
   std::array<float, 4> weight{};
+  glm::vec2 fraction{0.0f};  // (fx, fy): weight = products of (1 − fx, fx) and (1 − fy, fy)
 };
 TexelFootprint bilinearFootprint(glm::vec2 uv, int width, int height);
 
@@ -101,7 +108,9 @@ class ImageSpectrumTexture final : public SpectrumTexture {
 
 class ImageFloatTexture final : public FloatTexture {
  public:
-  ImageFloatTexture(const TextureImage& image, glm::vec2 uvScale, glm::vec2 uvOffset);
+  // channel: −1 (the default reading), 0 … 3 (R, G, B, A), see above.
+  ImageFloatTexture(const TextureImage& image, glm::vec2 uvScale, glm::vec2 uvOffset,
+                    int channel = -1);
   float evaluate(glm::vec2 uv) const override;
 
  private:

@@ -39,7 +39,7 @@ fs::path writeRgbExr(const fs::path& path, int w, int h, const std::vector<glm::
 
 // A w×h grey float texture with the given values (row 0 at the top), raw.
 TextureImage greyImage(int w, int h, std::vector<float> values) {
-  return TextureImage{w, h, 1, std::move(values)};
+  return TextureImage{w, h, 1, std::move(values), {}};
 }
 
 // Spectrum of texel (x, y) on the 1 nm grid and its RGB under D65.
@@ -158,7 +158,7 @@ TEST(ImageTexture, VZeroIsTheBottomRow) {
   const ImageFloatTexture f(greyImage(1, 2, {0.2f, 0.6f}), glm::vec2(1.0f), glm::vec2(0.0f));
   EXPECT_NEAR(f.evaluate({0.5f, 0.25f}), 0.6f, 1e-6f);
   EXPECT_NEAR(f.evaluate({0.5f, 0.75f}), 0.2f, 1e-6f);
-  const ImageFloatTexture rgb(TextureImage{1, 1, 3, {0.1f, 0.2f, 0.6f}}, glm::vec2(1.0f),
+  const ImageFloatTexture rgb(TextureImage{1, 1, 3, {0.1f, 0.2f, 0.6f}, {}}, glm::vec2(1.0f),
                               glm::vec2(0.0f));
   EXPECT_NEAR(rgb.evaluate({0.3f, 0.3f}), 0.3f, 1e-6f);  // the mean of R, G, B
   const ImageFloatTexture negative(greyImage(1, 1, {-0.5f}), glm::vec2(1.0f), glm::vec2(0.0f));
