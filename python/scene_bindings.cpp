@@ -317,6 +317,10 @@ description. Returns the Scene.)doc");
       },
       "Every other file the loader read (meshes, textures, spectra, the sensor description).");
   scene.def_property_readonly(
+      "notes", [](const PyScene& s) { return s.description.notes; },
+      "What the loader left out or changed (features of imported glTF, OBJ/.mtl assets that "
+      "camsim ignores or approximates), one sentence each; the CLI prints them.");
+  scene.def_property_readonly(
       "resolution",
       [](const PyScene& s) {
         return py::make_tuple(s.description.camera.resolution.x, s.description.camera.resolution.y);
