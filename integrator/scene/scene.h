@@ -124,6 +124,7 @@ class Scene {
   std::vector<const AreaLight*> lightOfShape_;
   std::vector<size_t> lightIndexOfShape_;
   DiscreteDistribution lightDistribution_;
+  std::vector<std::unique_ptr<HitFilter>> filters_;  // alpha cut-outs; geometry_ points to them
   std::unique_ptr<EmbreeScene> geometry_;
 };
 

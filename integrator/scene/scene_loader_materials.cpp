@@ -5,6 +5,7 @@
 //               roughness, anisotropy, distribution, masking
 //   dielectric  glass | ior, roughness, anisotropy, distribution, masking
 //   plastic     reflectance, specular (ks), roughness, anisotropy, distribution, masking
+//   any type    alpha_cutout {alpha, factor, cutoff}
 #include <string>
 #include <vector>
 
@@ -128,8 +129,25 @@ MaterialDescription parseMaterial(const std::string& name, YamlMap map, const Ta
     if (auto ks = map.find("specular")) m.specularWeight = static_cast<float>(ks->number(0.0, 1.0));
     known.push_back("specular");
   }
+  if (auto a = map.find("alpha_cutout")) m.alphaCutout = parseAlphaCutout(*a, search, baseDir);
+  known.push_back("alpha_cutout");
   map.finish(known);
   return m;
+}
+
+// Any material: where factor · alpha < cutoff the surface is cut away (see
+// integrator/textures/alpha_cutout.h). `alpha` is a scalar texture read raw, as roughness
+// maps are: a number, {texture: FILE, …} or {checkerboard: …}.
+MaterialDescription::AlphaCutout parseAlphaCutout(const YamlValue& value, const TableSearch& search,
+                                                  const std::filesystem::path& baseDir) {
+  YamlMap map(value);
+  MaterialDescription::AlphaCutout a;
+  if (auto t = map.find("alpha"))
+    a.texture = parseTexture(*t, TextureUse::kRoughness, search, baseDir);
+  if (auto f = map.find("factor")) a.factor = static_cast<float>(f->number(0.0, 1e6));
+  if (auto c = map.find("cutoff")) a.cutoff = static_cast<float>(c->number(0.0, 1e6));
+  map.finish({"alpha", "factor", "cutoff"});
+  return a;
 }
 
 }  // namespace camsim

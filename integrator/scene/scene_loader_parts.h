@@ -2,6 +2,11 @@
 #pragma once
 
 #include <filesystem>
+#include <map>
+#include <string>
+#include <vector>
+
+#include <glm/gtc/quaternion.hpp>
 
 #include <glm/vec3.hpp>
 
@@ -34,10 +39,26 @@ TextureDescription parseTexture(const YamlValue& v, TextureUse use, const TableS
 // `materials:` entry → material description (integrator/scene/scene_loader_materials.cpp).
 MaterialDescription parseMaterial(const std::string& name, YamlMap map, const TableSearch& search,
                                   const std::filesystem::path& baseDir);
+// `{axis: [x, y, z], angle_deg: a}` → the rotation (the axis need not be unit; not zero).
+glm::dquat parseRotation(const YamlValue& value);
 // `motion:` keyframes; `forCamera` forbids scale. Each `translate` minus `origin` (in
 // double): shapes pass the render origin (their keyframes are world positions), the
 // camera zero (its keyframes are offsets from its rest position).
 RigidMotion parseMotion(const YamlValue& value, bool forCamera, const glm::dvec3& origin);
+// A shape's `class:` (a name, or an integer ≥ 1 that is the class number) into s.
+void parseShapeClass(const YamlValue& c, ShapeDescription& s);
+// A mesh shape's `instances:` (scene_loader_instances.cpp): one ShapeDescription per item,
+// all sharing `shape`'s mesh (moved into one MeshData, object space) and its material,
+// emission and class (an item may give its own name, class and material: `materials` maps
+// names to indices). Each is placed by its `translate`/`rotate`/`scale` or `matrix`, then
+// its `motion`; translations are world positions, shifted into render space by `origin`.
+void parseInstances(const YamlValue& list, ShapeDescription shape,
+                    const std::map<std::string, int>& materials, const glm::dvec3& origin,
+                    std::vector<ShapeDescription>& out);
+// `alpha_cutout:` of a material (scene_loader_materials.cpp): {alpha: scalar texture,
+// factor, cutoff}.
+MaterialDescription::AlphaCutout parseAlphaCutout(const YamlValue& value, const TableSearch& search,
+                                                  const std::filesystem::path& baseDir);
 // `lights:` → point, spot, distant and environment lights (scene_loader_lights.cpp);
 // positions are shifted into render space (world − renderOrigin), files resolve against
 // baseDir.
