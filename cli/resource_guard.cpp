@@ -14,8 +14,9 @@ namespace {
 constexpr double kBytesPerGb = 1e9;
 constexpr std::uint64_t kBytesPerTriangle = 100;
 // A mesh instance: the MeshInstance, Embree's instance and its share of the top-level BVH,
-// the Scene's per-shape entries and the description (docs/performance.md measures ≈ 1 kB).
-constexpr std::uint64_t kBytesPerInstance = 2000;
+// the Scene's per-shape entries (0.9 kB) and its ShapeDescription (2.3 kB), as
+// docs/performance.md ("Instancing") measured them.
+constexpr std::uint64_t kBytesPerInstance = 3300;
 
 // "12.34 GB", "56.7 MB", "89 kB" (decimal units, as --max-memory-gb).
 std::string gb(double bytes) {
