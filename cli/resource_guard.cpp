@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <cstdio>
+#include <set>
 #include <string>
 
 #include "sensor/base/input_error.h"
@@ -12,6 +13,10 @@ namespace {
 
 constexpr double kBytesPerGb = 1e9;
 constexpr std::uint64_t kBytesPerTriangle = 100;
+// A mesh instance: the MeshInstance, Embree's instance and its share of the top-level BVH,
+// the Scene's per-shape entries (0.9 kB) and its ShapeDescription (2.3 kB), as
+// docs/performance.md ("Instancing") measured them.
+constexpr std::uint64_t kBytesPerInstance = 3300;
 
 // "12.34 GB", "56.7 MB", "89 kB" (decimal units, as --max-memory-gb).
 std::string gb(double bytes) {
@@ -46,8 +51,17 @@ MemoryEstimate estimateRenderMemory(const SceneDescription& desc) {
   }
   m.film = pixels * filmChannels * 8;
   m.images = pixels * imageBytesPerPixel;
-  for (const ShapeDescription& shape : desc.shapes)
-    m.meshes += static_cast<std::uint64_t>(shape.mesh.indices.size() / 3) * kBytesPerTriangle;
+  // An instanced mesh is stored once (however many shapes place it), each instance costs
+  // a constant.
+  std::set<const MeshData*> shared;
+  for (const ShapeDescription& shape : desc.shapes) {
+    const MeshData* mesh = shape.sharedMesh ? shape.sharedMesh.get() : &shape.mesh;
+    if (shape.sharedMesh && !shared.insert(mesh).second) {
+      m.meshes += kBytesPerInstance;
+      continue;
+    }
+    m.meshes += static_cast<std::uint64_t>(mesh->indices.size() / 3) * kBytesPerTriangle;
+  }
   return m;
 }
 

@@ -10,13 +10,23 @@
 namespace camsim {
 namespace {
 
-// The shape's bounds in its own space (render space for a static shape): min, max.
+// The shape's bounds in the space its motion moves (render space for a static shape): min,
+// max. An instance's are its placed vertices' (placement · object space), not the placed
+// object box's corners, which a rotation would widen.
 std::array<glm::dvec3, 2> objectBounds(const ShapeDescription& s) {
   if (s.kind == ShapeDescription::Kind::kSphere) {
     const glm::dvec3 c(s.centre), r(static_cast<double>(s.radius));
     return {c - r, c + r};
   }
   glm::dvec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
+  if (s.sharedMesh) {
+    for (const glm::vec3& p : s.sharedMesh->positions) {
+      const glm::dvec3 placed(s.placement * glm::dvec4(glm::dvec3(p), 1.0));
+      lo = glm::min(lo, placed);
+      hi = glm::max(hi, placed);
+    }
+    return {lo, hi};
+  }
   for (const glm::vec3& p : s.mesh.positions) {
     lo = glm::min(lo, glm::dvec3(p));
     hi = glm::max(hi, glm::dvec3(p));

@@ -2,12 +2,16 @@
 
 #include <embree3/rtcore.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cstdio>
+#include <map>
+#include <set>
 #include <stdexcept>
 #include <string>
 
 #include "integrator/geometry/embree_memory.h"
+#include "integrator/geometry/mesh_instance.h"
 #include "integrator/geometry/sphere.h"
 #include "integrator/geometry/triangle_mesh.h"
 #include "sensor/base/check.h"
@@ -31,25 +35,59 @@ void throwOnEmbreeError(RTCDevice device, const std::string& what) {
 
 static_assert(sizeof(glm::vec3) == 3 * sizeof(float), "Embree reads the vertices as packed float3");
 
+// Embree's intersection and occlusion filter: asks the hit shape's HitFilter (the user
+// data: one per shape, by instance id for instanced geometry, else by geometry id) and
+// rejects the candidate hit if the surface is not there; traversal then goes on.
+void filterHit(const RTCFilterFunctionNArguments* args) {
+  const auto& filters = *static_cast<const std::vector<const HitFilter*>*>(args->geometryUserPtr);
+  for (unsigned i = 0; i < args->N; ++i) {
+    if (args->valid[i] == 0) continue;
+    const unsigned instance = RTCHitN_instID(args->hit, args->N, i, 0);
+    const unsigned shape =
+        instance != RTC_INVALID_GEOMETRY_ID ? instance : RTCHitN_geomID(args->hit, args->N, i);
+    const HitFilter* filter = filters[shape];
+    if (filter &&
+        !filter->opaque(static_cast<int>(RTCHitN_primID(args->hit, args->N, i)),
+                        RTCHitN_u(args->hit, args->N, i), RTCHitN_v(args->hit, args->N, i)))
+      args->valid[i] = 0;
+  }
+}
+
+// Makes Embree ask `filters` about every candidate hit on geom (before it is committed).
+void attachFilter(RTCGeometry geom, const std::vector<const HitFilter*>* filters) {
+  rtcSetGeometryUserData(geom, const_cast<std::vector<const HitFilter*>*>(filters));
+  rtcSetGeometryIntersectFilterFunction(geom, filterHit);
+  rtcSetGeometryOccludedFilterFunction(geom, filterHit);
+}
+
+// A triangle mesh's own arrays as an Embree geometry (not committed).
+RTCGeometry makeTriangles(RTCDevice device, const TriangleMesh& mesh) {
+  RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+  // Shared, not copied: Embree reads the mesh's arrays in place. It may load 16 bytes
+  // from the last vertex (and index triple), so TriangleMesh allocates one element
+  // more than it uses; checked here because reading past it would be out of bounds.
+  const std::vector<glm::vec3>& p = mesh.positions();
+  CAMSIM_CHECK(p.capacity() >= p.size() + TriangleMesh::kSpareVertices);
+  rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, p.data(), 0,
+                             sizeof(glm::vec3), p.size());
+  const std::vector<std::uint32_t>& idx = mesh.indices();
+  CAMSIM_CHECK(idx.capacity() >= idx.size() + TriangleMesh::kSpareIndices);
+  rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, idx.data(), 0,
+                             3 * sizeof(std::uint32_t), mesh.triangleCount());
+  return geom;
+}
+
 // The shape's pose at rest, or a moving shape's reference pose, as a static Embree
-// geometry (committed).
-RTCGeometry makeGeometry(RTCDevice device, const Shape& shape) {
+// geometry (committed); filters: non-null to have Embree ask them about its hits.
+RTCGeometry makeGeometry(RTCDevice device, const Shape& shape,
+                         const std::vector<const HitFilter*>* filters) {
   RTCGeometry geom = nullptr;
   const auto k = static_cast<size_t>(shape.instanceMotion().reference);
   if (const auto* mesh = dynamic_cast<const TriangleMesh*>(&shape)) {
-    geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
-    // Shared, not copied: Embree reads the mesh's arrays in place. It may load 16 bytes
-    // from the last vertex (and index triple), so TriangleMesh allocates one element
-    // more than it uses; checked here because reading past it would be out of bounds.
-    const std::vector<glm::vec3>& p = mesh->positions();
-    CAMSIM_CHECK(p.capacity() >= p.size() + TriangleMesh::kSpareVertices);
-    rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, p.data(), 0,
-                               sizeof(glm::vec3), p.size());
-    const std::vector<std::uint32_t>& idx = mesh->indices();
-    CAMSIM_CHECK(idx.capacity() >= idx.size() + TriangleMesh::kSpareIndices);
-    rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, idx.data(), 0,
-                               3 * sizeof(std::uint32_t), mesh->triangleCount());
+    geom = makeTriangles(device, *mesh);
+    if (filters) attachFilter(geom, filters);
   } else if (const auto* sphere = dynamic_cast<const Sphere*>(&shape)) {
+    CAMSIM_CHECK(!filters && "hit filters take triangles' barycentrics: meshes only");
     geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_SPHERE_POINT);
     auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0,
                                                           RTC_FORMAT_FLOAT4, sizeof(float) * 4, 1));
@@ -65,25 +103,41 @@ RTCGeometry makeGeometry(RTCDevice device, const Shape& shape) {
   return geom;
 }
 
-// A moving shape: its reference pose in a scene of its own (built at `quality`), placed by
-// a motion-blurred instance with one transform per time step.
-RTCGeometry makeInstance(RTCDevice device, const Shape& shape, RTCBuildQuality quality) {
-  const InstanceMotion& motion = shape.instanceMotion();
+// An instance of `object` with one transform per time step (one: static), committed.
+RTCGeometry instanceOf(RTCDevice device, RTCScene object, const std::vector<glm::mat4>& steps) {
+  RTCGeometry instance = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_INSTANCE);
+  rtcSetGeometryInstancedScene(instance, object);
+  rtcSetGeometryTimeStepCount(instance, static_cast<unsigned>(steps.size()));
+  for (size_t k = 0; k < steps.size(); ++k)
+    rtcSetGeometryTransform(instance, static_cast<unsigned>(k), RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR,
+                            &steps[k][0][0]);
+  rtcCommitGeometry(instance);
+  return instance;
+}
+
+// A scene holding one committed geometry (built at `quality`).
+RTCScene sceneOf(RTCDevice device, RTCGeometry geom, RTCBuildQuality quality) {
   RTCScene object = rtcNewScene(device);
   rtcSetSceneBuildQuality(object, quality);
-  RTCGeometry geom = makeGeometry(device, shape);
   rtcAttachGeometry(object, geom);
   rtcReleaseGeometry(geom);
   rtcCommitScene(object);
-  RTCGeometry instance = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_INSTANCE);
-  rtcSetGeometryInstancedScene(instance, object);
+  return object;
+}
+
+// A moving shape: its reference pose in a scene of its own (built at `quality`), placed by
+// a motion-blurred instance with one transform per time step.
+RTCGeometry makeInstance(RTCDevice device, const Shape& shape, RTCBuildQuality quality,
+                         const std::vector<const HitFilter*>* filters) {
+  RTCScene object = sceneOf(device, makeGeometry(device, shape, filters), quality);
+  RTCGeometry instance = instanceOf(device, object, shape.instanceMotion().steps);
   rtcReleaseScene(object);  // the instance holds it
-  rtcSetGeometryTimeStepCount(instance, static_cast<unsigned>(motion.steps.size()));
-  for (size_t k = 0; k < motion.steps.size(); ++k)
-    rtcSetGeometryTransform(instance, static_cast<unsigned>(k), RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR,
-                            &motion.steps[k][0][0]);
-  rtcCommitGeometry(instance);
   return instance;
+}
+
+RTCBuildQuality qualityFor(size_t triangles) {
+  return triangles > EmbreeScene::kHighQualityTriangles ? RTC_BUILD_QUALITY_MEDIUM
+                                                        : RTC_BUILD_QUALITY_HIGH;
 }
 
 }  // namespace
@@ -101,34 +155,73 @@ struct EmbreeScene::Impl {
   RTCDevice device = nullptr;
   RTCScene scene = nullptr;
   EmbreeMemoryCount memory;
+  std::vector<const HitFilter*> filters;  // per shape (null: opaque); Embree's filter reads it
+  std::map<const TriangleMesh*, RTCScene> meshScenes;  // one BVH per instanced mesh
 
   ~Impl() {
     if (scene) rtcReleaseScene(scene);
+    for (const auto& [mesh, object] : meshScenes) rtcReleaseScene(object);
     if (device) rtcReleaseDevice(device);
+  }
+
+  // The BVH of an instanced mesh, built on first use; filtered if any of its instances is.
+  RTCScene meshScene(const TriangleMesh& mesh, bool filtered) {
+    RTCScene& object = meshScenes[&mesh];
+    if (!object) {
+      RTCGeometry geom = makeTriangles(device, mesh);
+      if (filtered) attachFilter(geom, &filters);
+      rtcCommitGeometry(geom);
+      object = sceneOf(device, geom, qualityFor(mesh.triangleCount()));
+    }
+    return object;
   }
 };
 
 EmbreeScene::EmbreeScene(const std::vector<std::unique_ptr<Shape>>& shapes, double motionStart,
-                         double motionEnd)
+                         double motionEnd, const std::vector<const HitFilter*>& filters)
     : impl_(std::make_unique<Impl>()) {
+  CAMSIM_CHECK(filters.empty() || filters.size() == shapes.size());
   setMotionSpan(motionStart, motionEnd);
   impl_->device = rtcNewDevice(nullptr);
   if (!impl_->device) throw std::runtime_error("cannot create Embree device");
   rtcSetDeviceErrorFunction(impl_->device, reportEmbreeError, nullptr);
   rtcSetDeviceMemoryMonitorFunction(impl_->device, countEmbreeMemory, &impl_->memory);
+  impl_->filters = filters;
+  impl_->filters.resize(shapes.size(), nullptr);
+  const bool anyFilter = std::any_of(impl_->filters.begin(), impl_->filters.end(),
+                                     [](const HitFilter* f) { return f != nullptr; });
+  if (anyFilter &&
+      !rtcGetDeviceProperty(impl_->device, RTC_DEVICE_PROPERTY_FILTER_FUNCTION_SUPPORTED))
+    throw std::runtime_error("this Embree library was built without filter functions");
+  // An instanced mesh is filtered if any of its instances is (the filter asks per instance).
+  std::set<const TriangleMesh*> filteredMeshes;
+  for (size_t id = 0; id < shapes.size(); ++id)
+    if (const auto* instance = dynamic_cast<const MeshInstance*>(shapes[id].get()))
+      if (impl_->filters[id]) filteredMeshes.insert(instance->mesh().get());
   impl_->scene = rtcNewScene(impl_->device);
-  size_t triangles = 0;
+  size_t triangles = 0;  // in the top-level BVH: an instance counts as none
   for (const auto& shape : shapes)
     if (const auto* mesh = dynamic_cast<const TriangleMesh*>(shape.get()))
       triangles += mesh->triangleCount();
-  const RTCBuildQuality quality =
-      triangles > kHighQualityTriangles ? RTC_BUILD_QUALITY_MEDIUM : RTC_BUILD_QUALITY_HIGH;
+  const RTCBuildQuality quality = qualityFor(triangles);
   rtcSetSceneBuildQuality(impl_->scene, quality);
   for (size_t id = 0; id < shapes.size(); ++id) {
     const Shape& shape = *shapes[id];
+    const std::vector<const HitFilter*>* filtersOf = impl_->filters[id] ? &impl_->filters : nullptr;
     hasInstances_ = hasInstances_ || !shape.instanceMotion().empty();
-    RTCGeometry geom = shape.instanceMotion().empty() ? makeGeometry(impl_->device, shape)
-                                                      : makeInstance(impl_->device, shape, quality);
+    RTCGeometry geom = nullptr;
+    if (const auto* instance = dynamic_cast<const MeshInstance*>(&shape)) {
+      const TriangleMesh& mesh = *instance->mesh();
+      RTCScene object = impl_->meshScene(mesh, filteredMeshes.count(&mesh) > 0);
+      geom = instanceOf(impl_->device, object,
+                        instance->instanceMotion().empty()
+                            ? std::vector<glm::mat4>{instance->placement()}
+                            : instance->instanceMotion().steps);
+    } else if (shape.instanceMotion().empty()) {
+      geom = makeGeometry(impl_->device, shape, filtersOf);
+    } else {
+      geom = makeInstance(impl_->device, shape, quality, filtersOf);
+    }
     rtcAttachGeometryByID(impl_->scene, geom, static_cast<unsigned>(id));
     rtcReleaseGeometry(geom);
     throwOnEmbreeError(impl_->device, "adding shape " + std::to_string(id));

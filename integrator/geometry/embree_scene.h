@@ -1,6 +1,6 @@
 // EmbreeScene: every ray query goes through here; this module is the only one that
-// includes Embree. Geometry id (static shapes) or instance id (moving ones) == shape index,
-// so a Hit names its Shape directly.
+// includes Embree. Geometry id (static shapes) or instance id (moving shapes, mesh
+// instances) == shape index, so a Hit names its Shape directly.
 // Triangle meshes become RTC_GEOMETRY_TYPE_TRIANGLE on the mesh's own vertex and index
 // arrays (shared, not copied: TriangleMesh keeps the 16 bytes of padding Embree reads past
 // the last element), spheres RTC_GEOMETRY_TYPE_SPHERE_POINT (small Embree-owned buffers).
@@ -15,6 +15,14 @@
 // shape index): the top-level BVH over a few instances is cheap to traverse, where motion-
 // blurred triangles (one vertex buffer per step) cost twice the static BVH per ray
 // (docs/performance.md). Nothing is rebuilt per sample.
+// Instanced meshes (MeshInstance): one BVH per distinct shared TriangleMesh, built once at
+// the quality its own triangle count gives, and per instance an Embree instance of it
+// (RTC_GEOMETRY_TYPE_INSTANCE; instance id = shape index) with its static placement or one
+// transform per time step; the top-level BVH counts an instance as one primitive.
+// Hit filters (alpha cut-outs, hit_filter.h): a shape given one has Embree's intersection
+// and occlusion filter functions on its triangles (for an instanced mesh: on the shared
+// geometry, asking the filter of the instance hit), so every kind of ray skips the hits it
+// rejects; shapes without one pay nothing.
 #pragma once
 
 #include <cstddef>
@@ -22,6 +30,7 @@
 #include <memory>
 #include <vector>
 
+#include "integrator/geometry/hit_filter.h"
 #include "integrator/geometry/ray.h"
 #include "integrator/geometry/shape.h"
 
@@ -29,9 +38,11 @@ namespace camsim {
 
 class EmbreeScene {
  public:
-  // [motionStart, motionEnd] (s): the interval moving shapes' steps cover (ignored if nothing moves).
+  // [motionStart, motionEnd] (s): the interval moving shapes' steps cover (ignored if nothing
+  // moves). filters: empty, or one per shape (null: opaque; triangle meshes and mesh
+  // instances only), not owned: they must outlive this scene.
   EmbreeScene(const std::vector<std::unique_ptr<Shape>>& shapes, double motionStart,
-              double motionEnd);
+              double motionEnd, const std::vector<const HitFilter*>& filters = {});
   ~EmbreeScene();
   EmbreeScene(const EmbreeScene&) = delete;
   EmbreeScene& operator=(const EmbreeScene&) = delete;
@@ -60,6 +71,7 @@ class EmbreeScene {
   std::unique_ptr<Impl> impl_;
   double timeOffset_ = 0.0, timeScale_ = 0.0;
   bool hasInstances_ = false;  // some shape moves: its steps cover the span it was built over
+                               // (static mesh instances do not count)
   glm::vec3 lower_{1.0f}, upper_{-1.0f};
 };
 

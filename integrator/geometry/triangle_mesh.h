@@ -61,7 +61,20 @@ class TriangleMesh final : public Shape {
   // The stored pose (m): the mesh at rest, or the reference pose of a moving mesh.
   const std::vector<glm::vec3>& positions() const { return positions_; }
   const std::vector<std::uint32_t>& indices() const { return indices_; }
+  const std::vector<glm::vec3>& normals() const { return normals_; }  // empty: none
+  const std::vector<glm::vec2>& uvs() const { return uvs_; }          // empty: none
+  // Static meshes: each triangle's unit normal as interaction() computes it (+z for a
+  // degenerate one); empty for a moving mesh.
+  const std::vector<glm::vec3>& faceNormals() const { return faceNormals_; }
   size_t triangleCount() const { return indices_.size() / 3; }
+  // The texture coordinates interaction() gives triangle tri at barycentrics
+  // (1 − b1 − b2, b1, b2) (Embree's u = b1, v = b2), by the same operations.
+  glm::vec2 uvAt(size_t tri, float b1, float b2) const {
+    if (uvs_.empty()) return {b1 + b2, b2};
+    const float b0 = 1.0f - b1 - b2;
+    return b0 * uvs_[indices_[3 * tri]] + b1 * uvs_[indices_[3 * tri + 1]] +
+           b2 * uvs_[indices_[3 * tri + 2]];
+  }
   const TimeSteps& timeSteps() const override { return steps_; }
   const InstanceMotion& instanceMotion() const override { return instance_; }
 

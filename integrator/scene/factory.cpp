@@ -10,6 +10,7 @@
 #include "integrator/materials/metallic_roughness_material.h"
 #include "integrator/materials/mirror_material.h"
 #include "integrator/materials/plastic_material.h"
+#include "integrator/textures/alpha_cutout.h"
 #include "integrator/textures/checkerboard_texture.h"
 #include "integrator/textures/image_texture.h"
 #include "sensor/base/check.h"
@@ -149,6 +150,14 @@ std::unique_ptr<Light> makeLight(const LightDescription& d) {
   }
   CAMSIM_CHECK(false);
   return nullptr;
+}
+
+std::unique_ptr<HitFilter> makeAlphaCutout(const MaterialDescription::AlphaCutout& d,
+                                           const TriangleMesh& mesh) {
+  if (!d.texture && d.factor >= d.cutoff) return nullptr;
+  std::unique_ptr<FloatTexture> alpha =
+      d.texture ? makeFloatTexture(*d.texture) : std::make_unique<ConstantFloatTexture>(1.0f);
+  return std::make_unique<AlphaCutout>(mesh, std::move(alpha), d.factor, d.cutoff);
 }
 
 }  // namespace camsim

@@ -1,6 +1,6 @@
-// The integrator's one factory: builds materials, textures and lights from their plain
-// descriptions (scene_description.h). Explicit switches over the small closed sets; no
-// registration. Descriptions are validated by the scene loader, so anything invalid here
+// The integrator's one factory: builds materials, textures, lights and alpha cut-outs from
+// their plain descriptions (scene_description.h). Explicit switches over the small closed
+// sets; no registration. Descriptions are validated by the scene loader, so anything invalid here
 // is a programming error (CAMSIM_CHECK).
 #pragma once
 
@@ -9,6 +9,8 @@
 #include <string>
 #include <utility>
 
+#include "integrator/geometry/hit_filter.h"
+#include "integrator/geometry/triangle_mesh.h"
 #include "integrator/lights/light.h"
 #include "integrator/materials/material.h"
 #include "integrator/scene/scene_description.h"
@@ -48,5 +50,9 @@ std::unique_ptr<NormalMap> makeNormalMap(const TextureDescription& d, float stre
 // The material's BSDF, with its normal map (d.normalMap) if it has one.
 std::unique_ptr<Material> makeMaterial(const MaterialDescription& d, TextureCache* cache = nullptr);
 std::unique_ptr<Light> makeLight(const LightDescription& d);
+// A material's alpha cut-out on `mesh` (AlphaCutout, integrator/textures/alpha_cutout.h):
+// null when it is opaque everywhere (no texture and factor ≥ cutoff), so Embree asks nothing.
+std::unique_ptr<HitFilter> makeAlphaCutout(const MaterialDescription::AlphaCutout& d,
+                                           const TriangleMesh& mesh);
 
 }  // namespace camsim

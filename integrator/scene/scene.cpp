@@ -2,12 +2,18 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
+#include <utility>
 
+#include <glm/gtc/matrix_inverse.hpp>
+
+#include "integrator/geometry/mesh_instance.h"
 #include "integrator/geometry/sphere.h"
 #include "integrator/geometry/triangle_mesh.h"
 #include "integrator/materials/diffuse_material.h"
 #include "integrator/scene/factory.h"
 #include "sensor/base/check.h"
+#include "sensor/base/input_error.h"
 
 namespace camsim {
 namespace {
@@ -24,7 +30,77 @@ int timeStepsFor(const RigidMotion& motion, double t0, double t1) {
   return std::clamp(steps, 2, 129);
 }
 
-std::unique_ptr<Shape> buildShape(const ShapeDescription& s, double t0, double t1, bool& moving) {
+// The placement of an instanced mesh, which must be invertible (an InputError names the
+// shape otherwise: descriptions built in code are not checked by the loader).
+void checkPlacement(const SceneDescription& d, const ShapeDescription& s) {
+  const double det = glm::determinant(glm::dmat3(s.placement));
+  bool finite = std::isfinite(det);
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 4; ++r) finite = finite && std::isfinite(s.placement[c][r]);
+  if (!finite || det == 0.0)
+    throw InputError({d.sourceFile, 0, 0}, s.label,
+                     "the instance's placement matrix is singular or not finite");
+}
+
+// One shared object-space mesh per MeshData that several shapes place: static, sampled by
+// no light (emitting instances sample their own placed areas).
+std::shared_ptr<const TriangleMesh> objectMesh(const MeshData& mesh) {
+  std::vector<glm::vec3> positions;
+  positions.reserve(mesh.positions.size() + TriangleMesh::kSpareVertices);
+  positions.assign(mesh.positions.begin(), mesh.positions.end());
+  std::vector<glm::vec3> normals;
+  for (const glm::vec3& n : mesh.normals) normals.emplace_back(glm::normalize(glm::dvec3(n)));
+  std::vector<std::uint32_t> indices;
+  indices.reserve(mesh.indices.size() + TriangleMesh::kSpareIndices);
+  indices.assign(mesh.indices.begin(), mesh.indices.end());
+  return std::make_shared<const TriangleMesh>(std::move(positions), std::move(normals),
+                                              std::move(indices), TimeSteps{}, mesh.uvs, false,
+                                              InstanceMotion{}, mesh.tangents);
+}
+
+// A mesh (object space) placed by `placement` and then the shape's motion: baked into a
+// TriangleMesh of its own (its stored pose in render space).
+std::unique_ptr<Shape> bakeMesh(const ShapeDescription& s, const MeshData& mesh,
+                                const glm::dmat4& placement, TimeSteps steps,
+                                const std::vector<glm::dmat4>& poses) {
+  // A mesh stores one pose: the reference of its instance motion (Shape), or its only one.
+  InstanceMotion instance = InstanceMotion::fromPoses(poses);
+  const glm::dmat4& reference = poses[static_cast<size_t>(instance.reference)];
+  const glm::dmat4 m = reference * placement;  // exactly `reference` for the identity
+  std::vector<glm::vec3> positions;
+  positions.reserve(mesh.positions.size() + TriangleMesh::kSpareVertices);
+  for (const glm::vec3& v : mesh.positions)
+    positions.emplace_back(m * glm::dvec4(glm::dvec3(v), 1.0));
+  std::vector<glm::vec3> normals;
+  // Normals by the placement's inverse transpose (exactly the identity for none), then the
+  // motion's similarity (renormalised below).
+  const glm::dmat3 normalMatrix =
+      glm::dmat3(reference) * glm::inverseTranspose(glm::dmat3(placement));
+  for (const glm::vec3& n : mesh.normals)
+    normals.emplace_back(glm::normalize(normalMatrix * glm::dvec3(n)));
+  // Tangents by the linear part (they lie in the surface), renormalised; a mirroring
+  // placement flips the bitangent's side (w).
+  const glm::dmat3 linear(m);
+  const double handedness = glm::determinant(glm::dmat3(placement)) < 0.0 ? -1.0 : 1.0;
+  std::vector<glm::vec4> tangents;
+  for (const glm::vec4& t : mesh.tangents) {
+    const glm::dvec3 turned = linear * glm::dvec3(t);
+    const double len = glm::length(turned);
+    tangents.emplace_back(glm::vec3(len > 0.0 ? turned / len : turned),
+                          static_cast<float>(handedness * static_cast<double>(t.w)));
+  }
+  std::vector<std::uint32_t> indices;
+  indices.reserve(mesh.indices.size() + TriangleMesh::kSpareIndices);
+  indices.assign(mesh.indices.begin(), mesh.indices.end());
+  return std::make_unique<TriangleMesh>(std::move(positions), std::move(normals),
+                                        std::move(indices), steps, mesh.uvs, s.emission.has_value(),
+                                        std::move(instance), std::move(tangents));
+}
+
+// instanced: the shared object mesh when s is placed as an instance of it (else null).
+std::unique_ptr<Shape> buildShape(const ShapeDescription& s, double t0, double t1,
+                                  const std::shared_ptr<const TriangleMesh>& instanced,
+                                  bool& moving) {
   moving = !s.motion.empty() && !s.motion.isStaticDuring(t0, t1);
   TimeSteps steps{t0, t1, moving ? timeStepsFor(s.motion, t0, t1) : 1};
   auto transformAt = [&](int k) {
@@ -41,31 +117,12 @@ std::unique_ptr<Shape> buildShape(const ShapeDescription& s, double t0, double t
     }
     return std::make_unique<Sphere>(std::move(centres), std::move(radii), steps);
   }
-  // A mesh stores one pose: the reference of its instance motion (Shape), or its only one.
   std::vector<glm::dmat4> poses;
   for (int k = 0; k < steps.count; ++k) poses.push_back(transformAt(k));
-  InstanceMotion instance = InstanceMotion::fromPoses(poses);
-  const glm::dmat4& m = poses[static_cast<size_t>(instance.reference)];
-  std::vector<glm::vec3> positions;
-  positions.reserve(s.mesh.positions.size() + TriangleMesh::kSpareVertices);
-  for (const glm::vec3& v : s.mesh.positions)
-    positions.emplace_back(m * glm::dvec4(glm::dvec3(v), 1.0));
-  std::vector<glm::vec3> normals;
-  const glm::dmat3 rotation(m);  // uniform scale: normals only need renormalising
-  for (const glm::vec3& n : s.mesh.normals)
-    normals.emplace_back(glm::normalize(rotation * glm::dvec3(n)));
-  std::vector<glm::vec4> tangents;  // turned like the normals; w (the handedness) kept
-  for (const glm::vec4& t : s.mesh.tangents) {
-    const glm::dvec3 turned = rotation * glm::dvec3(t);
-    const double len = glm::length(turned);
-    tangents.emplace_back(glm::vec3(len > 0.0 ? turned / len : turned), t.w);
-  }
-  std::vector<std::uint32_t> indices;
-  indices.reserve(s.mesh.indices.size() + TriangleMesh::kSpareIndices);
-  indices.assign(s.mesh.indices.begin(), s.mesh.indices.end());
-  return std::make_unique<TriangleMesh>(
-      std::move(positions), std::move(normals), std::move(indices), steps, s.mesh.uvs,
-      s.emission.has_value(), std::move(instance), std::move(tangents));
+  if (!s.sharedMesh) return bakeMesh(s, s.mesh, glm::dmat4(1.0), steps, poses);
+  if (!instanced) return bakeMesh(s, *s.sharedMesh, s.placement, steps, poses);
+  for (glm::dmat4& pose : poses) pose = pose * s.placement;  // object → render at each step
+  return std::make_unique<MeshInstance>(instanced, poses, steps, s.emission.has_value());
 }
 
 }  // namespace
@@ -164,10 +221,53 @@ Scene::Scene(const SceneDescription& d, glm::dvec2 motionSpan)
   TextureCache textures;  // a texture named by several materials is uplifted once
   for (const MaterialDescription& m : d.materials) materials_.push_back(makeMaterial(m, &textures));
 
+  // A mesh that several shapes place is stored once and instanced; one placed once is baked
+  // (a single-level BVH traces faster).
+  std::map<const MeshData*, int> placements;
+  for (const ShapeDescription& s : d.shapes)
+    if (s.kind == ShapeDescription::Kind::kMesh && s.sharedMesh) {
+      checkPlacement(d, s);
+      ++placements[s.sharedMesh.get()];
+    }
+  std::map<const MeshData*, std::shared_ptr<const TriangleMesh>> objectMeshes;
+  // One cut-out per (mesh Embree reports, material) however many instances share it.
+  std::map<std::pair<const TriangleMesh*, int>, const HitFilter*> cutouts;
+  std::vector<const HitFilter*> filterOfShape;
   std::vector<double> powers;
   for (const ShapeDescription& s : d.shapes) {
     bool moving = false;
-    shapes_.push_back(buildShape(s, exposureStart_, exposureEnd_, moving));
+    std::shared_ptr<const TriangleMesh> instanced;
+    if (s.sharedMesh && placements[s.sharedMesh.get()] > 1) {
+      std::shared_ptr<const TriangleMesh>& mesh = objectMeshes[s.sharedMesh.get()];
+      if (!mesh) mesh = objectMesh(*s.sharedMesh);
+      instanced = mesh;
+    }
+    shapes_.push_back(buildShape(s, exposureStart_, exposureEnd_, instanced, moving));
+    filterOfShape.push_back(nullptr);
+    const MaterialDescription* material =
+        s.material < 0 ? nullptr : &d.materials[static_cast<size_t>(s.material)];
+    if (material && material->alphaCutout) {
+      if (s.kind != ShapeDescription::Kind::kMesh)
+        throw InputError({d.sourceFile, 0, 0}, s.label,
+                         "material '" + material->name +
+                             "' has an alpha cut-out, which needs a mesh with texture "
+                             "coordinates (a sphere has none)");
+      if (s.emission)
+        throw InputError({d.sourceFile, 0, 0}, s.label,
+                         "material '" + material->name +
+                             "' has an alpha cut-out and the shape emits: cut-out emitters "
+                             "are not supported");
+      const TriangleMesh& mesh =
+          instanced ? *instanced : dynamic_cast<const TriangleMesh&>(*shapes_.back());
+      const HitFilter*& filter = cutouts[{&mesh, s.material}];
+      if (!filter) {
+        if (std::unique_ptr<HitFilter> made = makeAlphaCutout(*material->alphaCutout, mesh)) {
+          filter = made.get();
+          filters_.push_back(std::move(made));
+        }
+      }
+      filterOfShape.back() = filter;
+    }
     motions_.push_back(s.motion);
     if (moving)
       modelled_.timeSteps = std::max(modelled_.timeSteps, shapes_.back()->timeSteps().count);
@@ -183,7 +283,7 @@ Scene::Scene(const SceneDescription& d, glm::dvec2 motionSpan)
       lights_.push_back(std::move(light));
     }
   }
-  geometry_ = std::make_unique<EmbreeScene>(shapes_, exposureStart_, exposureEnd_);
+  geometry_ = std::make_unique<EmbreeScene>(shapes_, exposureStart_, exposureEnd_, filterOfShape);
   if (geometry_->boundsLower().x <= geometry_->boundsUpper().x) {
     boundsCentre_ = 0.5f * (geometry_->boundsLower() + geometry_->boundsUpper());
     boundsRadius_ = 0.5f * glm::length(geometry_->boundsUpper() - geometry_->boundsLower());

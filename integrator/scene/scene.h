@@ -71,7 +71,8 @@ class Scene {
   const EmbreeScene& geometry() const { return *geometry_; }
   const Shape& shape(int index) const { return *shapes_[static_cast<size_t>(index)]; }
   std::size_t shapeCount() const { return shapes_.size(); }
-  // A shape's keyframed motion, object → render space (empty: static).
+  // A shape's keyframed motion, object → render space (empty: static). For a mesh instance
+  // the motion's object space is the placed mesh's (placement · the mesh's own space).
   const RigidMotion& motion(int shape) const { return motions_[static_cast<size_t>(shape)]; }
   // The ids of what rays hit, for the ID mattes (scene_ids.h).
   const SceneIds& ids() const { return ids_; }
@@ -124,6 +125,7 @@ class Scene {
   std::vector<const AreaLight*> lightOfShape_;
   std::vector<size_t> lightIndexOfShape_;
   DiscreteDistribution lightDistribution_;
+  std::vector<std::unique_ptr<HitFilter>> filters_;  // alpha cut-outs; geometry_ points to them
   std::unique_ptr<EmbreeScene> geometry_;
 };
 

@@ -40,7 +40,8 @@ struct Context {
   TableSearch search;
   std::map<std::string, int> materialIndex;  // the scene's `materials:`
   ImportedMaterials imported;                // those of mesh files (OBJ .mtl)
-  glm::dvec3 origin{0.0};                    // render-space origin (SceneDescription::renderOrigin)
+  const std::vector<MaterialDescription>* materials = nullptr;  // the scene's, parsed first
+  glm::dvec3 origin{0.0};  // render-space origin (SceneDescription::renderOrigin)
 };
 
 FrameSequence parseFrames(YamlMap map) {
@@ -135,33 +136,44 @@ void checkMesh(const YamlValue& where, const MeshData& mesh) {
   if (!(meshArea2(mesh) > 0.0)) where.fail("mesh has zero area");
 }
 
-// One shape, or several when a mesh file brings its own materials (scene_loader_mtl.cpp).
-std::vector<ShapeDescription> parseShape(YamlMap map, size_t index, Context& ctx,
-                                         SceneDescription& scene) {
+}  // namespace
+
+void parseShapeClass(const YamlValue& c, ShapeDescription& s) {
+  // An integer ≥ 1 is the class number itself; any other text names a class that
+  // scene_ids.h numbers.
+  s.className = c.string();
+  s.classNumber.reset();
+  const bool digits =
+      !s.className.empty() && s.className.find_first_not_of("0123456789") == std::string::npos;
+  if (digits) s.classNumber = static_cast<std::uint32_t>(c.integer(1, UINT32_MAX));
+  if (s.className.empty()) c.fail("class must be a non-empty name or an integer >= 1");
+  if (s.className.find_first_not_of("-0123456789") == std::string::npos && !digits)
+    c.integer(1, UINT32_MAX);  // a negative number: the range error names it
+}
+
+namespace {
+
+// One shape entry → its ShapeDescription, one per material when a mesh file brings its own
+// (scene_loader_mtl.cpp), and each of those once per item of its `instances:` list.
+void parseShape(YamlMap map, size_t index, Context& ctx, SceneDescription& scene,
+                std::vector<ShapeDescription>& out) {
   ShapeDescription s;
   s.label = "shapes[" + std::to_string(index) + "]";
   if (auto n = map.find("name")) s.label = n->string();
   const YamlValue type = map.require("type");
   const std::string t = type.string();
   std::vector<std::string> known = {"type", "name", "class", "material", "emission", "motion"};
-  if (auto c = map.find("class")) {
-    // An integer ≥ 1 is the class number itself; any other text names a class that
-    // scene_ids.h numbers.
-    s.className = c->string();
-    const bool digits =
-        !s.className.empty() && s.className.find_first_not_of("0123456789") == std::string::npos;
-    if (digits) s.classNumber = static_cast<std::uint32_t>(c->integer(1, UINT32_MAX));
-    if (s.className.empty()) c->fail("class must be a non-empty name or an integer >= 1");
-    if (s.className.find_first_not_of("-0123456789") == std::string::npos && !digits)
-      c->integer(1, UINT32_MAX);  // a negative number: the range error names it
-  }
+  if (auto c = map.find("class")) parseShapeClass(*c, s);
+  const std::optional<YamlValue> instances = map.find("instances");
+  if (instances && t != "mesh") instances->fail("instances: only a mesh shape can be instanced");
   if (auto m = map.find("motion")) {
+    if (instances) m->fail("a shape with instances cannot move: give each instance its motion");
     // Keyframes carry the world position, shifted into render space (in double); the
     // geometry itself is then in object space.
     s.motion = parseMotion(*m, false, ctx.origin);
   }
-  // Render-space position of a point given in the scene file.
-  const glm::dvec3 shift = s.motion.empty() ? ctx.origin : glm::dvec3(0.0);
+  // Render-space position of a point given in the scene file (instances: object space).
+  const glm::dvec3 shift = s.motion.empty() && !instances ? ctx.origin : glm::dvec3(0.0);
   auto point = [&](const YamlValue& where, const glm::dvec3& v) {
     return toPoint(where, v - shift);
   };
@@ -220,7 +232,7 @@ std::vector<ShapeDescription> parseShape(YamlMap map, size_t index, Context& ctx
     } else {
       map.self().fail("a mesh needs 'file' or 'vertices' and 'faces'");
     }
-    known.insert(known.end(), {"file", "scale", "translate", "vertices", "faces"});
+    known.insert(known.end(), {"file", "scale", "translate", "vertices", "faces", "instances"});
   } else {
     type.fail("unknown shape type '" + t + "' (known: sphere, rectangle, mesh)");
   }
@@ -230,10 +242,27 @@ std::vector<ShapeDescription> parseShape(YamlMap map, size_t index, Context& ctx
     const auto it = ctx.materialIndex.find(name);
     if (it == ctx.materialIndex.end()) m->fail("no material named '" + name + "'");
     s.material = it->second;
+    if ((*ctx.materials)[static_cast<size_t>(s.material)].alphaCutout) {
+      if (s.kind == ShapeDescription::Kind::kSphere)
+        m->fail("material '" + name +
+                "' has an alpha cut-out, which needs a mesh with texture "
+                "coordinates (a sphere has none)");
+      if (s.emission)
+        m->fail("material '" + name +
+                "' has an alpha cut-out: cut-out emitters are not "
+                "supported");
+    }
   } else if (meshFile && !s.mesh.materialGroups.empty()) {
     map.finish(known);
-    return splitByFileMaterials(std::move(s), meshPath, *meshFile, ctx.imported, ctx.materialIndex,
-                                ctx.search, scene);
+    std::vector<ShapeDescription> parts = splitByFileMaterials(
+        std::move(s), meshPath, *meshFile, ctx.imported, ctx.materialIndex, ctx.search, scene);
+    for (ShapeDescription& part : parts) {
+      if (instances)
+        parseInstances(*instances, std::move(part), ctx.materialIndex, ctx.origin, out);
+      else
+        out.push_back(std::move(part));
+    }
+    return;
   } else if (!s.emission) {
     map.self().fail(
         "shape needs a 'material' (only emitters may omit it: they are then black; an OBJ file "
@@ -242,9 +271,19 @@ std::vector<ShapeDescription> parseShape(YamlMap map, size_t index, Context& ctx
   map.finish(known);
   s.mesh.materialGroups.clear();  // a `material:` overrides the file's
   s.mesh.materialLibraries.clear();
-  std::vector<ShapeDescription> one;
-  one.push_back(std::move(s));
-  return one;
+  if (!instances) {
+    out.push_back(std::move(s));
+    return;
+  }
+  const size_t first = out.size();
+  parseInstances(*instances, std::move(s), ctx.materialIndex, ctx.origin, out);
+  // An instance's own material: the same rule on cut-outs as above.
+  for (size_t k = first; k < out.size(); ++k)
+    if (out[k].emission && out[k].material >= 0 &&
+        (*ctx.materials)[static_cast<size_t>(out[k].material)].alphaCutout)
+      instances->fail("instance '" + out[k].label +
+                      "' has a material with an alpha cut-out, and the shape emits: cut-out "
+                      "emitters are not supported");
 }
 
 }  // namespace
@@ -321,9 +360,8 @@ SceneDescription loadSceneFromText(const std::string& text, const std::string& d
     items = shapes->items();
   else if (includes.empty())
     top.require("shapes");
-  for (size_t i = 0; i < items.size(); ++i)
-    for (ShapeDescription& s : parseShape(YamlMap(items[i]), i, ctx, scene))
-      scene.shapes.push_back(std::move(s));
+  ctx.materials = &scene.materials;
+  for (size_t i = 0; i < items.size(); ++i) parseShape(YamlMap(items[i]), i, ctx, scene, scene.shapes);
   addGltfIncludes(includes, scene);
   if (scene.shapes.empty())
     (top.find("shapes") ? *top.find("shapes") : *top.find("include"))

@@ -128,6 +128,16 @@ Shutter parseShutter(YamlMap map) {
 
 }  // namespace
 
+glm::dquat parseRotation(const YamlValue& value) {
+  YamlMap rm(value);
+  const YamlValue axisValue = rm.require("axis");
+  const glm::dvec3 axis = axisValue.vec3();
+  if (!(glm::length(axis) > 0.0)) axisValue.fail("rotation axis must not be zero");
+  const double degrees = rm.require("angle_deg").number(-1e6, 1e6);
+  rm.finish({"axis", "angle_deg"});
+  return glm::angleAxis(glm::radians(degrees), glm::normalize(axis));
+}
+
 RigidMotion parseMotion(const YamlValue& value, bool forCamera, const glm::dvec3& origin) {
   std::vector<Keyframe> keys;
   for (const YamlValue& item : value.items()) {
@@ -143,15 +153,7 @@ RigidMotion parseMotion(const YamlValue& value, bool forCamera, const glm::dvec3
       k.translate = t->vec3() - origin;
       toPoint(*t, k.translate);
     }
-    if (auto r = map.find("rotate")) {
-      YamlMap rm(*r);
-      const YamlValue axisValue = rm.require("axis");
-      const glm::dvec3 axis = axisValue.vec3();
-      if (!(glm::length(axis) > 0.0)) axisValue.fail("rotation axis must not be zero");
-      const double degrees = rm.require("angle_deg").number(-1e6, 1e6);
-      rm.finish({"axis", "angle_deg"});
-      k.rotate = glm::angleAxis(glm::radians(degrees), glm::normalize(axis));
-    }
+    if (auto r = map.find("rotate")) k.rotate = parseRotation(*r);
     if (auto sc = map.find("scale")) {
       if (forCamera) sc->fail("a camera cannot be scaled");
       k.scale = sc->number(0.0, 1e12, true);

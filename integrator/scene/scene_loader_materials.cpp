@@ -7,6 +7,7 @@
 //   plastic     reflectance, specular (ks), roughness, anisotropy, distribution, masking
 //   metallic_roughness  base_color, metallic, roughness (perceptual, α = r²)
 //   every type  normal_map (an RGB image read raw), normal_scale
+//   any type    alpha_cutout {alpha, factor, cutoff}
 #include <string>
 #include <vector>
 
@@ -158,8 +159,25 @@ MaterialDescription parseMaterial(const std::string& name, YamlMap map, const Ta
   }
   if (m.type == Type::kMetallicRoughness) parseMetallicRoughness(map, m, search, baseDir, known);
   parseNormalMap(map, m, search, baseDir, known);
+  if (auto a = map.find("alpha_cutout")) m.alphaCutout = parseAlphaCutout(*a, search, baseDir);
+  known.push_back("alpha_cutout");
   map.finish(known);
   return m;
+}
+
+// Any material: where factor · alpha < cutoff the surface is cut away (see
+// integrator/textures/alpha_cutout.h). `alpha` is a scalar texture read raw, as roughness
+// maps are: a number, {texture: FILE, …} or {checkerboard: …}.
+MaterialDescription::AlphaCutout parseAlphaCutout(const YamlValue& value, const TableSearch& search,
+                                                  const std::filesystem::path& baseDir) {
+  YamlMap map(value);
+  MaterialDescription::AlphaCutout a;
+  if (auto t = map.find("alpha"))
+    a.texture = parseTexture(*t, TextureUse::kRoughness, search, baseDir);
+  if (auto f = map.find("factor")) a.factor = static_cast<float>(f->number(0.0, 1e6));
+  if (auto c = map.find("cutoff")) a.cutoff = static_cast<float>(c->number(0.0, 1e6));
+  map.finish({"alpha", "factor", "cutoff"});
+  return a;
 }
 
 }  // namespace camsim

@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include <glm/gtc/quaternion.hpp>
+
 #include <glm/vec3.hpp>
 
 #include "integrator/camera/physical_camera.h"
@@ -60,10 +62,26 @@ std::vector<ShapeDescription> splitByFileMaterials(
     ShapeDescription shape, const std::filesystem::path& objPath, const YamlValue& file,
     ImportedMaterials& imported, const std::map<std::string, int>& sceneMaterials,
     const TableSearch& search, SceneDescription& scene);
+// `{axis: [x, y, z], angle_deg: a}` → the rotation (the axis need not be unit; not zero).
+glm::dquat parseRotation(const YamlValue& value);
 // `motion:` keyframes; `forCamera` forbids scale. Each `translate` minus `origin` (in
 // double): shapes pass the render origin (their keyframes are world positions), the
 // camera zero (its keyframes are offsets from its rest position).
 RigidMotion parseMotion(const YamlValue& value, bool forCamera, const glm::dvec3& origin);
+// A shape's `class:` (a name, or an integer ≥ 1 that is the class number) into s.
+void parseShapeClass(const YamlValue& c, ShapeDescription& s);
+// A mesh shape's `instances:` (scene_loader_instances.cpp): one ShapeDescription per item,
+// all sharing `shape`'s mesh (moved into one MeshData, object space) and its material,
+// emission and class (an item may give its own name, class and material: `materials` maps
+// names to indices). Each is placed by its `translate`/`rotate`/`scale` or `matrix`, then
+// its `motion`; translations are world positions, shifted into render space by `origin`.
+void parseInstances(const YamlValue& list, ShapeDescription shape,
+                    const std::map<std::string, int>& materials, const glm::dvec3& origin,
+                    std::vector<ShapeDescription>& out);
+// `alpha_cutout:` of a material (scene_loader_materials.cpp): {alpha: scalar texture,
+// factor, cutoff}.
+MaterialDescription::AlphaCutout parseAlphaCutout(const YamlValue& value, const TableSearch& search,
+                                                  const std::filesystem::path& baseDir);
 // `lights:` → point, spot, distant and environment lights (scene_loader_lights.cpp);
 // positions are shifted into render space (world − renderOrigin), files resolve against
 // baseDir.
