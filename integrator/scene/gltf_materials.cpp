@@ -100,7 +100,13 @@ MaterialDescription convert(const GltfInclude& inc, const GltfMaterial& m, const
   }
   if (m.occlusionTexture.image >= 0)
     note(scene, inc, m.path + ".occlusionTexture: ignored (the path tracer computes occlusion)");
-  if (m.alphaMode != GltfMaterial::AlphaMode::kOpaque) {
+  const bool emits = lumaOf(m.emissiveFactor * m.emissiveStrength) > 0.0;
+  if (m.alphaMode != GltfMaterial::AlphaMode::kOpaque && emits)
+    note(scene, inc,
+         m.path +
+             ".alphaMode: ignored on an emissive material (camsim's emitters "
+             "cannot be cut out)");
+  if (m.alphaMode != GltfMaterial::AlphaMode::kOpaque && !emits) {
     MaterialDescription::AlphaCutout a;
     a.factor = static_cast<float>(m.baseColorFactor.a);
     a.cutoff =

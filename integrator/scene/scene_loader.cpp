@@ -1,6 +1,7 @@
 #include "integrator/scene/scene_loader.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
@@ -38,8 +39,8 @@ namespace {
 struct Context {
   std::filesystem::path baseDir;
   TableSearch search;
-  std::map<std::string, int> materialIndex;  // the scene's `materials:`
-  ImportedMaterials imported;                // those of mesh files (OBJ .mtl)
+  std::map<std::string, int> materialIndex;                     // the scene's `materials:`
+  ImportedMaterials imported;                                   // those of mesh files (OBJ .mtl)
   const std::vector<MaterialDescription>* materials = nullptr;  // the scene's, parsed first
   glm::dvec3 origin{0.0};  // render-space origin (SceneDescription::renderOrigin)
 };
@@ -361,7 +362,8 @@ SceneDescription loadSceneFromText(const std::string& text, const std::string& d
   else if (includes.empty())
     top.require("shapes");
   ctx.materials = &scene.materials;
-  for (size_t i = 0; i < items.size(); ++i) parseShape(YamlMap(items[i]), i, ctx, scene, scene.shapes);
+  for (size_t i = 0; i < items.size(); ++i)
+    parseShape(YamlMap(items[i]), i, ctx, scene, scene.shapes);
   addGltfIncludes(includes, scene);
   if (scene.shapes.empty())
     (top.find("shapes") ? *top.find("shapes") : *top.find("include"))
@@ -396,6 +398,14 @@ SceneDescription loadSceneFromText(const std::string& text, const std::string& d
 }
 
 std::string readSceneFile(const std::filesystem::path& file) {
+  std::string ext = file.extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (ext == ".gltf" || ext == ".glb")
+    throw InputError({file.string(), 0, 0}, "",
+                     "a glTF file is an asset, not a camsim scene: place it in a scene file with "
+                     "`include: [{gltf: " +
+                         file.filename().string() +
+                         "}]` beside a camera (docs/scene-format.md, \"include\")");
   std::ifstream in(file, std::ios::binary);
   if (!in || isDirectory(file))
     throw InputError({file.string(), 0, 0}, "", "cannot open scene file");

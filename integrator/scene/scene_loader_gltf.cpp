@@ -73,6 +73,12 @@ struct Walk {
   void addPrimitive(const GltfNode& g, const GltfMesh& mesh, size_t k, const glm::dmat4& m,
                     const RigidMotion* motion) {
     const GltfPrimitive& p = mesh.primitives[k];
+    if (!(std::abs(glm::determinant(glm::dmat3(m))) > 0.0)) {  // a zero scale hides a node
+      scene.notes.push_back(inc.where + ": " + g.path +
+                            ": its transform is singular (a zero "
+                            "scale): not rendered");
+      return;
+    }
     ShapeDescription s;
     s.kind = ShapeDescription::Kind::kMesh;
     s.label = inc.label + ":" + (g.name.empty() ? g.path : g.name) +

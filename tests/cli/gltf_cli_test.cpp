@@ -49,6 +49,15 @@ TEST(GltfCli, MalformedAssetsExitTwoNamingFileAndJsonPathAndWriteNothing) {
   }
 }
 
+TEST(GltfCli, RenderingAGltfFileDirectlySaysHowToIncludeIt) {
+  test::TempDir dir;
+  const test::RunResult r = runCamsim("render " + quote((kData / "box01.glb").string()) + " -o " +
+                                          quote((dir.path() / "o").string()),
+                                      dir.path());
+  EXPECT_EQ(r.exitCode, 2);
+  EXPECT_NE(r.err.find("a glTF file is an asset, not a camsim scene"), std::string::npos) << r.err;
+}
+
 TEST(GltfCli, NotesArePrintedAndInTheSidecar) {
   test::TempDir dir;
   test::writeFile(dir.path() / "scene.yaml",

@@ -85,5 +85,28 @@ TEST(GltfTexture, CubeFaceShowsItsBaseColourTexels) {
   ::testing::Test::RecordProperty("max_abs_error", std::to_string(worst));
 }
 
+// alphaMode MASK: a quad whose base-colour alpha is a 2×2 checker (bilinear, repeating),
+// in front of an emitter of luminance L that fills the view. alpha(u, v) and 1 − alpha
+// are the same surface shifted by one texel, so exactly half of the quad has alpha ≥ 0.5:
+// the image's mean luminance is L/2 (the quad itself is unlit: max_depth 1, the emitter
+// behind it). A missing cut-out gives ≈ 0, a cut-out ignoring the texture L or 0.
+TEST(GltfTexture, AlphaMaskCutsHalfOfACheckerQuad) {
+  const std::filesystem::path data = std::filesystem::path(CAMSIM_TEST_DATA_DIR) / "gltf";
+  const std::string yaml =
+      "camera: {position: [0, 0, 3], look_at: [0, 0, 0], sensor_width_mm: 24, "
+      "sensor_height_mm: 24, focal_length_mm: 60, resolution: [16, 16]}\n"
+      "render: {spp: 64, max_depth: 1}\n"
+      "include:\n  - gltf: alpha_checker.gltf\n"
+      "shapes:\n  - {type: rectangle, corner: [-5, -5, -1], edge_u: [10, 0, 0], "
+      "edge_v: [0, 10, 0], emission: {luminance: 100}}\n";
+  const test::LuminanceImage img = test::renderLuminance(yaml, 64, 1, data);
+  double sum = 0.0;
+  for (int y = 0; y < 16; ++y)
+    for (int x = 0; x < 16; ++x) sum += img.at(x, y);
+  const double mean = sum / 256.0;
+  test::MaxError error;
+  EXPECT_LT(error(mean, 50.0), 0.02) << "mean " << mean << " cd/m²";
+}
+
 }  // namespace
 }  // namespace camsim
