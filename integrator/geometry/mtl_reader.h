@@ -43,12 +43,18 @@ struct MtlIgnored {
   std::string reason;  // why it is ignored, a phrase ("camsim has no bump maps")
 };
 
+// A value read from a .mtl with its line. (At namespace scope: clang 14 crashed —
+// "cannot compile this scalar expression yet" — reading a member of this template when it
+// was nested in MtlMaterial, in the sanitizer build.)
+template <class T>
+struct MtlField {
+  T value{};
+  int line = 0;  // where it was given (the last of repeated statements wins)
+};
+
 struct MtlMaterial {
   template <class T>
-  struct Field {
-    T value{};
-    int line = 0;  // where it was given (the last of repeated statements wins)
-  };
+  using Field = MtlField<T>;
   struct TextureMap {
     std::string file;  // as written, relative to the .mtl's folder
     glm::dvec2 scale{1.0}, offset{0.0};
