@@ -56,7 +56,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     for (const auto& shape : desc.shapes) {
       FUZZ_CHECK(shape.material >= -1 && shape.material < static_cast<int>(desc.materials.size()));
       if (shape.kind == camsim::ShapeDescription::Kind::kMesh)
-        camsim::fuzz::checkMesh(shape.mesh);
+        camsim::fuzz::checkMesh(shape.sharedMesh ? *shape.sharedMesh : shape.mesh);  // instances
       else
         FUZZ_CHECK(std::isfinite(shape.radius) && shape.radius > 0.0f);
     }
