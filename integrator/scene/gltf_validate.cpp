@@ -137,6 +137,8 @@ void validateGltfJson(const std::string& json, const std::string& displayName,
     int line = 1;
     for (size_t i = 0; i < e.byte && i < json.size(); ++i) line += json[i] == '\n';
     throw InputError({displayName, line, 0}, "", std::string("not valid JSON: ") + e.what());
+  } catch (const Json::exception& e) {  // e.g. out_of_range: a number beyond double's range
+    throw InputError({displayName, 0, 0}, "", std::string("not valid JSON: ") + e.what());
   }
   if (!root.is_object()) throw InputError({displayName, 1, 0}, "", "a glTF file is a JSON object");
   const Checker c{displayName, baseDir, root};

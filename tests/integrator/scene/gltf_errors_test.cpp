@@ -228,5 +228,15 @@ TEST(GltfErrors, UnsupportedFeaturesAreRefusedClearly) {
   }
 }
 
+
+// Found by fuzz_gltf: a number beyond double's range made nlohmann-json throw out_of_range,
+// which escaped as another exception type.
+TEST(GltfErrors, NumberBeyondDoubleRangeIsAnInputError) {
+  const fs::path f = scratch("overflow") / "overflow.gltf";
+  test::writeText(f, R"({"asset":{"version":"2.0"},"nodes":[{"translation":[1e3051210,0,0]}]})");
+  const Refusal r = refusal(f);
+  EXPECT_NE(r.message.find("not valid JSON"), std::string::npos) << r.message;
+}
+
 }  // namespace
 }  // namespace camsim
