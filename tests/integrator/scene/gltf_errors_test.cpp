@@ -228,7 +228,6 @@ TEST(GltfErrors, UnsupportedFeaturesAreRefusedClearly) {
   }
 }
 
-
 // Found by fuzz_gltf: a number beyond double's range made nlohmann-json throw out_of_range,
 // which escaped as another exception type.
 TEST(GltfErrors, NumberBeyondDoubleRangeIsAnInputError) {
