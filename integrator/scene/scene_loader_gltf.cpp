@@ -151,44 +151,7 @@ std::vector<GltfInclude> parseGltfIncludes(const YamlValue& list,
     inc.where = "include[" + std::to_string(i) + "] (" + file.filename().string() + ")";
     inc.label = file.stem().string();
     if (auto n = map.find("name")) inc.label = n->string();
-    // Placement: matrix, or T · R · S.
-    const auto matrix = map.find("matrix");
-    if (matrix) {
-      for (const char* key : {"translate", "rotate", "scale"})
-        if (map.has(key)) map.find(key)->fail("give either 'matrix' or translate/rotate/scale");
-      const std::vector<double> v = matrix->numbers();
-      if (v.size() != 16) matrix->fail("expected 16 numbers (a 4×4 matrix, row by row)");
-      for (int r = 0; r < 4; ++r)
-        for (int c = 0; c < 4; ++c) inc.worldFromAsset[c][r] = v[static_cast<size_t>(r * 4 + c)];
-      if (v[12] != 0.0 || v[13] != 0.0 || v[14] != 0.0 || v[15] != 1.0)
-        matrix->fail("last row must be [0, 0, 0, 1]");
-      if (!(std::abs(glm::determinant(glm::dmat3(inc.worldFromAsset))) > 1e-12))
-        matrix->fail("the matrix is singular");
-    } else {
-      glm::dvec3 t(0.0), sc(1.0);
-      glm::dquat q(1.0, 0.0, 0.0, 0.0);
-      if (auto v = map.find("translate")) t = v->vec3();
-      if (auto v = map.find("rotate")) {
-        YamlMap rm(*v);
-        const YamlValue axisValue = rm.require("axis");
-        const glm::dvec3 axis = axisValue.vec3();
-        if (!(glm::length(axis) > 0.0)) axisValue.fail("rotation axis must not be zero");
-        const double degrees = rm.require("angle_deg").number(-1e6, 1e6);
-        rm.finish({"axis", "angle_deg"});
-        q = glm::angleAxis(glm::radians(degrees), glm::normalize(axis));
-      }
-      if (auto v = map.find("scale")) {
-        if (v->isSequence()) {
-          sc = v->vec3();
-          for (int c = 0; c < 3; ++c)
-            if (!(sc[c] != 0.0)) v->fail("scale components must not be zero");
-        } else {
-          sc = glm::dvec3(v->number(0.0, 1e12, true));
-        }
-      }
-      inc.worldFromAsset =
-          glm::translate(glm::dmat4(1.0), t) * glm::mat4_cast(q) * glm::scale(glm::dmat4(1.0), sc);
-    }
+    inc.worldFromAsset = parsePlacement(map);  // matrix, or T · R · S
     inc.scene = inc.doc.defaultScene;
     if (auto v = map.find("scene")) {
       if (inc.doc.scenes.empty()) v->fail("the file has no scenes");

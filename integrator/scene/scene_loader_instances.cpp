@@ -54,6 +54,32 @@ glm::dmat4 parseAffine(const YamlValue& m) {
   return out;
 }
 
+}  // namespace
+
+glm::dmat4 parsePlacement(YamlMap& map) {
+  const auto matrix = map.find("matrix");
+  const auto translate = map.find("translate");
+  const auto rotate = map.find("rotate");
+  const auto scale = map.find("scale");
+  if (matrix && (translate || rotate || scale))
+    matrix->fail("give either 'matrix' or translate/rotate/scale, not both");
+  if (matrix) return parseAffine(*matrix);
+  glm::dvec3 factors(1.0);
+  if (scale && scale->isScalar()) {
+    factors = glm::dvec3(scaleFactor(*scale, scale->number()));
+  } else if (scale) {
+    factors = scale->vec3();
+    for (int axis = 0; axis < 3; ++axis) scaleFactor(*scale, factors[axis]);
+  }
+  const glm::dquat q = rotate ? parseRotation(*rotate) : glm::dquat(1.0, 0.0, 0.0, 0.0);
+  glm::dmat4 placement = glm::mat4_cast(q) * glm::scale(glm::dmat4(1.0), factors);
+  if (translate) placement[3] = glm::dvec4(translate->vec3(), 1.0);
+  toPoint(translate ? *translate : map.self(), glm::dvec3(placement[3]));
+  return placement;
+}
+
+namespace {
+
 ShapeDescription parseInstance(YamlMap map, size_t j, const ShapeDescription& shape,
                                const std::map<std::string, int>& materials,
                                const glm::dvec3& origin) {
@@ -66,28 +92,9 @@ ShapeDescription parseInstance(YamlMap map, size_t j, const ShapeDescription& sh
     if (it == materials.end()) m->fail("no material named '" + m->string() + "'");
     s.material = it->second;
   }
+  glm::dmat4 placement = parsePlacement(map);
   const auto matrix = map.find("matrix");
   const auto translate = map.find("translate");
-  const auto rotate = map.find("rotate");
-  const auto scale = map.find("scale");
-  if (matrix && (translate || rotate || scale))
-    matrix->fail("give either 'matrix' or translate/rotate/scale, not both");
-  glm::dmat4 placement(1.0);
-  if (matrix) {
-    placement = parseAffine(*matrix);
-  } else {
-    glm::dvec3 factors(1.0);
-    if (scale && scale->isScalar()) {
-      factors = glm::dvec3(scaleFactor(*scale, scale->number()));
-    } else if (scale) {
-      factors = scale->vec3();
-      for (int axis = 0; axis < 3; ++axis) scaleFactor(*scale, factors[axis]);
-    }
-    const glm::dquat q = rotate ? parseRotation(*rotate) : glm::dquat(1.0, 0.0, 0.0, 0.0);
-    placement = glm::mat4_cast(q) * glm::scale(glm::dmat4(1.0), factors);
-    if (translate) placement[3] = glm::dvec4(translate->vec3(), 1.0);
-    toPoint(translate ? *translate : map.self(), glm::dvec3(placement[3]));
-  }
   if (auto m = map.find("motion")) {
     s.motion = parseMotion(*m, false, origin);
   } else {

@@ -62,6 +62,10 @@ std::vector<ShapeDescription> splitByFileMaterials(
     ShapeDescription shape, const std::filesystem::path& objPath, const YamlValue& file,
     ImportedMaterials& imported, const std::map<std::string, int>& sceneMaterials,
     const TableSearch& search, SceneDescription& scene);
+// A placement world ← object from a map's `matrix` (16 numbers, row by row, affine,
+// invertible) or `translate` (m), `rotate` ({axis, angle_deg}), `scale` (a number or
+// [sx, sy, sz], non-zero; negative mirrors): T · R · S (scene_loader_instances.cpp).
+glm::dmat4 parsePlacement(YamlMap& map);
 // `{axis: [x, y, z], angle_deg: a}` → the rotation (the axis need not be unit; not zero).
 glm::dquat parseRotation(const YamlValue& value);
 // `motion:` keyframes; `forCamera` forbids scale. Each `translate` minus `origin` (in
