@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <map>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -112,6 +113,7 @@ class MtlParser {
 
   std::string_view text_;
   MtlLibrary lib_;
+  std::map<std::string, int> lineOf_;  // newmtl name → its line
   int line_ = 0;
 };
 
@@ -142,10 +144,10 @@ void MtlParser::statement(std::string_view keyword, std::string_view rest) {
   const std::string key = lower(keyword);
   if (key == "newmtl") {
     if (rest.empty()) fail("newmtl needs a material name");
-    for (const MtlMaterial& m : lib_.materials)
-      if (m.name == rest)
-        fail("material '" + std::string(rest) + "' is defined twice (first on line " +
-             std::to_string(m.line) + ")");
+    const auto [it, added] = lineOf_.try_emplace(std::string(rest), line_);
+    if (!added)
+      fail("material '" + std::string(rest) + "' is defined twice (first on line " +
+           std::to_string(it->second) + ")");
     if (lib_.materials.size() >= kMaxMaterials) fail("more than 1000000 materials");
     lib_.materials.emplace_back();
     lib_.materials.back().name = std::string(rest);

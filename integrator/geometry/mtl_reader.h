@@ -43,23 +43,26 @@ struct MtlIgnored {
   std::string reason;  // why it is ignored, a phrase ("camsim has no bump maps")
 };
 
-// A value read from a .mtl with its line. (At namespace scope: clang 14 crashed —
-// "cannot compile this scalar expression yet" — reading a member of this template when it
-// was nested in MtlMaterial, in the sanitizer build.)
+// A value of a statement and its line (the last of repeated statements wins).
 template <class T>
 struct MtlField {
   T value{};
-  int line = 0;  // where it was given (the last of repeated statements wins)
+  int line = 0;
 };
 
+// map_Kd: the file as written (relative to the .mtl's folder), its -s and -o, its line.
+struct MtlTextureMap {
+  std::string file;
+  glm::dvec2 scale{1.0}, offset{0.0};
+  int line = 0;
+};
+
+// (Field and TextureMap are defined outside MtlMaterial: Clang 14 crashes on a nested
+// template with a default member initializer used inside the enclosing class.)
 struct MtlMaterial {
   template <class T>
   using Field = MtlField<T>;
-  struct TextureMap {
-    std::string file;  // as written, relative to the .mtl's folder
-    glm::dvec2 scale{1.0}, offset{0.0};
-    int line = 0;
-  };
+  using TextureMap = MtlTextureMap;
 
   std::string name;
   int line = 0;  // its newmtl line

@@ -18,6 +18,7 @@
 #include <cmath>
 #include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "integrator/geometry/mtl_reader.h"
@@ -102,15 +103,14 @@ std::vector<Library> readLibraries(const MeshData& mesh, const std::filesystem::
   return libs;
 }
 
-const MtlMaterial* findMaterial(const std::vector<Library>& libs, const std::string& name,
-                                const Library*& from) {
+// Every material of the libraries by name, with its library: the first library defining a
+// name wins.
+std::map<std::string, std::pair<const Library*, const MtlMaterial*>> byName(
+    const std::vector<Library>& libs) {
+  std::map<std::string, std::pair<const Library*, const MtlMaterial*>> out;
   for (const Library& lib : libs)
-    for (const MtlMaterial& m : lib.mtl.materials)
-      if (m.name == name) {
-        from = &lib;
-        return &m;
-      }
-  return nullptr;
+    for (const MtlMaterial& m : lib.mtl.materials) out.try_emplace(m.name, &lib, &m);
+  return out;
 }
 
 TextureDescription textureOf(const MtlMaterial::TextureMap& map, const Library& lib,
@@ -215,10 +215,12 @@ MaterialDescription mapMaterial(const MtlMaterial& m, const Library& lib, const 
   return d;
 }
 
-// The triangles `tris` of `mesh` with only the vertices they use.
-MeshData subMesh(const MeshData& mesh, const std::vector<std::uint32_t>& tris) {
+// The triangles `tris` of `mesh` with only the vertices they use. `remap` (one entry per
+// position, all UINT32_MAX) is scratch space, left as it was found: the work is linear in
+// the triangles, however many pieces a mesh has.
+MeshData subMesh(const MeshData& mesh, const std::vector<std::uint32_t>& tris,
+                 std::vector<std::uint32_t>& remap) {
   MeshData out;
-  std::vector<std::uint32_t> remap(mesh.positions.size(), UINT32_MAX);
   for (std::uint32_t t : tris) {
     for (int k = 0; k < 3; ++k) {
       const std::uint32_t v = mesh.indices[3 * std::size_t{t} + k];
@@ -232,6 +234,8 @@ MeshData subMesh(const MeshData& mesh, const std::vector<std::uint32_t>& tris) {
       out.indices.push_back(remap[v]);
     }
   }
+  for (std::uint32_t t : tris)
+    for (int k = 0; k < 3; ++k) remap[mesh.indices[3 * std::size_t{t} + k]] = UINT32_MAX;
   return out;
 }
 
@@ -242,6 +246,7 @@ std::vector<ShapeDescription> splitByFileMaterials(
     ImportedMaterials& imported, const std::map<std::string, int>& sceneMaterials,
     const TableSearch& search, SceneDescription& scene) {
   const std::vector<Library> libs = readLibraries(shape.mesh, objPath, search);
+  const auto materials = byName(libs);
   const std::string obj = objPath.string();
   Notes notes;
   for (const Library& lib : libs)
@@ -264,9 +269,8 @@ std::vector<ShapeDescription> splitByFileMaterials(
                              (g.line > 0 ? "a bare usemtl" : "they come before this usemtl") +
                              "): give the shape a 'material:' or name one");
     } else {
-      const Library* lib = nullptr;
-      const MtlMaterial* m = findMaterial(libs, g.name, lib);
-      if (m == nullptr)
+      const auto found = materials.find(g.name);
+      if (found == materials.end())
         throw InputError({obj, g.line, 0}, "",
                          "usemtl '" + g.name + "': " +
                              (libs.empty() ? std::string("the file has no mtllib")
@@ -277,7 +281,8 @@ std::vector<ShapeDescription> splitByFileMaterials(
                   "' has the name of a material of the scene: rename that one");
       auto [it, added] = imported.index.try_emplace(sceneName, int(scene.materials.size()));
       if (added)
-        scene.materials.push_back(mapMaterial(*m, *lib, sceneName, imported, search, notes));
+        scene.materials.push_back(mapMaterial(*found->second.second, *found->second.first,
+                                              sceneName, imported, search, notes));
       index = it->second;
     }
     if (trianglesOf.count(index) == 0) {
@@ -290,6 +295,7 @@ std::vector<ShapeDescription> splitByFileMaterials(
   }
 
   std::vector<ShapeDescription> pieces;
+  std::vector<std::uint32_t> remap(shape.mesh.positions.size(), UINT32_MAX);
   for (int index : order) {
     ShapeDescription piece;
     piece.kind = shape.kind;
@@ -300,7 +306,7 @@ std::vector<ShapeDescription> splitByFileMaterials(
     piece.material = index;
     piece.emission = shape.emission;
     piece.motion = shape.motion;
-    piece.mesh = subMesh(shape.mesh, trianglesOf[index]);
+    piece.mesh = subMesh(shape.mesh, trianglesOf[index], remap);
     if (!(meshArea2(piece.mesh) > 0.0)) {
       notes.add(obj, lineOf[index], "usemtl " + nameOf[index],
                 "dropped: its triangles have zero area (shape " + shape.label + ")");

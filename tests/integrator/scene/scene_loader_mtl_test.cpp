@@ -166,6 +166,26 @@ TEST(SceneLoaderMtlTest, TwoShapesOfOneFileShareItsMaterials) {
   EXPECT_EQ(d.notes.size(), 7u);  // not repeated
 }
 
+// mtllib names one file (its name may hold spaces) or several; the first defining a name wins.
+TEST(SceneLoaderMtlTest, ReadsEveryLibraryOfEveryMtllibLine) {
+  TempDir dir;
+  writeFile(dir.path() / "a.mtl", "newmtl x\nKd 0.6 0.2 0.2\n");
+  writeFile(dir.path() / "b.mtl", "newmtl x\nKd 0.2 0.6 0.2\nnewmtl y\nKd 0.2 0.2 0.6\n");
+  writeFile(dir.path() / "my lib.mtl", "newmtl z\nKd 0.5\n");
+  writeFile(dir.path() / "m.obj",
+            "mtllib a.mtl b.mtl\nmtllib my lib.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\n"
+            "usemtl x\nf 1 2 3\nusemtl y\nf 1 3 2\nusemtl z\nf 2 1 3\n");
+  const SceneDescription d = load(scene("{type: mesh, file: m.obj}"), dir.path());
+  ASSERT_EQ(d.materials.size(), 3u);
+  const auto rgb = [&](int i) {
+    return reflectanceToRgb(d.materials[i].reflectance.value, RgbColorSpace::linearRec709());
+  };
+  EXPECT_NEAR(rgb(0).r, 0.6, 1e-3);  // x from a.mtl
+  EXPECT_NEAR(rgb(1).b, 0.6, 1e-3);  // y from b.mtl
+  EXPECT_NEAR(rgb(2).g, 0.5, 1e-3);
+  EXPECT_EQ(d.inputFiles.size(), 4u);
+}
+
 void expectLoadError(const fs::path& dir, const std::string& text, const fs::path& file, int line,
                      const std::string& what) {
   try {
