@@ -27,7 +27,8 @@ def test_gil_is_released_while_rendering():
             count[0] += 1
             time.sleep(0.001)
 
-    scene = camsim.Scene.from_dict(small_scene(spp=256, resolution=(64, 48)))
+    # ~0.6 s on one thread here (256 spp took 0.16–0.32 s: too short on an idle machine)
+    scene = camsim.Scene.from_dict(small_scene(spp=1024, resolution=(64, 48)))
     t = threading.Thread(target=counter)
     t.start()
     time.sleep(0.05)
