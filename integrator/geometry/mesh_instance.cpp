@@ -209,14 +209,7 @@ std::optional<ShapeSample> MeshInstance::sample(const glm::vec3& ref, float u1, 
   float area = 0.0f;
   pointOn(tri, b.y, 1.0f - b.x - b.y, time, motion_.empty() ? nullptr : &area, s.point);
   const float pdfArea = areaPdf(tri, area);
-  const std::optional<Towards> t = towards(ref, s.point.p);
-  if (!t || !(pdfArea > 0.0f)) {
-    out.reset();
-    return out;
-  }
-  s.wi = t->wi;
-  s.pdf = solidAnglePdf(pdfArea, *t, s.point.n);
-  if (!(s.pdf > 0.0f) || !std::isfinite(s.pdf)) out.reset();
+  completeAreaSample(out, ref, pdfArea);
   return out;
 }
 

@@ -143,6 +143,23 @@ inline float solidAnglePdf(float pdfArea, const Towards& t, const glm::vec3& n) 
   return pdfArea * t.dist2 / cosTheta;
 }
 
+// Completes the sample in `out` of a point (out->point) chosen by area with density pdfArea
+// (m⁻²), as seen from ref: its direction and solid-angle pdf; empties `out` when the sample
+// cannot be used (the point at ref, zero density, seen edge-on, a pdf beyond float). Works on
+// the caller's slot, so meshes build their samples in place (triangle_mesh.cpp).
+inline void completeAreaSample(std::optional<ShapeSample>& out, const glm::vec3& ref,
+                               float pdfArea) {
+  ShapeSample& s = *out;
+  const std::optional<Towards> t = towards(ref, s.point.p);
+  if (!t || !(pdfArea > 0.0f)) {
+    out.reset();
+    return;
+  }
+  s.wi = t->wi;
+  s.pdf = solidAnglePdf(pdfArea, *t, s.point.n);
+  if (!(s.pdf > 0.0f) || !std::isfinite(s.pdf)) out.reset();
+}
+
 // A static shape whose points all lie in one plane and whose normals n (as interaction()
 // and sample() give them) all point to the same side:
 //   |n·x − offset| ≤ spread (m) for every point x, all x within radius (m) of centre, and

@@ -290,14 +290,7 @@ std::optional<ShapeSample> TriangleMesh::sample(const glm::vec3& ref, float u1, 
   float area = 0.0f;
   pointOn(tri, b.y, 1.0f - b.x - b.y, time, &area, s.point);
   const float pdfArea = areaPdf(tri, area);
-  const std::optional<Towards> t = towards(ref, s.point.p);
-  if (!t || !(pdfArea > 0.0f)) {
-    out.reset();
-    return out;
-  }
-  s.wi = t->wi;
-  s.pdf = solidAnglePdf(pdfArea, *t, s.point.n);
-  if (!(s.pdf > 0.0f) || !std::isfinite(s.pdf)) out.reset();
+  completeAreaSample(out, ref, pdfArea);
   return out;
 }
 

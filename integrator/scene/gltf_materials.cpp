@@ -18,6 +18,8 @@
 // Y(c) = 0.2126 r + 0.7152 g + 0.0722 b (linear Rec.709); colours become spectra through
 // rgbToEmissionShape (lights) and the reflectance uplift (textures, constants).
 #include <cmath>
+#include <map>
+#include <tuple>
 
 #include <glm/geometric.hpp>
 
@@ -60,101 +62,124 @@ void note(SceneDescription& scene, const GltfInclude& inc, const std::string& wh
   scene.notes.push_back(inc.where + ": " + what);
 }
 
-MaterialDescription convert(const GltfInclude& inc, const GltfMaterial& m, const std::string& name,
-                            SceneDescription& scene) {
-  MaterialDescription d;
-  d.name = name;
-  d.type = MaterialDescription::Type::kMetallicRoughness;
-  const glm::dvec3 base(m.baseColorFactor);
-  if (m.baseColorTexture.image >= 0) {
-    const GltfImage& im = inc.doc.images[static_cast<size_t>(m.baseColorTexture.image)];
-    d.reflectance = imageTexture(im, 3, [&](const float* t, int c) {
-      return std::clamp(srgbDecode(static_cast<double>(t[c])) * base[c], 0.0, 1.0);
-    });
-  } else {
-    for (int c = 0; c < 3; ++c)
-      if (base[c] < 0.0 || base[c] > 1.0)
-        throw InputError({inc.doc.file.string(), 0, 0},
-                         m.path + ".pbrMetallicRoughness.baseColorFactor",
-                         "components must lie in [0, 1]");
-    d.reflectance.value = rgbToReflectance(base, RgbColorSpace::linearRec709());
+// `base`, or base#2, base#3, … : the first name no material of the scene has.
+std::string uniqueName(const SceneDescription& scene, const std::string& base) {
+  std::string name = base;
+  for (int k = 2;; ++k) {
+    bool clash = false;
+    for (const MaterialDescription& m : scene.materials) clash = clash || m.name == name;
+    if (!clash) return name;
+    name = base + "#" + std::to_string(k);
   }
-  const double metallic = std::clamp(m.metallicFactor, 0.0, 1.0);
-  const double roughness = std::clamp(m.roughnessFactor, 0.0, 1.0);
-  if (m.metallicRoughnessTexture.image >= 0) {
-    const GltfImage& im = inc.doc.images[static_cast<size_t>(m.metallicRoughnessTexture.image)];
-    d.metallic = imageTexture(
-        im, 1, [&](const float* t, int) { return static_cast<double>(t[2]) * metallic; });
-    d.roughness = imageTexture(
-        im, 1, [&](const float* t, int) { return static_cast<double>(t[1]) * roughness; });
-    d.metallic.encoding = d.roughness.encoding = TextureEncoding::kRaw;
-  } else {
-    d.metallic = TextureDescription::constant(metallic);
-    d.roughness = TextureDescription::constant(roughness);
+}
+
+// The include's materials, converting each (image, use, factor) once: materials that share
+// an image and a factor share its converted texels.
+struct MaterialConverter {
+  enum class Use { kBaseColor, kMetallic, kRoughness, kNormal, kAlpha };
+  const GltfInclude& inc;
+  SceneDescription& scene;
+  std::map<std::tuple<int, Use, double, double, double>, TextureDescription> converted;
+
+  template <typename F>
+  TextureDescription texture(int image, Use use, const glm::dvec3& factor, int channels, F f) {
+    TextureDescription& t = converted[{image, use, factor.x, factor.y, factor.z}];
+    if (!t.image) {
+      t = imageTexture(inc.doc.images[static_cast<size_t>(image)], channels, f);
+      if (use != Use::kBaseColor) t.encoding = TextureEncoding::kRaw;
+    }
+    return t;
   }
-  if (m.normalTexture.image >= 0) {
-    const GltfImage& im = inc.doc.images[static_cast<size_t>(m.normalTexture.image)];
-    d.normalMap = imageTexture(im, 3, [](const float* t, int c) { return t[c]; });
-    d.normalMap->encoding = TextureEncoding::kRaw;
-    d.normalScale = static_cast<float>(m.normalTexture.scale);
+
+  MaterialDescription convert(const GltfMaterial& m, const std::string& name) {
+    MaterialDescription d;
+    d.name = name;
+    const double roughness = std::clamp(m.roughnessFactor, 0.0, 1.0);
+    for (const std::string& ext : m.otherExtensions)
+      note(scene, inc, m.path + ".extensions." + ext + ": not supported, ignored");
+    // doubleSided needs nothing: camsim's surfaces reflect on both sides (single-sided
+    // culling is a rasteriser's optimisation, not a material property).
+    if (m.transmission > 0.0) {
+      d.type = MaterialDescription::Type::kDielectric;
+      d.eta = Spectrum::constant(m.ior > 0.0 ? m.ior : 1.5);
+      d.roughness = TextureDescription::constant(roughness * roughness);
+      note(scene, inc,
+           m.path + ": KHR_materials_transmission " + std::to_string(m.transmission) +
+               " → a clear dielectric (η " + std::to_string(m.ior) +
+               "); the base colour tint and partial transmission are not modelled");
+      return withCutout(m, std::move(d));
+    }
+    d.type = MaterialDescription::Type::kMetallicRoughness;
+    const glm::dvec3 base(m.baseColorFactor);
+    if (m.baseColorTexture.image >= 0) {
+      d.reflectance =
+          texture(m.baseColorTexture.image, Use::kBaseColor, base, 3, [&](const float* t, int c) {
+            return std::clamp(srgbDecode(static_cast<double>(t[c])) * base[c], 0.0, 1.0);
+          });
+    } else {
+      for (int c = 0; c < 3; ++c)
+        if (base[c] < 0.0 || base[c] > 1.0)
+          throw InputError({inc.doc.file.string(), 0, 0},
+                           m.path + ".pbrMetallicRoughness.baseColorFactor",
+                           "components must lie in [0, 1]");
+      d.reflectance.value = rgbToReflectance(base, RgbColorSpace::linearRec709());
+    }
+    const double metallic = std::clamp(m.metallicFactor, 0.0, 1.0);
+    if (const int im = m.metallicRoughnessTexture.image; im >= 0) {
+      d.metallic = texture(im, Use::kMetallic, glm::dvec3(metallic), 1, [&](const float* t, int) {
+        return static_cast<double>(t[2]) * metallic;
+      });
+      d.roughness =
+          texture(im, Use::kRoughness, glm::dvec3(roughness), 1,
+                  [&](const float* t, int) { return static_cast<double>(t[1]) * roughness; });
+    } else {
+      d.metallic = TextureDescription::constant(metallic);
+      d.roughness = TextureDescription::constant(roughness);
+    }
+    if (m.normalTexture.image >= 0) {
+      d.normalMap = texture(m.normalTexture.image, Use::kNormal, glm::dvec3(1.0), 3,
+                            [](const float* t, int c) { return t[c]; });
+      d.normalScale = static_cast<float>(m.normalTexture.scale);
+    }
+    return withCutout(m, std::move(d));
   }
-  if (m.occlusionTexture.image >= 0)
-    note(scene, inc, m.path + ".occlusionTexture: ignored (the path tracer computes occlusion)");
-  const bool emits = lumaOf(m.emissiveFactor * m.emissiveStrength) > 0.0;
-  if (m.alphaMode != GltfMaterial::AlphaMode::kOpaque && emits)
-    note(scene, inc,
-         m.path +
-             ".alphaMode: ignored on an emissive material (camsim's emitters "
-             "cannot be cut out)");
-  if (m.alphaMode != GltfMaterial::AlphaMode::kOpaque && !emits) {
+
+  // The parts every converted material shares: the occlusion note and the alpha cut-out.
+  MaterialDescription withCutout(const GltfMaterial& m, MaterialDescription d) {
+    if (m.occlusionTexture.image >= 0)
+      note(scene, inc, m.path + ".occlusionTexture: ignored (the path tracer computes occlusion)");
+    if (m.alphaMode == GltfMaterial::AlphaMode::kOpaque) return d;
+    if (lumaOf(m.emissiveFactor * m.emissiveStrength) > 0.0) {
+      note(scene, inc,
+           m.path +
+               ".alphaMode: ignored on an emissive material (camsim's emitters cannot be "
+               "cut out)");
+      return d;
+    }
     MaterialDescription::AlphaCutout a;
     a.factor = static_cast<float>(m.baseColorFactor.a);
     a.cutoff =
         m.alphaMode == GltfMaterial::AlphaMode::kMask ? static_cast<float>(m.alphaCutoff) : 0.5f;
     if (m.baseColorTexture.image >= 0)
-      a.texture = imageTexture(inc.doc.images[static_cast<size_t>(m.baseColorTexture.image)], 1,
-                               [](const float* t, int) { return t[3]; });
-    if (a.texture) a.texture->encoding = TextureEncoding::kRaw;
+      a.texture = texture(m.baseColorTexture.image, Use::kAlpha, glm::dvec3(1.0), 1,
+                          [](const float* t, int) { return t[3]; });
     d.alphaCutout = a;
     if (m.alphaMode == GltfMaterial::AlphaMode::kBlend)
       note(scene, inc, m.path + ".alphaMode: BLEND is treated as MASK with alphaCutoff 0.5");
+    return d;
   }
-  if (m.transmission > 0.0) {
-    d.type = MaterialDescription::Type::kDielectric;
-    d.eta = Spectrum::constant(m.ior > 0.0 ? m.ior : 1.5);
-    d.roughness = TextureDescription::constant(roughness * roughness);
-    note(scene, inc,
-         m.path + ": KHR_materials_transmission " + std::to_string(m.transmission) +
-             " → a clear dielectric (η " + std::to_string(m.ior) +
-             "); the base colour tint and partial transmission are not modelled");
-    d.normalMap.reset();
-  }
-  for (const std::string& ext : m.otherExtensions)
-    note(scene, inc, m.path + ".extensions." + ext + ": not supported, ignored");
-  if (m.doubleSided) {
-    // camsim's metallic-roughness surface is two-sided already; single-sided culling is a
-    // rasteriser's optimisation, not a material property.
-  }
-  return d;
-}
+};
 
 }  // namespace
 
 std::vector<int> addGltfMaterials(const GltfInclude& inc, SceneDescription& scene) {
+  MaterialConverter converter{inc, scene, {}};
   std::vector<int> index;
-  auto unique = [&](std::string name) {
-    std::string n = name;
-    for (int k = 2;; ++k) {
-      bool clash = false;
-      for (const MaterialDescription& m : scene.materials) clash = clash || m.name == n;
-      if (!clash) return n;
-      n = name + "#" + std::to_string(k);
-    }
-  };
   for (const GltfMaterial& m : inc.doc.materials) {
     index.push_back(static_cast<int>(scene.materials.size()));
-    const std::string name = unique(inc.label + ":" + (m.name.empty() ? m.path : m.name));
-    scene.materials.push_back(convert(inc, m, name, scene));
+    const std::string name =
+        uniqueName(scene, inc.label + ":" + (m.name.empty() ? m.path : m.name));
+    scene.materials.push_back(converter.convert(m, name));
   }
   return index;
 }
@@ -163,14 +188,8 @@ int addGltfDefaultMaterial(const GltfInclude& inc, SceneDescription& scene) {
   // glTF's default material (§3.9.6): base colour 1, metallic 1, roughness 1.
   GltfMaterial fallback;
   fallback.path = "default material";
-  std::string name = inc.label + ":default";
-  for (int k = 2;; ++k) {
-    bool clash = false;
-    for (const MaterialDescription& m : scene.materials) clash = clash || m.name == name;
-    if (!clash) break;
-    name = inc.label + ":default#" + std::to_string(k);
-  }
-  scene.materials.push_back(convert(inc, fallback, name, scene));
+  const std::string name = uniqueName(scene, inc.label + ":default");
+  scene.materials.push_back(MaterialConverter{inc, scene, {}}.convert(fallback, name));
   return static_cast<int>(scene.materials.size()) - 1;
 }
 

@@ -58,14 +58,7 @@ glm::dmat4 lookAt(const YamlValue& where, const YamlValue& positionWhere, glm::d
 }
 
 glm::dmat4 parseMatrix(const YamlValue& m) {
-  const std::vector<double> v = m.numbers();
-  if (v.size() != 16) m.fail("expected 16 numbers (a 4×4 matrix, row by row)");
-  glm::dmat4 out(1.0);
-  for (int row = 0; row < 4; ++row)
-    for (int col = 0; col < 4; ++col) out[col][row] = v[static_cast<size_t>(row * 4 + col)];
-  if (v[12] != 0.0 || v[13] != 0.0 || v[14] != 0.0 || v[15] != 1.0)
-    m.fail("last row must be [0, 0, 0, 1]");
-  toPoint(m, glm::dvec3(v[3], v[7], v[11]));
+  const glm::dmat4 out = parseAffineMatrix(m);
   const glm::dvec3 x(out[0]), y(out[1]), z(out[2]);
   if (std::abs(glm::dot(x, y)) > 1e-4 || std::abs(glm::dot(y, z)) > 1e-4 ||
       std::abs(glm::dot(x, z)) > 1e-4 || std::abs(glm::length(x) - 1.0) > 1e-4 ||
@@ -127,6 +120,18 @@ Shutter parseShutter(YamlMap map) {
 }
 
 }  // namespace
+
+glm::dmat4 parseAffineMatrix(const YamlValue& m) {
+  const std::vector<double> v = m.numbers();
+  if (v.size() != 16) m.fail("expected 16 numbers (a 4×4 matrix, row by row)");
+  glm::dmat4 out(1.0);
+  for (int row = 0; row < 4; ++row)
+    for (int col = 0; col < 4; ++col) out[col][row] = v[static_cast<size_t>(row * 4 + col)];
+  if (v[12] != 0.0 || v[13] != 0.0 || v[14] != 0.0 || v[15] != 1.0)
+    m.fail("last row must be [0, 0, 0, 1] (an affine map)");
+  toPoint(m, glm::dvec3(out[3]));  // the translation must fit in single precision
+  return out;
+}
 
 glm::dquat parseRotation(const YamlValue& value) {
   YamlMap rm(value);

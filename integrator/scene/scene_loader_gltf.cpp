@@ -27,6 +27,8 @@ struct Walk {
   int defaultMaterial = -1;    // glTF's default material, added when a primitive needs it
   std::vector<bool> animated;
   std::vector<int> meshUses;  // static nodes using each mesh
+  // Each glTF material's emission, worked out (and its notes written) once.
+  std::map<int, std::optional<EmissionDescription>> emissions;
   std::map<std::pair<int, int>, std::shared_ptr<const MeshData>> shared;  // (mesh, primitive)
 
   // Node n under renderFromParent; below an animated node `anim` (−1: none), `below` is
@@ -87,7 +89,11 @@ struct Walk {
     s.classNumber = inc.classNumber;
     if (p.material < 0 && defaultMaterial < 0) defaultMaterial = addGltfDefaultMaterial(inc, scene);
     s.material = p.material >= 0 ? materials[static_cast<size_t>(p.material)] : defaultMaterial;
-    s.emission = gltfEmission(inc, p.material, scene);
+    const auto known = emissions.find(p.material);
+    s.emission =
+        known != emissions.end()
+            ? known->second
+            : emissions.emplace(p.material, gltfEmission(inc, p.material, scene)).first->second;
     if (motion) s.motion = *motion;
     if (!motion && meshUses[static_cast<size_t>(g.mesh)] > 1) {
       auto& sharedMesh = shared[{g.mesh, static_cast<int>(k)}];
@@ -179,11 +185,11 @@ std::vector<GltfInclude> parseGltfIncludes(const YamlValue& list,
     }
     if (auto v = map.find("lights")) inc.lights = v->boolean();
     if (auto v = map.find("emissive_luminance")) inc.emissiveLuminance = v->number(0.0, 1e12);
-    if (auto c = map.find("class")) {
-      inc.className = c->string();
-      if (inc.className.empty()) c->fail("class must be a non-empty name or an integer >= 1");
-      if (inc.className.find_first_not_of("0123456789") == std::string::npos)
-        inc.classNumber = static_cast<std::uint32_t>(c->integer(1, UINT32_MAX));
+    if (auto c = map.find("class")) {  // the rule of a shape's class:
+      ShapeDescription classOf;
+      parseShapeClass(*c, classOf);
+      inc.className = classOf.className;
+      inc.classNumber = classOf.classNumber;
     }
     map.finish({"gltf", "name", "matrix", "translate", "rotate", "scale", "scene", "animation",
                 "lights", "emissive_luminance", "class"});
@@ -253,7 +259,7 @@ double applyGltfCamera(const YamlValue& spec, const std::vector<GltfInclude>& in
 
 void addGltfIncludes(std::vector<GltfInclude>& includes, SceneDescription& scene) {
   for (GltfInclude& inc : includes) {
-    Walk w{inc, scene, addGltfMaterials(inc, scene), -1, gltfAnimatedNodes(inc), {}, {}};
+    Walk w{inc, scene, addGltfMaterials(inc, scene), -1, gltfAnimatedNodes(inc), {}, {}, {}};
     w.meshUses.assign(inc.doc.meshes.size(), 0);
     // Count static uses of each mesh (nodes outside animated chains).
     std::function<void(int, bool)> count = [&](int n, bool moving) {

@@ -37,15 +37,8 @@ double scaleFactor(const YamlValue& where, double s) {
 }
 
 // `matrix`: 16 numbers row by row, an affine map with an invertible linear part.
-glm::dmat4 parseAffine(const YamlValue& m) {
-  const std::vector<double> v = m.numbers();
-  if (v.size() != 16) m.fail("expected 16 numbers (a 4×4 matrix, row by row)");
-  glm::dmat4 out(1.0);
-  for (int row = 0; row < 4; ++row)
-    for (int col = 0; col < 4; ++col) out[col][row] = v[static_cast<size_t>(row * 4 + col)];
-  if (v[12] != 0.0 || v[13] != 0.0 || v[14] != 0.0 || v[15] != 1.0)
-    m.fail("last row must be [0, 0, 0, 1] (an affine map)");
-  toPoint(m, glm::dvec3(out[3]));
+glm::dmat4 parseInvertibleAffine(const YamlValue& m) {
+  const glm::dmat4 out = parseAffineMatrix(m);
   // Singular relative to the size of the columns (a float placement would be degenerate).
   const glm::dmat3 a(out);
   const double size = glm::length(a[0]) * glm::length(a[1]) * glm::length(a[2]);
@@ -63,7 +56,7 @@ glm::dmat4 parsePlacement(YamlMap& map) {
   const auto scale = map.find("scale");
   if (matrix && (translate || rotate || scale))
     matrix->fail("give either 'matrix' or translate/rotate/scale, not both");
-  if (matrix) return parseAffine(*matrix);
+  if (matrix) return parseInvertibleAffine(*matrix);
   glm::dvec3 factors(1.0);
   if (scale && scale->isScalar()) {
     factors = glm::dvec3(scaleFactor(*scale, scale->number()));

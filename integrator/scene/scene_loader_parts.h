@@ -62,6 +62,9 @@ std::vector<ShapeDescription> splitByFileMaterials(
     ShapeDescription shape, const std::filesystem::path& objPath, const YamlValue& file,
     ImportedMaterials& imported, const std::map<std::string, int>& sceneMaterials,
     const TableSearch& search, SceneDescription& scene);
+// 16 numbers, row by row, with last row [0, 0, 0, 1] and a translation float can hold: the
+// matrix (scene_loader_camera.cpp). Callers check the linear part (orthonormal, invertible).
+glm::dmat4 parseAffineMatrix(const YamlValue& m);
 // A placement world ← object from a map's `matrix` (16 numbers, row by row, affine,
 // invertible) or `translate` (m), `rotate` ({axis, angle_deg}), `scale` (a number or
 // [sx, sy, sz], non-zero; negative mirrors): T · R · S (scene_loader_instances.cpp).
