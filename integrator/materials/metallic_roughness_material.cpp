@@ -7,6 +7,7 @@
 #include <glm/geometric.hpp>
 
 #include "integrator/geometry/math.h"
+#include "integrator/materials/dielectric_specular_albedo.h"
 #include "integrator/materials/fresnel.h"
 #include "sensor/base/check.h"
 
@@ -14,6 +15,8 @@ namespace camsim {
 namespace {
 
 constexpr float kDielectricF0 = 0.04f;  // ((1 − 1.5)/(1 + 1.5))², glTF's ior 1.5
+// E_avg of a smooth dielectric: 2 ∫ F_d(μ) μ dμ = 0.04 + 0.96 · 2 B(2, 6) = 0.04 + 0.96/21.
+constexpr float kSmoothAverage = kDielectricF0 + (1.0f - kDielectricF0) / 21.0f;
 
 // x clamped to [0, 1]; NaN → 0.
 float unit(float x) {
@@ -32,6 +35,7 @@ float schlickWeight(float cosTheta) {
 MetallicRoughnessMaterial::MetallicRoughnessMaterial(MetallicRoughnessParameters p)
     : p_(std::move(p)) {
   CAMSIM_CHECK(p_.baseColor != nullptr && p_.metallic != nullptr && p_.roughness != nullptr);
+  DielectricSpecularAlbedo::get();  // built now (once), not inside a render
   // A smooth metal everywhere has only its delta lobe: light sampling can be skipped.
   const auto* r = dynamic_cast<const ConstantFloatTexture*>(p_.roughness.get());
   const auto* m = dynamic_cast<const ConstantFloatTexture*>(p_.metallic.get());
@@ -50,17 +54,29 @@ float MetallicRoughnessMaterial::alpha(const BsdfContext& ctx) const {
 MetallicRoughnessMaterial::Lobes MetallicRoughnessMaterial::lobes(const glm::vec3& wo,
                                                                   const SampledWavelengths& lambda,
                                                                   const BsdfContext& ctx) const {
+  const float r = unit(p_.roughness->evaluate(ctx.uv));
   Lobes l{ctx.lookup(*p_.baseColor, lambda), unit(p_.metallic->evaluate(ctx.uv)), 0.0f,
-          MicrofacetModel::fromRoughness(MicrofacetDistribution::kGgx, MaskingModel::kSmith,
-                                         alpha(ctx), 0.0f)};
+          MicrofacetModel::fromRoughness(MicrofacetDistribution::kGgx, MaskingModel::kSmith, r * r,
+                                         0.0f),
+          r};
   for (int i = 0; i < kWavelengthSamples; ++i) l.baseColor[i] = unit(l.baseColor[i]);
-  const float s = schlickWeight(wo.z), fd = kDielectricF0 + (1.0f - kDielectricF0) * s;
-  const float cmax = l.baseColor.maxComponent(), m = l.metallic;
-  const float wDiffuse = (1.0f - m) * (1.0f - fd) * cmax;
-  const float wSpecular = (1.0f - m) * fd + m * (cmax + (1.0f - cmax) * s);
+  const float s = schlickWeight(wo.z), m = l.metallic;
+  l.albedoOut = specularAlbedo(l, wo.z);
+  const float average =
+      l.model.effectivelySmooth() ? kSmoothAverage : DielectricSpecularAlbedo::get().average(r);
+  l.diffuseScale = (1.0f - m) * (1.0f - l.albedoOut) * kInvPi / (1.0f - average);
+  const float cmax = l.baseColor.maxComponent();
+  const float wDiffuse = (1.0f - m) * (1.0f - l.albedoOut) * cmax;
+  const float wSpecular = (1.0f - m) * l.albedoOut + m * (cmax + (1.0f - cmax) * s);
   const float total = wDiffuse + wSpecular;
   l.pDiffuse = total > 0.0f ? wDiffuse / total : 0.0f;
   return l;
+}
+
+float MetallicRoughnessMaterial::specularAlbedo(const Lobes& l, float cosTheta) {
+  return l.model.effectivelySmooth()
+             ? DielectricSpecularAlbedo::fresnel(cosTheta)
+             : DielectricSpecularAlbedo::get().albedo(cosTheta, l.roughness);
 }
 
 MetallicRoughnessMaterial::Eval MetallicRoughnessMaterial::evaluate(const Lobes& l,
@@ -69,7 +85,8 @@ MetallicRoughnessMaterial::Eval MetallicRoughnessMaterial::evaluate(const Lobes&
                                                                     const glm::vec3& wm) const {
   const float s = schlickWeight(std::abs(glm::dot(wo, wm)));
   const float fd = kDielectricF0 + (1.0f - kDielectricF0) * s, m = l.metallic;
-  Eval e{l.baseColor * ((1.0f - m) * (1.0f - fd) * kInvPi), l.pDiffuse * wi.z * kInvPi};
+  Eval e{l.baseColor * (l.diffuseScale * (1.0f - specularAlbedo(l, wi.z))),
+         l.pDiffuse * wi.z * kInvPi};
   if (l.model.effectivelySmooth()) return e;
   const MicrofacetModel::Reflection r = l.model.reflection(wo, wi, wm);
   if (r.f > 0.0f) {

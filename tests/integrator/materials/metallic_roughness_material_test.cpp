@@ -1,14 +1,17 @@
 // MetallicRoughnessMaterial (integrator/materials/metallic_roughness_material.cpp), the glTF
 // 2.0 Appendix B BRDF, through the BSDF harness and against the specification's formulas:
 //  - f equals Appendix B written out independently here (double precision, the spec's own
-//    D and height-correlated V_GGX, fresnel_mix and conductor_fresnel), relative 1e-4;
+//    D and height-correlated V_GGX and conductor_fresnel) with camsim's energy-conserving
+//    diffuse weight (1 − E(μo))(1 − E(μi))/(1 − E_avg) in place of fresnel_mix's 1 − F,
+//    relative 1e-4 (E from dielectric_specular_albedo.h, checked on its own there);
 //  - χ² of the diffuse + visible-normal mixture against its pdf over the full sphere for
 //    several (metallic, roughness, base colour, wo), grazing and back side included, and
 //    the smooth limit, whose delta samples must make up 1 − ∫ pdf dω;
 //  - reciprocity;
-//  - white furnace (base colour 1): MC = quadrature; albedo ≤ 1 for metals and at normal
-//    incidence; the specification's diffuse–specular coupling gains energy at grazing angles
-//    (Appendix B says so), bounded by c + the specular layer's albedo (measured values printed);
+//  - white furnace (base colour 1): MC = quadrature; albedo ≤ 1 for every metallic,
+//    roughness and angle down to cos θo = 0.02, and a white dielectric reflects 1 within the
+//    table's error (Appendix B's fresnel_mix gave 1.535 at cos θo = 0.1, r = 0.1, and 1.84 at
+//    cos θo = 0.02, r = 0.02: this test fails on it);
 //  - metallic 1, base colour 1, roughness → 0: the smooth lobe reflects exactly 1 at every
 //    angle (a uniform field is reflected unchanged), and r = 0.02 within 2e-3 of it;
 //  - the dielectric limit: F0 = 0.04 at normal incidence (smooth: the delta weight exactly;
@@ -23,6 +26,7 @@
 #include <memory>
 #include <string>
 
+#include "integrator/materials/dielectric_specular_albedo.h"
 #include "integrator/sampling/rng.h"
 #include "tests/integrator/bsdf_check.h"
 
@@ -49,9 +53,14 @@ std::unique_ptr<MetallicRoughnessMaterial> material(double base, float metallic,
 
 const SampledWavelengths kLambda = SampledWavelengths::sampleUniform(0.43f);
 
-// glTF 2.0 Appendix B, as the specification writes it (wo = V, wi = L, n = +z).
+// glTF 2.0 Appendix B, as the specification writes it (wo = V, wi = L, n = +z), with the
+// diffuse lobe weighted as camsim does (see the header: fresnel_mix is not energy conserving).
 double specBrdf(double c, double metallic, double roughness, const glm::dvec3& v,
                 const glm::dvec3& l) {
+  const DielectricSpecularAlbedo& table = DielectricSpecularAlbedo::get();
+  const float r = static_cast<float>(roughness);
+  const double eo = table.albedo(static_cast<float>(v.z), r),
+               ei = table.albedo(static_cast<float>(l.z), r), avg = table.average(r);
   const double a = roughness * roughness, a2 = a * a;
   const glm::dvec3 h = glm::normalize(v + l);
   const double nl = l.z, nv = v.z, nh = h.z, vh = std::abs(glm::dot(v, h));
@@ -60,9 +69,9 @@ double specBrdf(double c, double metallic, double roughness, const glm::dvec3& v
       0.5 / (nl * std::sqrt(nv * nv * (1.0 - a2) + a2) + nv * std::sqrt(nl * nl * (1.0 - a2) + a2));
   const double specular = vis * d;
   const double s = std::pow(1.0 - vh, 5.0);
-  const double metal = specular * (c + (1.0 - c) * s);              // conductor_fresnel
-  const double fr = 0.04 + 0.96 * s;                                // fresnel_mix, ior 1.5
-  const double dielectric = (1.0 - fr) * c / M_PI + fr * specular;  // mix(base, layer, fr)
+  const double metal = specular * (c + (1.0 - c) * s);  // conductor_fresnel
+  const double fr = 0.04 + 0.96 * s;                    // fresnel_mix, ior 1.5
+  const double dielectric = (1.0 - eo) * (1.0 - ei) / (1.0 - avg) * c / M_PI + fr * specular;
   return (1.0 - metallic) * dielectric + metallic * metal;
 }
 
@@ -141,44 +150,41 @@ TEST(MetallicRoughnessMaterial, Reciprocal) {
     }
 }
 
-// White furnace (base colour 1): the albedo E(wo) = ∫ f cos θi dωi, by MC (E[f cos/pdf])
-// and by quadrature, which must agree within 5σ + 2e-3.
-//  - metallic 1: single scattering with F ≤ 1, so E ≤ 1 at every angle and roughness;
-//  - metallic < 1: Appendix B's fresnel_mix weighs the diffuse lobe by 1 − F(wo·h), not by
-//    what the specular layer leaves, and gains energy at grazing angles (the specification
-//    says so: B.3.5, "Coupling Diffuse and Specular Reflection"). Measured for m = 0 (printed
-//    as [measured]): E ≤ 1 at normal incidence, 1.03 at cos θo = 0.5 and 1.53 at 0.1 for
-//    r = 0.1. What holds for any c ≤ 1 is E(c) ≤ c + E(black base), the diffuse lobe's
-//    (1 − F) c/π integrating to at most c: checked against the black-based material.
+// White furnace (base colour 1): the albedo A(wo) = ∫ f cos θi dωi by MC (E[f cos/pdf]) and,
+// where the lobe is wide enough for it (r ≥ 0.3, or r ≥ 0.1 down to cos θo = 0.1), by quadrature; both must agree within
+// 5σ + 2e-3. For every metallic, roughness and angle A ≤ 1 within 5σ + 1e-3 (the table's
+// 9e-4 below E is what a white dielectric can gain); a white dielectric (m = 0) reflects 1
+// within 5σ + 3e-3 (the table's 2.4e-3 above E is what it can lose). Measured values are
+// printed as [measured]. Appendix B's fresnel_mix fails the first bound: 1.535 at
+// cos θo = 0.1, r = 0.1; 1.84 at cos θo = 0.02, r = 0.02.
 TEST(MetallicRoughnessMaterial, WhiteFurnace) {
   for (float metallic : {0.0f, 0.5f, 1.0f})
-    for (float roughness : {0.1f, 0.5f, 1.0f})
-      for (double z : {1.0, 0.5, 0.1}) {
+    for (float roughness : {0.02f, 0.1f, 0.3f, 0.5f, 1.0f})
+      for (double z : {1.0, 0.5, 0.2, 0.1, 0.02}) {
         bsdfcheck::AlbedoOptions o;
         o.sampleCount = 20000;
         o.cosThetaBins = 4;
         o.phiBins = 8;
         o.quadratureOptions.minDepth = 4;
+        o.quadrature = roughness >= 0.3f || (roughness >= 0.1f && z >= 0.1);  // resolvable lobes
         const glm::vec3 wo = direction(z, 1.1);
         const auto a = bsdfcheck::albedo(*material(1.0, metallic, roughness), wo, kLambda, {}, o);
-        const auto black =
-            bsdfcheck::albedo(*material(0.0, metallic, roughness), wo, kLambda, {}, o);
         const std::string what = "m " + std::to_string(metallic) + " r " +
                                  std::to_string(roughness) + " z " + std::to_string(z);
         std::printf(
-            "[measured] metallic_roughness c 1, m %.1f, r %.1f, cosθo %.1f: albedo MC %.4f ± "
-            "%.4f, quadrature %.4f (black base %.4f)\n",
+            "[measured] metallic_roughness c 1, m %.1f, r %.2f, cosθo %.2f: albedo MC %.4f ± "
+            "%.4f, quadrature %.4f\n",
             static_cast<double>(metallic), static_cast<double>(roughness), z, a.mean[0],
-            a.stdErr[0], a.quadrature[0], black.quadrature[0]);
+            a.stdErr[0], o.quadrature ? a.quadrature[0] : -1.0);
         EXPECT_EQ(a.nonFinite, 0) << what;
-        EXPECT_EQ(a.unresolvedCells, 0) << what;
-        EXPECT_EQ(black.unresolvedCells, 0) << what;
-        EXPECT_NEAR(a.mean[0], a.quadrature[0], 5.0 * a.stdErr[0] + 2e-3) << what;
-        EXPECT_LE(a.quadrature[0], 1.0 + black.quadrature[0] + 1e-4) << what;
-        EXPECT_GE(a.quadrature[0], black.quadrature[0]) << what;
-        if (metallic == 1.0f || z == 1.0) {
-          EXPECT_LE(a.mean[0], 1.0 + 5.0 * a.stdErr[0]) << what;
-          EXPECT_LE(a.quadrature[0], 1.0 + 1e-4) << what;
+        EXPECT_LE(a.mean[0], 1.0 + 5.0 * a.stdErr[0] + 1e-3) << what;
+        if (o.quadrature) {
+          EXPECT_EQ(a.unresolvedCells, 0) << what;
+          EXPECT_NEAR(a.mean[0], a.quadrature[0], 5.0 * a.stdErr[0] + 2e-3) << what;
+          EXPECT_LE(a.quadrature[0], 1.0 + 1e-3) << what;
+        }
+        if (metallic == 0.0f) {
+          EXPECT_NEAR(a.mean[0], 1.0, 5.0 * a.stdErr[0] + 3e-3) << what;
         }
       }
 }
@@ -234,7 +240,7 @@ TEST(MetallicRoughnessMaterial, DielectricLimitHasF0OfIor15) {
       "albedo %.6f\n",
       a.mean[0]);
   EXPECT_NEAR(a.mean[0], 0.04, 1e-3);
-  // A grey base colour adds its diffuse lobe: (1 − F_d) c/π at h = n for wi = wo = n.
+  // A grey base colour adds its diffuse lobe: c/π (1 − E(1))² / (1 − E_avg) for wi = wo = n.
   const auto grey = material(0.5, 0.0f, 1.0f);
   const glm::vec3 n(0.0f, 0.0f, 1.0f);
   EXPECT_NEAR(static_cast<double>(grey->f(n, n, kLambda, {})[0]),
