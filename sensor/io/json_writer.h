@@ -43,7 +43,12 @@ class JsonObject {
     std::string s = "[";
     for (size_t r = 0; r < rows.size(); ++r) {
       s += r ? ", [" : "[";
-      for (size_t c = 0; c < rows[r].size(); ++c) s += (c ? ", " : "") + number(rows[r][c]);
+      for (size_t c = 0; c < rows[r].size(); ++c) {
+        // Appended piece by piece: `(c ? ", " : "") + number(…)` made GCC 12 report a false
+        // -Wstringop-overflow when the Python module's link inlines it (LTO).
+        if (c) s += ", ";
+        s += number(rows[r][c]);
+      }
       s += "]";
     }
     return raw(key, s + "]");
