@@ -17,6 +17,11 @@ constexpr int kNodeSamples = 32;    // per axis, per node
 constexpr int kAverageSteps = 256;  // midpoints in μ for E_avg
 constexpr double kDielectricF0 = 0.04;
 
+// x clamped to [0, 1]; NaN → 0 (a NaN must not reach the float → int cast of a lookup).
+double unit(double x) {
+  return x > 0.0 ? std::min(x, 1.0) : 0.0;
+}
+
 double tableAlpha(double r) {
   return std::max(r * r, kMinAlpha);
 }
@@ -88,8 +93,8 @@ const DielectricSpecularAlbedo& DielectricSpecularAlbedo::get() {
 }
 
 float DielectricSpecularAlbedo::albedo(float cosTheta, float roughness) const {
-  const double mu = std::clamp(static_cast<double>(cosTheta), 0.0, 1.0);
-  const double r = std::clamp(static_cast<double>(roughness), 0.0, 1.0);
+  const double mu = unit(static_cast<double>(cosTheta));
+  const double r = unit(static_cast<double>(roughness));
   const double gx = xOf(mu, tableAlpha(r)) * (kNodes - 1), gr = std::sqrt(r) * (kNodes - 1);
   const int i = std::min(static_cast<int>(gx), kNodes - 2),
             j = std::min(static_cast<int>(gr), kNodes - 2);
@@ -103,7 +108,7 @@ float DielectricSpecularAlbedo::albedo(float cosTheta, float roughness) const {
 }
 
 float DielectricSpecularAlbedo::average(float roughness) const {
-  const double gr = std::sqrt(std::clamp(static_cast<double>(roughness), 0.0, 1.0)) * (kNodes - 1);
+  const double gr = std::sqrt(unit(static_cast<double>(roughness))) * (kNodes - 1);
   const int j = std::min(static_cast<int>(gr), kNodes - 2);
   const double f = gr - j;
   return static_cast<float>((1.0 - f) * static_cast<double>(average_[static_cast<size_t>(j)]) +

@@ -35,10 +35,11 @@ class DielectricSpecularAlbedo {
   static constexpr int kNodes = 32;
   static const DielectricSpecularAlbedo& get();
 
+  // Arguments are clamped to [0, 1]; NaN is taken as 0.
   float albedo(float cosTheta, float roughness) const;  // E(μ, r)
   float average(float roughness) const;                 // E_avg(r)
 
-  // E by quadrature of the lobe over an n × n midpoint grid (the table's nodes use 64).
+  // E by quadrature of the lobe over an n × n midpoint grid (the table's nodes use 32).
   static double integrate(double cosTheta, double alpha, int n);
   // The dielectric's Schlick Fresnel at cos θ: 0.04 + 0.96 (1 − cos θ)⁵.
   static float fresnel(float cosTheta);

@@ -119,7 +119,7 @@ std::optional<BsdfSample> MetallicRoughnessMaterial::sample(const glm::vec3& woI
                                                             glm::vec2 u,
                                                             const SampledWavelengths& lambda,
                                                             const BsdfContext& ctx) const {
-  if (woIn.z == 0.0f) return std::nullopt;
+  if (!(std::abs(woIn.z) > 0.0f)) return std::nullopt;  // in the plane, or NaN
   const float side = woIn.z > 0.0f ? 1.0f : -1.0f;
   const glm::vec3 wo = upperHemisphere(woIn);
   const Lobes l = lobes(wo, lambda, ctx);

@@ -14,7 +14,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <algorithm>
 #include <cstdio>
+#include <limits>
 
 namespace camsim {
 namespace {
@@ -90,6 +92,36 @@ TEST(DielectricSpecularAlbedo, AverageIsTheTablesOwnMean) {
     }
     EXPECT_NEAR(2.0 * sum / n, static_cast<double>(table.average(r)), 1e-6) << r;
   }
+}
+
+// Between the nodes E_avg is interpolated linearly in sqrt(r) while E is interpolated in the
+// stretched cosine, so the normalisation is no longer exact there: 2 ∫ (1 − E(μ)) μ dμ /
+// (1 − E_avg) stays within 1e-4 of 1 (measured 9.1e-5 at r = 0.25, printed).
+TEST(DielectricSpecularAlbedo, AverageBetweenNodes) {
+  const DielectricSpecularAlbedo& table = DielectricSpecularAlbedo::get();
+  double worst = 0.0;
+  for (int k = 0; k <= 198; ++k) {
+    const float r = 0.01f + 0.005f * static_cast<float>(k);
+    double sum = 0.0;
+    constexpr int n = 2048;
+    for (int i = 0; i < n; ++i) {
+      const double mu = (i + 0.5) / n;
+      sum += (1.0 - static_cast<double>(table.albedo(static_cast<float>(mu), r))) * mu;
+    }
+    const double ratio = 2.0 * sum / n / (1.0 - static_cast<double>(table.average(r)));
+    worst = std::max(worst, std::abs(ratio - 1.0));
+    EXPECT_NEAR(ratio, 1.0, 1e-4) << r;
+  }
+  std::printf("[measured] between nodes: |2 int (1 - E) mu / (1 - E_avg) - 1| <= %.2e\n", worst);
+}
+
+// NaN arguments are taken as 0 (not cast to an index: undefined behaviour).
+TEST(DielectricSpecularAlbedo, NanArgumentsAreZero) {
+  const DielectricSpecularAlbedo& table = DielectricSpecularAlbedo::get();
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  EXPECT_EQ(table.albedo(0.5f, nan), table.albedo(0.5f, 0.0f));
+  EXPECT_EQ(table.albedo(nan, 0.5f), table.albedo(0.0f, 0.5f));
+  EXPECT_EQ(table.average(nan), table.average(0.0f));
 }
 
 }  // namespace

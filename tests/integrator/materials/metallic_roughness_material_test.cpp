@@ -23,6 +23,7 @@
 
 #include <cstdio>
 
+#include <limits>
 #include <memory>
 #include <string>
 
@@ -159,7 +160,7 @@ TEST(MetallicRoughnessMaterial, Reciprocal) {
 // cos θo = 0.1, r = 0.1; 1.84 at cos θo = 0.02, r = 0.02.
 TEST(MetallicRoughnessMaterial, WhiteFurnace) {
   for (float metallic : {0.0f, 0.5f, 1.0f})
-    for (float roughness : {0.02f, 0.1f, 0.3f, 0.5f, 1.0f})
+    for (float roughness : {0.012f, 0.02f, 0.1f, 0.3f, 0.5f, 1.0f})  // 0.012: rows below α 1e-4
       for (double z : {1.0, 0.5, 0.2, 0.1, 0.02}) {
         bsdfcheck::AlbedoOptions o;
         o.sampleCount = 20000;
@@ -172,7 +173,7 @@ TEST(MetallicRoughnessMaterial, WhiteFurnace) {
         const std::string what = "m " + std::to_string(metallic) + " r " +
                                  std::to_string(roughness) + " z " + std::to_string(z);
         std::printf(
-            "[measured] metallic_roughness c 1, m %.1f, r %.2f, cosθo %.2f: albedo MC %.4f ± "
+            "[measured] metallic_roughness c 1, m %.1f, r %.3f, cosθo %.2f: albedo MC %.4f ± "
             "%.4f, quadrature %.4f\n",
             static_cast<double>(metallic), static_cast<double>(roughness), z, a.mean[0],
             a.stdErr[0], o.quadrature ? a.quadrature[0] : -1.0);
@@ -271,6 +272,13 @@ TEST(MetallicRoughnessMaterial, FiniteAtGrazingAndSharpestLobe) {
         EXPECT_EQ(a.nonFinite, 0) << roughness << " " << z;
         EXPECT_LE(a.mean[0], 1.0 + 5.0 * a.stdErr[0] + 1e-6) << roughness << " " << z;
       }
+  // A NaN direction gives no sample (not one below the surface with a finite weight).
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  for (float roughness : {0.0f, 0.5f})
+    EXPECT_FALSE(material(0.7, 0.0f, roughness)
+                     ->sample({0.3f, 0.0f, nan}, 0.1f, {0.3f, 0.3f}, kLambda, {})
+                     .has_value())
+        << roughness;
 }
 
 }  // namespace
