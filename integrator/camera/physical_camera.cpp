@@ -20,6 +20,7 @@ PhysicalCamera::PhysicalCamera(PhysicalCameraParams params) : p_(std::move(param
   const double diameter = p_.apertureDiameter();
   if (p_.aperture) stop_.emplace(diameter, p_.aperture->blades, p_.aperture->rotation);
   apertureArea_ = stop_ ? stop_->area() : M_PI * 0.25 * diameter * diameter;
+  distorted_ = !p_.distortion.isIdentity();
   transmittanceIsOne_ =
       p_.lensTransmittance.minValue() == 1.0 && p_.lensTransmittance.maxValue() == 1.0;
   fastPinhole_ =
@@ -53,16 +54,6 @@ glm::dmat4 PhysicalCamera::worldFromCameraAt(double t) const {
   glm::dmat4 m = p_.worldFromCamera * glm::dmat4(glm::dmat3(local));
   m[3] = p_.worldFromCamera[3] + glm::dvec4(glm::dvec3(local[3]), 0.0);
   return m;
-}
-
-std::optional<glm::dvec2> PhysicalCamera::projectFrom(const glm::dmat4& m,
-                                                      const glm::dvec3& p) const {
-  const glm::dvec3 c = cameraCvFromWorld(m, p - glm::dvec3(m[3]));
-  if (!(c.z > 0.0)) return std::nullopt;
-  const glm::dvec2 xn(c.x / c.z, c.y / c.z);
-  const glm::dvec2 xd = p_.distortion.isIdentity() ? xn : p_.distortion.distort(xn);
-  const glm::dvec4& k = intrinsics_;
-  return glm::dvec2(k.x * xd.x + k.z, k.y * xd.y + k.w);
 }
 
 std::optional<CameraRay> PhysicalCamera::generateRay(const CameraSample& sample,

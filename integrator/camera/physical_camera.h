@@ -110,9 +110,17 @@ class PhysicalCamera final : public Camera {
   std::optional<glm::dvec2> project(const glm::dvec3& p, double t) const {
     return projectFrom(worldFromCameraAt(t), p);
   }
-  // The same from a pose worldFromCameraAt(t) already computed.
+  // The same from a pose worldFromCameraAt(t) already computed (inline: the motion field
+  // projects three times per camera sample).
   std::optional<glm::dvec2> projectFrom(const glm::dmat4& worldFromCamera,
-                                        const glm::dvec3& p) const;
+                                        const glm::dvec3& p) const {
+    const glm::dvec3 c = cameraCvFromWorld(worldFromCamera, p - glm::dvec3(worldFromCamera[3]));
+    if (!(c.z > 0.0)) return std::nullopt;
+    const glm::dvec2 xn(c.x / c.z, c.y / c.z);
+    const glm::dvec2 xd = distorted_ ? p_.distortion.distort(xn) : xn;
+    const glm::dvec4& k = intrinsics_;
+    return glm::dvec2(k.x * xd.x + k.z, k.y * xd.y + k.w);
+  }
 
  private:
   std::optional<CameraRay> generatePinholeRay(const CameraSample& sample) const;
@@ -123,6 +131,7 @@ class PhysicalCamera final : public Camera {
   double pixelArea_;
   double apertureArea_;
   glm::dvec4 intrinsics_;
+  bool distorted_ = false;  // !p_.distortion.isIdentity()
   bool transmittanceIsOne_;
   // The static pinhole without distortion (the common case) generates its rays in float
   // from constants fixed here, instead of the double matrix and weight math per sample:

@@ -41,6 +41,11 @@ glm::dmat4 RigidMotion::at(double t) const {
   return m;
 }
 
+glm::dvec3 RigidMotion::objectFromWorld(const glm::dvec3& p, double t) const {
+  const Keyframe k = pose(t);
+  return glm::inverse(k.rotate) * (p - k.translate) / k.scale;
+}
+
 bool RigidMotion::isStaticDuring(double t0, double t1) const {
   if (keys_.size() < 2) return true;
   const Keyframe a = pose(t0);

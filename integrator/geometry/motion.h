@@ -37,6 +37,9 @@ class RigidMotion {
   // True if the pose does not change within [t0, t1].
   bool isStaticDuring(double t0, double t1) const;
   glm::dmat4 at(double t) const;  // object → world at time t
+  // The world point p at time t in object space, M(t)⁻¹ p, from the pose without forming
+  // and inverting the matrix: R⁻¹ (p − T) / s.
+  glm::dvec3 objectFromWorld(const glm::dvec3& p, double t) const;
   // Largest rotation angle (radians) between poses over [t0, t1] (for choosing time steps).
   double rotationAngleDuring(double t0, double t1) const;
   const std::vector<Keyframe>& keys() const { return keys_; }

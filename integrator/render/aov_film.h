@@ -23,31 +23,50 @@
 // motion at t and moved to each reference time t_j; it is projected with the camera's pose
 // at t_j (PhysicalCamera::project: intrinsics and distortion, as the exported metadata).
 // Samples for which a projection falls behind the lens are left out of the motion mean.
+//
+// A pixel's samples are consecutive in the render loop: they are summed in a small scratch
+// record of the thread's (AovPixel, in double, in sample order) and the pixel's finished
+// values are written into the film's image once (endPixel). The film's memory is touched
+// once per pixel, there is no film-sized array of sums to clear or to convert at the end,
+// and the result is the same whatever the thread count or tile split.
 #pragma once
 
 #include <array>
 #include <cstddef>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include <glm/mat4x4.hpp>
 #include <glm/vec2.hpp>
 
+#include "integrator/camera/pose_projector.h"
 #include "integrator/render/id_film.h"
 #include "integrator/render/path_tracer.h"
 #include "integrator/scene/scene.h"
 #include "sensor/base/image.h"
+#include "sensor/base/simd.h"
 #include "sensor/spectra/spectrum.h"
 
 namespace camsim {
 
 // One camera sample for the AOVs (as Nori's query records: one argument, not a list).
 struct AovSample {
-  glm::ivec2 pixel{0};
   const VisibleSurface& visible;     // its first hit (visible.hit false: a miss, or no ray)
   double time = 0.0;                 // the sample's time, s
   const SampledWavelengths& lambda;  // as the camera ray started (before a dispersive hit)
   const glm::dmat4* worldFromCamera = nullptr;  // the camera's pose at `time` when wantsCamera()
+};
+
+// One pixel's sums while its samples are traced: a render thread's scratch (AovFilm::scratch).
+struct AovPixel {
+  glm::ivec2 pixel{0};
+  int samples = 0;           // camera samples added, hits or not
+  std::vector<double> sums;  // the hit count, then one sum per averaged channel
+  Double4 albedo{};          // albedo: Σ r_c ρ D65/p over the samples' wavelengths (X, Y, Z, −)
+  Double4 white{};           // and Σ r_c D65/p, the ratio's denominators
+  double motionSamples = 0.0;      // samples in the motion mean
+  std::vector<IdFilm::Slots> ids;  // one per id aov
 };
 
 class AovFilm {
@@ -61,36 +80,46 @@ class AovFilm {
   bool wantsMaterial() const { return wantsMaterial_; }
   // Whether addSample needs the camera's pose at the sample's time (depth, normals).
   bool wantsCamera() const { return wantsCamera_; }
-  void addSample(const AovSample& sample);
+
+  // A scratch record sized for this film (one per render thread or range of tiles).
+  AovPixel scratch() const;
+  // Starts summing pixel `pixel` in `px`.
+  void startPixel(AovPixel& px, glm::ivec2 pixel) const;
+  void addSample(AovPixel& px, const AovSample& sample) const;
+  // Writes the pixel's finished values (means, coverages, id ranks) into the image. Each
+  // pixel is ended by one thread only, so no locking is needed.
+  void endPixel(const AovPixel& px);
   // coverage.A, each averaged aov's channels in the scene's order (table above), then each
-  // id aov's (id_film.h), in the scene's order.
-  Image toImage(int samplesPerPixel) const;
+  // id aov's (id_film.h), in the scene's order. Pixels never ended hold 0.
+  Image takeImage() { return std::move(image_); }
 
  private:
-  void addMotion(double* sums, const AovSample& s);
+  void addMotion(AovPixel& px, const AovSample& s) const;
 
   const Scene& scene_;
-  glm::ivec2 resolution_;
   std::vector<Aov> aovs_;
-  std::vector<std::string> channels_;  // of the averaged aovs (all but the ids)
-  std::size_t stride_ = 0;             // sums per pixel: hit count, then one per channel
-  std::vector<double> sums_;
-  std::size_t albedoChannel_ = 0;         // of albedo.R (0: no albedo)
-  std::vector<double> albedoWhite_;       // per pixel: the D65 white's X, Y, Z sums
-  std::array<Spectrum, 3> whiteXyz_;      // x̄·D65, ȳ·D65, z̄·D65
-  std::size_t motionChannel_ = 0;         // of motion_fw.X (0: no motion)
-  std::vector<double> motionCount_;       // per pixel: samples in the motion mean
-  std::array<double, 3> frameTimes_{};    // previous, this, next frame's reference time, s
-  std::array<glm::dmat4, 3> cameraAt_{};  // the camera's pose at each frame time
+  std::size_t stride_ = 0;  // averaged sums per pixel: hit count, then channels
+  Image image_;             // the finished values (endPixel)
+  // Each averaged aov's first channel in the sums (0: not asked for). The channels are in
+  // the scene's order; addSample fills them in a fixed order, one test per aov.
+  std::size_t depthChannel_ = 0, distanceChannel_ = 0, positionChannel_ = 0;
+  std::size_t normalChannel_ = 0;     // of N.X
+  std::size_t albedoChannel_ = 0;     // of albedo.R
+  std::size_t roughnessChannel_ = 0;  // of roughness.Y
+  std::size_t motionChannel_ = 0;     // of motion_fw.X
+  // x̄·D65, ȳ·D65, z̄·D65 interleaved on Spectrum's 1 nm grid (lane 3: 0): one lerp per
+  // wavelength gives all three.
+  std::vector<Float4> whiteXyz_;
+  std::array<double, 3> frameTimes_{};      // previous, this, next frame's reference time, s
+  std::optional<PoseProjector> projector_;  // the camera at the three frame times
   std::vector<std::array<glm::dmat4, 3>> shapeAt_;  // per shape: its motion at each (moving)
+  std::vector<char> shapeMoves_;                    // per shape: it has keyframed motion
   bool wantsMaterial_ = false;
-  bool wantsCamera_ = false;  // depth or normals: the camera's pose at the sample's time
-  std::vector<std::unique_ptr<IdFilm>> idFilms_;  // in the scene's order of the id aovs
-  std::vector<IdKind> idKinds_;                   // of each IdFilm
-  std::vector<std::uint32_t> idEntries_;          // per shape, per IdFilm: the shape's table entry
-  bool cameraTurns_ = false;                      // the camera moves during the exposure
-  glm::dmat4 worldFromCamera_{1.0};               // its pose when it does not
-  std::size_t normalChannel_ = 0;                 // of N.X (0: no normals)
+  bool wantsCamera_ = false;     // depth or normals: the camera's pose at the sample's time
+  std::vector<IdFilm> idFilms_;  // in the scene's order of the id aovs
+  std::vector<std::uint32_t> idEntries_;  // per shape, per IdFilm: the shape's table entry
+  bool cameraTurns_ = false;              // the camera moves during the exposure
+  glm::dmat4 worldFromCamera_{1.0};       // its pose when it does not
 };
 
 }  // namespace camsim

@@ -14,13 +14,16 @@
 // cryptomatteId(name), ranks by coverage, ties by entry. A pixel keeps its first
 // kSlots distinct ids; the samples of a further id (more than 8 objects in one pixel) are
 // not counted, so its coverages then sum to less than 1.
+//
+// The counts of one pixel live in its renderer's scratch (IdSlots, aov_film.h), not in a
+// film-sized array: the render loop counts a pixel's samples there and writes the finished
+// channels once (write).
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
-
-#include <glm/vec2.hpp>
 
 #include "integrator/scene/scene_ids.h"
 
@@ -31,35 +34,35 @@ class IdFilm {
   static constexpr int kSlots = 8;
   static constexpr int kRanks = 6;
   static_assert(kRanks % 2 == 0 && kRanks <= 20, "two ranks per layer, layers 00 … 09");
+  static_assert(kRanks <= kSlots, "every rank has a slot");
 
-  IdFilm(glm::ivec2 resolution, IdKind kind, const IdTable& table);
+  // One pixel's distinct ids in order of first appearance, with their sample counts.
+  struct Slot {
+    std::uint32_t entry = 0, count = 0;
+  };
+  using Slots = std::array<Slot, kSlots>;
 
-  void add(glm::ivec2 pixel, std::uint32_t entry) {
-    Slot* s = &slots_[(static_cast<std::size_t>(pixel.y) * static_cast<std::size_t>(resolution_.x) +
-                       static_cast<std::size_t>(pixel.x)) *
-                      kSlots];
-    for (int i = 0; i < kSlots; ++i, ++s) {
-      if (s->count == 0) s->entry = entry;
-      if (s->entry == entry) {
-        ++s->count;
+  IdFilm(IdKind kind, const IdTable& table);
+
+  // One sample of the pixel whose slots these are, on table entry `entry`.
+  static void add(Slots& slots, std::uint32_t entry) {
+    for (Slot& s : slots) {
+      if (s.count == 0) s.entry = entry;
+      if (s.entry == entry) {
+        ++s.count;
         return;
       }
     }
   }
   // The channel names (kRanks · 2 + 1), in the table's order.
   const std::vector<std::string>& channels() const { return channels_; }
-  // Writes pixel px's channels (channels().size() floats) at out.
-  void pixel(std::size_t px, int samplesPerPixel, float* out) const;
+  // Writes a pixel's channels (channels().size() floats) at out from its slots.
+  void write(const Slots& slots, int samplesPerPixel, float* out) const;
 
  private:
-  struct Slot {
-    std::uint32_t entry = 0, count = 0;
-  };
-  glm::ivec2 resolution_;
   std::vector<std::string> channels_;
   std::vector<float> ids_;              // per entry: cryptomatteId(name)
   std::vector<std::uint32_t> numbers_;  // per entry: the dominant-id number
-  std::vector<Slot> slots_;
 };
 
 }  // namespace camsim

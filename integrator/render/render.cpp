@@ -28,7 +28,7 @@ struct TileStats {
 template <typename SamplerT>
 void renderTile(const Scene& scene, Film& film, const RenderOptions& options,
                 const ModelledDimensions& dims, glm::ivec2 lo, glm::ivec2 hi, SamplerT& sampler,
-                TileStats& stats, AovFilm& aovs) {
+                TileStats& stats, AovFilm& aovs, AovPixel& aovPixel) {
   const PhysicalCamera& camera = scene.camera();
   const Shutter& shutter = camera.shutter();
   // The photosensitive area: centred in the pixel, sides scaled by √fill.
@@ -36,6 +36,7 @@ void renderTile(const Scene& scene, Film& film, const RenderOptions& options,
   for (int y = lo.y; y < hi.y; ++y) {
     for (int x = lo.x; x < hi.x; ++x) {
       const glm::ivec2 pixel(x, y);
+      if (aovs.enabled()) aovs.startPixel(aovPixel, pixel);
       for (int s = 0; s < options.spp; ++s) {
         sampler.startPixelSample(pixel, s);
         sampler.setDimension(kDimWavelength);
@@ -63,7 +64,8 @@ void renderTile(const Scene& scene, Film& film, const RenderOptions& options,
             sharePose ? camera.generateRay(cs, lambda, pose) : camera.generateRay(cs, lambda);
         ++stats.samples;
         if (!cr) {
-          if (aovs.enabled()) aovs.addSample({pixel, VisibleSurface{}, cs.time, lambda, posePtr});
+          if (aovs.enabled())
+            aovs.addSample(aovPixel, {VisibleSurface{}, cs.time, lambda, posePtr});
           continue;
         }
         countRay(RayKind::kCamera, cr->ray);
@@ -77,8 +79,9 @@ void renderTile(const Scene& scene, Film& film, const RenderOptions& options,
         const SampledWavelengths lambdaAtCamera = lambda;  // before a dispersive hit ends some
         const SampledSpectrum L = traceRadiance(scene, cr->ray, lambda, sampler, &visible);
         if (!film.addSample(pixel, L * cr->weight, lambda)) ++stats.rejected;
-        aovs.addSample({pixel, visible, cs.time, lambdaAtCamera, posePtr});
+        aovs.addSample(aovPixel, {visible, cs.time, lambdaAtCamera, posePtr});
       }
+      if (aovs.enabled()) aovs.endPixel(aovPixel);
     }
   }
 }
@@ -125,30 +128,32 @@ RenderResult render(const Scene& scene, const std::vector<const SpectralResponse
 
   // prototype: a SobolSampler or an IndependentSampler, copied per range of tiles.
   auto renderAll = [&](const auto& prototype) {
-    tbb::parallel_for(
-        tbb::blocked_range<int>(0, tileCount, 1), [&](const tbb::blocked_range<int>& range) {
-          auto sampler = prototype;
-          const RayStatsScope rays(options.rayObserver);
-          TileStats& stats = perThread.local();
-          struct AddRays {  // on every exit, also a cancelled one
-            const RayStatsScope& scope;
-            TileStats& stats;
-            ~AddRays() { stats.rays += scope.rays(); }
-          } addRays{rays, stats};
-          for (int i = range.begin(); i != range.end(); ++i) {
-            if (options.cancel && options.cancel->load(std::memory_order_relaxed)) {
-              cancelled = true;
-              return;
-            }
-            const TileRect rect = renderTileRect(res, share.tile(i));
-            renderTile(scene, film, options, dims, rect.lo, rect.hi, sampler, stats, aovs);
-            const int done = ++tilesDone;
-            if (options.progress) {
-              std::lock_guard<std::mutex> lock(progressMutex);
-              options.progress(done, tileCount);
-            }
-          }
-        });
+    tbb::parallel_for(tbb::blocked_range<int>(0, tileCount, 1),
+                      [&](const tbb::blocked_range<int>& range) {
+                        auto sampler = prototype;
+                        AovPixel aovPixel = aovs.scratch();
+                        const RayStatsScope rays(options.rayObserver);
+                        TileStats& stats = perThread.local();
+                        struct AddRays {  // on every exit, also a cancelled one
+                          const RayStatsScope& scope;
+                          TileStats& stats;
+                          ~AddRays() { stats.rays += scope.rays(); }
+                        } addRays{rays, stats};
+                        for (int i = range.begin(); i != range.end(); ++i) {
+                          if (options.cancel && options.cancel->load(std::memory_order_relaxed)) {
+                            cancelled = true;
+                            return;
+                          }
+                          const TileRect rect = renderTileRect(res, share.tile(i));
+                          renderTile(scene, film, options, dims, rect.lo, rect.hi, sampler, stats,
+                                     aovs, aovPixel);
+                          const int done = ++tilesDone;
+                          if (options.progress) {
+                            std::lock_guard<std::mutex> lock(progressMutex);
+                            options.progress(done, tileCount);
+                          }
+                        }
+                      });
   };
   tbb::task_arena arena(threads);
   arena.execute([&] {
@@ -161,7 +166,7 @@ RenderResult render(const Scene& scene, const std::vector<const SpectralResponse
   RenderResult result;
   result.images = film.toImages(options.spp);
   result.image = result.images.front();
-  if (aovs.enabled()) result.aovs = aovs.toImage(options.spp);
+  if (aovs.enabled()) result.aovs = aovs.takeImage();
   for (const TileStats& t : perThread) {
     result.stats.samples += t.samples;
     result.stats.rejectedSamples += t.rejected;

@@ -28,6 +28,9 @@ namespace camsim {
 // Four floats / ints in one 16-byte vector (an SSE register on x86-64).
 using Float4 = float __attribute__((vector_size(16)));
 using Int4 = std::int32_t __attribute__((vector_size(16)));
+// Four doubles (two SSE2 registers on x86-64 without AVX; the compiler splits the operations).
+using Double4 = double __attribute__((vector_size(32)));
+using Long4 = std::int64_t __attribute__((vector_size(32)));  // a Double4 comparison's result
 
 namespace simd {
 

@@ -1,0 +1,139 @@
+// aov_cost_bench: what the ground truth costs — issue 21's row in docs/performance.md. The
+// render seconds of a scene's frames with its render.aovs against the same frames without
+// any, in one process: the scene is built once each way (over the whole sequence, as
+// captureSequence builds it), and the two renders of each frame alternate, round after
+// round, so that this VM's drift (it spreads single runs by ±10 %) falls on both alike.
+//
+//   ratio of a round   Σ_frames t_with / Σ_frames t_without
+//   reported           every round's sums and ratio, and the median ratio over the rounds
+//   check              the image (the film's XYZ) is the same bytes with and without the AOVs
+//                      (asking for ground truth must not change the picture); exit 1 if not
+//
+// usage: aov_cost_bench SCENE.yaml [--rounds N] [--threads N]   (defaults 5, all cores)
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include "integrator/camera/physical_camera.h"
+#include "integrator/render/render.h"
+#include "integrator/scene/scene.h"
+#include "integrator/scene/scene_loader.h"
+#include "sensor/base/input_error.h"
+
+namespace {
+
+using namespace camsim;
+
+struct Args {
+  std::string scene;
+  int rounds = 5;
+  int threads = 0;
+};
+
+Args parseArgs(int argc, char** argv) {
+  Args a;
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    if ((arg == "--rounds" || arg == "--threads") && i + 1 < argc) {
+      (arg == "--rounds" ? a.rounds : a.threads) = std::atoi(argv[++i]);
+    } else if (!arg.empty() && arg[0] != '-' && a.scene.empty()) {
+      a.scene = arg;
+    } else {
+      std::fprintf(stderr, "usage: aov_cost_bench SCENE.yaml [--rounds N] [--threads N]\n");
+      std::exit(2);
+    }
+  }
+  if (a.scene.empty() || a.rounds < 1 || a.threads < 0) {
+    std::fprintf(stderr, "usage: aov_cost_bench SCENE.yaml [--rounds N] [--threads N]\n");
+    std::exit(2);
+  }
+  return a;
+}
+
+// The scene built over its whole sequence (one frame without a frames block).
+struct Built {
+  SceneDescription description;
+  Scene scene;
+  Built(SceneDescription d, glm::dvec2 span) : description(std::move(d)), scene(description, span) {}
+};
+
+glm::dvec2 sequenceSpan(const SceneDescription& d, int frames) {
+  const auto window = [&](int k) { return exposureWindow(PhysicalCamera(d.frameCamera(k))); };
+  return {window(0).x, window(frames - 1).y};
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const Args args = parseArgs(argc, argv);
+  SceneDescription with;
+  try {
+    with = loadScene(args.scene);
+  } catch (const InputError& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return 2;
+  }
+  if (with.render.aovs.empty()) {
+    std::fprintf(stderr, "error: %s asks for no render.aovs: nothing to compare\n",
+                 args.scene.c_str());
+    return 2;
+  }
+  const int frames = with.frames ? with.frames->count : 1;
+  SceneDescription without = with;
+  without.render.aovs.clear();
+  const glm::dvec2 span = sequenceSpan(with, frames);
+  Built a(with, span), b(without, span);
+  const SpectralResponse xyz = SpectralResponse::cieXyz();
+  RenderOptions o;
+  o.spp = with.render.spp;
+  o.seed = with.render.seed;
+  o.threads = args.threads;
+
+  std::printf("%s: %d frame(s), %d spp, %zu aovs, threads %s; render seconds per round\n",
+              args.scene.c_str(), frames, o.spp, with.render.aovs.size(),
+              args.threads > 0 ? std::to_string(args.threads).c_str() : "all");
+  std::printf("round  without (s)  with (s)  ratio\n");
+  std::vector<double> ratios;
+  bool same = true;
+  for (int r = 0; r < args.rounds; ++r) {
+    double tWithout = 0.0, tWith = 0.0;
+    for (int k = 0; k < frames; ++k) {
+      // Alternate which goes first, so that neither always follows the other.
+      RenderResult rw, rwo;
+      const auto renderWithout = [&] {
+        b.scene.setCamera(without.frameCamera(k));
+        rwo = render(b.scene, xyz, o);
+      };
+      const auto renderWith = [&] {
+        a.scene.setCamera(with.frameCamera(k));
+        rw = render(a.scene, xyz, o);
+      };
+      if ((r + k) % 2 == 0) {
+        renderWithout();
+        renderWith();
+      } else {
+        renderWith();
+        renderWithout();
+      }
+      tWithout += rwo.stats.seconds;
+      tWith += rw.stats.seconds;
+      same = same && rw.image.pixels.size() == rwo.image.pixels.size() &&
+             std::memcmp(rw.image.pixels.data(), rwo.image.pixels.data(),
+                         rw.image.pixels.size() * sizeof(float)) == 0;
+    }
+    ratios.push_back(tWith / tWithout);
+    std::printf("%5d  %11.3f  %8.3f  %5.3f\n", r + 1, tWithout, tWith, ratios.back());
+    std::fflush(stdout);
+  }
+  std::vector<double> sorted = ratios;
+  std::sort(sorted.begin(), sorted.end());
+  const double median = sorted.size() % 2 ? sorted[sorted.size() / 2]
+                                          : 0.5 * (sorted[sorted.size() / 2 - 1] +
+                                                   sorted[sorted.size() / 2]);
+  std::printf("median ratio %.3f (min %.3f, max %.3f); image with and without the AOVs: %s\n",
+              median, sorted.front(), sorted.back(), same ? "the same bytes" : "DIFFERENT");
+  return same ? 0 : 1;
+}
