@@ -1,10 +1,11 @@
-// PoseProjector: PhysicalCamera::projectFrom at three poses at once, for the motion field
-// (integrator/render/aov_film.h), which images every camera sample's hit at the previous,
-// this and the next frame's reference time. The three poses are the lanes of one Double4
-// (lane 3 repeats lane 1), so the three projections are one pass of vector arithmetic; the
-// operations per lane are projectFrom's, in its order, so the result is the same bits as
-// three projectFrom calls (tests/integrator/camera/pose_projector_test.cpp). projectFrom
-// stays the scalar reference, and is what a distorted camera uses here.
+// PoseProjector: PhysicalCamera::projectFrom at three poses for four points at once, for the
+// motion field (integrator/render/aov_film.h), which images every camera sample's hit at the
+// previous, this and the next frame's reference time and sums the differences. The four
+// points are the lanes of Double4s, so twelve projections are one pass of vector arithmetic
+// (whole AVX registers on CPUs that have AVX2, two SSE2 halves otherwise); each lane does
+// projectFrom's operations in its order, so each image is the same bits as a projectFrom
+// call (tests/integrator/camera/pose_projector_test.cpp). projectFrom stays the scalar
+// reference, and is what a distorted camera uses here.
 //
 //   c = R (p − o)        the point in OpenCV camera axes (x right, y down, z forward)
 //   u = f_x c_x / c_z + c_x',  v = f_y c_y / c_z + c_y'   (pixels; none if c_z ≤ 0)
@@ -13,31 +14,47 @@
 #include <array>
 
 #include <glm/mat4x4.hpp>
-#include <glm/vec2.hpp>
-#include <glm/vec3.hpp>
 
 #include "integrator/camera/physical_camera.h"
 #include "sensor/base/simd.h"
 
 namespace camsim {
 
+// Four points (lanes), each at the three poses (render space, m).
+struct PosePoints {
+  std::array<Double4, 3> x, y, z;  // [pose]
+};
+
+// Motion vectors summed per lane: of the points in front of the lens at all three poses,
+// the count and Σ (image at pose 2 − at pose 1), Σ (image at pose 0 − at pose 1) (pixels).
+struct MotionVectorSums {
+  Double4 count, fwx, fwy, bwx, bwy;
+};
+
 class PoseProjector {
  public:
   // The camera's projection (intrinsics, distortion) at the poses worldFromCamera[j].
   PoseProjector(const PhysicalCamera& camera, const std::array<glm::dmat4, 3>& worldFromCamera);
 
-  // Where p[j] (render space, m) images at pose j, as projectFrom(worldFromCamera[j], p[j]);
-  // false (out unchanged) if any of the three is on or behind the lens plane.
-  bool project(const std::array<glm::dvec3, 3>& p, std::array<glm::dvec2, 3>& out) const;
+  // Adds the motion vectors of the first `lanes` points to `sums` (lane by lane); `front`:
+  // which lanes were in front of the lens at all three poses (−1) or not (0; not added).
+  // Each image is projectFrom's, bit for bit.
+  void addMotionVectors(const PosePoints& p, int lanes, MotionVectorSums& sums, Long4& front) const;
+
+  // Each pose's centre o and the rows of R (the camera's x, y and z axes in world
+  // coordinates; the y row's dot product is negated, as cameraCvFromWorld does), and the
+  // intrinsics: the kernel's constants.
+  struct Pose {
+    double o[3], x[3], y[3], z[3];
+  };
 
  private:
   const PhysicalCamera* camera_;
   std::array<glm::dmat4, 3> poses_;
+  std::array<Pose, 3> pose_;
+  double k_[4];  // f_x, f_y, c_x', c_y' (PhysicalCamera::intrinsics)
   bool distorted_;
-  // Per lane (pose): the centre o, and the rows of R: the camera's x axis, y axis (negated
-  // after the dot product, as cameraCvFromWorld does) and z axis, in world coordinates.
-  Double4 o_[3], x_[3], y_[3], z_[3];
-  Double4 fx_, fy_, cx_, cy_;
+  bool avx2_;  // simd::cpuHasAvx2()
 };
 
 }  // namespace camsim

@@ -65,8 +65,20 @@ struct AovPixel {
   std::vector<double> sums;  // the hit count, then one sum per averaged channel
   Double4 albedo{};          // albedo: Σ r_c ρ D65/p over the samples' wavelengths (X, Y, Z, −)
   Double4 white{};           // and Σ r_c D65/p, the ratio's denominators
-  double motionSamples = 0.0;      // samples in the motion mean
+  // The motion field's samples waiting for their projections, in sample order: each one's
+  // hit at the three frame times, four at a time (PoseProjector).
+  PosePoints motion;
+  int motionPending = 0;
+  std::array<bool, 4> motionMoves{};  // the lane's shape moves (else its scene flow is 0)
+  // The motion vectors summed per lane (the pixel's motion samples k in lane k mod 4), added
+  // up in endPixel; count: the samples in the mean (in front of the lens at all three times).
+  MotionVectorSums motionLanes{};
   std::vector<IdFilm::Slots> ids;  // one per id aov
+  // The previous sample's shape (−1: a miss; kNoShape: none yet) and its slot in each id
+  // aov: consecutive samples on the same shape add to those slots without a search.
+  static constexpr int kNoShape = -2;
+  int idShape = kNoShape;
+  std::array<IdFilm::Slot*, kIdKindCount> idSlot{};
 };
 
 class AovFilm {
@@ -88,13 +100,14 @@ class AovFilm {
   void addSample(AovPixel& px, const AovSample& sample) const;
   // Writes the pixel's finished values (means, coverages, id ranks) into the image. Each
   // pixel is ended by one thread only, so no locking is needed.
-  void endPixel(const AovPixel& px);
+  void endPixel(AovPixel& px);
   // coverage.A, each averaged aov's channels in the scene's order (table above), then each
   // id aov's (id_film.h), in the scene's order. Pixels never ended hold 0.
   Image takeImage() { return std::move(image_); }
 
  private:
   void addMotion(AovPixel& px, const AovSample& s) const;
+  void flushMotion(AovPixel& px) const;  // projects and sums the pending motion samples
 
   const Scene& scene_;
   std::vector<Aov> aovs_;

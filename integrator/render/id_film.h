@@ -44,15 +44,18 @@ class IdFilm {
 
   IdFilm(IdKind kind, const IdTable& table);
 
-  // One sample of the pixel whose slots these are, on table entry `entry`.
-  static void add(Slots& slots, std::uint32_t entry) {
+  // One sample of the pixel whose slots these are, on table entry `entry`. Returns the
+  // entry's slot (a further sample of the same entry may add to it directly), or none when
+  // the pixel's slots are full of other ids.
+  static Slot* add(Slots& slots, std::uint32_t entry) {
     for (Slot& s : slots) {
       if (s.count == 0) s.entry = entry;
       if (s.entry == entry) {
         ++s.count;
-        return;
+        return &s;
       }
     }
+    return nullptr;
   }
   // The channel names (kRanks · 2 + 1), in the table's order.
   const std::vector<std::string>& channels() const { return channels_; }
