@@ -28,7 +28,10 @@
 // record of the thread's (AovPixel, in double, in sample order) and the pixel's finished
 // values are written into the film's image once (endPixel). The film's memory is touched
 // once per pixel, there is no film-sized array of sums to clear or to convert at the end,
-// and the result is the same whatever the thread count or tile split.
+// and the result is the same whatever the thread count or tile split. A sample's vectors
+// (position, normals, their camera axes) are summed as Double4 lanes, one lane per axis;
+// the per-sample code (aov_film_add.cpp) is compiled twice, for the build's target and for
+// AVX2 (used on CPUs that have it), the same operations in the same order: the same bits.
 #pragma once
 
 #include <array>
@@ -58,13 +61,17 @@ struct AovSample {
   const glm::dmat4* worldFromCamera = nullptr;  // the camera's pose at `time` when wantsCamera()
 };
 
-// One pixel's sums while its samples are traced: a render thread's scratch (AovFilm::scratch).
+// One pixel's sums while its samples are traced: a render thread's scratch record.
+// Vectors are Double4s with x, y, z in lanes 0–2 (lane 3 unused).
 struct AovPixel {
   glm::ivec2 pixel{0};
-  int samples = 0;           // camera samples added, hits or not
-  std::vector<double> sums;  // the hit count, then one sum per averaged channel
-  Double4 albedo{};          // albedo: Σ r_c ρ D65/p over the samples' wavelengths (X, Y, Z, −)
-  Double4 white{};           // and Σ r_c D65/p, the ratio's denominators
+  int samples = 0;  // camera samples added, hits or not
+  // Σ over the samples that hit: 1 (the hit count), depth (m), distance (m), roughness.
+  Double4 scalars{};
+  Double4 position{}, normal{}, geometricNormal{};  // world axes
+  Double4 normalCam{}, geometricNormalCam{};        // camera axes, when the camera turns
+  Double4 albedo{};  // albedo: Σ r_c ρ D65/p over the samples' wavelengths (X, Y, Z, −)
+  Double4 white{};   // and Σ r_c D65/p, the ratio's denominators
   // The motion field's samples waiting for their projections, in sample order: each one's
   // hit at the three frame times, four at a time (PoseProjector).
   PosePoints motion;
@@ -73,7 +80,8 @@ struct AovPixel {
   // The motion vectors summed per lane (the pixel's motion samples k in lane k mod 4), added
   // up in endPixel; count: the samples in the mean (in front of the lens at all three times).
   MotionVectorSums motionLanes{};
-  std::vector<IdFilm::Slots> ids;  // one per id aov
+  std::array<double, 6> flow{};  // Σ scene flow, forward then backward (m), moving hits only
+  std::array<IdFilm::Slots, kIdKindCount> ids{};  // one per id aov
   // The previous sample's shape (−1: a miss; kNoShape: none yet) and its slot in each id
   // aov: consecutive samples on the same shape add to those slots without a search.
   static constexpr int kNoShape = -2;
@@ -93,9 +101,7 @@ class AovFilm {
   // Whether addSample needs the camera's pose at the sample's time (depth, normals).
   bool wantsCamera() const { return wantsCamera_; }
 
-  // A scratch record sized for this film (one per render thread or range of tiles).
-  AovPixel scratch() const;
-  // Starts summing pixel `pixel` in `px`.
+  // Starts summing pixel `pixel` in `px` (a render thread's scratch record).
   void startPixel(AovPixel& px, glm::ivec2 pixel) const;
   void addSample(AovPixel& px, const AovSample& sample) const;
   // Writes the pixel's finished values (means, coverages, id ranks) into the image. Each
@@ -106,15 +112,19 @@ class AovFilm {
   Image takeImage() { return std::move(image_); }
 
  private:
-  void addMotion(AovPixel& px, const AovSample& s) const;
+  // addSample's body (aov_film_add.cpp), inlined into a copy for the build's target and one
+  // for AVX2.
+  void addSampleBody(AovPixel& px, const AovSample& sample) const;
+  void addSampleAvx2(AovPixel& px, const AovSample& sample) const;
   void flushMotion(AovPixel& px) const;  // projects and sums the pending motion samples
+  void writeMotion(const AovPixel& px, float* o) const;
 
   const Scene& scene_;
   std::vector<Aov> aovs_;
-  std::size_t stride_ = 0;  // averaged sums per pixel: hit count, then channels
-  Image image_;             // the finished values (endPixel)
-  // Each averaged aov's first channel in the sums (0: not asked for). The channels are in
-  // the scene's order; addSample fills them in a fixed order, one test per aov.
+  Image image_;               // the finished values (endPixel)
+  std::size_t idChannel_ = 0;  // the first id aov's first channel (after the averaged ones)
+  // Each averaged aov's first channel in the image (0: not asked for). The channels are in
+  // the scene's order; addSample fills its sums in a fixed order, one test per aov.
   std::size_t depthChannel_ = 0, distanceChannel_ = 0, positionChannel_ = 0;
   std::size_t normalChannel_ = 0;     // of N.X
   std::size_t albedoChannel_ = 0;     // of albedo.R
@@ -133,6 +143,7 @@ class AovFilm {
   std::vector<std::uint32_t> idEntries_;  // per shape, per IdFilm: the shape's table entry
   bool cameraTurns_ = false;              // the camera moves during the exposure
   glm::dmat4 worldFromCamera_{1.0};       // its pose when it does not
+  bool avx2_ = false;                     // simd::cpuHasAvx2(): addSampleAvx2
 };
 
 }  // namespace camsim

@@ -131,7 +131,7 @@ RenderResult render(const Scene& scene, const std::vector<const SpectralResponse
     tbb::parallel_for(tbb::blocked_range<int>(0, tileCount, 1),
                       [&](const tbb::blocked_range<int>& range) {
                         auto sampler = prototype;
-                        AovPixel aovPixel = aovs.scratch();
+                        AovPixel aovPixel;
                         const RayStatsScope rays(options.rayObserver);
                         TileStats& stats = perThread.local();
                         struct AddRays {  // on every exit, also a cancelled one

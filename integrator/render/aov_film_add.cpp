@@ -1,0 +1,172 @@
+// AovFilm's per-sample part (aov_film.h): a sample's first hit added to its pixel's scratch
+// record. The body is written once and inlined into two copies: one for the build's target
+// and, with CAMSIM_SIMD_X86, one compiled for AVX2 (whole Double4 registers), chosen once
+// per film by simd::cpuHasAvx2(). No FMA contraction happens in either (neither target
+// enables FMA), and each lane does the scalar code's operations in its order, so both give
+// the same bits.
+#include <cstring>
+
+#include "integrator/render/aov_film.h"
+
+namespace camsim {
+namespace {
+
+// A glm vector as a Double4 (x, y, z in lanes 0–2, lane 3 = 0). Written through a
+// reference: a Double4 by value changes the x86-64 ABI without AVX.
+[[gnu::always_inline]] inline void load(Double4& out, const glm::vec3& v) {
+  out = __builtin_convertvector((Float4{v.x, v.y, v.z, 0.0f}), Double4);
+}
+[[gnu::always_inline]] inline void load(Double4& out, const glm::dvec4& v) {
+  std::memcpy(&out, &v, sizeof out);
+}
+
+}  // namespace
+
+[[gnu::always_inline]] inline void AovFilm::addSampleBody(AovPixel& px,
+                                                          const AovSample& sample) const {
+  const VisibleSurface& v = sample.visible;
+  ++px.samples;
+  const std::size_t idCount = idFilms_.size();
+  if (idCount > 0) {
+    const int shape = v.hit ? v.shape : -1;
+    if (shape == px.idShape) {  // the common case: the previous sample's shape again
+      for (std::size_t k = 0; k < idCount; ++k)
+        if (IdFilm::Slot* slot = px.idSlot[k]) ++slot->count;
+    } else {
+      const std::uint32_t* entries =
+          v.hit ? &idEntries_[static_cast<std::size_t>(v.shape) * idCount] : nullptr;
+      for (std::size_t k = 0; k < idCount; ++k)
+        px.idSlot[k] = IdFilm::add(px.ids[k], entries ? entries[k] : 0u);
+      px.idShape = shape;
+    }
+  }
+  if (!v.hit) return;
+  // The camera's pose at the sample's time, from the render loop (wantsCamera()).
+  const glm::dmat4& worldFromCamera = wantsCamera_ ? *sample.worldFromCamera : worldFromCamera_;
+  Double4 p;
+  load(p, v.p);
+  double depth = 0.0;
+  if (depthChannel_) {  // glm::dot(p − o, z) in its order
+    Double4 o, z;
+    load(o, worldFromCamera[3]);
+    load(z, worldFromCamera[2]);
+    const Double4 d = (p - o) * z;
+    depth = d[0] + d[1] + d[2];
+  }
+  px.scalars += Double4{1.0, depth, static_cast<double>(v.distance),
+                        static_cast<double>(v.roughness)};
+  if (positionChannel_) {
+    Double4 origin;
+    const glm::dvec3& o = scene_.renderOrigin();
+    origin = Double4{o.x, o.y, o.z, 0.0};
+    px.position += p + origin;
+  }
+  if (normalChannel_) {
+    Double4 n, ng;
+    load(n, v.ns);
+    load(ng, v.n);
+    px.normal += n;
+    px.geometricNormal += ng;
+    if (cameraTurns_) {  // else the camera axes from the world means in endPixel (linear)
+      // cameraCvFromWorld: (n·x, −(n·y), n·z) over the pose's axes, in glm::dot's order:
+      // lane c of Σ_k n_k · row_k is n·axis_c.
+      Double4 x, y, z;
+      load(x, worldFromCamera[0]);
+      load(y, worldFromCamera[1]);
+      load(z, worldFromCamera[2]);
+      const Double4 r0 = {x[0], y[0], z[0], 0.0}, r1 = {x[1], y[1], z[1], 0.0},
+                    r2 = {x[2], y[2], z[2], 0.0}, sign = {1.0, -1.0, 1.0, 1.0};
+      px.normalCam += (n[0] * r0 + n[1] * r1 + n[2] * r2) * sign;
+      px.geometricNormalCam += (ng[0] * r0 + ng[1] * r1 + ng[2] * r2) * sign;
+    }
+  }
+  if (albedoChannel_) {
+    // r_c·D65/p at each of the sample's wavelengths (the 1/N of the estimate cancels in the
+    // ratio), all three c at once; summed over the wavelengths in float, over the pixel's
+    // samples in double. Numerators here, the white's denominators beside: divided in
+    // endPixel (a ratio of the pixel's sums, not a mean of per-sample ratios, which is
+    // biased for colour).
+    const SampledWavelengths& lambda = sample.lambda;
+    // 1/p (0 for a terminated wavelength), the four at once.
+    const SampledSpectrum invPdf = safeDiv(SampledSpectrum(1.0f), lambda.pdfs());
+    Float4 num{}, den{};
+    for (int i = 0; i < kWavelengthSamples; ++i) {
+      const std::size_t k = static_cast<std::size_t>(lambda.gridIndex(i));
+      const Float4 a = whiteXyz_[k], b = whiteXyz_[k + 1];
+      const Float4 white = (a + lambda.gridFraction(i) * (b - a)) * invPdf[i];
+      num += white * v.albedo[i];
+      den += white;
+    }
+    px.albedo += __builtin_convertvector(num, Double4);
+    px.white += __builtin_convertvector(den, Double4);
+  }
+  if (motionChannel_) {
+    // The hit at each frame's reference time: a static shape's stays where it is; a moving
+    // one's is taken to object space at the sample's time and moved to each frame time
+    // (the poses at the frame times were computed once, in the constructor).
+    const int lane = px.motionPending++;
+    const std::size_t shape = static_cast<std::size_t>(v.shape);
+    const bool moves = shapeMoves_[shape];
+    px.motionMoves[static_cast<std::size_t>(lane)] = moves;
+    if (!moves) {
+      for (std::size_t j = 0; j < 3; ++j) {
+        px.motion.x[j][lane] = p[0];
+        px.motion.y[j][lane] = p[1];
+        px.motion.z[j][lane] = p[2];
+      }
+    } else {
+      const glm::dvec3 object =
+          scene_.motion(v.shape).objectFromWorld(glm::dvec3(v.p), sample.time);
+      for (std::size_t j = 0; j < 3; ++j) {
+        const glm::dvec3 at(shapeAt_[shape][j] * glm::dvec4(object, 1.0));
+        px.motion.x[j][lane] = at.x;
+        px.motion.y[j][lane] = at.y;
+        px.motion.z[j][lane] = at.z;
+      }
+    }
+    if (px.motionPending == 4) flushMotion(px);
+  }
+}
+
+void AovFilm::addSample(AovPixel& px, const AovSample& sample) const {
+#if CAMSIM_SIMD_X86
+  if (avx2_) {
+    addSampleAvx2(px, sample);
+    return;
+  }
+#endif
+  addSampleBody(px, sample);
+}
+
+#if CAMSIM_SIMD_X86
+CAMSIM_TARGET_AVX2 void AovFilm::addSampleAvx2(AovPixel& px, const AovSample& sample) const {
+  addSampleBody(px, sample);
+}
+#else
+void AovFilm::addSampleAvx2(AovPixel& px, const AovSample& sample) const {
+  addSampleBody(px, sample);
+}
+#endif
+
+void AovFilm::flushMotion(AovPixel& px) const {
+  if (px.motionPending == 0) return;
+  Long4 front;
+  projector_->addMotionVectors(px.motion, px.motionPending, px.motionLanes, front);
+  // Scene flow: +0 for a static shape's hit, so only the moving ones are summed (rare).
+  if (px.motionMoves != std::array<bool, 4>{}) {
+    const PosePoints& a = px.motion;
+    for (int lane = 0; lane < px.motionPending; ++lane) {
+      if (!front[lane] || !px.motionMoves[static_cast<std::size_t>(lane)]) continue;
+      px.flow[0] += a.x[2][lane] - a.x[1][lane];
+      px.flow[1] += a.y[2][lane] - a.y[1][lane];
+      px.flow[2] += a.z[2][lane] - a.z[1][lane];
+      px.flow[3] += a.x[0][lane] - a.x[1][lane];
+      px.flow[4] += a.y[0][lane] - a.y[1][lane];
+      px.flow[5] += a.z[0][lane] - a.z[1][lane];
+    }
+  }
+  px.motionPending = 0;
+  px.motionMoves = {};
+}
+
+}  // namespace camsim
