@@ -4,8 +4,6 @@
 // per film by simd::cpuHasAvx2(). No FMA contraction happens in either (neither target
 // enables FMA), and each lane does the scalar code's operations in its order, so both give
 // the same bits.
-#include <cstring>
-
 #include "integrator/render/aov_film.h"
 
 namespace camsim {
@@ -16,8 +14,11 @@ namespace {
 [[gnu::always_inline]] inline void load(Double4& out, const glm::vec3& v) {
   out = __builtin_convertvector((Float4{v.x, v.y, v.z, 0.0f}), Double4);
 }
+// Element by element: the pose was written just before (the render loop), and one 32-byte
+// load of several recent narrower stores cannot be forwarded from the store buffer (a
+// stall of tens of cycles), while each 8-byte load can.
 [[gnu::always_inline]] inline void load(Double4& out, const glm::dvec4& v) {
-  std::memcpy(&out, &v, sizeof out);
+  out = Double4{v.x, v.y, v.z, v.w};
 }
 
 }  // namespace
@@ -104,6 +105,10 @@ namespace {
     // The hit at each frame's reference time: a static shape's stays where it is; a moving
     // one's is taken to object space at the sample's time and moved to each frame time
     // (the poses at the frame times were computed once, in the constructor).
+    // The four queued samples are projected when a fifth arrives (or at the pixel's end),
+    // not right after the fourth is stored: by then the lanes' narrow stores have left the
+    // store buffer, and the vector loads of them do not stall.
+    if (px.motionPending == 4) flushMotion(px);
     const int lane = px.motionPending++;
     const std::size_t shape = static_cast<std::size_t>(v.shape);
     const bool moves = shapeMoves_[shape];
@@ -124,7 +129,6 @@ namespace {
         px.motion.z[j][lane] = at.z;
       }
     }
-    if (px.motionPending == 4) flushMotion(px);
   }
 }
 
