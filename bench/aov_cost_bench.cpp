@@ -133,10 +133,13 @@ int main(int argc, char** argv) {
         rw = render(a.scene, xyz, o);
       };
       if (!args.only.empty()) {
-        if (args.only == "with")
+        if (args.only == "with") {
           renderWith();
-        else
+          tWith += rw.stats.seconds;
+        } else {
           renderWithout();
+          tWithout += rwo.stats.seconds;
+        }
         continue;
       }
       if ((r + k) % 2 == 0) {
