@@ -70,8 +70,9 @@ struct AovPixel {
   Double4 scalars{};
   Double4 position{}, normal{}, geometricNormal{};  // world axes
   Double4 normalCam{}, geometricNormalCam{};        // camera axes, when the camera turns
-  Double4 albedo{};  // albedo: Σ r_c ρ D65/p over the samples' wavelengths (X, Y, Z, −)
-  Double4 white{};   // and Σ r_c D65/p, the ratio's denominators
+  // Albedo, per XYZ channel c: Σ r_c ρ D65/p and the ratio's denominators Σ r_c D65/p, each
+  // a Double4 over the samples' four wavelength slots (hero and its rotations).
+  std::array<Double4, 3> albedo{}, white{};
   // The motion field's samples waiting for their projections, in sample order: each one's
   // hit at the three frame times, four at a time (PoseProjector).
   PosePoints motion;
@@ -103,7 +104,12 @@ class AovFilm {
 
   // Starts summing pixel `pixel` in `px` (a render thread's scratch record).
   void startPixel(AovPixel& px, glm::ivec2 pixel) const;
-  void addSample(AovPixel& px, const AovSample& sample) const;
+  void addSample(AovPixel& px, const AovSample& sample) const {
+    if (avx2_)
+      addSampleAvx2(px, sample);
+    else
+      addSamplePortable(px, sample);
+  }
   // Writes the pixel's finished values (means, coverages, id ranks) into the image. Each
   // pixel is ended by one thread only, so no locking is needed.
   void endPixel(AovPixel& px);
@@ -113,8 +119,9 @@ class AovFilm {
 
  private:
   // addSample's body (aov_film_add.cpp), inlined into a copy for the build's target and one
-  // for AVX2.
+  // for AVX2 (the portable build: the same code twice; avx2_ is false there).
   void addSampleBody(AovPixel& px, const AovSample& sample) const;
+  void addSamplePortable(AovPixel& px, const AovSample& sample) const;
   void addSampleAvx2(AovPixel& px, const AovSample& sample) const;
   void flushMotion(AovPixel& px) const;  // projects and sums the pending motion samples
   void writeMotion(const AovPixel& px, float* o) const;
@@ -130,9 +137,7 @@ class AovFilm {
   std::size_t albedoChannel_ = 0;     // of albedo.R
   std::size_t roughnessChannel_ = 0;  // of roughness.Y
   std::size_t motionChannel_ = 0;     // of motion_fw.X
-  // x̄·D65, ȳ·D65, z̄·D65 interleaved on Spectrum's 1 nm grid (lane 3: 0): one lerp per
-  // wavelength gives all three.
-  std::vector<Float4> whiteXyz_;
+  std::array<Spectrum, 3> whiteXyz_;  // x̄·D65, ȳ·D65, z̄·D65
   std::array<double, 3> frameTimes_{};      // previous, this, next frame's reference time, s
   std::optional<PoseProjector> projector_;  // the camera at the three frame times
   std::vector<std::array<glm::dmat4, 3>> shapeAt_;  // per shape: its motion at each (moving)

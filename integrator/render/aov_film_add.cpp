@@ -4,6 +4,8 @@
 // per film by simd::cpuHasAvx2(). No FMA contraction happens in either (neither target
 // enables FMA), and each lane does the scalar code's operations in its order, so both give
 // the same bits.
+#include <cstring>
+
 #include "integrator/render/aov_film.h"
 
 namespace camsim {
@@ -11,14 +13,26 @@ namespace {
 
 // A glm vector as a Double4 (x, y, z in lanes 0–2, lane 3 = 0). Written through a
 // reference: a Double4 by value changes the x86-64 ABI without AVX.
-[[gnu::always_inline]] inline void load(Double4& out, const glm::vec3& v) {
-  out = __builtin_convertvector((Float4{v.x, v.y, v.z, 0.0f}), Double4);
+// The member `field` of a VisibleSurface as a Double4: its 16 bytes from the field's start
+// in one load (the fourth float is the next member's, inside the struct), lane 3 cleared.
+template <glm::vec3 VisibleSurface::*field>
+[[gnu::always_inline]] inline void load(Double4& out, const VisibleSurface& v) {
+  static_assert(sizeof(glm::vec3) == 12);
+  Float4 f;
+  std::memcpy(&f, &(v.*field), sizeof f);
+  f[3] = 0.0f;
+  out = __builtin_convertvector(f, Double4);
 }
 // Element by element: the pose was written just before (the render loop), and one 32-byte
 // load of several recent narrower stores cannot be forwarded from the store buffer (a
 // stall of tens of cycles), while each 8-byte load can.
 [[gnu::always_inline]] inline void load(Double4& out, const glm::dvec4& v) {
   out = Double4{v.x, v.y, v.z, v.w};
+}
+
+// sum += the four lanes of s, in double.
+[[gnu::always_inline]] inline void add(Double4& sum, const SampledSpectrum& s) {
+  sum += __builtin_convertvector(s.lanes(), Double4);
 }
 
 }  // namespace
@@ -45,7 +59,7 @@ namespace {
   // The camera's pose at the sample's time, from the render loop (wantsCamera()).
   const glm::dmat4& worldFromCamera = wantsCamera_ ? *sample.worldFromCamera : worldFromCamera_;
   Double4 p;
-  load(p, v.p);
+  load<&VisibleSurface::p>(p, v);
   double depth = 0.0;
   if (depthChannel_) {  // glm::dot(p − o, z) in its order
     Double4 o, z;
@@ -64,8 +78,8 @@ namespace {
   }
   if (normalChannel_) {
     Double4 n, ng;
-    load(n, v.ns);
-    load(ng, v.n);
+    load<&VisibleSurface::ns>(n, v);
+    load<&VisibleSurface::n>(ng, v);
     px.normal += n;
     px.geometricNormal += ng;
     if (cameraTurns_) {  // else the camera axes from the world means in endPixel (linear)
@@ -83,23 +97,17 @@ namespace {
   }
   if (albedoChannel_) {
     // r_c·D65/p at each of the sample's wavelengths (the 1/N of the estimate cancels in the
-    // ratio), all three c at once; summed over the wavelengths in float, over the pixel's
-    // samples in double. Numerators here, the white's denominators beside: divided in
-    // endPixel (a ratio of the pixel's sums, not a mean of per-sample ratios, which is
-    // biased for colour).
+    // ratio), times ρ for the numerators; summed per wavelength slot over the pixel's
+    // samples in double. Divided in endPixel: a ratio of the pixel's sums, not a mean of
+    // per-sample ratios (biased for colour).
     const SampledWavelengths& lambda = sample.lambda;
-    // 1/p (0 for a terminated wavelength), the four at once.
-    const SampledSpectrum invPdf = safeDiv(SampledSpectrum(1.0f), lambda.pdfs());
-    Float4 num{}, den{};
-    for (int i = 0; i < kWavelengthSamples; ++i) {
-      const std::size_t k = static_cast<std::size_t>(lambda.gridIndex(i));
-      const Float4 a = whiteXyz_[k], b = whiteXyz_[k + 1];
-      const Float4 white = (a + lambda.gridFraction(i) * (b - a)) * invPdf[i];
-      num += white * v.albedo[i];
-      den += white;
+    const SampledSpectrum invPdf = safeDiv(SampledSpectrum(1.0f), lambda.pdfs());  // 0: terminated
+    const SampledSpectrum rho = v.albedo * invPdf;
+    for (std::size_t c = 0; c < 3; ++c) {
+      const SampledSpectrum white = sampleSpectrum(whiteXyz_[c], lambda);
+      add(px.albedo[c], white * rho);
+      add(px.white[c], white * invPdf);
     }
-    px.albedo += __builtin_convertvector(num, Double4);
-    px.white += __builtin_convertvector(den, Double4);
   }
   if (motionChannel_) {
     // The hit at each frame's reference time: a static shape's stays where it is; a moving
@@ -132,13 +140,7 @@ namespace {
   }
 }
 
-void AovFilm::addSample(AovPixel& px, const AovSample& sample) const {
-#if CAMSIM_SIMD_X86
-  if (avx2_) {
-    addSampleAvx2(px, sample);
-    return;
-  }
-#endif
+void AovFilm::addSamplePortable(AovPixel& px, const AovSample& sample) const {
   addSampleBody(px, sample);
 }
 

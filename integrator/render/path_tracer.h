@@ -9,6 +9,7 @@
 // 1/η² radiance scaling of refractions: pbrt-v4's etaScale).
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 
 #include "integrator/geometry/ray.h"
@@ -34,6 +35,10 @@ struct VisibleSurface {
   float roughness = 0.0f;
   int shape = -1;  // the shape hit (Scene::shape)
 };
+// AovFilm loads p, n and ns 16 bytes at a time: each is followed by 4 more bytes of the struct.
+static_assert(offsetof(VisibleSurface, p) + 16 <= sizeof(VisibleSurface) &&
+              offsetof(VisibleSurface, n) + 16 <= sizeof(VisibleSurface) &&
+              offsetof(VisibleSurface, ns) + 16 <= sizeof(VisibleSurface));
 
 // Radiance (W·m⁻²·sr⁻¹·nm⁻¹) along `ray` at the wavelengths `lambda`. A dispersive
 // material on the path terminates the secondary wavelengths (lambda is updated: the film
