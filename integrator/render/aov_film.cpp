@@ -43,7 +43,7 @@ std::vector<std::string> channelsOf(Aov aov) {
 
 }  // namespace
 
-AovFilm::AovFilm(const Scene& scene) : scene_(scene), aovs_(scene.settings().aovs) {
+AovFilm::AovFilm(const Scene& scene, bool allowAvx2) : scene_(scene), aovs_(scene.settings().aovs) {
   if (aovs_.empty()) return;
   std::vector<std::string> channels = {"coverage.A"};
   std::vector<IdKind> idKinds;
@@ -100,7 +100,7 @@ AovFilm::AovFilm(const Scene& scene) : scene_(scene), aovs_(scene.settings().aov
     channels.insert(channels.end(), f.channels().begin(), f.channels().end());
   const glm::ivec2 res = scene.camera().resolution();
   image_ = Image(res.x, res.y, std::move(channels));
-  avx2_ = simd::cpuHasAvx2();
+  avx2_ = allowAvx2 && simd::cpuHasAvx2();
 }
 
 void AovFilm::startPixel(AovPixel& px, glm::ivec2 pixel) const {
@@ -125,7 +125,8 @@ void AovFilm::endPixel(AovPixel& px) {
   if (distanceChannel_) o[distanceChannel_] = mean(px.scalars[2]);
   if (roughnessChannel_) o[roughnessChannel_] = mean(px.scalars[3]);
   if (positionChannel_)
-    for (int i = 0; i < 3; ++i) o[positionChannel_ + static_cast<std::size_t>(i)] = mean(px.position[i]);
+    for (int i = 0; i < 3; ++i)
+      o[positionChannel_ + static_cast<std::size_t>(i)] = mean(px.position[i]);
   if (normalChannel_) {  // N, Ng, N_cam, Ng_cam
     float* n = o + normalChannel_;
     for (int i = 0; i < 3; ++i) {
@@ -170,10 +171,9 @@ void AovFilm::writeMotion(const AovPixel& px, float* o) const {
   const MotionVectorSums& l = px.motionLanes;
   const double count = (l.count[0] + l.count[1]) + (l.count[2] + l.count[3]);
   if (!(count > 0.0)) return;  // no sample in front of the lens at all three times: 0
-  const double vectors[4] = {(l.fwx[0] + l.fwx[1]) + (l.fwx[2] + l.fwx[3]),
-                             (l.fwy[0] + l.fwy[1]) + (l.fwy[2] + l.fwy[3]),
-                             (l.bwx[0] + l.bwx[1]) + (l.bwx[2] + l.bwx[3]),
-                             (l.bwy[0] + l.bwy[1]) + (l.bwy[2] + l.bwy[3])};
+  const double vectors[4] = {
+      (l.fwx[0] + l.fwx[1]) + (l.fwx[2] + l.fwx[3]), (l.fwy[0] + l.fwy[1]) + (l.fwy[2] + l.fwy[3]),
+      (l.bwx[0] + l.bwx[1]) + (l.bwx[2] + l.bwx[3]), (l.bwy[0] + l.bwy[1]) + (l.bwy[2] + l.bwy[3])};
   for (std::size_t c = 0; c < 4; ++c) o[c] = static_cast<float>(vectors[c] / count);
   for (std::size_t c = 0; c < 6; ++c) o[4 + c] = static_cast<float>(px.flow[c] / count);
 }

@@ -93,8 +93,9 @@ struct AovPixel {
 class AovFilm {
  public:
   // The scene's render.aovs, at its camera's resolution; the frame times from its camera's
-  // shutter and frameInterval().
-  explicit AovFilm(const Scene& scene);
+  // shutter and frameInterval(). allowAvx2 false: the build target's copy of the per-sample
+  // code even on a CPU with AVX2 (tests compare the two).
+  explicit AovFilm(const Scene& scene, bool allowAvx2 = true);
 
   bool enabled() const { return !aovs_.empty(); }
   // Whether traceRadiance must evaluate the hit's material (albedo, roughness).
@@ -104,6 +105,8 @@ class AovFilm {
 
   // Starts summing pixel `pixel` in `px` (a render thread's scratch record).
   void startPixel(AovPixel& px, glm::ivec2 pixel) const;
+  // Whether addSample runs the AVX2 copy.
+  bool usesAvx2() const { return avx2_; }
   void addSample(AovPixel& px, const AovSample& sample) const {
     if (avx2_)
       addSampleAvx2(px, sample);
@@ -128,16 +131,16 @@ class AovFilm {
 
   const Scene& scene_;
   std::vector<Aov> aovs_;
-  Image image_;               // the finished values (endPixel)
+  Image image_;                // the finished values (endPixel)
   std::size_t idChannel_ = 0;  // the first id aov's first channel (after the averaged ones)
   // Each averaged aov's first channel in the image (0: not asked for). The channels are in
   // the scene's order; addSample fills its sums in a fixed order, one test per aov.
   std::size_t depthChannel_ = 0, distanceChannel_ = 0, positionChannel_ = 0;
-  std::size_t normalChannel_ = 0;     // of N.X
-  std::size_t albedoChannel_ = 0;     // of albedo.R
-  std::size_t roughnessChannel_ = 0;  // of roughness.Y
-  std::size_t motionChannel_ = 0;     // of motion_fw.X
-  std::array<Spectrum, 3> whiteXyz_;  // x̄·D65, ȳ·D65, z̄·D65
+  std::size_t normalChannel_ = 0;           // of N.X
+  std::size_t albedoChannel_ = 0;           // of albedo.R
+  std::size_t roughnessChannel_ = 0;        // of roughness.Y
+  std::size_t motionChannel_ = 0;           // of motion_fw.X
+  std::array<Spectrum, 3> whiteXyz_;        // x̄·D65, ȳ·D65, z̄·D65
   std::array<double, 3> frameTimes_{};      // previous, this, next frame's reference time, s
   std::optional<PoseProjector> projector_;  // the camera at the three frame times
   std::vector<std::array<glm::dmat4, 3>> shapeAt_;  // per shape: its motion at each (moving)

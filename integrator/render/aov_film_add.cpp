@@ -68,8 +68,8 @@ template <glm::vec3 VisibleSurface::*field>
     const Double4 d = (p - o) * z;
     depth = d[0] + d[1] + d[2];
   }
-  px.scalars += Double4{1.0, depth, static_cast<double>(v.distance),
-                        static_cast<double>(v.roughness)};
+  px.scalars +=
+      Double4{1.0, depth, static_cast<double>(v.distance), static_cast<double>(v.roughness)};
   if (positionChannel_) {
     Double4 origin;
     const glm::dvec3& o = scene_.renderOrigin();

@@ -82,7 +82,9 @@ class SampledSpectrum {
     return m;
   }
   // The four values as one vector (for code that sums them in another precision).
-  const Float4& lanes() const { return v_; }
+  const Float4& lanes() const {
+    return v_;
+  }
   float average() const {
     float s = 0.0f;
     for (int i = 0; i < kWavelengthSamples; ++i) s += v_[i];
