@@ -2,7 +2,6 @@
 
 #include <chrono>
 #include <cmath>
-#include <memory>
 #include <mutex>
 
 #include <tbb/blocked_range.h>
@@ -24,34 +23,12 @@ struct TileStats {
   RayCounts rays;
 };
 
-// A pixel's camera samples as the ground truth needs them (their first hits, wavelengths,
-// times and camera poses), collected while the pixel's paths are traced and handed to the
-// AovFilm in one go (in sample order, so the sums are the same): the path tracer and the
-// AOV code each run many times in a row instead of alternating every sample, which keeps
-// both hot in the instruction cache.
-struct AovBatch {
-  static constexpr int kSize = 32;
-  std::array<VisibleSurface, kSize> visible;
-  std::array<SampledWavelengths, kSize> lambda;
-  std::array<double, kSize> time;
-  std::array<glm::dmat4, kSize> pose;
-  int count = 0;
-
-  void flush(const AovFilm& aovs, AovPixel& px, bool havePose) {
-    for (int i = 0; i < count; ++i) {
-      const std::size_t k = static_cast<std::size_t>(i);
-      aovs.addSample(px, {visible[k], time[k], lambda[k], havePose ? &pose[k] : nullptr});
-    }
-    count = 0;
-  }
-};
-
 // Compiled for each concrete sampler (final classes), so that drawing a number is an
 // inlined call, not a virtual one.
 template <typename SamplerT>
 void renderTile(const Scene& scene, Film& film, const RenderOptions& options,
                 const ModelledDimensions& dims, glm::ivec2 lo, glm::ivec2 hi, SamplerT& sampler,
-                TileStats& stats, AovFilm& aovs, AovPixel& aovPixel, AovBatch* batchPtr) {
+                TileStats& stats, AovFilm& aovs, AovPixel& aovPixel) {
   const PhysicalCamera& camera = scene.camera();
   const Shutter& shutter = camera.shutter();
   // The photosensitive area: centred in the pixel, sides scaled by √fill.
@@ -77,42 +54,34 @@ void renderTile(const Scene& scene, Film& film, const RenderOptions& options,
           cs.time = shutter.sample(static_cast<double>(sampler.get1D())) + shutter.rowOffset(y);
         }
         sampler.setDimension(kDimPath);
-        if (!batchPtr) {  // no ground truth
-          const std::optional<CameraRay> cr = camera.generateRay(cs, lambda);
-          ++stats.samples;
-          if (!cr) continue;
-          countRay(RayKind::kCamera, cr->ray);
+        // The ground truth's depth and normals need the camera's pose at the sample's time:
+        // computed once for the ray and for them.
+        const bool sharePose = aovs.wantsCamera();
+        glm::dmat4 pose;
+        if (sharePose) pose = camera.worldFromCameraAt(cs.time);
+        const glm::dmat4* posePtr = sharePose ? &pose : nullptr;
+        const std::optional<CameraRay> cr =
+            sharePose ? camera.generateRay(cs, lambda, pose) : camera.generateRay(cs, lambda);
+        ++stats.samples;
+        if (!cr) {
+          if (aovs.enabled())
+            aovs.addSample(aovPixel, {VisibleSurface{}, cs.time, lambda, posePtr});
+          continue;
+        }
+        countRay(RayKind::kCamera, cr->ray);
+        if (!aovs.enabled()) {
           const SampledSpectrum L = traceRadiance(scene, cr->ray, lambda, sampler);
           if (!film.addSample(pixel, L * cr->weight, lambda)) ++stats.rejected;
           continue;
         }
-        // The sample's slot in the batch. The ground truth's depth and normals need the
-        // camera's pose at the sample's time: computed once for the ray and for them.
-        AovBatch& batch = *batchPtr;
-        if (batch.count == AovBatch::kSize) batch.flush(aovs, aovPixel, aovs.wantsCamera());
-        const std::size_t k = static_cast<std::size_t>(batch.count++);
-        batch.time[k] = cs.time;
-        batch.lambda[k] = lambda;  // as the camera ray starts (a dispersive hit ends some)
-        VisibleSurface& visible = batch.visible[k];
-        visible = VisibleSurface{};
+        VisibleSurface visible;
         visible.wantMaterial = aovs.wantsMaterial();
-        std::optional<CameraRay> cr;
-        if (aovs.wantsCamera()) {
-          batch.pose[k] = camera.worldFromCameraAt(cs.time);
-          cr = camera.generateRay(cs, lambda, batch.pose[k]);
-        } else {
-          cr = camera.generateRay(cs, lambda);
-        }
-        ++stats.samples;
-        if (!cr) continue;  // no ray: a miss for the ground truth
-        countRay(RayKind::kCamera, cr->ray);
+        const SampledWavelengths lambdaAtCamera = lambda;  // before a dispersive hit ends some
         const SampledSpectrum L = traceRadiance(scene, cr->ray, lambda, sampler, &visible);
         if (!film.addSample(pixel, L * cr->weight, lambda)) ++stats.rejected;
+        aovs.addSample(aovPixel, {visible, cs.time, lambdaAtCamera, posePtr});
       }
-      if (batchPtr) {
-        batchPtr->flush(aovs, aovPixel, aovs.wantsCamera());
-        aovs.endPixel(aovPixel);
-      }
+      if (aovs.enabled()) aovs.endPixel(aovPixel);
     }
   }
 }
@@ -163,8 +132,6 @@ RenderResult render(const Scene& scene, const std::vector<const SpectralResponse
                       [&](const tbb::blocked_range<int>& range) {
                         auto sampler = prototype;
                         AovPixel aovPixel;
-                        std::unique_ptr<AovBatch> batch;
-                        if (aovs.enabled()) batch = std::make_unique<AovBatch>();
                         const RayStatsScope rays(options.rayObserver);
                         TileStats& stats = perThread.local();
                         struct AddRays {  // on every exit, also a cancelled one
@@ -179,7 +146,7 @@ RenderResult render(const Scene& scene, const std::vector<const SpectralResponse
                           }
                           const TileRect rect = renderTileRect(res, share.tile(i));
                           renderTile(scene, film, options, dims, rect.lo, rect.hi, sampler, stats,
-                                     aovs, aovPixel, batch.get());
+                                     aovs, aovPixel);
                           const int done = ++tilesDone;
                           if (options.progress) {
                             std::lock_guard<std::mutex> lock(progressMutex);
