@@ -68,7 +68,12 @@ AovFilm::AovFilm(const Scene& scene, bool allowAvx2) : scene_(scene), aovs_(scen
   if (albedoChannel_ > 0) {
     const SpectralResponse xyz = SpectralResponse::cieXyz();
     const Spectrum d65 = cieIlluminant("D65");
-    for (int c = 0; c < 3; ++c) whiteXyz_[static_cast<std::size_t>(c)] = xyz.channel(c).curve * d65;
+    whiteXyz_.assign(kSpectrumSamples, Float4{});
+    for (int c = 0; c < 3; ++c) {
+      const Spectrum white = xyz.channel(c).curve * d65;
+      for (int i = 0; i < kSpectrumSamples; ++i)
+        whiteXyz_[static_cast<std::size_t>(i)][c] = white.sample(i);
+    }
   }
   shapeMoves_.assign(scene.shapeCount(), 0);
   for (std::size_t s = 0; s < scene.shapeCount(); ++s)
@@ -154,11 +159,9 @@ void AovFilm::endPixel(AovPixel& px) {
   // Albedo: the ratio of each XYZ sum to the D65 white's, times the white's XYZ (Y = 1),
   // to Rec.709 (white (1, 1, 1)).
   glm::dvec3 ratio;
-  for (std::size_t c = 0; c < 3; ++c) {
-    const Double4& a = px.albedo[c];
-    const Double4& w = px.white[c];
-    const double den = (w[0] + w[1]) + (w[2] + w[3]);
-    ratio[static_cast<int>(c)] = den > 0.0 ? ((a[0] + a[1]) + (a[2] + a[3])) / den : 0.0;
+  for (int c = 0; c < 3; ++c) {
+    const double den = px.white[c];
+    ratio[c] = den > 0.0 ? px.albedo[c] / den : 0.0;
   }
   const RgbColorSpace& rec709 = RgbColorSpace::linearRec709();
   const glm::dvec3 rgb = rec709.fromXyz(ratio * rec709.toXyz(glm::dvec3(1.0)));

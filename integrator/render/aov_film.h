@@ -70,9 +70,8 @@ struct AovPixel {
   Double4 scalars{};
   Double4 position{}, normal{}, geometricNormal{};  // world axes
   Double4 normalCam{}, geometricNormalCam{};        // camera axes, when the camera turns
-  // Albedo, per XYZ channel c: Σ r_c ρ D65/p and the ratio's denominators Σ r_c D65/p, each
-  // a Double4 over the samples' four wavelength slots (hero and its rotations).
-  std::array<Double4, 3> albedo{}, white{};
+  Double4 albedo{};  // albedo: Σ r_c ρ D65/p over the samples' wavelengths (X, Y, Z, −)
+  Double4 white{};   // and Σ r_c D65/p, the ratio's denominators
   // The motion field's samples waiting for their projections, in sample order: each one's
   // hit at the three frame times, four at a time (PoseProjector).
   PosePoints motion;
@@ -140,7 +139,9 @@ class AovFilm {
   std::size_t albedoChannel_ = 0;           // of albedo.R
   std::size_t roughnessChannel_ = 0;        // of roughness.Y
   std::size_t motionChannel_ = 0;           // of motion_fw.X
-  std::array<Spectrum, 3> whiteXyz_;        // x̄·D65, ȳ·D65, z̄·D65
+  // x̄·D65, ȳ·D65, z̄·D65 interleaved on Spectrum's 1 nm grid (lane 3: 0): one 16-byte pair
+  // per wavelength gives all three (a sample touches 4–8 cache lines of it, not 12–24).
+  std::vector<Float4> whiteXyz_;
   std::array<double, 3> frameTimes_{};      // previous, this, next frame's reference time, s
   std::optional<PoseProjector> projector_;  // the camera at the three frame times
   std::vector<std::array<glm::dmat4, 3>> shapeAt_;  // per shape: its motion at each (moving)

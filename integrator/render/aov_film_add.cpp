@@ -30,11 +30,6 @@ template <glm::vec3 VisibleSurface::*field>
   out = Double4{v.x, v.y, v.z, v.w};
 }
 
-// sum += the four lanes of s, in double.
-[[gnu::always_inline]] inline void add(Double4& sum, const SampledSpectrum& s) {
-  sum += __builtin_convertvector(s.lanes(), Double4);
-}
-
 }  // namespace
 
 [[gnu::always_inline]] inline void AovFilm::addSampleBody(AovPixel& px,
@@ -97,17 +92,23 @@ template <glm::vec3 VisibleSurface::*field>
   }
   if (albedoChannel_) {
     // r_c·D65/p at each of the sample's wavelengths (the 1/N of the estimate cancels in the
-    // ratio), times ρ for the numerators; summed per wavelength slot over the pixel's
-    // samples in double. Divided in endPixel: a ratio of the pixel's sums, not a mean of
-    // per-sample ratios (biased for colour).
+    // ratio), all three c at once; summed over the wavelengths in float, over the pixel's
+    // samples in double. Numerators here, the white's denominators beside: divided in
+    // endPixel (a ratio of the pixel's sums, not a mean of per-sample ratios, which is
+    // biased for colour).
     const SampledWavelengths& lambda = sample.lambda;
-    const SampledSpectrum invPdf = safeDiv(SampledSpectrum(1.0f), lambda.pdfs());  // 0: terminated
-    const SampledSpectrum rho = v.albedo * invPdf;
-    for (std::size_t c = 0; c < 3; ++c) {
-      const SampledSpectrum white = sampleSpectrum(whiteXyz_[c], lambda);
-      add(px.albedo[c], white * rho);
-      add(px.white[c], white * invPdf);
+    // 1/p (0 for a terminated wavelength), the four at once.
+    const SampledSpectrum invPdf = safeDiv(SampledSpectrum(1.0f), lambda.pdfs());
+    Float4 num{}, den{};
+    for (int i = 0; i < kWavelengthSamples; ++i) {
+      const std::size_t k = static_cast<std::size_t>(lambda.gridIndex(i));
+      const Float4 a = whiteXyz_[k], b = whiteXyz_[k + 1];
+      const Float4 white = (a + lambda.gridFraction(i) * (b - a)) * invPdf[i];
+      num += white * v.albedo[i];
+      den += white;
     }
+    px.albedo += __builtin_convertvector(num, Double4);
+    px.white += __builtin_convertvector(den, Double4);
   }
   if (motionChannel_) {
     // The hit at each frame's reference time: a static shape's stays where it is; a moving
