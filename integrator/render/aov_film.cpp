@@ -109,11 +109,23 @@ AovFilm::AovFilm(const Scene& scene, bool allowAvx2) : scene_(scene), aovs_(scen
 }
 
 void AovFilm::startPixel(AovPixel& px, glm::ivec2 pixel) const {
-  px = AovPixel{};
+  // The sums and bookkeeping cleared (the records are overwritten before they are read).
+  px.pending = 0;
   px.pixel = pixel;
+  px.samples = 0;
+  px.scalars = px.position = px.normal = px.geometricNormal = Double4{};
+  px.normalCam = px.geometricNormalCam = px.albedo = px.white = Double4{};
+  px.motionPending = 0;
+  px.motionMoves = {};
+  px.motionLanes = MotionVectorSums{};
+  px.flow = {};
+  px.ids = {};
+  px.idShape = AovPixel::kNoShape;
+  px.idSlot = {};
 }
 
 void AovFilm::endPixel(AovPixel& px) {
+  sumRecords(px);
   if (motionChannel_ > 0) flushMotion(px);
   float* o = &image_.pixels[image_.index(px.pixel.x, px.pixel.y, 0)];
   const double hits = px.scalars[0];

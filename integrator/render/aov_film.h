@@ -61,9 +61,27 @@ struct AovSample {
   const glm::dmat4* worldFromCamera = nullptr;  // the camera's pose at `time` when wantsCamera()
 };
 
+// One camera sample's ground truth between addSample and its pixel's next summing: what it
+// hit, and what needed the sample's own camera pose and wavelengths, already worked out.
+struct AovRecord {
+  glm::vec3 p, n, ns;  // the first hit (render space, m), geometric and shading normal
+  float distance, roughness;
+  int shape;                              // the shape hit; −1: a miss (or no camera ray)
+  double time;                            // s
+  double depth;                           // camera-space z at the sample's time, m
+  Double4 normalCam, geometricNormalCam;  // camera axes at the sample's time (camera turns)
+  Float4 albedo, white;                   // Σ over its wavelengths of r_c ρ D65/p and r_c D65/p
+};
+
 // One pixel's sums while its samples are traced: a render thread's scratch record.
 // Vectors are Double4s with x, y, z in lanes 0–2 (lane 3 unused).
 struct AovPixel {
+  // Samples are recorded (addSample) and summed kBatch at a time (and at the pixel's end):
+  // the larger part of the AOV code then runs once per batch instead of between every two
+  // paths, where it pushed the path tracer's code out of the instruction cache.
+  static constexpr int kBatch = 16;
+  std::array<AovRecord, kBatch> records;
+  int pending = 0;  // records not summed yet
   glm::ivec2 pixel{0};
   int samples = 0;  // camera samples added, hits or not
   // Σ over the samples that hit: 1 (the hit count), depth (m), distance (m), roughness.
@@ -120,11 +138,21 @@ class AovFilm {
   Image takeImage() { return std::move(image_); }
 
  private:
-  // addSample's body (aov_film_add.cpp), inlined into a copy for the build's target and one
+  // addSample records a sample; sumRecords adds the pending records to the pixel's sums.
+  // Their bodies (aov_film_add.cpp) are inlined into a copy for the build's target and one
   // for AVX2 (the portable build: the same code twice; avx2_ is false there).
   void addSampleBody(AovPixel& px, const AovSample& sample) const;
   void addSamplePortable(AovPixel& px, const AovSample& sample) const;
   void addSampleAvx2(AovPixel& px, const AovSample& sample) const;
+  void sumRecordsBody(AovPixel& px) const;
+  void sumRecordsPortable(AovPixel& px) const;
+  void sumRecordsAvx2(AovPixel& px) const;
+  void sumRecords(AovPixel& px) const {
+    if (avx2_)
+      sumRecordsAvx2(px);
+    else
+      sumRecordsPortable(px);
+  }
   void flushMotion(AovPixel& px) const;  // projects and sums the pending motion samples
   void writeMotion(const AovPixel& px, float* o) const;
 
@@ -135,10 +163,10 @@ class AovFilm {
   // Each averaged aov's first channel in the image (0: not asked for). The channels are in
   // the scene's order; addSample fills its sums in a fixed order, one test per aov.
   std::size_t depthChannel_ = 0, distanceChannel_ = 0, positionChannel_ = 0;
-  std::size_t normalChannel_ = 0;           // of N.X
-  std::size_t albedoChannel_ = 0;           // of albedo.R
-  std::size_t roughnessChannel_ = 0;        // of roughness.Y
-  std::size_t motionChannel_ = 0;           // of motion_fw.X
+  std::size_t normalChannel_ = 0;     // of N.X
+  std::size_t albedoChannel_ = 0;     // of albedo.R
+  std::size_t roughnessChannel_ = 0;  // of roughness.Y
+  std::size_t motionChannel_ = 0;     // of motion_fw.X
   // x̄·D65, ȳ·D65, z̄·D65 interleaved on Spectrum's 1 nm grid (lane 3: 0): one 16-byte pair
   // per wavelength gives all three (a sample touches 4–8 cache lines of it, not 12–24).
   std::vector<Float4> whiteXyz_;

@@ -1,9 +1,9 @@
-// AovFilm's per-sample part (aov_film.h): a sample's first hit added to its pixel's scratch
-// record. The body is written once and inlined into two copies: one for the build's target
-// and, with CAMSIM_SIMD_X86, one compiled for AVX2 (whole Double4 registers), chosen once
-// per film by simd::cpuHasAvx2(). No FMA contraction happens in either (neither target
-// enables FMA), and each lane does the scalar code's operations in its order, so both give
-// the same bits.
+// AovFilm's per-sample part (aov_film.h): a sample's first hit recorded in its pixel's
+// scratch (addSample), and the records summed a batch at a time (sumRecords). Each body is
+// written once and inlined into two copies: one for the build's target and, with
+// CAMSIM_SIMD_X86, one compiled for AVX2 (whole Double4 registers), chosen once per film by
+// simd::cpuHasAvx2(). No FMA contraction happens in either (neither target enables FMA),
+// and each lane does the scalar code's operations in its order, so both give the same bits.
 #include <cstring>
 
 #include "integrator/render/aov_film.h"
@@ -32,68 +32,50 @@ template <glm::vec3 VisibleSurface::*field>
 
 }  // namespace
 
+// A sample: only what needs its own camera pose and wavelengths is worked out here (they
+// are gone after the sample); the rest waits in the record for sumRecords.
 [[gnu::always_inline]] inline void AovFilm::addSampleBody(AovPixel& px,
                                                           const AovSample& sample) const {
-  const VisibleSurface& v = sample.visible;
+  if (px.pending == AovPixel::kBatch) sumRecords(px);
   ++px.samples;
-  const std::size_t idCount = idFilms_.size();
-  if (idCount > 0) {
-    const int shape = v.hit ? v.shape : -1;
-    if (shape == px.idShape) {  // the common case: the previous sample's shape again
-      for (std::size_t k = 0; k < idCount; ++k)
-        if (IdFilm::Slot* slot = px.idSlot[k]) ++slot->count;
-    } else {
-      const std::uint32_t* entries =
-          v.hit ? &idEntries_[static_cast<std::size_t>(v.shape) * idCount] : nullptr;
-      for (std::size_t k = 0; k < idCount; ++k)
-        px.idSlot[k] = IdFilm::add(px.ids[k], entries ? entries[k] : 0u);
-      px.idShape = shape;
-    }
-  }
+  AovRecord& r = px.records[static_cast<std::size_t>(px.pending++)];
+  const VisibleSurface& v = sample.visible;
+  r.shape = v.hit ? v.shape : -1;
   if (!v.hit) return;
+  r.p = v.p;
+  r.n = v.n;
+  r.ns = v.ns;
+  r.distance = v.distance;
+  r.roughness = v.roughness;
+  r.time = sample.time;
   // The camera's pose at the sample's time, from the render loop (wantsCamera()).
   const glm::dmat4& worldFromCamera = wantsCamera_ ? *sample.worldFromCamera : worldFromCamera_;
-  Double4 p;
-  load<&VisibleSurface::p>(p, v);
-  double depth = 0.0;
   if (depthChannel_) {  // glm::dot(p − o, z) in its order
-    Double4 o, z;
+    Double4 p, o, z;
+    load<&VisibleSurface::p>(p, v);
     load(o, worldFromCamera[3]);
     load(z, worldFromCamera[2]);
     const Double4 d = (p - o) * z;
-    depth = d[0] + d[1] + d[2];
+    r.depth = d[0] + d[1] + d[2];
   }
-  px.scalars +=
-      Double4{1.0, depth, static_cast<double>(v.distance), static_cast<double>(v.roughness)};
-  if (positionChannel_) {
-    Double4 origin;
-    const glm::dvec3& o = scene_.renderOrigin();
-    origin = Double4{o.x, o.y, o.z, 0.0};
-    px.position += p + origin;
-  }
-  if (normalChannel_) {
-    Double4 n, ng;
+  if (normalChannel_ && cameraTurns_) {  // else from the world means in endPixel (linear)
+    // cameraCvFromWorld: (n·x, −(n·y), n·z) over the pose's axes, in glm::dot's order:
+    // lane c of Σ_k n_k · row_k is n·axis_c.
+    Double4 n, ng, x, y, z;
     load<&VisibleSurface::ns>(n, v);
     load<&VisibleSurface::n>(ng, v);
-    px.normal += n;
-    px.geometricNormal += ng;
-    if (cameraTurns_) {  // else the camera axes from the world means in endPixel (linear)
-      // cameraCvFromWorld: (n·x, −(n·y), n·z) over the pose's axes, in glm::dot's order:
-      // lane c of Σ_k n_k · row_k is n·axis_c.
-      Double4 x, y, z;
-      load(x, worldFromCamera[0]);
-      load(y, worldFromCamera[1]);
-      load(z, worldFromCamera[2]);
-      const Double4 r0 = {x[0], y[0], z[0], 0.0}, r1 = {x[1], y[1], z[1], 0.0},
-                    r2 = {x[2], y[2], z[2], 0.0}, sign = {1.0, -1.0, 1.0, 1.0};
-      px.normalCam += (n[0] * r0 + n[1] * r1 + n[2] * r2) * sign;
-      px.geometricNormalCam += (ng[0] * r0 + ng[1] * r1 + ng[2] * r2) * sign;
-    }
+    load(x, worldFromCamera[0]);
+    load(y, worldFromCamera[1]);
+    load(z, worldFromCamera[2]);
+    const Double4 r0 = {x[0], y[0], z[0], 0.0}, r1 = {x[1], y[1], z[1], 0.0},
+                  r2 = {x[2], y[2], z[2], 0.0}, sign = {1.0, -1.0, 1.0, 1.0};
+    r.normalCam = (n[0] * r0 + n[1] * r1 + n[2] * r2) * sign;
+    r.geometricNormalCam = (ng[0] * r0 + ng[1] * r1 + ng[2] * r2) * sign;
   }
   if (albedoChannel_) {
     // r_c·D65/p at each of the sample's wavelengths (the 1/N of the estimate cancels in the
-    // ratio), all three c at once; summed over the wavelengths in float, over the pixel's
-    // samples in double. Numerators here, the white's denominators beside: divided in
+    // ratio), all three c at once; summed over the wavelengths in float (then over the
+    // pixel's samples in double). Numerators and the white's denominators: divided in
     // endPixel (a ratio of the pixel's sums, not a mean of per-sample ratios, which is
     // biased for colour).
     const SampledWavelengths& lambda = sample.lambda;
@@ -107,39 +89,90 @@ template <glm::vec3 VisibleSurface::*field>
       num += white * v.albedo[i];
       den += white;
     }
-    px.albedo += __builtin_convertvector(num, Double4);
-    px.white += __builtin_convertvector(den, Double4);
+    r.albedo = num;
+    r.white = den;
   }
-  if (motionChannel_) {
-    // The hit at each frame's reference time: a static shape's stays where it is; a moving
-    // one's is taken to object space at the sample's time and moved to each frame time
-    // (the poses at the frame times were computed once, in the constructor).
-    // The four queued samples are projected when a fifth arrives (or at the pixel's end),
-    // not right after the fourth is stored: by then the lanes' narrow stores have left the
-    // store buffer, and the vector loads of them do not stall.
-    if (px.motionPending == 4) flushMotion(px);
-    const int lane = px.motionPending++;
-    const std::size_t shape = static_cast<std::size_t>(v.shape);
-    const bool moves = shapeMoves_[shape];
-    px.motionMoves[static_cast<std::size_t>(lane)] = moves;
-    if (!moves) {
-      for (std::size_t j = 0; j < 3; ++j) {
-        px.motion.x[j][lane] = p[0];
-        px.motion.y[j][lane] = p[1];
-        px.motion.z[j][lane] = p[2];
+}
+
+// The pending records, in sample order, into the pixel's sums.
+[[gnu::always_inline]] inline void AovFilm::sumRecordsBody(AovPixel& px) const {
+  const std::size_t idCount = idFilms_.size();
+  const glm::dvec3& origin = scene_.renderOrigin();
+  const Double4 originLanes = {origin.x, origin.y, origin.z, 0.0};
+  for (int i = 0; i < px.pending; ++i) {
+    const AovRecord& r = px.records[static_cast<std::size_t>(i)];
+    if (idCount > 0) {
+      if (r.shape == px.idShape) {  // the common case: the previous sample's shape again
+        for (std::size_t k = 0; k < idCount; ++k)
+          if (IdFilm::Slot* slot = px.idSlot[k]) ++slot->count;
+      } else {
+        const std::uint32_t* entries =
+            r.shape >= 0 ? &idEntries_[static_cast<std::size_t>(r.shape) * idCount] : nullptr;
+        for (std::size_t k = 0; k < idCount; ++k)
+          px.idSlot[k] = IdFilm::add(px.ids[k], entries ? entries[k] : 0u);
+        px.idShape = r.shape;
       }
-    } else {
-      const glm::dvec3 object =
-          scene_.motion(v.shape).objectFromWorld(glm::dvec3(v.p), sample.time);
-      for (std::size_t j = 0; j < 3; ++j) {
-        const glm::dvec3 at(shapeAt_[shape][j] * glm::dvec4(object, 1.0));
-        px.motion.x[j][lane] = at.x;
-        px.motion.y[j][lane] = at.y;
-        px.motion.z[j][lane] = at.z;
+    }
+    if (r.shape < 0) continue;
+    Double4 p = __builtin_convertvector((Float4{r.p.x, r.p.y, r.p.z, 0.0f}), Double4);
+    px.scalars += Double4{1.0, depthChannel_ ? r.depth : 0.0, static_cast<double>(r.distance),
+                          static_cast<double>(r.roughness)};
+    if (positionChannel_) px.position += p + originLanes;
+    if (normalChannel_) {
+      px.normal += __builtin_convertvector((Float4{r.ns.x, r.ns.y, r.ns.z, 0.0f}), Double4);
+      px.geometricNormal += __builtin_convertvector((Float4{r.n.x, r.n.y, r.n.z, 0.0f}), Double4);
+      if (cameraTurns_) {
+        px.normalCam += r.normalCam;
+        px.geometricNormalCam += r.geometricNormalCam;
+      }
+    }
+    if (albedoChannel_) {
+      px.albedo += __builtin_convertvector(r.albedo, Double4);
+      px.white += __builtin_convertvector(r.white, Double4);
+    }
+    if (motionChannel_) {
+      // The hit at each frame's reference time: a static shape's stays where it is; a moving
+      // one's is taken to object space at the sample's time and moved to each frame time
+      // (the poses at the frame times were computed once, in the constructor). Projected
+      // four at a time.
+      if (px.motionPending == 4) flushMotion(px);
+      const int lane = px.motionPending++;
+      const std::size_t shape = static_cast<std::size_t>(r.shape);
+      const bool moves = shapeMoves_[shape];
+      px.motionMoves[static_cast<std::size_t>(lane)] = moves;
+      if (!moves) {
+        for (std::size_t j = 0; j < 3; ++j) {
+          px.motion.x[j][lane] = p[0];
+          px.motion.y[j][lane] = p[1];
+          px.motion.z[j][lane] = p[2];
+        }
+      } else {
+        const glm::dvec3 object = scene_.motion(r.shape).objectFromWorld(glm::dvec3(r.p), r.time);
+        for (std::size_t j = 0; j < 3; ++j) {
+          const glm::dvec3 at(shapeAt_[shape][j] * glm::dvec4(object, 1.0));
+          px.motion.x[j][lane] = at.x;
+          px.motion.y[j][lane] = at.y;
+          px.motion.z[j][lane] = at.z;
+        }
       }
     }
   }
+  px.pending = 0;
 }
+
+void AovFilm::sumRecordsPortable(AovPixel& px) const {
+  sumRecordsBody(px);
+}
+
+#if CAMSIM_SIMD_X86
+CAMSIM_TARGET_AVX2 void AovFilm::sumRecordsAvx2(AovPixel& px) const {
+  sumRecordsBody(px);
+}
+#else
+void AovFilm::sumRecordsAvx2(AovPixel& px) const {
+  sumRecordsBody(px);
+}
+#endif
 
 void AovFilm::addSamplePortable(AovPixel& px, const AovSample& sample) const {
   addSampleBody(px, sample);
