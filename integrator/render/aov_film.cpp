@@ -66,6 +66,9 @@ AovFilm::AovFilm(const Scene& scene, bool allowAvx2) : scene_(scene), aovs_(scen
     if (name == "motion_fw.X") motionChannel_ = c;
   }
   if (albedoChannel_ > 0) {
+    const RgbColorSpace& rec709 = RgbColorSpace::linearRec709();
+    rec709WhiteXyz_ = rec709.toXyz(glm::dvec3(1.0));
+    rec709FromXyz_ = rec709.rgbFromXyz();
     const SpectralResponse xyz = SpectralResponse::cieXyz();
     const Spectrum d65 = cieIlluminant("D65");
     whiteXyz_.assign(kSpectrumSamples, Float4{});
@@ -127,7 +130,21 @@ void AovFilm::startPixel(AovPixel& px, glm::ivec2 pixel) const {
 void AovFilm::endPixel(AovPixel& px) {
   sumRecords(px);
   if (motionChannel_ > 0) flushMotion(px);
-  float* o = &image_.pixels[image_.index(px.pixel.x, px.pixel.y, 0)];
+  // The pixel's channels are put together in the scratch record and streamed to the image
+  // around the caches: the image (≈ 300 bytes a pixel) is not read again during the render,
+  // and ordinary stores would read each line first and evict the path tracer's data
+  // (textures, the BVH) for it (docs/performance.md).
+  const std::size_t n = image_.channels.size();
+  px.out.assign(n, 0.0f);
+  writePixel(px, px.out.data());
+  simd::streamStore(&image_.pixels[image_.index(px.pixel.x, px.pixel.y, 0)], px.out.data(), n);
+}
+
+void AovFilm::endThread() const {
+  simd::storeFence();
+}
+
+void AovFilm::writePixel(const AovPixel& px, float* o) const {
   const double hits = px.scalars[0];
   o[0] = static_cast<float>(hits / px.samples);
   float* ids = o + idChannel_;
@@ -137,7 +154,10 @@ void AovFilm::endPixel(AovPixel& px) {
   }
   if (motionChannel_ > 0) writeMotion(px, o + motionChannel_);
   if (hits == 0.0) return;  // the averaged channels stay 0
-  const auto mean = [hits](double sum) { return static_cast<float>(sum / hits); };
+  // Σ · (1/hits): one division for the ≈ 25 means (a division per mean was most of a
+  // pixel's cost here).
+  const double invHits = 1.0 / hits;
+  const auto mean = [invHits](double sum) { return static_cast<float>(sum * invHits); };
   if (depthChannel_) o[depthChannel_] = mean(px.scalars[1]);
   if (distanceChannel_) o[distanceChannel_] = mean(px.scalars[2]);
   if (roughnessChannel_) o[roughnessChannel_] = mean(px.scalars[3]);
@@ -157,10 +177,11 @@ void AovFilm::endPixel(AovPixel& px) {
       }
     } else {  // the world means in the camera's axes (linear)
       const glm::dvec3 c = cameraCvFromWorld(
-          worldFromCamera_, glm::dvec3(px.normal[0], px.normal[1], px.normal[2]) / hits);
+          worldFromCamera_, glm::dvec3(px.normal[0], px.normal[1], px.normal[2]) * invHits);
       const glm::dvec3 cg = cameraCvFromWorld(
           worldFromCamera_,
-          glm::dvec3(px.geometricNormal[0], px.geometricNormal[1], px.geometricNormal[2]) / hits);
+          glm::dvec3(px.geometricNormal[0], px.geometricNormal[1], px.geometricNormal[2]) *
+              invHits);
       for (int i = 0; i < 3; ++i) {
         n[6 + i] = static_cast<float>(c[i]);
         n[9 + i] = static_cast<float>(cg[i]);
@@ -175,8 +196,7 @@ void AovFilm::endPixel(AovPixel& px) {
     const double den = px.white[c];
     ratio[c] = den > 0.0 ? px.albedo[c] / den : 0.0;
   }
-  const RgbColorSpace& rec709 = RgbColorSpace::linearRec709();
-  const glm::dvec3 rgb = rec709.fromXyz(ratio * rec709.toXyz(glm::dvec3(1.0)));
+  const glm::dvec3 rgb = rec709FromXyz_ * (ratio * rec709WhiteXyz_);  // RgbColorSpace::fromXyz
   for (int c = 0; c < 3; ++c)
     o[albedoChannel_ + static_cast<std::size_t>(c)] = static_cast<float>(rgb[c]);
 }
@@ -189,8 +209,9 @@ void AovFilm::writeMotion(const AovPixel& px, float* o) const {
   const double vectors[4] = {
       (l.fwx[0] + l.fwx[1]) + (l.fwx[2] + l.fwx[3]), (l.fwy[0] + l.fwy[1]) + (l.fwy[2] + l.fwy[3]),
       (l.bwx[0] + l.bwx[1]) + (l.bwx[2] + l.bwx[3]), (l.bwy[0] + l.bwy[1]) + (l.bwy[2] + l.bwy[3])};
-  for (std::size_t c = 0; c < 4; ++c) o[c] = static_cast<float>(vectors[c] / count);
-  for (std::size_t c = 0; c < 6; ++c) o[4 + c] = static_cast<float>(px.flow[c] / count);
+  const double inv = 1.0 / count;
+  for (std::size_t c = 0; c < 4; ++c) o[c] = static_cast<float>(vectors[c] * inv);
+  for (std::size_t c = 0; c < 6; ++c) o[4 + c] = static_cast<float>(px.flow[c] * inv);
 }
 
 }  // namespace camsim

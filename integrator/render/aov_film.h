@@ -40,6 +40,7 @@
 #include <optional>
 #include <vector>
 
+#include <glm/mat3x3.hpp>
 #include <glm/mat4x4.hpp>
 #include <glm/vec2.hpp>
 
@@ -53,20 +54,19 @@
 
 namespace camsim {
 
-// One camera sample for the AOVs (as Nori's query records: one argument, not a list).
+// One camera sample for the AOVs (as Nori's query records: one argument, not a list). Its
+// first hit is in the pixel's record that nextSurface handed out.
 struct AovSample {
-  const VisibleSurface& visible;     // its first hit (visible.hit false: a miss, or no ray)
   double time = 0.0;                 // the sample's time, s
   const SampledWavelengths& lambda;  // as the camera ray started (before a dispersive hit)
   const glm::dmat4* worldFromCamera = nullptr;  // the camera's pose at `time` when wantsCamera()
 };
 
-// One camera sample's ground truth between addSample and its pixel's next summing: what it
-// hit, and what needed the sample's own camera pose and wavelengths, already worked out.
+// One camera sample's ground truth between addSample and its pixel's next summing: its first
+// hit, as traceRadiance recorded it there, and what needed the sample's own camera pose and
+// wavelengths, already worked out.
 struct AovRecord {
-  glm::vec3 p, n, ns;  // the first hit (render space, m), geometric and shading normal
-  float distance, roughness;
-  int shape;                              // the shape hit; −1: a miss (or no camera ray)
+  VisibleSurface visible;                 // visible.hit false: a miss (or no camera ray)
   double time;                            // s
   double depth;                           // camera-space z at the sample's time, m
   Double4 normalCam, geometricNormalCam;  // camera axes at the sample's time (camera turns)
@@ -105,6 +105,7 @@ struct AovPixel {
   static constexpr int kNoShape = -2;
   int idShape = kNoShape;
   std::array<IdFilm::Slot*, kIdKindCount> idSlot{};
+  std::vector<float> out;  // the finished pixel's channels, before they go to the image
 };
 
 class AovFilm {
@@ -124,6 +125,17 @@ class AovFilm {
   void startPixel(AovPixel& px, glm::ivec2 pixel) const;
   // Whether addSample runs the AVX2 copy.
   bool usesAvx2() const { return avx2_; }
+  // Where the pixel's next camera sample records its first hit (traceRadiance's `visible`):
+  // a record of the pixel's batch, cleared (hit false), wantMaterial set. The path tracer
+  // writes it in place; addSample then completes the record.
+  VisibleSurface& nextSurface(AovPixel& px) const {
+    if (px.pending == AovPixel::kBatch) sumRecords(px);
+    VisibleSurface& v = px.records[static_cast<std::size_t>(px.pending)].visible;
+    v.hit = false;
+    v.wantMaterial = wantsMaterial_;
+    return v;
+  }
+  // The sample whose surface nextSurface handed out (call them in pairs).
   void addSample(AovPixel& px, const AovSample& sample) const {
     if (avx2_)
       addSampleAvx2(px, sample);
@@ -131,8 +143,11 @@ class AovFilm {
       addSamplePortable(px, sample);
   }
   // Writes the pixel's finished values (means, coverages, id ranks) into the image. Each
-  // pixel is ended by one thread only, so no locking is needed.
+  // pixel is ended by one thread only, so no locking is needed. A thread that ended pixels
+  // calls endThread before its work is handed on (the image is written with streaming
+  // stores, which are ordered only by the fence).
   void endPixel(AovPixel& px);
+  void endThread() const;
   // coverage.A, each averaged aov's channels in the scene's order (table above), then each
   // id aov's (id_film.h), in the scene's order. Pixels never ended hold 0.
   Image takeImage() { return std::move(image_); }
@@ -154,6 +169,7 @@ class AovFilm {
       sumRecordsPortable(px);
   }
   void flushMotion(AovPixel& px) const;  // projects and sums the pending motion samples
+  void writePixel(const AovPixel& px, float* o) const;  // its channels (o: zeros)
   void writeMotion(const AovPixel& px, float* o) const;
 
   const Scene& scene_;
@@ -170,6 +186,8 @@ class AovFilm {
   // x̄·D65, ȳ·D65, z̄·D65 interleaved on Spectrum's 1 nm grid (lane 3: 0): one 16-byte pair
   // per wavelength gives all three (a sample touches 4–8 cache lines of it, not 12–24).
   std::vector<Float4> whiteXyz_;
+  glm::dvec3 rec709WhiteXyz_{0.0};  // linear Rec.709's white (1, 1, 1) in XYZ
+  glm::dmat3 rec709FromXyz_{1.0};
   std::array<double, 3> frameTimes_{};      // previous, this, next frame's reference time, s
   std::optional<PoseProjector> projector_;  // the camera at the three frame times
   std::vector<std::array<glm::dmat4, 3>> shapeAt_;  // per shape: its motion at each (moving)

@@ -36,17 +36,10 @@ template <glm::vec3 VisibleSurface::*field>
 // are gone after the sample); the rest waits in the record for sumRecords.
 [[gnu::always_inline]] inline void AovFilm::addSampleBody(AovPixel& px,
                                                           const AovSample& sample) const {
-  if (px.pending == AovPixel::kBatch) sumRecords(px);
   ++px.samples;
   AovRecord& r = px.records[static_cast<std::size_t>(px.pending++)];
-  const VisibleSurface& v = sample.visible;
-  r.shape = v.hit ? v.shape : -1;
+  const VisibleSurface& v = r.visible;  // filled in place (nextSurface)
   if (!v.hit) return;
-  r.p = v.p;
-  r.n = v.n;
-  r.ns = v.ns;
-  r.distance = v.distance;
-  r.roughness = v.roughness;
   r.time = sample.time;
   // The camera's pose at the sample's time, from the render loop (wantsCamera()).
   const glm::dmat4& worldFromCamera = wantsCamera_ ? *sample.worldFromCamera : worldFromCamera_;
@@ -101,26 +94,32 @@ template <glm::vec3 VisibleSurface::*field>
   const Double4 originLanes = {origin.x, origin.y, origin.z, 0.0};
   for (int i = 0; i < px.pending; ++i) {
     const AovRecord& r = px.records[static_cast<std::size_t>(i)];
+    const VisibleSurface& v = r.visible;
+    const int shapeHit = v.hit ? v.shape : -1;
     if (idCount > 0) {
-      if (r.shape == px.idShape) {  // the common case: the previous sample's shape again
+      if (shapeHit == px.idShape) {  // the common case: the previous sample's shape again
         for (std::size_t k = 0; k < idCount; ++k)
           if (IdFilm::Slot* slot = px.idSlot[k]) ++slot->count;
       } else {
         const std::uint32_t* entries =
-            r.shape >= 0 ? &idEntries_[static_cast<std::size_t>(r.shape) * idCount] : nullptr;
+            shapeHit >= 0 ? &idEntries_[static_cast<std::size_t>(shapeHit) * idCount] : nullptr;
         for (std::size_t k = 0; k < idCount; ++k)
           px.idSlot[k] = IdFilm::add(px.ids[k], entries ? entries[k] : 0u);
-        px.idShape = r.shape;
+        px.idShape = shapeHit;
       }
     }
-    if (r.shape < 0) continue;
-    Double4 p = __builtin_convertvector((Float4{r.p.x, r.p.y, r.p.z, 0.0f}), Double4);
-    px.scalars += Double4{1.0, depthChannel_ ? r.depth : 0.0, static_cast<double>(r.distance),
-                          static_cast<double>(r.roughness)};
+    if (shapeHit < 0) continue;
+    Double4 p;
+    load<&VisibleSurface::p>(p, v);
+    px.scalars += Double4{1.0, depthChannel_ ? r.depth : 0.0, static_cast<double>(v.distance),
+                          static_cast<double>(v.roughness)};
     if (positionChannel_) px.position += p + originLanes;
     if (normalChannel_) {
-      px.normal += __builtin_convertvector((Float4{r.ns.x, r.ns.y, r.ns.z, 0.0f}), Double4);
-      px.geometricNormal += __builtin_convertvector((Float4{r.n.x, r.n.y, r.n.z, 0.0f}), Double4);
+      Double4 ns, ng;
+      load<&VisibleSurface::ns>(ns, v);
+      load<&VisibleSurface::n>(ng, v);
+      px.normal += ns;
+      px.geometricNormal += ng;
       if (cameraTurns_) {
         px.normalCam += r.normalCam;
         px.geometricNormalCam += r.geometricNormalCam;
@@ -137,7 +136,7 @@ template <glm::vec3 VisibleSurface::*field>
       // four at a time.
       if (px.motionPending == 4) flushMotion(px);
       const int lane = px.motionPending++;
-      const std::size_t shape = static_cast<std::size_t>(r.shape);
+      const std::size_t shape = static_cast<std::size_t>(shapeHit);
       const bool moves = shapeMoves_[shape];
       px.motionMoves[static_cast<std::size_t>(lane)] = moves;
       if (!moves) {
@@ -147,7 +146,7 @@ template <glm::vec3 VisibleSurface::*field>
           px.motion.z[j][lane] = p[2];
         }
       } else {
-        const glm::dvec3 object = scene_.motion(r.shape).objectFromWorld(glm::dvec3(r.p), r.time);
+        const glm::dvec3 object = scene_.motion(shapeHit).objectFromWorld(glm::dvec3(v.p), r.time);
         for (std::size_t j = 0; j < 3; ++j) {
           const glm::dvec3 at(shapeAt_[shape][j] * glm::dvec4(object, 1.0));
           px.motion.x[j][lane] = at.x;

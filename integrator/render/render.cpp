@@ -64,8 +64,10 @@ void renderTile(const Scene& scene, Film& film, const RenderOptions& options,
             sharePose ? camera.generateRay(cs, lambda, pose) : camera.generateRay(cs, lambda);
         ++stats.samples;
         if (!cr) {
-          if (aovs.enabled())
-            aovs.addSample(aovPixel, {VisibleSurface{}, cs.time, lambda, posePtr});
+          if (aovs.enabled()) {
+            aovs.nextSurface(aovPixel);  // left empty: no hit
+            aovs.addSample(aovPixel, {cs.time, lambda, posePtr});
+          }
           continue;
         }
         countRay(RayKind::kCamera, cr->ray);
@@ -74,12 +76,12 @@ void renderTile(const Scene& scene, Film& film, const RenderOptions& options,
           if (!film.addSample(pixel, L * cr->weight, lambda)) ++stats.rejected;
           continue;
         }
-        VisibleSurface visible;
-        visible.wantMaterial = aovs.wantsMaterial();
+        // The first hit is recorded in place, in the pixel's AOV record.
+        VisibleSurface& visible = aovs.nextSurface(aovPixel);
         const SampledWavelengths lambdaAtCamera = lambda;  // before a dispersive hit ends some
         const SampledSpectrum L = traceRadiance(scene, cr->ray, lambda, sampler, &visible);
         if (!film.addSample(pixel, L * cr->weight, lambda)) ++stats.rejected;
-        aovs.addSample(aovPixel, {visible, cs.time, lambdaAtCamera, posePtr});
+        aovs.addSample(aovPixel, {cs.time, lambdaAtCamera, posePtr});
       }
       if (aovs.enabled()) aovs.endPixel(aovPixel);
     }
@@ -139,6 +141,10 @@ RenderResult render(const Scene& scene, const std::vector<const SpectralResponse
                           TileStats& stats;
                           ~AddRays() { stats.rays += scope.rays(); }
                         } addRays{rays, stats};
+                        struct EndAovs {  // the AOV image's streaming stores, fenced
+                          const AovFilm& aovs;
+                          ~EndAovs() { aovs.endThread(); }
+                        } endAovs{aovs};
                         for (int i = range.begin(); i != range.end(); ++i) {
                           if (options.cancel && options.cancel->load(std::memory_order_relaxed)) {
                             cancelled = true;

@@ -120,8 +120,17 @@ TEST_F(DatasetCommand, KilledMidItemResumesWithNothingLostOrTwice) {
   {
     test::Child child({"dataset", manifest_.string(), "-o", out.string(), "--threads", "1"},
                       dir_.path() / "killed");
-    // Kill it while an item is in progress: after two items are done.
-    while (child.running() && indexItems(out, "done").size() < 2 && child.secondsSinceStart() < 120)
+    // Kill it while an item is in progress: after two items are done, once the third's
+    // temporary folder exists (between two items there is none to clean up, and on a loaded
+    // machine the kill could land there).
+    const auto itemInProgress = [&] {
+      std::error_code ec;
+      for (fs::recursive_directory_iterator it(out, ec), end; !ec && it != end; it.increment(ec))
+        if (it->path().filename().string().find(".camsim-tmp-") != std::string::npos) return true;
+      return false;
+    };
+    while (child.running() && child.secondsSinceStart() < 120 &&
+           !(indexItems(out, "done").size() >= 2 && itemInProgress()))
       std::this_thread::sleep_for(std::chrono::milliseconds(5));
     ASSERT_TRUE(child.running()) << "finished before it could be killed";
     child.signal(SIGKILL);

@@ -80,8 +80,10 @@ TEST(AovFilmSimd, TargetAndAvx2CopiesGiveTheSameBytes) {
         if (s % 5 == 0) lambda.terminateSecondary();  // pdf 0 at three wavelengths
         const double t = 1.0 / 24.0 + static_cast<double>(u(rng)) / 48.0;
         const glm::dmat4 pose = scene.camera().worldFromCameraAt(t);
-        avx2.addSample(a, {v, t, lambda, &pose});
-        target.addSample(b, {v, t, lambda, &pose});
+        avx2.nextSurface(a) = v;
+        target.nextSurface(b) = v;
+        avx2.addSample(a, {t, lambda, &pose});
+        target.addSample(b, {t, lambda, &pose});
       }
       avx2.endPixel(a);
       target.endPixel(b);
