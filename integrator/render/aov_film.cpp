@@ -130,18 +130,8 @@ void AovFilm::startPixel(AovPixel& px, glm::ivec2 pixel) const {
 void AovFilm::endPixel(AovPixel& px) {
   sumRecords(px);
   if (motionChannel_ > 0) flushMotion(px);
-  // The pixel's channels are put together in the scratch record and streamed to the image
-  // around the caches: the image (≈ 300 bytes a pixel) is not read again during the render,
-  // and ordinary stores would read each line first and evict the path tracer's data
-  // (textures, the BVH) for it (docs/performance.md).
-  const std::size_t n = image_.channels.size();
-  px.out.assign(n, 0.0f);
-  writePixel(px, px.out.data());
-  simd::streamStore(&image_.pixels[image_.index(px.pixel.x, px.pixel.y, 0)], px.out.data(), n);
-}
-
-void AovFilm::endThread() const {
-  simd::storeFence();
+  // The image's pixel is still 0 (the constructor's), as writePixel expects.
+  writePixel(px, &image_.pixels[image_.index(px.pixel.x, px.pixel.y, 0)]);
 }
 
 void AovFilm::writePixel(const AovPixel& px, float* o) const {

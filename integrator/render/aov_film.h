@@ -105,7 +105,6 @@ struct AovPixel {
   static constexpr int kNoShape = -2;
   int idShape = kNoShape;
   std::array<IdFilm::Slot*, kIdKindCount> idSlot{};
-  std::vector<float> out;  // the finished pixel's channels, before they go to the image
 };
 
 class AovFilm {
@@ -143,11 +142,8 @@ class AovFilm {
       addSamplePortable(px, sample);
   }
   // Writes the pixel's finished values (means, coverages, id ranks) into the image. Each
-  // pixel is ended by one thread only, so no locking is needed. A thread that ended pixels
-  // calls endThread before its work is handed on (the image is written with streaming
-  // stores, which are ordered only by the fence).
+  // pixel is ended by one thread only, so no locking is needed.
   void endPixel(AovPixel& px);
-  void endThread() const;
   // coverage.A, each averaged aov's channels in the scene's order (table above), then each
   // id aov's (id_film.h), in the scene's order. Pixels never ended hold 0.
   Image takeImage() { return std::move(image_); }

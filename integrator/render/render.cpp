@@ -141,10 +141,6 @@ RenderResult render(const Scene& scene, const std::vector<const SpectralResponse
                           TileStats& stats;
                           ~AddRays() { stats.rays += scope.rays(); }
                         } addRays{rays, stats};
-                        struct EndAovs {  // the AOV image's streaming stores, fenced
-                          const AovFilm& aovs;
-                          ~EndAovs() { aovs.endThread(); }
-                        } endAovs{aovs};
                         for (int i = range.begin(); i != range.end(); ++i) {
                           if (options.cancel && options.cancel->load(std::memory_order_relaxed)) {
                             cancelled = true;

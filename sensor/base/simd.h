@@ -7,20 +7,13 @@
 //                        cpuHasAvx2()); nothing in the portable path
 //   simd::cpuHasAvx2()   whether the running CPU has AVX2; false in the portable path
 //   simd::anyLane(mask)  whether any lane of a comparison result (−1 true, 0 false) is true
-//   simd::streamStore    copies floats to memory that will not be read again soon, around
-//                        the caches (non-temporal stores: no read of the old line, no
-//                        eviction of the caller's working set); std::memcpy in the
-//                        portable path. The writing thread calls storeFence() before another
-//                        thread may read them.
 //
 // Float4 / Int4 are GCC/Clang vector extensions, not x86-specific (the compiler lowers
 // them to whatever vector unit the target has, or to scalars).
 #pragma once
 
 #include <bit>
-#include <cstddef>
 #include <cstdint>
-#include <cstring>
 
 #if defined(CAMSIM_SIMD) && CAMSIM_SIMD && defined(__x86_64__)
 #define CAMSIM_SIMD_X86 1
@@ -55,33 +48,6 @@ inline bool anyLane(Int4 mask) {
   return __builtin_ia32_movmskps(std::bit_cast<Float4>(mask)) != 0;
 #else
   return (mask[0] | mask[1] | mask[2] | mask[3]) != 0;
-#endif
-}
-
-// n floats from src to dst (4-byte aligned): 4-byte streaming stores up to dst's first
-// 16-byte boundary, 16-byte ones from there, 4-byte ones for the rest.
-inline void streamStore(float* dst, const float* src, std::size_t n) {
-#if CAMSIM_SIMD_X86
-  std::size_t i = 0;
-  for (; i < n && (reinterpret_cast<std::uintptr_t>(dst + i) & 15u) != 0; ++i)
-    __builtin_ia32_movnti(reinterpret_cast<int*>(dst + i), std::bit_cast<int>(src[i]));
-  for (; i + 4 <= n; i += 4) {
-    Float4 v;
-    std::memcpy(&v, src + i, sizeof v);
-    __builtin_ia32_movntps(dst + i, v);
-  }
-  for (; i < n; ++i)
-    __builtin_ia32_movnti(reinterpret_cast<int*>(dst + i), std::bit_cast<int>(src[i]));
-#else
-  std::memcpy(dst, src, n * sizeof(float));
-#endif
-}
-
-// Orders this thread's streaming stores before its later stores (sfence); nothing in the
-// portable path, whose stores are ordinary.
-inline void storeFence() {
-#if CAMSIM_SIMD_X86
-  __builtin_ia32_sfence();
 #endif
 }
 
