@@ -65,18 +65,13 @@ Args parseArgs(int argc, char** argv) {
   return a;
 }
 
-// The scene built over its whole sequence (one frame without a frames block).
+// The scene built over its whole sequence (sequenceWindow), as captureSequence builds it.
 struct Built {
   SceneDescription description;
   Scene scene;
   Built(SceneDescription d, glm::dvec2 span)
       : description(std::move(d)), scene(description, span) {}
 };
-
-glm::dvec2 sequenceSpan(const SceneDescription& d, int frames) {
-  const auto window = [&](int k) { return exposureWindow(PhysicalCamera(d.frameCamera(k))); };
-  return {window(0).x, window(frames - 1).y};
-}
 
 // The q-quantile of sorted values, interpolated between neighbours.
 double quantile(const std::vector<double>& sorted, double q) {
@@ -105,7 +100,7 @@ int main(int argc, char** argv) {
   const int frames = with.frames ? with.frames->count : 1;
   SceneDescription without = with;
   without.render.aovs.clear();
-  const glm::dvec2 span = sequenceSpan(with, frames);
+  const glm::dvec2 span = sequenceWindow(with);
   Built a(with, span), b(without, span);
   const SpectralResponse xyz = SpectralResponse::cieXyz();
   RenderOptions o;

@@ -107,6 +107,8 @@ class PhysicalCamera final : public Camera {
   // Where the chief ray images the render-space point p at time t: OpenCV pixel
   // coordinates (x right, y down, pixel centres at integers) through intrinsics() and the
   // distortion; none for a point on or behind the lens plane.
+  // Whether the lens distorts (p_.distortion is not the identity).
+  bool distorted() const { return distorted_; }
   std::optional<glm::dvec2> project(const glm::dvec3& p, double t) const {
     return projectFrom(worldFromCameraAt(t), p);
   }

@@ -52,10 +52,7 @@ CAMSIM_TARGET_AVX2 void addAvx2(const std::array<PoseProjector::Pose, 3>& poses,
 
 PoseProjector::PoseProjector(const PhysicalCamera& camera,
                              const std::array<glm::dmat4, 3>& worldFromCamera)
-    : camera_(&camera),
-      poses_(worldFromCamera),
-      distorted_(!camera.params().distortion.isIdentity()),
-      avx2_(simd::cpuHasAvx2()) {
+    : camera_(&camera), poses_(worldFromCamera), avx2_(simd::cpuHasAvx2()) {
   for (std::size_t j = 0; j < 3; ++j) {
     const glm::dmat4& m = worldFromCamera[j];
     for (int i = 0; i < 3; ++i) {
@@ -74,7 +71,7 @@ PoseProjector::PoseProjector(const PhysicalCamera& camera,
 
 void PoseProjector::addMotionVectors(const PosePoints& p, int lanes, MotionVectorSums& sums,
                                      Long4& front) const {
-  if (distorted_) {  // the scalar reference: OpenCV's distortion per point
+  if (camera_->distorted()) {  // the scalar reference: OpenCV's distortion per point
     front = Long4{};
     for (int lane = 0; lane < lanes; ++lane) {
       std::array<glm::dvec2, 3> q;

@@ -53,8 +53,7 @@ class PoseProjector {
   std::array<glm::dmat4, 3> poses_;
   std::array<Pose, 3> pose_;
   double k_[4];  // f_x, f_y, c_x', c_y' (PhysicalCamera::intrinsics)
-  bool distorted_;
-  bool avx2_;  // simd::cpuHasAvx2()
+  bool avx2_;    // simd::cpuHasAvx2()
 };
 
 }  // namespace camsim

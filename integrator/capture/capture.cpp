@@ -206,11 +206,7 @@ SequenceSummary captureSequence(SceneDescription description, const CaptureOptio
                                 const std::function<void(CaptureResult&&, int)>& onFrame) {
   const FrameSequence seq = description.frames.value_or(FrameSequence{});
   description.frames = seq;
-  // The sequence's whole exposure: geometry and motion are built over it once.
-  const auto window = [&](int k) {
-    return exposureWindow(PhysicalCamera(description.frameCamera(k)));
-  };
-  const glm::dvec2 span(window(0).x, window(seq.count - 1).y);
+  const glm::dvec2 span = sequenceWindow(description);
   Scene scene(description, span);
   description.releaseDecodedImages();
   // Nothing moves anywhere in the sequence: every frame's film is frame 0's (the shutter

@@ -83,17 +83,18 @@ AovFilm::AovFilm(const Scene& scene, bool allowAvx2) : scene_(scene), aovs_(scen
     shapeMoves_[s] = !scene.motion(static_cast<int>(s)).empty();
   if (motionChannel_ > 0) {
     // The frame times' poses once, not per sample.
+    // previous, this and the next frame's reference time (shutter centres), s
     const double t = scene.camera().shutter().centre(), dt = scene.frameInterval();
-    frameTimes_ = {t - dt, t, t + dt};
+    const std::array<double, 3> frameTimes = {t - dt, t, t + dt};
     std::array<glm::dmat4, 3> cameraAt;
     for (std::size_t j = 0; j < 3; ++j)
-      cameraAt[j] = scene.camera().worldFromCameraAt(frameTimes_[j]);
+      cameraAt[j] = scene.camera().worldFromCameraAt(frameTimes[j]);
     projector_.emplace(scene.camera(), cameraAt);
     shapeAt_.resize(scene.shapeCount());
     for (std::size_t s = 0; s < scene.shapeCount(); ++s)
       if (shapeMoves_[s])
         for (std::size_t j = 0; j < 3; ++j)
-          shapeAt_[s][j] = scene.motion(static_cast<int>(s)).at(frameTimes_[j]);
+          shapeAt_[s][j] = scene.motion(static_cast<int>(s)).at(frameTimes[j]);
   }
   for (std::size_t s = 0; s < scene.shapeCount(); ++s)
     for (IdKind k : idKinds) idEntries_.push_back(scene.ids()[k].ofShape[s]);
@@ -112,19 +113,8 @@ AovFilm::AovFilm(const Scene& scene, bool allowAvx2) : scene_(scene), aovs_(scen
 }
 
 void AovFilm::startPixel(AovPixel& px, glm::ivec2 pixel) const {
-  // The sums and bookkeeping cleared (the records are overwritten before they are read).
-  px.pending = 0;
+  static_cast<AovPixelState&>(px) = AovPixelState{};
   px.pixel = pixel;
-  px.samples = 0;
-  px.scalars = px.position = px.normal = px.geometricNormal = Double4{};
-  px.normalCam = px.geometricNormalCam = px.albedo = px.white = Double4{};
-  px.motionPending = 0;
-  px.motionMoves = {};
-  px.motionLanes = MotionVectorSums{};
-  px.flow = {};
-  px.ids = {};
-  px.idShape = AovPixel::kNoShape;
-  px.idSlot = {};
 }
 
 void AovFilm::endPixel(AovPixel& px) {

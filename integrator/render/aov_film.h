@@ -73,27 +73,20 @@ struct AovRecord {
   Float4 albedo, white;                   // Σ over its wavelengths of r_c ρ D65/p and r_c D65/p
 };
 
-// One pixel's sums while its samples are traced: a render thread's scratch record.
-// Vectors are Double4s with x, y, z in lanes 0–2 (lane 3 unused).
-struct AovPixel {
-  // Samples are recorded (addSample) and summed kBatch at a time (and at the pixel's end):
-  // the larger part of the AOV code then runs once per batch instead of between every two
-  // paths, where it pushed the path tracer's code out of the instruction cache.
-  static constexpr int kBatch = 16;
-  std::array<AovRecord, kBatch> records;
-  int pending = 0;  // records not summed yet
+// One pixel's sums and bookkeeping while its samples are traced; all of it is cleared when
+// the pixel starts (startPixel). Vectors are Double4s with x, y, z in lanes 0–2 (lane 3
+// unused).
+struct AovPixelState {
   glm::ivec2 pixel{0};
   int samples = 0;  // camera samples added, hits or not
+  int pending = 0;  // records (AovPixel) not summed yet
   // Σ over the samples that hit: 1 (the hit count), depth (m), distance (m), roughness.
   Double4 scalars{};
   Double4 position{}, normal{}, geometricNormal{};  // world axes
   Double4 normalCam{}, geometricNormalCam{};        // camera axes, when the camera turns
-  Double4 albedo{};  // albedo: Σ r_c ρ D65/p over the samples' wavelengths (X, Y, Z, −)
-  Double4 white{};   // and Σ r_c D65/p, the ratio's denominators
-  // The motion field's samples waiting for their projections, in sample order: each one's
-  // hit at the three frame times, four at a time (PoseProjector).
-  PosePoints motion;
-  int motionPending = 0;
+  Double4 albedo{};       // albedo: Σ r_c ρ D65/p over the samples' wavelengths (X, Y, Z, −)
+  Double4 white{};        // and Σ r_c D65/p, the ratio's denominators
+  int motionPending = 0;  // motion samples staged (AovPixel::motion)
   std::array<bool, 4> motionMoves{};  // the lane's shape moves (else its scene flow is 0)
   // The motion vectors summed per lane (the pixel's motion samples k in lane k mod 4), added
   // up in endPixel; count: the samples in the mean (in front of the lens at all three times).
@@ -107,6 +100,19 @@ struct AovPixel {
   std::array<IdFilm::Slot*, kIdKindCount> idSlot{};
 };
 
+// A render thread's scratch for the pixel it is on: the state above, and the samples waiting
+// to be summed, which are written before they are read and so are not cleared per pixel.
+struct AovPixel : AovPixelState {
+  // Samples are recorded (addSample) and summed kBatch at a time (and at the pixel's end):
+  // the larger part of the AOV code then runs once per batch instead of between every two
+  // paths, where it pushed the path tracer's code out of the instruction cache.
+  static constexpr int kBatch = 16;
+  std::array<AovRecord, kBatch> records;
+  // The motion field's samples waiting for their projections, in sample order: each one's
+  // hit at the three frame times, four at a time (PoseProjector).
+  PosePoints motion;
+};
+
 class AovFilm {
  public:
   // The scene's render.aovs, at its camera's resolution; the frame times from its camera's
@@ -115,8 +121,6 @@ class AovFilm {
   explicit AovFilm(const Scene& scene, bool allowAvx2 = true);
 
   bool enabled() const { return !aovs_.empty(); }
-  // Whether traceRadiance must evaluate the hit's material (albedo, roughness).
-  bool wantsMaterial() const { return wantsMaterial_; }
   // Whether addSample needs the camera's pose at the sample's time (depth, normals).
   bool wantsCamera() const { return wantsCamera_; }
 
@@ -184,11 +188,10 @@ class AovFilm {
   std::vector<Float4> whiteXyz_;
   glm::dvec3 rec709WhiteXyz_{0.0};  // linear Rec.709's white (1, 1, 1) in XYZ
   glm::dmat3 rec709FromXyz_{1.0};
-  std::array<double, 3> frameTimes_{};      // previous, this, next frame's reference time, s
-  std::optional<PoseProjector> projector_;  // the camera at the three frame times
+  std::optional<PoseProjector> projector_;          // the camera at the three frame times
   std::vector<std::array<glm::dmat4, 3>> shapeAt_;  // per shape: its motion at each (moving)
   std::vector<char> shapeMoves_;                    // per shape: it has keyframed motion
-  bool wantsMaterial_ = false;
+  bool wantsMaterial_ = false;   // traceRadiance evaluates the hit's material (albedo, roughness)
   bool wantsCamera_ = false;     // depth or normals: the camera's pose at the sample's time
   std::vector<IdFilm> idFilms_;  // in the scene's order of the id aovs
   std::vector<std::uint32_t> idEntries_;  // per shape, per IdFilm: the shape's table entry

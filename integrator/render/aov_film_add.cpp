@@ -11,10 +11,10 @@
 namespace camsim {
 namespace {
 
-// A glm vector as a Double4 (x, y, z in lanes 0–2, lane 3 = 0). Written through a
-// reference: a Double4 by value changes the x86-64 ABI without AVX.
-// The member `field` of a VisibleSurface as a Double4: its 16 bytes from the field's start
-// in one load (the fourth float is the next member's, inside the struct), lane 3 cleared.
+// Glm vectors as Double4s (x, y, z in lanes 0–2), written through a reference: a Double4
+// by value changes the x86-64 ABI without AVX.
+// The member `field` of a VisibleSurface: its 16 bytes from the field's start in one load
+// (the fourth float is the next member's, inside the struct), lane 3 cleared.
 template <glm::vec3 VisibleSurface::*field>
 [[gnu::always_inline]] inline void load(Double4& out, const VisibleSurface& v) {
   static_assert(sizeof(glm::vec3) == 12);

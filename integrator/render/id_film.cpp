@@ -15,16 +15,6 @@ IdFilm::IdFilm(IdKind kind, const IdTable& table) : numbers_(table.numbers) {
 }
 
 void IdFilm::write(const Slots& slots, int samplesPerPixel, float* out) const {
-  if (slots[1].count == 0) {  // one id covers every counted sample (most pixels)
-    const Slot& slot = slots[0];
-    const bool used = slot.count > 0;
-    for (int r = 0; r < 2 * kRanks + 1; ++r) out[r] = 0.0f;
-    if (!used) return;
-    out[0] = ids_[slot.entry];
-    out[1] = static_cast<float>(static_cast<double>(slot.count) / samplesPerPixel);
-    out[2 * kRanks] = static_cast<float>(numbers_[slot.entry]);
-    return;
-  }
   // Rank by count, ties by entry: an insertion sort of the used slots (entries are
   // distinct, so the order is total and any correct sort gives it).
   Slots s{};

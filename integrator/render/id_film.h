@@ -15,8 +15,8 @@
 // kSlots distinct ids; the samples of a further id (more than 8 objects in one pixel) are
 // not counted, so its coverages then sum to less than 1.
 //
-// The counts of one pixel live in its renderer's scratch (IdSlots, aov_film.h), not in a
-// film-sized array: the render loop counts a pixel's samples there and writes the finished
+// The counts of one pixel live in its renderer's scratch (Slots, in AovPixelState of
+// aov_film.h), not in a film-sized array: the render loop counts a pixel's samples there and writes the finished
 // channels once (write).
 #pragma once
 

@@ -153,6 +153,12 @@ glm::dvec2 exposureWindow(const PhysicalCamera& camera) {
   return {shutter.open(), shutter.close() + shutter.rowOffset(camera.resolution().y - 1)};
 }
 
+glm::dvec2 sequenceWindow(const SceneDescription& d) {
+  const int count = d.frames ? d.frames->count : 1;
+  return {exposureWindow(PhysicalCamera(d.frameCamera(0))).x,
+          exposureWindow(PhysicalCamera(d.frameCamera(count - 1))).y};
+}
+
 Scene::Scene(const SceneDescription& d) : Scene(d, exposureWindow(PhysicalCamera(d.camera))) {}
 
 void Scene::setCamera(const PhysicalCameraParams& camera) {

@@ -81,10 +81,6 @@ class SampledSpectrum {
     for (int i = 0; i < kWavelengthSamples; ++i) m = v_[i] > m ? v_[i] : m;
     return m;
   }
-  // The four values as one vector (for code that sums them in another precision).
-  const Float4& lanes() const {
-    return v_;
-  }
   float average() const {
     float s = 0.0f;
     for (int i = 0; i < kWavelengthSamples; ++i) s += v_[i];
