@@ -14,28 +14,38 @@ IdFilm::IdFilm(IdKind kind, const IdTable& table) : numbers_(table.numbers) {
   for (const std::string& name : table.names) ids_.push_back(cryptomatteId(name));
 }
 
-void IdFilm::write(const Slots& slots, int samplesPerPixel, float* out) const {
-  // Rank by count, ties by entry: an insertion sort of the used slots (entries are
-  // distinct, so the order is total and any correct sort gives it).
-  Slots s{};
+namespace {
+
+// The used slots ranked by count, ties by entry (an insertion sort; entries are distinct, so
+// the order is total and any correct sort gives it); unused slots (count 0) stay at the end.
+IdFilm::Slots ranked(const IdFilm::Slots& slots) {
+  IdFilm::Slots s{};
   int used = 0;
-  for (const Slot& slot : slots) {
+  for (const IdFilm::Slot& slot : slots) {
     if (slot.count == 0) break;  // slots fill in order
     int i = used++;
     for (; i > 0; --i) {
-      const Slot& prev = s[static_cast<std::size_t>(i - 1)];
+      const IdFilm::Slot& prev = s[static_cast<std::size_t>(i - 1)];
       if (prev.count > slot.count || (prev.count == slot.count && prev.entry < slot.entry)) break;
       s[static_cast<std::size_t>(i)] = prev;
     }
     s[static_cast<std::size_t>(i)] = slot;
   }
-  for (int r = 0; r < kRanks; ++r) {
+  return s;
+}
+
+}  // namespace
+
+void IdFilm::write(const Slots& slots, int samplesPerPixel, float* out) const {
+  // Most pixels see one id: their slots are already in rank order.
+  const Slots s = slots[1].count == 0 ? slots : ranked(slots);
+  for (int c = 0; c < 2 * kRanks + 1; ++c) out[c] = 0.0f;
+  for (int r = 0; r < kRanks && s[static_cast<std::size_t>(r)].count > 0; ++r) {
     const Slot& slot = s[static_cast<std::size_t>(r)];
-    out[2 * r] = r < used ? ids_[slot.entry] : 0.0f;
-    out[2 * r + 1] =
-        r < used ? static_cast<float>(static_cast<double>(slot.count) / samplesPerPixel) : 0.0f;
+    out[2 * r] = ids_[slot.entry];
+    out[2 * r + 1] = static_cast<float>(static_cast<double>(slot.count) / samplesPerPixel);
   }
-  out[2 * kRanks] = used > 0 ? static_cast<float>(numbers_[s[0].entry]) : 0.0f;
+  if (s[0].count > 0) out[2 * kRanks] = static_cast<float>(numbers_[s[0].entry]);
 }
 
 }  // namespace camsim
