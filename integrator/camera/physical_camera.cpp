@@ -43,7 +43,7 @@ std::optional<CameraRay> PhysicalCamera::generatePinholeRay(const CameraSample& 
   CameraRay cr;
   cr.ray.o = origin_;
   cr.ray.d = glm::normalize(s.x * right_ + s.y * up_ + zi_ * forward_);
-  cr.ray.time = static_cast<float>(sample.time);
+  cr.ray.time = sample.time;
   cr.weight = SampledSpectrum(weightScale_ / (d2 * d2));
   return cr;
 }
@@ -99,7 +99,7 @@ std::optional<CameraRay> PhysicalCamera::generateRay(const CameraSample& sample,
   CameraRay cr;
   cr.ray.o = glm::vec3(m * glm::dvec4(origin, 1.0));
   cr.ray.d = glm::vec3(glm::normalize(glm::dvec3(m * glm::dvec4(direction, 0.0))));
-  cr.ray.time = static_cast<float>(sample.time);
+  cr.ray.time = sample.time;
   cr.weight = SampledSpectrum(static_cast<float>(scale));
   if (!transmittanceIsOne_) cr.weight *= sampleSpectrum(p_.lensTransmittance, lambda);
   return cr;

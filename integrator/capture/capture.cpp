@@ -18,6 +18,19 @@
 namespace camsim {
 namespace {
 
+// The ISP refuses some settings only on the rendered raw (a white balance on a black or a
+// fully clipped image): its error is given the scene key (isp.white_balance, isp.region)
+// and the place the scene file sets it, or the isp block's, or the file's when defaulted.
+[[noreturn]] void rethrowAtIspKey(const SceneDescription& desc, const InputError& e) {
+  if (!e.where().file.empty()) throw e;
+  const std::string key = e.key().empty() ? "isp" : "isp." + e.key();
+  auto place = desc.keyPlaces.find(key);
+  if (place == desc.keyPlaces.end()) place = desc.keyPlaces.find("isp");
+  throw InputError(
+      place != desc.keyPlaces.end() ? place->second : SourceLocation{desc.sourceFile, 0, 0}, key,
+      e.message() + " (found in the rendered raw)");
+}
+
 Image scaled(const Image& image, double k) {
   Image out = image;
   for (float& v : out.pixels) v = static_cast<float>(static_cast<double>(v) * k);
@@ -76,12 +89,20 @@ void exposeAndDevelop(CaptureResult& out, const RenderOptions& renderOptions) {
         evs[i] == 0.0 ? base : (moves ? filmAt(out.exposureScale * k) : scaled(base, k));
     frame.raws = exposeFrame(frame.electrons, sensor, frame.exposureTimeS, frame.frameIndex);
     frame.clippedFraction = clippedFraction(frame.raws);
-    frame.whiteBalanceGains = whiteBalanceGains(frame.raws, spec, desc.isp);
+    try {
+      frame.whiteBalanceGains = whiteBalanceGains(frame.raws, spec, desc.isp);
+    } catch (const InputError& e) {
+      rethrowAtIspKey(desc, e);
+    }
     out.frames.push_back(std::move(frame));
   }
   const CaptureFrame& reference = out.frames[out.referenceFrame];
-  out.developed = developRaw(reference.raws, spec, desc.isp, colorCheckerCsvPath(),
-                             &reference.whiteBalanceGains);
+  try {
+    out.developed = developRaw(reference.raws, spec, desc.isp, colorCheckerCsvPath(),
+                               &reference.whiteBalanceGains);
+  } catch (const InputError& e) {
+    rethrowAtIspKey(desc, e);
+  }
   out.picture = workingRgb(*out.developed);
 }
 

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cmath>
 #include <cstdio>
 #include <map>
 #include <set>
@@ -246,6 +247,11 @@ void EmbreeScene::setMotionSpan(double motionStart, double motionEnd) {
   }
 }
 
+float EmbreeScene::embreeTime(double time) const {
+  const double x = (time - timeOffset_) * timeScale_;
+  return x > 0.0 ? (x < 1.0 ? static_cast<float>(x) : 1.0f) : 0.0f;  // NaN → 0
+}
+
 std::int64_t EmbreeScene::embreeBytes() const {
   return impl_->memory.bytes.load();
 }
@@ -253,7 +259,23 @@ std::int64_t EmbreeScene::embreePeakBytes() const {
   return impl_->memory.peak.load();
 }
 
+namespace {
+
+// Embree's own precondition (ray.valid(): origin and direction components within ±1.844e18,
+// no NaN, t range not NaN), asserted in its traversal. The loader keeps geometry within
+// ±1e15 m (SceneLimits::kMaxCoordinate) and Scene checks the built bounds, so no scene
+// should make such a ray; if one does, it hits nothing rather than aborting the process.
+bool traceable(const Ray& r) {
+  constexpr float kLarge = 1.844e18f;
+  return std::abs(r.o.x) <= kLarge && std::abs(r.o.y) <= kLarge && std::abs(r.o.z) <= kLarge &&
+         std::abs(r.d.x) <= kLarge && std::abs(r.d.y) <= kLarge && std::abs(r.d.z) <= kLarge &&
+         r.tMax >= 0.0f;
+}
+
+}  // namespace
+
 bool EmbreeScene::intersect(const Ray& ray, Hit& hit) const {
+  if (!traceable(ray)) return false;
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   RTCRayHit rh;
@@ -265,7 +287,7 @@ bool EmbreeScene::intersect(const Ray& ray, Hit& hit) const {
   rh.ray.dir_z = ray.d.z;
   rh.ray.tnear = 0.0f;
   rh.ray.tfar = ray.tMax;
-  rh.ray.time = static_cast<float>((static_cast<double>(ray.time) - timeOffset_) * timeScale_);
+  rh.ray.time = embreeTime(ray.time);
   rh.ray.mask = 0xFFFFFFFFu;
   rh.ray.id = 0;
   rh.ray.flags = 0;
@@ -285,6 +307,7 @@ bool EmbreeScene::intersect(const Ray& ray, Hit& hit) const {
 }
 
 bool EmbreeScene::occluded(const Ray& ray) const {
+  if (!traceable(ray)) return false;
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   RTCRay r;
@@ -296,7 +319,7 @@ bool EmbreeScene::occluded(const Ray& ray) const {
   r.dir_z = ray.d.z;
   r.tnear = 0.0f;
   r.tfar = ray.tMax;
-  r.time = static_cast<float>((static_cast<double>(ray.time) - timeOffset_) * timeScale_);
+  r.time = embreeTime(ray.time);
   r.mask = 0xFFFFFFFFu;
   r.id = 0;
   r.flags = 0;

@@ -63,6 +63,10 @@ class EmbreeScene {
   // scene without moving shapes (no instances), whose BVH does not depend on the span — the
   // ray-time mapping is then all that changes (Scene::retarget).
   void setMotionSpan(double motionStart, double motionEnd);
+  // The time Embree is handed for a ray at `time` (s): its fraction of the motion span,
+  // worked out in double from the absolute time and clamped into [0, 1] (a sample at the
+  // close can round an ulp past it; Embree asserts the range); NaN gives 0.
+  float embreeTime(double time) const;
 
   static constexpr std::size_t kHighQualityTriangles = 250000;
 

@@ -105,7 +105,7 @@ float MeshInstance::area() const {
   return static_cast<float>(total);
 }
 
-MeshInstance::Affine MeshInstance::affineAt(float time) const {
+MeshInstance::Affine MeshInstance::affineAt(double time) const {
   if (motion_.empty()) return rest_;
   int step;
   float f;
@@ -125,7 +125,7 @@ float MeshInstance::areaPdf(size_t tri, float area) const {
   return area > 0.0f ? areaDistribution_.pmf(tri) / area : 0.0f;
 }
 
-void MeshInstance::pointOn(size_t tri, float b1, float b2, float time, float* area,
+void MeshInstance::pointOn(size_t tri, float b1, float b2, double time, float* area,
                            SurfaceInteraction& si) const {
   // The mesh's own point in object space (p, its error, ns, uv), then placed.
   Hit hit;
@@ -199,7 +199,7 @@ std::optional<SurfaceTangents> MeshInstance::tangentFrame(const Hit& hit,
 }
 
 std::optional<ShapeSample> MeshInstance::sample(const glm::vec3& ref, float u1, glm::vec2 u2,
-                                                float time) const {
+                                                double time) const {
   CAMSIM_CHECK(samplable_);
   std::optional<ShapeSample> out;
   if (area_ <= 0.0f) return out;

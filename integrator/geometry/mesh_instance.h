@@ -70,7 +70,7 @@ class MeshInstance final : public Shape {
   std::optional<SurfaceTangents> tangentFrame(const Hit& hit,
                                               const SurfaceInteraction& si) const override;
   std::optional<ShapeSample> sample(const glm::vec3& ref, float u1, glm::vec2 u2,
-                                    float time) const override;
+                                    double time) const override;
   float pdf(const glm::vec3& ref, const SurfaceInteraction& onShape) const override;
 
  private:
@@ -82,8 +82,8 @@ class MeshInstance final : public Shape {
     float sign;     // sign of det(A): cof·sign = |det A|·A⁻ᵀ (shading normals)
   };
   static Affine affineOf(const glm::mat4& m);
-  Affine affineAt(float time) const;
-  void pointOn(size_t tri, float b1, float b2, float time, float* area,
+  Affine affineAt(double time) const;
+  void pointOn(size_t tri, float b1, float b2, double time, float* area,
                SurfaceInteraction& si) const;
   float triangleArea(size_t tri, const glm::mat3& cof) const;  // m²
   float areaPdf(size_t tri, float area) const;

@@ -39,7 +39,7 @@ struct TimeSteps {
   double t0 = 0.0, t1 = 1.0;
   int count = 1;
   // Step index i and fraction f in [0,1] with time between steps i and i+1.
-  void locate(float time, int& i, float& f) const {
+  void locate(double time, int& i, float& f) const {
     if (count <= 1) {
       i = 0;
       f = 0.0f;
@@ -94,7 +94,7 @@ struct SurfaceInteraction {
   glm::vec2 uv{0.0f};      // texture coordinates (see integrator/textures/texture.h)
   int shape = -1;
   int prim = -1;      // triangle index (meshes)
-  float time = 0.0f;  // s
+  double time = 0.0;  // s
 
   // Origin for a ray leaving towards w, offset against self-intersection (inline: three
   // per bounce on the hot path).
@@ -205,7 +205,7 @@ class Shape {
   // A point on the shape at `time` seen from ref (u1 in [0,1), u2 in [0,1)²), with its
   // solid-angle pdf.
   virtual std::optional<ShapeSample> sample(const glm::vec3& ref, float u1, glm::vec2 u2,
-                                            float time) const = 0;
+                                            double time) const = 0;
   // Solid-angle density of sample() producing `onShape` (at onShape.time) as seen from ref.
   virtual float pdf(const glm::vec3& ref, const SurfaceInteraction& onShape) const = 0;
   // The plane of a static planar shape with one front side (see FrontPlane); empty when

@@ -28,7 +28,7 @@ Sphere::Sphere(std::vector<glm::vec3> centres, std::vector<float> radii, TimeSte
   instance_ = InstanceMotion::fromPoses(poses);
 }
 
-Sphere::Pose Sphere::at(float time) const {
+Sphere::Pose Sphere::at(double time) const {
   int i;
   float f;
   steps_.locate(time, i, f);
@@ -42,7 +42,7 @@ float Sphere::area() const {
 }
 
 SurfaceInteraction Sphere::surfacePoint(const Pose& pose, const glm::vec3& direction,
-                                        float time) const {
+                                        double time) const {
   SurfaceInteraction si;
   si.n = glm::normalize(direction);
   si.ns = si.n;
@@ -77,7 +77,7 @@ std::optional<SurfaceTangents> Sphere::tangentFrame(const Hit& /*hit*/,
 }
 
 std::optional<ShapeSample> Sphere::sample(const glm::vec3& ref, float /*u1*/, glm::vec2 u2,
-                                          float time) const {
+                                          double time) const {
   const Pose pose = at(time);
   ShapeSample s;
   const bool insideSphere = inside(pose, ref);
@@ -93,17 +93,24 @@ std::optional<ShapeSample> Sphere::sample(const glm::vec3& ref, float /*u1*/, gl
     const float sin2Max = pose.radius * pose.radius / (dc * dc);
     const float cosMax = safeSqrt(1.0f - sin2Max);
     const float oneMinusCosMax = sin2Max / (1.0f + cosMax);  // 1 − cosθmax without cancellation
+    if (!(sin2Max > 0.0f)) return std::nullopt;              // subtends no solid angle in float
     // Uniform cone direction, then the point where it meets the sphere (nearest hit).
-    const float cosTheta = 1.0f - u2.x * oneMinusCosMax;
-    const float sinTheta = safeSqrt(1.0f - cosTheta * cosTheta);
+    // The point is placed from the centre, by the angle α at the centre between the
+    // direction back to ref and the surface normal there: sin²θ = u sin²θmax (1 − cosθ
+    // without cancellation), cos α = sin²θ/sinθmax + cosθ √(1 − sin²θ/sin²θmax). Placing it
+    // from ref instead (ref + t w − c) cancels to nothing when the radius is below the
+    // rounding of ref's coordinates (a 1e-7 m bulb 2 m away).
+    const float oneMinusCosTheta = u2.x * oneMinusCosMax;
+    const float cosTheta = 1.0f - oneMinusCosTheta;
+    const float sin2Theta = oneMinusCosTheta * (1.0f + cosTheta);
+    const float cosAlpha = sin2Theta / std::sqrt(sin2Max) +
+                           cosTheta * safeSqrt(1.0f - std::min(1.0f, sin2Theta / sin2Max));
+    const float sinAlpha = safeSqrt(1.0f - cosAlpha * cosAlpha);
     const float phi = 2.0f * kPi * u2.y;
-    const Frame frame = Frame::fromZ(toCentre / dc);
-    const glm::vec3 w =
-        frame.toWorld({sinTheta * std::cos(phi), sinTheta * std::sin(phi), cosTheta});
-    // |ref + t w − c|² = r²: t = dc cosθ − √(r² − dc² sin²θ)
-    const float t =
-        dc * cosTheta - safeSqrt(pose.radius * pose.radius - dc * dc * sinTheta * sinTheta);
-    s.point = surfacePoint(pose, ref + t * w - pose.centre, time);
+    const Frame frame = Frame::fromZ(-toCentre / dc);  // z: from the centre towards ref
+    const glm::vec3 n =
+        frame.toWorld({sinAlpha * std::cos(phi), sinAlpha * std::sin(phi), cosAlpha});
+    s.point = surfacePoint(pose, n, time);
     s.pdf = 1.0f / (2.0f * kPi * oneMinusCosMax);
   }
   const std::optional<Towards> t = towards(ref, s.point.p);

@@ -30,7 +30,7 @@ class Sphere final : public Shape {
   std::optional<SurfaceTangents> tangentFrame(const Hit& hit,
                                               const SurfaceInteraction& si) const override;
   std::optional<ShapeSample> sample(const glm::vec3& ref, float u1, glm::vec2 u2,
-                                    float time) const override;
+                                    double time) const override;
   float pdf(const glm::vec3& ref, const SurfaceInteraction& onShape) const override;
 
  private:
@@ -38,8 +38,8 @@ class Sphere final : public Shape {
     glm::vec3 centre;
     float radius;
   };
-  Pose at(float time) const;
-  SurfaceInteraction surfacePoint(const Pose& pose, const glm::vec3& direction, float time) const;
+  Pose at(double time) const;
+  SurfaceInteraction surfacePoint(const Pose& pose, const glm::vec3& direction, double time) const;
   static bool inside(const Pose& pose, const glm::vec3& ref);
 
   std::vector<glm::vec3> centres_;

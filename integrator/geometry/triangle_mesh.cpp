@@ -129,14 +129,14 @@ std::optional<FrontPlane> TriangleMesh::findFrontPlane(const std::vector<glm::ve
 }
 
 // Moving mesh: the instance transform at `time`.
-glm::mat4 TriangleMesh::transformAt(float time) const {
+glm::mat4 TriangleMesh::transformAt(double time) const {
   int step;
   float f;
   steps_.locate(time, step, f);
   return instance_.at(step, f);
 }
 
-float TriangleMesh::triangleArea(size_t tri, float time) const {
+float TriangleMesh::triangleArea(size_t tri, double time) const {
   const glm::mat4 m = transformAt(time);
   const std::uint32_t i0 = indices_[3 * tri], i1 = indices_[3 * tri + 1],
                       i2 = indices_[3 * tri + 2];
@@ -182,7 +182,7 @@ Float4 lanesOf(const glm::vec3& v) {
 [[gnu::always_inline]] inline void TriangleMesh::finish(SurfaceInteraction& si, const glm::vec3& n,
                                                         size_t tri, std::uint32_t i0,
                                                         std::uint32_t i1, std::uint32_t i2,
-                                                        float b0, float b1, float b2, float time,
+                                                        float b0, float b1, float b2, double time,
                                                         const glm::mat4* m) const {
   // n stays in a register: copying si.n into si.ns through memory right after the three
   // scalar stores stalled on store forwarding (seen with perf).
@@ -209,7 +209,7 @@ Float4 lanesOf(const glm::vec3& v) {
 // It writes into the caller's point: returned by value, the point was copied into the
 // light sample in 16-byte loads of fields just stored in 4 bytes (stalled store
 // forwarding).
-void TriangleMesh::pointOn(size_t tri, float b1, float b2, float time, float* area,
+void TriangleMesh::pointOn(size_t tri, float b1, float b2, double time, float* area,
                            SurfaceInteraction& si) const {
   if (!instance_.empty()) return pointOnMoving(tri, b1, b2, time, area, si);
   const std::uint32_t i0 = indices_[3 * tri], i1 = indices_[3 * tri + 1],
@@ -226,7 +226,7 @@ void TriangleMesh::pointOn(size_t tri, float b1, float b2, float time, float* ar
   finish(si, faceNormals_[tri], tri, i0, i1, i2, b0, b1, b2, time, nullptr);
 }
 
-void TriangleMesh::pointOnMoving(size_t tri, float b1, float b2, float time, float* area,
+void TriangleMesh::pointOnMoving(size_t tri, float b1, float b2, double time, float* area,
                                  SurfaceInteraction& si) const {
   const glm::mat4 m = transformAt(time);
   const std::uint32_t i0 = indices_[3 * tri], i1 = indices_[3 * tri + 1],
@@ -277,7 +277,7 @@ std::optional<SurfaceTangents> TriangleMesh::tangentFrame(const Hit& hit,
 }
 
 std::optional<ShapeSample> TriangleMesh::sample(const glm::vec3& ref, float u1, glm::vec2 u2,
-                                                float time) const {
+                                                double time) const {
   CAMSIM_CHECK(samplable_);
   // Every return returns `out`, so the sample is built in the caller's slot. Built in a
   // local and returned, it was copied out in 16-byte loads of fields just stored in 4 and 8

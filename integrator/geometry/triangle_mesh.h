@@ -83,7 +83,7 @@ class TriangleMesh final : public Shape {
   std::optional<SurfaceTangents> tangentFrame(const Hit& hit,
                                               const SurfaceInteraction& si) const override;
   std::optional<ShapeSample> sample(const glm::vec3& ref, float u1, glm::vec2 u2,
-                                    float time) const override;
+                                    double time) const override;
   float pdf(const glm::vec3& ref, const SurfaceInteraction& onShape) const override;
   std::optional<FrontPlane> frontPlane() const override { return frontPlane_; }
 
@@ -93,18 +93,18 @@ class TriangleMesh final : public Shape {
                                                   const std::vector<std::uint32_t>& indices,
                                                   const std::vector<double>& areas);
 
-  glm::mat4 transformAt(float time) const;
+  glm::mat4 transformAt(double time) const;
   // The point of triangle tri at barycentrics (1 − b1 − b2, b1, b2) and `time`, into si
   // (every field but `shape`, which the caller keeps). area: if given and the mesh moves, receives the triangle's area at
   // `time` (m², computed anyway; a static mesh's area pdf does not need it).
-  void pointOn(size_t tri, float b1, float b2, float time, float* area,
+  void pointOn(size_t tri, float b1, float b2, double time, float* area,
                SurfaceInteraction& si) const;
-  void pointOnMoving(size_t tri, float b1, float b2, float time, float* area,
+  void pointOnMoving(size_t tri, float b1, float b2, double time, float* area,
                      SurfaceInteraction& si) const;
   void finish(SurfaceInteraction& si, const glm::vec3& n, size_t tri, std::uint32_t i0,
-              std::uint32_t i1, std::uint32_t i2, float b0, float b1, float b2, float time,
+              std::uint32_t i1, std::uint32_t i2, float b0, float b1, float b2, double time,
               const glm::mat4* m) const;
-  float triangleArea(size_t tri, float time) const;
+  float triangleArea(size_t tri, double time) const;
   float areaPdf(size_t tri, float area) const;
 
   std::vector<glm::vec3> positions_;  // the stored pose; shared with Embree

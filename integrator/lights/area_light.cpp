@@ -10,7 +10,7 @@ AreaLight::AreaLight(const Shape& shape, Spectrum radiance, bool twoSided)
       twoSided_(twoSided),
       front_(twoSided ? std::nullopt : shape.frontPlane()) {}
 
-std::optional<LightSample> AreaLight::sample(const glm::vec3& ref, float time, float u1,
+std::optional<LightSample> AreaLight::sample(const glm::vec3& ref, double time, float u1,
                                              glm::vec2 u2, const SampledWavelengths& lambda) const {
   // Every return returns `out`, so it is built in the caller's slot (the light point is
   // copied once, from the shape's sample).

@@ -28,7 +28,7 @@ class AreaLight final : public Light {
     return sampleSpectrum(radiance_, lambda);
   }
 
-  std::optional<LightSample> sample(const glm::vec3& ref, float time, float u1, glm::vec2 u2,
+  std::optional<LightSample> sample(const glm::vec3& ref, double time, float u1, glm::vec2 u2,
                                     const SampledWavelengths& lambda) const override;
   float pdf(const glm::vec3& ref, const SurfaceInteraction& onLight) const override;
   double power() const override;

@@ -37,7 +37,7 @@ bool DistantLight::inCone(const glm::vec3& d) const {
   return lengthSquared(c) <= sin2Alpha_ * lengthSquared(d);
 }
 
-std::optional<LightSample> DistantLight::sample(const glm::vec3& /*ref*/, float /*time*/,
+std::optional<LightSample> DistantLight::sample(const glm::vec3& /*ref*/, double /*time*/,
                                                 float /*u1*/, glm::vec2 u2,
                                                 const SampledWavelengths& lambda) const {
   LightSample ls;

@@ -25,7 +25,7 @@ class DistantLight final : public Light {
  public:
   DistantLight(const Spectrum& irradiance, const glm::vec3& direction, float angularDiameter);
 
-  std::optional<LightSample> sample(const glm::vec3& ref, float time, float u1, glm::vec2 u2,
+  std::optional<LightSample> sample(const glm::vec3& ref, double time, float u1, glm::vec2 u2,
                                     const SampledWavelengths& lambda) const override;
   double power() const override;
   bool isDelta() const override { return delta_; }

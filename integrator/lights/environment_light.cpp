@@ -172,7 +172,7 @@ SampledSpectrum EnvironmentLight::texelRadiance(int column, int row,
   return out;
 }
 
-std::optional<LightSample> EnvironmentLight::sample(const glm::vec3& /*ref*/, float /*time*/,
+std::optional<LightSample> EnvironmentLight::sample(const glm::vec3& /*ref*/, double /*time*/,
                                                     float /*u1*/, glm::vec2 u2,
                                                     const SampledWavelengths& lambda) const {
   if (distribution_.empty()) return std::nullopt;

@@ -41,7 +41,7 @@ class EnvironmentLight final : public Light {
   // rgb: channels "R", "G", "B" (others ignored), finite values.
   EnvironmentLight(const Image& rgb, const Spectrum& scale, const glm::mat3& worldFromLight);
 
-  std::optional<LightSample> sample(const glm::vec3& ref, float time, float u1, glm::vec2 u2,
+  std::optional<LightSample> sample(const glm::vec3& ref, double time, float u1, glm::vec2 u2,
                                     const SampledWavelengths& lambda) const override;
   double power() const override;
   bool isInfinite() const override { return true; }

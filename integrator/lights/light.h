@@ -43,7 +43,7 @@ static_assert(sizeof(std::optional<LightSample>) <= CAMSIM_MEMSET_INLINE_BYTES,
 class Light {
  public:
   virtual ~Light() = default;
-  virtual std::optional<LightSample> sample(const glm::vec3& ref, float time, float u1,
+  virtual std::optional<LightSample> sample(const glm::vec3& ref, double time, float u1,
                                             glm::vec2 u2,
                                             const SampledWavelengths& lambda) const = 0;
   virtual float pdf(const glm::vec3& /*ref*/, const SurfaceInteraction& /*onLight*/) const {

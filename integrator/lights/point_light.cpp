@@ -6,7 +6,7 @@
 
 namespace camsim {
 
-SurfaceInteraction deltaLightPoint(const glm::vec3& p, float time) {
+SurfaceInteraction deltaLightPoint(const glm::vec3& p, double time) {
   SurfaceInteraction si;
   si.p = p;
   si.time = time;
@@ -16,7 +16,7 @@ SurfaceInteraction deltaLightPoint(const glm::vec3& p, float time) {
 PointLight::PointLight(const glm::vec3& position, const Spectrum& intensity)
     : position_(position), intensity_(intensity) {}
 
-std::optional<LightSample> PointLight::sample(const glm::vec3& ref, float time, float /*u1*/,
+std::optional<LightSample> PointLight::sample(const glm::vec3& ref, double time, float /*u1*/,
                                               glm::vec2 /*u2*/,
                                               const SampledWavelengths& lambda) const {
   const glm::vec3 toLight = position_ - ref;

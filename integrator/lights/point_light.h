@@ -19,7 +19,7 @@ class PointLight final : public Light {
  public:
   PointLight(const glm::vec3& position, const Spectrum& intensity);
 
-  std::optional<LightSample> sample(const glm::vec3& ref, float time, float u1, glm::vec2 u2,
+  std::optional<LightSample> sample(const glm::vec3& ref, double time, float u1, glm::vec2 u2,
                                     const SampledWavelengths& lambda) const override;
   double power() const override;
   bool isDelta() const override { return true; }
@@ -33,6 +33,6 @@ class PointLight final : public Light {
 
 // The light point of a delta light at p (no surface: zero normal and error bound), for the
 // shadow ray, which then ends exactly at p.
-SurfaceInteraction deltaLightPoint(const glm::vec3& p, float time);
+SurfaceInteraction deltaLightPoint(const glm::vec3& p, double time);
 
 }  // namespace camsim

@@ -28,7 +28,7 @@ float SpotLight::falloff(const glm::vec3& w) const {
   return t * t * (3.0f - 2.0f * t);
 }
 
-std::optional<LightSample> SpotLight::sample(const glm::vec3& ref, float time, float u1,
+std::optional<LightSample> SpotLight::sample(const glm::vec3& ref, double time, float u1,
                                              glm::vec2 u2, const SampledWavelengths& lambda) const {
   std::optional<LightSample> ls = point_.sample(ref, time, u1, u2, lambda);
   if (!ls) return std::nullopt;

@@ -27,7 +27,7 @@ class SpotLight final : public Light {
   SpotLight(const glm::vec3& position, const glm::vec3& axis, const Spectrum& intensity,
             float coneAngle, float falloffStart);
 
-  std::optional<LightSample> sample(const glm::vec3& ref, float time, float u1, glm::vec2 u2,
+  std::optional<LightSample> sample(const glm::vec3& ref, double time, float u1, glm::vec2 u2,
                                     const SampledWavelengths& lambda) const override;
   double power() const override;
   bool isDelta() const override { return true; }

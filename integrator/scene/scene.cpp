@@ -12,7 +12,9 @@
 #include "integrator/geometry/triangle_mesh.h"
 #include "integrator/materials/diffuse_material.h"
 #include "integrator/scene/factory.h"
+#include "integrator/scene/scene_loader.h"
 #include "sensor/base/check.h"
+#include "sensor/base/format.h"
 #include "sensor/base/input_error.h"
 
 namespace camsim {
@@ -291,6 +293,16 @@ Scene::Scene(const SceneDescription& d, glm::dvec2 motionSpan)
   }
   geometry_ = std::make_unique<EmbreeScene>(shapes_, exposureStart_, exposureEnd_, filterOfShape);
   if (geometry_->boundsLower().x <= geometry_->boundsUpper().x) {
+    // Mesh files, placements, scales and motion can carry geometry past what the loader
+    // checks point by point: the built bounds (over every time step) are checked here.
+    const glm::vec3 reach =
+        glm::max(glm::abs(geometry_->boundsLower()), glm::abs(geometry_->boundsUpper()));
+    const double farthest = static_cast<double>(std::max({reach.x, reach.y, reach.z}));
+    if (!(farthest <= SceneLimits::kMaxCoordinate))
+      throw InputError({d.sourceFile, 0, 0}, "shapes",
+                       "the geometry reaches " + formatNumber(farthest) +
+                           " m from the origin; camsim traces within ±1e15 m (limit "
+                           "SceneLimits::kMaxCoordinate)");
     boundsCentre_ = 0.5f * (geometry_->boundsLower() + geometry_->boundsUpper());
     boundsRadius_ = 0.5f * glm::length(geometry_->boundsUpper() - geometry_->boundsLower());
   }

@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -27,6 +28,7 @@ struct TextureImage;  // integrator/textures/image_texture.h
 #include "integrator/materials/fresnel.h"
 #include "integrator/materials/microfacet.h"
 #include "sensor/base/image.h"
+#include "sensor/base/input_error.h"
 #include "sensor/isp/isp_pipeline.h"
 #include "sensor/model/exposure_control.h"
 #include "sensor/model/sensor_model.h"
@@ -234,7 +236,11 @@ struct SceneDescription {
   std::vector<LightDescription> lights;
   std::optional<SensorSettings> sensor;  // none: the film records CIE XYZ only
   IspSettings isp;                       // raw → picture (scenes with a sensor)
-  std::optional<FrameSequence> frames;   // none: one capture at the camera's shutter
+  // Where the scene file sets the keys that a stage after loading may still refuse (the
+  // white balance of the rendered raw: isp, isp.white_balance, isp.region), so that its
+  // error names the file, line and key. Empty for descriptions built in code.
+  std::map<std::string, SourceLocation> keyPlaces;
+  std::optional<FrameSequence> frames;  // none: one capture at the camera's shutter
   // What the loader left out or changed, one sentence each naming the file and the JSON
   // path (or line) and key: features of imported assets that camsim ignores or approximates
   // (docs/scene-format.md lists them). The CLI prints them; the sidecar lists them as

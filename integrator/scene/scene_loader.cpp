@@ -17,6 +17,7 @@
 #include "integrator/scene/scene_spectra.h"
 #include "sensor/base/file_status.h"
 #include "sensor/base/fnv1a.h"
+#include "sensor/base/format.h"
 #include "sensor/base/yaml_reader.h"
 #include "sensor/spectra/cie.h"
 #include "sensor/spectra/spectral_data.h"
@@ -132,6 +133,12 @@ std::vector<std::uint32_t> parseFaces(const YamlValue& faces, size_t vertexCount
   return indices;
 }
 
+// The spacing of single-precision coordinates d metres from render space's origin (m).
+double floatSpacingAt(double d) {
+  const float f = static_cast<float>(d);
+  return static_cast<double>(std::nextafter(f, INFINITY)) - static_cast<double>(f);
+}
+
 void checkMesh(const YamlValue& where, const MeshData& mesh) {
   if (mesh.indices.empty()) where.fail("mesh has no triangles");
   if (!(meshArea2(mesh) > 0.0)) where.fail("mesh has zero area");
@@ -185,7 +192,7 @@ void parseShape(YamlMap map, size_t index, Context& ctx, SceneDescription& scene
     const YamlValue centre = map.require("centre");
     s.centre = point(centre, centre.vec3());
     const YamlValue radius = map.require("radius");
-    s.radius = positiveFloat(radius, radius.number(0.0, 1e12, true));
+    s.radius = static_cast<float>(radius.number(SceneLimits::kMinSphereRadius, 1e12));
     known.insert(known.end(), {"centre", "radius"});
   } else if (t == "rectangle") {
     const YamlValue cv = map.require("corner");
@@ -200,7 +207,13 @@ void parseShape(YamlMap map, size_t index, Context& ctx, SceneDescription& scene
                         point(ev, corner + v)};
     s.mesh.indices = {0, 1, 2, 0, 2, 3};
     s.mesh.uvs = {{0.0f, 0.0f}, {1.0f, 0.0f}, {1.0f, 1.0f}, {0.0f, 1.0f}};  // corner, +u, +u+v, +v
-    if (!(meshArea2(s.mesh) > 0.0)) ev.fail("edge_u and edge_v must span a non-zero area");
+    if (!(glm::length(glm::cross(u, v)) > 0.0))
+      ev.fail("edge_u and edge_v must span a non-zero area");
+    if (!(meshArea2(s.mesh) > 0.0))  // render space is centred on the camera, in float
+      cv.fail("the rectangle is too small to be stored " +
+              formatNumber(glm::length(corner - shift)) +
+              " m from the camera, where single-precision coordinates are " +
+              formatNumber(floatSpacingAt(glm::length(corner - shift))) + " m apart");
     known.insert(known.end(), {"corner", "edge_u", "edge_v"});
   } else if (t == "mesh") {
     const auto file = map.find("file");
@@ -218,8 +231,7 @@ void parseShape(YamlMap map, size_t index, Context& ctx, SceneDescription& scene
       try {
         s.mesh = readMeshFile(p, placement);
       } catch (const InputError& e) {
-        if (e.where().line > 0) throw;
-        file->fail(e.what());
+        file->failInNamedFile(e);
       }
       checkMesh(*file, s.mesh);
       meshFile = file;
@@ -346,7 +358,8 @@ SceneDescription loadSceneFromText(const std::string& text, const std::string& d
   }
   if (auto isp = top.find("isp")) {
     if (!scene.sensor) isp->fail("isp settings need a sensor");
-    scene.isp = parseIspSettings(YamlMap(*isp));
+    scene.isp = parseIspSettings(YamlMap(*isp), scene.sensor->spec, scene.camera.resolution,
+                                 scene.keyPlaces);
   }
   if (auto mats = top.find("materials")) {
     YamlMap mmap(*mats);

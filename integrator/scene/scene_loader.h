@@ -26,6 +26,14 @@ struct SceneLimits {
   static constexpr std::int64_t kMaxSpp = 1 << 20;
   static constexpr std::int64_t kMaxDepth = 10000;
   static constexpr std::int64_t kMaxTrianglesInline = 10000000;
+  // Every coordinate of render space (positions, translations, geometry over its motion), m:
+  // Embree refuses rays whose origin or direction exceeds ~1.8e18 in any component.
+  static constexpr double kMaxCoordinate = 1e15;
+  // A sphere's radius, m: Embree squares it in single precision.
+  static constexpr double kMinSphereRadius = 1e-9;
+  // A sun disc's angular diameter (°) when not 0: smaller discs are lost to float rounding
+  // in the cone test (use 0, parallel light).
+  static constexpr double kMinSunDiameterDeg = 1e-3;
 };
 
 SceneDescription loadScene(const std::filesystem::path& file, const LoadOptions& options = {});

@@ -11,12 +11,15 @@
 
 namespace camsim {
 
-// Geometry is stored in single precision: a point finite as a double can still overflow.
+// A point of render space: within ±SceneLimits::kMaxCoordinate on every axis (Embree's rays
+// must stay within ~1.8e18; geometry is stored in single precision).
 glm::vec3 toPoint(const YamlValue& where, const glm::dvec3& v) {
-  const glm::vec3 p(v);
-  if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
-    where.fail("coordinates exceed the single-precision range (about ±3.4e38)");
-  return p;
+  const double m = SceneLimits::kMaxCoordinate;
+  if (!(std::abs(v.x) <= m && std::abs(v.y) <= m && std::abs(v.z) <= m))
+    where.fail(
+        "coordinates must lie within ±1e15 m of the origin (limit "
+        "SceneLimits::kMaxCoordinate)");
+  return glm::vec3(v);
 }
 
 // A positive length stored in single precision: it must not underflow to 0.
@@ -37,15 +40,19 @@ int resolutionSide(const YamlValue& v) {
   return static_cast<int>(n);
 }
 
-glm::dmat4 lookAt(const YamlValue& where, const YamlValue& positionWhere, glm::dvec3 position,
-                  glm::dvec3 target, glm::dvec3 up) {
+// upWhere: the `up` key, or null for the default +y (then look_at is named).
+glm::dmat4 lookAt(const YamlValue& where, const YamlValue& positionWhere, const YamlValue* upWhere,
+                  glm::dvec3 position, glm::dvec3 target, glm::dvec3 up) {
   const glm::dvec3 toTarget = target - position;
   if (glm::length(toTarget) == 0.0) where.fail("look_at equals position");
   const glm::dvec3 forward = glm::normalize(toTarget);
   // Right-handed world: right = forward × up (looking along +z with +y up, right is −x).
-  const glm::dvec3 rightRaw = glm::cross(forward, up);
-  if (glm::length(rightRaw) < 1e-9 * glm::length(up))
-    where.fail("up is parallel to the viewing direction");
+  // up is scaled by its largest component first, so that no length under- or overflows.
+  const double upMax = std::max({std::abs(up.x), std::abs(up.y), std::abs(up.z)});
+  const YamlValue& upKey = upWhere ? *upWhere : where;
+  if (!(upMax > 0.0) || !std::isfinite(upMax)) upKey.fail("up must be a non-zero direction");
+  const glm::dvec3 rightRaw = glm::cross(forward, glm::normalize(up / upMax));
+  if (!(glm::length(rightRaw) >= 1e-9)) upKey.fail("up is parallel to the viewing direction");
   const glm::dvec3 right = glm::normalize(rightRaw);
   const glm::dvec3 trueUp = glm::cross(right, forward);
   glm::dmat4 m(1.0);
@@ -188,8 +195,10 @@ PhysicalCameraParams parseCamera(YamlMap map, const TableSearch& search) {
     const YamlValue position = map.require("position");
     const YamlValue target = map.require("look_at");
     glm::dvec3 up(0.0, 1.0, 0.0);
-    if (auto u = map.find("up")) up = u->vec3();
-    c.worldFromCamera = lookAt(target, position, position.vec3(), target.vec3(), up);
+    const std::optional<YamlValue> upValue = map.find("up");
+    if (upValue) up = upValue->vec3();
+    c.worldFromCamera =
+        lookAt(target, position, upValue ? &*upValue : nullptr, position.vec3(), target.vec3(), up);
   }
   if (auto v = map.find("sensor_width_mm"))
     c.sensorSize.x = static_cast<double>(positiveFloat(*v, v->number(0.0, 1000.0, true) * 1e-3));

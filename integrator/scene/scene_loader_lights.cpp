@@ -22,6 +22,7 @@
 
 #include "integrator/lights/environment_light.h"
 #include "integrator/lights/spot_light.h"
+#include "integrator/scene/scene_loader.h"
 #include "integrator/scene/scene_loader_parts.h"
 #include "sensor/base/file_status.h"
 #include "sensor/io/exr_io.h"
@@ -152,7 +153,13 @@ void parseDistant(YamlMap& map, LightDescription& d, const TableSearch& search) 
     (azimuth ? *azimuth : map.self()).fail("needs 'direction' or 'elevation' (and 'azimuth')");
   }
   double diameter = 0.53;
-  if (auto a = map.find("angular_diameter")) diameter = a->number(0.0, 90.0);
+  if (auto a = map.find("angular_diameter")) {
+    diameter = a->number(0.0, 90.0);
+    if (diameter > 0.0 && diameter < SceneLimits::kMinSunDiameterDeg)
+      a->fail(
+          "a disc smaller than 0.001° is lost to rounding: use 0 for parallel light (limit "
+          "SceneLimits::kMinSunDiameterDeg)");
+  }
   d.angularDiameter = static_cast<float>(diameter * std::numbers::pi / 180.0);
   const Shape shape = parseShapeSpectrum(map, search);
   std::optional<YamlValue> v;

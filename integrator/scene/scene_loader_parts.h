@@ -30,7 +30,10 @@ PhysicalCameraParams parseCamera(YamlMap map, const TableSearch& search);
 SensorSettings parseSensorSettings(YamlMap map, const std::filesystem::path& baseDir,
                                    const YamlValue& camera, PhysicalCameraParams& cameraParams);
 // `isp:` → image-pipeline settings (white balance, demosaic).
-IspSettings parseIspSettings(YamlMap map);
+// keyPlaces: where the isp keys are (SceneDescription::keyPlaces); the region and grey world
+// are checked against the sensor's CFA and the image's resolution (px).
+IspSettings parseIspSettings(YamlMap map, const SensorSpec& sensor, glm::ivec2 resolution,
+                             std::map<std::string, SourceLocation>& keyPlaces);
 // A material input that may be a texture (integrator/scene/scene_loader_textures.cpp):
 // reflectance: a spectrum (see scene_spectra.h), {texture: …} or {checkerboard: …};
 // roughness: a number ≥ 0 (≤ 1000) or {texture: …} or {checkerboard: …}; fraction: the

@@ -19,8 +19,7 @@ SensorSettings parseSensorSettings(YamlMap map, const std::filesystem::path& bas
   try {
     s.spec = loadSensorSpec(name, lutsDirectory());
   } catch (const InputError& e) {
-    if (e.where().line > 0) throw;  // an error inside the sensor file names its own location
-    model.fail(e.message());
+    model.failInNamedFile(e);  // an error inside the sensor file keeps its own place too
   }
   s.iso = s.spec.baseIso;
   if (auto v = map.find("iso")) s.iso = v->number(1.0, 1e7);
@@ -72,13 +71,29 @@ SensorSettings parseSensorSettings(YamlMap map, const std::filesystem::path& bas
   return s;
 }
 
-IspSettings parseIspSettings(YamlMap map) {
+namespace {
+
+// Whether a whole CFA tile, aligned with the tile grid, lies inside the region (what the
+// white balance averages: white_balance.cpp).
+bool holdsCfaTile(const CfaLayout& cfa, const PixelRegion& r) {
+  const int x0 = (r.x + cfa.width - 1) / cfa.width * cfa.width;
+  const int y0 = (r.y + cfa.height - 1) / cfa.height * cfa.height;
+  return x0 + cfa.width <= r.x + r.width && y0 + cfa.height <= r.y + r.height;
+}
+
+}  // namespace
+
+IspSettings parseIspSettings(YamlMap map, const SensorSpec& sensor, glm::ivec2 resolution,
+                             std::map<std::string, SourceLocation>& keyPlaces) {
   IspSettings isp;
-  if (auto wb = map.find("white_balance")) {
+  keyPlaces["isp"] = map.self().where();
+  std::optional<YamlValue> wbValue = map.find("white_balance");
+  if (wbValue) {
     using W = IspSettings::WhiteBalance;
-    isp.whiteBalance = wb->choice<W>(
+    isp.whiteBalance = wbValue->choice<W>(
         "white balance",
         {{"illuminant", W::kIlluminant}, {"region", W::kRegion}, {"grey_world", W::kGreyWorld}});
+    keyPlaces["isp.white_balance"] = wbValue->where();
   }
   if (auto ill = map.find("illuminant")) {
     isp.illuminant = ill->string();
@@ -96,9 +111,24 @@ IspSettings parseIspSettings(YamlMap map) {
     isp.region = {
         static_cast<int>(v[0].integer(0, 1 << 20)), static_cast<int>(v[1].integer(0, 1 << 20)),
         static_cast<int>(v[2].integer(1, 1 << 20)), static_cast<int>(v[3].integer(1, 1 << 20))};
+    keyPlaces["isp.region"] = r->where();
+    const PixelRegion& g = isp.region;
+    if (g.x + g.width > resolution.x || g.y + g.height > resolution.y)
+      r->fail("the region [" + std::to_string(g.x) + ", " + std::to_string(g.y) + ", " +
+              std::to_string(g.width) + ", " + std::to_string(g.height) + "] is not inside the " +
+              std::to_string(resolution.x) + " × " + std::to_string(resolution.y) + " image");
+    if (!holdsCfaTile(sensor.cfa, g))
+      r->fail("the region holds no whole " + std::to_string(sensor.cfa.width) + " × " +
+              std::to_string(sensor.cfa.height) + " CFA tile (aligned with the tile grid)");
   } else if (isp.whiteBalance == IspSettings::WhiteBalance::kRegion) {
     map.self().fail("white_balance: region needs region: [x, y, width, height]");
   }
+  if (isp.whiteBalance == IspSettings::WhiteBalance::kGreyWorld &&
+      !holdsCfaTile(sensor.cfa, {0, 0, resolution.x, resolution.y}))
+    wbValue->fail("grey_world needs an image of at least one whole " +
+                  std::to_string(sensor.cfa.width) + " × " + std::to_string(sensor.cfa.height) +
+                  " CFA tile; the image is " + std::to_string(resolution.x) + " × " +
+                  std::to_string(resolution.y));
   if (auto d = map.find("demosaic"))
     isp.demosaic = d->choice<DemosaicMethod>(
         "demosaic",

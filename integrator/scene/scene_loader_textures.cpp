@@ -109,7 +109,7 @@ TextureDescription parseCheckerboard(YamlMap& map, TextureUse use, const TableSe
   };
   if (auto a = board.find("a")) t.checkerA = value(*a);
   if (auto b = board.find("b")) t.checkerB = value(*b);
-  if (auto n = board.find("checks")) t.checks = static_cast<float>(n->number(0.0, 1e6, true));
+  if (auto n = board.find("checks")) t.checks = positiveFloat(*n, n->number(0.0, 1e6, true));
   board.finish({"a", "b", "checks"});
   parseUvTransform(map, t);
   map.finish({"checkerboard", "scale", "offset"});

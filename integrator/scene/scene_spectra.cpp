@@ -11,7 +11,12 @@ namespace {
 Spectrum fromTable(YamlMap& map, SpectrumUse use, const TableSearch& search) {
   const YamlValue file = map.require("csv");
   const std::filesystem::path path = search.find(file, file.string());
-  const SpectralTable table = readSpectralCsv(path);
+  SpectralTable table;
+  try {
+    table = readSpectralCsv(path);
+  } catch (const InputError& e) {
+    file.failInNamedFile(e);
+  }
   size_t column = 0;
   if (const auto col = map.find("column")) {
     try {

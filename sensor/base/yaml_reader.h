@@ -41,6 +41,10 @@ class YamlValue {
   const std::string& file() const { return file_; }
   SourceLocation where() const;
   [[noreturn]] void fail(const std::string& message) const;
+  // An error raised reading the file this value names (a table, a sensor, a mesh): one with
+  // a line in that file keeps it and adds this file, line and key ("in the file named by
+  // …"); one without becomes fail(its message).
+  [[noreturn]] void failInNamedFile(const InputError& inner) const;
 
   bool isMap() const;
   bool isSequence() const;

@@ -55,7 +55,7 @@ shapes:
 )";
 
 // The sphere's centre and radius at `time`, interpolated between its steps as Sphere does.
-std::pair<glm::vec3, float> spherePose(const Sphere& sphere, float time) {
+std::pair<glm::vec3, float> spherePose(const Sphere& sphere, double time) {
   int step;
   float f;
   sphere.timeSteps().locate(time, step, f);
@@ -66,7 +66,7 @@ std::pair<glm::vec3, float> spherePose(const Sphere& sphere, float time) {
 }
 
 // A point on shape `index` at `time`, by the shape's own interpolation, with its normal.
-SurfaceInteraction pointOn(const Scene& scene, int index, std::mt19937& rng, float time) {
+SurfaceInteraction pointOn(const Scene& scene, int index, std::mt19937& rng, double time) {
   std::uniform_real_distribution<float> u01(0.0f, 1.0f);
   const Shape& shape = scene.shape(index);
   if (const auto* sphere = dynamic_cast<const Sphere*>(&shape)) {
@@ -148,7 +148,7 @@ void traceTargets(const Scene& scene, float missTolerance, TargetStats& stats) {
   std::uniform_real_distribution<float> u01(0.0f, 1.0f);
   for (int index = 0; index < 3; ++index)
     for (int i = 0; i < 20000; ++i) {
-      const float time = kExposure * u01(rng);
+      const double time = kExposure * u01(rng);
       const SurfaceInteraction target = pointOn(scene, index, rng, time);
       glm::vec3 w;
       do {

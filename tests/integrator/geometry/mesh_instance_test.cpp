@@ -188,7 +188,7 @@ TEST(MeshInstance, MovingEmittingInstanceSamplesCarryThePdfOfTheirPoint) {
   std::mt19937 rng(9);
   std::uniform_real_distribution<float> u01(0.0f, 1.0f);
   for (int i = 0; i < 20000; ++i) {
-    const float time = 0.01f * u01(rng);
+    const double time = 0.01f * u01(rng);
     const std::optional<ShapeSample> s = instance.sample(ref, u01(rng), {u01(rng), u01(rng)}, time);
     if (!s) continue;
     EXPECT_NEAR(s->pdf / instance.pdf(ref, s->point), 1.0f, 1e-5f) << i;

@@ -34,7 +34,7 @@ TEST(TriangleMesh, MovingEmitterSamplesCarryThePdfOfTheirPoint) {
   const glm::vec3 ref(0.3f, 0.2f, -2.0f);
   int checked = 0;
   for (int i = 0; i < 2000; ++i) {
-    const float time = 0.01f * u01(rng);
+    const double time = 0.01f * u01(rng);
     const std::optional<ShapeSample> s = mesh.sample(ref, u01(rng), {u01(rng), u01(rng)}, time);
     if (!s) continue;
     const float pdf = mesh.pdf(ref, s->point);

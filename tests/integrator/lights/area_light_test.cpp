@@ -30,7 +30,7 @@ class CountingShape final : public Shape {
     return mesh_.interaction(hit, ray);
   }
   std::optional<ShapeSample> sample(const glm::vec3& ref, float u1, glm::vec2 u2,
-                                    float time) const override {
+                                    double time) const override {
     ++samples;
     return mesh_.sample(ref, u1, u2, time);
   }

@@ -77,7 +77,7 @@ inline const ErrorCase kErrorCases[] = {
     {"NegativeRadius", sphereWith("-1", ", material: m"), 7, 47, "shapes[0].radius",
      "out of range"},
     {"RadiusUnderflowsFloat", sphereWith("1e-300", ", material: m"), 7, 47, "shapes[0].radius",
-     "too small"},
+     "out of range [1e-09"},
     {"ZeroResolution", withCameraLine("  resolution: [0, 480]\n"), 4, 16, "camera.resolution[0]",
      "out of range"},
     {"ResolutionBeyondLimit", withCameraLine("  resolution: [1000000, 1000000]\n"), 4, 16,
@@ -89,7 +89,7 @@ inline const ErrorCase kErrorCases[] = {
     {"Infinity", sphereWith(".inf", ", material: m"), 7, 47, "shapes[0].radius",
      "'.inf' is not a finite number"},
     {"CoordinateBeyondFloat", meshWith("[[0, 0, 0], [1e39, 0, 0], [0, 1, 0]]", "[[0, 1, 2]]"), 9,
-     27, "shapes[0].vertices[1]", "single-precision"},
+     27, "shapes[0].vertices[1]", "within ±1e15 m"},
     {"MissingMeshFile", withShapes("  - type: mesh\n    material: m\n    file: missing.obj\n"), 9,
      11, "shapes[0].file", "not found"},
     {"MeshFileNameTooLong",  // the OS rejects the name: still "not found", not a crash
@@ -145,6 +145,30 @@ inline const ErrorCase kErrorCases[] = {
      "\"material\": \"m\"}]\n"
      "}\n",
      3, 63, "shapes[0].radius", "out of range"},
+    // Scenes that loaded and then aborted in Embree or an internal check (issue 34).
+    {"UpIsZero", withCameraLine("  up: [0, 0, 0]\n"), 4, 7, "camera.up",
+     "up must be a non-zero direction"},
+    {"UpParallelToViewAfterScaling", withCameraLine("  up: [0, 0, 1e-300]\n"), 4, 7, "camera.up",
+     "up is parallel to the viewing direction"},
+    {"CameraKeyframeBeyondRenderSpace",
+     withCameraLine("  motion: [{time: 0, translate: [1e19, 0, 0]}]\n"), 4, 33,
+     "camera.motion[0].translate", "within ±1e15 m"},
+    {"SphereRadiusBelowFloatSquare", sphereWith("1e-18", ", material: m"), 7, 47,
+     "shapes[0].radius", "out of range [1e-09"},
+    {"RectangleEdgeBeyondRenderSpace",
+     withShapes("  - {type: rectangle, corner: [0, 0, 0], edge_u: [9.2e18, 0, 0], edge_v: [0, 1, "
+                "0], material: m}\n"),
+     7, 50, "shapes[0].edge_u", "within ±1e15 m"},
+    {"CheckerboardChecksDenormal",
+     kCamera +
+         "materials:\n  m: {type: diffuse, reflectance: {checkerboard: {a: 0.8, b: 0.1, checks: "
+         "5e-324}}}\nshapes:\n" +
+         kSphere,
+     5, 75, "materials.m.reflectance.checkerboard.checks", "0 in single precision"},
+    {"SunDiscBelowRounding",
+     withCameraLine("lights: [{type: distant, direction: [0, 0, 1], illuminance: 1, "
+                    "angular_diameter: 1e-30}]\n"),
+     4, 82, "lights[0].angular_diameter", "use 0 for parallel light"},
 };
 
 // GoogleTest prints a case by its name (found by ADL: here, beside ErrorCase).

@@ -48,7 +48,7 @@ TriangleMesh quad(bool mirrorU = false, std::vector<glm::vec4> tangents = {}, Ti
 }
 
 // The shading normal at the quad's point (b1, b2) of triangle 0 bent by `map`.
-glm::vec3 bent(const TriangleMesh& mesh, const NormalMap& map, float time = 0.0f) {
+glm::vec3 bent(const TriangleMesh& mesh, const NormalMap& map, double time = 0.0f) {
   const Hit hit{0, 0, 0.3f, 0.2f, 1.0f};
   Ray ray;
   ray.time = time;

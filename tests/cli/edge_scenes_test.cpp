@@ -1,0 +1,94 @@
+// `camsim render` on the edge-case scenes of issue 34 (the real binary): a keyframed quad
+// under a short shutter after 0 renders (exit 0, finite pixels) where Embree aborted the
+// process (exit 134); a zero camera `up` and a white balance that finds no white in the
+// rendered raw exit 2 naming the file, line and scene key, leaving no output file.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <string>
+
+#include "sensor/io/exr_io.h"
+#include "tests/support/run_command.h"
+#include "tests/support/temp_dir.h"
+#include "tests/support/text_file.h"
+
+namespace camsim {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string shortShutter(const std::string& camera) {
+  return "format: camsim-scene/1\n"
+         "name: short_shutter\n"
+         "render: {spp: 16, max_depth: 1}\n"
+         "camera: {position: [0, 0, 5], look_at: [0, 0, 0], resolution: [64, 64], " +
+         camera +
+         "}\n"
+         "lights: [{type: distant, direction: [0, 0, -1], illuminance: 1000}]\n"
+         "materials: {m: {type: diffuse, reflectance: 0.5}}\n"
+         "shapes:\n"
+         "  - {name: q, type: mesh, material: m, vertices: [[-0.5, -0.5, 0], [0.5, -0.5, 0], "
+         "[0.5, 0.5, 0], [-0.5, 0.5, 0]], faces: [[0, 1, 2, 3]],\n"
+         "     motion: [{time: 1.25, translate: [0, 0, 0]}, {time: 2.5, translate: [0, 2, 0]}]}\n";
+}
+
+size_t filesIn(const fs::path& dir) {
+  if (!fs::exists(dir)) return 0;
+  return static_cast<size_t>(std::distance(fs::directory_iterator(dir), fs::directory_iterator()));
+}
+
+TEST(EdgeScenes, ShortShutterAfterZeroRendersInTheCli) {
+  const test::TempDir dir;
+  for (const char* shutter : {"shutter: {open: 1.5, close: 1.501}",
+                              "shutter: {open: 1.5625, close: 1.5635}"}) {
+    const fs::path scene = dir.path() / "short_shutter.yaml";
+    test::writeFile(scene, shortShutter(shutter));
+    const fs::path out = dir.path() / "out";
+    const test::RunResult r = test::runCamsim(
+        "render " + test::quote(scene.string()) + " -o " + test::quote(out.string()), dir.path());
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const ExrFile exr = readExr(out / "short_shutter.exr");
+    double sum = 0.0;
+    for (float v : exr.image.pixels) {
+      ASSERT_TRUE(std::isfinite(v));
+      sum += static_cast<double>(v);
+    }
+    EXPECT_GT(sum, 0.0) << shutter;
+  }
+}
+
+TEST(EdgeScenes, RefusalsExitTwoNamingFileLineAndKey) {
+  const test::TempDir dir;
+  const fs::path up = dir.path() / "up.yaml";
+  test::writeFile(up, shortShutter("up: [0, 0, 0]"));
+  const fs::path out = dir.path() / "out";
+  test::RunResult r = test::runCamsim(
+      "render " + test::quote(up.string()) + " -o " + test::quote(out.string()), dir.path());
+  EXPECT_EQ(r.exitCode, 2);
+  EXPECT_NE(r.err.find("up.yaml:4:77: key 'camera.up': up must be a non-zero direction"),
+            std::string::npos)
+      << r.err;
+  EXPECT_EQ(filesIn(out), 0u);
+
+  // A grey world on a black raw (the light 1e-30 lx, no noise) is refused after rendering.
+  const fs::path dark = dir.path() / "dark.yaml";
+  test::writeFile(dark,
+                  "format: camsim-scene/1\n"
+                  "render: {spp: 2}\n"
+                  "camera: {position: [0, 0, 5], look_at: [0, 0, 0], resolution: [16, 16]}\n"
+                  "sensor: {model: smartphone-1.4um, noise: none}\n"
+                  "isp:\n"
+                  "  white_balance: grey_world\n"
+                  "lights: [{type: distant, direction: [0, 0, -1], illuminance: 1e-30}]\n"
+                  "materials: {m: {type: diffuse, reflectance: 0.5}}\n"
+                  "shapes: [{type: sphere, centre: [0, 0, 0], radius: 1, material: m}]\n");
+  r = test::runCamsim("render " + test::quote(dark.string()) + " -o " + test::quote(out.string()),
+                      dir.path());
+  EXPECT_EQ(r.exitCode, 2);
+  EXPECT_NE(r.err.find("dark.yaml:6:18: key 'isp.white_balance': "), std::string::npos) << r.err;
+  EXPECT_EQ(filesIn(out), 0u);
+}
+
+}  // namespace
+}  // namespace camsim
