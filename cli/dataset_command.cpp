@@ -48,14 +48,15 @@ std::string datasetUsageText() {
          "                    CAMSIM_SHARD_COUNT); else all items\n"
          "  --resume          skip items whose outputs exist and whose recorded hash matches the\n"
          "                    item's resolved scene and camsim version; remove temporaries of\n"
-         "                    killed runs\n"
+         "                    killed runs and add the index lines they did not write\n"
          "  --item N          render only item N (of this shard)\n"
          "  --threads N       worker threads (default: all cores)\n"
          "  --check           check the manifest and every item, print the item count, render "
          "nothing\n"
          "  --status DIR      summarise DIR: done, failed, missing items\n"
-         "exit codes: 0 done, 2 bad input (do not retry), 130/143 interrupted by SIGINT/SIGTERM\n"
-         "(retry with --resume), 1 an item failed inside camsim (docs/cluster.md)\n";
+         "exit codes: 0 done, 2 bad input or the shard already running into DIR (do not\n"
+         "retry), 130/143 interrupted by SIGINT/SIGTERM (retry with --resume), 1 an item\n"
+         "failed inside camsim (docs/cluster.md)\n";
 }
 
 DatasetArgs parseDatasetArgs(const std::vector<std::string>& args) {
@@ -169,6 +170,10 @@ int runDatasetCommand(const std::vector<std::string>& args, std::ostream& out, s
     out << "\n";
     if (!s.failedItems.empty()) out << "failed: " << itemList(s.failedItems) << "\n";
     if (!s.missingItems.empty()) out << "missing: " << itemList(s.missingItems) << "\n";
+    if (!s.unindexedItems.empty())
+      out << "done but not in index.jsonl (a run was killed before writing their lines; "
+             "--resume adds them): "
+          << itemList(s.unindexedItems) << "\n";
     return s.done == s.total ? 0 : 1;
   }
   std::map<std::string, std::string> env;
@@ -210,6 +215,7 @@ int runDatasetCommand(const std::vector<std::string>& args, std::ostream& out, s
     rendering->update(static_cast<int>(1000 * (static_cast<double>(done) + fraction)),
                       static_cast<int>(1000 * total));
   };
+  o.onWarning = [&](const std::string& warning) { log << "camsim: warning: " << warning << "\n"; };
   o.onItem = [&](const ItemReport& r) {
     if (r.status == ItemStatus::kFailed)
       log << "item " << r.index << " failed: " << r.message << "\n";
@@ -219,6 +225,9 @@ int runDatasetCommand(const std::vector<std::string>& args, std::ostream& out, s
   if (rendering) rendering->finish();
   for (const auto& f : s.removed)
     log << "removed " << f.string() << " (left by a run that was killed)\n";
+  if (!s.reindexed.empty())
+    log << "index.jsonl: added the lines of up-to-date items " << itemList(s.reindexed)
+        << " (a run was killed after writing them, before their lines)\n";
   log << "dataset " << manifest.file.filename().string() << ", shard " << shard.index << "/"
       << shard.count << (shard.source.empty() ? "" : " (" + shard.source + ")") << ": " << s.items
       << " of " << manifest.items.size() << " items: " << s.done << " rendered, " << s.skipped

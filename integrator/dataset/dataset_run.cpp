@@ -8,12 +8,9 @@
 #include <future>
 #include <memory>
 #include <mutex>
+#include <set>
 #include <thread>
 #include <utility>
-
-#include <fstream>
-#include <set>
-#include <sstream>
 
 #include <tbb/parallel_for.h>
 
@@ -21,6 +18,7 @@
 #include "integrator/capture/capture_writer.h"
 #include "integrator/capture/dataset_writer.h"
 #include "integrator/dataset/dataset_item.h"
+#include "integrator/dataset/dataset_lock.h"
 #include "integrator/dataset/item_writer.h"
 #include "sensor/base/fnv1a.h"
 #include "sensor/base/input_error.h"
@@ -161,6 +159,10 @@ DatasetRunSummary runDataset(const Manifest& manifest, const DatasetRunOptions& 
 
   DatasetRunSummary summary;
   summary.items = mine.size();
+  // This shard's items are this process's from here on (dataset_lock.h): a second run of the
+  // shard is refused before it removes or writes anything.
+  const DatasetLock lock(options.directory, options.shard.index, options.shard.count);
+  if (!lock.warning().empty() && options.onWarning) options.onWarning(lock.warning());
   const fs::path items = options.directory / "items";
   for (const auto& stale : OutputSet::prepareDirectory(options.directory))
     summary.removed.push_back(stale);
@@ -179,6 +181,11 @@ DatasetRunSummary runDataset(const Manifest& manifest, const DatasetRunOptions& 
   }
   const std::string shardText =
       std::to_string(options.shard.index) + "/" + std::to_string(options.shard.count);
+  // With --resume: the index's done lines, read when the first item is up to date, to give
+  // an up-to-date item whose run was killed between its rename and its line the line it
+  // lacks (once: lines of this shard's items are written by this process only, and each
+  // item once per run).
+  std::optional<IndexLines> indexed;
   // Item n is written on the writer thread, and item n + 2 loaded, while item n + 1 renders
   // (single captures; a sequence writes its frames as they finish). Reports and progress
   // come from this thread.
@@ -227,8 +234,14 @@ DatasetRunSummary runDataset(const Manifest& manifest, const DatasetRunOptions& 
     work->shard = shardText;
     work->picture = options.picture;
     work->start = std::chrono::steady_clock::now();
-    if (options.resume && itemUpToDate(work->finalDir, work->item.hash)) {
-      collect();
+    std::vector<JsonObject> files;
+    if (options.resume && itemUpToDate(work->finalDir, work->item.hash, &files)) {
+      collect();  // the previous item's line first: lines in item order
+      if (!indexed) indexed = readIndex(options.directory / "index.jsonl");
+      if (!indexed->done.count({index, work->item.hash})) {
+        reindexItem(*work, files);
+        summary.reindexed.push_back(index);
+      }
       ItemReport skipped;
       skipped.index = index;
       skipped.status = ItemStatus::kSkipped;
@@ -295,22 +308,14 @@ DatasetStatus datasetStatus(const fs::path& directory) {
   s.total = static_cast<std::size_t>(YamlMap(parseYaml(readWholeFile(record), record.string()))
                                          .require("items")
                                          .integer(0, INT64_MAX));
-  std::set<std::size_t> failed;
-  std::ifstream index(directory / "index.jsonl");
-  for (std::string text; std::getline(index, text);) {
-    if (text.empty()) continue;
-    try {
-      YamlMap j(parseYaml(text, (directory / "index.jsonl").string()));
-      if (j.require("status").string() == "failed")
-        failed.insert(static_cast<std::size_t>(j.require("item").integer(0, INT64_MAX)));
-    } catch (const InputError&) {
-      // a line cut by a killed writer: not counted
-    }
-  }
+  const IndexLines index = readIndex(directory / "index.jsonl");
+  std::set<std::size_t> listed;  // items with a done line
+  for (const auto& [item, hash] : index.done) listed.insert(item);
   for (std::size_t i = 0; i < s.total; ++i) {
     if (fs::is_regular_file(directory / "items" / itemFolderName(i) / "item.json", ec)) {
       ++s.done;
-    } else if (failed.count(i)) {
+      if (!listed.count(i)) s.unindexedItems.push_back(i);
+    } else if (index.failed.count(i)) {
       ++s.failed;
       s.failedItems.push_back(i);
     } else {

@@ -11,9 +11,13 @@
 //                                reproducible bytes, plus scene.yaml (the resolved scene),
 //                                params.json (what the item sets) and item.json (written
 //                                last: hash, files, status)
+//   DIR/.camsim-lock             an empty file whose record locks say which shards run
+//                                (dataset_lock.h)
 // An item is rendered into DIR/items/.NNNNNN.camsim-tmp-<pid>/ and renamed into place when
 // complete, so a killed item leaves only that temporary folder; the next run of the shard
-// that owns the item removes it (two processes must not run the same shard at once).
+// that owns the item removes it. A second run of a shard that is running (or a run with
+// another shard count) is refused: InputError naming DIR/.camsim-lock. A kill between an
+// item's rename and its index line is repaired by the next --resume (item_writer.h).
 //
 // | option    | default | meaning                                                             |
 // |-----------|---------|---------------------------------------------------------------------|
@@ -71,6 +75,8 @@ struct DatasetRunOptions {
   // (items of the shard finished, items of the shard, the current item's fraction).
   std::function<void(std::size_t, std::size_t, double)> progress;
   std::function<void(const ItemReport&)> onItem;  // as each item ends
+  // Before any rendering, if the folder cannot be locked (dataset_lock.h): why.
+  std::function<void(const std::string&)> onWarning;
 };
 
 struct DatasetRunSummary {
@@ -78,6 +84,8 @@ struct DatasetRunSummary {
   std::size_t done = 0, skipped = 0, failed = 0;
   bool cancelled = false;
   std::vector<std::filesystem::path> removed;  // temporaries of killed runs
+  // Up-to-date items (--resume) whose index line was missing and has been appended.
+  std::vector<std::size_t> reindexed;
 };
 
 // InputError (nothing written) for a bad manifest, scene or item, or an only_item outside
@@ -89,6 +97,9 @@ DatasetRunSummary runDataset(const Manifest& manifest, const DatasetRunOptions& 
 struct DatasetStatus {
   std::size_t total = 0, done = 0, failed = 0, missing = 0, temporaries = 0;
   std::vector<std::size_t> failedItems, missingItems;
+  // Done items (item.json in place) without a done line in index.jsonl: a run was killed
+  // between the two; `--resume` adds the lines.
+  std::vector<std::size_t> unindexedItems;
 };
 // InputError if DIR holds no dataset (no dataset.json).
 DatasetStatus datasetStatus(const std::filesystem::path& directory);

@@ -6,6 +6,12 @@
 //  - SIGKILL mid-item, then --resume: every item done once, byte-identical to a clean run,
 //    no temporary left; a second --resume renders nothing; a changed base scene renders
 //    again; SIGTERM exits 143;
+//  - SIGKILL exactly between an item's rename and its index line (the fault-injection point
+//    CAMSIM_TEST_KILL_AFTER_RENAME), then --resume: the index lists every item once, in item
+//    order, and --status agrees;
+//  - a second run of a running shard, or a run with another shard count, exits 2 naming the
+//    folder and its lock; the first completes, each item once; another shard of the same
+//    run goes on beside it;
 //  - the shard from Slurm's and Kubernetes' environment variables, and its errors.
 #include "cli/dataset_command.h"
 
@@ -17,6 +23,7 @@
 
 #include "cli/args.h"
 #include "tests/support/child_process.h"
+#include "tests/support/env_guard.h"
 #include "tests/support/run_command.h"
 #include "tests/support/temp_dir.h"
 #include "tests/support/text_file.h"
@@ -93,7 +100,8 @@ TEST_F(DatasetCommand, ShardsTogetherWriteExactlyTheItemsOfOneRun) {
   }
   const auto a = tree(whole), b = tree(parts);
   ASSERT_EQ(a.size(), b.size());
-  EXPECT_EQ(a.size(), 1u + 6u * 9u);  // dataset.json + per item 6 outputs, scene, params, item
+  // dataset.json, .camsim-lock + per item 6 outputs, scene, params, item
+  EXPECT_EQ(a.size(), 2u + 6u * 9u);
   for (const auto& [name, content] : a) {
     ASSERT_TRUE(b.count(name)) << name;
     EXPECT_TRUE(b.at(name) == content) << name << " differs";
@@ -180,6 +188,109 @@ TEST_F(DatasetCommand, SigtermStopsWithExitCode143AndTheItemInProgressDropped) {
   const auto st = test::runCamsim("dataset --status " + out.string(), dir_.path());
   EXPECT_EQ(st.exitCode, 1) << st.out;  // not all done
   EXPECT_NE(st.out.find("missing"), std::string::npos) << st.out;
+}
+
+// The items of index.jsonl's done lines, in the file's order.
+std::vector<std::string> doneOrder(const fs::path& dir) {
+  std::vector<std::string> items;
+  std::istringstream in(readFile(dir / "index.jsonl"));
+  for (std::string line; std::getline(in, line);)
+    if (line.find("\"status\": \"done\"") != std::string::npos)
+      items.push_back(line.substr(0, line.find(',')));
+  return items;
+}
+
+TEST_F(DatasetCommand, KilledBetweenAnItemsRenameAndItsIndexLineLosesNoLine) {
+  const fs::path clean = dir_.path() / "clean", out = dir_.path() / "out";
+  ASSERT_EQ(run("-o " + clean.string() + " --threads 1").exitCode, 0);
+  {
+    test::EnvGuard kill("CAMSIM_TEST_KILL_AFTER_RENAME");
+    kill.set("2");
+    test::Child child({"dataset", manifest_.string(), "-o", out.string(), "--threads", "1"},
+                      dir_.path() / "killed");
+    const auto status = child.wait(std::chrono::seconds(120));
+    ASSERT_TRUE(status);
+    ASSERT_EQ(test::exitCode(*status), -SIGKILL) << child.err();
+  }
+  // Exactly between the two steps: item 2 in place, its line not written.
+  ASSERT_TRUE(fs::is_regular_file(out / "items" / "000002" / "item.json"));
+  EXPECT_EQ(doneOrder(out), (std::vector<std::string>{"{\"item\": 0", "{\"item\": 1"}));
+  const auto before = test::runCamsim("dataset --status " + out.string(), dir_.path());
+  EXPECT_EQ(before.exitCode, 1) << before.out;
+  EXPECT_NE(before.out.find("6 items: 3 done, 0 failed, 3 missing"), std::string::npos)
+      << before.out;
+  EXPECT_NE(before.out.find("done but not in index.jsonl (a run was killed before writing "
+                            "their lines; --resume adds them): 2\n"),
+            std::string::npos)
+      << before.out;
+
+  const auto r = run("-o " + out.string() + " --resume --threads 1");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_NE(r.err.find("index.jsonl: added the lines of up-to-date items 2 "), std::string::npos)
+      << r.err;
+  EXPECT_NE(r.err.find("3 rendered, 3 up to date"), std::string::npos) << r.err;
+  std::vector<std::string> inOrder;
+  for (int i = 0; i < 6; ++i) inOrder.push_back("{\"item\": " + std::to_string(i));
+  EXPECT_EQ(doneOrder(out), inOrder);  // each once, in item order
+  const std::string index = readFile(out / "index.jsonl");
+  const auto line2 = index.substr(index.find("{\"item\": 2,"));
+  EXPECT_NE(line2.substr(0, line2.find('\n')).find("\"seconds\": null, \"render_seconds\": null"),
+            std::string::npos)
+      << line2;
+  const auto a = tree(clean), b = tree(out);
+  ASSERT_EQ(a.size(), b.size());
+  for (const auto& [name, content] : a) {
+    ASSERT_TRUE(b.count(name)) << name;
+    EXPECT_TRUE(b.at(name) == content) << name << " differs";
+  }
+  const auto after = test::runCamsim("dataset --status " + out.string(), dir_.path());
+  EXPECT_EQ(after.exitCode, 0) << after.out;
+  EXPECT_EQ(after.out, out.string() + ": 6 items: 6 done, 0 failed, 0 missing\n");
+  // Never a line twice: a second resume adds none.
+  const auto again = run("-o " + out.string() + " --resume --threads 1");
+  EXPECT_NE(again.err.find("0 rendered, 6 up to date"), std::string::npos) << again.err;
+  EXPECT_EQ(again.err.find("added the lines"), std::string::npos) << again.err;
+  EXPECT_EQ(doneOrder(out), inOrder);
+}
+
+TEST_F(DatasetCommand, ASecondRunOfARunningShardIsRefusedAndOtherShardsGoOn) {
+  writeFile(dir_.path() / "base.yaml", baseScene(2048));  // ~0.5-1 s per item
+  const fs::path out = dir_.path() / "out";
+  test::Child first(
+      {"dataset", manifest_.string(), "-o", out.string(), "--shard", "0/2", "--threads", "1"},
+      dir_.path() / "first");
+  // dataset.json is written once the shard is locked.
+  const auto alive = [&] { return !first.wait(std::chrono::seconds(0)); };
+  while (alive() && first.secondsSinceStart() < 60 && !fs::exists(out / "dataset.json"))
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  ASSERT_TRUE(alive()) << "ended before a second run could start: " << first.err();
+  const std::string lock = (out / ".camsim-lock").string();
+  for (const char* args : {"--shard 0/2", "--shard 0/2 --resume"}) {
+    const auto second = run("-o " + out.string() + " " + args + " --threads 1");
+    EXPECT_EQ(second.exitCode, 2) << args << ": " << second.err;
+    EXPECT_NE(second.err.find("camsim: error: " + lock + ": not started: shard 0/2 of " +
+                              out.string() + " is being rendered by another camsim dataset run"),
+              std::string::npos)
+        << args << ": " << second.err;
+  }
+  const auto whole = run("-o " + out.string() + " --threads 1");  // shard 0/1: overlaps both
+  EXPECT_EQ(whole.exitCode, 2) << whole.err;
+  EXPECT_NE(whole.err.find(lock + ": not started: a camsim dataset run with a shard count of 2"),
+            std::string::npos)
+      << whole.err;
+  ASSERT_TRUE(alive()) << "shard 0/2 ended before shard 1/2 started: not side by side";
+  const auto other = run("-o " + out.string() + " --shard 1/2 --threads 1");
+  EXPECT_EQ(other.exitCode, 0) << other.err;
+  const auto status = first.wait(std::chrono::seconds(120));
+  ASSERT_TRUE(status);
+  EXPECT_EQ(test::exitCode(*status), 0) << first.err();
+  const auto done = indexItems(out, "done");
+  EXPECT_EQ(done.size(), 6u);
+  EXPECT_EQ(std::set<std::string>(done.begin(), done.end()).size(), 6u);
+  for (const auto& [name, content] : tree(out))
+    EXPECT_EQ(name.find("camsim-tmp"), std::string::npos) << name;
+  const auto st = test::runCamsim("dataset --status " + out.string(), dir_.path());
+  EXPECT_EQ(st.out, out.string() + ": 6 items: 6 done, 0 failed, 0 missing\n");
 }
 
 TEST(DatasetShard, FromFlagsSlurmAndKubernetes) {
