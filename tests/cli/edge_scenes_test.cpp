@@ -40,8 +40,8 @@ size_t filesIn(const fs::path& dir) {
 
 TEST(EdgeScenes, ShortShutterAfterZeroRendersInTheCli) {
   const test::TempDir dir;
-  for (const char* shutter : {"shutter: {open: 1.5, close: 1.501}",
-                              "shutter: {open: 1.5625, close: 1.5635}"}) {
+  for (const char* shutter :
+       {"shutter: {open: 1.5, close: 1.501}", "shutter: {open: 1.5625, close: 1.5635}"}) {
     const fs::path scene = dir.path() / "short_shutter.yaml";
     test::writeFile(scene, shortShutter(shutter));
     const fs::path out = dir.path() / "out";

@@ -98,8 +98,8 @@ TEST(RayTime, EveryShutterWindowMapsInsideEmbreesRange) {
       ASSERT_LE(handed, 1.0f) << "window " << i;
       const double error = static_cast<double>(std::abs(static_cast<long double>(handed) - exact));
       worst = std::max(worst, error);
-      ASSERT_LE(error, 1.2e-7) << "window " << i << ": open " << w.open << " s, length "
-                               << w.length << " s, u " << u;
+      ASSERT_LE(error, 1.2e-7) << "window " << i << ": open " << w.open << " s, length " << w.length
+                               << " s, u " << u;
     }
   }
   std::printf("10000 windows: worst |embree time - exact fraction| %.3g\n", worst);
@@ -123,9 +123,9 @@ TEST(RayTime, KeyframedQuadRendersForRandomShutterWindows) {
 // 1 µs at 10⁶ s between keyframes 1.5 µs apart, and a 24 fps sequence from frame 36 with
 // an 8.64° shutter (1 ms at 1.5 s).
 TEST(RayTime, ShortShuttersAfterZeroRender) {
-  for (const Window& w : {Window{1.5, 0.001, 1.25, 2.5}, Window{1.5625, 0.001, 1.25, 2.5},
-                          Window{0.0, 1e-45, -1.0, 1.0},
-                          Window{1e6 - 1e-6, 1e-6, 1e6 - 1.5e-6, 1e6}}) {
+  for (const Window& w :
+       {Window{1.5, 0.001, 1.25, 2.5}, Window{1.5625, 0.001, 1.25, 2.5},
+        Window{0.0, 1e-45, -1.0, 1.0}, Window{1e6 - 1e-6, 1e-6, 1e6 - 1.5e-6, 1e6}}) {
     SceneDescription d = loadSceneFromText(quadScene(w), "short_shutter.yaml", ".");
     d.render.spp = 16;
     const CaptureResult r = capture(std::move(d));
@@ -139,7 +139,8 @@ TEST(RayTime, ShortShuttersAfterZeroRender) {
       EXPECT_GT(sum, 0.0) << "open " << w.open;
     }
   }
-  const std::string frames = "frames: {first: 36, count: 2, rate_hz: 24, shutter_angle_deg: 8.64}\n";
+  const std::string frames =
+      "frames: {first: 36, count: 2, rate_hz: 24, shutter_angle_deg: 8.64}\n";
   SceneDescription seq =
       loadSceneFromText(quadScene({0.0, 0.01, 1.25, 2.5}, frames), "sequence.yaml", ".");
   int written = 0;

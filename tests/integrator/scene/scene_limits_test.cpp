@@ -18,7 +18,8 @@ namespace camsim {
 namespace {
 
 const std::string kHeader = "format: camsim-scene/1\nrender: {spp: 4, max_depth: 3}\n";
-const std::string kCamera = "camera: {position: [0, 0, 5], look_at: [0, 0, 0], resolution: [16, 16]}\n";
+const std::string kCamera =
+    "camera: {position: [0, 0, 5], look_at: [0, 0, 0], resolution: [16, 16]}\n";
 const std::string kSun = "lights: [{type: distant, direction: [0, 0, -1], illuminance: 1000}]\n";
 const std::string kMaterial = "materials: {m: {type: diffuse, reflectance: 0.5}}\n";
 const std::string kBall = "  - {type: sphere, centre: [0, 0, 0], radius: 1, material: m}\n";
@@ -38,15 +39,17 @@ std::vector<Case> cases() {
            "16]}\n" +
            kSun + kMaterial + "shapes:\n" + kBall,
        "camera.up", 3},
-      {"up_tiny", kHeader +
-                      "camera: {position: [0, 0, 5], look_at: [0, 0, 0], up: [0, 1e-300, 0], "
-                      "resolution: [16, 16]}\n" +
-                      kSun + kMaterial + "shapes:\n" + kBall,
+      {"up_tiny",
+       kHeader +
+           "camera: {position: [0, 0, 5], look_at: [0, 0, 0], up: [0, 1e-300, 0], "
+           "resolution: [16, 16]}\n" +
+           kSun + kMaterial + "shapes:\n" + kBall,
        "", 0},
-      {"up_parallel", kHeader +
-                          "camera: {position: [0, 0, 5], look_at: [0, 0, 0], up: [0, 0, 1e-300], "
-                          "resolution: [16, 16]}\n" +
-                          kSun + kMaterial + "shapes:\n" + kBall,
+      {"up_parallel",
+       kHeader +
+           "camera: {position: [0, 0, 5], look_at: [0, 0, 0], up: [0, 0, 1e-300], "
+           "resolution: [16, 16]}\n" +
+           kSun + kMaterial + "shapes:\n" + kBall,
        "camera.up", 3},
       {"camera_keyframe_far",
        kHeader +
@@ -54,13 +57,15 @@ std::vector<Case> cases() {
            "  motion: [{time: 0, translate: [0, 0, 0]}, {time: 0.01, translate: [1e19, 0, 0]}]}\n" +
            kSun + kMaterial + "shapes:\n" + kBall,
        "camera.motion[1].translate", 4},
-      {"bulb_1e-7", kHeader + kCamera + kMaterial + "shapes:\n" + kBall +
-                        "  - {type: sphere, centre: [0, 2, 0], radius: 1e-7, material: m, "
-                        "emission: {luminance: 1e12}}\n",
+      {"bulb_1e-7",
+       kHeader + kCamera + kMaterial + "shapes:\n" + kBall +
+           "  - {type: sphere, centre: [0, 2, 0], radius: 1e-7, material: m, "
+           "emission: {luminance: 1e12}}\n",
        "", 0},
-      {"bulb_1e-18", kHeader + kCamera + kMaterial + "shapes:\n" + kBall +
-                         "  - {type: sphere, centre: [0, 2, 0], radius: 1e-18, material: m, "
-                         "emission: {luminance: 1000}}\n",
+      {"bulb_1e-18",
+       kHeader + kCamera + kMaterial + "shapes:\n" + kBall +
+           "  - {type: sphere, centre: [0, 2, 0], radius: 1e-18, material: m, "
+           "emission: {luminance: 1000}}\n",
        "shapes[1].radius", 7},
       {"rectangle_light_huge",
        kHeader + kCamera + kMaterial + "shapes:\n" + kBall +
@@ -87,10 +92,11 @@ std::vector<Case> cases() {
            "angular_diameter: 1e-30}]\n" +
            kMaterial + "shapes:\n" + kBall,
        "lights[0].angular_diameter", 4},
-      {"sun_disc_small", kHeader + kCamera +
-                             "lights: [{type: distant, direction: [0, -1, -1], illuminance: "
-                             "1000, angular_diameter: 0.001}]\n" +
-                             kMaterial + "shapes:\n" + kBall,
+      {"sun_disc_small",
+       kHeader + kCamera +
+           "lights: [{type: distant, direction: [0, -1, -1], illuminance: "
+           "1000, angular_diameter: 0.001}]\n" +
+           kMaterial + "shapes:\n" + kBall,
        "", 0},
       {"rectangle_far_from_camera",
        kHeader + "camera: {position: [0, 0, 1e9], look_at: [0, 0, 0], resolution: [16, 16]}\n" +
@@ -131,9 +137,8 @@ TEST(SceneLimits, EdgeCasesAreRefusedByKeyOrRenderFinite) {
 // coordinates round by more than the radius (before, the sample's normal was NaN).
 TEST(SceneLimits, TinyBulbLightsLikeItsPointLight) {
   const auto imageSum = [](const std::string& lights, const std::string& shapes) {
-    const Scene scene(loadSceneFromText(kHeader + kCamera + kMaterial + lights + "shapes:\n" +
-                                            kBall + shapes,
-                                        "bulb.yaml", "."));
+    const Scene scene(loadSceneFromText(
+        kHeader + kCamera + kMaterial + lights + "shapes:\n" + kBall + shapes, "bulb.yaml", "."));
     RenderOptions options;
     options.spp = 64;
     const RenderResult r = render(scene, SpectralResponse::cieXyz(), options);
@@ -144,8 +149,9 @@ TEST(SceneLimits, TinyBulbLightsLikeItsPointLight) {
     return sum;
   };
   const double intensity = 1e12 * M_PI * 1e-7 * 1e-7;  // cd
-  const double bulb = imageSum("", "  - {type: sphere, centre: [0, 2, 2], radius: 1e-7, "
-                                   "material: m, emission: {luminance: 1e12}}\n");
+  const double bulb = imageSum("",
+                               "  - {type: sphere, centre: [0, 2, 2], radius: 1e-7, "
+                               "material: m, emission: {luminance: 1e12}}\n");
   const double point = imageSum(
       "lights: [{type: point, position: [0, 2, 2], intensity: " + test::num(intensity) + "}]\n",
       "");
@@ -180,31 +186,32 @@ InputError errorOf(const std::function<void()>& f) {
 // named "<input>" and 'region' / 'white_balance' before.
 TEST(SceneLimits, WhiteBalanceRefusalsNameTheSceneKey) {
   const InputError outside = errorOf([] {
-    loadSceneFromText(sensorScene("[32, 32]", 1000,
-                                  "isp: {white_balance: region, region: [30, 30, 10, 10]}\n"),
-                      "wb.yaml", ".");
+    loadSceneFromText(
+        sensorScene("[32, 32]", 1000, "isp: {white_balance: region, region: [30, 30, 10, 10]}\n"),
+        "wb.yaml", ".");
   });
   EXPECT_EQ(outside.key(), "isp.region");
   EXPECT_EQ(outside.where().file, "wb.yaml");
   EXPECT_EQ(outside.where().line, 5) << outside.what();
 
   const InputError tiny = errorOf([] {
-    loadSceneFromText(sensorScene("[3, 1]", 1000, "isp: {white_balance: grey_world}\n"),
-                      "wb.yaml", ".");
+    loadSceneFromText(sensorScene("[3, 1]", 1000, "isp: {white_balance: grey_world}\n"), "wb.yaml",
+                      ".");
   });
   EXPECT_EQ(tiny.key(), "isp.white_balance");
   EXPECT_EQ(tiny.where().line, 5) << tiny.what();
 
   const InputError dark = errorOf([] {
-    capture(loadSceneFromText(
-        sensorScene("[16, 16]", 1e-30, "isp:\n  white_balance: grey_world\n"), "wb.yaml", "."));
+    capture(loadSceneFromText(sensorScene("[16, 16]", 1e-30, "isp:\n  white_balance: grey_world\n"),
+                              "wb.yaml", "."));
   });
   EXPECT_EQ(dark.key(), "isp.white_balance");
   EXPECT_EQ(dark.where().file, "wb.yaml");
   EXPECT_EQ(dark.where().line, 6) << dark.what();
 }
 
-// A spectral table that is not a table names its own line and the scene key that named it.
+// A spectral table that is not a table, or a sensor file that is not a sensor, names its
+// own place and the scene key that named it (before: only its own place).
 TEST(SceneLimits, TableErrorsNameTheSceneKeyThatNamedTheFile) {
   const test::TempDir dir;
   test::writeFile(dir.path() / "notes.csv", "hello world\nthis is not, a table\n");
@@ -221,6 +228,18 @@ TEST(SceneLimits, TableErrorsNameTheSceneKeyThatNamedTheFile) {
                 "in the file named by table.yaml:5:51, key 'materials.m.reflectance.csv'"),
             std::string::npos)
       << e.what();
+
+  // Likewise a sensor file that is not a sensor description.
+  test::writeFile(dir.path() / "notes.yaml", "format: camsim-sensor/1\nhello: 1\n");
+  const InputError s = errorOf([&] {
+    loadSceneFromText(kHeader + kCamera + "sensor: {model: notes.yaml}\n" + kSun + kMaterial +
+                          "shapes:\n" + kBall,
+                      "sensor.yaml", dir.path());
+  });
+  EXPECT_EQ(s.where().file, (dir.path() / "notes.yaml").string());
+  EXPECT_NE(std::string(s.what()).find("in the file named by sensor.yaml:4:17, key 'sensor.model'"),
+            std::string::npos)
+      << s.what();
 }
 
 }  // namespace
