@@ -18,17 +18,27 @@
 namespace camsim {
 namespace {
 
-// The ISP refuses some settings only on the rendered raw (a white balance on a black or a
-// fully clipped image): its error is given the scene key (isp.white_balance, isp.region)
-// and the place the scene file sets it, or the isp block's, or the file's when defaulted.
+// The ISP refuses some settings only on the rendered raw (a region or grey-world white
+// balance on a black or fully clipped image): its error is given the scene key
+// (isp.white_balance, isp.region; sensor.model for the sensor's own data) and the place the
+// scene file sets it, or the enclosing block's, or the file's when defaulted.
 [[noreturn]] void rethrowAtIspKey(const SceneDescription& desc, const InputError& e) {
   if (!e.where().file.empty()) throw e;
-  const std::string key = e.key().empty() ? "isp" : "isp." + e.key();
+  using W = IspSettings::WhiteBalance;
+  const bool regionKey = desc.isp.whiteBalance == W::kRegion;
+  std::string key = "sensor.model";  // the sensor's QE, CFA and levels
+  if (e.key() == "white_balance" || (e.key() == "region" && !regionKey))
+    key = "isp.white_balance";
+  else if (e.key() == "region")
+    key = "isp.region";
+  else if (e.key().empty())
+    key = "isp";
   auto place = desc.keyPlaces.find(key);
-  if (place == desc.keyPlaces.end()) place = desc.keyPlaces.find("isp");
+  if (place == desc.keyPlaces.end()) place = desc.keyPlaces.find(key.substr(0, key.find('.')));
+  const bool fromRaw = key.starts_with("isp.") && desc.isp.whiteBalance != W::kIlluminant;
   throw InputError(
       place != desc.keyPlaces.end() ? place->second : SourceLocation{desc.sourceFile, 0, 0}, key,
-      e.message() + " (found in the rendered raw)");
+      e.message() + (fromRaw ? " (found in the rendered raw)" : ""));
 }
 
 Image scaled(const Image& image, double k) {

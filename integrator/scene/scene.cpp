@@ -99,16 +99,63 @@ std::unique_ptr<Shape> bakeMesh(const ShapeDescription& s, const MeshData& mesh,
                                         std::move(instance), std::move(tangents));
 }
 
+// Largest |coordinate| of a mesh's vertices (m), once per mesh however often it is placed.
+double largestCoordinate(const MeshData& mesh, std::map<const MeshData*, double>& memo) {
+  const auto [it, added] = memo.emplace(&mesh, 0.0);
+  if (added)
+    for (const glm::vec3& p : mesh.positions)
+      it->second =
+          std::max({it->second, std::abs(static_cast<double>(p.x)),
+                    std::abs(static_cast<double>(p.y)), std::abs(static_cast<double>(p.z))});
+  return it->second;
+}
+
+// A shape must stay within ±SceneLimits::kMaxCoordinate of the render origin at every
+// step of its motion (Embree drops geometry past ±1.8e18 and refuses rays from it), and a
+// sphere's radius times its keyframe scale within [kMinSphereRadius, 1e12] m. Mesh files,
+// glTF nodes, placements and keyframe scales reach past what the loader checks point by
+// point; the bound |A v + t|∞ ≤ ‖A‖∞ max|v| + |t|∞ is worked out in double per step.
+void checkReach(const SceneDescription& d, const ShapeDescription& s,
+                const std::vector<glm::dmat4>& transforms, double meshReach) {
+  for (const glm::dmat4& m : transforms) {
+    double reach = 0.0;
+    for (int r = 0; r < 3; ++r) {
+      const double row = std::abs(m[0][r]) + std::abs(m[1][r]) + std::abs(m[2][r]);
+      const double centre = s.kind == ShapeDescription::Kind::kSphere
+                                ? std::abs((m * glm::dvec4(glm::dvec3(s.centre), 1.0))[r])
+                                : std::abs(m[3][r]);
+      reach = std::max(reach, s.kind == ShapeDescription::Kind::kSphere
+                                  ? centre + row * static_cast<double>(s.radius)
+                                  : centre + row * meshReach);
+    }
+    if (!(reach <= SceneLimits::kMaxCoordinate))
+      throw InputError({d.sourceFile, 0, 0}, s.label,
+                       "the shape reaches " + formatNumber(reach) +
+                           " m from the camera's rest position; camsim traces within ±1e15 m "
+                           "(limit SceneLimits::kMaxCoordinate)");
+    if (s.kind == ShapeDescription::Kind::kSphere) {
+      const double radius = glm::length(glm::dvec3(m[0])) * static_cast<double>(s.radius);
+      if (!(radius >= SceneLimits::kMinSphereRadius && radius <= 1e12))
+        throw InputError({d.sourceFile, 0, 0}, s.label,
+                         "the sphere's radius times its keyframe scale is " + formatNumber(radius) +
+                             " m, outside [1e-09, 1e+12] m");
+    }
+  }
+}
+
 // instanced: the shared object mesh when s is placed as an instance of it (else null).
-std::unique_ptr<Shape> buildShape(const ShapeDescription& s, double t0, double t1,
-                                  const std::shared_ptr<const TriangleMesh>& instanced,
-                                  bool& moving) {
+std::unique_ptr<Shape> buildShape(const SceneDescription& d, const ShapeDescription& s, double t0,
+                                  double t1, const std::shared_ptr<const TriangleMesh>& instanced,
+                                  std::map<const MeshData*, double>& meshReach, bool& moving) {
   moving = !s.motion.empty() && !s.motion.isStaticDuring(t0, t1);
   TimeSteps steps{t0, t1, moving ? timeStepsFor(s.motion, t0, t1) : 1};
   auto transformAt = [&](int k) {
     return s.motion.empty() ? glm::dmat4(1.0) : s.motion.at(steps.timeOf(k));
   };
   if (s.kind == ShapeDescription::Kind::kSphere) {
+    std::vector<glm::dmat4> transforms;
+    for (int k = 0; k < steps.count; ++k) transforms.push_back(transformAt(k));
+    checkReach(d, s, transforms, 0.0);
     std::vector<glm::vec3> centres;
     std::vector<float> radii;
     for (int k = 0; k < steps.count; ++k) {
@@ -121,6 +168,10 @@ std::unique_ptr<Shape> buildShape(const ShapeDescription& s, double t0, double t
   }
   std::vector<glm::dmat4> poses;
   for (int k = 0; k < steps.count; ++k) poses.push_back(transformAt(k));
+  std::vector<glm::dmat4> placed = poses;  // mesh data → render space at each step
+  if (s.sharedMesh)
+    for (glm::dmat4& pose : placed) pose = pose * s.placement;
+  checkReach(d, s, placed, largestCoordinate(s.sharedMesh ? *s.sharedMesh : s.mesh, meshReach));
   if (!s.sharedMesh) return bakeMesh(s, s.mesh, glm::dmat4(1.0), steps, poses);
   if (!instanced) return bakeMesh(s, *s.sharedMesh, s.placement, steps, poses);
   for (glm::dmat4& pose : poses) pose = pose * s.placement;  // object → render at each step
@@ -242,6 +293,7 @@ Scene::Scene(const SceneDescription& d, glm::dvec2 motionSpan)
   std::map<std::pair<const TriangleMesh*, int>, const HitFilter*> cutouts;
   std::vector<const HitFilter*> filterOfShape;
   std::vector<double> powers;
+  std::map<const MeshData*, double> meshReach;
   for (const ShapeDescription& s : d.shapes) {
     bool moving = false;
     std::shared_ptr<const TriangleMesh> instanced;
@@ -250,7 +302,7 @@ Scene::Scene(const SceneDescription& d, glm::dvec2 motionSpan)
       if (!mesh) mesh = objectMesh(*s.sharedMesh);
       instanced = mesh;
     }
-    shapes_.push_back(buildShape(s, exposureStart_, exposureEnd_, instanced, moving));
+    shapes_.push_back(buildShape(d, s, exposureStart_, exposureEnd_, instanced, meshReach, moving));
     filterOfShape.push_back(nullptr);
     const MaterialDescription* material =
         s.material < 0 ? nullptr : &d.materials[static_cast<size_t>(s.material)];
@@ -293,16 +345,6 @@ Scene::Scene(const SceneDescription& d, glm::dvec2 motionSpan)
   }
   geometry_ = std::make_unique<EmbreeScene>(shapes_, exposureStart_, exposureEnd_, filterOfShape);
   if (geometry_->boundsLower().x <= geometry_->boundsUpper().x) {
-    // Mesh files, placements, scales and motion can carry geometry past what the loader
-    // checks point by point: the built bounds (over every time step) are checked here.
-    const glm::vec3 reach =
-        glm::max(glm::abs(geometry_->boundsLower()), glm::abs(geometry_->boundsUpper()));
-    const double farthest = static_cast<double>(std::max({reach.x, reach.y, reach.z}));
-    if (!(farthest <= SceneLimits::kMaxCoordinate))
-      throw InputError({d.sourceFile, 0, 0}, "shapes",
-                       "the geometry reaches " + formatNumber(farthest) +
-                           " m from the origin; camsim traces within ±1e15 m (limit "
-                           "SceneLimits::kMaxCoordinate)");
     boundsCentre_ = 0.5f * (geometry_->boundsLower() + geometry_->boundsUpper());
     boundsRadius_ = 0.5f * glm::length(geometry_->boundsUpper() - geometry_->boundsLower());
   }

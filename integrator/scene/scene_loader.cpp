@@ -346,6 +346,7 @@ SceneDescription loadSceneFromText(const std::string& text, const std::string& d
   scene.camera.worldFromCamera[3] = glm::dvec4(0.0, 0.0, 0.0, 1.0);
   if (auto sensor = top.find("sensor")) {
     scene.sensor = parseSensorSettings(YamlMap(*sensor), baseDir, cameraValue, scene.camera);
+    scene.keyPlaces["sensor"] = sensor->where();
     for (const auto& f : scene.sensor->spec.sourceFiles) ctx.search.noteRead(f);
   }
   if (gltfYfov) {  // on the sensor's height, now that the sensor has set it

@@ -17,8 +17,8 @@ glm::vec3 toPoint(const YamlValue& where, const glm::dvec3& v) {
   const double m = SceneLimits::kMaxCoordinate;
   if (!(std::abs(v.x) <= m && std::abs(v.y) <= m && std::abs(v.z) <= m))
     where.fail(
-        "coordinates must lie within ±1e15 m of the origin (limit "
-        "SceneLimits::kMaxCoordinate)");
+        "coordinates must lie within ±1e15 m (of the world origin for the camera, of the "
+        "camera's rest position for the rest; limit SceneLimits::kMaxCoordinate)");
   return glm::vec3(v);
 }
 
