@@ -19,8 +19,9 @@ namespace {
 std::atomic<bool> gCancel{false};
 std::atomic<int> gSignal{0};  // the signal that set gCancel
 
-// The first SIGINT/SIGTERM asks the render to stop (it checks between tiles, then writes
-// NAME.partial.exr and exits with 128 + the signal: 130, 143); a second one, e.g. a second Ctrl-C, kills at once
+// The first SIGINT/SIGTERM asks the render to stop (it checks every 64 samples of a pixel,
+// then writes NAME.partial.exr of the finished tiles and exits with 128 + the signal: 130,
+// 143); a second one, e.g. a second Ctrl-C, kills at once
 // (temporaries left behind are removed by the next run into the same directory).
 extern "C" void onSignal(int sig) {
   gSignal.store(sig);

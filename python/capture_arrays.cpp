@@ -121,9 +121,12 @@ void deriveBuffers(CaptureBuffers& b, const PictureSettings& picture) {
   pose.set("world_from_camera_opencv", rows)
       .set("opencv_fx_fy_cx_cy", std::vector<double>{k.x, k.y, k.z, k.w})
       .set("reference_time_s", frame.camera.shutter.centre())
-      .set("exposure_time_s", frame.exposureTimeS)
-      .set("iso", frame.isoValue)
-      .set("system_gain_dn_per_e", frame.systemGainDnPerE);
+      .set("exposure_time_s", frame.exposureTimeS);
+  // Without a sensor there is no ISO nor gain: None (cameras.json writes 0 there).
+  if (r.description.sensor)
+    pose.set("iso", frame.isoValue).set("system_gain_dn_per_e", frame.systemGainDnPerE);
+  else
+    pose.setJson("iso", "null").setJson("system_gain_dn_per_e", "null");
   b.posesJson = pose.str();
 }
 

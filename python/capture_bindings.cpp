@@ -1,8 +1,8 @@
 // camsim.capture(scene) and Scene.render(): the capture library call (integrator/capture)
 // on a worker thread while the calling thread, holding the GIL only for moments, polls for
-// signals every 50 ms (Ctrl-C: the capture is cancelled between tiles and KeyboardInterrupt
-// raised; nothing is written, ever) and reports progress. The arrays come back without a
-// copy (capture_arrays.h).
+// signals every 50 ms (Ctrl-C: the capture is cancelled — the render checks every 64
+// samples of a pixel — and KeyboardInterrupt raised; nothing is written, ever) and reports
+// progress. The arrays come back without a copy (capture_arrays.h).
 #include <chrono>
 #include <future>
 #include <optional>
@@ -119,7 +119,7 @@ py::object runCapture(PyScene& scene, int threads, const py::object& progress,
       }
     }
     if (stopped) job->cancel = true;
-    worker.wait();  // a cancelled capture returns after the tiles in flight
+    worker.wait();  // a cancelled capture returns within 64 samples of the pixels in flight
   }
   if (bar) bar->finish();
   if (stopped) throw py::error_already_set();
@@ -157,7 +157,7 @@ A scene with a frames block returns a list of such dicts, one per frame.
 threads: worker threads (0: all); the arrays are the same for any count. progress: called
 as progress(done, total) with the GIL held, at most every 50 ms (no callback: a progress
 bar on stderr when it is a terminal). The GIL is released while rendering; Ctrl-C cancels
-the capture between tiles and raises KeyboardInterrupt (within about 0.1 s plus one tile).
+the capture and raises KeyboardInterrupt (within about 0.1 s, at any spp).
 display/view/look/ocio_config: as camsim render's --display, --view, --look, --ocio-config.
 reuse: render on the renderable scene (Embree BVH, materials, lights) the Scene's previous
 capture built, when only its camera, exposure, f-number, ISO, sensor, seeds or spp changed

@@ -104,8 +104,15 @@ PyScene loadDefault(const std::optional<py::dict>& overrides) {
       overrides);
 }
 
-PyScene loadDict(const py::dict& scene, const py::object& baseDir,
+PyScene loadDict(const py::object& scene, const py::object& baseDir,
                  const std::optional<py::dict>& overrides) {
+  // Taken as any object (a py::dict parameter made pybind11 raise its TypeError for a
+  // list): the top level that is not a mapping is bad input like any other.
+  if (!py::isinstance<py::dict>(scene))
+    dictFail("",
+             "the scene's top level must be a dict of the scene's keys (camera, shapes, …), "
+             "got a " +
+                 typeName(scene));
   std::string text;
   emitValue(scene, "", text);
   const std::filesystem::path base(

@@ -72,6 +72,7 @@ void exposeAndDevelop(CaptureResult& out, const RenderOptions& renderOptions) {
   const double sceneTime = desc.camera.shutter.effectiveTime();
   const bool moves = out.stats.modelled.time;
   // The film at the scene's exposure stretched by k: rendered again when something moves.
+  // A cancelled re-render cancels the capture (its film lacks tiles): no frame is kept.
   const auto filmAt = [&](double k) {
     if (!moves) return scaled(out.sensorFilm, k);
     SceneDescription longer = desc;
@@ -79,7 +80,9 @@ void exposeAndDevelop(CaptureResult& out, const RenderOptions& renderOptions) {
     const Scene scene(longer);
     RenderOptions o = renderOptions;
     o.progress = nullptr;
-    return render(scene, sensorResponse(spec), o).image;
+    RenderResult again = render(scene, sensorResponse(spec), o);
+    out.cancelled = out.cancelled || again.stats.cancelled;
+    return std::move(again.image);
   };
   if (sensor.autoExposure)
     out.exposureScale = autoExposureScale(out.sensorFilm, *sensor.autoExposure,
@@ -89,6 +92,7 @@ void exposeAndDevelop(CaptureResult& out, const RenderOptions& renderOptions) {
   const auto zero = std::find(evs.begin(), evs.end(), 0.0);
   out.referenceFrame = zero == evs.end() ? 0 : static_cast<std::size_t>(zero - evs.begin());
   const Image base = out.exposureScale == 1.0 ? out.sensorFilm : filmAt(out.exposureScale);
+  if (out.cancelled) return;
   for (std::size_t i = 0; i < evs.size(); ++i) {
     CaptureFrame frame;
     frame.ev = evs[i];
@@ -97,6 +101,10 @@ void exposeAndDevelop(CaptureResult& out, const RenderOptions& renderOptions) {
     frame.frameIndex = sensor.frame + i;
     frame.electrons =
         evs[i] == 0.0 ? base : (moves ? filmAt(out.exposureScale * k) : scaled(base, k));
+    if (out.cancelled) {
+      out.frames.clear();
+      return;
+    }
     frame.raws = exposeFrame(frame.electrons, sensor, frame.exposureTimeS, frame.frameIndex);
     frame.clippedFraction = clippedFraction(frame.raws);
     try {
@@ -274,12 +282,12 @@ SequenceSummary captureSequence(SceneDescription description, const CaptureOptio
       out.aovs = first.aovs;
       out.tilesDone = out.tilesTotal = first.tilesTotal;
     }
+    finish(out, o);  // nothing when cancelled; cancels when a re-render is (step 4)
     if (out.cancelled) {
       summary.cancelled = true;
       onFrame(std::move(out), k);
       return summary;
     }
-    finish(out, o);
     if (k == 0 && !anythingMoves) {
       first.stats = out.stats;
       first.film = out.film;

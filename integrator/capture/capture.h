@@ -30,7 +30,7 @@
 // |------------|------|---------|---------|
 // | threads    | —    | 0       | 0: all hardware threads; the result is the same for any count |
 // | progress   | —    | none    | (tiles done, tiles total) of the main render, from worker threads |
-// | cancel     | —    | none    | checked between tiles; a cancelled capture has only the finished tiles |
+// | cancel     | —    | none    | checked every 64 samples of a pixel; a cancelled capture has only the finished tiles (a cancelled re-render in step 4 cancels the capture too) |
 // | tiles      | —    | none    | renderCaptureFilms only: render this share of the tiles (render.h) |
 // | sceneCache | —    | none    | the caller's SceneCache: step 1 renders on the Scene built by an earlier capture when only the camera, spp, seed, sensor or ISP changed (scene_cache.h; same bytes); none: built here |
 #pragma once

@@ -29,9 +29,13 @@ JsonObject cameraJson(const PhysicalCamera& camera) {
       .set("sensor_size_m", std::vector<double>{p.sensorSize.x, p.sensorSize.y})
       .set("fill_factor", p.fillFactor)
       .set("focal_length_m", p.focalLength)
-      .set("f_number", p.fNumber)
-      .set("focus_distance_m", p.focusDistance)
-      .set("image_distance_m", camera.imageDistance())
+      .set("f_number", p.fNumber);
+  // Focus at infinity (focusDistance 0 in PhysicalCameraParams) is null: no distance.
+  if (p.focusDistance > 0.0)
+    j.set("focus_distance_m", p.focusDistance);
+  else
+    j.setJson("focus_distance_m", "null");
+  j.set("image_distance_m", camera.imageDistance())
       .set("aperture",
            p.aperture
                ? (p.aperture->blades ? std::to_string(p.aperture->blades) + " blades" : "circular")

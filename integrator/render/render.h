@@ -56,7 +56,8 @@ struct RenderOptions {
   int threads = 0;  // 0 = all hardware threads
   // Called from worker threads (serialised) as tiles finish: (tiles done, tiles total).
   std::function<void(int, int)> progress;
-  // Checked between tiles; when set, the render stops early and reports cancelled.
+  // When set, the render stops within 64 samples of every pixel in flight and reports
+  // cancelled: the tiles that finished hold their values (all spp), the others are 0.
   const std::atomic<bool>* cancel = nullptr;
   // Sample time even when the scene analysis says nothing moves (for tests: the image
   // must not change).

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 import camsim
-from conftest import BOX
+from conftest import BOX, small_scene
 
 
 @pytest.fixture(scope="module")
@@ -59,6 +59,23 @@ def test_meta_is_the_cli_sidecar(cli_box, py_box):
     assert meta == sidecar
     assert "modelled" in meta["render"] and len(meta["camera"]["opencv_fx_fy_cx_cy"]) == 4
     assert np.asarray(py_box["meta"]["pose"]["world_from_camera_opencv"]).shape == (4, 4)
+
+
+def test_meta_says_none_for_what_a_capture_does_not_have(py_box):
+    # Issue 34: without a sensor the pose gave ISO and gain 0, and focus at infinity was
+    # written as a focus distance of 0 m.
+    meta = camsim.Scene.from_dict(small_scene()).render()["meta"]
+    assert meta["pose"]["iso"] is None
+    assert meta["pose"]["system_gain_dn_per_e"] is None
+    assert meta["camera"]["focus_distance_m"] is None  # no focus_distance_m: infinity
+    assert meta["camera"]["image_distance_m"] == meta["camera"]["focal_length_m"]
+    pose = py_box["meta"]["pose"]  # with a sensor: its ISO and gain
+    assert pose["iso"] == py_box["meta"]["sensor"]["iso"] > 0
+    assert pose["system_gain_dn_per_e"] == py_box["meta"]["sensor"]["system_gain_dn_per_e"] > 0
+    focused = small_scene()
+    focused["camera"].update({"f_number": 2, "focus_distance_m": 3})
+    meta = camsim.Scene.from_dict(focused).render()["meta"]
+    assert meta["camera"]["focus_distance_m"] == 3
 
 
 def test_arrays_view_the_capture_without_copies(py_box):

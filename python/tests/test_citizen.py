@@ -5,6 +5,10 @@ import _thread
 import ctypes
 import gc
 import os
+import signal
+import subprocess
+import sys
+import textwrap
 import threading
 import time
 
@@ -59,6 +63,47 @@ def test_ctrl_c_stops_a_long_render_within_a_second(tmp_path, monkeypatch):
     assert list(tmp_path.iterdir()) == []  # nothing written
     # The scene is still usable afterwards.
     assert camsim.Scene.from_dict(small_scene()).render()["xyz"].shape == (12, 16, 3)
+
+
+# A child Python that renders the Cornell box at 10⁵ spp (hours; each 16×16 tile alone ~10 s
+# of a core) and prints when KeyboardInterrupt reaches it (CLOCK_MONOTONIC: the same clock
+# in both processes).
+HIGH_SPP_CHILD = textwrap.dedent("""
+    import time
+    import camsim
+    scene = camsim.default_scene(overrides={"spp": 100000})
+    print("rendering", flush=True)
+    try:
+        scene.render(threads=2)
+        print("finished", flush=True)
+    except KeyboardInterrupt:
+        print("interrupted", repr(time.monotonic()), flush=True)
+""")
+
+
+def test_sigint_at_100k_spp_raises_keyboard_interrupt_within_a_second(tmp_path):
+    # Issue 34: the tiles in flight finished at full spp first: KeyboardInterrupt 5.3 s
+    # after SIGINT at 10⁵ spp.
+    child = subprocess.Popen([sys.executable, "-c", HIGH_SPP_CHILD], cwd=tmp_path,
+                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    try:
+        assert child.stdout.readline().strip() == "rendering", child.stderr.read()
+        time.sleep(1.0)
+        assert child.poll() is None, "finished too early"
+        sent = time.monotonic()
+        child.send_signal(signal.SIGINT)
+        out, err = child.communicate(timeout=30)
+        exited = time.monotonic()
+    finally:
+        if child.poll() is None:
+            child.kill()
+            child.wait()
+    assert child.returncode == 0, err
+    words = out.split()
+    assert words[0] == "interrupted", (out, err)
+    assert float(words[1]) - sent < 1.0, float(words[1]) - sent
+    assert exited - sent < 5.0  # and the interpreter ends
+    assert list(tmp_path.iterdir()) == []  # nothing written
 
 
 def test_progress_callback_and_its_exception():

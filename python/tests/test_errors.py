@@ -112,3 +112,15 @@ def test_bad_overrides_name_the_key():
         camsim.default_scene().set_pose(position=[1, 1, 1], look_at=[1, 1, 1])
     with pytest.raises(camsim.InputError, match="key 'sensor.model'"):
         camsim.default_scene().set_sensor("no-such-sensor")
+
+
+@pytest.mark.parametrize("top", [[{"camera": {}}], "camera: {}", 3, None],
+                         ids=["list", "str", "int", "none"])
+def test_a_top_level_that_is_no_dict_is_an_input_error(top):
+    # Issue 34: a list raised pybind11's TypeError (incompatible function arguments).
+    with pytest.raises(camsim.InputError) as info:
+        camsim.Scene.from_dict(top)
+    e = info.value
+    assert (e.file, e.line, e.column, e.key) == ("<dict>", 0, 0, "")
+    assert str(e).startswith("<dict>: the scene's top level must be a dict"), str(e)
+    assert type(top).__name__ in e.detail

@@ -4,6 +4,14 @@
 
 namespace camsim {
 
+void TableSearch::noteRead(const std::filesystem::path& file) const {
+  if (!filesRead) return;
+  std::filesystem::path normal = file.lexically_normal();
+  std::error_code ec;
+  if (normal != file && !std::filesystem::equivalent(normal, file, ec)) normal = file;
+  filesRead->push_back(std::move(normal));
+}
+
 std::optional<std::filesystem::path> TableSearch::locate(const std::string& name) const {
   if (name.empty()) return std::nullopt;
   const std::filesystem::path p(name);

@@ -20,10 +20,10 @@ struct TableSearch {
   std::vector<std::filesystem::path>* filesRead = nullptr;  // each file found is appended
 
   // Records a file the description made camsim read (tables and, for scenes, meshes,
-  // textures and maps): the record lists a render's inputs.
-  void noteRead(const std::filesystem::path& file) const {
-    if (filesRead) filesRead->push_back(file);
-  }
+  // textures and maps): the record lists a render's inputs, each path lexically normal
+  // (scenes/../x.csv as x.csv; relative stays relative) unless that names another file
+  // (a symbolic link before the ..): then as it was opened.
+  void noteRead(const std::filesystem::path& file) const;
   // The file `name`: itself if absolute, else the first of `directories` holding it;
   // recorded. Nothing if there is no such regular file (or the name is empty).
   std::optional<std::filesystem::path> locate(const std::string& name) const;

@@ -242,6 +242,53 @@ TEST(CamsimBinary, SidecarListsTheFilesTheSceneRead) {
   EXPECT_NE(json.find(expected), std::string::npos) << expected << "\n" << json;
 }
 
+// Issue 34: a file named through `..` was listed as the loader opened it
+// (DIR/scenes/../grey.csv); it is listed lexically normal, DIR/grey.csv.
+TEST(CamsimBinary, SidecarListsInputFilesWithoutDotDot) {
+  TempDir dir;
+  writeFile(dir.path() / "grey.csv", "wavelength_nm,r\n360,0.5\n830,0.5\n");
+  writeFile(dir.path() / "tri.obj", "v -1 -1 0\nv 1 -1 0\nv 0 1 0\nf 1 2 3\n");
+  fs::create_directories(dir.path() / "scenes");
+  writeFile(dir.path() / "scenes" / "files.yaml",
+            "camera: {position: [0, 0, -2], look_at: [0, 0, 0], resolution: [8, 8]}\n"
+            "materials: {grey: {type: diffuse, reflectance: {csv: ../grey.csv}}}\n"
+            "shapes:\n  - {type: mesh, file: ./../tri.obj, material: grey}\n"
+            "  - {type: sphere, centre: [0, 2, -1], radius: 0.3, emission: {luminance: 1000}}\n");
+  const fs::path out = dir.path() / "out";
+  // The scene named relative to the working directory: its inputs stay relative.
+  const RunResult r =
+      runCommand("cd " + quote(dir.path().string()) + " && " + quote(CAMSIM_BINARY) +
+                     " render scenes/files.yaml -o " + quote(out.string()) + " --spp 1",
+                 dir.path());
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const std::string json = readFile(out / "files.json");
+  const std::string expected = "\"input_files\": [\"grey.csv\", \"tri.obj\"]";
+  EXPECT_NE(json.find(expected), std::string::npos) << expected << "\n" << json;
+}
+
+// Issue 34: focus at infinity (no focus_distance_m) was written as a focus distance of 0 m.
+TEST(CamsimBinary, SidecarWritesNullForFocusAtInfinity) {
+  TempDir dir;
+  for (const std::string focus : {"", ", focus_distance_m: 3"}) {
+    writeFile(dir.path() / "focus.yaml",
+              "camera: {position: [0, 0, -2], look_at: [0, 0, 0], resolution: [8, 8], f_number: "
+              "2" +
+                  focus +
+                  "}\n"
+                  "shapes: [{type: sphere, centre: [0, 0, 0], radius: 0.5, emission: "
+                  "{luminance: 1000}}]\n");
+    const fs::path out = dir.path() / "out";
+    const RunResult r = camsim("render " + quote((dir.path() / "focus.yaml").string()) + " -o " +
+                                   quote(out.string()) + " --spp 1",
+                               dir.path());
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const std::string json = readFile(out / "focus.json");
+    const std::string expected =
+        focus.empty() ? "\"focus_distance_m\": null," : "\"focus_distance_m\": 3,";
+    EXPECT_NE(json.find(expected), std::string::npos) << expected << "\n" << json;
+  }
+}
+
 TEST(CamsimBinary, RendersSmallSceneToExrAndPng) {
   TempDir dir;
   const std::string text = smallCornellBox();

@@ -123,6 +123,24 @@ TEST(Capture, ACancelledCaptureHasNoFramesAndWritesNothing) {
   EXPECT_FALSE(std::filesystem::exists(dir.path() / "out"));
 }
 
+// Cancelled while a moving scene's bracket is rendered again (step 4): the capture is
+// cancelled, with no frame — not frames whose electrons lack the re-render's tiles.
+TEST(Capture, ACancelDuringTheReRenderOfABracketCancelsTheCapture) {
+  std::atomic<bool> cancel{false};
+  CaptureOptions options;
+  options.threads = 1;
+  options.cancel = &cancel;
+  // The main render's last tile: cancel from then on (its progress; the re-render has none).
+  options.progress = [&](int done, int total) {
+    if (done == total) cancel = true;
+  };
+  const CaptureResult r = capture(plane(", bracket_ev: [0, 1]", true), options);
+  EXPECT_TRUE(r.cancelled);
+  EXPECT_EQ(r.tilesDone, r.tilesTotal);  // the main film is whole
+  EXPECT_TRUE(r.frames.empty());
+  EXPECT_FALSE(r.developed.has_value());
+}
+
 // Without a sensor the picture is the XYZ film in ACEScg with the mean luminance at 0.18.
 TEST(Capture, WithoutASensorThePictureIsTheFilmExposedToMidGrey) {
   SceneDescription d = plane("");

@@ -84,6 +84,37 @@ TEST_F(TableSearchTest, LocateReportsAMissingFileWithoutFailing) {
   EXPECT_EQ(read, std::vector<fs::path>{second() / "b.csv"});
 }
 
+// Issue 34: a folder named through `..` (a scene's folder/../spectra) left the `..` in the
+// record (the sidecar's input_files). The record is lexically normal; the path returned
+// is the one opened.
+TEST_F(TableSearchTest, RecordsPathsWithoutDotAndDotDot) {
+  search.directories = {first() / "sub" / ".." / ".." / "second"};
+  EXPECT_EQ(search.find(csvValue("b.csv"), "b.csv"), first() / "sub/../../second/b.csv");
+  EXPECT_TRUE(search.locate("./a.csv").has_value());
+  EXPECT_EQ(read, (std::vector<fs::path>{second() / "b.csv", second() / "a.csv"}));
+  // Relative paths stay relative.
+  const fs::path here = fs::relative(dir.path(), fs::current_path());
+  ASSERT_TRUE(here.is_relative());
+  std::vector<fs::path> relative;
+  TableSearch{{}, &relative}.noteRead(here / "first" / ".." / "second" / "." / "b.csv");
+  EXPECT_EQ(relative, std::vector<fs::path>{(here / "second" / "b.csv").lexically_normal()});
+  EXPECT_TRUE(relative.front().is_relative());
+}
+
+// Through a symbolic link, `link/..` is the link target's parent, not the link's folder:
+// there the path is recorded as it was opened.
+TEST_F(TableSearchTest, KeepsDotDotAfterASymbolicLink) {
+  std::error_code ec;
+  fs::create_directory_symlink(second(), first() / "sub" / "link", ec);
+  if (ec) GTEST_SKIP() << "no symbolic links here: " << ec.message();
+  fs::create_directories(first() / "sub" / "second");  // what the lexical path would name
+  test::writeFile(first() / "sub" / "second" / "b.csv", "nm,v\n400,4\n");
+  search.directories = {first() / "sub" / "link" / ".." / "second"};
+  const fs::path opened = first() / "sub/link/../second/b.csv";
+  EXPECT_EQ(search.find(csvValue("b.csv"), "b.csv"), opened);
+  EXPECT_EQ(read, std::vector<fs::path>{opened});
+}
+
 TEST(TableSearch, WithoutARecordStillFinds) {
   test::TempDir dir;
   test::writeFile(dir.path() / "t.csv", "nm,v\n400,1\n");
