@@ -58,6 +58,47 @@ TEST(EdgeScenes, ShortShutterAfterZeroRendersInTheCli) {
   }
 }
 
+// A 24 fps sequence from frame 36 with an 8.64° shutter (1 ms at 1.5 s) over the same quad,
+// and Khronos' AnimatedTriangle (a node rotation animated over 1 s) under a 1 ms shutter at
+// 0.3 s: the glTF animation's keyframes under a short shutter after 0 (the issue's
+// BoxAnimated at 3.1 s is not among the test assets).
+TEST(EdgeScenes, ShortSequenceShuttersAndGltfAnimationRenderInTheCli) {
+  const test::TempDir dir;
+  const fs::path sequence = dir.path() / "sequence.yaml";
+  test::writeFile(sequence,
+                  shortShutter("shutter: {open: 0, close: 0.01}") +
+                      "frames: {first: 36, count: 2, rate_hz: 24, shutter_angle_deg: 8.64}\n");
+  const fs::path gltf = dir.path() / "gltf.yaml";
+  test::writeFile(
+      gltf,
+      "format: camsim-scene/1\nname: tri\nrender: {spp: 4}\n"
+      "camera: {position: [0.5, 0.5, 3], look_at: [0.5, 0.5, 0], resolution: "
+      "[32, 32], shutter: {open: 0.3, close: 0.301}}\n"
+      "lights: [{type: distant, direction: [0, 0, -1], illuminance: 1000}]\n"
+      "include:\n  - gltf: " +
+          test::quote(std::string(CAMSIM_TEST_DATA_DIR) + "/gltf/khronos/AnimatedTriangle.gltf") +
+          "\n");
+  for (const fs::path& scene : {sequence, gltf}) {
+    const fs::path out = dir.path() / ("out_" + scene.stem().string());
+    const test::RunResult r = test::runCamsim(
+        "render " + test::quote(scene.string()) + " -o " + test::quote(out.string()), dir.path());
+    ASSERT_EQ(r.exitCode, 0) << scene << "\n" << r.err;
+    size_t exrs = 0;
+    for (const auto& entry : fs::directory_iterator(out)) {
+      if (entry.path().extension() != ".exr") continue;
+      ++exrs;
+      const ExrFile exr = readExr(entry.path());
+      double sum = 0.0;
+      for (float v : exr.image.pixels) {
+        ASSERT_TRUE(std::isfinite(v)) << entry.path();
+        sum += static_cast<double>(v);
+      }
+      EXPECT_GT(sum, 0.0) << entry.path();
+    }
+    EXPECT_EQ(exrs, scene == sequence ? 2u : 1u) << scene;
+  }
+}
+
 TEST(EdgeScenes, RefusalsExitTwoNamingFileLineAndKey) {
   const test::TempDir dir;
   const fs::path up = dir.path() / "up.yaml";

@@ -131,6 +131,32 @@ TEST(SceneLimits, EdgeCasesAreRefusedByKeyOrRenderFinite) {
   }
 }
 
+// Geometry the loader cannot check point by point: a sphere whose keyframe scale takes its
+// radius to 0 in float (CAMSIM_CHECK aborted), a mesh file scaled past ±1e15 m (Embree
+// dropped it silently, and its light shone through everything). Both named by shape.
+TEST(SceneLimits, ScaledShapesAreCheckedPerShape) {
+  const test::TempDir dir;
+  test::writeFile(dir.path() / "tri.obj", "v 0 0 0\nv 1e6 0 0\nv 0 1 0\nf 1 2 3\n");
+  const std::vector<std::pair<std::string, std::string>> shapes = {
+      {"  - {type: sphere, centre: [0, 2, 0], radius: 1, material: m, motion: [{time: 0, scale: "
+       "1e-300}, {time: 1, scale: 1}]}\n",
+       "the sphere's radius times its keyframe scale is 0 m"},
+      {"  - {type: mesh, file: tri.obj, scale: 1e12, material: m}\n", "the shape reaches 1e+18 m"},
+  };
+  for (const auto& [shape, message] : shapes) {
+    try {
+      const Scene scene(
+          loadSceneFromText(kHeader + kCamera + kSun + kMaterial + "shapes:\n" + kBall + shape,
+                            "scaled.yaml", dir.path()));
+      ADD_FAILURE() << "built: " << shape;
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.key(), "shapes[1]") << e.what();
+      EXPECT_EQ(e.where().file, "scaled.yaml");
+      EXPECT_NE(e.message().find(message), std::string::npos) << e.what();
+    }
+  }
+}
+
 // A bulb of radius 1e-7 m lights the ball as a point light of the same intensity
 // I = L π r² does (0.0314 cd for 1e12 cd/m²), within 2 % of the image sum at 64 spp: the
 // sample on a tiny sphere is placed from its centre, not from the shading point, whose
@@ -208,6 +234,14 @@ TEST(SceneLimits, WhiteBalanceRefusalsNameTheSceneKey) {
   EXPECT_EQ(dark.key(), "isp.white_balance");
   EXPECT_EQ(dark.where().file, "wb.yaml");
   EXPECT_EQ(dark.where().line, 6) << dark.what();
+
+  // Grey world on a fully clipped raw: the region code's refusal names the white balance.
+  const InputError clipped = errorOf([] {
+    capture(loadSceneFromText(sensorScene("[16, 16]", 1e9, "isp:\n  white_balance: grey_world\n"),
+                              "wb.yaml", "."));
+  });
+  EXPECT_EQ(clipped.key(), "isp.white_balance") << clipped.what();
+  EXPECT_EQ(clipped.where().line, 6) << clipped.what();
 }
 
 // A spectral table that is not a table, or a sensor file that is not a sensor, names its
