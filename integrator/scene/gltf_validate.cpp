@@ -2,120 +2,17 @@
 // many malformed files itself, but its messages seldom say where ("'byteLength' property is
 // not a positive integer"), and a user needs the JSON path to fix the file. Each check here
 // names it: every index in range, every byte extent inside its view and its buffer, counts
-// and lengths positive integers, external files present. Value checks that need the data
-// (index values, NaN positions) are done as the data is read (gltf_document.cpp).
-#include <cmath>
-#include <cstdint>
-#include <string>
-
-#include <nlohmann/json.hpp>
-
+// and lengths positive integers, external files present (buffers, views and accessors:
+// gltf_validate_buffers.cpp). Value checks that need the data (index values, NaN
+// positions) are done as the data is read (gltf_accessors.cpp).
 #include "integrator/scene/gltf_document.h"
-#include "sensor/base/file_status.h"
-#include "sensor/base/input_error.h"
+#include "integrator/scene/gltf_json_checker.h"
 
 namespace camsim {
 namespace {
 
-using Json = nlohmann::json;
-
-struct Checker {
-  std::string file;
-  std::filesystem::path baseDir;
-  const Json& root;
-
-  [[noreturn]] void fail(const std::string& path, const std::string& message) const {
-    throw InputError({file, 0, 0}, path, message);
-  }
-  size_t count(const char* array) const {
-    const auto it = root.find(array);
-    if (it == root.end()) return 0;
-    if (!it->is_array()) fail(array, "must be an array");
-    return it->size();
-  }
-  // An integer in [lo, hi] at obj[key] (required or optional); returns fallback if absent.
-  std::int64_t integer(const Json& obj, const std::string& path, const char* key, std::int64_t lo,
-                       std::int64_t hi, bool required, std::int64_t fallback = 0) const {
-    const auto it = obj.find(key);
-    const std::string where = path + "." + key;
-    if (it == obj.end()) {
-      if (required) fail(where, "is missing");
-      return fallback;
-    }
-    if (!it->is_number()) fail(where, "must be a number");
-    const double v = it->get<double>();
-    if (!(std::floor(v) == v) || !(v >= static_cast<double>(lo)) || !(v <= static_cast<double>(hi)))
-      fail(where, "must be an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) +
-                      "] (it is " + it->dump() + ")");
-    return static_cast<std::int64_t>(v);
-  }
-  // A reference obj[key] into the top-level array `array`.
-  std::int64_t index(const Json& obj, const std::string& path, const char* key, const char* array,
-                     bool required) const {
-    const size_t n = count(array);
-    const auto it = obj.find(key);
-    if (it == obj.end()) {
-      if (required) fail(path + "." + key, "is missing");
-      return -1;
-    }
-    if (n == 0) fail(path + "." + key, std::string("refers to ") + array + ", which is empty");
-    return integer(obj, path, key, 0, static_cast<std::int64_t>(n) - 1, required);
-  }
-  const Json& item(const char* array, size_t i) const {
-    const Json& v = root[array][i];
-    if (!v.is_object())
-      fail(std::string(array) + "[" + std::to_string(i) + "]", "must be an object");
-    return v;
-  }
-  static std::string at(const char* array, size_t i) {
-    return std::string(array) + "[" + std::to_string(i) + "]";
-  }
-  void externalFile(const Json& obj, const std::string& path) const {
-    const auto uri = obj.find("uri");
-    if (uri == obj.end()) return;
-    if (!uri->is_string()) fail(path + ".uri", "must be a string");
-    const std::string u = uri->get<std::string>();
-    if (u.rfind("data:", 0) == 0) return;
-    std::string decoded;  // percent-encoding, as tinygltf decodes it
-    for (size_t i = 0; i < u.size(); ++i) {
-      if (u[i] == '%' && i + 2 < u.size() && std::isxdigit(static_cast<unsigned char>(u[i + 1])) &&
-          std::isxdigit(static_cast<unsigned char>(u[i + 2]))) {
-        decoded += static_cast<char>(std::stoi(u.substr(i + 1, 2), nullptr, 16));
-        i += 2;
-      } else {
-        decoded += u[i];
-      }
-    }
-    const std::filesystem::path p = baseDir / decoded;
-    if (!isRegularFile(p)) fail(path + ".uri", "file '" + p.string() + "' not found");
-  }
-};
-
-size_t componentBytes(std::int64_t type) {
-  switch (type) {
-    case 5120:
-    case 5121:
-      return 1;
-    case 5122:
-    case 5123:
-      return 2;
-    case 5125:
-    case 5126:
-      return 4;
-    default:
-      return 0;
-  }
-}
-
-size_t componentCount(const std::string& type) {
-  if (type == "SCALAR") return 1;
-  if (type == "VEC2") return 2;
-  if (type == "VEC3") return 3;
-  if (type == "VEC4" || type == "MAT2") return 4;
-  if (type == "MAT3") return 9;
-  if (type == "MAT4") return 16;
-  return 0;
-}
+using gltf_check::Checker;
+using gltf_check::Json;
 
 void checkTextureInfo(const Checker& c, const Json& obj, const std::string& path, const char* key) {
   const auto it = obj.find(key);
@@ -123,6 +20,21 @@ void checkTextureInfo(const Checker& c, const Json& obj, const std::string& path
   if (!it->is_object()) c.fail(path + "." + key, "must be an object");
   c.index(*it, path + "." + key, "index", "textures", true);
   c.integer(*it, path + "." + key, "texCoord", 0, 16, false);
+  const auto ext = it->find("extensions");
+  if (ext == it->end() || !ext->is_object()) return;
+  const auto tt = ext->find("KHR_texture_transform");
+  if (tt == ext->end()) return;
+  const std::string tp = path + "." + key + ".extensions.KHR_texture_transform";
+  if (!tt->is_object()) c.fail(tp, "must be an object");
+  for (const char* k : {"offset", "scale"}) {
+    const auto v = tt->find(k);
+    if (v != tt->end() &&
+        (!v->is_array() || v->size() != 2 || !(*v)[0].is_number() || !(*v)[1].is_number()))
+      c.fail(tp + "." + k, "must be an array of 2 numbers");
+  }
+  if (const auto r = tt->find("rotation"); r != tt->end() && !r->is_number())
+    c.fail(tp + ".rotation", "must be a number (radians)");
+  c.integer(*tt, tp, "texCoord", 0, 16, false);
 }
 
 }  // namespace
@@ -150,64 +62,7 @@ void validateGltfJson(const std::string& json, const std::string& displayName,
       version->get<std::string>().rfind("2.", 0) != 0)
     c.fail("asset.version", "camsim reads glTF 2.x");
 
-  std::vector<std::int64_t> bufferBytes;
-  for (size_t i = 0; i < c.count("buffers"); ++i) {
-    const Json& b = c.item("buffers", i);
-    const std::string p = Checker::at("buffers", i);
-    bufferBytes.push_back(c.integer(b, p, "byteLength", 1, std::int64_t(1) << 40, true));
-    if (b.contains("uri")) {
-      c.externalFile(b, p);
-    } else if (!(isGlb && i == 0)) {
-      c.fail(p + ".uri", "is missing (only a .glb's first buffer may omit it)");
-    } else if (static_cast<std::size_t>(bufferBytes.back()) > glbBinBytes) {
-      c.fail(p + ".byteLength", "is " + std::to_string(bufferBytes.back()) +
-                                    " bytes but the .glb's BIN chunk holds " +
-                                    std::to_string(glbBinBytes));
-    }
-  }
-  std::vector<std::int64_t> viewBytes;
-  for (size_t i = 0; i < c.count("bufferViews"); ++i) {
-    const Json& v = c.item("bufferViews", i);
-    const std::string p = Checker::at("bufferViews", i);
-    const std::int64_t b = c.index(v, p, "buffer", "buffers", true);
-    const std::int64_t offset = c.integer(v, p, "byteOffset", 0, std::int64_t(1) << 40, false);
-    const std::int64_t length = c.integer(v, p, "byteLength", 1, std::int64_t(1) << 40, true);
-    if (offset + length > bufferBytes[static_cast<size_t>(b)])
-      c.fail(p + ".byteLength", "byteOffset + byteLength = " + std::to_string(offset + length) +
-                                    " exceeds buffers[" + std::to_string(b) + "].byteLength = " +
-                                    std::to_string(bufferBytes[static_cast<size_t>(b)]));
-    if (v.contains("byteStride")) {
-      const std::int64_t s = c.integer(v, p, "byteStride", 4, 252, false);
-      if (s % 4 != 0) c.fail(p + ".byteStride", "must be a multiple of 4");
-    }
-    viewBytes.push_back(length);
-  }
-  for (size_t i = 0; i < c.count("accessors"); ++i) {
-    const Json& a = c.item("accessors", i);
-    const std::string p = Checker::at("accessors", i);
-    const std::int64_t ct = c.integer(a, p, "componentType", 5120, 5126, true);
-    const size_t cb = componentBytes(ct);
-    if (cb == 0) c.fail(p + ".componentType", "is not a glTF component type");
-    const auto type = a.find("type");
-    if (type == a.end() || !type->is_string() || componentCount(type->get<std::string>()) == 0)
-      c.fail(p + ".type", "must be SCALAR, VEC2, VEC3, VEC4, MAT2, MAT3 or MAT4");
-    const std::int64_t count = c.integer(a, p, "count", 1, std::int64_t(1) << 32, true);
-    if (a.contains("sparse")) c.fail(p + ".sparse", "sparse accessors are not supported");
-    const std::int64_t view = c.index(a, p, "bufferView", "bufferViews", false);
-    if (view < 0) continue;  // all zeros
-    const std::int64_t offset = c.integer(a, p, "byteOffset", 0, std::int64_t(1) << 40, false);
-    const Json& v = root["bufferViews"][static_cast<size_t>(view)];
-    const std::int64_t element =
-        static_cast<std::int64_t>(cb * componentCount(type->get<std::string>()));
-    const std::int64_t stride =
-        v.contains("byteStride") ? v["byteStride"].get<std::int64_t>() : element;
-    const std::int64_t end = offset + stride * (count - 1) + element;
-    if (end > viewBytes[static_cast<size_t>(view)])
-      c.fail(p + ".count", std::to_string(count) + " elements from byteOffset " +
-                               std::to_string(offset) + " end at byte " + std::to_string(end) +
-                               ", past bufferViews[" + std::to_string(view) + "].byteLength = " +
-                               std::to_string(viewBytes[static_cast<size_t>(view)]));
-  }
+  gltf_check::checkBuffers(c, glbBinBytes, isGlb);
   for (size_t i = 0; i < c.count("images"); ++i) {
     const Json& im = c.item("images", i);
     const std::string p = Checker::at("images", i);
