@@ -3,6 +3,7 @@
 // cameras, lights and nodes here, materials in gltf_read_materials.cpp, accessor data
 // (with the checks that need the values: index values inside the vertex count, finite
 // positions, normals and keys, increasing key times) in gltf_accessors.cpp.
+#include <cctype>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -231,6 +232,23 @@ void readNodes(const tinygltf::Model& model, GltfDocument& doc, const std::strin
 }
 
 }  // namespace
+
+std::int64_t gltfDataUriBytes(const std::string& uri) {
+  size_t at = std::string::npos;
+  for (const char* type : {"application/octet-stream", "application/gltf-buffer", "image/jpeg",
+                           "image/png", "image/bmp", "image/gif", "text/plain"}) {
+    const std::string header = std::string("data:") + type + ";base64,";
+    if (uri.rfind(header, 0) == 0) at = header.size();
+  }
+  if (at == std::string::npos) return -1;
+  std::int64_t chars = 0;
+  while (at < uri.size() &&
+         (std::isalnum(static_cast<unsigned char>(uri[at])) || uri[at] == '+' || uri[at] == '/')) {
+    ++chars;
+    ++at;
+  }
+  return chars / 4 * 3 + (chars % 4 > 1 ? chars % 4 - 1 : 0);  // a last 2 or 3 give 1 or 2
+}
 
 GltfDocument parseGltf(const std::string& bytes, const std::string& displayName,
                        const std::filesystem::path& baseDir) {

@@ -22,6 +22,7 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <filesystem>
 #include <memory>
 #include <optional>
@@ -170,5 +171,9 @@ GltfDocument parseGltf(const std::string& bytes, const std::string& displayName,
 // present. Throws InputError naming displayName and the JSON path.
 void validateGltfJson(const std::string& json, const std::string& displayName,
                       const std::filesystem::path& baseDir, std::size_t glbBinBytes, bool isGlb);
+// Internal: the bytes a buffer's data URI holds, decoded as tinygltf decodes it (base64
+// characters up to the first '=' or other character, after one of the media types it
+// reads: application/octet-stream, application/gltf-buffer, …); −1 if it reads none.
+std::int64_t gltfDataUriBytes(const std::string& uri);
 
 }  // namespace camsim
