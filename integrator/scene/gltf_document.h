@@ -1,8 +1,8 @@
 // GltfDocument: a glTF 2.0 asset (.gltf with .bin and image files or data URIs, or .glb)
 // read and checked into plain data, before anything is turned into camsim's scene parts
 // (scene_loader_gltf.cpp does that). This module (gltf_document.cpp, gltf_read_materials.cpp,
-// gltf_accessors.cpp, gltf_validate*.cpp) is the only one that includes tinygltf and its
-// JSON library; no header but the internal gltf_json_checker.h exposes them.
+// gltf_accessors.cpp, gltf_validate.cpp) is the only one that includes tinygltf and its
+// JSON library; no header exposes them.
 //
 // What is kept, in glTF's own conventions (right-handed, +y up, metres, seconds):
 //   nodes      matrix or TRS, children, mesh / camera / KHR_lights_punctual light
