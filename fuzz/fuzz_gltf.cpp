@@ -21,6 +21,10 @@ void checkDocument(const camsim::GltfDocument& doc) {
       camsim::fuzz::checkMesh(p.mesh);
       FUZZ_CHECK(p.mesh.uvs.empty() || p.mesh.uvs.size() == p.mesh.positions.size());
       FUZZ_CHECK(p.mesh.tangents.empty() || p.mesh.tangents.size() == p.mesh.positions.size());
+      FUZZ_CHECK(p.mesh.colors.empty() || p.mesh.colors.size() == p.mesh.positions.size());
+      for (const glm::vec3& c : p.mesh.colors)
+        FUZZ_CHECK(c.r >= 0.0f && c.r <= 1.0f && c.g >= 0.0f && c.g <= 1.0f && c.b >= 0.0f &&
+                   c.b <= 1.0f);
       FUZZ_CHECK(p.material < static_cast<int>(doc.materials.size()));
     }
   for (const camsim::GltfMaterial& m : doc.materials)

@@ -78,6 +78,9 @@ struct MeshData {
   // empty, or one per position: xyz the unit tangent along ∂p/∂u, w = ±1 the bitangent's
   // sign (bitangent = w · normal × tangent), glTF's TANGENT convention (normal maps)
   std::vector<glm::vec4> tangents;
+  // empty, or one per position: linear Rec.709 RGB in [0, 1] that multiplies the material's
+  // reflectance (glTF COLOR_0; OBJ and PLY meshes leave it empty)
+  std::vector<glm::vec3> colors;
   // OBJ only (other sources leave them empty): the usemtl groups in triangle order, covering
   // every triangle, none empty (empty vector: the file has no usemtl), and the mtllib
   // statements. The scene loader maps them to materials (integrator/scene/scene_loader_mtl.cpp).

@@ -22,6 +22,7 @@
 
 #include "integrator/textures/normal_map.h"
 #include "integrator/textures/texture.h"
+#include "integrator/textures/vertex_colors.h"
 #include "sensor/spectra/sampled_spectrum.h"
 
 namespace camsim {
@@ -33,11 +34,21 @@ namespace camsim {
 // bounce, so it is done once per point. The memo is keyed by texture, uv and wavelengths:
 // a context reused elsewhere (tests, other wavelengths) looks the texture up again. A
 // context lives at one point and must not outlive the materials it was used with.
+// On a mesh with vertex colours (glTF COLOR_0) the looked-up value is the texture's times
+// the colours at the point (integrator/textures/vertex_colors.h): the spectral texture is
+// the material's reflectance (base colour, a conductor's F0), which the colours multiply.
 struct BsdfContext {
   BsdfContext() = default;
   explicit BsdfContext(glm::vec2 uvAtPoint) : uv(uvAtPoint) {}
+  // colors: the mesh's vertex colours (null: none); triangle and Embree's barycentrics
+  // (b1, b2) locate the point on the mesh.
+  BsdfContext(glm::vec2 uvAtPoint, const VertexColors* colors, int tri, float bary1, float bary2)
+      : uv(uvAtPoint), vertexColors(colors), triangle(tri), b1(bary1), b2(bary2) {}
 
   glm::vec2 uv{0.0f};
+  const VertexColors* vertexColors = nullptr;
+  int triangle = 0;
+  float b1 = 0.0f, b2 = 0.0f;
 
   SampledSpectrum lookup(const SpectrumTexture& texture, const SampledWavelengths& lambda) const {
     bool same = memo_.texture == &texture && memo_.uv == uv;
@@ -45,6 +56,8 @@ struct BsdfContext {
       same = same && memo_.lambda[static_cast<std::size_t>(i)] == lambda[i];
     if (!same) {
       memo_.value = texture.evaluate(uv, lambda);
+      if (vertexColors) [[unlikely]]
+        memo_.value *= vertexColors->evaluate(triangle, b1, b2, lambda);
       memo_.texture = &texture;
       memo_.uv = uv;
       for (int i = 0; i < kWavelengthSamples; ++i)

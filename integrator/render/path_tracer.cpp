@@ -116,7 +116,8 @@ SampledSpectrum trace(const Scene& scene, Ray ray, SampledWavelengths& lambda, S
     SurfaceInteraction si = shape.interaction(hit, ray);
     si.ns = shadingNormal(shape, hit, si, material);
     const glm::vec3 wo = -glm::normalize(ray.d);
-    const BsdfContext ctx{si.uv};  // one per point: its texture memo serves aov, f, pdf, sample
+    // One per point: its texture memo serves aov, f, pdf, sample (and vertex colours).
+    const BsdfContext ctx = scene.bsdfContext(hit, si);
     if (depth == 0 && visible) [[unlikely]] {
       visible->hit = true;
       visible->p = si.p;

@@ -51,7 +51,7 @@ std::unique_ptr<SpectrumTexture> makeSpectrumTexture(const TextureDescription& d
     case TextureDescription::Kind::kImage: {
       TextureCache own;  // without a shared cache: an uplift of its own
       return std::make_unique<ImageSpectrumTexture>((cache ? *cache : own).uplifted(d), d.uvScale,
-                                                    d.uvOffset);
+                                                    d.uvOffset, d.uvRotation);
     }
     case TextureDescription::Kind::kCheckerboard:
       return std::make_unique<CheckerboardSpectrumTexture>(d.checkerA, d.checkerB, d.checks,
@@ -66,7 +66,8 @@ std::unique_ptr<FloatTexture> makeFloatTexture(const TextureDescription& d) {
     case TextureDescription::Kind::kConstant:
       return std::make_unique<ConstantFloatTexture>(d.value(550.0f));
     case TextureDescription::Kind::kImage:
-      return std::make_unique<ImageFloatTexture>(*texelsOf(d), d.uvScale, d.uvOffset, d.channel);
+      return std::make_unique<ImageFloatTexture>(*texelsOf(d), d.uvScale, d.uvOffset, d.channel,
+                                                 d.uvRotation);
     case TextureDescription::Kind::
         kCheckerboard:  // constants as for kConstant: the value at 550 nm
       return std::make_unique<CheckerboardFloatTexture>(d.checkerA(550.0f), d.checkerB(550.0f),
@@ -125,7 +126,7 @@ std::unique_ptr<Material> makeBsdf(const MaterialDescription& d, TextureCache* c
 
 std::unique_ptr<NormalMap> makeNormalMap(const TextureDescription& d, float strength) {
   CAMSIM_CHECK(d.kind == TextureDescription::Kind::kImage);
-  return std::make_unique<NormalMap>(*texelsOf(d), d.uvScale, d.uvOffset, strength);
+  return std::make_unique<NormalMap>(*texelsOf(d), d.uvScale, d.uvOffset, strength, d.uvRotation);
 }
 
 std::unique_ptr<Material> makeMaterial(const MaterialDescription& d, TextureCache* cache) {

@@ -1,5 +1,5 @@
-// Accessor data of a glTF file into GltfDocument: mesh primitives (as triangles) and
-// animation channels. The structure (indices, extents) was checked by gltf_validate.cpp;
+// Accessor data of a glTF file into GltfDocument: mesh primitives (as triangles, with the
+// texture coordinates their material reads and COLOR_0) and animation channels. The structure (indices, extents) was checked by gltf_validate.cpp;
 // here the values are: index values below the vertex count, finite attributes, unit-length
 // normals and tangents (renormalised, as renderers do, but zero or NaN refused), strictly
 // increasing key times.
@@ -12,6 +12,7 @@
 
 #include <tiny_gltf.h>
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
 #include "integrator/scene/gltf_document.h"
@@ -139,6 +140,27 @@ struct Reader {
   }
 };
 
+// COLOR_0 (glTF 2.0 §3.7.2.1): VEC3 or VEC4 of float, or of normalized unsigned bytes or
+// shorts; linear RGB, clamped to [0, 1] (a reflectance), alpha only noted.
+void readColors(const Reader& r, int index, GltfPrimitive& g) {
+  const std::string path = "accessors[" + std::to_string(index) + "]";
+  const tinygltf::Accessor& a = r.model.accessors[static_cast<size_t>(index)];
+  if (a.type != TINYGLTF_TYPE_VEC3 && a.type != TINYGLTF_TYPE_VEC4)
+    r.fail(path + ".type", "COLOR_0 must be VEC3 or VEC4");
+  const bool integer = a.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
+                       a.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
+  if (!integer && a.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT)
+    r.fail(path + ".componentType",
+           "COLOR_0 must be FLOAT, or normalized UNSIGNED_BYTE or UNSIGNED_SHORT");
+  if (integer && !a.normalized)
+    r.fail(path + ".normalized", "COLOR_0 of unsigned bytes or shorts must be normalized");
+  const int comps = a.type == TINYGLTF_TYPE_VEC4 ? 4 : 3;
+  for (const glm::dvec4& c : r.read(index, comps, true, "COLOR_0")) {
+    g.mesh.colors.emplace_back(glm::clamp(glm::dvec3(c), 0.0, 1.0));
+    g.colorAlpha = g.colorAlpha || (comps == 4 && c.w < 1.0);
+  }
+}
+
 // Triangles from a primitive's vertex order (glTF 2.0 §3.7.2.1): lists as they are, strips
 // with every second triangle's first two vertices swapped so all keep the strip's winding,
 // fans around the first vertex. Degenerate triangles (a repeated index) are dropped.
@@ -201,10 +223,16 @@ void readGltfMeshes(const tinygltf::Model& model, GltfDocument& doc, const std::
             r.fail("accessors[" + std::to_string(a) + "]", "TANGENT has a zero vector");
           g.mesh.tangents.emplace_back(glm::dvec3(v) / len, v.w < 0.0 ? -1.0f : 1.0f);
         }
-      if (const int a = attribute("TEXCOORD_0"); a >= 0)
-        for (const glm::dvec4& v : r.read(a, 2, true, "TEXCOORD_0"))
+      // The one set of texture coordinates the material's textures read.
+      const int set = g.material >= 0 ? doc.materials[static_cast<size_t>(g.material)].texCoord : 0;
+      const std::string texcoord = "TEXCOORD_" + std::to_string(set);
+      if (const int a = attribute(texcoord.c_str()); a >= 0)
+        for (const glm::dvec4& v : r.read(a, 2, true, texcoord))
           g.mesh.uvs.emplace_back(v.x, 1.0 - v.y);  // glTF v runs down the image; camsim's up
-      g.hasColors = p.attributes.count("COLOR_0") > 0;
+      else if (set > 0)
+        doc.notes.push_back(g.path + ": its material's textures read " + texcoord +
+                            ", which it lacks: they read camsim's per-triangle default uvs");
+      if (const int a = attribute("COLOR_0"); a >= 0) readColors(r, a, g);
       std::vector<std::uint32_t> order;
       if (p.indices >= 0) {
         order = r.indices(p.indices, n);

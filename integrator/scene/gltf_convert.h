@@ -22,7 +22,9 @@ struct GltfInclude {
   GltfDocument doc;
   glm::dmat4 worldFromAsset{1.0};  // the entry's placement (scene world ← asset)
   int scene = 0;                   // which of the asset's scenes
-  int animation = -1;              // which animation plays; −1: none
+  // The animations that play, together from t = 0 (indices into doc.animations; all of
+  // them unless the entry's `animation` chooses; empty: none).
+  std::vector<int> animations;
   bool lights = true;
   double emissiveLuminance = 100.0;  // cd/m² of emissive (1, 1, 1)
   std::string className;
@@ -41,14 +43,25 @@ std::optional<EmissionDescription> gltfEmission(const GltfInclude& inc, int mate
 LightDescription gltfLight(const GltfInclude& inc, const GltfLight& light,
                            const glm::dmat4& renderFromNode, SceneDescription& scene);
 
-// The local transform of node `node` over time under the include's animation, as camsim
-// keyframes of  renderFromParent · local(t)  (renderFromParent a similarity: uniform scale),
-// with the node's constant non-uniform scale (if any) returned in `residual` to be applied
-// to the geometry first. Throws InputError naming the node for what camsim's rigid motion
-// cannot hold (non-uniform or non-similar animated transforms).
-RigidMotion gltfNodeMotion(const GltfInclude& inc, int node, const glm::dmat4& renderFromParent,
-                           glm::dmat4& residual);
-// Nodes that the include's animation moves.
+// One animated node of a chain of animated nodes (outermost first) and the static
+// transform before it: for the first, render ← the node's parent (the placement and the
+// rest poses above it); for the others, the previous animated node's space (its residual
+// scale included) ← this node's parent.
+struct GltfChainLink {
+  glm::dmat4 before{1.0};
+  int node = -1;
+};
+// The render-space pose of the chain's last node over time, composed along the chain at
+// every time step (gltf_motion.cpp), as camsim keyframes; the last node's constant
+// non-uniform scale (if any) is returned in `residual`, to be applied to the geometry
+// first. Throws InputError naming the node for what camsim's rigid motion cannot hold
+// (a non-uniform animated scale, a pose that is not a similarity).
+RigidMotion gltfChainMotion(const GltfInclude& inc, const std::vector<GltfChainLink>& chain,
+                            glm::dmat4& residual);
+// Nodes that the include's animations move.
 std::vector<bool> gltfAnimatedNodes(const GltfInclude& inc);
+// Channels that do not play because an earlier animation animates the same property of
+// the same node, one note each.
+std::vector<std::string> gltfAnimationNotes(const GltfInclude& inc);
 
 }  // namespace camsim

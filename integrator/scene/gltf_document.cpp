@@ -1,7 +1,9 @@
 // Reads a glTF 2.0 file through tinygltf (Debian's libtinygltf) after gltf_validate.cpp
-// has checked its structure, and copies what camsim uses into GltfDocument. Accessor data
-// is read here with the checks that need the values: index values inside the vertex
-// count, finite positions, normals and keys, increasing key times.
+// has checked its structure, and copies what camsim uses into GltfDocument: images,
+// cameras, lights and nodes here, materials in gltf_read_materials.cpp, accessor data
+// (with the checks that need the values: index values inside the vertex count, finite
+// positions, normals and keys, increasing key times) in gltf_accessors.cpp.
+#include <cctype>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -26,6 +28,7 @@ glm::dmat4 GltfNode::local() const {
          glm::scale(glm::dmat4(1.0), scale);
 }
 
+void readGltfMaterials(const tinygltf::Model& model, GltfDocument& doc, const std::string& name);
 void readGltfMeshes(const tinygltf::Model& model, GltfDocument& doc, const std::string& name);
 void readGltfAnimations(const tinygltf::Model& model, GltfDocument& doc, const std::string& name);
 
@@ -63,76 +66,6 @@ double number(const tinygltf::Value& obj, const char* key, double fallback) {
 
 std::string at(const char* array, size_t i) {
   return std::string(array) + "[" + std::to_string(i) + "]";
-}
-
-GltfTextureRef textureRef(const tinygltf::Model& model, int textureIndex, int texCoord,
-                          double scale, std::string path) {
-  GltfTextureRef r;
-  if (textureIndex < 0) return r;
-  r.image = model.textures[static_cast<size_t>(textureIndex)].source;
-  r.texCoord = texCoord;
-  r.scale = scale;
-  r.path = std::move(path);
-  return r;
-}
-
-void readMaterials(const tinygltf::Model& model, GltfDocument& doc, const std::string& name) {
-  for (size_t i = 0; i < model.materials.size(); ++i) {
-    const tinygltf::Material& m = model.materials[i];
-    GltfMaterial g;
-    g.name = m.name;
-    g.path = at("materials", i);
-    const auto& pbr = m.pbrMetallicRoughness;
-    for (size_t c = 0; c < 4 && c < pbr.baseColorFactor.size(); ++c)
-      g.baseColorFactor[static_cast<int>(c)] = pbr.baseColorFactor[c];
-    g.metallicFactor = pbr.metallicFactor;
-    g.roughnessFactor = pbr.roughnessFactor;
-    g.baseColorTexture =
-        textureRef(model, pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord, 1.0,
-                   g.path + ".pbrMetallicRoughness.baseColorTexture");
-    g.metallicRoughnessTexture =
-        textureRef(model, pbr.metallicRoughnessTexture.index, pbr.metallicRoughnessTexture.texCoord,
-                   1.0, g.path + ".pbrMetallicRoughness.metallicRoughnessTexture");
-    g.normalTexture = textureRef(model, m.normalTexture.index, m.normalTexture.texCoord,
-                                 m.normalTexture.scale, g.path + ".normalTexture");
-    g.occlusionTexture = textureRef(model, m.occlusionTexture.index, m.occlusionTexture.texCoord,
-                                    m.occlusionTexture.strength, g.path + ".occlusionTexture");
-    g.emissiveTexture = textureRef(model, m.emissiveTexture.index, m.emissiveTexture.texCoord, 1.0,
-                                   g.path + ".emissiveTexture");
-    for (size_t c = 0; c < 3 && c < m.emissiveFactor.size(); ++c)
-      g.emissiveFactor[static_cast<int>(c)] = m.emissiveFactor[c];
-    if (m.alphaMode == "MASK")
-      g.alphaMode = GltfMaterial::AlphaMode::kMask;
-    else if (m.alphaMode == "BLEND")
-      g.alphaMode = GltfMaterial::AlphaMode::kBlend;
-    else if (m.alphaMode != "OPAQUE")
-      throw InputError({name, 0, 0}, g.path + ".alphaMode",
-                       "must be OPAQUE, MASK or BLEND (it is '" + m.alphaMode + "')");
-    g.alphaCutoff = m.alphaCutoff;
-    g.doubleSided = m.doubleSided;
-    for (const auto& [ext, value] : m.extensions) {
-      if (ext == "KHR_materials_emissive_strength")
-        g.emissiveStrength = number(value, "emissiveStrength", 1.0);
-      else if (ext == "KHR_materials_transmission")
-        g.transmission = number(value, "transmissionFactor", 0.0);
-      else if (ext == "KHR_materials_ior")
-        g.ior = number(value, "ior", 1.5);
-      else
-        g.otherExtensions.push_back(ext);
-    }
-    for (const auto& [key, v] : std::initializer_list<std::pair<const char*, double>>{
-             {"metallicFactor", g.metallicFactor},
-             {"roughnessFactor", g.roughnessFactor},
-             {"alphaCutoff", g.alphaCutoff},
-             {"emissiveStrength", g.emissiveStrength},
-             {"ior", g.ior}})
-      if (!std::isfinite(v) || v < 0.0)
-        throw InputError({name, 0, 0}, g.path + "." + key, "must be a finite number >= 0");
-    if (g.ior < 1.0 && g.ior != 0.0)
-      throw InputError({name, 0, 0}, g.path + ".extensions.KHR_materials_ior.ior",
-                       "must be >= 1 (or 0)");
-    doc.materials.push_back(std::move(g));
-  }
 }
 
 void readImages(const tinygltf::Model& model, GltfDocument& doc, const std::string& name,
@@ -300,6 +233,23 @@ void readNodes(const tinygltf::Model& model, GltfDocument& doc, const std::strin
 
 }  // namespace
 
+std::int64_t gltfDataUriBytes(const std::string& uri) {
+  size_t at = std::string::npos;
+  for (const char* type : {"application/octet-stream", "application/gltf-buffer", "image/jpeg",
+                           "image/png", "image/bmp", "image/gif", "text/plain"}) {
+    const std::string header = std::string("data:") + type + ";base64,";
+    if (uri.rfind(header, 0) == 0) at = header.size();
+  }
+  if (at == std::string::npos) return -1;
+  std::int64_t chars = 0;
+  while (at < uri.size() &&
+         (std::isalnum(static_cast<unsigned char>(uri[at])) || uri[at] == '+' || uri[at] == '/')) {
+    ++chars;
+    ++at;
+  }
+  return chars / 4 * 3 + (chars % 4 > 1 ? chars % 4 - 1 : 0);  // a last 2 or 3 give 1 or 2
+}
+
 GltfDocument parseGltf(const std::string& bytes, const std::string& displayName,
                        const std::filesystem::path& baseDir) {
   const bool glb = bytes.size() >= 4 && bytes.compare(0, 4, "glTF") == 0;
@@ -354,11 +304,12 @@ GltfDocument parseGltf(const std::string& bytes, const std::string& displayName,
   for (const tinygltf::Image& im : model.images) noteFile(im.uri);
   for (const std::string& ext : model.extensionsRequired)
     if (ext != "KHR_lights_punctual" && ext != "KHR_materials_emissive_strength" &&
-        ext != "KHR_materials_transmission" && ext != "KHR_materials_ior")
+        ext != "KHR_materials_transmission" && ext != "KHR_materials_ior" &&
+        ext != "KHR_texture_transform")
       throw InputError({displayName, 0, 0}, "extensionsRequired",
                        "requires " + ext + ", which camsim does not read");
   readImages(model, doc, displayName, baseDir);
-  readMaterials(model, doc, displayName);
+  readGltfMaterials(model, doc, displayName);
   readCamerasAndLights(model, doc, displayName);
   readNodes(model, doc, displayName);
   readGltfMeshes(model, doc, displayName);

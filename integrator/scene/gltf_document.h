@@ -1,15 +1,18 @@
 // GltfDocument: a glTF 2.0 asset (.gltf with .bin and image files or data URIs, or .glb)
 // read and checked into plain data, before anything is turned into camsim's scene parts
-// (scene_loader_gltf.cpp does that). This module (gltf_document.cpp, gltf_validate.cpp)
-// is the only one that includes tinygltf and its JSON library; no header exposes them.
+// (scene_loader_gltf.cpp does that). This module (gltf_document.cpp, gltf_read_materials.cpp,
+// gltf_accessors.cpp, gltf_validate.cpp) is the only one that includes tinygltf and its
+// JSON library; no header exposes them.
 //
 // What is kept, in glTF's own conventions (right-handed, +y up, metres, seconds):
 //   nodes      matrix or TRS, children, mesh / camera / KHR_lights_punctual light
 //   meshes     primitives as triangles (TRIANGLES, TRIANGLE_STRIP and TRIANGLE_FAN; points
-//              and lines are refused), POSITION, NORMAL, TANGENT, TEXCOORD_0, indices of
-//              any integer type (or none), all read into MeshData in the node's space
-//   materials  the metallic-roughness core, normal, occlusion and emissive textures,
-//              alpha mode, KHR_materials_emissive_strength, _transmission, _ior
+//              and lines are refused), POSITION, NORMAL, TANGENT, the TEXCOORD_n set the
+//              material's textures read, COLOR_0, indices of any unsigned integer type (or
+//              none), all read into MeshData in the node's space
+//   materials  the metallic-roughness core, normal, occlusion and emissive textures (with
+//              KHR_texture_transform), alpha mode, KHR_materials_emissive_strength,
+//              _transmission, _ior
 //   images     decoded texels (8-bit RGBA, or 16-bit) and, for an external file, its path
 //   cameras    perspective and orthographic
 //   lights     KHR_lights_punctual point, spot, directional
@@ -19,6 +22,7 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <filesystem>
 #include <memory>
 #include <optional>
@@ -36,10 +40,16 @@
 namespace camsim {
 
 struct GltfTextureRef {
-  int image = -1;      // index into GltfDocument::images; −1: no texture
-  int texCoord = 0;    // which TEXCOORD_n (only 0 is read)
+  int image = -1;  // index into GltfDocument::images; −1: no texture
+  // Which TEXCOORD_n it reads: the textureInfo's texCoord, or KHR_texture_transform's.
+  int texCoord = 0;
   double scale = 1.0;  // normalTexture.scale, occlusionTexture.strength
   std::string path;    // JSON path of the textureInfo, e.g. "materials[0].normalTexture"
+  // KHR_texture_transform, in glTF's uv (v down the image), as the extension's text and
+  // Khronos' viewers apply it: uv' = offset + R · (uv ⊙ uvScale), R = [cos r  sin r;
+  // −sin r  cos r] (counter-clockwise as the image is seen).
+  glm::dvec2 uvOffset{0.0}, uvScale{1.0};
+  double uvRotation = 0.0;  // r, rad
 };
 
 struct GltfImage {
@@ -65,13 +75,17 @@ struct GltfMaterial {
   double transmission = 0.0;                 // KHR_materials_transmission
   double ior = 1.5;                          // KHR_materials_ior
   std::vector<std::string> otherExtensions;  // names of extensions camsim does not read
+  // The TEXCOORD_n set its textures read (camsim's meshes carry one set: textures reading
+  // different sets all read the base colour's, noted).
+  int texCoord = 0;
 };
 
 struct GltfPrimitive {
-  std::string path;        // "meshes[1].primitives[0]"
-  MeshData mesh;           // in the node's space; triangles
-  int material = -1;       // −1: glTF's default material
-  bool hasColors = false;  // COLOR_0 present (not read)
+  std::string path;   // "meshes[1].primitives[0]"
+  MeshData mesh;      // in the node's space; triangles; COLOR_0 in mesh.colors
+  int material = -1;  // −1: glTF's default material
+  // COLOR_0 is VEC4 with an alpha below 1 somewhere (camsim ignores vertex alpha).
+  bool colorAlpha = false;
 };
 
 struct GltfMesh {
@@ -142,7 +156,7 @@ struct GltfDocument {
   int defaultScene = 0;                  // `scene`, else 0
   // Files read besides `file` (buffers, images), each once.
   std::vector<std::filesystem::path> filesRead;
-  // What was read but is not used or was changed (unknown extensions, COLOR_0, …).
+  // What was read but is not used or was changed (unknown extensions, texture sets, …).
   std::vector<std::string> notes;
 };
 
@@ -157,5 +171,9 @@ GltfDocument parseGltf(const std::string& bytes, const std::string& displayName,
 // present. Throws InputError naming displayName and the JSON path.
 void validateGltfJson(const std::string& json, const std::string& displayName,
                       const std::filesystem::path& baseDir, std::size_t glbBinBytes, bool isGlb);
+// Internal: the bytes a buffer's data URI holds, decoded as tinygltf decodes it (base64
+// characters up to the first '=' or other character, after one of the media types it
+// reads: application/octet-stream, application/gltf-buffer, …); −1 if it reads none.
+std::int64_t gltfDataUriBytes(const std::string& uri);
 
 }  // namespace camsim

@@ -5,6 +5,8 @@
 // |----------------------------------------|-------------------------------------------------|
 // | pbrMetallicRoughness                   | metallic_roughness material (Appendix B)        |
 // | baseColorFactor × baseColorTexture     | base colour: texels sRGB-decoded, × factor, uplifted |
+// |   × COLOR_0                            |   × the mesh's vertex colours (MeshData::colors)  |
+// | KHR_texture_transform, texCoord        | the texture's uv transform (below); one uv set    |
 // | metallicRoughnessTexture B, G × factor | metallic, roughness maps (one channel each)     |
 // | normalTexture, .scale                  | normal map, normal scale                        |
 // | occlusionTexture                       | ignored (a path tracer computes occlusion; noted) |
@@ -17,6 +19,13 @@
 // | light range                            | ignored (inverse-square falloff kept; noted)     |
 // Y(c) = 0.2126 r + 0.7152 g + 0.0722 b (linear Rec.709); colours become spectra through
 // rgbToEmissionShape (lights) and the reflectance uplift (textures, constants).
+//
+// KHR_texture_transform works in glTF's uv, whose v runs down the image; camsim's runs up
+// (v_camsim = 1 − v_gltf, gltf_accessors.cpp). With F(u, v) = (u, 1 − v) the glTF map
+// uv' = o + R_gltf(r) · (uv ⊙ s) becomes, in camsim's uv, F ∘ that ∘ F:
+//   uv' = R(r) · (uv ⊙ s) + (o.x + s.y sin r, 1 − o.y − s.y cos r)
+// with R(r) the counter-clockwise rotation in camsim's (u, v) (TextureDescription::
+// uvRotation): the same turn of the image as glTF's counter-clockwise one.
 #include <cmath>
 #include <map>
 #include <tuple>
@@ -55,6 +64,16 @@ TextureDescription imageTexture(const GltfImage& image, int channels, F f) {
   d.kind = TextureDescription::Kind::kImage;
   d.image = std::move(out);
   d.encoding = TextureEncoding::kLinear;
+  return d;
+}
+
+// The texture's KHR_texture_transform (above) on a converted texture.
+TextureDescription transformed(TextureDescription d, const GltfTextureRef& ref) {
+  const double s = std::sin(ref.uvRotation), c = std::cos(ref.uvRotation);
+  d.uvScale = glm::vec2(ref.uvScale);
+  d.uvOffset =
+      glm::vec2(ref.uvOffset.x + ref.uvScale.y * s, 1.0 - ref.uvOffset.y - ref.uvScale.y * c);
+  d.uvRotation = static_cast<float>(ref.uvRotation);
   return d;
 }
 
@@ -112,10 +131,12 @@ struct MaterialConverter {
     d.type = MaterialDescription::Type::kMetallicRoughness;
     const glm::dvec3 base(m.baseColorFactor);
     if (m.baseColorTexture.image >= 0) {
-      d.reflectance =
-          texture(m.baseColorTexture.image, Use::kBaseColor, base, 3, [&](const float* t, int c) {
-            return std::clamp(srgbDecode(static_cast<double>(t[c])) * base[c], 0.0, 1.0);
-          });
+      d.reflectance = transformed(
+          texture(m.baseColorTexture.image, Use::kBaseColor, base, 3,
+                  [&](const float* t, int c) {
+                    return std::clamp(srgbDecode(static_cast<double>(t[c])) * base[c], 0.0, 1.0);
+                  }),
+          m.baseColorTexture);
     } else {
       for (int c = 0; c < 3; ++c)
         if (base[c] < 0.0 || base[c] > 1.0)
@@ -126,19 +147,22 @@ struct MaterialConverter {
     }
     const double metallic = std::clamp(m.metallicFactor, 0.0, 1.0);
     if (const int im = m.metallicRoughnessTexture.image; im >= 0) {
-      d.metallic = texture(im, Use::kMetallic, glm::dvec3(metallic), 1, [&](const float* t, int) {
-        return static_cast<double>(t[2]) * metallic;
-      });
-      d.roughness =
+      d.metallic = transformed(
+          texture(im, Use::kMetallic, glm::dvec3(metallic), 1,
+                  [&](const float* t, int) { return static_cast<double>(t[2]) * metallic; }),
+          m.metallicRoughnessTexture);
+      d.roughness = transformed(
           texture(im, Use::kRoughness, glm::dvec3(roughness), 1,
-                  [&](const float* t, int) { return static_cast<double>(t[1]) * roughness; });
+                  [&](const float* t, int) { return static_cast<double>(t[1]) * roughness; }),
+          m.metallicRoughnessTexture);
     } else {
       d.metallic = TextureDescription::constant(metallic);
       d.roughness = TextureDescription::constant(roughness);
     }
     if (m.normalTexture.image >= 0) {
-      d.normalMap = texture(m.normalTexture.image, Use::kNormal, glm::dvec3(1.0), 3,
-                            [](const float* t, int c) { return t[c]; });
+      d.normalMap = transformed(texture(m.normalTexture.image, Use::kNormal, glm::dvec3(1.0), 3,
+                                        [](const float* t, int c) { return t[c]; }),
+                                m.normalTexture);
       d.normalScale = static_cast<float>(m.normalTexture.scale);
     }
     return withCutout(m, std::move(d));
@@ -161,8 +185,9 @@ struct MaterialConverter {
     a.cutoff =
         m.alphaMode == GltfMaterial::AlphaMode::kMask ? static_cast<float>(m.alphaCutoff) : 0.5f;
     if (m.baseColorTexture.image >= 0)
-      a.texture = texture(m.baseColorTexture.image, Use::kAlpha, glm::dvec3(1.0), 1,
-                          [](const float* t, int) { return t[3]; });
+      a.texture = transformed(texture(m.baseColorTexture.image, Use::kAlpha, glm::dvec3(1.0), 1,
+                                      [](const float* t, int) { return t[3]; }),
+                              m.baseColorTexture);
     d.alphaCutout = a;
     if (m.alphaMode == GltfMaterial::AlphaMode::kBlend)
       note(scene, inc, m.path + ".alphaMode: BLEND is treated as MASK with alphaCutoff 0.5");

@@ -1,12 +1,17 @@
 // The structural check of a glTF file's JSON, before tinygltf reads it: tinygltf rejects
 // many malformed files itself, but its messages seldom say where ("'byteLength' property is
-// not a positive integer"), and a user needs the JSON path to fix the file. Each check here
-// names it: every index in range, every byte extent inside its view and its buffer, counts
-// and lengths positive integers, external files present. Value checks that need the data
-// (index values, NaN positions) are done as the data is read (gltf_document.cpp).
+// not a positive integer", "Failed to decode 'uri' : data:…"), and a user needs the JSON
+// path to fix the file. Each check here names it: every index in range, every byte extent
+// inside its view and its buffer, each buffer's data of its byteLength, strides that fit
+// their elements, index accessors of unsigned integers, counts and lengths positive
+// integers, external files present. Value checks that need the data (index values, NaN
+// positions) are done as the data is read (gltf_accessors.cpp).
+#include <cctype>
 #include <cmath>
 #include <cstdint>
 #include <string>
+#include <system_error>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -70,12 +75,13 @@ struct Checker {
   static std::string at(const char* array, size_t i) {
     return std::string(array) + "[" + std::to_string(i) + "]";
   }
-  void externalFile(const Json& obj, const std::string& path) const {
+  // The external file obj.uri names (it must exist); empty for none or a data URI.
+  std::filesystem::path externalFile(const Json& obj, const std::string& path) const {
     const auto uri = obj.find("uri");
-    if (uri == obj.end()) return;
+    if (uri == obj.end()) return {};
     if (!uri->is_string()) fail(path + ".uri", "must be a string");
     const std::string u = uri->get<std::string>();
-    if (u.rfind("data:", 0) == 0) return;
+    if (u.rfind("data:", 0) == 0) return {};
     std::string decoded;  // percent-encoding, as tinygltf decodes it
     for (size_t i = 0; i < u.size(); ++i) {
       if (u[i] == '%' && i + 2 < u.size() && std::isxdigit(static_cast<unsigned char>(u[i + 1])) &&
@@ -88,23 +94,20 @@ struct Checker {
     }
     const std::filesystem::path p = baseDir / decoded;
     if (!isRegularFile(p)) fail(path + ".uri", "file '" + p.string() + "' not found");
+    return p;
   }
 };
 
-size_t componentBytes(std::int64_t type) {
-  switch (type) {
-    case 5120:
-    case 5121:
-      return 1;
-    case 5122:
-    case 5123:
-      return 2;
-    case 5125:
-    case 5126:
-      return 4;
-    default:
-      return 0;
-  }
+// glTF component types 5120 … 5126 (5124 is none): size in bytes (0: not a type), name.
+struct ComponentType {
+  size_t bytes;
+  const char* name;
+};
+ComponentType componentType(std::int64_t type) {
+  static const ComponentType types[] = {
+      {1, "BYTE"}, {1, "UNSIGNED_BYTE"}, {2, "SHORT"}, {2, "UNSIGNED_SHORT"},
+      {0, ""},     {4, "UNSIGNED_INT"},  {4, "FLOAT"}};
+  return type >= 5120 && type <= 5126 ? types[type - 5120] : ComponentType{0, ""};
 }
 
 size_t componentCount(const std::string& type) {
@@ -123,6 +126,69 @@ void checkTextureInfo(const Checker& c, const Json& obj, const std::string& path
   if (!it->is_object()) c.fail(path + "." + key, "must be an object");
   c.index(*it, path + "." + key, "index", "textures", true);
   c.integer(*it, path + "." + key, "texCoord", 0, 16, false);
+  const auto ext = it->find("extensions");
+  if (ext == it->end() || !ext->is_object()) return;
+  const auto tt = ext->find("KHR_texture_transform");
+  if (tt == ext->end()) return;
+  const std::string tp = path + "." + key + ".extensions.KHR_texture_transform";
+  if (!tt->is_object()) c.fail(tp, "must be an object");
+  for (const char* k : {"offset", "scale"}) {
+    const auto v = tt->find(k);
+    if (v != tt->end() &&
+        (!v->is_array() || v->size() != 2 || !(*v)[0].is_number() || !(*v)[1].is_number()))
+      c.fail(tp + "." + k, "must be an array of 2 numbers");
+  }
+  if (const auto r = tt->find("rotation"); r != tt->end() && !r->is_number())
+    c.fail(tp + ".rotation", "must be a number (radians)");
+  c.integer(*tt, tp, "texCoord", 0, 16, false);
+}
+
+// A buffer's data holds exactly byteLength bytes (tinygltf refuses any other length with
+// its raw text): a data URI's decoded base64, or the external file's size.
+void checkBufferData(const Checker& c, const Json& b, const std::string& path,
+                     std::int64_t byteLength) {
+  if (!b.at("uri").is_string()) c.fail(path + ".uri", "must be a string");
+  const std::string u = b.at("uri").get<std::string>();
+  std::int64_t bytes = 0;
+  std::string what;
+  if (u.rfind("data:", 0) == 0) {
+    bytes = gltfDataUriBytes(u);
+    if (bytes < 0)
+      c.fail(path + ".uri",
+             "a data URI must be base64: data:application/octet-stream;base64,… (or "
+             "application/gltf-buffer)");
+    what = "its data URI decodes to ";
+  } else {
+    std::error_code ec;
+    const std::filesystem::path file = c.externalFile(b, path);
+    bytes = static_cast<std::int64_t>(std::filesystem::file_size(file, ec));
+    if (ec) c.fail(path + ".uri", "cannot read the size of '" + file.string() + "'");
+    what = "its file '" + file.string() + "' holds ";
+  }
+  if (bytes != byteLength)
+    c.fail(path, what + std::to_string(bytes) + " bytes but its byteLength is " +
+                     std::to_string(byteLength) +
+                     (bytes < byteLength ? ": the buffer is truncated" : " (they must be equal)"));
+}
+
+// Accessors that primitives use as indices, each with the first such primitive's path
+// ("meshes[0].primitives[1].indices"); a malformed mesh is skipped (the mesh check names it).
+std::vector<std::string> indexUses(const Checker& c) {
+  std::vector<std::string> uses(c.count("accessors"));
+  const auto meshes = c.root.find("meshes");
+  if (meshes == c.root.end() || !meshes->is_array()) return uses;
+  for (size_t i = 0; i < meshes->size(); ++i) {  // find() on a non-object gives end()
+    const auto prims = (*meshes)[i].find("primitives");
+    if (prims == (*meshes)[i].end() || !prims->is_array()) continue;
+    for (size_t k = 0; k < prims->size(); ++k) {
+      const auto ind = (*prims)[k].find("indices");
+      if (ind == (*prims)[k].end() || !ind->is_number_unsigned()) continue;
+      const auto a = ind->get<std::uint64_t>();
+      if (a < uses.size() && uses[a].empty())
+        uses[a] = Checker::at("meshes", i) + ".primitives[" + std::to_string(k) + "].indices";
+    }
+  }
+  return uses;
 }
 
 }  // namespace
@@ -156,7 +222,7 @@ void validateGltfJson(const std::string& json, const std::string& displayName,
     const std::string p = Checker::at("buffers", i);
     bufferBytes.push_back(c.integer(b, p, "byteLength", 1, std::int64_t(1) << 40, true));
     if (b.contains("uri")) {
-      c.externalFile(b, p);
+      checkBufferData(c, b, p, bufferBytes.back());
     } else if (!(isGlb && i == 0)) {
       c.fail(p + ".uri", "is missing (only a .glb's first buffer may omit it)");
     } else if (static_cast<std::size_t>(bufferBytes.back()) > glbBinBytes) {
@@ -182,12 +248,17 @@ void validateGltfJson(const std::string& json, const std::string& displayName,
     }
     viewBytes.push_back(length);
   }
+  const std::vector<std::string> usedAsIndices = indexUses(c);
   for (size_t i = 0; i < c.count("accessors"); ++i) {
     const Json& a = c.item("accessors", i);
     const std::string p = Checker::at("accessors", i);
     const std::int64_t ct = c.integer(a, p, "componentType", 5120, 5126, true);
-    const size_t cb = componentBytes(ct);
+    const size_t cb = componentType(ct).bytes;
     if (cb == 0) c.fail(p + ".componentType", "is not a glTF component type");
+    if (!usedAsIndices[i].empty() && ct != 5121 && ct != 5123 && ct != 5125)
+      c.fail(p + ".componentType", std::string("is ") + componentType(ct).name + " (" +
+                                       std::to_string(ct) + ") but " + usedAsIndices[i] +
+                                       " needs UNSIGNED_BYTE, UNSIGNED_SHORT or UNSIGNED_INT");
     const auto type = a.find("type");
     if (type == a.end() || !type->is_string() || componentCount(type->get<std::string>()) == 0)
       c.fail(p + ".type", "must be SCALAR, VEC2, VEC3, VEC4, MAT2, MAT3 or MAT4");
@@ -196,11 +267,16 @@ void validateGltfJson(const std::string& json, const std::string& displayName,
     const std::int64_t view = c.index(a, p, "bufferView", "bufferViews", false);
     if (view < 0) continue;  // all zeros
     const std::int64_t offset = c.integer(a, p, "byteOffset", 0, std::int64_t(1) << 40, false);
-    const Json& v = root["bufferViews"][static_cast<size_t>(view)];
+    const Json& v = root.at("bufferViews").at(static_cast<size_t>(view));
     const std::int64_t element =
         static_cast<std::int64_t>(cb * componentCount(type->get<std::string>()));
     const std::int64_t stride =
         v.contains("byteStride") ? v["byteStride"].get<std::int64_t>() : element;
+    if (stride < element)
+      c.fail(Checker::at("bufferViews", static_cast<size_t>(view)) + ".byteStride",
+             "is " + std::to_string(stride) + " bytes, less than the " + std::to_string(element) +
+                 "-byte elements of " + p + " (" + type->get<std::string>() + " of " +
+                 componentType(ct).name + "): they would overlap");
     const std::int64_t end = offset + stride * (count - 1) + element;
     if (end > viewBytes[static_cast<size_t>(view)])
       c.fail(p + ".count", std::to_string(count) + " elements from byteOffset " +

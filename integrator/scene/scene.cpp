@@ -266,6 +266,22 @@ void Scene::analyseExposure() {
   modelled_.rollingShutter = modelled_.time && camera_->shutter().type() == Shutter::Type::kRolling;
 }
 
+const VertexColors* Scene::vertexColorsOf(const SceneDescription& d, const ShapeDescription& s,
+                                          std::map<const MeshData*, const VertexColors*>& made) {
+  const MeshData& mesh = s.sharedMesh ? *s.sharedMesh : s.mesh;
+  if (mesh.colors.empty()) return nullptr;
+  if (mesh.colors.size() != mesh.positions.size())
+    throw InputError({d.sourceFile, 0, 0}, s.label,
+                     "the mesh has " + std::to_string(mesh.colors.size()) + " vertex colours for " +
+                         std::to_string(mesh.positions.size()) + " vertices");
+  const VertexColors*& colors = made[&mesh];
+  if (!colors) {
+    vertexColors_.push_back(std::make_unique<const VertexColors>(mesh.colors, mesh.indices));
+    colors = vertexColors_.back().get();
+  }
+  return colors;
+}
+
 Scene::Scene(const SceneDescription& d, glm::dvec2 motionSpan)
     : motionSpan_(motionSpan),
       settings_(d.render),
@@ -294,6 +310,8 @@ Scene::Scene(const SceneDescription& d, glm::dvec2 motionSpan)
   std::vector<const HitFilter*> filterOfShape;
   std::vector<double> powers;
   std::map<const MeshData*, double> meshReach;
+  std::map<const MeshData*, const VertexColors*> colorsOfMesh;
+  std::vector<const VertexColors*> colorsOfShape;
   for (const ShapeDescription& s : d.shapes) {
     bool moving = false;
     std::shared_ptr<const TriangleMesh> instanced;
@@ -328,6 +346,8 @@ Scene::Scene(const SceneDescription& d, glm::dvec2 motionSpan)
       }
       filterOfShape.back() = filter;
     }
+    colorsOfShape.push_back(
+        s.kind == ShapeDescription::Kind::kMesh ? vertexColorsOf(d, s, colorsOfMesh) : nullptr);
     motions_.push_back(s.motion);
     if (moving)
       modelled_.timeSteps = std::max(modelled_.timeSteps, shapes_.back()->timeSteps().count);
@@ -343,6 +363,7 @@ Scene::Scene(const SceneDescription& d, glm::dvec2 motionSpan)
       lights_.push_back(std::move(light));
     }
   }
+  if (!vertexColors_.empty()) colorsOfShape_ = std::move(colorsOfShape);
   geometry_ = std::make_unique<EmbreeScene>(shapes_, exposureStart_, exposureEnd_, filterOfShape);
   if (geometry_->boundsLower().x <= geometry_->boundsUpper().x) {
     boundsCentre_ = 0.5f * (geometry_->boundsLower() + geometry_->boundsUpper());

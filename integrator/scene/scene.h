@@ -3,6 +3,7 @@
 // which dimensions of the measurement integral the scene needs (ModelledDimensions).
 #pragma once
 
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -86,6 +87,15 @@ class Scene {
   const Material& material(int shape) const {
     return *materials_[materialOfShape_[static_cast<size_t>(shape)]];
   }
+  // The shading context at a hit on `hit.shape` whose interaction is si: its texture
+  // coordinates and, on a mesh with vertex colours, the colours and where the hit lies on
+  // which triangle (BsdfContext). One per shading point (its texture memo).
+  BsdfContext bsdfContext(const Hit& hit, const SurfaceInteraction& si) const {
+    if (colorsOfShape_.empty()) [[likely]]
+      return BsdfContext(si.uv);
+    const VertexColors* colors = colorsOfShape_[static_cast<size_t>(hit.shape)];
+    return colors ? BsdfContext(si.uv, colors, hit.prim, hit.u, hit.v) : BsdfContext(si.uv);
+  }
   // The area light of a shape, or null if it does not emit.
   const AreaLight* areaLight(int shape) const { return lightOfShape_[static_cast<size_t>(shape)]; }
 
@@ -108,6 +118,9 @@ class Scene {
 
  private:
   void analyseExposure();  // exposure window and modelled_ from camera_ and motions_
+  // The vertex colours of mesh shape s (null: none), made once per MeshData (`made`).
+  const VertexColors* vertexColorsOf(const SceneDescription& d, const ShapeDescription& s,
+                                     std::map<const MeshData*, const VertexColors*>& made);
 
   std::unique_ptr<PhysicalCamera> camera_;
   std::vector<RigidMotion> motions_;  // of each shape (empty: static)
@@ -121,6 +134,10 @@ class Scene {
   std::vector<std::unique_ptr<Shape>> shapes_;
   std::vector<std::unique_ptr<Material>> materials_;
   std::vector<size_t> materialOfShape_;
+  // Vertex colours of each shape (null: none), shared by the instances of one mesh; empty
+  // when no shape has any.
+  std::vector<std::unique_ptr<const VertexColors>> vertexColors_;
+  std::vector<const VertexColors*> colorsOfShape_;
   std::vector<std::unique_ptr<Light>> lights_;
   std::vector<size_t> infiniteLights_;
   glm::vec3 boundsCentre_{0.0f};

@@ -101,6 +101,9 @@ struct TextureDescription {
   Spectrum checkerA = Spectrum::constant(0.8), checkerB = Spectrum::constant(0.2);  // kCheckerboard
   float checks = 8.0f;                      // kCheckerboard: squares per unit of u and v
   glm::vec2 uvScale{1.0f}, uvOffset{0.0f};  // uv' = uv · scale + offset (kImage, kCheckerboard)
+  // kImage: uv' = R(uvRotation) · (uv · scale) + offset, radians counter-clockwise in (u, v)
+  // (integrator/textures/uv_transform.h); set by the glTF importer (KHR_texture_transform).
+  float uvRotation = 0.0f;
   // kImage scalar maps: the channel read (0 = R, 1 = G, 2 = B, 3 = A), e.g. a glTF
   // metallic-roughness map packs roughness in G and metalness in B; −1: the default
   // reading of a scalar map (integrator/textures/image_texture.h).

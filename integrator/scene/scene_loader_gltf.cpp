@@ -4,10 +4,13 @@
 //   static, mesh used by one node   positions baked into render space (in double)
 //   static, mesh used by ≥ 2 nodes  an instance of the primitive's one stored mesh
 //                                   (ShapeDescription::sharedMesh, placement)
-//   under an animated node          the mesh in the animated node's space, keyframed
-//                                   (gltf_motion.cpp); one animated node per chain
+//   under an animated node          the mesh in the deepest animated node's space,
+//                                   keyframed with the animated nodes above it composed
+//                                   (gltf_motion.cpp)
 // Render space is world − renderOrigin; the include's placement maps asset → world.
+#include <algorithm>
 #include <functional>
+#include <optional>
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
@@ -31,41 +34,41 @@ struct Walk {
   std::map<int, std::optional<EmissionDescription>> emissions;
   std::map<std::pair<int, int>, std::shared_ptr<const MeshData>> shared;  // (mesh, primitive)
 
-  // Node n under renderFromParent; below an animated node `anim` (−1: none), `below` is
-  // the transform from the animated node's space (its residual scale included) and motion
-  // the animated node's keyframes.
-  void node(int n, const glm::dmat4& renderFromParent, int anim, const glm::dmat4& belowParent,
-            const RigidMotion* motion) {
+  // Node n under renderFromParent (rest poses). Below animated nodes, `chain` lists them
+  // (outermost first), `belowParent` is the static transform from the deepest one's space
+  // (its residual scale included) to n's parent, and motion that node's keyframes.
+  void node(int n, const glm::dmat4& renderFromParent, const std::vector<GltfChainLink>& chain,
+            const glm::dmat4& belowParent, const RigidMotion* motion) {
     const GltfNode& g = inc.doc.nodes[static_cast<size_t>(n)];
     const std::string file = inc.doc.file.string();
     const glm::dmat4 renderFromNode = renderFromParent * g.local();
-    glm::dmat4 below = anim >= 0 ? belowParent * g.local() : glm::dmat4(1.0);
+    glm::dmat4 below = chain.empty() ? glm::dmat4(1.0) : belowParent * g.local();
     RigidMotion own;
+    std::vector<GltfChainLink> extended;
+    const std::vector<GltfChainLink>* links = &chain;
     if (animated[static_cast<size_t>(n)]) {
-      if (anim >= 0)
-        throw InputError({file, 0, 0}, g.path,
-                         "is animated under the animated " +
-                             inc.doc.nodes[static_cast<size_t>(anim)].path +
-                             ": camsim moves one node per chain");
-      own = gltfNodeMotion(inc, n, renderFromParent, below);  // below: the residual scale
+      extended = chain;
+      extended.push_back({chain.empty() ? renderFromParent : belowParent, n});
+      own = gltfChainMotion(inc, extended, below);  // below: the residual scale
       motion = &own;
-      anim = n;
+      links = &extended;
     }
+    const bool moving = !links->empty();
     if (g.mesh >= 0) {
       if (g.skinned)
         throw InputError({file, 0, 0}, g.path + ".skin", "skinned meshes are not supported");
       const GltfMesh& mesh = inc.doc.meshes[static_cast<size_t>(g.mesh)];
       for (size_t k = 0; k < mesh.primitives.size(); ++k)
-        addPrimitive(g, mesh, k, anim >= 0 ? below : renderFromNode, motion);
+        addPrimitive(g, mesh, k, moving ? below : renderFromNode, motion);
     }
     if (g.light >= 0 && inc.lights) {
-      if (anim >= 0)
+      if (moving)
         scene.notes.push_back(inc.where + ": " + g.path +
                               ": an animated light is placed at its rest pose");
       scene.lights.push_back(
           gltfLight(inc, inc.doc.lights[static_cast<size_t>(g.light)], renderFromNode, scene));
     }
-    for (int c : g.children) node(c, renderFromNode, anim, below, motion);
+    for (int c : g.children) node(c, renderFromNode, *links, below, motion);
   }
 
   glm::dmat4 renderFromAsset() const {
@@ -103,9 +106,10 @@ struct Walk {
     } else {
       s.mesh = transformed(p.mesh, m, p.path);
     }
-    if (p.hasColors)
+    if (p.colorAlpha)
       scene.notes.push_back(inc.where + ": " + p.path +
-                            ".attributes.COLOR_0: vertex colours are ignored");
+                            ".attributes.COLOR_0: its alpha is ignored (the colours multiply "
+                            "the base colour; only the material's alpha cuts out)");
     scene.shapes.push_back(std::move(s));
   }
 
@@ -137,6 +141,37 @@ struct Walk {
   }
 };
 
+// `animation`: all (the default), none, an index or a name, or a list of indices and names.
+std::vector<int> parseAnimationChoice(const std::optional<YamlValue>& v, GltfDocument& doc) {
+  std::vector<int> all;
+  for (size_t k = 0; k < doc.animations.size(); ++k) all.push_back(static_cast<int>(k));
+  if (!v) {
+    if (all.size() > 1)
+      doc.notes.push_back("animations: all " + std::to_string(all.size()) +
+                          " animations play together from t = 0 (choose with `animation:`)");
+    return all;
+  }
+  if (!v->isSequence()) {
+    const std::string a = v->string();
+    if (a == "all") return all;
+    if (a == "none") return {};
+  }
+  std::vector<int> chosen;
+  for (const YamlValue& item : v->isSequence() ? v->items() : std::vector<YamlValue>{*v}) {
+    const std::string a = item.string();
+    int found = -1;
+    for (size_t k = 0; k < doc.animations.size() && found < 0; ++k)
+      if (doc.animations[k].name == a || std::to_string(k) == a) found = static_cast<int>(k);
+    if (found < 0)
+      item.fail("no animation '" + a +
+                "' in the file (give its index or name, a list of them, all or none; the "
+                "file has " +
+                std::to_string(doc.animations.size()) + ")");
+    if (std::find(chosen.begin(), chosen.end(), found) == chosen.end()) chosen.push_back(found);
+  }
+  return chosen;
+}
+
 }  // namespace
 
 std::vector<GltfInclude> parseGltfIncludes(const YamlValue& list,
@@ -166,23 +201,7 @@ std::vector<GltfInclude> parseGltfIncludes(const YamlValue& list,
     }
     if (!inc.doc.scenes.empty() && inc.scene >= static_cast<int>(inc.doc.scenes.size()))
       fileValue.fail("the file's default scene " + std::to_string(inc.scene) + " does not exist");
-    inc.animation = inc.doc.animations.empty() ? -1 : 0;
-    if (auto v = map.find("animation")) {
-      const std::string a = v->string();
-      inc.animation = -2;
-      if (a == "none") inc.animation = -1;
-      for (size_t k = 0; k < inc.doc.animations.size(); ++k)
-        if (inc.doc.animations[k].name == a || std::to_string(k) == a)
-          inc.animation = static_cast<int>(k);
-      if (inc.animation == -2)
-        v->fail("no animation '" + a +
-                "' in the file (give its index, its name or none; the file has " +
-                std::to_string(inc.doc.animations.size()) + ")");
-    } else if (inc.doc.animations.size() > 1) {
-      inc.doc.notes.push_back("animations: the file has " +
-                              std::to_string(inc.doc.animations.size()) +
-                              " animations; the first plays (choose one with `animation:`)");
-    }
+    inc.animations = parseAnimationChoice(map.find("animation"), inc.doc);
     if (auto v = map.find("lights")) inc.lights = v->boolean();
     if (auto v = map.find("emissive_luminance")) inc.emissiveLuminance = v->number(0.0, 1e12);
     if (auto c = map.find("class")) {  // the rule of a shape's class:
@@ -259,6 +278,7 @@ double applyGltfCamera(const YamlValue& spec, const std::vector<GltfInclude>& in
 
 void addGltfIncludes(std::vector<GltfInclude>& includes, SceneDescription& scene) {
   for (GltfInclude& inc : includes) {
+    for (const std::string& n : gltfAnimationNotes(inc)) inc.doc.notes.push_back(n);
     Walk w{inc, scene, addGltfMaterials(inc, scene), -1, gltfAnimatedNodes(inc), {}, {}, {}};
     w.meshUses.assign(inc.doc.meshes.size(), 0);
     // Count static uses of each mesh (nodes outside animated chains).
@@ -273,7 +293,7 @@ void addGltfIncludes(std::vector<GltfInclude>& includes, SceneDescription& scene
                                         : inc.doc.scenes[static_cast<size_t>(inc.scene)];
     for (int r : roots) count(r, false);
     const size_t shapesBefore = scene.shapes.size();
-    for (int r : roots) w.node(r, w.renderFromAsset(), -1, glm::dmat4(1.0), nullptr);
+    for (int r : roots) w.node(r, w.renderFromAsset(), {}, glm::dmat4(1.0), nullptr);
     bool emits = false;
     for (size_t i = shapesBefore; i < scene.shapes.size(); ++i)
       emits = emits || scene.shapes[i].emission;

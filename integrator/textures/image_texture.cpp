@@ -139,10 +139,6 @@ struct TexelKey {
   bool operator<(const TexelKey& o) const { return rgb != o.rgb ? rgb < o.rgb : texel < o.texel; }
 };
 
-glm::vec2 transformUv(glm::vec2 uv, glm::vec2 scale, glm::vec2 offset) {
-  return uv * scale + offset;
-}
-
 }  // namespace
 
 TextureEncoding defaultTextureEncoding(const std::filesystem::path& file) {
@@ -231,20 +227,19 @@ UpliftedTexels upliftTexels(const TextureImage& image) {
 }
 
 ImageSpectrumTexture::ImageSpectrumTexture(const TextureImage& image, glm::vec2 uvScale,
-                                           glm::vec2 uvOffset)
+                                           glm::vec2 uvOffset, float uvRotation)
     : ImageSpectrumTexture(std::make_shared<const UpliftedTexels>(upliftTexels(image)), uvScale,
-                           uvOffset) {}
+                           uvOffset, uvRotation) {}
 
 ImageSpectrumTexture::ImageSpectrumTexture(std::shared_ptr<const UpliftedTexels> texels,
-                                           glm::vec2 uvScale, glm::vec2 uvOffset)
-    : texels_(std::move(texels)), scale_(uvScale), offset_(uvOffset) {
+                                           glm::vec2 uvScale, glm::vec2 uvOffset, float uvRotation)
+    : texels_(std::move(texels)), uvTransform_(uvScale, uvOffset, uvRotation) {
   CAMSIM_CHECK(texels_ && texels_->width > 0 && texels_->height > 0);
 }
 
 SampledSpectrum ImageSpectrumTexture::evaluate(glm::vec2 uv,
                                                const SampledWavelengths& lambda) const {
-  const TexelFootprint f =
-      bilinearFootprint(transformUv(uv, scale_, offset_), texels_->width, texels_->height);
+  const TexelFootprint f = bilinearFootprint(uvTransform_(uv), texels_->width, texels_->height);
   SampledSpectrum out;
   for (int k = 0; k < 4; ++k) {
     if (f.weight[static_cast<size_t>(k)] == 0.0f) continue;
@@ -262,8 +257,8 @@ float ImageSpectrumTexture::texelValue(int x, int y, float lambdaNm) const {
 }
 
 ImageFloatTexture::ImageFloatTexture(const TextureImage& image, glm::vec2 uvScale,
-                                     glm::vec2 uvOffset, int channel)
-    : width_(image.width), height_(image.height), scale_(uvScale), offset_(uvOffset) {
+                                     glm::vec2 uvOffset, int channel, float uvRotation)
+    : width_(image.width), height_(image.height), uvTransform_(uvScale, uvOffset, uvRotation) {
   CAMSIM_CHECK(width_ > 0 && height_ > 0 && (image.channels == 1 || image.channels == 3));
   CAMSIM_CHECK(channel >= -1 && channel <= 3);
   const size_t n = static_cast<size_t>(image.channels);
@@ -286,7 +281,7 @@ ImageFloatTexture::ImageFloatTexture(const TextureImage& image, glm::vec2 uvScal
 }
 
 float ImageFloatTexture::evaluate(glm::vec2 uv) const {
-  const TexelFootprint f = bilinearFootprint(transformUv(uv, scale_, offset_), width_, height_);
+  const TexelFootprint f = bilinearFootprint(uvTransform_(uv), width_, height_);
   float out = 0.0f;
   for (size_t k = 0; k < 4; ++k) out += f.weight[k] * values_[f.texel[k]];
   return out;

@@ -6,6 +6,7 @@
 // | encoding  | —    | reflectance: png `srgb`, exr `linear`; scalar: `raw` | how numbers become values |
 // | scale     | —    | (1, 1)                                       | uv' = uv · scale + offset |
 // | offset    | —    | (0, 0)                                       |                           |
+// | rotation  | rad  | 0                                            | uv' = R(θ)(uv · scale) + offset (uv_transform.h; glTF KHR_texture_transform) |
 //
 // Decoding (PNG sample q of n bits, EXR float f):  e = q / (2ⁿ − 1)  or  e = f
 //   srgb:   value = srgbDecode(e) (IEC 61966-2-1: e ≤ 0.04045 ? e/12.92 : ((e + 0.055)/1.055)^2.4)
@@ -47,6 +48,7 @@
 
 #include "integrator/textures/texture.h"
 #include "integrator/textures/texture_encoding.h"
+#include "integrator/textures/uv_transform.h"
 #include "sensor/spectra/rgb_uplift.h"
 
 namespace camsim {
@@ -92,9 +94,10 @@ UpliftedTexels upliftTexels(const TextureImage& image);
 
 class ImageSpectrumTexture final : public SpectrumTexture {
  public:
-  ImageSpectrumTexture(const TextureImage& image, glm::vec2 uvScale, glm::vec2 uvOffset);
+  ImageSpectrumTexture(const TextureImage& image, glm::vec2 uvScale, glm::vec2 uvOffset,
+                       float uvRotation = 0.0f);
   ImageSpectrumTexture(std::shared_ptr<const UpliftedTexels> texels, glm::vec2 uvScale,
-                       glm::vec2 uvOffset);
+                       glm::vec2 uvOffset, float uvRotation = 0.0f);
   SampledSpectrum evaluate(glm::vec2 uv, const SampledWavelengths& lambda) const override;
   double maxValue() const override { return texels_->maxValue; }
   // The texel's fitted reflectance at λ (x, y as in the image, row 0 at the top).
@@ -103,19 +106,19 @@ class ImageSpectrumTexture final : public SpectrumTexture {
 
  private:
   std::shared_ptr<const UpliftedTexels> texels_;
-  glm::vec2 scale_, offset_;
+  UvTransform uvTransform_;
 };
 
 class ImageFloatTexture final : public FloatTexture {
  public:
   // channel: −1 (the default reading), 0 … 3 (R, G, B, A), see above.
   ImageFloatTexture(const TextureImage& image, glm::vec2 uvScale, glm::vec2 uvOffset,
-                    int channel = -1);
+                    int channel = -1, float uvRotation = 0.0f);
   float evaluate(glm::vec2 uv) const override;
 
  private:
   int width_, height_;
-  glm::vec2 scale_, offset_;
+  UvTransform uvTransform_;
   std::vector<float> values_;
 };
 

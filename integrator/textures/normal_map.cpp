@@ -19,11 +19,10 @@ bool finite(const glm::vec3& v) {
 }  // namespace
 
 NormalMap::NormalMap(const TextureImage& image, glm::vec2 uvScale, glm::vec2 uvOffset,
-                     float strength)
+                     float strength, float uvRotation)
     : width_(image.width),
       height_(image.height),
-      scale_(uvScale),
-      offset_(uvOffset),
+      uvTransform_(uvScale, uvOffset, uvRotation),
       strength_(strength) {
   CAMSIM_CHECK(width_ > 0 && height_ > 0 && image.channels == 3);
   CAMSIM_CHECK(std::isfinite(strength_));
@@ -38,7 +37,7 @@ NormalMap::NormalMap(const TextureImage& image, glm::vec2 uvScale, glm::vec2 uvO
 }
 
 glm::vec3 NormalMap::tangentSpaceNormal(glm::vec2 uv) const {
-  const TexelFootprint f = bilinearFootprint(uv * scale_ + offset_, width_, height_);
+  const TexelFootprint f = bilinearFootprint(uvTransform_(uv), width_, height_);
   // Bilinear as a + f (b − a): equal texels (a flat region) give their value exactly, so a
   // flat map bends nothing (weights summing to 1 only to rounding would not).
   const auto lerp = [](const glm::vec3& a, const glm::vec3& b, float t) { return a + t * (b - a); };

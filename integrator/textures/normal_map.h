@@ -6,6 +6,7 @@
 // | image     | —    | required | RGB texels c ∈ [0, 1]³ read raw (linear, no sRGB curve)   |
 // | scale     | —    | (1, 1)   | uv' = uv · scale + offset, as other image textures        |
 // | offset    | —    | (0, 0)   |                                                           |
+// | rotation  | rad  | 0        | uv' = R(θ)(uv · scale) + offset (uv_transform.h)          |
 // | strength  | —    | 1        | glTF normalTexture.scale s: the x and y of n_t scaled     |
 //
 //   c = bilinear(uv') (image_texture.h addressing, repeat), n_t = normalize((2c − 1) ⊙ (s, s, 1))
@@ -26,6 +27,8 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
+#include "integrator/textures/uv_transform.h"
+
 namespace camsim {
 
 struct TextureImage;  // integrator/textures/image_texture.h
@@ -33,7 +36,8 @@ struct TextureImage;  // integrator/textures/image_texture.h
 class NormalMap {
  public:
   // image: 3 channels (R, G, B) of raw values.
-  NormalMap(const TextureImage& image, glm::vec2 uvScale, glm::vec2 uvOffset, float strength);
+  NormalMap(const TextureImage& image, glm::vec2 uvScale, glm::vec2 uvOffset, float strength,
+            float uvRotation = 0.0f);
 
   // The unit tangent-space normal n_t at uv.
   glm::vec3 tangentSpaceNormal(glm::vec2 uv) const;
@@ -41,7 +45,7 @@ class NormalMap {
 
  private:
   int width_, height_;
-  glm::vec2 scale_, offset_;
+  UvTransform uvTransform_;
   float strength_;
   std::vector<glm::vec3> texels_;  // width·height, rows top to bottom
 };

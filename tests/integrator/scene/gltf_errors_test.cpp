@@ -186,7 +186,7 @@ TEST(GltfErrors, UnsupportedFeaturesAreRefusedClearly) {
     EXPECT_NE(viaScene(f).find("morph targets are not supported"), std::string::npos)
         << viaScene(f);
   }
-  // A non-uniform animated scale, and an animated node under an animated node.
+  // A non-uniform animated scale, and an animated node under a non-uniform scale.
   {
     test::GltfBuilder b;
     b.floats(tri, "VEC3");
@@ -205,15 +205,18 @@ TEST(GltfErrors, UnsupportedFeaturesAreRefusedClearly) {
     EXPECT_NE(viaScene(f).find("nodes[0].scale': an animated scale must be uniform"),
               std::string::npos)
         << viaScene(f);
-    f = scratch("nested") / "nested.gltf";
+    // An animated node under a static non-uniform scale: not a rigid motion.
+    f = scratch("squashed") / "squashed.gltf";
     test::writeText(
         f,
-        b.json(meshes +
-               R"("nodes":[{"children":[1]},{"mesh":0}],"scenes":[{"nodes":[0]}],"animations":[{)" +
-               samplers +
-               R"(,"channels":[{"sampler":1,"target":{"node":0,"path":"translation"}},)" +
-               R"({"sampler":1,"target":{"node":1,"path":"translation"}}]}])"));
-    EXPECT_NE(viaScene(f).find("is animated under the animated nodes[0]"), std::string::npos)
+        b.json(
+            meshes +
+            R"("nodes":[{"children":[1],"scale":[1,2,1]},{"mesh":0,"rotation":[0,0,0.6,0.8]}],)" +
+            R"("scenes":[{"nodes":[0]}],"animations":[{)" + samplers +
+            R"(,"channels":[{"sampler":1,"target":{"node":1,"path":"translation"}}]}])"));
+    EXPECT_NE(viaScene(f).find("nodes[1]': an animated node's parents (and the include's "
+                               "placement) must be rotations, translations and uniform"),
+              std::string::npos)
         << viaScene(f);
   }
   // Lines are not surfaces.
@@ -226,6 +229,119 @@ TEST(GltfErrors, UnsupportedFeaturesAreRefusedClearly) {
                            R"("nodes":[{"mesh":0}],"scenes":[{"nodes":[0]}])"));
     EXPECT_NE(viaScene(f).find("primitives[0].mode"), std::string::npos) << viaScene(f);
   }
+}
+
+// A view's byteStride below its accessor's element size would read overlapping elements
+// (4-byte steps through 12-byte positions): refused, naming the view's byteStride.
+TEST(GltfErrors, ByteStrideSmallerThanTheElementIsRefused) {
+  test::GltfBuilder b;
+  b.floats({0, 0, 0, 1, 0, 0, 0, 1, 0}, "VEC3");
+  std::string text = b.json(R"("meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],)"
+                            R"("nodes":[{"mesh":0}],"scenes":[{"nodes":[0]}])");
+  const std::string view = R"("byteLength":36})";
+  ASSERT_NE(text.find(view), std::string::npos);
+  text.replace(text.find(view), view.size(), R"("byteLength":36,"byteStride":4})");
+  const fs::path f = scratch("stride") / "stride.gltf";
+  test::writeText(f, text);
+  const Refusal r = refusal(f);
+  EXPECT_EQ(r.file, f.string());
+  EXPECT_EQ(r.key, "bufferViews[0].byteStride") << r.message;
+  EXPECT_NE(r.message.find("is 4 bytes, less than the 12-byte elements of accessors[0]"),
+            std::string::npos)
+      << r.message;
+}
+
+// A buffer whose data is shorter (or longer) than its byteLength: named as buffers[i] with
+// both lengths, for a data URI and for a .bin file (not tinygltf's "Failed to decode 'uri'
+// : data:…" without a JSON path).
+TEST(GltfErrors, BufferShorterThanItsByteLengthNamesTheBuffer) {
+  test::GltfBuilder b;
+  b.floats({0, 0, 0, 1, 0, 0, 0, 1, 0}, "VEC3");
+  const std::string text = b.json(R"("meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],)"
+                                  R"("nodes":[{"mesh":0}],"scenes":[{"nodes":[0]}])");
+  const std::string length = R"("buffers":[{"byteLength":36,)";
+  ASSERT_NE(text.find(length), std::string::npos);
+  auto withLength = [&](const std::string& newLength, const std::string& uri) {
+    std::string t = text;
+    t.replace(t.find(length), length.size(), R"("buffers":[{"byteLength":)" + newLength + ",");
+    if (!uri.empty()) {
+      const size_t at = t.find("\"uri\":\"data:");
+      t.replace(at, t.find('"', at + 7) + 1 - at, "\"uri\":\"" + uri + "\"");
+    }
+    return t;
+  };
+  const fs::path dir = scratch("short");
+  test::writeText(dir / "short.gltf", withLength("40", ""));
+  Refusal r = refusal(dir / "short.gltf");
+  EXPECT_EQ(r.file, (dir / "short.gltf").string());
+  EXPECT_EQ(r.key, "buffers[0]") << r.message;
+  EXPECT_NE(
+      r.message.find(
+          "its data URI decodes to 36 bytes but its byteLength is 40: the buffer is truncated"),
+      std::string::npos)
+      << r.message;
+  test::writeText(dir / "long.gltf", withLength("32", ""));
+  r = refusal(dir / "long.gltf");
+  EXPECT_EQ(r.key, "buffers[0]") << r.message;
+  EXPECT_NE(r.message.find("36 bytes but its byteLength is 32"), std::string::npos) << r.message;
+  test::writeText(dir / "tri.bin", std::string(20, '\0'));
+  test::writeText(dir / "bin.gltf", withLength("36", "tri.bin"));
+  r = refusal(dir / "bin.gltf");
+  EXPECT_EQ(r.key, "buffers[0]") << r.message;
+  EXPECT_NE(
+      r.message.find("tri.bin' holds 20 bytes but its byteLength is 36: the buffer is truncated"),
+      std::string::npos)
+      << r.message;
+  test::writeText(dir / "mime.gltf", withLength("36", "data:text/x-bin,AAAA"));
+  r = refusal(dir / "mime.gltf");
+  EXPECT_EQ(r.key, "buffers[0].uri") << r.message;
+}
+
+// Index accessors must be unsigned integers: float indices are a bad componentType, also
+// when their view (sized for u16) is too short for floats (once reported as a count past
+// the view's end).
+TEST(GltfErrors, FloatIndicesAreABadComponentType) {
+  for (const bool fits : {false, true}) {
+    test::GltfBuilder b;
+    b.floats({0, 0, 0, 1, 0, 0, 0, 1, 0}, "VEC3");
+    const int indices = fits ? b.floats({0, 1, 2}, "SCALAR") : b.u16({0, 1, 2});
+    std::string text =
+        b.json(R"("meshes":[{"primitives":[{"attributes":{"POSITION":0},"indices":)" +
+               std::to_string(indices) + R"(}]}],"nodes":[{"mesh":0}],"scenes":[{"nodes":[0]}])");
+    const std::string u16 = R"("componentType":5123)";
+    if (!fits) text.replace(text.find(u16), u16.size(), R"("componentType":5126)");
+    const fs::path f = scratch("float_indices") / "float_indices.gltf";
+    test::writeText(f, text);
+    const Refusal r = refusal(f);
+    EXPECT_EQ(r.key, "accessors[1].componentType") << fits << ": " << r.message;
+    EXPECT_NE(r.message.find("is FLOAT (5126) but meshes[0].primitives[0].indices needs "
+                             "UNSIGNED_BYTE, UNSIGNED_SHORT or UNSIGNED_INT"),
+              std::string::npos)
+        << r.message;
+  }
+}
+
+// COLOR_0 of unsigned bytes must be normalized; a bad KHR_texture_transform is named.
+TEST(GltfErrors, BadColoursAndTextureTransformsAreNamed) {
+  test::GltfBuilder b;
+  b.floats({0, 0, 0, 1, 0, 0, 0, 1, 0}, "VEC3");
+  b.u8({255, 0, 0, 255, 0, 255, 0, 255, 0, 0, 255, 255}, "VEC4", false);
+  const fs::path f = scratch("colours") / "colours.gltf";
+  test::writeText(f,
+                  b.json(R"("meshes":[{"primitives":[{"attributes":{"POSITION":0,"COLOR_0":1}}]}],)"
+                         R"("nodes":[{"mesh":0}],"scenes":[{"nodes":[0]}])"));
+  Refusal r = refusal(f);
+  EXPECT_EQ(r.key, "accessors[1].normalized") << r.message;
+  const fs::path g = scratch("transform") / "transform.gltf";
+  test::writeText(g,
+                  test::GltfBuilder().json(
+                      R"("textures":[{}],"materials":[{"pbrMetallicRoughness":{"baseColorTexture":)"
+                      R"({"index":0,"extensions":{"KHR_texture_transform":{"offset":[1]}}}}}])"));
+  r = refusal(g);
+  EXPECT_EQ(r.key,
+            "materials[0].pbrMetallicRoughness.baseColorTexture.extensions.KHR_texture_transform."
+            "offset")
+      << r.message;
 }
 
 // Found by fuzz_gltf: a number beyond double's range made nlohmann-json throw out_of_range,

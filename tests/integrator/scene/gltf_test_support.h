@@ -29,6 +29,11 @@ class GltfBuilder {
     std::memcpy(bytes.data(), v.data(), bytes.size());
     return add(bytes, 5123, v.size(), "SCALAR");
   }
+  // An accessor of UNSIGNED_BYTE components (colours: normalized).
+  int u8(const std::vector<std::uint8_t>& v, const std::string& type, bool normalized) {
+    const size_t comps = type == "SCALAR" ? 1 : static_cast<size_t>(type.back() - '0');
+    return add(std::string(v.begin(), v.end()), 5121, v.size() / comps, type, normalized);
+  }
   // The file: the accessors, views and buffer written here, then `rest` (JSON members).
   std::string json(const std::string& rest) const {
     std::string views, accessors;
@@ -62,13 +67,15 @@ class GltfBuilder {
   }
 
  private:
-  int add(const std::string& bytes, int componentType, size_t count, const std::string& type) {
+  int add(const std::string& bytes, int componentType, size_t count, const std::string& type,
+          bool normalized = false) {
     while (data_.size() % 4) data_ += '\0';
     views_.emplace_back(data_.size(), bytes.size());
     data_ += bytes;
     accessors_.push_back("{\"bufferView\":" + std::to_string(views_.size() - 1) +
                          ",\"componentType\":" + std::to_string(componentType) +
-                         ",\"count\":" + std::to_string(count) + ",\"type\":\"" + type + "\"}");
+                         ",\"count\":" + std::to_string(count) + ",\"type\":\"" + type + "\"" +
+                         (normalized ? ",\"normalized\":true}" : "}"));
     return static_cast<int>(accessors_.size()) - 1;
   }
 
