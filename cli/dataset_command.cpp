@@ -5,7 +5,7 @@
 #include <ostream>
 
 #include "cli/args.h"
-#include "cli/progress.h"
+#include "integrator/capture/progress.h"
 #include "integrator/dataset/dataset_item.h"
 #include "integrator/dataset/dataset_run.h"
 #include "sensor/base/input_error.h"

@@ -6,8 +6,8 @@
 #include <exception>
 #include <iostream>
 
-#include "bench/bench_command.h"
 #include "cli/args.h"
+#include "cli/bench_command.h"
 #include "cli/dataset_command.h"
 #include "cli/merge_command.h"
 #include "cli/ptc_command.h"

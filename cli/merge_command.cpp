@@ -5,9 +5,10 @@
 #include <sstream>
 
 #include "cli/args.h"
-#include "cli/progress.h"
 #include "cli/render_command.h"
 #include "integrator/capture/capture_writer.h"
+#include "integrator/capture/default_scene.h"
+#include "integrator/capture/progress.h"
 #include "integrator/capture/tile_parts.h"
 #include "sensor/base/input_error.h"
 #include "sensor/io/output_set.h"

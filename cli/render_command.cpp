@@ -5,10 +5,11 @@
 #include <charconv>
 #include <ostream>
 
-#include "cli/progress.h"
-#include "cli/resource_guard.h"
 #include "integrator/capture/capture_writer.h"
 #include "integrator/capture/dataset_writer.h"
+#include "integrator/capture/default_scene.h"
+#include "integrator/capture/progress.h"
+#include "integrator/capture/resource_guard.h"
 #include "integrator/capture/tile_parts.h"
 #include "integrator/scene/scene_loader.h"
 #include "sensor/base/format.h"

@@ -16,17 +16,8 @@
 
 namespace camsim {
 
-// The embedded default scene (scenes/cornell_box.yaml at build time).
-std::string_view defaultSceneFile(std::string_view relPath);
-inline std::string_view defaultSceneText() {
-  return defaultSceneFile("cornell_box.yaml");
-}
-
 struct CaptureResult;
 struct SceneDescription;
-
-// The display name of the embedded default scene (NAME.json's "scene").
-inline constexpr std::string_view kDefaultSceneName = "<default: scenes/cornell_box.yaml>";
 
 // args.scene (none: the default scene) loaded, with the command line's overrides applied.
 // InputError for a bad scene, UsageError for an override the scene cannot take.

@@ -12,6 +12,10 @@
 #    (not tests/data/, whose fixtures break the rules on purpose).
 # 4. pybind11 (and Python.h) is included only in python/, the Python module: no library,
 #    CLI, benchmark, fuzz or test file includes it (python/ files are checked by rule 3).
+# 5. The front ends stand side by side: cli/, python/ and bench/ include the library
+#    (integrator/, sensor/) and their own folder, never each other. What two front ends
+#    share belongs in the library. KNOWN_FRONT_END_INCLUDES would list accepted exceptions
+#    ("file|front end"): there are none.
 # Prints what it checked; any violation is a SEND_ERROR (the test fails, naming file, line
 # and include).
 cmake_minimum_required(VERSION 3.22)
@@ -38,6 +42,9 @@ set(ALLOWED_integrator/scene integrator/sampling integrator/geometry integrator/
 set(ALLOWED_integrator/render integrator/sampling integrator/geometry integrator/textures
     integrator/camera integrator/materials integrator/lights integrator/scene ${SENSOR_ALL})
 set(ALLOWED_integrator/capture integrator/sampling integrator/geometry integrator/textures
+    integrator/camera integrator/materials integrator/lights integrator/scene integrator/render
+    ${SENSOR_ALL})
+set(ALLOWED_integrator/measure integrator/sampling integrator/geometry integrator/textures
     integrator/camera integrator/materials integrator/lights integrator/scene integrator/render
     ${SENSOR_ALL})
 set(ALLOWED_integrator/dataset integrator/sampling integrator/geometry integrator/textures
@@ -101,6 +108,28 @@ file(GLOB_RECURSE all_sources RELATIVE "${SOURCE_DIR}" "${SOURCE_DIR}/integrator
      "${SOURCE_DIR}/tests/*.h" "${SOURCE_DIR}/tests/*.cpp" "${SOURCE_DIR}/python/*.h"
      "${SOURCE_DIR}/python/*.cpp")
 set(x86_checked 0)
+set(FRONT_ENDS cli python bench)
+set(KNOWN_FRONT_END_INCLUDES "")
+set(front_end_checked 0)
+foreach(f IN LISTS all_sources)
+  string(REGEX MATCH "^[a-z]+" top "${f}")
+  list(FIND FRONT_ENDS "${top}" is_front_end)
+  if(NOT is_front_end EQUAL -1)
+    math(EXPR front_end_checked "${front_end_checked} + 1")
+    file(STRINGS "${SOURCE_DIR}/${f}" lines REGEX "^#include \"[a-z]+/")
+    foreach(line IN LISTS lines)
+      string(REGEX MATCH "^#include \"([a-z]+)/" unused "${line}")
+      set(other "${CMAKE_MATCH_1}")
+      list(FIND FRONT_ENDS "${other}" other_is_front_end)
+      list(FIND KNOWN_FRONT_END_INCLUDES "${f}|${other}" known)
+      if(NOT other STREQUAL top AND NOT other_is_front_end EQUAL -1 AND known EQUAL -1)
+        message(SEND_ERROR "${f}: '${line}': the front end ${top}/ may not include ${other}/ "
+                           "(what two front ends share belongs in the library)")
+        math(EXPR violations "${violations} + 1")
+      endif()
+    endforeach()
+  endif()
+endforeach()
 foreach(f IN LISTS all_sources)
   if(f STREQUAL SIMD_HEADER OR f MATCHES "^tests/data/")
     continue()
@@ -120,5 +149,5 @@ foreach(f IN LISTS all_sources)
     endforeach()
   endif()
 endforeach()
-message(STATUS "include rules: ${checked} files checked, x86 rule: ${x86_checked} files; "
-               "${violations} violations")
+message(STATUS "include rules: ${checked} files checked, x86 rule: ${x86_checked} files, "
+               "front-end rule: ${front_end_checked} files; ${violations} violations")

@@ -7,7 +7,7 @@
 #include <future>
 #include <optional>
 
-#include "cli/progress.h"
+#include "integrator/capture/progress.h"
 #include "python/bindings.h"
 #include "python/capture_arrays.h"
 #include "python/worker_threads.h"

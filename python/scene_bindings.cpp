@@ -10,7 +10,7 @@
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 
-#include "cli/render_command.h"
+#include "integrator/capture/default_scene.h"
 #include "integrator/scene/scene_loader.h"
 #include "python/bindings.h"
 #include "sensor/base/input_error.h"

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 # Plot of `camsim bench` (embedded in the binary and run with /usr/bin/python3 -c).
 #   bench_plot.py CSV PNG [NOTE]
-# CSV: bench.csv as written by bench/bench_metrics.cpp (columns scene, sampler, spp, width,
+# CSV: bench.csv as written by integrator/measure/bench_metrics.cpp (columns scene, sampler, spp, width,
 # height, seconds, cpu_seconds, samples_per_s, rays_per_s, rmse_rel, mrae, ref_rmse_rel,
 # ref_mrae, in_fit). One panel per scene: rMSE of luminance Y against render time (log-log) for each
 # sampler, filled markers for the budgets in the slope fit, the fitted line with its slope in

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "cli/render_command.h"
+#include "integrator/capture/default_scene.h"
 #include "integrator/render/render.h"
 #include "integrator/scene/scene.h"
 #include "integrator/scene/scene_loader.h"

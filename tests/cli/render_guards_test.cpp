@@ -20,7 +20,7 @@
 #include <thread>
 #include <vector>
 
-#include "cli/resource_guard.h"
+#include "integrator/capture/resource_guard.h"
 #include "integrator/scene/scene_loader.h"
 #include "sensor/base/input_error.h"
 #include "sensor/io/exr_io.h"

@@ -6,8 +6,8 @@
 
 #include <tbb/info.h>
 
-#include "bench/bench_command.h"
 #include "cli/args.h"
+#include "cli/bench_command.h"
 
 namespace camsim {
 

@@ -1,4 +1,4 @@
-#include "bench/bench_limit.h"
+#include "integrator/measure/bench_limit.h"
 
 #include <malloc.h>
 #include <unistd.h>
@@ -16,8 +16,8 @@
 #include <tbb/info.h>
 #include <tbb/task_arena.h>
 
-#include "bench/bench_metrics.h"
-#include "bench/bench_reference.h"
+#include "integrator/measure/bench_metrics.h"
+#include "integrator/measure/bench_reference.h"
 #include "integrator/render/ray_recorder.h"
 #include "integrator/scene/scene.h"
 #include "integrator/scene/scene_loader.h"

@@ -12,10 +12,10 @@
 #include <sstream>
 #include <string>
 
-#include "bench/bench_command.h"
-#include "bench/bench_limit.h"
-#include "bench/bench_metrics.h"
-#include "bench/bench_reference.h"
+#include "cli/bench_command.h"
+#include "integrator/measure/bench_limit.h"
+#include "integrator/measure/bench_metrics.h"
+#include "integrator/measure/bench_reference.h"
 #include "integrator/render/render.h"
 #include "integrator/scene/scene.h"
 #include "integrator/scene/scene_loader.h"

@@ -15,10 +15,10 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "bench/bench_command.h"
-#include "bench/bench_metrics.h"
-#include "bench/bench_reference.h"
 #include "cli/args.h"
+#include "cli/bench_command.h"
+#include "integrator/measure/bench_metrics.h"
+#include "integrator/measure/bench_reference.h"
 #include "integrator/scene/scene_loader.h"
 #include "sensor/base/input_error.h"
 #include "sensor/spectra/spectral_data.h"

@@ -26,7 +26,7 @@
 #include <vector>
 
 #include <glm/vec2.hpp>
-#include "bench/bench_metrics.h"
+#include "integrator/measure/bench_metrics.h"
 
 #include "integrator/render/render.h"
 #include "integrator/scene/scene.h"

@@ -2,8 +2,8 @@
 #include <cstdio>
 #include <sstream>
 
-#include "bench/bench_limit.h"
-#include "bench/bench_metrics.h"
+#include "integrator/measure/bench_limit.h"
+#include "integrator/measure/bench_metrics.h"
 
 namespace camsim {
 namespace {

@@ -1,4 +1,4 @@
-#include "cli/progress.h"
+#include "integrator/capture/progress.h"
 
 #include <unistd.h>
 

@@ -1,4 +1,4 @@
-#include "bench/bench_reference.h"
+#include "integrator/measure/bench_reference.h"
 
 #include <algorithm>
 #include <fstream>

@@ -1,4 +1,4 @@
-#include "bench/bench_command.h"
+#include "cli/bench_command.h"
 
 #include <unistd.h>
 
@@ -9,12 +9,12 @@
 #include <ostream>
 #include <sstream>
 
-#include "bench/bench_limit.h"
-#include "bench/bench_metrics.h"
-#include "bench/bench_reference.h"
 #include "cli/args.h"
-#include "cli/progress.h"
 #include "cli/python_script.h"
+#include "integrator/capture/progress.h"
+#include "integrator/measure/bench_limit.h"
+#include "integrator/measure/bench_metrics.h"
+#include "integrator/measure/bench_reference.h"
 #include "integrator/scene/scene.h"
 #include "integrator/scene/scene_loader.h"
 #include "sensor/base/file_status.h"

@@ -1,4 +1,4 @@
-#include "bench/bench_metrics.h"
+#include "integrator/measure/bench_metrics.h"
 
 #include <sys/resource.h>
 

@@ -1,4 +1,4 @@
-#include "cli/resource_guard.h"
+#include "integrator/capture/resource_guard.h"
 
 #include <unistd.h>
 
