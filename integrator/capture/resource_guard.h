@@ -1,8 +1,8 @@
-// Resource guard of every front end (camsim render, camsim.capture), checked after the scene has loaded and before any
-// work (no output directory, no Embree scene, no render): the memory the run will need,
-// estimated from the scene, against a limit. The scene loader already bounds resolution,
-// spp and inline mesh size (integrator/scene/scene_loader.h, SceneLimits); this catches scenes
-// within those bounds that still do not fit the machine.
+// The memory guard of every front end (camsim render, camsim.capture), checked after the
+// scene has loaded and before any work (no output directory, no Embree scene, no render):
+// the memory the run will need, estimated from the scene, against a limit. The scene loader
+// already bounds resolution, spp and inline mesh size (integrator/scene/scene_loader.h,
+// SceneLimits); this catches scenes within those bounds that still do not fit the machine.
 #pragma once
 
 #include <cstdint>
