@@ -1,0 +1,52 @@
+#include "integrator/capture/capture_run.h"
+
+#include <utility>
+
+namespace camsim {
+
+SequenceSummary captureScene(SceneDescription description, const CaptureOptions& options,
+                             const std::function<void(CaptureResult&&, int)>& onFrame) {
+  if (!description.frames) {
+    CaptureResult result = capture(std::move(description), options);
+    SequenceSummary summary;
+    summary.frames = 1;
+    summary.rendered = result.cancelled ? 0 : 1;
+    summary.cancelled = result.cancelled;
+    onFrame(std::move(result), 0);
+    return summary;
+  }
+  const int count = description.frames->count;
+  int frame = 0;  // the frame being rendered: onFrame of frame k runs before frame k + 1
+  CaptureOptions perFrame = options;
+  if (options.progress)
+    perFrame.progress = [&frame, count, &progress = options.progress](int done, int total) {
+      progress(frame * total + done, count * total);
+    };
+  return captureSequence(std::move(description), perFrame,
+                         [&frame, &onFrame](CaptureResult&& result, int k) {
+                           frame = k + 1;
+                           onFrame(std::move(result), k);
+                         });
+}
+
+CaptureRunWriter::CaptureRunWriter(CaptureOutputOptions out, bool sequence)
+    : out_(std::move(out)), sequence_(sequence) {}
+
+WrittenCapture CaptureRunWriter::write(const CaptureResult& result) {
+  WrittenCapture written = writeCapture(result, out_);
+  files_.insert(files_.end(), written.files.begin(), written.files.end());
+  if (result.cancelled)
+    cancelled_ = true;
+  else if (sequence_)
+    frames_.push_back(datasetFrame(result));
+  return written;
+}
+
+std::vector<std::filesystem::path> CaptureRunWriter::finish() {
+  if (!sequence_ || cancelled_) return {};
+  std::vector<std::filesystem::path> written = writeDatasetMetadata(frames_, out_.directory);
+  files_.insert(files_.end(), written.begin(), written.end());
+  return written;
+}
+
+}  // namespace camsim

@@ -1,0 +1,49 @@
+// One way to run a capture for every front end (`camsim render`, `camsim dataset`,
+// `camsim.capture()`): one frame or a frame sequence behind one call, progress counted over
+// all frames, and the files of a run written as its frames arrive. The front ends only
+// choose where the frames go (files, NumPy arrays) and what they print.
+//
+//   captureScene(description, options, onFrame)
+//     no `frames` block → capture(),          onFrame(result, 0) once
+//     a `frames` block  → captureSequence(),  onFrame(result, k) for k = 0 … count − 1
+//   options.progress(done, total): tiles over the whole run; frame k's tile d of T is
+//     k·T + d of count·T (one frame: the capture's own counts).
+#pragma once
+
+#include <filesystem>
+#include <functional>
+#include <vector>
+
+#include "integrator/capture/capture.h"
+#include "integrator/capture/capture_writer.h"
+#include "integrator/capture/dataset_writer.h"
+
+namespace camsim {
+
+// A cancelled frame is handed on (result.cancelled) and ends the run; the summary counts
+// the frames handed on (frames), those rendered (rendered) and whether it was cancelled.
+SequenceSummary captureScene(SceneDescription description, const CaptureOptions& options,
+                             const std::function<void(CaptureResult&&, int)>& onFrame);
+
+// The files of a run into one directory: writeCapture() for each frame as it arrives and,
+// for a sequence, the camera exports of all its frames (writeDatasetMetadata: cameras.json,
+// transforms.json, COLMAP; docs/output.md) once the last has been written.
+class CaptureRunWriter {
+ public:
+  CaptureRunWriter(CaptureOutputOptions out, bool sequence);
+  // Writes one frame (a cancelled one: only NAME.partial.exr of its finished tiles).
+  WrittenCapture write(const CaptureResult& result);
+  // The sequence's camera exports (nothing for one frame or after a cancelled frame).
+  std::vector<std::filesystem::path> finish();
+  // Every final file written so far, in order.
+  const std::vector<std::filesystem::path>& files() const { return files_; }
+
+ private:
+  CaptureOutputOptions out_;
+  bool sequence_;
+  bool cancelled_ = false;
+  std::vector<DatasetFrame> frames_;
+  std::vector<std::filesystem::path> files_;
+};
+
+}  // namespace camsim
