@@ -5,8 +5,8 @@
 #include <charconv>
 #include <ostream>
 
+#include "integrator/capture/capture_run.h"
 #include "integrator/capture/capture_writer.h"
-#include "integrator/capture/dataset_writer.h"
 #include "integrator/capture/default_scene.h"
 #include "integrator/capture/progress.h"
 #include "integrator/capture/resource_guard.h"
@@ -46,39 +46,6 @@ void printRendered(const CaptureResult& r, std::ostream& log) {
       << "rays/s), rejected samples (NaN/Inf): " << st.rejectedSamples << "\n";
   if (st.rejectedSamples > 0)
     log << "warning: " << st.rejectedSamples << " samples had NaN/Inf radiance and were dropped\n";
-}
-
-// A sequence: each frame written (atomically, NAME_NNNN.*) as soon as it is captured.
-RenderCommandResult runSequence(SceneDescription desc, const CaptureOutputOptions& out,
-                                CaptureOptions options, std::ostream& log) {
-  const int count = desc.frames->count;
-  ProgressBar progress("rendering " + desc.name + " (" + std::to_string(count) + " frames)");
-  std::atomic<int> frame{0};
-  options.progress = [&](int done, int total) {
-    progress.update(frame * total + done, count * total);
-  };
-  RenderCommandResult outcome;
-  std::vector<DatasetFrame> dataset;
-  const SequenceSummary summary =
-      captureSequence(std::move(desc), options, [&](CaptureResult&& r, int k) {
-        printCaptureNotes(r, log);
-        const WrittenCapture written = writeCapture(r, out);
-        if (!r.cancelled) dataset.push_back(datasetFrame(r));
-        outcome.files.insert(outcome.files.end(), written.files.begin(), written.files.end());
-        if (r.cancelled) printInterrupted(r, written, log);
-        frame = k + 1;
-      });
-  progress.finish();
-  outcome.cancelled = summary.cancelled;
-  if (summary.cancelled) return outcome;
-  for (auto& f : writeDatasetMetadata(dataset, out.directory)) outcome.files.push_back(f);
-  log << "sequence: " << summary.frames << " frames, " << summary.rendered
-      << (summary.rendered == summary.frames
-              ? " rendered"
-              : " rendered (nothing moves: the others reuse its film)")
-      << "\n";
-  for (const auto& f : outcome.files) log << "wrote " << f.string() << "\n";
-  return outcome;
 }
 
 // --tiles k/M: share k of the tiles' films as DIR/NAME.part-k-of-M.exr, nothing else.
@@ -182,22 +149,33 @@ RenderCommandResult runRender(const RenderArgs& args, std::ostream& log,
   if (args.tiles) return runTilePart(std::move(desc), args, options, log);
   checkPictureSettings(out.picture);  // a bad config or display/view/look fails before rendering
 
-  if (desc.frames) return runSequence(std::move(desc), out, options, log);
-
-  ProgressBar progress("rendering " + desc.name);
+  // One frame or a sequence (captureScene): each frame written (atomically; a sequence's
+  // as NAME_NNNN.*) as soon as it is captured, a sequence's camera exports at the end.
+  const bool sequence = desc.frames.has_value();
+  const int count = sequence ? desc.frames->count : 1;
+  ProgressBar progress("rendering " + desc.name +
+                       (sequence ? " (" + std::to_string(count) + " frames)" : ""));
   options.progress = [&](int done, int total) { progress.update(done, total); };
-  const CaptureResult result = capture(std::move(desc), options);
+  CaptureRunWriter writer(out, sequence);
+  const SequenceSummary summary =
+      captureScene(std::move(desc), options, [&](CaptureResult&& r, int) {
+        printCaptureNotes(r, log);
+        const WrittenCapture written = writer.write(r);
+        if (r.cancelled) return printInterrupted(r, written, log);
+        for (const auto& f : written.removed)
+          log << "removed " << f.string() << " of an interrupted run\n";
+        if (!sequence) printRendered(r, log);
+      });
   progress.finish();
-  printCaptureNotes(result, log);
-  const WrittenCapture written = writeCapture(result, out);
-  RenderCommandResult outcome{written.files, result.cancelled};
-  if (result.cancelled) {
-    printInterrupted(result, written, log);
-    return outcome;
-  }
-  for (const auto& f : written.removed)
-    log << "removed " << f.string() << " of an interrupted run\n";
-  printRendered(result, log);
+  writer.finish();
+  RenderCommandResult outcome{writer.files(), summary.cancelled};
+  if (summary.cancelled) return outcome;
+  if (sequence)
+    log << "sequence: " << summary.frames << " frames, " << summary.rendered
+        << (summary.rendered == summary.frames
+                ? " rendered"
+                : " rendered (nothing moves: the others reuse its film)")
+        << "\n";
   for (const auto& f : outcome.files) log << "wrote " << f.string() << "\n";
   return outcome;
 }

@@ -7,6 +7,7 @@
 #include <future>
 #include <optional>
 
+#include "integrator/capture/capture_run.h"
 #include "integrator/capture/progress.h"
 #include "python/bindings.h"
 #include "python/capture_arrays.h"
@@ -23,8 +24,7 @@ struct CaptureJob {
   PictureSettings picture;
   int threads = 0;
   std::atomic<bool> cancel{false};
-  std::atomic<int> done{0}, total{0}, frame{0};
-  int frames = 1;
+  std::atomic<int> done{0}, total{0};                    // tiles over all frames (captureScene)
   std::vector<std::shared_ptr<CaptureBuffers>> results;  // one per frame, in order
   std::exception_ptr error;
   // The Scene's built renderable scene, lent for this capture (null: reuse=False, build
@@ -39,7 +39,7 @@ std::shared_ptr<CaptureBuffers> keep(CaptureResult&& r, const PictureSettings& p
   return b;
 }
 
-// The worker: capture() or, with a frames block, captureSequence(); no Python here.
+// The worker: captureScene() (one frame or a sequence); no Python here.
 void runJob(CaptureJob& job) {
   try {
     CaptureOptions options;
@@ -50,16 +50,9 @@ void runJob(CaptureJob& job) {
       job.done = done;
     };
     options.sceneCache = job.built.get();
-    if (job.description.frames) {
-      captureSequence(std::move(job.description), options, [&job](CaptureResult&& r, int k) {
-        if (r.cancelled) return;
-        job.results.push_back(keep(std::move(r), job.picture));
-        job.frame = k + 1;
-      });
-    } else {
-      CaptureResult r = capture(std::move(job.description), options);
+    captureScene(std::move(job.description), options, [&job](CaptureResult&& r, int) {
       if (!r.cancelled) job.results.push_back(keep(std::move(r), job.picture));
-    }
+    });
   } catch (...) {
     job.error = std::current_exception();
   }
@@ -86,7 +79,6 @@ py::object runCapture(PyScene& scene, int threads, const py::object& progress,
   job->picture = PictureSettings{ocioConfig, DisplayChoice{display, view, look}};
   job->threads = threads;
   const bool sequence = scene.description.frames.has_value();
-  job->frames = sequence ? scene.description.frames->count : 1;
   std::optional<ProgressBar> bar;  // on stderr, drawn only when it is a terminal
   if (progress.is_none()) bar.emplace("rendering " + scene.description.name);
   bool stopped = false;  // a Python exception (KeyboardInterrupt, the callback's) is pending
@@ -102,9 +94,8 @@ py::object runCapture(PyScene& scene, int threads, const py::object& progress,
         stopped = true;
         break;
       }
-      const int total = job->total, done = job->done, frame = job->frame;
-      const int all = total * job->frames, now = frame * total + done;
-      if (total == 0 || now == reported) continue;
+      const int all = job->total, now = job->done;  // over all frames (captureScene)
+      if (all == 0 || now == reported) continue;
       reported = now;
       if (bar) {
         bar->update(now, all);
@@ -124,7 +115,7 @@ py::object runCapture(PyScene& scene, int threads, const py::object& progress,
   if (bar) bar->finish();
   if (stopped) throw py::error_already_set();
   if (job->error) std::rethrow_exception(job->error);
-  if (!bar && job->total > 0) progress(job->total * job->frames, job->total * job->frames);
+  if (!bar && job->total > 0) progress(job->total.load(), job->total.load());
   if (!sequence) return captureDict(job->results.front());
   py::list frames;
   for (const auto& b : job->results) frames.append(captureDict(b));

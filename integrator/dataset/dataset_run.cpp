@@ -14,9 +14,8 @@
 
 #include <tbb/parallel_for.h>
 
-#include "integrator/capture/capture.h"
+#include "integrator/capture/capture_run.h"
 #include "integrator/capture/capture_writer.h"
-#include "integrator/capture/dataset_writer.h"
 #include "integrator/dataset/dataset_item.h"
 #include "integrator/dataset/dataset_lock.h"
 #include "integrator/dataset/item_writer.h"
@@ -59,30 +58,20 @@ bool renderItem(SceneDescription desc, ItemWork& w, const DatasetRunOptions& opt
   CaptureOptions co;
   co.threads = options.threads;
   co.cancel = options.cancel;
-  if (!desc.frames) {
-    co.progress = [&](int done, int total) { fraction(static_cast<double>(done) / total); };
-    CaptureResult result = capture(std::move(desc), co);
-    if (result.cancelled) return false;
-    w.renderSeconds = result.stats.seconds;
-    w.capture = std::move(result);
-    return true;
-  }
-  ItemWork& r = w;
-  const int count = desc.frames->count;
-  int frame = 0;
-  co.progress = [&](int done, int total) {
-    fraction((frame + static_cast<double>(done) / total) / count);
-  };
-  std::vector<DatasetFrame> frames;
-  const SequenceSummary s = captureSequence(std::move(desc), co, [&](CaptureResult&& c, int k) {
-    frame = k + 1;
+  co.progress = [&](int done, int total) { fraction(static_cast<double>(done) / total); };
+  const bool sequence = desc.frames.has_value();
+  CaptureRunWriter writer(out, sequence);
+  const SequenceSummary s = captureScene(std::move(desc), co, [&](CaptureResult&& c, int) {
     if (c.cancelled) return;
-    r.renderSeconds += c.stats.seconds;
-    for (auto& f : writeCapture(c, out).files) r.files.push_back(f);
-    frames.push_back(datasetFrame(c));
+    w.renderSeconds += c.stats.seconds;
+    if (sequence)
+      writer.write(c);
+    else
+      w.capture = std::move(c);
   });
   if (s.cancelled) return false;
-  for (auto& f : writeDatasetMetadata(frames, w.tmp)) r.files.push_back(f);
+  writer.finish();
+  w.files.insert(w.files.end(), writer.files().begin(), writer.files().end());
   return true;
 }
 

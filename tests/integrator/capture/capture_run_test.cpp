@@ -1,0 +1,109 @@
+// captureScene(): one frame or a sequence behind one call, progress over the whole run;
+// CaptureRunWriter: a sequence's frames and camera exports, one frame's files alone.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "integrator/capture/capture_run.h"
+#include "integrator/scene/scene_loader.h"
+
+namespace camsim {
+namespace {
+
+// A 40×24 image of a lit sphere (3 tiles of 16×16 across, 2 down); `frames` adds a
+// frames block of that many frames.
+SceneDescription tinyScene(int frames) {
+  std::string text =
+      "name: tiny\n"
+      "camera: {position: [0, 0, 0], look_at: [0, 0, 1], resolution: [40, 24]}\n"
+      "render: {spp: 1, max_depth: 1}\n"
+      "materials: {white: {type: diffuse, reflectance: 0.8}}\n"
+      "shapes: [{type: sphere, centre: [0, 0, 3], radius: 0.5, material: white}]\n"
+      "lights: [{type: point, position: [0, 0, 0], intensity: 50}]\n";
+  if (frames > 0)
+    text += "frames: {count: " + std::to_string(frames) + ", rate_hz: 10, shutter_angle_deg: 36}\n";
+  return loadSceneFromText(text, "tiny.yaml", ".");
+}
+
+struct RunLog {
+  std::vector<int> frames;                     // k of each onFrame, in order
+  std::vector<std::pair<int, int>> progress;   // (done, total) as reported
+  SequenceSummary summary;
+};
+
+RunLog runScene(int frames) {
+  RunLog r;
+  CaptureOptions options;
+  options.threads = 1;  // one thread: progress is reported in order
+  options.progress = [&r](int done, int total) { r.progress.emplace_back(done, total); };
+  r.summary = captureScene(tinyScene(frames), options,
+                           [&r](CaptureResult&& c, int k) {
+                             EXPECT_FALSE(c.cancelled);
+                             r.frames.push_back(k);
+                           });
+  return r;
+}
+
+TEST(CaptureScene, OneFrameIsOneCaptureHandedOnAsFrameZero) {
+  const RunLog r = runScene(0);
+  EXPECT_EQ(r.frames, (std::vector<int>{0}));
+  EXPECT_EQ(r.summary.frames, 1);
+  EXPECT_EQ(r.summary.rendered, 1);
+  EXPECT_FALSE(r.summary.cancelled);
+  ASSERT_FALSE(r.progress.empty());
+  EXPECT_EQ(r.progress.back(), std::make_pair(6, 6));  // 3 × 2 tiles
+}
+
+// Frame k's tile d of T is reported as k·T + d of count·T: one count from 0 to the end,
+// never going back (fails if each frame restarted at 0 or the total were per frame).
+TEST(CaptureScene, ASequenceReportsProgressOverAllItsFrames) {
+  const RunLog r = runScene(3);
+  EXPECT_EQ(r.frames, (std::vector<int>{0, 1, 2}));
+  EXPECT_EQ(r.summary.frames, 3);
+  ASSERT_FALSE(r.progress.empty());
+  int last = -1;
+  for (const auto& [done, total] : r.progress) {
+    EXPECT_EQ(total, 18);
+    EXPECT_GE(done, last);
+    last = done;
+  }
+  EXPECT_EQ(r.progress.back().first, 18);
+}
+
+TEST(CaptureRunWriter, ASequenceWritesItsFramesThenItsCameraExports) {
+  const std::filesystem::path dir =
+      std::filesystem::path(::testing::TempDir()) / "capture_run_writer_sequence";
+  std::filesystem::remove_all(dir);
+  CaptureOutputOptions out;
+  out.directory = dir;
+  out.reproducible = true;
+  CaptureRunWriter writer(out, true);
+  captureScene(tinyScene(2), {}, [&](CaptureResult&& c, int) { writer.write(c); });
+  const std::size_t frameFiles = writer.files().size();
+  const std::vector<std::filesystem::path> exports = writer.finish();
+  EXPECT_FALSE(exports.empty());
+  EXPECT_EQ(writer.files().size(), frameFiles + exports.size());
+  EXPECT_TRUE(std::filesystem::exists(dir / "tiny_0000.exr"));
+  EXPECT_TRUE(std::filesystem::exists(dir / "tiny_0001.exr"));
+  EXPECT_TRUE(std::filesystem::exists(dir / "cameras.json"));
+}
+
+TEST(CaptureRunWriter, OneFrameHasNoCameraExports) {
+  const std::filesystem::path dir =
+      std::filesystem::path(::testing::TempDir()) / "capture_run_writer_one";
+  std::filesystem::remove_all(dir);
+  CaptureOutputOptions out;
+  out.directory = dir;
+  out.reproducible = true;
+  CaptureRunWriter writer(out, false);
+  captureScene(tinyScene(0), {}, [&](CaptureResult&& c, int) { writer.write(c); });
+  EXPECT_TRUE(writer.finish().empty());
+  EXPECT_TRUE(std::filesystem::exists(dir / "tiny.exr"));
+  EXPECT_FALSE(std::filesystem::exists(dir / "cameras.json"));
+}
+
+}  // namespace
+}  // namespace camsim
