@@ -1,9 +1,10 @@
 #include "cli/args.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 
-#include "integrator/scene/scene_loader.h"
+#include "sensor/base/input_error.h"
 
 namespace camsim {
 namespace {
@@ -18,6 +19,20 @@ double parsePositive(const std::string& flag, const std::string& text, double hi
   return v;
 }
 
+// The override flags' lines of the usage text, from overrides.h's table.
+std::string overrideUsageLines() {
+  std::string out;
+  for (const OverrideSetting& s : overrideSettings()) {
+    std::string left = "  " + overrideFlag(s) + " " + std::string(s.valueName);
+    left.resize(std::max<std::size_t>(left.size() + 1, 21), ' ');
+    std::string range = overrideRangeText(s);
+    out += left + std::string(s.help) + "\n" + std::string(21, ' ') +
+           (s.type == OverrideType::kInteger || s.type == OverrideType::kNumber ? "range " : "") +
+           range + "\n";
+  }
+  return out;
+}
+
 // "k/M" with 0 ≤ k < M.
 std::pair<int, int> parseTiles(const std::string& flag, const std::string& text) {
   const std::size_t slash = text.find('/');
@@ -29,6 +44,23 @@ std::pair<int, int> parseTiles(const std::string& flag, const std::string& text)
 }
 
 }  // namespace
+
+const OverrideSetting* overrideOfFlag(const std::string& flag) {
+  if (flag == "--exposure-time") return findOverrideSetting("exposure_time_s");  // its old name
+  for (const OverrideSetting& s : overrideSettings())
+    if (overrideFlag(s) == flag) return &s;
+  return nullptr;
+}
+
+void parseOverride(Overrides& o, const OverrideSetting& setting, const std::string& flag,
+                   const std::string& text) {
+  try {
+    const OverrideSource source{SourceLocation{"", 0, 0}, flag};
+    setOverrideText(o, setting, text, source);
+  } catch (const InputError& e) {
+    throw UsageError(flag + ": " + e.message());
+  }
+}
 
 std::int64_t parseInteger(const std::string& flag, const std::string& text, std::int64_t lo,
                           std::int64_t hi) {
@@ -46,9 +78,10 @@ std::string usageText() {
   return "camsim — camera-sensor physically based image simulator\n"
          "\n"
          "usage:\n"
-         "  camsim render [SCENE] [-o DIR] [--spp N] [--seed N] [--threads N]\n"
-         "                [--max-memory-gb X] [--exposure-time S] [--f-number N] [--iso N]\n"
-         "                [--noise none|photon|full] [--noise-seed N]\n"
+         "  camsim render [SCENE] [-o DIR] [--threads N] [--max-memory-gb X]\n"
+         "                [--spp N] [--seed N] [--exposure-time-s S] [--f-number N] [--iso N]\n"
+         "                [--noise none|photon|full] [--noise-seed N] [--sensor MODEL]\n"
+         "                [--pose POSE]\n"
          "                [--ocio-config FILE] [--display D] [--view V] [--look L]\n"
          "                [--aov-previews] [--reproducible] [--tiles k/M]\n"
          "  camsim merge PART... [-o DIR] [--scene FILE] [--ocio-config FILE] [--display D]\n"
@@ -68,16 +101,10 @@ std::string usageText() {
          "                    files the scene loader read (input_files)\n"
          "        and with a sensor in the scene also NAME.dng, NAME_raw.exr (raw DN + electrons)\n"
          "        and NAME_acescg.exr (the developed scene-linear ACEScg image)\n"
-         "  -o, --output DIR   output directory (created if missing)\n"
-         "  --spp N            samples per pixel (overrides the scene's render.spp)\n"
-         "  --seed N           render seed (overrides render.seed)\n"
+         "  -o, --output DIR   output directory (created if missing)\n" +
+         overrideUsageLines() +
          "  --threads N        worker threads (default: all cores); the image does not depend on "
          "it\n"
-         "  --exposure-time S  effective exposure time in seconds (stretches the scene's shutter)\n"
-         "  --f-number N       lens f-number (overrides camera.f_number)\n"
-         "  --iso N            sensor ISO (scenes with a sensor)\n"
-         "  --noise MODE       sensor noise: none, photon or full (scenes with a sensor)\n"
-         "  --noise-seed N     seed of the sensor's temporal noise\n"
          "  --ocio-config FILE OpenColorIO config for the PNG (default: $OCIO, else "
          "luts/config.ocio)\n"
          "  --display D, --view V, --look L   output transform (default: the config's sRGB,\n"
@@ -121,25 +148,12 @@ Command parseArgs(const std::vector<std::string>& args) {
     } else if (a == "-o" || a == "--output") {
       r.outputDir = value();
       if (r.outputDir.empty()) throw UsageError(a + " needs a non-empty directory");
-    } else if (a == "--spp") {
-      r.spp = static_cast<int>(parseInteger(a, value(), 1, SceneLimits::kMaxSpp));
-    } else if (a == "--seed") {
-      r.seed = static_cast<std::uint64_t>(parseInteger(a, value(), 0, INT64_MAX));
+    } else if (const OverrideSetting* o = overrideOfFlag(a)) {
+      parseOverride(r.overrides, *o, a, value());
     } else if (a == "--threads") {
       r.threads = static_cast<int>(parseInteger(a, value(), 1, 1024));
     } else if (a == "--max-memory-gb") {
       r.maxMemoryGb = parsePositive(a, value(), 1e9);
-    } else if (a == "--exposure-time") {
-      r.exposureTimeS = parsePositive(a, value(), 1e6);
-    } else if (a == "--f-number") {
-      r.fNumber = parsePositive(a, value(), 1e4);
-    } else if (a == "--iso") {
-      r.iso = parsePositive(a, value(), 1e7);
-    } else if (a == "--noise") {
-      const std::string mode = value();
-      r.noise = noiseModeFromName(mode);
-      if (!r.noise)
-        throw UsageError("--noise must be one of " + noiseModeNames() + ", got '" + mode + "'");
     } else if (a == "--ocio-config") {
       r.ocioConfig = value();
     } else if (a == "--display") {
@@ -154,8 +168,6 @@ Command parseArgs(const std::vector<std::string>& args) {
       r.reproducible = true;
     } else if (a == "--tiles") {
       r.tiles = parseTiles(a, value());
-    } else if (a == "--noise-seed") {
-      r.noiseSeed = static_cast<std::uint64_t>(parseInteger(a, value(), 0, INT64_MAX));
     } else if (!a.empty() && a[0] == '-') {
       throw UsageError("unknown option '" + a + "' (try 'camsim --help')");
     } else if (!r.scene) {

@@ -2,7 +2,6 @@
 #include "cli/merge_command.h"
 
 #include <ostream>
-#include <sstream>
 
 #include "cli/args.h"
 #include "cli/progress.h"
@@ -13,26 +12,6 @@
 #include "sensor/io/output_set.h"
 
 namespace camsim {
-namespace {
-
-// The render's overrides as the part recorded them (render flags) back into RenderArgs.
-RenderArgs renderArgsOf(const AssembledTiles& tiles) {
-  std::vector<std::string> words = {"render"};
-  std::istringstream in(tiles.header.overrides);
-  for (std::string w; in >> w;) words.push_back(w);
-  try {
-    const Command cmd = parseArgs(words);
-    if (cmd.kind != Command::Kind::kRender) throw UsageError("not render flags");
-    if (cmd.render.scene) throw UsageError("a scene among the flags");
-    return cmd.render;
-  } catch (const UsageError& e) {
-    throw InputError({tiles.files.front().string(), 0, 0}, "camsim:overrides",
-                     "unreadable overrides '" + tiles.header.overrides + "': " + e.what());
-  }
-}
-
-}  // namespace
-
 std::string mergeUsageText() {
   return "usage: camsim merge PART... [-o DIR] [--scene FILE] [--ocio-config FILE]\n"
          "                    [--display D] [--view V] [--look L] [--aov-previews]\n"
@@ -92,7 +71,8 @@ std::vector<std::filesystem::path> runMerge(const MergeArgs& args, std::ostream&
   const std::vector<std::filesystem::path> files(args.parts.begin(), args.parts.end());
   AssembledTiles tiles = assembleTileParts(files);
   const TilePartHeader header = tiles.header;  // kept: the tiles move into the capture
-  RenderArgs render = renderArgsOf(tiles);
+  RenderArgs render;
+  render.overrides = header.overrides;  // as the parts recorded them (data, not flags)
   if (args.scene)
     render.scene = *args.scene;
   else if (header.scene != kDefaultSceneName)
