@@ -37,10 +37,14 @@ struct RenderArgs {
 struct Command {
   enum class Kind { kHelp, kVersion, kRender } kind = Kind::kHelp;
   RenderArgs render;
+  std::string help;  // kHelp of a command (render --help): its text; empty: usageText()
 };
 
 Command parseArgs(const std::vector<std::string>& args);  // args without argv[0]
+// `camsim --help`: every command with its summary (cli/command_line.h).
 std::string usageText();
+// `camsim render --help`, from render's option table.
+std::string renderUsageText();
 // An integer flag value in [lo, hi]; UsageError naming the flag otherwise.
 std::int64_t parseInteger(const std::string& flag, const std::string& text, std::int64_t lo,
                           std::int64_t hi);

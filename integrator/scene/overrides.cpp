@@ -16,29 +16,43 @@ namespace {
 
 namespace R = setting_ranges;
 
+OverrideSetting integerSetting(std::string_view key, std::string_view sceneKey,
+                               std::string_view help, IntegerRange range) {
+  OverrideSetting s{key, sceneKey, "", "N", help, OverrideType::kInteger};
+  s.integers = range;
+  return s;
+}
+
+OverrideSetting numberSetting(std::string_view key, std::string_view sceneKey,
+                              std::string_view unit, std::string_view valueName,
+                              std::string_view help, SettingRange range) {
+  OverrideSetting s{key, sceneKey, unit, valueName, help, OverrideType::kNumber};
+  s.numbers = range;
+  return s;
+}
+
 const std::vector<OverrideSetting> kSettings = {
-    {"sensor", "sensor.model", "", "MODEL",
-     "sensor preset or sensor file (replaces the scene's sensor; ISO at its base ISO)",
-     OverrideType::kSensor},
-    {"spp", "render.spp", "", "N", "samples per pixel (overrides the scene's render.spp)",
-     OverrideType::kInteger, R::kSpp},
-    {"seed", "render.seed", "", "N", "render seed (overrides render.seed)", OverrideType::kInteger,
-     R::kSeed},
-    {"exposure_time_s", "camera.shutter", "s", "S",
-     "effective exposure time in seconds (stretches the scene's shutter)", OverrideType::kNumber,
-     {}, R::kExposureTimeS},
-    {"f_number", "camera.f_number", "", "N", "lens f-number (overrides camera.f_number)",
-     OverrideType::kNumber, {}, R::kFNumber},
-    {"iso", "sensor.iso", "", "N", "sensor ISO (scenes with a sensor)", OverrideType::kNumber, {},
-     R::kIso},
-    {"noise", "sensor.noise", "", "MODE", "sensor noise (scenes with a sensor)",
-     OverrideType::kNoise},
-    {"noise_seed", "sensor.noise_seed", "", "N", "seed of the sensor's temporal noise",
-     OverrideType::kInteger, R::kNoiseSeed},
-    {"pose", "camera.world_from_camera", "m", "POSE",
-     "camera pose: px,py,pz,lx,ly,lz,ux,uy,uz (position, look_at, up) or 16 numbers "
-     "(world_from_camera, row-major)",
-     OverrideType::kPose},
+    OverrideSetting{
+        "sensor", "sensor.model", "", "MODEL",
+        "sensor preset or sensor file (replaces the scene's sensor; ISO at its base ISO)",
+        OverrideType::kSensor},
+    integerSetting("spp", "render.spp", "samples per pixel (overrides the scene's render.spp)",
+                   R::kSpp),
+    integerSetting("seed", "render.seed", "render seed (overrides render.seed)", R::kSeed),
+    numberSetting("exposure_time_s", "camera.shutter", "s", "S",
+                  "effective exposure time in seconds (stretches the scene's shutter)",
+                  R::kExposureTimeS),
+    numberSetting("f_number", "camera.f_number", "", "N",
+                  "lens f-number (overrides camera.f_number)", R::kFNumber),
+    numberSetting("iso", "sensor.iso", "", "N", "sensor ISO (scenes with a sensor)", R::kIso),
+    OverrideSetting{"noise", "sensor.noise", "", "MODE", "sensor noise (scenes with a sensor)",
+                    OverrideType::kNoise},
+    integerSetting("noise_seed", "sensor.noise_seed", "seed of the sensor's temporal noise",
+                   R::kNoiseSeed),
+    OverrideSetting{"pose", "camera.world_from_camera", "m", "POSE",
+                    "camera pose: px,py,pz,lx,ly,lz,ux,uy,uz (position, look_at, up) or 16 "
+                    "numbers (world_from_camera, row-major)",
+                    OverrideType::kPose},
 };
 
 // Shortest round-trip decimal: from_chars reads back exactly this double.
@@ -75,8 +89,8 @@ std::vector<double> readNumbers(std::string_view text, const OverrideSource& sou
   std::size_t start = 0;
   while (true) {
     const std::size_t comma = text.find(',', start);
-    std::string_view item = text.substr(start, comma == std::string_view::npos ? text.npos
-                                                                                 : comma - start);
+    std::string_view item =
+        text.substr(start, comma == std::string_view::npos ? text.npos : comma - start);
     while (!item.empty() && item.front() == ' ') item.remove_prefix(1);
     while (!item.empty() && item.back() == ' ') item.remove_suffix(1);
     out.push_back(readNumber(item, source));
@@ -98,9 +112,10 @@ PoseOverride readPose(std::string_view text, const OverrideSource& source) {
       for (int col = 0; col < 4; ++col) m[col][row] = v[static_cast<std::size_t>(row * 4 + col)];
     p.worldFromCamera = m;
   } else {
-    fail(source, "expected 9 numbers (position, look_at, up) or 16 (world_from_camera, "
-                 "row-major), got " +
-                     std::to_string(v.size()));
+    fail(source,
+         "expected 9 numbers (position, look_at, up) or 16 (world_from_camera, "
+         "row-major), got " +
+             std::to_string(v.size()));
   }
   return p;
 }
@@ -199,11 +214,16 @@ std::string overrideFlag(const OverrideSetting& setting) {
 
 std::string overrideRangeText(const OverrideSetting& s) {
   switch (s.type) {
-    case OverrideType::kInteger: return s.integers.text();
-    case OverrideType::kNumber: return s.numbers.text();
-    case OverrideType::kNoise: return noiseModeNames();
-    case OverrideType::kSensor: return "a preset name or a sensor file";
-    case OverrideType::kPose: return "9 or 16 comma-separated numbers";
+    case OverrideType::kInteger:
+      return s.integers.text();
+    case OverrideType::kNumber:
+      return s.numbers.text();
+    case OverrideType::kNoise:
+      return noiseModeNames();
+    case OverrideType::kSensor:
+      return "a preset name or a sensor file";
+    case OverrideType::kPose:
+      return "9 or 16 comma-separated numbers";
   }
   return "";
 }
@@ -233,19 +253,20 @@ void setOverrideText(Overrides& o, const OverrideSetting& s, std::string_view te
     case OverrideType::kInteger: {
       std::int64_t v = 0;
       const auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
-      if (ec == std::errc::result_out_of_range)
-        outOfRange(s, std::string(text), source);
+      if (ec == std::errc::result_out_of_range) outOfRange(s, std::string(text), source);
       if (ec != std::errc() || ptr != text.data() + text.size() || text.empty())
         fail(source, "'" + std::string(text) + "' is not an integer");
       setOverrideInteger(o, s, v, source);
       return;
     }
-    case OverrideType::kNumber: setOverrideNumber(o, s, readNumber(text, source), source); return;
+    case OverrideType::kNumber:
+      setOverrideNumber(o, s, readNumber(text, source), source);
+      return;
     case OverrideType::kNoise: {
       const std::optional<NoiseMode> m = noiseModeFromName(std::string(text));
       if (!m)
-        fail(source, "unknown noise mode '" + std::string(text) + "' (known: " +
-                         noiseModeNames() + ")");
+        fail(source,
+             "unknown noise mode '" + std::string(text) + "' (known: " + noiseModeNames() + ")");
       o.noise = *m;
       return;
     }
@@ -253,7 +274,9 @@ void setOverrideText(Overrides& o, const OverrideSetting& s, std::string_view te
       if (text.empty()) fail(source, "expected a sensor preset name or file");
       o.sensor = std::string(text);
       return;
-    case OverrideType::kPose: o.pose = readPose(text, source); return;
+    case OverrideType::kPose:
+      o.pose = readPose(text, source);
+      return;
   }
 }
 
@@ -279,8 +302,9 @@ void applyOverrides(SceneDescription& d, const Overrides& o, const SourceLocatio
   if (o.exposureTimeS)
     d.camera.shutter = d.camera.shutter.scaled(*o.exposureTimeS / d.camera.shutter.effectiveTime());
   if (o.fNumber) d.camera.fNumber = *o.fNumber;  // the stop follows (apertureDiameter)
-  const std::pair<std::string_view, bool> needSensor[] = {
-      {"iso", o.iso.has_value()}, {"noise", o.noise.has_value()}, {"noise_seed", o.noiseSeed.has_value()}};
+  const std::pair<std::string_view, bool> needSensor[] = {{"iso", o.iso.has_value()},
+                                                          {"noise", o.noise.has_value()},
+                                                          {"noise_seed", o.noiseSeed.has_value()}};
   for (const auto& [key, given] : needSensor)
     if (given && !d.sensor)
       throw InputError(where, std::string(setting(key).sceneKey),
@@ -317,7 +341,8 @@ Overrides parseOverridesText(const std::string& text, const std::string& file) {
     if (line.empty()) continue;
     const SourceLocation where{file, lineNumber, 0};
     const std::size_t eq = line.find('=');
-    if (eq == std::string::npos) throw InputError(where, "", "expected key=value, got '" + line + "'");
+    if (eq == std::string::npos)
+      throw InputError(where, "", "expected key=value, got '" + line + "'");
     const std::string key = line.substr(0, eq);
     const OverrideSetting* s = findOverrideSetting(key);
     if (s == nullptr) throw InputError(where, key, "unknown override");

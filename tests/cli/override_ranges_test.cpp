@@ -15,8 +15,8 @@
 #include <charconv>
 #include <cmath>
 #include <limits>
-#include <tuple>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "cli/args.h"
@@ -77,8 +77,10 @@ std::vector<Case> boundaryCases() {
       const SettingRange r = s.numbers;
       const double inf = std::numeric_limits<double>::infinity();
       out.push_back({&s, shortest(r.lo), !r.loOpen});
-      if (r.loOpen) out.push_back({&s, shortest(std::nextafter(r.lo, inf)), true});
-      else out.push_back({&s, shortest(std::nextafter(r.lo, -inf)), false});
+      if (r.loOpen)
+        out.push_back({&s, shortest(std::nextafter(r.lo, inf)), true});
+      else
+        out.push_back({&s, shortest(std::nextafter(r.lo, -inf)), false});
       out.push_back({&s, shortest(r.hi), true});
       out.push_back({&s, shortest(std::nextafter(r.hi, inf)), false});
     }
@@ -145,10 +147,11 @@ TEST(OverrideRanges, ManifestAgreesWithTheTable) {
   for (const Case& c : boundaryCases()) {
     // The scene key a manifest sets; an exposure time T is a shutter open from 0 to T.
     const std::string key = c.setting->key == "exposure_time_s" ? "camera.shutter.close"
-                                                                 : std::string(c.setting->sceneKey);
-    const std::string text = "format: camsim-dataset/1\nscene: base.yaml\nseeds: fixed\n"
-                             "items:\n  - {" +
-                             key + ": " + c.text + "}\n";
+                                                                : std::string(c.setting->sceneKey);
+    const std::string text =
+        "format: camsim-dataset/1\nscene: base.yaml\nseeds: fixed\n"
+        "items:\n  - {" +
+        key + ": " + c.text + "}\n";
     bool accepted = true;
     try {
       const Manifest m = parseManifest(text, "m.yaml", dir.path());
@@ -167,11 +170,11 @@ TEST(OverrideRanges, BinaryAgreesWithTheTable) {
   test::writeFile(dir.path() / "probe.yaml", kScene);
   for (const Case& c : boundaryCases()) {
     const std::string flag = overrideFlag(*c.setting);
-    const test::RunResult r = test::runCamsim(
-        "render " + test::quote((dir.path() / "probe.yaml").string()) + " -o " +
-            test::quote((dir.path() / "out").string()) + " --max-memory-gb 1e-9 " + flag + " " +
-            test::quote(c.text),
-        dir.path());
+    const test::RunResult r =
+        test::runCamsim("render " + test::quote((dir.path() / "probe.yaml").string()) + " -o " +
+                            test::quote((dir.path() / "out").string()) + " --max-memory-gb 1e-9 " +
+                            flag + " " + test::quote(c.text),
+                        dir.path());
     EXPECT_EQ(r.exitCode, 2) << describe(c) << r.err;
     const bool accepted = r.err.find("estimated") != std::string::npos;
     EXPECT_EQ(accepted, c.accepted) << describe(c) << "\n" << r.err;
@@ -189,10 +192,10 @@ TEST(OverrideRanges, IssueExamplesExitTwoNamingFlagAndRange) {
   for (const auto& [flag, value, range] :
        {std::tuple<std::string, std::string, std::string>{"--f-number", "0.3", "[0.5, 10000]"},
         {"--iso", "0.5", "[1, 10000000]"}}) {
-    const test::RunResult r = test::runCamsim(
-        "render " + test::quote((dir.path() / "probe.yaml").string()) + " -o " +
-            test::quote((dir.path() / "out").string()) + " " + flag + " " + value,
-        dir.path());
+    const test::RunResult r =
+        test::runCamsim("render " + test::quote((dir.path() / "probe.yaml").string()) + " -o " +
+                            test::quote((dir.path() / "out").string()) + " " + flag + " " + value,
+                        dir.path());
     EXPECT_EQ(r.exitCode, 2) << r.err;
     EXPECT_NE(r.err.find(flag + ": value " + value + " is out of range " + range),
               std::string::npos)

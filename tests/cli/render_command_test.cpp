@@ -68,7 +68,7 @@ TEST(ParseArgs, HelpAndVersion) {
   EXPECT_EQ(parseArgs({"-h"}).kind, Command::Kind::kHelp);
   EXPECT_EQ(parseArgs({"render", "--help"}).kind, Command::Kind::kHelp);
   EXPECT_EQ(parseArgs({"--version"}).kind, Command::Kind::kVersion);
-  EXPECT_NE(usageText().find("usage:"), std::string::npos);
+  EXPECT_NE(usageText().find("Usage:"), std::string::npos);
 }
 
 TEST(ParseArgs, BadUsageThrows) {
@@ -111,8 +111,22 @@ TEST(CamsimBinary, HelpAndVersion) {
   TempDir dir;
   RunResult r = camsim("--help", dir.path());
   EXPECT_EQ(r.exitCode, 0) << r.err;
-  EXPECT_NE(r.out.find("usage:"), std::string::npos) << r.out;
-  EXPECT_NE(r.out.find("camsim render"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("Usage:"), std::string::npos) << r.out;
+  // Every command is listed (issue 35: dataset was missing).
+  for (const char* command : {"render", "merge", "dataset", "ptc", "bench"})
+    EXPECT_NE(r.out.find(std::string("  ") + command + " "), std::string::npos) << command << r.out;
+  // Each command's --help comes from its option table: every override flag, with its range.
+  r = camsim("render --help", dir.path());
+  EXPECT_EQ(r.exitCode, 0) << r.err;
+  for (const OverrideSetting& s : overrideSettings())
+    EXPECT_NE(r.out.find(overrideFlag(s)), std::string::npos) << s.key << r.out;
+  EXPECT_NE(r.out.find("[0.5, 10000]"), std::string::npos) << r.out;
+  for (const char* command : {"merge", "dataset", "ptc"}) {
+    r = camsim(std::string(command) + " --help", dir.path());
+    EXPECT_EQ(r.exitCode, 0) << command << r.err;
+    EXPECT_NE(r.out.find(std::string("camsim ") + command), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("--output"), std::string::npos) << r.out;
+  }
   r = camsim("--version", dir.path());
   EXPECT_EQ(r.exitCode, 0) << r.err;
   EXPECT_EQ(r.out, "camsim 0.1.0\n");
