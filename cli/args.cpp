@@ -1,9 +1,12 @@
 #include "cli/args.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <memory>
 
-#include "integrator/scene/scene_loader.h"
+#include "cli/command_line.h"
+#include "sensor/base/input_error.h"
 
 namespace camsim {
 namespace {
@@ -30,6 +33,23 @@ std::pair<int, int> parseTiles(const std::string& flag, const std::string& text)
 
 }  // namespace
 
+const OverrideSetting* overrideOfFlag(const std::string& flag) {
+  if (flag == "--exposure-time") return findOverrideSetting("exposure_time_s");  // its old name
+  for (const OverrideSetting& s : overrideSettings())
+    if (overrideFlag(s) == flag) return &s;
+  return nullptr;
+}
+
+void parseOverride(Overrides& o, const OverrideSetting& setting, const std::string& flag,
+                   const std::string& text) {
+  try {
+    const OverrideSource source{SourceLocation{"", 0, 0}, flag};
+    setOverrideText(o, setting, text, source);
+  } catch (const InputError& e) {
+    throw UsageError(flag + ": " + e.message());
+  }
+}
+
 std::int64_t parseInteger(const std::string& flag, const std::string& text, std::int64_t lo,
                           std::int64_t hi) {
   std::int64_t value = 0;
@@ -42,59 +62,93 @@ std::int64_t parseInteger(const std::string& flag, const std::string& text, std:
   return value;
 }
 
+namespace {
+
+// Every command, in the order `camsim --help` lists them, with its one-line summary (each
+// command's own --help starts with the same line).
+struct CommandSummary {
+  const char* name;
+  const char* summary;
+};
+constexpr CommandSummary kCommands[] = {
+    {"render",
+     "renders a scene (or the built-in Cornell box) into EXR, PNG, JSON and, with a "
+     "sensor, DNG and raw files"},
+    {"merge",
+     "assembles the tile parts of `camsim render --tiles k/M` into what one render "
+     "writes"},
+    {"dataset",
+     "renders the items of a dataset manifest (grids, random draws), sharded and "
+     "resumable"},
+    {"ptc", "EMVA 1288 photon-transfer measurement of a sensor"},
+    {"bench", "speed against error of the renderer on reference scenes"},
+};
+
+std::unique_ptr<CLI::App> renderApp(RenderArgs& r) {
+  auto app = newCommandApp("render", std::string(kCommands[0].summary) + ".");
+  app->add_option_function<std::string>(
+         "scene", [&r](const std::string& s) { r.scene = s; },
+         "scene file, YAML or JSON (docs/scene-format.md); none: the built-in Cornell box")
+      ->type_name("SCENE");
+  addOutputOption(*app, r.outputDir, "output directory (created if missing; default: out)");
+  app->add_option_function<std::string>(
+         "--threads",
+         [&r](const std::string& t) {
+           r.threads = static_cast<int>(parseInteger("--threads", t, 1, 1024));
+         },
+         "worker threads (default: all cores); the image does not depend on it")
+      ->type_name("N");
+  app->add_option_function<std::string>(
+         "--max-memory-gb",
+         [&r](const std::string& t) { r.maxMemoryGb = parsePositive("--max-memory-gb", t, 1e9); },
+         "refuse to start a render whose estimated memory exceeds X GB (default: 75 % of "
+         "physical memory)")
+      ->type_name("X");
+  addOverrideOptions(*app, r.overrides);
+  addPictureOptions(*app, r.ocioConfig, r.display, r.view, r.look);
+  app->add_flag("--aov-previews", r.aovPreviews,
+                "also write NAME_<layer>.png false-colour quick looks of the scene's "
+                "ground-truth layers (depth, normal, ids, motion…)");
+  app->add_flag("--reproducible", r.reproducible,
+                "leave the render time out of NAME.exr and NAME.json, so that the same scene, "
+                "seed and build give the same bytes in every file");
+  app->add_option_function<std::string>(
+         "--tiles", [&r](const std::string& t) { r.tiles = parseTiles("--tiles", t); },
+         "render only share k of M of the image's 16x16 tiles (those t with t % M == k) and "
+         "write just DIR/NAME.part-k-of-M.exr; camsim merge PART... assembles the M parts "
+         "(docs/output.md)")
+      ->type_name("k/M");
+  app->footer(
+      "Writes into DIR:\n"
+      "  NAME.exr   scene-linear OpenEXR: R,G,B linear Rec.709 and XYZ.X/Y/Z, absolute units\n"
+      "             (energy per photosite, Y in lm·s), with metadata\n"
+      "  NAME.png   the picture through OpenColorIO (display/view/look)\n"
+      "  NAME.json  every camera, sensor, ISP and colour setting used, and the files the\n"
+      "             scene loader read (input_files)\n"
+      "and with a sensor in the scene also NAME.dng, NAME_raw.exr (raw DN + electrons) and\n"
+      "NAME_acescg.exr (the developed scene-linear ACEScg image).\n"
+      "Exit codes: 0 success, 1 internal error, 2 bad input (scene, files or arguments),\n"
+      "130 interrupted.");
+  return app;
+}
+
+}  // namespace
+
 std::string usageText() {
-  return "camsim — camera-sensor physically based image simulator\n"
-         "\n"
-         "usage:\n"
-         "  camsim render [SCENE] [-o DIR] [--spp N] [--seed N] [--threads N]\n"
-         "                [--max-memory-gb X] [--exposure-time S] [--f-number N] [--iso N]\n"
-         "                [--noise none|photon|full] [--noise-seed N]\n"
-         "                [--ocio-config FILE] [--display D] [--view V] [--look L]\n"
-         "                [--aov-previews] [--reproducible] [--tiles k/M]\n"
-         "  camsim merge PART... [-o DIR] [--scene FILE] [--ocio-config FILE] [--display D]\n"
-         "               [--view V] [--look L] [--aov-previews]\n"
-         "                                          (render --tiles parts: camsim merge --help)\n"
-         "  camsim ptc SENSOR [-o DIR] [--seed N]   (photon transfer: camsim ptc --help)\n"
-         "  camsim bench [--quick] [--out DIR] [--scenes a,b] [--max-spp N] ...\n"
-         "                                          (speed against error: camsim bench --help)\n"
-         "  camsim --help | --version\n"
-         "\n"
-         "render  renders SCENE (YAML or JSON, see docs/scene-format.md), or the built-in\n"
-         "        Cornell box when no SCENE is given, and writes into DIR (default: out/):\n"
-         "          NAME.exr  scene-linear OpenEXR: R,G,B linear Rec.709 and XYZ.X/Y/Z, absolute\n"
-         "                    units (energy per photosite, Y in lm·s), with metadata\n"
-         "          NAME.png  the picture through OpenColorIO (display/view/look below)\n"
-         "          NAME.json every camera, sensor, ISP and colour setting used, and the\n"
-         "                    files the scene loader read (input_files)\n"
-         "        and with a sensor in the scene also NAME.dng, NAME_raw.exr (raw DN + electrons)\n"
-         "        and NAME_acescg.exr (the developed scene-linear ACEScg image)\n"
-         "  -o, --output DIR   output directory (created if missing)\n"
-         "  --spp N            samples per pixel (overrides the scene's render.spp)\n"
-         "  --seed N           render seed (overrides render.seed)\n"
-         "  --threads N        worker threads (default: all cores); the image does not depend on "
-         "it\n"
-         "  --exposure-time S  effective exposure time in seconds (stretches the scene's shutter)\n"
-         "  --f-number N       lens f-number (overrides camera.f_number)\n"
-         "  --iso N            sensor ISO (scenes with a sensor)\n"
-         "  --noise MODE       sensor noise: none, photon or full (scenes with a sensor)\n"
-         "  --noise-seed N     seed of the sensor's temporal noise\n"
-         "  --ocio-config FILE OpenColorIO config for the PNG (default: $OCIO, else "
-         "luts/config.ocio)\n"
-         "  --display D, --view V, --look L   output transform (default: the config's sRGB,\n"
-         "                     'ACES 1.0 - SDR Video', no look; see docs/color-management.md)\n"
-         "  --aov-previews     also write NAME_<layer>.png false-colour quick looks of the\n"
-         "                     scene's ground-truth layers (depth, normal, ids, motion…)\n"
-         "  --max-memory-gb X  refuse to start a render whose estimated memory exceeds X GB\n"
-         "                     (default: 75 % of physical memory)\n"
-         "  --reproducible     leave the render time out of NAME.exr and NAME.json, so that the\n"
-         "                     same scene, seed and build give the same bytes in every file\n"
-         "  --tiles k/M        render only share k of M of the image's 16x16 tiles (those t\n"
-         "                     with t % M == k) and write just DIR/NAME.part-k-of-M.exr;\n"
-         "                     camsim merge PART... assembles the M parts and writes exactly\n"
-         "                     what render --reproducible writes (docs/output.md)\n"
-         "\n"
-         "exit codes: 0 success, 1 internal error, 2 bad input (scene, files or arguments),\n"
-         "            130 interrupted\n";
+  CLI::App app("camsim — camera-sensor physically based image simulator", "camsim");
+  app.set_help_flag("-h,--help", "print this help and exit");
+  app.add_flag("--version")->description("print the version and exit");
+  for (const CommandSummary& c : kCommands) app.add_subcommand(c.name, c.summary);
+  app.footer(
+      "camsim COMMAND --help prints the command's options (generated from its option table).\n"
+      "Exit codes: 0 success, 1 internal error, 2 bad input (scene, files or arguments),\n"
+      "128 + signal when interrupted (130 SIGINT, 143 SIGTERM).");
+  return app.help();
+}
+
+std::string renderUsageText() {
+  RenderArgs r;
+  return commandHelp(*renderApp(r));
 }
 
 Command parseArgs(const std::vector<std::string>& args) {
@@ -109,60 +163,11 @@ Command parseArgs(const std::vector<std::string>& args) {
   if (first != "render") throw UsageError("unknown command '" + first + "' (try 'camsim --help')");
   cmd.kind = Command::Kind::kRender;
   RenderArgs& r = cmd.render;
-  for (size_t i = 1; i < args.size(); ++i) {
-    const std::string& a = args[i];
-    auto value = [&]() -> const std::string& {
-      if (i + 1 >= args.size()) throw UsageError(a + " needs a value");
-      return args[++i];
-    };
-    if (a == "--help" || a == "-h") {
-      cmd.kind = Command::Kind::kHelp;
-      return cmd;
-    } else if (a == "-o" || a == "--output") {
-      r.outputDir = value();
-      if (r.outputDir.empty()) throw UsageError(a + " needs a non-empty directory");
-    } else if (a == "--spp") {
-      r.spp = static_cast<int>(parseInteger(a, value(), 1, SceneLimits::kMaxSpp));
-    } else if (a == "--seed") {
-      r.seed = static_cast<std::uint64_t>(parseInteger(a, value(), 0, INT64_MAX));
-    } else if (a == "--threads") {
-      r.threads = static_cast<int>(parseInteger(a, value(), 1, 1024));
-    } else if (a == "--max-memory-gb") {
-      r.maxMemoryGb = parsePositive(a, value(), 1e9);
-    } else if (a == "--exposure-time") {
-      r.exposureTimeS = parsePositive(a, value(), 1e6);
-    } else if (a == "--f-number") {
-      r.fNumber = parsePositive(a, value(), 1e4);
-    } else if (a == "--iso") {
-      r.iso = parsePositive(a, value(), 1e7);
-    } else if (a == "--noise") {
-      const std::string mode = value();
-      r.noise = noiseModeFromName(mode);
-      if (!r.noise)
-        throw UsageError("--noise must be one of " + noiseModeNames() + ", got '" + mode + "'");
-    } else if (a == "--ocio-config") {
-      r.ocioConfig = value();
-    } else if (a == "--display") {
-      r.display = value();
-    } else if (a == "--view") {
-      r.view = value();
-    } else if (a == "--look") {
-      r.look = value();
-    } else if (a == "--aov-previews") {
-      r.aovPreviews = true;
-    } else if (a == "--reproducible") {
-      r.reproducible = true;
-    } else if (a == "--tiles") {
-      r.tiles = parseTiles(a, value());
-    } else if (a == "--noise-seed") {
-      r.noiseSeed = static_cast<std::uint64_t>(parseInteger(a, value(), 0, INT64_MAX));
-    } else if (!a.empty() && a[0] == '-') {
-      throw UsageError("unknown option '" + a + "' (try 'camsim --help')");
-    } else if (!r.scene) {
-      r.scene = a;
-    } else {
-      throw UsageError("more than one scene given: '" + *r.scene + "' and '" + a + "'");
-    }
+  const std::unique_ptr<CLI::App> app = renderApp(r);
+  if (!parseCommand(*app, args)) {
+    cmd.kind = Command::Kind::kHelp;
+    cmd.help = commandHelp(*app);
+    return cmd;
   }
   if (r.tiles && (r.aovPreviews || !r.ocioConfig.empty() || !r.display.empty() || !r.view.empty() ||
                   !r.look.empty()))

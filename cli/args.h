@@ -8,7 +8,7 @@
 #include <utility>
 #include <vector>
 
-#include "sensor/model/sensor_model.h"
+#include "integrator/scene/overrides.h"
 
 namespace camsim {
 
@@ -20,17 +20,11 @@ class UsageError : public std::runtime_error {
 struct RenderArgs {
   std::optional<std::string> scene;  // none: the built-in default scene
   std::string outputDir = "out";
-  std::optional<int> spp;
-  std::optional<std::uint64_t> seed;
   int threads = 0;                    // 0: all cores
   std::optional<double> maxMemoryGb;  // none: 75 % of physical memory (resource_guard.h)
-  // Exposure overrides (scene values otherwise).
-  std::optional<double>
-      exposureTimeS;  // effective exposure time T_eff, s (the shutter is stretched)
-  std::optional<double> fNumber;
-  std::optional<double> iso;       // needs a sensor
-  std::optional<NoiseMode> noise;  // needs a sensor
-  std::optional<std::uint64_t> noiseSeed;
+  // The scene overrides (--spp, --seed, --exposure-time-s, --f-number, --iso, --noise,
+  // --noise-seed, --sensor, --pose): integrator/scene/overrides.h's table.
+  Overrides overrides;
   // Output transform (OpenColorIO): empty = the config's defaults.
   std::string ocioConfig, display, view, look;
   bool aovPreviews = false;  // --aov-previews
@@ -43,12 +37,23 @@ struct RenderArgs {
 struct Command {
   enum class Kind { kHelp, kVersion, kRender } kind = Kind::kHelp;
   RenderArgs render;
+  std::string help;  // kHelp of a command (render --help): its text; empty: usageText()
 };
 
 Command parseArgs(const std::vector<std::string>& args);  // args without argv[0]
+// `camsim --help`: every command with its summary (cli/command_line.h).
 std::string usageText();
+// `camsim render --help`, from render's option table.
+std::string renderUsageText();
 // An integer flag value in [lo, hi]; UsageError naming the flag otherwise.
 std::int64_t parseInteger(const std::string& flag, const std::string& text, std::int64_t lo,
                           std::int64_t hi);
+
+// The override whose flag is `flag` ("--f-number"; "--exposure-time" is --exposure-time-s's
+// old name), or nullptr.
+const OverrideSetting* overrideOfFlag(const std::string& flag);
+// The flag's value into o: UsageError "--f-number: value 0.3 is out of range [0.5, 10000]".
+void parseOverride(Overrides& o, const OverrideSetting& setting, const std::string& flag,
+                   const std::string& text);
 
 }  // namespace camsim

@@ -5,6 +5,7 @@
 #include <ostream>
 
 #include "cli/args.h"
+#include "cli/command_line.h"
 #include "integrator/capture/progress.h"
 #include "integrator/dataset/dataset_item.h"
 #include "integrator/dataset/dataset_run.h"
@@ -28,79 +29,72 @@ std::string itemList(const std::vector<std::size_t>& items) {
 
 }  // namespace
 
+namespace {
+
+std::unique_ptr<CLI::App> datasetApp(DatasetArgs& a) {
+  auto app = newCommandApp(
+      "dataset",
+      "Renders the items of MANIFEST (docs/dataset-format.md) into DIR:\n"
+      "DIR/items/NNNNNN/ per item (its outputs, scene.yaml, params.json, item.json),\n"
+      "DIR/index.jsonl (one line per item that ended), DIR/dataset.json. Every item is\n"
+      "checked before the first renders; same manifest, seed and build: same bytes, on any\n"
+      "shard. `camsim dataset --status DIR` summarises DIR instead.");
+  app->add_option("manifest", a.manifest, "the dataset manifest")->type_name("MANIFEST");
+  app->add_option("-o,--output", a.outputDir, "the dataset folder (created if missing)")
+      ->type_name("DIR");
+  app->add_option_function<std::string>(
+         "--shard", [&a](const std::string& t) { a.shard = t; },
+         "render items i, i+N, i+2N, … (0 <= i < N); without it, Slurm's SLURM_ARRAY_TASK_ID - "
+         "SLURM_ARRAY_TASK_MIN of SLURM_ARRAY_TASK_COUNT, or Kubernetes' JOB_COMPLETION_INDEX "
+         "of --shards N (or CAMSIM_SHARD_COUNT); else all items")
+      ->type_name("i/N");
+  app->add_option_function<std::string>(
+         "--shards", [&a](const std::string& t) { a.shards = count("--shards", t, 1); },
+         "the shard count, with JOB_COMPLETION_INDEX")
+      ->type_name("N");
+  app->add_flag("--resume", a.resume,
+                "skip items whose outputs exist and whose recorded hash matches the item's "
+                "resolved scene and camsim version; remove temporaries of killed runs and add "
+                "the index lines they did not write");
+  app->add_option_function<std::string>(
+         "--item", [&a](const std::string& t) { a.item = count("--item", t, 0); },
+         "render only item N (of this shard)")
+      ->type_name("N");
+  app->add_option_function<std::string>(
+         "--threads",
+         [&a](const std::string& t) {
+           a.threads = static_cast<int>(parseInteger("--threads", t, 0, 4096));
+         },
+         "worker threads (default: all cores)")
+      ->type_name("N");
+  app->add_flag("--check", a.check,
+                "check the manifest and every item, print the item count, render nothing");
+  app->add_option_function<std::string>(
+         "--status", [&a](const std::string& t) { a.status = t; },
+         "summarise DIR: done, failed, missing items")
+      ->type_name("DIR");
+  addPictureOptions(*app, a.ocioConfig, a.display, a.view, a.look);
+  app->footer(
+      "Exit codes: 0 done, 2 bad input or the shard already running into DIR (do not\n"
+      "retry), 130/143 interrupted by SIGINT/SIGTERM (retry with --resume), 1 an item\n"
+      "failed inside camsim (docs/cluster.md).");
+  return app;
+}
+
+}  // namespace
+
 std::string datasetUsageText() {
-  return "usage: camsim dataset MANIFEST [-o DIR] [--shard i/N | --shards N] [--resume]\n"
-         "                      [--item N] [--threads N] [--check]\n"
-         "                      [--ocio-config FILE] [--display D] [--view V] [--look L]\n"
-         "       camsim dataset --status DIR\n"
-         "\n"
-         "dataset  renders the items of MANIFEST (docs/dataset-format.md) into DIR (default "
-         "out/):\n"
-         "         DIR/items/NNNNNN/ per item (its outputs, scene.yaml, params.json, item.json),\n"
-         "         DIR/index.jsonl (one line per item that ended), DIR/dataset.json.\n"
-         "         Every item is checked before the first renders; same manifest, seed and build:\n"
-         "         same bytes, on any shard.\n"
-         "  -o, --output DIR  the dataset folder (created if missing)\n"
-         "  --shard i/N       render items i, i+N, i+2N, … (0 <= i < N); without it, Slurm's\n"
-         "                    SLURM_ARRAY_TASK_ID - SLURM_ARRAY_TASK_MIN of "
-         "SLURM_ARRAY_TASK_COUNT,\n"
-         "                    or Kubernetes' JOB_COMPLETION_INDEX of --shards N (or\n"
-         "                    CAMSIM_SHARD_COUNT); else all items\n"
-         "  --resume          skip items whose outputs exist and whose recorded hash matches the\n"
-         "                    item's resolved scene and camsim version; remove temporaries of\n"
-         "                    killed runs and add the index lines they did not write\n"
-         "  --item N          render only item N (of this shard)\n"
-         "  --threads N       worker threads (default: all cores)\n"
-         "  --check           check the manifest and every item, print the item count, render "
-         "nothing\n"
-         "  --status DIR      summarise DIR: done, failed, missing items\n"
-         "exit codes: 0 done, 2 bad input or the shard already running into DIR (do not\n"
-         "retry), 130/143 interrupted by SIGINT/SIGTERM (retry with --resume), 1 an item\n"
-         "failed inside camsim (docs/cluster.md)\n";
+  DatasetArgs a;
+  return commandHelp(*datasetApp(a));
 }
 
 DatasetArgs parseDatasetArgs(const std::vector<std::string>& args) {
   DatasetArgs a;
-  auto value = [&](std::size_t& i) -> const std::string& {
-    if (i + 1 >= args.size()) throw UsageError(args[i] + " needs a value");
-    return args[++i];
-  };
-  for (std::size_t i = 1; i < args.size(); ++i) {
-    const std::string& f = args[i];
-    if (f == "-h" || f == "--help")
-      a.help = true;
-    else if (f == "-o" || f == "--output")
-      a.outputDir = value(i);
-    else if (f == "--shard")
-      a.shard = value(i);
-    else if (f == "--shards")
-      a.shards = count(f, value(i), 1);
-    else if (f == "--item")
-      a.item = count(f, value(i), 0);
-    else if (f == "--threads")
-      a.threads = static_cast<int>(parseInteger(f, value(i), 0, 4096));
-    else if (f == "--resume")
-      a.resume = true;
-    else if (f == "--check")
-      a.check = true;
-    else if (f == "--status")
-      a.status = value(i);
-    else if (f == "--ocio-config")
-      a.ocioConfig = value(i);
-    else if (f == "--display")
-      a.display = value(i);
-    else if (f == "--view")
-      a.view = value(i);
-    else if (f == "--look")
-      a.look = value(i);
-    else if (!f.empty() && f[0] == '-')
-      throw UsageError("unknown option '" + f + "' (camsim dataset --help)");
-    else if (a.manifest.empty())
-      a.manifest = f;
-    else
-      throw UsageError("one manifest only; unexpected '" + f + "'");
+  if (!parseCommand(*datasetApp(a), args)) {
+    a.help = true;
+    return a;
   }
-  if (!a.help && !a.status && a.manifest.empty())
+  if (!a.status && a.manifest.empty())
     throw UsageError("camsim dataset needs a MANIFEST (or --status DIR)");
   if (a.status && !a.manifest.empty()) throw UsageError("--status DIR takes no manifest");
   if (a.shard && a.shards) throw UsageError("give --shard i/N or --shards N, not both");

@@ -57,7 +57,7 @@ int main(int argc, char** argv) {
     const camsim::Command cmd = camsim::parseArgs(args);
     switch (cmd.kind) {
       case camsim::Command::Kind::kHelp:
-        std::cout << camsim::usageText();
+        std::cout << (cmd.help.empty() ? camsim::usageText() : cmd.help);
         return 0;
       case camsim::Command::Kind::kVersion:
         std::cout << "camsim " << CAMSIM_VERSION << "\n";

@@ -1,10 +1,11 @@
 // `camsim merge`: tile parts → assembled films → the rest of the capture → the outputs.
 #include "cli/merge_command.h"
 
+#include <memory>
 #include <ostream>
-#include <sstream>
 
 #include "cli/args.h"
+#include "cli/command_line.h"
 #include "cli/render_command.h"
 #include "integrator/capture/capture_writer.h"
 #include "integrator/capture/default_scene.h"
@@ -16,75 +17,45 @@
 namespace camsim {
 namespace {
 
-// The render's overrides as the part recorded them (render flags) back into RenderArgs.
-RenderArgs renderArgsOf(const AssembledTiles& tiles) {
-  std::vector<std::string> words = {"render"};
-  std::istringstream in(tiles.header.overrides);
-  for (std::string w; in >> w;) words.push_back(w);
-  try {
-    const Command cmd = parseArgs(words);
-    if (cmd.kind != Command::Kind::kRender) throw UsageError("not render flags");
-    if (cmd.render.scene) throw UsageError("a scene among the flags");
-    return cmd.render;
-  } catch (const UsageError& e) {
-    throw InputError({tiles.files.front().string(), 0, 0}, "camsim:overrides",
-                     "unreadable overrides '" + tiles.header.overrides + "': " + e.what());
-  }
+std::unique_ptr<CLI::App> mergeApp(MergeArgs& m) {
+  auto app = newCommandApp(
+      "merge",
+      "Assembles the parts of one frame that `camsim render SCENE --tiles k/M` rendered\n"
+      "(NAME.part-k-of-M.exr, k = 0 … M-1, each exactly once, all of the same scene, seed,\n"
+      "spp, overrides and camsim build), loads the scene again with the overrides the parts\n"
+      "recorded, runs the rest of the capture (auto-exposure, brackets, sensor noise, ISP,\n"
+      "picture) and writes into DIR the files `camsim render --reproducible` writes, byte\n"
+      "for byte (docs/output.md).");
+  app->add_option("parts", m.parts, "the part files")->type_name("PART...");
+  addOutputOption(*app, m.outputDir, "output directory (created if missing; default: out)");
+  app->add_option_function<std::string>(
+         "--scene",
+         [&m](const std::string& f) {
+           if (f.empty()) throw UsageError("--scene needs a non-empty file name");
+           m.scene = f;
+         },
+         "the scene file, when it is not where the parts say (their camsim:scene, as render "
+         "was given it); it must be the same file (FNV-1a), and NAME.json then names FILE")
+      ->type_name("FILE");
+  addPictureOptions(*app, m.ocioConfig, m.display, m.view, m.look);
+  app->add_flag("--aov-previews", m.aovPreviews, "as for camsim render");
+  return app;
 }
 
 }  // namespace
 
 std::string mergeUsageText() {
-  return "usage: camsim merge PART... [-o DIR] [--scene FILE] [--ocio-config FILE]\n"
-         "                    [--display D] [--view V] [--look L] [--aov-previews]\n"
-         "\n"
-         "merge  assembles the parts of one frame that `camsim render SCENE --tiles k/M`\n"
-         "       rendered (NAME.part-k-of-M.exr, k = 0 … M-1, each exactly once, all of the\n"
-         "       same scene, seed, spp, overrides and camsim build), loads the scene again,\n"
-         "       runs the rest of the capture (auto-exposure, brackets, sensor noise, ISP,\n"
-         "       picture) and writes into DIR (default: out/) the files `camsim render\n"
-         "       --reproducible` writes, byte for byte (docs/output.md)\n"
-         "  -o, --output DIR   output directory (created if missing)\n"
-         "  --scene FILE       the scene file, when it is not where the parts say (their\n"
-         "                     camsim:scene, as render was given it); it must be the same\n"
-         "                     file (FNV-1a), and NAME.json then names FILE\n"
-         "  --ocio-config FILE, --display D, --view V, --look L, --aov-previews\n"
-         "                     as for camsim render (camsim --help)\n";
+  MergeArgs m;
+  return commandHelp(*mergeApp(m));
 }
 
 MergeArgs parseMergeArgs(const std::vector<std::string>& args) {
   MergeArgs m;
-  for (std::size_t i = 1; i < args.size(); ++i) {
-    const std::string& a = args[i];
-    auto value = [&]() -> const std::string& {
-      if (i + 1 >= args.size()) throw UsageError(a + " needs a value");
-      return args[++i];
-    };
-    if (a == "--help" || a == "-h") {
-      m.help = true;
-    } else if (a == "-o" || a == "--output") {
-      m.outputDir = value();
-      if (m.outputDir.empty()) throw UsageError(a + " needs a non-empty directory");
-    } else if (a == "--scene") {
-      m.scene = value();
-      if (m.scene->empty()) throw UsageError(a + " needs a non-empty file name");
-    } else if (a == "--ocio-config") {
-      m.ocioConfig = value();
-    } else if (a == "--display") {
-      m.display = value();
-    } else if (a == "--view") {
-      m.view = value();
-    } else if (a == "--look") {
-      m.look = value();
-    } else if (a == "--aov-previews") {
-      m.aovPreviews = true;
-    } else if (!a.empty() && a[0] == '-') {
-      throw UsageError("unknown option '" + a + "' (try 'camsim merge --help')");
-    } else {
-      m.parts.push_back(a);
-    }
+  if (!parseCommand(*mergeApp(m), args)) {
+    m.help = true;
+    return m;
   }
-  if (!m.help && m.parts.empty())
+  if (m.parts.empty())
     throw UsageError("merge needs the part files of a render --tiles (try 'camsim merge --help')");
   return m;
 }
@@ -93,7 +64,8 @@ std::vector<std::filesystem::path> runMerge(const MergeArgs& args, std::ostream&
   const std::vector<std::filesystem::path> files(args.parts.begin(), args.parts.end());
   AssembledTiles tiles = assembleTileParts(files);
   const TilePartHeader header = tiles.header;  // kept: the tiles move into the capture
-  RenderArgs render = renderArgsOf(tiles);
+  RenderArgs render;
+  render.overrides = header.overrides;  // as the parts recorded them (data, not flags)
   if (args.scene)
     render.scene = *args.scene;
   else if (header.scene != kDefaultSceneName)

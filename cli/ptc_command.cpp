@@ -5,10 +5,12 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <memory>
 #include <ostream>
 #include <sstream>
 
 #include "cli/args.h"
+#include "cli/command_line.h"
 #include "cli/python_script.h"
 #include "sensor/base/format.h"
 #include "sensor/base/input_error.h"
@@ -54,45 +56,45 @@ std::string fileStem(const std::string& name) {
 
 }  // namespace
 
+namespace {
+
+std::unique_ptr<CLI::App> ptcApp(PtcArgs& p) {
+  auto app = newCommandApp(
+      "ptc",
+      "Measures SENSOR (a preset name such as smartphone-1.4um, or a sensor YAML file) the\n"
+      "EMVA 1288 way (Release 4.0 Linear: photon transfer, SNR, dark noise, DSNU, PRNU,\n"
+      "linearity) on the simulated sensor, prints the results next to the values its\n"
+      "configuration implies, and writes into DIR:\n"
+      "  ptc_SENSOR.csv      one row per irradiation step (mu_p, mu_y, var_y, SNR)\n"
+      "  ptc_SENSOR_ptc.png  photon transfer curve with the fitted system gain\n"
+      "  ptc_SENSOR_snr.png  SNR against photons, with the ideal and model curves\n"
+      "(the plots need python3-matplotlib; without it only the CSV is written).");
+  app->add_option("sensor", p.sensor, "sensor preset or file")->type_name("SENSOR");
+  addOutputOption(*app, p.outputDir, "output directory (created if missing; default: out)");
+  app->add_option_function<std::string>(
+         "--seed",
+         [&p](const std::string& t) {
+           p.seed = static_cast<std::uint64_t>(parseInteger("--seed", t, 0, INT64_MAX));
+         },
+         "noise seed (default 1)")
+      ->type_name("N");
+  return app;
+}
+
+}  // namespace
+
 std::string ptcUsageText() {
-  return "usage: camsim ptc SENSOR [-o DIR] [--seed N]\n"
-         "\n"
-         "ptc  measures SENSOR (a preset name such as smartphone-1.4um, or a sensor YAML file)\n"
-         "     the EMVA 1288 way (Release 4.0 Linear: photon transfer, SNR, dark noise, DSNU,\n"
-         "     PRNU, linearity) on the simulated sensor, prints the results next to the values\n"
-         "     its configuration implies, and writes into DIR (default: out/):\n"
-         "       ptc_SENSOR.csv      one row per irradiation step (mu_p, mu_y, var_y, SNR)\n"
-         "       ptc_SENSOR_ptc.png  photon transfer curve with the fitted system gain\n"
-         "       ptc_SENSOR_snr.png  SNR against photons, with the ideal and model curves\n"
-         "     (the plots need python3-matplotlib; without it only the CSV is written)\n"
-         "  -o, --output DIR   output directory (created if missing)\n"
-         "  --seed N           noise seed (default 1)\n";
+  PtcArgs p;
+  return commandHelp(*ptcApp(p));
 }
 
 PtcArgs parsePtcArgs(const std::vector<std::string>& args) {
   PtcArgs p;
-  for (std::size_t i = 1; i < args.size(); ++i) {
-    const std::string& a = args[i];
-    auto value = [&]() -> const std::string& {
-      if (i + 1 >= args.size()) throw UsageError(a + " needs a value");
-      return args[++i];
-    };
-    if (a == "--help" || a == "-h") {
-      p.help = true;
-    } else if (a == "-o" || a == "--output") {
-      p.outputDir = value();
-      if (p.outputDir.empty()) throw UsageError(a + " needs a non-empty directory");
-    } else if (a == "--seed") {
-      p.seed = static_cast<std::uint64_t>(parseInteger(a, value(), 0, INT64_MAX));
-    } else if (!a.empty() && a[0] == '-') {
-      throw UsageError("unknown option '" + a + "' (try 'camsim ptc --help')");
-    } else if (p.sensor.empty()) {
-      p.sensor = a;
-    } else {
-      throw UsageError("more than one sensor given: '" + p.sensor + "' and '" + a + "'");
-    }
+  if (!parseCommand(*ptcApp(p), args)) {
+    p.help = true;
+    return p;
   }
-  if (!p.help && p.sensor.empty())
+  if (p.sensor.empty())
     throw UsageError("ptc needs a sensor preset or file (try 'camsim ptc --help')");
   return p;
 }

@@ -2,7 +2,6 @@
 #include "cli/render_command.h"
 
 #include <atomic>
-#include <charconv>
 #include <ostream>
 
 #include "integrator/capture/capture_run.h"
@@ -19,12 +18,6 @@
 
 namespace camsim {
 namespace {
-
-std::string shortest(double v) {
-  char buffer[32];
-  const auto result = std::to_chars(buffer, buffer + sizeof buffer, v);
-  return std::string(buffer, result.ptr);
-}
 
 void printInterrupted(const CaptureResult& r, const WrittenCapture& written, std::ostream& log) {
   const std::string what =
@@ -65,7 +58,7 @@ RenderCommandResult runTilePart(SceneDescription desc, const RenderArgs& args,
     return {{}, true};
   }
   const std::filesystem::path file =
-      writeTilePart(r, share, {args.outputDir, renderOverrides(args), args.reproducible});
+      writeTilePart(r, share, {args.outputDir, args.overrides, args.reproducible});
   const RenderStats& st = r.stats;
   log << "modelled: " << st.modelled.describe() << "\n";
   log << "rendered " << what << ": "
@@ -88,33 +81,8 @@ SceneDescription loadRenderScene(const RenderArgs& args) {
     const std::filesystem::path path(*args.scene);
     d = loadSceneFromText(readSceneFile(path), path.string(), sceneBaseDir(path));
   }
-  if (args.spp) d.render.spp = *args.spp;
-  if (args.seed) d.render.seed = *args.seed;
-  if (args.exposureTimeS)
-    d.camera.shutter =
-        d.camera.shutter.scaled(*args.exposureTimeS / d.camera.shutter.effectiveTime());
-  if (args.fNumber) d.camera.fNumber = *args.fNumber;  // the stop follows (apertureDiameter)
-  if ((args.iso || args.noise || args.noiseSeed) && !d.sensor)
-    throw UsageError("--iso, --noise and --noise-seed need a scene with a sensor");
-  if (args.iso) d.sensor->iso = *args.iso;
-  if (args.noiseSeed) d.sensor->noiseSeed = *args.noiseSeed;
-  if (args.noise) d.sensor->noise = *args.noise;
+  applyOverrides(d, args.overrides, {"<command line>", 0, 0});
   return d;
-}
-
-std::string renderOverrides(const RenderArgs& args) {
-  std::string out;
-  const auto add = [&out](const char* flag, const std::string& value) {
-    out += (out.empty() ? "" : " ") + std::string(flag) + " " + value;
-  };
-  if (args.spp) add("--spp", std::to_string(*args.spp));
-  if (args.seed) add("--seed", std::to_string(*args.seed));
-  if (args.exposureTimeS) add("--exposure-time", shortest(*args.exposureTimeS));
-  if (args.fNumber) add("--f-number", shortest(*args.fNumber));
-  if (args.iso) add("--iso", shortest(*args.iso));
-  if (args.noise) add("--noise", noiseModeName(*args.noise));
-  if (args.noiseSeed) add("--noise-seed", std::to_string(*args.noiseSeed));
-  return out;
 }
 
 void printCaptureNotes(const CaptureResult& r, std::ostream& log) {

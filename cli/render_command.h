@@ -20,11 +20,8 @@ struct CaptureResult;
 struct SceneDescription;
 
 // args.scene (none: the default scene) loaded, with the command line's overrides applied.
-// InputError for a bad scene, UsageError for an override the scene cannot take.
+// InputError for a bad scene or an override the scene cannot take (applyOverrides).
 SceneDescription loadRenderScene(const RenderArgs& args);
-// The overrides of the loaded scene in args as render flags ("--spp 4 --iso 200"; numbers
-// in their shortest round-trip form), for a tile part: parseArgs of them gives them back.
-std::string renderOverrides(const RenderArgs& args);
 // The notes a capture prints: auto-exposure's choice, frames with clipped photosites.
 void printCaptureNotes(const CaptureResult& result, std::ostream& log);
 

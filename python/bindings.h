@@ -3,6 +3,7 @@
 // between calls (a Scene owns its own description; a capture's arrays own their result).
 #pragma once
 
+#include <initializer_list>
 #include <memory>
 #include <string>
 #include <utility>
@@ -10,6 +11,7 @@
 #include <pybind11/pybind11.h>
 
 #include "integrator/capture/scene_cache.h"
+#include "integrator/scene/overrides.h"
 #include "integrator/scene/scene_description.h"
 
 namespace camsim::python {
@@ -41,24 +43,27 @@ void bindSensorFunctions(pybind11::module_& m);
 // The Python exception camsim.InputError (a ValueError), created by module.cpp.
 pybind11::handle inputErrorType();
 
-// Overrides of a loaded scene (scene_overrides.cpp). Each throws InputError naming the key
-// ("<override>" as its file) for a bad value; none reads a file but set_sensor's sensor
+// Overrides of a loaded scene (scene_overrides.cpp), through the library's override table
+// (integrator/scene/overrides.h). Each throws InputError naming the scene key ("<override>"
+// as its file) for a bad value; none reads a file but a sensor override's sensor
 // description, and none touches shapes, materials, textures or lights.
-void overrideSeed(SceneDescription& d, std::uint64_t seed);
-void overrideSpp(SceneDescription& d, long long spp);
-void overrideExposureTime(SceneDescription& d, double seconds);
-void overrideFNumber(SceneDescription& d, double fNumber);
-void overrideIso(SceneDescription& d, double iso);
-void overrideNoise(SceneDescription& d, const std::string& mode);
-void overrideNoiseSeed(SceneDescription& d, std::uint64_t seed);
-void overrideSensor(SceneDescription& d, const std::string& presetOrPath);
 // The camera's pose in the scene file's world coordinates (world_from_camera: columns
 // right, up, forward, position, as the scene format's key); checked by the scene loader.
 void overridePoseLookAt(SceneDescription& d, const glm::dvec3& position, const glm::dvec3& lookAt,
                         const glm::dvec3& up);
 void overridePoseMatrix(SceneDescription& d, const glm::dmat4& worldFromCamera);
-// The overrides dict of load() (the CLI's render flags): spp, seed, exposure_time_s,
-// f_number, iso, noise, noise_seed, sensor.
+// One Python value into o as setting s (a wrong type: InputError naming typeKey).
+void setOverrideFromPython(Overrides& o, const OverrideSetting& s, const pybind11::handle& value,
+                           const std::string& typeKey);
+// A dict key → value of overrides.h's keys (None: not set) into Overrides; an unknown key or
+// a wrong type: InputError naming prefix + key.
+Overrides overridesFromDict(const pybind11::dict& overrides, const std::string& prefix);
+// Key → value pairs of overrides.h's keys (None: not set), applied together; a wrong type
+// or a bad value: InputError naming the scene key (the set_* methods).
+void applyPythonOverrides(SceneDescription& d,
+                          std::initializer_list<std::pair<const char*, pybind11::object>> values);
+// The overrides dict of load() (the CLI's render flags): every key of overrides.h's table
+// (sensor, spp, seed, exposure_time_s, f_number, iso, noise, noise_seed, pose).
 void applyOverrides(SceneDescription& d, const pybind11::dict& overrides);
 
 }  // namespace camsim::python

@@ -5,6 +5,7 @@
 // progress. The arrays come back without a copy (capture_arrays.h).
 #include <chrono>
 #include <future>
+#include <iterator>
 #include <optional>
 
 #include "integrator/capture/capture_run.h"
@@ -58,10 +59,28 @@ void runJob(CaptureJob& job) {
   }
 }
 
+// The override keyword arguments, in overrides.h's table order (every key of the table).
+constexpr const char* kOverrideKwargs[] = {
+    "sensor", "spp", "seed", "exposure_time_s", "f_number", "iso", "noise", "noise_seed", "pose"};
+
 py::object runCapture(PyScene& scene, int threads, const py::object& progress,
                       const std::string& display, const std::string& view, const std::string& look,
-                      const std::string& ocioConfig, bool reuse) {
+                      const std::string& ocioConfig, bool reuse, const py::object& sensor,
+                      const py::object& spp, const py::object& seed,
+                      const py::object& exposureTimeS, const py::object& fNumber,
+                      const py::object& iso, const py::object& noise, const py::object& noiseSeed,
+                      const py::object& pose) {
   if (threads < 0) throw py::value_error("threads must be ≥ 0 (0: all hardware threads)");
+  // For this capture only (the Scene keeps its settings), checked before anything runs.
+  Overrides overrides;
+  const py::object* values[] = {&sensor, &spp,   &seed,      &exposureTimeS, &fNumber,
+                                &iso,    &noise, &noiseSeed, &pose};
+  for (std::size_t i = 0; i < std::size(values); ++i)
+    if (!values[i]->is_none())
+      setOverrideFromPython(overrides, *findOverrideSetting(kOverrideKwargs[i]), *values[i],
+                            kOverrideKwargs[i]);
+  SceneDescription description = scene.description;
+  applyOverrides(description, overrides, {"<override>", 0, 0});
   auto job = std::make_shared<CaptureJob>();
   // Taken with the GIL held: a capture of this Scene running at the same time (another
   // Python thread) finds none and builds its own.
@@ -78,14 +97,14 @@ py::object runCapture(PyScene& scene, int threads, const py::object& progress,
   } giveBack{scene, *job};
   job->picture = PictureSettings{ocioConfig, DisplayChoice{display, view, look}};
   job->threads = threads;
-  const bool sequence = scene.description.frames.has_value();
+  const bool sequence = description.frames.has_value();
   std::optional<ProgressBar> bar;  // on stderr, drawn only when it is a terminal
-  if (progress.is_none()) bar.emplace("rendering " + scene.description.name);
+  if (progress.is_none()) bar.emplace("rendering " + description.name);
   bool stopped = false;  // a Python exception (KeyboardInterrupt, the callback's) is pending
   {
     py::gil_scoped_release release;
-    job->description = scene.description;  // the worker's copy (meshes copied in memory)
-    checkPictureSettings(job->picture);    // a bad config or display fails before rendering
+    job->description = std::move(description);  // the worker's copy (meshes copied in memory)
+    checkPictureSettings(job->picture);         // a bad config or display fails before rendering
     std::future<void> worker = runOnWorkerThread([job] { runJob(*job); });
     int reported = -1;
     while (worker.wait_for(std::chrono::milliseconds(50)) != std::future_status::ready) {
@@ -154,19 +173,32 @@ reuse: render on the renderable scene (Embree BVH, materials, lights) the Scene'
 capture built, when only its camera, exposure, f-number, ISO, sensor, seeds or spp changed
 (the same bytes as a fresh build; meta["scene_reused"] says whether it was); False: build
 it afresh and keep nothing.
-Raises camsim.InputError for a bad display choice or a file a capture reads again.)doc";
+sensor, spp, seed, exposure_time_s, f_number, iso, noise, noise_seed, pose: overrides for this
+capture only (the Scene keeps its own settings), the keys, ranges and messages of load()'s
+overrides dict and camsim render's flags (integrator/scene/overrides.h): e.g.
+capture(scene, spp=16, seed=3, f_number=2.8). None: the scene's value.
+Raises camsim.InputError for a bad override, a bad display choice or a file a capture reads
+again.)doc";
 
 }  // namespace
 
 void bindCaptureFunctions(py::module_& m) {
   m.def("capture", &runCapture, py::arg("scene"), py::kw_only(), py::arg("threads") = 0,
         py::arg("progress") = py::none(), py::arg("display") = "", py::arg("view") = "",
-        py::arg("look") = "", py::arg("ocio_config") = "", py::arg("reuse") = true, kCaptureDoc);
+        py::arg("look") = "", py::arg("ocio_config") = "", py::arg("reuse") = true,
+        py::arg("sensor") = py::none(), py::arg("spp") = py::none(), py::arg("seed") = py::none(),
+        py::arg("exposure_time_s") = py::none(), py::arg("f_number") = py::none(),
+        py::arg("iso") = py::none(), py::arg("noise") = py::none(),
+        py::arg("noise_seed") = py::none(), py::arg("pose") = py::none(), kCaptureDoc);
   py::object scene = m.attr("Scene");
   scene.attr("render") = py::cpp_function(
       &runCapture, py::name("render"), py::is_method(scene), py::kw_only(), py::arg("threads") = 0,
       py::arg("progress") = py::none(), py::arg("display") = "", py::arg("view") = "",
       py::arg("look") = "", py::arg("ocio_config") = "", py::arg("reuse") = true,
+      py::arg("sensor") = py::none(), py::arg("spp") = py::none(), py::arg("seed") = py::none(),
+      py::arg("exposure_time_s") = py::none(), py::arg("f_number") = py::none(),
+      py::arg("iso") = py::none(), py::arg("noise") = py::none(),
+      py::arg("noise_seed") = py::none(), py::arg("pose") = py::none(),
       ("scene.render(...) is camsim.capture(scene, ...):\n\n" + std::string(kCaptureDoc)).c_str());
 }
 

@@ -218,6 +218,41 @@ base_dir: the directory relative file names (meshes, textures, spectra) resolve 
                     overridesDoc)
                        .c_str());
 
+  m.def(
+      "override_settings",
+      [] {
+        py::list out;
+        for (const OverrideSetting& s : overrideSettings()) {
+          py::dict d;
+          d["key"] = std::string(s.key);
+          d["scene_key"] = std::string(s.sceneKey);
+          d["unit"] = std::string(s.unit);
+          d["flag"] = overrideFlag(s);
+          d["help"] = std::string(s.help);
+          d["range"] = overrideRangeText(s);
+          const bool integer = s.type == OverrideType::kInteger;
+          const bool number = s.type == OverrideType::kNumber;
+          d["type"] = integer                         ? "int"
+                      : number                        ? "float"
+                      : s.type == OverrideType::kPose ? "pose"
+                                                      : "str";
+          if (integer) {
+            d["lo"] = s.integers.lo;
+            d["hi"] = s.integers.hi;
+            d["lo_open"] = false;
+          } else if (number) {
+            d["lo"] = s.numbers.lo;
+            d["hi"] = s.numbers.hi;
+            d["lo_open"] = s.numbers.loOpen;
+          }
+          out.append(d);
+        }
+        return out;
+      },
+      R"doc(The overrides a front end can set (integrator/scene/overrides.h), one dict each in the
+order they apply: key (the keyword of capture()/render() and of the overrides dict), scene_key,
+unit, flag (camsim render's), help, range (as errors print it), type ("int", "float", "str",
+"pose") and, for numbers, lo, hi and lo_open (the range (lo, hi] rather than [lo, hi]).)doc");
   scene.def(
       "copy", [](const PyScene& s) { return PyScene{s.description}; },
       "An independent copy (meshes and decoded textures are copied in memory; the built "
@@ -262,11 +297,9 @@ loaded scene (its origin: the first camera position), so a render equals a reloa
 scene at this pose to float rounding, not always bit for bit. Returns the Scene.)doc");
   scene.def(
       "set_exposure",
-      [](PyScene& s, std::optional<double> t, std::optional<double> n,
-         std::optional<double> iso) -> PyScene& {
-        if (t) overrideExposureTime(s.description, *t);
-        if (n) overrideFNumber(s.description, *n);
-        if (iso) overrideIso(s.description, *iso);
+      [](PyScene& s, const py::object& t, const py::object& n, const py::object& iso) -> PyScene& {
+        applyPythonOverrides(s.description,
+                             {{"exposure_time_s", t}, {"f_number", n}, {"iso", iso}});
         return s;
       },
       py::kw_only(), py::arg("exposure_time_s") = py::none(), py::arg("f_number") = py::none(),
@@ -276,9 +309,8 @@ it, as camsim render --exposure-time), f_number (the entrance pupil follows: D =
 iso (scenes with a sensor). Returns the Scene.)doc");
   scene.def(
       "set_sensor",
-      [](PyScene& s, const std::string& model, std::optional<double> iso) -> PyScene& {
-        overrideSensor(s.description, model);
-        if (iso) overrideIso(s.description, *iso);
+      [](PyScene& s, const py::object& model, const py::object& iso) -> PyScene& {
+        applyPythonOverrides(s.description, {{"sensor", model}, {"iso", iso}});
         return s;
       },
       py::arg("model"), py::kw_only(), py::arg("iso") = py::none(),
@@ -290,10 +322,8 @@ keeps its noise mode, seeds, auto-exposure and brackets. Reads only the sensor
 description. Returns the Scene.)doc");
   scene.def(
       "set_seed",
-      [](PyScene& s, std::optional<std::uint64_t> seed,
-         std::optional<std::uint64_t> noiseSeed) -> PyScene& {
-        if (seed) overrideSeed(s.description, *seed);
-        if (noiseSeed) overrideNoiseSeed(s.description, *noiseSeed);
+      [](PyScene& s, const py::object& seed, const py::object& noiseSeed) -> PyScene& {
+        applyPythonOverrides(s.description, {{"seed", seed}, {"noise_seed", noiseSeed}});
         return s;
       },
       py::arg("seed") = py::none(), py::kw_only(), py::arg("noise_seed") = py::none(),
@@ -302,8 +332,8 @@ description. Returns the Scene.)doc");
       "Returns the Scene.");
   scene.def(
       "set_spp",
-      [](PyScene& s, long long spp) -> PyScene& {
-        overrideSpp(s.description, spp);
+      [](PyScene& s, const py::object& spp) -> PyScene& {
+        applyPythonOverrides(s.description, {{"spp", spp}});
         return s;
       },
       py::arg("spp"), py::return_value_policy::reference_internal,

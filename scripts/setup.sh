@@ -11,7 +11,7 @@ packages=(
   libglm-dev libgtest-dev libgmock-dev libyaml-cpp-dev libpng-dev libtiff-dev
   libraw-bin dcraw libimage-exiftool-perl python3-matplotlib clang libclang-rt-14-dev clang-format
   colmap python3-opencv python3-numpy libmurmurhash-dev slurm-wlm munge
-  pybind11-dev python3-dev python3-pytest libtinygltf-dev nlohmann-json3-dev
+  pybind11-dev python3-dev python3-pytest libtinygltf-dev nlohmann-json3-dev libcli11-dev
 )
 missing=()
 for p in "${packages[@]}"; do

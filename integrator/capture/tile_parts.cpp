@@ -117,7 +117,8 @@ ReadPart readPart(const std::filesystem::path& file) {
   h.name = get("camsim:name");
   h.scene = get("camsim:scene");
   h.sceneFnv1a = get("camsim:scene_fnv1a64");
-  h.overrides = get("camsim:overrides");
+  h.overridesText = get("camsim:overrides");
+  h.overrides = parseOverridesText(h.overridesText, file.string() + " camsim:overrides");
   h.spp = static_cast<int>(integer("camsim:spp", 1));
   h.seed = static_cast<std::uint64_t>(integer("camsim:seed", 0));
   if (integer("camsim:tile_size", 1) != kRenderTileSize) throw bad("camsim:tile_size");
@@ -235,7 +236,7 @@ std::filesystem::path writeTilePart(const CaptureResult& r, TileShare share,
       {"camsim:name", desc.name},
       {"camsim:scene", desc.sourceFile},
       {"camsim:scene_fnv1a64", desc.sourceFnv1a},
-      {"camsim:overrides", options.overrides},
+      {"camsim:overrides", overridesText(options.overrides)},
       {"camsim:spp", std::to_string(desc.render.spp)},
       {"camsim:seed", std::to_string(desc.render.seed)},
       {"camsim:resolution", std::to_string(w) + " " + std::to_string(h)},

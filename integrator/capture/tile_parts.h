@@ -12,7 +12,7 @@
 // The share's tiles hold the values, every other pixel is 0. Header (strings):
 // camsim:version, camsim:name, camsim:scene (the path as the render was given it),
 // camsim:scene_fnv1a64, camsim:overrides (the front end's changes to the loaded scene:
-// camsim render's flags), camsim:spp, camsim:seed, camsim:resolution ("W H"),
+// overridesText(), one "key=value" line each, integrator/scene/overrides.h), camsim:spp, camsim:seed, camsim:resolution ("W H"),
 // camsim:tile_size, camsim:tile_count (M), camsim:tile_index (k), camsim:tiles (in words),
 // camsim:modelled and camsim:modelled_dims (what was integrated: the capture's step 4
 // needs it), camsim:film_channels, camsim:sensor_channels, camsim:aov_channels (each
@@ -34,6 +34,7 @@
 #include <vector>
 
 #include "integrator/capture/capture.h"
+#include "integrator/scene/overrides.h"
 
 namespace camsim {
 
@@ -42,7 +43,7 @@ std::string tilePartFileName(const std::string& name, TileShare share);
 
 struct TilePartOptions {
   std::filesystem::path directory;  // created if missing
-  std::string overrides;            // camsim:overrides, recorded as given
+  Overrides overrides;              // camsim:overrides (overridesText)
   bool reproducible = false;        // leave out camsim:render_seconds
 };
 
@@ -53,7 +54,9 @@ std::filesystem::path writeTilePart(const CaptureResult& result, TileShare share
 
 // What the parts say about the render they are shares of (part 0's header).
 struct TilePartHeader {
-  std::string version, name, scene, sceneFnv1a, overrides;
+  std::string version, name, scene, sceneFnv1a;
+  std::string overridesText;  // camsim:overrides as stored
+  Overrides overrides;        // read back (parseOverridesText): what merge applies
   glm::ivec2 resolution{0};
   int spp = 0;
   std::uint64_t seed = 0;

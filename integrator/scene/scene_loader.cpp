@@ -61,8 +61,11 @@ RenderSettings parseRender(YamlMap map) {
   if (auto v = map.find("sampler"))
     r.sampler = v->choice<SamplerKind>(
         "sampler", {{"sobol", SamplerKind::kSobol}, {"independent", SamplerKind::kIndependent}});
-  if (auto v = map.find("spp")) r.spp = static_cast<int>(v->integer(1, SceneLimits::kMaxSpp));
-  if (auto v = map.find("seed")) r.seed = static_cast<std::uint64_t>(v->integer(0, INT64_MAX));
+  if (auto v = map.find("spp"))
+    r.spp = static_cast<int>(v->integer(setting_ranges::kSpp.lo, setting_ranges::kSpp.hi));
+  if (auto v = map.find("seed"))
+    r.seed =
+        static_cast<std::uint64_t>(v->integer(setting_ranges::kSeed.lo, setting_ranges::kSeed.hi));
   if (auto v = map.find("max_depth"))
     r.maxDepth = static_cast<int>(v->integer(0, SceneLimits::kMaxDepth));
   if (auto v = map.find("rr_depth"))

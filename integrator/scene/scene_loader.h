@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "integrator/scene/scene_description.h"
+#include "integrator/scene/setting_ranges.h"
 #include "sensor/base/luts_directory.h"  // lutsDirectory(), used with scenes
 
 namespace camsim {
@@ -21,9 +22,9 @@ struct LoadOptions {
 
 // Limits checked before any work starts (resource guards). Raise them only knowingly.
 struct SceneLimits {
-  static constexpr std::int64_t kMaxResolution = 32768;  // px per side
-  static constexpr std::int64_t kMaxPixels = 268435456;  // 2^28 px (16k × 16k)
-  static constexpr std::int64_t kMaxSpp = 1 << 20;
+  static constexpr std::int64_t kMaxResolution = 32768;             // px per side
+  static constexpr std::int64_t kMaxPixels = 268435456;             // 2^28 px (16k × 16k)
+  static constexpr std::int64_t kMaxSpp = setting_ranges::kSpp.hi;  // setting_ranges.h
   static constexpr std::int64_t kMaxDepth = 10000;
   static constexpr std::int64_t kMaxTrianglesInline = 10000000;
   // Every coordinate of render space (positions, translations, geometry over its motion), m:

@@ -112,9 +112,11 @@ Shutter parseShutter(YamlMap map) {
     return Shutter(std::move(times), std::move(values), type, rowTime);
   }
   double open = 0.0, close = 1.0 / 60.0, rampOpen = 0.0, rampClose = 0.0;
-  if (auto v = map.find("open")) open = v->number(-1e6, 1e6);
+  if (auto v = map.find("open"))
+    open = v->number(-setting_ranges::kShutterTime, setting_ranges::kShutterTime);
   const auto closeValue = map.find("close");
-  if (closeValue) close = closeValue->number(-1e6, 1e6);
+  if (closeValue)
+    close = closeValue->number(-setting_ranges::kShutterTime, setting_ranges::kShutterTime);
   if (!(close > open))
     (closeValue ? *closeValue : map.self()).fail("close must be later than open");
   if (auto v = map.find("ramp_open")) rampOpen = v->number(0.0, close - open);
@@ -216,7 +218,8 @@ PhysicalCameraParams parseCamera(YamlMap map, const TableSearch& search) {
   if (auto v = map.find("fill_factor")) c.fillFactor = v->number(0.0, 1.0, true);
   if (auto v = map.find("focal_length_mm"))
     c.focalLength = static_cast<double>(positiveFloat(*v, v->number(0.0, 1e5, true) * 1e-3));
-  if (auto v = map.find("f_number")) c.fNumber = v->number(0.5, 1e4);
+  if (auto v = map.find("f_number"))
+    c.fNumber = v->number(setting_ranges::kFNumber.lo, setting_ranges::kFNumber.hi);
   if (auto v = map.find("focus_distance_m")) {
     c.focusDistance = v->number(0.0, 1e12, true);
     if (!(c.focusDistance > c.focalLength * 1.0001))

@@ -22,7 +22,7 @@ SensorSettings parseSensorSettings(YamlMap map, const std::filesystem::path& bas
     model.failInNamedFile(e);  // an error inside the sensor file keeps its own place too
   }
   s.iso = s.spec.baseIso;
-  if (auto v = map.find("iso")) s.iso = v->number(1.0, 1e7);
+  if (auto v = map.find("iso")) s.iso = v->number(setting_ranges::kIso.lo, setting_ranges::kIso.hi);
   if (auto v = map.find("noise")) {
     const std::optional<NoiseMode> mode = noiseModeFromName(v->string());
     if (!mode)
@@ -30,7 +30,8 @@ SensorSettings parseSensorSettings(YamlMap map, const std::filesystem::path& bas
     s.noise = *mode;
   }
   if (auto v = map.find("noise_seed"))
-    s.noiseSeed = static_cast<std::uint64_t>(v->integer(0, INT64_MAX));
+    s.noiseSeed = static_cast<std::uint64_t>(
+        v->integer(setting_ranges::kNoiseSeed.lo, setting_ranges::kNoiseSeed.hi));
   if (auto v = map.find("frame")) s.frame = static_cast<std::uint64_t>(v->integer(0, INT64_MAX));
   if (auto v = map.find("auto_exposure")) {
     YamlMap ae(*v);

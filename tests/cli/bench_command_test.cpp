@@ -1,4 +1,4 @@
-// Tests for `camsim bench` (bench/bench_*.cpp): the error metrics on known images, the slope
+// Tests for `camsim bench` (cli/bench_command.cpp, integrator/measure/): the error metrics on known images, the slope
 // fit on synthetic data, the CSV columns, argument parsing and the plan, and the reference
 // cache (reused while the scene and its files are unchanged, invalidated when they change).
 // No timing is asserted: the benchmark's numbers are measurements, not test outcomes.

@@ -1,4 +1,4 @@
-// Tests for the limit side of `camsim bench` (integrator/render/ray_recorder.h, bench/bench_limit.h):
+// Tests for the limit side of `camsim bench` (integrator/render/ray_recorder.h, integrator/measure/bench_limit.h):
 // the recorder captures exactly the rays the render counts, by kind; replaying them finds
 // the same hits; the limit times the same rays in each round; motion can be removed; the generated mesh is what the PLY reader reads
 // back; and the binary runs end to end into a directory (tables, CSVs), exiting 2 after a

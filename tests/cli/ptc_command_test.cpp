@@ -39,7 +39,8 @@ TEST(PtcArgs, ParsesSensorOutputAndSeed) {
   EXPECT_EQ(a.outputDir, "dir");
   EXPECT_EQ(a.seed, 42u);
   EXPECT_TRUE(parsePtcArgs({"ptc", "--help"}).help);
-  EXPECT_NE(ptcUsageText().find("camsim ptc SENSOR"), std::string::npos);
+  EXPECT_NE(ptcUsageText().find("camsim ptc"), std::string::npos);
+  EXPECT_NE(ptcUsageText().find("SENSOR"), std::string::npos);
 }
 
 TEST(PtcArgs, BadUsageThrows) {

@@ -43,8 +43,8 @@ TEST(ParseArgs, RenderDefaults) {
   EXPECT_EQ(cmd.kind, Command::Kind::kRender);
   EXPECT_FALSE(cmd.render.scene.has_value());
   EXPECT_EQ(cmd.render.outputDir, "out");
-  EXPECT_FALSE(cmd.render.spp.has_value());
-  EXPECT_FALSE(cmd.render.seed.has_value());
+  EXPECT_FALSE(cmd.render.overrides.spp.has_value());
+  EXPECT_FALSE(cmd.render.overrides.seed.has_value());
   EXPECT_EQ(cmd.render.threads, 0);
 }
 
@@ -54,12 +54,13 @@ TEST(ParseArgs, AllOptions) {
   EXPECT_EQ(cmd.kind, Command::Kind::kRender);
   EXPECT_EQ(cmd.render.scene, "box.yaml");
   EXPECT_EQ(cmd.render.outputDir, "dir");
-  EXPECT_EQ(cmd.render.spp, 16);
-  EXPECT_EQ(cmd.render.seed, 42u);
+  EXPECT_EQ(cmd.render.overrides.spp, 16);
+  EXPECT_EQ(cmd.render.overrides.seed, 42);
   EXPECT_EQ(cmd.render.threads, 3);
   EXPECT_EQ(parseArgs({"render", "--output", "o2"}).render.outputDir, "o2");
-  EXPECT_EQ(parseArgs({"render", "--spp", std::to_string(SceneLimits::kMaxSpp)}).render.spp,
-            SceneLimits::kMaxSpp);
+  EXPECT_EQ(
+      parseArgs({"render", "--spp", std::to_string(SceneLimits::kMaxSpp)}).render.overrides.spp,
+      SceneLimits::kMaxSpp);
 }
 
 TEST(ParseArgs, HelpAndVersion) {
@@ -67,7 +68,7 @@ TEST(ParseArgs, HelpAndVersion) {
   EXPECT_EQ(parseArgs({"-h"}).kind, Command::Kind::kHelp);
   EXPECT_EQ(parseArgs({"render", "--help"}).kind, Command::Kind::kHelp);
   EXPECT_EQ(parseArgs({"--version"}).kind, Command::Kind::kVersion);
-  EXPECT_NE(usageText().find("usage:"), std::string::npos);
+  EXPECT_NE(usageText().find("Usage:"), std::string::npos);
 }
 
 TEST(ParseArgs, BadUsageThrows) {
@@ -110,8 +111,22 @@ TEST(CamsimBinary, HelpAndVersion) {
   TempDir dir;
   RunResult r = camsim("--help", dir.path());
   EXPECT_EQ(r.exitCode, 0) << r.err;
-  EXPECT_NE(r.out.find("usage:"), std::string::npos) << r.out;
-  EXPECT_NE(r.out.find("camsim render"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("Usage:"), std::string::npos) << r.out;
+  // Every command is listed (issue 35: dataset was missing).
+  for (const char* command : {"render", "merge", "dataset", "ptc", "bench"})
+    EXPECT_NE(r.out.find(std::string("  ") + command + " "), std::string::npos) << command << r.out;
+  // Each command's --help comes from its option table: every override flag, with its range.
+  r = camsim("render --help", dir.path());
+  EXPECT_EQ(r.exitCode, 0) << r.err;
+  for (const OverrideSetting& s : overrideSettings())
+    EXPECT_NE(r.out.find(overrideFlag(s)), std::string::npos) << s.key << r.out;
+  EXPECT_NE(r.out.find("[0.5, 10000]"), std::string::npos) << r.out;
+  for (const char* command : {"merge", "dataset", "ptc"}) {
+    r = camsim(std::string(command) + " --help", dir.path());
+    EXPECT_EQ(r.exitCode, 0) << command << r.err;
+    EXPECT_NE(r.out.find(std::string("camsim ") + command), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("--output"), std::string::npos) << r.out;
+  }
   r = camsim("--version", dir.path());
   EXPECT_EQ(r.exitCode, 0) << r.err;
   EXPECT_EQ(r.out, "camsim 0.1.0\n");
@@ -365,11 +380,11 @@ namespace {
 TEST(ParseArgsExposure, ExposureOverridesParseAndValidate) {
   const Command c = parseArgs({"render", "s.yaml", "--exposure-time", "0.004", "--f-number", "2.8",
                                "--iso", "800", "--noise", "photon", "--noise-seed", "5"});
-  EXPECT_DOUBLE_EQ(*c.render.exposureTimeS, 0.004);
-  EXPECT_DOUBLE_EQ(*c.render.fNumber, 2.8);
-  EXPECT_DOUBLE_EQ(*c.render.iso, 800.0);
-  EXPECT_EQ(*c.render.noise, NoiseMode::kPhoton);
-  EXPECT_EQ(*c.render.noiseSeed, 5u);
+  EXPECT_DOUBLE_EQ(*c.render.overrides.exposureTimeS, 0.004);
+  EXPECT_DOUBLE_EQ(*c.render.overrides.fNumber, 2.8);
+  EXPECT_DOUBLE_EQ(*c.render.overrides.iso, 800.0);
+  EXPECT_EQ(*c.render.overrides.noise, NoiseMode::kPhoton);
+  EXPECT_EQ(*c.render.overrides.noiseSeed, 5);
   for (const auto& bad : std::vector<std::vector<std::string>>{{"render", "--exposure-time", "0"},
                                                                {"render", "--f-number", "-2"},
                                                                {"render", "--iso", "abc"},

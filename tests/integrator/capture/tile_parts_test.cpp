@@ -66,12 +66,15 @@ TEST(TileParts, SplitCaptureEqualsTheWholeCapture) {
     options.tiles = TileShare{k, 4};
     const CaptureResult part = renderCaptureFilms(desc, options);
     EXPECT_TRUE(part.frames.empty() && part.picture.pixels.empty());
-    files.push_back(writeTilePart(part, {k, 4}, {dir.path(), "--spp 2", true}));
+    Overrides spp2;
+    spp2.spp = 2;
+    files.push_back(writeTilePart(part, {k, 4}, {dir.path(), spp2, true}));
     EXPECT_EQ(files.back().filename(), tilePartFileName("split", {k, 4}));
   }
   std::swap(files[0], files[3]);  // any order
   AssembledTiles tiles = assembleTileParts(files);
-  EXPECT_EQ(tiles.header.overrides, "--spp 2");
+  EXPECT_EQ(tiles.header.overridesText, "spp=2\n");
+  EXPECT_EQ(tiles.header.overrides.spp, 2);
   EXPECT_EQ(tiles.files[0].filename(), "split.part-0-of-4.exr");
   CaptureResult merged = mergedCapture(std::move(tiles), desc);
   finishCapture(merged);

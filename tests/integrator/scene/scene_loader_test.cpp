@@ -222,7 +222,7 @@ TEST(SceneLoaderTest, CsvReflectanceFoundThroughSpectraPath) {
 }
 
 // inputFiles: every file the loader read, in the order first read, each once — the bench's
-// reference cache keys on it (bench/bench_reference.h), so a file missing here would let a
+// reference cache keys on it (integrator/measure/bench_reference.h), so a file missing here would let a
 // stale reference survive a change to it.
 TEST(SceneLoaderTest, RecordsEveryFileItReads) {
   TempDir dir;

@@ -1,0 +1,91 @@
+#include "cli/command_line.h"
+
+#include "cli/args.h"
+
+namespace camsim {
+namespace {
+
+std::string commandName(const CLI::App& app) {
+  return app.get_name();
+}
+
+}  // namespace
+
+std::unique_ptr<CLI::App> newCommandApp(const std::string& name, const std::string& description) {
+  auto app = std::make_unique<CLI::App>(description, "camsim " + name);
+  app->set_help_flag("-h,--help", "print this help and exit");
+  app->get_formatter()->column_width(24);
+  return app;
+}
+
+bool parseCommand(CLI::App& app, const std::vector<std::string>& args) {
+  // CLI11 takes the arguments in reverse order.
+  std::vector<std::string> reversed(args.rbegin(), args.rend());
+  if (!reversed.empty()) reversed.pop_back();  // the command's name
+  try {
+    app.parse(reversed);
+  } catch (const CLI::CallForHelp&) {
+    return false;
+  } catch (const CLI::ExtrasError& e) {
+    // "The following argument was not expected: --bogus": named as the user typed it.
+    const std::string what = e.what();
+    const std::size_t colon = what.rfind(": ");
+    const std::string extra = colon == std::string::npos ? what : what.substr(colon + 2);
+    throw UsageError((extra.rfind('-', 0) == 0 ? "unknown option '" : "unexpected argument '") +
+                     extra + "' (try '" + commandName(app) + " --help')");
+  } catch (const CLI::ParseError& e) {
+    throw UsageError(std::string(e.what()) + " (try '" + commandName(app) + " --help')");
+  }
+  return true;
+}
+
+std::string commandHelp(const CLI::App& app) {
+  return app.help();
+}
+
+void addOverrideOptions(CLI::App& app, Overrides& o) {
+  for (const OverrideSetting& s : overrideSettings()) {
+    const std::string flag = overrideFlag(s);
+    // --exposure-time: --exposure-time-s's name before the table named it after its key.
+    const std::string names = flag + (s.key == "exposure_time_s" ? ",--exposure-time" : "");
+    std::string help = std::string(s.help);
+    if (s.type == OverrideType::kInteger || s.type == OverrideType::kNumber)
+      help += " " + overrideRangeText(s);
+    else if (s.type == OverrideType::kNoise)
+      help += ": " + overrideRangeText(s);
+    app.add_option_function<std::string>(
+           names, [&o, &s, flag](const std::string& text) { parseOverride(o, s, flag, text); },
+           help)
+        ->type_name(std::string(s.valueName))
+        ->group("Scene overrides");
+  }
+}
+
+void addPictureOptions(CLI::App& app, std::string& ocioConfig, std::string& display,
+                       std::string& view, std::string& look) {
+  const std::string group = "Output transform (OpenColorIO; docs/color-management.md)";
+  app.add_option("--ocio-config", ocioConfig,
+                 "OpenColorIO config for the picture (default: $OCIO, else luts/config.ocio)")
+      ->type_name("FILE")
+      ->group(group);
+  app.add_option("--display", display, "display (default: the config's sRGB)")
+      ->type_name("D")
+      ->group(group);
+  app.add_option("--view", view, "view (default: 'ACES 1.0 - SDR Video')")
+      ->type_name("V")
+      ->group(group);
+  app.add_option("--look", look, "look (default: none)")->type_name("L")->group(group);
+}
+
+void addOutputOption(CLI::App& app, std::string& dir, const std::string& help) {
+  app.add_option_function<std::string>(
+         "-o,--output",
+         [&dir](const std::string& text) {
+           if (text.empty()) throw UsageError("-o/--output needs a non-empty directory");
+           dir = text;
+         },
+         help)
+      ->type_name("DIR");
+}
+
+}  // namespace camsim

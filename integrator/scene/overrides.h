@@ -1,0 +1,120 @@
+// Overrides: every setting a front end can change on a loaded scene, defined once (issue 35).
+// The CLI's render flags, Python's keyword arguments and overrides dict, and the record a
+// tile part keeps for camsim merge all go through this table; ranges are the scene
+// loader's own (setting_ranges.h), so a value the loader refuses is refused everywhere.
+//
+// | key             | scene key                | unit | value                              |
+// |-----------------|--------------------------|------|------------------------------------|
+// | sensor          | sensor.model             | —    | a preset name or a sensor file     |
+// | spp             | render.spp               | —    | integer, setting_ranges::kSpp      |
+// | seed            | render.seed              | —    | integer, kSeed                     |
+// | exposure_time_s | camera.shutter           | s    | number, kExposureTimeS (the scene's|
+// |                 |                          |      | shutter curve stretched to it)     |
+// | f_number        | camera.f_number          | —    | number, kFNumber (the stop follows)|
+// | iso             | sensor.iso               | —    | number, kIso (needs a sensor)      |
+// | noise           | sensor.noise             | —    | none, photon or full (a sensor)    |
+// | noise_seed      | sensor.noise_seed        | —    | integer, kNoiseSeed (a sensor)     |
+// | pose            | camera.world_from_camera | m    | look-at or 4x4 matrix (text below) |
+//
+// The CLI flag of a key is "--" + the key with '_' → '-' (--f-number). Text forms (CLI,
+// tile parts): numbers and integers as C++ from_chars reads them; pose as 9 comma-separated
+// numbers (position, look_at, up) or 16 (world_from_camera, row-major). overridesText()
+// writes one "key=value" line per set override in table order, numbers in their shortest
+// round-trip form, so parseOverridesText() gives back the same doubles.
+//
+// Nothing geometric is touched by applyOverrides: no mesh, texture or environment map is
+// read again. The pose goes through the scene loader itself (a camera-only scene text), so
+// its checks are the loader's; a sensor reads its preset or file (relative: to the working
+// directory) as the loader's `sensor: {model: …}` does.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <glm/mat4x4.hpp>
+#include <glm/vec3.hpp>
+
+#include "integrator/scene/setting_ranges.h"
+#include "sensor/base/input_error.h"
+#include "sensor/model/sensor_model.h"
+
+namespace camsim {
+
+struct SceneDescription;
+
+struct PoseOverride {
+  // Set: the camera's world_from_camera (columns right, up, forward, position, in the scene
+  // file's world coordinates); otherwise position / lookAt / up.
+  std::optional<glm::dmat4> worldFromCamera;
+  glm::dvec3 position{0.0}, lookAt{0.0, 0.0, -1.0}, up{0.0, 1.0, 0.0};
+};
+
+struct Overrides {
+  std::optional<std::string> sensor;
+  std::optional<std::int64_t> spp;
+  std::optional<std::int64_t> seed;
+  std::optional<double> exposureTimeS;
+  std::optional<double> fNumber;
+  std::optional<double> iso;
+  std::optional<NoiseMode> noise;
+  std::optional<std::int64_t> noiseSeed;
+  std::optional<PoseOverride> pose;
+
+  bool empty() const;
+};
+
+enum class OverrideType { kInteger, kNumber, kNoise, kSensor, kPose };
+
+struct OverrideSetting {
+  std::string_view key;        // snake_case: Python keyword, tile-part key, CLI flag's stem
+  std::string_view sceneKey;   // the scene file's key it overrides
+  std::string_view unit;       // "s", or "" when none
+  std::string_view valueName;  // the value in usage text: "N", "S", "MODE", …
+  std::string_view help;       // one line for usage text
+  OverrideType type;
+  IntegerRange integers{};  // kInteger
+  SettingRange numbers{};   // kNumber
+};
+
+// Every override, in the order applyOverrides applies them (a sensor first: it sets the ISO
+// that an iso override then replaces).
+const std::vector<OverrideSetting>& overrideSettings();
+// The setting of `key` (snake_case), or nullptr.
+const OverrideSetting* findOverrideSetting(std::string_view key);
+// "--f-number" for f_number.
+std::string overrideFlag(const OverrideSetting& setting);
+// "[0.5, 10000]", "(0, 1000000]", "none|photon|full", …: what the setting accepts.
+std::string overrideRangeText(const OverrideSetting& setting);
+
+// Where a value comes from, for InputError: the location (file; "" for a command line) and
+// the name the user gave it ("--f-number", "f_number", "camera.f_number").
+struct OverrideSource {
+  SourceLocation where;
+  std::string name;
+};
+
+// Parses `text` as the setting's value and stores it in o. InputError (key = source.name)
+// naming the value and the range when it does not read or is out of range.
+void setOverrideText(Overrides& o, const OverrideSetting& setting, std::string_view text,
+                     const OverrideSource& source);
+// Typed values (Python): the same checks, the same messages.
+void setOverrideInteger(Overrides& o, const OverrideSetting& setting, std::int64_t value,
+                        const OverrideSource& source);
+void setOverrideNumber(Overrides& o, const OverrideSetting& setting, double value,
+                       const OverrideSource& source);
+
+// Applies o to d in table order, checking every value again (an Overrides filled by hand
+// gets the same refusals). InputError (file where.file, key = the scene key) for a value out
+// of range, iso/noise/noise_seed without a sensor, a sensor or pose the loader refuses.
+void applyOverrides(SceneDescription& d, const Overrides& o, const SourceLocation& where);
+
+// One "key=value" line per set override (table order); "" when none.
+std::string overridesText(const Overrides& o);
+// Back from overridesText (lines; blank lines skipped). InputError at `where` (its file,
+// the line's number) for an unknown key, a line without '=', or a bad value.
+Overrides parseOverridesText(const std::string& text, const std::string& file);
+
+}  // namespace camsim

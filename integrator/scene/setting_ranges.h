@@ -1,0 +1,55 @@
+// The allowed range of every scene setting a front end can override (overrides.h), defined
+// once: the scene loader reads the scene file's keys with these bounds and the overrides
+// module checks CLI flags, Python arguments and tile-part records against the same ones, so
+// a value the loader refuses is refused everywhere (issue 35, "settings defined once").
+//
+// | setting         | scene key                    | unit | range          |
+// |-----------------|------------------------------|------|----------------|
+// | spp             | render.spp                   | —    | [1, 2^20]      |
+// | seed            | render.seed                  | —    | [0, 2^63 − 1]  |
+// | exposure_time_s | camera.shutter (close−open)  | s    | (0, 1e6]       |
+// | f_number        | camera.f_number              | —    | [0.5, 1e4]     |
+// | iso             | sensor.iso                   | —    | [1, 1e7]       |
+// | noise_seed      | sensor.noise_seed            | —    | [0, 2^63 − 1]  |
+#pragma once
+
+#include <cstdint>
+#include <limits>
+#include <string>
+
+namespace camsim {
+
+// [lo, hi], or (lo, hi] when loOpen. Integer settings hold integral bounds.
+struct SettingRange {
+  double lo = 0.0;
+  double hi = 0.0;
+  bool loOpen = false;
+
+  bool contains(double v) const { return v <= hi && (loOpen ? v > lo : v >= lo); }
+  // "[0.5, 10000]", "(0, 1000000]": the bounds as the scene loader prints them (%.10g).
+  std::string text() const;
+};
+
+struct IntegerRange {
+  std::int64_t lo = 0;
+  std::int64_t hi = 0;
+
+  bool contains(std::int64_t v) const { return v >= lo && v <= hi; }
+  std::string text() const;  // "[1, 1048576]"
+};
+
+namespace setting_ranges {
+
+inline constexpr IntegerRange kSpp{1, std::int64_t{1} << 20};
+inline constexpr IntegerRange kSeed{0, std::numeric_limits<std::int64_t>::max()};
+inline constexpr IntegerRange kNoiseSeed{0, std::numeric_limits<std::int64_t>::max()};
+// A lens in air is no faster than f/0.5 (NA ≤ 1).
+inline constexpr SettingRange kFNumber{0.5, 1e4, false};
+inline constexpr SettingRange kIso{1.0, 1e7, false};
+// The shutter's open and close times (s) lie within ±kShutterTime, so an exposure that
+// opens at 0 lasts at most kShutterTime: the effective exposure time's range.
+inline constexpr double kShutterTime = 1e6;
+inline constexpr SettingRange kExposureTimeS{0.0, kShutterTime, true};
+
+}  // namespace setting_ranges
+}  // namespace camsim

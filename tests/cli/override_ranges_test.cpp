@@ -1,0 +1,230 @@
+// Every override's boundary values through every front end (issue 35, "settings defined
+// once"): for each ranged setting of integrator/scene/overrides.h's table, lo, hi and the
+// nearest values just outside them (for an open bound: lo itself, refused, and the next
+// double above, accepted) go to
+//   - the library: setOverrideText + applyOverrides on a scene with a sensor,
+//   - the CLI's argument parser (parseArgs) and the camsim binary itself,
+//   - a dataset manifest (`set:` of the scene key; resolveItem loads it as the runner does),
+// and each must accept exactly the values in the table's range. python/tests/
+// test_override_ranges.py feeds the same table (camsim.override_settings()) to Python.
+// The binary runs with --max-memory-gb 1e-9: an accepted value passes the overrides and
+// stops at the memory guard (exit 2, "estimated"), a refused one stops at the flag (exit
+// 2, naming the flag and the range), so no render runs.
+#include <gtest/gtest.h>
+
+#include <charconv>
+#include <cmath>
+#include <limits>
+#include <string>
+#include <tuple>
+#include <vector>
+
+#include "cli/args.h"
+#include "integrator/dataset/dataset_item.h"
+#include "integrator/dataset/manifest.h"
+#include "integrator/scene/overrides.h"
+#include "integrator/scene/scene_loader.h"
+#include "tests/support/run_command.h"
+#include "tests/support/temp_dir.h"
+#include "tests/support/text_file.h"
+
+namespace camsim {
+namespace {
+
+const char* kScene =
+    "name: probe\nrender: {spp: 1}\n"
+    "camera: {position: [0, 0, -3], look_at: [0, 0, 0], resolution: [8, 8], "
+    "focal_length_mm: 0.01, shutter: {open: 0, close: 0.01}}\n"
+    "sensor: {model: smartphone-1.4um}\n"
+    "materials: {grey: {type: diffuse, reflectance: 0.5}}\n"
+    "shapes:\n"
+    "  - {type: sphere, centre: [0, 2, 0], radius: 0.5, emission: {luminance: 100}}\n"
+    "  - {type: sphere, centre: [0, 0, 0], radius: 1, material: grey}\n";
+
+std::string shortest(double v) {
+  char buffer[32];
+  const auto r = std::to_chars(buffer, buffer + sizeof buffer, v);
+  return std::string(buffer, r.ptr);
+}
+
+struct Case {
+  const OverrideSetting* setting;
+  std::string text;  // the value as a command line or a manifest writes it
+  bool accepted;     // by the table's range
+};
+
+// lo, hi and their nearest neighbours outside (inside, for an open lower bound).
+std::vector<Case> boundaryCases() {
+  std::vector<Case> out;
+  for (const OverrideSetting& s : overrideSettings()) {
+    if (s.type == OverrideType::kInteger) {
+      const IntegerRange r = s.integers;
+      out.push_back({&s, std::to_string(r.lo), true});
+      out.push_back({&s, std::to_string(r.hi), true});
+      out.push_back({&s, std::to_string(r.lo - 1), false});  // lo ≥ 0: no overflow
+      // hi + 1 as text (hi may be INT64_MAX).
+      std::string above = std::to_string(r.hi);
+      for (std::size_t i = above.size(); i-- > 0;) {
+        if (above[i] != '9') {
+          ++above[i];
+          break;
+        }
+        above[i] = '0';
+        if (i == 0) above.insert(above.begin(), '1');
+      }
+      out.push_back({&s, above, false});
+    } else if (s.type == OverrideType::kNumber) {
+      const SettingRange r = s.numbers;
+      const double inf = std::numeric_limits<double>::infinity();
+      out.push_back({&s, shortest(r.lo), !r.loOpen});
+      if (r.loOpen)
+        out.push_back({&s, shortest(std::nextafter(r.lo, inf)), true});
+      else
+        out.push_back({&s, shortest(std::nextafter(r.lo, -inf)), false});
+      out.push_back({&s, shortest(r.hi), true});
+      out.push_back({&s, shortest(std::nextafter(r.hi, inf)), false});
+    }
+  }
+  return out;
+}
+
+std::string describe(const Case& c) {
+  return std::string(c.setting->key) + " = " + c.text + " (expected " +
+         (c.accepted ? "accepted" : "refused") + ")";
+}
+
+SceneDescription probeScene() {
+  return loadSceneFromText(kScene, "probe.yaml", ".");
+}
+
+TEST(OverrideRanges, TableHasEveryRangedSetting) {
+  std::vector<std::string> keys;
+  for (const Case& c : boundaryCases())
+    if (keys.empty() || keys.back() != c.setting->key) keys.emplace_back(c.setting->key);
+  EXPECT_EQ(keys, (std::vector<std::string>{"spp", "seed", "exposure_time_s", "f_number", "iso",
+                                            "noise_seed"}));
+  EXPECT_EQ(boundaryCases().size(), 24u);
+}
+
+TEST(OverrideRanges, LibraryApplyAgreesWithTheTable) {
+  for (const Case& c : boundaryCases()) {
+    SceneDescription d = probeScene();
+    bool accepted = true;
+    try {
+      Overrides o;
+      const OverrideSource source{SourceLocation{"", 0, 0}, std::string(c.setting->key)};
+      setOverrideText(o, *c.setting, c.text, source);
+      applyOverrides(d, o, {"<test>", 0, 0});
+    } catch (const InputError& e) {
+      accepted = false;
+      EXPECT_NE(e.message().find(overrideRangeText(*c.setting)), std::string::npos) << e.what();
+    }
+    EXPECT_EQ(accepted, c.accepted) << describe(c);
+  }
+}
+
+TEST(OverrideRanges, CommandLineParserAgreesWithTheTable) {
+  for (const Case& c : boundaryCases()) {
+    const std::string flag = overrideFlag(*c.setting);
+    bool accepted = true;
+    try {
+      const Command cmd = parseArgs({"render", flag, c.text});
+      SceneDescription d = probeScene();
+      applyOverrides(d, cmd.render.overrides, {"<command line>", 0, 0});
+    } catch (const UsageError& e) {
+      accepted = false;
+      const std::string what = e.what();
+      EXPECT_NE(what.find(flag), std::string::npos) << what;
+      EXPECT_NE(what.find(overrideRangeText(*c.setting)), std::string::npos) << what;
+    }
+    EXPECT_EQ(accepted, c.accepted) << describe(c);
+  }
+}
+
+TEST(OverrideRanges, ManifestAgreesWithTheTable) {
+  const test::TempDir dir;
+  test::writeFile(dir.path() / "base.yaml", kScene);
+  for (const Case& c : boundaryCases()) {
+    // The scene key a manifest sets; an exposure time T is a shutter open from 0 to T.
+    const std::string key = c.setting->key == "exposure_time_s" ? "camera.shutter.close"
+                                                                : std::string(c.setting->sceneKey);
+    const std::string text =
+        "format: camsim-dataset/1\nscene: base.yaml\nseeds: fixed\n"
+        "items:\n  - {" +
+        key + ": " + c.text + "}\n";
+    bool accepted = true;
+    try {
+      const Manifest m = parseManifest(text, "m.yaml", dir.path());
+      ASSERT_EQ(m.items.size(), 1u);
+      (void)resolveItem(m, m.items[0], "");
+    } catch (const InputError& e) {
+      accepted = false;
+      EXPECT_NE(std::string(e.what()).find("m.yaml"), std::string::npos) << e.what();
+    }
+    EXPECT_EQ(accepted, c.accepted) << describe(c);
+  }
+}
+
+TEST(OverrideRanges, BinaryAgreesWithTheTable) {
+  const test::TempDir dir;
+  test::writeFile(dir.path() / "probe.yaml", kScene);
+  for (const Case& c : boundaryCases()) {
+    const std::string flag = overrideFlag(*c.setting);
+    const test::RunResult r =
+        test::runCamsim("render " + test::quote((dir.path() / "probe.yaml").string()) + " -o " +
+                            test::quote((dir.path() / "out").string()) + " --max-memory-gb 1e-9 " +
+                            flag + " " + test::quote(c.text),
+                        dir.path());
+    EXPECT_EQ(r.exitCode, 2) << describe(c) << r.err;
+    const bool accepted = r.err.find("estimated") != std::string::npos;
+    EXPECT_EQ(accepted, c.accepted) << describe(c) << "\n" << r.err;
+    if (!c.accepted) {
+      EXPECT_NE(r.err.find(flag), std::string::npos) << r.err;
+      EXPECT_NE(r.err.find(overrideRangeText(*c.setting)), std::string::npos) << r.err;
+    }
+  }
+}
+
+// The issue's examples, as a new user types them.
+TEST(OverrideRanges, IssueExamplesExitTwoNamingFlagAndRange) {
+  const test::TempDir dir;
+  test::writeFile(dir.path() / "probe.yaml", kScene);
+  for (const auto& [flag, value, range] :
+       {std::tuple<std::string, std::string, std::string>{"--f-number", "0.3", "[0.5, 10000]"},
+        {"--iso", "0.5", "[1, 10000000]"}}) {
+    const test::RunResult r =
+        test::runCamsim("render " + test::quote((dir.path() / "probe.yaml").string()) + " -o " +
+                            test::quote((dir.path() / "out").string()) + " " + flag + " " + value,
+                        dir.path());
+    EXPECT_EQ(r.exitCode, 2) << r.err;
+    EXPECT_NE(r.err.find(flag + ": value " + value + " is out of range " + range),
+              std::string::npos)
+        << r.err;
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir.path() / "out" / "probe.exr"));
+}
+
+// Tile parts keep the overrides as data: the text form reads back to the same values.
+TEST(OverrideRanges, TextFormRoundTrips) {
+  Overrides o;
+  o.spp = 7;
+  o.seed = std::numeric_limits<std::int64_t>::max();
+  o.exposureTimeS = 0.1 + 0.2;  // not a short decimal
+  o.fNumber = 2.8;
+  o.iso = 800;
+  o.noise = NoiseMode::kPhoton;
+  o.noiseSeed = 3;
+  o.sensor = "a sensor file with spaces.yaml";
+  o.pose = PoseOverride{std::nullopt, {1, 2, 3}, {0, 0, 0}, {0, 1, 0}};
+  const std::string text = overridesText(o);
+  const Overrides back = parseOverridesText(text, "part.exr");
+  EXPECT_EQ(overridesText(back), text);
+  EXPECT_EQ(back.exposureTimeS, o.exposureTimeS);
+  EXPECT_EQ(back.sensor, o.sensor);
+  EXPECT_THROW(parseOverridesText("f_number=0.3\n", "part.exr"), InputError);
+  EXPECT_THROW(parseOverridesText("spp 4\n", "part.exr"), InputError);
+  EXPECT_THROW(parseOverridesText("colour=red\n", "part.exr"), InputError);
+}
+
+}  // namespace
+}  // namespace camsim
