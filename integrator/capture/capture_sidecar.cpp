@@ -39,6 +39,20 @@ std::string exact(const std::vector<double>& values) {
   return s + "]";
 }
 
+// A length in m as the scene's mm: the loader keeps float(mm · 1e-3) (positiveFloat), so
+// 85 mm is 0.08500000089406967 m. The shortest float text ("85") when it reads back to the
+// same metres, else the exact double (still the same metres, less readable).
+std::string millimetres(double metres) {
+  char buffer[32];
+  const auto result =
+      std::to_chars(buffer, buffer + sizeof buffer, static_cast<float>(metres * 1e3));
+  const std::string text(buffer, result.ptr);
+  double mm = 0.0;
+  std::from_chars(text.data(), text.data() + text.size(), mm);
+  if (static_cast<double>(static_cast<float>(mm * 1e-3)) == metres) return text;
+  return exact(metres * 1e3);
+}
+
 // The camera's `shutter:` as a scene writes it: open/close for a box, else its curve.
 JsonObject shutterJson(const Shutter& shutter) {
   JsonObject j;
@@ -76,10 +90,10 @@ JsonObject cameraJson(const PhysicalCameraParams& p, const glm::dvec3& renderOri
   j.setJson("world_from_camera", exact(pose))
       .setJson("resolution", exact({double(p.resolution.x), double(p.resolution.y)}));
   if (!hasSensor)  // with a sensor, the sensor sets them and the scene must not
-    j.setJson("sensor_width_mm", exact(p.sensorSize.x * 1e3))
-        .setJson("sensor_height_mm", exact(p.sensorSize.y * 1e3))
+    j.setJson("sensor_width_mm", millimetres(p.sensorSize.x))
+        .setJson("sensor_height_mm", millimetres(p.sensorSize.y))
         .setJson("fill_factor", exact(p.fillFactor));
-  j.setJson("focal_length_mm", exact(p.focalLength * 1e3)).setJson("f_number", exact(p.fNumber));
+  j.setJson("focal_length_mm", millimetres(p.focalLength)).setJson("f_number", exact(p.fNumber));
   if (p.focusDistance > 0.0) j.setJson("focus_distance_m", exact(p.focusDistance));
   if (p.aperture)
     j.set("aperture", JsonObject()

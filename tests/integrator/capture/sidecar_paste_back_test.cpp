@@ -132,9 +132,10 @@ void checkPasteBack(const std::string& scene) {
   for (std::size_t i = 0; i < first.size(); ++i) {
     EXPECT_EQ(first[i].filename(), second[i].filename());
     const std::string ext = first[i].extension().string();
-    const bool same = ext == ".exr"   ? sameExr(first[i], second[i])
-                      : ext == ".dng" ? true
-                                      : sameBytes(test::readFile(first[i]), test::readFile(second[i]));
+    const bool same = ext == ".exr" ? sameExr(first[i], second[i])
+                      : ext == ".dng"
+                          ? true
+                          : sameBytes(test::readFile(first[i]), test::readFile(second[i]));
     if (!same) differ += " " + first[i].filename().string();
   }
   EXPECT_TRUE(differ.empty()) << "differ:" << differ << "\nthe pasted camera, sensor, isp:\n"
