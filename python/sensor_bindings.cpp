@@ -199,14 +199,10 @@ IspSettings ispSettings(const std::string& whiteBalance, const std::string& illu
                         const std::string& demosaic) {
   using W = IspSettings::WhiteBalance;
   IspSettings isp;
-  if (whiteBalance == "illuminant")
-    isp.whiteBalance = W::kIlluminant;
-  else if (whiteBalance == "grey_world")
-    isp.whiteBalance = W::kGreyWorld;
-  else if (whiteBalance == "region")
-    isp.whiteBalance = W::kRegion;
+  if (const std::optional<W> wb = enumFromName<W>(whiteBalance))
+    isp.whiteBalance = *wb;
   else
-    fail("<develop>", "white_balance", "expected illuminant, grey_world or region");
+    fail("<develop>", "white_balance", "expected one of " + enumNameList<W>());
   isp.illuminant = illuminant;
   if (region) {
     if (isp.whiteBalance != W::kRegion)
@@ -218,12 +214,11 @@ IspSettings ispSettings(const std::string& whiteBalance, const std::string& illu
   } else if (isp.whiteBalance == W::kRegion) {
     fail("<develop>", "region", "white_balance='region' needs region=(x, y, width, height)");
   }
-  if (demosaic == "malvar" || demosaic == "malvar-he-cutler")
-    isp.demosaic = DemosaicMethod::kMalvarHeCutler;
-  else if (demosaic == "bilinear")
-    isp.demosaic = DemosaicMethod::kBilinear;
+  // The library's table (sensor/isp/demosaic.h), with its alias "malvar-he-cutler".
+  if (const std::optional<DemosaicMethod> d = enumFromName<DemosaicMethod>(demosaic))
+    isp.demosaic = *d;
   else
-    fail("<develop>", "demosaic", "expected malvar (or malvar-he-cutler) or bilinear");
+    fail("<develop>", "demosaic", "expected one of " + enumNameList<DemosaicMethod>());
   return isp;
 }
 
@@ -367,8 +362,8 @@ raw: uint16 DN (height, width) of a mosaic sensor; a stacked sensor's (height, w
   array or a capture's dict {channel: (height, width)}; black level and white level are
   the sensor's. Steps (sensor/isp/isp_pipeline.h): normalise, white balance
   ("illuminant" from the CIE illuminant `illuminant`, "grey_world", or "region" over
-  region=(x, y, width, height) px), demosaic ("malvar" — also "malvar-he-cutler", as meta
-  writes it — or "bilinear"), the colour matrix
+  region=(x, y, width, height) px), demosaic ("malvar" — also "malvar-he-cutler", as
+  sidecars before issue 35 wrote it — or "bilinear"), the colour matrix
   fitted from the sensor's QE on the ColorChecker under `illuminant`. 0.18 is mid-grey when
   the exposure put it there; a monochrome sensor gives grey RGB. The same settings as a
   scene's isp: block give that capture's "acescg" bytes. Releases the GIL.)doc");

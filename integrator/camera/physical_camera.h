@@ -50,11 +50,18 @@
 #include "integrator/camera/lens_distortion.h"
 #include "integrator/camera/shutter.h"
 #include "integrator/geometry/motion.h"
+#include "sensor/base/enum_names.h"
 #include "sensor/spectra/spectrum.h"
 
 namespace camsim {
 
 enum class LensPupil { kAplanatic, kFlat };
+// The scene's `camera.aperture.pupil` names (sensor/base/enum_names.h).
+template <>
+struct EnumNames<LensPupil> {
+  static constexpr EnumName<LensPupil> kTable[] = {{LensPupil::kAplanatic, "aplanatic"},
+                                                   {LensPupil::kFlat, "flat"}};
+};
 
 struct PhysicalCameraParams {
   glm::dmat4 worldFromCamera{1.0};  // at rest; columns right, up, forward, position

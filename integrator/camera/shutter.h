@@ -17,6 +17,8 @@
 
 #include <vector>
 
+#include "sensor/base/enum_names.h"
+
 namespace camsim {
 
 class Shutter {
@@ -43,6 +45,9 @@ class Shutter {
   Type type() const { return type_; }
   double rowTime() const { return type_ == Type::kRolling ? rowTime_ : 0.0; }
   double efficiency(double t) const;  // s(t) for row 0
+  // The curve's points (t_i, s_i), as built (the sidecar writes them back as a scene's).
+  const std::vector<double>& times() const { return times_; }
+  const std::vector<double>& values() const { return values_; }
 
   // A time for row 0 drawn with density s(t)/T_eff from u in [0,1).
   double sample(double u) const;
@@ -54,6 +59,12 @@ class Shutter {
   double total_ = 0.0;
   Type type_;
   double rowTime_;
+};
+// The scene's `camera.shutter.type` names (sensor/base/enum_names.h).
+template <>
+struct EnumNames<Shutter::Type> {
+  static constexpr EnumName<Shutter::Type> kTable[] = {{Shutter::Type::kGlobal, "global"},
+                                                       {Shutter::Type::kRolling, "rolling"}};
 };
 
 }  // namespace camsim

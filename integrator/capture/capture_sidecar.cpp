@@ -1,9 +1,11 @@
 #include "integrator/capture/capture_sidecar.h"
 
 #include <algorithm>
-
+#include <charconv>
 #include <string>
 #include <vector>
+
+#include <glm/trigonometric.hpp>
 
 #include "integrator/camera/physical_camera.h"
 #include "integrator/render/cryptomatte.h"
@@ -21,26 +23,105 @@ std::vector<double> matrixRows(const glm::dmat3& m) {
   return v;
 }
 
-JsonObject cameraJson(const PhysicalCamera& camera) {
-  const PhysicalCameraParams& p = camera.params();
-  const glm::dvec4 k = camera.intrinsics();
+// A number as the shortest decimal that reads back as the same double: the scene inputs
+// below must paste back into a scene and give the same bytes (JsonObject keeps 10 digits).
+std::string exact(double v) {
+  char buffer[32];
+  const auto result = std::to_chars(buffer, buffer + sizeof buffer, v);
+  return std::string(buffer, result.ptr);
+}
+std::string exact(const std::vector<double>& values) {
+  std::string s = "[";
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    if (i) s += ", ";
+    s += exact(values[i]);
+  }
+  return s + "]";
+}
+
+// A length in m as the scene's mm: the loader keeps float(mm · 1e-3) (positiveFloat), so
+// 85 mm is 0.08500000089406967 m. The shortest float text ("85") when it reads back to the
+// same metres, else the exact double (still the same metres, less readable).
+std::string millimetres(double metres) {
+  char buffer[32];
+  const auto result =
+      std::to_chars(buffer, buffer + sizeof buffer, static_cast<float>(metres * 1e3));
+  const std::string text(buffer, result.ptr);
+  double mm = 0.0;
+  std::from_chars(text.data(), text.data() + text.size(), mm);
+  if (static_cast<double>(static_cast<float>(mm * 1e-3)) == metres) return text;
+  return exact(metres * 1e3);
+}
+
+// The camera's `shutter:` as a scene writes it: open/close for a box, else its curve.
+JsonObject shutterJson(const Shutter& shutter) {
   JsonObject j;
-  j.set("resolution", std::vector<double>{double(p.resolution.x), double(p.resolution.y)})
-      .set("sensor_size_m", std::vector<double>{p.sensorSize.x, p.sensorSize.y})
+  j.set("type", std::string(enumName(shutter.type())));
+  if (shutter.type() == Shutter::Type::kRolling) j.setJson("row_time", exact(shutter.rowTime()));
+  const std::vector<double>& t = shutter.times();
+  const std::vector<double>& s = shutter.values();
+  if (t.size() == 2 && s[0] == 1.0 && s[1] == 1.0) {
+    j.setJson("open", exact(t[0])).setJson("close", exact(t[1]));
+  } else {
+    std::string curve = "[";
+    for (std::size_t i = 0; i < t.size(); ++i)
+      curve += (i ? ", [" : "[") + exact(t[i]) + ", " + exact(s[i]) + "]";
+    j.setJson("curve", curve + "]");
+  }
+  return j;
+}
+
+// The camera's scene inputs in the scene's keys and units (docs/scene-format.md), then
+// `derived`: what follows from them (SI units, intrinsics). `motion`, `lens_transmittance`
+// and `gltf` are not written: a paste-back keeps the scene's own (docs/output.md).
+// renderOrigin: the scene's world point the render's positions are relative to (the
+// camera's rest position, SceneDescription::renderOrigin); the pose is written in the
+// scene file's world.
+JsonObject cameraJson(const PhysicalCameraParams& p, const glm::dvec3& renderOrigin,
+                      bool hasSensor) {
+  const PhysicalCamera camera(p);
+  const glm::dvec4 k = camera.intrinsics();
+  glm::dmat4 world = p.worldFromCamera;
+  world[3] += glm::dvec4(renderOrigin, 0.0);
+  std::vector<double> pose;  // row by row
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 4; ++c) pose.push_back(world[c][r]);
+  JsonObject j;
+  j.setJson("world_from_camera", exact(pose))
+      .setJson("resolution", exact({double(p.resolution.x), double(p.resolution.y)}));
+  if (!hasSensor)  // with a sensor, the sensor sets them and the scene must not
+    j.setJson("sensor_width_mm", millimetres(p.sensorSize.x))
+        .setJson("sensor_height_mm", millimetres(p.sensorSize.y))
+        .setJson("fill_factor", exact(p.fillFactor));
+  j.setJson("focal_length_mm", millimetres(p.focalLength)).setJson("f_number", exact(p.fNumber));
+  if (p.focusDistance > 0.0) j.setJson("focus_distance_m", exact(p.focusDistance));
+  if (p.aperture)
+    j.set("aperture", JsonObject()
+                          .setJson("blades", std::to_string(p.aperture->blades))
+                          .setJson("rotation_deg", exact(glm::degrees(p.aperture->rotation)))
+                          .set("pupil", std::string(enumName(p.pupil))));
+  j.set("distortion", JsonObject()
+                          .setJson("k1", exact(p.distortion.k1))
+                          .setJson("k2", exact(p.distortion.k2))
+                          .setJson("k3", exact(p.distortion.k3))
+                          .setJson("p1", exact(p.distortion.p1))
+                          .setJson("p2", exact(p.distortion.p2)))
+      .set("shutter", shutterJson(p.shutter));
+
+  JsonObject d;
+  d.set("sensor_size_m", std::vector<double>{p.sensorSize.x, p.sensorSize.y})
       .set("fill_factor", p.fillFactor)
-      .set("focal_length_m", p.focalLength)
-      .set("f_number", p.fNumber);
+      .set("focal_length_m", p.focalLength);
   // Focus at infinity (focusDistance 0 in PhysicalCameraParams) is null: no distance.
   if (p.focusDistance > 0.0)
-    j.set("focus_distance_m", p.focusDistance);
+    d.set("focus_distance_m", p.focusDistance);
   else
-    j.setJson("focus_distance_m", "null");
-  j.set("image_distance_m", camera.imageDistance())
+    d.setJson("focus_distance_m", "null");
+  d.set("image_distance_m", camera.imageDistance())
       .set("aperture",
            p.aperture
                ? (p.aperture->blades ? std::to_string(p.aperture->blades) + " blades" : "circular")
                : "pinhole")
-      .set("pupil", p.pupil == LensPupil::kFlat ? "flat" : "aplanatic")
       .set("shutter_open_s", p.shutter.open())
       .set("shutter_close_s", p.shutter.close())
       .set("exposure_time_s", p.shutter.effectiveTime())
@@ -49,47 +130,59 @@ JsonObject cameraJson(const PhysicalCamera& camera) {
       .set("opencv_k1_k2_p1_p2_k3",
            std::vector<double>{p.distortion.k1, p.distortion.k2, p.distortion.p1, p.distortion.p2,
                                p.distortion.k3});
-  return j;
+  return j.set("derived", d);
 }
 
+// The sensor's scene inputs (the scene's `sensor:` keys), then `derived`: what the capture
+// measured or computed from them.
 JsonObject sensorJson(const CaptureResult& r) {
   const SensorSettings& sensor = *r.description.sensor;
   std::vector<double> evs, times;
   for (const CaptureFrame& f : r.frames) evs.push_back(f.ev), times.push_back(f.exposureTimeS);
   JsonObject j;
   j.set("model", sensor.spec.name)
-      .set("iso", sensor.iso)
-      .set("noise", noiseModeName(sensor.noise))
+      .setJson("iso", exact(sensor.iso))
+      .set("noise", std::string(enumName(sensor.noise)))
       .setInteger("noise_seed", sensor.noiseSeed)
-      .set("frame", double(sensor.frame))
-      .set("auto_exposure",
-           sensor.autoExposure ? meteringName(sensor.autoExposure->metering) : "off")
-      .set("auto_exposure_scale", r.exposureScale)
-      .set("bracket_ev", evs)
+      .setInteger("frame", sensor.frame);
+  if (const std::optional<AutoExposure>& ae = sensor.autoExposure) {
+    JsonObject a;
+    a.set("metering", std::string(enumName(ae->metering))).setJson("target", exact(ae->target));
+    if (ae->metering == AutoExposure::Metering::kPercentile)
+      a.setJson("percentile", exact(ae->percentile));
+    j.set("auto_exposure", a);
+  }
+  if (!sensor.bracketEv.empty()) j.setJson("bracket_ev", exact(sensor.bracketEv));
+  JsonObject d;
+  d.set("auto_exposure_scale", r.exposureScale)
+      .set("frame_ev", evs)
       .set("exposure_times_s", times)
       .set("system_gain_dn_per_e", sensor.spec.systemGain(sensor.iso))
       .set("saturation_e", sensor.spec.saturationElectrons(sensor.iso));
-  return j;
+  return j.set("derived", d);
 }
 
+// The ISP's scene inputs (the scene's `isp:` keys), then `derived`: the gains and matrices
+// the development used.
 JsonObject ispJson(const CaptureResult& r) {
   const IspSettings& isp = r.description.isp;
   const DevelopedImage& dev = *r.developed;
-  const char* wb[] = {"illuminant", "region", "grey_world"};
   JsonObject j;
-  j.set("white_balance", wb[static_cast<int>(isp.whiteBalance)])
-      .set("illuminant", isp.illuminant)
-      .set("white_balance_gains", dev.whiteBalance)
+  j.set("white_balance", std::string(enumName(isp.whiteBalance))).set("illuminant", isp.illuminant);
+  if (isp.whiteBalance == IspSettings::WhiteBalance::kRegion)
+    j.setJson("region", exact({double(isp.region.x), double(isp.region.y), double(isp.region.width),
+                               double(isp.region.height)}));
+  j.set("demosaic", std::string(enumName(isp.demosaic)));
+  JsonObject d;
+  d.set("white_balance_gains", dev.whiteBalance)
       .set("chromatic_adaptation",
            r.description.sensor->spec.cfa.isStacked()
                ? "Bradford from the white's XYZ to D65 (ccm_camera_to_xyz_d65)"
                : "Bradford to D65, in the CCM fit")
-      .set("demosaic",
-           isp.demosaic == DemosaicMethod::kMalvarHeCutler ? "malvar-he-cutler" : "bilinear")
       .set("ccm_camera_to_xyz_d65", matrixRows(dev.colorCorrection.cameraToXyz))
       .set("xyz_d65_to_working", matrixRows(dev.colorCorrection.xyzToWorking))
       .set("working_space", "ACEScg");
-  return j;
+  return j.set("derived", d);
 }
 
 std::vector<std::string> aovNames(const std::vector<Aov>& aovs) {
@@ -140,7 +233,7 @@ JsonObject captureSidecar(const CaptureResult& r, bool reproducible) {
       .set("input_files", inputFiles)
       .set("import_notes", desc.notes)  // always present, [] when the loader noted nothing
       .set("render", render)
-      .set("camera", cameraJson(PhysicalCamera(desc.camera)));
+      .set("camera", cameraJson(desc.camera, desc.renderOrigin, desc.sensor.has_value()));
   if (desc.sensor)
     sidecar.set("sensor", sensorJson(r)).set("isp", ispJson(r));
   else

@@ -13,11 +13,18 @@
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 
+#include "sensor/base/enum_names.h"
 #include "sensor/spectra/sampled_spectrum.h"
 
 namespace camsim {
 
 enum class FresnelModel { kExact, kSchlick };
+// The scene's material `fresnel` names (sensor/base/enum_names.h).
+template <>
+struct EnumNames<FresnelModel> {
+  static constexpr EnumName<FresnelModel> kTable[] = {{FresnelModel::kExact, "exact"},
+                                                      {FresnelModel::kSchlick, "schlick"}};
+};
 
 float fresnelDielectric(float cosThetaI, float eta);
 float fresnelConductor(float cosThetaI, float eta, float k);

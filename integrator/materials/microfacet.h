@@ -31,10 +31,23 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
+#include "sensor/base/enum_names.h"
+
 namespace camsim {
 
 enum class MicrofacetDistribution { kGgx, kBeckmann };
 enum class MaskingModel { kSmith, kVGroove };
+// The scene's material `distribution` and `masking` names (sensor/base/enum_names.h).
+template <>
+struct EnumNames<MicrofacetDistribution> {
+  static constexpr EnumName<MicrofacetDistribution> kTable[] = {
+      {MicrofacetDistribution::kGgx, "ggx"}, {MicrofacetDistribution::kBeckmann, "beckmann"}};
+};
+template <>
+struct EnumNames<MaskingModel> {
+  static constexpr EnumName<MaskingModel> kTable[] = {{MaskingModel::kSmith, "smith"},
+                                                      {MaskingModel::kVGroove, "v-groove"}};
+};
 
 class MicrofacetModel {
  public:

@@ -27,6 +27,7 @@ struct TextureImage;  // integrator/textures/image_texture.h
 #include "integrator/geometry/motion.h"
 #include "integrator/materials/fresnel.h"
 #include "integrator/materials/microfacet.h"
+#include "sensor/base/enum_names.h"
 #include "sensor/base/image.h"
 #include "sensor/base/input_error.h"
 #include "sensor/isp/isp_pipeline.h"
@@ -38,9 +39,14 @@ struct TextureImage;  // integrator/textures/image_texture.h
 namespace camsim {
 
 enum class SamplerKind { kIndependent, kSobol };
-// "independent" / "sobol": the scene files' `render.sampler` values.
+// The scene files' `render.sampler` values, also the sidecar's (sensor/base/enum_names.h).
+template <>
+struct EnumNames<SamplerKind> {
+  static constexpr EnumName<SamplerKind> kTable[] = {{SamplerKind::kSobol, "sobol"},
+                                                     {SamplerKind::kIndependent, "independent"}};
+};
 inline const char* samplerName(SamplerKind kind) {
-  return kind == SamplerKind::kSobol ? "sobol" : "independent";
+  return enumName(kind).data();
 }
 
 // Ground truth from the first hit of the image's own camera samples (AOVs; the layers and
@@ -58,11 +64,23 @@ enum class Aov : std::uint8_t {
   kMotion,      // 2-D motion vectors and 3-D scene flow to the previous and next frame
 };
 inline constexpr int kAovCount = 10;
+// The scene's `render.aovs` names, also the sidecar's and the EXR layers'
+// (sensor/base/enum_names.h).
+template <>
+struct EnumNames<Aov> {
+  static constexpr EnumName<Aov> kTable[kAovCount] = {{Aov::kDepth, "depth"},
+                                                      {Aov::kDistance, "distance"},
+                                                      {Aov::kPosition, "position"},
+                                                      {Aov::kNormal, "normal"},
+                                                      {Aov::kAlbedo, "albedo"},
+                                                      {Aov::kRoughness, "roughness"},
+                                                      {Aov::kInstanceId, "instance_id"},
+                                                      {Aov::kClassId, "class_id"},
+                                                      {Aov::kMaterialId, "material_id"},
+                                                      {Aov::kMotion, "motion"}};
+};
 inline const char* aovName(Aov a) {
-  constexpr const char* names[kAovCount] = {"depth",       "distance",  "position",    "normal",
-                                            "albedo",      "roughness", "instance_id", "class_id",
-                                            "material_id", "motion"};
-  return names[static_cast<int>(a)];
+  return enumName(a).data();
 }
 
 struct RenderSettings {
@@ -151,6 +169,15 @@ struct MaterialDescription {
     float cutoff = 0.5f;
   };
   std::optional<AlphaCutout> alphaCutout;
+};
+// The scene's material `type` names (sensor/base/enum_names.h).
+template <>
+struct EnumNames<MaterialDescription::Type> {
+  using T = MaterialDescription::Type;
+  static constexpr EnumName<T> kTable[] = {
+      {T::kDiffuse, "diffuse"},     {T::kMirror, "mirror"},
+      {T::kConductor, "conductor"}, {T::kDielectric, "dielectric"},
+      {T::kPlastic, "plastic"},     {T::kMetallicRoughness, "metallic_roughness"}};
 };
 
 // Lights that are not shapes (`lights:` in the scene file; units in docs/scene-format.md).

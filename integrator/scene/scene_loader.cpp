@@ -58,9 +58,7 @@ FrameSequence parseFrames(YamlMap map) {
 
 RenderSettings parseRender(YamlMap map) {
   RenderSettings r;
-  if (auto v = map.find("sampler"))
-    r.sampler = v->choice<SamplerKind>(
-        "sampler", {{"sobol", SamplerKind::kSobol}, {"independent", SamplerKind::kIndependent}});
+  if (auto v = map.find("sampler")) r.sampler = v->choice<SamplerKind>("sampler");
   if (auto v = map.find("spp"))
     r.spp = static_cast<int>(v->integer(setting_ranges::kSpp.lo, setting_ranges::kSpp.hi));
   if (auto v = map.find("seed"))
@@ -72,16 +70,7 @@ RenderSettings parseRender(YamlMap map) {
     r.rrDepth = static_cast<int>(v->integer(1, SceneLimits::kMaxDepth));
   if (auto v = map.find("aovs")) {
     for (const YamlValue& item : v->items()) {
-      const Aov aov = item.choice<Aov>("aov", {{"depth", Aov::kDepth},
-                                               {"distance", Aov::kDistance},
-                                               {"position", Aov::kPosition},
-                                               {"normal", Aov::kNormal},
-                                               {"albedo", Aov::kAlbedo},
-                                               {"roughness", Aov::kRoughness},
-                                               {"instance_id", Aov::kInstanceId},
-                                               {"class_id", Aov::kClassId},
-                                               {"material_id", Aov::kMaterialId},
-                                               {"motion", Aov::kMotion}});
+      const Aov aov = item.choice<Aov>("aov");
       if (std::find(r.aovs.begin(), r.aovs.end(), aov) != r.aovs.end())
         item.fail(std::string("aov '") + aovName(aov) + "' is listed twice");
       r.aovs.push_back(aov);

@@ -85,9 +85,7 @@ glm::dmat4 parseMatrix(const YamlValue& m) {
 
 Shutter parseShutter(YamlMap map) {
   Shutter::Type type = Shutter::Type::kGlobal;
-  if (auto t = map.find("type"))
-    type = t->choice<Shutter::Type>(
-        "shutter type", {{"global", Shutter::Type::kGlobal}, {"rolling", Shutter::Type::kRolling}});
+  if (auto t = map.find("type")) type = t->choice<Shutter::Type>("shutter type");
   double rowTime = 0.0;
   if (auto r = map.find("row_time")) {
     if (type != Shutter::Type::kRolling) r->fail("row_time needs type: rolling");
@@ -236,9 +234,7 @@ PhysicalCameraParams parseCamera(YamlMap map, const TableSearch& search) {
       if (blades > 0 && blades < 3) b->fail("blades must be 0 (circular) or at least 3");
     }
     if (auto r = am.find("rotation_deg")) rotation = glm::radians(r->number(-360.0, 360.0));
-    if (auto pu = am.find("pupil"))
-      c.pupil = pu->choice<LensPupil>(
-          "pupil", {{"aplanatic", LensPupil::kAplanatic}, {"flat", LensPupil::kFlat}});
+    if (auto pu = am.find("pupil")) c.pupil = pu->choice<LensPupil>("pupil");
     am.finish({"blades", "rotation_deg", "pupil"});
     c.aperture = ApertureShape{blades, rotation};
   }

@@ -19,12 +19,7 @@ namespace {
 
 MaterialDescription::Type parseType(const YamlValue& type) {
   using T = MaterialDescription::Type;
-  return type.choice<T>("material type", {{"diffuse", T::kDiffuse},
-                                          {"mirror", T::kMirror},
-                                          {"conductor", T::kConductor},
-                                          {"dielectric", T::kDielectric},
-                                          {"plastic", T::kPlastic},
-                                          {"metallic_roughness", T::kMetallicRoughness}});
+  return type.choice<T>("material type");
 }
 
 // The microfacet keys shared by conductor, dielectric and plastic.
@@ -34,12 +29,8 @@ void parseMicrofacet(YamlMap& map, MaterialDescription& m, const TableSearch& se
     m.roughness = parseTexture(*r, TextureUse::kRoughness, search, baseDir);
   if (auto a = map.find("anisotropy")) m.anisotropy = static_cast<float>(a->number(-0.99, 0.99));
   if (auto d = map.find("distribution"))
-    m.distribution = d->choice<MicrofacetDistribution>(
-        "distribution",
-        {{"ggx", MicrofacetDistribution::kGgx}, {"beckmann", MicrofacetDistribution::kBeckmann}});
-  if (auto g = map.find("masking"))
-    m.masking = g->choice<MaskingModel>(
-        "masking", {{"smith", MaskingModel::kSmith}, {"v-groove", MaskingModel::kVGroove}});
+    m.distribution = d->choice<MicrofacetDistribution>("distribution");
+  if (auto g = map.find("masking")) m.masking = g->choice<MaskingModel>("masking");
   known.insert(known.end(), {"roughness", "anisotropy", "distribution", "masking"});
 }
 
@@ -61,9 +52,7 @@ Spectrum namedColumn(const YamlValue& name, const std::string& folder, const std
 
 void parseConductor(YamlMap& map, MaterialDescription& m, const TableSearch& search,
                     std::vector<std::string>& known) {
-  if (auto f = map.find("fresnel"))
-    m.fresnel = f->choice<FresnelModel>(
-        "fresnel", {{"exact", FresnelModel::kExact}, {"schlick", FresnelModel::kSchlick}});
+  if (auto f = map.find("fresnel")) m.fresnel = f->choice<FresnelModel>("fresnel");
   const auto metal = map.find("metal");
   const auto eta = map.find("eta");
   const auto k = map.find("k");

@@ -23,12 +23,7 @@ SensorSettings parseSensorSettings(YamlMap map, const std::filesystem::path& bas
   }
   s.iso = s.spec.baseIso;
   if (auto v = map.find("iso")) s.iso = v->number(setting_ranges::kIso.lo, setting_ranges::kIso.hi);
-  if (auto v = map.find("noise")) {
-    const std::optional<NoiseMode> mode = noiseModeFromName(v->string());
-    if (!mode)
-      v->fail("unknown noise mode '" + v->string() + "' (known: " + noiseModeNames() + ")");
-    s.noise = *mode;
-  }
+  if (auto v = map.find("noise")) s.noise = v->choice<NoiseMode>("noise mode");
   if (auto v = map.find("noise_seed"))
     s.noiseSeed = static_cast<std::uint64_t>(
         v->integer(setting_ranges::kNoiseSeed.lo, setting_ranges::kNoiseSeed.hi));
@@ -38,9 +33,7 @@ SensorSettings parseSensorSettings(YamlMap map, const std::filesystem::path& bas
     AutoExposure a;
     if (auto m = ae.find("metering")) {
       using M = AutoExposure::Metering;
-      a.metering = m->choice<M>("metering", {{"mean", M::kMean},
-                                             {"centre_weighted", M::kCentreWeighted},
-                                             {"percentile", M::kPercentile}});
+      a.metering = m->choice<M>("metering");
       if (a.metering == M::kPercentile) a.target = 0.9;
     }
     if (auto t = ae.find("target")) a.target = t->number(0.0, 1.0, true);
@@ -91,9 +84,7 @@ IspSettings parseIspSettings(YamlMap map, const SensorSpec& sensor, glm::ivec2 r
   std::optional<YamlValue> wbValue = map.find("white_balance");
   if (wbValue) {
     using W = IspSettings::WhiteBalance;
-    isp.whiteBalance = wbValue->choice<W>(
-        "white balance",
-        {{"illuminant", W::kIlluminant}, {"region", W::kRegion}, {"grey_world", W::kGreyWorld}});
+    isp.whiteBalance = wbValue->choice<W>("white balance");
     keyPlaces["isp.white_balance"] = wbValue->where();
   }
   if (auto ill = map.find("illuminant")) {
@@ -130,10 +121,7 @@ IspSettings parseIspSettings(YamlMap map, const SensorSpec& sensor, glm::ivec2 r
                   std::to_string(sensor.cfa.width) + " × " + std::to_string(sensor.cfa.height) +
                   " CFA tile; the image is " + std::to_string(resolution.x) + " × " +
                   std::to_string(resolution.y));
-  if (auto d = map.find("demosaic"))
-    isp.demosaic = d->choice<DemosaicMethod>(
-        "demosaic",
-        {{"malvar", DemosaicMethod::kMalvarHeCutler}, {"bilinear", DemosaicMethod::kBilinear}});
+  if (auto d = map.find("demosaic")) isp.demosaic = d->choice<DemosaicMethod>("demosaic");
   map.finish({"white_balance", "illuminant", "region", "demosaic"});
   return isp;
 }

@@ -73,10 +73,7 @@ TextureDescription parseImage(YamlMap& map, TextureUse use, const std::filesyste
   std::vector<std::string> known = {"texture", "scale", "offset"};
   if (use != TextureUse::kNormalMap) {  // a normal map's numbers are never decoded
     known.push_back("encoding");
-    if (auto e = map.find("encoding"))
-      t.encoding = e->choice<TextureEncoding>("encoding", {{"srgb", TextureEncoding::kSrgb},
-                                                           {"linear", TextureEncoding::kLinear},
-                                                           {"raw", TextureEncoding::kRaw}});
+    if (auto e = map.find("encoding")) t.encoding = e->choice<TextureEncoding>("encoding");
   }
   if (scalar(use)) {
     known.push_back("channel");

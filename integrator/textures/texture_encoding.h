@@ -4,8 +4,17 @@
 //   kRaw     the numbers as stored (PNG: code / (2ⁿ − 1)); the default for scalar maps
 #pragma once
 
+#include "sensor/base/enum_names.h"
+
 namespace camsim {
 
 enum class TextureEncoding { kSrgb, kLinear, kRaw };
+// The scene's texture `encoding` names (sensor/base/enum_names.h).
+template <>
+struct EnumNames<TextureEncoding> {
+  static constexpr EnumName<TextureEncoding> kTable[] = {{TextureEncoding::kSrgb, "srgb"},
+                                                         {TextureEncoding::kLinear, "linear"},
+                                                         {TextureEncoding::kRaw, "raw"}};
+};
 
 }  // namespace camsim

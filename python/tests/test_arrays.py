@@ -57,7 +57,7 @@ def test_meta_is_the_cli_sidecar(cli_box, py_box):
         meta.pop(key)
     sidecar.pop("color")
     assert meta == sidecar
-    assert "modelled" in meta["render"] and len(meta["camera"]["opencv_fx_fy_cx_cy"]) == 4
+    assert "modelled" in meta["render"] and len(meta["camera"]["derived"]["opencv_fx_fy_cx_cy"]) == 4
     assert np.asarray(py_box["meta"]["pose"]["world_from_camera_opencv"]).shape == (4, 4)
 
 
@@ -67,15 +67,17 @@ def test_meta_says_none_for_what_a_capture_does_not_have(py_box):
     meta = camsim.Scene.from_dict(small_scene()).render()["meta"]
     assert meta["pose"]["iso"] is None
     assert meta["pose"]["system_gain_dn_per_e"] is None
-    assert meta["camera"]["focus_distance_m"] is None  # no focus_distance_m: infinity
-    assert meta["camera"]["image_distance_m"] == meta["camera"]["focal_length_m"]
+    derived = meta["camera"]["derived"]  # the scene inputs hold no focus_distance_m then
+    assert "focus_distance_m" not in meta["camera"]
+    assert derived["focus_distance_m"] is None  # no focus_distance_m: infinity
+    assert derived["image_distance_m"] == derived["focal_length_m"]
     pose = py_box["meta"]["pose"]  # with a sensor: its ISO and gain
     assert pose["iso"] == py_box["meta"]["sensor"]["iso"] > 0
-    assert pose["system_gain_dn_per_e"] == py_box["meta"]["sensor"]["system_gain_dn_per_e"] > 0
+    assert pose["system_gain_dn_per_e"] == py_box["meta"]["sensor"]["derived"]["system_gain_dn_per_e"] > 0
     focused = small_scene()
     focused["camera"].update({"f_number": 2, "focus_distance_m": 3})
     meta = camsim.Scene.from_dict(focused).render()["meta"]
-    assert meta["camera"]["focus_distance_m"] == 3
+    assert meta["camera"]["focus_distance_m"] == meta["camera"]["derived"]["focus_distance_m"] == 3
 
 
 def test_arrays_view_the_capture_without_copies(py_box):

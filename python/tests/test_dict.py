@@ -60,7 +60,7 @@ def test_pose_override_reads_no_mesh_again(tmp_path):
     scene.set_pose(position=[0.5, 0, -3], look_at=[0, 0, 0]).set_exposure(exposure_time_s=0.02)
     r = scene.render(threads=1)
     np.testing.assert_allclose(scene.world_from_camera[:3, 3], [0.5, 0, -3])
-    assert r["meta"]["camera"]["exposure_time_s"] == 0.02
+    assert r["meta"]["camera"]["derived"]["exposure_time_s"] == 0.02
     # The pose it loaded with, set again, gives the very same picture as the original.
     d2 = small_scene()
     again = camsim.Scene.from_dict(d2).set_pose(position=[1, 0, -3], look_at=[0, 0, 0])

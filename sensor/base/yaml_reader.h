@@ -17,6 +17,7 @@
 
 #include <glm/vec3.hpp>
 
+#include "sensor/base/enum_names.h"
 #include "sensor/base/input_error.h"
 
 // yaml-cpp stays in yaml_reader.cpp (and yaml_edit.cpp): its types are only declared here.
@@ -70,6 +71,14 @@ class YamlValue {
       known += (known.empty() ? "" : ", ") + std::string(name);
     }
     fail("unknown " + what + " '" + v + "' (known: " + known + ")");
+  }
+  // The same with the enum's own name table (sensor/base/enum_names.h): aliases read,
+  // the message lists the canonical names.
+  template <typename E>
+  E choice(const std::string& what) const {
+    const std::string v = string();
+    if (const std::optional<E> e = enumFromName<E>(v)) return *e;
+    fail("unknown " + what + " '" + v + "' (known: " + enumNameList<E>() + ")");
   }
 
  private:

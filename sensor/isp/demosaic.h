@@ -33,12 +33,23 @@
 // unchanged. Any other non-Bayer tile (RGBW, RCCB, …) is an InputError.
 #pragma once
 
+#include "sensor/base/enum_names.h"
 #include "sensor/base/image.h"
 #include "sensor/model/cfa.h"
 
 namespace camsim {
 
 enum class DemosaicMethod { kBilinear, kMalvarHeCutler };
+// The scene's `isp.demosaic` names, also Python's and the sidecar's
+// (sensor/base/enum_names.h). "malvar-he-cutler" is an alias: sidecars before issue 35
+// wrote it, so their `isp` block still reads.
+template <>
+struct EnumNames<DemosaicMethod> {
+  static constexpr EnumName<DemosaicMethod> kTable[] = {
+      {DemosaicMethod::kMalvarHeCutler, "malvar"},
+      {DemosaicMethod::kBilinear, "bilinear"},
+      {DemosaicMethod::kMalvarHeCutler, "malvar-he-cutler"}};
+};
 
 // A 2×2 tile with channels named R, G, B: one R, one B and two G on a diagonal.
 bool isBayer(const CfaLayout& cfa);

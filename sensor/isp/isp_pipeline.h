@@ -39,6 +39,14 @@ struct IspSettings {
   PixelRegion region;              // for kRegion
   DemosaicMethod demosaic = DemosaicMethod::kMalvarHeCutler;
 };
+// The scene's `isp.white_balance` names, also Python's and the sidecar's
+// (sensor/base/enum_names.h).
+template <>
+struct EnumNames<IspSettings::WhiteBalance> {
+  using W = IspSettings::WhiteBalance;
+  static constexpr EnumName<W> kTable[] = {
+      {W::kIlluminant, "illuminant"}, {W::kRegion, "region"}, {W::kGreyWorld, "grey_world"}};
+};
 
 struct DevelopedImage {
   Image working;                     // R, G, B in the working space (ACEScg)

@@ -7,15 +7,7 @@
 namespace camsim {
 
 std::string meteringName(AutoExposure::Metering m) {
-  switch (m) {
-    case AutoExposure::Metering::kMean:
-      return "mean";
-    case AutoExposure::Metering::kCentreWeighted:
-      return "centre_weighted";
-    case AutoExposure::Metering::kPercentile:
-      return "percentile";
-  }
-  return "?";
+  return std::string(enumName(m));
 }
 
 double meterElectrons(const Image& electrons, const AutoExposure& ae) {

@@ -15,6 +15,7 @@
 
 #include <string>
 
+#include "sensor/base/enum_names.h"
 #include "sensor/base/image.h"
 
 namespace camsim {
@@ -26,7 +27,14 @@ struct AutoExposure {
   double percentile = 99.0;  // for kPercentile, in (0, 100]
 };
 
-std::string meteringName(AutoExposure::Metering m);
+// The scene's `sensor.auto_exposure.metering` names (sensor/base/enum_names.h).
+template <>
+struct EnumNames<AutoExposure::Metering> {
+  using M = AutoExposure::Metering;
+  static constexpr EnumName<M> kTable[] = {
+      {M::kMean, "mean"}, {M::kCentreWeighted, "centre_weighted"}, {M::kPercentile, "percentile"}};
+};
+std::string meteringName(AutoExposure::Metering m);  // enumName, as a std::string
 
 // The metered value of an image (all channels pooled).
 double meterElectrons(const Image& electrons, const AutoExposure& ae);

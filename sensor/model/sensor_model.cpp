@@ -12,24 +12,15 @@
 namespace camsim {
 
 const char* noiseModeName(NoiseMode mode) {
-  return mode == NoiseMode::kNone ? "none" : mode == NoiseMode::kPhoton ? "photon" : "full";
+  return enumName(mode).data();
 }
 
-namespace {
-constexpr NoiseMode kNoiseModes[] = {NoiseMode::kNone, NoiseMode::kPhoton, NoiseMode::kFull};
-}  // namespace
-
 std::optional<NoiseMode> noiseModeFromName(std::string_view name) {
-  for (NoiseMode m : kNoiseModes)
-    if (name == noiseModeName(m)) return m;
-  return std::nullopt;
+  return enumFromName<NoiseMode>(name);
 }
 
 std::string noiseModeNames() {
-  std::string names;
-  for (NoiseMode m : kNoiseModes)
-    names += (names.empty() ? "" : ", ") + std::string(noiseModeName(m));
-  return names;
+  return enumNameList<NoiseMode>();
 }
 namespace {
 

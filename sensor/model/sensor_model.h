@@ -33,6 +33,7 @@
 #include <string_view>
 #include <vector>
 
+#include "sensor/base/enum_names.h"
 #include "sensor/base/image.h"
 #include "sensor/model/raw_image.h"
 #include "sensor/model/sensor_spec.h"
@@ -40,7 +41,13 @@
 namespace camsim {
 
 enum class NoiseMode { kNone, kPhoton, kFull };
-// The names scene files, --noise and the JSON sidecar use: none, photon, full.
+// The names scene files, --noise, Python and the JSON sidecar use (sensor/base/enum_names.h).
+template <>
+struct EnumNames<NoiseMode> {
+  static constexpr EnumName<NoiseMode> kTable[] = {
+      {NoiseMode::kNone, "none"}, {NoiseMode::kPhoton, "photon"}, {NoiseMode::kFull, "full"}};
+};
+// The same through the table, for callers that want plain functions.
 const char* noiseModeName(NoiseMode mode);
 std::optional<NoiseMode> noiseModeFromName(std::string_view name);  // nullopt if unknown
 std::string noiseModeNames();  // "none, photon, full", for messages
