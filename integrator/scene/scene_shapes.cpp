@@ -123,7 +123,6 @@ void checkPlacement(const SceneDescription& d, const ShapeDescription& s) {
                      "the instance's placement matrix is singular or not finite");
 }
 
-
 std::shared_ptr<const TriangleMesh> objectMesh(const MeshData& mesh) {
   std::vector<glm::vec3> positions;
   positions.reserve(mesh.positions.size() + TriangleMesh::kSpareVertices);
