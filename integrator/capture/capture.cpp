@@ -64,8 +64,43 @@ double clippedFraction(const std::vector<RawImage>& raws) {
   return total == 0 ? 0.0 : static_cast<double>(clipped) / static_cast<double>(total);
 }
 
+// The one Scene of a capture: step 1's (built here, the caller's cache's or the sequence's)
+// is the one step 4 renders again on, at each stretched shutter (Scene::setCamera builds
+// only the motion-dependent parts again), so no capture builds a second Scene or reads a
+// file twice. A capture whose film was rendered elsewhere (tile parts) builds it at the
+// first re-render, from the description.
+class CaptureScene {
+ public:
+  explicit CaptureScene(SceneCache* cache) : cache_(cache) {}
+  explicit CaptureScene(Scene& built) : scene_(&built) {}
+
+  // The Scene at description's camera (step 1).
+  Scene& at(const SceneDescription& d) {
+    if (!scene_) scene_ = cache_ ? &cache_->sceneFor(d) : &built_.emplace(d);
+    return *scene_;
+  }
+  bool reused() const { return cache_ && cache_->reused(); }
+  // The Scene at `camera`, a shutter of d's capture, over its exposure window (step 4).
+  const Scene& at(const SceneDescription& d, const PhysicalCameraParams& camera) {
+    Scene& scene = at(d);
+    try {
+      scene.setCamera(camera, d, exposureWindow(PhysicalCamera(camera)));
+    } catch (...) {
+      if (cache_) cache_->clear();  // a failed rebuild leaves the Scene unusable
+      throw;
+    }
+    return scene;
+  }
+
+ private:
+  SceneCache* cache_ = nullptr;
+  std::optional<Scene> built_;
+  Scene* scene_ = nullptr;
+};
+
 // Steps 2–6 on the render's sensor film.
-void exposeAndDevelop(CaptureResult& out, const RenderOptions& renderOptions) {
+void exposeAndDevelop(CaptureResult& out, const RenderOptions& renderOptions,
+                      CaptureScene& scenes) {
   const SceneDescription& desc = out.description;
   const SensorSettings& sensor = *desc.sensor;
   const SensorSpec& spec = sensor.spec;
@@ -75,9 +110,9 @@ void exposeAndDevelop(CaptureResult& out, const RenderOptions& renderOptions) {
   // A cancelled re-render cancels the capture (its film lacks tiles): no frame is kept.
   const auto filmAt = [&](double k) {
     if (!moves) return scaled(out.sensorFilm, k);
-    SceneDescription longer = desc;
-    longer.camera.shutter = desc.camera.shutter.scaled(k);
-    const Scene scene(longer);
+    PhysicalCameraParams longer = desc.camera;
+    longer.shutter = desc.camera.shutter.scaled(k);
+    const Scene& scene = scenes.at(desc, longer);
     RenderOptions o = renderOptions;
     o.progress = nullptr;
     RenderResult again = render(scene, sensorResponse(spec), o);
@@ -171,13 +206,31 @@ void renderFilm(const Scene& scene, const RenderOptions& o, CaptureResult& out) 
   out.aovs = std::move(film.aovs);
 }
 
-// Steps 2–6 once the film is there.
-void finish(CaptureResult& out, const RenderOptions& o) {
+// Steps 2–6 once the film is there; step 4 renders on `scenes`.
+void finish(CaptureResult& out, const RenderOptions& o, CaptureScene& scenes) {
   if (out.cancelled) return;
   if (out.description.sensor)
-    exposeAndDevelop(out, o);
+    exposeAndDevelop(out, o, scenes);
   else
     out.picture = xyzToExposedAcescg(out.film, out.displayExposure);
+}
+
+// Step 1 on the Scene of `scenes` (built now, or the cache's), which is kept for step 4.
+CaptureResult renderFilms(SceneDescription description, const CaptureOptions& options,
+                          CaptureScene& scenes) {
+  CaptureResult out;
+  out.description = std::move(description);
+  RenderOptions o = renderOptionsFor(out.description, options, out);
+  if (options.tiles) {
+    o.tiles = *options.tiles;
+    checkTileable(out.description, ModelledDimensions{});  // a sequence: before the scene
+  }
+  const Scene& scene = scenes.at(out.description);
+  out.sceneReused = scenes.reused();
+  if (options.tiles) checkTileable(out.description, scene.modelled());
+  out.description.releaseDecodedImages();  // the Scene holds its own form of them
+  renderFilm(scene, o, out);
+  return out;
 }
 
 }  // namespace
@@ -209,35 +262,24 @@ void checkTileable(const SceneDescription& desc, const ModelledDimensions& model
 }
 
 CaptureResult renderCaptureFilms(SceneDescription description, const CaptureOptions& options) {
-  CaptureResult out;
-  out.description = std::move(description);
-  RenderOptions o = renderOptionsFor(out.description, options, out);
-  if (options.tiles) {
-    o.tiles = *options.tiles;
-    checkTileable(out.description, ModelledDimensions{});  // a sequence: before the scene
-  }
-  // This scene is gone before a re-render for auto-exposure or brackets builds its own
-  // (unless the caller's cache keeps it).
-  std::optional<Scene> built;
-  const Scene& scene = options.sceneCache ? options.sceneCache->sceneFor(out.description)
-                                          : built.emplace(out.description);
-  out.sceneReused = options.sceneCache && options.sceneCache->reused();
-  if (options.tiles) checkTileable(out.description, scene.modelled());
-  out.description.releaseDecodedImages();  // the Scene holds its own form of them
-  renderFilm(scene, o, out);
-  return out;
+  CaptureScene scenes(options.sceneCache);
+  return renderFilms(std::move(description), options, scenes);
 }
 
 void finishCapture(CaptureResult& out, const CaptureOptions& options) {
   RenderOptions o = renderOptionsFor(out.description, options, out);
   o.progress = nullptr;
-  finish(out, o);
+  CaptureScene scenes(options.sceneCache);  // built only if step 4 renders again
+  finish(out, o, scenes);
 }
 
 CaptureResult capture(SceneDescription description, const CaptureOptions& options) {
   CAMSIM_CHECK(!options.tiles);
-  CaptureResult out = renderCaptureFilms(std::move(description), options);
-  finishCapture(out, options);
+  CaptureScene scenes(options.sceneCache);
+  CaptureResult out = renderFilms(std::move(description), options, scenes);
+  RenderOptions o = renderOptionsFor(out.description, options, out);
+  o.progress = nullptr;
+  finish(out, o, scenes);
   return out;
 }
 
@@ -272,7 +314,8 @@ SequenceSummary captureSequence(SceneDescription description, const CaptureOptio
           std::max<std::uint64_t>(1, out.description.sensor->bracketEv.size());
     const RenderOptions o = renderOptionsFor(out.description, options, out);
     if (k == 0 || anythingMoves) {
-      scene.setCamera(out.description.camera);
+      // Over the whole sequence's span again after a re-render of step 4 moved it.
+      scene.setCamera(out.description.camera, description, span);
       renderFilm(scene, o, out);
       ++summary.rendered;
     } else {
@@ -282,7 +325,8 @@ SequenceSummary captureSequence(SceneDescription description, const CaptureOptio
       out.aovs = first.aovs;
       out.tilesDone = out.tilesTotal = first.tilesTotal;
     }
-    finish(out, o);  // nothing when cancelled; cancels when a re-render is (step 4)
+    CaptureScene scenes(scene);
+    finish(out, o, scenes);  // nothing when cancelled; cancels when a re-render is (step 4)
     if (out.cancelled) {
       summary.cancelled = true;
       onFrame(std::move(out), k);

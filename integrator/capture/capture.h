@@ -8,7 +8,9 @@
 //                   a factor k on the exposure time, ISO kept
 //   3. bracket      one frame per bracket EV (or one at 0 EV), at T·k·2^EV
 //   4. re-render    only when something moves during the exposure (motion blur depends on
-//                   the exposure time): the film again with the shutter stretched; a static
+//                   the exposure time): the film again with the shutter stretched, on step
+//                   1's Scene (its shapes and BVH rebuilt over the stretched exposure window
+//                   when something has keyframed motion; no file read again); a static
 //                   scene's electrons scale linearly
 //   5. expose       photons → electrons → noise → ADC per frame (sensor::expose), noise from
 //                   sensor.noiseSeed, frame index sensor.frame + bracket index; a stacked
@@ -32,7 +34,7 @@
 // | progress   | —    | none    | (tiles done, tiles total) of the main render, from worker threads |
 // | cancel     | —    | none    | checked every 64 samples of a pixel; a cancelled capture has only the finished tiles (a cancelled re-render in step 4 cancels the capture too) |
 // | tiles      | —    | none    | renderCaptureFilms only: render this share of the tiles (render.h) |
-// | sceneCache | —    | none    | the caller's SceneCache: step 1 renders on the Scene built by an earlier capture when only the camera, spp, seed, sensor or ISP changed (scene_cache.h; same bytes); none: built here |
+// | sceneCache | —    | none    | the caller's SceneCache: step 1 renders on the Scene built by an earlier capture when only the camera, spp, seed, sensor or ISP changed (scene_cache.h; same bytes), and step 4 on the same Scene; none: built here, once per capture |
 #pragma once
 
 #include <atomic>
@@ -56,8 +58,7 @@ struct CaptureOptions {
   std::function<void(int, int)> progress;
   const std::atomic<bool>* cancel = nullptr;
   std::optional<TileShare> tiles;
-  // Not used by captureSequence (it builds one Scene for all its frames) nor by step 4's
-  // re-render (something moves: a Scene of its own at the stretched shutter).
+  // Not used by captureSequence (it builds one Scene for all its frames and brackets).
   SceneCache* sceneCache = nullptr;
 };
 
@@ -96,7 +97,9 @@ struct CaptureResult {
   double displayExposure = 1.0;  // without a sensor: the factor on XYZ (0.18 / mean Y)
 };
 
-// Throws InputError for inputs only the capture discovers (a file a re-render reads again).
+// One Scene per capture: step 4 renders again on step 1's Scene, never reading a file twice.
+// Throws InputError for inputs only the capture discovers (a white balance the rendered raw
+// refuses; a moving shape that reaches too far over a stretched shutter).
 // options.tiles must be empty (a share is finished only once its film is whole).
 CaptureResult capture(SceneDescription description, const CaptureOptions& options = {});
 
@@ -107,7 +110,8 @@ CaptureResult capture(SceneDescription description, const CaptureOptions& option
 CaptureResult renderCaptureFilms(SceneDescription description, const CaptureOptions& options = {});
 // Steps 2–6 on result.film, sensorFilm and stats.modelled (nothing when result.cancelled):
 // fills exposureScale, frames, referenceFrame, developed, picture, displayExposure. A
-// re-render (step 4) builds the scene from result.description and renders the whole image.
+// re-render (step 4) renders the whole image on options.sceneCache's Scene, else on one
+// built from result.description at the first re-render and kept for the others.
 void finishCapture(CaptureResult& result, const CaptureOptions& options = {});
 
 // InputError (naming the scene file and the key) when a capture of `description`, which
@@ -125,9 +129,11 @@ struct SequenceSummary {
 // is captured as capture() would at description.frameCamera(k), named NAME_NNNN (the
 // sequence frame number first + k), its sensor noise frame sensor.frame + k·(brackets or 1)
 // — temporal noise differs per frame, the fixed pattern (noise seed) does not — and handed
-// to onFrame(result, k) as soon as it is done. Geometry and motion are built once, over the
-// whole sequence's exposure; when nothing moves anywhere in it, frame 0's film is reused
-// for every frame (one render). A cancelled frame is handed on (cancelled) and ends it.
+// to onFrame(result, k) as soon as it is done. The Scene is built once, its geometry and
+// motion over the whole sequence's exposure; a frame's step 4 re-renders on it (its shapes
+// over the bracket's window, then the sequence's again: Scene::setCamera). When nothing
+// moves anywhere in it, frame 0's film is reused for every frame (one render). A cancelled
+// frame is handed on (cancelled) and ends it.
 SequenceSummary captureSequence(SceneDescription description, const CaptureOptions& options,
                                 const std::function<void(CaptureResult&&, int)>& onFrame);
 

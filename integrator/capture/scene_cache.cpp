@@ -2,10 +2,15 @@
 
 namespace camsim {
 
-const Scene& SceneCache::sceneFor(const SceneDescription& d) {
+Scene& SceneCache::sceneFor(const SceneDescription& d) {
   reused_ = scene_ && d.sourceFnv1a == sourceFnv1a_ && scene_->canRetarget(d);
   if (reused_) {
-    scene_->retarget(d);
+    try {
+      scene_->retarget(d);  // may build the motion-dependent parts again (Scene::setCamera)
+    } catch (...) {
+      clear();  // a failed rebuild leaves the Scene unusable
+      throw;
+    }
   } else {
     scene_.reset();  // the old BVH is freed before the new one is built
     scene_ = std::make_unique<Scene>(d);

@@ -1,5 +1,7 @@
 #include "integrator/scene/factory.h"
 
+#include <atomic>
+
 #include "integrator/lights/distant_light.h"
 #include "integrator/lights/environment_light.h"
 #include "integrator/lights/point_light.h"
@@ -19,11 +21,15 @@
 namespace camsim {
 namespace {
 
+std::atomic<std::uint64_t> filesRead{0};  // sceneFilesRead()
+
 // The image the loader decoded, else (a description built in code, or one whose images
 // were released) read now. Shared, never copied.
 template <typename T, typename Read>
 std::shared_ptr<const T> decodedOr(const std::shared_ptr<const T>& decoded, Read read) {
-  return decoded ? decoded : std::make_shared<const T>(read());
+  if (decoded) return decoded;
+  filesRead.fetch_add(1, std::memory_order_relaxed);
+  return std::make_shared<const T>(read());
 }
 std::shared_ptr<const TextureImage> texelsOf(const TextureDescription& d) {
   return decodedOr(d.image, [&] { return loadTextureImage(d.file, d.encoding); });
@@ -153,12 +159,21 @@ std::unique_ptr<Light> makeLight(const LightDescription& d) {
   return nullptr;
 }
 
-std::unique_ptr<HitFilter> makeAlphaCutout(const MaterialDescription::AlphaCutout& d,
-                                           const TriangleMesh& mesh) {
+std::shared_ptr<const FloatTexture> makeAlphaTexture(const MaterialDescription::AlphaCutout& d) {
   if (!d.texture && d.factor >= d.cutoff) return nullptr;
-  std::unique_ptr<FloatTexture> alpha =
-      d.texture ? makeFloatTexture(*d.texture) : std::make_unique<ConstantFloatTexture>(1.0f);
+  if (d.texture) return makeFloatTexture(*d.texture);
+  return std::make_shared<const ConstantFloatTexture>(1.0f);
+}
+
+std::unique_ptr<HitFilter> makeAlphaCutout(const MaterialDescription::AlphaCutout& d,
+                                           std::shared_ptr<const FloatTexture> alpha,
+                                           const TriangleMesh& mesh) {
+  CAMSIM_CHECK(alpha != nullptr);
   return std::make_unique<AlphaCutout>(mesh, std::move(alpha), d.factor, d.cutoff);
+}
+
+std::uint64_t sceneFilesRead() {
+  return filesRead.load(std::memory_order_relaxed);
 }
 
 }  // namespace camsim

@@ -4,6 +4,7 @@
 // is a programming error (CAMSIM_CHECK).
 #pragma once
 
+#include <cstdint>
 #include <map>
 #include <memory>
 #include <string>
@@ -50,9 +51,20 @@ std::unique_ptr<NormalMap> makeNormalMap(const TextureDescription& d, float stre
 // The material's BSDF, with its normal map (d.normalMap) if it has one.
 std::unique_ptr<Material> makeMaterial(const MaterialDescription& d, TextureCache* cache = nullptr);
 std::unique_ptr<Light> makeLight(const LightDescription& d);
-// A material's alpha cut-out on `mesh` (AlphaCutout, integrator/textures/alpha_cutout.h):
-// null when it is opaque everywhere (no texture and factor ≥ cutoff), so Embree asks nothing.
+// A material's alpha (the cut-out's scalar texture): null when it is opaque everywhere (no
+// texture and factor ≥ cutoff), so Embree asks nothing. One per material, shared by its
+// cut-outs on every mesh (a Scene that rebuilds its meshes keeps it: no file read again).
+std::shared_ptr<const FloatTexture> makeAlphaTexture(const MaterialDescription::AlphaCutout& d);
+// The material's alpha cut-out on `mesh` (AlphaCutout, integrator/textures/alpha_cutout.h)
+// with its alpha from makeAlphaTexture (not null).
 std::unique_ptr<HitFilter> makeAlphaCutout(const MaterialDescription::AlphaCutout& d,
+                                           std::shared_ptr<const FloatTexture> alpha,
                                            const TriangleMesh& mesh);
+
+// Files a Scene build has read in this process so far: image textures, normal maps, alpha
+// textures and environment maps of a description whose decoded images were released
+// (SceneDescription::releaseDecodedImages). A statistic, as pbrt's counters are, by which
+// tests check that a capture builds its Scene once and never reads a file again.
+std::uint64_t sceneFilesRead();
 
 }  // namespace camsim

@@ -1,184 +1,18 @@
 #include "integrator/scene/scene.h"
 
 #include <algorithm>
-#include <cmath>
+#include <cstddef>
+#include <iterator>
 #include <map>
 #include <utility>
 
-#include <glm/gtc/matrix_inverse.hpp>
-
-#include "integrator/geometry/mesh_instance.h"
-#include "integrator/geometry/sphere.h"
-#include "integrator/geometry/triangle_mesh.h"
 #include "integrator/materials/diffuse_material.h"
 #include "integrator/scene/factory.h"
-#include "integrator/scene/scene_loader.h"
+#include "integrator/scene/scene_shapes.h"
 #include "sensor/base/check.h"
-#include "sensor/base/format.h"
 #include "sensor/base/input_error.h"
 
 namespace camsim {
-namespace {
-
-// Time steps for a moving shape: linear interpolation between steps must follow the
-// keyframed rotation closely (≤ 2° per step: chord error < 1.6e-4 of the radius) and
-// must not skip keyframes (≥ 4 steps per key interval inside the span). At most 129, Embree's
-// RTC_MAX_TIME_STEP_COUNT (more fails in rtcSetGeometryTimeStepCount).
-int timeStepsFor(const RigidMotion& motion, double t0, double t1) {
-  const double degrees = motion.rotationAngleDuring(t0, t1) * 180.0 / M_PI;
-  int keysInside = 0;
-  for (const Keyframe& k : motion.keys()) keysInside += (k.time > t0 && k.time < t1) ? 1 : 0;
-  const int steps = 1 + std::max(static_cast<int>(std::ceil(degrees / 2.0)), 4 * (keysInside + 1));
-  return std::clamp(steps, 2, 129);
-}
-
-// The placement of an instanced mesh, which must be invertible (an InputError names the
-// shape otherwise: descriptions built in code are not checked by the loader).
-void checkPlacement(const SceneDescription& d, const ShapeDescription& s) {
-  const double det = glm::determinant(glm::dmat3(s.placement));
-  bool finite = std::isfinite(det);
-  for (int c = 0; c < 4; ++c)
-    for (int r = 0; r < 4; ++r) finite = finite && std::isfinite(s.placement[c][r]);
-  if (!finite || det == 0.0)
-    throw InputError({d.sourceFile, 0, 0}, s.label,
-                     "the instance's placement matrix is singular or not finite");
-}
-
-// One shared object-space mesh per MeshData that several shapes place: static, sampled by
-// no light (emitting instances sample their own placed areas).
-std::shared_ptr<const TriangleMesh> objectMesh(const MeshData& mesh) {
-  std::vector<glm::vec3> positions;
-  positions.reserve(mesh.positions.size() + TriangleMesh::kSpareVertices);
-  positions.assign(mesh.positions.begin(), mesh.positions.end());
-  std::vector<glm::vec3> normals;
-  for (const glm::vec3& n : mesh.normals) normals.emplace_back(glm::normalize(glm::dvec3(n)));
-  std::vector<std::uint32_t> indices;
-  indices.reserve(mesh.indices.size() + TriangleMesh::kSpareIndices);
-  indices.assign(mesh.indices.begin(), mesh.indices.end());
-  return std::make_shared<const TriangleMesh>(std::move(positions), std::move(normals),
-                                              std::move(indices), TimeSteps{}, mesh.uvs, false,
-                                              InstanceMotion{}, mesh.tangents);
-}
-
-// A mesh (object space) placed by `placement` and then the shape's motion: baked into a
-// TriangleMesh of its own (its stored pose in render space).
-std::unique_ptr<Shape> bakeMesh(const ShapeDescription& s, const MeshData& mesh,
-                                const glm::dmat4& placement, TimeSteps steps,
-                                const std::vector<glm::dmat4>& poses) {
-  // A mesh stores one pose: the reference of its instance motion (Shape), or its only one.
-  InstanceMotion instance = InstanceMotion::fromPoses(poses);
-  const glm::dmat4& reference = poses[static_cast<size_t>(instance.reference)];
-  const glm::dmat4 m = reference * placement;  // exactly `reference` for the identity
-  std::vector<glm::vec3> positions;
-  positions.reserve(mesh.positions.size() + TriangleMesh::kSpareVertices);
-  for (const glm::vec3& v : mesh.positions)
-    positions.emplace_back(m * glm::dvec4(glm::dvec3(v), 1.0));
-  std::vector<glm::vec3> normals;
-  // Normals by the placement's inverse transpose (exactly the identity for none), then the
-  // motion's similarity (renormalised below).
-  const glm::dmat3 normalMatrix =
-      glm::dmat3(reference) * glm::inverseTranspose(glm::dmat3(placement));
-  for (const glm::vec3& n : mesh.normals)
-    normals.emplace_back(glm::normalize(normalMatrix * glm::dvec3(n)));
-  // Tangents by the linear part (they lie in the surface), renormalised; a mirroring
-  // placement flips the bitangent's side (w).
-  const glm::dmat3 linear(m);
-  const double handedness = glm::determinant(glm::dmat3(placement)) < 0.0 ? -1.0 : 1.0;
-  std::vector<glm::vec4> tangents;
-  for (const glm::vec4& t : mesh.tangents) {
-    const glm::dvec3 turned = linear * glm::dvec3(t);
-    const double len = glm::length(turned);
-    tangents.emplace_back(glm::vec3(len > 0.0 ? turned / len : turned),
-                          static_cast<float>(handedness * static_cast<double>(t.w)));
-  }
-  std::vector<std::uint32_t> indices;
-  indices.reserve(mesh.indices.size() + TriangleMesh::kSpareIndices);
-  indices.assign(mesh.indices.begin(), mesh.indices.end());
-  return std::make_unique<TriangleMesh>(std::move(positions), std::move(normals),
-                                        std::move(indices), steps, mesh.uvs, s.emission.has_value(),
-                                        std::move(instance), std::move(tangents));
-}
-
-// Largest |coordinate| of a mesh's vertices (m), once per mesh however often it is placed.
-double largestCoordinate(const MeshData& mesh, std::map<const MeshData*, double>& memo) {
-  const auto [it, added] = memo.emplace(&mesh, 0.0);
-  if (added)
-    for (const glm::vec3& p : mesh.positions)
-      it->second =
-          std::max({it->second, std::abs(static_cast<double>(p.x)),
-                    std::abs(static_cast<double>(p.y)), std::abs(static_cast<double>(p.z))});
-  return it->second;
-}
-
-// A shape must stay within ±SceneLimits::kMaxCoordinate of the render origin at every
-// step of its motion (Embree drops geometry past ±1.8e18 and refuses rays from it), and a
-// sphere's radius times its keyframe scale within [kMinSphereRadius, 1e12] m. Mesh files,
-// glTF nodes, placements and keyframe scales reach past what the loader checks point by
-// point; the bound |A v + t|∞ ≤ ‖A‖∞ max|v| + |t|∞ is worked out in double per step.
-void checkReach(const SceneDescription& d, const ShapeDescription& s,
-                const std::vector<glm::dmat4>& transforms, double meshReach) {
-  for (const glm::dmat4& m : transforms) {
-    double reach = 0.0;
-    for (int r = 0; r < 3; ++r) {
-      const double row = std::abs(m[0][r]) + std::abs(m[1][r]) + std::abs(m[2][r]);
-      const double centre = s.kind == ShapeDescription::Kind::kSphere
-                                ? std::abs((m * glm::dvec4(glm::dvec3(s.centre), 1.0))[r])
-                                : std::abs(m[3][r]);
-      reach = std::max(reach, s.kind == ShapeDescription::Kind::kSphere
-                                  ? centre + row * static_cast<double>(s.radius)
-                                  : centre + row * meshReach);
-    }
-    if (!(reach <= SceneLimits::kMaxCoordinate))
-      throw InputError({d.sourceFile, 0, 0}, s.label,
-                       "the shape reaches " + formatNumber(reach) +
-                           " m from the camera's rest position; camsim traces within ±1e15 m "
-                           "(limit SceneLimits::kMaxCoordinate)");
-    if (s.kind == ShapeDescription::Kind::kSphere) {
-      const double radius = glm::length(glm::dvec3(m[0])) * static_cast<double>(s.radius);
-      if (!(radius >= SceneLimits::kMinSphereRadius && radius <= 1e12))
-        throw InputError({d.sourceFile, 0, 0}, s.label,
-                         "the sphere's radius times its keyframe scale is " + formatNumber(radius) +
-                             " m, outside [1e-09, 1e+12] m");
-    }
-  }
-}
-
-// instanced: the shared object mesh when s is placed as an instance of it (else null).
-std::unique_ptr<Shape> buildShape(const SceneDescription& d, const ShapeDescription& s, double t0,
-                                  double t1, const std::shared_ptr<const TriangleMesh>& instanced,
-                                  std::map<const MeshData*, double>& meshReach, bool& moving) {
-  moving = !s.motion.empty() && !s.motion.isStaticDuring(t0, t1);
-  TimeSteps steps{t0, t1, moving ? timeStepsFor(s.motion, t0, t1) : 1};
-  auto transformAt = [&](int k) {
-    return s.motion.empty() ? glm::dmat4(1.0) : s.motion.at(steps.timeOf(k));
-  };
-  if (s.kind == ShapeDescription::Kind::kSphere) {
-    std::vector<glm::dmat4> transforms;
-    for (int k = 0; k < steps.count; ++k) transforms.push_back(transformAt(k));
-    checkReach(d, s, transforms, 0.0);
-    std::vector<glm::vec3> centres;
-    std::vector<float> radii;
-    for (int k = 0; k < steps.count; ++k) {
-      const glm::dmat4 m = transformAt(k);
-      centres.emplace_back(m * glm::dvec4(glm::dvec3(s.centre), 1.0));
-      radii.push_back(
-          static_cast<float>(glm::length(glm::dvec3(m[0])) * static_cast<double>(s.radius)));
-    }
-    return std::make_unique<Sphere>(std::move(centres), std::move(radii), steps);
-  }
-  std::vector<glm::dmat4> poses;
-  for (int k = 0; k < steps.count; ++k) poses.push_back(transformAt(k));
-  std::vector<glm::dmat4> placed = poses;  // mesh data → render space at each step
-  if (s.sharedMesh)
-    for (glm::dmat4& pose : placed) pose = pose * s.placement;
-  checkReach(d, s, placed, largestCoordinate(s.sharedMesh ? *s.sharedMesh : s.mesh, meshReach));
-  if (!s.sharedMesh) return bakeMesh(s, s.mesh, glm::dmat4(1.0), steps, poses);
-  if (!instanced) return bakeMesh(s, *s.sharedMesh, s.placement, steps, poses);
-  for (glm::dmat4& pose : poses) pose = pose * s.placement;  // object → render at each step
-  return std::make_unique<MeshInstance>(instanced, poses, steps, s.emission.has_value());
-}
-
-}  // namespace
 
 std::string ModelledDimensions::describe() const {
   std::string out;
@@ -221,6 +55,22 @@ void Scene::setCamera(const PhysicalCameraParams& camera) {
   analyseExposure();
 }
 
+void Scene::setCamera(const PhysicalCameraParams& camera, const SceneDescription& d,
+                      glm::dvec2 motionSpan) {
+  if (motionSpan != motionSpan_) {
+    motionSpan_ = motionSpan;
+    const bool keyframed = std::any_of(d.shapes.begin(), d.shapes.end(),
+                                       [](const ShapeDescription& s) { return !s.motion.empty(); });
+    if (keyframed) {
+      buildShapes(d);  // materials, textures and the other lights are kept: no file is read
+      weighLights();   // the bounds (sun, environment) and the area lights' powers
+    } else {
+      geometry_->setMotionSpan(motionSpan.x, motionSpan.y);  // only Embree's time map moves
+    }
+  }
+  setCamera(camera);
+}
+
 bool Scene::canRetarget(const SceneDescription& next) const {
   const RenderSettings& a = settings_;
   const RenderSettings& b = next.render;
@@ -232,24 +82,15 @@ bool Scene::canRetarget(const SceneDescription& next) const {
     return false;
   std::size_t emitters = 0;
   for (const ShapeDescription& shape : next.shapes) emitters += shape.emission ? 1 : 0;
-  if (next.shapes.size() != shapes_.size() || next.materials.size() + 1 != materials_.size() ||
-      next.lights.size() + emitters != lights_.size())
-    return false;
-  const glm::dvec2 w = exposureWindow(PhysicalCamera(next.camera));
-  if (w == motionSpan_) return true;
-  return std::all_of(motions_.begin(), motions_.end(),
-                     [](const RigidMotion& m) { return m.empty(); });
+  return next.shapes.size() == shapes_.size() && next.materials.size() + 1 == materials_.size() &&
+         next.lights.size() + emitters == lights_.size() && emitters == areaLights_;
 }
 
 void Scene::retarget(const SceneDescription& next) {
   CAMSIM_CHECK(canRetarget(next));
-  camera_ = std::make_unique<PhysicalCamera>(next.camera);
-  if (const glm::dvec2 w = exposureWindow(*camera_); w != motionSpan_) {
-    motionSpan_ = w;  // nothing has keyframed motion (canRetarget): only Embree's time map moves
-    geometry_->setMotionSpan(w.x, w.y);
-  }
   settings_ = next.render;
-  analyseExposure();
+  const PhysicalCameraParams& camera = next.camera;
+  setCamera(camera, next, exposureWindow(PhysicalCamera(camera)));
 }
 
 void Scene::analyseExposure() {
@@ -289,12 +130,31 @@ Scene::Scene(const SceneDescription& d, glm::dvec2 motionSpan)
       ids_(sceneIds(d)),
       frameInterval_(d.frames ? 1.0 / d.frames->rateHz : 0.0) {
   camera_ = std::make_unique<PhysicalCamera>(d.camera);
-  exposureStart_ = motionSpan.x;  // the shapes' motion is built over the whole span
-  exposureEnd_ = motionSpan.y;
-
   materials_.push_back(std::make_unique<DiffuseMaterial>(Spectrum::constant(0.0)));  // black
   TextureCache textures;  // a texture named by several materials is uplifted once
   for (const MaterialDescription& m : d.materials) materials_.push_back(makeMaterial(m, &textures));
+  buildShapes(d);
+  for (const LightDescription& l : d.lights) lights_.push_back(makeLight(l));
+  weighLights();
+  analyseExposure();
+}
+
+void Scene::buildShapes(const SceneDescription& d) {
+  // What points at the shapes goes first: the BVH, the area lights, the cut-outs.
+  geometry_.reset();
+  lights_.erase(lights_.begin(), lights_.begin() + static_cast<std::ptrdiff_t>(areaLights_));
+  areaLights_ = 0;
+  filters_.clear();
+  shapes_.clear();
+  motions_.clear();
+  materialOfShape_.clear();
+  lightOfShape_.clear();
+  lightIndexOfShape_.clear();
+  vertexColors_.clear();
+  colorsOfShape_.clear();
+  modelled_.timeSteps = 1;
+  boundsCentre_ = glm::vec3(0.0f);
+  boundsRadius_ = 0.0f;
 
   // A mesh that several shapes place is stored once and instanced; one placed once is baked
   // (a single-level BVH traces faster).
@@ -308,7 +168,7 @@ Scene::Scene(const SceneDescription& d, glm::dvec2 motionSpan)
   // One cut-out per (mesh Embree reports, material) however many instances share it.
   std::map<std::pair<const TriangleMesh*, int>, const HitFilter*> cutouts;
   std::vector<const HitFilter*> filterOfShape;
-  std::vector<double> powers;
+  std::vector<std::unique_ptr<Light>> areaLights;  // the shapes' lights come first in lights_
   std::map<const MeshData*, double> meshReach;
   std::map<const MeshData*, const VertexColors*> colorsOfMesh;
   std::vector<const VertexColors*> colorsOfShape;
@@ -320,7 +180,7 @@ Scene::Scene(const SceneDescription& d, glm::dvec2 motionSpan)
       if (!mesh) mesh = objectMesh(*s.sharedMesh);
       instanced = mesh;
     }
-    shapes_.push_back(buildShape(d, s, exposureStart_, exposureEnd_, instanced, meshReach, moving));
+    shapes_.push_back(buildShape(d, s, motionSpan_.x, motionSpan_.y, instanced, meshReach, moving));
     filterOfShape.push_back(nullptr);
     const MaterialDescription* material =
         s.material < 0 ? nullptr : &d.materials[static_cast<size_t>(s.material)];
@@ -339,9 +199,12 @@ Scene::Scene(const SceneDescription& d, glm::dvec2 motionSpan)
           instanced ? *instanced : dynamic_cast<const TriangleMesh&>(*shapes_.back());
       const HitFilter*& filter = cutouts[{&mesh, s.material}];
       if (!filter) {
-        if (std::unique_ptr<HitFilter> made = makeAlphaCutout(*material->alphaCutout, mesh)) {
-          filter = made.get();
-          filters_.push_back(std::move(made));
+        // The material's alpha texture is made once per Scene and kept across rebuilds.
+        auto [alpha, added] = alphaOfMaterial_.try_emplace(s.material);
+        if (added) alpha->second = makeAlphaTexture(*material->alphaCutout);
+        if (alpha->second) {
+          filters_.push_back(makeAlphaCutout(*material->alphaCutout, alpha->second, mesh));
+          filter = filters_.back().get();
         }
       }
       filterOfShape.back() = filter;
@@ -358,27 +221,30 @@ Scene::Scene(const SceneDescription& d, glm::dvec2 motionSpan)
       auto light =
           std::make_unique<AreaLight>(*shapes_.back(), s.emission->radiance, s.emission->twoSided);
       lightOfShape_.back() = light.get();
-      lightIndexOfShape_.back() = lights_.size();
-      powers.push_back(light->power());
-      lights_.push_back(std::move(light));
+      lightIndexOfShape_.back() = areaLights.size();
+      areaLights.push_back(std::move(light));
     }
   }
   if (!vertexColors_.empty()) colorsOfShape_ = std::move(colorsOfShape);
-  geometry_ = std::make_unique<EmbreeScene>(shapes_, exposureStart_, exposureEnd_, filterOfShape);
+  areaLights_ = areaLights.size();
+  lights_.insert(lights_.begin(), std::make_move_iterator(areaLights.begin()),
+                 std::make_move_iterator(areaLights.end()));
+  geometry_ = std::make_unique<EmbreeScene>(shapes_, motionSpan_.x, motionSpan_.y, filterOfShape);
   if (geometry_->boundsLower().x <= geometry_->boundsUpper().x) {
     boundsCentre_ = 0.5f * (geometry_->boundsLower() + geometry_->boundsUpper());
     boundsRadius_ = 0.5f * glm::length(geometry_->boundsUpper() - geometry_->boundsLower());
   }
-  for (const LightDescription& l : d.lights) {
-    lights_.push_back(makeLight(l));
-    if (lights_.back()->isInfinite()) infiniteLights_.push_back(lights_.size() - 1);
-  }
-  for (size_t i = powers.size(); i < lights_.size(); ++i) {
-    lights_[i]->setSceneBounds(boundsCentre_, boundsRadius_);
+}
+
+void Scene::weighLights() {
+  infiniteLights_.clear();
+  std::vector<double> powers;
+  for (size_t i = 0; i < lights_.size(); ++i) {
+    if (i >= areaLights_) lights_[i]->setSceneBounds(boundsCentre_, boundsRadius_);
+    if (lights_[i]->isInfinite()) infiniteLights_.push_back(i);
     powers.push_back(lights_[i]->power());
   }
-  if (!powers.empty()) lightDistribution_ = DiscreteDistribution(powers);
-  analyseExposure();
+  lightDistribution_ = powers.empty() ? DiscreteDistribution() : DiscreteDistribution(powers);
 }
 
 }  // namespace camsim

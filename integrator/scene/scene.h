@@ -3,6 +3,7 @@
 // which dimensions of the measurement integral the scene needs (ModelledDimensions).
 #pragma once
 
+#include <cstddef>
 #include <map>
 #include <memory>
 #include <string>
@@ -15,6 +16,7 @@
 #include "integrator/sampling/distribution.h"
 #include "integrator/scene/scene_description.h"
 #include "integrator/scene/scene_ids.h"
+#include "integrator/textures/texture.h"
 
 namespace camsim {
 
@@ -48,6 +50,16 @@ class Scene {
   // The camera of another frame (its shutter inside the motion span): the exposure window
   // and what is modelled (time, moving objects, rolling shutter) follow it.
   void setCamera(const PhysicalCameraParams& camera);
+  // The camera of another capture of `description` (the one this Scene was built from, or
+  // one canRetarget accepts) over another motion span, e.g. a bracket's stretched shutter:
+  // the Scene then renders exactly as Scene(description with `camera`, motionSpan) would.
+  // Only what depends on the span is built again, from description's shapes: with keyframed
+  // motion the shapes, their cut-outs and area lights, the BVH, the bounds and the light
+  // powers; without, only Embree's time map moves. Materials, textures, alpha textures and
+  // the other lights are kept: no file is read. An InputError (a shape that reaches too far
+  // over the new span) leaves the Scene unusable: it must be dropped.
+  void setCamera(const PhysicalCameraParams& camera, const SceneDescription& description,
+                 glm::dvec2 motionSpan);
 
   // Reuse for another capture (SceneCache, integrator/capture/scene_cache.h). Whether this
   // Scene renders `next` exactly as Scene(next) would, once retarget(next) has run, given
@@ -55,12 +67,10 @@ class Scene {
   // at most in its camera, render.spp and render.seed (and its sensor, ISP and name, which
   // a Scene does not hold) — the same shapes, materials and lights. Checked here, so that
   // a capture the rule does not cover is rebuilt: the render origin, the other render
-  // settings, the frames block, the counts of shapes, materials and lights; and time: the
-  // camera's exposure window must be the span the shapes were built over, unless no shape
-  // has keyframed motion (only then does no built shape depend on the span).
+  // settings, the frames block, the counts of shapes, materials, lights and emitters.
   bool canRetarget(const SceneDescription& next) const;
-  // next's camera (exposure window and modelled dimensions follow, as setCamera) and render
-  // settings; the motion span becomes next's exposure window, as Scene(next) builds it.
+  // next's camera and render settings; the motion span becomes next's exposure window, as
+  // Scene(next) builds it (setCamera above: keyframed motion is built again over it).
   // CAMSIM_CHECK: canRetarget(next).
   void retarget(const SceneDescription& next);
 
@@ -118,6 +128,12 @@ class Scene {
 
  private:
   void analyseExposure();  // exposure window and modelled_ from camera_ and motions_
+  // Everything that depends on the motion span, from d's shapes over motionSpan_ (dropping
+  // what an earlier build made): shapes, motions, cut-outs, vertex colours, area lights
+  // (first in lights_), the BVH and the bounds.
+  void buildShapes(const SceneDescription& d);
+  // The other lights' scene bounds, the infinite lights and the light distribution (∝ power).
+  void weighLights();
   // The vertex colours of mesh shape s (null: none), made once per MeshData (`made`).
   const VertexColors* vertexColorsOf(const SceneDescription& d, const ShapeDescription& s,
                                      std::map<const MeshData*, const VertexColors*>& made);
@@ -146,6 +162,10 @@ class Scene {
   std::vector<size_t> lightIndexOfShape_;
   DiscreteDistribution lightDistribution_;
   std::vector<std::unique_ptr<HitFilter>> filters_;  // alpha cut-outs; geometry_ points to them
+  // Each cut-out material's alpha texture (null: opaque everywhere), made at its first use
+  // and kept when buildShapes runs again, so that its file is read once.
+  std::map<int, std::shared_ptr<const FloatTexture>> alphaOfMaterial_;
+  std::size_t areaLights_ = 0;  // lights_[0, areaLights_) are the emitting shapes'
   std::unique_ptr<EmbreeScene> geometry_;
 };
 

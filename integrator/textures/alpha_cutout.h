@@ -25,8 +25,10 @@ namespace camsim {
 class AlphaCutout final : public HitFilter {
  public:
   // mesh: the triangles Embree reports (for instances, the shared object-space mesh; its
-  // texture coordinates are the instances' too); it must outlive the filter.
-  AlphaCutout(const TriangleMesh& mesh, std::unique_ptr<FloatTexture> alpha, float factor,
+  // texture coordinates are the instances' too); it must outlive the filter. alpha may be
+  // shared with other cut-outs of the same material (a Scene keeps it across rebuilds of
+  // its meshes, so that the texture is not read again).
+  AlphaCutout(const TriangleMesh& mesh, std::shared_ptr<const FloatTexture> alpha, float factor,
               float cutoff)
       : mesh_(mesh), alpha_(std::move(alpha)), factor_(factor), cutoff_(cutoff) {}
 
@@ -37,7 +39,7 @@ class AlphaCutout final : public HitFilter {
 
  private:
   const TriangleMesh& mesh_;
-  std::unique_ptr<FloatTexture> alpha_;
+  std::shared_ptr<const FloatTexture> alpha_;
   float factor_, cutoff_;
 };
 

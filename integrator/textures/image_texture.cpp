@@ -3,6 +3,7 @@
 #include "integrator/textures/image_texture.h"
 
 #include <algorithm>
+#include <atomic>
 #include <bit>
 #include <cctype>
 #include <cmath>
@@ -149,7 +150,16 @@ TextureEncoding defaultTextureEncoding(const std::filesystem::path& file) {
   return ext == ".png" ? TextureEncoding::kSrgb : TextureEncoding::kLinear;
 }
 
+namespace {
+std::atomic<std::uint64_t> texturesRead{0};  // textureFilesRead()
+}  // namespace
+
+std::uint64_t textureFilesRead() {
+  return texturesRead.load(std::memory_order_relaxed);
+}
+
 TextureImage loadTextureImage(const std::filesystem::path& file, TextureEncoding encoding) {
+  texturesRead.fetch_add(1, std::memory_order_relaxed);
   if (!isRegularFile(file)) fail(file, "texture file does not exist or is not a regular file");
   const std::string ext = lowerExtension(file);
   TextureImage image;

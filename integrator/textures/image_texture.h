@@ -71,6 +71,9 @@ TextureEncoding defaultTextureEncoding(const std::filesystem::path& file);
 // Reads and decodes an image. Throws InputError naming the file (missing, unreadable,
 // unsupported type or channels, empty).
 TextureImage loadTextureImage(const std::filesystem::path& file, TextureEncoding encoding);
+// Texture files loadTextureImage has read in this process so far (the scene loader's reads
+// and any a Scene build makes): a statistic, as pbrt's counters are, for tests.
+std::uint64_t textureFilesRead();
 
 // The four texels a lookup blends (indices into width·height, row-major from the top)
 // and their weights (sum 1).
