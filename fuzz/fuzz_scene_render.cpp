@@ -61,8 +61,8 @@ void writeAssets(const std::filesystem::path& dir) {
   const char* obj =
       "v -1 0 -1\nv 1 0 -1\nv 1 0 1\nv -1 0 1\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
       "vn 0 1 0\nf 1/1/1 2/2/1 3/3/1\nf 1/1/1 3/3/1 4/4/1\n";
-  for (const char* name : {"mesh.obj", "meshes/stanford-bunny.obj", "assets/stanford-bunny.obj",
-                           "assets/spot.obj"})
+  for (const char* name :
+       {"mesh.obj", "meshes/stanford-bunny.obj", "assets/stanford-bunny.obj", "assets/spot.obj"})
     writeText(dir / name, obj);
   const char* ply =
       "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
