@@ -102,8 +102,11 @@ void checkReach(const SceneDescription& d, const ShapeDescription& s,
                            " m from the camera's rest position; camsim traces within ±1e15 m "
                            "(limit SceneLimits::kMaxCoordinate)");
     if (s.kind == ShapeDescription::Kind::kSphere) {
+      // Compared as the float the shape stores: the loader's smallest radius, 1e-9 m, is
+      // the float 9.99999972e-10 (below 1e-9 as a double), and must still build.
       const double radius = glm::length(glm::dvec3(m[0])) * static_cast<double>(s.radius);
-      if (!(radius >= SceneLimits::kMinSphereRadius && radius <= 1e12))
+      const auto stored = static_cast<float>(radius);
+      if (!(stored >= static_cast<float>(SceneLimits::kMinSphereRadius) && radius <= 1e12))
         throw InputError({d.sourceFile, 0, 0}, s.label,
                          "the sphere's radius times its keyframe scale is " + formatNumber(radius) +
                              " m, outside [1e-09, 1e+12] m");

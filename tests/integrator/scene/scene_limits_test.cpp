@@ -157,6 +157,36 @@ TEST(SceneLimits, ScaledShapesAreCheckedPerShape) {
   }
 }
 
+// The loader's smallest sphere radius, 1e-9 m (SceneLimits::kMinSphereRadius), builds and
+// renders: it is stored as the float 9.99999972e-10, which the build's reach check once
+// compared in double against 1e-9 and refused (found by fuzz_scene_render,
+// fuzz/regressions/scene_render/sphere_min_radius.yaml). A keyframe scale of 0.5 takes it
+// below the limit and is still refused by shape.
+TEST(SceneLimits, SmallestSphereRadiusBuilds) {
+  const std::string tiny =
+      "  - {type: sphere, centre: [0, 2, 2], radius: 1e-9, material: m, emission: {luminance: "
+      "1e6}}\n";
+  const Scene scene(loadSceneFromText(
+      kHeader + kCamera + kSun + kMaterial + "shapes:\n" + kBall + tiny, "tiny.yaml", "."));
+  RenderOptions options;
+  options.spp = 1;
+  const RenderResult r = render(scene, SpectralResponse::cieXyz(), options);
+  for (float v : r.image.pixels) ASSERT_TRUE(std::isfinite(v));
+  try {
+    const Scene halved(loadSceneFromText(
+        kHeader + kCamera + kSun + kMaterial + "shapes:\n" + kBall +
+            "  - {type: sphere, centre: [0, 2, 2], radius: 1e-9, material: m, motion: [{time: 0, "
+            "scale: 0.5}]}\n",
+        "tiny.yaml", "."));
+    ADD_FAILURE() << "built a sphere of radius 5e-10 m";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.key(), "shapes[1]") << e.what();
+    EXPECT_NE(e.message().find("the sphere's radius times its keyframe scale is "),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 // A bulb of radius 1e-7 m lights the ball as a point light of the same intensity
 // I = L π r² does (0.0314 cd for 1e12 cd/m²), within 2 % of the image sum at 64 spp: the
 // sample on a tiny sphere is placed from its centre, not from the shading point, whose
