@@ -43,7 +43,7 @@ if ((${#missing[@]})); then
   DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq "${no_recommends[@]}" \
     "${missing[@]}" >/dev/null
 fi
-echo "setup: packages: ${#missing[@]} of ${#packages[@]} installed in $((SECONDS - t0)) s" >&2
+echo "setup: packages: ${#missing[@]} of ${#packages[@]} were missing, installed in $((SECONDS - t0)) s" >&2
 
 # The render build leaves the tests and micro-benchmarks out of a new build directory, so
 # that CMake does not look for GoogleTest (not in render.txt); an existing one keeps its
