@@ -10,12 +10,19 @@ if ! command -v clang-format >/dev/null; then
 fi
 mapfile -t files < <(git ls-files '*.cpp' '*.h')
 if [ "${1:-}" = "--check" ]; then
-  bad=()
-  for f in "${files[@]}"; do
-    clang-format --dry-run -Werror "$f" >/dev/null 2>&1 || bad+=("$f")
-  done
+  # One clang-format process for all files (one per file spent most of the time starting
+  # processes: 39 s on CI's 2 cores); with -Werror it still checks every file and reports
+  # each misformatted one as FILE:LINE:COL: error: code should be clang-formatted.
+  rc=0
+  log=$(clang-format --dry-run -Werror --ferror-limit=1 "${files[@]}" 2>&1 >/dev/null) || rc=$?
+  mapfile -t bad < <(sed -n 's/^\(.*\):[0-9]*:[0-9]*: [a-z]*: code should be clang-formatted.*/\1/p' \
+    <<<"$log" | sort -u)
   if ((${#bad[@]})); then
     printf 'format: not clang-formatted (run scripts/format.sh): %s\n' "${bad[@]}" >&2
+    exit 1
+  fi
+  if ((rc != 0)); then
+    printf 'format: clang-format failed (exit %d):\n%s\n' "$rc" "$log" >&2
     exit 1
   fi
   echo "format: ${#files[@]} files clang-formatted" >&2

@@ -1,18 +1,32 @@
 #!/usr/bin/env bash
-# Installs camsim's Debian 12 dependencies that are missing (as root, or with sudo),
-# then configures and builds the Release build in build/ on all cores.
+# Installs camsim's missing Debian 12 packages (apt, as root or with sudo), then configures
+# and builds the Release build in build/ on all cores. Prints how long each part took.
+#   scripts/setup.sh         README's first command: the packages of
+#                            scripts/packages/render.txt; builds only the `camsim`
+#                            executable and the Python module (target camsim_python)
+#   scripts/setup.sh --test  for scripts/test.sh: render.txt and scripts/packages/test.txt
+#                            (the test tools); builds everything, the test suite included
 #   CAMSIM_BUILD_DIR  build directory (default: build)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-packages=(
-  cmake ninja-build g++ pkg-config git
-  libembree-dev libtbb-dev libopenexr-dev openexr libopencolorio-dev opencolorio-tools
-  libglm-dev libgtest-dev libgmock-dev libyaml-cpp-dev libpng-dev libtiff-dev
-  libraw-bin dcraw libimage-exiftool-perl python3-matplotlib clang libclang-rt-14-dev clang-format
-  colmap python3-opencv python3-numpy libmurmurhash-dev slurm-wlm munge
-  pybind11-dev python3-dev python3-pytest libtinygltf-dev nlohmann-json3-dev libcli11-dev
-)
+mode=render
+case "${1:-}" in
+  "") ;;
+  --test) mode=test ;;
+  *)
+    echo "usage: scripts/setup.sh [--test]" >&2
+    exit 2
+    ;;
+esac
+
+# The package lists: one name a line, '#' comments and blank lines skipped.
+read_packages() { sed -e 's/#.*//' -e 's/[[:space:]]//g' -e '/^$/d' "$@"; }
+lists=(scripts/packages/render.txt)
+if [ "$mode" = test ]; then lists+=(scripts/packages/test.txt); fi
+mapfile -t packages < <(read_packages "${lists[@]}")
+
+t0=$SECONDS
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
@@ -22,9 +36,36 @@ if ((${#missing[@]})); then
   sudo=""
   if [ "$(id -u)" -ne 0 ]; then sudo="sudo"; fi
   $sudo apt-get update -qq
-  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq "${missing[@]}" >/dev/null
+  # The render packages without their recommends (make, libeigen3-dev, libpng-tools, ...:
+  # nothing camsim uses); the test tools as Debian recommends them.
+  no_recommends=()
+  if [ "$mode" = render ]; then no_recommends=(--no-install-recommends); fi
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq "${no_recommends[@]}" \
+    "${missing[@]}" >/dev/null
 fi
+echo "setup: packages: ${#missing[@]} of ${#packages[@]} were missing, installed in $((SECONDS - t0)) s" >&2
 
+# The render build leaves the tests and micro-benchmarks out of a new build directory, so
+# that CMake does not look for GoogleTest (not in render.txt); an existing one keeps its
+# options and only the two targets are built. --test turns both on.
 build_dir=${CAMSIM_BUILD_DIR:-build}
-cmake -S . -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
-cmake --build "$build_dir" -j"$(nproc)"
+options=()
+if [ "$mode" = test ]; then
+  options=(-DCAMSIM_BUILD_TESTS=ON -DCAMSIM_BUILD_BENCH=ON)
+elif [ ! -f "$build_dir/CMakeCache.txt" ]; then
+  options=(-DCAMSIM_BUILD_TESTS=OFF -DCAMSIM_BUILD_BENCH=OFF)
+fi
+t0=$SECONDS
+cmake -S . -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=Release "${options[@]}" >/dev/null
+targets=()
+if [ "$mode" = render ]; then
+  targets=(camsim)
+  if grep -q '^CAMSIM_PYTHON:BOOL=ON' "$build_dir/CMakeCache.txt"; then
+    targets+=(camsim_python)
+  fi
+fi
+target_args=()
+if ((${#targets[@]})); then target_args=(--target "${targets[@]}"); fi
+cmake --build "$build_dir" -j"$(nproc)" "${target_args[@]}"
+echo "setup: built ${targets[*]:-every target} in $build_dir/ in $((SECONDS - t0)) s" \
+  "on $(nproc) cores" >&2

@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Sets up and builds (scripts/setup.sh), then runs every quality gate (docs/testing.md):
+# Installs every package the gates use and builds everything (scripts/setup.sh --test:
+# scripts/packages/render.txt and test.txt), then runs every quality gate (docs/testing.md):
 #   1. the test suite (CTest) on the Release build in build/ (the SIMD path, CAMSIM_SIMD=ON),
 #      with the Python module's pytest suite (CTest label python, docs/python.md);
 #      then every tracked .cpp/.h is checked to be clang-formatted (scripts/format.sh
@@ -15,7 +16,8 @@
 #   3. the libFuzzer harnesses (Clang, CAMSIM_FUZZ=ON, the SIMD path) in build-fuzz/: every
 #      seed and regression input replayed once (CTest), then each harness fuzzed for
 #      CAMSIM_FUZZ_SECONDS (default 45) by scripts/fuzz.sh.
-# Every stage runs even when an earlier one failed; the script fails if any did.
+# Every stage runs even when an earlier one failed; the script fails if any did. Each stage
+# prints its wall time, and its build and test parts separately (docs/testing.md's table).
 # Environment: CAMSIM_BUILD_DIR, CAMSIM_ASAN_BUILD_DIR, CAMSIM_FUZZ_BUILD_DIR (build
 # directories), CAMSIM_FUZZ_SECONDS (0 skips the fuzzing runs, not the replay), CAMSIM_JOBS
 # (parallel build and test jobs, default: nproc).
@@ -43,9 +45,17 @@ stage() {  # stage NAME COMMAND...: runs COMMAND, records NAME if it fails
   fi
 }
 
+part() {  # part NAME COMMAND...: runs COMMAND and prints its wall time
+  local name=$1 t0=$SECONDS rc=0
+  shift
+  "$@" || rc=$?
+  echo "== test.sh:   $name: $((SECONDS - t0)) s" >&2
+  return "$rc"
+}
+
 release_suite() {
-  CAMSIM_BUILD_DIR=$build_dir scripts/setup.sh &&
-    ctest --test-dir "$build_dir" --output-on-failure -j"$jobs"
+  CAMSIM_BUILD_DIR=$build_dir scripts/setup.sh --test &&
+    part "Release suite" ctest --test-dir "$build_dir" --output-on-failure -j"$jobs"
 }
 
 # The ASan and fuzz builds have no Python module (-DCAMSIM_PYTHON=OFF, also their default): an
@@ -73,18 +83,26 @@ asan_suite() {
   cmake -S . -B "$asan_dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
     -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" -DCAMSIM_SANITIZE=ON \
     -DCAMSIM_SIMD=OFF -DCAMSIM_BUILD_BENCH=OFF -DCAMSIM_PYTHON=OFF >/dev/null &&
-    cmake --build "$asan_dir" -j"$jobs" &&
+    part "ASan build" cmake --build "$asan_dir" -j"$jobs" &&
     ASAN_OPTIONS=${ASAN_OPTIONS:-$asan} \
       UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1} \
-      ctest --test-dir "$asan_dir" --output-on-failure -j"$jobs" -E "$slow"
+      part "ASan suite" ctest --test-dir "$asan_dir" --output-on-failure -j"$jobs" -E "$slow"
 }
 
+# Only the harnesses (fuzz/fuzz_<harness>.cpp, as scripts/fuzz.sh finds them) and what they
+# link: the camsim executable, camsim_cli_lib and camsim_bench are not built with Clang here
+# (a sixth of the compiling in the Release build; the fuzz build does not gate warnings).
 fuzz_replay() {
+  local targets=() f
+  for f in fuzz/fuzz_*.cpp; do
+    f=${f#fuzz/}
+    targets+=("${f%.cpp}")
+  done
   CC=clang CXX=clang++ cmake -S . -B "$fuzz_dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
     -DCAMSIM_FUZZ=ON -DCAMSIM_BUILD_TESTS=OFF -DCAMSIM_BUILD_BENCH=OFF \
     -DCAMSIM_WERROR=OFF -DCAMSIM_PYTHON=OFF >/dev/null &&
-    cmake --build "$fuzz_dir" -j"$jobs" &&
-    ctest --test-dir "$fuzz_dir/fuzz" --output-on-failure -j"$jobs"
+    part "fuzz build" cmake --build "$fuzz_dir" -j"$jobs" --target "${targets[@]}" &&
+    part "replay" ctest --test-dir "$fuzz_dir/fuzz" --output-on-failure -j"$jobs"
 }
 
 fuzz_run() {
