@@ -207,8 +207,8 @@ TEST(CaptureScene, ASequenceRendersItsBracketsOnItsOneScene) {
     atFrame.camera = d.frameCamera(k);
     ASSERT_EQ(r.frames.size(), 3u);
     for (const CaptureFrame& f : r.frames)
-      EXPECT_TRUE(sameBytes(f.electrons,
-                            freshBracketFilm(atFrame, r.exposureScale * std::exp2(f.ev))))
+      EXPECT_TRUE(
+          sameBytes(f.electrons, freshBracketFilm(atFrame, r.exposureScale * std::exp2(f.ev))))
           << "EV " << f.ev;
   }
 }

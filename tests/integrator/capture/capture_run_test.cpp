@@ -13,15 +13,16 @@
 namespace camsim {
 namespace {
 
-// A 40×24 image of a lit sphere (3 tiles of 16×16 across, 2 down); `frames` adds a
-// frames block of that many frames.
+// A 40×24 image of a lit sphere moving along x (3 tiles of 16×16 across, 2 down: every
+// frame of a sequence is rendered); `frames` adds a frames block of that many frames.
 SceneDescription tinyScene(int frames) {
   std::string text =
       "name: tiny\n"
       "camera: {position: [0, 0, 0], look_at: [0, 0, 1], resolution: [40, 24]}\n"
       "render: {spp: 1, max_depth: 1}\n"
       "materials: {white: {type: diffuse, reflectance: 0.8}}\n"
-      "shapes: [{type: sphere, centre: [0, 0, 3], radius: 0.5, material: white}]\n"
+      "shapes: [{type: sphere, centre: [0, 0, 3], radius: 0.5, material: white,\n"
+      "          motion: [{time: 0, translate: [0, 0, 0]}, {time: 1, translate: [0.2, 0, 0]}]}]\n"
       "lights: [{type: point, position: [0, 0, 0], intensity: 50}]\n";
   if (frames > 0)
     text += "frames: {count: " + std::to_string(frames) + ", rate_hz: 10, shutter_angle_deg: 36}\n";
@@ -29,8 +30,8 @@ SceneDescription tinyScene(int frames) {
 }
 
 struct RunLog {
-  std::vector<int> frames;                     // k of each onFrame, in order
-  std::vector<std::pair<int, int>> progress;   // (done, total) as reported
+  std::vector<int> frames;                    // k of each onFrame, in order
+  std::vector<std::pair<int, int>> progress;  // (done, total) as reported
   SequenceSummary summary;
 };
 
@@ -39,11 +40,10 @@ RunLog runScene(int frames) {
   CaptureOptions options;
   options.threads = 1;  // one thread: progress is reported in order
   options.progress = [&r](int done, int total) { r.progress.emplace_back(done, total); };
-  r.summary = captureScene(tinyScene(frames), options,
-                           [&r](CaptureResult&& c, int k) {
-                             EXPECT_FALSE(c.cancelled);
-                             r.frames.push_back(k);
-                           });
+  r.summary = captureScene(tinyScene(frames), options, [&r](CaptureResult&& c, int k) {
+    EXPECT_FALSE(c.cancelled);
+    r.frames.push_back(k);
+  });
   return r;
 }
 
@@ -77,6 +77,7 @@ TEST(CaptureRunWriter, ASequenceWritesItsFramesThenItsCameraExports) {
   const std::filesystem::path dir =
       std::filesystem::path(::testing::TempDir()) / "capture_run_writer_sequence";
   std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
   CaptureOutputOptions out;
   out.directory = dir;
   out.reproducible = true;
@@ -95,6 +96,7 @@ TEST(CaptureRunWriter, OneFrameHasNoCameraExports) {
   const std::filesystem::path dir =
       std::filesystem::path(::testing::TempDir()) / "capture_run_writer_one";
   std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
   CaptureOutputOptions out;
   out.directory = dir;
   out.reproducible = true;
