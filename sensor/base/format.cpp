@@ -10,6 +10,10 @@ std::string formatNumber(double v, int precision) {
   return buf;
 }
 
+std::string formatRange(double lo, double hi, bool loOpen) {
+  return (loOpen ? "(" : "[") + formatNumber(lo, 10) + ", " + formatNumber(hi, 10) + "]";
+}
+
 std::string formatFixed(double v, int decimals) {
   char buf[48];
   std::snprintf(buf, sizeof buf, "%.*f", decimals, v);

@@ -12,6 +12,8 @@
 #include <sstream>
 #include <string_view>
 
+#include "sensor/base/format.h"
+
 namespace camsim {
 
 YamlValue::YamlValue(const YAML::Node& node, std::string key, std::string file)
@@ -81,22 +83,10 @@ double YamlValue::number() const {
   return value;
 }
 
-namespace {
-
-// A range bound as a reader wrote it: 1e+30, 0.5, 1000 (not 1000000000000000019884624838656.000000).
-std::string bound(double v) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.10g", v);
-  return text;
-}
-
-}  // namespace
-
 double YamlValue::number(double lo, double hi, bool loOpen) const {
   const double v = number();
   if (v < lo || v > hi || (loOpen && v == lo)) {
-    fail("value " + node_->Scalar() + " is out of range " + (loOpen ? "(" : "[") + bound(lo) +
-         ", " + bound(hi) + "]");
+    fail("value " + node_->Scalar() + " is out of range " + formatRange(lo, hi, loOpen));
   }
   return v;
 }
