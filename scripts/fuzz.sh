@@ -26,7 +26,7 @@ fi
 
 CC=clang CXX=clang++ cmake -S . -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DCAMSIM_FUZZ=ON -DCAMSIM_BUILD_TESTS=OFF -DCAMSIM_BUILD_BENCH=OFF \
-  -DCAMSIM_WERROR=OFF >/dev/null  # warnings are gated by the GCC builds; Clang's differ
+  -DCAMSIM_WERROR=OFF -DCAMSIM_UNITY_BUILD=ON >/dev/null  # warnings: the GCC builds gate them
 cmake --build "$build_dir" -j"$jobs" --target "${harnesses[@]/#/fuzz_}"
 
 # Memory: ASan's hard_rss_limit_mb, not libFuzzer's -rss_limit_mb, whose report prints a

@@ -12,10 +12,12 @@
 #      CAMSIM_SANITIZE=ON, -O1 -g1: line tables for the reports, a quarter faster to compile
 #      than -g) in build-asan/, less seven slow tests (see below); built portable
 #      (CAMSIM_SIMD=OFF: sensor/base/simd.h's portable path, no AVX2 copy, no x86 flag), so
-#      the whole suite runs on both paths without a build stage of its own;
-#   3. the libFuzzer harnesses (Clang, CAMSIM_FUZZ=ON, the SIMD path) in build-fuzz/: every
-#      seed and regression input replayed once (CTest), then each harness fuzzed for
-#      CAMSIM_FUZZ_SECONDS (default 45) by scripts/fuzz.sh.
+#      the whole suite runs on both paths without a build stage of its own; the libraries
+#      unity-built (CAMSIM_UNITY_BUILD: a few large translation units, half the compiling;
+#      the Release build still compiles each file on its own);
+#   3. the libFuzzer harnesses (Clang, CAMSIM_FUZZ=ON, the SIMD path, the libraries
+#      unity-built) in build-fuzz/: every seed and regression input replayed once (CTest),
+#      then each harness fuzzed for CAMSIM_FUZZ_SECONDS (default 45) by scripts/fuzz.sh.
 # Every stage runs even when an earlier one failed; the script fails if any did. Each stage
 # prints its wall time, and its build and test parts separately (docs/testing.md's table).
 # Environment: CAMSIM_BUILD_DIR, CAMSIM_ASAN_BUILD_DIR, CAMSIM_FUZZ_BUILD_DIR (build
@@ -82,7 +84,8 @@ asan_suite() {
   local slow='^(ColorChecker\.(MeasuredCameraWithFittedCcm|WhiteBalanceMakesNeutralPatchesNeutral)|DepthOfField\.AplanaticBlurDiscIsUniformlyLit|ColmapTriangulation\.PointsLieOnTheTrueSurfaces|DielectricMaterial\.ChiSquareRoughGlassAllModels|ConductorMaterial\.WhiteFurnaceAlbedoTable|DepthOfField\.SixBladesGiveHexagonOfRightOrientationAndArea)$'
   cmake -S . -B "$asan_dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
     -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" -DCAMSIM_SANITIZE=ON \
-    -DCAMSIM_SIMD=OFF -DCAMSIM_BUILD_BENCH=OFF -DCAMSIM_PYTHON=OFF >/dev/null &&
+    -DCAMSIM_SIMD=OFF -DCAMSIM_BUILD_BENCH=OFF -DCAMSIM_PYTHON=OFF -DCAMSIM_UNITY_BUILD=ON \
+    >/dev/null &&
     part "ASan build" cmake --build "$asan_dir" -j"$jobs" &&
     ASAN_OPTIONS=${ASAN_OPTIONS:-$asan} \
       UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1} \
@@ -100,7 +103,7 @@ fuzz_replay() {
   done
   CC=clang CXX=clang++ cmake -S . -B "$fuzz_dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
     -DCAMSIM_FUZZ=ON -DCAMSIM_BUILD_TESTS=OFF -DCAMSIM_BUILD_BENCH=OFF \
-    -DCAMSIM_WERROR=OFF -DCAMSIM_PYTHON=OFF >/dev/null &&
+    -DCAMSIM_WERROR=OFF -DCAMSIM_PYTHON=OFF -DCAMSIM_UNITY_BUILD=ON >/dev/null &&
     part "fuzz build" cmake --build "$fuzz_dir" -j"$jobs" --target "${targets[@]}" &&
     part "replay" ctest --test-dir "$fuzz_dir/fuzz" --output-on-failure -j"$jobs"
 }

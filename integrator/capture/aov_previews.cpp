@@ -4,6 +4,8 @@
 #include <array>
 #include <cmath>
 
+#include "sensor/spectra/color_space.h"
+
 namespace camsim {
 namespace {
 
@@ -35,11 +37,6 @@ std::array<double, 3> hsv(double h, double s, double v) {
     default:
       return {v, p, q};
   }
-}
-
-double srgbEncode(double x) {
-  x = std::clamp(x, 0.0, 1.0);
-  return x <= 0.0031308 ? 12.92 * x : 1.055 * std::pow(x, 1.0 / 2.4) - 0.055;
 }
 
 }  // namespace
@@ -83,7 +80,8 @@ std::vector<AovPreview> aovPreviews(const Image& a) {
     p.srgb = true;
     for (std::size_t px = 0; px < n; ++px)
       for (int c = 0; c < 3; ++c)
-        p.rgb[px * 3 + static_cast<std::size_t>(c)] = byte(srgbEncode(value(px, r + c)));
+        p.rgb[px * 3 + static_cast<std::size_t>(c)] =
+            byte(srgbEncode(std::clamp(value(px, r + c), 0.0, 1.0)));
   }
   for (const char* kind : {"instance", "class", "material"}) {
     const int id = a.channelIndex(std::string(kind) + ".id");

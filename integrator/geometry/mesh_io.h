@@ -37,6 +37,11 @@
 
 namespace camsim {
 
+// Whitespace within a line of an OBJ or .mtl file (the line break ends the line).
+inline bool isObjSpace(char c) {
+  return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f';
+}
+
 // Where a file's vertices go: p = scale · p_file + offset, computed in double as each
 // vertex is read and only then stored in float, so that a mesh modelled or placed 10⁶ m
 // from the origin keeps its precision in render space (the loader passes its `scale` and

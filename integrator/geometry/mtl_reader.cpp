@@ -13,6 +13,7 @@
 #include <string_view>
 #include <vector>
 
+#include "integrator/geometry/mesh_io.h"
 #include "sensor/base/input_error.h"
 
 namespace camsim {
@@ -25,10 +26,6 @@ namespace {
 constexpr std::size_t kMaxMaterials = 1'000'000;
 constexpr std::size_t kMaxIgnored = 10'000'000;
 
-bool isSpace(char c) {
-  return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f';
-}
-
 std::string lower(std::string_view s) {
   std::string out(s);
   std::transform(out.begin(), out.end(), out.begin(),
@@ -37,8 +34,8 @@ std::string lower(std::string_view s) {
 }
 
 std::string_view trim(std::string_view s) {
-  while (!s.empty() && isSpace(s.front())) s.remove_prefix(1);
-  while (!s.empty() && isSpace(s.back())) s.remove_suffix(1);
+  while (!s.empty() && isObjSpace(s.front())) s.remove_prefix(1);
+  while (!s.empty() && isObjSpace(s.back())) s.remove_suffix(1);
   return s;
 }
 
@@ -46,9 +43,9 @@ std::vector<std::string_view> words(std::string_view s) {
   std::vector<std::string_view> out;
   std::size_t i = 0;
   while (i < s.size()) {
-    while (i < s.size() && isSpace(s[i])) ++i;
+    while (i < s.size() && isObjSpace(s[i])) ++i;
     const std::size_t start = i;
-    while (i < s.size() && !isSpace(s[i])) ++i;
+    while (i < s.size() && !isObjSpace(s[i])) ++i;
     if (i > start) out.push_back(s.substr(start, i - start));
   }
   return out;
@@ -127,7 +124,7 @@ MtlLibrary MtlParser::run() {
     if (line_ < std::numeric_limits<int>::max()) ++line_;
     if (line.empty() || line.front() == '#') continue;
     std::size_t k = 0;
-    while (k < line.size() && !isSpace(line[k])) ++k;
+    while (k < line.size() && !isObjSpace(line[k])) ++k;
     statement(line.substr(0, k), trim(line.substr(k)));
   }
   return std::move(lib_);

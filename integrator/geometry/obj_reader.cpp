@@ -46,10 +46,6 @@ constexpr std::size_t kMaxCount = 100'000'000;
 constexpr std::uint32_t kNoNormal = std::numeric_limits<std::uint32_t>::max();
 constexpr std::uint32_t kNoUv = kNoNormal;
 
-bool isSpace(char c) {
-  return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f';
-}
-
 // Parses a real number token starting at p (which must not be whitespace). Returns the end
 // of the token, or nullptr if it is not a number. Over/underflow: strtod semantics (an
 // overflow gives inf, which the caller rejects; an underflow gives 0 or a denormal).
@@ -65,7 +61,7 @@ const char* parseReal(const char* p, const char* end, double& out) {
   } else if (ec != std::errc()) {
     return nullptr;
   }
-  if (ptr < end && !isSpace(*ptr)) return nullptr;
+  if (ptr < end && !isObjSpace(*ptr)) return nullptr;
   return ptr;
 }
 
@@ -118,7 +114,7 @@ void ObjParser::fail(const char* at, const std::string& message) const {
 
 std::string ObjParser::tokenAt(const char* p, const char* end) const {
   const char* q = p;
-  while (q < end && !isSpace(*q) && q - p < 40) ++q;
+  while (q < end && !isObjSpace(*q) && q - p < 40) ++q;
   return std::string(p, static_cast<std::size_t>(q - p));
 }
 
@@ -183,9 +179,9 @@ void ObjParser::splitByUv(MeshData& mesh) const {
 }
 
 void ObjParser::parseLine(const char* p, const char* end) {
-  while (p < end && isSpace(*p)) ++p;
+  while (p < end && isObjSpace(*p)) ++p;
   const char* keyword = p;
-  while (p < end && !isSpace(*p)) ++p;
+  while (p < end && !isObjSpace(*p)) ++p;
   const std::string_view kw(keyword, static_cast<std::size_t>(p - keyword));
   if (kw == "v") {
     if (positions_.size() >= kMaxCount) fail(keyword, "more than 100000000 vertices");
@@ -215,8 +211,8 @@ void ObjParser::parseLine(const char* p, const char* end) {
 // The text after the keyword without surrounding white space (names and file names may
 // contain spaces; a '#' is part of them).
 std::string ObjParser::restOfLine(const char* p, const char* end) const {
-  while (p < end && isSpace(*p)) ++p;
-  while (end > p && isSpace(end[-1])) --end;
+  while (p < end && isObjSpace(*p)) ++p;
+  while (end > p && isObjSpace(end[-1])) --end;
   return std::string(p, static_cast<std::size_t>(end - p));
 }
 
@@ -246,7 +242,7 @@ double ObjParser::parseCoord(const char*& p, const char* end, const char* what) 
 glm::dvec3 ObjParser::parseVec3(const char* p, const char* end, const char* what) {
   double xyz[3] = {};
   for (double& c : xyz) {
-    while (p < end && isSpace(*p)) ++p;
+    while (p < end && isObjSpace(*p)) ++p;
     if (p == end || *p == '#') fail(p, std::string(what) + " needs 3 coordinates");
     c = parseCoord(p, end, what);
   }
@@ -257,7 +253,7 @@ glm::dvec3 ObjParser::parseVec3(const char* p, const char* end, const char* what
 glm::vec2 ObjParser::parseUv(const char* p, const char* end) {
   float uv[2] = {};
   for (int i = 0; i < 2; ++i) {
-    while (p < end && isSpace(*p)) ++p;
+    while (p < end && isObjSpace(*p)) ++p;
     if (p == end || *p == '#') {
       if (i == 0) fail(p, "texture coordinate needs at least 1 value");
       break;
@@ -292,7 +288,7 @@ void ObjParser::parseFace(const char* p, const char* end) {
   std::uint32_t first = 0, firstUv = kNoUv;
   std::uint32_t prev = 0, prevUv = kNoUv;
   while (true) {
-    while (p < end && isSpace(*p)) ++p;
+    while (p < end && isObjSpace(*p)) ++p;
     if (p == end || *p == '#') break;
     const char* tokenStart = p;
     std::int64_t raw = 0;
@@ -317,7 +313,7 @@ void ObjParser::parseFace(const char* p, const char* end) {
         hasNormal = true;
       }
     }
-    if (p < end && !isSpace(*p))
+    if (p < end && !isObjSpace(*p))
       fail(tokenStart,
            "bad face vertex '" + tokenAt(tokenStart, end) + "' (expected i, i/t, i//n or i/t/n)");
     trackNormal(pos, normal, hasNormal);

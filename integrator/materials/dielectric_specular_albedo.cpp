@@ -12,10 +12,10 @@
 namespace camsim {
 namespace {
 
-constexpr double kMinAlpha = 9e-6;  // r = 0's row: the smooth limit
-constexpr int kNodeSamples = 32;    // per axis, per node
-constexpr int kAverageSteps = 256;  // midpoints in μ for E_avg
-constexpr double kDielectricF0 = 0.04;
+constexpr double kTableMinAlpha = 9e-6;  // r = 0's row: the smooth limit
+constexpr int kNodeSamples = 32;         // per axis, per node
+constexpr int kAverageSteps = 256;       // midpoints in μ for E_avg
+constexpr double kTableF0 = 0.04;
 
 // x clamped to [0, 1]; NaN → 0 (a NaN must not reach the float → int cast of a lookup).
 double unit(double x) {
@@ -23,7 +23,7 @@ double unit(double x) {
 }
 
 double tableAlpha(double r) {
-  return std::max(r * r, kMinAlpha);
+  return std::max(r * r, kTableMinAlpha);
 }
 
 // Node coordinate x for cos θ under α (and back).
@@ -41,7 +41,7 @@ double muOf(double x, double alpha) {
 float DielectricSpecularAlbedo::fresnel(float cosTheta) {
   const float x = 1.0f - std::clamp(cosTheta, 0.0f, 1.0f);
   const float x2 = x * x;
-  return static_cast<float>(kDielectricF0) + static_cast<float>(1.0 - kDielectricF0) * x2 * x2 * x;
+  return static_cast<float>(kTableF0) + static_cast<float>(1.0 - kTableF0) * x2 * x2 * x;
 }
 
 double DielectricSpecularAlbedo::integrate(double cosTheta, double alpha, int n) {
