@@ -10,7 +10,6 @@
 #include "sensor/base/check.h"
 #include "sensor/base/input_error.h"
 #include "sensor/base/luts_directory.h"
-#include "sensor/isp/color_correction.h"
 #include "sensor/model/exposure_control.h"
 #include "sensor/model/sensor_model.h"
 #include "sensor/spectra/color_space.h"

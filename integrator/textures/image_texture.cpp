@@ -17,7 +17,6 @@
 #include "sensor/base/input_error.h"
 #include "sensor/io/exr_io.h"
 #include "sensor/io/png_io.h"
-#include "sensor/isp/color_correction.h"
 #include "sensor/spectra/color_space.h"
 
 namespace camsim {

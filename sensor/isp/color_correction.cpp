@@ -66,27 +66,6 @@ glm::dmat3 fitLinearMapConstrained(const std::vector<glm::dvec3>& from,
   return m0 + glm::outerProduct(target - m0 * u, aInvU) / denominator;
 }
 
-glm::dmat3 bradfordAdaptation(const glm::dvec3& sourceWhite, const glm::dvec3& destinationWhite) {
-  // Rows as published; glm is column-major, hence the transpose.
-  const glm::dmat3 bfd = glm::transpose(glm::dmat3(0.8951, 0.2664, -0.1614,  //
-                                                   -0.7502, 1.7135, 0.0367,  //
-                                                   0.0389, -0.0685, 1.0296));
-  const glm::dvec3 src = bfd * sourceWhite;
-  const glm::dvec3 dst = bfd * destinationWhite;
-  glm::dmat3 scale(1.0);
-  for (int i = 0; i < 3; ++i) scale[i][i] = dst[i] / src[i];
-  return glm::inverse(bfd) * scale * bfd;
-}
-
-glm::dvec3 d65WhiteXyz() {
-  static const glm::dvec3 white = reflectanceToXyz(Spectrum::constant(1.0), cieIlluminant("D65"));
-  return white;
-}
-
-glm::dmat3 xyzD65ToWorkingSpace(const RgbColorSpace& space) {
-  return space.rgbFromXyz() * bradfordAdaptation(d65WhiteXyz(), chromaticityToXyz(space.white()));
-}
-
 glm::dmat3 ColorCorrection::rawToXyz() const {
   glm::dmat3 gains(1.0);
   for (int i = 0; i < 3; ++i) gains[i][i] = whiteBalance[i];

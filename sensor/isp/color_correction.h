@@ -15,10 +15,7 @@
 //     multiplier: M = M₀ + (X_D65 − M₀ u)(A⁻¹u)ᵀ / (uᵀA⁻¹u),  A = Σ ĉ ĉᵀ, u = (1, 1, 1)ᵀ
 //   working       rgb = W M ĉ,   W = rgbFromXyz_ws · B(D65 → white_ws)   (ACEScg by default)
 //
-// B is the Bradford chromatic adaptation transform (von Kries scaling in the Bradford
-// "sharpened" cone space, as in ICC v4 and Lindbloom):
-//   B(s → d) = M_BFD⁻¹ diag(M_BFD X_d / M_BFD X_s) M_BFD,
-//   M_BFD = [0.8951 0.2664 −0.1614; −0.7502 1.7135 0.0367; 0.0389 −0.0685 1.0296]
+// B is the Bradford chromatic adaptation transform (sensor/spectra/color_space.h).
 // Choice: the CCM outputs the colours a D65-adapted observer would match, whatever the scene
 // illuminant, so that the image needs one output white (D65, then the working space's) and
 // the fit's error is measured against the same corresponding colours. B(D65 → D65) is the
@@ -65,13 +62,6 @@ glm::dmat3 fitLinearMap(const std::vector<glm::dvec3>& from, const std::vector<g
 glm::dmat3 fitLinearMapConstrained(const std::vector<glm::dvec3>& from,
                                    const std::vector<glm::dvec3>& to, const glm::dvec3& u,
                                    const glm::dvec3& target);
-
-// Bradford adaptation matrix from one white's XYZ to another's (any common scale).
-glm::dmat3 bradfordAdaptation(const glm::dvec3& sourceWhite, const glm::dvec3& destinationWhite);
-// XYZ of the D65 white, Y = 1 (the tabulated spectrum through the observer).
-glm::dvec3 d65WhiteXyz();
-// W: D65-adapted XYZ → the space's RGB (Bradford D65 → its white, then rgbFromXyz).
-glm::dmat3 xyzD65ToWorkingSpace(const RgbColorSpace& space);
 
 struct ColorCorrectionOptions {
   bool preserveWhite = true;

@@ -36,6 +36,27 @@ const RgbColorSpace& RgbColorSpace::aces2065() {
   return cs;
 }
 
+glm::dmat3 bradfordAdaptation(const glm::dvec3& sourceWhite, const glm::dvec3& destinationWhite) {
+  // Rows as published; glm is column-major, hence the transpose.
+  const glm::dmat3 bfd = glm::transpose(glm::dmat3(0.8951, 0.2664, -0.1614,  //
+                                                   -0.7502, 1.7135, 0.0367,  //
+                                                   0.0389, -0.0685, 1.0296));
+  const glm::dvec3 src = bfd * sourceWhite;
+  const glm::dvec3 dst = bfd * destinationWhite;
+  glm::dmat3 scale(1.0);
+  for (int i = 0; i < 3; ++i) scale[i][i] = dst[i] / src[i];
+  return glm::inverse(bfd) * scale * bfd;
+}
+
+glm::dvec3 d65WhiteXyz() {
+  static const glm::dvec3 white = reflectanceToXyz(Spectrum::constant(1.0), cieIlluminant("D65"));
+  return white;
+}
+
+glm::dmat3 xyzD65ToWorkingSpace(const RgbColorSpace& space) {
+  return space.rgbFromXyz() * bradfordAdaptation(d65WhiteXyz(), chromaticityToXyz(space.white()));
+}
+
 double srgbEncode(double linear) {
   if (linear <= 0.0031308) return 12.92 * linear;
   return 1.055 * std::pow(linear, 1.0 / 2.4) - 0.055;
