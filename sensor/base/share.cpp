@@ -22,8 +22,7 @@ Share parseShare(const std::string& text, const std::string& key) {
   std::int64_t k = 0, m = 0;
   const char* begin = text.data();
   const char* end = begin + text.size();
-  if (slash == std::string::npos ||
-      !parseBounded(begin + slash + 1, end, 1, kMaxShareCount, m) ||
+  if (slash == std::string::npos || !parseBounded(begin + slash + 1, end, 1, kMaxShareCount, m) ||
       !parseBounded(begin, begin + slash, 0, m - 1, k))
     throw InputError({}, key,
                      "expects k/M (share k of M, 0 <= k < M, 1 <= M <= " +

@@ -53,14 +53,43 @@ TEST(Share, ParseAcceptsKOfM) {
 }
 
 TEST(Share, ParseRefusesAnythingElseNamingKeyTextAndRange) {
-  for (const char* bad :
-       {"2/2", "3/2", "-1/2", "-0/2", "+1/2", "1/0", "0/0", "1/-2", "a/2", "1/a", "1/", "/2", "/",
-        "", "1", "12", "1/2/3", " 1/2", "1/2 ", "1 /2", "1/ 2", "1/2x", "0x1/2", "1.0/2", "1/2.0",
-        "0/1048577", "0/4294967297", "99999999999999999999/2", "1/99999999999999999999",
-        "18446744073709551617/18446744073709551618"}) {
+  // Each refused text, with what is wrong with it.
+  const char* const refused[][2] = {
+      {"2/2", "k = M"},
+      {"3/2", "k > M"},
+      {"-1/2", "k < 0"},
+      {"-0/2", "a sign"},
+      {"+1/2", "a sign"},
+      {"1/-2", "M < 0"},
+      {"1/0", "M = 0"},
+      {"0/0", "M = 0"},
+      {"0/1048577", "M above 2^20"},
+      {"0/4294967297", "M above 2^32"},
+      {"99999999999999999999/2", "k beyond 64 bits"},
+      {"1/99999999999999999999", "M beyond 64 bits"},
+      {"18446744073709551617/18446744073709551618", "both beyond 64 bits"},
+      {"a/2", "not a number"},
+      {"1/a", "not a number"},
+      {"0x1/2", "hexadecimal"},
+      {"1.0/2", "a fraction"},
+      {"1/2.0", "a fraction"},
+      {"1/", "no M"},
+      {"/2", "no k"},
+      {"/", "neither"},
+      {"", "empty"},
+      {"1", "no slash"},
+      {"12", "no slash"},
+      {"1/2/3", "two slashes"},
+      {" 1/2", "a leading blank"},
+      {"1/2 ", "a trailing blank"},
+      {"1 /2", "a blank before the slash"},
+      {"1/ 2", "a blank after the slash"},
+      {"1/2x", "trailing text"},
+  };
+  for (const auto& [bad, why] : refused) {
     try {
       (void)parseShare(bad, "--shard");
-      ADD_FAILURE() << "accepted '" << bad << "'";
+      ADD_FAILURE() << "accepted '" << bad << "' (" << why << ")";
     } catch (const InputError& e) {
       EXPECT_EQ(e.key(), "--shard");
       EXPECT_EQ(e.message(),
