@@ -21,16 +21,6 @@ double parsePositive(const std::string& flag, const std::string& text, double hi
   return v;
 }
 
-// "k/M" with 0 ≤ k < M.
-std::pair<int, int> parseTiles(const std::string& flag, const std::string& text) {
-  const std::size_t slash = text.find('/');
-  if (slash == std::string::npos)
-    throw UsageError(flag + " expects k/M (share k of M, 0 <= k < M), got '" + text + "'");
-  const int m = static_cast<int>(parseInteger(flag + " M", text.substr(slash + 1), 1, 1 << 20));
-  const int k = static_cast<int>(parseInteger(flag + " k", text.substr(0, slash), 0, m - 1));
-  return {k, m};
-}
-
 }  // namespace
 
 const OverrideSetting* overrideOfFlag(const std::string& flag) {
@@ -45,6 +35,14 @@ void parseOverride(Overrides& o, const OverrideSetting& setting, const std::stri
   try {
     const OverrideSource source{SourceLocation{"", 0, 0}, flag};
     setOverrideText(o, setting, text, source);
+  } catch (const InputError& e) {
+    throw UsageError(flag + ": " + e.message());
+  }
+}
+
+Share parseShareOption(const std::string& flag, const std::string& text) {
+  try {
+    return parseShare(text, flag);
   } catch (const InputError& e) {
     throw UsageError(flag + ": " + e.message());
   }
@@ -113,7 +111,7 @@ std::unique_ptr<CLI::App> renderApp(RenderArgs& r) {
                 "leave the render time out of NAME.exr and NAME.json, so that the same scene, "
                 "seed and build give the same bytes in every file");
   app->add_option_function<std::string>(
-         "--tiles", [&r](const std::string& t) { r.tiles = parseTiles("--tiles", t); },
+         "--tiles", [&r](const std::string& t) { r.tiles = parseShareOption("--tiles", t); },
          "render only share k of M of the image's 16x16 tiles (those t with t % M == k) and "
          "write just DIR/NAME.part-k-of-M.exr; camsim merge PART... assembles the M parts "
          "(docs/output.md)")

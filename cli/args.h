@@ -5,10 +5,10 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
-#include <utility>
 #include <vector>
 
 #include "integrator/scene/overrides.h"
+#include "sensor/base/share.h"
 
 namespace camsim {
 
@@ -30,8 +30,8 @@ struct RenderArgs {
   bool aovPreviews = false;  // --aov-previews
   // --reproducible: no render time in NAME.exr and NAME.json (CaptureOutputOptions).
   bool reproducible = false;
-  // --tiles k/M: (k, M), render share k of M of the tiles into a part (tile_parts.h).
-  std::optional<std::pair<int, int>> tiles;
+  // --tiles k/M: render share k of M of the tiles into a part (tile_parts.h).
+  std::optional<Share> tiles;
 };
 
 struct Command {
@@ -48,6 +48,10 @@ std::string renderUsageText();
 // An integer flag value in [lo, hi]; UsageError naming the flag otherwise.
 std::int64_t parseInteger(const std::string& flag, const std::string& text, std::int64_t lo,
                           std::int64_t hi);
+
+// "k/M" of a share flag (--tiles, --shard): sensor/base/share.h's parseShare, its
+// InputError as UsageError "--tiles: expects k/M (share k of M, 0 <= k < M, …), got '3/2'".
+Share parseShareOption(const std::string& flag, const std::string& text);
 
 // The override whose flag is `flag` ("--f-number"; "--exposure-time" is --exposure-time-s's
 // old name), or nullptr.

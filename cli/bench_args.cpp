@@ -3,11 +3,13 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <memory>
 
 #include <tbb/info.h>
 
 #include "cli/args.h"
 #include "cli/bench_command.h"
+#include "cli/command_line.h"
 
 namespace camsim {
 
@@ -17,91 +19,110 @@ const std::vector<std::string>& benchSuite() {
   return suite;
 }
 
+namespace {
+
+// An integer option in [lo, hi] into `target` (a std::optional of an integer type); the
+// range ends the help text, so --help states it.
+template <class Target>
+void addIntegerOption(CLI::App& app, const std::string& name, Target& target, std::int64_t lo,
+                      std::int64_t hi, const std::string& help, const std::string& valueName) {
+  const std::string flag = name.substr(name.rfind(',') + 1);
+  app.add_option_function<std::string>(
+         name,
+         [&target, flag, lo, hi](const std::string& text) {
+           target = static_cast<typename Target::value_type>(parseInteger(flag, text, lo, hi));
+         },
+         help + " [" + std::to_string(lo) + ", " + std::to_string(hi) + "]")
+      ->type_name(valueName);
+}
+
+// A directory option: a non-empty path into `target` (a std::string or an optional one).
+template <class Target>
+void addDirectoryOption(CLI::App& app, const std::string& name, Target& target,
+                        const std::string& help) {
+  const std::string flag = name.substr(name.rfind(',') + 1);
+  app.add_option_function<std::string>(
+         name,
+         [&target, flag](const std::string& text) {
+           if (text.empty()) throw UsageError(flag + " needs a non-empty directory");
+           target = text;
+         },
+         help)
+      ->type_name("DIR");
+}
+
+std::unique_ptr<CLI::App> benchApp(BenchArgs& b) {
+  auto app = newCommandApp(
+      "bench",
+      "Speed against error: renders each scene of the suite (cornell_box, dof_chart,\n"
+      "motion_blur, metals_glass, small_light from scenes/) at a reduced resolution with both\n"
+      "samplers (independent, sobol) at 1, 2, 4, ... max-spp samples per pixel, and measures\n"
+      "the error of luminance Y against a cached high-spp reference: rMSE and MRAE\n"
+      "(docs/bench.md). Prints the table and, per scene and sampler, the log-log slope of rMSE\n"
+      "against time; then the limit: the tracer's rays/s against bare Embree traversal of the\n"
+      "same recorded rays, thread scaling, motion-blur overhead, the build of a 1 M-triangle\n"
+      "mesh and the load of a 1024x1024 texture.");
+  app->add_flag("--quick", b.quick,
+                "a quick variant, under a minute (64 px, up to 64 spp, 512-spp references)");
+  addDirectoryOption(*app, "-o,--out", b.outputDir,
+                     "output directory (default bench-out/): bench.csv, bench_limit.csv, "
+                     "bench.txt and bench.png (the plot needs python3-matplotlib)");
+  // --threads is a plain int: 0 (all cores) unless given.
+  app->add_option_function<std::string>(
+         "--threads",
+         [&b](const std::string& t) {
+           b.threads = static_cast<int>(parseInteger("--threads", t, 1, 1024));
+         },
+         "worker threads (default: all cores) [1, 1024]")
+      ->type_name("N");
+  app->add_option_function<std::string>(
+         "--scenes",
+         [&b](const std::string& list) {
+           b.scenes.clear();
+           for (std::size_t start = 0; start <= list.size();) {
+             const std::size_t comma = std::min(list.find(',', start), list.size());
+             const std::string name = list.substr(start, comma - start);
+             if (name.empty())
+               throw UsageError("--scenes expects names separated by commas, got '" + list + "'");
+             b.scenes.push_back(name);
+             start = comma + 1;
+           }
+         },
+         "scenes to run: suite names or scene files (default: the suite)")
+      ->type_name("a,b");
+  addIntegerOption(*app, "--max-spp", b.maxSpp, 1, 65536,
+                   "largest budget (default 256; --quick 64)", "N");
+  addIntegerOption(*app, "--resolution", b.resolution, 4, 8192,
+                   "long side of the sweeps' images in pixels (default 128; --quick 64)", "PX");
+  addIntegerOption(*app, "--feature-resolution", b.featureResolution, 4, 8192,
+                   "long side for the limit, thread scaling and motion overhead (default 512: "
+                   "the scenes' own sizes; --quick 64)",
+                   "PX");
+  addIntegerOption(*app, "--ref-spp", b.refSpp, 2, 1 << 20,
+                   "reference samples per pixel (default 8 x max-spp)", "N");
+  addDirectoryOption(*app, "--cache", b.cacheDir,
+                     "reference cache (default: bench-cache/ in the build directory)");
+  addIntegerOption(*app, "--mesh-triangles", b.meshTriangles, 0, 100000000,
+                   "triangles of the mesh-build test (default 1000000; 0 skips it)", "N");
+  addIntegerOption(*app, "--texture-size", b.textureSize, 0, 16384,
+                   "side of the texture-load test's random-colour PNG (default 1024; 0 skips it)",
+                   "PX");
+  app->footer(
+      "Exit codes: 0 success, 1 internal error, 2 bad arguments or a scene that failed to\n"
+      "load (the others' results are written).");
+  return app;
+}
+
+}  // namespace
+
 std::string benchUsageText() {
-  return "usage: camsim bench [--quick] [--out DIR] [--threads N] [--scenes a,b,...] [--max-spp "
-         "N]\n"
-         "                    [--resolution PX] [--ref-spp N] [--cache DIR] [--mesh-triangles N]\n"
-         "                    [--texture-size PX]\n"
-         "\n"
-         "Speed against error: renders each scene of the suite (cornell_box, dof_chart, "
-         "motion_blur,\n"
-         "metals_glass, small_light from scenes/) at a reduced resolution with both samplers\n"
-         "(independent, sobol) at 1, 2, 4, ... max-spp samples per pixel, and measures the error "
-         "of\n"
-         "luminance Y against a cached high-spp reference: rMSE and MRAE (docs/bench.md). Prints "
-         "the\n"
-         "table and, per scene and sampler, the log-log slope of rMSE against time; then the "
-         "limit:\n"
-         "the tracer's rays/s against bare Embree traversal of the same recorded rays, thread "
-         "scaling,\n"
-         "motion-blur overhead, the build of a 1 M-triangle mesh and the load of a 1024x1024 "
-         "texture.\n"
-         "\n"
-         "  --quick            a quick variant, under a minute (64 px, up to 64 spp, 512-spp "
-         "references)\n"
-         "  --out DIR          output directory (default bench-out/): bench.csv, bench_limit.csv,\n"
-         "                     bench.txt and bench.png (the plot needs python3-matplotlib)\n"
-         "  --threads N        worker threads (default: all cores)\n"
-         "  --scenes a,b       scenes to run: suite names or scene files (default: the suite)\n"
-         "  --max-spp N        largest budget (default 256; --quick 64)\n"
-         "  --resolution PX    long side of the sweeps' images in pixels (default 128; --quick "
-         "64)\n"
-         "  --feature-resolution PX  long side for the limit, thread scaling and motion overhead\n"
-         "                     (default 512: the scenes' own sizes; --quick 64)\n"
-         "  --ref-spp N        reference samples per pixel (default 8 x max-spp)\n"
-         "  --cache DIR        reference cache (default: bench-cache/ in the build directory)\n"
-         "  --mesh-triangles N triangles of the mesh-build test (default 1000000; 0 skips it)\n"
-         "  --texture-size PX  side of the texture-load test's random-colour PNG (default 1024; 0 "
-         "skips it)\n";
+  BenchArgs b;
+  return commandHelp(*benchApp(b));
 }
 
 BenchArgs parseBenchArgs(const std::vector<std::string>& args) {
   BenchArgs b;
-  for (std::size_t i = 1; i < args.size(); ++i) {
-    const std::string& a = args[i];
-    auto value = [&]() -> const std::string& {
-      if (i + 1 >= args.size()) throw UsageError(a + " needs a value");
-      return args[++i];
-    };
-    if (a == "--help" || a == "-h") {
-      b.help = true;
-    } else if (a == "--quick") {
-      b.quick = true;
-    } else if (a == "--out" || a == "-o") {
-      b.outputDir = value();
-      if (b.outputDir.empty()) throw UsageError(a + " needs a non-empty directory");
-    } else if (a == "--threads") {
-      b.threads = static_cast<int>(parseInteger(a, value(), 1, 1024));
-    } else if (a == "--scenes") {
-      b.scenes.clear();
-      const std::string list = value();
-      for (std::size_t start = 0; start <= list.size();) {
-        const std::size_t comma = std::min(list.find(',', start), list.size());
-        const std::string name = list.substr(start, comma - start);
-        if (name.empty())
-          throw UsageError("--scenes expects names separated by commas, got '" + list + "'");
-        b.scenes.push_back(name);
-        start = comma + 1;
-      }
-    } else if (a == "--max-spp") {
-      b.maxSpp = static_cast<int>(parseInteger(a, value(), 1, 65536));
-    } else if (a == "--resolution") {
-      b.resolution = static_cast<int>(parseInteger(a, value(), 4, 8192));
-    } else if (a == "--feature-resolution") {
-      b.featureResolution = static_cast<int>(parseInteger(a, value(), 4, 8192));
-    } else if (a == "--ref-spp") {
-      b.refSpp = static_cast<int>(parseInteger(a, value(), 2, 1 << 20));
-    } else if (a == "--cache") {
-      b.cacheDir = value();
-      if (b.cacheDir->empty()) throw UsageError(a + " needs a non-empty directory");
-    } else if (a == "--mesh-triangles") {
-      b.meshTriangles = static_cast<std::uint64_t>(parseInteger(a, value(), 0, 100000000));
-    } else if (a == "--texture-size") {
-      b.textureSize = static_cast<int>(parseInteger(a, value(), 0, 16384));
-    } else {
-      throw UsageError("unknown bench option '" + a + "' (try 'camsim bench --help')");
-    }
-  }
+  if (!parseCommand(*benchApp(b), args)) b.help = true;
   return b;
 }
 

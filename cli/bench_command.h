@@ -1,8 +1,9 @@
 // `camsim bench`: speed against error, and the distance to the limit of bare traversal.
 //
 //   camsim bench [--quick] [--out DIR] [--threads N] [--scenes a,b] [--max-spp N]
-//                [--resolution PX] [--ref-spp N] [--cache DIR] [--mesh-triangles N]
-//                [--texture-size PX]
+//                [--resolution PX] [--feature-resolution PX] [--ref-spp N] [--cache DIR]
+//                [--mesh-triangles N] [--texture-size PX]
+// (the option table, with each option's range, is in bench_args.cpp: camsim bench --help)
 //
 // For each scene of the suite (scenes/NAME.yaml: cornell_box, dof_chart, motion_blur,
 // metals_glass, small_light), at a reduced resolution (long side PX), each sampler
@@ -43,7 +44,8 @@ struct BenchArgs {
   std::optional<int> textureSize;              // 0: skip the texture load
 };
 
-// args[0] == "bench". UsageError on bad usage.
+// args[0] == "bench". UsageError on bad usage. Parsed with the command's option table
+// (cli/command_line.h), which also gives benchUsageText(), the --help text.
 BenchArgs parseBenchArgs(const std::vector<std::string>& args);
 std::string benchUsageText();
 const std::vector<std::string>& benchSuite();

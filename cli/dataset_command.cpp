@@ -43,13 +43,16 @@ std::unique_ptr<CLI::App> datasetApp(DatasetArgs& a) {
   app->add_option("-o,--output", a.outputDir, "the dataset folder (created if missing)")
       ->type_name("DIR");
   app->add_option_function<std::string>(
-         "--shard", [&a](const std::string& t) { a.shard = t; },
+         "--shard", [&a](const std::string& t) { a.shard = parseShareOption("--shard", t); },
          "render items i, i+N, i+2N, … (0 <= i < N); without it, Slurm's SLURM_ARRAY_TASK_ID - "
          "SLURM_ARRAY_TASK_MIN of SLURM_ARRAY_TASK_COUNT, or Kubernetes' JOB_COMPLETION_INDEX "
          "of --shards N (or CAMSIM_SHARD_COUNT); else all items")
       ->type_name("i/N");
   app->add_option_function<std::string>(
-         "--shards", [&a](const std::string& t) { a.shards = count("--shards", t, 1); },
+         "--shards",
+         [&a](const std::string& t) {
+           a.shards = static_cast<int>(parseInteger("--shards", t, 1, kMaxShareCount));
+         },
          "the shard count, with JOB_COMPLETION_INDEX")
       ->type_name("N");
   app->add_flag("--resume", a.resume,
@@ -101,47 +104,52 @@ DatasetArgs parseDatasetArgs(const std::vector<std::string>& args) {
   return a;
 }
 
-Shard resolveShard(const DatasetArgs& args, const std::map<std::string, std::string>& env) {
+Share resolveShard(const DatasetArgs& args, const std::map<std::string, std::string>& env,
+                   std::string* source) {
   auto get = [&](const char* name) -> std::optional<std::string> {
     const auto it = env.find(name);
     if (it == env.end() || it->second.empty()) return std::nullopt;
     return it->second;
   };
-  Shard s;
+  auto from = [source](const char* name) {
+    if (source) *source = name;
+  };
+  // A shard count from the environment, in Share's range.
+  auto shardCount = [](const char* name, const std::string& text) {
+    return static_cast<int>(parseInteger(name, text, 1, kMaxShareCount));
+  };
+  if (source) source->clear();
   if (args.shard) {
-    const std::size_t slash = args.shard->find('/');
-    if (slash == std::string::npos)
-      throw UsageError("--shard expects i/N, got '" + *args.shard + "'");
-    s.count = count("--shard N", args.shard->substr(slash + 1), 1);
-    s.index = static_cast<std::size_t>(parseInteger("--shard i", args.shard->substr(0, slash), 0,
-                                                    static_cast<std::int64_t>(s.count) - 1));
-    s.source = "--shard";
-  } else if (auto id = get("SLURM_ARRAY_TASK_ID")) {
+    from("--shard");
+    return *args.shard;
+  }
+  Share s;
+  if (auto id = get("SLURM_ARRAY_TASK_ID")) {
     const auto n = get("SLURM_ARRAY_TASK_COUNT");
     if (!n) throw UsageError("SLURM_ARRAY_TASK_ID is set but SLURM_ARRAY_TASK_COUNT is not");
-    s.count = count("SLURM_ARRAY_TASK_COUNT", *n, 1);
+    s.count = shardCount("SLURM_ARRAY_TASK_COUNT", *n);
     const std::size_t task = count("SLURM_ARRAY_TASK_ID", *id, 0);
     const std::size_t min = get("SLURM_ARRAY_TASK_MIN")
                                 ? count("SLURM_ARRAY_TASK_MIN", *get("SLURM_ARRAY_TASK_MIN"), 0)
                                 : 0;
-    if (task < min || task - min >= s.count)
+    const auto shards = static_cast<std::size_t>(s.count);
+    if (task < min || task - min >= shards)
       throw UsageError("array task " + *id + " is not in " + std::to_string(min) + ".." +
-                       std::to_string(min + s.count - 1) +
+                       std::to_string(min + shards - 1) +
                        ": submit a contiguous array (--array=0-" + std::to_string(s.count - 1) +
                        ")");
-    s.index = task - min;
-    s.source = "SLURM_ARRAY_TASK_ID";
+    s.index = static_cast<int>(task - min);
+    from("SLURM_ARRAY_TASK_ID");
   } else if (auto k = get("JOB_COMPLETION_INDEX")) {
-    std::optional<std::size_t> n = args.shards;
+    std::optional<int> n = args.shards;
     if (!n && get("CAMSIM_SHARD_COUNT"))
-      n = count("CAMSIM_SHARD_COUNT", *get("CAMSIM_SHARD_COUNT"), 1);
+      n = shardCount("CAMSIM_SHARD_COUNT", *get("CAMSIM_SHARD_COUNT"));
     if (!n)
       throw UsageError(
           "JOB_COMPLETION_INDEX is set: give the shard count (--shards N or CAMSIM_SHARD_COUNT)");
     s.count = *n;
-    s.index = static_cast<std::size_t>(
-        parseInteger("JOB_COMPLETION_INDEX", *k, 0, static_cast<std::int64_t>(s.count) - 1));
-    s.source = "JOB_COMPLETION_INDEX";
+    s.index = static_cast<int>(parseInteger("JOB_COMPLETION_INDEX", *k, 0, s.count - 1));
+    from("JOB_COMPLETION_INDEX");
   } else if (args.shards) {
     throw UsageError(
         "--shards N needs JOB_COMPLETION_INDEX (a Kubernetes Indexed Job); else use --shard i/N");
@@ -174,12 +182,13 @@ int runDatasetCommand(const std::vector<std::string>& args, std::ostream& out, s
   for (const char* name : {"SLURM_ARRAY_TASK_ID", "SLURM_ARRAY_TASK_COUNT", "SLURM_ARRAY_TASK_MIN",
                            "JOB_COMPLETION_INDEX", "CAMSIM_SHARD_COUNT"})
     if (const char* v = std::getenv(name)) env[name] = v;
-  const Shard shard = resolveShard(a, env);
+  std::string shardSource;
+  const Share shard = resolveShard(a, env, &shardSource);
   const Manifest manifest = loadManifest(a.manifest);
 
   DatasetRunOptions o;
   o.directory = a.outputDir;
-  o.shard = {shard.index, shard.count};
+  o.shard = shard;
   o.resume = a.resume;
   o.onlyItem = a.item;
   o.threads = a.threads;
@@ -223,7 +232,7 @@ int runDatasetCommand(const std::vector<std::string>& args, std::ostream& out, s
     log << "index.jsonl: added the lines of up-to-date items " << itemList(s.reindexed)
         << " (a run was killed after writing them, before their lines)\n";
   log << "dataset " << manifest.file.filename().string() << ", shard " << shard.index << "/"
-      << shard.count << (shard.source.empty() ? "" : " (" + shard.source + ")") << ": " << s.items
+      << shard.count << (shardSource.empty() ? "" : " (" + shardSource + ")") << ": " << s.items
       << " of " << manifest.items.size() << " items: " << s.done << " rendered, " << s.skipped
       << " up to date, " << s.failed << " failed" << (s.cancelled ? "; interrupted" : "") << "\n";
   if (s.cancelled) return 128 + (signal && signal->load() ? signal->load() : 2);

@@ -21,13 +21,15 @@
 #include <string>
 #include <vector>
 
+#include "sensor/base/share.h"
+
 namespace camsim {
 
 struct DatasetArgs {
   std::string manifest;
   std::string outputDir = "out";
-  std::optional<std::string> shard;   // "i/N"
-  std::optional<std::size_t> shards;  // --shards N (with JOB_COMPLETION_INDEX)
+  std::optional<Share> shard;  // --shard i/N
+  std::optional<int> shards;   // --shards N (with JOB_COMPLETION_INDEX)
   std::optional<std::size_t> item;
   bool resume = false;
   bool check = false;
@@ -41,12 +43,11 @@ struct DatasetArgs {
 DatasetArgs parseDatasetArgs(const std::vector<std::string>& args);
 std::string datasetUsageText();
 
-struct Shard {
-  std::size_t index = 0, count = 1;
-  std::string source;  // "--shard", "SLURM_ARRAY_TASK_ID", … (for the log)
-};
-// The shard from the flags and the environment (above); UsageError when inconsistent.
-Shard resolveShard(const DatasetArgs& args, const std::map<std::string, std::string>& env);
+// The shard from the flags and the environment (above); UsageError when inconsistent. With
+// `source`: where it came from, for the log ("--shard", "SLURM_ARRAY_TASK_ID", …; "" for
+// the default 0/1).
+Share resolveShard(const DatasetArgs& args, const std::map<std::string, std::string>& env,
+                   std::string* source = nullptr);
 
 // Runs the command. *signal holds the number of the signal that set *cancel (0: none).
 int runDatasetCommand(const std::vector<std::string>& args, std::ostream& out, std::ostream& log,

@@ -44,7 +44,7 @@ void printRendered(const CaptureResult& r, std::ostream& log) {
 // --tiles k/M: share k of the tiles' films as DIR/NAME.part-k-of-M.exr, nothing else.
 RenderCommandResult runTilePart(SceneDescription desc, const RenderArgs& args,
                                 CaptureOptions options, std::ostream& log) {
-  const TileShare share{args.tiles->first, args.tiles->second};
+  const Share share = *args.tiles;
   options.tiles = share;
   const std::string what = "part " + std::to_string(share.index) + " of " +
                            std::to_string(share.count) + " of " + desc.name;
@@ -62,7 +62,7 @@ RenderCommandResult runTilePart(SceneDescription desc, const RenderArgs& args,
   const RenderStats& st = r.stats;
   log << "modelled: " << st.modelled.describe() << "\n";
   log << "rendered " << what << ": "
-      << share.tilesOf(renderTileCount({r.film.width, r.film.height})) << " of "
+      << share.itemsOf(renderTileCount({r.film.width, r.film.height})) << " of "
       << renderTileCount({r.film.width, r.film.height}) << " tiles of " << r.film.width << "x"
       << r.film.height << ", " << r.description.render.spp << " spp, " << st.threads << " threads, "
       << formatSeconds(st.seconds) << ", rejected samples (NaN/Inf): " << st.rejectedSamples

@@ -21,7 +21,7 @@
 //
 // capture() is renderCaptureFilms() (step 1) then finishCapture() (steps 2–6), so that the
 // later steps can run on films rendered elsewhere: one frame split across processes as
-// tile shares (render.h TileShare; camsim render --tiles, assembled by camsim merge:
+// tile shares (Share, sensor/base/share.h; camsim render --tiles, assembled by camsim merge:
 // tile_parts.h). Step 1 is per pixel (film, sensor film and every AOV channel, ID mattes
 // included, depend on the pixel's own samples only), steps 2–6 need the whole image. A
 // capture that renders again in step 4 — something moves during the exposure and
@@ -57,7 +57,7 @@ struct CaptureOptions {
   int threads = 0;
   std::function<void(int, int)> progress;
   const std::atomic<bool>* cancel = nullptr;
-  std::optional<TileShare> tiles;
+  std::optional<Share> tiles;
   // Not used by captureSequence (it builds one Scene for all its frames and brackets).
   SceneCache* sceneCache = nullptr;
 };

@@ -159,7 +159,7 @@ std::string shareName(int k, int m) {
 
 }  // namespace
 
-std::string tilePartFileName(const std::string& name, TileShare share) {
+std::string tilePartFileName(const std::string& name, Share share) {
   return name + ".part-" + std::to_string(share.index) + "-of-" + std::to_string(share.count) +
          ".exr";
 }
@@ -209,7 +209,7 @@ std::optional<ModelledDimensions> parseModelledDims(const std::string& text) {
   return m;
 }
 
-std::filesystem::path writeTilePart(const CaptureResult& r, TileShare share,
+std::filesystem::path writeTilePart(const CaptureResult& r, Share share,
                                     const TilePartOptions& options) {
   CAMSIM_CHECK(!r.cancelled && !r.film.pixels.empty());
   const SceneDescription& desc = r.description;
@@ -243,7 +243,7 @@ std::filesystem::path writeTilePart(const CaptureResult& r, TileShare share,
       {"camsim:tile_size", std::to_string(kRenderTileSize)},
       {"camsim:tile_count", std::to_string(share.count)},
       {"camsim:tile_index", std::to_string(share.index)},
-      {"camsim:tiles", std::to_string(share.tilesOf(tiles)) + " of the image's " +
+      {"camsim:tiles", std::to_string(share.itemsOf(tiles)) + " of the image's " +
                            std::to_string(tiles) + " tiles (" + std::to_string(kRenderTileSize) +
                            " px square, numbered by rows): those t with t % " +
                            std::to_string(share.count) + " == " + std::to_string(share.index) +
@@ -311,12 +311,12 @@ AssembledTiles assembleTileParts(const std::vector<std::filesystem::path>& files
           {file.string(), 0, 0}, "camsim:tile_index",
           shareName(p.index, p.header.tileCount) + " given twice: also " + slot->string());
     slot = file;
-    const TileShare share{p.index, p.header.tileCount};
+    const Share share{p.index, p.header.tileCount};
     const int tiles = renderTileCount(p.header.resolution);
     Image* images[3] = {&out.film, &out.sensorFilm, &out.aovs};
-    for (int i = 0; i < share.tilesOf(tiles); ++i)
+    for (int i = 0; i < share.itemsOf(tiles); ++i)
       for (int k = 0; k < 3; ++k)
-        copyRect(p.images[k], *images[k], renderTileRect(p.header.resolution, share.tile(i)));
+        copyRect(p.images[k], *images[k], renderTileRect(p.header.resolution, share.item(i)));
     out.samples += p.samples;
     out.rejectedSamples += p.rejected;
     if (p.seconds) out.renderSeconds += *p.seconds;
@@ -326,7 +326,7 @@ AssembledTiles assembleTileParts(const std::vector<std::filesystem::path>& files
     if (byShare[k]) given += (given.empty() ? "" : ", ") + std::to_string(k);
   for (std::size_t k = 0; k < byShare.size(); ++k)
     if (!byShare[k]) {
-      const TileShare share{static_cast<int>(k), out.header.tileCount};
+      const Share share{static_cast<int>(k), out.header.tileCount};
       const std::filesystem::path missing =
           files.front().parent_path() / tilePartFileName(out.header.name, share);
       throw InputError({missing.string(), 0, 0}, "camsim:tile_index",

@@ -1,7 +1,7 @@
 // Tile parts: one frame rendered across processes and put back together (camsim render
 // --tiles k/M, camsim merge; docs/output.md). A part holds what renderCaptureFilms()
-// (capture.h) gives for tile share k of M (render.h TileShare) — the films themselves, as
-// 32-bit float, so they come back bit for bit — in NAME.part-k-of-M.exr:
+// (capture.h) gives for tile share k of M (Share, sensor/base/share.h) — the films
+// themselves, as 32-bit float, so they come back bit for bit — in NAME.part-k-of-M.exr:
 //
 // | channels      | what |
 // |---------------|------|
@@ -39,7 +39,7 @@
 namespace camsim {
 
 // NAME.part-k-of-M.exr
-std::string tilePartFileName(const std::string& name, TileShare share);
+std::string tilePartFileName(const std::string& name, Share share);
 
 struct TilePartOptions {
   std::filesystem::path directory;  // created if missing
@@ -49,7 +49,7 @@ struct TilePartOptions {
 
 // Writes `result` (renderCaptureFilms with options.tiles = share, not cancelled) as
 // directory/tilePartFileName(...) through an OutputSet. Returns the file.
-std::filesystem::path writeTilePart(const CaptureResult& result, TileShare share,
+std::filesystem::path writeTilePart(const CaptureResult& result, Share share,
                                     const TilePartOptions& options);
 
 // What the parts say about the render they are shares of (part 0's header).

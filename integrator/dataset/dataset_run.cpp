@@ -121,7 +121,8 @@ const char* itemStatusName(ItemStatus status) {
 }
 
 DatasetRunSummary runDataset(const Manifest& manifest, const DatasetRunOptions& options) {
-  CAMSIM_CHECK(options.shard.count >= 1 && options.shard.index < options.shard.count);
+  CAMSIM_CHECK(options.shard.count >= 1 && options.shard.index >= 0 &&
+               options.shard.index < options.shard.count);
   const std::string outputKey =
       "ocio=" + options.picture.ocioConfig.string() + " display=" + options.picture.choice.display +
       " view=" + options.picture.choice.view + " looks=" + options.picture.choice.looks;

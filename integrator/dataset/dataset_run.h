@@ -41,14 +41,10 @@
 #include <vector>
 
 #include "integrator/dataset/manifest.h"
+#include "sensor/base/share.h"
 #include "sensor/io/picture_writer.h"
 
 namespace camsim {
-
-struct ShardSpec {
-  std::size_t index = 0, count = 1;
-  bool owns(std::size_t item) const { return item % count == index; }
-};
 
 enum class ItemStatus { kDone, kSkipped, kFailed, kInterrupted };
 const char* itemStatusName(ItemStatus status);
@@ -64,7 +60,7 @@ struct ItemReport {
 
 struct DatasetRunOptions {
   std::filesystem::path directory;
-  ShardSpec shard;
+  Share shard;  // item i belongs to shard i mod count
   bool resume = false;
   std::optional<std::size_t> onlyItem;
   int threads = 0;  // 0: all cores

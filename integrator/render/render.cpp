@@ -135,9 +135,9 @@ RenderResult render(const Scene& scene, const std::vector<const SpectralResponse
   dims.time = dims.time || options.forceTime;
   Film film(res, responses);
   AovFilm aovs(scene);
-  const TileShare share = options.tiles;
+  const Share share = options.tiles;
   CAMSIM_CHECK(share.count >= 1 && share.index >= 0 && share.index < share.count);
-  const int tileCount = share.tilesOf(renderTileCount(res));  // of this share
+  const int tileCount = share.itemsOf(renderTileCount(res));  // of this share
   const int threads = options.threads > 0 ? options.threads : tbb::info::default_concurrency();
 
   const SamplerKind kind = options.sampler.value_or(scene.settings().sampler);
@@ -166,7 +166,7 @@ RenderResult render(const Scene& scene, const std::vector<const SpectralResponse
                             cancelled = true;
                             return;
                           }
-                          const TileRect rect = renderTileRect(res, share.tile(i));
+                          const TileRect rect = renderTileRect(res, share.item(i));
                           if (!renderTile(scene, film, options, dims, rect.lo, rect.hi, sampler,
                                           stats, aovs, aovPixel)) {
                             cancelled = true;

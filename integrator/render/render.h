@@ -26,6 +26,7 @@
 #include "integrator/render/path_tracer.h"
 #include "integrator/scene/scene.h"
 #include "sensor/base/image.h"
+#include "sensor/base/share.h"
 #include "sensor/model/spectral_response.h"
 
 namespace camsim {
@@ -37,18 +38,6 @@ struct TileRect {
 };
 int renderTileCount(glm::ivec2 resolution);
 TileRect renderTileRect(glm::ivec2 resolution, int tile);
-
-// Share `index` of `count` of an image's tiles (above); {0, 1} is the whole image.
-struct TileShare {
-  int index = 0, count = 1;
-
-  bool owns(int tile) const { return tile % count == index; }
-  // How many of tileCount tiles the share holds, and its i-th one (0 ≤ i < that).
-  int tilesOf(int tileCount) const {
-    return index < tileCount ? (tileCount - index + count - 1) / count : 0;
-  }
-  int tile(int i) const { return index + i * count; }
-};
 
 struct RenderOptions {
   int spp = 16;
@@ -67,8 +56,9 @@ struct RenderOptions {
   // When set, sees every ray cast, from the thread that casts it (ray_stats.h; camsim
   // bench records them with a RayRecorder and replays them).
   RayObserver* rayObserver = nullptr;
-  // The tiles to render (above); the others stay 0. Progress counts the share's tiles.
-  TileShare tiles;
+  // The share of the tiles (above, numbered 0 … renderTileCount − 1) to render; the
+  // others stay 0. Progress counts the share's tiles.
+  Share tiles;
 };
 
 struct RenderStats {

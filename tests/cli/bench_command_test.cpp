@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
@@ -226,6 +227,54 @@ TEST(BenchArgs, BadUsageIsAUsageError) {
   EXPECT_THROW(parseBenchArgs({"bench", "--scenes", "a,,b"}), UsageError);
   EXPECT_THROW(parseBenchArgs({"bench", "--threads", "x"}), UsageError);
   EXPECT_THROW(parseBenchArgs({"bench", "--frobnicate"}), UsageError);
+  EXPECT_THROW(parseBenchArgs({"bench", "--out", ""}), UsageError);
+  EXPECT_THROW(parseBenchArgs({"bench", "--cache", ""}), UsageError);
+  EXPECT_THROW(parseBenchArgs({"bench", "stray"}), UsageError);
+  try {
+    (void)parseBenchArgs({"bench", "--frobnicate"});
+  } catch (const UsageError& e) {
+    EXPECT_EQ(std::string(e.what()), "unknown option '--frobnicate' (try 'camsim bench --help')");
+  }
+}
+
+// Every integer option's range, at both ends: its bound accepted, one beyond it refused
+// naming the option and the range; --help (from the same option table) states the range.
+TEST(BenchArgs, EveryRangeIsCheckedAndStatedInHelp) {
+  struct Range {
+    const char* flag;
+    std::int64_t lo, hi;
+  };
+  const std::string help = benchUsageText();
+  for (const Range& r :
+       {Range{"--threads", 1, 1024}, Range{"--max-spp", 1, 65536}, Range{"--resolution", 4, 8192},
+        Range{"--feature-resolution", 4, 8192}, Range{"--ref-spp", 2, 1 << 20},
+        Range{"--mesh-triangles", 0, 100000000}, Range{"--texture-size", 0, 16384}}) {
+    const std::string range = "[" + std::to_string(r.lo) + ", " + std::to_string(r.hi) + "]";
+    EXPECT_NE(help.find(r.flag), std::string::npos) << r.flag;
+    EXPECT_NE(help.find(range), std::string::npos) << r.flag << " " << range;
+    for (const std::int64_t ok : {r.lo, r.hi})
+      EXPECT_NO_THROW(parseBenchArgs({"bench", r.flag, std::to_string(ok)})) << r.flag << ok;
+    for (const std::int64_t bad : {r.lo - 1, r.hi + 1}) {
+      try {
+        (void)parseBenchArgs({"bench", r.flag, std::to_string(bad)});
+        ADD_FAILURE() << r.flag << " accepted " << bad;
+      } catch (const UsageError& e) {
+        EXPECT_EQ(std::string(e.what()),
+                  std::string(r.flag) + " must be in " + range + ", got " + std::to_string(bad));
+      }
+    }
+  }
+  const BenchArgs b = parseBenchArgs({"bench", "--ref-spp", "6", "--resolution", "32",
+                                      "--texture-size", "0", "-o", "d", "--cache", "c"});
+  EXPECT_EQ(b.refSpp, 6);
+  EXPECT_EQ(b.resolution, 32);
+  EXPECT_EQ(b.textureSize, 0);
+  EXPECT_EQ(b.outputDir, "d");
+  EXPECT_EQ(b.cacheDir, "c");
+  for (const char* option : {"--quick", "--out", "--scenes", "--cache", "--help"})
+    EXPECT_NE(help.find(option), std::string::npos) << option;
+  EXPECT_NE(help.find("Usage: camsim bench"), std::string::npos) << help;
+  EXPECT_NE(help.find("Speed against error"), std::string::npos) << help;
 }
 
 // ---- scratch directory --------------------------------------------------------------

@@ -296,26 +296,49 @@ TEST_F(DatasetCommand, ASecondRunOfARunningShardIsRefusedAndOtherShardsGoOn) {
 TEST(DatasetShard, FromFlagsSlurmAndKubernetes) {
   DatasetArgs a;
   a.manifest = "m.yaml";
-  EXPECT_EQ(resolveShard(a, {}).count, 1u);
-  const Shard slurm = resolveShard(a, {{"SLURM_ARRAY_TASK_ID", "7"},
-                                       {"SLURM_ARRAY_TASK_MIN", "5"},
-                                       {"SLURM_ARRAY_TASK_COUNT", "4"}});
-  EXPECT_EQ(slurm.index, 2u);
-  EXPECT_EQ(slurm.count, 4u);
+  std::string source = "x";
+  EXPECT_EQ(resolveShard(a, {}, &source).count, 1);
+  EXPECT_EQ(source, "");
+  const Share slurm = resolveShard(a,
+                                   {{"SLURM_ARRAY_TASK_ID", "7"},
+                                    {"SLURM_ARRAY_TASK_MIN", "5"},
+                                    {"SLURM_ARRAY_TASK_COUNT", "4"}},
+                                   &source);
+  EXPECT_EQ(slurm.index, 2);
+  EXPECT_EQ(slurm.count, 4);
+  EXPECT_EQ(source, "SLURM_ARRAY_TASK_ID");
   EXPECT_THROW(resolveShard(a, {{"SLURM_ARRAY_TASK_ID", "9"}, {"SLURM_ARRAY_TASK_COUNT", "4"}}),
                UsageError);  // not a contiguous 0-based array
   EXPECT_THROW(resolveShard(a, {{"SLURM_ARRAY_TASK_ID", "1"}}), UsageError);
+  EXPECT_THROW(resolveShard(a, {{"SLURM_ARRAY_TASK_ID", "0"}, {"SLURM_ARRAY_TASK_COUNT", "0"}}),
+               UsageError);
   EXPECT_THROW(resolveShard(a, {{"JOB_COMPLETION_INDEX", "1"}}), UsageError);  // no count
-  const Shard k8s = resolveShard(a, {{"JOB_COMPLETION_INDEX", "3"}, {"CAMSIM_SHARD_COUNT", "5"}});
-  EXPECT_EQ(k8s.index, 3u);
-  EXPECT_EQ(k8s.count, 5u);
-  a.shard = "1/3";  // the flag wins over the environment
-  const Shard flag =
-      resolveShard(a, {{"SLURM_ARRAY_TASK_ID", "0"}, {"SLURM_ARRAY_TASK_COUNT", "2"}});
-  EXPECT_EQ(flag.index, 1u);
-  EXPECT_EQ(flag.count, 3u);
-  a.shard = "3/3";
-  EXPECT_THROW(resolveShard(a, {}), UsageError);
+  const Share k8s =
+      resolveShard(a, {{"JOB_COMPLETION_INDEX", "3"}, {"CAMSIM_SHARD_COUNT", "5"}}, &source);
+  EXPECT_EQ(k8s.index, 3);
+  EXPECT_EQ(k8s.count, 5);
+  EXPECT_EQ(source, "JOB_COMPLETION_INDEX");
+  EXPECT_THROW(resolveShard(a, {{"JOB_COMPLETION_INDEX", "5"}, {"CAMSIM_SHARD_COUNT", "5"}}),
+               UsageError);
+  // The flag is parsed by sensor/base/share.h's parseShare, and wins over the environment.
+  a = parseDatasetArgs({"dataset", "m.yaml", "--shard", "1/3"});
+  ASSERT_TRUE(a.shard.has_value());
+  const Share flag =
+      resolveShard(a, {{"SLURM_ARRAY_TASK_ID", "0"}, {"SLURM_ARRAY_TASK_COUNT", "2"}}, &source);
+  EXPECT_EQ(flag.index, 1);
+  EXPECT_EQ(flag.count, 3);
+  EXPECT_EQ(source, "--shard");
+  for (const char* bad : {"3/3", "-1/3", "1/0", "1", "a/3", "1/3x", "/3", "1/", "1/2/3"}) {
+    try {
+      (void)parseDatasetArgs({"dataset", "m.yaml", "--shard", bad});
+      ADD_FAILURE() << "accepted " << bad;
+    } catch (const UsageError& e) {
+      EXPECT_EQ(std::string(e.what()),
+                std::string("--shard: expects k/M (share k of M, 0 <= k < M, 1 <= M <= "
+                            "1048576), got '") +
+                    bad + "'");
+    }
+  }
 }
 
 }  // namespace

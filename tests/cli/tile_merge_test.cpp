@@ -281,8 +281,8 @@ TEST_F(TileMerge, CapturesThatCannotBeTiledAreRefused) {
 TEST(TileMergeArgs, TilesAndReproducibleParse) {
   const Command cmd = parseArgs({"render", "s.yaml", "--tiles", "2/5", "--reproducible"});
   ASSERT_TRUE(cmd.render.tiles.has_value());
-  EXPECT_EQ(cmd.render.tiles->first, 2);
-  EXPECT_EQ(cmd.render.tiles->second, 5);
+  EXPECT_EQ(cmd.render.tiles->index, 2);
+  EXPECT_EQ(cmd.render.tiles->count, 5);
   EXPECT_TRUE(cmd.render.reproducible);
   EXPECT_FALSE(parseArgs({"render"}).render.tiles.has_value());
   EXPECT_FALSE(parseArgs({"render"}).render.reproducible);

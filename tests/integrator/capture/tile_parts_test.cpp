@@ -63,7 +63,7 @@ TEST(TileParts, SplitCaptureEqualsTheWholeCapture) {
   std::vector<std::filesystem::path> files;
   for (int k = 0; k < 4; ++k) {  // 6 tiles in 4 shares
     CaptureOptions options;
-    options.tiles = TileShare{k, 4};
+    options.tiles = Share{k, 4};
     const CaptureResult part = renderCaptureFilms(desc, options);
     EXPECT_TRUE(part.frames.empty() && part.picture.pixels.empty());
     Overrides spp2;

@@ -1,7 +1,8 @@
-// Tile shares (render.h TileShare, RenderOptions::tiles): the shares of M partition the
-// image's tiles — every tile in exactly one share, every pixel in exactly one tile — and a
-// share's render is the whole render's pixels, bit for bit, zeros elsewhere (film, a
-// second response, and the AOVs with ID mattes), so the shares add up to the whole render.
+// Tile shares (RenderOptions::tiles, a Share of sensor/base/share.h): the shares of M
+// partition the image's tiles — every tile in exactly one share, every pixel in exactly one
+// tile — and a share's render is the whole render's pixels, bit for bit, zeros elsewhere
+// (film, a second response, and the AOVs with ID mattes), so the shares add up to the whole
+// render.
 #include <gtest/gtest.h>
 
 #include <cstring>
@@ -15,7 +16,7 @@
 namespace camsim {
 namespace {
 
-TEST(TileShare, SharesPartitionTheTiles) {
+TEST(TilesInShares, SharesPartitionTheTiles) {
   for (const glm::ivec2 res : {glm::ivec2(1, 1), glm::ivec2(16, 16), glm::ivec2(17, 33),
                                glm::ivec2(100, 37), glm::ivec2(320, 240)}) {
     const int tiles = renderTileCount(res);
@@ -25,12 +26,12 @@ TEST(TileShare, SharesPartitionTheTiles) {
       std::vector<int> pixels(static_cast<std::size_t>(res.x * res.y), 0);
       int listed = 0;
       for (int k = 0; k < m; ++k) {
-        const TileShare share{k, m};
+        const Share share{k, m};
         int owned = 0;
         for (int t = 0; t < tiles; ++t) owned += share.owns(t) ? 1 : 0;
-        ASSERT_EQ(share.tilesOf(tiles), owned) << k << " of " << m;
-        for (int i = 0; i < share.tilesOf(tiles); ++i) {
-          const int t = share.tile(i);
+        ASSERT_EQ(share.itemsOf(tiles), owned) << k << " of " << m;
+        for (int i = 0; i < share.itemsOf(tiles); ++i) {
+          const int t = share.item(i);
           ASSERT_TRUE(t >= 0 && t < tiles && share.owns(t)) << t;
           ++owners[static_cast<std::size_t>(t)];
           ++listed;
@@ -69,7 +70,7 @@ bool sameBits(float a, float b) {
   return std::memcmp(&a, &b, sizeof a) == 0;
 }
 
-TEST(TileShare, SharesAddUpToTheWholeRenderBitForBit) {
+TEST(TilesInShares, SharesAddUpToTheWholeRenderBitForBit) {
   const SceneDescription desc = loadSceneFromText(kScene, "tiles.yaml", ".");
   const Scene scene(desc);
   ASSERT_TRUE(scene.modelled().time);
@@ -94,8 +95,8 @@ TEST(TileShare, SharesAddUpToTheWholeRenderBitForBit) {
       options.progress = [&](int, int total) { progressTotal = total; };
       const RenderResult part = render(scene, responses, options);
       samples += part.stats.samples;
-      if (options.tiles.tilesOf(tiles) > 0) {
-        EXPECT_EQ(progressTotal, options.tiles.tilesOf(tiles));
+      if (options.tiles.itemsOf(tiles) > 0) {
+        EXPECT_EQ(progressTotal, options.tiles.itemsOf(tiles));
       }
       const Image* from[3] = {&part.images[0], &part.images[1], &part.aovs};
       for (int t = 0; t < tiles; ++t) {
