@@ -7,12 +7,16 @@
 // | k4, k5, k6 | —   | 0       | radial denominator: 1 + k4 r² + k5 r⁴ + k6 r⁶ |
 // | p1, p2     | —   | 0       | tangential (decentring) |
 // | s1 … s4    | —   | 0       | thin prism |
+// | τx, τy     | rad | 0       | sensor tilt (Scheimpflug) about x, then y |
 //
 // For a direction (X, Y, Z) with Z > 0: x' = X/Z, y' = Y/Z, r² = x'² + y'²,
 //   c   = (1 + k1 r² + k2 r⁴ + k3 r⁶) / (1 + k4 r² + k5 r⁴ + k6 r⁶)
 //   x'' = x' c + 2 p1 x'y' + p2 (r² + 2x'²) + s1 r² + s2 r⁴
 //   y'' = y' c + p1 (r² + 2y'²) + 2 p2 x'y' + s3 r² + s4 r⁴
-//   u = fx x'' + cx,  v = fy y'' + cy.
+// then the tilted sensor: with R = R_y(τy)·R_x(τx) (R_x = [1 0 0; 0 cτx sτx; 0 −sτx cτx],
+// R_y = [cτy 0 −sτy; 0 1 0; sτy 0 cτy]) and the homography
+//   H = [R₂₂ 0 −R₀₂; 0 R₂₂ −R₁₂; 0 0 1]·R,   (x''', y''', 1) ∝ H·(x'', y'', 1),
+//   u = fx x''' + cx,  v = fy y''' + cy  (x''' = x'' without tilt).
 // The inverse (x'', y'') → (x', y') has no closed form: damped Newton with the analytic
 // Jacobian J = ∂(x'', y'')/∂(x', y'). The model is valid where the rational denominator is
 // positive and det J > 0 (beyond the radius where a strong barrel distortion folds the image
@@ -30,7 +34,7 @@ namespace camsim {
 namespace projection_detail {
 
 Distortion openCvDistortion(const Projection& p) {
-  return {p.k1, p.k2, p.k3, p.k4, p.k5, p.k6, p.p1, p.p2, p.s1, p.s2, p.s3, p.s4};
+  return {p.k1, p.k2, p.k3, p.k4, p.k5, p.k6, p.p1, p.p2, p.s1, p.s2, p.s3, p.s4, p.tauX, p.tauY};
 }
 
 Distortion omnidirDistortion(const Projection& p) {
@@ -61,6 +65,24 @@ std::optional<Distorted> distort(const Distortion& d, glm::dvec2 m) {
                      2.0 * x * y * dc + 2.0 * d.p1 * x + 2.0 * d.p2 * y + 2.0 * x * sy};
   out.jacobian[1] = {2.0 * x * y * dc + 2.0 * d.p1 * x + 2.0 * d.p2 * y + 2.0 * y * sx,
                      c + 2.0 * y * y * dc + 6.0 * d.p1 * y + 2.0 * d.p2 * x + 2.0 * y * sy};
+  if (d.tauX != 0.0 || d.tauY != 0.0) {
+    // The tilt homography H (rows h0 h1 h2) and its Jacobian, chained after the distortion.
+    const double ctx = std::cos(d.tauX), stx = std::sin(d.tauX);
+    const double cty = std::cos(d.tauY), sty = std::sin(d.tauY);
+    // Rows of R = R_y(τy)·R_x(τx).
+    const glm::dvec3 q0(cty, sty * stx, -sty * ctx), q1(0.0, ctx, stx),
+        q2(sty, -cty * stx, cty * ctx);
+    const glm::dvec3 h0 = q2.z * q0 - q0.z * q2, h1 = q2.z * q1 - q1.z * q2, h2 = q2;
+    const glm::dvec3 q(out.m, 1.0);
+    const double w = glm::dot(h2, q);
+    if (!(w > 0.0)) return std::nullopt;
+    const glm::dvec2 t(glm::dot(h0, q) / w, glm::dot(h1, q) / w);
+    glm::dmat2 jt;  // ∂t/∂(x'', y''), columns
+    jt[0] = glm::dvec2(h0.x - t.x * h2.x, h1.x - t.y * h2.x) / w;
+    jt[1] = glm::dvec2(h0.y - t.x * h2.y, h1.y - t.y * h2.y) / w;
+    out.m = t;
+    out.jacobian = jt * out.jacobian;
+  }
   if (!(glm::determinant(out.jacobian) > 0.0)) return std::nullopt;
   return out;
 }
@@ -202,10 +224,10 @@ void checkProjection(const Projection& p, const SourceLocation& where,
   const struct {
     const char* name;
     double value;
-  } finite[] = {{"cx", p.cx}, {"cy", p.cy}, {"k1", p.k1}, {"k2", p.k2},
-                {"k3", p.k3}, {"k4", p.k4}, {"k5", p.k5}, {"k6", p.k6},
-                {"p1", p.p1}, {"p2", p.p2}, {"s1", p.s1}, {"s2", p.s2},
-                {"s3", p.s3}, {"s4", p.s4}, {"xi", p.xi}, {"alpha", p.alpha}};
+  } finite[] = {{"cx", p.cx},      {"cy", p.cy}, {"k1", p.k1},      {"k2", p.k2}, {"k3", p.k3},
+                {"k4", p.k4},      {"k5", p.k5}, {"k6", p.k6},      {"p1", p.p1}, {"p2", p.p2},
+                {"s1", p.s1},      {"s2", p.s2}, {"s3", p.s3},      {"s4", p.s4}, {"tau_x", p.tauX},
+                {"tau_y", p.tauY}, {"xi", p.xi}, {"alpha", p.alpha}};
   for (const auto& f : finite)
     if (!std::isfinite(f.value)) fail(where, key(f.name), "must be a finite number");
   for (const auto& [name, v] : {std::pair{"fx", p.fx}, std::pair{"fy", p.fy}})

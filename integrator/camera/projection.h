@@ -16,6 +16,7 @@
 // | k1 … k6         | —    | 0       | opencv: radial, rational (k4…k6 the denominator); kannala_brandt: k1…k4; ftheta: k1…k4 (θ², θ³, θ⁴, θ⁵ terms); unified: k1 k2 |
 // | p1, p2          | —    | 0       | opencv, unified: tangential |
 // | s1 … s4         | —    | 0       | opencv: thin prism |
+// | tauX, tauY      | rad  | 0       | opencv: sensor tilt τx τy |
 // | xi              | —    | 0       | unified (ξ ≥ 0), double_sphere (ξ ∈ [−1, 1]) |
 // | alpha           | —    | 0.5     | double_sphere (α ∈ [0, 1]) |
 // | maxFieldAngle   | rad  | π       | largest θ imaged (all but equirectangular), within the model's own limit |
@@ -23,7 +24,7 @@
 // Models (equations in the model files: projection.cpp, projection_fisheye.cpp,
 // projection_omni.cpp):
 //   opencv          OpenCV calib3d pinhole, x' = X/Z, with radial k1…k6 (rational),
-//                   tangential p1 p2 and thin prism s1…s4 (no tilt τx τy yet); Z > 0.
+//                   tangential p1 p2, thin prism s1…s4 and sensor tilt τx τy; Z > 0.
 //   kannala_brandt  OpenCV fisheye: ρ = θ(1 + k1θ² + k2θ⁴ + k3θ⁶ + k4θ⁸).
 //   equidistant     ρ = θ;  equisolid ρ = 2 sin(θ/2);  stereographic ρ = 2 tan(θ/2) (θ < π);
 //   orthographic    ρ = sin θ (θ ≤ π/2).
@@ -86,6 +87,7 @@ struct Projection {
   double k1 = 0.0, k2 = 0.0, k3 = 0.0, k4 = 0.0, k5 = 0.0, k6 = 0.0;
   double p1 = 0.0, p2 = 0.0;
   double s1 = 0.0, s2 = 0.0, s3 = 0.0, s4 = 0.0;
+  double tauX = 0.0, tauY = 0.0;  // rad
   double xi = 0.0;
   double alpha = 0.5;
   double maxFieldAngle = std::numbers::pi;  // rad, half-angle from the optical axis

@@ -13,11 +13,12 @@
 namespace camsim::projection_detail {
 
 // OpenCV's pinhole distortion coefficients (calib3d): radial rational k1…k6, tangential
-// p1 p2, thin prism s1…s4. OpenCV omnidir's k1 k2 p1 p2 are the same with the rest zero.
+// p1 p2, thin prism s1…s4, sensor tilt τx τy. OpenCV omnidir's k1 k2 p1 p2 are the same with the rest zero.
 struct Distortion {
   double k1 = 0.0, k2 = 0.0, k3 = 0.0, k4 = 0.0, k5 = 0.0, k6 = 0.0;
   double p1 = 0.0, p2 = 0.0;
   double s1 = 0.0, s2 = 0.0, s3 = 0.0, s4 = 0.0;
+  double tauX = 0.0, tauY = 0.0;  // rad, sensor tilt
 };
 Distortion openCvDistortion(const Projection& p);   // all twelve
 Distortion omnidirDistortion(const Projection& p);  // k1 k2 p1 p2

@@ -40,6 +40,10 @@ inline std::vector<ProjectionCase> projectionCases() {
       add("opencv", ProjectionModel::kOpenCv, 600.0, {640, 480}, std::numbers::pi, 38.0 * deg, 0.0);
   cv.k1 = -0.21, cv.k2 = 0.05, cv.k3 = 0.001, cv.k4 = 0.1, cv.k5 = 0.01, cv.k6 = 0.001;
   cv.p1 = 0.001, cv.p2 = -0.0005, cv.s1 = 0.002, cv.s2 = -0.0003, cv.s3 = 0.001, cv.s4 = 0.0002;
+  Projection& tilt = add("opencv_tilt", ProjectionModel::kOpenCv, 600.0, {640, 480},
+                         std::numbers::pi, 38.0 * deg, 0.0);
+  tilt = cases[cases.size() - 2].p;  // the same lens on a sensor tilted by 3° and −2°
+  tilt.tauX = 3.0 * deg, tilt.tauY = -2.0 * deg;
 
   const double kbMax = 100.0 * deg, t2 = kbMax * kbMax;
   Projection& kb = add("kannala_brandt", ProjectionModel::kKannalaBrandt, 260.0, {1000, 1000},

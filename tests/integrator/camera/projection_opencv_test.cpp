@@ -1,5 +1,5 @@
 // The projection models against the real OpenCV (Debian's python3-opencv 4.6, in double):
-// cv2.projectPoints (rational + tangential + thin prism), cv2.fisheye.projectPoints
+// cv2.projectPoints (rational + tangential + thin prism + tilt), cv2.fisheye.projectPoints
 // (Kannala–Brandt, and the equidistant model as Kannala–Brandt with k = 0) and
 // cv2.omnidir.projectPoints (Mei's unified model), through
 // tests/integrator/camera/projection_opencv_check.py; and checkProjection's range checks.
@@ -22,8 +22,8 @@ namespace {
 
 std::string csvRow(const char* name, const Projection& p, glm::dvec3 d, glm::dvec2 px) {
   std::string row = name;
-  for (double v : {p.fx, p.fy, p.cx, p.cy, p.k1, p.k2, p.k3, p.k4, p.k5, p.k6, p.p1,
-                   p.p2, p.s1, p.s2, p.s3, p.s4, p.xi, d.x,  d.y,  d.z,  px.x, px.y}) {
+  for (double v : {p.fx, p.fy, p.cx, p.cy, p.k1,   p.k2,   p.k3, p.k4, p.k5, p.k6, p.p1, p.p2,
+                   p.s1, p.s2, p.s3, p.s4, p.tauX, p.tauY, p.xi, d.x,  d.y,  d.z,  px.x, px.y}) {
     char buf[32];
     std::snprintf(buf, sizeof buf, ",%.17g", v);
     row += buf;
