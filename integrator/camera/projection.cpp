@@ -22,6 +22,7 @@
 // positive and det J > 0 (beyond the radius where a strong barrel distortion folds the image
 // back, two directions would share a pixel). Radiometry: the undistorted plane z = 1 has
 // dΩ/dA = (1 + r²)^(−3/2) = cos³θ, so at a pixel dΩ/dA = cos³θ / (det J · fx · fy).
+#include <algorithm>
 #include <cmath>
 
 #include <glm/geometric.hpp>
@@ -52,6 +53,7 @@ std::optional<Distorted> distort(const Distortion& d, glm::dvec2 m) {
   const double den = 1.0 + r2 * (d.k4 + r2 * (d.k5 + r2 * d.k6));
   if (!(den > 0.0)) return std::nullopt;
   const double c = num / den;
+  if (!(c > 0.0)) return std::nullopt;  // the point would be mirrored through the centre
   // dc/d(r²) and the thin-prism terms' d/d(r²).
   const double dnum = d.k1 + r2 * (2.0 * d.k2 + 3.0 * r2 * d.k3);
   const double dden = d.k4 + r2 * (2.0 * d.k5 + 3.0 * r2 * d.k6);
@@ -87,9 +89,22 @@ std::optional<Distorted> distort(const Distortion& d, glm::dvec2 m) {
   return out;
 }
 
+double radialSlope(const Distortion& d, double rho) {
+  const double r2 = rho * rho;
+  const double num = 1.0 + r2 * (d.k1 + r2 * (d.k2 + r2 * d.k3));
+  const double den = 1.0 + r2 * (d.k4 + r2 * (d.k5 + r2 * d.k6));
+  if (!(den > 0.0)) return -1.0;
+  const double dnum = d.k1 + r2 * (2.0 * d.k2 + 3.0 * r2 * d.k3);
+  const double dden = d.k4 + r2 * (2.0 * d.k5 + 3.0 * r2 * d.k6);
+  return num / den + 2.0 * r2 * (dnum * den - num * dden) / (den * den);
+}
+
 std::optional<glm::dvec2> undistort(const Distortion& d, glm::dvec2 target) {
+  // Start at the distorted point itself, moved towards the centre while that lies outside
+  // the invertible region (a strong distortion whose fold is nearer than the target).
   glm::dvec2 m = target;
   std::optional<Distorted> cur = distort(d, m);
+  for (int i = 0; i < 60 && !cur; ++i) cur = distort(d, m *= 0.5);
   if (!cur) return std::nullopt;
   for (int iter = 0; iter < 100; ++iter) {
     const glm::dvec2 f = cur->m - target;
@@ -248,20 +263,54 @@ void checkProjection(const Projection& p, const SourceLocation& where,
            "value " + formatNumber(p.alpha, 10) + " is out of range " + formatRange(0.0, 1.0));
   }
   if (p.model == ProjectionModel::kKannalaBrandt || p.model == ProjectionModel::kFTheta) {
-    // The polynomial must increase over the field imaged, or unproject would be ambiguous:
-    // dρ/dθ > 0 sampled every 0.01° up to the field limit.
-    const FieldLimit limit = fieldLimit(p);
-    const int steps = static_cast<int>(std::ceil(limit.theta / (std::numbers::pi / 18000.0)));
-    for (int i = 0; i <= steps; ++i) {
-      const double theta = limit.theta * i / steps;
-      if (!(radius(p, theta).drho > 0.0))
-        fail(where, key("k1"),
-             "k1 … k4 make the radius ρ(θ) stop increasing at field angle " +
-                 formatNumber(theta * 180.0 / std::numbers::pi, 6) + "°, inside max_field_angle " +
-                 formatNumber(limit.theta * 180.0 / std::numbers::pi, 6) +
-                 "°: change them or lower max_field_angle");
-    }
+    // The polynomial must increase over the field imaged, or unproject would be ambiguous.
+    const double limit = fieldLimit(p).theta, fold = foldFieldAngle(p);
+    if (fold < limit)
+      fail(where, key("k1"),
+           "k1 … k4 make the radius ρ(θ) stop increasing at field angle " +
+               formatNumber(fold * 180.0 / std::numbers::pi, 6) + "°, inside max_field_angle " +
+               formatNumber(limit * 180.0 / std::numbers::pi, 6) +
+               "°: change them or lower max_field_angle");
   }
+}
+
+double foldFieldAngle(const Projection& p) {
+  Projection whole = p;
+  whole.maxFieldAngle = std::numbers::pi;
+  const FieldLimit limit = fieldLimit(whole);
+  // Whether the radial part still increases at field angle θ.
+  const auto increasing = [&](double theta) {
+    switch (p.model) {
+      case ProjectionModel::kOpenCv:
+        return radialSlope(openCvDistortion(p), std::tan(theta)) > 0.0;
+      case ProjectionModel::kUnified:
+        return radialSlope(omnidirDistortion(p), unifiedRadius(p.xi, theta).rho) > 0.0;
+      default:
+        return radius(p, theta).drho > 0.0;
+    }
+  };
+  if (p.model != ProjectionModel::kOpenCv && p.model != ProjectionModel::kUnified &&
+      p.model != ProjectionModel::kKannalaBrandt && p.model != ProjectionModel::kFTheta)
+    return limit.theta;
+  const double step = std::numbers::pi / 18000.0;  // 0.01°
+  for (double lo = 0.0; lo < limit.theta;) {
+    double hi = std::min(lo + step, limit.theta);
+    if (limit.strict && hi == limit.theta) break;
+    if (!increasing(hi)) {
+      for (int i = 0; i < 60; ++i) {
+        const double mid = 0.5 * (lo + hi);
+        (increasing(mid) ? lo : hi) = mid;
+      }
+      return lo;
+    }
+    lo = hi;
+  }
+  return limit.theta;
+}
+
+Projection limitedToFold(Projection p) {
+  p.maxFieldAngle = std::min(p.maxFieldAngle, foldFieldAngle(p));
+  return p;
 }
 
 }  // namespace camsim

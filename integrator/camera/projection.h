@@ -107,6 +107,16 @@ std::optional<glm::dvec3> unproject(const Projection& p, glm::dvec2 pixel);
 // radiance field gives each pixel energy in proportion to its integral over the pixel.
 double solidAngleDensity(const Projection& p, glm::dvec2 pixel);
 
+// The field angle up to which the model is one-to-one: where dρ/dθ of its radial part (the
+// radial distortion of opencv and unified, the polynomial of kannala_brandt and ftheta) first
+// reaches 0, found every 0.01° and refined by bisection; the model's own limit when it never
+// does. (project and unproject also reject points where det J ≤ 0 or the radial factor is
+// ≤ 0, but a distortion that turns up again beyond a fold would pass those local tests.)
+double foldFieldAngle(const Projection& p);
+// p with maxFieldAngle lowered to foldFieldAngle(p): what a loader applies, so that project
+// and unproject are one-to-one for any calibrated distortion.
+Projection limitedToFold(Projection p);
+
 // Range checks for a projection a scene file or front end set, throwing InputError with the
 // key `keyPrefix.name` of the offending coefficient and its allowed range.
 void checkProjection(const Projection& p, const SourceLocation& where = {},

@@ -31,6 +31,9 @@ struct Distorted {
   glm::dmat2 jacobian;
 };
 std::optional<Distorted> distort(const Distortion& d, glm::dvec2 m);
+// d(ρ_d)/dρ of the radial part alone, ρ_d = ρ·(1 + k1ρ² + …)/(1 + k4ρ² + …); −1 where the
+// denominator is ≤ 0.
+double radialSlope(const Distortion& d, double rho);
 // The inverse by damped Newton iteration from m = distorted, to ~1e-15; none when it does not
 // converge or lands where distort() is not invertible.
 std::optional<glm::dvec2> undistort(const Distortion& d, glm::dvec2 distorted);

@@ -82,8 +82,11 @@ std::string checkFailure(const Projection& p) {
 }
 
 TEST(ProjectionCheck, TypicalCamerasPassAndBadCoefficientsAreNamed) {
-  for (const test::ProjectionCase& c : test::projectionCases())
+  for (const test::ProjectionCase& c : test::projectionCases()) {
     EXPECT_EQ(checkFailure(c.p), "") << c.name;
+    // None of the typical lenses folds inside the field its tests cover.
+    EXPECT_GE(limitedToFold(c.p).maxFieldAngle, c.testedFieldAngle) << c.name;
+  }
   Projection p;
   p.fx = 0.0;
   EXPECT_EQ(checkFailure(p), "camera.projection.fx: value 0 px must be positive and finite");
@@ -105,14 +108,14 @@ TEST(ProjectionCheck, TypicalCamerasPassAndBadCoefficientsAreNamed) {
   p.model = ProjectionModel::kUnified;
   EXPECT_EQ(checkFailure(p), "camera.projection.xi: value -1.5 must be ≥ 0");
   // A Kannala–Brandt polynomial that turns back inside the field: ρ'(θ) = 1 − 0.6 θ² is 0 at
-  // θ = 73.97°.
+  // θ = √(1/0.6) = 73.9685°.
   p = Projection{};
   p.model = ProjectionModel::kKannalaBrandt;
   p.k1 = -0.2;
   p.maxFieldAngle = 1.6;
   const std::string msg = checkFailure(p);
   EXPECT_NE(msg.find("camera.projection.k1: k1 … k4 make the radius ρ(θ) stop increasing at "
-                     "field angle 73.97"),
+                     "field angle 73.9685°"),
             std::string::npos)
       << msg;
   p.maxFieldAngle = 1.25;  // 71.6°: fine

@@ -170,6 +170,61 @@ TEST(Projection, DoubleSphereMatchesThePapersProjection) {
     }
 }
 
+// A strong barrel distortion folds the image back: ρ_d = ρ(1 − 0.5ρ²) peaks at ρ = √(2/3)
+// (ρ_d = √(2/3)·2/3). Directions beyond the fold do not project, pixels beyond the peak do not
+// unproject, and inside both round trip.
+TEST(Projection, OpenCvDistortionFoldBoundsTheValidDomain) {
+  Projection p;
+  p.fx = p.fy = 1.0;
+  p.cx = p.cy = 0.0;
+  p.k1 = -0.5;
+  const double foldRho = std::sqrt(2.0 / 3.0), peak = foldRho * 2.0 / 3.0;
+  for (double rho = 0.01; rho < 1.5; rho += 0.01) {
+    const glm::dvec3 d(0.6 * rho, -0.8 * rho, 1.0);
+    const std::optional<glm::dvec2> px = project(p, d);
+    EXPECT_EQ(px.has_value(), rho < foldRho) << rho;
+    if (px) {
+      const std::optional<glm::dvec3> back = unproject(p, *px);
+      ASSERT_TRUE(back) << rho;
+      EXPECT_LE(glm::length(*back - glm::normalize(d)), 1e-12) << rho;
+    }
+    const glm::dvec2 pixel(0.6 * rho, -0.8 * rho);
+    EXPECT_EQ(unproject(p, pixel).has_value(), rho < peak) << rho;
+  }
+}
+
+// k1 = −0.6, k2 = 0.12: ρ_d = ρ − 0.6ρ³ + 0.12ρ⁵ falls between its turning points
+// ρ² = (1.8 ∓ √0.84)/1.2 and rises again, so a direction past the second one passes the
+// local tests but shares its pixel with one inside the fold. limitedToFold clips the field
+// at the first turning point (the fold, analytically), and the mapping is one-to-one again.
+TEST(Projection, LimitedToFoldMakesAFoldingDistortionOneToOne) {
+  Projection p;
+  p.fx = p.fy = 1.0;
+  p.cx = p.cy = 0.0;
+  p.k1 = -0.6;
+  p.k2 = 0.12;
+  const double foldRho = std::sqrt((1.8 - std::sqrt(0.84)) / 1.2);
+  EXPECT_NEAR(foldFieldAngle(p), std::atan(foldRho), 1e-12);
+  const glm::dvec3 beyond(1.6, 0.0, 1.0);
+  EXPECT_TRUE(project(p, beyond));  // the local tests alone let it through
+  const Projection q = limitedToFold(p);
+  EXPECT_NEAR(q.maxFieldAngle, std::atan(foldRho), 1e-12);
+  EXPECT_FALSE(project(q, beyond));
+  const double peak =
+      foldRho * (1.0 - 0.6 * foldRho * foldRho + 0.12 * foldRho * foldRho * foldRho * foldRho);
+  for (double rho = 0.01; rho < 2.0; rho += 0.01) {
+    const glm::dvec3 d(0.8 * rho, 0.6 * rho, 1.0);
+    const std::optional<glm::dvec2> px = project(q, d);
+    EXPECT_EQ(px.has_value(), rho < foldRho) << rho;
+    if (px) {
+      const std::optional<glm::dvec3> back = unproject(q, *px);
+      ASSERT_TRUE(back) << rho;
+      EXPECT_LE(glm::length(*back - glm::normalize(d)), 1e-12) << rho;
+    }
+    EXPECT_EQ(unproject(q, glm::dvec2(0.8 * rho, 0.6 * rho)).has_value(), rho < peak) << rho;
+  }
+}
+
 // The existing Brown–Conrady LensDistortion is the opencv model with k4…k6 = s1…s4 = 0:
 // the same forward map to 1e-12, and unproject inverts LensDistortion's forward map to 1e-14
 // (LensDistortion::undistort itself stops at a 1e-12 residual, so the two inverses agree to
