@@ -1,6 +1,12 @@
 // The radial projection models: film radius ρ (in units of fx, fy) as a function of the
 // field angle θ, m = ρ(θ)·(X, Y)/√(X²+Y²), u = fx·mx + cx, v = fy·my + cy.
 //
+// | parameter      | unit | default | meaning |
+// |----------------|------|---------|---------|
+// | fx, fy         | px   | 500     | pixels per unit of ρ |
+// | k1 … k4        | —    | 0       | kannala_brandt: θ³…θ⁹ terms; ftheta: θ²…θ⁵ terms |
+// | maxFieldAngle  | rad  | π       | the image circle: largest θ imaged |
+//
 // | model          | ρ(θ)                                  | dρ/dθ                     | θ limit | θ(ρ) |
 // |----------------|---------------------------------------|---------------------------|---------|------|
 // | opencv (k = 0) | tan θ                                 | 1 / cos²θ                 | < π/2   | (projection.cpp) |
