@@ -38,10 +38,6 @@
 
 namespace camsim::projection_detail {
 
-namespace {
-constexpr double kPi = std::numbers::pi;
-}
-
 Radius radius(const Projection& p, double theta) {
   const double t2 = theta * theta;
   switch (p.model) {

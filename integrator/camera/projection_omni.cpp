@@ -36,10 +36,6 @@
 
 namespace camsim::projection_detail {
 
-namespace {
-constexpr double kPi = std::numbers::pi;
-}
-
 Radius unifiedRadius(double xi, double theta) {
   const double c = std::cos(theta), w = c + xi;
   return {std::sin(theta) / w, (1.0 + xi * c) / (w * w)};

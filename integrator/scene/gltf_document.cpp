@@ -22,6 +22,14 @@
 
 namespace camsim {
 
+// obj[key] as a number, or fallback where obj has no such number (also used by
+// gltf_read_materials.cpp).
+double gltfNumber(const tinygltf::Value& obj, const char* key, double fallback) {
+  if (!obj.IsObject() || !obj.Has(key)) return fallback;
+  const tinygltf::Value& v = obj.Get(key);
+  return v.IsNumber() ? v.GetNumberAsDouble() : fallback;
+}
+
 glm::dmat4 GltfNode::local() const {
   if (hasMatrix) return matrix;
   return glm::translate(glm::dmat4(1.0), translation) * glm::mat4_cast(rotation) *
@@ -56,12 +64,6 @@ std::string jsonPathIn(const std::string& message) {
     return std::string(kind) + "s[" + digits + "]";
   }
   return "";
-}
-
-double number(const tinygltf::Value& obj, const char* key, double fallback) {
-  if (!obj.IsObject() || !obj.Has(key)) return fallback;
-  const tinygltf::Value& v = obj.Get(key);
-  return v.IsNumber() ? v.GetNumberAsDouble() : fallback;
 }
 
 std::string at(const char* array, size_t i) {
@@ -209,7 +211,7 @@ void readNodes(const tinygltf::Model& model, GltfDocument& doc, const std::strin
     g.skinned = n.skin >= 0;
     g.morphed = !n.weights.empty();
     if (const auto ext = n.extensions.find("KHR_lights_punctual"); ext != n.extensions.end())
-      g.light = static_cast<int>(number(ext->second, "light", -1.0));
+      g.light = static_cast<int>(gltfNumber(ext->second, "light", -1.0));
     doc.nodes.push_back(std::move(g));
   }
   for (const tinygltf::Scene& s : model.scenes) doc.scenes.push_back(s.nodes);

@@ -12,13 +12,11 @@
 #include "sensor/base/input_error.h"
 
 namespace camsim {
-namespace {
 
-double number(const tinygltf::Value& obj, const char* key, double fallback) {
-  if (!obj.IsObject() || !obj.Has(key)) return fallback;
-  const tinygltf::Value& v = obj.Get(key);
-  return v.IsNumber() ? v.GetNumberAsDouble() : fallback;
-}
+double gltfNumber(const tinygltf::Value& obj, const char* key,
+                  double fallback);  // gltf_document.cpp
+
+namespace {
 
 // A textureInfo (its extensions: KHR_texture_transform, checked by gltf_validate.cpp).
 GltfTextureRef textureRef(const tinygltf::Model& model, int textureIndex, int texCoord,
@@ -38,8 +36,8 @@ GltfTextureRef textureRef(const tinygltf::Model& model, int textureIndex, int te
     };
     pair("offset", r.uvOffset);
     pair("scale", r.uvScale);
-    r.uvRotation = number(t->second, "rotation", 0.0);
-    r.texCoord = static_cast<int>(number(t->second, "texCoord", texCoord));
+    r.uvRotation = gltfNumber(t->second, "rotation", 0.0);
+    r.texCoord = static_cast<int>(gltfNumber(t->second, "texCoord", texCoord));
   }
   return r;
 }
@@ -106,11 +104,11 @@ void readGltfMaterials(const tinygltf::Model& model, GltfDocument& doc, const st
     g.doubleSided = m.doubleSided;
     for (const auto& [ext, value] : m.extensions) {
       if (ext == "KHR_materials_emissive_strength")
-        g.emissiveStrength = number(value, "emissiveStrength", 1.0);
+        g.emissiveStrength = gltfNumber(value, "emissiveStrength", 1.0);
       else if (ext == "KHR_materials_transmission")
-        g.transmission = number(value, "transmissionFactor", 0.0);
+        g.transmission = gltfNumber(value, "transmissionFactor", 0.0);
       else if (ext == "KHR_materials_ior")
-        g.ior = number(value, "ior", 1.5);
+        g.ior = gltfNumber(value, "ior", 1.5);
       else
         g.otherExtensions.push_back(ext);
     }
