@@ -19,7 +19,7 @@ using test::onPath;
 
 // A wall 3 m away, the camera moving 20 cm sideways and turning 3° over 3 frames with a 1°
 // shutter (no blur), lens distortion k1 = −0.05, p1 = 0.001; ground truth: position.
-const char* kScene =
+const char* kExportScene =
     "name: walk\n"
     "camera: {position: [0, 0, 0], look_at: [0, 0, 1], resolution: [64, 48], "
     "sensor_width_mm: 36, sensor_height_mm: 27, focal_length_mm: 35,\n"
@@ -39,7 +39,7 @@ TEST(DatasetExport, OpenCvProjectsRenderedPointsOntoTheirPixels) {
   ASSERT_EQ(std::system("/usr/bin/python3 -c 'import cv2' 2>/dev/null"), 0)
       << "python3-opencv is not installed (Debian package python3-opencv; scripts/setup.sh)";
   test::TempDir dir;
-  test::writeFile(dir.path() / "walk.yaml", kScene);
+  test::writeFile(dir.path() / "walk.yaml", kExportScene);
   const test::RunResult r =
       test::runCamsim("render " + test::quote((dir.path() / "walk.yaml").string()) + " -o " +
                           test::quote((dir.path() / "out").string()),

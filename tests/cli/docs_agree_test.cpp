@@ -21,7 +21,7 @@ namespace {
 
 const std::filesystem::path kDocs = std::filesystem::path(CAMSIM_SOURCE_DIR) / "docs";
 
-const char* kScene =
+const char* kDocsScene =
     "camera: {position: [0, 0, 0], look_at: [0, 0, 1], resolution: [16, 12], CAMERA_EXTRA}\n"
     "SENSOR\n"
     "render: {spp: 1, max_depth: 0}\n"
@@ -32,7 +32,7 @@ const char* kScene =
 
 std::string scene(const std::string& cameraExtra, const std::string& sensor,
                   const std::string& topExtra) {
-  std::string s = kScene;
+  std::string s = kDocsScene;
   s.replace(s.find("CAMERA_EXTRA"), 12, cameraExtra.empty() ? "f_number: 4" : cameraExtra);
   s.replace(s.find("SENSOR"), 6, sensor);
   s.replace(s.find("TOP_EXTRA"), 9, topExtra);

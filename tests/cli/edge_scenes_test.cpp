@@ -33,7 +33,7 @@ std::string shortShutter(const std::string& camera) {
          "     motion: [{time: 1.25, translate: [0, 0, 0]}, {time: 2.5, translate: [0, 2, 0]}]}\n";
 }
 
-size_t filesIn(const fs::path& dir) {
+size_t fileCount(const fs::path& dir) {
   if (!fs::exists(dir)) return 0;
   return static_cast<size_t>(std::distance(fs::directory_iterator(dir), fs::directory_iterator()));
 }
@@ -110,7 +110,7 @@ TEST(EdgeScenes, RefusalsExitTwoNamingFileLineAndKey) {
   EXPECT_NE(r.err.find("up.yaml:4:77: key 'camera.up': up must be a non-zero direction"),
             std::string::npos)
       << r.err;
-  EXPECT_EQ(filesIn(out), 0u);
+  EXPECT_EQ(fileCount(out), 0u);
 
   // A grey world on a black raw (the light 1e-30 lx, no noise) is refused after rendering.
   const fs::path dark = dir.path() / "dark.yaml";
@@ -128,7 +128,7 @@ TEST(EdgeScenes, RefusalsExitTwoNamingFileLineAndKey) {
                       dir.path());
   EXPECT_EQ(r.exitCode, 2);
   EXPECT_NE(r.err.find("dark.yaml:6:18: key 'isp.white_balance': "), std::string::npos) << r.err;
-  EXPECT_EQ(filesIn(out), 0u);
+  EXPECT_EQ(fileCount(out), 0u);
 }
 
 }  // namespace

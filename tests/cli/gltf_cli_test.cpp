@@ -17,7 +17,7 @@ namespace fs = std::filesystem;
 using test::quote;
 using test::runCamsim;
 
-const fs::path kData = fs::path(CAMSIM_TEST_DATA_DIR) / "gltf";
+const fs::path kGltfData = fs::path(CAMSIM_TEST_DATA_DIR) / "gltf";
 
 std::string sceneIncluding(const fs::path& gltf) {
   return "camera: {position: [0, 0, 5], look_at: [0, 0, 0], resolution: [16, 12]}\n"
@@ -30,10 +30,10 @@ TEST(GltfCli, MalformedAssetsExitTwoNamingFileAndJsonPathAndWriteNothing) {
     fs::path file;
     const char* path;
   } cases[] = {
-      {kData / "BoundsChecking/integer-out-of-bounds.gltf", "bufferViews[0].byteLength"},
-      {kData / "BoundsChecking/invalid-buffer-index.gltf", "bufferViews[1].buffer"},
-      {kData / "BoundsChecking/invalid-buffer-view-index.gltf", "bufferViews[0].buffer"},
-      {kData / "BoundsChecking/invalid-primitive-indices.gltf", "bufferViews[0].buffer"},
+      {kGltfData / "BoundsChecking/integer-out-of-bounds.gltf", "bufferViews[0].byteLength"},
+      {kGltfData / "BoundsChecking/invalid-buffer-index.gltf", "bufferViews[1].buffer"},
+      {kGltfData / "BoundsChecking/invalid-buffer-view-index.gltf", "bufferViews[0].buffer"},
+      {kGltfData / "BoundsChecking/invalid-primitive-indices.gltf", "bufferViews[0].buffer"},
   };
   for (const auto& c : cases) {
     test::TempDir dir;
@@ -51,8 +51,8 @@ TEST(GltfCli, MalformedAssetsExitTwoNamingFileAndJsonPathAndWriteNothing) {
 
 TEST(GltfCli, RenderingAGltfFileDirectlySaysHowToIncludeIt) {
   test::TempDir dir;
-  const test::RunResult r = runCamsim("render " + quote((kData / "box01.glb").string()) + " -o " +
-                                          quote((dir.path() / "o").string()),
+  const test::RunResult r = runCamsim("render " + quote((kGltfData / "box01.glb").string()) +
+                                          " -o " + quote((dir.path() / "o").string()),
                                       dir.path());
   EXPECT_EQ(r.exitCode, 2);
   EXPECT_NE(r.err.find("a glTF file is an asset, not a camsim scene"), std::string::npos) << r.err;
@@ -63,7 +63,7 @@ TEST(GltfCli, NotesArePrintedAndInTheSidecar) {
   test::writeFile(dir.path() / "scene.yaml",
                   "camera:\n  gltf: {camera: 0}\n  resolution: [16, 12]\nrender: {spp: 1}\n"
                   "include:\n  - gltf: " +
-                      (kData / "khronos/Cameras.gltf").string() + "\n");
+                      (kGltfData / "khronos/Cameras.gltf").string() + "\n");
   const fs::path out = dir.path() / "out";
   const test::RunResult r = runCamsim(
       "render " + quote((dir.path() / "scene.yaml").string()) + " -o " + quote(out.string()),

@@ -19,7 +19,7 @@ using test::quote;
 using test::readFile;
 using test::writeFile;
 
-const fs::path kData = fs::path(CAMSIM_TEST_DATA_DIR) / "obj_mtl";
+const fs::path kObjMtlData = fs::path(CAMSIM_TEST_DATA_DIR) / "obj_mtl";
 
 std::string sceneWith(const std::string& shape) {
   return "camera: {position: [6, 0.5, 8], look_at: [6, 0.5, 0], resolution: [8, 8]}\n"
@@ -33,14 +33,14 @@ std::string sceneWith(const std::string& shape) {
 TEST(ImportNotes, PrintedOnStderrAndListedInTheSidecar) {
   test::TempDir dir;
   writeFile(dir.path() / "notes.yaml",
-            sceneWith("{type: mesh, file: " + (kData / "quads.obj").string() + "}"));
+            sceneWith("{type: mesh, file: " + (kObjMtlData / "quads.obj").string() + "}"));
   const fs::path out = dir.path() / "out";
   const test::RunResult r = test::runCamsim(
       "render " + quote((dir.path() / "notes.yaml").string()) + " -o " + quote(out.string()),
       dir.path());
   ASSERT_EQ(r.exitCode, 0) << r.err;
   const std::string note =
-      (kData / "quads.mtl").string() + " line 4: 'Ka' ignored: camsim has no ambient term.";
+      (kObjMtlData / "quads.mtl").string() + " line 4: 'Ka' ignored: camsim has no ambient term.";
   EXPECT_NE(r.err.find("note: " + note + "\n"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("'map_Bump' ignored"), std::string::npos) << r.err;
   const std::string json = readFile(out / "notes.json");

@@ -31,7 +31,7 @@
 namespace camsim {
 namespace {
 
-const char* kScene =
+const char* kOverrideScene =
     "name: probe\nrender: {spp: 1}\n"
     "camera: {position: [0, 0, -3], look_at: [0, 0, 0], resolution: [8, 8], "
     "focal_length_mm: 0.01, shutter: {open: 0, close: 0.01}}\n"
@@ -94,7 +94,7 @@ std::string describe(const Case& c) {
 }
 
 SceneDescription probeScene() {
-  return loadSceneFromText(kScene, "probe.yaml", ".");
+  return loadSceneFromText(kOverrideScene, "probe.yaml", ".");
 }
 
 TEST(OverrideRanges, TableHasEveryRangedSetting) {
@@ -143,7 +143,7 @@ TEST(OverrideRanges, CommandLineParserAgreesWithTheTable) {
 
 TEST(OverrideRanges, ManifestAgreesWithTheTable) {
   const test::TempDir dir;
-  test::writeFile(dir.path() / "base.yaml", kScene);
+  test::writeFile(dir.path() / "base.yaml", kOverrideScene);
   for (const Case& c : boundaryCases()) {
     // The scene key a manifest sets; an exposure time T is a shutter open from 0 to T.
     const std::string key = c.setting->key == "exposure_time_s" ? "camera.shutter.close"
@@ -167,7 +167,7 @@ TEST(OverrideRanges, ManifestAgreesWithTheTable) {
 
 TEST(OverrideRanges, BinaryAgreesWithTheTable) {
   const test::TempDir dir;
-  test::writeFile(dir.path() / "probe.yaml", kScene);
+  test::writeFile(dir.path() / "probe.yaml", kOverrideScene);
   for (const Case& c : boundaryCases()) {
     const std::string flag = overrideFlag(*c.setting);
     const test::RunResult r =
@@ -188,7 +188,7 @@ TEST(OverrideRanges, BinaryAgreesWithTheTable) {
 // The issue's examples, as a new user types them.
 TEST(OverrideRanges, IssueExamplesExitTwoNamingFlagAndRange) {
   const test::TempDir dir;
-  test::writeFile(dir.path() / "probe.yaml", kScene);
+  test::writeFile(dir.path() / "probe.yaml", kOverrideScene);
   for (const auto& [flag, value, range] :
        {std::tuple<std::string, std::string, std::string>{"--f-number", "0.3", "[0.5, 10000]"},
         {"--iso", "0.5", "[1, 10000000]"}}) {

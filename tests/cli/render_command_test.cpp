@@ -99,7 +99,7 @@ RunResult camsim(const std::string& args, const fs::path& logDir) {
   return test::runCamsim(args, logDir);
 }
 
-std::vector<std::string> filesIn(const fs::path& dir) {
+std::vector<std::string> filesUnder(const fs::path& dir) {
   std::vector<std::string> names;
   if (!fs::exists(dir)) return names;
   for (const auto& entry : fs::recursive_directory_iterator(dir))
@@ -213,7 +213,7 @@ TEST_P(CamsimBadScene, ExitsTwoWithLocationAndWritesNothing) {
     EXPECT_NE(r.err.find("key '" + c.key + "'"), std::string::npos) << r.err;
   }
   EXPECT_EQ(r.err.find("internal error"), std::string::npos) << r.err;
-  EXPECT_TRUE(filesIn(out).empty()) << "left behind: " << filesIn(out).front();
+  EXPECT_TRUE(filesUnder(out).empty()) << "left behind: " << filesUnder(out).front();
   // A directory that did not exist is not created for a scene that fails to load.
   const fs::path fresh = dir.path() / "fresh";
   EXPECT_EQ(camsim("render " + quote(scene.string()) + " -o " + quote(fresh.string()), dir.path())
@@ -317,7 +317,7 @@ TEST(CamsimBinary, RendersSmallSceneToExrAndPng) {
   ASSERT_EQ(r.exitCode, 0) << r.err;
   EXPECT_NE(r.err.find("rendered cornell_box: 32x32, 2 spp"), std::string::npos) << r.err;
 
-  std::vector<std::string> files = filesIn(out);
+  std::vector<std::string> files = filesUnder(out);
   std::sort(files.begin(), files.end());
   EXPECT_EQ(files,
             (std::vector<std::string>{"cornell_box.exr", "cornell_box.json", "cornell_box.png"}));
@@ -428,7 +428,7 @@ TEST(CamsimBinary, UserOcioConfigIsUsedAndBadDisplayIsRejected) {
       "render " + scene + " -o " + quote(out2.string()) + " --spp 1 --display Nope", dir.path());
   EXPECT_EQ(bad.exitCode, 2);
   EXPECT_NE(bad.err.find("Nope"), std::string::npos) << bad.err;
-  EXPECT_TRUE(!fs::exists(out2) || filesIn(out2).empty());
+  EXPECT_TRUE(!fs::exists(out2) || filesUnder(out2).empty());
 }
 
 }  // namespace

@@ -56,7 +56,7 @@ class RenderGuards : public testing::Test {
   fs::path dir_;
 };
 
-std::vector<std::string> filesIn(const fs::path& dir) {
+std::vector<std::string> fileNames(const fs::path& dir) {
   std::vector<std::string> names;
   if (!fs::exists(dir)) return names;
   for (const auto& entry : fs::directory_iterator(dir)) names.push_back(entry.path().filename());
@@ -154,7 +154,7 @@ TEST_F(RenderGuards, SigintAt100kSppExitsWithinASecondWritingNothing) {
   EXPECT_NE(run.err().find("render interrupted before a tile had finished: no output written"),
             std::string::npos)
       << run.err();
-  EXPECT_EQ(filesIn(out), std::vector<std::string>{}) << run.err();
+  EXPECT_EQ(fileNames(out), std::vector<std::string>{}) << run.err();
 }
 
 TEST_F(RenderGuards, SigintStopsARenderMidWayWithExitCode130AndNoFinalOutput) {
@@ -173,7 +173,7 @@ TEST_F(RenderGuards, SigintStopsARenderMidWayWithExitCode130AndNoFinalOutput) {
   EXPECT_NE(run.err().find("render interrupted"), std::string::npos) << run.err();
   EXPECT_FALSE(fs::exists(out / "cornell_box.exr"));
   EXPECT_FALSE(fs::exists(out / "cornell_box.png"));
-  for (const std::string& name : filesIn(out))  // at most the clearly named partial image
+  for (const std::string& name : fileNames(out))  // at most the clearly named partial image
     EXPECT_EQ(name, "cornell_box.partial.exr");
 }
 
@@ -188,7 +188,7 @@ TEST_F(RenderGuards, SigintSavesTheFinishedTilesAsPartialExrAndTheNextRunRemoves
   const auto status = run.wait(kStopDeadline);
   ASSERT_TRUE(status) << "did not stop within " << kStopDeadline.count() << " s of SIGINT";
   EXPECT_EQ(exitCode(*status), 130) << run.err();
-  ASSERT_EQ(filesIn(out), std::vector<std::string>{"cornell_box.partial.exr"}) << run.err();
+  ASSERT_EQ(fileNames(out), std::vector<std::string>{"cornell_box.partial.exr"}) << run.err();
 
   const ExrFile partial = readExr(out / "cornell_box.partial.exr");
   ASSERT_EQ(partial.image.width, 512);
@@ -223,7 +223,7 @@ TEST_F(RenderGuards, SigkillLeavesOnlyTemporariesAndTheNextRunRemovesThem) {
   const auto status = run.wait(std::chrono::seconds(30));
   ASSERT_TRUE(status);
   EXPECT_EQ(exitCode(*status), -SIGKILL);
-  for (const std::string& name : filesIn(out))  // nothing, or the killed run's temporaries
+  for (const std::string& name : fileNames(out))  // nothing, or the killed run's temporaries
     EXPECT_EQ(OutputSet::temporaryOwner(name), static_cast<long>(run.pid())) << name;
 
   // What a kill during writing leaves (its timing cannot be hit reliably): temporaries of

@@ -70,7 +70,7 @@ std::string movingScene(const std::string& sensor = "") {
 const std::string kOverrides = " --spp 3 --seed 5 --noise-seed 11 --exposure-time 0.0125";
 
 // Name → bytes of every file in dir.
-std::map<std::string, std::string> filesIn(const fs::path& dir) {
+std::map<std::string, std::string> fileContents(const fs::path& dir) {
   std::map<std::string, std::string> files;
   if (!fs::exists(dir)) return files;
   for (const auto& f : fs::directory_iterator(dir))
@@ -121,7 +121,7 @@ class TileMerge : public ::testing::Test {
     return test::runCamsim(args + " -o " + quote((dir() / out).string()) + flags, dir());
   }
   static void expectSameFiles(const std::string& ref, const std::string& got) {
-    const auto expected = filesIn(dir() / ref), actual = filesIn(dir() / got);
+    const auto expected = fileContents(dir() / ref), actual = fileContents(dir() / got);
     ASSERT_GE(expected.size(), 3u);  // NAME.exr, .png, .json at least
     for (const auto& [name, bytes] : expected) {
       const auto it = actual.find(name);
@@ -146,7 +146,7 @@ class TileMerge : public ::testing::Test {
 std::unique_ptr<test::TempDir> TileMerge::temp_;
 
 TEST_F(TileMerge, ThreePartsMergeToTheRenderByteForByte) {
-  const auto parts = filesIn(dir() / "parts3");
+  const auto parts = fileContents(dir() / "parts3");
   ASSERT_EQ(parts.size(), 3u);  // the parts and nothing else
   for (int k = 0; k < 3; ++k) {
     ASSERT_TRUE(parts.count("tiled.part-" + std::to_string(k) + "-of-3.exr")) << k;
@@ -160,7 +160,7 @@ TEST_F(TileMerge, ThreePartsMergeToTheRenderByteForByte) {
   EXPECT_NE(r.err.find("merged 3 parts of tiled"), std::string::npos) << r.err;
   expectSameFiles("ref", "merged3");
   // exr, png, json, acescg, 2 × (dng, raw exr), 4 previews (depth, normal, instance, class)
-  EXPECT_EQ(filesIn(dir() / "merged3").size(), 12u);
+  EXPECT_EQ(fileContents(dir() / "merged3").size(), 12u);
   // The bracket's DNG, the raw EXRs, the ACEScg EXR, previews: all compared.
   EXPECT_TRUE(fs::exists(dir() / "merged3" / "tiled_ev-1.dng"));
   EXPECT_TRUE(fs::exists(dir() / "merged3" / "tiled_instance.png"));
@@ -270,7 +270,7 @@ TEST_F(TileMerge, CapturesThatCannotBeTiledAreRefused) {
     EXPECT_NE(r.err.find(c.name + ".yaml"), std::string::npos) << r.err;
     EXPECT_NE(r.err.find(c.key), std::string::npos) << r.err;
     EXPECT_NE(r.err.find("cannot be split into tiles"), std::string::npos) << r.err;
-    EXPECT_TRUE(filesIn(dir() / ("parts_" + c.name)).empty()) << c.name;
+    EXPECT_TRUE(fileContents(dir() / ("parts_" + c.name)).empty()) << c.name;
   }
   // Without the re-render (a fixed exposure, or a 0 EV bracket only) the moving scene tiles.
   test::writeFile(dir() / "fixed.yaml", movingScene(sensor + "bracket_ev: [0]}\n"));

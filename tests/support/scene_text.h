@@ -19,4 +19,15 @@ inline bool onPath(const std::string& program) {
   return std::system(("command -v '" + program + "' >/dev/null 2>&1").c_str()) == 0;
 }
 
+// A scene whose line 3 holds the material `m` (its value starts at column 6) on one sphere,
+// for the loader's material and texture tests.
+inline std::string materialScene(const std::string& material) {
+  return "camera: {position: [0, 0, -1], look_at: [0, 0, 0]}\n"  // 1
+         "materials:\n"                                          // 2
+         "  m: " +
+         material +
+         "\n"  // 3
+         "shapes: [{type: sphere, centre: [0, 0, 0], radius: 1, material: m}]\n";
+}
+
 }  // namespace camsim::test

@@ -29,16 +29,16 @@ namespace {
 
 using test::num;
 
-constexpr double kFocal = 0.050;    // m
-constexpr double kPitch = 20e-6;    // m
-constexpr double kZ = 1.0;          // m
-constexpr double kV = 2.0;          // m/s
-constexpr double kRowTime = 1e-4;   // s per row
-constexpr double kExposure = 1e-3;  // s per row (box)
+constexpr double kRollingFocal = 0.050;  // m
+constexpr double kRollingPitch = 20e-6;  // m
+constexpr double kZ = 1.0;               // m
+constexpr double kV = 2.0;               // m/s
+constexpr double kRowTime = 1e-4;        // s per row
+constexpr double kExposure = 1e-3;       // s per row (box)
 constexpr int kWidth = 96, kHeight = 64;
 
 double pixelsPerMetre() {
-  return kFocal / (kZ * kPitch);
+  return kRollingFocal / (kZ * kRollingPitch);
 }
 
 struct RowFit {
@@ -58,9 +58,10 @@ RowFit renderBar(bool rolling, int spp, std::uint64_t seed) {
                                       : "{open: 0, close: " + num(kExposure) + "}";
   const std::string yaml =
       "camera: {position: [0, 0, 0], look_at: [0, 0, 1], sensor_width_mm: " +
-      num(kWidth * kPitch * 1e3) + ", sensor_height_mm: " + num(kHeight * kPitch * 1e3) +
-      ",\n  resolution: [" + std::to_string(kWidth) + ", " + std::to_string(kHeight) +
-      "], focal_length_mm: " + num(kFocal * 1e3) + ", shutter: " + shutter +
+      num(kWidth * kRollingPitch * 1e3) +
+      ", sensor_height_mm: " + num(kHeight * kRollingPitch * 1e3) + ",\n  resolution: [" +
+      std::to_string(kWidth) + ", " + std::to_string(kHeight) +
+      "], focal_length_mm: " + num(kRollingFocal * 1e3) + ", shutter: " + shutter +
       "}\n"
       "render: {max_depth: 0}\n"
       "shapes:\n"

@@ -51,7 +51,7 @@ SceneDescription box(bool motion = false, bool cameraMotion = false) {
   return loadSceneFromText(text, "box.yaml", ".");
 }
 
-bool sameBytes(const Image& a, const Image& b) {
+bool sameImageBytes(const Image& a, const Image& b) {
   return a.width == b.width && a.height == b.height && a.channels == b.channels &&
          a.pixels.size() == b.pixels.size() &&
          std::memcmp(a.pixels.data(), b.pixels.data(), a.pixels.size() * sizeof(float)) == 0;
@@ -59,15 +59,15 @@ bool sameBytes(const Image& a, const Image& b) {
 
 // Every film, frame and picture of two captures, byte for byte.
 void expectSameCapture(const CaptureResult& a, const CaptureResult& b) {
-  EXPECT_TRUE(sameBytes(a.film, b.film));
-  EXPECT_TRUE(sameBytes(a.sensorFilm, b.sensorFilm));
-  EXPECT_TRUE(sameBytes(a.aovs, b.aovs));
-  EXPECT_TRUE(sameBytes(a.picture, b.picture));
+  EXPECT_TRUE(sameImageBytes(a.film, b.film));
+  EXPECT_TRUE(sameImageBytes(a.sensorFilm, b.sensorFilm));
+  EXPECT_TRUE(sameImageBytes(a.aovs, b.aovs));
+  EXPECT_TRUE(sameImageBytes(a.picture, b.picture));
   EXPECT_EQ(a.stats.modelled.describe(), b.stats.modelled.describe());
   EXPECT_EQ(a.exposureScale, b.exposureScale);
   ASSERT_EQ(a.frames.size(), b.frames.size());
   for (std::size_t i = 0; i < a.frames.size(); ++i) {
-    EXPECT_TRUE(sameBytes(a.frames[i].electrons, b.frames[i].electrons));
+    EXPECT_TRUE(sameImageBytes(a.frames[i].electrons, b.frames[i].electrons));
     ASSERT_EQ(a.frames[i].raws.size(), b.frames[i].raws.size());
     for (std::size_t p = 0; p < a.frames[i].raws.size(); ++p)
       EXPECT_EQ(a.frames[i].raws[p].dn, b.frames[i].raws[p].dn);

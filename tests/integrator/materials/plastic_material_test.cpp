@@ -35,7 +35,7 @@ std::unique_ptr<PlasticMaterial> plastic(double rho, float alpha, float ks = 0.1
   return std::make_unique<PlasticMaterial>(std::move(p));
 }
 
-const SampledWavelengths kLambda = SampledWavelengths::sampleUniform(0.61f);
+const SampledWavelengths kPlasticLambda = SampledWavelengths::sampleUniform(0.61f);
 
 TEST(PlasticMaterial, SamplesFollowPdfOverTheSphere) {
   struct Case {
@@ -60,7 +60,7 @@ TEST(PlasticMaterial, SamplesFollowPdfOverTheSphere) {
       bsdfcheck::ChiSquareOptions o;
       o.testCount = tests;
       o.sampleCount = 50000;
-      const auto r = bsdfcheck::chiSquare(*m, direction(z, 0.8), kLambda, {}, o);
+      const auto r = bsdfcheck::chiSquare(*m, direction(z, 0.8), kPlasticLambda, {}, o);
       const std::string what = "α " + std::to_string(c.alpha) + " ks " + std::to_string(c.ks) +
                                " z " + std::to_string(z);
       EXPECT_TRUE(r.accepted) << what << "\n" << r.report;
@@ -86,7 +86,7 @@ TEST(PlasticMaterial, Reciprocal) {
     for (MaskingModel mask : {MaskingModel::kSmith, MaskingModel::kVGroove})
       for (float alpha : {0.0f, 0.1f, 0.7f}) {
         const auto m = plastic(0.4, alpha, 0.3f, d, mask);
-        const auto r = bsdfcheck::reciprocity(*m, kLambda, {});
+        const auto r = bsdfcheck::reciprocity(*m, kPlasticLambda, {});
         EXPECT_LT(r.maxRelError, 1e-5) << alpha;
         EXPECT_GT(r.nonZeroPairs, 1000);
         EXPECT_EQ(r.nonFinite, 0);
@@ -100,7 +100,7 @@ TEST(PlasticMaterial, SmoothWhiteFurnaceIsExactlyOne) {
   for (double z : {1.0, 0.5, 1e-3, 1e-6, -0.3}) {
     bsdfcheck::AlbedoOptions o;
     o.sampleCount = 5000;
-    const auto a = bsdfcheck::albedo(*m, direction(z, 0.2), kLambda, {}, o);
+    const auto a = bsdfcheck::albedo(*m, direction(z, 0.2), kPlasticLambda, {}, o);
     EXPECT_EQ(a.nonFinite, 0) << z;
     for (std::size_t c = 0; c < a.mean.size(); ++c) {
       EXPECT_NEAR(a.mean[c], 1.0, 1e-5) << z;
@@ -122,7 +122,7 @@ TEST(PlasticMaterial, RoughWhiteFurnaceConservesEnergy) {
         o.cosThetaBins = 4;
         o.phiBins = 8;
         o.quadratureOptions.minDepth = 4;
-        const auto a = bsdfcheck::albedo(*m, direction(z, 1.1), kLambda, {}, o);
+        const auto a = bsdfcheck::albedo(*m, direction(z, 1.1), kPlasticLambda, {}, o);
         const std::string what = "α " + std::to_string(alpha) + " z " + std::to_string(z);
         std::printf(
             "[measured] plastic ρ 1, ks 0.1, %s α %.2f cosθo %.1f: albedo MC %.4f, quadrature "
@@ -146,14 +146,15 @@ TEST(PlasticMaterial, FiniteAtGrazingAndSharpestLobe) {
         bsdfcheck::AlbedoOptions o;
         o.sampleCount = 4000;
         o.quadrature = false;
-        const auto a = bsdfcheck::albedo(*m, direction(z, 0.4), kLambda, {}, o);
+        const auto a = bsdfcheck::albedo(*m, direction(z, 0.4), kPlasticLambda, {}, o);
         EXPECT_EQ(a.nonFinite, 0) << alpha << " " << z;
         EXPECT_LE(a.mean[0], 1.0 + 5.0 * a.stdErr[0]) << alpha << " " << z;
       }
     }
   const auto black = plastic(0.0, 0.2f, 0.0f);
   EXPECT_FALSE(black->reflects());
-  EXPECT_FALSE(black->sample(direction(0.5, 0.0), 0.5f, {0.5f, 0.5f}, kLambda, {}).has_value());
+  EXPECT_FALSE(
+      black->sample(direction(0.5, 0.0), 0.5f, {0.5f, 0.5f}, kPlasticLambda, {}).has_value());
 }
 
 }  // namespace

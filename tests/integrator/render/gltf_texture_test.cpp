@@ -23,8 +23,8 @@
 namespace camsim {
 namespace {
 
-constexpr int kRes = 24;
-constexpr double kFocal = 0.12, kSensor = 0.024;  // 24 mm film, 120 mm lens, 2 m to the face
+constexpr int kTexRes = 24;
+constexpr double kTexFocal = 0.12, kTexSensor = 0.024;  // 24 mm film, 120 mm lens, 2 m to the face
 
 glm::dvec3 bilinear(const TextureImage& t, double X, double Y) {
   const double fx = X - std::floor(X), fy = Y - std::floor(Y);
@@ -47,7 +47,7 @@ TEST(GltfTexture, CubeFaceShowsItsBaseColourTexels) {
   const std::string yaml =
       "camera: {position: [0, 0, 3], look_at: [0, 0, 0], sensor_width_mm: 24, "
       "sensor_height_mm: 24, focal_length_mm: 120, resolution: [" +
-      std::to_string(kRes) + ", " + std::to_string(kRes) +
+      std::to_string(kTexRes) + ", " + std::to_string(kTexRes) +
       "]}\nrender: {spp: 1024, max_depth: 1, aovs: [albedo]}\n"
       "include:\n  - gltf: Cube/Cube.gltf\n"
       "lights:\n  - {type: point, position: [0, 0, 3], intensity: 1}\n";
@@ -61,16 +61,16 @@ TEST(GltfTexture, CubeFaceShowsItsBaseColourTexels) {
   ASSERT_EQ(png.channels, 3);
   const char* names[3] = {"albedo.R", "albedo.G", "albedo.B"};
   double worst = 0.0, spread = 0.0;
-  for (int py = 0; py < kRes; ++py)
-    for (int px = 0; px < kRes; ++px) {
+  for (int py = 0; py < kTexRes; ++py)
+    for (int px = 0; px < kTexRes; ++px) {
       glm::dvec3 expected(0.0);
       for (int j = 0; j < 16; ++j)
         for (int i = 0; i < 16; ++i) {
           // Image right is world +x, image up world +y; the face is 2 m in front.
-          const double pitch = kSensor / kRes;
-          const double sx = (px + (i + 0.5) / 16.0 - 0.5 * kRes) * pitch;
-          const double sy = (0.5 * kRes - py - (j + 0.5) / 16.0) * pitch;
-          const double x = 2.0 * sx / kFocal, y = 2.0 * sy / kFocal;
+          const double pitch = kTexSensor / kTexRes;
+          const double sx = (px + (i + 0.5) / 16.0 - 0.5 * kTexRes) * pitch;
+          const double sy = (0.5 * kTexRes - py - (j + 0.5) / 16.0) * pitch;
+          const double x = 2.0 * sx / kTexFocal, y = 2.0 * sy / kTexFocal;
           const double u = (x + 1.0) / 2.0, v = (y - 1.0) / 2.0;
           expected += bilinear(png, u * png.width - 0.5, (v - std::floor(v)) * png.height - 0.5);
         }
@@ -131,7 +131,7 @@ TEST(GltfTexture, CubeFaceUnderAUniformSkyReadsItsBaseColour) {
   const std::string yaml =
       "camera: {position: [0, 0, 3], look_at: [0, 0, 0], sensor_width_mm: 24, "
       "sensor_height_mm: 24, focal_length_mm: 120, resolution: [" +
-      std::to_string(kRes) + ", " + std::to_string(kRes) +
+      std::to_string(kTexRes) + ", " + std::to_string(kTexRes) +
       "]}\nrender: {max_depth: 1}\n"
       "include:\n  - gltf: " +
       (data / "Cube/Cube.gltf").string() +
@@ -144,15 +144,16 @@ TEST(GltfTexture, CubeFaceUnderAUniformSkyReadsItsBaseColour) {
   const double e = DielectricSpecularAlbedo::get().albedo(1.0f, 20.0f / 255.0f);
   double sumGot = 0.0, sumExpected = 0.0;
   test::MaxError pixelError;
-  for (int py = 0; py < kRes; ++py)
-    for (int px = 0; px < kRes; ++px) {
+  for (int py = 0; py < kTexRes; ++py)
+    for (int px = 0; px < kTexRes; ++px) {
       double y = 0.0;
       for (int j = 0; j < 16; ++j)
         for (int i = 0; i < 16; ++i) {
-          const double pitch = kSensor / kRes;
-          const double sx = (px + (i + 0.5) / 16.0 - 0.5 * kRes) * pitch;
-          const double sy = (0.5 * kRes - py - (j + 0.5) / 16.0) * pitch;
-          const double u = (2.0 * sx / kFocal + 1.0) / 2.0, v = (2.0 * sy / kFocal - 1.0) / 2.0;
+          const double pitch = kTexSensor / kTexRes;
+          const double sx = (px + (i + 0.5) / 16.0 - 0.5 * kTexRes) * pitch;
+          const double sy = (0.5 * kTexRes - py - (j + 0.5) / 16.0) * pitch;
+          const double u = (2.0 * sx / kTexFocal + 1.0) / 2.0,
+                       v = (2.0 * sy / kTexFocal - 1.0) / 2.0;
           const glm::dvec3 t =
               bilinear(png, u * png.width - 0.5, (v - std::floor(v)) * png.height - 0.5);
           y += 0.2126 * t.r + 0.7152 * t.g + 0.0722 * t.b;

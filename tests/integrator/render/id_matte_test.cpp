@@ -101,7 +101,7 @@ double sumOfCoverages(const Image& a, const std::string& type, int x, int y) {
 
 // The card's edge x = 0 at 0.25 m images at OpenCV column cx (pixel centres at integers);
 // the card covers the image's left (world x < 0).
-constexpr double kPitch = 0.006 / kW, kFocal = 0.02, kCard = 0.25;
+constexpr double kMattePitch = 0.006 / kW, kMatteFocal = 0.02, kCard = 0.25;
 constexpr double kCx = 0.5 * kW - 0.5;
 
 // The card moving +x by 1.5 cm during the shutter at 0.25 m: its edge sweeps
@@ -115,7 +115,7 @@ TEST(IdMattes, MotionBlurredEdgeFollowsTheLinearRamp) {
                     num(sweep) + ", 0, 0]}]");
   const Image a = renderIds(d);
   const float card = cryptomatteId("card"), wall = cryptomatteId("wall");
-  const double e0 = kCx, e1 = kCx + sweep * kFocal / (kCard * kPitch);  // edge column, px
+  const double e0 = kCx, e1 = kCx + sweep * kMatteFocal / (kCard * kMattePitch);  // edge column, px
   ASSERT_GT(e1 - e0, 8.0);
   double worst = 0.0;
   for (int x = 0; x < kW; ++x) {
@@ -162,7 +162,7 @@ TEST(IdMattes, DefocusedEdgeFollowsTheDiscOverlap) {
   const SceneDescription d = edgeScene(", f_number: 1, aperture: {blades: 0}", "");
   const Image a = renderIds(d);
   const float card = cryptomatteId("card");
-  const double radiusPx = 0.5 * (kFocal / 1.0) * kFocal / kCard / kPitch;
+  const double radiusPx = 0.5 * (kMatteFocal / 1.0) * kMatteFocal / kCard / kMattePitch;
   ASSERT_GT(radiusPx, 3.0);
   for (int x = 0; x < kW; ++x) {
     double expected = 0.0;

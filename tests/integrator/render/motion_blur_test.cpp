@@ -30,16 +30,16 @@ namespace {
 
 using test::num;
 
-constexpr double kFocal = 0.050;  // m
-constexpr double kPitch = 20e-6;  // m
-constexpr double kZ = 1.0;        // m, emitter distance
-constexpr double kT = 0.01;       // s, exposure (open 0 → close T)
-constexpr double kV = 2.4;        // m/s: v·T = 24 mm, 60 px
+constexpr double kBlurFocal = 0.050;  // m
+constexpr double kBlurPitch = 20e-6;  // m
+constexpr double kZ = 1.0;            // m, emitter distance
+constexpr double kT = 0.01;           // s, exposure (open 0 → close T)
+constexpr double kV = 2.4;            // m/s: v·T = 24 mm, 60 px
 constexpr double kEmitterPx = 3.0;
 constexpr int kWidth = 80, kHeight = 16;
 
 double pixelsPerMetre() {
-  return kFocal / (kZ * kPitch);
+  return kBlurFocal / (kZ * kBlurPitch);
 }
 
 struct Streak {
@@ -57,9 +57,9 @@ Streak renderStreak(const std::string& shutter, bool cameraMoves, int spp, std::
   }(cameraMoves ? half : -half, cameraMoves ? -half : half);
   const std::string yaml =
       "camera: {position: [0, 0, 0], look_at: [0, 0, 1], sensor_width_mm: " +
-      num(kWidth * kPitch * 1e3) + ", sensor_height_mm: " + num(kHeight * kPitch * 1e3) +
+      num(kWidth * kBlurPitch * 1e3) + ", sensor_height_mm: " + num(kHeight * kBlurPitch * 1e3) +
       ",\n  resolution: [" + std::to_string(kWidth) + ", " + std::to_string(kHeight) +
-      "], focal_length_mm: " + num(kFocal * 1e3) + ",\n  shutter: " + shutter +
+      "], focal_length_mm: " + num(kBlurFocal * 1e3) + ",\n  shutter: " + shutter +
       (cameraMoves ? ",\n  motion: " + keys : std::string()) +
       "}\n"
       "render: {max_depth: 0}\n"

@@ -20,10 +20,10 @@ namespace {
 
 using test::num;
 
-constexpr int kRes = 32;
+constexpr int kFieldRes = 32;
 constexpr double kRate = 10.0, kDt = 1.0 / kRate;
 // fx = f / pitch = 20 mm / (24 mm / 32) px.
-constexpr double kFx = 0.020 / (0.024 / kRes), kC = 0.5 * kRes - 0.5;
+constexpr double kFx = 0.020 / (0.024 / kFieldRes), kC = 0.5 * kFieldRes - 0.5;
 
 // Frames at 10 Hz with a 3.6° shutter (1 ms: little blur within a frame); the camera looks
 // along −z with +y up, so image right is world +x and image down is world −y.
@@ -31,7 +31,7 @@ SceneDescription scene(const std::string& shapes, const std::string& camera = ""
                        const std::string& aovs = "[motion, depth]") {
   const std::string text =
       "camera: {position: [0, 0, 0], look_at: [0, 0, -1], up: [0, 1, 0], resolution: [" +
-      std::to_string(kRes) + ", " + std::to_string(kRes) +
+      std::to_string(kFieldRes) + ", " + std::to_string(kFieldRes) +
       "], sensor_width_mm: 24, sensor_height_mm: 24, focal_length_mm: 20" + camera +
       "}\n"
       "render: {spp: 64, max_depth: 1, aovs: " +
@@ -56,7 +56,7 @@ Image renderFrame(const SceneDescription& d, int k, int threads = 0) {
   return render(Scene(f), SpectralResponse::cieXyz(), o).aovs;
 }
 
-double at(const Image& im, int x, int y, const char* channel) {
+double flowAt(const Image& im, int x, int y, const char* channel) {
   return static_cast<double>(im.at(x, y, im.channelIndex(channel)));
 }
 
@@ -74,14 +74,14 @@ TEST(MotionField, TranslatingPlane) {
                                    num(v) + ", 0, 0]}]}\n");
   const Image a = renderFrame(d, 1);
   const double shift = kFx * v * kDt / 2.0;
-  for (int y = 0; y < kRes; ++y)
-    for (int x = 0; x < kRes; ++x) {
-      ASSERT_NEAR(at(a, x, y, "motion_fw.X"), shift, 1e-4) << x << "," << y;
-      ASSERT_NEAR(at(a, x, y, "motion_fw.Y"), 0.0, 1e-4);
-      ASSERT_NEAR(at(a, x, y, "motion_bw.X"), -shift, 1e-4);
-      ASSERT_NEAR(at(a, x, y, "flow_fw.X"), v * kDt, 1e-6);
-      ASSERT_NEAR(at(a, x, y, "flow_fw.Z"), 0.0, 1e-6);
-      ASSERT_NEAR(at(a, x, y, "flow_bw.X"), -v * kDt, 1e-6);
+  for (int y = 0; y < kFieldRes; ++y)
+    for (int x = 0; x < kFieldRes; ++x) {
+      ASSERT_NEAR(flowAt(a, x, y, "motion_fw.X"), shift, 1e-4) << x << "," << y;
+      ASSERT_NEAR(flowAt(a, x, y, "motion_fw.Y"), 0.0, 1e-4);
+      ASSERT_NEAR(flowAt(a, x, y, "motion_bw.X"), -shift, 1e-4);
+      ASSERT_NEAR(flowAt(a, x, y, "flow_fw.X"), v * kDt, 1e-6);
+      ASSERT_NEAR(flowAt(a, x, y, "flow_fw.Z"), 0.0, 1e-6);
+      ASSERT_NEAR(flowAt(a, x, y, "flow_bw.X"), -v * kDt, 1e-6);
     }
 }
 
@@ -102,18 +102,18 @@ TEST(MotionField, SpinningPlane) {
   const Image a = renderFrame(d, 1);
   const double th = omega * kDt, c = std::cos(th), s = std::sin(th);
   double worst = 0.0;
-  for (int y = 0; y < kRes; ++y)
-    for (int x = 0; x < kRes; ++x) {
+  for (int y = 0; y < kFieldRes; ++y)
+    for (int x = 0; x < kFieldRes; ++x) {
       const double qx = x - kC, qy = y - kC;
       // World rotation by +θ about +z is, in image axes (x right, y down), a rotation by −θ.
       const double ex = (c * qx + s * qy) - qx, ey = (-s * qx + c * qy) - qy;
-      const double err = std::max(std::abs(at(a, x, y, "motion_fw.X") - ex),
-                                  std::abs(at(a, x, y, "motion_fw.Y") - ey));
+      const double err = std::max(std::abs(flowAt(a, x, y, "motion_fw.X") - ex),
+                                  std::abs(flowAt(a, x, y, "motion_fw.Y") - ey));
       worst = std::max(worst, err);
       ASSERT_LT(err, 0.02) << x << "," << y << ": expected " << ex << ", " << ey;
       const double bx = (c * qx - s * qy) - qx, by = (s * qx + c * qy) - qy;
-      ASSERT_NEAR(at(a, x, y, "motion_bw.X"), bx, 0.02);
-      ASSERT_NEAR(at(a, x, y, "motion_bw.Y"), by, 0.02);
+      ASSERT_NEAR(flowAt(a, x, y, "motion_bw.X"), bx, 0.02);
+      ASSERT_NEAR(flowAt(a, x, y, "motion_bw.Y"), by, 0.02);
     }
   std::printf("spinning plane: worst forward-vector error %.4f px\n", worst);
 }
@@ -128,15 +128,15 @@ TEST(MotionField, MovingCamera) {
             "[motion, depth, normal]");
   const Image a = renderFrame(d, 1);
   const double shift = kFx * 0.05 / 2.0;
-  for (int y = 0; y < kRes; ++y)
-    for (int x = 0; x < kRes; ++x) {
-      ASSERT_NEAR(at(a, x, y, "motion_fw.X"), -shift, 1e-4);
-      ASSERT_NEAR(at(a, x, y, "motion_bw.X"), shift, 1e-4);
-      ASSERT_NEAR(at(a, x, y, "motion_fw.Y"), 0.0, 1e-4);
-      ASSERT_EQ(at(a, x, y, "flow_fw.X"), 0.0);
+  for (int y = 0; y < kFieldRes; ++y)
+    for (int x = 0; x < kFieldRes; ++x) {
+      ASSERT_NEAR(flowAt(a, x, y, "motion_fw.X"), -shift, 1e-4);
+      ASSERT_NEAR(flowAt(a, x, y, "motion_bw.X"), shift, 1e-4);
+      ASSERT_NEAR(flowAt(a, x, y, "motion_fw.Y"), 0.0, 1e-4);
+      ASSERT_EQ(flowAt(a, x, y, "flow_fw.X"), 0.0);
       // The camera moves: its axes per sample. The plane faces it: −z in OpenCV axes.
-      ASSERT_NEAR(at(a, x, y, "Ng_cam.Z"), -1.0, 1e-6);
-      ASSERT_NEAR(at(a, x, y, "Ng_cam.X"), 0.0, 1e-6);
+      ASSERT_NEAR(flowAt(a, x, y, "Ng_cam.Z"), -1.0, 1e-6);
+      ASSERT_NEAR(flowAt(a, x, y, "Ng_cam.X"), 0.0, 1e-6);
     }
 }
 
@@ -158,14 +158,14 @@ TEST(MotionField, ReprojectionAgreesWithForwardVectors) {
   const glm::dmat4 pose = camera.worldFromCameraAt(t1);
   double worst = 0.0;
   int checked = 0;
-  for (int y = 1; y + 1 < kRes; ++y)
-    for (int x = 1; x + 1 < kRes; ++x) {
+  for (int y = 1; y + 1 < kFieldRes; ++y)
+    for (int x = 1; x + 1 < kFieldRes; ++x) {
       // Skip the silhouette: pixels whose depth differs from a neighbour's by over 5 %.
-      const double z = at(a, x, y, "depth.Z");
+      const double z = flowAt(a, x, y, "depth.Z");
       bool edge = false;
       for (int dy = -1; dy <= 1; ++dy)
         for (int dx = -1; dx <= 1; ++dx)
-          edge = edge || std::abs(at(a, x + dx, y + dy, "depth.Z") - z) > 0.05 * z;
+          edge = edge || std::abs(flowAt(a, x + dx, y + dy, "depth.Z") - z) > 0.05 * z;
       if (edge) continue;
       // OpenCV back-projection: camera axes x right, y down, z forward.
       const glm::dvec3 cv((x - k.z) / k.x * z, (y - k.w) / k.y * z, z);
@@ -173,13 +173,13 @@ TEST(MotionField, ReprojectionAgreesWithForwardVectors) {
                                cv.y * glm::dvec3(pose[1]) + cv.z * glm::dvec3(pose[2]);
       const std::optional<glm::dvec2> q = camera.project(world, t2);
       ASSERT_TRUE(q);
-      const double err = std::max(std::abs(q->x - x - at(a, x, y, "motion_fw.X")),
-                                  std::abs(q->y - y - at(a, x, y, "motion_fw.Y")));
+      const double err = std::max(std::abs(q->x - x - flowAt(a, x, y, "motion_fw.X")),
+                                  std::abs(q->y - y - flowAt(a, x, y, "motion_fw.Y")));
       worst = std::max(worst, err);
       ++checked;
       EXPECT_LT(err, 0.05) << x << "," << y;
     }
-  EXPECT_GT(checked, kRes * kRes / 2);
+  EXPECT_GT(checked, kFieldRes * kFieldRes / 2);
   std::printf("reprojection: %d pixels, worst %.4f px\n", checked, worst);
 }
 

@@ -24,7 +24,7 @@ namespace {
 
 const glm::dvec3 kCamera(0.0, 0.0, 5.0);  // the render origin
 
-SceneDescription load(const std::filesystem::path& dir, const std::string& entry = "") {
+SceneDescription loadAnimated(const std::filesystem::path& dir, const std::string& entry = "") {
   return loadSceneFromText(
       "camera: {position: [0, 0, 5], look_at: [0, 0, 0]}\n"
       "include:\n  - gltf: anim.gltf\n" +
@@ -76,7 +76,7 @@ TEST(GltfAnimation, RotatingChildOfATranslatingParentFollowsBothChains) {
                          R"("scenes":[{"nodes":[0]}],"animations":[{"samplers":[)" +
                          sampler(ti, tv) + "," + sampler(ri, ro) + R"(],"channels":[)" +
                          channel(0, 0, "translation") + "," + channel(1, 1, "rotation") + "]}]"));
-  const SceneDescription s = load(dir.path());
+  const SceneDescription s = loadAnimated(dir.path());
   ASSERT_EQ(s.shapes.size(), 1u);
   const RigidMotion& m = s.shapes[0].motion;
   ASSERT_FALSE(m.empty());
@@ -121,7 +121,7 @@ TEST(GltfAnimation, ChildOfARotatingParentSwingsOnTheArc) {
                          R"("animations":[{"samplers":[)" +
                          sampler(times, rot) + "," + sampler(times, z) + R"(],"channels":[)" +
                          channel(0, 0, "rotation") + "," + channel(1, 1, "translation") + "]}]"));
-  const SceneDescription s = load(dir.path());
+  const SceneDescription s = loadAnimated(dir.path());
   const RigidMotion& m = s.shapes[0].motion;
   EXPECT_GT(m.keys().size(), 2u);  // samples were added between the keys
   double worst = 0.0;
@@ -153,7 +153,7 @@ TEST(GltfAnimation, AllAnimationsPlayByDefaultAndTheSceneCanChoose) {
              R"(]},{"name":"second","samplers":[)" + sampler(times, move) + R"(],"channels":[)" +
              channel(0, 1, "translation") + "]}]"));
   auto moving = [&](const std::string& entry) {
-    const SceneDescription s = load(dir.path(), entry);
+    const SceneDescription s = loadAnimated(dir.path(), entry);
     std::string out;
     for (const ShapeDescription& shape : s.shapes)
       out += shape.motion.empty() ? "-"
@@ -167,7 +167,7 @@ TEST(GltfAnimation, AllAnimationsPlayByDefaultAndTheSceneCanChoose) {
   EXPECT_EQ(moving("    animation: [second, 0]\n"), "MM");
   EXPECT_EQ(moving("    animation: none\n"), "--");
   try {
-    load(dir.path(), "    animation: third\n");
+    loadAnimated(dir.path(), "    animation: third\n");
     FAIL() << "loaded";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("no animation 'third'"), std::string::npos) << e.what();
@@ -189,7 +189,7 @@ TEST(GltfAnimation, TheFirstOfTwoAnimationsOfOneNodeWins) {
                          sampler(times, up) + R"(],"channels":[)" + channel(0, 0, "translation") +
                          R"(]},{"samplers":[)" + sampler(times, down) + R"(],"channels":[)" +
                          channel(0, 0, "translation") + "]}]"));
-  const SceneDescription s = load(dir.path());
+  const SceneDescription s = loadAnimated(dir.path());
   EXPECT_NEAR(s.shapes[0].motion.at(1.0)[3].y, 3.0, 1e-12);
   bool noted = false;
   for (const std::string& n : s.notes)

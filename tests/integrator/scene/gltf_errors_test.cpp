@@ -19,7 +19,6 @@ namespace camsim {
 namespace {
 
 namespace fs = std::filesystem;
-const fs::path kData = fs::path(CAMSIM_TEST_DATA_DIR) / "gltf";
 
 struct Refusal {
   std::string file, key, message;
@@ -50,7 +49,7 @@ std::string readBytes(const fs::path& f) {
 }
 
 TEST(GltfErrors, BoundsCheckingFilesNameTheirJsonPath) {
-  const fs::path dir = kData / "BoundsChecking";
+  const fs::path dir = test::kGltfData / "BoundsChecking";
   const struct {
     const char* file;
     const char* key;
@@ -73,7 +72,7 @@ TEST(GltfErrors, BoundsCheckingFilesNameTheirJsonPath) {
 }
 
 TEST(GltfErrors, TruncatedGlb) {
-  const std::string bytes = readBytes(kData / "box01.glb");
+  const std::string bytes = readBytes(test::kGltfData / "box01.glb");
   for (size_t keep : {size_t(3), size_t(19), bytes.size() / 2, bytes.size() - 1}) {
     const fs::path f = scratch("glb") / "cut.glb";
     test::writeText(f, bytes.substr(0, keep));
@@ -85,12 +84,12 @@ TEST(GltfErrors, TruncatedGlb) {
 
 TEST(GltfErrors, MissingBinAndMissingTexture) {
   const fs::path dir = scratch("missing");
-  fs::copy_file(kData / "Cube/Cube.gltf", dir / "Cube.gltf");
+  fs::copy_file(test::kGltfData / "Cube/Cube.gltf", dir / "Cube.gltf");
   Refusal r = refusal(dir / "Cube.gltf");
   EXPECT_EQ(r.key, "buffers[0].uri");
   EXPECT_NE(r.message.find("Cube.bin' not found"), std::string::npos) << r.message;
-  fs::copy_file(kData / "Cube/Cube.bin", dir / "Cube.bin");
-  fs::copy_file(kData / "Cube/Cube_BaseColor.png", dir / "Cube_BaseColor.png");
+  fs::copy_file(test::kGltfData / "Cube/Cube.bin", dir / "Cube.bin");
+  fs::copy_file(test::kGltfData / "Cube/Cube_BaseColor.png", dir / "Cube_BaseColor.png");
   r = refusal(dir / "Cube.gltf");
   EXPECT_EQ(r.key, "images[1].uri");
   EXPECT_NE(r.message.find("Cube_MetallicRoughness.png' not found"), std::string::npos)
@@ -99,9 +98,9 @@ TEST(GltfErrors, MissingBinAndMissingTexture) {
 
 TEST(GltfErrors, CorruptImageIsRefused) {
   const fs::path dir = scratch("corrupt");
-  fs::copy_file(kData / "Cube/Cube.gltf", dir / "Cube.gltf");
-  fs::copy_file(kData / "Cube/Cube.bin", dir / "Cube.bin");
-  fs::copy_file(kData / "Cube/Cube_BaseColor.png", dir / "Cube_BaseColor.png");
+  fs::copy_file(test::kGltfData / "Cube/Cube.gltf", dir / "Cube.gltf");
+  fs::copy_file(test::kGltfData / "Cube/Cube.bin", dir / "Cube.bin");
+  fs::copy_file(test::kGltfData / "Cube/Cube_BaseColor.png", dir / "Cube_BaseColor.png");
   test::writeText(dir / "Cube_MetallicRoughness.png", "not a png");
   const Refusal r = refusal(dir / "Cube.gltf");
   EXPECT_EQ(r.key, "images[1]");

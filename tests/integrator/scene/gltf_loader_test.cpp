@@ -21,14 +21,12 @@
 namespace camsim {
 namespace {
 
-const std::filesystem::path kData = std::filesystem::path(CAMSIM_TEST_DATA_DIR) / "gltf";
-
 std::string sceneWith(const std::string& include,
                       const std::string& camera = "  position: [0, 0, 5]\n  look_at: [0, 0, 0]\n") {
   return "camera:\n" + camera + "  resolution: [64, 48]\ninclude:\n" + include;
 }
 
-SceneDescription load(const std::string& yaml, const std::filesystem::path& dir = kData) {
+SceneDescription load(const std::string& yaml, const std::filesystem::path& dir = test::kGltfData) {
   return loadSceneFromText(yaml, "test.yaml", dir);
 }
 

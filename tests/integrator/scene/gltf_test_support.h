@@ -8,11 +8,15 @@
 
 #include <cstdint>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <string>
 #include <vector>
 
 namespace camsim::test {
+
+// The glTF files of tests/data/gltf.
+inline const std::filesystem::path kGltfData = std::filesystem::path(CAMSIM_TEST_DATA_DIR) / "gltf";
 
 class GltfBuilder {
  public:

@@ -36,7 +36,7 @@ std::string quadAndTriangle(const std::vector<std::uint8_t>& quadColours) {
 const std::vector<std::uint8_t> kColours = {255, 0, 0,   255, 0,   255, 0,  255,
                                             0,   0, 255, 255, 204, 51,  26, 255};
 
-SceneDescription load(const std::filesystem::path& dir, const std::string& camera) {
+SceneDescription loadColoured(const std::filesystem::path& dir, const std::string& camera) {
   return loadSceneFromText(
       "camera: {" + camera + "}\ninclude:\n  - gltf: colours.gltf\n" +
           "lights:\n  - {type: point, position: [0.5, 0.5, 3], intensity: 1}\n",
@@ -46,7 +46,7 @@ SceneDescription load(const std::filesystem::path& dir, const std::string& camer
 TEST(GltfVertexColors, ReadAsStoredAndClamped) {
   test::TempDir dir;
   test::writeText(dir.path() / "colours.gltf", quadAndTriangle(kColours));
-  const SceneDescription s = load(dir.path(), "position: [0, 0, 5], look_at: [0, 0, 0]");
+  const SceneDescription s = loadColoured(dir.path(), "position: [0, 0, 5], look_at: [0, 0, 0]");
   ASSERT_EQ(s.shapes.size(), 2u);
   const std::vector<glm::vec3>& quad = s.shapes[0].mesh.colors;
   ASSERT_EQ(quad.size(), 4u);
@@ -66,7 +66,7 @@ TEST(GltfVertexColors, ReadAsStoredAndClamped) {
 TEST(GltfVertexColors, HitBlendsTheVerticesUpliftedColours) {
   test::TempDir dir;
   test::writeText(dir.path() / "colours.gltf", quadAndTriangle(kColours));
-  const SceneDescription d = load(dir.path(), "position: [0, 0, 5], look_at: [0, 0, 0]");
+  const SceneDescription d = loadColoured(dir.path(), "position: [0, 0, 5], look_at: [0, 0, 0]");
   const Scene scene(d);
   Ray ray{glm::vec3(0.3f, 0.2f, 0.0f), glm::vec3(0.0f, 0.0f, -1.0f),
           std::numeric_limits<float>::infinity(), 0.0f};  // render space: the camera at 0
@@ -95,9 +95,10 @@ TEST(GltfVertexColors, AlbedoAovShowsTheColour) {
   std::vector<std::uint8_t> one;
   for (int v = 0; v < 4; ++v) one.insert(one.end(), {204, 77, 26, 255});
   test::writeText(dir.path() / "colours.gltf", quadAndTriangle(one));
-  SceneDescription d = load(dir.path(),
-                            "position: [0.5, 0.5, 3], look_at: [0.5, 0.5, 0], sensor_width_mm: 24, "
-                            "sensor_height_mm: 24, focal_length_mm: 120, resolution: [8, 8]");
+  SceneDescription d =
+      loadColoured(dir.path(),
+                   "position: [0.5, 0.5, 3], look_at: [0.5, 0.5, 0], sensor_width_mm: 24, "
+                   "sensor_height_mm: 24, focal_length_mm: 120, resolution: [8, 8]");
   d.render.spp = 256;
   d.render.maxDepth = 1;
   d.render.aovs = {Aov::kAlbedo};
@@ -122,7 +123,7 @@ TEST(GltfVertexColors, MeshWithoutColoursHasNone) {
   test::writeText(dir.path() / "colours.gltf",
                   b.json(R"("meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],)"
                          R"("nodes":[{"mesh":0}],"scenes":[{"nodes":[0]}])"));
-  const Scene scene(load(dir.path(), "position: [0, 0, 5], look_at: [0, 0, 0]"));
+  const Scene scene(loadColoured(dir.path(), "position: [0, 0, 5], look_at: [0, 0, 0]"));
   Ray ray{glm::vec3(0.2f, 0.2f, 0.0f), glm::vec3(0.0f, 0.0f, -1.0f),
           std::numeric_limits<float>::infinity(), 0.0f};
   Hit hit;

@@ -18,7 +18,7 @@ namespace camsim {
 namespace {
 
 const std::string kHeader = "format: camsim-scene/1\nrender: {spp: 4, max_depth: 3}\n";
-const std::string kCamera =
+const std::string kLimitsCamera =
     "camera: {position: [0, 0, 5], look_at: [0, 0, 0], resolution: [16, 16]}\n";
 const std::string kSun = "lights: [{type: distant, direction: [0, 0, -1], illuminance: 1000}]\n";
 const std::string kMaterial = "materials: {m: {type: diffuse, reflectance: 0.5}}\n";
@@ -58,22 +58,22 @@ std::vector<Case> cases() {
            kSun + kMaterial + "shapes:\n" + kBall,
        "camera.motion[1].translate", 4},
       {"bulb_1e-7",
-       kHeader + kCamera + kMaterial + "shapes:\n" + kBall +
+       kHeader + kLimitsCamera + kMaterial + "shapes:\n" + kBall +
            "  - {type: sphere, centre: [0, 2, 0], radius: 1e-7, material: m, "
            "emission: {luminance: 1e12}}\n",
        "", 0},
       {"bulb_1e-18",
-       kHeader + kCamera + kMaterial + "shapes:\n" + kBall +
+       kHeader + kLimitsCamera + kMaterial + "shapes:\n" + kBall +
            "  - {type: sphere, centre: [0, 2, 0], radius: 1e-18, material: m, "
            "emission: {luminance: 1000}}\n",
        "shapes[1].radius", 7},
       {"rectangle_light_huge",
-       kHeader + kCamera + kMaterial + "shapes:\n" + kBall +
+       kHeader + kLimitsCamera + kMaterial + "shapes:\n" + kBall +
            "  - {type: rectangle, corner: [0, 3, 0], edge_u: [9.2e18, 0, 0], edge_v: [0, 0, 1], "
            "material: m, emission: {luminance: 1000}}\n",
        "shapes[1].edge_u", 7},
       {"checks_denormal",
-       kHeader + kCamera + kSun +
+       kHeader + kLimitsCamera + kSun +
            "materials: {m: {type: diffuse, reflectance: {checkerboard: {a: 0.8, b: 0.1, checks: "
            "5e-324}}}}\n"
            "shapes:\n" +
@@ -87,13 +87,13 @@ std::vector<Case> cases() {
            "{luminance: 1000}}\n",
        "shapes[0].radius", 6},
       {"sun_disc_tiny",
-       kHeader + kCamera +
+       kHeader + kLimitsCamera +
            "lights: [{type: distant, direction: [0, -1, -1], illuminance: 1000, "
            "angular_diameter: 1e-30}]\n" +
            kMaterial + "shapes:\n" + kBall,
        "lights[0].angular_diameter", 4},
       {"sun_disc_small",
-       kHeader + kCamera +
+       kHeader + kLimitsCamera +
            "lights: [{type: distant, direction: [0, -1, -1], illuminance: "
            "1000, angular_diameter: 0.001}]\n" +
            kMaterial + "shapes:\n" + kBall,
@@ -145,9 +145,9 @@ TEST(SceneLimits, ScaledShapesAreCheckedPerShape) {
   };
   for (const auto& [shape, message] : shapes) {
     try {
-      const Scene scene(
-          loadSceneFromText(kHeader + kCamera + kSun + kMaterial + "shapes:\n" + kBall + shape,
-                            "scaled.yaml", dir.path()));
+      const Scene scene(loadSceneFromText(
+          kHeader + kLimitsCamera + kSun + kMaterial + "shapes:\n" + kBall + shape, "scaled.yaml",
+          dir.path()));
       ADD_FAILURE() << "built: " << shape;
     } catch (const InputError& e) {
       EXPECT_EQ(e.key(), "shapes[1]") << e.what();
@@ -167,14 +167,14 @@ TEST(SceneLimits, SmallestSphereRadiusBuilds) {
       "  - {type: sphere, centre: [0, 2, 2], radius: 1e-9, material: m, emission: {luminance: "
       "1e6}}\n";
   const Scene scene(loadSceneFromText(
-      kHeader + kCamera + kSun + kMaterial + "shapes:\n" + kBall + tiny, "tiny.yaml", "."));
+      kHeader + kLimitsCamera + kSun + kMaterial + "shapes:\n" + kBall + tiny, "tiny.yaml", "."));
   RenderOptions options;
   options.spp = 1;
   const RenderResult r = render(scene, SpectralResponse::cieXyz(), options);
   for (float v : r.image.pixels) ASSERT_TRUE(std::isfinite(v));
   try {
     const Scene halved(loadSceneFromText(
-        kHeader + kCamera + kSun + kMaterial + "shapes:\n" + kBall +
+        kHeader + kLimitsCamera + kSun + kMaterial + "shapes:\n" + kBall +
             "  - {type: sphere, centre: [0, 2, 2], radius: 1e-9, material: m, motion: [{time: 0, "
             "scale: 0.5}]}\n",
         "tiny.yaml", "."));
@@ -194,7 +194,8 @@ TEST(SceneLimits, SmallestSphereRadiusBuilds) {
 TEST(SceneLimits, TinyBulbLightsLikeItsPointLight) {
   const auto imageSum = [](const std::string& lights, const std::string& shapes) {
     const Scene scene(loadSceneFromText(
-        kHeader + kCamera + kMaterial + lights + "shapes:\n" + kBall + shapes, "bulb.yaml", "."));
+        kHeader + kLimitsCamera + kMaterial + lights + "shapes:\n" + kBall + shapes, "bulb.yaml",
+        "."));
     RenderOptions options;
     options.spp = 64;
     const RenderResult r = render(scene, SpectralResponse::cieXyz(), options);
@@ -280,7 +281,7 @@ TEST(SceneLimits, TableErrorsNameTheSceneKeyThatNamedTheFile) {
   const test::TempDir dir;
   test::writeFile(dir.path() / "notes.csv", "hello world\nthis is not, a table\n");
   const InputError e = errorOf([&] {
-    loadSceneFromText(kHeader + kCamera + kSun +
+    loadSceneFromText(kHeader + kLimitsCamera + kSun +
                           "materials: {m: {type: diffuse, reflectance: {csv: notes.csv}}}\n"
                           "shapes:\n" +
                           kBall,
@@ -296,7 +297,7 @@ TEST(SceneLimits, TableErrorsNameTheSceneKeyThatNamedTheFile) {
   // Likewise a sensor file that is not a sensor description.
   test::writeFile(dir.path() / "notes.yaml", "format: camsim-sensor/1\nhello: 1\n");
   const InputError s = errorOf([&] {
-    loadSceneFromText(kHeader + kCamera + "sensor: {model: notes.yaml}\n" + kSun + kMaterial +
+    loadSceneFromText(kHeader + kLimitsCamera + "sensor: {model: notes.yaml}\n" + kSun + kMaterial +
                           "shapes:\n" + kBall,
                       "sensor.yaml", dir.path());
   });

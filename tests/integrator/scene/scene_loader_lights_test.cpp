@@ -26,7 +26,7 @@ using test::TempDir;
 constexpr double kDeg = M_PI / 180.0;
 
 // Lines 1–4; the light is on line 5.
-const std::string kPrefix =
+const std::string kLightPrefix =
     "camera: {position: [0, 1, 0], look_at: [0, 0, 0], up: [0, 0, 1]}\n"
     "materials: {m: {type: diffuse}}\n"
     "shapes: [{type: sphere, centre: [0, 0, 0], radius: 1, material: m}]\n"
@@ -34,7 +34,7 @@ const std::string kPrefix =
 
 LightDescription loadLight(const std::string& light, const std::filesystem::path& dir = ".") {
   const SceneDescription scene =
-      loadSceneFromText(kPrefix + "  - " + light + "\n", "test.yaml", dir);
+      loadSceneFromText(kLightPrefix + "  - " + light + "\n", "test.yaml", dir);
   EXPECT_EQ(scene.lights.size(), 1u);
   return scene.lights.at(0);
 }
@@ -45,7 +45,7 @@ void expectError(const std::string& light, const std::string& token, const std::
                  const std::string& message, const std::filesystem::path& dir = ".") {
   const std::string line = "  - " + light;
   try {
-    loadSceneFromText(kPrefix + line + "\n", "test.yaml", dir);
+    loadSceneFromText(kLightPrefix + line + "\n", "test.yaml", dir);
     ADD_FAILURE() << "no error for: " << light;
   } catch (const InputError& e) {
     EXPECT_EQ(e.where().file, "test.yaml");

@@ -13,22 +13,13 @@
 #include "sensor/base/input_error.h"
 #include "sensor/io/exr_io.h"
 #include "tests/integrator/texture_test_support.h"
+#include "tests/support/scene_text.h"
 #include "tests/support/temp_dir.h"
 
 namespace camsim {
 namespace {
 
 using test::TempDir;
-
-// Line 3 holds the material `m`; its value starts at column 6.
-std::string scene(const std::string& material) {
-  return "camera: {position: [0, 0, -1], look_at: [0, 0, 0]}\n"  // 1
-         "materials:\n"                                          // 2
-         "  m: " +
-         material +
-         "\n"  // 3
-         "shapes: [{type: sphere, centre: [0, 0, 0], radius: 1, material: m}]\n";
-}
 
 class MaterialScene : public ::testing::Test {
  protected:
@@ -43,7 +34,8 @@ class MaterialScene : public ::testing::Test {
     writeExr(dir_.path() / "normal.exr", normal, {}, std::nullopt);
   }
   MaterialDescription load(const std::string& material) {
-    return loadSceneFromText(scene(material), "test.yaml", dir_.path()).materials.at(0);
+    return loadSceneFromText(test::materialScene(material), "test.yaml", dir_.path())
+        .materials.at(0);
   }
   void expectError(const std::string& material, int column, const std::string& key,
                    const std::string& message) {
@@ -110,8 +102,9 @@ TEST_F(MaterialScene, MetallicRoughnessKeys) {
 
   // Released images are read again from the files (and the scene still builds).
   SceneDescription released = loadSceneFromText(
-      scene("{type: metallic_roughness, metallic: {texture: mr.png, channel: 2}, normal_map: "
-            "{texture: normal.exr}}"),
+      test::materialScene(
+          "{type: metallic_roughness, metallic: {texture: mr.png, channel: 2}, normal_map: "
+          "{texture: normal.exr}}"),
       "test.yaml", dir_.path());
   released.releaseDecodedImages();
   EXPECT_FALSE(released.materials.at(0).metallic.image);

@@ -32,7 +32,7 @@ using Type = MaterialDescription::Type;
 const fs::path kData = fs::path(CAMSIM_TEST_DATA_DIR) / "obj_mtl";
 
 // Line 4 is the shape; `materials` (line 2) may hold the scene's own.
-std::string scene(const std::string& shape, const std::string& materials = "{}") {
+std::string mtlScene(const std::string& shape, const std::string& materials = "{}") {
   return "camera: {position: [0, 0, 5], look_at: [0, 0, 0]}\n"  // 1
          "materials: " +
          materials +
@@ -41,7 +41,7 @@ std::string scene(const std::string& shape, const std::string& materials = "{}")
          shape + "\n";  // 4
 }
 
-SceneDescription load(const std::string& text, const fs::path& dir = kData) {
+SceneDescription loadMtl(const std::string& text, const fs::path& dir = kData) {
   return loadSceneFromText(text, "mtl.yaml", dir);
 }
 
@@ -58,7 +58,7 @@ bool hasNote(const SceneDescription& d, const std::string& text) {
 }
 
 TEST(SceneLoaderMtlTest, MapsTheDocumentedFields) {
-  const SceneDescription d = load(scene("{type: mesh, file: quads.obj, name: quads}"));
+  const SceneDescription d = loadMtl(mtlScene("{type: mesh, file: quads.obj, name: quads}"));
   ASSERT_EQ(d.materials.size(), 5u);  // in first-use order; `unused` is not imported
   const std::vector<std::string> names = {"quads.obj:red", "quads.obj:shiny", "quads.obj:glass",
                                           "quads.obj:textured", "quads.obj:water"};
@@ -108,7 +108,8 @@ TEST(SceneLoaderMtlTest, MapsTheDocumentedFields) {
 }
 
 TEST(SceneLoaderMtlTest, SplitsTheMeshIntoOneShapePerMaterial) {
-  const SceneDescription d = load(scene("{type: mesh, file: quads.obj, name: quads, class: 3}"));
+  const SceneDescription d =
+      loadMtl(mtlScene("{type: mesh, file: quads.obj, name: quads, class: 3}"));
   ASSERT_EQ(d.shapes.size(), 5u);
   const std::vector<std::string> labels = {"quads/red", "quads/shiny", "quads/glass",
                                            "quads/textured", "quads/water"};
@@ -128,7 +129,7 @@ TEST(SceneLoaderMtlTest, SplitsTheMeshIntoOneShapePerMaterial) {
 }
 
 TEST(SceneLoaderMtlTest, IgnoredStatementsBecomeNotesNamingFileLineAndKey) {
-  const SceneDescription d = load(scene("{type: mesh, file: quads.obj}"));
+  const SceneDescription d = loadMtl(mtlScene("{type: mesh, file: quads.obj}"));
   const std::string mtl = (kData / "quads.mtl").string();
   for (const std::string& n : d.notes) EXPECT_EQ(n.rfind(mtl + " line ", 0), 0u) << n;
   EXPECT_TRUE(hasNote(d, mtl + " line 4: 'Ka' ignored: camsim has no ambient term."));
@@ -146,8 +147,8 @@ TEST(SceneLoaderMtlTest, AGivenMaterialOverridesTheFileAndNeedsNoMtl) {
   TempDir dir;
   writeFile(dir.path() / "a.obj",
             "mtllib missing.mtl\nusemtl nowhere\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
-  const SceneDescription d = load(
-      scene("{type: mesh, file: a.obj, material: grey}", "{grey: {type: diffuse}}"), dir.path());
+  const SceneDescription d = loadMtl(
+      mtlScene("{type: mesh, file: a.obj, material: grey}", "{grey: {type: diffuse}}"), dir.path());
   ASSERT_EQ(d.shapes.size(), 1u);
   EXPECT_EQ(d.shapes[0].material, 0);
   EXPECT_EQ(d.materials.size(), 1u);
@@ -156,7 +157,7 @@ TEST(SceneLoaderMtlTest, AGivenMaterialOverridesTheFileAndNeedsNoMtl) {
 }
 
 TEST(SceneLoaderMtlTest, TwoShapesOfOneFileShareItsMaterials) {
-  const SceneDescription d = load(
+  const SceneDescription d = loadMtl(
       "camera: {position: [0, 0, 5], look_at: [0, 0, 0]}\nshapes:\n"
       "  - {type: mesh, file: quads.obj}\n  - {type: mesh, file: quads.obj, translate: [0, 2, "
       "0]}\n");
@@ -175,7 +176,7 @@ TEST(SceneLoaderMtlTest, ReadsEveryLibraryOfEveryMtllibLine) {
   writeFile(dir.path() / "m.obj",
             "mtllib a.mtl b.mtl\nmtllib my lib.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\n"
             "usemtl x\nf 1 2 3\nusemtl y\nf 1 3 2\nusemtl z\nf 2 1 3\n");
-  const SceneDescription d = load(scene("{type: mesh, file: m.obj}"), dir.path());
+  const SceneDescription d = loadMtl(mtlScene("{type: mesh, file: m.obj}"), dir.path());
   ASSERT_EQ(d.materials.size(), 3u);
   const auto rgb = [&](int i) {
     return reflectanceToRgb(d.materials[i].reflectance.value, RgbColorSpace::linearRec709());
@@ -189,7 +190,7 @@ TEST(SceneLoaderMtlTest, ReadsEveryLibraryOfEveryMtllibLine) {
 void expectLoadError(const fs::path& dir, const std::string& text, const fs::path& file, int line,
                      const std::string& what) {
   try {
-    load(text, dir);
+    loadMtl(text, dir);
     ADD_FAILURE() << "no InputError; expected " << what;
   } catch (const InputError& e) {
     EXPECT_EQ(e.where().file, file.string()) << e.what();
@@ -202,7 +203,7 @@ TEST(SceneLoaderMtlTest, ErrorsNameTheObjOrMtlLine) {
   TempDir dir;
   const fs::path obj = dir.path() / "m.obj", mtl = dir.path() / "m.mtl";
   const std::string tri = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
-  const std::string shape = scene("{type: mesh, file: m.obj}");
+  const std::string shape = mtlScene("{type: mesh, file: m.obj}");
 
   writeFile(obj, "# a\nmtllib gone.mtl\nusemtl x\n" + tri);
   expectLoadError(dir.path(), shape, obj, 2, "material library 'gone.mtl' not found");
@@ -224,12 +225,12 @@ TEST(SceneLoaderMtlTest, ErrorsNameTheObjOrMtlLine) {
   expectLoadError(dir.path(), shape, obj, 6, "1 triangles have no material");
 
   writeFile(obj, "mtllib m.mtl\nusemtl x\n" + tri);
-  expectLoadError(dir.path(), scene("{type: mesh, file: m.obj}", "{'m.obj:x': {type: diffuse}}"),
+  expectLoadError(dir.path(), mtlScene("{type: mesh, file: m.obj}", "{'m.obj:x': {type: diffuse}}"),
                   "mtl.yaml", 4, "has the name of a material of the scene");
   // The emitter may leave triangles without a material: they are black.
   writeFile(obj, "mtllib m.mtl\n" + tri + "usemtl x\nf 1 3 2\n");
-  const SceneDescription d = load(
-      scene("{type: mesh, file: m.obj, emission: {luminance: 1, two_sided: true}}"), dir.path());
+  const SceneDescription d = loadMtl(
+      mtlScene("{type: mesh, file: m.obj, emission: {luminance: 1, two_sided: true}}"), dir.path());
   ASSERT_EQ(d.shapes.size(), 2u);
   EXPECT_EQ(d.shapes[0].material, -1);
   EXPECT_EQ(d.shapes[1].material, 0);

@@ -13,6 +13,7 @@
 #include "sensor/base/input_error.h"
 #include "sensor/io/exr_io.h"
 #include "tests/integrator/texture_test_support.h"
+#include "tests/support/scene_text.h"
 #include "tests/support/temp_dir.h"
 
 namespace camsim {
@@ -21,17 +22,7 @@ namespace {
 namespace fs = std::filesystem;
 using test::TempDir;
 
-// Line 3 holds the material `m` (its value starts at column 6); the texture files live in
-// the scene's directory.
-std::string scene(const std::string& material) {
-  return "camera: {position: [0, 0, -1], look_at: [0, 0, 0]}\n"  // 1
-         "materials:\n"                                          // 2
-         "  m: " +
-         material +
-         "\n"  // 3
-         "shapes: [{type: sphere, centre: [0, 0, 0], radius: 1, material: m}]\n";
-}
-
+// The texture files live in the scene's directory.
 class TextureScene : public ::testing::Test {
  protected:
   void SetUp() override {
@@ -43,7 +34,8 @@ class TextureScene : public ::testing::Test {
     std::ofstream(dir_.path() / "text.png") << "not a png";
   }
   MaterialDescription load(const std::string& material) {
-    return loadSceneFromText(scene(material), "test.yaml", dir_.path()).materials.at(0);
+    return loadSceneFromText(test::materialScene(material), "test.yaml", dir_.path())
+        .materials.at(0);
   }
   void expectError(const std::string& material, int column, const std::string& key,
                    const std::string& message) {
@@ -97,7 +89,8 @@ TEST_F(TextureScene, ConstantsImagesAndCheckerboards) {
 // from them even after the file is gone.
 TEST_F(TextureScene, TheSceneIsBuiltFromTheTexelsTheLoaderRead) {
   const SceneDescription d = loadSceneFromText(
-      scene("{type: plastic, reflectance: {texture: albedo.png}, roughness: {texture: rough.exr}}"),
+      test::materialScene(
+          "{type: plastic, reflectance: {texture: albedo.png}, roughness: {texture: rough.exr}}"),
       "test.yaml", dir_.path());
   const MaterialDescription& m = d.materials.at(0);
   ASSERT_TRUE(m.reflectance.image);

@@ -18,12 +18,10 @@
 #include "sensor/model/sensor_model.h"
 #include "sensor/spectra/cie.h"
 #include "sensor/spectra/spectral_data.h"
+#include "tests/support/lut_paths.h"
 
 namespace camsim {
 namespace {
-
-const std::filesystem::path kLuts(CAMSIM_LUTS_DIR);
-const std::filesystem::path kChart = kLuts / "spectra/colorchecker_classic_reflectance.csv";
 
 void expectNear(const glm::dmat3& m, const glm::dmat3& expected, double tolerance,
                 const char* what) {
@@ -41,14 +39,15 @@ void expectNear(const glm::dvec3& v, const glm::dvec3& expected, double toleranc
 // Mean ΔE2000 < 3 on the chart for the two measured-QE presets under D65 and A.
 TEST(ColorCorrection, ColorCheckerDeltaE2000BelowThreeForMeasuredSensors) {
   for (const char* preset : {"fullframe-d850", "smartphone-1.4um"}) {
-    const SensorSpec s = loadSensorSpec(preset, kLuts);
+    const SensorSpec s = loadSensorSpec(preset, test::kLuts);
     for (const char* ill : {"D65", "A"}) {
       for (const bool preserveWhite : {true, false}) {
         ColorCorrectionOptions options;
         options.preserveWhite = preserveWhite;
         const Spectrum illuminant = cieIlluminant(ill);
-        const ColorCorrection cc = fitColorCorrection(s.qe, illuminant, kChart, options);
-        const ChartError e = colorCheckerError(cc, s.qe, illuminant, kChart);
+        const ColorCorrection cc =
+            fitColorCorrection(s.qe, illuminant, test::kColorChecker, options);
+        const ChartError e = colorCheckerError(cc, s.qe, illuminant, test::kColorChecker);
         ASSERT_EQ(e.deltaE.size(), 24u);
         std::printf("[ %-16s %-3s %-14s ] mean ΔE00 %.2f  max %.2f (patch %zu)\n", preset, ill,
                     preserveWhite ? "white-preserve" : "unconstrained", e.mean, e.max,
@@ -64,29 +63,29 @@ TEST(ColorCorrection, ColorCheckerDeltaE2000BelowThreeForMeasuredSensors) {
 TEST(ColorCorrection, IdealXyzSensorGetsTheIdentity) {
   // QE·λ ∝ x̄ȳz̄: balanced camera = XYZ / XYZ_white, so M = diag(XYZ_white) and
   // M · diag(g) = I. Tolerance 1e-3 (the QE is stored in float: ~1e-6 in practice).
-  const SensorSpec ideal = loadSensorSpec("ideal-xyz", kLuts);
+  const SensorSpec ideal = loadSensorSpec("ideal-xyz", test::kLuts);
   const Spectrum d65 = cieIlluminant("D65");
   for (const bool preserveWhite : {true, false}) {
     ColorCorrectionOptions options;
     options.preserveWhite = preserveWhite;
-    const ColorCorrection cc = fitColorCorrection(ideal.qe, d65, kChart, options);
+    const ColorCorrection cc = fitColorCorrection(ideal.qe, d65, test::kColorChecker, options);
     expectNear(cc.rawToXyz(), glm::dmat3(1.0), 1e-3, "raw → XYZ");
     const glm::dvec3 w = d65WhiteXyz();
     expectNear(cc.cameraToXyz,
                glm::dmat3(glm::dvec3(w.x, 0, 0), glm::dvec3(0, 1, 0), glm::dvec3(0, 0, w.z)), 1e-3,
                "CCM");
-    EXPECT_LT(colorCheckerError(cc, ideal.qe, d65, kChart).max, 1e-3);
+    EXPECT_LT(colorCheckerError(cc, ideal.qe, d65, test::kColorChecker).max, 1e-3);
   }
   // Under A the fit adds the adaptation: raw → XYZ is Bradford(A → D65).
   const Spectrum a = cieIlluminant("A");
-  const ColorCorrection ccA = fitColorCorrection(ideal.qe, a, kChart);
+  const ColorCorrection ccA = fitColorCorrection(ideal.qe, a, test::kColorChecker);
   expectNear(ccA.rawToXyz(), ccA.adaptation, 1e-3, "raw → XYZ under A");
 }
 
 TEST(ColorCorrection, WhitePreservationMapsTheBalancedWhiteToD65) {
-  const SensorSpec s = loadSensorSpec("fullframe-d850", kLuts);
+  const SensorSpec s = loadSensorSpec("fullframe-d850", test::kLuts);
   for (const char* ill : {"D65", "A", "F2"}) {
-    const ColorCorrection cc = fitColorCorrection(s.qe, cieIlluminant(ill), kChart);
+    const ColorCorrection cc = fitColorCorrection(s.qe, cieIlluminant(ill), test::kColorChecker);
     expectNear(cc.cameraToXyz * glm::dvec3(1.0), d65WhiteXyz(), 1e-12, ill);
     // ACEScg of the white is (1, 1, 1).
     expectNear(cc.cameraToWorking() * glm::dvec3(1.0), glm::dvec3(1.0), 1e-9, ill);
@@ -94,7 +93,8 @@ TEST(ColorCorrection, WhitePreservationMapsTheBalancedWhiteToD65) {
   }
   ColorCorrectionOptions free;
   free.preserveWhite = false;
-  const ColorCorrection cc = fitColorCorrection(s.qe, cieIlluminant("A"), kChart, free);
+  const ColorCorrection cc =
+      fitColorCorrection(s.qe, cieIlluminant("A"), test::kColorChecker, free);
   const glm::dvec3 w = cc.cameraToXyz * glm::dvec3(1.0);
   EXPECT_GT(glm::length(w - d65WhiteXyz()), 1e-6);  // not exact without the constraint
   EXPECT_LT(glm::length(w - d65WhiteXyz()), 0.05);  // but close
@@ -133,8 +133,9 @@ TEST(ColorCorrection, ApplyColorMatrixAndErrors) {
   EXPECT_FLOAT_EQ(out.at(1, 0, 1), 0.8f);  // 2·0.2 + 0.4
   EXPECT_FLOAT_EQ(out.at(1, 0, 2), 1.8f);  // 3·0.2 + 2·0.6
   EXPECT_THROW(applyColorMatrix(Image(1, 1, {"Y"}), m, {"X", "Y", "Z"}), InputError);
-  const SensorSpec s = loadSensorSpec("fullframe-d850", kLuts);
-  EXPECT_THROW(fitColorCorrection({s.qe[0], s.qe[1]}, cieIlluminant("D65"), kChart), InputError);
+  const SensorSpec s = loadSensorSpec("fullframe-d850", test::kLuts);
+  EXPECT_THROW(fitColorCorrection({s.qe[0], s.qe[1]}, cieIlluminant("D65"), test::kColorChecker),
+               InputError);
   EXPECT_THROW(fitColorCorrection(s.qe, cieIlluminant("D65"), "/nonexistent.csv"), InputError);
 }
 
@@ -144,9 +145,9 @@ TEST(ColorCorrection, ApplyColorMatrixAndErrors) {
 // against the chart's D65-adapted XYZ. Tolerance: mean ΔE00 < 3 (the fit's own residual
 // plus quantisation; the patch centres are flat, so demosaicking adds nothing).
 TEST(ColorCorrection, ChartImageThroughTheIspMatchesTheFit) {
-  const SensorSpec s = loadSensorSpec("fullframe-d850", kLuts);
+  const SensorSpec s = loadSensorSpec("fullframe-d850", test::kLuts);
   const Spectrum ill = cieIlluminant("A");
-  const SpectralTable chart = readSpectralCsv(kChart);
+  const SpectralTable chart = readSpectralCsv(test::kColorChecker);
   const int patch = 12;
   Image electrons(6 * patch, 4 * patch, {"expected"});
   const double scale = 0.8 * s.saturationElectrons(s.baseIso) /
@@ -169,7 +170,7 @@ TEST(ColorCorrection, ChartImageThroughTheIspMatchesTheFit) {
   const Image rgb =
       demosaic(applyWhiteBalance(normalizeRaw(raw), s.cfa, whiteBalanceFromIlluminant(s, ill)),
                s.cfa, DemosaicMethod::kMalvarHeCutler);
-  const ColorCorrection cc = fitColorCorrection(s.qe, ill, kChart);
+  const ColorCorrection cc = fitColorCorrection(s.qe, ill, test::kColorChecker);
   const Image xyz = applyColorMatrix(rgb, cc.cameraToXyz, {"X", "Y", "Z"});
   double mean = 0.0, worst = 0.0;
   const glm::dvec3 white = d65WhiteXyz() * 0.8;

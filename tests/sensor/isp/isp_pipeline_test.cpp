@@ -16,12 +16,10 @@
 #include "sensor/isp/isp_pipeline.h"
 #include "sensor/model/sensor_model.h"
 #include "sensor/spectra/spectral_data.h"
+#include "tests/support/lut_paths.h"
 
 namespace camsim {
 namespace {
-
-const std::filesystem::path kLuts(CAMSIM_LUTS_DIR);
-const std::filesystem::path kChart = kLuts / "spectra" / "colorchecker_classic_reflectance.csv";
 
 // Raws of a uniform grey card of reflectance 0.5 under `illuminant`, 16 × 16 photosites.
 std::vector<RawImage> greyCardRaws(const SensorSpec& spec, const std::string& illuminant) {
@@ -52,7 +50,7 @@ std::vector<RawImage> greyCardRaws(const SensorSpec& spec, const std::string& il
 class GreyUnderF11 : public testing::TestWithParam<std::string> {};
 
 TEST_P(GreyUnderF11, EveryWhiteBalanceMakesItNeutral) {
-  const SensorSpec spec = loadSensorSpec(GetParam(), kLuts);
+  const SensorSpec spec = loadSensorSpec(GetParam(), test::kLuts);
   const std::vector<RawImage> raws = greyCardRaws(spec, "F11");
   for (const auto method :
        {IspSettings::WhiteBalance::kIlluminant, IspSettings::WhiteBalance::kRegion,
@@ -61,7 +59,7 @@ TEST_P(GreyUnderF11, EveryWhiteBalanceMakesItNeutral) {
     isp.illuminant = "F11";
     isp.whiteBalance = method;
     isp.region = {4, 4, 8, 8};
-    const DevelopedImage dev = developRaw(raws, spec, isp, kChart);
+    const DevelopedImage dev = developRaw(raws, spec, isp, test::kColorChecker);
     EXPECT_EQ(dev.whiteBalance, whiteBalanceGains(raws, spec, isp));
     double gainSpread = 0.0;
     for (double g : dev.whiteBalance) gainSpread = std::max(gainSpread, std::abs(g - 1.0));
@@ -82,8 +80,9 @@ INSTANTIATE_TEST_SUITE_P(Sensors, GreyUnderF11, testing::Values("ideal-xyz", "fu
 
 // Under D65 the ideal-xyz sensor's adaptation is the identity (its planes are XYZ).
 TEST(IspStacked, D65AdaptationIsTheIdentity) {
-  const SensorSpec spec = loadSensorSpec("ideal-xyz", kLuts);
-  const DevelopedImage dev = developRaw(greyCardRaws(spec, "D65"), spec, IspSettings{}, kChart);
+  const SensorSpec spec = loadSensorSpec("ideal-xyz", test::kLuts);
+  const DevelopedImage dev =
+      developRaw(greyCardRaws(spec, "D65"), spec, IspSettings{}, test::kColorChecker);
   for (int r = 0; r < 3; ++r)
     for (int c = 0; c < 3; ++c)
       EXPECT_NEAR(dev.colorCorrection.adaptation[c][r], r == c ? 1.0 : 0.0, 1e-4);

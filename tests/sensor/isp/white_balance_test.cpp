@@ -16,14 +16,13 @@
 #include "sensor/model/sensor_model.h"
 #include "sensor/spectra/cie.h"
 #include "sensor/spectra/spectral_data.h"
+#include "tests/support/lut_paths.h"
 
 namespace camsim {
 namespace {
 
-const std::filesystem::path kLuts(CAMSIM_LUTS_DIR);
-
 const SensorSpec& d850() {
-  static const SensorSpec spec = loadSensorSpec("fullframe-d850", kLuts);
+  static const SensorSpec spec = loadSensorSpec("fullframe-d850", test::kLuts);
   return spec;
 }
 
@@ -72,7 +71,7 @@ TEST(WhiteBalanceFromIlluminant, ColorCheckerGreysStayNearlyNeutral) {
   // channel ratios differ from 1 by the chart's own tint: < 3 % (measured up to 2.7 %, R/G of
   // patch 23 under A; deterministic, no noise).
   const SpectralTable chart =
-      readSpectralCsv(kLuts / "spectra/colorchecker_classic_reflectance.csv");
+      readSpectralCsv(test::kLuts / "spectra/colorchecker_classic_reflectance.csv");
   for (const char* name : {"A", "F2"}) {
     const Spectrum ill = cieIlluminant(name);
     const std::vector<double> g = whiteBalanceFromIlluminant(d850(), ill);
@@ -87,7 +86,7 @@ TEST(WhiteBalanceFromIlluminant, ColorCheckerGreysStayNearlyNeutral) {
 }
 
 TEST(WhiteBalanceFromIlluminant, IdealXyzSensorGainsAreTheWhitePointRatios) {
-  const SensorSpec ideal = loadSensorSpec("ideal-xyz", kLuts);
+  const SensorSpec ideal = loadSensorSpec("ideal-xyz", test::kLuts);
   const Spectrum d65 = cieIlluminant("D65");
   const std::vector<double> g = whiteBalanceFromIlluminant(ideal, d65);
   const glm::dvec3 white = reflectanceToXyz(Spectrum::constant(1.0), d65);
@@ -125,7 +124,7 @@ TEST(WhiteBalanceEstimates, GreyRegionAndGreyWorldMatchTheIlluminantGains) {
   const SensorSpec& s = d850();
   const Spectrum ill = cieIlluminant("A");
   const SpectralTable chart =
-      readSpectralCsv(kLuts / "spectra/colorchecker_classic_reflectance.csv");
+      readSpectralCsv(test::kLuts / "spectra/colorchecker_classic_reflectance.csv");
   const Spectrum grey = Spectrum::constant(0.4);
   const Spectrum red = chart.spectrum(14, Extrapolation::kClamp);  // patch 15, red
   // Left half grey card, right half red patch (which would fool grey world).

@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include "sensor/base/input_error.h"
+#include "tests/support/lut_paths.h"
 #include "tests/support/temp_dir.h"
 #include "tests/support/text_file.h"
 
@@ -18,7 +19,6 @@ namespace camsim {
 namespace {
 
 namespace fs = std::filesystem;
-const fs::path kLuts = CAMSIM_LUTS_DIR;
 
 // A valid description; tests replace or append lines (line numbers are 1-based).
 const std::vector<std::string> kBase = {
@@ -48,7 +48,7 @@ std::string appended(const std::string& content) {
 }
 
 SensorSpec parse(const std::string& text, const fs::path& baseDir = fs::path(".")) {
-  return parseSensorSpec(text, "sensor.yaml", baseDir, kLuts);
+  return parseSensorSpec(text, "sensor.yaml", baseDir, test::kLuts);
 }
 
 struct Expected {
@@ -165,7 +165,7 @@ TEST(SensorSpec, CsvQeAndIrCutTablesResolveNextToTheDescription) {
   test::writeFile(dir.path() / "cam.yaml",
                   "pixel_pitch_um: 2\ncfa: mono\nqe: {csv: qe.csv, columns: [mono]}\n"
                   "ir_cut: {csv: ir.csv}\n");
-  const SensorSpec s = loadSensorSpec((dir.path() / "cam.yaml").string(), kLuts);
+  const SensorSpec s = loadSensorSpec((dir.path() / "cam.yaml").string(), test::kLuts);
   EXPECT_EQ(s.name, "cam");
   ASSERT_EQ(s.qe.size(), 1u);
   EXPECT_NEAR(s.qe[0](400.0f), 0.2, 1e-6);  // absolute QE: no peak_qe, no scaling
@@ -192,7 +192,7 @@ TEST(SensorSpec, CsvQeAndIrCutTablesResolveNextToTheDescription) {
 }
 
 TEST(SensorSpec, PresetsLoad) {
-  const SensorSpec xyz = loadSensorSpec("ideal-xyz", kLuts);
+  const SensorSpec xyz = loadSensorSpec("ideal-xyz", test::kLuts);
   EXPECT_TRUE(xyz.noiseless);
   EXPECT_TRUE(xyz.cfa.isStacked());
   ASSERT_EQ(xyz.qe.size(), 3u);
@@ -214,7 +214,7 @@ TEST(SensorSpec, PresetsLoad) {
   EXPECT_EQ(xyz.whiteLevelDn(), 65535.0);
   EXPECT_EQ(xyz.readNoiseE, 0.0);
 
-  const SensorSpec phone = loadSensorSpec("smartphone-1.4um", kLuts);
+  const SensorSpec phone = loadSensorSpec("smartphone-1.4um", test::kLuts);
   EXPECT_DOUBLE_EQ(phone.pixelPitchM, 1.4e-6);
   EXPECT_EQ(phone.cfa.name, "RGGB");
   ASSERT_EQ(phone.qe.size(), 3u);
@@ -230,7 +230,7 @@ TEST(SensorSpec, PresetsLoad) {
   EXPECT_NEAR(adcRangeE / phone.fullWellE, 1.0, 0.05);
   EXPECT_DOUBLE_EQ(phone.saturationElectrons(phone.baseIso), 959.0 * 6.25);
 
-  const SensorSpec d850 = loadSensorSpec("fullframe-d850", kLuts);
+  const SensorSpec d850 = loadSensorSpec("fullframe-d850", test::kLuts);
   EXPECT_DOUBLE_EQ(d850.pixelPitchM, 4.35e-6);
   EXPECT_EQ(d850.adcBits, 14);
   EXPECT_EQ(d850.whiteLevelDn(), 16383.0);
@@ -242,17 +242,17 @@ TEST(SensorSpec, PresetsLoad) {
 
 TEST(SensorSpec, UnknownPresetListsThePresets) {
   try {
-    loadSensorSpec("no-such-sensor", kLuts);
+    loadSensorSpec("no-such-sensor", test::kLuts);
     FAIL();
   } catch (const InputError& e) {
     EXPECT_NE(e.message().find("smartphone-1.4um"), std::string::npos) << e.what();
   }
-  EXPECT_THROW(loadSensorSpec("/no/such/file.yaml", kLuts), InputError);
+  EXPECT_THROW(loadSensorSpec("/no/such/file.yaml", test::kLuts), InputError);
   // A directory with a description's name is not read as an empty (invalid) description.
   const test::TempDir dir;
   fs::create_directories(dir.path() / "folder.yaml");
   try {
-    loadSensorSpec((dir.path() / "folder.yaml").string(), kLuts);
+    loadSensorSpec((dir.path() / "folder.yaml").string(), test::kLuts);
     FAIL();
   } catch (const InputError& e) {
     EXPECT_NE(e.message().find("no sensor description file"), std::string::npos) << e.what();
@@ -273,7 +273,7 @@ TEST(SensorSpec, DarkCurrentDoublesPerDoublingInterval) {
   EXPECT_DOUBLE_EQ(s.darkCurrentAtTemperature(), 24.0);
   s.temperatureC = 19.0;
   EXPECT_DOUBLE_EQ(s.darkCurrentAtTemperature(), 1.5);
-  EXPECT_NEAR(loadSensorSpec("smartphone-1.4um", kLuts).darkCurrentAtTemperature(),
+  EXPECT_NEAR(loadSensorSpec("smartphone-1.4um", test::kLuts).darkCurrentAtTemperature(),
               2.0 * std::exp2(15.0 / 6.0), 1e-12);
 }
 
