@@ -131,7 +131,7 @@ std::optional<glm::dvec2> undistort(const Distortion& d, glm::dvec2 target) {
 
 }  // namespace projection_detail
 
-using namespace projection_detail;
+namespace pd = projection_detail;
 
 namespace {
 
@@ -156,25 +156,27 @@ std::optional<glm::dvec2> project(const Projection& p, glm::dvec3 dirCv) {
   const double len = glm::length(dirCv);
   if (!(len > 0.0) || !std::isfinite(len)) return std::nullopt;
   const glm::dvec3 d = dirCv / len;
-  if (p.model == ProjectionModel::kEquirectangular) return projectEquirectangular(p, d);
+  if (p.model == ProjectionModel::kEquirectangular) return pd::projectEquirectangular(p, d);
   const double s = std::hypot(d.x, d.y);
   const double theta = std::atan2(s, d.z);
-  if (!withinField(fieldLimit(p), theta)) return std::nullopt;
+  if (!pd::withinField(pd::fieldLimit(p), theta)) return std::nullopt;
   switch (p.model) {
     case ProjectionModel::kOpenCv: {
-      const std::optional<Distorted> m = distort(openCvDistortion(p), {d.x / d.z, d.y / d.z});
+      const std::optional<pd::Distorted> m =
+          pd::distort(pd::openCvDistortion(p), {d.x / d.z, d.y / d.z});
       if (!m) return std::nullopt;
       return toPixel(p, m->m);
     }
     case ProjectionModel::kUnified: {
       // OpenCV omnidir: the unit sphere's point seen from (0, 0, −ξ), then k1 k2 p1 p2.
       const double w = d.z + p.xi;
-      const std::optional<Distorted> m = distort(omnidirDistortion(p), {d.x / w, d.y / w});
+      const std::optional<pd::Distorted> m =
+          pd::distort(pd::omnidirDistortion(p), {d.x / w, d.y / w});
       if (!m) return std::nullopt;
       return toPixel(p, m->m);
     }
     default: {
-      const double rho = radius(p, theta).rho;
+      const double rho = pd::radius(p, theta).rho;
       const glm::dvec2 m = s > 0.0 ? glm::dvec2(d.x, d.y) * (rho / s) : glm::dvec2(rho, 0.0);
       return toPixel(p, m);
     }
@@ -182,46 +184,47 @@ std::optional<glm::dvec2> project(const Projection& p, glm::dvec3 dirCv) {
 }
 
 std::optional<glm::dvec3> unproject(const Projection& p, glm::dvec2 pixel) {
-  if (p.model == ProjectionModel::kEquirectangular) return unprojectEquirectangular(p, pixel);
+  if (p.model == ProjectionModel::kEquirectangular) return pd::unprojectEquirectangular(p, pixel);
   glm::dvec2 m = toFilm(p, pixel);
   if (!std::isfinite(m.x) || !std::isfinite(m.y)) return std::nullopt;
   if (p.model == ProjectionModel::kOpenCv) {
-    const std::optional<glm::dvec2> mu = undistort(openCvDistortion(p), m);
-    if (!mu || !withinField(fieldLimit(p), std::atan(glm::length(*mu)))) return std::nullopt;
+    const std::optional<glm::dvec2> mu = pd::undistort(pd::openCvDistortion(p), m);
+    if (!mu || !pd::withinField(pd::fieldLimit(p), std::atan(glm::length(*mu))))
+      return std::nullopt;
     return glm::normalize(glm::dvec3(mu->x, mu->y, 1.0));
   }
   if (p.model == ProjectionModel::kUnified) {
-    const std::optional<glm::dvec2> mu = undistort(omnidirDistortion(p), m);
+    const std::optional<glm::dvec2> mu = pd::undistort(pd::omnidirDistortion(p), m);
     if (!mu) return std::nullopt;
     m = *mu;
   }
-  const std::optional<double> theta = fieldAngle(p, glm::length(m));
+  const std::optional<double> theta = pd::fieldAngle(p, glm::length(m));
   if (!theta) return std::nullopt;
   return radialDirection(m, *theta);
 }
 
 double solidAngleDensity(const Projection& p, glm::dvec2 pixel) {
-  if (p.model == ProjectionModel::kEquirectangular) return equirectangularDensity(p, pixel);
+  if (p.model == ProjectionModel::kEquirectangular) return pd::equirectangularDensity(p, pixel);
   glm::dvec2 m = toFilm(p, pixel);
   if (!std::isfinite(m.x) || !std::isfinite(m.y)) return 0.0;
   const double perPixel = 1.0 / (p.fx * p.fy);
   double detJ = 1.0;  // of the distortion, where the model has one
   if (p.model == ProjectionModel::kOpenCv || p.model == ProjectionModel::kUnified) {
-    const Distortion dist =
-        p.model == ProjectionModel::kOpenCv ? openCvDistortion(p) : omnidirDistortion(p);
-    const std::optional<glm::dvec2> mu = undistort(dist, m);
+    const pd::Distortion dist =
+        p.model == ProjectionModel::kOpenCv ? pd::openCvDistortion(p) : pd::omnidirDistortion(p);
+    const std::optional<glm::dvec2> mu = pd::undistort(dist, m);
     if (!mu) return 0.0;
-    detJ = glm::determinant(distort(dist, *mu)->jacobian);
+    detJ = glm::determinant(pd::distort(dist, *mu)->jacobian);
     m = *mu;
   }
   if (p.model == ProjectionModel::kOpenCv) {
     const double r2 = glm::dot(m, m);
-    if (!withinField(fieldLimit(p), std::atan(std::sqrt(r2)))) return 0.0;
+    if (!pd::withinField(pd::fieldLimit(p), std::atan(std::sqrt(r2)))) return 0.0;
     return perPixel / (detJ * (1.0 + r2) * std::sqrt(1.0 + r2));
   }
-  const std::optional<double> theta = fieldAngle(p, glm::length(m));
+  const std::optional<double> theta = pd::fieldAngle(p, glm::length(m));
   if (!theta) return 0.0;
-  return radialDensity(p, *theta) * perPixel / detJ;
+  return pd::radialDensity(p, *theta) * perPixel / detJ;
 }
 
 namespace {
@@ -264,7 +267,7 @@ void checkProjection(const Projection& p, const SourceLocation& where,
   }
   if (p.model == ProjectionModel::kKannalaBrandt || p.model == ProjectionModel::kFTheta) {
     // The polynomial must increase over the field imaged, or unproject would be ambiguous.
-    const double limit = fieldLimit(p).theta, fold = foldFieldAngle(p);
+    const double limit = pd::fieldLimit(p).theta, fold = foldFieldAngle(p);
     if (fold < limit)
       fail(where, key("k1"),
            "k1 … k4 make the radius ρ(θ) stop increasing at field angle " +
@@ -277,16 +280,16 @@ void checkProjection(const Projection& p, const SourceLocation& where,
 double foldFieldAngle(const Projection& p) {
   Projection whole = p;
   whole.maxFieldAngle = std::numbers::pi;
-  const FieldLimit limit = fieldLimit(whole);
+  const pd::FieldLimit limit = pd::fieldLimit(whole);
   // Whether the radial part still increases at field angle θ.
   const auto increasing = [&](double theta) {
     switch (p.model) {
       case ProjectionModel::kOpenCv:
-        return radialSlope(openCvDistortion(p), std::tan(theta)) > 0.0;
+        return pd::radialSlope(pd::openCvDistortion(p), std::tan(theta)) > 0.0;
       case ProjectionModel::kUnified:
-        return radialSlope(omnidirDistortion(p), unifiedRadius(p.xi, theta).rho) > 0.0;
+        return pd::radialSlope(pd::omnidirDistortion(p), pd::unifiedRadius(p.xi, theta).rho) > 0.0;
       default:
-        return radius(p, theta).drho > 0.0;
+        return pd::radius(p, theta).drho > 0.0;
     }
   };
   if (p.model != ProjectionModel::kOpenCv && p.model != ProjectionModel::kUnified &&

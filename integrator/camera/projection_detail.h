@@ -2,7 +2,6 @@
 // projection_omni.cpp); not part of the camera's interface — use projection.h.
 #pragma once
 
-#include <numbers>
 #include <optional>
 
 #include <glm/mat2x2.hpp>
@@ -12,8 +11,6 @@
 #include "integrator/camera/projection.h"
 
 namespace camsim::projection_detail {
-
-inline constexpr double kPi = std::numbers::pi;
 
 // OpenCV's pinhole distortion coefficients (calib3d): radial rational k1…k6, tangential
 // p1 p2, thin prism s1…s4, sensor tilt τx τy. OpenCV omnidir's k1 k2 p1 p2 are the same with the rest zero.

@@ -72,12 +72,12 @@ Radius radius(const Projection& p, double theta) {
 }
 
 FieldLimit fieldLimit(const Projection& p) {
-  double model = kPi;
+  double model = std::numbers::pi;
   bool strict = false;
   switch (p.model) {
     case ProjectionModel::kOpenCv:
     case ProjectionModel::kOrthographic:
-      model = 0.5 * kPi;
+      model = 0.5 * std::numbers::pi;
       strict = true;
       break;
     case ProjectionModel::kStereographic:

@@ -85,14 +85,15 @@ std::optional<glm::dvec2> projectEquirectangular(const Projection& p, glm::dvec3
 
 std::optional<glm::dvec3> unprojectEquirectangular(const Projection& p, glm::dvec2 pixel) {
   const double lon = (pixel.x - p.cx) / p.fx, lat = (pixel.y - p.cy) / p.fy;
-  if (!(std::abs(lon) <= kPi && std::abs(lat) <= 0.5 * kPi)) return std::nullopt;
+  if (!(std::abs(lon) <= std::numbers::pi && std::abs(lat) <= 0.5 * std::numbers::pi))
+    return std::nullopt;
   const double c = std::cos(lat);
   return glm::dvec3(c * std::sin(lon), std::sin(lat), c * std::cos(lon));
 }
 
 double equirectangularDensity(const Projection& p, glm::dvec2 pixel) {
   const double lon = (pixel.x - p.cx) / p.fx, lat = (pixel.y - p.cy) / p.fy;
-  if (!(std::abs(lon) <= kPi && std::abs(lat) <= 0.5 * kPi)) return 0.0;
+  if (!(std::abs(lon) <= std::numbers::pi && std::abs(lat) <= 0.5 * std::numbers::pi)) return 0.0;
   return std::cos(lat) / (p.fx * p.fy);
 }
 

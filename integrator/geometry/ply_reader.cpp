@@ -28,16 +28,9 @@ namespace mesh_io_detail {
 std::string readWholeFile(const std::filesystem::path& path);  // mesh_io.cpp
 }
 
-namespace {
-
-using ply_detail::AsciiReader;
-using ply_detail::BinaryReader;
-using ply_detail::Element;
-using ply_detail::info;
-using ply_detail::isInteger;
-using ply_detail::kTypes;
-using ply_detail::Property;
-using ply_detail::Type;
+// The reader's steps join ply_values.h's namespace (not an anonymous one, whose names a
+// unity build would share with the files compiled beside this one).
+namespace ply_detail {
 
 constexpr std::uint64_t kMaxElementCount = 100'000'000;
 constexpr int kIndicesSlot = 8;  // vertex slots 0..7 are x y z nx ny nz u v
@@ -351,10 +344,11 @@ MeshData readBody(const Header& h, Reader& in, const std::string& src, std::uint
   return mesh;
 }
 
-}  // namespace
+}  // namespace ply_detail
 
 MeshData parsePly(std::string_view bytes, const std::string& sourceName,
                   const MeshPlacement& placement) {
+  using namespace ply_detail;
   Header header = parseHeader(bytes, sourceName);
   bool hasNormals = false, hasUvs = false;
   const std::uint64_t vertexCount = assignSlots(header, sourceName, hasNormals, hasUvs);

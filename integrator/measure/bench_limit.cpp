@@ -72,7 +72,7 @@ double residentBytes() {
   return resident * static_cast<double>(::sysconf(_SC_PAGESIZE));
 }
 
-double secondsSince(std::chrono::steady_clock::time_point start) {
+double limitSecondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
@@ -254,7 +254,7 @@ MeshBuildResult measureMeshBuild(std::uint64_t triangles, int threads,
       "{luminance: 1000}}\n";
   const auto start = std::chrono::steady_clock::now();
   const SceneDescription moving = loadSceneFromText(text, "<bench mesh>", tempDir);
-  m.loadSeconds = secondsSince(start);
+  m.loadSeconds = limitSecondsSince(start);
   const SceneDescription desc = withoutMotion(moving);
   tbb::task_arena arena(threads > 0 ? threads : tbb::info::default_concurrency());
   // Builds a Scene on the arena, timed; records what its Embree device holds after the
@@ -264,7 +264,7 @@ MeshBuildResult measureMeshBuild(std::uint64_t triangles, int threads,
     const auto t0 = std::chrono::steady_clock::now();
     std::unique_ptr<Scene> scene;
     arena.execute([&] { scene = std::make_unique<Scene>(d); });
-    seconds = secondsSince(t0);
+    seconds = limitSecondsSince(t0);
     bytes = scene->geometry().embreeBytes();
     peak = scene->geometry().embreePeakBytes();
     return scene;
@@ -303,14 +303,14 @@ TextureLoadResult measureTextureLoad(int size, int threads, const std::filesyste
       linearRec709();  // its start table is built once per process (~0.1 s): not timed
   auto start = std::chrono::steady_clock::now();
   const TextureImage image = loadTextureImage(file, TextureEncoding::kSrgb);
-  t.decodeSeconds = secondsSince(start);
+  t.decodeSeconds = limitSecondsSince(start);
   start = std::chrono::steady_clock::now();
   const double cpu0 = processCpuSeconds();
   std::unique_ptr<ImageSpectrumTexture> texture;
   arena.execute([&] {
     texture = std::make_unique<ImageSpectrumTexture>(image, glm::vec2(1.0f), glm::vec2(0.0f));
   });
-  t.upliftSeconds = secondsSince(start);
+  t.upliftSeconds = limitSecondsSince(start);
   t.upliftCpuSeconds = processCpuSeconds() - cpu0;
   for (int k = 0; k < 256; ++k) {
     const int x = static_cast<int>(rng() % static_cast<unsigned>(size));

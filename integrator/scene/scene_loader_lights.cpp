@@ -39,13 +39,13 @@ double degrees(const YamlValue& v, double lo, double hi, bool loOpen = false) {
 }
 
 // The `spectrum` key (relative shape, default D65).
-struct Shape {
+struct SpectralShape {
   Spectrum s;
   std::optional<YamlValue> where;
 };
 
-Shape parseShapeSpectrum(YamlMap& map, const TableSearch& search) {
-  Shape shape;
+SpectralShape parseShapeSpectrum(YamlMap& map, const TableSearch& search) {
+  SpectralShape shape;
   shape.where = map.find("spectrum");
   shape.s = shape.where ? parseSpectrum(*shape.where, SpectrumUse::kEmission, search)
                         : cieIlluminant("D65");
@@ -54,7 +54,7 @@ Shape parseShapeSpectrum(YamlMap& map, const TableSearch& search) {
 
 // shape · factor, checked for the single-precision range. `photometric`: factor is per
 // unit of luminous quantity (the shape must be visible).
-Spectrum scaled(const Shape& shape, const YamlValue& amount, double value, bool photometric,
+Spectrum scaled(const SpectralShape& shape, const YamlValue& amount, double value, bool photometric,
                 double solidAngle) {
   const double per = photometric ? luminance(shape.s) : shape.s.sum();
   if (!(per > 0.0))
@@ -96,7 +96,7 @@ glm::vec3 unitDirection(const YamlValue& v) {
 
 // Point and spot: intensity on the axis from cd, W or lm.
 Spectrum parseIntensity(YamlMap& map, const TableSearch& search, double solidAngle) {
-  const Shape shape = parseShapeSpectrum(map, search);
+  const SpectralShape shape = parseShapeSpectrum(map, search);
   std::optional<YamlValue> v;
   const size_t which = oneOf(map, {"intensity", "power", "lumens"}, v);
   const double amount = v->number(0.0, kMaxValue, true);
@@ -161,7 +161,7 @@ void parseDistant(YamlMap& map, LightDescription& d, const TableSearch& search) 
           "SceneLimits::kMinSunDiameterDeg)");
   }
   d.angularDiameter = static_cast<float>(diameter * std::numbers::pi / 180.0);
-  const Shape shape = parseShapeSpectrum(map, search);
+  const SpectralShape shape = parseShapeSpectrum(map, search);
   std::optional<YamlValue> v;
   const size_t which = oneOf(map, {"illuminance", "irradiance"}, v);
   d.spectrum = scaled(shape, *v, v->number(0.0, kMaxValue, true), which == 0, 1.0);

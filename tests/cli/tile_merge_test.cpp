@@ -256,14 +256,14 @@ TEST_F(TileMerge, NotAPartIsAnError) {
 // A re-render after metering needs the whole film; a sequence is one capture per frame.
 TEST_F(TileMerge, CapturesThatCannotBeTiledAreRefused) {
   const std::string sensor = "sensor: {model: smartphone-1.4um, ";
-  struct Case {
+  struct UntileableCase {
     std::string name, text, key;
   } cases[] = {
       {"auto", movingScene(sensor + "auto_exposure: {metering: mean}}\n"), "sensor.auto_exposure"},
       {"bracket", movingScene(sensor + "bracket_ev: [0, 1]}\n"), "sensor.bracket_ev"},
       {"sequence", movingScene() + "frames: {count: 2, rate_hz: 20}\n", "frames"},
   };
-  for (const Case& c : cases) {
+  for (const UntileableCase& c : cases) {
     test::writeFile(dir() / (c.name + ".yaml"), c.text);
     const RunResult r = render(c.name + ".yaml", "parts_" + c.name, " --tiles 0/2");
     EXPECT_EQ(r.exitCode, 2) << c.name << ": " << r.err;

@@ -15,8 +15,6 @@
 namespace camsim {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
-
 double sumOverPixels(const Projection& p, glm::ivec2 size) {
   double sum = 0.0;
   for (int y = 0; y < size.y; ++y)
@@ -29,14 +27,14 @@ double sumOverPixels(const Projection& p, glm::ivec2 size) {
 TEST(ProjectionDensity, FullEquirectangularImageCoversTheSphere) {
   Projection p;
   p.model = ProjectionModel::kEquirectangular;
-  p.fx = 720.0 / (2.0 * kPi);
-  p.fy = 360.0 / kPi;
+  p.fx = 720.0 / (2.0 * std::numbers::pi);
+  p.fy = 360.0 / std::numbers::pi;
   p.cx = 359.5;
   p.cy = 179.5;
   const double sum = sumOverPixels(p, {720, 360});
-  std::printf("equirectangular 720x360: sum dΩ/dA = %.9f, 4π = %.9f (rel. %.2g)\n", sum, 4 * kPi,
-              sum / (4 * kPi) - 1);
-  EXPECT_NEAR(sum / (4.0 * kPi), 1.0, 1e-5);
+  std::printf("equirectangular 720x360: sum dΩ/dA = %.9f, 4π = %.9f (rel. %.2g)\n", sum,
+              4 * std::numbers::pi, sum / (4 * std::numbers::pi) - 1);
+  EXPECT_NEAR(sum / (4.0 * std::numbers::pi), 1.0, 1e-5);
 }
 
 // An equidistant 180° image circle of radius 471 px: the pixel centres inside it cover the
@@ -46,20 +44,20 @@ TEST(ProjectionDensity, EquidistantHemisphereCoversTwoPi) {
   p.model = ProjectionModel::kEquidistant;
   p.fx = p.fy = 300.0;
   p.cx = p.cy = 499.5;
-  p.maxFieldAngle = 0.5 * kPi;
+  p.maxFieldAngle = 0.5 * std::numbers::pi;
   const double sum = sumOverPixels(p, {1000, 1000});
-  std::printf("equidistant 180°: sum dΩ/dA = %.9f, 2π = %.9f (rel. %.2g)\n", sum, 2 * kPi,
-              sum / (2 * kPi) - 1);
-  EXPECT_NEAR(sum / (2.0 * kPi), 1.0, 2e-5);
+  std::printf("equidistant 180°: sum dΩ/dA = %.9f, 2π = %.9f (rel. %.2g)\n", sum,
+              2 * std::numbers::pi, sum / (2 * std::numbers::pi) - 1);
+  EXPECT_NEAR(sum / (2.0 * std::numbers::pi), 1.0, 2e-5);
   // And an equisolid (equal-area) full sphere: dΩ/dA = 1/(fx fy) everywhere inside.
   p.model = ProjectionModel::kEquisolid;
-  p.maxFieldAngle = kPi;
+  p.maxFieldAngle = std::numbers::pi;
   p.fx = p.fy = 240.0;
   EXPECT_DOUBLE_EQ(solidAngleDensity(p, {700.0, 300.0}), 1.0 / (240.0 * 240.0));
   const double sphere = sumOverPixels(p, {1000, 1000});
-  std::printf("equisolid 360°: sum dΩ/dA = %.9f, 4π = %.9f (rel. %.2g)\n", sphere, 4 * kPi,
-              sphere / (4 * kPi) - 1);
-  EXPECT_NEAR(sphere / (4.0 * kPi), 1.0, 1e-4);
+  std::printf("equisolid 360°: sum dΩ/dA = %.9f, 4π = %.9f (rel. %.2g)\n", sphere,
+              4 * std::numbers::pi, sphere / (4 * std::numbers::pi) - 1);
+  EXPECT_NEAR(sphere / (4.0 * std::numbers::pi), 1.0, 1e-4);
 }
 
 TEST(ProjectionDensity, PinholeIsCosCubedOverFSquared) {

@@ -22,8 +22,8 @@ namespace {
 
 using test::ProjectionCase;
 using test::projectionCases;
-constexpr double kPi = std::numbers::pi;
-constexpr double kDeg = kPi / 180.0;
+constexpr double kProjectionPi = std::numbers::pi;
+constexpr double kDeg = kProjectionPi / 180.0;
 
 double fieldAngleOf(glm::dvec3 d) {
   return std::atan2(std::hypot(d.x, d.y), d.z);
@@ -87,7 +87,7 @@ TEST(Projection, DirectionRoundTripIncludingBehindTheCamera) {
     double worst = 0.0, widest = 0.0;
     for (int i = 0; i < n; ++i) {
       const double z = 1.0 - (2.0 * i + 1.0) / n, s = std::sqrt(1.0 - z * z);
-      const double phi = i * kPi * (3.0 - std::sqrt(5.0));
+      const double phi = i * kProjectionPi * (3.0 - std::sqrt(5.0));
       const glm::dvec3 d(s * std::cos(phi), s * std::sin(phi), z);
       const double theta = fieldAngleOf(d);
       const std::optional<glm::dvec2> px = project(c.p, d);
@@ -118,8 +118,9 @@ TEST(Projection, IdealFisheyesMatchTheirClosedForms) {
     double (*radius)(double);
     double maxTheta;
   } models[] = {
-      {ProjectionModel::kEquidistant, [](double t) { return t; }, kPi},
-      {ProjectionModel::kEquisolid, [](double t) { return 2.0 * std::sin(0.5 * t); }, kPi},
+      {ProjectionModel::kEquidistant, [](double t) { return t; }, kProjectionPi},
+      {ProjectionModel::kEquisolid, [](double t) { return 2.0 * std::sin(0.5 * t); },
+       kProjectionPi},
       {ProjectionModel::kStereographic, [](double t) { return 2.0 * std::tan(0.5 * t); },
        170.0 * kDeg},
       {ProjectionModel::kOrthographic, [](double t) { return std::sin(t); }, 89.0 * kDeg},
@@ -133,7 +134,7 @@ TEST(Projection, IdealFisheyesMatchTheirClosedForms) {
     p.cy = 480.5;
     double worst = 0.0;
     for (double theta = 0.0; theta <= m.maxTheta + 1e-12; theta += 0.5 * kDeg)
-      for (double phi = 0.0; phi < 2.0 * kPi; phi += 0.37) {
+      for (double phi = 0.0; phi < 2.0 * kProjectionPi; phi += 0.37) {
         const glm::dvec3 d(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi),
                            std::cos(theta));
         const std::optional<glm::dvec2> px = project(p, 2.5 * d);
@@ -157,7 +158,7 @@ TEST(Projection, DoubleSphereMatchesThePapersProjection) {
   p.xi = -0.18;
   p.alpha = 0.59;
   for (double theta = 0.0; theta < 115.0 * kDeg; theta += 1.0 * kDeg)
-    for (double phi = 0.1; phi < 2.0 * kPi; phi += 0.5) {
+    for (double phi = 0.1; phi < 2.0 * kProjectionPi; phi += 0.5) {
       const glm::dvec3 X = 3.0 * glm::dvec3(std::sin(theta) * std::cos(phi),
                                             std::sin(theta) * std::sin(phi), std::cos(theta));
       const double d1 = glm::length(X);

@@ -14,7 +14,7 @@ namespace camsim {
 namespace {
 
 constexpr int kW = 64, kH = 48;
-constexpr double kPitch = 1.4e-6, kFocal = 0.001, kZ = 3.0;
+constexpr double kSeqPitch = 1.4e-6, kSeqFocal = 0.001, kSeqZ = 3.0;
 
 // A ball of radius 2 cm 3 m away (a view 27 cm wide) moving along +x at 0.5 m/s from
 // x = −8 cm at t = 0 (or resting), 3 frames at 10 Hz with a 36° shutter (10 ms), through
@@ -36,7 +36,7 @@ SceneDescription ballSequence(bool moving, const std::string& render = "spp: 16"
       "materials: {white: {type: diffuse, reflectance: 0.8}}\n"
       "shapes:\n"
       "  - {type: sphere, centre: [0, 0, " +
-      test::num(kZ) + "], radius: 0.02, material: white" + motion +
+      test::num(kSeqZ) + "], radius: 0.02, material: white" + motion +
       "}\n"
       "lights:\n  - {type: point, position: [0, 0, 0], intensity: 50}\n";
   return loadSceneFromText(text, "balls.yaml", ".");
@@ -64,7 +64,7 @@ double centroidX(const Image& aovs) {
       sum += c * (x + 0.5 - 0.5 * kW);
       w += c;
     }
-  return -(sum / w) * kPitch * kZ / kFocal;
+  return -(sum / w) * kSeqPitch * kSeqZ / kSeqFocal;
 }
 
 // Each frame integrates its own window [k/10, k/10 + 0.01] s: the ball's centroid sits at

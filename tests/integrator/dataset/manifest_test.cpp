@@ -20,7 +20,7 @@
 namespace camsim {
 namespace {
 
-const char* kScene =
+const char* kManifestScene =
     "format: camsim-scene/1\n"
     "name: probe\n"
     "render: {spp: 4}\n"
@@ -33,7 +33,7 @@ const char* kScene =
 
 class ManifestTest : public testing::Test {
  protected:
-  void SetUp() override { test::writeFile(dir_.path() / "base.yaml", kScene); }
+  void SetUp() override { test::writeFile(dir_.path() / "base.yaml", kManifestScene); }
   Manifest parse(const std::string& text) {
     test::writeFile(dir_.path() / "m.yaml", text);
     return loadManifest(dir_.path() / "m.yaml");

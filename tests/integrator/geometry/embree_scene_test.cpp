@@ -22,7 +22,7 @@
 namespace camsim {
 namespace {
 
-constexpr float kExposure = 0.01f;  // s
+constexpr float kEmbreeExposure = 0.01f;  // s
 
 // Three shapes 2 m apart, 3 m in front of the camera, all moving during [0, 10 ms]:
 //  0: a 1 m × 0.2 m blade turning 120° about an axis in its own plane (so the rounding of
@@ -148,7 +148,7 @@ void traceTargets(const Scene& scene, float missTolerance, TargetStats& stats) {
   std::uniform_real_distribution<float> u01(0.0f, 1.0f);
   for (int index = 0; index < 3; ++index)
     for (int i = 0; i < 20000; ++i) {
-      const double time = kExposure * u01(rng);
+      const double time = kEmbreeExposure * u01(rng);
       const SurfaceInteraction target = pointOn(scene, index, rng, time);
       glm::vec3 w;
       do {

@@ -30,7 +30,7 @@ using test::cameraAboveOrigin;
 using test::floorOf;
 using test::renderLuminance;
 
-constexpr double kDeg = M_PI / 180.0;
+constexpr double kLightsDeg = M_PI / 180.0;
 
 std::string vec(double x, double y, double z) {
   return "[" + std::to_string(x) + ", " + std::to_string(y) + ", " + std::to_string(z) + "]";
@@ -38,7 +38,7 @@ std::string vec(double x, double y, double z) {
 
 // Position of a light at distance d and angle θ from the floor's normal above the origin.
 std::string lightPosition(double d, double thetaDeg) {
-  return vec(d * std::sin(thetaDeg * kDeg), d * std::cos(thetaDeg * kDeg), 0.0);
+  return vec(d * std::sin(thetaDeg * kLightsDeg), d * std::cos(thetaDeg * kLightsDeg), 0.0);
 }
 
 // cos θ / d² at the floor point (x, 0, z) from a light at distance d and angle θ from the
@@ -46,7 +46,7 @@ std::string lightPosition(double d, double thetaDeg) {
 // expectation (within < 1 % of its value at the origin for the 2 × 2 images).
 double cosOverD2(double d, double thetaDeg, double x, double z) {
   const glm::dvec3 v =
-      glm::dvec3(d * std::sin(thetaDeg * kDeg), d * std::cos(thetaDeg * kDeg), 0.0) -
+      glm::dvec3(d * std::sin(thetaDeg * kLightsDeg), d * std::cos(thetaDeg * kLightsDeg), 0.0) -
       glm::dvec3(x, 0.0, z);
   const double len = glm::length(v);
   return v.y / (len * len * len);
@@ -68,8 +68,8 @@ TEST(PointLight, LambertianFloorReadsRhoOverPiTimesICosOverD2) {
                              ", intensity: 100}\n";
     const test::LuminanceImage img = renderLuminance(yaml, 256);
     const double expected = rho / M_PI * candela * pixelCosOverD2(1, 0, 0, d, thetaDeg);
-    EXPECT_NEAR(pixelCosOverD2(1, 0, 0, d, thetaDeg) / (std::cos(thetaDeg * kDeg) / (d * d)), 1.0,
-                1e-3);
+    EXPECT_NEAR(pixelCosOverD2(1, 0, 0, d, thetaDeg) / (std::cos(thetaDeg * kLightsDeg) / (d * d)),
+                1.0, 1e-3);
     EXPECT_LT(err(img.at(0, 0), expected), 0.01) << "theta " << thetaDeg << ": " << img.at(0, 0);
     EXPECT_EQ(img.stats.rejectedSamples, 0u);
   }
@@ -79,8 +79,8 @@ TEST(PointLight, LambertianFloorReadsRhoOverPiTimesICosOverD2) {
 // plane of incidence at angle β from the normal (β = 40°: aimed at the origin).
 std::string spotScene(double betaDeg, double coneDeg, double falloffDeg) {
   return cameraAboveOrigin(1) + floorOf(0.5) +
-         "lights:\n  - {type: spot, position: " + lightPosition(1.5, 40.0) +
-         ", direction: " + vec(-std::sin(betaDeg * kDeg), -std::cos(betaDeg * kDeg), 0.0) +
+         "lights:\n  - {type: spot, position: " + lightPosition(1.5, 40.0) + ", direction: " +
+         vec(-std::sin(betaDeg * kLightsDeg), -std::cos(betaDeg * kLightsDeg), 0.0) +
          ", cone_angle: " + std::to_string(coneDeg) +
          ", falloff_start: " + std::to_string(falloffDeg) + ", intensity: 100}\n";
 }
@@ -109,17 +109,18 @@ TEST(SpotLight, FalloffIsMonotoneAndPowerIsTheIntegralOfTheIntensity) {
   test::MaxError err;
   const Spectrum intensity = Spectrum::constant(2.0);
   const SpotLight spot({0.0f, 0.0f, 0.0f}, {0.0f, 0.0f, 1.0f}, intensity,
-                       static_cast<float>(30.0 * kDeg), static_cast<float>(20.0 * kDeg));
+                       static_cast<float>(30.0 * kLightsDeg),
+                       static_cast<float>(20.0 * kLightsDeg));
   float previous = 1.0f;
   for (int k = 0; k <= 400; ++k) {
-    const double a = 40.0 * kDeg * k / 400.0;
+    const double a = 40.0 * kLightsDeg * k / 400.0;
     const glm::vec3 w(static_cast<float>(std::sin(a)), 0.0f, static_cast<float>(std::cos(a)));
     const float f = spot.falloff(w);
-    EXPECT_LE(f, previous) << "angle " << a / kDeg;
-    if (a < 19.9 * kDeg) {
+    EXPECT_LE(f, previous) << "angle " << a / kLightsDeg;
+    if (a < 19.9 * kLightsDeg) {
       EXPECT_EQ(f, 1.0f);
     }
-    if (a > 30.1 * kDeg) {
+    if (a > 30.1 * kLightsDeg) {
       EXPECT_EQ(f, 0.0f);
     }
     previous = f;
@@ -154,7 +155,7 @@ std::string sunScene(double zenithDeg, double diameterDeg) {
 TEST(DistantLight, FloorUnderTheSunReadsRhoOverPiTimesECosZenith) {
   test::MaxError err;
   for (const double zenith : {0.0, 30.0, 60.0}) {
-    const double expected = 0.5 / M_PI * 1000.0 * std::cos(zenith * kDeg);
+    const double expected = 0.5 / M_PI * 1000.0 * std::cos(zenith * kLightsDeg);
     const test::LuminanceImage delta = renderLuminance(sunScene(zenith, 0.0), 64);
     const test::LuminanceImage disc = renderLuminance(sunScene(zenith, 0.53), 256);
     for (int y = 0; y < 2; ++y)
@@ -179,7 +180,7 @@ TEST(DistantLight, TheSunDiscHasRadianceEOverPiSin2Alpha) {
       "lights:\n  - {type: distant, direction: [0, -1, -1], illuminance: 1000, angular_diameter: "
       "0.53}\n";
   const test::LuminanceImage img = renderLuminance(yaml, 64);
-  const double alpha = 0.5 * 0.53 * kDeg;
+  const double alpha = 0.5 * 0.53 * kLightsDeg;
   const double expected = 1000.0 / (M_PI * std::sin(alpha) * std::sin(alpha));
   for (int y = 0; y < 4; ++y)
     for (int x = 0; x < 4; ++x) EXPECT_LT(err(img.at(x, y), expected), 0.01) << img.at(x, y);
@@ -192,7 +193,7 @@ TEST(DistantLight, TheSunDiscHasRadianceEOverPiSin2Alpha) {
 TEST(DistantLight, DiscSamplesAgreeWithLeAndPdfDirection) {
   test::MaxError err;
   const DistantLight sun(Spectrum::constant(3.0), {0.0f, -1.0f, 0.0f},
-                         static_cast<float>(0.53 * kDeg));
+                         static_cast<float>(0.53 * kLightsDeg));
   const SampledWavelengths lambda = SampledWavelengths::sampleUniform(0.4f);
   double e = 0.0;
   constexpr int kN = 4096;

@@ -52,7 +52,7 @@ std::unique_ptr<MetallicRoughnessMaterial> material(double base, float metallic,
   return std::make_unique<MetallicRoughnessMaterial>(std::move(p));
 }
 
-const SampledWavelengths kLambda = SampledWavelengths::sampleUniform(0.43f);
+const SampledWavelengths kMrLambda = SampledWavelengths::sampleUniform(0.43f);
 
 // glTF 2.0 Appendix B, as the specification writes it (wo = V, wi = L, n = +z), with the
 // diffuse lobe weighted as camsim does (see the header: fresnel_mix is not energy conserving).
@@ -87,41 +87,41 @@ TEST(MetallicRoughnessMaterial, EqualsTheSpecificationsFormula) {
     const glm::vec3 wi = direction(0.02 + 0.98 * u(), 6.283 * u());
     const auto mat = material(c, static_cast<float>(m), static_cast<float>(r));
     const double expected = specBrdf(c, m, r, glm::dvec3(wo), glm::dvec3(wi));
-    const double got = static_cast<double>(mat->f(wo, wi, kLambda, {})[0]);
+    const double got = static_cast<double>(mat->f(wo, wi, kMrLambda, {})[0]);
     const double e = std::abs(got - expected) / expected;
     worst = std::max(worst, e);
     ++compared;
     EXPECT_LT(e, 1e-4) << "c " << c << " m " << m << " r " << r << " got " << got << " spec "
                        << expected;
     // Both sides alike; nothing between them.
-    EXPECT_EQ(static_cast<double>(mat->f(-wo, -wi, kLambda, {})[0]), got);
-    EXPECT_EQ(mat->f(wo, -wi, kLambda, {})[0], 0.0f);
+    EXPECT_EQ(static_cast<double>(mat->f(-wo, -wi, kMrLambda, {})[0]), got);
+    EXPECT_EQ(mat->f(wo, -wi, kMrLambda, {})[0], 0.0f);
   }
   std::printf("[measured] f vs glTF Appendix B: largest relative difference %.2e over %d pairs\n",
               worst, compared);
 }
 
-struct ChiCase {
+struct MrChiCase {
   double base;
   float metallic, roughness;
   bool tint;
 };
 
 TEST(MetallicRoughnessMaterial, SamplesFollowPdfOverTheSphere) {
-  const ChiCase cases[] = {
+  const MrChiCase cases[] = {
       {0.5, 0.0f, 0.5f, false}, {0.9, 1.0f, 0.3f, true},  {0.2, 0.5f, 0.7f, true},
       {1.0, 0.0f, 1.0f, false}, {0.8, 0.3f, 0.25f, true}, {0.0, 0.0f, 0.4f, false},
       {0.6, 0.2f, 0.0f, true},  // smooth: delta mirror + diffuse
   };
   const double zs[] = {1.0, 0.5, 0.1, 0.02, -0.6};
   constexpr int tests = 7 * 5;
-  for (const ChiCase& c : cases)
+  for (const MrChiCase& c : cases)
     for (double z : zs) {
       const auto m = material(c.base, c.metallic, c.roughness, c.tint);
       bsdfcheck::ChiSquareOptions o;
       o.testCount = tests;
       o.sampleCount = 50000;
-      const auto r = bsdfcheck::chiSquare(*m, direction(z, 0.8), kLambda, {}, o);
+      const auto r = bsdfcheck::chiSquare(*m, direction(z, 0.8), kMrLambda, {}, o);
       const std::string what = "c " + std::to_string(c.base) + " m " + std::to_string(c.metallic) +
                                " r " + std::to_string(c.roughness) + " z " + std::to_string(z);
       EXPECT_TRUE(r.accepted) << what << "\n" << r.report;
@@ -141,7 +141,7 @@ TEST(MetallicRoughnessMaterial, Reciprocal) {
   for (float metallic : {0.0f, 0.4f, 1.0f})
     for (float roughness : {0.0f, 0.2f, 0.8f}) {
       const auto m = material(0.7, metallic, roughness, true);
-      const auto r = bsdfcheck::reciprocity(*m, kLambda, {});
+      const auto r = bsdfcheck::reciprocity(*m, kMrLambda, {});
       EXPECT_LT(r.maxRelError, 1e-5) << metallic << " " << roughness;
       // A smooth metal has only its delta lobe: f = 0 everywhere.
       if (metallic < 1.0f || roughness > 0.0f) {
@@ -169,7 +169,7 @@ TEST(MetallicRoughnessMaterial, WhiteFurnace) {
         o.quadratureOptions.minDepth = 4;
         o.quadrature = roughness >= 0.3f || (roughness >= 0.1f && z >= 0.1);  // resolvable lobes
         const glm::vec3 wo = direction(z, 1.1);
-        const auto a = bsdfcheck::albedo(*material(1.0, metallic, roughness), wo, kLambda, {}, o);
+        const auto a = bsdfcheck::albedo(*material(1.0, metallic, roughness), wo, kMrLambda, {}, o);
         const std::string what = "m " + std::to_string(metallic) + " r " +
                                  std::to_string(roughness) + " z " + std::to_string(z);
         std::printf(
@@ -201,7 +201,7 @@ TEST(MetallicRoughnessMaterial, SmoothWhiteMetalReflectsExactlyOne) {
       bsdfcheck::AlbedoOptions o;
       o.sampleCount = 2000;
       o.quadrature = false;
-      const auto a = bsdfcheck::albedo(*m, direction(z, 0.2), kLambda, {}, o);
+      const auto a = bsdfcheck::albedo(*m, direction(z, 0.2), kMrLambda, {}, o);
       EXPECT_EQ(a.nonFinite, 0) << z;
       for (std::size_t c = 0; c < a.mean.size(); ++c) EXPECT_NEAR(a.mean[c], 1.0, 1e-6) << z;
       EXPECT_LE(a.maxWeight, 1.0 + 1e-6) << z;
@@ -213,7 +213,7 @@ TEST(MetallicRoughnessMaterial, SmoothWhiteMetalReflectsExactlyOne) {
     bsdfcheck::AlbedoOptions o;
     o.sampleCount = 20000;
     o.quadrature = false;
-    const auto a = bsdfcheck::albedo(*nearlySmooth, direction(z, 0.2), kLambda, {}, o);
+    const auto a = bsdfcheck::albedo(*nearlySmooth, direction(z, 0.2), kMrLambda, {}, o);
     std::printf("[measured] metallic_roughness c 1, m 1, r 0.02, cosθo %.1f: albedo %.6f\n", z,
                 a.mean[0]);
     EXPECT_NEAR(a.mean[0], 1.0, 2e-3) << z;
@@ -226,7 +226,7 @@ TEST(MetallicRoughnessMaterial, SmoothWhiteMetalReflectsExactlyOne) {
 // of a uniform field within 1e-3 (its masking loss at α = 0.01 is < 1e-4).
 TEST(MetallicRoughnessMaterial, DielectricLimitHasF0OfIor15) {
   const auto smooth = material(0.0, 0.0f, 0.0f);
-  const auto s = smooth->sample({0.0f, 0.0f, 1.0f}, 0.5f, {0.3f, 0.3f}, kLambda, {});
+  const auto s = smooth->sample({0.0f, 0.0f, 1.0f}, 0.5f, {0.3f, 0.3f}, kMrLambda, {});
   ASSERT_TRUE(s.has_value());
   EXPECT_TRUE(s->specular);
   EXPECT_FLOAT_EQ(s->pdf, 1.0f);  // a black base has no diffuse lobe to choose
@@ -235,7 +235,7 @@ TEST(MetallicRoughnessMaterial, DielectricLimitHasF0OfIor15) {
   bsdfcheck::AlbedoOptions o;
   o.sampleCount = 20000;
   o.quadrature = false;
-  const auto a = bsdfcheck::albedo(*rough, {0.0f, 0.0f, 1.0f}, kLambda, {}, o);
+  const auto a = bsdfcheck::albedo(*rough, {0.0f, 0.0f, 1.0f}, kMrLambda, {}, o);
   std::printf(
       "[measured] metallic_roughness dielectric, black base, r 0.1, normal incidence: "
       "albedo %.6f\n",
@@ -244,20 +244,20 @@ TEST(MetallicRoughnessMaterial, DielectricLimitHasF0OfIor15) {
   // A grey base colour adds its diffuse lobe: c/π (1 − E(1))² / (1 − E_avg) for wi = wo = n.
   const auto grey = material(0.5, 0.0f, 1.0f);
   const glm::vec3 n(0.0f, 0.0f, 1.0f);
-  EXPECT_NEAR(static_cast<double>(grey->f(n, n, kLambda, {})[0]),
+  EXPECT_NEAR(static_cast<double>(grey->f(n, n, kMrLambda, {})[0]),
               specBrdf(0.5, 0.0, 1.0, {0, 0, 1}, {0, 0, 1}), 1e-6);
 }
 
 TEST(MetallicRoughnessMaterial, AovIsBaseColourAndAlpha) {
   const auto m = material(0.6, 0.3f, 0.5f, true);
-  const SurfaceAov aov = m->aov(kLambda, {});
-  const SampledSpectrum c = sampleSpectrum(baseSpectrum(0.6, true), kLambda);
+  const SurfaceAov aov = m->aov(kMrLambda, {});
+  const SampledSpectrum c = sampleSpectrum(baseSpectrum(0.6, true), kMrLambda);
   for (int i = 0; i < kWavelengthSamples; ++i) EXPECT_FLOAT_EQ(aov.albedo[i], c[i]);
   EXPECT_FLOAT_EQ(aov.roughness, 0.25f);  // α = r²
   // Out-of-range inputs (a texture could give them) are clamped to [0, 1].
   const auto wild = material(3.0, 2.0f, -1.0f);
-  EXPECT_FLOAT_EQ(wild->aov(kLambda, {}).albedo[0], 1.0f);
-  EXPECT_FLOAT_EQ(wild->aov(kLambda, {}).roughness, 0.0f);
+  EXPECT_FLOAT_EQ(wild->aov(kMrLambda, {}).albedo[0], 1.0f);
+  EXPECT_FLOAT_EQ(wild->aov(kMrLambda, {}).roughness, 0.0f);
 }
 
 TEST(MetallicRoughnessMaterial, FiniteAtGrazingAndSharpestLobe) {
@@ -268,7 +268,7 @@ TEST(MetallicRoughnessMaterial, FiniteAtGrazingAndSharpestLobe) {
         bsdfcheck::AlbedoOptions o;
         o.sampleCount = 4000;
         o.quadrature = false;
-        const auto a = bsdfcheck::albedo(*m, direction(z, 0.4), kLambda, {}, o);
+        const auto a = bsdfcheck::albedo(*m, direction(z, 0.4), kMrLambda, {}, o);
         EXPECT_EQ(a.nonFinite, 0) << roughness << " " << z;
         EXPECT_LE(a.mean[0], 1.0 + 5.0 * a.stdErr[0] + 1e-6) << roughness << " " << z;
       }
@@ -276,7 +276,7 @@ TEST(MetallicRoughnessMaterial, FiniteAtGrazingAndSharpestLobe) {
   const float nan = std::numeric_limits<float>::quiet_NaN();
   for (float roughness : {0.0f, 0.5f})
     EXPECT_FALSE(material(0.7, 0.0f, roughness)
-                     ->sample({0.3f, 0.0f, nan}, 0.1f, {0.3f, 0.3f}, kLambda, {})
+                     ->sample({0.3f, 0.0f, nan}, 0.1f, {0.3f, 0.3f}, kMrLambda, {})
                      .has_value())
         << roughness;
 }

@@ -26,10 +26,10 @@ namespace {
 
 using bsdfcheck::direction;
 
-constexpr MicrofacetDistribution kDistributions[] = {MicrofacetDistribution::kGgx,
-                                                     MicrofacetDistribution::kBeckmann};
+constexpr MicrofacetDistribution kMicrofacetDistributions[] = {MicrofacetDistribution::kGgx,
+                                                               MicrofacetDistribution::kBeckmann};
 
-std::string name(MicrofacetDistribution d) {
+std::string distributionName(MicrofacetDistribution d) {
   return d == MicrofacetDistribution::kGgx ? "ggx" : "beckmann";
 }
 
@@ -66,11 +66,11 @@ class NormalSampler final : public Material {
 };
 
 TEST(Microfacet, DistributionAtThePoleIsOneOverPiAlphaXAlphaY) {
-  for (MicrofacetDistribution d : kDistributions) {
+  for (MicrofacetDistribution d : kMicrofacetDistributions) {
     const MicrofacetModel iso(d, MaskingModel::kSmith, 0.3f, 0.3f);
-    EXPECT_NEAR(iso.D({0.0f, 0.0f, 1.0f}), 1.0f / (kPi * 0.09f), 1e-5f) << name(d);
+    EXPECT_NEAR(iso.D({0.0f, 0.0f, 1.0f}), 1.0f / (kPi * 0.09f), 1e-5f) << distributionName(d);
     const MicrofacetModel aniso(d, MaskingModel::kSmith, 0.2f, 0.5f);
-    EXPECT_NEAR(aniso.D({0.0f, 0.0f, 1.0f}), 1.0f / (kPi * 0.1f), 1e-5f) << name(d);
+    EXPECT_NEAR(aniso.D({0.0f, 0.0f, 1.0f}), 1.0f / (kPi * 0.1f), 1e-5f) << distributionName(d);
     EXPECT_EQ(iso.D({0.0f, 0.6f, -0.8f}), 0.0f);  // no normals below the surface
     EXPECT_EQ(iso.lambda({0.0f, 0.0f, 1.0f}), 0.0f);
   }
@@ -117,7 +117,7 @@ TEST(Microfacet, ProjectedAreaIsNormalised) {
   const std::pair<float, float> alphas[] = {{1e-4f, 1e-4f}, {1e-3f, 1e-3f}, {0.01f, 0.01f},
                                             {0.1f, 0.1f},   {0.5f, 0.5f},   {1.0f, 1.0f},
                                             {0.1f, 0.4f},   {0.03f, 0.6f},  {2e-3f, 1e-3f}};
-  for (MicrofacetDistribution d : kDistributions)
+  for (MicrofacetDistribution d : kMicrofacetDistributions)
     for (auto [ax, ay] : alphas) {
       const MicrofacetModel m(d, MaskingModel::kSmith, ax, ay);
       const double integral = bsdfcheck::integrateSphere(
@@ -125,7 +125,7 @@ TEST(Microfacet, ProjectedAreaIsNormalised) {
             return static_cast<double>(m.D(wm)) * std::max(0.0, static_cast<double>(wm.z));
           },
           10, 20, fineQuadrature());
-      EXPECT_NEAR(integral, 1.0, 1e-6) << name(d) << " α = " << ax << ", " << ay;
+      EXPECT_NEAR(integral, 1.0, 1e-6) << distributionName(d) << " α = " << ax << ", " << ay;
     }
 }
 
@@ -134,7 +134,7 @@ TEST(Microfacet, ProjectedAreaIsNormalised) {
 TEST(Microfacet, VisibleNormalsAreNormalised) {
   const std::pair<float, float> alphas[] = {
       {0.05f, 0.05f}, {0.3f, 0.3f}, {1.0f, 1.0f}, {0.1f, 0.5f}};
-  for (MicrofacetDistribution d : kDistributions)
+  for (MicrofacetDistribution d : kMicrofacetDistributions)
     for (auto [ax, ay] : alphas)
       for (double z : {1.0, 0.5, 0.1, 1e-3}) {
         const MicrofacetModel m(d, MaskingModel::kSmith, ax, ay);
@@ -150,7 +150,7 @@ TEST(Microfacet, VisibleNormalsAreNormalised) {
         // Measured |error| ≤ 4e-7 for z ≥ 0.1; at z = 1e-3 the quadrature misses part of the
         // 1e-3-wide region around the pole where the kink w·m = 0 meets the peak (1e-5).
         EXPECT_NEAR(visible, 1.0, z < 0.01 ? 5e-5 : 2e-6)
-            << name(d) << " α = " << ax << ", " << ay << " z = " << z;
+            << distributionName(d) << " α = " << ax << ", " << ay << " z = " << z;
       }
 }
 
@@ -159,7 +159,7 @@ TEST(Microfacet, SampledNormalsFollowPdf) {
       {0.05f, 0.05f}, {0.3f, 0.3f}, {1.0f, 1.0f}, {0.1f, 0.4f}};
   const double zs[] = {1.0, 0.5, 0.05, -0.7};
   constexpr int tests = 2 * 4 * 4;
-  for (MicrofacetDistribution d : kDistributions)
+  for (MicrofacetDistribution d : kMicrofacetDistributions)
     for (auto [ax, ay] : alphas)
       for (double z : zs) {
         const NormalSampler s(MicrofacetModel(d, MaskingModel::kSmith, ax, ay));
@@ -168,7 +168,8 @@ TEST(Microfacet, SampledNormalsFollowPdf) {
         o.sampleCount = 100000;
         const auto r = bsdfcheck::chiSquare(s, direction(z, 1.0),
                                             SampledWavelengths::sampleUniform(0.5f), {}, o);
-        EXPECT_TRUE(r.accepted) << name(d) << " α = " << ax << ", " << ay << "\n" << r.report;
+        EXPECT_TRUE(r.accepted) << distributionName(d) << " α = " << ax << ", " << ay << "\n"
+                                << r.report;
         EXPECT_EQ(r.pdfMismatch, 0);
         EXPECT_NEAR(r.pdfIntegral, 1.0, 1e-3);
       }
@@ -183,7 +184,7 @@ TEST(Microfacet, FiniteFromSmoothToRoughAndAtGrazing) {
                             glm::normalize(glm::vec3(0.3f, -0.2f, 0.9f))};
   const glm::vec2 us[] = {
       {0.0f, 0.0f}, {1.0f - 0x1p-24f, 0.5f}, {0.5f, 1.0f - 0x1p-24f}, {0.3f, 0.7f}};
-  for (MicrofacetDistribution d : kDistributions)
+  for (MicrofacetDistribution d : kMicrofacetDistributions)
     for (MaskingModel mask : {MaskingModel::kSmith, MaskingModel::kVGroove})
       for (float a : alphas)
         for (const glm::vec3& w : dirs) {
@@ -195,11 +196,11 @@ TEST(Microfacet, FiniteFromSmoothToRoughAndAtGrazing) {
           EXPECT_LE(m.G1(w), 1.0f);
           for (glm::vec2 u : us) {
             const glm::vec3 wm = m.sampleWm(w, u);
-            EXPECT_NEAR(glm::length(wm), 1.0f, 1e-5f) << name(d) << " α " << a;
+            EXPECT_NEAR(glm::length(wm), 1.0f, 1e-5f) << distributionName(d) << " α " << a;
             EXPECT_GT(wm.z, 0.0f);
             const float dv = m.D(wm), pv = m.pdf(w, wm);
-            EXPECT_TRUE(std::isfinite(dv) && dv >= 0.0f) << name(d) << " α " << a;
-            EXPECT_TRUE(std::isfinite(pv) && pv >= 0.0f) << name(d) << " α " << a;
+            EXPECT_TRUE(std::isfinite(dv) && dv >= 0.0f) << distributionName(d) << " α " << a;
+            EXPECT_TRUE(std::isfinite(pv) && pv >= 0.0f) << distributionName(d) << " α " << a;
             for (const glm::vec3& wi : dirs) {
               const float g = m.G(w, wi, wm);
               EXPECT_TRUE(g >= 0.0f && g <= 1.0f) << g;
@@ -207,10 +208,10 @@ TEST(Microfacet, FiniteFromSmoothToRoughAndAtGrazing) {
           }
         }
   // Smooth threshold.
-  EXPECT_TRUE(
-      MicrofacetModel(kDistributions[0], MaskingModel::kSmith, 0.0f, 0.0f).effectivelySmooth());
-  EXPECT_FALSE(
-      MicrofacetModel(kDistributions[0], MaskingModel::kSmith, 1e-3f, 0.0f).effectivelySmooth());
+  EXPECT_TRUE(MicrofacetModel(kMicrofacetDistributions[0], MaskingModel::kSmith, 0.0f, 0.0f)
+                  .effectivelySmooth());
+  EXPECT_FALSE(MicrofacetModel(kMicrofacetDistributions[0], MaskingModel::kSmith, 1e-3f, 0.0f)
+                   .effectivelySmooth());
 }
 
 // From below, the lobe is the one seen from the other side: w with w.z < 0 is sampled and
@@ -218,16 +219,16 @@ TEST(Microfacet, FiniteFromSmoothToRoughAndAtGrazing) {
 // the plane; the two differ for an anisotropic α and a direction off the principal planes.
 TEST(Microfacet, DirectionsBelowAreTakenAsTheirOpposite) {
   const glm::vec3 below = glm::normalize(glm::vec3(0.5f, 0.3f, -0.4f));
-  for (MicrofacetDistribution d : kDistributions) {
+  for (MicrofacetDistribution d : kMicrofacetDistributions) {
     const MicrofacetModel m(d, MaskingModel::kSmith, 0.6f, 0.1f);
     for (const glm::vec2 u : {glm::vec2(0.2f, 0.3f), glm::vec2(0.7f, 0.9f)}) {
       const glm::vec3 wm = m.sampleWm(below, u);
-      EXPECT_EQ(wm, m.sampleWm(-below, u)) << name(d);
-      EXPECT_EQ(m.pdf(below, wm), m.pdf(-below, wm)) << name(d);
+      EXPECT_EQ(wm, m.sampleWm(-below, u)) << distributionName(d);
+      EXPECT_EQ(m.pdf(below, wm), m.pdf(-below, wm)) << distributionName(d);
     }
     const glm::vec3 mirrored(below.x, below.y, -below.z);
     EXPECT_NE(m.sampleWm(below, glm::vec2(0.2f, 0.3f)), m.sampleWm(mirrored, glm::vec2(0.2f, 0.3f)))
-        << name(d);
+        << distributionName(d);
   }
 }
 
@@ -237,7 +238,7 @@ TEST(Microfacet, DirectionsBelowAreTakenAsTheirOpposite) {
 TEST(Microfacet, SampledNormalsFaceWAndSmithWeightsStayAtMostOne) {
   const std::pair<float, float> alphas[] = {
       {0.05f, 0.05f}, {0.3f, 0.3f}, {1.0f, 1.0f}, {0.2f, 0.6f}};
-  for (MicrofacetDistribution d : kDistributions)
+  for (MicrofacetDistribution d : kMicrofacetDistributions)
     for (auto [ax, ay] : alphas)
       for (double z : {1.0, 0.5, 0.1, 0.01, 1e-4}) {
         const MicrofacetModel m(d, MaskingModel::kSmith, ax, ay);
@@ -261,8 +262,8 @@ TEST(Microfacet, SampledNormalsFaceWAndSmithWeightsStayAtMostOne) {
             largest = std::max(largest, weight);
             if (weight > 1.0 + 1e-4) ++overweight;
           }
-        const std::string what = name(d) + " α " + std::to_string(ax) + "," + std::to_string(ay) +
-                                 " cos " + std::to_string(z);
+        const std::string what = distributionName(d) + " α " + std::to_string(ax) + "," +
+                                 std::to_string(ay) + " cos " + std::to_string(z);
         EXPECT_EQ(backFacing, 0) << what;
         EXPECT_EQ(overweight, 0) << what << " largest weight " << largest;
         EXPECT_EQ(failed, 0) << what;
@@ -275,7 +276,7 @@ TEST(Microfacet, SampledNormalsFaceWAndSmithWeightsStayAtMostOne) {
 TEST(Microfacet, SamplingStaysFiniteOverRandomHardCases) {
   Pcg32 rng(2024, 7);
   const float ends[] = {0.0f, 1e-7f, 0.5f, 1.0f - 0x1p-24f};
-  for (MicrofacetDistribution d : kDistributions)
+  for (MicrofacetDistribution d : kMicrofacetDistributions)
     for (int i = 0; i < 50000; ++i) {
       const float ax = std::pow(10.0f, -4.0f + 4.5f * rng.uniform());
       const float ay = std::pow(10.0f, -4.0f + 4.5f * rng.uniform());
@@ -287,11 +288,13 @@ TEST(Microfacet, SamplingStaysFiniteOverRandomHardCases) {
       const MicrofacetModel m(d, MaskingModel::kSmith, ax, ay);
       const glm::vec3 wm = m.sampleWm(w, u);
       ASSERT_TRUE(std::isfinite(wm.x) && std::isfinite(wm.y) && std::isfinite(wm.z))
-          << name(d) << " α " << ax << "," << ay << " z " << z << " u " << u.x << "," << u.y;
+          << distributionName(d) << " α " << ax << "," << ay << " z " << z << " u " << u.x << ","
+          << u.y;
       ASSERT_NEAR(glm::length(wm), 1.0f, 1e-5f);
       ASSERT_GT(wm.z, 0.0f);
       const float p = m.pdf(w, wm);
-      ASSERT_TRUE(std::isfinite(p) && p >= 0.0f) << name(d) << " α " << ax << " z " << z;
+      ASSERT_TRUE(std::isfinite(p) && p >= 0.0f)
+          << distributionName(d) << " α " << ax << " z " << z;
     }
 }
 

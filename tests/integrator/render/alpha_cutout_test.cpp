@@ -17,12 +17,12 @@ using test::cameraAboveOrigin;
 using test::MaxError;
 using test::renderLuminance;
 
-constexpr int kSize = 8;
+constexpr int kCutoutSize = 8;
 
 // A black quad 0.1 m wide at height 0.5 m, cut by `cutout`, over an emitting floor of
 // 100 cd/m². quad: the shape entries of the quad.
 std::string coverageScene(const std::string& cutout, const std::string& quad) {
-  return cameraAboveOrigin(kSize) +
+  return cameraAboveOrigin(kCutoutSize) +
          "render: {max_depth: 1}\n"
          "materials:\n"
          "  black: {type: diffuse, reflectance: 0, alpha_cutout: " +
@@ -55,10 +55,10 @@ void expectHalfOfTheEmitter(const std::string& yaml) {
   MaxError maxError;
   const test::LuminanceImage img = renderLuminance(yaml, 64);
   double mean = 0.0;
-  for (int y = 0; y < kSize; ++y)
-    for (int x = 0; x < kSize; ++x) {
+  for (int y = 0; y < kCutoutSize; ++y)
+    for (int x = 0; x < kCutoutSize; ++x) {
       EXPECT_LT(maxError(img.at(x, y), 50.0), 0.03) << x << "," << y << ": " << img.at(x, y);
-      mean += img.at(x, y) / (kSize * kSize);
+      mean += img.at(x, y) / (kCutoutSize * kCutoutSize);
     }
   EXPECT_NEAR(mean, 50.0, 0.5);
 }
@@ -86,8 +86,8 @@ TEST(AlphaCutoutRender, AConstantAlphaBelowTheCutoffRemovesTheSurface) {
   const test::LuminanceImage none = renderLuminance(coverageScene("{}", ""), 16);
   const test::LuminanceImage kept =
       renderLuminance(coverageScene("{factor: 0.5, cutoff: 0.5}", kQuad), 16);
-  for (int y = 0; y < kSize; ++y)
-    for (int x = 0; x < kSize; ++x) {
+  for (int y = 0; y < kCutoutSize; ++y)
+    for (int x = 0; x < kCutoutSize; ++x) {
       EXPECT_EQ(cut.at(x, y), none.at(x, y)) << x << "," << y;
       EXPECT_NEAR(none.at(x, y), 100.0, 1.0) << x << "," << y;
       EXPECT_EQ(kept.at(x, y), 0.0) << x << "," << y;
@@ -101,7 +101,7 @@ TEST(AlphaCutoutRender, AConstantAlphaBelowTheCutoffRemovesTheSurface) {
 // pixel's 2.5 mm, half the floor lit. `occluder`: the occluder's entries, or none; `checks`:
 // per unit of its uv.
 double floorUnderSun(const std::string& occluder, int checks = 320) {
-  const std::string yaml = cameraAboveOrigin(kSize) +
+  const std::string yaml = cameraAboveOrigin(kCutoutSize) +
                            "materials:\n"
                            "  floor: {type: diffuse, reflectance: 0.5}\n"
                            "  black: {type: diffuse, reflectance: 0,\n"
@@ -117,8 +117,8 @@ double floorUnderSun(const std::string& occluder, int checks = 320) {
                            "     illuminance: 10000}\n";
   const test::LuminanceImage img = renderLuminance(yaml, 64);
   double mean = 0.0;
-  for (int y = 0; y < kSize; ++y)
-    for (int x = 0; x < kSize; ++x) mean += img.at(x, y) / (kSize * kSize);
+  for (int y = 0; y < kCutoutSize; ++y)
+    for (int x = 0; x < kCutoutSize; ++x) mean += img.at(x, y) / (kCutoutSize * kCutoutSize);
   return mean;
 }
 

@@ -16,7 +16,7 @@
 namespace camsim {
 namespace {
 
-constexpr const char* kScene = R"(
+constexpr const char* kSimdScene = R"(
 camera:
   position: [0, 0.5, -2]
   look_at: [0, 0.4, 2]
@@ -50,7 +50,7 @@ lights:
 )";
 
 TEST(AovFilmSimd, TargetAndAvx2CopiesGiveTheSameBytes) {
-  const SceneDescription d = loadSceneFromText(kScene, "simd.yaml", ".");
+  const SceneDescription d = loadSceneFromText(kSimdScene, "simd.yaml", ".");
   Scene scene(d, glm::dvec2(0.0, 0.25));
   scene.setCamera(d.frameCamera(1));
   AovFilm avx2(scene), target(scene, false);

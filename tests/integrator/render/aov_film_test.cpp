@@ -22,7 +22,7 @@ namespace {
 using test::num;
 
 constexpr int kRes = 32;
-constexpr double kFocal = 0.02, kSensor = 0.024;  // pinhole: 24 mm film, 20 mm image distance
+constexpr double kAovFocal = 0.02, kSensor = 0.024;  // pinhole: 24 mm film, 20 mm image distance
 constexpr const char* kAllAovs = "[depth, distance, position, normal, albedo, roughness]";
 
 RenderResult renderAovs(const std::string& shapes, const std::string& materials,
@@ -57,7 +57,7 @@ double footprintMean(int x, int y, F f) {
       const glm::dvec2 s = filmPoint(x + (i + 0.5) / 16.0, y + (j + 0.5) / 16.0);
       // A pinhole images film point s through the centre: the ray towards (−s, f), i.e.
       // the scene point seen at pixel (x, y) lies along (s.x, s.y, f) in the upright image.
-      sum += f(glm::dvec3(s.x / kFocal, s.y / kFocal, 1.0));
+      sum += f(glm::dvec3(s.x / kAovFocal, s.y / kAovFocal, 1.0));
     }
   return sum / 256.0;
 }
@@ -76,14 +76,14 @@ TEST(Aovs, FrontoParallelPlane) {
       "grey: {type: diffuse, reflectance: 0.5}");
   const Image& a = r.aovs;
   ASSERT_EQ(a.width, kRes);
-  const double pitchAt2m = 2.0 * kSensor / kRes / kFocal;
+  const double pitchAt2m = 2.0 * kSensor / kRes / kAovFocal;
   for (int y = 0; y < kRes; ++y)
     for (int x = 0; x < kRes; ++x) {
       ASSERT_EQ(at(a, x, y, "coverage.A"), 1.0f);
       EXPECT_FLOAT_EQ(at(a, x, y, "depth.Z"), 2.0f) << x << "," << y;
       const double dist = footprintMean(x, y, [](glm::dvec3 d) { return 2.0 * glm::length(d); });
       EXPECT_NEAR(at(a, x, y, "distance.Z"), dist, 2e-4 * dist) << x << "," << y;
-      const glm::dvec2 c = filmPoint(x + 0.5, y + 0.5) * (2.0 / kFocal);
+      const glm::dvec2 c = filmPoint(x + 0.5, y + 0.5) * (2.0 / kAovFocal);
       EXPECT_NEAR(at(a, x, y, "P.X"), -c.x, pitchAt2m / 64.0) << x << "," << y;  // right = −x
       EXPECT_NEAR(at(a, x, y, "P.Y"), c.y, pitchAt2m / 64.0) << x << "," << y;
       EXPECT_FLOAT_EQ(at(a, x, y, "P.Z"), 2.0f);
@@ -114,8 +114,8 @@ TEST(Aovs, TiltedPlaneDepthIsTheFootprintMean) {
     for (int x = 0; x < kRes; ++x) {
       const auto z = [t](glm::dvec3 d) { return 2.0 / (1.0 + d.x * t); };
       const double mean = footprintMean(x, y, z);
-      const double change = std::abs(z(glm::dvec3(filmPoint(x + 1, y) / kFocal, 1.0)) -
-                                     z(glm::dvec3(filmPoint(x, y) / kFocal, 1.0)));
+      const double change = std::abs(z(glm::dvec3(filmPoint(x + 1, y) / kAovFocal, 1.0)) -
+                                     z(glm::dvec3(filmPoint(x, y) / kAovFocal, 1.0)));
       EXPECT_NEAR(at(a, x, y, "depth.Z"), mean, change / 64.0 + 1e-6) << x << "," << y;
       // Front = edge_u × edge_v ∝ (s, 0, −c) in world axes: (−s, 0, −c) in camera axes.
       EXPECT_NEAR(at(a, x, y, "Ng_cam.X"), -s, 1e-6);
@@ -142,7 +142,7 @@ TEST(Aovs, SphereFootprintMeans) {
     const double b = glm::dot(w, centre), disc = b * b - (glm::dot(centre, centre) - 1.0);
     return disc < 0.0 ? glm::dvec3(0.0) : w * (b - std::sqrt(disc));
   };
-  const double pitch = 4.0 * kSensor / kRes / kFocal;
+  const double pitch = 4.0 * kSensor / kRes / kAovFocal;
   int full = 0, partial = 0, empty = 0;
   for (int y = 0; y < kRes; ++y)
     for (int x = 0; x < kRes; ++x) {
@@ -182,7 +182,7 @@ TEST(Aovs, PositionIsInWorldCoordinates) {
       "material: grey}\n",
       "grey: {type: diffuse, reflectance: 0.5}", "[position, depth]", 0,
       "position: [1000000, 0, 0], look_at: [1000000, 0, 100]");
-  EXPECT_NEAR(at(r.aovs, 16, 16, "P.X"), 1000000.0 - 0.5 * 2.0 * kSensor / kRes / kFocal, 0.07);
+  EXPECT_NEAR(at(r.aovs, 16, 16, "P.X"), 1000000.0 - 0.5 * 2.0 * kSensor / kRes / kAovFocal, 0.07);
   EXPECT_FLOAT_EQ(at(r.aovs, 16, 16, "depth.Z"), 2.0f);
 }
 

@@ -46,7 +46,7 @@ TEST(Cryptomatte, IdsAreNormalFloats) {
   }
 }
 
-constexpr int kW = 48, kH = 4;
+constexpr int kMatteW = 48, kMatteH = 4;
 
 // A card (the instance "card", class "target") whose edge crosses the image vertically, in
 // front of a wall, looking along −z (image right is world +x). `camera` adds to the camera
@@ -55,7 +55,7 @@ SceneDescription edgeScene(const std::string& camera, const std::string& card,
                            const std::string& extra = "") {
   const std::string text =
       "camera: {position: [0, 0, 0], look_at: [0, 0, -1], up: [0, 1, 0], resolution: [" +
-      std::to_string(kW) + ", " + std::to_string(kH) +
+      std::to_string(kMatteW) + ", " + std::to_string(kMatteH) +
       "], sensor_width_mm: 6, sensor_height_mm: 0.5, focal_length_mm: 20" + camera +
       "}\n"
       "render: {spp: 1024, max_depth: 1, aovs: [instance_id, class_id, material_id]}\n" +
@@ -101,8 +101,8 @@ double sumOfCoverages(const Image& a, const std::string& type, int x, int y) {
 
 // The card's edge x = 0 at 0.25 m images at OpenCV column cx (pixel centres at integers);
 // the card covers the image's left (world x < 0).
-constexpr double kMattePitch = 0.006 / kW, kMatteFocal = 0.02, kCard = 0.25;
-constexpr double kCx = 0.5 * kW - 0.5;
+constexpr double kMattePitch = 0.006 / kMatteW, kMatteFocal = 0.02, kCard = 0.25;
+constexpr double kCx = 0.5 * kMatteW - 0.5;
 
 // The card moving +x by 1.5 cm during the shutter at 0.25 m: its edge sweeps
 // 1.5 cm · f / (z · pitch) = 9.6 px linearly in time; the card covers pixel x for the
@@ -118,7 +118,7 @@ TEST(IdMattes, MotionBlurredEdgeFollowsTheLinearRamp) {
   const double e0 = kCx, e1 = kCx + sweep * kMatteFocal / (kCard * kMattePitch);  // edge column, px
   ASSERT_GT(e1 - e0, 8.0);
   double worst = 0.0;
-  for (int x = 0; x < kW; ++x) {
+  for (int x = 0; x < kMatteW; ++x) {
     // Mean over time and over the pixel box [x − ½, x + ½] of [u < e(t)].
     double expected = 0.0;
     constexpr int kN = 400;
@@ -127,7 +127,7 @@ TEST(IdMattes, MotionBlurredEdgeFollowsTheLinearRamp) {
       expected += std::clamp(e - (x - 0.5), 0.0, 1.0);
     }
     expected /= kN;
-    for (int y = 0; y < kH; ++y) {
+    for (int y = 0; y < kMatteH; ++y) {
       const double c = coverageOf(a, "CryptoObject", card, x, y);
       worst = std::max(worst, std::abs(c - expected));
       ASSERT_NEAR(c, expected, 0.02) << "x " << x << " y " << y;
@@ -144,8 +144,8 @@ TEST(IdMattes, MotionBlurredEdgeFollowsTheLinearRamp) {
   EXPECT_EQ(a.at(0, 0, a.channelIndex("instance.id")), 2.0f);
   EXPECT_EQ(a.at(0, 0, a.channelIndex("class.id")), 1.0f);
   EXPECT_EQ(a.at(0, 0, a.channelIndex("material.id")), 2.0f);
-  EXPECT_EQ(a.at(kW - 1, 0, a.channelIndex("instance.id")), 1.0f);
-  EXPECT_EQ(a.at(kW - 1, 0, a.channelIndex("class.id")), 0.0f);
+  EXPECT_EQ(a.at(kMatteW - 1, 0, a.channelIndex("instance.id")), 1.0f);
+  EXPECT_EQ(a.at(kMatteW - 1, 0, a.channelIndex("class.id")), 0.0f);
 }
 
 // Unit disc's area fraction with x < u.
@@ -164,7 +164,7 @@ TEST(IdMattes, DefocusedEdgeFollowsTheDiscOverlap) {
   const float card = cryptomatteId("card");
   const double radiusPx = 0.5 * (kMatteFocal / 1.0) * kMatteFocal / kCard / kMattePitch;
   ASSERT_GT(radiusPx, 3.0);
-  for (int x = 0; x < kW; ++x) {
+  for (int x = 0; x < kMatteW; ++x) {
     double expected = 0.0;
     constexpr int kN = 400;
     for (int i = 0; i < kN; ++i) {
@@ -172,7 +172,7 @@ TEST(IdMattes, DefocusedEdgeFollowsTheDiscOverlap) {
       expected += discFraction((kCx - u) / radiusPx);
     }
     expected /= kN;
-    for (int y = 0; y < kH; ++y) {
+    for (int y = 0; y < kMatteH; ++y) {
       ASSERT_NEAR(coverageOf(a, "CryptoObject", card, x, y), expected, 0.02)
           << "x " << x << " y " << y;
       ASSERT_NEAR(sumOfCoverages(a, "CryptoObject", x, y), 1.0, 1e-6);
@@ -185,10 +185,10 @@ TEST(IdMattes, MissesAreIdZeroAndCoveragesSumToOne) {
   SceneDescription d = edgeScene("", "");
   d.shapes.erase(d.shapes.begin());  // no wall: the right half sees nothing
   const Image a = renderIds(d);
-  EXPECT_EQ(a.at(kW - 1, 0, a.channelIndex("CryptoObject00.R")), 0.0f);
-  EXPECT_EQ(a.at(kW - 1, 0, a.channelIndex("CryptoObject00.G")), 1.0f);
-  EXPECT_EQ(a.at(kW - 1, 0, a.channelIndex("instance.id")), 0.0f);
-  for (int x = 0; x < kW; ++x) EXPECT_NEAR(sumOfCoverages(a, "CryptoObject", x, 1), 1.0, 1e-6);
+  EXPECT_EQ(a.at(kMatteW - 1, 0, a.channelIndex("CryptoObject00.R")), 0.0f);
+  EXPECT_EQ(a.at(kMatteW - 1, 0, a.channelIndex("CryptoObject00.G")), 1.0f);
+  EXPECT_EQ(a.at(kMatteW - 1, 0, a.channelIndex("instance.id")), 0.0f);
+  for (int x = 0; x < kMatteW; ++x) EXPECT_NEAR(sumOfCoverages(a, "CryptoObject", x, 1), 1.0, 1e-6);
 }
 
 // class: integers are their own numbers; names are numbered after the largest integer in

@@ -32,14 +32,14 @@ using test::num;
 
 constexpr double kBlurFocal = 0.050;  // m
 constexpr double kBlurPitch = 20e-6;  // m
-constexpr double kZ = 1.0;            // m, emitter distance
+constexpr double kBlurZ = 1.0;        // m, emitter distance
 constexpr double kT = 0.01;           // s, exposure (open 0 → close T)
-constexpr double kV = 2.4;            // m/s: v·T = 24 mm, 60 px
+constexpr double kBlurV = 2.4;        // m/s: v·T = 24 mm, 60 px
 constexpr double kEmitterPx = 3.0;
-constexpr int kWidth = 80, kHeight = 16;
+constexpr int kBlurWidth = 80, kBlurHeight = 16;
 
-double pixelsPerMetre() {
-  return kBlurFocal / (kZ * kBlurPitch);
+double blurPixelsPerMetre() {
+  return kBlurFocal / (kBlurZ * kBlurPitch);
 }
 
 struct Streak {
@@ -50,22 +50,23 @@ struct Streak {
 // shutter: the YAML shutter mapping. Either the emitter moves from world x = −vT/2 to
 // +vT/2 over [0, T], or (cameraMoves) the camera moves from +vT/2 to −vT/2.
 Streak renderStreak(const std::string& shutter, bool cameraMoves, int spp, std::uint64_t seed) {
-  const double half = 0.5 * kV * kT;
+  const double half = 0.5 * kBlurV * kT;
   const std::string keys = [&](double from, double to) {
     return "[{time: 0, translate: [" + num(from) + ", 0, 0]}, {time: " + num(kT) +
            ", translate: [" + num(to) + ", 0, 0]}]";
   }(cameraMoves ? half : -half, cameraMoves ? -half : half);
   const std::string yaml =
       "camera: {position: [0, 0, 0], look_at: [0, 0, 1], sensor_width_mm: " +
-      num(kWidth * kBlurPitch * 1e3) + ", sensor_height_mm: " + num(kHeight * kBlurPitch * 1e3) +
-      ",\n  resolution: [" + std::to_string(kWidth) + ", " + std::to_string(kHeight) +
+      num(kBlurWidth * kBlurPitch * 1e3) +
+      ", sensor_height_mm: " + num(kBlurHeight * kBlurPitch * 1e3) + ",\n  resolution: [" +
+      std::to_string(kBlurWidth) + ", " + std::to_string(kBlurHeight) +
       "], focal_length_mm: " + num(kBlurFocal * 1e3) + ",\n  shutter: " + shutter +
       (cameraMoves ? ",\n  motion: " + keys : std::string()) +
       "}\n"
       "render: {max_depth: 0}\n"
       "shapes:\n"
       "  - {type: sphere, centre: [0, 0, " +
-      num(kZ) + "], radius: " + num(kEmitterPx / pixelsPerMetre()) +
+      num(kBlurZ) + "], radius: " + num(kEmitterPx / blurPixelsPerMetre()) +
       ",\n     emission: {luminance: 10000, spectrum: 1, two_sided: true}" +
       (cameraMoves ? std::string() : ",\n     motion: " + keys) + "}\n";
   const Scene scene(loadSceneFromText(yaml, "motion.yaml", "."));
@@ -76,10 +77,10 @@ Streak renderStreak(const std::string& shutter, bool cameraMoves, int spp, std::
   EXPECT_EQ(result.stats.rejectedSamples, 0u);
   Streak s;
   s.modelled = result.stats.modelled;
-  s.profile.assign(kWidth, 0.0);
+  s.profile.assign(kBlurWidth, 0.0);
   const int c = result.image.channelIndex("Y");
-  for (int y = 0; y < kHeight; ++y)
-    for (int x = 0; x < kWidth; ++x)
+  for (int y = 0; y < kBlurHeight; ++y)
+    for (int x = 0; x < kBlurWidth; ++x)
       s.profile[static_cast<size_t>(x)] += static_cast<double>(result.image.at(x, y, c));
   return s;
 }
@@ -181,8 +182,8 @@ TEST(MotionBlur, BoxShutterStreakLengthAndUniformity) {
   EXPECT_EQ(s.modelled.movingObjects, 1);
   EXPECT_FALSE(s.modelled.cameraMoves);
   EXPECT_FALSE(s.modelled.rollingShutter);
-  const double predicted = kV * kT * pixelsPerMetre();
-  const int centre = kWidth / 2;
+  const double predicted = kBlurV * kT * blurPixelsPerMetre();
+  const int centre = kBlurWidth / 2;
   const int inner = static_cast<int>(0.5 * predicted - kEmitterPx - 2.0);
   const PlateauStats st = plateauStats(s.profile, centre - inner, centre + inner - 1);
   const double fwhm =
@@ -210,21 +211,22 @@ TEST(MotionBlur, TrapezoidShutterRampLengths) {
   const Streak s = renderStreak("{open: 0, close: " + num(kT) + ", ramp_open: " + num(rampOpen) +
                                     ", ramp_close: " + num(rampClose) + "}",
                                 false, 2048, 4);
-  const double ppm = pixelsPerMetre();
-  const double full = kV * kT * ppm;
+  const double ppm = blurPixelsPerMetre();
+  const double full = kBlurV * kT * ppm;
   // Plateau (s = 1 from t = 3 ms to 8 ms): image x = centre + L/2 − v·t·ppm.
-  const double xOpen = 0.5 * kWidth + 0.5 * full - kV * rampOpen * ppm;  // plateau's right end
+  const double xOpen =
+      0.5 * kBlurWidth + 0.5 * full - kBlurV * rampOpen * ppm;  // plateau's right end
   const double xClose =
-      0.5 * kWidth + 0.5 * full - kV * (kT - rampClose) * ppm;  // plateau's left end
+      0.5 * kBlurWidth + 0.5 * full - kBlurV * (kT - rampClose) * ppm;  // plateau's left end
   const PlateauStats st = plateauStats(s.profile, static_cast<int>(xClose + kEmitterPx + 1.0),
                                        static_cast<int>(xOpen - kEmitterPx - 1.0));
   // Fit each edge from beyond its outer end to the middle of the plateau.
   const double mid = 0.5 * (xOpen + xClose);
-  const double rampOpenPx = kV * rampOpen * ppm, rampClosePx = kV * rampClose * ppm;
+  const double rampOpenPx = kBlurV * rampOpen * ppm, rampClosePx = kBlurV * rampClose * ppm;
   const EdgeFit left =
       fitEdge(s.profile, 0, static_cast<int>(mid), false, xClose - rampClosePx, rampClosePx);
-  const EdgeFit right =
-      fitEdge(s.profile, static_cast<int>(mid), kWidth - 1, true, xOpen + rampOpenPx, rampOpenPx);
+  const EdgeFit right = fitEdge(s.profile, static_cast<int>(mid), kBlurWidth - 1, true,
+                                xOpen + rampOpenPx, rampOpenPx);
   const double riseOpen = 0.8 * right.length, riseClose = 0.8 * left.length;
   const double predictedOpen = 0.8 * rampOpenPx, predictedClose = 0.8 * rampClosePx;
   std::printf(
@@ -242,7 +244,7 @@ TEST(MotionBlur, TrapezoidShutterRampLengths) {
   // motion.
   const double fwhm =
       crossing(s.profile, 0.5 * st.mean, false) - crossing(s.profile, 0.5 * st.mean, true);
-  EXPECT_NEAR(fwhm, kV * (kT - 0.5 * (rampOpen + rampClose)) * ppm, 1.0);
+  EXPECT_NEAR(fwhm, kBlurV * (kT - 0.5 * (rampOpen + rampClose)) * ppm, 1.0);
 }
 
 // (c) + (d): the camera moves instead, by the opposite displacement: the same 60 px
@@ -252,8 +254,8 @@ TEST(MotionBlur, MovingCameraGivesTheSameStreak) {
   EXPECT_TRUE(moving.modelled.time);
   EXPECT_EQ(moving.modelled.movingObjects, 0);
   EXPECT_TRUE(moving.modelled.cameraMoves);
-  const double predicted = kV * kT * pixelsPerMetre();
-  const int centre = kWidth / 2;
+  const double predicted = kBlurV * kT * blurPixelsPerMetre();
+  const int centre = kBlurWidth / 2;
   const int inner = static_cast<int>(0.5 * predicted - kEmitterPx - 2.0);
   const PlateauStats st = plateauStats(moving.profile, centre - inner, centre + inner - 1);
   const double left = crossing(moving.profile, 0.5 * st.mean, true);
@@ -262,7 +264,7 @@ TEST(MotionBlur, MovingCameraGivesTheSameStreak) {
       "moving camera: streak predicted %.2f px, FWHM %.2f px (from %.2f to %.2f); CV %.3f\n",
       predicted, right - left, left, right, st.cv);
   EXPECT_NEAR(right - left, predicted, 1.0);
-  EXPECT_NEAR(0.5 * (left + right), 0.5 * kWidth, 0.5);
+  EXPECT_NEAR(0.5 * (left + right), 0.5 * kBlurWidth, 0.5);
   EXPECT_LT(st.cv, 0.10);
 }
 

@@ -168,7 +168,7 @@ TEST(HardCases, NeedleAndDegenerateTrianglesChangeNothing) {
 // sphere (Lₑ = 0.01, black, two-sided). What the sphere reflects is albedo(ωo)·Lₑ. Without
 // the inner sphere (material empty) the camera sees the field itself: the same seed gives
 // the same wavelengths per pixel sample, so ratios to that render carry no wavelength noise.
-std::string uniformField(const std::string& material) {
+std::string hardUniformField(const std::string& material) {
   return "camera: {position: [0, 0, -3], look_at: [0, 0, 0], sensor_width_mm: 8, sensor_height_mm: "
          "8,\n"
          "         focal_length_mm: 50, resolution: [6, 6]}\n"
@@ -189,13 +189,13 @@ std::string uniformField(const std::string& material) {
 // and above 0.25 (the single-scattering albedo at normal incidence, the lowest over the
 // sphere, is 0.307 for GGX and 0.46 for Beckmann by quadrature).
 TEST(HardCases, ConductorRoughnessExtremesInAUniformField) {
-  const LuminanceImage field = renderLuminance(uniformField(""), 256);
+  const LuminanceImage field = renderLuminance(hardUniformField(""), 256);
   for (const char* distribution : {"ggx", "beckmann"}) {
     for (double alpha : {0.0, 1e-4, 1.0}) {
       const std::string material =
           std::string("{type: conductor, fresnel: schlick, reflectance: 1, roughness: ") +
           num(alpha) + ", distribution: " + distribution + "}";
-      const LuminanceImage img = renderLuminance(uniformField(material), 256);
+      const LuminanceImage img = renderLuminance(hardUniformField(material), 256);
       expectClean(img);
       std::printf("[measured] %s α %g, F = 1: mean L / Le = %.5f\n", distribution, alpha,
                   meanOf(img) / meanOf(field));

@@ -24,7 +24,7 @@ namespace {
 
 using test::num;
 
-constexpr int kRes = 16;
+constexpr int kNormalMapRes = 16;
 
 // A 1×1 EXR normal map encoding the tangent-space normal n.
 void writeMap(const std::filesystem::path& file, const glm::dvec3& n) {
@@ -40,7 +40,7 @@ std::string sceneText(const std::string& material, bool extraShapes = false) {
   std::string text =
       "camera: {position: [0, 0, 0], look_at: [0, 0, 1], up: [0, 1, 0], "
       "resolution: [" +
-      std::to_string(kRes) + ", " + std::to_string(kRes) +
+      std::to_string(kNormalMapRes) + ", " + std::to_string(kNormalMapRes) +
       "], sensor_width_mm: 24, sensor_height_mm: 24, focal_length_mm: 20}\n"
       "render: {spp: 4, max_depth: 3, aovs: [normal]}\n"
       "materials: {m: " +
@@ -72,7 +72,7 @@ RenderResult renderText(const std::string& text, const std::filesystem::path& di
   return renderDescription(loadSceneFromText(text, "nm.yaml", dir));
 }
 
-float at(const Image& im, int x, int y, const char* channel) {
+float normalMapAt(const Image& im, int x, int y, const char* channel) {
   return im.at(x, y, im.channelIndex(channel));
 }
 
@@ -104,18 +104,18 @@ TEST(PathTracerNormalMap, TiltedMapTiltsTheNormalAndTheShading) {
     const RenderResult tilted =
         renderText(sceneText("{" + diffuse + ", normal_map: {texture: tilt.exr}}"), dir.path());
     const int y = plain.image.channelIndex("Y");
-    for (int py = 0; py < kRes; ++py)
-      for (int px = 0; px < kRes; ++px) {
+    for (int py = 0; py < kNormalMapRes; ++py)
+      for (int px = 0; px < kNormalMapRes; ++px) {
         // N' = sin θ ∂p/∂u + cos θ N = (0, sin θ, −cos θ); the texel's rounding to half
         // precision in the EXR is ≈ 5e-4.
-        EXPECT_NEAR(at(tilted.aovs, px, py, "N.X"), 0.0, 1e-6) << degrees;
-        EXPECT_NEAR(at(tilted.aovs, px, py, "N.Y"), std::sin(th), 1e-3) << degrees;
-        EXPECT_NEAR(at(tilted.aovs, px, py, "N.Z"), -std::cos(th), 1e-3) << degrees;
-        EXPECT_EQ(at(tilted.aovs, px, py, "Ng.Z"), -1.0f);  // the geometry is unchanged
+        EXPECT_NEAR(normalMapAt(tilted.aovs, px, py, "N.X"), 0.0, 1e-6) << degrees;
+        EXPECT_NEAR(normalMapAt(tilted.aovs, px, py, "N.Y"), std::sin(th), 1e-3) << degrees;
+        EXPECT_NEAR(normalMapAt(tilted.aovs, px, py, "N.Z"), -std::cos(th), 1e-3) << degrees;
+        EXPECT_EQ(normalMapAt(tilted.aovs, px, py, "Ng.Z"), -1.0f);  // the geometry is unchanged
         // Lambert with the light along −N: E cos θ' with θ' = θ, same samples otherwise.
         const double ratio = static_cast<double>(tilted.image.at(px, py, y)) /
                              static_cast<double>(plain.image.at(px, py, y));
-        const double cosMapped = -static_cast<double>(at(tilted.aovs, px, py, "N.Z"));
+        const double cosMapped = -static_cast<double>(normalMapAt(tilted.aovs, px, py, "N.Z"));
         EXPECT_NEAR(ratio, cosMapped, 1e-5) << degrees << " at " << px << "," << py;
         EXPECT_NEAR(ratio, std::cos(th), 1e-3) << degrees;
       }
@@ -144,9 +144,10 @@ TEST(PathTracerNormalMap, MeshTangentsReachTheFrame) {
     // ns = −z, t = +y: bitangent w (ns × t) = w (+x); N' = sin θ · w x̂ − cos θ ẑ.
     for (int py = 0; py < 4; ++py)
       for (int px = 0; px < 4; ++px) {
-        EXPECT_NEAR(at(r.aovs, px, py, "N.X"), static_cast<double>(w) * std::sin(th), 1e-3) << w;
-        EXPECT_NEAR(at(r.aovs, px, py, "N.Y"), 0.0, 1e-6) << w;
-        EXPECT_NEAR(at(r.aovs, px, py, "N.Z"), -std::cos(th), 1e-3) << w;
+        EXPECT_NEAR(normalMapAt(r.aovs, px, py, "N.X"), static_cast<double>(w) * std::sin(th), 1e-3)
+            << w;
+        EXPECT_NEAR(normalMapAt(r.aovs, px, py, "N.Y"), 0.0, 1e-6) << w;
+        EXPECT_NEAR(normalMapAt(r.aovs, px, py, "N.Z"), -std::cos(th), 1e-3) << w;
       }
   }
 }

@@ -51,7 +51,7 @@ TEST(TilesInShares, SharesPartitionTheTiles) {
 }
 
 // 40 × 24 px: 3 × 2 tiles, the last column and row clipped.
-const char* kScene =
+const char* kTilesScene =
     "camera: {position: [0, 0, 0], look_at: [0, 0, -1], resolution: [40, 24], f_number: 2,\n"
     "         focal_length_mm: 20, focus_distance_m: 3, aperture: {blades: 6}}\n"
     "render: {spp: 4, max_depth: 2, aovs: [depth, normal, albedo, instance_id, class_id]}\n"
@@ -71,7 +71,7 @@ bool sameBits(float a, float b) {
 }
 
 TEST(TilesInShares, SharesAddUpToTheWholeRenderBitForBit) {
-  const SceneDescription desc = loadSceneFromText(kScene, "tiles.yaml", ".");
+  const SceneDescription desc = loadSceneFromText(kTilesScene, "tiles.yaml", ".");
   const Scene scene(desc);
   ASSERT_TRUE(scene.modelled().time);
   const SpectralResponse xyz = SpectralResponse::cieXyz();

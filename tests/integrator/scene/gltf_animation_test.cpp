@@ -22,7 +22,7 @@
 namespace camsim {
 namespace {
 
-const glm::dvec3 kCamera(0.0, 0.0, 5.0);  // the render origin
+const glm::dvec3 kRenderOrigin(0.0, 0.0, 5.0);  // the render origin
 
 SceneDescription loadAnimated(const std::filesystem::path& dir, const std::string& entry = "") {
   return loadSceneFromText(
@@ -95,8 +95,9 @@ TEST(GltfAnimation, RotatingChildOfATranslatingParentFollowsBothChains) {
       const glm::dvec3 world = T + glm::dvec3(1.0, 0.5, 0.0) + R * p;
       const glm::dvec3 placed =
           glm::dvec3(m.at(t) * glm::dvec4(glm::dvec3(s.shapes[0].mesh.positions[v]), 1.0));
-      worst = std::max(worst, glm::length(placed - (world - kCamera)));
-      EXPECT_LT(glm::length(placed - (world - kCamera)), 1e-6) << "t " << t << " vertex " << v;
+      worst = std::max(worst, glm::length(placed - (world - kRenderOrigin)));
+      EXPECT_LT(glm::length(placed - (world - kRenderOrigin)), 1e-6)
+          << "t " << t << " vertex " << v;
     }
   }
   std::printf("[measured] rotating child of a translating parent: %zu keys, worst error %.2e m\n",
@@ -129,8 +130,8 @@ TEST(GltfAnimation, ChildOfARotatingParentSwingsOnTheArc) {
     const double angle = 0.5 * std::numbers::pi * t;
     const glm::dvec3 origin(std::cos(angle), std::sin(angle), 2.0 * t);  // the child's
     const glm::dvec3 placed = glm::dvec3(m.at(t)[3]);
-    worst = std::max(worst, glm::length(placed - (origin - kCamera)));
-    EXPECT_LT(glm::length(placed - (origin - kCamera)), 1e-5) << t;
+    worst = std::max(worst, glm::length(placed - (origin - kRenderOrigin)));
+    EXPECT_LT(glm::length(placed - (origin - kRenderOrigin)), 1e-5) << t;
   }
   std::printf("[measured] child of a rotating parent: %zu keys, worst error %.2e m\n",
               m.keys().size(), worst);

@@ -23,7 +23,7 @@
 namespace camsim {
 namespace {
 
-constexpr int kSize = 4;  // a 4 × 4 image, every texel a different colour
+constexpr int kTransformSize = 4;  // a 4 × 4 image, every texel a different colour
 
 struct Transform {
   glm::dvec2 offset{0.0}, scale{1.0};
@@ -47,9 +47,9 @@ glm::dvec2 surfaceUv(const Transform& t, glm::dvec2 target) {
 // texCoord override); TEXCOORD_0 and TEXCOORD_1 differ.
 void writeQuad(const std::filesystem::path& dir, const std::string& extension) {
   std::vector<std::uint8_t> rgb;
-  for (int i = 0; i < kSize * kSize; ++i)
+  for (int i = 0; i < kTransformSize * kTransformSize; ++i)
     for (int c = 0; c < 3; ++c) rgb.push_back(static_cast<std::uint8_t>(20 + 37 * i + 71 * c));
-  writePng8(dir / "grid.png", kSize, kSize, rgb, false);
+  writePng8(dir / "grid.png", kTransformSize, kTransformSize, rgb, false);
   test::GltfBuilder b;
   b.floats({0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0}, "VEC3");
   b.floats({0, 1, 1, 1, 1, 0, 0, 0}, "VEC2");              // TEXCOORD_0
@@ -92,10 +92,10 @@ TEST(GltfTextureTransform, OffsetRotationScaleSampleTheTexelTheExtensionNames) {
     const std::unique_ptr<SpectrumTexture> transformed = makeSpectrumTexture(d);
     const std::unique_ptr<SpectrumTexture> image = makeSpectrumTexture(plain);
     const SampledWavelengths lambda = SampledWavelengths::sampleUniform(0.37f);
-    for (int y = 0; y < kSize; ++y)
-      for (int x = 0; x < kSize; ++x) {
+    for (int y = 0; y < kTransformSize; ++y)
+      for (int x = 0; x < kTransformSize; ++x) {
         // Texel (x, y) (row 0 at the top) has its centre at glTF uv' ((x + ½)/w, (y + ½)/h).
-        const glm::dvec2 target((x + 0.5) / kSize, (y + 0.5) / kSize);
+        const glm::dvec2 target((x + 0.5) / kTransformSize, (y + 0.5) / kTransformSize);
         const glm::dvec2 gltfUv = surfaceUv(t, target);
         const glm::vec2 camsimUv(glm::dvec2(gltfUv.x, 1.0 - gltfUv.y));
         const glm::vec2 centre(static_cast<float>(target.x), static_cast<float>(1.0 - target.y));

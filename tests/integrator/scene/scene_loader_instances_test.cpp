@@ -30,7 +30,7 @@ const std::string kMesh =
     "    vertices: [[0, 0, 0], [1, 0, 0], [0, 1, 0]]\n"
     "    faces: [[0, 1, 2]]\n";
 
-SceneDescription load(const std::string& text) {
+SceneDescription loadInstances(const std::string& text) {
   return loadSceneFromText(text, "test.yaml", ".");
 }
 
@@ -40,15 +40,15 @@ void expectNear(const glm::dmat4& a, const glm::dmat4& b) {
 }
 
 TEST(SceneLoaderInstances, PlacementsNamesClassesAndMaterials) {
-  const SceneDescription d =
-      load(kHead +
-           "  - type: mesh\n    name: tri\n    class: rock\n    material: m\n"
-           "    vertices: [[0, 0, 0], [1, 0, 0], [0, 1, 0]]\n    faces: [[0, 1, 2]]\n"
-           "    instances:\n"
-           "      - {translate: [4, 5, 6], rotate: {axis: [0, 0, 2], angle_deg: 90}, scale: 2}\n"
-           "      - {scale: [1, -2, 3], name: flipped, class: 7, material: n}\n"
-           "      - {matrix: [1, 0, 0, 10,  0, 2, 0, 20,  0, 0, 3, 30,  0, 0, 0, 1]}\n"
-           "      - {translate: [1, 1, 1], motion: [{time: 0, translate: [2, 2, 3]}]}\n");
+  const SceneDescription d = loadInstances(
+      kHead +
+      "  - type: mesh\n    name: tri\n    class: rock\n    material: m\n"
+      "    vertices: [[0, 0, 0], [1, 0, 0], [0, 1, 0]]\n    faces: [[0, 1, 2]]\n"
+      "    instances:\n"
+      "      - {translate: [4, 5, 6], rotate: {axis: [0, 0, 2], angle_deg: 90}, scale: 2}\n"
+      "      - {scale: [1, -2, 3], name: flipped, class: 7, material: n}\n"
+      "      - {matrix: [1, 0, 0, 10,  0, 2, 0, 20,  0, 0, 3, 30,  0, 0, 0, 1]}\n"
+      "      - {translate: [1, 1, 1], motion: [{time: 0, translate: [2, 2, 3]}]}\n");
   ASSERT_EQ(d.shapes.size(), 4u);
   for (const ShapeDescription& s : d.shapes) {
     EXPECT_EQ(s.sharedMesh, d.shapes[0].sharedMesh);
@@ -94,7 +94,7 @@ TEST(SceneLoaderInstances, PlacementsNamesClassesAndMaterials) {
 // One instance only: baked into a mesh of its own (nothing to share), its vertices placed.
 TEST(SceneLoaderInstances, AMeshPlacedOnceIsBaked) {
   const Scene scene(
-      load(kHead + kMesh + "    instances: [{translate: [1, 2, 4], scale: [2, 1, 1]}]\n"));
+      loadInstances(kHead + kMesh + "    instances: [{translate: [1, 2, 4], scale: [2, 1, 1]}]\n"));
   const auto* mesh = dynamic_cast<const TriangleMesh*>(&scene.shape(0));
   ASSERT_NE(mesh, nullptr);
   EXPECT_EQ(mesh->positions()[1], glm::vec3(2, 0, 1));
@@ -150,7 +150,7 @@ class SceneLoaderInstanceError : public ::testing::TestWithParam<InstanceError> 
 TEST_P(SceneLoaderInstanceError, ThrowsAtTheLine) {
   const InstanceError& c = GetParam();
   try {
-    load(c.text);
+    loadInstances(c.text);
     ADD_FAILURE() << "no InputError";
   } catch (const InputError& e) {
     EXPECT_EQ(e.where().line, c.line) << e.what();
@@ -167,7 +167,8 @@ INSTANTIATE_TEST_SUITE_P(SceneLoaderInstances, SceneLoaderInstanceError,
 // Descriptions built in code (the glTF importer's) are checked by the Scene: a singular
 // placement, or a cut-out on an emitter, is an InputError naming the shape.
 TEST(SceneLoaderInstances, SceneRejectsWhatTheLoaderWouldHave) {
-  SceneDescription d = load(kHead + kMesh + "    instances: [{}, {translate: [0, 0, 1]}]\n");
+  SceneDescription d =
+      loadInstances(kHead + kMesh + "    instances: [{}, {translate: [0, 0, 1]}]\n");
   SceneDescription singular = d;
   singular.shapes[1].placement[1] = glm::dvec4(0.0);
   EXPECT_THROW(

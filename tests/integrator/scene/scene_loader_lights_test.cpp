@@ -23,7 +23,7 @@ namespace {
 
 using test::TempDir;
 
-constexpr double kDeg = M_PI / 180.0;
+constexpr double kLightsLoaderDeg = M_PI / 180.0;
 
 // Lines 1–4; the light is on line 5.
 const std::string kLightPrefix =
@@ -88,8 +88,8 @@ TEST(LightLoader, SpotIntensityLumensAndPower) {
       "{type: spot, position: [0, 2, 0], look_at: [0, 0, 0], cone_angle: 30, falloff_start: 25, "
       "intensity: 40}");
   EXPECT_NEAR(relative(luminance(cd.spectrum), 40.0), 0.0, 1e-6);
-  EXPECT_NEAR(cd.coneAngle, 30.0 * kDeg, 1e-6);
-  EXPECT_NEAR(cd.falloffStart, 25.0 * kDeg, 1e-6);
+  EXPECT_NEAR(cd.coneAngle, 30.0 * kLightsLoaderDeg, 1e-6);
+  EXPECT_NEAR(cd.falloffStart, 25.0 * kLightsLoaderDeg, 1e-6);
   EXPECT_NEAR(cd.direction.y, -1.0f, 1e-7f);
   const LightDescription lm = loadLight(
       "{type: spot, position: [0, 2, 0], direction: [0, -1, 0], cone_angle: 30, falloff_start: 10, "
@@ -106,8 +106,8 @@ TEST(LightLoader, SpotIntensityLumensAndPower) {
   EXPECT_NEAR(relative(omega * luminance(lm.spectrum), 500.0), 0.0, 1e-4);
   const LightDescription w =
       loadLight("{type: spot, position: [0, 2, 0], direction: [0, -1, 0], power: 3}");
-  EXPECT_NEAR(w.coneAngle, 30.0 * kDeg, 1e-6);  // defaults: 30°, falloff from 25°
-  EXPECT_NEAR(w.falloffStart, 25.0 * kDeg, 1e-6);
+  EXPECT_NEAR(w.coneAngle, 30.0 * kLightsLoaderDeg, 1e-6);  // defaults: 30°, falloff from 25°
+  EXPECT_NEAR(w.falloffStart, 25.0 * kLightsLoaderDeg, 1e-6);
   EXPECT_NEAR(relative(makeLight(w)->power(), 3.0), 0.0, 1e-6);
 }
 
@@ -118,10 +118,10 @@ TEST(LightLoader, DistantIlluminanceAndDirection) {
       loadLight("{type: distant, elevation: 30, azimuth: 90, illuminance: 100000}");
   EXPECT_EQ(d.kind, LightDescription::Kind::kDistant);
   EXPECT_NEAR(relative(luminance(d.spectrum), 1e5), 0.0, 1e-6);
-  EXPECT_NEAR(d.direction.x, std::cos(30.0 * kDeg), 1e-6);
+  EXPECT_NEAR(d.direction.x, std::cos(30.0 * kLightsLoaderDeg), 1e-6);
   EXPECT_NEAR(d.direction.y, -0.5, 1e-6);
   EXPECT_NEAR(d.direction.z, 0.0, 1e-6);
-  EXPECT_NEAR(d.angularDiameter, 0.53 * kDeg, 1e-7);  // the sun by default
+  EXPECT_NEAR(d.angularDiameter, 0.53 * kLightsLoaderDeg, 1e-7);  // the sun by default
   const LightDescription n =
       loadLight("{type: distant, elevation: 45, illuminance: 1}");  // azimuth 0: north
   EXPECT_NEAR(n.direction.z, -std::sqrt(0.5), 1e-6);

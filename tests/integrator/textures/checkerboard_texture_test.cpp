@@ -14,7 +14,7 @@
 namespace camsim {
 namespace {
 
-const SampledWavelengths kLambda = SampledWavelengths::sampleUniform(0.3f);
+const SampledWavelengths kCheckerLambda = SampledWavelengths::sampleUniform(0.3f);
 
 TEST(Checkerboard, ParityAtKnownUvs) {
   const glm::vec2 one(1.0f), zero(0.0f);
@@ -48,8 +48,8 @@ TEST(Checkerboard, ParityAtKnownUvs) {
 TEST(Checkerboard, SpectrumAndFloatTexturesPickTheirValues) {
   const Spectrum a = Spectrum::constant(0.8), b = Spectrum::constant(0.2);
   const CheckerboardSpectrumTexture s(a, b, 4.0f);
-  EXPECT_FLOAT_EQ(s.evaluate({0.1f, 0.1f}, kLambda)[0], 0.8f);
-  EXPECT_FLOAT_EQ(s.evaluate({0.3f, 0.1f}, kLambda)[2], 0.2f);
+  EXPECT_FLOAT_EQ(s.evaluate({0.1f, 0.1f}, kCheckerLambda)[0], 0.8f);
+  EXPECT_FLOAT_EQ(s.evaluate({0.3f, 0.1f}, kCheckerLambda)[2], 0.2f);
   EXPECT_DOUBLE_EQ(s.maxValue(), std::max(a.maxValue(), b.maxValue()));
   const CheckerboardFloatTexture f(0.05f, 0.5f, 4.0f, {1.0f, 1.0f}, {0.25f, 0.0f});
   EXPECT_FLOAT_EQ(f.evaluate({0.1f, 0.1f}), 0.5f);  // u' = 0.35: square (1, 0)
@@ -60,7 +60,7 @@ TEST(Checkerboard, SpectrumAndFloatTexturesPickTheirValues) {
   d.checkerA = Spectrum::constant(0.3);
   d.checkerB = Spectrum::constant(0.6);
   d.checks = 2.0f;
-  EXPECT_FLOAT_EQ(makeSpectrumTexture(d)->evaluate({0.75f, 0.75f}, kLambda)[1], 0.3f);
+  EXPECT_FLOAT_EQ(makeSpectrumTexture(d)->evaluate({0.75f, 0.75f}, kCheckerLambda)[1], 0.3f);
   EXPECT_FLOAT_EQ(makeFloatTexture(d)->evaluate({0.75f, 0.25f}), 0.6f);
 }
 

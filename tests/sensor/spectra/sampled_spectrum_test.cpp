@@ -19,7 +19,7 @@ namespace camsim {
 namespace {
 
 // Σ ȳ over the 1 nm grid of the CIE 1931 2° table (luts/spectra/cie1931_2deg_xyz.csv).
-constexpr double kSumYBar = 106.856895;
+constexpr double kSampledSumYBar = 106.856895;
 
 // Composite Simpson's rule of visibleWavelengthPdf over [a, b] with n (even) intervals.
 // The pdf is smooth (a scaled sech²), so n = 2000 over ≤ 470 nm is accurate to ≪ 1e-8.
@@ -174,7 +174,7 @@ TEST(SampledWavelengths, MonteCarloIntegralOfYBarMatchesTheTableSum) {
   }
   // 0.5 % (brief). The pdf follows ȳ closely and the samples are stratified, so the
   // standard error at 2^16 samples is far smaller (≈0.05 %).
-  EXPECT_NEAR(total / kSamples, kSumYBar, 0.005 * kSumYBar);
+  EXPECT_NEAR(total / kSamples, kSampledSumYBar, 0.005 * kSampledSumYBar);
 }
 
 TEST(SampledSpectrum, Arithmetic) {
