@@ -51,7 +51,8 @@ echo "setup: packages: ${#missing[@]} of ${#packages[@]} were missing, installed
 build_dir=${CAMSIM_BUILD_DIR:-build}
 options=()
 if [ "$mode" = test ]; then
-  options=(-DCAMSIM_BUILD_TESTS=ON -DCAMSIM_BUILD_BENCH=ON)
+  # The test executables unity-built (docs/testing.md, "Unity builds"): the gate's Release stage.
+  options=(-DCAMSIM_BUILD_TESTS=ON -DCAMSIM_BUILD_BENCH=ON -DCAMSIM_UNITY_TESTS=ON)
 elif [ ! -f "$build_dir/CMakeCache.txt" ]; then
   options=(-DCAMSIM_BUILD_TESTS=OFF -DCAMSIM_BUILD_BENCH=OFF)
 fi
