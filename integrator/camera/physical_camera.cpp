@@ -7,6 +7,27 @@
 #include "sensor/base/check.h"
 
 namespace camsim {
+namespace {
+
+// The opencv model with every distortion coefficient 0 and no field limit inside 90°: the
+// ideal pinhole's mapping.
+bool isUndistortedOpenCv(const Projection& p) {
+  return p.model == ProjectionModel::kOpenCv && p.k1 == 0.0 && p.k2 == 0.0 && p.k3 == 0.0 &&
+         p.k4 == 0.0 && p.k5 == 0.0 && p.k6 == 0.0 && p.p1 == 0.0 && p.p2 == 0.0 && p.s1 == 0.0 &&
+         p.s2 == 0.0 && p.s3 == 0.0 && p.s4 == 0.0 && p.tauX == 0.0 && p.tauY == 0.0 &&
+         p.maxFieldAngle >= 0.5 * M_PI;
+}
+
+// The lens point (x, y, 0) of a pupil turned from facing +z to face the unit direction d:
+// the rotation about z × d that takes z to d (d straight back: a half turn about x).
+glm::dvec3 turnedLensPoint(const glm::dvec2& lens, const glm::dvec3& d) {
+  const double onePlusC = 1.0 + d.z;
+  if (!(onePlusC > 1e-12)) return {lens.x, -lens.y, 0.0};
+  const double w = -(d.x * lens.x + d.y * lens.y);
+  return {lens.x + d.x * w / onePlusC, lens.y + d.y * w / onePlusC, w};
+}
+
+}  // namespace
 
 PhysicalCamera::PhysicalCamera(PhysicalCameraParams params) : p_(std::move(params)) {
   const double f = p_.focalLength;
@@ -15,16 +36,23 @@ PhysicalCamera::PhysicalCamera(PhysicalCameraParams params) : p_(std::move(param
   imageDistance_ = p_.focusDistance > 0.0 ? f * p_.focusDistance / (p_.focusDistance - f) : f;
   const glm::dvec2 pitch = p_.sensorSize / glm::dvec2(p_.resolution);
   pixelArea_ = pitch.x * pitch.y * p_.fillFactor;
-  intrinsics_ = {imageDistance_ / pitch.x, imageDistance_ / pitch.y, 0.5 * p_.resolution.x - 0.5,
-                 0.5 * p_.resolution.y - 0.5};
+  projection_ = p_.projection;
+  if (p_.intrinsicsFromLens) {
+    const bool equirect = projection_.model == ProjectionModel::kEquirectangular;
+    projection_.fx = equirect ? p_.resolution.x / (2.0 * M_PI) : imageDistance_ / pitch.x;
+    projection_.fy = equirect ? p_.resolution.y / M_PI : imageDistance_ / pitch.y;
+    projection_.cx = 0.5 * p_.resolution.x - 0.5;
+    projection_.cy = 0.5 * p_.resolution.y - 0.5;
+  }
+  intrinsics_ = {projection_.fx, projection_.fy, projection_.cx, projection_.cy};
+  idealPinhole_ = p_.intrinsicsFromLens && isUndistortedOpenCv(projection_);
+  turningPupil_ = projection_.model != ProjectionModel::kOpenCv;
   const double diameter = p_.apertureDiameter();
   if (p_.aperture) stop_.emplace(diameter, p_.aperture->blades, p_.aperture->rotation);
   apertureArea_ = stop_ ? stop_->area() : M_PI * 0.25 * diameter * diameter;
-  distorted_ = !p_.distortion.isIdentity();
   transmittanceIsOne_ =
       p_.lensTransmittance.minValue() == 1.0 && p_.lensTransmittance.maxValue() == 1.0;
-  fastPinhole_ =
-      !p_.aperture && p_.distortion.isIdentity() && p_.motion.empty() && transmittanceIsOne_;
+  fastPinhole_ = !p_.aperture && idealPinhole_ && p_.motion.empty() && transmittanceIsOne_;
   const glm::dmat4& m = p_.worldFromCamera;
   right_ = glm::vec3(m[0]);
   up_ = glm::vec3(m[1]);
@@ -66,18 +94,14 @@ std::optional<CameraRay> PhysicalCamera::generateRay(const CameraSample& sample,
                                                      const SampledWavelengths& lambda,
                                                      const glm::dmat4& m) const {
   if (fastPinhole_) return generatePinholeRay(sample);
+  if (!idealPinhole_) return generateModelRay(sample, lambda, m);
   // Sensor point, upright image coordinates (m): x right, y up, origin at the centre.
   const glm::dvec2 ndc = glm::dvec2(sample.pFilm) / glm::dvec2(p_.resolution);
   const glm::dvec2 s((ndc.x - 0.5) * p_.sensorSize.x, (0.5 - ndc.y) * p_.sensorSize.y);
   const double zi = imageDistance_;
 
-  // Chief-ray direction through the lens centre, distorted as OpenCV models it.
-  glm::dvec3 chief(s.x / zi, s.y / zi, 1.0);
-  if (!p_.distortion.isIdentity()) {
-    glm::dvec2 undistorted;
-    if (!p_.distortion.undistort({chief.x, -chief.y}, undistorted)) return std::nullopt;
-    chief = {undistorted.x, -undistorted.y, 1.0};
-  }
+  // Chief-ray direction through the lens centre.
+  const glm::dvec3 chief(s.x / zi, s.y / zi, 1.0);
 
   glm::dvec3 origin(0.0), direction = chief;
   glm::dvec2 lens(0.0);
@@ -95,6 +119,52 @@ std::optional<CameraRay> PhysicalCamera::generateRay(const CameraSample& sample,
   const double d2 = glm::dot(v, v);
   const double geometric = apertureArea_ * zi * zi / (d2 * d2);  // A · cos⁴θ / z_i²
   const double scale = pixelArea_ * p_.shutter.effectiveTime() * geometric;
+
+  CameraRay cr;
+  cr.ray.o = glm::vec3(m * glm::dvec4(origin, 1.0));
+  cr.ray.d = glm::vec3(glm::normalize(glm::dvec3(m * glm::dvec4(direction, 0.0))));
+  cr.ray.time = sample.time;
+  cr.weight = SampledSpectrum(static_cast<float>(scale));
+  if (!transmittanceIsOne_) cr.weight *= sampleSpectrum(p_.lensTransmittance, lambda);
+  return cr;
+}
+
+}  // namespace camsim
+
+namespace camsim {
+
+std::optional<CameraRay> PhysicalCamera::generateModelRay(const CameraSample& sample,
+                                                          const SampledWavelengths& lambda,
+                                                          const glm::dmat4& m) const {
+  // The film point in OpenCV pixels (centres at integers), its chief ray (unit, OpenCV axes)
+  // and the solid angle per px² there.
+  const glm::dvec2 pixel = glm::dvec2(sample.pFilm) - 0.5;
+  const std::optional<ModelRay> model = unprojectWithDensity(projection_, pixel);
+  if (!model) return std::nullopt;
+  const glm::dvec3 chief(model->direction.x, -model->direction.y, model->direction.z);
+
+  glm::dvec3 origin(0.0), direction = chief;
+  double pupil = turningPupil_ ? 1.0 : chief.z;  // projected pupil area ÷ A
+  if (p_.aperture) {
+    const glm::dvec2 lens(stop_->sample(sample.pLens));
+    const double zo = p_.focusDistance;
+    if (turningPupil_) {
+      origin = turnedLensPoint(lens, chief);
+      if (zo > 0.0) direction = chief * zo - origin;  // through the chief ray's point at z_o
+    } else {
+      origin = glm::dvec3(lens, 0.0);
+      if (zo > 0.0) direction = chief * (zo / chief.z) - origin;  // plane of focus z = z_o
+      if (p_.pupil == LensPupil::kFlat) {
+        // As the pinhole's flat pupil: film point (−s, −z_i) to the lens point, not its centre.
+        const glm::dvec3 c = chief * (imageDistance_ / chief.z);
+        const glm::dvec3 v(lens.x + c.x, lens.y + c.y, c.z);
+        const double ratio = glm::dot(c, c) / glm::dot(v, v);
+        pupil *= ratio * ratio;
+      }
+    }
+  }
+  const double scale =
+      p_.shutter.effectiveTime() * p_.fillFactor * model->density * apertureArea_ * pupil;
 
   CameraRay cr;
   cr.ray.o = glm::vec3(m * glm::dvec4(origin, 1.0));

@@ -24,6 +24,24 @@
 // plane of focus); they differ only in the weight. Without an aperture (pinhole) the lens
 // point is the centre: E = π L T / (4 N_w²) cos⁴θ, the limit of both.
 //
+// Any other camera model (a projection that distorts, a fisheye, omnidirectional or
+// equirectangular model, or intrinsics given in pixels) maps the film point u through the
+// model (projection.h: unproject) to the chief ray ω(u), and weighs a sample by the solid
+// angle its film area maps to times the pupil's projected area:
+//
+//   W = T_eff · F · dΩ/dA(u) · A_aperture · c · T_lens(λ)     [dΩ/dA in sr per px², F the fill factor in px²]
+//
+// opencv (the pinhole with OpenCV's distortion): a fixed pupil in the lens plane, c = cos θ
+//   of the chief ray (aplanatic; the flat pupil multiplies by (|v_chief|² / |v_lens|²)² as
+//   above), rays through the film point's conjugate on the plane z = z_o. Without distortion
+//   dΩ/dA = pitch² cos³θ / z_i² and W is the pinhole's weight above.
+// every other model: the pupil turns with the field (a disc of area A at the centre,
+//   perpendicular to the chief ray, as a fisheye's entrance pupil does to first order), c = 1,
+//   so a uniform field gives each pixel E ∝ its solid angle; rays through the point at
+//   distance z_o along the chief ray (a sphere of focus). Real fisheyes' pupils also move
+//   forward off axis; that shift, a few mm, is neglected.
+// A film point outside the model's image (past its field limit or image circle) has no ray.
+//
 // | parameter        | unit | default   | meaning |
 // |------------------|------|-----------|---------|
 // | sensor size      | m    | 36×24 mm  | |
@@ -35,7 +53,8 @@
 // | aperture         | —    | none      | none: pinhole; else circular or N blades (see Aperture) |
 // | pupil            | —    | aplanatic | aplanatic (sine condition) or flat: the weight above |
 // | lens transmittance | —  | 1         | T_lens(λ) |
-// | distortion       | —    | none      | Brown–Conrady, OpenCV convention (see LensDistortion) |
+// | projection       | —    | opencv, no distortion | the camera model (projection.h): OpenCV's full distortion, the fisheye, omnidirectional and equirectangular models |
+// | intrinsics       | px   | from the lens | fx = z_i / pitch_x, fy = z_i / pitch_y, (cx, cy) the image centre; or the projection's own (a calibration's) |
 // | shutter          | s    | 1/60 box  | see Shutter |
 // | motion           | m, ° | static    | camera keyframes: translate adds to the position (world), rotate turns about the camera centre in camera axes |
 #pragma once
@@ -47,7 +66,7 @@
 
 #include "integrator/camera/aperture.h"
 #include "integrator/camera/camera.h"
-#include "integrator/camera/lens_distortion.h"
+#include "integrator/camera/projection.h"
 #include "integrator/camera/shutter.h"
 #include "integrator/geometry/motion.h"
 #include "sensor/base/enum_names.h"
@@ -75,7 +94,12 @@ struct PhysicalCameraParams {
   std::optional<ApertureShape> aperture;  // none: pinhole
   LensPupil pupil = LensPupil::kAplanatic;
   Spectrum lensTransmittance = Spectrum::constant(1.0);
-  LensDistortion distortion;
+  // The camera model and its coefficients (integrator/camera/projection.h). With
+  // intrinsicsFromLens, its fx, fy, cx, cy are replaced when the camera is made: fx = z_i /
+  // pitch_x, fy = z_i / pitch_y (equirectangular: fx = W/2π, fy = H/π px per radian) and
+  // (cx, cy) = (W/2 − ½, H/2 − ½); otherwise they are used as given (a calibration's pixels).
+  Projection projection;
+  bool intrinsicsFromLens = true;
   Shutter shutter = Shutter::box(0.0, 1.0 / 60.0);
 
   // D = f/N (m): the entrance pupil's diameter — the one place it is derived.
@@ -111,11 +135,14 @@ class PhysicalCamera final : public Camera {
   glm::dmat4 worldFromCameraAt(double t) const;
   // OpenCV intrinsics (pixels): fx, fy, cx, cy (fixed when the camera is made).
   const glm::dvec4& intrinsics() const { return intrinsics_; }
+  // The camera model with the intrinsics it renders with (fx … cy filled in).
+  const Projection& projection() const { return projection_; }
+  // Whether the camera is the ideal pinhole / thin lens: the opencv model without distortion
+  // and with the lens's intrinsics (the fast paths: PoseProjector's vector kernel).
+  bool idealPinhole() const { return idealPinhole_; }
   // Where the chief ray images the render-space point p at time t: OpenCV pixel
-  // coordinates (x right, y down, pixel centres at integers) through intrinsics() and the
-  // distortion; none for a point on or behind the lens plane.
-  // Whether the lens distorts (p_.distortion is not the identity).
-  bool distorted() const { return distorted_; }
+  // coordinates (x right, y down, pixel centres at integers) through the camera model; none
+  // outside the model's domain (on or behind the lens plane for the pinhole).
   std::optional<glm::dvec2> project(const glm::dvec3& p, double t) const {
     return projectFrom(worldFromCameraAt(t), p);
   }
@@ -124,15 +151,18 @@ class PhysicalCamera final : public Camera {
   std::optional<glm::dvec2> projectFrom(const glm::dmat4& worldFromCamera,
                                         const glm::dvec3& p) const {
     const glm::dvec3 c = cameraCvFromWorld(worldFromCamera, p - glm::dvec3(worldFromCamera[3]));
+    if (!idealPinhole_) return camsim::project(projection_, c);
     if (!(c.z > 0.0)) return std::nullopt;
     const glm::dvec2 xn(c.x / c.z, c.y / c.z);
-    const glm::dvec2 xd = distorted_ ? p_.distortion.distort(xn) : xn;
     const glm::dvec4& k = intrinsics_;
-    return glm::dvec2(k.x * xd.x + k.z, k.y * xd.y + k.w);
+    return glm::dvec2(k.x * xn.x + k.z, k.y * xn.y + k.w);
   }
 
  private:
   std::optional<CameraRay> generatePinholeRay(const CameraSample& sample) const;
+  std::optional<CameraRay> generateModelRay(const CameraSample& sample,
+                                            const SampledWavelengths& lambda,
+                                            const glm::dmat4& worldFromCamera) const;
 
   PhysicalCameraParams p_;
   std::optional<Aperture> stop_;  // from p_.aperture and p_.apertureDiameter()
@@ -140,7 +170,9 @@ class PhysicalCamera final : public Camera {
   double pixelArea_;
   double apertureArea_;
   glm::dvec4 intrinsics_;
-  bool distorted_ = false;  // !p_.distortion.isIdentity()
+  Projection projection_;      // p_.projection with the intrinsics filled in
+  bool idealPinhole_ = true;   // the opencv model, no distortion, the lens's intrinsics
+  bool turningPupil_ = false;  // every model but opencv: the pupil faces the chief ray
   bool transmittanceIsOne_;
   // The static pinhole without distortion (the common case) generates its rays in float
   // from constants fixed here, instead of the double matrix and weight math per sample:

@@ -71,7 +71,7 @@ PoseProjector::PoseProjector(const PhysicalCamera& camera,
 
 void PoseProjector::addMotionVectors(const PosePoints& p, int lanes, MotionVectorSums& sums,
                                      Long4& front) const {
-  if (camera_->distorted()) {  // the scalar reference: OpenCV's distortion per point
+  if (!camera_->idealPinhole()) {  // the scalar reference: the camera model per point
     front = Long4{};
     for (int lane = 0; lane < lanes; ++lane) {
       std::array<glm::dvec2, 3> q;

@@ -5,7 +5,7 @@
 // (whole AVX registers on CPUs that have AVX2, two SSE2 halves otherwise); each lane does
 // projectFrom's operations in its order, so each image is the same bits as a projectFrom
 // call (tests/integrator/camera/pose_projector_test.cpp). projectFrom stays the scalar
-// reference, and is what a distorted camera uses here.
+// reference, and is what any camera but the ideal pinhole uses here.
 //
 //   c = R (p − o)        the point in OpenCV camera axes (x right, y down, z forward)
 //   u = f_x c_x / c_z + c_x',  v = f_y c_y / c_z + c_y'   (pixels; none if c_z ≤ 0)
@@ -33,7 +33,7 @@ struct MotionVectorSums {
 
 class PoseProjector {
  public:
-  // The camera's projection (intrinsics, distortion) at the poses worldFromCamera[j].
+  // The camera model (intrinsics, projection) at the poses worldFromCamera[j].
   PoseProjector(const PhysicalCamera& camera, const std::array<glm::dmat4, 3>& worldFromCamera);
 
   // Adds the motion vectors of the first `lanes` points to `sums` (lane by lane); `front`:

@@ -227,6 +227,40 @@ double solidAngleDensity(const Projection& p, glm::dvec2 pixel) {
   return pd::radialDensity(p, *theta) * perPixel / detJ;
 }
 
+std::optional<ModelRay> unprojectWithDensity(const Projection& p, glm::dvec2 pixel) {
+  if (p.model == ProjectionModel::kEquirectangular) {
+    const std::optional<glm::dvec3> d = pd::unprojectEquirectangular(p, pixel);
+    const double density = d ? pd::equirectangularDensity(p, pixel) : 0.0;
+    if (!(density > 0.0)) return std::nullopt;
+    return ModelRay{*d, density};
+  }
+  glm::dvec2 m = toFilm(p, pixel);
+  if (!std::isfinite(m.x) || !std::isfinite(m.y)) return std::nullopt;
+  const double perPixel = 1.0 / (p.fx * p.fy);
+  double detJ = 1.0;  // of the distortion, where the model has one
+  if (p.model == ProjectionModel::kOpenCv || p.model == ProjectionModel::kUnified) {
+    const pd::Distortion dist =
+        p.model == ProjectionModel::kOpenCv ? pd::openCvDistortion(p) : pd::omnidirDistortion(p);
+    const std::optional<glm::dvec2> mu = pd::undistort(dist, m);
+    if (!mu) return std::nullopt;
+    detJ = glm::determinant(pd::distort(dist, *mu)->jacobian);
+    m = *mu;
+  }
+  ModelRay r;
+  if (p.model == ProjectionModel::kOpenCv) {
+    const double r2 = glm::dot(m, m);
+    if (!pd::withinField(pd::fieldLimit(p), std::atan(std::sqrt(r2)))) return std::nullopt;
+    r = {glm::normalize(glm::dvec3(m.x, m.y, 1.0)),
+         perPixel / (detJ * (1.0 + r2) * std::sqrt(1.0 + r2))};
+  } else {
+    const std::optional<double> theta = pd::fieldAngle(p, glm::length(m));
+    if (!theta) return std::nullopt;
+    r = {radialDirection(m, *theta), pd::radialDensity(p, *theta) * perPixel / detJ};
+  }
+  if (!(r.density > 0.0) || !std::isfinite(r.density)) return std::nullopt;
+  return r;
+}
+
 namespace {
 
 [[noreturn]] void fail(const SourceLocation& where, const std::string& key,

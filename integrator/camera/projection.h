@@ -117,6 +117,14 @@ double foldFieldAngle(const Projection& p);
 // and unproject are one-to-one for any calibrated distortion.
 Projection limitedToFold(Projection p);
 
+// unproject and solidAngleDensity at once (the distortion inverted once): what a camera ray
+// needs. None where unproject has none or the density is not positive.
+struct ModelRay {
+  glm::dvec3 direction;  // unit, OpenCV camera axes
+  double density;        // dΩ/dA, sr per px²
+};
+std::optional<ModelRay> unprojectWithDensity(const Projection& p, glm::dvec2 pixel);
+
 // Range checks for a projection a scene file or front end set, throwing InputError with the
 // key `keyPrefix.name` of the offending coefficient and its allowed range.
 void checkProjection(const Projection& p, const SourceLocation& where = {},

@@ -101,11 +101,11 @@ JsonObject cameraJson(const PhysicalCameraParams& p, const glm::dvec3& renderOri
                           .setJson("rotation_deg", exact(glm::degrees(p.aperture->rotation)))
                           .set("pupil", std::string(enumName(p.pupil))));
   j.set("distortion", JsonObject()
-                          .setJson("k1", exact(p.distortion.k1))
-                          .setJson("k2", exact(p.distortion.k2))
-                          .setJson("k3", exact(p.distortion.k3))
-                          .setJson("p1", exact(p.distortion.p1))
-                          .setJson("p2", exact(p.distortion.p2)))
+                          .setJson("k1", exact(p.projection.k1))
+                          .setJson("k2", exact(p.projection.k2))
+                          .setJson("k3", exact(p.projection.k3))
+                          .setJson("p1", exact(p.projection.p1))
+                          .setJson("p2", exact(p.projection.p2)))
       .set("shutter", shutterJson(p.shutter));
 
   JsonObject d;
@@ -128,8 +128,8 @@ JsonObject cameraJson(const PhysicalCameraParams& p, const glm::dvec3& renderOri
       .set("rolling_shutter_row_time_s", p.shutter.rowTime())
       .set("opencv_fx_fy_cx_cy", std::vector<double>{k.x, k.y, k.z, k.w})
       .set("opencv_k1_k2_p1_p2_k3",
-           std::vector<double>{p.distortion.k1, p.distortion.k2, p.distortion.p1, p.distortion.p2,
-                               p.distortion.k3});
+           std::vector<double>{p.projection.k1, p.projection.k2, p.projection.p1, p.projection.p2,
+                               p.projection.k3});
   return j.set("derived", d);
 }
 

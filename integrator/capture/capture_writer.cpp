@@ -54,9 +54,9 @@ Metadata filmMetadata(const CaptureResult& r, bool reproducible) {
                            {"camsim:opencv_fx_fy_cx_cy", number(k.x) + " " + number(k.y) + " " +
                                                              number(k.z) + " " + number(k.w)},
                            {"camsim:opencv_k1_k2_p1_p2_k3",
-                            number(p.distortion.k1) + " " + number(p.distortion.k2) + " " +
-                                number(p.distortion.p1) + " " + number(p.distortion.p2) + " " +
-                                number(p.distortion.k3)}});
+                            number(p.projection.k1) + " " + number(p.projection.k2) + " " +
+                                number(p.projection.p1) + " " + number(p.projection.p2) + " " +
+                                number(p.projection.k3)}});
   if (!reproducible) meta.push_back({"camsim:render_seconds", std::to_string(st.seconds)});
   return meta;
 }

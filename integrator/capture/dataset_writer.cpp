@@ -127,11 +127,11 @@ std::vector<std::filesystem::path> writeDatasetMetadata(const std::vector<Datase
                                .set("fy", k.y)
                                .set("cx", k.z)
                                .set("cy", k.w)
-                               .set("k1", p.distortion.k1)
-                               .set("k2", p.distortion.k2)
-                               .set("p1", p.distortion.p1)
-                               .set("p2", p.distortion.p2)
-                               .set("k3", p.distortion.k3)
+                               .set("k1", p.projection.k1)
+                               .set("k2", p.projection.k2)
+                               .set("p1", p.projection.p1)
+                               .set("p2", p.projection.p2)
+                               .set("k3", p.projection.k3)
                                .set("world_from_camera_opencv", rows(cv))
                                .set("world_from_camera_opengl", rows(toOpenGl(cv)))
                                .set("time_s", p.shutter.centre())
@@ -171,10 +171,10 @@ std::vector<std::filesystem::path> writeDatasetMetadata(const std::vector<Datase
       .set("cy", k0.w + 0.5)
       .set("w", double(first.camera.resolution.x))
       .set("h", double(first.camera.resolution.y))
-      .set("k1", first.camera.distortion.k1)
-      .set("k2", first.camera.distortion.k2)
-      .set("p1", first.camera.distortion.p1)
-      .set("p2", first.camera.distortion.p2)
+      .set("k1", first.camera.projection.k1)
+      .set("k2", first.camera.projection.k2)
+      .set("p1", first.camera.projection.p1)
+      .set("p2", first.camera.projection.p2)
       .set("frames", nerfFrames);
   // One COLMAP camera per frame (a frame's intrinsics may differ: focus, resolution).
   std::string camerasTxt = "# CAMERA_ID MODEL WIDTH HEIGHT fx fy cx cy k1 k2 p1 p2 k3 k4 k5 k6\n";
@@ -183,9 +183,9 @@ std::vector<std::filesystem::path> writeDatasetMetadata(const std::vector<Datase
     const glm::dvec4& k = intrinsics[i];
     camerasTxt += std::to_string(i + 1) + " FULL_OPENCV " + std::to_string(p.resolution.x) + " " +
                   std::to_string(p.resolution.y) + " " + fixed(k.x) + " " + fixed(k.y) + " " +
-                  fixed(k.z + 0.5) + " " + fixed(k.w + 0.5) + " " + fixed(p.distortion.k1) + " " +
-                  fixed(p.distortion.k2) + " " + fixed(p.distortion.p1) + " " +
-                  fixed(p.distortion.p2) + " " + fixed(p.distortion.k3) + " 0 0 0\n";
+                  fixed(k.z + 0.5) + " " + fixed(k.w + 0.5) + " " + fixed(p.projection.k1) + " " +
+                  fixed(p.projection.k2) + " " + fixed(p.projection.p1) + " " +
+                  fixed(p.projection.p2) + " " + fixed(p.projection.k3) + " 0 0 0\n";
   }
   // colmap/ is a set of its own (OutputSet names temporaries beside their final names).
   std::filesystem::create_directories(directory / "colmap");

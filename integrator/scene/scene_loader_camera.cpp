@@ -40,6 +40,57 @@ int resolutionSide(const YamlValue& v) {
   return static_cast<int>(n);
 }
 
+// `camera.projection`: the camera model (integrator/camera/projection.h), its coefficients
+// and, optionally, a calibration's intrinsics in pixels (all four or none). Parsed after the
+// lens and the aperture, whose values it needs.
+void parseProjection(const YamlValue& value, PhysicalCameraParams& c) {
+  YamlMap pm(value);
+  Projection& p = c.projection;
+  p = Projection{};
+  p.model = pm.require("model").choice<ProjectionModel>("projection model");
+  struct Field {
+    const char* name;
+    double* value;
+  };
+  const Field coefficients[] = {
+      {"k1", &p.k1},      {"k2", &p.k2},      {"k3", &p.k3}, {"k4", &p.k4},
+      {"k5", &p.k5},      {"k6", &p.k6},      {"p1", &p.p1}, {"p2", &p.p2},
+      {"s1", &p.s1},      {"s2", &p.s2},      {"s3", &p.s3}, {"s4", &p.s4},
+      {"tau_x", &p.tauX}, {"tau_y", &p.tauY}, {"xi", &p.xi}, {"alpha", &p.alpha}};
+  for (const Field& f : coefficients)
+    if (auto v = pm.find(f.name)) *f.value = v->number(-1e3, 1e3);
+  if (auto v = pm.find("max_field_angle_deg"))
+    p.maxFieldAngle = glm::radians(v->number(0.0, 180.0, true));
+  const Field intrinsics[] = {{"fx", &p.fx}, {"fy", &p.fy}, {"cx", &p.cx}, {"cy", &p.cy}};
+  int given = 0;
+  for (const Field& f : intrinsics)
+    if (auto v = pm.find(f.name)) {
+      *f.value = v->number(-1e7, 1e7);
+      ++given;
+    }
+  if (given != 0 && given != 4)
+    value.fail("give all four intrinsics fx, fy, cx, cy (px) or none (then they follow the lens)");
+  c.intrinsicsFromLens = given == 0;
+  if (c.intrinsicsFromLens) p.fx = p.fy = 1.0;  // placeholders for the checks
+  checkProjection(p, value.where(), value.key());
+  p = limitedToFold(p);
+  if (p.model != ProjectionModel::kOpenCv && c.pupil == LensPupil::kFlat)
+    value.fail(
+        "camera.aperture.pupil: flat applies to the opencv model only (the pupil of "
+        "the fisheye and omnidirectional models turns with the field)");
+  pm.finish({"model", "fx",
+             "fy",    "cx",
+             "cy",    "k1",
+             "k2",    "k3",
+             "k4",    "k5",
+             "k6",    "p1",
+             "p2",    "s1",
+             "s2",    "s3",
+             "s4",    "tau_x",
+             "tau_y", "xi",
+             "alpha", "max_field_angle_deg"});
+}
+
 // upWhere: the `up` key, or null for the default +y (then look_at is named).
 glm::dmat4 lookAt(const YamlValue& where, const YamlValue& positionWhere, const YamlValue* upWhere,
                   glm::dvec3 position, glm::dvec3 target, glm::dvec3 up) {
@@ -241,20 +292,25 @@ PhysicalCameraParams parseCamera(YamlMap map, const TableSearch& search) {
   if (auto t = map.find("lens_transmittance"))
     c.lensTransmittance = parseSpectrum(*t, SpectrumUse::kReflectance, search);
   if (auto d = map.find("distortion")) {
+    // Brown–Conrady k1 k2 k3 p1 p2: the opencv model's first five coefficients.
     YamlMap dm(*d);
-    double* fields[] = {&c.distortion.k1, &c.distortion.k2, &c.distortion.k3, &c.distortion.p1,
-                        &c.distortion.p2};
+    double* fields[] = {&c.projection.k1, &c.projection.k2, &c.projection.k3, &c.projection.p1,
+                        &c.projection.p2};
     const char* names[] = {"k1", "k2", "k3", "p1", "p2"};
     for (int i = 0; i < 5; ++i)
       if (auto v = dm.find(names[i])) *fields[i] = v->number(-1e3, 1e3);
     dm.finish({"k1", "k2", "k3", "p1", "p2"});
+    if (map.has("projection"))
+      d->fail("give the distortion inside camera.projection (model: opencv), not both");
+    c.projection = limitedToFold(c.projection);
   }
+  if (auto pr = map.find("projection")) parseProjection(*pr, c);
   if (auto s = map.find("shutter")) c.shutter = parseShutter(YamlMap(*s));
   if (auto m = map.find("motion")) c.motion = parseMotion(*m, true, glm::dvec3(0.0));
   map.finish({"position", "look_at", "up", "world_from_camera", "sensor_width_mm",
               "sensor_height_mm", "resolution", "fill_factor", "focal_length_mm", "f_number",
-              "focus_distance_m", "aperture", "lens_transmittance", "distortion", "shutter",
-              "motion", "gltf"});
+              "focus_distance_m", "aperture", "lens_transmittance", "distortion", "projection",
+              "shutter", "motion", "gltf"});
   return c;
 }
 

@@ -28,8 +28,8 @@ PhysicalCamera cameraWith(double k1) {
   PhysicalCameraParams c;
   c.resolution = {360, 240};
   c.focalLength = 0.035;
-  c.distortion.k1 = k1;
-  c.distortion.p2 = k1 * 0.1;
+  c.projection.k1 = k1;
+  c.projection.p2 = k1 * 0.1;
   return PhysicalCamera(c);
 }
 

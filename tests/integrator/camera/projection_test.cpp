@@ -1,7 +1,7 @@
 // The projection models (integrator/camera/projection.h): exact round trips over each
 // model's whole image and past 180° of field, the ideal fisheye mappings against their closed
 // forms, the solid-angle density against analytic integrals and a finite difference of
-// unproject, the old LensDistortion against the opencv model, and the range checks. The
+// unproject and the range checks. The
 // comparison with the real OpenCV is in projection_opencv_test.cpp.
 #include <gtest/gtest.h>
 
@@ -13,7 +13,6 @@
 
 #include <glm/geometric.hpp>
 
-#include "integrator/camera/lens_distortion.h"
 #include "integrator/camera/projection.h"
 #include "tests/integrator/camera/projection_cases.h"
 
@@ -224,43 +223,6 @@ TEST(Projection, LimitedToFoldMakesAFoldingDistortionOneToOne) {
     }
     EXPECT_EQ(unproject(q, glm::dvec2(0.8 * rho, 0.6 * rho)).has_value(), rho < peak) << rho;
   }
-}
-
-// The existing Brown–Conrady LensDistortion is the opencv model with k4…k6 = s1…s4 = 0:
-// the same forward map to 1e-12, and unproject inverts LensDistortion's forward map to 1e-14
-// (LensDistortion::undistort itself stops at a 1e-12 residual, so the two inverses agree to
-// about that: 2e-12).
-TEST(Projection, OpenCvModelAgreesWithLensDistortion) {
-  const LensDistortion ld{-0.21, 0.045, -0.003, 0.0012, -0.0007};
-  Projection p;
-  p.k1 = ld.k1;
-  p.k2 = ld.k2;
-  p.k3 = ld.k3;
-  p.p1 = ld.p1;
-  p.p2 = ld.p2;
-  p.fx = p.fy = 1.0;
-  p.cx = p.cy = 0.0;
-  double worstForward = 0.0, worstInverse = 0.0, worstResidual = 0.0;
-  for (double y = -0.6; y <= 0.6; y += 0.05)
-    for (double x = -0.8; x <= 0.8; x += 0.05) {
-      const std::optional<glm::dvec2> px = project(p, {x, y, 1.0});
-      ASSERT_TRUE(px);
-      worstForward = std::max(worstForward, glm::length(*px - ld.distort({x, y})));
-      glm::dvec2 undistorted;
-      ASSERT_TRUE(ld.undistort({x, y}, undistorted));
-      const std::optional<glm::dvec3> d = unproject(p, {x, y});
-      ASSERT_TRUE(d);
-      const glm::dvec2 mine = glm::dvec2(*d) / d->z;
-      worstInverse = std::max(worstInverse, glm::length(mine - undistorted));
-      worstResidual = std::max(worstResidual, glm::length(ld.distort(mine) - glm::dvec2(x, y)));
-    }
-  std::printf(
-      "LensDistortion vs opencv model: forward %.3g, LensDistortion::distort(unproject) "
-      "residual %.3g, the two inverses %.3g\n",
-      worstForward, worstResidual, worstInverse);
-  EXPECT_LE(worstForward, 1e-12);
-  EXPECT_LE(worstResidual, 1e-14);
-  EXPECT_LE(worstInverse, 2e-12);
 }
 
 }  // namespace
