@@ -33,6 +33,8 @@ std::vector<std::string> channelsOf(Aov aov) {
     case Aov::kMotion:
       return {"motion_fw.X", "motion_fw.Y", "motion_bw.X", "motion_bw.Y", "flow_fw.X",
               "flow_fw.Y",   "flow_fw.Z",   "flow_bw.X",   "flow_bw.Y",   "flow_bw.Z"};
+    case Aov::kValid:
+      return {"valid.A"};
     case Aov::kInstanceId:
     case Aov::kClassId:
     case Aov::kMaterialId:
@@ -64,6 +66,7 @@ AovFilm::AovFilm(const Scene& scene, bool allowAvx2) : scene_(scene), aovs_(scen
     if (name == "albedo.R") albedoChannel_ = c;
     if (name == "roughness.Y") roughnessChannel_ = c;
     if (name == "motion_fw.X") motionChannel_ = c;
+    if (name == "valid.A") validChannel_ = c;
   }
   if (albedoChannel_ > 0) {
     const RgbColorSpace& rec709 = RgbColorSpace::linearRec709();
@@ -127,6 +130,7 @@ void AovFilm::endPixel(AovPixel& px) {
 void AovFilm::writePixel(const AovPixel& px, float* o) const {
   const double hits = px.scalars[0];
   o[0] = static_cast<float>(hits / px.samples);
+  if (validChannel_) o[validChannel_] = static_cast<float>(px.samples - px.noRay) / px.samples;
   float* ids = o + idChannel_;
   for (std::size_t k = 0; k < idFilms_.size(); ++k) {
     idFilms_[k].write(px.ids[k], px.samples, ids);

@@ -16,6 +16,7 @@
 // | roughness   | roughness.Y                  | —    | the material's α as the scene gives it (diffuse 1, mirror 0) |
 // | instance_id, class_id, material_id | CryptoObject00.R … instance.id (id_film.h) | — | ID mattes: ranked (id, coverage) pairs, Cryptomatte, and the dominant id |
 // | motion      | motion_fw.X/Y, motion_bw.X/Y | px   | where the hit point is imaged in the next / previous frame minus where it is in this one, all at the frames' reference times (shutter centres): OpenCV pixel axes (x right, y down) |
+// | valid       | valid.A                      | —    | fraction of the pixel's samples whose film point lies inside the camera model's image (1 for the pinhole; 0 outside a fisheye's image circle, where the image is black) |
 // | motion      | flow_fw.X/Y/Z, flow_bw.X/Y/Z | m    | 3-D scene flow: the hit point's world position at the next / previous frame's reference time minus at this frame's |
 //
 // The motion field follows the exact rigid motion of the hit point: the sample's hit, at
@@ -79,6 +80,7 @@ struct AovRecord {
 struct AovPixelState {
   glm::ivec2 pixel{0};
   int samples = 0;  // camera samples added, hits or not
+  int noRay = 0;    // of them, film points outside the camera model's image (no camera ray)
   int pending = 0;  // records (AovPixel) not summed yet
   // Σ over the samples that hit: 1 (the hit count), depth (m), distance (m), roughness.
   Double4 scalars{};
@@ -145,6 +147,13 @@ class AovFilm {
     else
       addSamplePortable(px, sample);
   }
+  // A sample whose film point has no camera ray (outside the model's image): a miss that
+  // also counts against the pixel's valid fraction.
+  void addNoRaySample(AovPixel& px, const AovSample& sample) const {
+    nextSurface(px);  // left empty: no hit
+    addSample(px, sample);
+    ++px.noRay;
+  }
   // Writes the pixel's finished values (means, coverages, id ranks) into the image. Each
   // pixel is ended by one thread only, so no locking is needed.
   void endPixel(AovPixel& px);
@@ -183,6 +192,7 @@ class AovFilm {
   std::size_t albedoChannel_ = 0;     // of albedo.R
   std::size_t roughnessChannel_ = 0;  // of roughness.Y
   std::size_t motionChannel_ = 0;     // of motion_fw.X
+  std::size_t validChannel_ = 0;      // of valid.A
   // x̄·D65, ȳ·D65, z̄·D65 interleaved on Spectrum's 1 nm grid (lane 3: 0): one 16-byte pair
   // per wavelength gives all three (a sample touches 4–8 cache lines of it, not 12–24).
   std::vector<Float4> whiteXyz_;

@@ -75,10 +75,7 @@ bool renderTile(const Scene& scene, Film& film, const RenderOptions& options,
             sharePose ? camera.generateRay(cs, lambda, pose) : camera.generateRay(cs, lambda);
         ++stats.samples;
         if (!cr) {
-          if (aovs.enabled()) {
-            aovs.nextSurface(aovPixel);  // left empty: no hit
-            aovs.addSample(aovPixel, {cs.time, lambda, posePtr});
-          }
+          if (aovs.enabled()) aovs.addNoRaySample(aovPixel, {cs.time, lambda, posePtr});
           continue;
         }
         countRay(RayKind::kCamera, cr->ray);

@@ -62,8 +62,9 @@ enum class Aov : std::uint8_t {
   kClassId,     // the same for the shapes' `class:`
   kMaterialId,  // the same for their material
   kMotion,      // 2-D motion vectors and 3-D scene flow to the previous and next frame
+  kValid,       // the fraction of the pixel's samples inside the camera model's image
 };
-inline constexpr int kAovCount = 10;
+inline constexpr int kAovCount = 11;
 // The scene's `render.aovs` names, also the sidecar's and the EXR layers'
 // (sensor/base/enum_names.h).
 template <>
@@ -77,7 +78,8 @@ struct EnumNames<Aov> {
                                                       {Aov::kInstanceId, "instance_id"},
                                                       {Aov::kClassId, "class_id"},
                                                       {Aov::kMaterialId, "material_id"},
-                                                      {Aov::kMotion, "motion"}};
+                                                      {Aov::kMotion, "motion"},
+                                                      {Aov::kValid, "valid"}};
 };
 inline const char* aovName(Aov a) {
   return enumName(a).data();

@@ -33,7 +33,9 @@ namespace {
 constexpr double kDeg = M_PI / 180.0;
 
 // The flat emitter of spectral radiance 0.01 W·m⁻²·sr⁻¹·nm⁻¹ as a luminance (cd/m²).
-double uniformLuminance() { return kMaxLuminousEfficacy * Cie1931::get().y.sum() * 0.01; }
+double uniformLuminance() {
+  return kMaxLuminousEfficacy * Cie1931::get().y.sum() * 0.01;
+}
 
 RenderResult renderInsideSphere(const std::string& camera, int spp) {
   const std::string yaml = "camera: {position: [0, 0, 0], look_at: [0, 0, 1], " + camera +
@@ -51,10 +53,10 @@ RenderResult renderInsideSphere(const std::string& camera, int spp) {
 
 struct RadialCase {
   const char* name;
-  std::string projection;                // the scene's camera.projection block
-  std::function<double(double)> rho;     // ρ(θ), film units (fx = 1)
-  double maxTheta;                       // rad, the field imaged
-  bool fixedPupil;                       // opencv: c = cos θ
+  std::string projection;             // the scene's camera.projection block
+  std::function<double(double)> rho;  // ρ(θ), film units (fx = 1)
+  double maxTheta;                    // rad, the field imaged
+  bool fixedPupil;                    // opencv: c = cos θ
 };
 
 // θ(ρ) by bisection on the increasing ρ(θ) over [0, maxTheta].
@@ -136,11 +138,10 @@ TEST(ModelRadiometry, UniformSphereGivesEachPixelItsSolidAngle) {
     // The image edge ρ(θ_max)·fx at 23.4 px: the row's last pixel lies wholly outside it.
     const double fx = 23.4 / c.rho(c.maxTheta);
     const double pitch = f / fx;
-    const std::string camera =
-        "sensor_width_mm: " + std::to_string(kWidth * pitch * 1e3) +
-        ", sensor_height_mm: " + std::to_string(pitch * 1e3) + ", resolution: [" +
-        std::to_string(kWidth) + ", 1], focal_length_mm: 1, f_number: 2, projection: " +
-        c.projection;
+    const std::string camera = "sensor_width_mm: " + std::to_string(kWidth * pitch * 1e3) +
+                               ", sensor_height_mm: " + std::to_string(pitch * 1e3) +
+                               ", resolution: [" + std::to_string(kWidth) +
+                               ", 1], focal_length_mm: 1, f_number: 2, projection: " + c.projection;
     const RenderResult r = renderInsideSphere(camera, 1024);
     double worst = 0.0, worstTheta = 0.0, widest = 0.0;
     int checked = 0;
@@ -175,10 +176,10 @@ TEST(ModelRadiometry, UniformSphereGivesEachPixelItsSolidAngle) {
 TEST(ModelRadiometry, EquirectangularPixelsSubtendTheirLatitudeBand) {
   constexpr int kW = 16, kH = 24;
   const double f = 0.001, A = M_PI * 0.25 * (f / 2.0) * (f / 2.0), T = 0.01;
-  const RenderResult r =
-      renderInsideSphere("sensor_width_mm: 1.6, sensor_height_mm: 2.4, resolution: [16, 24], "
-                         "focal_length_mm: 1, f_number: 2, projection: {model: equirectangular}",
-                         1024);
+  const RenderResult r = renderInsideSphere(
+      "sensor_width_mm: 1.6, sensor_height_mm: 2.4, resolution: [16, 24], "
+      "focal_length_mm: 1, f_number: 2, projection: {model: equirectangular}",
+      1024);
   double worst = 0.0;
   for (int y = 0; y < kH; ++y) {
     const double lat1 = (y / double(kH) - 0.5) * M_PI, lat2 = ((y + 1) / double(kH) - 0.5) * M_PI;
