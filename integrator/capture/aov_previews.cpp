@@ -110,6 +110,10 @@ std::vector<AovPreview> aovPreviews(const Image& a) {
         p.rgb[px * 3 + static_cast<std::size_t>(c)] = byte(rgb[static_cast<std::size_t>(c)]);
     }
   }
+  if (const int v = a.channelIndex("valid.A"); v >= 0) {
+    AovPreview& p = make("valid");  // white inside the camera model's image, black outside
+    for (std::size_t px = 0; px < n; ++px) std::fill_n(&p.rgb[px * 3], 3, byte(value(px, v)));
+  }
   return out;
 }
 

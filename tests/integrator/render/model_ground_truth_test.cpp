@@ -104,10 +104,9 @@ TEST(ModelGroundTruth, MotionVectorsOfAPanningFisheye) {
       fw /= kSub * kSub;
       bw /= kSub * kSub;
       const auto at = [&](const char* c) { return double(a.at(x, y, a.channelIndex(c))); };
-      const double err = std::max({std::abs(at("motion_fw.X") - fw.x),
-                                   std::abs(at("motion_fw.Y") - fw.y),
-                                   std::abs(at("motion_bw.X") - bw.x),
-                                   std::abs(at("motion_bw.Y") - bw.y)});
+      const double err =
+          std::max({std::abs(at("motion_fw.X") - fw.x), std::abs(at("motion_fw.Y") - fw.y),
+                    std::abs(at("motion_bw.X") - bw.x), std::abs(at("motion_bw.Y") - bw.y)});
       worst = std::max(worst, err);
       ++checked;
       EXPECT_LT(err, 0.01) << x << "," << y << ": fw " << at("motion_fw.X") << " vs " << fw.x;
@@ -146,7 +145,8 @@ TEST(ModelGroundTruth, ValidMaskIsTheImageCircle) {
         EXPECT_GT(r.image.at(x, y, 1) + (valid == 0.0 ? 1.0f : 0.0f), 0.0f) << x << "," << y;
       }
     }
-  std::printf("[measured] valid area %.2f px^2 vs circle %.2f px^2\n", area, M_PI * radius * radius);
+  std::printf("[measured] valid area %.2f px^2 vs circle %.2f px^2\n", area,
+              M_PI * radius * radius);
   EXPECT_NEAR(area / (M_PI * radius * radius), 1.0, 5e-3);
 }
 
@@ -172,13 +172,19 @@ TEST(ModelGroundTruth, CocoBoxesAreTightUnderTheModel) {
       {"kannala_brandt",
        "{model: kannala_brandt, k1: 0.02, k2: -0.003, k3: 0.0005, k4: -0.00005, "
        "max_field_angle_deg: 95}",
-       kb, false, "1.0", {2.5, 0.4, -0.45}},  // 80° off the axis
-      {"opencv rational", "{model: opencv, k1: -0.3, k2: 0.08, k4: 0.05, k5: 0.01}",
+       kb,
+       false,
+       "1.0",
+       {2.5, 0.4, -0.45}},  // 80° off the axis
+      {"opencv rational",
+       "{model: opencv, k1: -0.3, k2: 0.08, k4: 0.05, k5: 0.01}",
        [](double r) {
          const double r2 = r * r;
          return r * (1.0 + r2 * (-0.3 + r2 * 0.08)) / (1.0 + r2 * (0.05 + r2 * 0.01));
        },
-       true, "2.2", {1.6, 0.7, -2.2}},
+       true,
+       "2.2",
+       {1.6, 0.7, -2.2}},
   };
   for (const Case& c : cases) {
     const SceneDescription d = loadSceneFromText(
@@ -188,8 +194,9 @@ TEST(ModelGroundTruth, CocoBoxesAreTightUnderTheModel) {
             "}\n"
             "render: {spp: 16, max_depth: 0, aovs: [instance_id]}\n"
             "shapes:\n"
-            "  - {name: ball, class: ball, type: sphere, centre: [" + std::to_string(c.ball.x) + ", " +
-            std::to_string(c.ball.y) + ", " + std::to_string(c.ball.z) +
+            "  - {name: ball, class: ball, type: sphere, centre: [" +
+            std::to_string(c.ball.x) + ", " + std::to_string(c.ball.y) + ", " +
+            std::to_string(c.ball.z) +
             "], radius: 0.45, "
             "emission: {luminance: 100}}\n"
             "  - {type: sphere, centre: [0, 0, 0], radius: 20, emission: {luminance: 1, "
@@ -210,11 +217,12 @@ TEST(ModelGroundTruth, CocoBoxesAreTightUnderTheModel) {
     glm::dvec2 lo(1e9), hi(-1e9);
     for (int i = 0; i < 3600; ++i) {
       const double phi = 2.0 * M_PI * i / 3600.0;
-      const glm::dvec3 s = std::cos(beta) * axis +
-                           std::sin(beta) * (std::cos(phi) * e1 + std::sin(phi) * e2);
+      const glm::dvec3 s =
+          std::cos(beta) * axis + std::sin(beta) * (std::cos(phi) * e1 + std::sin(phi) * e2);
       const double theta = std::acos(s.z), az = std::atan2(s.y, s.x);
       const double rho = c.rho(c.pinhole ? std::tan(theta) : theta);
-      const glm::dvec2 p(k.z + k.x * rho * std::cos(az) + 0.5, k.w + k.y * rho * std::sin(az) + 0.5);
+      const glm::dvec2 p(k.z + k.x * rho * std::cos(az) + 0.5,
+                         k.w + k.y * rho * std::sin(az) + 0.5);
       lo = glm::min(lo, p);
       hi = glm::max(hi, p);
     }
