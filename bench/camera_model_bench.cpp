@@ -37,8 +37,10 @@ struct Model {
   std::string lens;        // focal length and sensor
 };
 
-const std::string kPinholeLens = "focal_length_mm: 4.2, sensor_width_mm: 6.4, sensor_height_mm: 4.8";
-const std::string kFisheyeLens = "focal_length_mm: 1.8, sensor_width_mm: 6.4, sensor_height_mm: 4.8";
+const std::string kPinholeLens =
+    "focal_length_mm: 4.2, sensor_width_mm: 6.4, sensor_height_mm: 4.8";
+const std::string kFisheyeLens =
+    "focal_length_mm: 1.8, sensor_width_mm: 6.4, sensor_height_mm: 4.8";
 
 std::vector<Model> models() {
   return {
@@ -67,10 +69,11 @@ std::vector<Model> models() {
 }
 
 PhysicalCamera makeCamera(const Model& m) {
-  const std::string yaml = "camera: {position: [0, 0, 0], look_at: [0, 0, 1], resolution: [1280, "
-                           "960], " +
-                           m.lens + (m.projection.empty() ? "" : ", projection: " + m.projection) +
-                           "}\nshapes: [{type: sphere, centre: [0, 0, 5], radius: 1, emission: {luminance: 1}}]\n";
+  const std::string yaml =
+      "camera: {position: [0, 0, 0], look_at: [0, 0, 1], resolution: [1280, "
+      "960], " +
+      m.lens + (m.projection.empty() ? "" : ", projection: " + m.projection) +
+      "}\nshapes: [{type: sphere, centre: [0, 0, 5], radius: 1, emission: {luminance: 1}}]\n";
   return PhysicalCamera(camsim::loadSceneFromText(yaml, "bench.yaml", ".").camera);
 }
 
@@ -114,8 +117,7 @@ double roundTrip(const PhysicalCamera& camera, int& valid) {
       s.pFilm = glm::vec2(px);
       const std::optional<camsim::CameraRay> r = camera.generateRay(s, lambda);
       if (!r) continue;
-      const glm::dvec3 point =
-          glm::dvec3(r->ray.o) + 10.0 * glm::normalize(glm::dvec3(r->ray.d));
+      const glm::dvec3 point = glm::dvec3(r->ray.o) + 10.0 * glm::normalize(glm::dvec3(r->ray.d));
       const std::optional<glm::dvec2> q = camera.project(point, 0.0);
       if (!q) continue;
       ++valid;
@@ -159,7 +161,8 @@ int main(int argc, char** argv) {
     return v[v.size() / 2];
   };
   const double pinhole = median(perPoint[0]);
-  std::printf("%-28s %12s %10s %10s %12s\n", "model", "Mrays/s", "vs pinhole", "valid", "round trip");
+  std::printf("%-28s %12s %10s %10s %12s\n", "model", "Mrays/s", "vs pinhole", "valid",
+              "round trip");
   for (std::size_t k = 0; k < ms.size(); ++k) {
     int valid = 0;
     const double err = roundTrip(cameras[k], valid);

@@ -109,7 +109,8 @@ std::optional<glm::dvec2> undistort(const Distortion& d, glm::dvec2 target) {
   for (int iter = 0; iter < 100; ++iter) {
     const glm::dvec2 f = cur->m - target;
     const double err = glm::length(f);
-    if (err == 0.0) break;
+    // Converged to rounding: another step could only fail its backtracking (20 evaluations).
+    if (err <= 1e-15 * (1.0 + glm::length(target))) break;
     const glm::dvec2 step = glm::inverse(cur->jacobian) * f;
     // Backtrack while the step leaves the invertible region or increases the residual.
     bool improved = false;
