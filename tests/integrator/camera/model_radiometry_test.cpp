@@ -27,7 +27,7 @@
 #include "integrator/scene/scene_loader.h"
 #include "sensor/spectra/cie.h"
 
-namespace camsim {
+namespace camsim::model_radiometry_test {
 namespace {
 
 constexpr double kDeg = M_PI / 180.0;
@@ -194,4 +194,4 @@ TEST(ModelRadiometry, EquirectangularPixelsSubtendTheirLatitudeBand) {
 }
 
 }  // namespace
-}  // namespace camsim
+}  // namespace camsim::model_radiometry_test

@@ -22,7 +22,7 @@
 #include "integrator/scene/scene.h"
 #include "integrator/scene/scene_loader.h"
 
-namespace camsim {
+namespace camsim::model_ground_truth_test {
 namespace {
 
 constexpr double kDeg = M_PI / 180.0;
@@ -238,4 +238,4 @@ TEST(ModelGroundTruth, CocoBoxesAreTightUnderTheModel) {
 }
 
 }  // namespace
-}  // namespace camsim
+}  // namespace camsim::model_ground_truth_test
