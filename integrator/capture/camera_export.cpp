@@ -12,13 +12,11 @@ namespace camsim {
 using Coefficients = std::vector<std::pair<std::string, double>>;
 
 Coefficients projectionCoefficients(const Projection& p) {
-
   switch (p.model) {
     case ProjectionModel::kOpenCv:
-      return {{"k1", p.k1}, {"k2", p.k2}, {"p1", p.p1}, {"p2", p.p2},
-              {"k3", p.k3}, {"k4", p.k4}, {"k5", p.k5}, {"k6", p.k6},
-              {"s1", p.s1}, {"s2", p.s2}, {"s3", p.s3}, {"s4", p.s4},
-              {"tau_x", p.tauX}, {"tau_y", p.tauY}};
+      return {{"k1", p.k1}, {"k2", p.k2}, {"p1", p.p1},      {"p2", p.p2},     {"k3", p.k3},
+              {"k4", p.k4}, {"k5", p.k5}, {"k6", p.k6},      {"s1", p.s1},     {"s2", p.s2},
+              {"s3", p.s3}, {"s4", p.s4}, {"tau_x", p.tauX}, {"tau_y", p.tauY}};
     case ProjectionModel::kKannalaBrandt:
     case ProjectionModel::kFTheta:
       return {{"k1", p.k1}, {"k2", p.k2}, {"k3", p.k3}, {"k4", p.k4}};
@@ -37,8 +35,8 @@ namespace {
 // fold of a distortion, a pinhole's 90°) ends inside the picture.
 bool cornerUnimaged(const Projection& p, glm::ivec2 resolution) {
   const double w = resolution.x - 0.5, h = resolution.y - 0.5;
-  for (const glm::dvec2 corner : {glm::dvec2(-0.5, -0.5), glm::dvec2(w, -0.5),
-                                  glm::dvec2(-0.5, h), glm::dvec2(w, h)})
+  for (const glm::dvec2 corner :
+       {glm::dvec2(-0.5, -0.5), glm::dvec2(w, -0.5), glm::dvec2(-0.5, h), glm::dvec2(w, h)})
     if (!unproject(p, corner)) return true;
   return false;
 }
@@ -86,8 +84,9 @@ CameraExport cameraExport(const PhysicalCamera& camera) {
   switch (p.model) {
     case ProjectionModel::kOpenCv:
       if (!allZero({p.s1, p.s2, p.s3, p.s4, p.tauX, p.tauY})) {
-        e.colmapLacks = "COLMAP has no pinhole model with thin prism (s1..s4) or tilt (tau_x, "
-                        "tau_y) terms (THIN_PRISM_FISHEYE is a fisheye)";
+        e.colmapLacks =
+            "COLMAP has no pinhole model with thin prism (s1..s4) or tilt (tau_x, "
+            "tau_y) terms (THIN_PRISM_FISHEYE is a fisheye)";
         e.nerfstudioLacks = "nerfstudio's OPENCV has no thin prism or tilt terms";
         break;
       }
@@ -104,8 +103,9 @@ CameraExport cameraExport(const PhysicalCamera& camera) {
         e.nerfstudioModel = "OPENCV";
         e.nerfstudio = {{"k1", p.k1}, {"k2", p.k2}, {"k3", p.k3}, {"p1", p.p1}, {"p2", p.p2}};
       } else {
-        e.nerfstudioLacks = "nerfstudio's OPENCV has no rational terms k4..k6 (its k4 is a "
-                            "polynomial r^8 term)";
+        e.nerfstudioLacks =
+            "nerfstudio's OPENCV has no rational terms k4..k6 (its k4 is a "
+            "polynomial r^8 term)";
       }
       break;
     case ProjectionModel::kKannalaBrandt:
@@ -132,10 +132,9 @@ CameraExport cameraExport(const PhysicalCamera& camera) {
   }
   if (!e.nerfstudioModel.empty()) {
     // nerfstudio's equirectangular spans π rad per focal length (cameras.py: θ = −π·x/fx).
-    const double scale =
-        p.model == ProjectionModel::kEquirectangular ? std::numbers::pi : 1.0;
-    Coefficients n = {{"fl_x", scale * p.fx}, {"fl_y", scale * p.fy}, {"cx", p.cx + 0.5},
-                      {"cy", p.cy + 0.5}};
+    const double scale = p.model == ProjectionModel::kEquirectangular ? std::numbers::pi : 1.0;
+    Coefficients n = {
+        {"fl_x", scale * p.fx}, {"fl_y", scale * p.fy}, {"cx", p.cx + 0.5}, {"cy", p.cy + 0.5}};
     n.insert(n.end(), e.nerfstudio.begin(), e.nerfstudio.end());
     e.nerfstudio = std::move(n);
   }
@@ -155,7 +154,8 @@ std::string cameraModelText(const CameraExport& e) {
 void addCameraModel(JsonObject& json, const CameraExport& e) {
   json.set("model", e.model);
   for (const auto& [name, value] : e.coefficients) json.setJson(name, exactNumber(value));
-  if (e.maxFieldAngle) json.setJson("max_field_angle_deg", exactNumber(glm::degrees(*e.maxFieldAngle)));
+  if (e.maxFieldAngle)
+    json.setJson("max_field_angle_deg", exactNumber(glm::degrees(*e.maxFieldAngle)));
 }
 
 }  // namespace camsim

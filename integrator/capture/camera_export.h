@@ -32,15 +32,15 @@
 namespace camsim {
 
 struct CameraExport {
-  std::string model;                                        // EnumNames<ProjectionModel>
-  double fx = 0.0, fy = 0.0, cx = 0.0, cy = 0.0;            // OpenCV: pixel centres at integers
+  std::string model;                                         // EnumNames<ProjectionModel>
+  double fx = 0.0, fy = 0.0, cx = 0.0, cy = 0.0;             // OpenCV: pixel centres at integers
   std::vector<std::pair<std::string, double>> coefficients;  // the model's, OpenCV's order
   // rad; set where the model's valid domain ends inside the image (a corner unimaged)
   std::optional<double> maxFieldAngle;
-  std::string colmapModel;            // empty: COLMAP cannot express the model
-  std::vector<double> colmapParams;   // fx fy cx cy (corner-based) then the model's extras
-  std::string colmapLacks;            // why not, when colmapModel is empty
-  std::string nerfstudioModel;        // empty: nerfstudio cannot express the model
+  std::string colmapModel;           // empty: COLMAP cannot express the model
+  std::vector<double> colmapParams;  // fx fy cx cy (corner-based) then the model's extras
+  std::string colmapLacks;           // why not, when colmapModel is empty
+  std::string nerfstudioModel;       // empty: nerfstudio cannot express the model
   std::vector<std::pair<std::string, double>> nerfstudio;  // fl_x fl_y cx cy and coefficients
   std::string nerfstudioLacks;
   // The horizontal field of view across the image width through the model (rad): the field

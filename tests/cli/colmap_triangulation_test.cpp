@@ -179,8 +179,12 @@ TEST(ColmapTriangulation, FisheyePointsLieOnTheTrueSurfaces) {
   EXPECT_TRUE(std::filesystem::exists(dir.path() / "bin" / "cameras.bin"));
   RecordProperty("median_mm", std::to_string(d.median * 1e3));
   RecordProperty("p90_mm", std::to_string(d.p90 * 1e3));
-  EXPECT_LT(d.median, 0.1);
-  EXPECT_LT(d.p90, 0.6);
+  // Measured: median 27 mm, 90th percentile 353 mm (fx 200 px/rad: the wall's parallax is
+  // smaller than the pinhole's 26 px). The same export with the fisheye written as COLMAP's
+  // OPENCV pinhole (fx, cx, cy kept, k = 0) triangulates as many points, but at median
+  // 99 mm and 90th percentile 559 mm: the bounds below tell the two apart.
+  EXPECT_LT(d.median, 0.05);
+  EXPECT_LT(d.p90, 0.45);
 }
 
 }  // namespace
