@@ -145,6 +145,7 @@ RenderCommandResult runRender(const RenderArgs& args, std::ostream& log,
                 : " rendered (nothing moves: the others reuse its film)")
         << "\n";
   for (const auto& f : outcome.files) log << "wrote " << f.string() << "\n";
+  for (const std::string& s : writer.skippedExports()) log << s << "\n";
   return outcome;
 }
 

@@ -9,6 +9,7 @@
 #include <pybind11/stl.h>
 
 #include "integrator/camera/physical_camera.h"
+#include "integrator/capture/camera_export.h"
 #include "integrator/capture/capture_sidecar.h"
 #include "integrator/capture/capture_writer.h"
 #include "integrator/capture/dataset_writer.h"
@@ -118,8 +119,12 @@ void deriveBuffers(CaptureBuffers& b, const PictureSettings& picture) {
       rows[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)] = cv[j][i];
   const glm::dvec4 k = camera.intrinsics();
   JsonObject pose;
+  // The camera model and its coefficients as cameras.json writes them (camera_export.h).
+  JsonObject model;
+  addCameraModel(model, cameraExport(camera));
   pose.set("world_from_camera_opencv", rows)
       .set("opencv_fx_fy_cx_cy", std::vector<double>{k.x, k.y, k.z, k.w})
+      .set("projection", model)
       .set("reference_time_s", frame.camera.shutter.centre())
       .set("exposure_time_s", frame.exposureTimeS);
   // Without a sensor there is no ISO nor gain: None (cameras.json writes 0 there).

@@ -5,7 +5,7 @@ usage: colmap_triangulate.py SEQUENCE_DIR WORK_DIR
 
 SEQUENCE_DIR holds a sequence camsim wrote (NAME_NNNN.png and colmap/, the text model of
 the exported intrinsics and poses). Runs Debian's COLMAP (3.8) headless on the CPU:
-feature_extractor (SIFT, FULL_OPENCV, one camera per image) on the PNGs, then
+feature_extractor (SIFT, the exported camera model, one camera per image) on the PNGs, then
 exhaustive_matcher, then point_triangulator with the exported model — the poses are kept,
 not estimated. COLMAP numbers the database's images as its reader threads finish, so the
 model's image and camera ids are first renumbered to the database's (by image name).
@@ -39,13 +39,16 @@ def main():
     cameras = {l.split()[0]: l.split(None, 1)[1] for l in (model / "cameras.txt").read_text().splitlines()
                if l and not l.startswith("#")}
     names = [l.split()[9] for l in images]
+    # The database's cameras of the exported model (OPENCV, FULL_OPENCV, OPENCV_FISHEYE):
+    # point_triangulator then refines nothing and keeps the exported parameters.
+    camera_model = next(iter(cameras.values())).split()[0]
     (work / "images.list").write_text("\n".join(names) + "\n")
     db = work / "database.db"
     if db.exists():
         db.unlink()
     run("feature_extractor", ["--database_path", str(db), "--image_path", str(seq),
                               "--image_list_path", str(work / "images.list"),
-                              "--ImageReader.camera_model", "FULL_OPENCV",
+                              "--ImageReader.camera_model", camera_model,
                               "--SiftExtraction.use_gpu", "0"], work)
     ids = {name: (image_id, camera_id) for image_id, name, camera_id in
            sqlite3.connect(db).execute("select image_id, name, camera_id from images")}

@@ -44,7 +44,8 @@ WrittenCapture CaptureRunWriter::write(const CaptureResult& result) {
 
 std::vector<std::filesystem::path> CaptureRunWriter::finish() {
   if (!sequence_ || cancelled_) return {};
-  std::vector<std::filesystem::path> written = writeDatasetMetadata(frames_, out_.directory);
+  std::vector<std::filesystem::path> written =
+      writeDatasetMetadata(frames_, out_.directory, &skipped_);
   files_.insert(files_.end(), written.begin(), written.end());
   return written;
 }

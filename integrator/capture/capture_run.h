@@ -12,6 +12,7 @@
 
 #include <filesystem>
 #include <functional>
+#include <string>
 #include <vector>
 
 #include "integrator/capture/capture.h"
@@ -37,6 +38,9 @@ class CaptureRunWriter {
   std::vector<std::filesystem::path> finish();
   // Every final file written so far, in order.
   const std::vector<std::filesystem::path>& files() const { return files_; }
+  // The camera exports finish() left out, a line each with the reason (a camera model the
+  // tool cannot express; dataset_writer.h).
+  const std::vector<std::string>& skippedExports() const { return skipped_; }
 
  private:
   CaptureOutputOptions out_;
@@ -44,6 +48,7 @@ class CaptureRunWriter {
   bool cancelled_ = false;
   std::vector<DatasetFrame> frames_;
   std::vector<std::filesystem::path> files_;
+  std::vector<std::string> skipped_;
 };
 
 }  // namespace camsim

@@ -2,12 +2,15 @@
 
 #include <algorithm>
 #include <charconv>
+#include <cmath>
+#include <numbers>
 #include <string>
 #include <vector>
 
 #include <glm/trigonometric.hpp>
 
 #include "integrator/camera/physical_camera.h"
+#include "integrator/capture/camera_export.h"
 #include "integrator/render/cryptomatte.h"
 #include "integrator/scene/scene_ids.h"
 #include "sensor/model/exposure_control.h"
@@ -71,6 +74,50 @@ JsonObject shutterJson(const Shutter& shutter) {
   return j;
 }
 
+// Whether the camera is the opencv model with Brown–Conrady's k1 k2 k3 p1 p2 only and the
+// lens's intrinsics: the sidecar writes it as `distortion`, as the scenes before issue 36.
+bool plainDistortion(const PhysicalCameraParams& c) {
+  const Projection& p = c.projection;
+  return c.intrinsicsFromLens && p.model == ProjectionModel::kOpenCv && p.k4 == 0.0 &&
+         p.k5 == 0.0 && p.k6 == 0.0 && p.s1 == 0.0 && p.s2 == 0.0 && p.s3 == 0.0 && p.s4 == 0.0 &&
+         p.tauX == 0.0 && p.tauY == 0.0;
+}
+
+// The degrees whose radians (glm::radians, as the scene loader converts) are exactly rad.
+std::string exactDegrees(double rad) {
+  const double d = glm::degrees(rad);
+  double up = d, down = d;
+  for (int i = 0; i < 16; ++i, up = std::nextafter(up, 1e9), down = std::nextafter(down, -1e9)) {
+    if (glm::radians(up) == rad) return exact(up);
+    if (glm::radians(down) == rad) return exact(down);
+  }
+  return exact(d);
+}
+
+// The camera model in the scene's keys: `distortion` {k1 k2 k3 p1 p2} for a plain one, else
+// `projection` {model, its coefficients, max_field_angle_deg below 180°, and fx fy cx cy
+// when a calibration gave them} (scene_loader_camera.cpp).
+JsonObject projectionJson(const PhysicalCameraParams& c) {
+  const Projection& p = c.projection;
+  JsonObject j;
+  if (plainDistortion(c))
+    return j.setJson("k1", exact(p.k1))
+        .setJson("k2", exact(p.k2))
+        .setJson("k3", exact(p.k3))
+        .setJson("p1", exact(p.p1))
+        .setJson("p2", exact(p.p2));
+  j.set("model", std::string(enumName(p.model)));
+  if (!c.intrinsicsFromLens)
+    j.setJson("fx", exact(p.fx))
+        .setJson("fy", exact(p.fy))
+        .setJson("cx", exact(p.cx))
+        .setJson("cy", exact(p.cy));
+  for (const auto& [name, value] : projectionCoefficients(p)) j.setJson(name, exact(value));
+  if (p.model != ProjectionModel::kEquirectangular && p.maxFieldAngle < std::numbers::pi)
+    j.setJson("max_field_angle_deg", exactDegrees(p.maxFieldAngle));
+  return j;
+}
+
 // The camera's scene inputs in the scene's keys and units (docs/scene-format.md), then
 // `derived`: what follows from them (SI units, intrinsics). `motion`, `lens_transmittance`
 // and `gltf` are not written: a paste-back keeps the scene's own (docs/output.md).
@@ -100,12 +147,7 @@ JsonObject cameraJson(const PhysicalCameraParams& p, const glm::dvec3& renderOri
                           .setJson("blades", std::to_string(p.aperture->blades))
                           .setJson("rotation_deg", exact(glm::degrees(p.aperture->rotation)))
                           .set("pupil", std::string(enumName(p.pupil))));
-  j.set("distortion", JsonObject()
-                          .setJson("k1", exact(p.projection.k1))
-                          .setJson("k2", exact(p.projection.k2))
-                          .setJson("k3", exact(p.projection.k3))
-                          .setJson("p1", exact(p.projection.p1))
-                          .setJson("p2", exact(p.projection.p2)))
+  j.set(plainDistortion(p) ? "distortion" : "projection", projectionJson(p))
       .set("shutter", shutterJson(p.shutter));
 
   JsonObject d;
@@ -126,11 +168,16 @@ JsonObject cameraJson(const PhysicalCameraParams& p, const glm::dvec3& renderOri
       .set("shutter_close_s", p.shutter.close())
       .set("exposure_time_s", p.shutter.effectiveTime())
       .set("rolling_shutter_row_time_s", p.shutter.rowTime())
-      .set("opencv_fx_fy_cx_cy", std::vector<double>{k.x, k.y, k.z, k.w})
-      .set("opencv_k1_k2_p1_p2_k3",
-           std::vector<double>{p.projection.k1, p.projection.k2, p.projection.p1, p.projection.p2,
-                               p.projection.k3});
-  return j.set("derived", d);
+      .set("opencv_fx_fy_cx_cy", std::vector<double>{k.x, k.y, k.z, k.w});
+  if (p.projection.model == ProjectionModel::kOpenCv)
+    d.set("opencv_k1_k2_p1_p2_k3",
+          std::vector<double>{p.projection.k1, p.projection.k2, p.projection.p1, p.projection.p2,
+                              p.projection.k3});
+  // The model as cameras.json writes it (camera_export.h): model, coefficients and the
+  // field angle where it limits the image.
+  JsonObject model;
+  addCameraModel(model, cameraExport(camera));
+  return j.set("derived", d.set("projection", model));
 }
 
 // The sensor's scene inputs (the scene's `sensor:` keys), then `derived`: what the capture

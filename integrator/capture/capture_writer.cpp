@@ -5,6 +5,7 @@
 
 #include "integrator/camera/physical_camera.h"
 #include "integrator/capture/aov_previews.h"
+#include "integrator/capture/camera_export.h"
 #include "integrator/capture/capture_sidecar.h"
 #include "integrator/render/cryptomatte.h"
 #include "integrator/scene/scene_ids.h"
@@ -52,11 +53,18 @@ Metadata filmMetadata(const CaptureResult& r, bool reproducible) {
                            {"camsim:image_distance_m", number(camera.imageDistance())},
                            {"camsim:pixel_area_m2", number(camera.pixelArea())},
                            {"camsim:opencv_fx_fy_cx_cy", number(k.x) + " " + number(k.y) + " " +
-                                                             number(k.z) + " " + number(k.w)},
-                           {"camsim:opencv_k1_k2_p1_p2_k3",
-                            number(p.projection.k1) + " " + number(p.projection.k2) + " " +
-                                number(p.projection.p1) + " " + number(p.projection.p2) + " " +
-                                number(p.projection.k3)}});
+                                                             number(k.z) + " " + number(k.w)}});
+  // The camera model as cameras.json names it, its coefficients in OpenCV's order
+  // (camera_export.h); the five Brown–Conrady numbers as before for the opencv model.
+  const CameraExport model = cameraExport(camera);
+  meta.push_back({"camsim:camera_model", model.model});
+  if (const std::string c = cameraModelText(model); !c.empty())
+    meta.push_back({"camsim:camera_model_coefficients", c});
+  if (p.projection.model == ProjectionModel::kOpenCv)
+    meta.push_back({"camsim:opencv_k1_k2_p1_p2_k3",
+                    number(p.projection.k1) + " " + number(p.projection.k2) + " " +
+                        number(p.projection.p1) + " " + number(p.projection.p2) + " " +
+                        number(p.projection.k3)});
   if (!reproducible) meta.push_back({"camsim:render_seconds", std::to_string(st.seconds)});
   return meta;
 }

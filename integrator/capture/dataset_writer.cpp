@@ -8,6 +8,7 @@
 #include <glm/matrix.hpp>
 
 #include "integrator/camera/physical_camera.h"
+#include "integrator/capture/camera_export.h"
 #include "sensor/io/json_writer.h"
 #include "sensor/io/output_set.h"
 
@@ -109,30 +110,27 @@ glm::dmat4 worldFromCameraOpenCv(const DatasetFrame& frame, const PhysicalCamera
 }
 
 std::vector<std::filesystem::path> writeDatasetMetadata(const std::vector<DatasetFrame>& frames,
-                                                        const std::filesystem::path& directory) {
+                                                        const std::filesystem::path& directory,
+                                                        std::vector<std::string>* skipped) {
   std::vector<JsonObject> cameraFrames, nerfFrames;
-  std::vector<glm::dvec4> intrinsics;  // per frame: fx, fy, cx, cy (OpenCV)
+  std::vector<CameraExport> exports;  // per frame: the model in each tool's terms
   std::string images;
   for (std::size_t i = 0; i < frames.size(); ++i) {
     const DatasetFrame& f = frames[i];
     const PhysicalCamera camera(f.camera);
-    const glm::dvec4 k = intrinsics.emplace_back(camera.intrinsics());
+    const CameraExport& e = exports.emplace_back(cameraExport(camera));
     const PhysicalCameraParams& p = f.camera;
     const glm::dmat4 cv = worldFromCameraOpenCv(f, camera);
-    cameraFrames.push_back(JsonObject()
-                               .set("image", f.image)
-                               .set("width", double(p.resolution.x))
-                               .set("height", double(p.resolution.y))
-                               .set("fx", k.x)
-                               .set("fy", k.y)
-                               .set("cx", k.z)
-                               .set("cy", k.w)
-                               .set("k1", p.projection.k1)
-                               .set("k2", p.projection.k2)
-                               .set("p1", p.projection.p1)
-                               .set("p2", p.projection.p2)
-                               .set("k3", p.projection.k3)
-                               .set("world_from_camera_opencv", rows(cv))
+    JsonObject frame;
+    frame.set("image", f.image)
+        .set("width", double(p.resolution.x))
+        .set("height", double(p.resolution.y))
+        .setJson("fx", exactNumber(e.fx))
+        .setJson("fy", exactNumber(e.fy))
+        .setJson("cx", exactNumber(e.cx))
+        .setJson("cy", exactNumber(e.cy));
+    addCameraModel(frame, e);
+    cameraFrames.push_back(frame.set("world_from_camera_opencv", rows(cv))
                                .set("world_from_camera_opengl", rows(toOpenGl(cv)))
                                .set("time_s", p.shutter.centre())
                                .set("shutter_open_s", p.shutter.open())
@@ -154,52 +152,66 @@ std::vector<std::filesystem::path> writeDatasetMetadata(const std::vector<Datase
               fixed(q.z) + " " + fixed(t.x) + " " + fixed(t.y) + " " + fixed(t.z) + " " +
               std::to_string(i + 1) + " " + f.image + "\n\n";
   }
+  // An export whose tool cannot express a frame's model is left out, and cameras.json and
+  // the caller (the run's output) say why.
+  std::string colmapLacks, nerfLacks;
+  for (const CameraExport& e : exports) {
+    if (colmapLacks.empty()) colmapLacks = e.colmapLacks;
+    if (nerfLacks.empty()) nerfLacks = e.nerfstudioLacks;
+  }
+  JsonObject notWritten;
+  if (!colmapLacks.empty()) notWritten.set("colmap", colmapLacks);
+  if (!nerfLacks.empty()) notWritten.set("transforms.json", nerfLacks);
+  if (skipped) {
+    if (!colmapLacks.empty()) skipped->push_back("colmap/ not written: " + colmapLacks);
+    if (!nerfLacks.empty()) skipped->push_back("transforms.json not written: " + nerfLacks);
+  }
   JsonObject cameras;
+  if (!colmapLacks.empty() || !nerfLacks.empty()) cameras.set("not_written", notWritten);
   cameras
       .set("convention",
            "world_from_camera_opencv: columns x right, y down, z forward, position (m, the "
            "scene's world); _opengl: x right, y up, z backward; cx, cy with pixel centres at "
-           "integers; pose at time_s, the shutter window's centre (row 0)")
+           "integers; pose at time_s, the shutter window's centre (row 0); model and its "
+           "coefficients as camera.projection (docs/camera.md), in OpenCV's order")
       .set("frames", cameraFrames);
   const DatasetFrame& first = frames.front();
-  const glm::dvec4& k0 = intrinsics.front();
+  const CameraExport& e0 = exports.front();
   JsonObject nerf;
-  nerf.set("camera_model", "OPENCV")
-      .set("fl_x", k0.x)
-      .set("fl_y", k0.y)
-      .set("cx", k0.z + 0.5)
-      .set("cy", k0.w + 0.5)
-      .set("w", double(first.camera.resolution.x))
+  nerf.set("camera_model", e0.nerfstudioModel);
+  for (const auto& [key, value] : e0.nerfstudio) nerf.setJson(key, exactNumber(value));
+  nerf.set("w", double(first.camera.resolution.x))
       .set("h", double(first.camera.resolution.y))
-      .set("k1", first.camera.projection.k1)
-      .set("k2", first.camera.projection.k2)
-      .set("p1", first.camera.projection.p1)
-      .set("p2", first.camera.projection.p2)
+      .setJson("camera_angle_x", exactNumber(e0.cameraAngleX))
       .set("frames", nerfFrames);
   // One COLMAP camera per frame (a frame's intrinsics may differ: focus, resolution).
-  std::string camerasTxt = "# CAMERA_ID MODEL WIDTH HEIGHT fx fy cx cy k1 k2 p1 p2 k3 k4 k5 k6\n";
+  std::string camerasTxt =
+      "# CAMERA_ID MODEL WIDTH HEIGHT PARAMS[] (fx fy cx cy, then the "
+      "model's: OPENCV k1 k2 p1 p2; FULL_OPENCV k1 k2 p1 p2 k3 k4 k5 k6; "
+      "OPENCV_FISHEYE k1 k2 k3 k4)\n";
   for (std::size_t i = 0; i < frames.size(); ++i) {
     const PhysicalCameraParams& p = frames[i].camera;
-    const glm::dvec4& k = intrinsics[i];
-    camerasTxt += std::to_string(i + 1) + " FULL_OPENCV " + std::to_string(p.resolution.x) + " " +
-                  std::to_string(p.resolution.y) + " " + fixed(k.x) + " " + fixed(k.y) + " " +
-                  fixed(k.z + 0.5) + " " + fixed(k.w + 0.5) + " " + fixed(p.projection.k1) + " " +
-                  fixed(p.projection.k2) + " " + fixed(p.projection.p1) + " " +
-                  fixed(p.projection.p2) + " " + fixed(p.projection.k3) + " 0 0 0\n";
+    camerasTxt += std::to_string(i + 1) + " " + exports[i].colmapModel + " " +
+                  std::to_string(p.resolution.x) + " " + std::to_string(p.resolution.y);
+    for (double v : exports[i].colmapParams) camerasTxt += " " + fixed(v);
+    camerasTxt += "\n";
   }
-  // colmap/ is a set of its own (OutputSet names temporaries beside their final names).
-  std::filesystem::create_directories(directory / "colmap");
-  OutputSet colmap(directory / "colmap");
-  colmap.addText("cameras.txt", camerasTxt);
-  colmap.addText(
-      "images.txt",
-      "# IMAGE_ID QW QX QY QZ TX TY TZ CAMERA_ID NAME (then a line of points)\n" + images);
-  colmap.addText("points3D.txt", "# no points: poses and intrinsics only\n");
+  std::vector<std::filesystem::path> files;
+  if (colmapLacks.empty()) {
+    // colmap/ is a set of its own (OutputSet names temporaries beside their final names).
+    std::filesystem::create_directories(directory / "colmap");
+    OutputSet colmap(directory / "colmap");
+    colmap.addText("cameras.txt", camerasTxt);
+    colmap.addText(
+        "images.txt",
+        "# IMAGE_ID QW QX QY QZ TX TY TZ CAMERA_ID NAME (then a line of points)\n" + images);
+    colmap.addText("points3D.txt", "# no points: poses and intrinsics only\n");
+    files = colmap.commit();
+  }
   OutputSet outputs(directory);
   outputs.addText("cameras.json", cameras.str() + "\n");
-  outputs.addText("transforms.json", nerf.str() + "\n");
+  if (nerfLacks.empty()) outputs.addText("transforms.json", nerf.str() + "\n");
   if (first.annotated) outputs.addText("annotations.json", cocoJson(frames));
-  std::vector<std::filesystem::path> files = colmap.commit();
   for (auto& f : outputs.commit()) files.push_back(std::move(f));
   return files;
 }

@@ -1,14 +1,19 @@
 // Camera metadata of a capture or a sequence, in the formats SfM and NeRF tools read,
 // written beside the frames (one OutputSet: all files at once):
 //
-//   cameras.json             every frame: intrinsics and distortion (OpenCV), world-from-camera
+//   cameras.json             every frame: intrinsics (OpenCV), the camera model and its
+//                            coefficients (camera_export.h), world-from-camera
 //                            in the OpenCV (x right, y down, z forward) and OpenGL/Blender
 //                            (x right, y up, z backward) conventions, exposure (T, N, ISO,
 //                            gain), the frame's reference time and its rows' readout times
-//   transforms.json          NeRF (instant-ngp, nerfstudio): fl_x, fl_y, cx, cy, w, h,
-//                            k1, k2, p1, p2; frames[].file_path, transform_matrix (OpenGL
-//                            camera-to-world)
-//   colmap/cameras.txt, images.txt, points3D.txt (empty)   a COLMAP text model
+//   transforms.json          NeRF (instant-ngp, nerfstudio): camera_model (OPENCV,
+//                            OPENCV_FISHEYE, EQUIRECTANGULAR), fl_x, fl_y, cx, cy, its
+//                            coefficients, w, h, camera_angle_x; frames[].file_path,
+//                            transform_matrix (OpenGL camera-to-world)
+//   colmap/cameras.txt, images.txt, points3D.txt (empty)   a COLMAP text model (OPENCV,
+//                            FULL_OPENCV or OPENCV_FISHEYE)
+// A model nerfstudio or COLMAP cannot express (camera_export.h) leaves its export out:
+// cameras.json's `not_written` and the caller's `skipped` say which and why.
 //   annotations.json         COCO (with the instance_id AOV): images, categories (the
 //                            classes), per visible labelled instance and frame its box, the
 //                            box of its projected 3-D bounds and its RLE mask (annotations.h)
@@ -50,7 +55,9 @@ DatasetFrame datasetFrame(const CaptureResult& result);
 glm::dmat4 worldFromCameraOpenCv(const DatasetFrame& frame, const PhysicalCamera& camera);
 
 // Writes cameras.json, transforms.json and colmap/*.txt into directory; returns the files.
-std::vector<std::filesystem::path> writeDatasetMetadata(const std::vector<DatasetFrame>& frames,
-                                                        const std::filesystem::path& directory);
+// skipped (if given) receives a line per export left out.
+std::vector<std::filesystem::path> writeDatasetMetadata(
+    const std::vector<DatasetFrame>& frames, const std::filesystem::path& directory,
+    std::vector<std::string>* skipped = nullptr);
 
 }  // namespace camsim

@@ -59,6 +59,10 @@ def test_meta_is_the_cli_sidecar(cli_box, py_box):
     assert meta == sidecar
     assert "modelled" in meta["render"] and len(meta["camera"]["derived"]["opencv_fx_fy_cx_cy"]) == 4
     assert np.asarray(py_box["meta"]["pose"]["world_from_camera_opencv"]).shape == (4, 4)
+    # The camera model as cameras.json writes it (integrator/capture/camera_export.h).
+    projection = py_box["meta"]["pose"]["projection"]
+    assert projection["model"] == "opencv" and projection == meta["camera"]["derived"]["projection"]
+    assert list(projection)[1:6] == ["k1", "k2", "p1", "p2", "k3"]
 
 
 def test_meta_says_none_for_what_a_capture_does_not_have(py_box):
