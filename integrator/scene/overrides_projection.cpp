@@ -2,8 +2,8 @@
 // camera-only probe scene, so the keys, ranges and messages are camera.projection's own.
 #include "integrator/scene/overrides_projection.h"
 
-#include <charconv>
 #include <algorithm>
+#include <charconv>
 #include <cstdio>
 #include <string>
 #include <utility>
@@ -52,12 +52,13 @@ SceneDescription probe(std::string_view projection, const SourceLocation& where)
     start = end + 1;
   }
   try {
-    return loadSceneFromText("camera:\n  position: [0, 0, 0]\n  look_at: [0, 0, -1]\n"
-                             "  projection:\n" +
-                                 block +
-                                 "materials: {m: {type: diffuse}}\nshapes: [{type: sphere, "
-                                 "centre: [0, 0, 0], radius: 1, material: m}]\n",
-                             "<override>", ".");
+    return loadSceneFromText(
+        "camera:\n  position: [0, 0, 0]\n  look_at: [0, 0, -1]\n"
+        "  projection:\n" +
+            block +
+            "materials: {m: {type: diffuse}}\nshapes: [{type: sphere, "
+            "centre: [0, 0, 0], radius: 1, material: m}]\n",
+        "<override>", ".");
   } catch (const InputError& e) {
     throw InputError(where, e.key().empty() ? kKey : e.key(), e.message());
   }

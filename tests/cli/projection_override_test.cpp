@@ -63,9 +63,15 @@ TEST(ProjectionOverride, AppliesAsTheLoaderReadsTheSameBlock) {
   const Projection& q = reference.camera.projection;
   EXPECT_EQ(p.model, ProjectionModel::kKannalaBrandt);
   EXPECT_FALSE(d.camera.intrinsicsFromLens);
-  for (const auto& [got, want] :
-       {std::pair{p.k1, q.k1}, {p.k2, q.k2}, {p.k3, q.k3}, {p.k4, q.k4}, {p.fx, q.fx},
-        {p.fy, q.fy}, {p.cx, q.cx}, {p.cy, q.cy}, {p.maxFieldAngle, q.maxFieldAngle}})
+  for (const auto& [got, want] : {std::pair{p.k1, q.k1},
+                                  {p.k2, q.k2},
+                                  {p.k3, q.k3},
+                                  {p.k4, q.k4},
+                                  {p.fx, q.fx},
+                                  {p.fy, q.fy},
+                                  {p.cx, q.cx},
+                                  {p.cy, q.cy},
+                                  {p.maxFieldAngle, q.maxFieldAngle}})
     EXPECT_EQ(got, want);
   EXPECT_EQ(p.k1, 0.02);
   EXPECT_EQ(p.fx, 300.5);
@@ -80,8 +86,7 @@ TEST(ProjectionOverride, ErrorsAreTheLoadersNamingTheKey) {
   EXPECT_EQ(errorKey([] { projectionOverride("{model: fisheye9}"); }), "camera.projection.model");
   EXPECT_EQ(errorKey([] { projectionOverride("{model: opencv, k1: 2000}"); }),
             "camera.projection.k1");
-  EXPECT_EQ(errorKey([] { projectionOverride("{model: opencv, kk: 1}"); }),
-            "camera.projection.kk");
+  EXPECT_EQ(errorKey([] { projectionOverride("{model: opencv, kk: 1}"); }), "camera.projection.kk");
   EXPECT_EQ(errorKey([] { projectionOverride("{k1: 0.1}"); }), "camera.projection.model");
   EXPECT_EQ(errorKey([] { projectionOverride("{model: opencv, fx: 1, fy: 1, cx: 1}"); }),
             "camera.projection");
@@ -91,7 +96,9 @@ TEST(ProjectionOverride, ErrorsAreTheLoadersNamingTheKey) {
   SceneDescription d = loadSceneFromText(sceneText(), "lamp.yaml", ".");
   Overrides o;
   o.projection = ProjectionOverride{"equidistant", {{"max_field_angle_deg", 181.0}}};
-  EXPECT_EQ(errorKey([&] { applyOverrides(d, o, {"<override>", 0, 0}); }),
+  EXPECT_EQ(errorKey([&] {
+              applyOverrides(d, o, {"<override>", 0, 0});
+            }),
             "camera.projection.max_field_angle_deg");
   // The loader's pupil rule, which the probe cannot see: a flat pupil is opencv's only.
   SceneDescription flat =
@@ -110,9 +117,9 @@ TEST(ProjectionOverride, ErrorsAreTheLoadersNamingTheKey) {
 
 // A block in any YAML form becomes one line of JSON that reads back to the same doubles.
 TEST(ProjectionOverride, TextFormIsOneLineAndRoundTrips) {
-  const Overrides o =
-      projectionOverride("model: double_sphere\nxi: -0.2\nalpha: 0.6\n"
-                         "max_field_angle_deg: 99.123456789012345\n");
+  const Overrides o = projectionOverride(
+      "model: double_sphere\nxi: -0.2\nalpha: 0.6\n"
+      "max_field_angle_deg: 99.123456789012345\n");
   ASSERT_TRUE(o.projection);
   const Overrides third = projectionOverride("{model: ftheta, k1: 0.30000000000000004}");
   EXPECT_EQ(overridesText(third),
@@ -139,7 +146,8 @@ TEST(ProjectionOverride, CommandLineRendersThroughTheModel) {
       if (im.channels[c] == "R") return im.at(x, y, static_cast<int>(c));
     return -1.0f;
   };
-  test::RunResult r = test::runCamsim(base + test::quote((dir.path() / "own").string()), dir.path());
+  test::RunResult r =
+      test::runCamsim(base + test::quote((dir.path() / "own").string()), dir.path());
   ASSERT_EQ(r.exitCode, 0) << r.err;
   r = test::runCamsim(base + test::quote((dir.path() / "fisheye").string()) +
                           " --projection '{model: equidistant, max_field_angle_deg: 15}'",
@@ -154,9 +162,9 @@ TEST(ProjectionOverride, CommandLineRendersThroughTheModel) {
   EXPECT_GT(red(fisheye, 16, 16), 0.0f);
   EXPECT_GT(red(fisheye, 16, 22), 0.0f);  // 6.5 px off centre: inside the circle
   // A bad model: exit 2 naming the flag and the key, nothing written.
-  r = test::runCamsim(base + test::quote((dir.path() / "bad").string()) +
-                          " --projection '{model: fisheye9}'",
-                      dir.path());
+  r = test::runCamsim(
+      base + test::quote((dir.path() / "bad").string()) + " --projection '{model: fisheye9}'",
+      dir.path());
   EXPECT_EQ(r.exitCode, 2) << r.err;
   EXPECT_NE(r.err.find("--projection: key 'camera.projection.model': unknown projection model "
                        "'fisheye9'"),
