@@ -175,5 +175,42 @@ TEST(ProjectionOverride, CommandLineRendersThroughTheModel) {
   EXPECT_NE(r.out.find("--projection MAP"), std::string::npos) << r.out;
 }
 
+// Tile parts record the projection (one JSON line of camsim:overrides) and merge applies it
+// again: the merged frame is the whole render's, byte for byte.
+TEST(ProjectionOverride, TilePartsMergeToTheWholeRender) {
+  const test::TempDir dir;
+  test::writeFile(dir.path() / "lamp.yaml", sceneText());
+  const std::string render = "render " + test::quote((dir.path() / "lamp.yaml").string()) +
+                             " --reproducible --projection " +
+                             test::quote(
+                                 "{model: kannala_brandt, k1: 0.1, max_field_angle_deg: "
+                                 "15.000000000000002}") +
+                             " -o ";
+  for (const char* tile : {"0/2", "1/2"}) {
+    const test::RunResult r = test::runCamsim(
+        render + test::quote((dir.path() / "parts").string()) + " --tiles " + tile, dir.path());
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+  }
+  test::RunResult r = test::runCamsim(
+      "merge " + test::quote((dir.path() / "parts" / "lamp.part-0-of-2.exr").string()) + " " +
+          test::quote((dir.path() / "parts" / "lamp.part-1-of-2.exr").string()) + " -o " +
+          test::quote((dir.path() / "merged").string()),
+      dir.path());
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  r = test::runCamsim(render + test::quote((dir.path() / "whole").string()), dir.path());
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const std::string whole = test::readFile(dir.path() / "whole" / "lamp.exr");
+  EXPECT_FALSE(whole.empty());
+  EXPECT_EQ(test::readFile(dir.path() / "merged" / "lamp.exr"), whole);
+  const Metadata meta = readExr(dir.path() / "parts" / "lamp.part-0-of-2.exr").metadata;
+  bool recorded = false;
+  for (const auto& [key, value] : meta)
+    if (key == "camsim:overrides")
+      recorded = value ==
+                 "projection={\"model\": \"kannala_brandt\", \"k1\": 0.1, "
+                 "\"max_field_angle_deg\": 15.000000000000002}\n";
+  EXPECT_TRUE(recorded);
+}
+
 }  // namespace
 }  // namespace camsim
