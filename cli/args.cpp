@@ -36,7 +36,9 @@ void parseOverride(Overrides& o, const OverrideSetting& setting, const std::stri
     const OverrideSource source{SourceLocation{"", 0, 0}, flag};
     setOverrideText(o, setting, text, source);
   } catch (const InputError& e) {
-    throw UsageError(flag + ": " + e.message());
+    // A value the scene loader read (--projection) names its own key: camera.projection.k1.
+    const bool ownKey = !e.key().empty() && e.key() != flag;
+    throw UsageError(flag + ": " + (ownKey ? "key '" + e.key() + "': " : "") + e.message());
   }
 }
 

@@ -60,8 +60,9 @@ void runJob(CaptureJob& job) {
 }
 
 // The override keyword arguments, in overrides.h's table order (every key of the table).
-constexpr const char* kOverrideKwargs[] = {
-    "sensor", "spp", "seed", "exposure_time_s", "f_number", "iso", "noise", "noise_seed", "pose"};
+constexpr const char* kOverrideKwargs[] = {"sensor",   "spp",       "seed",  "exposure_time_s",
+                                           "f_number", "iso",       "noise", "noise_seed",
+                                           "pose",     "projection"};
 
 py::object runCapture(PyScene& scene, int threads, const py::object& progress,
                       const std::string& display, const std::string& view, const std::string& look,
@@ -69,12 +70,13 @@ py::object runCapture(PyScene& scene, int threads, const py::object& progress,
                       const py::object& spp, const py::object& seed,
                       const py::object& exposureTimeS, const py::object& fNumber,
                       const py::object& iso, const py::object& noise, const py::object& noiseSeed,
-                      const py::object& pose) {
+                      const py::object& pose, const py::object& projection) {
   if (threads < 0) throw py::value_error("threads must be ≥ 0 (0: all hardware threads)");
   // For this capture only (the Scene keeps its settings), checked before anything runs.
   Overrides overrides;
   const py::object* values[] = {&sensor, &spp,   &seed,      &exposureTimeS, &fNumber,
-                                &iso,    &noise, &noiseSeed, &pose};
+                                &iso,    &noise, &noiseSeed, &pose,          &projection};
+  static_assert(std::size(values) == std::size(kOverrideKwargs));
   for (std::size_t i = 0; i < std::size(values); ++i)
     if (!values[i]->is_none())
       setOverrideFromPython(overrides, *findOverrideSetting(kOverrideKwargs[i]), *values[i],
@@ -173,10 +175,12 @@ reuse: render on the renderable scene (Embree BVH, materials, lights) the Scene'
 capture built, when only its camera, exposure, f-number, ISO, sensor, seeds or spp changed
 (the same bytes as a fresh build; meta["scene_reused"] says whether it was); False: build
 it afresh and keep nothing.
-sensor, spp, seed, exposure_time_s, f_number, iso, noise, noise_seed, pose: overrides for this
-capture only (the Scene keeps its own settings), the keys, ranges and messages of load()'s
-overrides dict and camsim render's flags (integrator/scene/overrides.h): e.g.
-capture(scene, spp=16, seed=3, f_number=2.8). None: the scene's value.
+sensor, spp, seed, exposure_time_s, f_number, iso, noise, noise_seed, pose, projection:
+overrides for this capture only (the Scene keeps its own settings), the keys, ranges and
+messages of load()'s overrides dict and camsim render's flags (integrator/scene/overrides.h):
+e.g. capture(scene, spp=16, seed=3, f_number=2.8). None: the scene's value. projection is the
+camera model, camera.projection's map as a dict or YAML/JSON text, e.g.
+projection={"model": "kannala_brandt", "k1": 0.02} (docs/camera.md).
 Raises camsim.InputError for a bad override, a bad display choice or a file a capture reads
 again.)doc";
 
@@ -189,7 +193,8 @@ void bindCaptureFunctions(py::module_& m) {
         py::arg("sensor") = py::none(), py::arg("spp") = py::none(), py::arg("seed") = py::none(),
         py::arg("exposure_time_s") = py::none(), py::arg("f_number") = py::none(),
         py::arg("iso") = py::none(), py::arg("noise") = py::none(),
-        py::arg("noise_seed") = py::none(), py::arg("pose") = py::none(), kCaptureDoc);
+        py::arg("noise_seed") = py::none(), py::arg("pose") = py::none(),
+        py::arg("projection") = py::none(), kCaptureDoc);
   py::object scene = m.attr("Scene");
   scene.attr("render") = py::cpp_function(
       &runCapture, py::name("render"), py::is_method(scene), py::kw_only(), py::arg("threads") = 0,
@@ -199,6 +204,7 @@ void bindCaptureFunctions(py::module_& m) {
       py::arg("exposure_time_s") = py::none(), py::arg("f_number") = py::none(),
       py::arg("iso") = py::none(), py::arg("noise") = py::none(),
       py::arg("noise_seed") = py::none(), py::arg("pose") = py::none(),
+      py::arg("projection") = py::none(),
       ("scene.render(...) is camsim.capture(scene, ...):\n\n" + std::string(kCaptureDoc)).c_str());
 }
 

@@ -182,7 +182,9 @@ independent Scene (without the built one).
 overrides: an optional dict of the CLI's render flags, applied after loading, in this order:
   sensor (preset name or sensor file), spp (int), seed (int), exposure_time_s (s: the
   scene's shutter stretched to this effective time, as --exposure-time), f_number,
-  iso (scenes with a sensor), noise ("none" | "photon" | "full"), noise_seed (int).
+  iso (scenes with a sensor), noise ("none" | "photon" | "full"), noise_seed (int),
+  pose (as set_pose: {position, look_at, up} or a 4×4 world_from_camera), projection (the
+  camera model: camera.projection's map as a dict or YAML/JSON text, as set_projection).
 Raises camsim.InputError (a ValueError) for a bad scene or override, naming the file, line
 and column (a dict: the key path) and the key.)doc";
 
@@ -232,10 +234,11 @@ base_dir: the directory relative file names (meshes, textures, spectra) resolve 
           d["range"] = overrideRangeText(s);
           const bool integer = s.type == OverrideType::kInteger;
           const bool number = s.type == OverrideType::kNumber;
-          d["type"] = integer                         ? "int"
-                      : number                        ? "float"
-                      : s.type == OverrideType::kPose ? "pose"
-                                                      : "str";
+          d["type"] = integer                               ? "int"
+                      : number                              ? "float"
+                      : s.type == OverrideType::kPose       ? "pose"
+                      : s.type == OverrideType::kProjection ? "projection"
+                                                            : "str";
           if (integer) {
             d["lo"] = s.integers.lo;
             d["hi"] = s.integers.hi;
@@ -252,7 +255,7 @@ base_dir: the directory relative file names (meshes, textures, spectra) resolve 
       R"doc(The overrides a front end can set (integrator/scene/overrides.h), one dict each in the
 order they apply: key (the keyword of capture()/render() and of the overrides dict), scene_key,
 unit, flag (camsim render's), help, range (as errors print it), type ("int", "float", "str",
-"pose") and, for numbers, lo, hi and lo_open (the range (lo, hi] rather than [lo, hi]).)doc");
+"pose", "projection": a dict or YAML/JSON text) and, for numbers, lo, hi and lo_open (the range (lo, hi] rather than [lo, hi]).)doc");
   scene.def(
       "copy", [](const PyScene& s) { return PyScene{s.description}; },
       "An independent copy (meshes and decoded textures are copied in memory; the built "
@@ -295,6 +298,22 @@ camera.world_from_camera. Checked by the scene loader (same messages). Camera mo
 keyframes, lens and sensor are kept. Shapes and lights stay in the render space of the
 loaded scene (its origin: the first camera position), so a render equals a reload of the
 scene at this pose to float rounding, not always bit for bit. Returns the Scene.)doc");
+  scene.def(
+      "set_projection",
+      [](PyScene& s, const py::object& projection) -> PyScene& {
+        applyPythonOverrides(s.description, {{"projection", projection}});
+        return s;
+      },
+      py::arg("projection"), py::return_value_policy::reference_internal,
+      R"doc(The camera model, as the scene's camera.projection (docs/camera.md): a dict such as
+{"model": "kannala_brandt", "k1": 0.02, "k2": -0.003} or {"model": "equidistant",
+"max_field_angle_deg": 95}, or the same as YAML/JSON text. Keys: model (opencv,
+kannala_brandt, equidistant, equisolid, stereographic, orthographic, ftheta, unified,
+double_sphere, equirectangular), k1…k6, p1, p2, s1…s4, tau_x, tau_y, xi, alpha,
+max_field_angle_deg, and fx, fy, cx, cy (px; all four or none: then they follow the lens).
+It replaces the scene's projection (or distortion) whole. Checked by the scene loader (same
+messages, key camera.projection.<key>); a model other than opencv is refused when the scene's
+camera.aperture.pupil is flat. Returns the Scene.)doc");
   scene.def(
       "set_exposure",
       [](PyScene& s, const py::object& t, const py::object& n, const py::object& iso) -> PyScene& {

@@ -78,6 +78,22 @@ PoseOverride poseOf(const py::handle& v, const std::string& key) {
   return p;
 }
 
+// A projection value: a dict (written as JSON, which the scene loader reads as YAML; NumPy
+// scalars become floats) or the YAML/JSON text itself.
+std::string projectionTextOf(const py::handle& v, const std::string& key) {
+  if (py::isinstance<py::str>(v)) return v.cast<std::string>();
+  if (!py::isinstance<py::dict>(v))
+    fail(key, "expected a dict (camera.projection's keys) or a str, got " +
+                  std::string(py::str(py::type::of(v).attr("__name__"))));
+  try {
+    py::object json = py::module_::import("json");
+    return json.attr("dumps")(v, py::arg("default") = py::module_::import("builtins").attr("float"))
+        .cast<std::string>();
+  } catch (const py::error_already_set& e) {
+    fail(key, std::string("a value is neither a str nor a number (") + e.what() + ")");
+  }
+}
+
 void apply(SceneDescription& d, const Overrides& o) {
   applyOverrides(d, o, kWhere);
 }
@@ -99,6 +115,9 @@ void setOverrideFromPython(Overrides& o, const OverrideSetting& s, const py::han
       return;
     case OverrideType::kPose:
       o.pose = poseOf(value, typeKey);
+      return;
+    case OverrideType::kProjection:
+      setOverrideText(o, s, projectionTextOf(value, typeKey), sourceOf(s));
       return;
   }
 }

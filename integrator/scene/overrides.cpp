@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "integrator/scene/overrides_projection.h"
 #include "integrator/scene/scene_loader.h"
 #include "sensor/model/sensor_spec.h"
 
@@ -53,6 +54,10 @@ const std::vector<OverrideSetting> kSettings = {
                     "camera pose: px,py,pz,lx,ly,lz,ux,uy,uz (position, look_at, up) or 16 "
                     "numbers (world_from_camera, row-major)",
                     OverrideType::kPose},
+    OverrideSetting{"projection", "camera.projection", "", "MAP",
+                    "camera model, the scene's camera.projection map as YAML/JSON flow text: "
+                    "'{model: equidistant, max_field_angle_deg: 95}' (docs/camera.md)",
+                    OverrideType::kProjection},
 };
 
 // Shortest round-trip decimal: from_chars reads back exactly this double.
@@ -193,7 +198,7 @@ const OverrideSetting& setting(std::string_view key) {
 
 bool Overrides::empty() const {
   return !sensor && !spp && !seed && !exposureTimeS && !fNumber && !iso && !noise && !noiseSeed &&
-         !pose;
+         !pose && !projection;
 }
 
 const std::vector<OverrideSetting>& overrideSettings() {
@@ -224,6 +229,8 @@ std::string overrideRangeText(const OverrideSetting& s) {
       return "a preset name or a sensor file";
     case OverrideType::kPose:
       return "9 or 16 comma-separated numbers";
+    case OverrideType::kProjection:
+      return "a camera.projection map";
   }
   return "";
 }
@@ -277,6 +284,9 @@ void setOverrideText(Overrides& o, const OverrideSetting& s, std::string_view te
     case OverrideType::kPose:
       o.pose = readPose(text, source);
       return;
+    case OverrideType::kProjection:
+      o.projection = readProjectionOverride(text, source.where);
+      return;
   }
 }
 
@@ -313,6 +323,7 @@ void applyOverrides(SceneDescription& d, const Overrides& o, const SourceLocatio
   if (o.noise) d.sensor->noise = *o.noise;
   if (o.noiseSeed) d.sensor->noiseSeed = static_cast<std::uint64_t>(*o.noiseSeed);
   if (o.pose) setPose(d, *o.pose, where);
+  if (o.projection) setProjection(d, *o.projection, where);
 }
 
 std::string overridesText(const Overrides& o) {
@@ -329,6 +340,7 @@ std::string overridesText(const Overrides& o) {
   if (o.noise) add("noise", noiseModeName(*o.noise));
   if (o.noiseSeed) add("noise_seed", std::to_string(*o.noiseSeed));
   if (o.pose) add("pose", poseText(*o.pose));
+  if (o.projection) add("projection", projectionOverrideText(*o.projection));
   return out;
 }
 

@@ -15,16 +15,23 @@
 // | noise           | sensor.noise             | —    | none, photon or full (a sensor)    |
 // | noise_seed      | sensor.noise_seed        | —    | integer, kNoiseSeed (a sensor)     |
 // | pose            | camera.world_from_camera | m    | look-at or 4x4 matrix (text below) |
+// | projection      | camera.projection        | —    | the camera model: the scene key's  |
+// |                 |                          |      | map as YAML/JSON flow text         |
 //
 // The CLI flag of a key is "--" + the key with '_' → '-' (--f-number). Text forms (CLI,
 // tile parts): numbers and integers as C++ from_chars reads them; pose as 9 comma-separated
-// numbers (position, look_at, up) or 16 (world_from_camera, row-major). overridesText()
-// writes one "key=value" line per set override in table order, numbers in their shortest
-// round-trip form, so parseOverridesText() gives back the same doubles.
+// numbers (position, look_at, up) or 16 (world_from_camera, row-major); projection as the
+// scene's camera.projection map, e.g. {model: equidistant, max_field_angle_deg: 95}.
+// overridesText() writes one "key=value" line per set override in table order, numbers in
+// their shortest round-trip form (a projection as one line of JSON), so parseOverridesText()
+// gives back the same doubles.
 //
 // Nothing geometric is touched by applyOverrides: no mesh, texture or environment map is
-// read again. The pose goes through the scene loader itself (a camera-only scene text), so
-// its checks are the loader's; a sensor reads its preset or file (relative: to the working
+// read again. The pose and the projection go through the scene loader itself (a camera-only
+// scene text), so their checks and messages are the loader's (a projection's name the key
+// camera.projection.<key>); a projection replaces the scene's camera.projection (or
+// camera.distortion) whole, and one other than opencv is refused on a scene whose
+// camera.aperture.pupil is flat, as the loader refuses it; a sensor reads its preset or file (relative: to the working
 // directory) as the loader's `sensor: {model: …}` does.
 #pragma once
 
@@ -32,6 +39,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include <glm/mat4x4.hpp>
@@ -52,6 +60,14 @@ struct PoseOverride {
   glm::dvec3 position{0.0}, lookAt{0.0, 0.0, -1.0}, up{0.0, 1.0, 0.0};
 };
 
+// camera.projection's keys as given: the model's name and each number key with its value
+// (k1, max_field_angle_deg, fx, …), in the order given; the loader checks them when set and
+// again when applied.
+struct ProjectionOverride {
+  std::string model;
+  std::vector<std::pair<std::string, double>> values;
+};
+
 struct Overrides {
   std::optional<std::string> sensor;
   std::optional<std::int64_t> spp;
@@ -62,11 +78,12 @@ struct Overrides {
   std::optional<NoiseMode> noise;
   std::optional<std::int64_t> noiseSeed;
   std::optional<PoseOverride> pose;
+  std::optional<ProjectionOverride> projection;
 
   bool empty() const;
 };
 
-enum class OverrideType { kInteger, kNumber, kNoise, kSensor, kPose };
+enum class OverrideType { kInteger, kNumber, kNoise, kSensor, kPose, kProjection };
 
 struct OverrideSetting {
   std::string_view key;        // snake_case: Python keyword, tile-part key, CLI flag's stem
@@ -97,7 +114,8 @@ struct OverrideSource {
 };
 
 // Parses `text` as the setting's value and stores it in o. InputError (key = source.name)
-// naming the value and the range when it does not read or is out of range.
+// naming the value and the range when it does not read or is out of range; a projection is
+// read by the scene loader (key camera.projection.<key>, at source.where).
 void setOverrideText(Overrides& o, const OverrideSetting& setting, std::string_view text,
                      const OverrideSource& source);
 // Typed values (Python): the same checks, the same messages.
@@ -108,7 +126,8 @@ void setOverrideNumber(Overrides& o, const OverrideSetting& setting, double valu
 
 // Applies o to d in table order, checking every value again (an Overrides filled by hand
 // gets the same refusals). InputError (file where.file, key = the scene key) for a value out
-// of range, iso/noise/noise_seed without a sensor, a sensor or pose the loader refuses.
+// of range, iso/noise/noise_seed without a sensor, a sensor, pose or projection the loader
+// refuses (key camera.projection.<key>), a projection other than opencv with a flat pupil.
 void applyOverrides(SceneDescription& d, const Overrides& o, const SourceLocation& where);
 
 // One "key=value" line per set override (table order); "" when none.

@@ -216,11 +216,14 @@ TEST(OverrideRanges, TextFormRoundTrips) {
   o.noiseSeed = 3;
   o.sensor = "a sensor file with spaces.yaml";
   o.pose = PoseOverride{std::nullopt, {1, 2, 3}, {0, 0, 0}, {0, 1, 0}};
+  o.projection = ProjectionOverride{"kannala_brandt", {{"k1", 0.1 + 0.2}, {"k2", -1e-5}}};
   const std::string text = overridesText(o);
   const Overrides back = parseOverridesText(text, "part.exr");
   EXPECT_EQ(overridesText(back), text);
   EXPECT_EQ(back.exposureTimeS, o.exposureTimeS);
   EXPECT_EQ(back.sensor, o.sensor);
+  ASSERT_TRUE(back.projection);
+  EXPECT_EQ(back.projection->values, o.projection->values);
   EXPECT_THROW(parseOverridesText("f_number=0.3\n", "part.exr"), InputError);
   EXPECT_THROW(parseOverridesText("spp 4\n", "part.exr"), InputError);
   EXPECT_THROW(parseOverridesText("colour=red\n", "part.exr"), InputError);
