@@ -7,6 +7,8 @@
 
 #include <glm/trigonometric.hpp>
 
+#include "sensor/base/format.h"
+
 namespace camsim {
 
 using Coefficients = std::vector<std::pair<std::string, double>>;
@@ -61,9 +63,7 @@ bool allZero(std::initializer_list<double> values) {
 }  // namespace
 
 std::string exactNumber(double v) {
-  char buffer[32];
-  const auto result = std::to_chars(buffer, buffer + sizeof buffer, v);
-  return std::string(buffer, result.ptr);
+  return formatShortest(v);
 }
 
 CameraExport cameraExport(const PhysicalCamera& camera) {

@@ -13,6 +13,7 @@
 #include "integrator/capture/camera_export.h"
 #include "integrator/render/cryptomatte.h"
 #include "integrator/scene/scene_ids.h"
+#include "sensor/base/format.h"
 #include "sensor/model/exposure_control.h"
 #include "sensor/model/sensor_model.h"
 
@@ -29,9 +30,7 @@ std::vector<double> matrixRows(const glm::dmat3& m) {
 // A number as the shortest decimal that reads back as the same double: the scene inputs
 // below must paste back into a scene and give the same bytes (JsonObject keeps 10 digits).
 std::string exact(double v) {
-  char buffer[32];
-  const auto result = std::to_chars(buffer, buffer + sizeof buffer, v);
-  return std::string(buffer, result.ptr);
+  return formatShortest(v);
 }
 std::string exact(const std::vector<double>& values) {
   std::string s = "[";

@@ -12,6 +12,8 @@
 #include "integrator/scene/scene_loader.h"
 #include "sensor/model/sensor_spec.h"
 
+#include "sensor/base/format.h"
+
 namespace camsim {
 namespace {
 
@@ -60,15 +62,8 @@ const std::vector<OverrideSetting> kSettings = {
                     OverrideType::kProjection},
 };
 
-// Shortest round-trip decimal: from_chars reads back exactly this double.
-std::string shortest(double v) {
-  char buffer[32];
-  const auto result = std::to_chars(buffer, buffer + sizeof buffer, v);
-  return std::string(buffer, result.ptr);
-}
-
 std::string vec(const glm::dvec3& v) {
-  return "[" + shortest(v.x) + ", " + shortest(v.y) + ", " + shortest(v.z) + "]";
+  return "[" + formatShortest(v.x) + ", " + formatShortest(v.y) + ", " + formatShortest(v.z) + "]";
 }
 
 [[noreturn]] void fail(const OverrideSource& source, const std::string& message) {
@@ -127,7 +122,7 @@ PoseOverride readPose(std::string_view text, const OverrideSource& source) {
 
 std::string poseText(const PoseOverride& p) {
   std::string out;
-  const auto add = [&out](double v) { out += (out.empty() ? "" : ",") + shortest(v); };
+  const auto add = [&out](double v) { out += (out.empty() ? "" : ",") + formatShortest(v); };
   if (p.worldFromCamera) {
     for (int row = 0; row < 4; ++row)
       for (int col = 0; col < 4; ++col) add((*p.worldFromCamera)[col][row]);
@@ -146,7 +141,7 @@ void setPose(SceneDescription& d, const PoseOverride& p, const SourceLocation& w
     std::string rows;
     for (int row = 0; row < 4; ++row)
       for (int col = 0; col < 4; ++col)
-        rows += (rows.empty() ? "" : ", ") + shortest((*p.worldFromCamera)[col][row]);
+        rows += (rows.empty() ? "" : ", ") + formatShortest((*p.worldFromCamera)[col][row]);
     cameraYaml = "{world_from_camera: [" + rows + "]}";
   } else {
     cameraYaml = "{position: " + vec(p.position) + ", look_at: " + vec(p.lookAt) +
@@ -247,8 +242,8 @@ void setOverrideInteger(Overrides& o, const OverrideSetting& s, std::int64_t val
 void setOverrideNumber(Overrides& o, const OverrideSetting& s, double value,
                        const OverrideSource& source) {
   if (s.type != OverrideType::kNumber) fail(source, "expected " + overrideRangeText(s));
-  if (!std::isfinite(value)) fail(source, "'" + shortest(value) + "' is not a finite number");
-  if (!s.numbers.contains(value)) outOfRange(s, shortest(value), source);
+  if (!std::isfinite(value)) fail(source, "'" + formatShortest(value) + "' is not a finite number");
+  if (!s.numbers.contains(value)) outOfRange(s, formatShortest(value), source);
   if (s.key == "exposure_time_s") o.exposureTimeS = value;
   if (s.key == "f_number") o.fNumber = value;
   if (s.key == "iso") o.iso = value;
@@ -334,9 +329,9 @@ std::string overridesText(const Overrides& o) {
   if (o.sensor) add("sensor", *o.sensor);
   if (o.spp) add("spp", std::to_string(*o.spp));
   if (o.seed) add("seed", std::to_string(*o.seed));
-  if (o.exposureTimeS) add("exposure_time_s", shortest(*o.exposureTimeS));
-  if (o.fNumber) add("f_number", shortest(*o.fNumber));
-  if (o.iso) add("iso", shortest(*o.iso));
+  if (o.exposureTimeS) add("exposure_time_s", formatShortest(*o.exposureTimeS));
+  if (o.fNumber) add("f_number", formatShortest(*o.fNumber));
+  if (o.iso) add("iso", formatShortest(*o.iso));
   if (o.noise) add("noise", noiseModeName(*o.noise));
   if (o.noiseSeed) add("noise_seed", std::to_string(*o.noiseSeed));
   if (o.pose) add("pose", poseText(*o.pose));

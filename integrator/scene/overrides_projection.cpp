@@ -10,35 +10,14 @@
 
 #include "integrator/scene/scene_loader.h"
 #include "sensor/base/yaml_reader.h"
+#include "sensor/io/json_writer.h"
+
+#include "sensor/base/format.h"
 
 namespace camsim {
 namespace {
 
 const char* const kKey = "camera.projection";
-
-std::string shortest(double v) {
-  char buffer[32];
-  const auto result = std::to_chars(buffer, buffer + sizeof buffer, v);
-  return std::string(buffer, result.ptr);
-}
-
-// A JSON string literal: quotes, backslashes and control characters escaped.
-std::string jsonString(const std::string& s) {
-  std::string out = "\"";
-  for (const char c : s) {
-    if (c == '"' || c == '\\') {
-      out += '\\';
-      out += c;
-    } else if (static_cast<unsigned char>(c) < 0x20) {
-      char escaped[8];
-      std::snprintf(escaped, sizeof escaped, "\\u%04x", static_cast<unsigned>(c));
-      out += escaped;
-    } else {
-      out += c;
-    }
-  }
-  return out + "\"";
-}
 
 // The scene the loader reads for `projection` (YAML text, any number of lines): a camera
 // with that block and one sphere. Its errors keep the loader's key, at `where` (the probe's
@@ -81,8 +60,9 @@ ProjectionOverride readProjectionOverride(std::string_view text, const SourceLoc
 }
 
 std::string projectionOverrideText(const ProjectionOverride& p) {
-  std::string out = "{\"model\": " + jsonString(p.model);
-  for (const auto& [key, value] : p.values) out += ", " + jsonString(key) + ": " + shortest(value);
+  std::string out = "{\"model\": " + JsonObject::quoted(p.model);
+  for (const auto& [key, value] : p.values)
+    out += ", " + JsonObject::quoted(key) + ": " + formatShortest(value);
   return out + "}";
 }
 

@@ -1,5 +1,6 @@
 #include "sensor/base/format.h"
 
+#include <charconv>
 #include <cstdio>
 
 namespace camsim {
@@ -12,6 +13,12 @@ std::string formatNumber(double v, int precision) {
 
 std::string formatRange(double lo, double hi, bool loOpen) {
   return (loOpen ? "(" : "[") + formatNumber(lo, 10) + ", " + formatNumber(hi, 10) + "]";
+}
+
+std::string formatShortest(double v) {
+  char buffer[32];
+  const auto result = std::to_chars(buffer, buffer + sizeof buffer, v);
+  return std::string(buffer, result.ptr);
 }
 
 std::string formatFixed(double v, int decimals) {

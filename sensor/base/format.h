@@ -15,6 +15,9 @@ std::string formatNumber(double v, int precision = 3);
 // with 10 significant digits.
 std::string formatRange(double lo, double hi, bool loOpen = false);
 std::string formatFixed(double v, int decimals);
+// The shortest decimal that reads back as the same double (std::to_chars): for numbers that
+// must round-trip exactly (scene text written back, override records, exported intrinsics).
+std::string formatShortest(double v);
 std::string formatRate(double perSecond);
 std::string formatSize(int width, int height);
 

@@ -13,6 +13,8 @@
 
 #include "sensor/base/input_error.h"
 
+#include "sensor/base/format.h"
+
 namespace camsim {
 
 void writeExr(const std::filesystem::path& path, const Image& image, const Metadata& metadata,
@@ -80,15 +82,7 @@ ExrFile readExr(const std::filesystem::path& path) {
   }
 }
 
-namespace {
-
-std::string shortestDecimal(double v) {
-  char buffer[32];
-  const auto result = std::to_chars(buffer, buffer + sizeof buffer, v);
-  return std::string(buffer, result.ptr);
-}
-
-}  // namespace
+namespace {}  // namespace
 
 void writeRawExr(const std::filesystem::path& path, const RawImage& raw,
                  const Image& expectedElectrons, const Metadata& meta) {
@@ -106,8 +100,8 @@ void writeRawExr(const std::filesystem::path& path, const RawImage& raw,
         image.at(x, y, c + 1) = expectedElectrons.at(x, y, c);
     }
   const Metadata levels = {{"camsim:cfa", raw.cfa.name},
-                           {"camsim:black_level_dn", shortestDecimal(raw.blackLevelDn)},
-                           {"camsim:white_level_dn", shortestDecimal(raw.whiteLevelDn)}};
+                           {"camsim:black_level_dn", formatShortest(raw.blackLevelDn)},
+                           {"camsim:white_level_dn", formatShortest(raw.whiteLevelDn)}};
   Metadata all;
   for (const auto& entry : meta) {
     bool replaced = false;
