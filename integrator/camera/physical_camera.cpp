@@ -119,19 +119,8 @@ std::optional<CameraRay> PhysicalCamera::generateRay(const CameraSample& sample,
   const double d2 = glm::dot(v, v);
   const double geometric = apertureArea_ * zi * zi / (d2 * d2);  // A · cos⁴θ / z_i²
   const double scale = pixelArea_ * p_.shutter.effectiveTime() * geometric;
-
-  CameraRay cr;
-  cr.ray.o = glm::vec3(m * glm::dvec4(origin, 1.0));
-  cr.ray.d = glm::vec3(glm::normalize(glm::dvec3(m * glm::dvec4(direction, 0.0))));
-  cr.ray.time = sample.time;
-  cr.weight = SampledSpectrum(static_cast<float>(scale));
-  if (!transmittanceIsOne_) cr.weight *= sampleSpectrum(p_.lensTransmittance, lambda);
-  return cr;
+  return cameraRay(m, origin, direction, sample.time, scale, lambda);
 }
-
-}  // namespace camsim
-
-namespace camsim {
 
 std::optional<CameraRay> PhysicalCamera::generateModelRay(const CameraSample& sample,
                                                           const SampledWavelengths& lambda,
@@ -165,11 +154,16 @@ std::optional<CameraRay> PhysicalCamera::generateModelRay(const CameraSample& sa
   }
   const double scale =
       p_.shutter.effectiveTime() * p_.fillFactor * model->density * apertureArea_ * pupil;
+  return cameraRay(m, origin, direction, sample.time, scale, lambda);
+}
 
+CameraRay PhysicalCamera::cameraRay(const glm::dmat4& m, const glm::dvec3& origin,
+                                    const glm::dvec3& direction, double time, double scale,
+                                    const SampledWavelengths& lambda) const {
   CameraRay cr;
   cr.ray.o = glm::vec3(m * glm::dvec4(origin, 1.0));
   cr.ray.d = glm::vec3(glm::normalize(glm::dvec3(m * glm::dvec4(direction, 0.0))));
-  cr.ray.time = sample.time;
+  cr.ray.time = time;
   cr.weight = SampledSpectrum(static_cast<float>(scale));
   if (!transmittanceIsOne_) cr.weight *= sampleSpectrum(p_.lensTransmittance, lambda);
   return cr;

@@ -163,6 +163,10 @@ class PhysicalCamera final : public Camera {
   std::optional<CameraRay> generateModelRay(const CameraSample& sample,
                                             const SampledWavelengths& lambda,
                                             const glm::dmat4& worldFromCamera) const;
+  // The ray from camera-space origin along direction (world through m) with weight scale
+  // (× T_lens(λ)): the last step of both general paths.
+  CameraRay cameraRay(const glm::dmat4& m, const glm::dvec3& origin, const glm::dvec3& direction,
+                      double time, double scale, const SampledWavelengths& lambda) const;
 
   PhysicalCameraParams p_;
   std::optional<Aperture> stop_;  // from p_.aperture and p_.apertureDiameter()

@@ -205,27 +205,8 @@ std::optional<glm::dvec3> unproject(const Projection& p, glm::dvec2 pixel) {
 }
 
 double solidAngleDensity(const Projection& p, glm::dvec2 pixel) {
-  if (p.model == ProjectionModel::kEquirectangular) return pd::equirectangularDensity(p, pixel);
-  glm::dvec2 m = toFilm(p, pixel);
-  if (!std::isfinite(m.x) || !std::isfinite(m.y)) return 0.0;
-  const double perPixel = 1.0 / (p.fx * p.fy);
-  double detJ = 1.0;  // of the distortion, where the model has one
-  if (p.model == ProjectionModel::kOpenCv || p.model == ProjectionModel::kUnified) {
-    const pd::Distortion dist =
-        p.model == ProjectionModel::kOpenCv ? pd::openCvDistortion(p) : pd::omnidirDistortion(p);
-    const std::optional<glm::dvec2> mu = pd::undistort(dist, m);
-    if (!mu) return 0.0;
-    detJ = glm::determinant(pd::distort(dist, *mu)->jacobian);
-    m = *mu;
-  }
-  if (p.model == ProjectionModel::kOpenCv) {
-    const double r2 = glm::dot(m, m);
-    if (!pd::withinField(pd::fieldLimit(p), std::atan(std::sqrt(r2)))) return 0.0;
-    return perPixel / (detJ * (1.0 + r2) * std::sqrt(1.0 + r2));
-  }
-  const std::optional<double> theta = pd::fieldAngle(p, glm::length(m));
-  if (!theta) return 0.0;
-  return pd::radialDensity(p, *theta) * perPixel / detJ;
+  const std::optional<ModelRay> r = unprojectWithDensity(p, pixel);
+  return r ? r->density : 0.0;
 }
 
 std::optional<ModelRay> unprojectWithDensity(const Projection& p, glm::dvec2 pixel) {
