@@ -26,7 +26,8 @@ PhysicalCamera cameraWith(const std::string& projection) {
       "camera: {position: [0, 0, 0], look_at: [0, 0, 1], resolution: [64, 64], "
       "sensor_width_mm: 3.2, sensor_height_mm: 3.2, focal_length_mm: 1, f_number: 2, "
       "focus_distance_m: 0.8, aperture: {blades: 0}, projection: " +
-      projection + "}\nshapes: [{type: sphere, centre: [0, 0, 5], radius: 1, emission: {luminance: 1}}]\n";
+      projection +
+      "}\nshapes: [{type: sphere, centre: [0, 0, 5], radius: 1, emission: {luminance: 1}}]\n";
   return PhysicalCamera(loadSceneFromText(yaml, "aperture.yaml", ".").camera);
 }
 
@@ -35,11 +36,12 @@ TEST(ModelAperture, RaysFromAFilmPointMeetOnTheSurfaceOfFocus) {
     const char* projection;
     bool plane;  // opencv: plane of focus z = z_o; else a sphere of radius z_o
   };
-  const Case cases[] = {{"{model: opencv, k1: -0.2, k2: 0.03}", true},
-                        {"{model: equidistant, max_field_angle_deg: 100}", false},
-                        {"{model: kannala_brandt, k1: 0.02, k2: -0.003, max_field_angle_deg: 100}", false},
-                        {"{model: double_sphere, xi: -0.2, alpha: 0.6, max_field_angle_deg: 100}", false},
-                        {"{model: equirectangular}", false}};
+  const Case cases[] = {
+      {"{model: opencv, k1: -0.2, k2: 0.03}", true},
+      {"{model: equidistant, max_field_angle_deg: 100}", false},
+      {"{model: kannala_brandt, k1: 0.02, k2: -0.003, max_field_angle_deg: 100}", false},
+      {"{model: double_sphere, xi: -0.2, alpha: 0.6, max_field_angle_deg: 100}", false},
+      {"{model: equirectangular}", false}};
   const double zo = 0.8, radius = 0.25e-3;  // D/2 = f/(2N)
   const SampledWavelengths lambda = SampledWavelengths::sampleVisible(0.3f);
   for (const Case& c : cases) {
