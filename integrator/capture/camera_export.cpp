@@ -62,10 +62,6 @@ bool allZero(std::initializer_list<double> values) {
 
 }  // namespace
 
-std::string exactNumber(double v) {
-  return formatShortest(v);
-}
-
 CameraExport cameraExport(const PhysicalCamera& camera) {
   const Projection& p = camera.projection();
   const glm::ivec2 res = camera.params().resolution;
@@ -144,18 +140,18 @@ CameraExport cameraExport(const PhysicalCamera& camera) {
 std::string cameraModelText(const CameraExport& e) {
   std::string s;
   for (const auto& [name, value] : e.coefficients)
-    s += (s.empty() ? "" : " ") + name + "=" + exactNumber(value);
+    s += (s.empty() ? "" : " ") + name + "=" + formatShortest(value);
   if (e.maxFieldAngle)
     s += (s.empty() ? "" : " ") + std::string("max_field_angle_deg=") +
-         exactNumber(glm::degrees(*e.maxFieldAngle));
+         formatShortest(glm::degrees(*e.maxFieldAngle));
   return s;
 }
 
 void addCameraModel(JsonObject& json, const CameraExport& e) {
   json.set("model", e.model);
-  for (const auto& [name, value] : e.coefficients) json.setJson(name, exactNumber(value));
+  for (const auto& [name, value] : e.coefficients) json.setJson(name, formatShortest(value));
   if (e.maxFieldAngle)
-    json.setJson("max_field_angle_deg", exactNumber(glm::degrees(*e.maxFieldAngle)));
+    json.setJson("max_field_angle_deg", formatShortest(glm::degrees(*e.maxFieldAngle)));
 }
 
 }  // namespace camsim

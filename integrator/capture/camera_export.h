@@ -63,7 +63,4 @@ std::vector<std::pair<std::string, double>> projectionCoefficients(const Project
 // One line for the EXR header: "k1=… k2=… …" and " max_field_angle_deg=…" where it limits.
 std::string cameraModelText(const CameraExport& e);
 
-// A number as the shortest decimal that reads back as the same double.
-std::string exactNumber(double v);
-
 }  // namespace camsim

@@ -9,6 +9,7 @@
 
 #include "integrator/camera/physical_camera.h"
 #include "integrator/capture/camera_export.h"
+#include "sensor/base/format.h"
 #include "sensor/io/json_writer.h"
 #include "sensor/io/output_set.h"
 
@@ -125,10 +126,10 @@ std::vector<std::filesystem::path> writeDatasetMetadata(const std::vector<Datase
     frame.set("image", f.image)
         .set("width", double(p.resolution.x))
         .set("height", double(p.resolution.y))
-        .setJson("fx", exactNumber(e.fx))
-        .setJson("fy", exactNumber(e.fy))
-        .setJson("cx", exactNumber(e.cx))
-        .setJson("cy", exactNumber(e.cy));
+        .setJson("fx", formatShortest(e.fx))
+        .setJson("fy", formatShortest(e.fy))
+        .setJson("cx", formatShortest(e.cx))
+        .setJson("cy", formatShortest(e.cy));
     addCameraModel(frame, e);
     cameraFrames.push_back(frame.set("world_from_camera_opencv", rows(cv))
                                .set("world_from_camera_opengl", rows(toOpenGl(cv)))
@@ -179,10 +180,10 @@ std::vector<std::filesystem::path> writeDatasetMetadata(const std::vector<Datase
   const CameraExport& e0 = exports.front();
   JsonObject nerf;
   nerf.set("camera_model", e0.nerfstudioModel);
-  for (const auto& [key, value] : e0.nerfstudio) nerf.setJson(key, exactNumber(value));
+  for (const auto& [key, value] : e0.nerfstudio) nerf.setJson(key, formatShortest(value));
   nerf.set("w", double(first.camera.resolution.x))
       .set("h", double(first.camera.resolution.y))
-      .setJson("camera_angle_x", exactNumber(e0.cameraAngleX))
+      .setJson("camera_angle_x", formatShortest(e0.cameraAngleX))
       .set("frames", nerfFrames);
   // One COLMAP camera per frame (a frame's intrinsics may differ: focus, resolution).
   std::string camerasTxt =
