@@ -28,8 +28,10 @@ namespace {
 // noise seed equals the pattern seed.
 constexpr std::uint64_t kNoiseDomain = 0x6e6f697365ull;    // "noise"
 constexpr std::uint64_t kPatternDomain = 0x7061747465ull;  // "patte"
-constexpr std::uint64_t kShotTag = 1, kReadTag = 2;
-constexpr std::uint64_t kPrnuTag = 1, kDsnuTag = 2, kRowTag = 3, kColumnTag = 4;
+constexpr std::uint64_t kRowNoiseDomain = 0x726f776e6full;  // "rowno": temporal row noise
+constexpr std::uint64_t kShotTag = 1, kReadTag = 2, kPostReadTag = 3;
+constexpr std::uint64_t kPrnuTag = 1, kDsnuTag = 2, kRowTag = 3, kColumnTag = 4, kHotTag = 5,
+                        kStuckTag = 6;
 
 constexpr double kMaxPoissonMean = 0x1p52;              // larger means are clamped (see the header)
 constexpr double kLogSqrt2Pi = 0.91893853320467274178;  // ½ log 2π
@@ -111,6 +113,12 @@ double patternNormal(std::uint64_t patternSeed, std::uint64_t tag, std::uint64_t
   return CounterRng(streamKey(kPatternDomain, patternSeed, tag, x, y)).normal();
 }
 
+// A fixed-pattern uniform in (0, 1), for choosing hot and stuck photosites.
+double patternUniform(std::uint64_t patternSeed, std::uint64_t tag, std::uint64_t x,
+                      std::uint64_t y) {
+  return CounterRng(streamKey(kPatternDomain, patternSeed, tag, x, y)).uniformOpen();
+}
+
 void checkSettings(const ExposureSettings& settings) {
   if (!(settings.iso > 0.0) || !std::isfinite(settings.iso))
     throw InputError({}, "iso", "ISO must be a finite number > 0");
@@ -141,7 +149,8 @@ double expectedDn(double electrons, const SensorSpec& sensor, const ExposureSett
   checkSettings(settings);
   const double mu =
       std::max(0.0, electrons) + sensor.darkCurrentAtTemperature() * settings.exposureTimeS;
-  const double y = std::min(mu, sensor.fullWellE) * sensor.systemGain(settings.iso);
+  const NoiseAtIso n = noiseAtIso(sensor, settings.iso);
+  const double y = std::min(mu, n.fullWellE) * n.systemGainK;
   return std::clamp(y + sensor.blackLevelDn, 0.0, sensor.whiteLevelDn());
 }
 
@@ -163,14 +172,25 @@ RawImage expose(const Image& expectedElectrons, const SensorSpec& sensor,
   raw.whiteLevelDn = sensor.whiteLevelDn();
   raw.adcBits = sensor.adcBits;
 
+  const NoiseAtIso at = noiseAtIso(sensor, settings.iso);
+  const SensorNoiseSpec& ns = sensor.noise;
   const double darkE = sensor.darkCurrentAtTemperature() * settings.exposureTimeS;
-  const double gain = sensor.systemGain(settings.iso);
+  const double gain = at.systemGainK, fullWell = at.fullWellE;
   const double white = sensor.whiteLevelDn();
   const bool full = mode == NoiseMode::kFull;
+  // Hot photosites' extra dark electrons (same temperature law as the dark current).
+  const double hotE = ns.hotPixelFraction > 0.0
+                          ? ns.hotPixelDarkCurrentEPerS * settings.exposureTimeS *
+                                std::exp2((sensor.temperatureC - sensor.darkReferenceC) /
+                                          sensor.darkDoublingC)
+                          : 0.0;
+  const bool tukey = at.shape == ReadNoiseShape::kTukeyLambda && at.tukeyScaleDn > 0.0;
 
-  // Row and column offsets (step 3), one N(0, 1) each, drawn once per image.
+  // Row and column offsets (step 3), one N(0, 1) each, drawn once per image; the temporal
+  // row noise (DN) once per row per frame; the black offsets per tile position.
   std::vector<double> rowOffset(static_cast<size_t>(height), 0.0);
   std::vector<double> columnOffset(static_cast<size_t>(width), 0.0);
+  std::vector<double> rowNoise(static_cast<size_t>(height), 0.0);
   if (full && sensor.rowFpnE > 0.0) {
     for (int y = 0; y < height; ++y)
       rowOffset[static_cast<size_t>(y)] =
@@ -183,6 +203,14 @@ RawImage expose(const Image& expectedElectrons, const SensorSpec& sensor,
           sensor.columnFpnE *
           patternNormal(sensor.patternSeed, kColumnTag, static_cast<std::uint64_t>(x), 0);
   }
+  if (full && at.rowNoiseDn > 0.0) {
+    for (int y = 0; y < height; ++y)
+      rowNoise[static_cast<size_t>(y)] =
+          at.rowNoiseDn *
+          CounterRng(streamKey(kRowNoiseDomain, noiseSeed, frame, static_cast<std::uint64_t>(y)))
+              .normal();
+  }
+  const bool offsets = full && !at.blackOffsetsDn.empty();
 
   for (int y = 0; y < height; ++y) {
     const auto uy = static_cast<std::uint64_t>(y);
@@ -192,6 +220,10 @@ RawImage expose(const Image& expectedElectrons, const SensorSpec& sensor,
       if (!(mu > 0.0)) mu = 0.0;  // also NaN
       mu = std::min(mu, kMaxPoissonMean);
       double n = mu + darkE;  // step 1
+      if (full && hotE > 0.0 &&
+          patternUniform(sensor.patternSeed, kHotTag, ux, uy) < ns.hotPixelFraction)
+        n += hotE;
+      double post = 0.0;  // after the gain, DN
       if (mode != NoiseMode::kNone) {
         const std::uint64_t key = streamKey(kNoiseDomain, noiseSeed, frame, ux, uy);
         CounterRng shot(streamKey(key, kShotTag));
@@ -202,12 +234,26 @@ RawImage expose(const Image& expectedElectrons, const SensorSpec& sensor,
           if (sensor.dsnuE > 0.0)
             n += sensor.dsnuE * patternNormal(sensor.patternSeed, kDsnuTag, ux, uy);
           n += rowOffset[static_cast<size_t>(y)] + columnOffset[static_cast<size_t>(x)];
-          if (sensor.readNoiseE > 0.0)
-            n += sensor.readNoiseE * CounterRng(streamKey(key, kReadTag)).normal();
+          if (at.readPreE > 0.0)
+            n += at.readPreE * CounterRng(streamKey(key, kReadTag)).normal();
+          // After the gain: read noise R, temporal row noise, black offsets.
+          if (tukey)
+            post = at.tukeyScaleDn *
+                   tukeyQuantile(at.tukeyLambda,
+                                 CounterRng(streamKey(key, kPostReadTag)).uniformOpen());
+          else if (at.readPostDn > 0.0)
+            post = at.readPostDn * CounterRng(streamKey(key, kPostReadTag)).normal();
+          post += rowNoise[static_cast<size_t>(y)];
+          if (offsets)
+            post += at.blackOffsetsDn[static_cast<size_t>((y % sensor.cfa.height) * sensor.cfa.width +
+                                                          x % sensor.cfa.width)];
         }
       }
-      n = std::min(n, sensor.fullWellE);                                   // step 5
-      const double dn = std::floor(n * gain + sensor.blackLevelDn + 0.5);  // steps 6, 7
+      n = std::min(n, fullWell);                                                  // step 5
+      double dn = std::floor(n * gain + post + sensor.blackLevelDn + 0.5);        // steps 6, 7
+      if (full && ns.stuckPixelFraction > 0.0 &&
+          patternUniform(sensor.patternSeed, kStuckTag, ux, uy) < ns.stuckPixelFraction)
+        dn = ns.stuckPixelValueDn;
       raw.dn[static_cast<size_t>(y) * static_cast<size_t>(width) + static_cast<size_t>(x)] =
           static_cast<std::uint16_t>(std::clamp(dn, 0.0, white));
     }

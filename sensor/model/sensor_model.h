@@ -1,23 +1,28 @@
 // The sensor stage: expected electrons per photosite → digital numbers, EMVA 1288's model.
 // In this order, for photosite (x, y) with expected photo-electrons μ_e (noise-free, from
-// the film: photons × QE):
+// the film: photons × QE); the ISO-dependent values (K, σ_pre, full well, R, σ_row.t, b)
+// come from noiseAtIso (sensor/model/sensor_noise.h):
 //
-//   1. dark:      μ_d = I_dark(T) · t_exp,   I_dark(T) = I_ref · 2^((T − T_ref)/T_double)
+//   1. dark:      μ_d = I_dark(T) · t_exp,   I_dark(T) = I_ref · 2^((T − T_ref)/T_double);
+//                 a hot photosite (fixed, fraction f_hot) adds I_hot(T) · t_exp
 //   2. shot:      n = Poisson(μ_e + μ_d)              (exact Poisson for every mean)
 //   3. PRNU/DSNU: n' = n · (1 + σ_prnu · a(x,y)) + σ_dsnu · b(x,y) + σ_row · r(y) + σ_col · c(x)
 //                 a, b, r, c ~ N(0,1), fixed: drawn from (pattern_seed, x, y), identical every frame
-//   4. read:      n'' = n' + N(0, σ_read²)
+//   4. read:      n'' = n' + N(0, σ_pre²)
 //   5. clip:      n''' = min(n'', full well)   (no clamp at 0 e⁻: read noise, DSNU and FPN
 //                 may take a dark pixel below the black level, as in real raw data; step 7
 //                 clamps at 0 DN, so nothing wraps around)
-//   6. gain:      y = n''' · K,  K = (ISO / base ISO) / conversion gain   [DN/e⁻]
-//   7. ADC:       DN = clamp(round(y + black level), 0, 2^bits − 1)
+//   6. gain:      y = n''' · K + R + σ_row.t · q(frame, y) + b_tile   [DN], K = system gain at
+//                 the ISO; R ~ N(0, σ_post²) or Tukey-λ(λ, s); q ~ N(0, 1) per row per frame
+//   7. ADC:       DN = clamp(round(y + black level), 0, 2^bits − 1); a stuck photosite
+//                 (fixed, fraction f_stuck) reads its fixed value instead
 //
-// Noise modes: none (steps 2–4 skipped: μ instead of random values), photon (only 2),
-// full (all). A noiseless sensor (SensorSpec::noiseless) always behaves as none. Random
-// numbers come from a counter-based generator (sensor/base/counter_rng.h) keyed by
-// (noise seed, frame, x, y): results do not depend on threads, tile order or image size
-// (a crop at the origin reads the same values). The fixed patterns a, b, r, c are keyed by
+// Noise modes: none (steps 2–4 and the noise of 6 skipped: μ instead of random values),
+// photon (only 2), full (all; hot and stuck photosites and black offsets only here). A
+// noiseless sensor (SensorSpec::noiseless) always behaves as none. Random numbers come
+// from a counter-based generator (sensor/base/counter_rng.h) keyed by (noise seed, frame,
+// x, y): results do not depend on threads, tile order or image size (a crop at the origin
+// reads the same values). The fixed patterns a, b, r, c are keyed by
 // (pattern_seed, x, y) only. Rounding in step 7 is half-up: floor(v + 0.5).
 //
 // A stacked sensor (cfa "xyz", CfaLayout::isStacked()) records every channel at every

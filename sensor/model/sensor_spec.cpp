@@ -21,9 +21,14 @@ double SensorSpec::darkCurrentAtTemperature() const {
   return darkCurrentEPerS * std::exp2((temperatureC - darkReferenceC) / darkDoublingC);
 }
 
+double SensorSpec::systemGain(double iso) const {
+  return noiseAtIso(*this, iso).systemGainK;
+}
+
 double SensorSpec::saturationElectrons(double iso) const {
   // The ADC saturates when n·K + black level reaches the white level.
-  return std::min(fullWellE, (whiteLevelDn() - blackLevelDn) / systemGain(iso));
+  const NoiseAtIso n = noiseAtIso(*this, iso);
+  return std::min(n.fullWellE, (whiteLevelDn() - blackLevelDn) / n.systemGainK);
 }
 
 namespace {
@@ -250,7 +255,8 @@ SensorSpec parseSensorSpec(const std::string& yamlText, const std::string& displ
   if (const auto v = map.find("pattern_seed"))
     spec.patternSeed = static_cast<std::uint64_t>(v->integer(0, INT64_MAX));
   if (const auto v = map.find("noiseless")) spec.noiseless = v->boolean();
-  map.finish({"name",
+  parseSensorNoise(map, spec);
+  std::vector<std::string> known = {"name",
               "pixel_pitch_um",
               "fill_factor",
               "cfa",
@@ -271,7 +277,9 @@ SensorSpec parseSensorSpec(const std::string& yamlText, const std::string& displ
               "adc_bits",
               "black_level_dn",
               "pattern_seed",
-              "noiseless"});
+              "noiseless"};
+  known.insert(known.end(), sensorNoiseKeys().begin(), sensorNoiseKeys().end());
+  map.finish(known);
   return spec;
 }
 

@@ -23,6 +23,7 @@
 // | black_level_dn         | DN           | offset added before quantisation |
 // | pattern_seed           | —            | seed of the fixed patterns (PRNU, DSNU, FPN): same sensor ⇒ same pattern |
 // | noiseless              | —            | true: expose() never adds noise (NoiseMode none) |
+// | (gain-dependent noise) | —            | read_noise_post_dn, dual_conversion_gain, iso_table, noise_fits, … (sensor_noise.h) |
 #pragma once
 
 #include <cstdint>
@@ -31,6 +32,7 @@
 #include <vector>
 
 #include "sensor/model/cfa.h"
+#include "sensor/model/sensor_noise.h"
 #include "sensor/model/spectral_response.h"
 #include "sensor/spectra/spectrum.h"
 
@@ -58,14 +60,15 @@ struct SensorSpec {
   double blackLevelDn = 0.0;
   std::uint64_t patternSeed = 1;
   bool noiseless = false;  // the ideal-xyz preset: expose() always uses NoiseMode::kNone
+  SensorNoiseSpec noise;   // gain-dependent terms (sensor/model/sensor_noise.h)
   // The files it was read from: the description (loadSensorSpec) and each CSV, in order.
   std::vector<std::filesystem::path> sourceFiles;
 
   double whiteLevelDn() const { return static_cast<double>((1u << adcBits) - 1u); }
   // Mean dark electrons per second at the operating temperature.
   double darkCurrentAtTemperature() const;
-  // System gain K (DN/e⁻) at an ISO.
-  double systemGain(double iso) const { return (iso / baseIso) / conversionGainEPerDn; }
+  // System gain K (DN/e⁻) at an ISO (noiseAtIso: conversion-gain mode, iso_table).
+  double systemGain(double iso) const;
   // Electrons at which the output saturates at an ISO: min(full well, ADC range / K),
   // ADC range = white level − black level.
   double saturationElectrons(double iso) const;
