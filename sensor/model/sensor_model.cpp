@@ -154,6 +154,13 @@ double expectedDn(double electrons, const SensorSpec& sensor, const ExposureSett
   return std::clamp(y + sensor.blackLevelDn, 0.0, sensor.whiteLevelDn());
 }
 
+VarianceLine temporalVarianceLine(const SensorSpec& sensor, const ExposureSettings& settings) {
+  checkSettings(settings);
+  const NoiseAtIso n = noiseAtIso(sensor, settings.iso);
+  // σ² = K²(μ_e + μ_d) + K²σ_pre² + σ_R² + σ_row², and μ_y − black = K(μ_e + μ_d).
+  return {n.systemGainK, n.readVarianceDn2()};
+}
+
 RawImage expose(const Image& expectedElectrons, const SensorSpec& sensor,
                 const ExposureSettings& settings, NoiseMode mode, std::uint64_t noiseSeed,
                 std::uint64_t frame) {

@@ -81,6 +81,18 @@ std::vector<RawImage> exposeChannels(const Image& expectedElectrons, const Senso
 // Throws InputError for an ISO ≤ 0 or a negative exposure time (as expose() does).
 double expectedDn(double electrons, const SensorSpec& sensor, const ExposureSettings& settings);
 
+// The temporal variance of a photosite's output as a line in its mean signal (DN, black
+// level subtracted, before clipping and quantisation), as a DNG NoiseProfile states it:
+//   σ_y² = slopeDn · (μ_y − black) + offsetDn2,  slopeDn = K,  offsetDn2 = K²σ_pre² + σ_R² + σ_row²
+// (the dark electrons' shot noise is in the first term: μ_y − black = K(μ_e + μ_d); the
+// fixed patterns, black offsets, hot and stuck photosites are not temporal and not in it).
+// Throws InputError as expectedDn() does.
+struct VarianceLine {
+  double slopeDn = 0.0;    // DN per DN of signal (= K)
+  double offsetDn2 = 0.0;  // DN² at zero signal above the black level
+};
+VarianceLine temporalVarianceLine(const SensorSpec& sensor, const ExposureSettings& settings);
+
 // One Poisson draw with mean `mean` from the counter-based stream named by `key` (exposed
 // for tests). Exact for every mean: inversion by sequential search for mean < 10,
 // Hörmann's PTRS transformed rejection (with a cancellation-free log-pmf) for mean ≥ 10;
