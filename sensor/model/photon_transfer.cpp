@@ -142,42 +142,6 @@ double linearityError(const PtcMeasurements& m, int sat) {
   return 0.5 * (hi - lo);
 }
 
-// The mean temporal variance (e⁻²) of photosites clipped at `clip` electrons when μ
-// photo-electrons are expected: the clipped-normal variance averaged over the PRNU gain and
-// the offset patterns (21 × 21 nodes over ±4σ).
-double clippedVariance(const SensorSpec& s, double mu, double darkE, double offsetSd, double clip) {
-  double sum = 0.0, weights = 0.0;
-  for (int i = 0; i < 21; ++i)
-    for (int j = 0; j < 21; ++j) {
-      const double zi = -4.0 + 0.4 * i, zj = -4.0 + 0.4 * j;
-      const double w = std::exp(-0.5 * (zi * zi + zj * zj));
-      const double g = 1.0 + s.prnuFraction * zi, n = mu + darkE;
-      const double sd = std::sqrt(g * g * n + s.readNoiseE * s.readNoiseE);
-      const double t = (clip - g * n - offsetSd * zj) / sd;
-      const double pdf = std::exp(-0.5 * t * t) / std::sqrt(2.0 * std::numbers::pi);
-      const double tail = 0.5 * std::erfc(t / std::sqrt(2.0));
-      const double ey = -pdf + t * tail, ey2 = (1.0 - tail) - t * pdf + t * t * tail;
-      sum += w * sd * sd * std::max(0.0, ey2 - ey * ey);
-      weights += w;
-    }
-  return sum / weights;
-}
-
-// Where that variance is largest (golden-section search; it is unimodal below the clip).
-double varianceMaximumE(const SensorSpec& s, double darkE, double offsetSd, double clip) {
-  const double r = 0.5 * (std::sqrt(5.0) - 1.0);
-  double a = 0.5 * clip, b = clip;
-  for (int i = 0; i < 80; ++i) {
-    const double x1 = b - r * (b - a), x2 = a + r * (b - a);
-    if (clippedVariance(s, x1, darkE, offsetSd, clip) <
-        clippedVariance(s, x2, darkE, offsetSd, clip))
-      a = x1;
-    else
-      b = x2;
-  }
-  return 0.5 * (a + b);
-}
-
 }  // namespace
 
 PairStatistics pairStatistics(const RawImage& a, const RawImage& b,
@@ -255,35 +219,6 @@ int photonTransferChannel(const SensorSpec& sensor, double wavelengthNm) {
   return best;
 }
 
-PtcConfigured configuredPhotonTransfer(const SensorSpec& sensor, const PtcOptions& options) {
-  PtcConfigured c;
-  const int ch = photonTransferChannel(sensor, options.wavelengthNm);
-  c.channel = static_cast<std::size_t>(ch) < sensor.cfa.channels.size()
-                  ? sensor.cfa.channels[static_cast<std::size_t>(ch)]
-                  : "?";
-  c.systemGainK = sensor.systemGain(sensor.baseIso);
-  c.quantumEfficiency =
-      sensor.qe.empty()
-          ? 0.0
-          : sensor.fillFactor * static_cast<double>(sensor.qe[static_cast<std::size_t>(ch)](
-                                    static_cast<float>(options.wavelengthNm)));
-  c.darkNoiseE = std::sqrt(sensor.readNoiseE * sensor.readNoiseE +
-                           sensor.darkCurrentAtTemperature() * options.exposureTimeS);
-  c.muESat = sensor.saturationElectrons(sensor.baseIso);
-  c.dsnuE = std::sqrt(sensor.dsnuE * sensor.dsnuE + sensor.rowFpnE * sensor.rowFpnE +
-                      sensor.columnFpnE * sensor.columnFpnE);
-  const double darkE = sensor.darkCurrentAtTemperature() * options.exposureTimeS;
-  c.muESatEmva = varianceMaximumE(sensor, darkE, c.dsnuE, c.muESat);
-  const double k = c.systemGainK, e = c.quantumEfficiency;
-  const double muEMin =
-      0.5 + std::sqrt(0.25 + c.darkNoiseE * c.darkNoiseE + kQuantisationVar / (k * k));
-  c.muPMin = muEMin / e;
-  c.dynamicRangeDb = 20.0 * std::log10(c.muESatEmva / muEMin);
-  c.snrMaxDb = 10.0 * std::log10(c.muESatEmva);
-  c.prnuPercent = 100.0 * sensor.prnuFraction;
-  return c;
-}
-
 PtcResult measurePhotonTransfer(const SensorSpec& sensor, const PtcOptions& options) {
   CAMSIM_CHECK(options.width >= 2 && options.height >= 2 && options.levels >= 50 &&
                options.spatialFrames >= 2 && options.maxSaturationFraction > 1.05);
@@ -313,25 +248,32 @@ PtcResult measurePhotonTransfer(const SensorSpec& sensor, const PtcOptions& opti
       eta[i] = static_cast<float>(sensor.fillFactor * qe);
       if (c == channel) pixels.push_back(i);
     }
-  const ExposureSettings settings{options.exposureTimeS, sensor.baseIso};
+  const ExposureSettings settings{options.exposureTimeS, photonTransferIso(sensor, options)};
   auto frame = [&](double muP, std::uint64_t index) {
     Image electrons(w, h, {"electrons"});
     for (std::size_t i = 0; i < eta.size(); ++i)
       electrons.pixels[i] = static_cast<float>(static_cast<double>(eta[i]) * muP);
     return expose(electrons, sensor, settings, NoiseMode::kFull, options.seed, index);
   };
-  auto stack = [&](double muP, std::uint64_t firstFrame) {
+  auto stackFrames = [&](double muP, std::uint64_t firstFrame) {
     std::vector<RawImage> frames(static_cast<std::size_t>(options.spatialFrames));
     parallelFor(options.spatialFrames, options.threads, [&](int i) {
       frames[static_cast<std::size_t>(i)] = frame(muP, firstFrame + static_cast<std::uint64_t>(i));
     });
-    return stackStatistics(frames, pixels);
+    return frames;
   };
 
   // Frame indices: dark stack 0…L−1, level i: L + 2i and L + 2i + 1, 50 % stack after them.
   PtcMeasurements m;
   m.spatialFrames = options.spatialFrames;
-  const StackStatistics dark = stack(0.0, 0);
+  const std::vector<RawImage> darkFrames = stackFrames(0.0, 0);
+  const StackStatistics dark = stackStatistics(darkFrames, pixels);
+  m.dark = analyseDarkFrames(darkFrames, pixels);
+  m.pixels = pixels.size();
+  m.rows = 0;
+  for (std::size_t i = 0; i < pixels.size(); ++i)
+    m.rows += i == 0 || pixels[i] / static_cast<std::size_t>(w) !=
+                            pixels[i - 1] / static_cast<std::size_t>(w);
   m.muYDark = dark.mean;
   m.varYDark = dark.temporalVar;
   m.darkSpatialVar = dark.spatialVar;
@@ -359,7 +301,8 @@ PtcResult measurePhotonTransfer(const SensorSpec& sensor, const PtcOptions& opti
   const double ySat = m.levels[static_cast<std::size_t>(sweep.saturationIndex)].muY - m.muYDark;
   const double muP50 =
       sweep.responsivityR > 0.0 ? 0.5 * ySat / sweep.responsivityR : 0.5 * muPSatNominal;
-  const StackStatistics bright = stack(muP50, l + 2 * static_cast<std::uint64_t>(fractions.size()));
+  const StackStatistics bright = stackStatistics(
+      stackFrames(muP50, l + 2 * static_cast<std::uint64_t>(fractions.size())), pixels);
   m.brightMuY = bright.mean;
   m.brightSpatialVar = bright.spatialVar;
   m.brightStackVar = bright.temporalVar;
@@ -368,6 +311,7 @@ PtcResult measurePhotonTransfer(const SensorSpec& sensor, const PtcOptions& opti
   r.channel = nominal.channel;
   r.wavelengthNm = options.wavelengthNm;
   r.exposureTimeS = options.exposureTimeS;
+  r.iso = settings.iso;
   r.pixels = pixels.size();
   return r;
 }

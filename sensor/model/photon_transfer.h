@@ -5,7 +5,7 @@
 // stepped from dark to beyond saturation; two frames per step (distinct frame indices), a
 // stack of L dark frames and a stack of L frames at 50 % saturation. Expected electrons per
 // photosite are η_c(λ₀)·μ_p (η_c = fill factor · QE of its CFA channel c), fed through
-// expose() at base ISO. A CFA sensor is analysed on the photosites of the channel with the
+// expose() at the ISO of PtcOptions (base ISO by default). A CFA sensor is analysed on the photosites of the channel with the
 // highest QE at λ₀ (G at 550 nm for a Bayer sensor); the others are exposed but not used.
 //
 // Analysis (EMVA 1288 Release 4.0 Linear), all per analysed photosite set:
@@ -29,6 +29,8 @@
 //   PRNU₁₂₈₈ = √(s²_y.50 − s²_y.dark)/(μ_y.50 − μ_y.dark) [%]
 //   LE: fit μ_y − μ_y.dark = a·μ_p + b minimising the relative deviations over 5–95 % of
 //   saturation; δ = (y − fit)/fit; LE = (max δ − min δ)/2 [%]
+// Beyond EMVA: the dark stack's row noise and read-noise shape (dark_frame_analysis.h);
+// standard errors of every quantity (ptc_statistics.h).
 #pragma once
 
 #include <cstddef>
@@ -36,6 +38,7 @@
 #include <string>
 #include <vector>
 
+#include "sensor/model/dark_frame_analysis.h"
 #include "sensor/model/raw_image.h"
 #include "sensor/model/sensor_spec.h"
 
@@ -48,6 +51,7 @@ struct PtcOptions {
   double maxSaturationFraction = 1.4;  // last step, relative to the nominal saturation
   int spatialFrames = 16;              // L: frames averaged for DSNU and PRNU
   double exposureTimeS = 0.01;
+  double iso = 0.0;        // ISO setting; 0: the sensor's base ISO
   std::uint64_t seed = 1;  // noise seed
   int threads = 0;         // 0: all cores (the result does not depend on it)
 };
@@ -68,13 +72,16 @@ struct PtcMeasurements {
   int spatialFrames = 1;                            // L
   double darkSpatialVar = 0.0, darkStackVar = 0.0;  // s²_y.measured.dark, σ²_y.stack.dark
   double brightMuY = 0.0, brightSpatialVar = 0.0, brightStackVar = 0.0;  // at 50 % saturation
+  DarkFrameAnalysis dark;  // row noise and read-noise shape of the dark stack
+  std::size_t pixels = 0;  // N: analysed photosites per frame
+  std::size_t rows = 0;    // H: rows holding them
 };
 
 struct PtcResult {
   PtcMeasurements data;
   // The set-up (filled by measurePhotonTransfer).
   std::string channel;  // analysed CFA channel
-  double wavelengthNm = 0.0, exposureTimeS = 0.0;
+  double wavelengthNm = 0.0, exposureTimeS = 0.0, iso = 0.0;
   std::size_t pixels = 0;  // analysed photosites per frame
   // EMVA 1288 results.
   double systemGainK = 0.0;        // DN/e⁻
@@ -96,11 +103,21 @@ struct PtcResult {
 // What the sensor's configuration implies for the same quantities, for comparison.
 struct PtcConfigured {
   std::string channel;
-  double systemGainK = 0.0;        // systemGain(base ISO)
+  double iso = 0.0;
+  bool highConversionGain = false;
+  double systemGainK = 0.0;        // noiseAtIso(iso).systemGainK
   double quantumEfficiency = 0.0;  // fill factor · QE_c(λ₀)
-  double darkNoiseE = 0.0;         // √(read² + dark current · t_exp)
-  double muESat = 0.0;             // saturationElectrons(base ISO): where the output clips
-  double muESatEmva = 0.0;         // where the temporal variance peaks, below the clip
+  double darkNoiseE = 0.0;  // √(σ_pre² + μ_d + (σ_R² + σ_row²)/K²): all temporal dark noise
+  double darkVarianceDn2 = 0.0;  // σ²_y.dark = K²(σ_pre² + μ_d) + σ_R² + σ_row² + 1/12
+  double readPreE = 0.0;         // σ_pre (e⁻) at the ISO
+  double readPreDarkE = 0.0;     // √(σ_pre² + μ_d): what the σ_pre/σ_post split measures
+  double readPostDn = 0.0;       // σ_R: std of the after-gain read noise (Gaussian or Tukey-λ)
+  double rowNoiseDn = 0.0;       // temporal σ_row
+  double readGaussianDn = 0.0;   // √(K²(σ_pre² + μ_d) + σ_R² + 1/12): the residuals' std
+  bool tukey = false;            // read_noise_shape tukey_lambda
+  double tukeyLambda = 0.0, tukeyScaleDn = 0.0;
+  double muESat = 0.0;      // saturationElectrons(iso): where the output clips
+  double muESatEmva = 0.0;  // where the temporal variance peaks, below the clip
   double muPMin = 0.0, dynamicRangeDb = 0.0, snrMaxDb = 0.0;
   double dsnuE = 0.0;  // √(dsnu² + row² + column²)
   double prnuPercent = 0.0;
@@ -113,7 +130,11 @@ PtcResult analysePhotonTransfer(const PtcMeasurements& data);
 // cannot be characterised (noiseless, no QE at λ₀).
 PtcResult measurePhotonTransfer(const SensorSpec& sensor, const PtcOptions& options);
 
+// At the ISO of the options (photon_transfer_configured.cpp has the table).
 PtcConfigured configuredPhotonTransfer(const SensorSpec& sensor, const PtcOptions& options);
+
+// The ISO a measurement with `options` uses: options.iso, or the base ISO when it is 0.
+double photonTransferIso(const SensorSpec& sensor, const PtcOptions& options);
 
 // The CFA channel with the highest QE at λ (the first of equals).
 int photonTransferChannel(const SensorSpec& sensor, double wavelengthNm);
