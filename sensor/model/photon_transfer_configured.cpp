@@ -27,8 +27,8 @@ constexpr double kQuantisationVar = 1.0 / 12.0;  // σ²_q, DN²
 // photo-electrons are expected and readE e⁻ of signal-independent noise is added: the
 // clipped-normal variance averaged over the PRNU gain and the offset patterns (21 × 21 nodes
 // over ±4σ).
-double clippedVariance(const SensorSpec& s, double mu, double darkE, double readE,
-                       double offsetSd, double clip) {
+double clippedVariance(const SensorSpec& s, double mu, double darkE, double readE, double offsetSd,
+                       double clip) {
   double sum = 0.0, weights = 0.0;
   for (int i = 0; i < 21; ++i)
     for (int j = 0; j < 21; ++j) {

@@ -56,7 +56,8 @@ bool solve(std::vector<std::vector<double>> m, std::vector<double>& b,
     for (std::size_t r = 0; r < n; ++r) {
       if (r == c) continue;
       const double f = m[r][c] / m[c][c];
-      for (std::size_t k = 0; k < n; ++k) m[r][k] -= f * m[c][k], inverse[r][k] -= f * inverse[c][k];
+      for (std::size_t k = 0; k < n; ++k)
+        m[r][k] -= f * m[c][k], inverse[r][k] -= f * inverse[c][k];
       b[r] -= f * b[c];
     }
   }
@@ -84,9 +85,10 @@ PtcUncertainty photonTransferUncertainty(const PtcResult& r) {
   const double row2 = d.dark.rowTemporalDn.value * d.dark.rowTemporalDn.value;
   const double pix2 = std::max(0.0, d.varYDark - row2);
   u.muYDark = std::sqrt(d.varYDark / (n * l) + row2 / (h * l));
-  u.varYDark = l > 1.0 ? std::sqrt(2.0 / (l - 1.0) *
-                                   (pix2 * pix2 / n + 2.0 * pix2 * row2 / n + row2 * row2 / h))
-                       : 0.0;
+  u.varYDark =
+      l > 1.0
+          ? std::sqrt(2.0 / (l - 1.0) * (pix2 * pix2 / n + 2.0 * pix2 * row2 / n + row2 * row2 / h))
+          : 0.0;
   u.sigmaYDark = r.sigmaYDark > 0.0 ? u.varYDark / (2.0 * r.sigmaYDark) : 0.0;
 
   // The two fits.
@@ -128,7 +130,9 @@ PtcUncertainty photonTransferUncertainty(const PtcResult& r) {
     return (0.5 + std::sqrt(0.25 + darkVar(p[2]) / (p[0] * p[0]))) * p[0] / p[1];
   };
   u.darkNoiseE = propagate(
-      [&](const std::vector<double>& p) { return std::sqrt(darkVar(p[2]) - kQuantisationVar) / p[0]; },
+      [&](const std::vector<double>& p) {
+        return std::sqrt(darkVar(p[2]) - kQuantisationVar) / p[0];
+      },
       x, ux);
   u.muESat = propagate([](const std::vector<double>& p) { return p[1] / p[0] * p[3]; }, x, ux);
   u.muEClip = r.muEClip * u.systemGainK / r.systemGainK;
@@ -144,8 +148,8 @@ PtcUncertainty photonTransferUncertainty(const PtcResult& r) {
   const auto s2Dark = [&](const std::vector<double>& p) {
     return std::max(0.0, p[1] - d.darkStackVar / l);
   };
-  u.dsnuE = propagate([&](const std::vector<double>& p) { return std::sqrt(s2Dark(p)) / p[0]; }, y,
-                      uy);
+  u.dsnuE =
+      propagate([&](const std::vector<double>& p) { return std::sqrt(s2Dark(p)) / p[0]; }, y, uy);
   const double brightSignal = d.brightMuY - d.muYDark;
   if (brightSignal > 0.0)
     u.prnuPercent = propagate(
@@ -242,8 +246,9 @@ IsoFit fitAcrossIsos(const std::vector<IsoPoint>& points) {
     for (std::size_t i = 0; i < points.size(); ++i) {
       const double k = points[i].systemGainK.value;
       const auto s = static_cast<std::size_t>(segmentOf[i]);
-      const double uy = std::hypot(points[i].darkVariance.uncertainty,
-                                   2.0 * k * std::max(0.0, params[s]) * points[i].systemGainK.uncertainty);
+      const double uy =
+          std::hypot(points[i].darkVariance.uncertainty,
+                     2.0 * k * std::max(0.0, params[s]) * points[i].systemGainK.uncertainty);
       const double res = points[i].darkVariance.value - (k * k * params[s] + params[np - 1]);
       fit.chi2 += uy > 0.0 ? res * res / (uy * uy) : 0.0;
     }

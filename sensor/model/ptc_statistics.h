@@ -49,9 +49,9 @@ IsoPoint isoPoint(const PtcResult& r, const PtcUncertainty& u);
 
 struct GainSegment {
   double isoMin = 0.0, isoMax = 0.0;
-  int count = 0;             // ISOs in it
-  Estimate gainPerIso;       // g = K/ISO, DN/e⁻ per ISO unit
-  Estimate sigmaPreE;        // from the split (value 0, uncertainty 0 when not fitted)
+  int count = 0;        // ISOs in it
+  Estimate gainPerIso;  // g = K/ISO, DN/e⁻ per ISO unit
+  Estimate sigmaPreE;   // from the split (value 0, uncertainty 0 when not fitted)
   bool sigmaPreFitted = false;
 };
 

@@ -42,8 +42,8 @@ std::vector<RawImage> darkFrames(const SensorSpec& s, int count, std::uint64_t s
   const Image black(kSize, kSize, {"electrons"});
   std::vector<RawImage> frames;
   for (int f = 0; f < count; ++f)
-    frames.push_back(expose(black, s, {0.01, s.baseIso}, NoiseMode::kFull, seed,
-                            static_cast<std::uint64_t>(f)));
+    frames.push_back(
+        expose(black, s, {0.01, s.baseIso}, NoiseMode::kFull, seed, static_cast<std::uint64_t>(f)));
   return frames;
 }
 
@@ -70,8 +70,9 @@ double rms(const std::vector<double>& a, const std::vector<double>& b) {
 
 TEST(DarkFrameAnalysis, TemporalRowNoiseApartFromTheFixedRowPattern) {
   // σ_row = 2 DN per row per frame; fixed row pattern 3 e⁻ (K = 1: 3 DN); pixel noise 2 e⁻ + 1 DN.
-  const SensorSpec s = sensorFrom("read_noise_e: 2.0\nread_noise_post_dn: 1.0\nrow_fpn_e: 3.0\n"
-                                  "row_noise_dn: 2.0\n");
+  const SensorSpec s = sensorFrom(
+      "read_noise_e: 2.0\nread_noise_post_dn: 1.0\nrow_fpn_e: 3.0\n"
+      "row_noise_dn: 2.0\n");
   const std::vector<RawImage> frames = darkFrames(s, 32, 21);
   const DarkFrameAnalysis a = analyseDarkFrames(frames, allPixels());
   EXPECT_NEAR(a.rowTemporalDn.value, 2.0, 0.05 * 2.0)
@@ -104,10 +105,12 @@ TEST(DarkFrameAnalysis, TukeyLambdaRecoveredByPpcc) {
   for (double lambda : {0.1, -0.05, 0.0}) {
     SCOPED_TRACE(lambda);
     // λ and the scale (8 DN) from the iso_table; no other read noise.
-    const std::string row = "{iso: 100, tukey_lambda: " + std::to_string(lambda) +
-                            ", tukey_scale_dn: 8}";
-    const SensorSpec s = sensorFrom("read_noise_e: 0\nread_noise_shape: tukey_lambda\n"
-                                    "iso_table: [" + row + "]\n");
+    const std::string row =
+        "{iso: 100, tukey_lambda: " + std::to_string(lambda) + ", tukey_scale_dn: 8}";
+    const SensorSpec s = sensorFrom(
+        "read_noise_e: 0\nread_noise_shape: tukey_lambda\n"
+        "iso_table: [" +
+        row + "]\n");
     ASSERT_EQ(noiseAtIso(s, 100).shape, ReadNoiseShape::kTukeyLambda);
     const DarkFrameAnalysis a = analyseDarkFrames(darkFrames(s, 8, 31), allPixels());
     EXPECT_NEAR(a.tukeyLambda.value, lambda, 0.05)
@@ -134,7 +137,9 @@ TEST(DarkFrameAnalysis, GaussianReadNoiseHasTheNormalShape) {
 TEST(NormalQuantile, MatchesTheCdf) {
   for (double p : {1e-9, 1e-4, 0.025, 0.3, 0.5, 0.8, 0.975, 1 - 1e-6}) {
     const double x = normalQuantile(p);
-    EXPECT_NEAR(0.5 * std::erfc(-x / std::sqrt(2.0)), p, 1e-12 * std::max(1.0, p / (1 - p) > 1 ? 1.0 : 1.0)) << p;
+    EXPECT_NEAR(0.5 * std::erfc(-x / std::sqrt(2.0)), p,
+                1e-12 * std::max(1.0, p / (1 - p) > 1 ? 1.0 : 1.0))
+        << p;
   }
   EXPECT_NEAR(normalQuantile(0.975), 1.959963984540054, 1e-9);
 }

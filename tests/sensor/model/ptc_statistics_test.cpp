@@ -74,7 +74,8 @@ TEST(PtcAcrossIsos, RecoversGainAndTheDarkNoiseSplit) {
     const double k = s.systemGain(m.points[i].iso);
     EXPECT_LT(rel(m.points[i].systemGainK.value, k), 0.02) << m.points[i].iso;
     // The stated standard error is the right size: the error is within 4 u.
-    EXPECT_LT(std::abs(m.points[i].systemGainK.value - k), 4.0 * m.points[i].systemGainK.uncertainty)
+    EXPECT_LT(std::abs(m.points[i].systemGainK.value - k),
+              4.0 * m.points[i].systemGainK.uncertainty)
         << m.points[i].iso << ": " << m.points[i].systemGainK.value << " ± "
         << m.points[i].systemGainK.uncertainty;
   }
@@ -82,7 +83,8 @@ TEST(PtcAcrossIsos, RecoversGainAndTheDarkNoiseSplit) {
   ASSERT_TRUE(m.fit.splitFitted);
   const GainSegment& g = m.fit.segments[0];
   EXPECT_LT(rel(g.gainPerIso.value * 100.0, 0.25), 0.02) << g.gainPerIso.value;
-  EXPECT_LT(rel(g.sigmaPreE.value, 2.0), 0.02) << g.sigmaPreE.value << " ± " << g.sigmaPreE.uncertainty;
+  EXPECT_LT(rel(g.sigmaPreE.value, 2.0), 0.02)
+      << g.sigmaPreE.value << " ± " << g.sigmaPreE.uncertainty;
   EXPECT_LT(rel(m.fit.sigmaPostDn.value, 3.0), 0.02)
       << m.fit.sigmaPostDn.value << " ± " << m.fit.sigmaPostDn.uncertainty;
   EXPECT_GT(g.sigmaPreE.uncertainty, 0.0);
@@ -109,8 +111,10 @@ TEST(PtcAcrossIsos, DualConversionGainStepsAtItsIso) {
   EXPECT_LT(rel(low.gainPerIso.value * 100.0, 0.25), 0.02) << low.gainPerIso.value;
   EXPECT_LT(rel(high.gainPerIso.value * 800.0, 1.0 / 1.5), 0.02) << high.gainPerIso.value;
   ASSERT_TRUE(m.fit.splitFitted);
-  EXPECT_LT(rel(low.sigmaPreE.value, 3.0), 0.03) << low.sigmaPreE.value << " ± " << low.sigmaPreE.uncertainty;
-  EXPECT_LT(rel(high.sigmaPreE.value, 1.0), 0.05) << high.sigmaPreE.value << " ± " << high.sigmaPreE.uncertainty;
+  EXPECT_LT(rel(low.sigmaPreE.value, 3.0), 0.03)
+      << low.sigmaPreE.value << " ± " << low.sigmaPreE.uncertainty;
+  EXPECT_LT(rel(high.sigmaPreE.value, 1.0), 0.05)
+      << high.sigmaPreE.value << " ± " << high.sigmaPreE.uncertainty;
   EXPECT_LT(rel(m.fit.sigmaPostDn.value, 2.0), 0.03) << m.fit.sigmaPostDn.value;
   // The configured values at each ISO follow the mode.
   for (const PtcResult& r : m.results) {
