@@ -113,8 +113,8 @@ struct PtcConfigured {
   double readPreDarkE = 0.0;     // √(σ_pre² + μ_d): what the σ_pre/σ_post split measures
   double readPostDn = 0.0;       // σ_R: std of the after-gain read noise (Gaussian or Tukey-λ)
   double rowNoiseDn = 0.0;       // temporal σ_row
-  double readGaussianDn = 0.0;   // √(K²(σ_pre² + μ_d) + σ_R² + 1/12): the residuals' std
-  bool tukey = false;            // read_noise_shape tukey_lambda
+  double readGaussianDn = 0.0;  // √(K²(σ_pre² + μ_d + dsnu²) + σ_R² + 1/12): the residuals' std
+  bool tukey = false;           // read_noise_shape tukey_lambda
   double tukeyLambda = 0.0, tukeyScaleDn = 0.0;
   double muESat = 0.0;      // saturationElectrons(iso): where the output clips
   double muESatEmva = 0.0;  // where the temporal variance peaks, below the clip

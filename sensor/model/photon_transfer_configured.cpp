@@ -7,7 +7,7 @@
 // | η             | fill factor · QE_c(λ₀) |
 // | σ²_y.dark     | K²(σ_pre² + μ_d) + σ_R² + σ²_row + 1/12, DN² (μ_d = dark current · t_exp) |
 // | σ_d           | √(σ_pre² + μ_d + (σ_R² + σ²_row)/K²), e⁻ |
-// | σ_read        | √(K²(σ_pre² + μ_d) + σ_R² + 1/12), DN: what the row-mean-removed residuals hold |
+// | σ_read        | √(K²(σ_pre² + μ_d + dsnu²) + σ_R² + 1/12), DN: what the row-mean-removed residuals hold (ELD's bias frames: DSNU included) |
 // | μ_e.clip      | saturationElectrons(iso) |
 // | μ_e.sat       | the maximum of the clipped-normal temporal variance (below) |
 // | DSNU, PRNU    | √(dsnu² + row FPN² + column FPN²), e⁻; prnu, % |
@@ -96,7 +96,8 @@ PtcConfigured configuredPhotonTransfer(const SensorSpec& sensor, const PtcOption
   c.darkNoiseE = std::sqrt(c.readPreDarkE * c.readPreDarkE + (postVar + rowVar) / (k * k));
   c.darkVarianceDn2 = k * k * c.readPreDarkE * c.readPreDarkE + postVar + rowVar + kQuantisationVar;
   c.readGaussianDn =
-      std::sqrt(k * k * c.readPreDarkE * c.readPreDarkE + postVar + kQuantisationVar);
+      std::sqrt(k * k * (c.readPreDarkE * c.readPreDarkE + sensor.dsnuE * sensor.dsnuE) + postVar +
+                kQuantisationVar);
   c.muESat = sensor.saturationElectrons(c.iso);
   c.dsnuE = std::sqrt(sensor.dsnuE * sensor.dsnuE + sensor.rowFpnE * sensor.rowFpnE +
                       sensor.columnFpnE * sensor.columnFpnE);
