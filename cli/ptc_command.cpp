@@ -168,7 +168,8 @@ std::string formatPtcTable(const PtcResult& m, const PtcConfigured& c, const Ptc
   if (un) {
     rows.push_back({"row noise σ_row (temporal)", "DN", c.rowNoiseDn, d.rowTemporalDn.value,
                     d.rowTemporalDn.uncertainty, false, true});
-    rows.push_back({"row pattern (fixed)", "DN", nan, d.rowFixedDn, 0.0, false, false});
+    rows.push_back({"row pattern (fixed)", "DN", nan, d.rowFixedDn.value, d.rowFixedDn.uncertainty,
+                    false, false});
     rows.push_back({"read noise σ_read (normal plot)", "DN", c.readGaussianDn,
                     d.readGaussianDn.value, d.readGaussianDn.uncertainty, false, true});
     rows.push_back({"Tukey-λ shape λ (PPCC)", "—", c.tukeyLambda, d.tukeyLambda.value,

@@ -31,7 +31,6 @@ JsonObject isoObject(const PtcIsoReport& r) {
   const PtcUncertainty& u = r.uncertainty;
   const PtcConfigured& c = r.configured;
   const DarkFrameAnalysis& d = m.data.dark;
-  const double rows = static_cast<double>(m.data.rows);
   const double eta = c.quantumEfficiency;
   JsonObject q;
   q.set("system_gain_k", quantity("DN/e-", m.systemGainK, u.systemGainK, c.systemGainK))
@@ -55,8 +54,7 @@ JsonObject isoObject(const PtcIsoReport& r) {
            quantity("%", m.linearityErrorPercent, u.linearityErrorPercent, 0.0))
       .set("row_noise_dn",
            quantity("DN", d.rowTemporalDn.value, d.rowTemporalDn.uncertainty, c.rowNoiseDn))
-      .set("row_pattern_dn", quantity("DN", d.rowFixedDn,
-                                      rows > 1 ? d.rowFixedDn / std::sqrt(2.0 * (rows - 1)) : 0.0))
+      .set("row_pattern_dn", quantity("DN", d.rowFixedDn.value, d.rowFixedDn.uncertainty))
       .set("read_noise_gaussian_dn",
            quantity("DN", d.readGaussianDn.value, d.readGaussianDn.uncertainty, c.readGaussianDn))
       .set("normal_ppcc", quantity("-", d.normalCorrelation.value, d.normalCorrelation.uncertainty))

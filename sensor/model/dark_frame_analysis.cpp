@@ -182,7 +182,13 @@ DarkFrameAnalysis analyseDarkFrames(const std::vector<RawImage>& frames,
     for (double v : means) ssRows += (v - m) * (v - m);
     dofRows += static_cast<double>(means.size()) - 1.0;
   }
-  if (dofRows > 0.0) a.rowFixedDn = std::sqrt(std::max(0.0, ssRows / dofRows - vr / ld));
+  if (dofRows > 0.0) {
+    const double s2 = ssRows / dofRows, fixed2 = s2 - vr / ld;
+    const double u2 = s2 * std::sqrt(2.0 / std::max(1.0, dofRows));
+    a.rowFixedDn.value = std::sqrt(std::max(0.0, fixed2));
+    a.rowFixedDn.uncertainty =
+        a.rowFixedDn.value > 0.0 ? u2 / (2.0 * a.rowFixedDn.value) : std::sqrt(u2);
+  }
 
   // ELD's residuals: row mean of each frame removed, then the column pattern.
   std::vector<double> resid(n * l);

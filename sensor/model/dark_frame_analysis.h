@@ -14,7 +14,8 @@
 //   Q_λ(u) = (u^λ − (1−u)^λ)/λ (ln(u/(1−u)) at λ = 0), plotting positions u = (k + ½)/N_e for
 //   rank k of N_e residuals; at most 20 001 order statistics are used, evenly spaced in rank.
 // Uncertainties (standard errors): σ²_row from sampling theory, u(σ²_row) = v_r·√(2/(H(L−1)))
-// /(1 − 1/n), u(σ_row) = u(σ²_row)/(2σ_row); λ, s, σ_read and the correlations from batch
+// /(1 − 1/n), u(σ_row) = u(σ²_row)/(2σ_row) (√u(σ²_row) when the estimate is 0); the fixed
+// pattern likewise, u(σ²) = s²_rows·√(2/(H − 1)); λ, s, σ_read and the correlations from batch
 // means: the frames split into B = min(4, L/2) groups (frame mod B), each fitted alone,
 // u = std of the B fits / √B.
 #pragma once
@@ -38,7 +39,7 @@ struct TukeyFit {
 
 struct DarkFrameAnalysis {
   Estimate rowTemporalDn;      // σ_row, DN per row per frame
-  double rowFixedDn = 0.0;     // the fixed row pattern's std, DN
+  Estimate rowFixedDn;         // the fixed row pattern's std, DN
   Estimate tukeyLambda;        // λ
   Estimate tukeyScaleDn;       // s
   Estimate tukeyCorrelation;   // the PPCC at λ

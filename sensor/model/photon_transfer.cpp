@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <bit>
 #include <cmath>
 #include <functional>
 #include <limits>
@@ -10,6 +11,7 @@
 #include <thread>
 
 #include "sensor/base/check.h"
+#include "sensor/base/counter_rng.h"
 #include "sensor/base/image.h"
 #include "sensor/base/input_error.h"
 #include "sensor/model/sensor_model.h"
@@ -219,6 +221,12 @@ int photonTransferChannel(const SensorSpec& sensor, double wavelengthNm) {
   return best;
 }
 
+std::uint64_t photonTransferSeed(const SensorSpec& sensor, const PtcOptions& options) {
+  const double iso = photonTransferIso(sensor, options);
+  if (iso == sensor.baseIso) return options.seed;
+  return streamKey(options.seed, std::bit_cast<std::uint64_t>(iso));
+}
+
 PtcResult measurePhotonTransfer(const SensorSpec& sensor, const PtcOptions& options) {
   CAMSIM_CHECK(options.width >= 2 && options.height >= 2 && options.levels >= 50 &&
                options.spatialFrames >= 2 && options.maxSaturationFraction > 1.05);
@@ -249,11 +257,12 @@ PtcResult measurePhotonTransfer(const SensorSpec& sensor, const PtcOptions& opti
       if (c == channel) pixels.push_back(i);
     }
   const ExposureSettings settings{options.exposureTimeS, photonTransferIso(sensor, options)};
+  const std::uint64_t seed = photonTransferSeed(sensor, options);
   auto frame = [&](double muP, std::uint64_t index) {
     Image electrons(w, h, {"electrons"});
     for (std::size_t i = 0; i < eta.size(); ++i)
       electrons.pixels[i] = static_cast<float>(static_cast<double>(eta[i]) * muP);
-    return expose(electrons, sensor, settings, NoiseMode::kFull, options.seed, index);
+    return expose(electrons, sensor, settings, NoiseMode::kFull, seed, index);
   };
   auto stackFrames = [&](double muP, std::uint64_t firstFrame) {
     std::vector<RawImage> frames(static_cast<std::size_t>(options.spatialFrames));

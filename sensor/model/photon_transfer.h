@@ -133,6 +133,11 @@ PtcResult measurePhotonTransfer(const SensorSpec& sensor, const PtcOptions& opti
 // At the ISO of the options (photon_transfer_configured.cpp has the table).
 PtcConfigured configuredPhotonTransfer(const SensorSpec& sensor, const PtcOptions& options);
 
+// The noise seed of the measurement: options.seed at the base ISO, a key derived from it and
+// the ISO at any other (the ISOs of one run are independent measurements, and each ISO's
+// result does not depend on which others were measured).
+std::uint64_t photonTransferSeed(const SensorSpec& sensor, const PtcOptions& options);
+
 // The ISO a measurement with `options` uses: options.iso, or the base ISO when it is 0.
 double photonTransferIso(const SensorSpec& sensor, const PtcOptions& options);
 

@@ -150,6 +150,7 @@ PtcUncertainty photonTransferUncertainty(const PtcResult& r) {
   };
   u.dsnuE =
       propagate([&](const std::vector<double>& p) { return std::sqrt(s2Dark(p)) / p[0]; }, y, uy);
+  if (!(s2Dark(y) > 0.0)) u.dsnuE = std::sqrt(uy[1]) / r.systemGainK;  // at 0: one-sided
   const double brightSignal = d.brightMuY - d.muYDark;
   if (brightSignal > 0.0)
     u.prnuPercent = propagate(
@@ -158,6 +159,8 @@ PtcUncertainty photonTransferUncertainty(const PtcResult& r) {
           return 100.0 * std::sqrt(std::max(0.0, s2b - s2Dark(p))) / brightSignal;
         },
         y, uy);
+  if (brightSignal > 0.0 && !(r.prnuPercent > 0.0))  // at 0: one-sided
+    u.prnuPercent = 100.0 * std::sqrt(std::hypot(uy[1], uy[2])) / brightSignal;
 
   // Linearity: the relative noise of the level means it is drawn from.
   const double ySat = d.levels[sat].muY - d.muYDark;

@@ -102,10 +102,12 @@ TEST(PtcBinary, MeasuresAPresetAndWritesCsvAndPlots) {
     EXPECT_GT(data.size(), 1000u) << png;
     EXPECT_EQ(data.substr(0, 8), std::string("\x89PNG\r\n\x1a\n", 8)) << png;
   }
-  // Nothing else: no temporary left behind.
+  EXPECT_NE(readFile(out / "ptc_smartphone-1.4um.json").find("\"format\": \"camsim-ptc\""),
+            std::string::npos);
+  // Nothing else (one ISO: no K(ISO) or noise(ISO) plots), no temporary left behind.
   std::size_t files = 0;
   for (const auto& entry : fs::directory_iterator(out)) files += entry.is_regular_file();
-  EXPECT_EQ(files, 3u);
+  EXPECT_EQ(files, 4u);
 }
 
 TEST(PtcBinary, WithoutPythonWritesTheCsvOnly) {
@@ -116,6 +118,7 @@ TEST(PtcBinary, WithoutPythonWritesTheCsvOnly) {
   ASSERT_EQ(r.exitCode, 0) << r.err;
   EXPECT_NE(r.err.find("plots skipped"), std::string::npos) << r.err;
   EXPECT_TRUE(fs::exists(out / "ptc_fullframe-d850.csv"));
+  EXPECT_TRUE(fs::exists(out / "ptc_fullframe-d850.json"));
   EXPECT_FALSE(fs::exists(out / "ptc_fullframe-d850_ptc.png"));
 }
 

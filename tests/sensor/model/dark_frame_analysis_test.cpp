@@ -78,7 +78,8 @@ TEST(DarkFrameAnalysis, TemporalRowNoiseApartFromTheFixedRowPattern) {
   EXPECT_NEAR(a.rowTemporalDn.value, 2.0, 0.05 * 2.0)
       << a.rowTemporalDn.value << " ± " << a.rowTemporalDn.uncertainty;
   EXPECT_NEAR(a.rowTemporalDn.value, 2.0, 4.0 * a.rowTemporalDn.uncertainty);
-  EXPECT_NEAR(a.rowFixedDn, 3.0, 0.15 * 3.0) << a.rowFixedDn;  // 256 rows: ±4.4 % (1σ)
+  EXPECT_NEAR(a.rowFixedDn.value, 3.0, 0.15 * 3.0) << a.rowFixedDn.value;  // 256 rows: ±4.4 %
+  EXPECT_NEAR(a.rowFixedDn.value, 3.0, 4.0 * a.rowFixedDn.uncertainty) << a.rowFixedDn.uncertainty;
   // Row means differ per frame by the temporal noise: rms difference √2·σ_row (+ pixel part).
   const double pixelPart = std::sqrt(2.0 * (4.0 + 1.0 + 1.0 / 12.0) / kSize);
   const double expected = std::sqrt(2.0 * 4.0 + pixelPart * pixelPart);

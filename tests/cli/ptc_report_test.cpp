@@ -1,0 +1,202 @@
+// Tests for cli/ptc_report.cpp and cli/ptc_compare.cpp: the JSON report of `camsim ptc` and
+// `camsim ptc --compare`. Reports are measured with the library on a small region (192 × 192
+// photosites, 50 levels, ~2 s each in Release) and compared by the real binary: a 3 %
+// conversion-gain change is flagged (exit 1), a re-measurement with another noise seed is not
+// (exit 0), and a file that is not a report exits 2 naming the file and the JSON path.
+#include "cli/ptc_report.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "cli/args.h"
+#include "cli/ptc_command.h"
+#include "sensor/base/yaml_reader.h"
+#include "tests/support/run_command.h"
+#include "tests/support/temp_dir.h"
+#include "tests/support/text_file.h"
+
+namespace camsim {
+namespace {
+
+namespace fs = std::filesystem;
+using test::quote;
+
+SensorSpec sensorWithGain(double conversionGain) {
+  const std::string text =
+      "name: test-compare\n"
+      "pixel_pitch_um: 4.0\n"
+      "cfa: RGGB\n"
+      "qe: {curves: cameras/nikon_d850.csv, peak_qe: 0.5}\n"
+      "full_well_e: 20000\n"
+      "conversion_gain_e_per_dn: " +
+      std::to_string(conversionGain) +
+      "\n"
+      "base_iso: 100\n"
+      "adc_bits: 16\n"
+      "black_level_dn: 1024\n"
+      "read_noise_e: 2.0\n"
+      "read_noise_post_dn: 3.0\n"
+      "row_noise_dn: 0.5\n"
+      "dsnu_e: 0.5\n"
+      "prnu_percent: 0.5\n"
+      "pattern_seed: 3\n";
+  return parseSensorSpec(text, "test-compare.yaml", CAMSIM_LUTS_DIR, CAMSIM_LUTS_DIR);
+}
+
+// The report of `sensor` at ISO 100 and 800 with noise seed `seed`.
+std::string report(const SensorSpec& sensor, std::uint64_t seed) {
+  PtcOptions options;
+  options.width = options.height = 192;
+  options.levels = 50;
+  options.seed = seed;
+  std::vector<PtcIsoReport> isos;
+  std::vector<IsoPoint> points;
+  for (double iso : {100.0, 800.0}) {
+    options.iso = iso;
+    PtcIsoReport r;
+    r.measured = measurePhotonTransfer(sensor, options);
+    r.configured = configuredPhotonTransfer(sensor, options);
+    r.uncertainty = photonTransferUncertainty(r.measured);
+    points.push_back(isoPoint(r.measured, r.uncertainty));
+    isos.push_back(r);
+  }
+  return formatPtcJson(sensor, options, isos, fitAcrossIsos(points));
+}
+
+class PtcCompare : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    dir_ = new test::TempDir;
+    test::writeFile(dir_->path() / "a.json", report(sensorWithGain(4.0), 1));
+    test::writeFile(dir_->path() / "b.json", report(sensorWithGain(4.0), 2));
+    test::writeFile(dir_->path() / "c.json", report(sensorWithGain(4.0 * 1.03), 2));
+  }
+  static void TearDownTestSuite() {
+    delete dir_;
+    dir_ = nullptr;
+  }
+  static test::RunResult compare(const std::string& a, const std::string& b) {
+    return test::runCamsim("ptc --compare " + quote((dir_->path() / a).string()) + " " +
+                               quote((dir_->path() / b).string()),
+                           dir_->path());
+  }
+  static test::TempDir* dir_;
+};
+test::TempDir* PtcCompare::dir_ = nullptr;
+
+TEST_F(PtcCompare, ReportHoldsEveryQuantityWithUncertaintyAndConfiguredValue) {
+  const YamlValue root =
+      parseYaml(test::readFile(dir_->path() / "a.json"), (dir_->path() / "a.json").string());
+  YamlMap m(root);
+  EXPECT_EQ(m.require("format").string(), "camsim-ptc");
+  const std::vector<YamlValue> isos = m.require("isos").items();
+  ASSERT_EQ(isos.size(), 2u);
+  YamlMap iso(isos[1]);
+  EXPECT_EQ(iso.require("iso").number(), 800.0);
+  YamlMap q(iso.require("quantities"));
+  for (const char* name : {"system_gain_k",
+                           "responsivity_r",
+                           "quantum_efficiency",
+                           "mu_y_dark",
+                           "sigma2_y_dark",
+                           "sigma_y_dark",
+                           "dark_noise_e",
+                           "mu_e_clip",
+                           "mu_p_sat",
+                           "mu_e_sat",
+                           "snr_max_db",
+                           "mu_p_min",
+                           "dynamic_range_db",
+                           "dsnu_e",
+                           "prnu_percent",
+                           "linearity_error_percent",
+                           "row_noise_dn",
+                           "row_pattern_dn",
+                           "read_noise_gaussian_dn",
+                           "normal_ppcc",
+                           "tukey_lambda",
+                           "tukey_scale_dn",
+                           "tukey_ppcc"}) {
+    SCOPED_TRACE(name);
+    ASSERT_TRUE(q.has(name));
+    YamlMap v(*q.find(name));
+    EXPECT_FALSE(v.require("unit").string().empty());
+    EXPECT_GE(v.require("uncertainty").number(), 0.0);
+    v.require("value").number();
+  }
+  YamlMap k(*q.find("system_gain_k"));
+  EXPECT_NEAR(k.require("configured").number(), 2.0, 1e-9);  // 800/100/4
+  EXPECT_NEAR(k.require("value").number(), 2.0, 0.02 * 2.0);
+  EXPECT_GT(k.require("uncertainty").number(), 0.0);
+  YamlMap row(*q.find("row_noise_dn"));
+  EXPECT_NEAR(row.require("value").number(), 0.5, 0.1 * 0.5);
+  YamlMap fits(m.require("fits"));
+  const std::vector<YamlValue> segments = fits.require("gain_segments").items();
+  ASSERT_EQ(segments.size(), 1u);
+  YamlMap split(fits.require("dark_noise_split"));
+  EXPECT_TRUE(split.require("fitted").boolean());
+  YamlMap post(split.require("sigma_post_dn"));
+  EXPECT_NEAR(post.require("value").number(), 3.0, 0.03 * 3.0);
+}
+
+TEST_F(PtcCompare, AnotherNoiseSeedDoesNotMove) {
+  const test::RunResult r = compare("a.json", "b.json");
+  EXPECT_EQ(r.exitCode, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("ISO 800 system_gain_k"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find(" 0 moved"), std::string::npos) << r.out;
+}
+
+TEST_F(PtcCompare, ThreePercentConversionGainChangeMoves) {
+  const test::RunResult r = compare("a.json", "c.json");
+  EXPECT_EQ(r.exitCode, 1) << r.out << r.err;
+  // K at each ISO (u ≈ 0.25 %: a 3 % change is ≈ 8 combined standard errors) and the fit.
+  for (const char* line :
+       {"ISO 100 system_gain_k", "ISO 800 system_gain_k", "fits.gain_segments[0].gain_per_iso"}) {
+    const std::size_t at = r.out.find(line);
+    ASSERT_NE(at, std::string::npos) << line << "\n" << r.out;
+    const std::string row = r.out.substr(at, r.out.find('\n', at) - at);
+    EXPECT_NE(row.find("MOVED"), std::string::npos) << row;
+  }
+}
+
+TEST_F(PtcCompare, BadFilesExitTwoNamingFileAndPath) {
+  test::writeFile(dir_->path() / "bad.json",
+                  test::readFile(dir_->path() / "a.json")
+                      .replace(test::readFile(dir_->path() / "a.json").find("\"value\""), 7,
+                               "\"value\": \"x\", \"v\""));
+  test::RunResult r = compare("a.json", "bad.json");
+  EXPECT_EQ(r.exitCode, 2) << r.out << r.err;
+  EXPECT_NE(r.err.find("bad.json:"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("isos[0].quantities.system_gain_k.value"), std::string::npos) << r.err;
+  test::writeFile(dir_->path() / "other.json", "{\"format\": \"something\", \"isos\": []}\n");
+  r = compare("other.json", "a.json");
+  EXPECT_EQ(r.exitCode, 2);
+  EXPECT_NE(r.err.find("other.json:1:"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("format"), std::string::npos) << r.err;
+  r = compare("a.json", "missing.json");
+  EXPECT_EQ(r.exitCode, 2);
+  EXPECT_NE(r.err.find("missing.json"), std::string::npos) << r.err;
+  test::writeFile(dir_->path() / "broken.json", "{\"format\": \"camsim-ptc\", \"isos\": [\n");
+  r = compare("broken.json", "a.json");
+  EXPECT_EQ(r.exitCode, 2);
+  EXPECT_NE(r.err.find("broken.json"), std::string::npos) << r.err;
+}
+
+TEST(PtcArgs, IsoListAndCompare) {
+  PtcArgs a = parsePtcArgs({"ptc", "fullframe-d850", "--iso", "1600", "64", "400", "64"});
+  EXPECT_EQ(a.isos, (std::vector<double>{64, 400, 1600}));
+  a = parsePtcArgs({"ptc", "--compare", "a.json", "b.json"});
+  EXPECT_EQ(a.compare, (std::vector<std::string>{"a.json", "b.json"}));
+  using Args = std::vector<std::string>;
+  for (const Args& args :
+       {Args{"ptc", "s", "--iso"}, Args{"ptc", "s", "--iso", "0"}, Args{"ptc", "s", "--iso", "x"},
+        Args{"ptc", "s", "--iso", "-5"}, Args{"ptc", "--compare", "a.json"},
+        Args{"ptc", "s", "--compare", "a.json", "b.json"}})
+    EXPECT_THROW(parsePtcArgs(args), UsageError) << args.back();
+}
+
+}  // namespace
+}  // namespace camsim
