@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <numeric>
 #include <string>
 #include <vector>
@@ -78,6 +79,9 @@ TEST(DarkFrameAnalysis, TemporalRowNoiseApartFromTheFixedRowPattern) {
   EXPECT_NEAR(a.rowTemporalDn.value, 2.0, 0.05 * 2.0)
       << a.rowTemporalDn.value << " ± " << a.rowTemporalDn.uncertainty;
   EXPECT_NEAR(a.rowTemporalDn.value, 2.0, 4.0 * a.rowTemporalDn.uncertainty);
+  std::printf("[ measured ] sigma_row %.4f +- %.4f DN, fixed row pattern %.4f +- %.4f DN\n",
+              a.rowTemporalDn.value, a.rowTemporalDn.uncertainty, a.rowFixedDn.value,
+              a.rowFixedDn.uncertainty);
   EXPECT_NEAR(a.rowFixedDn.value, 3.0, 0.15 * 3.0) << a.rowFixedDn.value;  // 256 rows: ±4.4 %
   EXPECT_NEAR(a.rowFixedDn.value, 3.0, 4.0 * a.rowFixedDn.uncertainty) << a.rowFixedDn.uncertainty;
   // Row means differ per frame by the temporal noise: rms difference √2·σ_row (+ pixel part).
@@ -118,6 +122,8 @@ TEST(DarkFrameAnalysis, TukeyLambdaRecoveredByPpcc) {
         << a.tukeyLambda.value << " ± " << a.tukeyLambda.uncertainty;
     EXPECT_NEAR(a.tukeyScaleDn.value, 8.0, 0.08 * 8.0) << a.tukeyScaleDn.value;
     EXPECT_GT(a.tukeyCorrelation.value, 0.999);
+    std::printf("[ measured ] lambda %.4f +- %.4f (configured %.2f), scale %.4f DN\n",
+                a.tukeyLambda.value, a.tukeyLambda.uncertainty, lambda, a.tukeyScaleDn.value);
     EXPECT_GT(a.tukeyLambda.uncertainty, 0.0);
     // The normal plot's slope is close to the std (it is the std for a Gaussian).
     const double sd = 8.0 * std::sqrt(tukeyVarianceFactor(lambda));

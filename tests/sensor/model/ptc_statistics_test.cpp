@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <string>
 #include <vector>
 
@@ -89,6 +90,12 @@ TEST(PtcAcrossIsos, RecoversGainAndTheDarkNoiseSplit) {
       << m.fit.sigmaPostDn.value << " ± " << m.fit.sigmaPostDn.uncertainty;
   EXPECT_GT(g.sigmaPreE.uncertainty, 0.0);
   EXPECT_EQ(m.fit.dof, 1);
+  std::printf(
+      "[ measured ] K %.5g %.5g %.5g DN/e-; sigma_pre %.4f +- %.4f e-; sigma_post %.4f +- %.4f "
+      "DN\n",
+      m.points[0].systemGainK.value, m.points[1].systemGainK.value, m.points[2].systemGainK.value,
+      g.sigmaPreE.value, g.sigmaPreE.uncertainty, m.fit.sigmaPostDn.value,
+      m.fit.sigmaPostDn.uncertainty);
   // σ_d(ISO) from the split against the configuration's.
   for (double iso : {100.0, 800.0, 3200.0}) {
     const double k = s.systemGain(iso);
@@ -116,6 +123,11 @@ TEST(PtcAcrossIsos, DualConversionGainStepsAtItsIso) {
   EXPECT_LT(rel(high.sigmaPreE.value, 1.0), 0.05)
       << high.sigmaPreE.value << " ± " << high.sigmaPreE.uncertainty;
   EXPECT_LT(rel(m.fit.sigmaPostDn.value, 2.0), 0.03) << m.fit.sigmaPostDn.value;
+  std::printf(
+      "[ measured ] DCG: K/ISO %.6g | %.6g; sigma_pre %.4f +- %.4f | %.4f +- %.4f e-; sigma_post "
+      "%.4f DN\n",
+      low.gainPerIso.value, high.gainPerIso.value, low.sigmaPreE.value, low.sigmaPreE.uncertainty,
+      high.sigmaPreE.value, high.sigmaPreE.uncertainty, m.fit.sigmaPostDn.value);
   // The configured values at each ISO follow the mode.
   for (const PtcResult& r : m.results) {
     PtcOptions o = smallOptions(r.iso, 1);
