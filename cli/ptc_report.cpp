@@ -126,7 +126,8 @@ std::string formatPtcJson(const SensorSpec& sensor, const PtcOptions& options,
     JsonObject p;
     p.set("iso", r.measured.iso)
         .set("measured_e", r.measured.darkNoiseE)
-        .set("fitted_e", fittedDarkNoiseE(fit, r.measured.iso))
+        .set("fitted_e",
+             fittedDarkNoiseE(fit, r.measured.iso, r.measured.data.dark.rowTemporalDn.value))
         .set("configured_e", r.configured.darkNoiseE);
     darkNoise.push_back(p);
   }

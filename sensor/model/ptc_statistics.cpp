@@ -267,14 +267,14 @@ IsoFit fitAcrossIsos(const std::vector<IsoPoint>& points) {
   return fit;
 }
 
-double fittedDarkNoiseE(const IsoFit& fit, double iso) {
+double fittedDarkNoiseE(const IsoFit& fit, double iso, double rowNoiseDn) {
   if (!fit.splitFitted || fit.segments.empty()) return std::numeric_limits<double>::quiet_NaN();
   const GainSegment* s = &fit.segments.front();
   for (const GainSegment& g : fit.segments)
     if (iso >= g.isoMin) s = &g;
   const double k = s->gainPerIso.value * iso;
   const double pre = s->sigmaPreE.value, post = fit.sigmaPostDn.value;
-  return std::sqrt(pre * pre + post * post / (k * k));
+  return std::sqrt(pre * pre + (post * post + rowNoiseDn * rowNoiseDn) / (k * k));
 }
 
 }  // namespace camsim

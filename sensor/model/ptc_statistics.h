@@ -66,7 +66,8 @@ struct IsoFit {
 // points in increasing ISO.
 IsoFit fitAcrossIsos(const std::vector<IsoPoint>& points);
 
-// σ_d at an ISO from the fit (e⁻): √(σ²_pre,s + σ²_post/K²), K = g_s·ISO of its segment.
-double fittedDarkNoiseE(const IsoFit& fit, double iso);
+// σ_d at an ISO from the fit (e⁻): √(σ²_pre,s + (σ²_post + σ²_row)/K²), K = g_s·ISO of its
+// segment, σ_row the temporal row noise at that ISO (DN; measured, not part of the fit).
+double fittedDarkNoiseE(const IsoFit& fit, double iso, double rowNoiseDn = 0.0);
 
 }  // namespace camsim
