@@ -102,11 +102,23 @@ PtcUncertainty photonTransferUncertainty(const PtcResult& r) {
   double sx = 0.0, sxx = 0.0, sp = 0.0, spp = 0.0;
   for (std::size_t i = 0; i < signal.size(); ++i)
     sx += signal[i], sxx += signal[i] * signal[i], sp += photons[i], spp += photons[i] * photons[i];
-  const double uKfit = slopeError(signal, variance, r.systemGainK);
+  // Sampling theory of each level's statistics: u(σ²_y) = √(2/N)·σ²_y (two-frame
+  // difference), u(μ_y) = √(σ²_y/(2N)); propagated through the slopes.
+  double theoryK = 0.0, theoryR = 0.0;
+  for (int i = 0; i < r.gainFitCount; ++i) {
+    const double v = d.levels[static_cast<std::size_t>(i)].varY;
+    const auto j = static_cast<std::size_t>(i);
+    theoryK += signal[j] * signal[j] * (2.0 / n) * v * v;
+    theoryR += photons[j] * photons[j] * v / (2.0 * n);
+  }
+  theoryK = sxx > 0.0 ? std::sqrt(theoryK) / sxx : 0.0;
+  theoryR = spp > 0.0 ? std::sqrt(theoryR) / spp : 0.0;
+  const double uKfit = std::max(slopeError(signal, variance, r.systemGainK), theoryK);
   const double uKoff = sxx > 0.0 ? u.varYDark * sx / sxx : 0.0;
   u.systemGainK = std::hypot(uKfit, uKoff);
   const double uRoff = spp > 0.0 ? u.muYDark * sp / spp : 0.0;
-  u.responsivityR = std::hypot(slopeError(photons, signal, r.responsivityR), uRoff);
+  u.responsivityR =
+      std::hypot(std::max(slopeError(photons, signal, r.responsivityR), theoryR), uRoff);
   u.quantumEfficiency = r.quantumEfficiency * std::hypot(u.responsivityR / r.responsivityR,
                                                          u.systemGainK / r.systemGainK);
 

@@ -4,8 +4,8 @@
 // Per ISO (N analysed photosites in H rows, L stack frames, n_K levels in the gain fit):
 // | quantity    | standard error u |
 // |-------------|------------------|
-// | K           | fit residuals: √(Σ(y − Kx)²/(n_K − 1)/Σx²), ⊕ u(σ²_y.dark)·Σx/Σx² (the offset) |
-// | R           | the same for μ_y − μ_y.dark against μ_p, ⊕ u(μ_y.dark)·Σμ_p/Σμ_p² |
+// | K           | the larger of the fit residuals' √(Σ(y − Kx)²/(n_K − 1)/Σx²) and sampling theory's √(Σx²·2σ⁴_y/N)/Σx², ⊕ u(σ²_y.dark)·Σx/Σx² (the offset) |
+// | R           | the same for μ_y − μ_y.dark against μ_p (theory: u(μ_y) = √(σ²_y/(2N))), ⊕ u(μ_y.dark)·Σμ_p/Σμ_p² |
 // | μ_y.dark    | √(σ²_y.dark/(N L) + σ²_row/(H L)) |
 // | σ²_y.dark   | √(2/(L−1)·(σ_p⁴/N + 2σ_p²σ²_row/N + σ⁴_row/H)), σ²_p = σ²_y.dark − σ²_row |
 // | μ_p.sat     | (w + step)/√12: w = the μ_p span of the levels whose σ²_y is within 2√2·√(2/N)·σ²_max of the maximum, step = the level spacing there |

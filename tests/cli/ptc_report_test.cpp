@@ -1,12 +1,13 @@
 // Tests for cli/ptc_report.cpp and cli/ptc_compare.cpp: the JSON report of `camsim ptc` and
 // `camsim ptc --compare`. Reports are measured with the library on a small region (192 × 192
-// photosites, 50 levels, ~2 s each in Release) and compared by the real binary: a 3 %
+// photosites, 50 levels, ~2 s each in Release; measured once) and compared by the real binary: a 3 %
 // conversion-gain change is flagged (exit 1), a re-measurement with another noise seed is not
 // (exit 0), and a file that is not a report exits 2 naming the file and the JSON path.
 #include "cli/ptc_report.h"
 
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -66,30 +67,27 @@ std::string report(const SensorSpec& sensor, std::uint64_t seed) {
   return formatPtcJson(sensor, options, isos, fitAcrossIsos(points));
 }
 
-class PtcCompare : public ::testing::Test {
- protected:
-  static void SetUpTestSuite() {
-    dir_ = new test::TempDir;
-    test::writeFile(dir_->path() / "a.json", report(sensorWithGain(4.0), 1));
-    test::writeFile(dir_->path() / "b.json", report(sensorWithGain(4.0), 2));
-    test::writeFile(dir_->path() / "c.json", report(sensorWithGain(4.0 * 1.03), 2));
-  }
-  static void TearDownTestSuite() {
-    delete dir_;
-    dir_ = nullptr;
-  }
-  static test::RunResult compare(const std::string& a, const std::string& b) {
-    return test::runCamsim("ptc --compare " + quote((dir_->path() / a).string()) + " " +
-                               quote((dir_->path() / b).string()),
-                           dir_->path());
-  }
-  static test::TempDir* dir_;
-};
-test::TempDir* PtcCompare::dir_ = nullptr;
+test::RunResult compare(const fs::path& dir, const std::string& a, const std::string& b) {
+  return test::runCamsim(
+      "ptc --compare " + quote((dir / a).string()) + " " + quote((dir / b).string()), dir);
+}
 
-TEST_F(PtcCompare, ReportHoldsEveryQuantityWithUncertaintyAndConfiguredValue) {
+// The row of the --compare table that starts with `label`.
+std::string tableRow(const std::string& out, const std::string& label) {
+  const std::size_t at = out.find(label);
+  return at == std::string::npos ? "" : out.substr(at, out.find('\n', at) - at);
+}
+
+// One test for the three measured reports (measured once: six measurements, ~15 s).
+TEST(PtcCompare, ReportsAnotherSeedPassesAThreePercentGainChangeMoves) {
+  test::TempDir dir;
+  test::writeFile(dir.path() / "a.json", report(sensorWithGain(4.0), 1));
+  test::writeFile(dir.path() / "b.json", report(sensorWithGain(4.0), 2));
+  test::writeFile(dir.path() / "c.json", report(sensorWithGain(4.0 * 1.03), 2));
+
+  // The report holds every quantity with unit, value, uncertainty (and configured values).
   const YamlValue root =
-      parseYaml(test::readFile(dir_->path() / "a.json"), (dir_->path() / "a.json").string());
+      parseYaml(test::readFile(dir.path() / "a.json"), (dir.path() / "a.json").string());
   YamlMap m(root);
   EXPECT_EQ(m.require("format").string(), "camsim-ptc");
   const std::vector<YamlValue> isos = m.require("isos").items();
@@ -134,55 +132,71 @@ TEST_F(PtcCompare, ReportHoldsEveryQuantityWithUncertaintyAndConfiguredValue) {
   YamlMap row(*q.find("row_noise_dn"));
   EXPECT_NEAR(row.require("value").number(), 0.5, 0.1 * 0.5);
   YamlMap fits(m.require("fits"));
-  const std::vector<YamlValue> segments = fits.require("gain_segments").items();
-  ASSERT_EQ(segments.size(), 1u);
+  ASSERT_EQ(fits.require("gain_segments").items().size(), 1u);
   YamlMap split(fits.require("dark_noise_split"));
   EXPECT_TRUE(split.require("fitted").boolean());
   YamlMap post(split.require("sigma_post_dn"));
   EXPECT_NEAR(post.require("value").number(), 3.0, 0.03 * 3.0);
-}
 
-TEST_F(PtcCompare, AnotherNoiseSeedDoesNotMove) {
-  const test::RunResult r = compare("a.json", "b.json");
+  // Another noise seed: nothing moves.
+  test::RunResult r = compare(dir.path(), "a.json", "b.json");
   EXPECT_EQ(r.exitCode, 0) << r.out << r.err;
   EXPECT_NE(r.out.find("ISO 800 system_gain_k"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find(" 0 moved"), std::string::npos) << r.out;
-}
+  std::printf("[ measured ] %s\n[ measured ] %s\n",
+              tableRow(r.out, "ISO 100 system_gain_k").c_str(),
+              tableRow(r.out, "ISO 800 system_gain_k").c_str());
 
-TEST_F(PtcCompare, ThreePercentConversionGainChangeMoves) {
-  const test::RunResult r = compare("a.json", "c.json");
+  // A 3 % conversion-gain change: K at each ISO (u ≈ 0.25 %: ≈ 8 combined standard errors)
+  // and the fit's g move.
+  r = compare(dir.path(), "a.json", "c.json");
   EXPECT_EQ(r.exitCode, 1) << r.out << r.err;
-  // K at each ISO (u ≈ 0.25 %: a 3 % change is ≈ 8 combined standard errors) and the fit.
-  for (const char* line :
+  for (const char* label :
        {"ISO 100 system_gain_k", "ISO 800 system_gain_k", "fits.gain_segments[0].gain_per_iso"}) {
-    const std::size_t at = r.out.find(line);
-    ASSERT_NE(at, std::string::npos) << line << "\n" << r.out;
-    const std::string row = r.out.substr(at, r.out.find('\n', at) - at);
-    EXPECT_NE(row.find("MOVED"), std::string::npos) << row;
+    const std::string line = tableRow(r.out, label);
+    EXPECT_NE(line.find("MOVED"), std::string::npos) << label << ": " << line << "\n" << r.out;
+    std::printf("[ measured ] %s\n", line.c_str());
   }
 }
 
-TEST_F(PtcCompare, BadFilesExitTwoNamingFileAndPath) {
-  test::writeFile(dir_->path() / "bad.json",
-                  test::readFile(dir_->path() / "a.json")
-                      .replace(test::readFile(dir_->path() / "a.json").find("\"value\""), 7,
-                               "\"value\": \"x\", \"v\""));
-  test::RunResult r = compare("a.json", "bad.json");
+// A minimal valid report, and broken ones: exit 2 naming the file and the JSON path.
+TEST(PtcCompare, BadFilesExitTwoNamingFileAndPath) {
+  test::TempDir dir;
+  const std::string good =
+      "{\"format\": \"camsim-ptc\", \"isos\": [{\"iso\": 100, \"quantities\": "
+      "{\"system_gain_k\": {\"unit\": \"DN/e-\", \"value\": 0.25, \"uncertainty\": 0.001}}}],"
+      " \"fits\": {}}\n";
+  test::writeFile(dir.path() / "a.json", good);
+  test::RunResult r = compare(dir.path(), "a.json", "a.json");
+  EXPECT_EQ(r.exitCode, 0) << r.out << r.err;
+  std::string bad = good;
+  bad.replace(bad.find("0.25"), 4, "\"x\"");
+  test::writeFile(dir.path() / "bad.json", bad);
+  r = compare(dir.path(), "a.json", "bad.json");
   EXPECT_EQ(r.exitCode, 2) << r.out << r.err;
-  EXPECT_NE(r.err.find("bad.json:"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("bad.json:1:"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("isos[0].quantities.system_gain_k.value"), std::string::npos) << r.err;
-  test::writeFile(dir_->path() / "other.json", "{\"format\": \"something\", \"isos\": []}\n");
-  r = compare("other.json", "a.json");
+  test::writeFile(dir.path() / "other.json", "{\"format\": \"something\", \"isos\": []}\n");
+  r = compare(dir.path(), "other.json", "a.json");
   EXPECT_EQ(r.exitCode, 2);
   EXPECT_NE(r.err.find("other.json:1:"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("format"), std::string::npos) << r.err;
-  r = compare("a.json", "missing.json");
+  r = compare(dir.path(), "a.json", "missing.json");
   EXPECT_EQ(r.exitCode, 2);
   EXPECT_NE(r.err.find("missing.json"), std::string::npos) << r.err;
-  test::writeFile(dir_->path() / "broken.json", "{\"format\": \"camsim-ptc\", \"isos\": [\n");
-  r = compare("broken.json", "a.json");
+  test::writeFile(dir.path() / "broken.json", "{\"format\": \"camsim-ptc\", \"isos\": [\n");
+  r = compare(dir.path(), "broken.json", "a.json");
   EXPECT_EQ(r.exitCode, 2);
   EXPECT_NE(r.err.find("broken.json"), std::string::npos) << r.err;
+  // Both valid, one with a second ISO: listed, not counted as moved.
+  std::string two = good;
+  two.replace(two.find("]"), 1,
+              ", {\"iso\": 200, \"quantities\": {\"system_gain_k\": {\"unit\": \"DN/e-\", "
+              "\"value\": 0.5, \"uncertainty\": 0.001}}}]");
+  test::writeFile(dir.path() / "two.json", two);
+  r = compare(dir.path(), "a.json", "two.json");
+  EXPECT_EQ(r.exitCode, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("not measured in A"), std::string::npos) << r.out;
 }
 
 TEST(PtcArgs, IsoListAndCompare) {
