@@ -1,7 +1,8 @@
 // `camsim ptc --compare A.json B.json`: every quantity of report A (an object with "value"
 // and "uncertainty") against the same JSON path in B; ISOs are matched by their "iso" value,
 // other lists by position. moved ⇔ |a − b| > k·√(u_a² + u_b²) (ptc_report.h); a fit with
-// another number of conversion-gain segments has moved too. Quantities whose value is null
+// another number of conversion-gain segments has moved too (fits.dark_noise_e, plain numbers
+// per ISO for the plot, is not compared). Quantities whose value is null
 // (not measurable: the σ_pre/σ_post split with too few ISOs) in both are skipped.
 #include <cmath>
 #include <fstream>
@@ -63,6 +64,7 @@ class Comparer {
       if (!b.isSequence()) b.fail("expected a list, as in the first report");
       const std::vector<YamlValue> ia = a.items(), ib = b.items();
       if (a.key() == "isos") return matchIsos(ia, ib);
+      if (a.key() == "fits.dark_noise_e") return;  // derived per ISO: no quantities
       if (ia.size() != ib.size()) {
         structural(
             a.key(), label,
