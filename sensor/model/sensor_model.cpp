@@ -7,6 +7,7 @@
 
 #include "sensor/base/check.h"
 #include "sensor/base/counter_rng.h"
+#include "sensor/base/format.h"
 #include "sensor/base/input_error.h"
 
 namespace camsim {
@@ -126,6 +127,44 @@ void checkSettings(const ExposureSettings& settings) {
     throw InputError({}, "exposure_time", "exposure time must be a finite number ≥ 0");
 }
 
+// expose() with dark frames (dark_frames.h): shot noise and PRNU on the photo-electrons,
+// then one whole recorded dark frame.
+RawImage exposeWithDarkFrames(const Image& electrons, const SensorSpec& sensor,
+                              const ExposureSettings& settings, std::uint64_t noiseSeed,
+                              std::uint64_t frame, RawImage raw) {
+  const DarkFrameSet& dark = *settings.darkFrames;
+  if (dark.frames.empty()) throw InputError({}, "dark_frames", "the dark-frame set is empty");
+  if (dark.width != raw.width || dark.height != raw.height)
+    throw InputError({}, "dark_frames",
+                     "dark frames of " + std::to_string(dark.width) + "×" +
+                         std::to_string(dark.height) + " photosites cannot be added to an image of " +
+                         std::to_string(raw.width) + "×" + std::to_string(raw.height));
+  if (dark.blackLevelDn != sensor.blackLevelDn)
+    throw InputError({}, "dark_frames",
+                     "the dark frames' black level " + formatShortest(dark.blackLevelDn) +
+                         " DN differs from the sensor's " + formatShortest(sensor.blackLevelDn));
+  const std::vector<std::uint16_t>& d = dark.frames[dark.frameFor(noiseSeed, frame)];
+  const NoiseAtIso at = noiseAtIso(sensor, settings.iso);
+  const double white = sensor.whiteLevelDn();
+  for (int y = 0; y < raw.height; ++y) {
+    const auto uy = static_cast<std::uint64_t>(y);
+    for (int x = 0; x < raw.width; ++x) {
+      const auto ux = static_cast<std::uint64_t>(x);
+      double mu = static_cast<double>(electrons.at(x, y, 0));
+      if (!(mu > 0.0)) mu = 0.0;  // also NaN
+      CounterRng shot(streamKey(streamKey(kNoiseDomain, noiseSeed, frame, ux, uy), kShotTag));
+      double n = static_cast<double>(poisson(std::min(mu, kMaxPoissonMean), shot));
+      if (sensor.prnuFraction > 0.0)
+        n *= 1.0 + sensor.prnuFraction * patternNormal(sensor.patternSeed, kPrnuTag, ux, uy);
+      const std::size_t i = static_cast<std::size_t>(y) * static_cast<std::size_t>(raw.width) +
+                            static_cast<std::size_t>(x);
+      const double dn = std::floor(std::min(n, at.fullWellE) * at.systemGainK + d[i] + 0.5);
+      raw.dn[i] = static_cast<std::uint16_t>(std::clamp(dn, 0.0, white));
+    }
+  }
+  return raw;
+}
+
 }  // namespace
 
 std::uint64_t samplePoisson(double mean, std::uint64_t key) {
@@ -178,6 +217,9 @@ RawImage expose(const Image& expectedElectrons, const SensorSpec& sensor,
   raw.blackLevelDn = sensor.blackLevelDn;
   raw.whiteLevelDn = sensor.whiteLevelDn();
   raw.adcBits = sensor.adcBits;
+  if (mode == NoiseMode::kFull && settings.darkFrames)
+    return exposeWithDarkFrames(expectedElectrons, sensor, settings, noiseSeed, frame,
+                                std::move(raw));
 
   const NoiseAtIso at = noiseAtIso(sensor, settings.iso);
   const SensorNoiseSpec& ns = sensor.noise;

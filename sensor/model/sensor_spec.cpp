@@ -256,6 +256,14 @@ SensorSpec parseSensorSpec(const std::string& yamlText, const std::string& displ
     spec.patternSeed = static_cast<std::uint64_t>(v->integer(0, INT64_MAX));
   if (const auto v = map.find("noiseless")) spec.noiseless = v->boolean();
   parseSensorNoise(map, spec);
+  if (const auto v = map.find("dark_frames")) {
+    fs::path dir(v->string());
+    if (dir.is_relative()) dir = baseDir / dir;
+    std::error_code ec;
+    if (!fs::is_directory(dir, ec))
+      v->fail("no dark-frame directory '" + dir.string() + "' (missing, or not a directory)");
+    spec.darkFramesDir = dir;
+  }
   std::vector<std::string> known = {"name",
               "pixel_pitch_um",
               "fill_factor",
@@ -277,7 +285,8 @@ SensorSpec parseSensorSpec(const std::string& yamlText, const std::string& displ
               "adc_bits",
               "black_level_dn",
               "pattern_seed",
-              "noiseless"};
+              "noiseless",
+                                    "dark_frames"};
   known.insert(known.end(), sensorNoiseKeys().begin(), sensorNoiseKeys().end());
   map.finish(known);
   return spec;
