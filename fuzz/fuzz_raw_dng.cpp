@@ -28,7 +28,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   try {
     const camsim::RawImage raw = camsim::readRawDng(path);
     FUZZ_CHECK(raw.width > 0 && raw.height > 0);
-    FUZZ_CHECK(raw.dn.size() == static_cast<std::size_t>(raw.width) * static_cast<std::size_t>(raw.height));
+    FUZZ_CHECK(raw.dn.size() ==
+               static_cast<std::size_t>(raw.width) * static_cast<std::size_t>(raw.height));
     FUZZ_CHECK(raw.blackLevelDn >= 0.0 && raw.blackLevelDn <= 65535.0);
   } catch (const camsim::InputError&) {
   }

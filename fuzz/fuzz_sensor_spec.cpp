@@ -28,8 +28,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     for (const double iso : {s.baseIso, highIso}) {
       try {
         FUZZ_CHECK(std::isfinite(s.systemGain(iso)) && s.systemGain(iso) > 0.0);
-        FUZZ_CHECK(std::isfinite(s.saturationElectrons(iso)) &&
-                   s.saturationElectrons(iso) >= 0.0);
+        FUZZ_CHECK(std::isfinite(s.saturationElectrons(iso)) && s.saturationElectrons(iso) >= 0.0);
         const camsim::NoiseAtIso n = camsim::noiseAtIso(s, iso);
         FUZZ_CHECK(std::isfinite(n.readVarianceDn2()) && n.readVarianceDn2() >= 0.0);
         FUZZ_CHECK(n.blackOffsetsDn.empty() ||

@@ -137,7 +137,8 @@ DarkFrameSet loadDarkFrames(const fs::path& dir, const SensorSpec& sensor) {
     std::string ext = entry.path().extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(),
                    [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-    if ((ext == ".dng" || ext == ".exr") && entry.is_regular_file(ec)) files.push_back(entry.path());
+    if ((ext == ".dng" || ext == ".exr") && entry.is_regular_file(ec))
+      files.push_back(entry.path());
   }
   if (ec)
     throw InputError({dir.string(), 0, 0}, "dark_frames",

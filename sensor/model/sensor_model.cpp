@@ -27,8 +27,8 @@ namespace {
 
 // Domain tags, so that noise streams and pattern streams never share a key even when the
 // noise seed equals the pattern seed.
-constexpr std::uint64_t kNoiseDomain = 0x6e6f697365ull;    // "noise"
-constexpr std::uint64_t kPatternDomain = 0x7061747465ull;  // "patte"
+constexpr std::uint64_t kNoiseDomain = 0x6e6f697365ull;     // "noise"
+constexpr std::uint64_t kPatternDomain = 0x7061747465ull;   // "patte"
 constexpr std::uint64_t kRowNoiseDomain = 0x726f776e6full;  // "rowno": temporal row noise
 constexpr std::uint64_t kShotTag = 1, kReadTag = 2, kPostReadTag = 3;
 constexpr std::uint64_t kPrnuTag = 1, kDsnuTag = 2, kRowTag = 3, kColumnTag = 4, kHotTag = 5,
@@ -137,8 +137,9 @@ RawImage exposeWithDarkFrames(const Image& electrons, const SensorSpec& sensor,
   if (dark.width != raw.width || dark.height != raw.height)
     throw InputError({}, "dark_frames",
                      "dark frames of " + std::to_string(dark.width) + "×" +
-                         std::to_string(dark.height) + " photosites cannot be added to an image of " +
-                         std::to_string(raw.width) + "×" + std::to_string(raw.height));
+                         std::to_string(dark.height) +
+                         " photosites cannot be added to an image of " + std::to_string(raw.width) +
+                         "×" + std::to_string(raw.height));
   if (dark.blackLevelDn != sensor.blackLevelDn)
     throw InputError({}, "dark_frames",
                      "the dark frames' black level " + formatShortest(dark.blackLevelDn) +
@@ -228,11 +229,11 @@ RawImage expose(const Image& expectedElectrons, const SensorSpec& sensor,
   const double white = sensor.whiteLevelDn();
   const bool full = mode == NoiseMode::kFull;
   // Hot photosites' extra dark electrons (same temperature law as the dark current).
-  const double hotE = ns.hotPixelFraction > 0.0
-                          ? ns.hotPixelDarkCurrentEPerS * settings.exposureTimeS *
-                                std::exp2((sensor.temperatureC - sensor.darkReferenceC) /
-                                          sensor.darkDoublingC)
-                          : 0.0;
+  const double hotE =
+      ns.hotPixelFraction > 0.0
+          ? ns.hotPixelDarkCurrentEPerS * settings.exposureTimeS *
+                std::exp2((sensor.temperatureC - sensor.darkReferenceC) / sensor.darkDoublingC)
+          : 0.0;
   const bool tukey = at.shape == ReadNoiseShape::kTukeyLambda && at.tukeyScaleDn > 0.0;
 
   // Row and column offsets (step 3), one N(0, 1) each, drawn once per image; the temporal
@@ -283,8 +284,7 @@ RawImage expose(const Image& expectedElectrons, const SensorSpec& sensor,
           if (sensor.dsnuE > 0.0)
             n += sensor.dsnuE * patternNormal(sensor.patternSeed, kDsnuTag, ux, uy);
           n += rowOffset[static_cast<size_t>(y)] + columnOffset[static_cast<size_t>(x)];
-          if (at.readPreE > 0.0)
-            n += at.readPreE * CounterRng(streamKey(key, kReadTag)).normal();
+          if (at.readPreE > 0.0) n += at.readPreE * CounterRng(streamKey(key, kReadTag)).normal();
           // After the gain: read noise R, temporal row noise, black offsets.
           if (tukey)
             post = at.tukeyScaleDn *
@@ -294,12 +294,12 @@ RawImage expose(const Image& expectedElectrons, const SensorSpec& sensor,
             post = at.readPostDn * CounterRng(streamKey(key, kPostReadTag)).normal();
           post += rowNoise[static_cast<size_t>(y)];
           if (offsets)
-            post += at.blackOffsetsDn[static_cast<size_t>((y % sensor.cfa.height) * sensor.cfa.width +
-                                                          x % sensor.cfa.width)];
+            post += at.blackOffsetsDn[static_cast<size_t>(
+                (y % sensor.cfa.height) * sensor.cfa.width + x % sensor.cfa.width)];
         }
       }
-      n = std::min(n, fullWell);                                                  // step 5
-      double dn = std::floor(n * gain + post + sensor.blackLevelDn + 0.5);        // steps 6, 7
+      n = std::min(n, fullWell);                                            // step 5
+      double dn = std::floor(n * gain + post + sensor.blackLevelDn + 0.5);  // steps 6, 7
       if (full && ns.stuckPixelFraction > 0.0 &&
           patternUniform(sensor.patternSeed, kStuckTag, ux, uy) < ns.stuckPixelFraction)
         dn = ns.stuckPixelValueDn;

@@ -78,7 +78,8 @@ PixelStats pixelStats(const std::vector<std::vector<std::uint16_t>>& frames, dou
     for (size_t i = 0; i < n; ++i) p.mean[i] += (f[i] - minus) / static_cast<double>(frames.size());
   for (const auto& f : frames)
     for (size_t i = 0; i < n; ++i)
-      p.variance[i] += std::pow(f[i] - minus - p.mean[i], 2) / static_cast<double>(frames.size() - 1);
+      p.variance[i] +=
+          std::pow(f[i] - minus - p.mean[i], 2) / static_cast<double>(frames.size() - 1);
   return p;
 }
 
@@ -88,7 +89,8 @@ std::vector<double> rowSpectrum(const std::vector<std::vector<std::uint16_t>>& f
   for (const auto& f : frames) {
     std::vector<double> rows(kH, 0.0);
     for (int y = 0; y < kH; ++y)
-      for (int x = 0; x < kW; ++x) rows[static_cast<size_t>(y)] += f[static_cast<size_t>(y * kW + x)] / double(kW);
+      for (int x = 0; x < kW; ++x)
+        rows[static_cast<size_t>(y)] += f[static_cast<size_t>(y * kW + x)] / double(kW);
     for (int k = 1; k <= kH / 2; ++k) {
       double re = 0.0, im = 0.0;
       for (int y = 0; y < kH; ++y) {
@@ -96,7 +98,8 @@ std::vector<double> rowSpectrum(const std::vector<std::vector<std::uint16_t>>& f
         re += rows[static_cast<size_t>(y)] * std::cos(a);
         im += rows[static_cast<size_t>(y)] * std::sin(a);
       }
-      power[static_cast<size_t>(k - 1)] += (re * re + im * im) / kH / static_cast<double>(frames.size());
+      power[static_cast<size_t>(k - 1)] +=
+          (re * re + im * im) / kH / static_cast<double>(frames.size());
     }
   }
   return power;
@@ -133,7 +136,8 @@ TEST(DarkFrames, InjectedNoiseHasTheSourceFramesStatistics) {
   std::vector<std::vector<std::uint16_t>> dark;
   std::set<size_t> used;
   for (int f = 0; f < kOutputs; ++f) {
-    RawImage raw = expose(flat(0.0), target, settings, NoiseMode::kFull, 5, static_cast<std::uint64_t>(f));
+    RawImage raw =
+        expose(flat(0.0), target, settings, NoiseMode::kFull, 5, static_cast<std::uint64_t>(f));
     bool found = false;
     for (size_t j = 0; j < set.frames.size() && !found; ++j)
       if (set.frames[j] == raw.dn) found = true, used.insert(j);
@@ -168,15 +172,18 @@ TEST(DarkFrames, InjectedNoiseHasTheSourceFramesStatistics) {
   // an odd n gains ½ DN, so the mean shift is K·μ + ¼.
   std::vector<std::vector<std::uint16_t>> lit;
   for (int f = 0; f < kOutputs; ++f)
-    lit.push_back(expose(flat(400.0), target, settings, NoiseMode::kFull, 5, static_cast<std::uint64_t>(f)).dn);
+    lit.push_back(
+        expose(flat(400.0), target, settings, NoiseMode::kFull, 5, static_cast<std::uint64_t>(f))
+            .dn);
   const PixelStats litStats = pixelStats(lit);
   double meanShift = 0.0, varShift = 0.0;
   for (size_t i = 0; i < litStats.mean.size(); ++i) {
     meanShift += (litStats.mean[i] - out.mean[i]) / static_cast<double>(litStats.mean.size());
-    varShift += (litStats.variance[i] - out.variance[i]) / static_cast<double>(litStats.mean.size());
+    varShift +=
+        (litStats.variance[i] - out.variance[i]) / static_cast<double>(litStats.mean.size());
   }
   EXPECT_NEAR(meanShift, 0.5 * 400.0 + 0.25, 0.05);  // 6144 px × 240 frames: SE ≈ 0.01 DN
-  EXPECT_NEAR(varShift, 0.25 * 400.0, 5.0);  // SE of the mean variance ≈ 0.6 DN²
+  EXPECT_NEAR(varShift, 0.25 * 400.0, 5.0);          // SE of the mean variance ≈ 0.6 DN²
 }
 
 TEST(DarkFrames, BadSetsAreRefusedNamingTheFile) {

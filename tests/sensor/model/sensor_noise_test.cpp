@@ -73,11 +73,11 @@ TEST(SensorNoise, LinearModelWithoutNewKeys) {
 }
 
 TEST(SensorNoise, DualConversionGainSwitchesAtItsIso) {
-  const SensorSpec s = parse(
-      kRead +
-      "read_noise_post_dn: 1.5\n"
-      "dual_conversion_gain: {iso: 800, conversion_gain_e_per_dn: 0.5, read_noise_e: 1.2, "
-      "full_well_e: 9000}\n");
+  const SensorSpec s =
+      parse(kRead +
+            "read_noise_post_dn: 1.5\n"
+            "dual_conversion_gain: {iso: 800, conversion_gain_e_per_dn: 0.5, read_noise_e: 1.2, "
+            "full_well_e: 9000}\n");
   const NoiseAtIso low = noiseAtIso(s, 799.0), high = noiseAtIso(s, 800.0),
                    higher = noiseAtIso(s, 3200.0);
   EXPECT_DOUBLE_EQ(low.systemGainK, 7.99 / 2.0);
@@ -95,13 +95,13 @@ TEST(SensorNoise, DualConversionGainSwitchesAtItsIso) {
 }
 
 TEST(SensorNoise, IsoTableInterpolatesInLogIsoAndRefusesOutsideIt) {
-  const SensorSpec s = parse(
-      kRead +
-      "iso_table:\n"
-      "  - {iso: 100, system_gain_dn_per_e: 0.5, read_noise_post_dn: 2, tukey_lambda: 0.1,"
-      " black_offsets_dn: [0, 1, 2, 3]}\n"
-      "  - {iso: 400, system_gain_dn_per_e: 2.2, read_noise_post_dn: 8, tukey_lambda: -0.1,"
-      " black_offsets_dn: [4, 5, 6, 7]}\n");
+  const SensorSpec s =
+      parse(kRead +
+            "iso_table:\n"
+            "  - {iso: 100, system_gain_dn_per_e: 0.5, read_noise_post_dn: 2, tukey_lambda: 0.1,"
+            " black_offsets_dn: [0, 1, 2, 3]}\n"
+            "  - {iso: 400, system_gain_dn_per_e: 2.2, read_noise_post_dn: 8, tukey_lambda: -0.1,"
+            " black_offsets_dn: [4, 5, 6, 7]}\n");
   const NoiseAtIso mid = noiseAtIso(s, 200.0);  // half-way in log ISO
   EXPECT_NEAR(mid.systemGainK, std::sqrt(0.5 * 2.2), 1e-12);
   EXPECT_NEAR(mid.readPostDn, 4.0, 1e-12);
@@ -142,10 +142,9 @@ TEST(SensorNoise, TukeyLambdaQuantileAndVariance) {
 TEST(SensorNoise, ExposeDrawsTheConfiguredVarianceAtEachIso) {
   // σ_y² = K²(σ_pre² + μ_e) + σ_post² at three ISOs, and the black offsets' means per tile
   // position. 256² photosites: the variance's standard error is √(2/N) ≈ 0.55 %.
-  const SensorSpec s = parse(
-      kRead +
-      "read_noise_post_dn: 2.5\n"
-      "black_offsets_dn: [0.5, -1.5, 2.0, 0]\n");
+  const SensorSpec s = parse(kRead +
+                             "read_noise_post_dn: 2.5\n"
+                             "black_offsets_dn: [0.5, -1.5, 2.0, 0]\n");
   for (double iso : {100.0, 400.0, 1600.0}) {
     const double k = iso / 100.0 / 2.0, mu = 500.0;
     const std::vector<double> dn = flatDn(s, mu, iso, 256, 256);
@@ -157,7 +156,8 @@ TEST(SensorNoise, ExposeDrawsTheConfiguredVarianceAtEachIso) {
     std::vector<std::vector<double>> pos(4);
     for (int y = 0; y < 256; ++y)
       for (int x = 0; x < 256; ++x)
-        pos[static_cast<size_t>((y % 2) * 2 + x % 2)].push_back(dn[static_cast<size_t>(y * 256 + x)]);
+        pos[static_cast<size_t>((y % 2) * 2 + x % 2)].push_back(
+            dn[static_cast<size_t>(y * 256 + x)]);
     const double offsets[4] = {0.5, -1.5, 2.0, 0.0};
     double var = 0.0;
     for (int p = 0; p < 4; ++p) {
@@ -199,7 +199,8 @@ TEST(SensorNoise, HotAndStuckPhotositesAreFixedAndHaveTheirFraction) {
     const auto u = static_cast<size_t>(i);
     if (a[u] == 16383.0) ++stuck, same += b[u] == 16383.0;
     // A hot photosite: 50000 e⁻/s · 2 · 0.01 s = 1000 e⁻ = 500 DN above the black level.
-    else if (a[u] > 512.0 + 300.0) ++hot, same += b[u] > 512.0 + 300.0;
+    else if (a[u] > 512.0 + 300.0)
+      ++hot, same += b[u] > 512.0 + 300.0;
   }
   // Binomial counts: 5 standard errors.
   EXPECT_NEAR(hot, 0.01 * 0.998 * n, 5.0 * std::sqrt(0.01 * n));
