@@ -104,7 +104,7 @@ RawImage readRawDng(const fs::path& path) {
     fail("only uncompressed, untiled 16-bit one-sample raw data is read (this file: " +
          std::to_string(bits) + " bit, " + std::to_string(samples) + " samples, compression " +
          std::to_string(compression) + (TIFFIsTiled(t) ? ", tiled" : "") + ")");
-  if (TIFFScanlineSize64(t) != static_cast<tmsize_t>(width) * 2) fail("unexpected row size");
+  if (TIFFScanlineSize64(t) != static_cast<std::uint64_t>(width) * 2u) fail("unexpected row size");
 
   RawImage raw;
   raw.width = static_cast<int>(width);
