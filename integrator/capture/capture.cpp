@@ -10,6 +10,7 @@
 #include "sensor/base/check.h"
 #include "sensor/base/input_error.h"
 #include "sensor/base/luts_directory.h"
+#include "sensor/io/dark_frame_reader.h"
 #include "sensor/model/exposure_control.h"
 #include "sensor/model/sensor_model.h"
 #include "sensor/spectra/color_space.h"
@@ -48,10 +49,13 @@ Image scaled(const Image& image, double k) {
 
 // Step 5 for one frame: a mosaic is one plane, a stacked sensor exposes each channel plane
 // with its own noise stream.
+// With dark frames (the sensor's dark_frames), they replace the signal-independent terms.
 std::vector<RawImage> exposeFrame(const Image& electrons, const SensorSettings& sensor,
-                                  double exposureTimeS, std::uint64_t frameIndex) {
-  return exposeChannels(electrons, sensor.spec, ExposureSettings{exposureTimeS, sensor.iso},
-                        sensor.noise, sensor.noiseSeed, frameIndex);
+                                  double exposureTimeS, std::uint64_t frameIndex,
+                                  const DarkFrameSet* darkFrames) {
+  return exposeChannels(electrons, sensor.spec,
+                        ExposureSettings{exposureTimeS, sensor.iso, darkFrames}, sensor.noise,
+                        sensor.noiseSeed, frameIndex);
 }
 
 double clippedFraction(const std::vector<RawImage>& raws) {
@@ -127,6 +131,9 @@ void exposeAndDevelop(CaptureResult& out, const RenderOptions& renderOptions,
   out.referenceFrame = zero == evs.end() ? 0 : static_cast<std::size_t>(zero - evs.begin());
   const Image base = out.exposureScale == 1.0 ? out.sensorFilm : filmAt(out.exposureScale);
   if (out.cancelled) return;
+  std::optional<DarkFrameSet> darkFrames;
+  if (!spec.darkFramesDir.empty() && sensor.noise == NoiseMode::kFull && !spec.noiseless)
+    darkFrames = loadDarkFrames(spec.darkFramesDir, spec);
   for (std::size_t i = 0; i < evs.size(); ++i) {
     CaptureFrame frame;
     frame.ev = evs[i];
@@ -139,7 +146,8 @@ void exposeAndDevelop(CaptureResult& out, const RenderOptions& renderOptions,
       out.frames.clear();
       return;
     }
-    frame.raws = exposeFrame(frame.electrons, sensor, frame.exposureTimeS, frame.frameIndex);
+    frame.raws = exposeFrame(frame.electrons, sensor, frame.exposureTimeS, frame.frameIndex,
+                             darkFrames ? &*darkFrames : nullptr);
     frame.clippedFraction = clippedFraction(frame.raws);
     try {
       frame.whiteBalanceGains = whiteBalanceGains(frame.raws, spec, desc.isp);

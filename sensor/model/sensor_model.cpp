@@ -7,6 +7,7 @@
 
 #include "sensor/base/check.h"
 #include "sensor/base/counter_rng.h"
+#include "sensor/base/format.h"
 #include "sensor/base/input_error.h"
 
 namespace camsim {
@@ -26,8 +27,8 @@ namespace {
 
 // Domain tags, so that noise streams and pattern streams never share a key even when the
 // noise seed equals the pattern seed.
-constexpr std::uint64_t kNoiseDomain = 0x6e6f697365ull;    // "noise"
-constexpr std::uint64_t kPatternDomain = 0x7061747465ull;  // "patte"
+constexpr std::uint64_t kNoiseDomain = 0x6e6f697365ull;     // "noise"
+constexpr std::uint64_t kPatternDomain = 0x7061747465ull;   // "patte"
 constexpr std::uint64_t kRowNoiseDomain = 0x726f776e6full;  // "rowno": temporal row noise
 constexpr std::uint64_t kShotTag = 1, kReadTag = 2, kPostReadTag = 3;
 constexpr std::uint64_t kPrnuTag = 1, kDsnuTag = 2, kRowTag = 3, kColumnTag = 4, kHotTag = 5,
@@ -126,6 +127,45 @@ void checkSettings(const ExposureSettings& settings) {
     throw InputError({}, "exposure_time", "exposure time must be a finite number ≥ 0");
 }
 
+// expose() with dark frames (dark_frames.h): shot noise and PRNU on the photo-electrons,
+// then one whole recorded dark frame.
+RawImage exposeWithDarkFrames(const Image& electrons, const SensorSpec& sensor,
+                              const ExposureSettings& settings, std::uint64_t noiseSeed,
+                              std::uint64_t frame, RawImage raw) {
+  const DarkFrameSet& dark = *settings.darkFrames;
+  if (dark.frames.empty()) throw InputError({}, "dark_frames", "the dark-frame set is empty");
+  if (dark.width != raw.width || dark.height != raw.height)
+    throw InputError({}, "dark_frames",
+                     "dark frames of " + std::to_string(dark.width) + "×" +
+                         std::to_string(dark.height) +
+                         " photosites cannot be added to an image of " + std::to_string(raw.width) +
+                         "×" + std::to_string(raw.height));
+  if (dark.blackLevelDn != sensor.blackLevelDn)
+    throw InputError({}, "dark_frames",
+                     "the dark frames' black level " + formatShortest(dark.blackLevelDn) +
+                         " DN differs from the sensor's " + formatShortest(sensor.blackLevelDn));
+  const std::vector<std::uint16_t>& d = dark.frames[dark.frameFor(noiseSeed, frame)];
+  const NoiseAtIso at = noiseAtIso(sensor, settings.iso);
+  const double white = sensor.whiteLevelDn();
+  for (int y = 0; y < raw.height; ++y) {
+    const auto uy = static_cast<std::uint64_t>(y);
+    for (int x = 0; x < raw.width; ++x) {
+      const auto ux = static_cast<std::uint64_t>(x);
+      double mu = static_cast<double>(electrons.at(x, y, 0));
+      if (!(mu > 0.0)) mu = 0.0;  // also NaN
+      CounterRng shot(streamKey(streamKey(kNoiseDomain, noiseSeed, frame, ux, uy), kShotTag));
+      double n = static_cast<double>(poisson(std::min(mu, kMaxPoissonMean), shot));
+      if (sensor.prnuFraction > 0.0)
+        n *= 1.0 + sensor.prnuFraction * patternNormal(sensor.patternSeed, kPrnuTag, ux, uy);
+      const std::size_t i = static_cast<std::size_t>(y) * static_cast<std::size_t>(raw.width) +
+                            static_cast<std::size_t>(x);
+      const double dn = std::floor(std::min(n, at.fullWellE) * at.systemGainK + d[i] + 0.5);
+      raw.dn[i] = static_cast<std::uint16_t>(std::clamp(dn, 0.0, white));
+    }
+  }
+  return raw;
+}
+
 }  // namespace
 
 std::uint64_t samplePoisson(double mean, std::uint64_t key) {
@@ -178,6 +218,9 @@ RawImage expose(const Image& expectedElectrons, const SensorSpec& sensor,
   raw.blackLevelDn = sensor.blackLevelDn;
   raw.whiteLevelDn = sensor.whiteLevelDn();
   raw.adcBits = sensor.adcBits;
+  if (mode == NoiseMode::kFull && settings.darkFrames)
+    return exposeWithDarkFrames(expectedElectrons, sensor, settings, noiseSeed, frame,
+                                std::move(raw));
 
   const NoiseAtIso at = noiseAtIso(sensor, settings.iso);
   const SensorNoiseSpec& ns = sensor.noise;
@@ -186,11 +229,11 @@ RawImage expose(const Image& expectedElectrons, const SensorSpec& sensor,
   const double white = sensor.whiteLevelDn();
   const bool full = mode == NoiseMode::kFull;
   // Hot photosites' extra dark electrons (same temperature law as the dark current).
-  const double hotE = ns.hotPixelFraction > 0.0
-                          ? ns.hotPixelDarkCurrentEPerS * settings.exposureTimeS *
-                                std::exp2((sensor.temperatureC - sensor.darkReferenceC) /
-                                          sensor.darkDoublingC)
-                          : 0.0;
+  const double hotE =
+      ns.hotPixelFraction > 0.0
+          ? ns.hotPixelDarkCurrentEPerS * settings.exposureTimeS *
+                std::exp2((sensor.temperatureC - sensor.darkReferenceC) / sensor.darkDoublingC)
+          : 0.0;
   const bool tukey = at.shape == ReadNoiseShape::kTukeyLambda && at.tukeyScaleDn > 0.0;
 
   // Row and column offsets (step 3), one N(0, 1) each, drawn once per image; the temporal
@@ -241,8 +284,7 @@ RawImage expose(const Image& expectedElectrons, const SensorSpec& sensor,
           if (sensor.dsnuE > 0.0)
             n += sensor.dsnuE * patternNormal(sensor.patternSeed, kDsnuTag, ux, uy);
           n += rowOffset[static_cast<size_t>(y)] + columnOffset[static_cast<size_t>(x)];
-          if (at.readPreE > 0.0)
-            n += at.readPreE * CounterRng(streamKey(key, kReadTag)).normal();
+          if (at.readPreE > 0.0) n += at.readPreE * CounterRng(streamKey(key, kReadTag)).normal();
           // After the gain: read noise R, temporal row noise, black offsets.
           if (tukey)
             post = at.tukeyScaleDn *
@@ -252,12 +294,12 @@ RawImage expose(const Image& expectedElectrons, const SensorSpec& sensor,
             post = at.readPostDn * CounterRng(streamKey(key, kPostReadTag)).normal();
           post += rowNoise[static_cast<size_t>(y)];
           if (offsets)
-            post += at.blackOffsetsDn[static_cast<size_t>((y % sensor.cfa.height) * sensor.cfa.width +
-                                                          x % sensor.cfa.width)];
+            post += at.blackOffsetsDn[static_cast<size_t>(
+                (y % sensor.cfa.height) * sensor.cfa.width + x % sensor.cfa.width)];
         }
       }
-      n = std::min(n, fullWell);                                                  // step 5
-      double dn = std::floor(n * gain + post + sensor.blackLevelDn + 0.5);        // steps 6, 7
+      n = std::min(n, fullWell);                                            // step 5
+      double dn = std::floor(n * gain + post + sensor.blackLevelDn + 0.5);  // steps 6, 7
       if (full && ns.stuckPixelFraction > 0.0 &&
           patternUniform(sensor.patternSeed, kStuckTag, ux, uy) < ns.stuckPixelFraction)
         dn = ns.stuckPixelValueDn;

@@ -40,6 +40,7 @@
 
 #include "sensor/base/enum_names.h"
 #include "sensor/base/image.h"
+#include "sensor/model/dark_frames.h"
 #include "sensor/model/raw_image.h"
 #include "sensor/model/sensor_spec.h"
 
@@ -60,6 +61,9 @@ std::string noiseModeNames();  // "none, photon, full", for messages
 struct ExposureSettings {
   double exposureTimeS = 1.0 / 60.0;  // for dark current (the film already holds the light)
   double iso = 100.0;
+  // Noise mode full: add these recorded dark frames instead of the parametric
+  // signal-independent terms (sensor/model/dark_frames.h). Not owned; null: none.
+  const DarkFrameSet* darkFrames = nullptr;
 };
 
 // expectedElectrons: one channel, the noise-free photo-electrons per photosite.

@@ -121,6 +121,11 @@ NoiseAtIso noiseAtIso(const SensorSpec& sensor, double iso) {
   }
   if (ns.tukeyScaleFit) n.tukeyScaleDn = ns.tukeyScaleFit->at(n.systemGainK);
   if (ns.rowNoiseFit) n.rowNoiseDn = ns.rowNoiseFit->at(n.systemGainK);
+  if (!std::isfinite(n.systemGainK) || !(n.systemGainK > 0.0) ||
+      !std::isfinite(n.readVarianceDn2()))
+    throw InputError({}, "iso",
+                     "the sensor '" + sensor.name + "' gives no finite gain and noise at ISO " +
+                         formatShortest(iso) + " (check its gain and noise fits)");
   return n;
 }
 

@@ -27,7 +27,8 @@ LogLinearFit parseFit(const YamlValue& value) {
 
 std::vector<double> parseOffsets(const YamlValue& value, std::size_t tileSize) {
   std::vector<double> offsets;
-  for (const YamlValue& item : value.items()) offsets.push_back(item.number(-kMaxNoiseDn, kMaxNoiseDn));
+  for (const YamlValue& item : value.items())
+    offsets.push_back(item.number(-kMaxNoiseDn, kMaxNoiseDn));
   if (offsets.size() != tileSize)
     value.fail("expected " + std::to_string(tileSize) +
                " offsets, one per CFA tile position (row-major)");
@@ -46,8 +47,8 @@ IsoTableRow parseRow(const YamlValue& value, std::size_t tileSize) {
   if (const auto v = map.find("tukey_scale_dn")) row.tukeyScaleDn = v->number(0.0, kMaxNoiseDn);
   if (const auto v = map.find("row_noise_dn")) row.rowNoiseDn = v->number(0.0, kMaxNoiseDn);
   if (const auto v = map.find("black_offsets_dn")) row.blackOffsetsDn = parseOffsets(*v, tileSize);
-  map.finish({"iso", "system_gain_dn_per_e", "read_noise_e", "read_noise_post_dn",
-              "tukey_lambda", "tukey_scale_dn", "row_noise_dn", "black_offsets_dn"});
+  map.finish({"iso", "system_gain_dn_per_e", "read_noise_e", "read_noise_post_dn", "tukey_lambda",
+              "tukey_scale_dn", "row_noise_dn", "black_offsets_dn"});
   return row;
 }
 
@@ -55,7 +56,7 @@ IsoTableRow parseRow(const YamlValue& value, std::size_t tileSize) {
 
 const std::vector<std::string>& sensorNoiseKeys() {
   static const std::vector<std::string> keys = {
-      "read_noise_post_dn", "dual_conversion_gain", "iso_table",  "noise_fits",
+      "read_noise_post_dn", "dual_conversion_gain", "iso_table",    "noise_fits",
       "read_noise_shape",   "tukey_lambda",         "row_noise_dn", "black_offsets_dn",
       "hot_pixels",         "stuck_pixels"};
   return keys;
@@ -64,7 +65,8 @@ const std::vector<std::string>& sensorNoiseKeys() {
 void parseSensorNoise(YamlMap& map, SensorSpec& spec) {
   SensorNoiseSpec& ns = spec.noise;
   const std::size_t tileSize = static_cast<std::size_t>(spec.cfa.width * spec.cfa.height);
-  if (const auto v = map.find("read_noise_post_dn")) ns.readNoisePostDn = v->number(0.0, kMaxNoiseDn);
+  if (const auto v = map.find("read_noise_post_dn"))
+    ns.readNoisePostDn = v->number(0.0, kMaxNoiseDn);
   if (const auto v = map.find("dual_conversion_gain")) {
     YamlMap m(*v);
     DualConversionGain& d = ns.dualGain;

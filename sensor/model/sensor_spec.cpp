@@ -256,28 +256,37 @@ SensorSpec parseSensorSpec(const std::string& yamlText, const std::string& displ
     spec.patternSeed = static_cast<std::uint64_t>(v->integer(0, INT64_MAX));
   if (const auto v = map.find("noiseless")) spec.noiseless = v->boolean();
   parseSensorNoise(map, spec);
+  if (const auto v = map.find("dark_frames")) {
+    fs::path dir(v->string());
+    if (dir.is_relative()) dir = baseDir / dir;
+    std::error_code ec;
+    if (!fs::is_directory(dir, ec))
+      v->fail("no dark-frame directory '" + dir.string() + "' (missing, or not a directory)");
+    spec.darkFramesDir = dir;
+  }
   std::vector<std::string> known = {"name",
-              "pixel_pitch_um",
-              "fill_factor",
-              "cfa",
-              "qe",
-              "ir_cut",
-              "full_well_e",
-              "conversion_gain_e_per_dn",
-              "base_iso",
-              "read_noise_e",
-              "dark_current_e_per_s",
-              "dark_reference_c",
-              "dark_doubling_c",
-              "temperature_c",
-              "dsnu_e",
-              "prnu_percent",
-              "row_fpn_e",
-              "column_fpn_e",
-              "adc_bits",
-              "black_level_dn",
-              "pattern_seed",
-              "noiseless"};
+                                    "pixel_pitch_um",
+                                    "fill_factor",
+                                    "cfa",
+                                    "qe",
+                                    "ir_cut",
+                                    "full_well_e",
+                                    "conversion_gain_e_per_dn",
+                                    "base_iso",
+                                    "read_noise_e",
+                                    "dark_current_e_per_s",
+                                    "dark_reference_c",
+                                    "dark_doubling_c",
+                                    "temperature_c",
+                                    "dsnu_e",
+                                    "prnu_percent",
+                                    "row_fpn_e",
+                                    "column_fpn_e",
+                                    "adc_bits",
+                                    "black_level_dn",
+                                    "pattern_seed",
+                                    "noiseless",
+                                    "dark_frames"};
   known.insert(known.end(), sensorNoiseKeys().begin(), sensorNoiseKeys().end());
   map.finish(known);
   return spec;

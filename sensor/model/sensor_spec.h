@@ -23,6 +23,7 @@
 // | black_level_dn         | DN           | offset added before quantisation |
 // | pattern_seed           | —            | seed of the fixed patterns (PRNU, DSNU, FPN): same sensor ⇒ same pattern |
 // | noiseless              | —            | true: expose() never adds noise (NoiseMode none) |
+// | dark_frames            | —            | directory of dark frames (DNG or raw EXR) replacing the signal-independent noise |
 // | (gain-dependent noise) | —            | read_noise_post_dn, dual_conversion_gain, iso_table, noise_fits, … (sensor_noise.h) |
 #pragma once
 
@@ -61,6 +62,9 @@ struct SensorSpec {
   std::uint64_t patternSeed = 1;
   bool noiseless = false;  // the ideal-xyz preset: expose() always uses NoiseMode::kNone
   SensorNoiseSpec noise;   // gain-dependent terms (sensor/model/sensor_noise.h)
+  // A directory of dark frames that replace the signal-independent terms in noise mode full
+  // (sensor/model/dark_frames.h; loaded by loadDarkFrames, sensor/io/dark_frame_reader.h).
+  std::filesystem::path darkFramesDir;
   // The files it was read from: the description (loadSensorSpec) and each CSV, in order.
   std::vector<std::filesystem::path> sourceFiles;
 

@@ -1,0 +1,24 @@
+// Reading dark frames: uncompressed 16-bit raw DNGs (one CFA or LinearRaw image in IFD0,
+// as camsim and most converters' "uncompressed" option write them) and camsim's raw EXRs
+// (the "raw.DN" channel, black level in camsim:black_level_dn). The one module besides
+// dng_writer that includes libtiff.
+#pragma once
+
+#include <filesystem>
+
+#include "sensor/model/dark_frames.h"
+#include "sensor/model/raw_image.h"
+#include "sensor/model/sensor_spec.h"
+
+namespace camsim {
+
+// One raw DNG's digital numbers and levels (cfa left as mono: dark frames do not need it).
+// InputError naming the file for anything it cannot read (compressed, tiled, not 16-bit…).
+RawImage readRawDng(const std::filesystem::path& path);
+
+// Every *.dng and *.exr in `dir`, sorted by name, checked against each other (size, black
+// level) and against the sensor (black level, ADC range). InputError (key "dark_frames")
+// naming the file otherwise, or when the directory holds none.
+DarkFrameSet loadDarkFrames(const std::filesystem::path& dir, const SensorSpec& sensor);
+
+}  // namespace camsim
