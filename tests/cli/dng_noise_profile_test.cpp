@@ -3,7 +3,8 @@
 // rendered at ISO 800 with two brackets, read back by exiftool (Debian package
 // libimage-exiftool-perl; scripts/setup.sh). Expected, with K = 800/100/2 = 4 DN/e⁻ and
 // r = 16383 − 512: NoiseProfile S = K/r, O = (K²·3² + 1.5²)/r² for each of R, G, B;
-// BaselineExposure 0; ExposureBiasValue = the bracket's EV.
+// BaselineExposure 0; ExposureBiasValue = the bracket's EV; AsShotNeutral = 1/g of the ISP's
+// gains, which dcraw reads back as its camera multipliers.
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -47,13 +48,14 @@ const char* const kScene =
     "  - {type: sphere, centre: [0, 0, 0], radius: 10,\n"
     "     emission: {luminance: 10, spectrum: {illuminant: D65}, two_sided: true}}\n";
 
-// The numbers on exiftool's "Tag : …" line (-s -n), empty if absent.
+// The numbers after the tag on the line "Tag : …" (exiftool -s -n) or "Tag: …" (dcraw -i -v,
+// tag with its colon), empty if absent.
 std::vector<double> values(const std::string& text, const std::string& tag) {
   std::istringstream lines(text);
   std::string line;
   while (std::getline(lines, line)) {
     if (line.rfind(tag + " ", 0) != 0) continue;
-    std::istringstream in(line.substr(line.find(':') + 1));
+    std::istringstream in(line.substr(line.find(':', tag.size() - 1) + 1));
     std::vector<double> out;
     for (double v = 0.0; in >> v;) out.push_back(v);
     return out;
@@ -67,12 +69,22 @@ TEST(DngNoiseProfile, RenderWritesTheSensorsNoiseAtTheScenesIso) {
   test::TempDir dir;
   test::writeFile(dir.path() / "noisy.yaml", kSensor);
   test::writeFile(dir.path() / "dome.yaml", kScene);
-  const test::RunResult r = test::runCamsim("render " + test::quote((dir.path() / "dome.yaml").string()) +
-                                                " -o " + test::quote((dir.path() / "out").string()),
-                                            dir.path());
+  const test::RunResult r =
+      test::runCamsim("render " + test::quote((dir.path() / "dome.yaml").string()) + " -o " +
+                          test::quote((dir.path() / "out").string()),
+                      dir.path());
   ASSERT_EQ(r.exitCode, 0) << r.err;
   const double k = 800.0 / 100.0 / 2.0, range = 16383.0 - 512.0;
   const double scale = k / range, offset = (k * k * 9.0 + 2.25) / (range * range);
+  // The ISP's white-balance gains, from the sidecar's isp.derived.white_balance_gains.
+  const std::string sidecar = test::readFile(dir.path() / "out" / "dome.json");
+  const size_t at = sidecar.find("\"white_balance_gains\"");
+  ASSERT_NE(at, std::string::npos);
+  std::string list = sidecar.substr(sidecar.find('[', at) + 1);
+  list = list.substr(0, list.find(']'));
+  for (char& c : list) c = c == ',' ? ' ' : c;
+  const std::vector<double> gains = values("g : " + list, "g");
+  ASSERT_TRUE(onPath("dcraw")) << "dcraw is not installed (Debian package dcraw; scripts/setup.sh)";
   for (const char* ev : {"-1", "+0"}) {
     SCOPED_TRACE(ev);
     const std::string dng = (dir.path() / "out" / (std::string("dome_ev") + ev + ".dng")).string();
@@ -94,14 +106,18 @@ TEST(DngNoiseProfile, RenderWritesTheSensorsNoiseAtTheScenesIso) {
     EXPECT_EQ(values(exif.out, "ExposureCompensation"),
               std::vector<double>{std::string(ev) == "-1" ? -1.0 : 0.0});
     EXPECT_EQ(values(exif.out, "ISO"), std::vector<double>{800.0});
-    // The camera's response to D65, largest component 1 (G for this sensor).
+    // The camera's response to D65, 1/g of the ISP's gains (the sidecar's), largest
+    // component 1 (G for this sensor); dcraw reads the same gains back as its multipliers.
     const std::vector<double> neutral = values(exif.out, "AsShotNeutral");
     ASSERT_EQ(neutral.size(), 3u);
+    ASSERT_EQ(gains.size(), 3u);
     EXPECT_DOUBLE_EQ(neutral[1], 1.0);
-    EXPECT_GT(neutral[0], 0.2);
-    EXPECT_LT(neutral[0], 1.0);
-    EXPECT_GT(neutral[2], 0.2);
-    EXPECT_LT(neutral[2], 1.0);
+    for (size_t c = 0; c < 3; ++c) EXPECT_NEAR(neutral[c] * gains[c], 1.0, 1e-6) << c;
+    const test::RunResult dcraw = test::runCommand("dcraw -i -v " + test::quote(dng), dir.path());
+    ASSERT_EQ(dcraw.exitCode, 0) << dcraw.err;
+    const std::vector<double> multipliers = values(dcraw.out, "Camera multipliers:");
+    ASSERT_EQ(multipliers.size(), 4u) << dcraw.out;
+    for (size_t c = 0; c < 3; ++c) EXPECT_NEAR(multipliers[c], gains[c], 1e-5) << dcraw.out;
   }
 }
 

@@ -82,7 +82,8 @@ class DngNoiseProfileTest : public testing::Test {
 
   // exiftool's values (-n: numbers as stored, no units) of the tags, one "Tag: value" line each.
   std::string exif(const std::filesystem::path& dng, const std::string& tags) const {
-    const test::RunResult r = test::runCommand("exiftool -s -n " + tags + " " + test::quote(dng.string()), dir_);
+    const test::RunResult r =
+        test::runCommand("exiftool -s -n " + tags + " " + test::quote(dng.string()), dir_);
     EXPECT_EQ(r.exitCode, 0) << r.err;
     return r.out;
   }
@@ -163,7 +164,8 @@ TEST_F(DngNoiseProfileTest, ExiftoolReadsTheProfileAtTwoIsos) {
     EXPECT_NEAR(neutral[1], 1.0, 1e-6);
     EXPECT_NEAR(neutral[2], 0.7, 1e-6);
 
-    const test::RunResult id = test::runCommand("raw-identify -v " + test::quote(dng.string()), dir_);
+    const test::RunResult id =
+        test::runCommand("raw-identify -v " + test::quote(dng.string()), dir_);
     ASSERT_EQ(id.exitCode, 0) << id.err;
     SCOPED_TRACE(id.out + id.err);
     // LibRaw 0.20 reads the ISO, BaselineExposure and AsShotNeutral (as multipliers 1/n);
@@ -214,8 +216,8 @@ TEST_F(DngNoiseProfileTest, ExposureTagsAndNeutralScaling) {
   EXPECT_NEAR(neutral[2], 0.4 / 1.2, 1e-6);
   // Without a bracket no ExposureBiasValue.
   writeDng(dir_ / "plain.dng", raw(false), color, {}, DngCapture{});
-  EXPECT_TRUE(values(exif(dir_ / "plain.dng", "-ExposureCompensation"), "ExposureCompensation")
-                  .empty());
+  EXPECT_TRUE(
+      values(exif(dir_ / "plain.dng", "-ExposureCompensation"), "ExposureCompensation").empty());
 }
 
 }  // namespace
