@@ -115,6 +115,11 @@ void writeFrames(const CaptureResult& r, const Metadata& meta, OutputSet& output
     dng.dateTimeOriginal = "2000:01:01 00:00:00";  // fixed: same scene, same bytes
     dng.exposureTimeS = frame.exposureTimeS;
     dng.iso = sensor.iso;
+    // A bracket's offset as cameras record auto-exposure bracketing; BaselineExposure 0:
+    // the ISP develops the normalised raw × 1 (dng_writer.h).
+    if (!sensor.bracketEv.empty()) dng.exposureBiasEv = frame.ev;
+    dng.noiseProfile =
+        dngNoiseProfile(spec, ExposureSettings{frame.exposureTimeS, sensor.iso}, sensor.noise);
     writeDng(outputs.add(stem + ".dng"), frame.raws.front(), color, frameMeta, dng);
     writeRawExr(outputs.add(stem + "_raw.exr"), frame.raws.front(), frame.electrons, frameMeta);
   }

@@ -23,7 +23,20 @@
 namespace camsim {
 namespace {
 
-constexpr int kPhotometricLinearRaw = 34892;  // DNG; libtiff's tiff.h does not name it
+constexpr int kPhotometricLinearRaw = 34892;       // DNG; libtiff's tiff.h does not name it
+constexpr std::uint32_t kTagNoiseProfile = 51041;  // DNG 1.3; libtiff 4.5 does not know it
+
+// Tags libtiff does not know, registered on the open file (TIFFCreateDirectory resets the
+// field table, so after it): NoiseProfile, DOUBLE, any count (passed as an int).
+const TIFFFieldInfo kDngFields[] = {
+    {kTagNoiseProfile, TIFF_VARIABLE, TIFF_VARIABLE, TIFF_DOUBLE, FIELD_CUSTOM, 1, 1,
+     const_cast<char*>("NoiseProfile")},
+};
+
+// A camera RGB scaled so that its largest component is 1 (AsShotNeutral's convention).
+glm::dvec3 maxOne(const glm::dvec3& v) {
+  return v / std::max({v.x, v.y, v.z});
+}
 
 // DNG CFAPlaneColor code of a channel name (R, G, B only), -1 otherwise.
 int planeColorCode(const std::string& name) {
@@ -101,15 +114,27 @@ DngColor dngColorFromQe(const std::vector<Spectrum>& qe, const std::string& illu
   }
   const std::vector<double> neutral =
       cameraResponse(qe, Spectrum::constant(1.0), cieIlluminant(illuminant));
-  if (!(neutral[1] > 0.0))
-    throw InputError({}, "qe", "the G channel does not respond to the illuminant");
-  color.asShotNeutral = glm::dvec3(neutral[0], neutral[1], neutral[2]) / neutral[1];
+  if (!(neutral[0] > 0.0 && neutral[1] > 0.0 && neutral[2] > 0.0))
+    throw InputError({}, "qe", "a channel of the sensor does not respond to the " + illuminant);
+  color.asShotNeutral = maxOne(glm::dvec3(neutral[0], neutral[1], neutral[2]));
   return color;
 }
 
 glm::dvec3 dngNeutralFromGains(const std::vector<double>& gains) {
   CAMSIM_CHECK(gains.size() == 3 && gains[0] > 0.0 && gains[1] > 0.0 && gains[2] > 0.0);
-  return glm::dvec3(gains[1] / gains[0], 1.0, gains[1] / gains[2]);
+  return maxOne(glm::dvec3(1.0 / gains[0], 1.0 / gains[1], 1.0 / gains[2]));
+}
+
+std::optional<DngNoiseProfile> dngNoiseProfile(const SensorSpec& spec,
+                                               const ExposureSettings& settings, NoiseMode mode) {
+  const VarianceLine line = temporalVarianceLine(spec, settings);  // checks the settings
+  if (spec.noiseless || mode == NoiseMode::kNone) return std::nullopt;
+  const double range = spec.whiteLevelDn() - spec.blackLevelDn;
+  CAMSIM_CHECK(range > 0.0 && line.slopeDn > 0.0);
+  DngNoiseProfile profile;
+  profile.scale = line.slopeDn / range;
+  profile.offset = mode == NoiseMode::kFull ? line.offsetDn2 / (range * range) : 0.0;
+  return profile;
 }
 
 void writeDng(const std::filesystem::path& path, const RawImage& raw, const DngColor& color,
@@ -149,24 +174,34 @@ void writeDng(const std::filesystem::path& path, const RawImage& raw, const DngC
   bool ok = true;
 
   // The EXIF IFD first (TIFFCreateEXIFDirectory returns 0 on success), then IFD0 pointing
-  // at it: written in this order, no directory has to be rewritten.
+  // at it: written in this order, no directory has to be rewritten. Nothing to record: no
+  // EXIF IFD (libtiff cannot write an empty directory).
   std::uint64_t exifOffset = 0;
-  if (TIFFCreateEXIFDirectory(t) != 0) fail("cannot create the EXIF directory");
-  if (capture.exposureTimeS > 0.0)
-    ok = ok && TIFFSetField(t, EXIFTAG_EXPOSURETIME, capture.exposureTimeS) == 1;
-  if (capture.fNumber > 0.0) ok = ok && TIFFSetField(t, EXIFTAG_FNUMBER, capture.fNumber) == 1;
-  if (capture.focalLengthMm > 0.0)
-    ok = ok && TIFFSetField(t, EXIFTAG_FOCALLENGTH, capture.focalLengthMm) == 1;
-  if (capture.iso > 0.0) {
-    const std::uint16_t iso[1] = {
-        static_cast<std::uint16_t>(std::lround(std::min(capture.iso, 65535.0)))};
-    ok = ok && TIFFSetField(t, EXIFTAG_ISOSPEEDRATINGS, 1, iso) == 1;
+  const bool exif = capture.exposureTimeS > 0.0 || capture.fNumber > 0.0 ||
+                    capture.focalLengthMm > 0.0 || capture.iso > 0.0 ||
+                    !capture.dateTimeOriginal.empty() || capture.exposureBiasEv.has_value();
+  if (exif) {
+    if (TIFFCreateEXIFDirectory(t) != 0) fail("cannot create the EXIF directory");
+    if (capture.exposureTimeS > 0.0)
+      ok = ok && TIFFSetField(t, EXIFTAG_EXPOSURETIME, capture.exposureTimeS) == 1;
+    if (capture.fNumber > 0.0) ok = ok && TIFFSetField(t, EXIFTAG_FNUMBER, capture.fNumber) == 1;
+    if (capture.focalLengthMm > 0.0)
+      ok = ok && TIFFSetField(t, EXIFTAG_FOCALLENGTH, capture.focalLengthMm) == 1;
+    if (capture.iso > 0.0) {
+      const std::uint16_t iso[1] = {
+          static_cast<std::uint16_t>(std::lround(std::min(capture.iso, 65535.0)))};
+      ok = ok && TIFFSetField(t, EXIFTAG_ISOSPEEDRATINGS, 1, iso) == 1;
+    }
+    if (!capture.dateTimeOriginal.empty())
+      ok = ok && TIFFSetField(t, EXIFTAG_DATETIMEORIGINAL, capture.dateTimeOriginal.c_str()) == 1;
+    if (capture.exposureBiasEv)  // SRATIONAL, passed as a double
+      ok = ok && TIFFSetField(t, EXIFTAG_EXPOSUREBIASVALUE, *capture.exposureBiasEv) == 1;
+    if (!ok || TIFFWriteCustomDirectory(t, &exifOffset) != 1)
+      fail("cannot write the EXIF directory");
+    TIFFFreeDirectory(t);
   }
-  if (!capture.dateTimeOriginal.empty())
-    ok = ok && TIFFSetField(t, EXIFTAG_DATETIMEORIGINAL, capture.dateTimeOriginal.c_str()) == 1;
-  if (!ok || TIFFWriteCustomDirectory(t, &exifOffset) != 1) fail("cannot write the EXIF directory");
-  TIFFFreeDirectory(t);
   if (TIFFCreateDirectory(t) != 0) fail("cannot start IFD0");
+  if (TIFFMergeFieldInfo(t, kDngFields, 1) != 0) fail("cannot register the DNG 1.3 tags");
   // Scalars go through varargs: pass them as the promoted type libtiff reads (int/uint32).
   const auto setU32 = [&](uint32_t tag, std::uint32_t v) {
     ok = ok && TIFFSetField(t, tag, v) == 1;
@@ -187,7 +222,7 @@ void writeDng(const std::filesystem::path& path, const RawImage& raw, const DngC
   setU16(TIFFTAG_ORIENTATION, ORIENTATION_TOPLEFT);
   setU16(TIFFTAG_PHOTOMETRIC, mono ? kPhotometricLinearRaw : PHOTOMETRIC_CFA);
   setU32(TIFFTAG_ROWSPERSTRIP, TIFFDefaultStripSize(t, 0));
-  ok = ok && TIFFSetField(t, TIFFTAG_EXIFIFD, exifOffset) == 1;
+  if (exif) ok = ok && TIFFSetField(t, TIFFTAG_EXIFIFD, exifOffset) == 1;
 
   const std::string sensor = metadataValue(meta, "camsim:sensor");
   const std::string model = sensor.empty() ? "camsim" : "camsim " + sensor;
@@ -210,6 +245,17 @@ void writeDng(const std::filesystem::path& path, const RawImage& raw, const DngC
   ok = ok && TIFFSetField(t, TIFFTAG_BLACKLEVELREPEATDIM, repeatOne) == 1;
   ok = ok && TIFFSetField(t, TIFFTAG_BLACKLEVEL, 1, black) == 1;
   ok = ok && TIFFSetField(t, TIFFTAG_WHITELEVEL, 1, white) == 1;
+  // SRATIONAL, passed as a double (libtiff stores it as a float: EV to ~7 digits).
+  ok = ok && TIFFSetField(t, TIFFTAG_BASELINEEXPOSURE, capture.baselineExposureEv) == 1;
+  if (capture.noiseProfile) {
+    // One (S, O) pair per colour plane (DNG: count 2 or 2·ColorPlanes), the same for each.
+    const int planes = mono ? 1 : 3;
+    std::vector<double> profile;
+    for (int p = 0; p < planes; ++p)
+      profile.insert(profile.end(), {capture.noiseProfile->scale, capture.noiseProfile->offset});
+    ok = ok &&
+         TIFFSetField(t, kTagNoiseProfile, static_cast<int>(profile.size()), profile.data()) == 1;
+  }
 
   if (!mono) {
     const std::uint16_t repeat[2] = {static_cast<std::uint16_t>(cfa.height),
@@ -232,9 +278,11 @@ void writeDng(const std::filesystem::path& path, const RawImage& raw, const DngC
     setMatrix(TIFFTAG_COLORMATRIX1, TIFFTAG_CALIBRATIONILLUMINANT1, color.calibration1);
     if (color.calibration2)
       setMatrix(TIFFTAG_COLORMATRIX2, TIFFTAG_CALIBRATIONILLUMINANT2, *color.calibration2);
-    const float neutral[3] = {static_cast<float>(color.asShotNeutral.x),
-                              static_cast<float>(color.asShotNeutral.y),
-                              static_cast<float>(color.asShotNeutral.z)};
+    CAMSIM_CHECK(color.asShotNeutral.x > 0.0 && color.asShotNeutral.y > 0.0 &&
+                 color.asShotNeutral.z > 0.0);
+    const glm::dvec3 n = maxOne(color.asShotNeutral);
+    const float neutral[3] = {static_cast<float>(n.x), static_cast<float>(n.y),
+                              static_cast<float>(n.z)};
     ok = ok && TIFFSetField(t, TIFFTAG_ASSHOTNEUTRAL, 3, neutral) == 1;
   }
   if (!ok) fail("cannot set a DNG tag");

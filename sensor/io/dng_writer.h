@@ -12,9 +12,10 @@
 //   Both:   BlackLevel (BlackLevelRepeatDim 1×1), WhiteLevel, DNGVersion 1.4.0.0,
 //           DNGBackwardVersion 1.1.0.0, Make "camsim", Model / UniqueCameraModel
 //           "camsim <sensor>", Orientation 1, Software "camsim <version>",
+//           BaselineExposure, NoiseProfile (when DngCapture has one),
 //           ImageDescription = the metadata as "key: value" lines; an EXIF IFD with
-//           ExposureTime, FNumber, FocalLength, ISOSpeedRatings and DateTimeOriginal
-//           (DngCapture: each omitted when 0 or empty).
+//           ExposureTime, FNumber, FocalLength, ISOSpeedRatings, DateTimeOriginal and
+//           ExposureBiasValue (DngCapture: each omitted when 0, empty or unset).
 // The sensor name is the value of the metadata key "camsim:sensor" (omitted if absent).
 //
 // Colour (DNG 1.4 spec, chapter 6): ColorMatrixN maps XYZ — of a scene lit by calibration
@@ -22,9 +23,26 @@
 // CfaLayout's channel order), scaled so that that illuminant's white maps to a camera value
 // whose largest component is 1; a reader interpolates between the two by the colour
 // temperature of AsShotNeutral. AsShotNeutral is the camera RGB of the scene white,
-// normalised so that G = 1 (a raw converter divides by it to white-balance): it must be
+// normalised so that its largest component is 1 (the DNG SDK's camera-white convention;
+// G = 1 whenever G is the largest, as for a Bayer sensor in daylight; a raw converter
+// divides by it to white-balance, so the scale does not change the picture): it must be
 // the white balance the scene was developed with (1/g of the ISP's gains), so that dcraw
 // -w or LibRaw develop the same greys as camsim's own ISP.
+//
+// Noise (DNG 1.3+, NoiseProfile, tag 51041, DOUBLE): the temporal noise of a raw value
+// normalised as a reader does, x = (DN − BlackLevel) / (WhiteLevel − BlackLevel) ∈ [0, 1],
+// is N(x) = √(S·x + O). camsim writes one (S, O) pair per colour plane (count 2·ColorPlanes:
+// 6 for R, G, B; 2 for mono), the same pair for each: the sensor model's gain and read noise
+// belong to the photosite, not to its filter. dngNoiseProfile() takes them from the sensor
+// model at the frame's ISO.
+//
+// BaselineExposure (tag 50730, SRATIONAL, EV) is what a reader adds to its exposure so that
+// the camera's normal exposure renders at normal brightness. camsim's ISP maps the
+// normalised raw to scene-linear × 1 (isp_pipeline.h, step 5: values are fractions of
+// saturation, auto-exposure puts its target there), which is a raw converter's own
+// convention: 0 EV, so that a raw converter renders the DNG as bright as NAME_acescg.exr.
+// A bracket's offset is not a baseline: it goes in EXIF ExposureBiasValue, as cameras
+// write it for auto-exposure bracketing (a BaselineExposure of −EV would undo the bracket).
 #pragma once
 
 #include <filesystem>
@@ -37,6 +55,8 @@
 
 #include "sensor/base/image.h"
 #include "sensor/model/raw_image.h"
+#include "sensor/model/sensor_model.h"
+#include "sensor/model/sensor_spec.h"
 #include "sensor/spectra/spectrum.h"
 
 namespace camsim {
@@ -49,7 +69,7 @@ struct DngCalibration {
 struct DngColor {
   DngCalibration calibration1;                 // ColorMatrix1, CalibrationIlluminant1
   std::optional<DngCalibration> calibration2;  // ColorMatrix2, CalibrationIlluminant2
-  glm::dvec3 asShotNeutral{1.0};               // camera R, G, B of the scene white, G = 1
+  glm::dvec3 asShotNeutral{1.0};  // camera R, G, B of the scene white (written with max 1)
 };
 
 // The EXIF LightSource code of a CIE illuminant name (camsim's cieIlluminant names): D50 23,
@@ -58,14 +78,39 @@ struct DngColor {
 // warm white 16); 0 when EXIF has none (ACES_D60).
 int exifLightSource(const std::string& cieIlluminantName);
 
-// What a camera records of the shot (EXIF IFD). A value of 0 (or an empty date) is omitted.
-struct DngCapture {
-  double exposureTimeS = 0.0;    // ExposureTime, s
-  double fNumber = 0.0;          // FNumber
-  double focalLengthMm = 0.0;    // FocalLength, mm
-  double iso = 0.0;              // ISOSpeedRatings (rounded; at most 65535)
-  std::string dateTimeOriginal;  // DateTimeOriginal, "YYYY:MM:DD HH:MM:SS"
+// DNG NoiseProfile: variance of the normalised raw value x (see above), S·x + O.
+struct DngNoiseProfile {
+  double scale = 0.0;   // S, variance per unit of x (> 0)
+  double offset = 0.0;  // O, variance at x = 0 (≥ 0)
 };
+
+// What a camera records of the shot: the EXIF IFD (a value of 0, an empty date or an unset
+// optional is omitted), BaselineExposure (always written) and NoiseProfile (when set).
+struct DngCapture {
+  double exposureTimeS = 0.0;                   // ExposureTime, s
+  double fNumber = 0.0;                         // FNumber
+  double focalLengthMm = 0.0;                   // FocalLength, mm
+  double iso = 0.0;                             // ISOSpeedRatings (rounded; at most 65535)
+  std::string dateTimeOriginal;                 // DateTimeOriginal, "YYYY:MM:DD HH:MM:SS"
+  std::optional<double> exposureBiasEv;         // ExposureBiasValue, EV (a bracket's offset)
+  double baselineExposureEv = 0.0;              // BaselineExposure, EV
+  std::optional<DngNoiseProfile> noiseProfile;  // NoiseProfile, one pair for every plane
+};
+
+// The NoiseProfile of a frame that expose(…, spec, settings, mode, …) makes: the sensor
+// model's temporal variance line at the frame's ISO (temporalVarianceLine, sensor_model.h:
+// σ² = slopeDn·(μ − black) + offsetDn2, in DN) in the DNG's normalised units, with
+// r = white level − black level:
+//
+//   S = slopeDn / r = K / r,    O = offsetDn2 / r² = (K²σ_pre² + σ_R² + σ_row²) / r²
+//
+// Like that line it leaves out what is not temporal (PRNU, DSNU, FPN, black offsets, hot
+// and stuck photosites) and the ADC's rounding (1/12 DN², O += 1/(12 r²) if wanted).
+// Mode photon draws shot noise only: O = 0. Mode none, or a noiseless sensor, draws no
+// noise: nullopt (the DNG requires S > 0, so the tag is omitted). Throws InputError as
+// temporalVarianceLine does (an ISO ≤ 0 or outside the sensor's iso_table).
+std::optional<DngNoiseProfile> dngNoiseProfile(const SensorSpec& spec,
+                                               const ExposureSettings& settings, NoiseMode mode);
 
 // The DNG colour of a sensor from its absolute QE curves (R, G, B order), by least
 // squares over the 24 patches of the ColorChecker Classic (reflectances R_p(λ) read from
@@ -81,9 +126,9 @@ struct DngCapture {
 // scene illuminant I (calibration1) and D65 (calibration2), or D65 alone when I is D65 or
 // has no EXIF code. The neutral is the camera's response to the perfect white under I,
 //
-//   w_k = Σ_λ QE_k(λ) · I(λ) · λ,   asShotNeutral = w / w_G
+//   w_k = Σ_λ QE_k(λ) · I(λ) · λ,   asShotNeutral = w / max_k w_k
 //
-// which equals 1/g of the ISP's illuminant white balance; a region or grey-world balance
+// which is 1/g of the ISP's illuminant white balance up to scale; a region or grey-world balance
 // sets asShotNeutral from its own gains (dngNeutralFromGains).
 //
 // Note the λ factor: a sensor whose QE is exactly x̄ȳz̄ counts photons, not energy, so its
@@ -92,7 +137,7 @@ struct DngCapture {
 DngColor dngColorFromQe(const std::vector<Spectrum>& qe, const std::string& illuminant,
                         const std::filesystem::path& colorCheckerCsv);
 
-// AsShotNeutral from white-balance gains g_k = w_G / w_k (R, G, B): 1/g, G = 1.
+// AsShotNeutral from white-balance gains g_k = w_G / w_k (R, G, B): 1/g, scaled to max 1.
 glm::dvec3 dngNeutralFromGains(const std::vector<double>& gains);
 
 // Writes raw as a DNG (see above). color is ignored for a monochrome CfaLayout.

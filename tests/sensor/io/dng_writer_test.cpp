@@ -155,7 +155,7 @@ TEST_P(DngLayoutTest, LibRawReadsDimensionsPatternLevelsAndValues) {
   const std::filesystem::path path = dir_ / ("gradient_" + name + ".dng");
   writeDng(path, raw, someColor(),
            {{"camsim:sensor", "test-" + name}, {"camsim:scene", "gradient"}},
-           DngCapture{1.0 / 125.0, 5.6, 35.0, 400.0, "2000:01:01 00:00:00"});
+           DngCapture{1.0 / 125.0, 5.6, 35.0, 400.0, "2000:01:01 00:00:00", {}, 0.0, {}});
   ASSERT_TRUE(std::filesystem::exists(path));
   EXPECT_GT(std::filesystem::file_size(path), 64u * 48u * 2u);
   ASSERT_TRUE(onPath("raw-identify"))
@@ -267,10 +267,10 @@ TEST(DngColorFromQe, IdealXyzSensorGivesTheNormalisedIdentity) {
   // The D65 white maps to max component 1 exactly.
   const glm::dvec3 w = color.calibration1.xyzToCamera * white;
   EXPECT_NEAR(std::max({w.x, w.y, w.z}), 1.0, 1e-12);
-  // AsShotNeutral under D65 = XYZ of the D65 white / Y.
-  EXPECT_NEAR(color.asShotNeutral.x, white.x, 1e-6);
-  EXPECT_DOUBLE_EQ(color.asShotNeutral.y, 1.0);
-  EXPECT_NEAR(color.asShotNeutral.z, white.z, 1e-6);
+  // AsShotNeutral under D65 = XYZ of the D65 white scaled to max 1 (Z is the largest).
+  EXPECT_NEAR(color.asShotNeutral.x, white.x / white.z, 1e-6);
+  EXPECT_NEAR(color.asShotNeutral.y, 1.0 / white.z, 1e-6);
+  EXPECT_DOUBLE_EQ(color.asShotNeutral.z, 1.0);
 }
 
 TEST(DngColorFromQe, PlainCmfQeIsCloseToButNotExactlyTheIdentity) {
@@ -305,8 +305,10 @@ TEST(DngColorFromQe, CalibrationsAndAsShotNeutralFollowTheIlluminant) {
   EXPECT_EQ(exifLightSource("D50"), 23);
   EXPECT_EQ(exifLightSource("ACES_D60"), 0);
   const glm::dvec3 whiteA = reflectanceToXyz(Spectrum::constant(1.0), cieIlluminant("A"));
-  EXPECT_NEAR(a.asShotNeutral.x, whiteA.x, 1e-6);  // ≈ 1.0985: tungsten is red
-  EXPECT_NEAR(a.asShotNeutral.z, whiteA.z, 1e-6);  // ≈ 0.3558
+  // Tungsten is red: X_A ≈ 1.0985 is the largest, so the neutral is XYZ_A / X_A.
+  EXPECT_DOUBLE_EQ(a.asShotNeutral.x, 1.0);
+  EXPECT_NEAR(a.asShotNeutral.y, 1.0 / whiteA.x, 1e-6);
+  EXPECT_NEAR(a.asShotNeutral.z, whiteA.z / whiteA.x, 1e-6);
 }
 
 TEST(DngColorFromQe, NeedsThreeCurves) {
@@ -320,6 +322,11 @@ TEST(DngColorFromQe, NeutralFromGainsIsTheirInverse) {
   EXPECT_DOUBLE_EQ(n.x, 0.5);
   EXPECT_DOUBLE_EQ(n.y, 1.0);
   EXPECT_DOUBLE_EQ(n.z, 0.8);
+  // R gain below 1 (R responds more than G): 1/g = (2, 1, 0.5), scaled to max 1.
+  const glm::dvec3 red = dngNeutralFromGains({0.5, 1.0, 2.0});
+  EXPECT_DOUBLE_EQ(red.x, 1.0);
+  EXPECT_DOUBLE_EQ(red.y, 0.5);
+  EXPECT_DOUBLE_EQ(red.z, 0.25);
 }
 
 }  // namespace
