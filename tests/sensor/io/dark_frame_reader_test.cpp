@@ -59,8 +59,7 @@ std::vector<RawImage> writeSources(const std::filesystem::path& dir) {
     char name[32];
     std::snprintf(name, sizeof name, "dark_%02d", f);
     if (f % 2 == 0)
-      writeDng(dir / (std::string(name) + ".dng"), raw, DngColor{}, {},
-               DngCapture{0.1, 0.0, 0.0, 100.0, {}});
+      writeDng(dir / (std::string(name) + ".dng"), raw, DngColor{}, {});
     else
       writeRawExr(dir / (std::string(name) + ".exr"), raw, flat(0.0), {});
     frames.push_back(std::move(raw));
