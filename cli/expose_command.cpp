@@ -59,8 +59,7 @@ std::unique_ptr<CLI::App> exposeApp(ExposeArgs& a) {
       ->type_name("N");
   app->add_option("--noise", a.settings.noise, "none, photon or full (default full)")
       ->type_name("MODE");
-  app->add_option("--threads", a.threads, "worker threads (default 0: all cores)")
-      ->type_name("N");
+  app->add_option("--threads", a.threads, "worker threads (default 0: all cores)")->type_name("N");
   addOutputOption(*app, a.outputDir, "output directory (created if missing; default: out)");
   return app;
 }
@@ -103,8 +102,7 @@ std::vector<std::filesystem::path> runExpose(const ExposeArgs& args, std::ostrea
   arena.execute([&] {
     tbb::parallel_for(0LL, job.frames, [&](long long f) {
       const auto frame = static_cast<std::uint64_t>(f);
-      writeExposedFrame(job, frame, exposeJobFrame(job, frame),
-                        paths[static_cast<std::size_t>(f)]);
+      writeExposedFrame(job, frame, exposeJobFrame(job, frame), paths[static_cast<std::size_t>(f)]);
       const long long n = ++done;
       if (job.frames < 4) return;
       const std::lock_guard<std::mutex> lock(logMutex);
