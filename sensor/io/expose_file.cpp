@@ -146,8 +146,8 @@ ElectronsExr readElectronsExr(const std::filesystem::path& path) {
          "no electrons layer (expected a render's NAME_raw.exr: raw.DN and electrons.<channel>)");
   e.electrons = Image(exr.image.width, exr.image.height, names);
   const std::size_t n = names.size(), all = exr.image.channels.size();
-  for (std::size_t p = 0; p < static_cast<std::size_t>(exr.image.width) *
-                                  static_cast<std::size_t>(exr.image.height);
+  for (std::size_t p = 0;
+       p < static_cast<std::size_t>(exr.image.width) * static_cast<std::size_t>(exr.image.height);
        ++p)
     for (std::size_t c = 0; c < n; ++c) {
       const float v = exr.image.pixels[p * all + static_cast<std::size_t>(layers[c])];
@@ -159,9 +159,8 @@ ElectronsExr readElectronsExr(const std::filesystem::path& path) {
     }
   e.sensorName = requiredAttribute(path, e.metadata, "camsim:sensor");
   e.cfaName = requiredAttribute(path, e.metadata, "camsim:cfa");
-  e.exposureTimeS = numberAttribute(
-      path, "camsim:exposure_time_s",
-      requiredAttribute(path, e.metadata, "camsim:exposure_time_s"));
+  e.exposureTimeS = numberAttribute(path, "camsim:exposure_time_s",
+                                    requiredAttribute(path, e.metadata, "camsim:exposure_time_s"));
   if (e.exposureTimeS < 0.0) fail(path, "camsim:exposure_time_s", "negative exposure time");
   if (const std::string* iso = findAttribute(e.metadata, "camsim:iso"))
     e.iso = numberAttribute(path, "camsim:iso", *iso);
@@ -228,8 +227,8 @@ ExposeJob prepareExpose(const std::filesystem::path& electronsExr,
     stem.resize(stem.size() - 4);
   job.stem = stem;
   if (spec.qe.size() == 3 && !spec.cfa.isStacked())
-    job.dngColor =
-        dngColorFromQe(spec.qe, "D65", lutsDir / "spectra" / "colorchecker_classic_reflectance.csv");
+    job.dngColor = dngColorFromQe(spec.qe, "D65",
+                                  lutsDir / "spectra" / "colorchecker_classic_reflectance.csv");
   return job;
 }
 
@@ -239,9 +238,8 @@ std::vector<RawImage> exposeJobFrame(const ExposeJob& job, std::uint64_t frame) 
 
 std::vector<std::string> exposeFrameFiles(const ExposeJob& job, std::uint64_t frame) {
   std::string index = std::to_string(frame);
-  const std::size_t width = std::to_string(job.frames - 1).size() < 4
-                                ? 4
-                                : std::to_string(job.frames - 1).size();
+  const std::size_t width =
+      std::to_string(job.frames - 1).size() < 4 ? 4 : std::to_string(job.frames - 1).size();
   if (index.size() < width) index.insert(0, width - index.size(), '0');
   const std::string base = job.stem + "_f" + index;
   if (!job.sensor.cfa.isStacked()) return {base + ".dng", base + "_raw.exr"};
@@ -253,15 +251,14 @@ std::vector<std::string> exposeFrameFiles(const ExposeJob& job, std::uint64_t fr
 void writeExposedFrame(const ExposeJob& job, std::uint64_t frame, const std::vector<RawImage>& raws,
                        const std::vector<std::filesystem::path>& paths) {
   const SensorSpec& spec = job.sensor;
-  const Metadata replaced = {
-      {"camsim:sensor", spec.name},
-      {"camsim:iso", formatShortest(job.exposure.iso)},
-      {"camsim:exposure_time_s", formatShortest(job.exposure.exposureTimeS)},
-      {"camsim:noise_seed", std::to_string(job.seed)},
-      {"camsim:frame", std::to_string(frame)},
-      {"camsim:noise", noiseModeName(job.noise)},
-      {"camsim:exposure_scale", formatShortest(job.exposureScale)},
-      {"camsim:exposed_from", job.input.path.filename().string()}};
+  const Metadata replaced = {{"camsim:sensor", spec.name},
+                             {"camsim:iso", formatShortest(job.exposure.iso)},
+                             {"camsim:exposure_time_s", formatShortest(job.exposure.exposureTimeS)},
+                             {"camsim:noise_seed", std::to_string(job.seed)},
+                             {"camsim:frame", std::to_string(frame)},
+                             {"camsim:noise", noiseModeName(job.noise)},
+                             {"camsim:exposure_scale", formatShortest(job.exposureScale)},
+                             {"camsim:exposed_from", job.input.path.filename().string()}};
   Metadata meta;
   for (const auto& entry : job.input.metadata)
     if (!findAttribute(replaced, entry.first) && entry.first != "camsim:render_seconds")

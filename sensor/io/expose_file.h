@@ -81,7 +81,7 @@ struct ExposeJob {
   std::uint64_t seed = 0;
   long long frames = 1;
   double exposureScale = 1.0;
-  std::string stem;  // output names: <stem>_f<NNNN>.dng, <stem>_f<NNNN>_raw.exr
+  std::string stem;   // output names: <stem>_f<NNNN>.dng, <stem>_f<NNNN>_raw.exr
   DngColor dngColor;  // from the sensor's QE under D65 (mosaic R, G, B sensors)
 };
 // Reads the file and checks the settings against it. InputError naming the file and the key

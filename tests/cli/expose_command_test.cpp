@@ -96,16 +96,16 @@ TEST(ExposeBinary, ReproducesTheRenderAndSeedsDecideTheBytes) {
   ASSERT_TRUE(fs::exists(raw));
   const fs::path a = dir.path() / "a", b = dir.path() / "b", c = dir.path() / "c";
   // The file's own seed, ISO and exposure: frame 0 is the render's raw, DN for DN.
-  RunResult r = test::runCamsim("expose " + quote(raw.string()) + " -o " + quote(a.string()),
-                                dir.path());
+  RunResult r =
+      test::runCamsim("expose " + quote(raw.string()) + " -o " + quote(a.string()), dir.path());
   ASSERT_EQ(r.exitCode, 0) << r.err;
   EXPECT_EQ(readExr(a / "still_f0000_raw.exr").image.channel(0).pixels,
             readExr(raw).image.channel(0).pixels);
   // Four frames at another ISO and half the exposure, twice with seed 5, once with seed 6.
   const std::string opts = " --frames 4 --iso 400 --exposure-scale 0.5 --seed ";
   for (const auto& [out, seed] : {std::pair{a, "5"}, std::pair{b, "5"}, std::pair{c, "6"}}) {
-    r = test::runCamsim("expose " + quote(raw.string()) + opts + seed + " -o " + quote(out.string()),
-                        dir.path());
+    r = test::runCamsim(
+        "expose " + quote(raw.string()) + opts + seed + " -o " + quote(out.string()), dir.path());
     ASSERT_EQ(r.exitCode, 0) << r.err;
   }
   EXPECT_NE(r.err.find("exposed 4 frames of 24x24"), std::string::npos) << r.err;
@@ -116,7 +116,8 @@ TEST(ExposeBinary, ReproducesTheRenderAndSeedsDecideTheBytes) {
   EXPECT_NE(readFile(a / "still_f0000.dng"), readFile(a / "still_f0001.dng"));
   const ExrFile f3 = readExr(a / "still_f0003_raw.exr");
   bool scaled = false;
-  for (const auto& [k, v] : f3.metadata) scaled = scaled || (k == "camsim:exposure_time_s" && v == "0.005");
+  for (const auto& [k, v] : f3.metadata)
+    scaled = scaled || (k == "camsim:exposure_time_s" && v == "0.005");
   EXPECT_TRUE(scaled);
 }
 

@@ -30,12 +30,9 @@ constexpr int kLevelSide = 64;  // each level a 64×64 block of photosites
 const std::vector<double> kLevels = {0.0, 40.0, 120.0, 250.0, 400.0, 600.0};  // e⁻
 
 Metadata rawMeta(const std::string& sensor, const std::string& cfa, const std::string& isStatic) {
-  Metadata m = {{"camsim:sensor", sensor},
-                {"camsim:cfa", cfa},
-                {"camsim:exposure_time_s", "0.01"},
-                {"camsim:iso", "400"},
-                {"camsim:noise_seed", "7"},
-                {"camsim:f_number", "2"},
+  Metadata m = {{"camsim:sensor", sensor},          {"camsim:cfa", cfa},
+                {"camsim:exposure_time_s", "0.01"}, {"camsim:iso", "400"},
+                {"camsim:noise_seed", "7"},         {"camsim:f_number", "2"},
                 {"camsim:focal_length_m", "0.005"}};
   if (!isStatic.empty()) m.push_back({"camsim:static_scene", isStatic});
   return m;
@@ -147,7 +144,8 @@ TEST(ExposeFile, SameSeedSameBytesOtherSeedOrFrameDiffers) {
   EXPECT_EQ(again.noiseSeed, 11u);
   EXPECT_TRUE(again.staticScene);
   bool hasFrame = false;
-  for (const auto& [k, v] : again.metadata) hasFrame = hasFrame || (k == "camsim:frame" && v == "1");
+  for (const auto& [k, v] : again.metadata)
+    hasFrame = hasFrame || (k == "camsim:frame" && v == "1");
   EXPECT_TRUE(hasFrame);
 }
 
@@ -205,8 +203,8 @@ TEST(ExposeFile, BadInputsNameTheFileAndKey) {
   // No electrons layer (the main EXR of a render, say).
   {
     TempDir other;
-    e = errorOf(writeLevels(other.path(), rawMeta("smartphone-1.4um", "RGGB", "1"), {"R", "G"}),
-                s, &key);
+    e = errorOf(writeLevels(other.path(), rawMeta("smartphone-1.4um", "RGGB", "1"), {"R", "G"}), s,
+                &key);
     EXPECT_EQ(key, "electrons.<channel>");
   }
   // No camsim:sensor.
