@@ -80,6 +80,9 @@ constexpr CommandSummary kCommands[] = {
     {"dataset",
      "renders the items of a dataset manifest (grids, random draws), sharded and "
      "resumable"},
+    {"expose",
+     "re-exposes a render's noise-free electrons (NAME_raw.exr) into N raw frames without "
+     "rendering again"},
     {"ptc", "EMVA 1288 photon-transfer measurement of a sensor"},
     {"bench", "speed against error of the renderer on reference scenes"},
 };

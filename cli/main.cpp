@@ -9,6 +9,7 @@
 #include "cli/args.h"
 #include "cli/bench_command.h"
 #include "cli/dataset_command.h"
+#include "cli/expose_command.h"
 #include "cli/merge_command.h"
 #include "cli/ptc_command.h"
 #include "cli/render_command.h"
@@ -46,6 +47,8 @@ int main(int argc, char** argv) {
   std::vector<std::string> args(argv + 1, argv + argc);
   try {
     if (!args.empty() && args[0] == "ptc") return camsim::runPtcCommand(args, std::cout, std::cerr);
+    if (!args.empty() && args[0] == "expose")
+      return camsim::runExposeCommand(args, std::cout, std::cerr);
     if (!args.empty() && args[0] == "merge")
       return camsim::runMergeCommand(args, std::cout, std::cerr);
     if (!args.empty() && args[0] == "dataset") {

@@ -18,13 +18,18 @@
 
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
+#include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <filesystem>
 #include <optional>
 
 #include "python/bindings.h"
+#include "sensor/base/format.h"
 #include "sensor/base/input_error.h"
 #include "sensor/base/luts_directory.h"
+#include "sensor/io/expose_file.h"
+#include "sensor/io/output_set.h"
 #include "sensor/isp/color_management.h"
 #include "sensor/isp/isp_pipeline.h"
 #include "sensor/model/sensor_model.h"
@@ -93,9 +98,18 @@ void storeFrame(const std::vector<RawImage>& raws, std::uint16_t* out) {
 py::array_t<std::uint16_t> exposeFrames(const py::array& electrons, const SensorSpec& sensor,
                                         std::uint64_t seed, std::optional<long long> frames,
                                         std::uint64_t firstFrame, double exposureTimeS,
-                                        std::optional<double> iso, const std::string& noise,
-                                        int threads) {
-  const Image img = electronsImage(electrons, sensor);
+                                        std::optional<double> iso, double exposureScale,
+                                        const std::string& noise, int threads) {
+  if (!(exposureScale > 0.0 && exposureScale <= kMaxExposureScale))
+    fail("<expose>", "exposure_scale",
+         "value " + formatShortest(exposureScale) + " is out of range " +
+             formatRange(0.0, kMaxExposureScale, true));
+  Image img = electronsImage(electrons, sensor);
+  // As a capture's bracket and `camsim expose` scale them: a static scene's electrons are
+  // linear in the exposure time.
+  if (exposureScale != 1.0)
+    for (float& v : img.pixels) v = static_cast<float>(static_cast<double>(v) * exposureScale);
+  exposureTimeS *= exposureScale;
   const NoiseMode mode = noiseMode(noise);
   const long long n = frames.value_or(1);
   if (n < 1 || n > kMaxFrames)
@@ -134,6 +148,70 @@ py::array_t<std::uint16_t> exposeFrames(const py::array& electrons, const Sensor
     if (PyErr_CheckSignals() != 0) throw py::error_already_set();  // Ctrl-C: KeyboardInterrupt
   }
   return out;
+}
+
+// `camsim expose` from Python: a render's NAME_raw.exr → frames (n, h, w[, C]) and, with
+// output_dir, the CLI's files (sensor/io/expose_file.h does the reading, checks and writing).
+py::dict exposeFile(const std::string& path, const std::optional<std::string>& sensor,
+                    std::optional<std::uint64_t> seed, long long frames, std::optional<double> iso,
+                    double exposureScale, const std::string& noise,
+                    const std::optional<std::string>& outputDir, int threads) {
+  if (threads < 0) fail("<expose_file>", "threads", "expected 0 (all cores) or a positive count");
+  ExposeFileSettings settings;
+  settings.sensor = sensor.value_or("");
+  settings.seed = seed;
+  settings.frames = frames;
+  settings.iso = iso;
+  settings.exposureScale = exposureScale;
+  settings.noise = noise;
+  const ExposeJob job = prepareExpose(path, settings, lutsDirectory());
+  const int planes = static_cast<int>(job.electrons.channels.size());
+  std::vector<py::ssize_t> shape{static_cast<py::ssize_t>(job.frames), job.electrons.height,
+                                 job.electrons.width};
+  if (planes > 1) shape.push_back(planes);
+  py::array_t<std::uint16_t> out(shape);
+  std::uint16_t* data = out.mutable_data();
+  const std::size_t frameSize = job.electrons.pixels.size();
+  std::optional<OutputSet> outputs;
+  std::vector<std::vector<std::filesystem::path>> paths;
+  if (outputDir) {
+    OutputSet::prepareDirectory(*outputDir);
+    outputs.emplace(*outputDir);
+    for (long long f = 0; f < job.frames; ++f) {
+      paths.emplace_back();
+      for (const std::string& name : exposeFrameFiles(job, static_cast<std::uint64_t>(f)))
+        paths.back().push_back(outputs->add(name));
+    }
+  }
+  tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
+  const long long group = std::max(1, arena.max_concurrency());
+  for (long long first = 0; first < job.frames; first += group) {
+    const long long last = std::min(job.frames, first + group);
+    {
+      py::gil_scoped_release release;
+      arena.execute([&] {
+        tbb::parallel_for(first, last, [&](long long f) {
+          const auto frame = static_cast<std::uint64_t>(f);
+          const auto raws = exposeJobFrame(job, frame);
+          storeFrame(raws, data + static_cast<std::size_t>(f) * frameSize);
+          if (outputs) writeExposedFrame(job, frame, raws, paths[static_cast<std::size_t>(f)]);
+        });
+      });
+    }
+    if (PyErr_CheckSignals() != 0) throw py::error_already_set();  // nothing committed
+  }
+  py::list files;
+  if (outputs)
+    for (const auto& f : outputs->commit()) files.append(f.string());
+  py::dict result;
+  result["raw"] = out;
+  result["files"] = files;
+  result["sensor"] = job.sensor;
+  result["iso"] = job.exposure.iso;
+  result["exposure_time_s"] = job.exposure.exposureTimeS;
+  result["seed"] = job.seed;
+  result["noise"] = noiseModeName(job.noise);
+  return result;
 }
 
 // One raw frame as the RawImages developRaw takes: a uint16 (h, w) mosaic, a stacked
@@ -334,8 +412,8 @@ channels, stacked, noiseless, pattern_seed.)doc")
   m.def(
       "expose", &exposeFrames, py::arg("electrons"), py::arg("sensor"), py::kw_only(),
       py::arg("seed"), py::arg("frames") = py::none(), py::arg("first_frame") = 0,
-      py::arg("exposure_time") = 1.0 / 60.0, py::arg("iso") = py::none(), py::arg("noise") = "full",
-      py::arg("threads") = 0,
+      py::arg("exposure_time") = 1.0 / 60.0, py::arg("iso") = py::none(),
+      py::arg("exposure_scale") = 1.0, py::arg("noise") = "full", py::arg("threads") = 0,
       R"doc(Raw frames from noise-free electrons: photons -> electrons -> noise -> ADC (EMVA 1288).
 
 electrons: expected photo-electrons per photosite (e-), float (height, width); a stacked
@@ -346,12 +424,33 @@ sensor: a camsim.Sensor. seed: the noise seed (temporal noise: shot, read; with
 frames: None -> one frame, uint16 (height, width[, C]); n -> uint16 (n, height, width[, C]),
   frame f drawn with frame index first_frame + f.
 exposure_time (s): for the dark signal only (the electrons already hold the light).
-iso: None -> the sensor's base ISO; gain K = (iso / base_iso) / conversion gain (DN/e-).
+iso: None -> the sensor's base ISO; gain K = (iso / base_iso) / conversion gain (DN/e-);
+  outside a calibrated iso_table's range: camsim.InputError.
+exposure_scale: X in (0, 1e6]: electrons and exposure_time times X (a static scene exposed
+  X times as long; as `camsim expose --exposure-scale`).
 noise: "full" (all), "photon" (shot noise only) or "none" (rounded mean).
 threads: 0 -> all cores; the bytes do not depend on it.
 With a capture's seed (meta["sensor"]["noise_seed"]), frame index, exposure time, ISO and
 noise mode this gives that capture's raw bytes. Releases the GIL; Ctrl-C raises
 KeyboardInterrupt between groups of frames. Bad input raises camsim.InputError.)doc");
+
+  m.def("expose_file", &exposeFile, py::arg("path"), py::kw_only(), py::arg("sensor") = py::none(),
+        py::arg("seed") = py::none(), py::arg("frames") = 1, py::arg("iso") = py::none(),
+        py::arg("exposure_scale") = 1.0, py::arg("noise") = "full",
+        py::arg("output_dir") = py::none(), py::arg("threads") = 0,
+        R"doc(`camsim expose` in Python: a render's NAME_raw.exr exposed again into frames.
+
+path: the raw EXR a render wrote (its electrons.<channel> layers: expected photo-electrons
+  per photosite at that frame's exposure). sensor: a preset or YAML path (None -> the
+  file's camsim:sensor; another sensor only with the same CFA, photosite area and QE).
+seed (None -> the file's camsim:noise_seed), iso (None -> the file's camsim:iso),
+exposure_scale X (electrons and exposure time times X; a scene that moved during the
+  exposure is refused unless X = 1), noise ("full", "photon", "none"), frames n: frame f
+  draws the noise of (seed, f), as `camsim expose`.
+output_dir: also write NAME_f<NNNN>.dng and NAME_f<NNNN>_raw.exr there, all at once (the
+  CLI's bytes). Returns {"raw": uint16 (n, H, W[, C]), "files": [...], "sensor", "iso",
+  "exposure_time_s", "seed", "noise"}. Bad input raises camsim.InputError naming the file
+  and the key. Releases the GIL; Ctrl-C raises KeyboardInterrupt (nothing written).)doc");
 
   m.def("develop", &developFrame, py::arg("raw"), py::arg("sensor"), py::kw_only(),
         py::arg("white_balance") = "illuminant", py::arg("illuminant") = "D65",

@@ -40,6 +40,9 @@ Metadata filmMetadata(const CaptureResult& r, bool reproducible) {
                    {"camsim:seed", std::to_string(desc.render.seed)},
                    {"camsim:rejected_samples", std::to_string(st.rejectedSamples)},
                    {"camsim:modelled", st.modelled.describe()},
+                   // 1: nothing moves during the exposure, so the expected electrons scale
+                   // with the exposure time (what `camsim expose --exposure-scale` needs).
+                   {"camsim:static_scene", st.modelled.time ? "0" : "1"},
                    {"camsim:units",
                     "energy on each photosite weighted by the CIE 1931 observer x 683 lm/W: "
                     "XYZ.Y is luminous energy in lm*s (talbot); R,G,B: linear Rec.709 on the "

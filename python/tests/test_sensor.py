@@ -9,8 +9,12 @@
   64 frames) correlates above 0.8 between seeds, single frames' residuals do not (|r| < 0.1);
 - with a capture's seed, frame, exposure and ISO, expose() gives the capture's raw bytes,
   develop() its ACEScg and display() its display values and PNG bytes, bit for bit;
-- bad input raises camsim.InputError naming the argument.
+- bad input raises camsim.InputError naming the argument;
+- expose_file() (`camsim expose` in Python) writes the CLI's bytes, and its frames are
+  expose() with exposure_scale on the file's electrons.
 """
+import subprocess
+
 import numpy as np
 import pytest
 
@@ -121,3 +125,43 @@ def test_bad_input_raises_input_error_naming_the_argument(sensor, call, key):
 def test_unknown_sensor_preset_is_an_input_error():
     with pytest.raises(camsim.InputError, match="no-such-sensor"):
         camsim.Sensor("no-such-sensor")
+
+
+def test_expose_file_gives_the_cli_bytes_and_expose_with_exposure_scale(cli_box, camsim_binary,
+                                                                          tmp_path):
+    """expose_file() writes `camsim expose`'s bytes; its frames are expose() on the file's
+    electrons with the same seed, ISO, exposure_scale and the recorded exposure time."""
+    raw_exr = next(cli_box.glob("*_raw.exr"))
+    cli = tmp_path / "cli"
+    subprocess.run([camsim_binary, "expose", str(raw_exr), "--frames", "3", "--seed", "4",
+                    "--iso", "400", "--exposure-scale", "0.5", "-o", str(cli)], check=True,
+                   capture_output=True)
+    r = camsim.expose_file(str(raw_exr), seed=4, frames=3, iso=400, exposure_scale=0.5,
+                           output_dir=str(tmp_path / "py"))
+    assert r["raw"].shape[0] == 3 and r["raw"].dtype == np.uint16
+    assert len(r["files"]) == 6
+    for f in r["files"]:
+        name = f.rsplit("/", 1)[1]
+        assert (cli / name).read_bytes() == (tmp_path / "py" / name).read_bytes(), name
+    exr = camsim.read_exr(str(raw_exr))
+    electrons = next(v for k, v in exr["channels"].items() if k.startswith("electrons."))
+    t = float(exr["metadata"]["camsim:exposure_time_s"])
+    assert r["exposure_time_s"] == pytest.approx(0.5 * t, rel=1e-12)
+    direct = camsim.expose(electrons, r["sensor"], seed=4, frames=3, exposure_time=t, iso=400,
+                           exposure_scale=0.5)
+    np.testing.assert_array_equal(r["raw"], direct)
+    written = camsim.read_exr(str(tmp_path / "py" / r["files"][-1].rsplit("/", 1)[1]))
+    np.testing.assert_array_equal(written["channels"]["raw.DN"], r["raw"][2])
+
+
+def test_expose_file_bad_input_names_the_key(cli_box, tmp_path):
+    raw_exr = str(next(cli_box.glob("*_raw.exr")))
+    for kwargs, key in [({"frames": 0}, "frames"), ({"exposure_scale": 0.0}, "exposure_scale"),
+                        ({"iso": -1.0}, "iso"), ({"noise": "loud"}, "noise"),
+                        ({"sensor": "fullframe-d850"}, "sensor")]:
+        with pytest.raises(camsim.InputError) as e:
+            camsim.expose_file(raw_exr, output_dir=str(tmp_path / "out"), **kwargs)
+        assert key in str(e.value) and "_raw.exr" in str(e.value)
+    with pytest.raises(camsim.InputError, match="no such file"):
+        camsim.expose_file(str(tmp_path / "missing_raw.exr"))
+    assert not (tmp_path / "out").exists()
