@@ -4,14 +4,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdarg>
-#include <cstdio>
-#include <memory>
 #include <string>
 
 #include "sensor/base/format.h"
 #include "sensor/base/input_error.h"
 #include "sensor/io/exr_io.h"
+#include "sensor/io/tiff_file.h"
 
 namespace camsim {
 namespace fs = std::filesystem;
@@ -19,20 +17,6 @@ namespace {
 
 constexpr int kPhotometricLinearRaw = 34892;  // DNG; libtiff's tiff.h does not name it
 constexpr std::uint32_t kMaxSide = 1u << 16;
-
-__attribute__((format(printf, 4, 0))) int keepTiffError(TIFF*, void* userData, const char* module,
-                                                        const char* fmt, va_list ap) {
-  auto* message = static_cast<std::string*>(userData);
-  if (message->empty()) {
-    char buffer[512];
-    std::vsnprintf(buffer, sizeof buffer, fmt, ap);
-    *message = std::string(module ? module : "libtiff") + ": " + buffer;
-  }
-  return 1;
-}
-int quietTiffWarning(TIFF*, void*, const char*, const char*, va_list) {
-  return 1;
-}
 
 RawImage readRawExrFrame(const fs::path& path) {
   const ExrFile exr = readExr(path);
@@ -72,12 +56,7 @@ RawImage readRawExrFrame(const fs::path& path) {
 
 RawImage readRawDng(const fs::path& path) {
   std::string error;
-  std::unique_ptr<TIFFOpenOptions, void (*)(TIFFOpenOptions*)> options(TIFFOpenOptionsAlloc(),
-                                                                       &TIFFOpenOptionsFree);
-  TIFFOpenOptionsSetErrorHandlerExtR(options.get(), &keepTiffError, &error);
-  TIFFOpenOptionsSetWarningHandlerExtR(options.get(), &quietTiffWarning, nullptr);
-  std::unique_ptr<TIFF, void (*)(TIFF*)> tif(TIFFOpenExt(path.c_str(), "r", options.get()),
-                                             &TIFFClose);
+  const TiffPtr tif = openTiff(path, "r", error);
   const auto fail = [&](const std::string& what) {
     throw InputError({path.string(), 0, 0}, "dark_frames",
                      "cannot read the DNG " + path.string() + ": " + what +

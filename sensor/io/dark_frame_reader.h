@@ -1,7 +1,7 @@
 // Reading dark frames: uncompressed 16-bit raw DNGs (one CFA or LinearRaw image in IFD0,
 // as camsim and most converters' "uncompressed" option write them) and camsim's raw EXRs
-// (the "raw.DN" channel, black level in camsim:black_level_dn). The one module besides
-// dng_writer that includes libtiff.
+// (the "raw.DN" channel, black level in camsim:black_level_dn). Opens DNGs with
+// tiff_file.h, as the DNG writer does.
 #pragma once
 
 #include <filesystem>

@@ -4,10 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdarg>
 #include <cstdint>
-#include <cstdio>
-#include <memory>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -16,6 +13,7 @@
 
 #include "sensor/base/check.h"
 #include "sensor/base/input_error.h"
+#include "sensor/io/tiff_file.h"
 #include "sensor/isp/color_correction.h"
 #include "sensor/isp/white_balance.h"
 #include "sensor/spectra/spectral_data.h"
@@ -44,24 +42,6 @@ int planeColorCode(const std::string& name) {
   if (name == "G") return 1;
   if (name == "B") return 2;
   return -1;
-}
-
-// libtiff's per-file error handler: keeps the first message for the exception. Declared
-// printf-like so compilers check the forwarding of libtiff's format string.
-__attribute__((format(printf, 4, 0))) int captureTiffError(TIFF*, void* userData,
-                                                           const char* module, const char* fmt,
-                                                           va_list ap) {
-  auto* message = static_cast<std::string*>(userData);
-  if (message->empty()) {
-    char buffer[512];
-    std::vsnprintf(buffer, sizeof buffer, fmt, ap);
-    *message = std::string(module ? module : "libtiff") + ": " + buffer;
-  }
-  return 1;
-}
-
-int ignoreTiffWarning(TIFF*, void*, const char*, const char*, va_list) {
-  return 1;
 }
 
 std::string metadataValue(const Metadata& meta, const std::string& key) {
@@ -159,12 +139,7 @@ void writeDng(const std::filesystem::path& path, const RawImage& raw, const DngC
   }
 
   std::string error;
-  std::unique_ptr<TIFFOpenOptions, void (*)(TIFFOpenOptions*)> options(TIFFOpenOptionsAlloc(),
-                                                                       &TIFFOpenOptionsFree);
-  TIFFOpenOptionsSetErrorHandlerExtR(options.get(), &captureTiffError, &error);
-  TIFFOpenOptionsSetWarningHandlerExtR(options.get(), &ignoreTiffWarning, nullptr);
-  std::unique_ptr<TIFF, void (*)(TIFF*)> tif(TIFFOpenExt(path.c_str(), "w", options.get()),
-                                             &TIFFClose);
+  TiffPtr tif = openTiff(path, "w", error);
   const auto fail = [&](const std::string& what) {
     throw std::runtime_error("cannot write DNG " + path.string() + ": " + what +
                              (error.empty() ? "" : " (" + error + ")"));

@@ -1,6 +1,7 @@
 // DNG output of a RawImage: the raw digital numbers as an Adobe DNG 1.4 file (readable by
 // DNG 1.1 readers) that raw converters (LibRaw/dcraw, darktable, RawTherapee, Lightroom)
-// develop like a camera raw. This module is the only one that includes libtiff.
+// develop like a camera raw. libtiff is included here, in the dark-frame reader
+// (dark_frame_reader.h) and in tiff_file.cpp, which opens files for both; in no header.
 //
 // File layout: one IFD (IFD0, NewSubFileType 0) holding the whole raw image, uncompressed
 // 16-bit, one strip per few rows.

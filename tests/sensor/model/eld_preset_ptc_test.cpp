@@ -20,9 +20,9 @@ struct Fit {
   double slope, bias;
   double at(double k) const { return std::exp(slope * std::log(k) + bias); }
 };
-constexpr Fit kGaussian{0.5407496082896145, 1.218237123334061};   // g_scale
-constexpr Fit kTukey{0.46210495986526035, 0.5657147358616816};    // G_scale
-constexpr Fit kRow{0.5275360468633209, -0.5917002648887661};      // R_scale
+constexpr Fit kGaussian{0.5407496082896145, 1.218237123334061};  // g_scale
+constexpr Fit kTukey{0.46210495986526035, 0.5657147358616816};   // G_scale
+constexpr Fit kRow{0.5275360468633209, -0.5917002648887661};     // R_scale
 
 // 512² photosites (half of them green, the analysed channel) and 32 dark frames:
 // the row σ's standard error is ≈ 1 %, the Tukey scale's ≈ 0.5 %.
