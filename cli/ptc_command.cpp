@@ -30,14 +30,6 @@ std::string formatSigned(double v, int decimals) {
   return (std::signbit(v) ? "" : "+") + formatFixed(v, decimals);  // as printf "%+.*f"
 }
 
-// Pads to `width` code points (UTF-8: continuation bytes do not count).
-std::string pad(const std::string& s, std::size_t width, bool right = false) {
-  std::size_t points = 0;
-  for (unsigned char ch : s) points += (ch & 0xC0) != 0x80;
-  const std::string fill(points < width ? width - points : 0, ' ');
-  return right ? fill + s : s + fill;
-}
-
 // Significant digits without an exponent for the magnitudes in the table.
 std::string number(double v) {
   const double a = std::abs(v);
@@ -178,8 +170,9 @@ std::string formatPtcTable(const PtcResult& m, const PtcConfigured& c, const Ptc
                     d.tukeyScaleDn.uncertainty, false, c.tukey});
   }
   std::ostringstream out;
-  out << pad("quantity", 33) << pad("unit", 11) << pad("configured", 12, true)
-      << pad("measured", 12, true) << pad("± u", 10, true) << pad("error", 11, true) << "\n";
+  out << padColumn("quantity", 33) << padColumn("unit", 11) << padColumn("configured", 12, true)
+      << padColumn("measured", 12, true) << padColumn("± u", 10, true)
+      << padColumn("error", 11, true) << "\n";
   for (const Row& r : rows) {
     std::string err;
     if (!r.hasConfigured)
@@ -190,10 +183,10 @@ std::string formatPtcTable(const PtcResult& m, const PtcConfigured& c, const Ptc
                                                                            : "");
     else if (r.configured != 0.0)
       err = formatSigned(100.0 * (r.measured / r.configured - 1.0), 2) + " %";
-    out << pad(r.name, 33) << pad(r.unit, 11)
-        << pad(r.hasConfigured ? number(r.configured) : "—", 12, true)
-        << pad(number(r.measured), 12, true) << pad(un ? number(r.u) : "", 10, true)
-        << pad(err, 11, true) << "\n";
+    out << padColumn(r.name, 33) << padColumn(r.unit, 11)
+        << padColumn(r.hasConfigured ? number(r.configured) : "—", 12, true)
+        << padColumn(number(r.measured), 12, true) << padColumn(un ? number(r.u) : "", 10, true)
+        << padColumn(err, 11, true) << "\n";
   }
   return out.str();
 }

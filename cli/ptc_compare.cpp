@@ -141,10 +141,9 @@ class Comparer {
   }
 };
 
-std::string pad(const std::string& s, std::size_t width) {
-  std::size_t points = 0;
-  for (unsigned char ch : s) points += (ch & 0xC0) != 0x80;
-  return s + std::string(points < width ? width - points : 1, ' ');
+// Pads to `width` code points, with at least one space after the text.
+std::string padCell(const std::string& s, std::size_t width) {
+  return padColumn(s, width - 1) + " ";
 }
 
 std::string withError(double v, double u) {
@@ -168,16 +167,17 @@ bool formatPtcComparison(const std::vector<PtcComparison>& rows, const std::stri
   out << "camsim ptc --compare: A = " << fileA << ", B = " << fileB << "\n"
       << "moved: |a − b| > " << formatShortest(kCompareCoverage)
       << "·√(u_a² + u_b²) (u: standard errors from the reports)\n\n"
-      << pad("quantity", 48) << pad("A", 26) << pad("B", 26) << pad("z", 8) << "\n";
+      << padCell("quantity", 48) << padCell("A", 26) << padCell("B", 26) << padCell("z", 8) << "\n";
   int moved = 0;
   for (const PtcComparison& r : rows) {
     moved += r.moved;
     if (!r.note.empty()) {
-      out << pad(r.label, 48) << r.note << (r.moved ? "  MOVED" : "") << "\n";
+      out << padCell(r.label, 48) << r.note << (r.moved ? "  MOVED" : "") << "\n";
       continue;
     }
-    out << pad(r.label, 48) << pad(withError(r.a, r.ua), 26) << pad(withError(r.b, r.ub), 26)
-        << pad(std::isfinite(r.z) ? formatFixed(r.z, 2) : "inf", 8) << (r.moved ? "MOVED" : "")
+    out << padCell(r.label, 48) << padCell(withError(r.a, r.ua), 26)
+        << padCell(withError(r.b, r.ub), 26)
+        << padCell(std::isfinite(r.z) ? formatFixed(r.z, 2) : "inf", 8) << (r.moved ? "MOVED" : "")
         << "\n";
   }
   out << "\n"

@@ -75,6 +75,13 @@ JsonObject isoObject(const PtcIsoReport& r) {
 
 }  // namespace
 
+std::string padColumn(const std::string& s, std::size_t width, bool right) {
+  std::size_t points = 0;
+  for (unsigned char ch : s) points += (ch & 0xC0) != 0x80;
+  const std::string fill(points < width ? width - points : 0, ' ');
+  return right ? fill + s : s + fill;
+}
+
 std::string formatPtcJson(const SensorSpec& sensor, const PtcOptions& options,
                           const std::vector<PtcIsoReport>& isos, const IsoFit& fit) {
   JsonObject setup;

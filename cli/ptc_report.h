@@ -27,6 +27,10 @@ struct PtcIsoReport {
 };
 
 // The JSON text of the report (sensor/io/json_writer.h).
+// Pads to `width` code points (UTF-8: continuation bytes do not count), on the right or
+// (right = true) on the left.
+std::string padColumn(const std::string& s, std::size_t width, bool right = false);
+
 std::string formatPtcJson(const SensorSpec& sensor, const PtcOptions& options,
                           const std::vector<PtcIsoReport>& isos, const IsoFit& fit);
 

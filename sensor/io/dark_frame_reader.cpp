@@ -15,7 +15,6 @@ namespace camsim {
 namespace fs = std::filesystem;
 namespace {
 
-constexpr int kPhotometricLinearRaw = 34892;  // DNG; libtiff's tiff.h does not name it
 constexpr std::uint32_t kMaxSide = 1u << 16;
 
 RawImage readRawExrFrame(const fs::path& path) {

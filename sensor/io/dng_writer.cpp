@@ -21,7 +21,6 @@
 namespace camsim {
 namespace {
 
-constexpr int kPhotometricLinearRaw = 34892;       // DNG; libtiff's tiff.h does not name it
 constexpr std::uint32_t kTagNoiseProfile = 51041;  // DNG 1.3; libtiff 4.5 does not know it
 
 // Tags libtiff does not know, registered on the open file (TIFFCreateDirectory resets the

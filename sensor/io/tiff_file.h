@@ -11,6 +11,9 @@ typedef struct tiff TIFF;  // libtiff's handle (tiffio.h declares it the same wa
 
 namespace camsim {
 
+// PhotometricInterpretation LinearRaw (DNG); libtiff's tiff.h does not name it.
+inline constexpr int kPhotometricLinearRaw = 34892;
+
 struct TiffCloser {
   void operator()(TIFF* tif) const;
 };

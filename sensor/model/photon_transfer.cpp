@@ -21,9 +21,7 @@ namespace {
 
 constexpr double kPlanckJs = 6.62607015e-34;
 constexpr double kLightSpeedMs = 299792458.0;
-constexpr double kQuantisationVar = 1.0 / 12.0;  // σ²_q, DN²
-constexpr double kMinDarkVar = 0.24;             // EMVA: lower limit of σ²_y.dark, DN²
-constexpr double kFitTop = 0.70;                 // K and R: 0–70 % of saturation
+constexpr double kFitTop = 0.70;  // K and R: 0–70 % of saturation
 constexpr double kLinearityLow = 0.05, kLinearityHigh = 0.95;
 
 // Least squares through the origin: the slope of y = s·x.
@@ -163,8 +161,8 @@ PairStatistics pairStatistics(const RawImage& a, const RawImage& b,
 
 double modelSnr(double muP, double eta, double darkNoiseE, double systemGainK) {
   const double e = eta * muP;
-  return e /
-         std::sqrt(darkNoiseE * darkNoiseE + kQuantisationVar / (systemGainK * systemGainK) + e);
+  return e / std::sqrt(darkNoiseE * darkNoiseE +
+                       kPtcQuantisationVarDn2 / (systemGainK * systemGainK) + e);
 }
 
 PtcResult analysePhotonTransfer(const PtcMeasurements& data) {
@@ -185,9 +183,9 @@ PtcResult analysePhotonTransfer(const PtcMeasurements& data) {
   r.responsivityR = slopeThroughOrigin(photons, signal);
   const double k = r.systemGainK;
   r.quantumEfficiency = k > 0.0 ? r.responsivityR / k : 0.0;
-  const double darkVar = std::max(data.varYDark, kMinDarkVar);
+  const double darkVar = std::max(data.varYDark, kPtcMinDarkVarDn2);
   r.sigmaYDark = std::sqrt(darkVar);
-  r.darkNoiseE = std::sqrt(darkVar - kQuantisationVar) / k;
+  r.darkNoiseE = std::sqrt(darkVar - kPtcQuantisationVarDn2) / k;
   r.muPSat = data.levels[static_cast<std::size_t>(r.saturationIndex)].muP;
   r.muESat = r.quantumEfficiency * r.muPSat;
   double maxY = data.levels.front().muY;

@@ -44,6 +44,9 @@
 
 namespace camsim {
 
+inline constexpr double kPtcQuantisationVarDn2 = 1.0 / 12.0;  // σ²_q, DN²
+inline constexpr double kPtcMinDarkVarDn2 = 0.24;  // EMVA: lower limit of σ²_y.dark, DN²
+
 struct PtcOptions {
   double wavelengthNm = 550.0;         // λ₀
   int width = 256, height = 256;       // region of photosites exposed

@@ -21,8 +21,6 @@
 namespace camsim {
 namespace {
 
-constexpr double kQuantisationVar = 1.0 / 12.0;  // σ²_q, DN²
-
 // The mean temporal variance (e⁻²) of photosites clipped at `clip` electrons when μ
 // photo-electrons are expected and readE e⁻ of signal-independent noise is added: the
 // clipped-normal variance averaged over the PRNU gain and the offset patterns (21 × 21 nodes
@@ -94,17 +92,18 @@ PtcConfigured configuredPhotonTransfer(const SensorSpec& sensor, const PtcOption
   c.tukeyLambda = n.tukeyLambda;
   c.tukeyScaleDn = n.tukeyScaleDn;
   c.darkNoiseE = std::sqrt(c.readPreDarkE * c.readPreDarkE + (postVar + rowVar) / (k * k));
-  c.darkVarianceDn2 = k * k * c.readPreDarkE * c.readPreDarkE + postVar + rowVar + kQuantisationVar;
+  c.darkVarianceDn2 =
+      k * k * c.readPreDarkE * c.readPreDarkE + postVar + rowVar + kPtcQuantisationVarDn2;
   c.readGaussianDn =
       std::sqrt(k * k * (c.readPreDarkE * c.readPreDarkE + sensor.dsnuE * sensor.dsnuE) + postVar +
-                kQuantisationVar);
+                kPtcQuantisationVarDn2);
   c.muESat = sensor.saturationElectrons(c.iso);
   c.dsnuE = std::sqrt(sensor.dsnuE * sensor.dsnuE + sensor.rowFpnE * sensor.rowFpnE +
                       sensor.columnFpnE * sensor.columnFpnE);
   const double readE = std::sqrt(n.readPreE * n.readPreE + (postVar + rowVar) / (k * k));
   c.muESatEmva = varianceMaximumE(sensor, darkE, readE, c.dsnuE, c.muESat);
   const double muEMin =
-      0.5 + std::sqrt(0.25 + c.darkNoiseE * c.darkNoiseE + kQuantisationVar / (k * k));
+      0.5 + std::sqrt(0.25 + c.darkNoiseE * c.darkNoiseE + kPtcQuantisationVarDn2 / (k * k));
   c.muPMin = muEMin / e;
   c.dynamicRangeDb = 20.0 * std::log10(c.muESatEmva / muEMin);
   c.snrMaxDb = 10.0 * std::log10(c.muESatEmva);

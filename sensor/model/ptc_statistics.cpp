@@ -11,8 +11,6 @@
 namespace camsim {
 namespace {
 
-constexpr double kQuantisationVar = 1.0 / 12.0;
-constexpr double kMinDarkVar = 0.24;
 constexpr double kSegmentZ = 4.0, kSegmentRelative = 0.01;
 
 // First-order propagation of independent uncertainties u through f (central differences).
@@ -137,13 +135,13 @@ PtcUncertainty photonTransferUncertainty(const PtcResult& r) {
   // Propagation through (K, R, σ²_y.dark, μ_p.sat).
   const std::vector<double> x = {r.systemGainK, r.responsivityR, d.varYDark, r.muPSat};
   const std::vector<double> ux = {u.systemGainK, u.responsivityR, u.varYDark, u.muPSat};
-  const auto darkVar = [](double v) { return std::max(v, kMinDarkVar); };
+  const auto darkVar = [](double v) { return std::max(v, kPtcMinDarkVarDn2); };
   const auto muPMin = [&](const std::vector<double>& p) {
     return (0.5 + std::sqrt(0.25 + darkVar(p[2]) / (p[0] * p[0]))) * p[0] / p[1];
   };
   u.darkNoiseE = propagate(
       [&](const std::vector<double>& p) {
-        return std::sqrt(darkVar(p[2]) - kQuantisationVar) / p[0];
+        return std::sqrt(darkVar(p[2]) - kPtcQuantisationVarDn2) / p[0];
       },
       x, ux);
   u.muESat = propagate([](const std::vector<double>& p) { return p[1] / p[0] * p[3]; }, x, ux);
@@ -194,7 +192,7 @@ IsoPoint isoPoint(const PtcResult& r, const PtcUncertainty& u) {
   IsoPoint p;
   p.iso = r.iso;
   p.systemGainK = {r.systemGainK, u.systemGainK};
-  p.darkVariance = {r.data.varYDark - kQuantisationVar - row.value * row.value,
+  p.darkVariance = {r.data.varYDark - kPtcQuantisationVarDn2 - row.value * row.value,
                     std::hypot(u.varYDark, 2.0 * row.value * row.uncertainty)};
   return p;
 }

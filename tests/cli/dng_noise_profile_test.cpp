@@ -18,7 +18,7 @@
 #include "tests/support/temp_dir.h"
 #include "tests/support/text_file.h"
 
-namespace camsim {
+namespace camsim::dng_noise_profile_test {
 namespace {
 
 using test::onPath;
@@ -122,4 +122,4 @@ TEST(DngNoiseProfile, RenderWritesTheSensorsNoiseAtTheScenesIso) {
 }
 
 }  // namespace
-}  // namespace camsim
+}  // namespace camsim::dng_noise_profile_test

@@ -18,7 +18,7 @@
 #include "tests/support/run_command.h"
 #include "tests/support/text_file.h"
 
-namespace camsim {
+namespace camsim::expose_command_test {
 namespace {
 
 namespace fs = std::filesystem;
@@ -181,4 +181,4 @@ TEST(ExposeBinary, BadInputExitsTwoNamingFileAndKeyAndWritesNothing) {
 }
 
 }  // namespace
-}  // namespace camsim
+}  // namespace camsim::expose_command_test

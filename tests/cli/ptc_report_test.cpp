@@ -19,7 +19,7 @@
 #include "tests/support/temp_dir.h"
 #include "tests/support/text_file.h"
 
-namespace camsim {
+namespace camsim::ptc_report_test {
 namespace {
 
 namespace fs = std::filesystem;
@@ -213,4 +213,4 @@ TEST(PtcArgs, IsoListAndCompare) {
 }
 
 }  // namespace
-}  // namespace camsim
+}  // namespace camsim::ptc_report_test

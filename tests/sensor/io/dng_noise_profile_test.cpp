@@ -28,7 +28,7 @@
 #include "tests/support/temp_dir.h"
 #include "tests/support/text_file.h"
 
-namespace camsim {
+namespace camsim::dng_noise_profile_test {
 namespace {
 
 using test::onPath;
@@ -221,4 +221,4 @@ TEST_F(DngNoiseProfileTest, ExposureTagsAndNeutralScaling) {
 }
 
 }  // namespace
-}  // namespace camsim
+}  // namespace camsim::dng_noise_profile_test

@@ -19,7 +19,7 @@
 #include "sensor/model/sensor_noise.h"
 #include "tests/support/text_file.h"
 
-namespace camsim {
+namespace camsim::expose_file_test {
 namespace {
 
 namespace fs = std::filesystem;
@@ -264,4 +264,4 @@ TEST(ExposeFile, IsoOutsideTheCalibratedRangeIsRefused) {
 }
 
 }  // namespace
-}  // namespace camsim
+}  // namespace camsim::expose_file_test

@@ -17,7 +17,7 @@
 #include "sensor/model/sensor_noise.h"
 #include "sensor/model/sensor_spec.h"
 
-namespace camsim {
+namespace camsim::dark_frame_analysis_test {
 namespace {
 
 constexpr int kSize = 256;
@@ -152,4 +152,4 @@ TEST(NormalQuantile, MatchesTheCdf) {
 }
 
 }  // namespace
-}  // namespace camsim
+}  // namespace camsim::dark_frame_analysis_test

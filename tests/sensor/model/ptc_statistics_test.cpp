@@ -15,7 +15,7 @@
 #include "sensor/model/sensor_noise.h"
 #include "sensor/model/sensor_spec.h"
 
-namespace camsim {
+namespace camsim::ptc_statistics_test {
 namespace {
 
 SensorSpec sensorFrom(const std::string& extra) {
@@ -161,4 +161,4 @@ TEST(PtcAcrossIsos, ExactSplitOnSyntheticPoints) {
 }
 
 }  // namespace
-}  // namespace camsim
+}  // namespace camsim::ptc_statistics_test
