@@ -205,28 +205,17 @@ JsonObject sensorJson(const CaptureResult& r) {
       .set("exposure_times_s", times)
       .set("system_gain_dn_per_e", sensor.spec.systemGain(sensor.iso))
       .set("saturation_e", sensor.spec.saturationElectrons(sensor.iso));
-  // Which noise terms this capture modelled (sensor/model/sensor_noise.h names them), and
-  // the temporal variance line σ² = slope·(μ − black) + offset at the first frame's time.
-  // With dark frames, they carry every signal-independent term.
-  const bool darkFrames = !sensor.spec.darkFramesDir.empty();
-  std::vector<std::string> terms;
-  if (sensor.noise == NoiseMode::kFull && !sensor.spec.noiseless && darkFrames) {
-    terms = {"shot"};
-    if (sensor.spec.prnuFraction > 0.0) terms.emplace_back("prnu");
-    terms.emplace_back("dark_frames");
-    d.set("dark_frames", sensor.spec.darkFramesDir.string());
-  } else if (sensor.noise == NoiseMode::kFull && !sensor.spec.noiseless) {
-    terms = modelledNoiseTerms(sensor.spec, sensor.iso);
-  } else if (sensor.noise == NoiseMode::kPhoton && !sensor.spec.noiseless) {
-    terms = {"shot"};
-  }
+  // Which noise terms this capture drew, and their temporal variance line
+  // σ² = slope·(μ − black) + offset at the first frame's time (exposedNoiseTerms).
+  const std::vector<std::string> terms = exposedNoiseTerms(sensor.spec, sensor.iso, sensor.noise);
   d.set("noise_terms", terms);
-  if (!terms.empty() && !r.frames.empty() && !darkFrames) {
-    const VarianceLine line = temporalVarianceLine(
-        sensor.spec, ExposureSettings{r.frames.front().exposureTimeS, sensor.iso});
-    const bool full = sensor.noise == NoiseMode::kFull;
-    d.set("noise_variance_slope_dn", line.slopeDn)
-        .set("noise_variance_offset_dn2", full ? line.offsetDn2 : 0.0);
+  if (std::find(terms.begin(), terms.end(), "dark_frames") != terms.end())
+    d.set("dark_frames", sensor.spec.darkFramesDir.string());
+  if (!r.frames.empty()) {
+    const ExposureSettings first{r.frames.front().exposureTimeS, sensor.iso};
+    if (const auto line = exposedVarianceLine(sensor.spec, first, sensor.noise))
+      d.set("noise_variance_slope_dn", line->slopeDn)
+          .set("noise_variance_offset_dn2", line->offsetDn2);
   }
   return j.set("derived", d);
 }

@@ -53,4 +53,11 @@ struct Image {
 // String key/value metadata written as EXR header attributes (and JSON sidecars later).
 using Metadata = std::vector<std::pair<std::string, std::string>>;
 
+// The value of `key` (the first entry of that name), or null.
+inline const std::string* findMetadata(const Metadata& meta, const std::string& key) {
+  for (const auto& [k, v] : meta)
+    if (k == key) return &v;
+  return nullptr;
+}
+
 }  // namespace camsim

@@ -39,15 +39,14 @@ RawImage readRawExrFrame(const fs::path& path) {
           static_cast<std::uint16_t>(v);
     }
   raw.blackLevelDn = 0.0;
-  for (const auto& [key, value] : exr.metadata)
-    if (key == "camsim:black_level_dn") {
-      try {
-        raw.blackLevelDn = std::stod(value);
-      } catch (const std::exception&) {
-        throw InputError({path.string(), 0, 0}, "dark_frames",
-                         "camsim:black_level_dn '" + value + "' is not a number");
-      }
+  if (const std::string* black = findMetadata(exr.metadata, "camsim:black_level_dn")) {
+    try {
+      raw.blackLevelDn = std::stod(*black);
+    } catch (const std::exception&) {
+      throw InputError({path.string(), 0, 0}, "dark_frames",
+                       "camsim:black_level_dn '" + *black + "' is not a number");
     }
+  }
   return raw;
 }
 

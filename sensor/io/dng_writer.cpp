@@ -43,12 +43,6 @@ int planeColorCode(const std::string& name) {
   return -1;
 }
 
-std::string metadataValue(const Metadata& meta, const std::string& key) {
-  for (const auto& [k, v] : meta)
-    if (k == key) return v;
-  return {};
-}
-
 }  // namespace
 
 namespace {
@@ -106,14 +100,11 @@ glm::dvec3 dngNeutralFromGains(const std::vector<double>& gains) {
 
 std::optional<DngNoiseProfile> dngNoiseProfile(const SensorSpec& spec,
                                                const ExposureSettings& settings, NoiseMode mode) {
-  const VarianceLine line = temporalVarianceLine(spec, settings);  // checks the settings
-  if (spec.noiseless || mode == NoiseMode::kNone) return std::nullopt;
+  const std::optional<VarianceLine> line = exposedVarianceLine(spec, settings, mode);
+  if (!line) return std::nullopt;
   const double range = spec.whiteLevelDn() - spec.blackLevelDn;
-  CAMSIM_CHECK(range > 0.0 && line.slopeDn > 0.0);
-  DngNoiseProfile profile;
-  profile.scale = line.slopeDn / range;
-  profile.offset = mode == NoiseMode::kFull ? line.offsetDn2 / (range * range) : 0.0;
-  return profile;
+  CAMSIM_CHECK(range > 0.0 && line->slopeDn > 0.0);
+  return DngNoiseProfile{line->slopeDn / range, line->offsetDn2 / (range * range)};
 }
 
 void writeDng(const std::filesystem::path& path, const RawImage& raw, const DngColor& color,
@@ -198,7 +189,8 @@ void writeDng(const std::filesystem::path& path, const RawImage& raw, const DngC
   setU32(TIFFTAG_ROWSPERSTRIP, TIFFDefaultStripSize(t, 0));
   if (exif) ok = ok && TIFFSetField(t, TIFFTAG_EXIFIFD, exifOffset) == 1;
 
-  const std::string sensor = metadataValue(meta, "camsim:sensor");
+  const std::string* sensorName = findMetadata(meta, "camsim:sensor");
+  const std::string sensor = sensorName ? *sensorName : std::string();
   const std::string model = sensor.empty() ? "camsim" : "camsim " + sensor;
   setText(TIFFTAG_MAKE, "camsim");
   setText(TIFFTAG_MODEL, model);

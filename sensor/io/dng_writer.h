@@ -99,7 +99,7 @@ struct DngCapture {
 };
 
 // The NoiseProfile of a frame that expose(…, spec, settings, mode, …) makes: the sensor
-// model's temporal variance line at the frame's ISO (temporalVarianceLine, sensor_model.h:
+// model's temporal variance line at the frame's ISO (exposedVarianceLine, sensor_model.h:
 // σ² = slopeDn·(μ − black) + offsetDn2, in DN) in the DNG's normalised units, with
 // r = white level − black level:
 //
@@ -108,7 +108,8 @@ struct DngCapture {
 // Like that line it leaves out what is not temporal (PRNU, DSNU, FPN, black offsets, hot
 // and stuck photosites) and the ADC's rounding (1/12 DN², O += 1/(12 r²) if wanted).
 // Mode photon draws shot noise only: O = 0. Mode none, or a noiseless sensor, draws no
-// noise: nullopt (the DNG requires S > 0, so the tag is omitted). Throws InputError as
+// noise: nullopt (the DNG requires S > 0, so the tag is omitted); so does a sensor whose
+// dark frames carry the signal-independent noise. Throws InputError as
 // temporalVarianceLine does (an ISO ≤ 0 or outside the sensor's iso_table).
 std::optional<DngNoiseProfile> dngNoiseProfile(const SensorSpec& spec,
                                                const ExposureSettings& settings, NoiseMode mode);

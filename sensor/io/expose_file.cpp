@@ -22,15 +22,9 @@ const std::string kLayerPrefix = "electrons.";
   throw InputError(SourceLocation{file.string(), 0, 0}, key, message);
 }
 
-const std::string* findAttribute(const Metadata& meta, const std::string& key) {
-  for (const auto& [k, v] : meta)
-    if (k == key) return &v;
-  return nullptr;
-}
-
 std::string requiredAttribute(const std::filesystem::path& file, const Metadata& meta,
                               const std::string& key) {
-  if (const std::string* v = findAttribute(meta, key)) return *v;
+  if (const std::string* v = findMetadata(meta, key)) return *v;
   fail(file, key,
        "missing header attribute: expected the raw EXR of a camsim render with a sensor "
        "(NAME_raw.exr)");
@@ -47,7 +41,7 @@ double numberAttribute(const std::filesystem::path& file, const std::string& key
 }
 
 std::optional<std::uint64_t> seedAttribute(const std::filesystem::path& file, const Metadata& m) {
-  const std::string* text = findAttribute(m, "camsim:noise_seed");
+  const std::string* text = findMetadata(m, "camsim:noise_seed");
   if (!text) return std::nullopt;
   char* end = nullptr;
   const unsigned long long v = std::strtoull(text->c_str(), &end, 10);
@@ -58,9 +52,9 @@ std::optional<std::uint64_t> seedAttribute(const std::filesystem::path& file, co
 
 // Static or not: camsim:static_scene (1/0), else camsim:modelled's words, else refused.
 void readMotion(ElectronsExr& e) {
-  const std::string* modelled = findAttribute(e.metadata, "camsim:modelled");
+  const std::string* modelled = findMetadata(e.metadata, "camsim:modelled");
   e.motion = modelled ? *modelled : "";
-  if (const std::string* s = findAttribute(e.metadata, "camsim:static_scene")) {
+  if (const std::string* s = findMetadata(e.metadata, "camsim:static_scene")) {
     if (*s != "0" && *s != "1") fail(e.path, "camsim:static_scene", "expected 0 or 1, got " + *s);
     e.staticScene = *s == "1";
     return;
@@ -162,7 +156,7 @@ ElectronsExr readElectronsExr(const std::filesystem::path& path) {
   e.exposureTimeS = numberAttribute(path, "camsim:exposure_time_s",
                                     requiredAttribute(path, e.metadata, "camsim:exposure_time_s"));
   if (e.exposureTimeS < 0.0) fail(path, "camsim:exposure_time_s", "negative exposure time");
-  if (const std::string* iso = findAttribute(e.metadata, "camsim:iso"))
+  if (const std::string* iso = findMetadata(e.metadata, "camsim:iso"))
     e.iso = numberAttribute(path, "camsim:iso", *iso);
   e.noiseSeed = seedAttribute(path, e.metadata);
   readMotion(e);
@@ -261,7 +255,7 @@ void writeExposedFrame(const ExposeJob& job, std::uint64_t frame, const std::vec
                              {"camsim:exposed_from", job.input.path.filename().string()}};
   Metadata meta;
   for (const auto& entry : job.input.metadata)
-    if (!findAttribute(replaced, entry.first) && entry.first != "camsim:render_seconds")
+    if (!findMetadata(replaced, entry.first) && entry.first != "camsim:render_seconds")
       meta.push_back(entry);
   meta.insert(meta.end(), replaced.begin(), replaced.end());
   CAMSIM_CHECK(paths.size() == exposeFrameFiles(job, frame).size());
@@ -271,9 +265,9 @@ void writeExposedFrame(const ExposeJob& job, std::uint64_t frame, const std::vec
     return;
   }
   DngCapture dng;
-  if (const std::string* f = findAttribute(meta, "camsim:f_number"))
+  if (const std::string* f = findMetadata(meta, "camsim:f_number"))
     dng.fNumber = std::strtod(f->c_str(), nullptr);
-  if (const std::string* f = findAttribute(meta, "camsim:focal_length_m"))
+  if (const std::string* f = findMetadata(meta, "camsim:focal_length_m"))
     dng.focalLengthMm = std::strtod(f->c_str(), nullptr) * 1e3;
   dng.dateTimeOriginal = "2000:01:01 00:00:00";  // fixed, as a render's: same seed, same bytes
   dng.exposureTimeS = job.exposure.exposureTimeS;

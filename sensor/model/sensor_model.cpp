@@ -201,6 +201,26 @@ VarianceLine temporalVarianceLine(const SensorSpec& sensor, const ExposureSettin
   return {n.systemGainK, n.readVarianceDn2()};
 }
 
+std::vector<std::string> exposedNoiseTerms(const SensorSpec& sensor, double iso, NoiseMode mode) {
+  checkSettings(ExposureSettings{0.0, iso});
+  if (sensor.noiseless || mode == NoiseMode::kNone) return {};
+  if (mode == NoiseMode::kPhoton) return {"shot"};
+  if (sensor.darkFramesDir.empty()) return modelledNoiseTerms(sensor, iso);
+  std::vector<std::string> terms = {"shot"};
+  if (sensor.prnuFraction > 0.0) terms.emplace_back("prnu");
+  terms.emplace_back("dark_frames");
+  return terms;
+}
+
+std::optional<VarianceLine> exposedVarianceLine(const SensorSpec& sensor,
+                                                const ExposureSettings& settings, NoiseMode mode) {
+  VarianceLine line = temporalVarianceLine(sensor, settings);  // checks the settings
+  if (sensor.noiseless || mode == NoiseMode::kNone) return std::nullopt;
+  if (mode == NoiseMode::kPhoton) return VarianceLine{line.slopeDn, 0.0};
+  if (!sensor.darkFramesDir.empty()) return std::nullopt;
+  return line;
+}
+
 RawImage expose(const Image& expectedElectrons, const SensorSpec& sensor,
                 const ExposureSettings& settings, NoiseMode mode, std::uint64_t noiseSeed,
                 std::uint64_t frame) {

@@ -97,6 +97,16 @@ struct VarianceLine {
 };
 VarianceLine temporalVarianceLine(const SensorSpec& sensor, const ExposureSettings& settings);
 
+// What expose() draws in `mode` (the sidecar's noise_terms and the DNG's NoiseProfile
+// both come from here): full gives modelledNoiseTerms (sensor_noise.h) or, with the
+// sensor's dark_frames, shot, prnu (if set) and dark_frames; photon gives shot; none or a
+// noiseless sensor nothing. The line is temporalVarianceLine's, with offset 0 for photon,
+// and absent when nothing is drawn or dark frames carry the signal-independent noise (not
+// a line the model knows). Both throw InputError as expectedDn() does, in every mode.
+std::vector<std::string> exposedNoiseTerms(const SensorSpec& sensor, double iso, NoiseMode mode);
+std::optional<VarianceLine> exposedVarianceLine(const SensorSpec& sensor,
+                                                const ExposureSettings& settings, NoiseMode mode);
+
 // One Poisson draw with mean `mean` from the counter-based stream named by `key` (exposed
 // for tests). Exact for every mean: inversion by sequential search for mean < 10,
 // Hörmann's PTRS transformed rejection (with a cancellation-free log-pmf) for mean ≥ 10;
