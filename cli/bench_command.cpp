@@ -70,6 +70,7 @@ std::vector<BenchRow> sweep(const LoadedBenchScene& s, const Scene& scene, const
       row.rays = r.stats.rays.total();
       row.error = compareImages(luminanceOf(r.image), ref.image, 0);
       row.floor = ref.noise;
+      if (r.stats.estimatedError) row.estimate = r.stats.estimatedError->error;
       log << "bench: " << s.name << " " << row.sampler << " " << spp
           << " spp: " << formatNumber(row.seconds, 3) << " s, rMSE "
           << formatNumber(row.error.rmse, 3) << "\n";
@@ -233,6 +234,9 @@ int runBench(const BenchArgs& args, std::ostream& out, std::ostream& log) {
          << formatBenchTable(rows) << "(* = in the fit)\n\n"
          << "log-log slope of rMSE against render time (least squares over the budgets marked *):\n"
          << formatSlopeTable(slopes) << "\n"
+         << "each render's estimate of its own error (two half-sample images) against its "
+            "error beyond the reference's noise (MRAE* = sqrt(MRAE^2 - floor^2)):\n"
+         << formatEstimateTable(rows) << "\n"
          << "the limit: the rays of a " << plan.captureSpp
          << "-spp Sobol' render, replayed through EmbreeScene alone (traversal only), "
          << plan.threads << " threads; ratio = tracer rays/s / raw rays/s of the same mix:\n"

@@ -33,10 +33,16 @@ void printRendered(const CaptureResult& r, std::ostream& log) {
   const RenderStats& st = r.stats;
   log << "modelled: " << st.modelled.describe() << "\n";
   log << "rendered " << r.description.name << ": " << r.film.width << "x" << r.film.height << ", "
-      << r.description.render.spp << " spp, " << st.threads << " threads, "
-      << formatSeconds(st.seconds) << " (" << formatRate(st.samplesPerSecond()) << "samples/s, "
-      << formatRate(st.raysPerSecond())
+      << st.spp << " spp, " << st.threads << " threads, " << formatSeconds(st.seconds) << " ("
+      << formatRate(st.samplesPerSecond()) << "samples/s, " << formatRate(st.raysPerSecond())
       << "rays/s), rejected samples (NaN/Inf): " << st.rejectedSamples << "\n";
+  if (r.description.render.passes())
+    log << "passes: " << st.passes << ", stopped by " << renderStopName(st.stop) << " at " << st.spp
+        << " spp\n";
+  if (st.estimatedError)
+    log << "estimated error (" << st.estimatedError->channel << ", two half-sample images): rMSE "
+        << formatNumber(st.estimatedError->error.rmse, 3) << ", MRAE "
+        << formatNumber(st.estimatedError->error.mrae, 3) << "\n";
   if (st.rejectedSamples > 0)
     log << "warning: " << st.rejectedSamples << " samples had NaN/Inf radiance and were dropped\n";
 }

@@ -60,22 +60,23 @@ void runJob(CaptureJob& job) {
 }
 
 // The override keyword arguments, in overrides.h's table order (every key of the table).
-constexpr const char* kOverrideKwargs[] = {"sensor",   "spp",       "seed",  "exposure_time_s",
-                                           "f_number", "iso",       "noise", "noise_seed",
-                                           "pose",     "projection"};
+constexpr const char* kOverrideKwargs[] = {
+    "sensor",   "spp", "seed",  "target_error", "time_limit_s", "exposure_time_s",
+    "f_number", "iso", "noise", "noise_seed",   "pose",         "projection"};
 
 py::object runCapture(PyScene& scene, int threads, const py::object& progress,
                       const std::string& display, const std::string& view, const std::string& look,
                       const std::string& ocioConfig, bool reuse, const py::object& sensor,
-                      const py::object& spp, const py::object& seed,
-                      const py::object& exposureTimeS, const py::object& fNumber,
-                      const py::object& iso, const py::object& noise, const py::object& noiseSeed,
-                      const py::object& pose, const py::object& projection) {
+                      const py::object& spp, const py::object& seed, const py::object& targetError,
+                      const py::object& timeLimitS, const py::object& exposureTimeS,
+                      const py::object& fNumber, const py::object& iso, const py::object& noise,
+                      const py::object& noiseSeed, const py::object& pose,
+                      const py::object& projection) {
   if (threads < 0) throw py::value_error("threads must be ≥ 0 (0: all hardware threads)");
   // For this capture only (the Scene keeps its settings), checked before anything runs.
   Overrides overrides;
-  const py::object* values[] = {&sensor, &spp,   &seed,      &exposureTimeS, &fNumber,
-                                &iso,    &noise, &noiseSeed, &pose,          &projection};
+  const py::object* values[] = {&sensor,  &spp, &seed,  &targetError, &timeLimitS, &exposureTimeS,
+                                &fNumber, &iso, &noise, &noiseSeed,   &pose,       &projection};
   static_assert(std::size(values) == std::size(kOverrideKwargs));
   for (std::size_t i = 0; i < std::size(values); ++i)
     if (!values[i]->is_none())
@@ -191,6 +192,7 @@ void bindCaptureFunctions(py::module_& m) {
         py::arg("progress") = py::none(), py::arg("display") = "", py::arg("view") = "",
         py::arg("look") = "", py::arg("ocio_config") = "", py::arg("reuse") = true,
         py::arg("sensor") = py::none(), py::arg("spp") = py::none(), py::arg("seed") = py::none(),
+        py::arg("target_error") = py::none(), py::arg("time_limit_s") = py::none(),
         py::arg("exposure_time_s") = py::none(), py::arg("f_number") = py::none(),
         py::arg("iso") = py::none(), py::arg("noise") = py::none(),
         py::arg("noise_seed") = py::none(), py::arg("pose") = py::none(),
@@ -201,6 +203,7 @@ void bindCaptureFunctions(py::module_& m) {
       py::arg("progress") = py::none(), py::arg("display") = "", py::arg("view") = "",
       py::arg("look") = "", py::arg("ocio_config") = "", py::arg("reuse") = true,
       py::arg("sensor") = py::none(), py::arg("spp") = py::none(), py::arg("seed") = py::none(),
+      py::arg("target_error") = py::none(), py::arg("time_limit_s") = py::none(),
       py::arg("exposure_time_s") = py::none(), py::arg("f_number") = py::none(),
       py::arg("iso") = py::none(), py::arg("noise") = py::none(),
       py::arg("noise_seed") = py::none(), py::arg("pose") = py::none(),

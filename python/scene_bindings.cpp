@@ -357,6 +357,18 @@ description. Returns the Scene.)doc");
       },
       py::arg("spp"), py::return_value_policy::reference_internal,
       "Samples per pixel (render.spp). Returns the Scene.");
+  scene.def(
+      "set_passes",
+      [](PyScene& s, const py::object& targetError, const py::object& timeLimitS) -> PyScene& {
+        applyPythonOverrides(s.description,
+                             {{"target_error", targetError}, {"time_limit_s", timeLimitS}});
+        return s;
+      },
+      py::kw_only(), py::arg("target_error") = py::none(), py::arg("time_limit_s") = py::none(),
+      py::return_value_policy::reference_internal,
+      "Render in passes (render.target_error: the estimated MRAE to stop at; "
+      "render.time_limit_s: seconds of render time not to pass); spp is then the first pass. "
+      "Returns the Scene.");
 
   scene.def_property_readonly(
       "name", [](const PyScene& s) { return s.description.name; },

@@ -118,6 +118,9 @@ void exposeAndDevelop(CaptureResult& out, const RenderOptions& renderOptions,
     const Scene& scene = scenes.at(desc, longer);
     RenderOptions o = renderOptions;
     o.progress = nullptr;
+    o.spp = out.stats.spp;  // the samples the first film ended with, in one pass
+    o.targetError.reset();
+    o.timeLimitS.reset();
     RenderResult again = render(scene, sensorResponse(spec), o);
     out.cancelled = out.cancelled || again.stats.cancelled;
     return std::move(again.image);
@@ -188,6 +191,9 @@ RenderOptions renderOptionsFor(const SceneDescription& desc, const CaptureOption
   RenderOptions o;
   o.spp = desc.render.spp;
   o.seed = desc.render.seed;
+  o.targetError = desc.render.targetError;
+  o.timeLimitS = desc.render.timeLimitS;
+  o.maxSpp = std::max(desc.render.maxSpp, desc.render.spp);
   o.threads = options.threads;
   o.cancel = options.cancel;
   o.progress = [&out, progress = options.progress](int done, int total) {
@@ -211,6 +217,7 @@ void renderFilm(const Scene& scene, const RenderOptions& o, CaptureResult& out) 
   out.film = std::move(film.images[0]);
   if (desc.sensor) out.sensorFilm = std::move(film.images[1]);
   out.aovs = std::move(film.aovs);
+  out.oddHalf = std::move(film.oddHalf);
 }
 
 // Steps 2–6 once the film is there; step 4 renders on `scenes`.
@@ -248,6 +255,11 @@ void checkTileable(const SceneDescription& desc, const ModelledDimensions& model
     throw InputError(where, "frames",
                      "a frame sequence cannot be split into tiles (--tiles): each frame is a "
                      "capture of its own; render the sequence in one process");
+  if (desc.render.passes())
+    throw InputError(where, desc.render.targetError ? "render.target_error" : "render.time_limit_s",
+                     "a render in passes cannot be split into tiles (--tiles): where it stops "
+                     "depends on the whole image's estimated error (or the time); give a fixed "
+                     "render.spp instead");
   if (!desc.sensor || !modelled.time) return;
   const SensorSettings& sensor = *desc.sensor;
   const bool bracketMoves = std::any_of(sensor.bracketEv.begin(), sensor.bracketEv.end(),

@@ -85,6 +85,7 @@ struct CaptureResult {
   Image film;                // CIE XYZ: energy × 683 lm/W per photosite (Y in lm·s), absolute
   Image sensorFilm;  // with a sensor: expected e⁻ at the scene's exposure time; else empty
   Image aovs;        // the ground truth render.aovs asks for (aov_film.h); else empty
+  Image oddHalf;     // RenderResult::oddHalf: for a tile part's error estimate at the merge
 
   double exposureScale = 1.0;               // auto-exposure's factor on every frame's exposure time
   std::vector<CaptureFrame> frames;         // with a sensor: one per bracket, in the scene's order

@@ -276,11 +276,29 @@ JsonObject captureSidecar(const CaptureResult& r, bool reproducible) {
   std::vector<std::string> inputFiles;
   for (const auto& f : desc.inputFiles) inputFiles.push_back(f.string());
   JsonObject render;
-  render.set("spp", double(desc.render.spp))
+  render.set("spp", double(st.spp))
       .setInteger("seed", desc.render.seed)
       .set("sampler", samplerName(desc.render.sampler))
       .set("max_depth", double(desc.render.maxDepth));
   if (!reproducible) render.set("seconds", st.seconds);
+  if (desc.render.passes()) {
+    JsonObject passes;
+    passes.set("first_spp", double(desc.render.spp))
+        .set("max_spp", double(desc.render.maxSpp))
+        .set("passes", double(st.passes))
+        .set("stopped_by", renderStopName(st.stop));
+    if (desc.render.targetError) passes.set("target_error", *desc.render.targetError);
+    if (desc.render.timeLimitS) passes.set("time_limit_s", *desc.render.timeLimitS);
+    render.set("passes", passes);
+  }
+  if (st.estimatedError) {
+    JsonObject estimate;
+    estimate.set("rmse", st.estimatedError->error.rmse)
+        .set("mrae", st.estimatedError->error.mrae)
+        .set("channel", st.estimatedError->channel)
+        .set("method", "two interleaved half-sample images (docs/output.md)");
+    render.set("estimated_error", estimate);
+  }
   render.set("rejected_samples", double(st.rejectedSamples))
       .set("modelled", st.modelled.describe())
       .set("aovs", aovNames(desc.render.aovs))

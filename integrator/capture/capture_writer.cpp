@@ -36,7 +36,7 @@ Metadata filmMetadata(const CaptureResult& r, bool reproducible) {
   Metadata meta = {{"camsim:version", CAMSIM_VERSION},
                    {"camsim:scene", desc.sourceFile},
                    {"camsim:scene_fnv1a64", desc.sourceFnv1a},
-                   {"camsim:spp", std::to_string(desc.render.spp)},
+                   {"camsim:spp", std::to_string(st.spp)},
                    {"camsim:seed", std::to_string(desc.render.seed)},
                    {"camsim:rejected_samples", std::to_string(st.rejectedSamples)},
                    {"camsim:modelled", st.modelled.describe()},
@@ -47,6 +47,10 @@ Metadata filmMetadata(const CaptureResult& r, bool reproducible) {
                     "energy on each photosite weighted by the CIE 1931 observer x 683 lm/W: "
                     "XYZ.Y is luminous energy in lm*s (talbot); R,G,B: linear Rec.709 on the "
                     "same scale (1,1,1 has Y = 1 lm*s)"}};
+  if (st.estimatedError)  // the render's estimate of its own error (error_estimate.h)
+    meta.insert(meta.end(), {{"camsim:estimated_rmse", number(st.estimatedError->error.rmse)},
+                             {"camsim:estimated_mrae", number(st.estimatedError->error.mrae)},
+                             {"camsim:estimated_error_channel", st.estimatedError->channel}});
   const PhysicalCamera camera(desc.camera);
   const PhysicalCameraParams& p = camera.params();
   const glm::dvec4 k = camera.intrinsics();

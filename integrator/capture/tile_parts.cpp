@@ -15,10 +15,13 @@
 namespace camsim {
 namespace {
 
-// The three images of a part and the prefixes of their channels in the EXR.
-constexpr const char* kPrefixes[3] = {"film.", "sensor.", "aov."};
-constexpr const char* kChannelKeys[3] = {"camsim:film_channels", "camsim:sensor_channels",
-                                         "camsim:aov_channels"};
+// The images of a part and the prefixes of their channels in the EXR: the film, the sensor
+// film, the AOVs, and the error channel's odd-sample mean (for the merged render's error
+// estimate, error_estimate.h).
+constexpr int kImages = 4;
+constexpr const char* kPrefixes[kImages] = {"film.", "sensor.", "aov.", "half."};
+constexpr const char* kChannelKeys[kImages] = {"camsim:film_channels", "camsim:sensor_channels",
+                                               "camsim:aov_channels", "camsim:half_channels"};
 // The attributes that differ between the parts of one render; all others must agree.
 const std::set<std::string> kPerPart = {"camsim:tile_index", "camsim:tiles", "camsim:samples",
                                         "camsim:rejected_samples", "camsim:render_seconds"};
@@ -76,7 +79,7 @@ struct ReadPart {
   int index = 0;
   std::uint64_t samples = 0, rejected = 0;
   std::optional<double> seconds;
-  Image images[3];  // film, sensor film, aovs
+  Image images[kImages];  // film, sensor film, aovs, odd half
 };
 
 ReadPart readPart(const std::filesystem::path& file) {
@@ -133,8 +136,9 @@ ReadPart readPart(const std::filesystem::path& file) {
   p.rejected = static_cast<std::uint64_t>(integer("camsim:rejected_samples", 0));
   if (p.attrs.count("camsim:render_seconds"))
     p.seconds = parseNumber<double>(get("camsim:render_seconds"));
-  std::vector<std::string>* lists[3] = {&h.filmChannels, &h.sensorChannels, &h.aovChannels};
-  for (int i = 0; i < 3; ++i) {
+  std::vector<std::string>* lists[kImages] = {&h.filmChannels, &h.sensorChannels, &h.aovChannels,
+                                              &h.halfChannels};
+  for (int i = 0; i < kImages; ++i) {
     *lists[i] = split(get(kChannelKeys[i]));
     if (lists[i]->empty()) continue;
     Image& image = p.images[i];
@@ -213,10 +217,10 @@ std::filesystem::path writeTilePart(const CaptureResult& r, Share share,
                                     const TilePartOptions& options) {
   CAMSIM_CHECK(!r.cancelled && !r.film.pixels.empty());
   const SceneDescription& desc = r.description;
-  const Image* images[3] = {&r.film, &r.sensorFilm, &r.aovs};
+  const Image* images[kImages] = {&r.film, &r.sensorFilm, &r.aovs, &r.oddHalf};
   std::vector<std::string> names;
-  std::string lists[3];
-  for (int i = 0; i < 3; ++i) {
+  std::string lists[kImages];
+  for (int i = 0; i < kImages; ++i) {
     lists[i] = joined(images[i]->channels, desc.sourceFile);
     for (const std::string& c : images[i]->channels) names.push_back(kPrefixes[i] + c);
   }
@@ -253,6 +257,7 @@ std::filesystem::path writeTilePart(const CaptureResult& r, Share share,
       {"camsim:film_channels", lists[0]},
       {"camsim:sensor_channels", lists[1]},
       {"camsim:aov_channels", lists[2]},
+      {"camsim:half_channels", lists[3]},
       {"camsim:samples", std::to_string(r.stats.samples)},
       {"camsim:rejected_samples", std::to_string(r.stats.rejectedSamples)},
       {"camsim:units",
@@ -280,8 +285,8 @@ AssembledTiles assembleTileParts(const std::vector<std::filesystem::path>& files
       first = shared;
       out.header = p.header;
       byShare.resize(static_cast<std::size_t>(p.header.tileCount));
-      Image* images[3] = {&out.film, &out.sensorFilm, &out.aovs};
-      for (int i = 0; i < 3; ++i)
+      Image* images[kImages] = {&out.film, &out.sensorFilm, &out.aovs, &out.oddHalf};
+      for (int i = 0; i < kImages; ++i)
         if (!p.images[i].channels.empty())
           *images[i] = Image(p.header.resolution.x, p.header.resolution.y, p.images[i].channels);
     } else {
@@ -313,9 +318,9 @@ AssembledTiles assembleTileParts(const std::vector<std::filesystem::path>& files
     slot = file;
     const Share share{p.index, p.header.tileCount};
     const int tiles = renderTileCount(p.header.resolution);
-    Image* images[3] = {&out.film, &out.sensorFilm, &out.aovs};
+    Image* images[kImages] = {&out.film, &out.sensorFilm, &out.aovs, &out.oddHalf};
     for (int i = 0; i < share.itemsOf(tiles); ++i)
-      for (int k = 0; k < 3; ++k)
+      for (int k = 0; k < kImages; ++k)
         copyRect(p.images[k], *images[k], renderTileRect(p.header.resolution, share.item(i)));
     out.samples += p.samples;
     out.rejectedSamples += p.rejected;
@@ -372,12 +377,20 @@ CaptureResult mergedCapture(AssembledTiles tiles, SceneDescription description) 
   out.description = std::move(description);
   out.description.releaseDecodedImages();
   out.stats.samples = tiles.samples;
+  out.stats.spp = out.description.render.spp;  // parts are never rendered in passes
   out.stats.rejectedSamples = tiles.rejectedSamples;
   out.stats.modelled = h.modelled;
   out.stats.seconds = tiles.renderSeconds;
   out.tilesDone = out.tilesTotal = renderTileCount(h.resolution);
   out.film = std::move(tiles.film);
   out.sensorFilm = std::move(tiles.sensorFilm);
+  if (!tiles.oddHalf.pixels.empty()) {  // as the whole render estimates its error
+    const int y = out.film.channelIndex("Y");
+    if (y >= 0)
+      out.stats.estimatedError =
+          ErrorEstimate{estimateFromHalves(out.film, y, tiles.oddHalf, out.stats.spp),
+                        tiles.oddHalf.channels.front(), out.stats.spp};
+  }
   out.aovs = std::move(tiles.aovs);
   return out;
 }

@@ -62,13 +62,13 @@ struct TilePartHeader {
   std::uint64_t seed = 0;
   int tileCount = 1;  // M
   ModelledDimensions modelled;
-  std::vector<std::string> filmChannels, sensorChannels, aovChannels;
+  std::vector<std::string> filmChannels, sensorChannels, aovChannels, halfChannels;
 };
 
 struct AssembledTiles {
   TilePartHeader header;
   std::vector<std::filesystem::path> files;  // in share order: files[k] holds share k
-  Image film, sensorFilm, aovs;              // every tile from its part
+  Image film, sensorFilm, aovs, oddHalf;     // every tile from its part
   std::uint64_t samples = 0, rejectedSamples = 0;
   double renderSeconds = 0.0;  // the parts' render times summed (those that have one)
 };

@@ -20,6 +20,16 @@ void checkComparable(const Image& a, const Image& b, int channel) {
   if (a.width == 0 || a.height == 0) throw std::invalid_argument("empty image");
 }
 
+std::size_t pixelCount(const Image& image) {
+  return static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height);
+}
+
+// Channel c of pixel i (row-major).
+double valueAt(const Image& image, std::size_t i, int c) {
+  return static_cast<double>(image.pixels[i * static_cast<std::size_t>(image.channelCount()) +
+                                          static_cast<std::size_t>(c)]);
+}
+
 double channelMean(const Image& image, int channel) {
   double sum = 0.0;
   for (int y = 0; y < image.height; ++y)
@@ -27,43 +37,25 @@ double channelMean(const Image& image, int channel) {
   return sum / (static_cast<double>(image.width) * static_cast<double>(image.height));
 }
 
-// Metrics of the per-pixel errors e(x, y) against the reference values r(x, y).
-template <typename ErrorAt, typename RefAt>
-ErrorMetrics metrics(int width, int height, ErrorAt error, RefAt ref, double refMean) {
-  const double eps = 0.01 * std::abs(refMean) + std::numeric_limits<double>::min();
-  double se = 0.0, ae = 0.0;
-  for (int y = 0; y < height; ++y)
-    for (int x = 0; x < width; ++x) {
-      const double e = error(x, y), r = ref(x, y);
-      se += e * e / (r * r + eps * eps);
-      ae += std::abs(e) / (std::abs(r) + eps);
-    }
-  const double n = static_cast<double>(width) * static_cast<double>(height);
-  return {se / n, ae / n};
-}
-
 }  // namespace
 
 ErrorMetrics compareImages(const Image& image, const Image& reference, int channel) {
   checkComparable(image, reference, channel);
-  return metrics(
-      image.width, image.height,
-      [&](int x, int y) {
-        return static_cast<double>(image.at(x, y, channel)) -
-               static_cast<double>(reference.at(x, y, channel));
-      },
-      [&](int x, int y) { return static_cast<double>(reference.at(x, y, channel)); },
+  return relativeErrors(
+      pixelCount(image),
+      [&](std::size_t i) { return valueAt(image, i, channel) - valueAt(reference, i, channel); },
+      [&](std::size_t i) { return valueAt(reference, i, channel); },
       channelMean(reference, channel));
 }
 
 ErrorMetrics referenceNoise(const Image& halfA, const Image& halfB, int channel) {
   checkComparable(halfA, halfB, channel);
-  auto a = [&](int x, int y) { return static_cast<double>(halfA.at(x, y, channel)); };
-  auto b = [&](int x, int y) { return static_cast<double>(halfB.at(x, y, channel)); };
+  auto a = [&](std::size_t i) { return valueAt(halfA, i, channel); };
+  auto b = [&](std::size_t i) { return valueAt(halfB, i, channel); };
   const double mean = 0.5 * (channelMean(halfA, channel) + channelMean(halfB, channel));
-  return metrics(
-      halfA.width, halfA.height, [&](int x, int y) { return 0.5 * (a(x, y) - b(x, y)); },
-      [&](int x, int y) { return 0.5 * (a(x, y) + b(x, y)); }, mean);
+  return relativeErrors(
+      pixelCount(halfA), [&](std::size_t i) { return 0.5 * (a(i) - b(i)); },
+      [&](std::size_t i) { return 0.5 * (a(i) + b(i)); }, mean);
 }
 
 SlopeFit fitLogLogSlope(const std::vector<double>& x, const std::vector<double>& y) {
@@ -114,8 +106,9 @@ SamplerSlopes fitRows(std::vector<BenchRow*>& rows) {
 
 const std::vector<std::string>& benchCsvColumns() {
   static const std::vector<std::string> columns = {
-      "scene",         "sampler",    "spp",      "width", "height",       "seconds",  "cpu_seconds",
-      "samples_per_s", "rays_per_s", "rmse_rel", "mrae",  "ref_rmse_rel", "ref_mrae", "in_fit"};
+      "scene",       "sampler",       "spp",          "width",    "height", "seconds",
+      "cpu_seconds", "samples_per_s", "rays_per_s",   "rmse_rel", "mrae",   "ref_rmse_rel",
+      "ref_mrae",    "in_fit",        "est_rmse_rel", "est_mrae"};
   return columns;
 }
 
@@ -137,7 +130,7 @@ std::string formatBenchCsv(const std::vector<BenchRow>& rows) {
         << r.height << "," << g(r.seconds) << "," << g(r.cpuSeconds) << ","
         << g(r.samplesPerSecond()) << "," << g(r.raysPerSecond()) << "," << g(r.error.rmse) << ","
         << g(r.error.mrae) << "," << g(r.floor.rmse) << "," << g(r.floor.mrae) << ","
-        << (r.inFit ? 1 : 0) << "\n";
+        << (r.inFit ? 1 : 0) << "," << g(r.estimate.rmse) << "," << g(r.estimate.mrae) << "\n";
   return out.str();
 }
 
@@ -159,6 +152,28 @@ std::string formatBenchTable(const std::vector<BenchRow>& rows) {
                   r.scene.c_str(), r.sampler.c_str(), r.spp, r.seconds, r.cpuSeconds,
                   formatRate(r.samplesPerSecond()).c_str(), formatRate(r.raysPerSecond()).c_str(),
                   r.error.rmse, r.error.mrae, r.inFit ? "*" : "");
+    out << line;
+  }
+  return out.str();
+}
+
+ErrorMetrics errorBeyondFloor(const BenchRow& r) {
+  const double mrae2 = r.error.mrae * r.error.mrae - r.floor.mrae * r.floor.mrae;
+  return {r.error.rmse - r.floor.rmse, mrae2 > 0.0 ? std::sqrt(mrae2) : 0.0};
+}
+
+std::string formatEstimateTable(const std::vector<BenchRow>& rows) {
+  char line[256];
+  std::ostringstream out;
+  std::snprintf(line, sizeof line, "%-13s %-11s %5s %11s %11s %6s %9s %9s %6s\n", "scene",
+                "sampler", "spp", "rMSE-floor", "est rMSE", "ratio", "MRAE*", "est MRAE", "ratio");
+  out << line;
+  for (const BenchRow& r : rows) {
+    if (!std::isfinite(r.estimate.rmse)) continue;
+    const ErrorMetrics e = errorBeyondFloor(r);
+    std::snprintf(line, sizeof line, "%-13s %-11s %5d %11.3e %11.3e %6.2f %9.4f %9.4f %6.2f\n",
+                  r.scene.c_str(), r.sampler.c_str(), r.spp, e.rmse, r.estimate.rmse,
+                  r.estimate.rmse / e.rmse, e.mrae, r.estimate.mrae, r.estimate.mrae / e.mrae);
     out << line;
   }
   return out.str();

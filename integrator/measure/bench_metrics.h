@@ -1,12 +1,8 @@
 // `camsim bench`: error metrics, the log-log slope fit, and the table / CSV formats.
 //
 // Errors are on one channel of the film image: luminance Y (CIE 1931, the "Y" channel of
-// the XYZ film), against a reference image r of the same size. With m = mean(r) over the
-// image (the metrics are independent of the film's absolute scale):
-//   rMSE = mean over pixels of (x − r)² / (r² + ε²),   ε = 0.01·m
-//   MRAE = mean over pixels of |x − r| / (|r| + ε)
-// ε keeps black pixels (r = 0) from dominating: such a pixel counts like one at 1 % of the
-// mean luminance.
+// the XYZ film), against a reference image r of the same size: rMSE and MRAE as
+// error_estimate.h defines them (e = x − r), which every render also estimates of itself.
 //
 // A rendered reference has noise of its own. From two independent renders a, b of half the
 // reference's samples each (r = (a + b)/2), (a − b)/2 has the same variance as r's error,
@@ -21,18 +17,15 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <vector>
 
+#include "integrator/render/error_estimate.h"
 #include "sensor/base/format.h"
 #include "sensor/base/image.h"
 
 namespace camsim {
-
-struct ErrorMetrics {
-  double rmse = 0.0;  // relative MSE (see above)
-  double mrae = 0.0;  // mean relative absolute error
-};
 
 // Throws std::invalid_argument if the sizes differ or the channel is missing.
 ErrorMetrics compareImages(const Image& image, const Image& reference, int channel);
@@ -58,6 +51,9 @@ struct BenchRow {
   std::uint64_t samples = 0, rays = 0;
   ErrorMetrics error;
   ErrorMetrics floor;  // the reference's own noise
+  // The render's estimate of its own error (error_estimate.h); NaN below 2 spp.
+  ErrorMetrics estimate{std::numeric_limits<double>::quiet_NaN(),
+                        std::numeric_limits<double>::quiet_NaN()};
   bool inFit = false;  // used for the slope (error ≥ kFloorFactor × floor)
 
   double samplesPerSecond() const {
@@ -84,6 +80,12 @@ std::string csvField(const std::string& s);
 // Fixed-width text tables as printed.
 std::string formatBenchTable(const std::vector<BenchRow>& rows);
 std::string formatSlopeTable(const std::vector<SamplerSlopes>& slopes);
+// Each row's estimated error against its measured one with the reference's noise taken
+// out: rMSE − floor rMSE, and √(MRAE² − floor MRAE²) (the floor adds in quadrature for
+// Gaussian noise); ratio = estimate ÷ that.
+std::string formatEstimateTable(const std::vector<BenchRow>& rows);
+// The measured errors with the reference's noise taken out, as formatEstimateTable uses.
+ErrorMetrics errorBeyondFloor(const BenchRow& row);
 
 // User + system CPU time of this process (all threads), s.
 double processCpuSeconds();

@@ -8,14 +8,21 @@
 // response (a CFA) stores only the photosite's own channel. Several responses (e.g. CIE
 // XYZ and a sensor's QE) are filled by the same samples in one pass. Each pixel is written
 // by one tile only, so no locking is needed. Non-finite samples are rejected and counted.
+//
+// The film also sums, per pixel, the odd-indexed samples of one channel — the error channel:
+// the "Y" of the first response that has one, else the first response's first stored
+// channel — so the render can estimate its own error from the two half-sample images
+// (error_estimate.h): one double more per pixel.
 #pragma once
 
 #include <cmath>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include <glm/vec2.hpp>
 
+#include "integrator/render/error_estimate.h"
 #include "sensor/base/image.h"
 #include "sensor/model/spectral_response.h"
 #include "sensor/spectra/sampled_spectrum.h"
@@ -26,22 +33,18 @@ class Film {
  public:
   Film(glm::ivec2 resolution, std::vector<const SpectralResponse*> responses);
 
-  // q: the sample's weighted spectral quantity (radiance × camera weight). Returns false
-  // (and adds nothing) if it is not finite.
-  bool addSample(glm::ivec2 pixel, const SampledSpectrum& q, const SampledWavelengths& lambda) {
+  // q: the sample's weighted spectral quantity (radiance × camera weight); sampleIndex: the
+  // sample's index in its pixel (its parity picks the half). Returns false (and adds
+  // nothing) if q is not finite.
+  bool addSample(glm::ivec2 pixel, int sampleIndex, const SampledSpectrum& q,
+                 const SampledWavelengths& lambda) {
     if (!q.isFinite()) return false;
     // q(λᵢ)/p(λᵢ) once per sample: every channel of every response weights the same values.
     const SampledSpectrum w = safeDiv(q, lambda.pdfs());
-    double* sums = &sums_[(static_cast<size_t>(pixel.y) * static_cast<size_t>(resolution_.x) +
-                           static_cast<size_t>(pixel.x)) *
-                          stride_];
-    for (const SpectralResponse* r : responses_) {
-      if (r->isMosaic()) {
-        *sums++ += r->estimate(r->mosaic().channelAt(pixel.x, pixel.y), w, lambda);
-      } else {
-        for (int c = 0; c < r->channelCount(); ++c) *sums++ += r->estimate(c, w, lambda);
-      }
-    }
+    const size_t p = static_cast<size_t>(pixel.y) * static_cast<size_t>(resolution_.x) +
+                     static_cast<size_t>(pixel.x);
+    const double errorValue = addResponses(&sums_[p * stride_], w, lambda, pixel);
+    if (sampleIndex & 1) oddSums_[p] += errorValue;
     return true;
   }
 
@@ -49,12 +52,47 @@ class Film {
   // One image per response: its channels named after the response's, or one channel
   // named after the response for a mosaic.
   std::vector<Image> toImages(int samplesPerPixel) const;
+  // The error channel's name ("Y", or the response's channel or mosaic name); it is
+  // channel errorImageChannel() of toImages()[errorImage()].
+  const std::string& errorChannel() const { return errorChannelName_; }
+  std::size_t errorImage() const { return errorImage_; }
+  int errorImageChannel() const { return errorImageChannel_; }
+  // The mean of the error channel over each pixel's odd-indexed samples (⌊n/2⌋ of n ≥ 2),
+  // one channel named errorChannel().
+  Image oddHalfImage(int samplesPerPixel) const;
+  // The render's estimate of its error on the error channel, n ≥ 2 samples per pixel
+  // added (error_estimate.h), from toImages(n) and oddHalfImage(n).
+  ErrorMetrics estimateError(int samplesPerPixel) const;
 
  private:
+  // Adds the sample to a pixel's sums; returns its value on the error channel.
+  double addResponses(double* sums, const SampledSpectrum& w, const SampledWavelengths& lambda,
+                      glm::ivec2 pixel) const {
+    const double* const errorSum = sums + errorOffset_;
+    double errorValue = 0.0;
+    const auto add = [&](double v) {
+      if (sums == errorSum) errorValue = v;
+      *sums++ += v;
+    };
+    for (const SpectralResponse* r : responses_) {
+      if (r->isMosaic()) {
+        add(r->estimate(r->mosaic().channelAt(pixel.x, pixel.y), w, lambda));
+      } else {
+        for (int c = 0; c < r->channelCount(); ++c) add(r->estimate(c, w, lambda));
+      }
+    }
+    return errorValue;
+  }
+
   glm::ivec2 resolution_;
   std::vector<const SpectralResponse*> responses_;
   size_t stride_ = 0;
   std::vector<double> sums_;
+  size_t errorOffset_ = 0;  // the error channel's place in a pixel's sums
+  std::size_t errorImage_ = 0;
+  int errorImageChannel_ = 0;
+  std::string errorChannelName_;
+  std::vector<double> oddSums_;  // per pixel: Σ of the error channel over odd-indexed samples
 };
 
 }  // namespace camsim

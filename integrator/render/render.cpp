@@ -1,5 +1,6 @@
 #include "integrator/render/render.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <mutex>
@@ -35,20 +36,27 @@ bool cancelRequested(const RenderOptions& options) {
 // Compiled for each concrete sampler (final classes), so that drawing a number is an
 // inlined call, not a virtual one. False when cancelled part way: the tile's pixels hold
 // some of their samples only (render() sets them to 0).
+// One pass's samples of a tile: indices [first, end) of each pixel; AOVs only if `aovs` is
+// enabled (the first pass).
+struct SampleRange {
+  int first = 0, end = 0;
+};
+
 template <typename SamplerT>
 bool renderTile(const Scene& scene, Film& film, const RenderOptions& options,
-                const ModelledDimensions& dims, glm::ivec2 lo, glm::ivec2 hi, SamplerT& sampler,
-                TileStats& stats, AovFilm& aovs, AovPixel& aovPixel) {
+                const ModelledDimensions& dims, glm::ivec2 lo, glm::ivec2 hi, SampleRange range,
+                SamplerT& sampler, TileStats& stats, AovFilm& aovs, AovPixel& aovPixel) {
   const PhysicalCamera& camera = scene.camera();
   const Shutter& shutter = camera.shutter();
   // The photosensitive area: centred in the pixel, sides scaled by √fill.
   const float side = static_cast<float>(std::sqrt(camera.params().fillFactor));
+  const bool withAovs = range.first == 0 && aovs.enabled();  // the first pass's samples
   for (int y = lo.y; y < hi.y; ++y) {
     for (int x = lo.x; x < hi.x; ++x) {
       const glm::ivec2 pixel(x, y);
-      if (aovs.enabled()) aovs.startPixel(aovPixel, pixel);
-      for (int s = 0; s < options.spp; ++s) {
-        if (s % kCancelStride == 0 && cancelRequested(options)) return false;
+      if (withAovs) aovs.startPixel(aovPixel, pixel);
+      for (int s = range.first; s < range.end; ++s) {
+        if ((s - range.first) % kCancelStride == 0 && cancelRequested(options)) return false;
         sampler.startPixelSample(pixel, s);
         sampler.setDimension(kDimWavelength);
         SampledWavelengths lambda = SampledWavelengths::sampleVisible(sampler.get1D());
@@ -75,23 +83,23 @@ bool renderTile(const Scene& scene, Film& film, const RenderOptions& options,
             sharePose ? camera.generateRay(cs, lambda, pose) : camera.generateRay(cs, lambda);
         ++stats.samples;
         if (!cr) {
-          if (aovs.enabled()) aovs.addNoRaySample(aovPixel, {cs.time, lambda, posePtr});
+          if (withAovs) aovs.addNoRaySample(aovPixel, {cs.time, lambda, posePtr});
           continue;
         }
         countRay(RayKind::kCamera, cr->ray);
-        if (!aovs.enabled()) {
+        if (!withAovs) {
           const SampledSpectrum L = traceRadiance(scene, cr->ray, lambda, sampler);
-          if (!film.addSample(pixel, L * cr->weight, lambda)) ++stats.rejected;
+          if (!film.addSample(pixel, s, L * cr->weight, lambda)) ++stats.rejected;
           continue;
         }
         // The first hit is recorded in place, in the pixel's AOV record.
         VisibleSurface& visible = aovs.nextSurface(aovPixel);
         const SampledWavelengths lambdaAtCamera = lambda;  // before a dispersive hit ends some
         const SampledSpectrum L = traceRadiance(scene, cr->ray, lambda, sampler, &visible);
-        if (!film.addSample(pixel, L * cr->weight, lambda)) ++stats.rejected;
+        if (!film.addSample(pixel, s, L * cr->weight, lambda)) ++stats.rejected;
         aovs.addSample(aovPixel, {cs.time, lambdaAtCamera, posePtr});
       }
-      if (aovs.enabled()) aovs.endPixel(aovPixel);
+      if (withAovs) aovs.endPixel(aovPixel);
     }
   }
   return true;
@@ -124,6 +132,62 @@ RenderResult render(const Scene& scene, const SpectralResponse& response,
   return render(scene, std::vector<const SpectralResponse*>{&response}, options);
 }
 
+const char* renderStopName(RenderStop stop) {
+  switch (stop) {
+    case RenderStop::kSpp:
+      return "spp";
+    case RenderStop::kTargetError:
+      return "target_error";
+    case RenderStop::kTimeLimit:
+      return "time_limit";
+    case RenderStop::kMaxSpp:
+      return "max_spp";
+    case RenderStop::kCancelled:
+      return "cancelled";
+  }
+  return "spp";
+}
+
+namespace {
+
+double secondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// The spp after the next pass, or `spp` to stop (render.h: passes). elapsed: the render's
+// seconds so far, for `spp` samples per pixel.
+int nextPassEnd(const RenderOptions& o, int spp, const std::optional<ErrorMetrics>& estimate,
+                double elapsed, RenderStop& stop) {
+  if (!o.targetError && !o.timeLimitS) return spp;
+  if (o.targetError && estimate && estimate->mrae <= *o.targetError) {
+    stop = RenderStop::kTargetError;
+    return spp;
+  }
+  if (spp >= o.maxSpp) {
+    stop = RenderStop::kMaxSpp;
+    return spp;
+  }
+  std::int64_t next = 2 * static_cast<std::int64_t>(spp);
+  if (o.targetError && estimate) {
+    const double ratio = estimate->mrae / *o.targetError;
+    if (static_cast<double>(spp) * ratio * ratio > static_cast<double>(next)) next *= 2;
+  }
+  next = std::min<std::int64_t>(next, o.maxSpp);
+  if (o.timeLimitS) {
+    const double perSpp = elapsed / spp;  // s per sample per pixel, from the passes so far
+    const double room = (*o.timeLimitS - elapsed) / std::max(perSpp, 1e-12);
+    const std::int64_t fits = spp + static_cast<std::int64_t>(std::min(room, 1e9));
+    if (fits <= spp) {
+      stop = RenderStop::kTimeLimit;
+      return spp;
+    }
+    next = std::min(next, fits);
+  }
+  return static_cast<int>(next);
+}
+
+}  // namespace
+
 RenderResult render(const Scene& scene, const std::vector<const SpectralResponse*>& responses,
                     const RenderOptions& options) {
   const auto start = std::chrono::steady_clock::now();
@@ -142,11 +206,14 @@ RenderResult render(const Scene& scene, const std::vector<const SpectralResponse
   std::atomic<int> tilesDone{0};
   std::mutex progressMutex;
   std::atomic<bool> cancelled{false};
-  std::vector<TileRect> unfinished;  // tiles stopped part way by a cancel
-  std::mutex unfinishedMutex;
+  // Per tile of the share: it finished the current pass (a cancel zeroes the others).
+  std::vector<std::uint8_t> finished(static_cast<std::size_t>(tileCount), 0);
 
-  // prototype: a SobolSampler or an IndependentSampler, copied per range of tiles.
-  auto renderAll = [&](const auto& prototype) {
+  // One pass over the share's tiles; prototype: a SobolSampler or an IndependentSampler,
+  // copied per range of tiles.
+  auto renderPass = [&](const auto& prototype, SampleRange samples) {
+    tilesDone = 0;
+    std::fill(finished.begin(), finished.end(), 0);
     tbb::parallel_for(tbb::blocked_range<int>(0, tileCount, 1),
                       [&](const tbb::blocked_range<int>& range) {
                         auto sampler = prototype;
@@ -164,13 +231,12 @@ RenderResult render(const Scene& scene, const std::vector<const SpectralResponse
                             return;
                           }
                           const TileRect rect = renderTileRect(res, share.item(i));
-                          if (!renderTile(scene, film, options, dims, rect.lo, rect.hi, sampler,
-                                          stats, aovs, aovPixel)) {
+                          if (!renderTile(scene, film, options, dims, rect.lo, rect.hi, samples,
+                                          sampler, stats, aovs, aovPixel)) {
                             cancelled = true;
-                            std::lock_guard<std::mutex> lock(unfinishedMutex);
-                            unfinished.push_back(rect);
                             return;
                           }
+                          finished[static_cast<std::size_t>(i)] = 1;
                           const int done = ++tilesDone;
                           if (options.progress) {
                             std::lock_guard<std::mutex> lock(progressMutex);
@@ -179,19 +245,41 @@ RenderResult render(const Scene& scene, const std::vector<const SpectralResponse
                         }
                       });
   };
+  const bool whole = share.count == 1;
+  CAMSIM_CHECK(whole || (!options.targetError && !options.timeLimitS));
+  RenderStats stats;
+  stats.stop = RenderStop::kSpp;
+  std::optional<ErrorMetrics> estimate;
   tbb::task_arena arena(threads);
-  arena.execute([&] {
-    if (kind == SamplerKind::kSobol)
-      renderAll(SobolSampler(options.seed));
-    else
-      renderAll(IndependentSampler(options.seed));
-  });
+  for (SampleRange pass{0, options.spp}; pass.end > pass.first;) {
+    arena.execute([&] {
+      if (kind == SamplerKind::kSobol)
+        renderPass(SobolSampler(options.seed), pass);
+      else
+        renderPass(IndependentSampler(options.seed), pass);
+    });
+    stats.spp = pass.end;
+    ++stats.passes;
+    if (cancelled) {
+      stats.stop = RenderStop::kCancelled;
+      break;
+    }
+    if (whole && pass.end >= 2) estimate = film.estimateError(pass.end);
+    pass = {pass.end, nextPassEnd(options, pass.end, estimate, secondsSince(start), stats.stop)};
+  }
 
   RenderResult result;
-  result.images = film.toImages(options.spp);
+  result.stats = stats;
+  result.images = film.toImages(stats.spp);
+  if (estimate && !cancelled)
+    result.stats.estimatedError = ErrorEstimate{*estimate, film.errorChannel(), stats.spp};
+  if (stats.spp >= 2 && !cancelled) result.oddHalf = film.oddHalfImage(stats.spp);
   if (aovs.enabled()) result.aovs = aovs.takeImage();
-  // A cancelled render holds only the tiles that finished, each with all its samples.
-  for (const TileRect& r : unfinished) {
+  // A cancelled render holds only the tiles that finished its last pass, each with all its
+  // samples.
+  for (int i = 0; cancelled && i < tileCount; ++i) {
+    if (finished[static_cast<std::size_t>(i)]) continue;
+    const TileRect r = renderTileRect(res, share.item(i));
     for (Image& image : result.images) zeroRect(image, r);
     if (!result.aovs.pixels.empty()) zeroRect(result.aovs, r);
   }
@@ -204,8 +292,7 @@ RenderResult render(const Scene& scene, const std::vector<const SpectralResponse
   result.stats.threads = threads;
   result.stats.modelled = dims;
   result.stats.cancelled = cancelled;
-  result.stats.seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  result.stats.seconds = secondsSince(start);
   return result;
 }
 

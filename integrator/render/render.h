@@ -15,6 +15,18 @@
 // whole render's, bit for bit, since a pixel's samples depend only on (seed, pixel, sample
 // index); the other pixels stay 0, and the stats count its own samples only. A share may
 // hold no tile (M larger than the tile count): an image of zeros.
+//
+// Error and passes (issue 38). Every render of ≥ 2 spp estimates its own error from its
+// two half-sample images (error_estimate.h) into stats.estimatedError. With a target error
+// or a time limit it renders in passes: the first of options.spp samples per pixel (the
+// minimum; the AOVs come from these samples only), then more samples per pixel — indices
+// n … n' − 1, so that after each pass the image is, bit for bit, the render at n' spp —
+// until the estimate's MRAE is at most targetError, or the next pass would end after
+// timeLimitS, or maxSpp is reached. With a target alone, pass totals are the first pass's
+// spp times powers of two: n' = 2n or 4n, the smallest reaching n·(MRAE/target)² (MRAE
+// falls as n^−½), so the same scene and seed stop at the same spp on any thread count. A
+// time limit sizes the last pass from the rate so far, so where it stops depends on the
+// machine; the image is still the render at the spp it reports.
 #pragma once
 
 #include <atomic>
@@ -23,6 +35,7 @@
 #include <optional>
 #include <vector>
 
+#include "integrator/render/error_estimate.h"
 #include "integrator/render/path_tracer.h"
 #include "integrator/scene/scene.h"
 #include "sensor/base/image.h"
@@ -57,9 +70,17 @@ struct RenderOptions {
   // bench records them with a RayRecorder and replays them).
   RayObserver* rayObserver = nullptr;
   // The share of the tiles (above, numbered 0 … renderTileCount − 1) to render; the
-  // others stay 0. Progress counts the share's tiles.
+  // others stay 0. Progress counts the share's tiles. Passes need the whole image (no share).
   Share tiles;
+  // Passes (above): the estimated MRAE to reach, and the render time not to pass, s.
+  std::optional<double> targetError;
+  std::optional<double> timeLimitS;
+  int maxSpp = 1 << 20;  // passes stop here (setting_ranges::kSpp's maximum)
 };
+
+// Why a render stopped adding samples.
+enum class RenderStop { kSpp, kTargetError, kTimeLimit, kMaxSpp, kCancelled };
+const char* renderStopName(RenderStop stop);  // "spp", "target_error", …
 
 struct RenderStats {
   double seconds = 0.0;
@@ -69,6 +90,12 @@ struct RenderStats {
   int threads = 0;
   bool cancelled = false;
   ModelledDimensions modelled;  // what was integrated over
+  int spp = 0;                  // samples per pixel in the image (all passes)
+  int passes = 0;
+  RenderStop stop = RenderStop::kSpp;
+  // The image's estimate of its own error (error_estimate.h); none below 2 spp, for a share
+  // of the tiles, or when cancelled.
+  std::optional<ErrorEstimate> estimatedError;
 
   double samplesPerSecond() const {
     return seconds > 0.0 ? static_cast<double>(samples) / seconds : 0.0;
@@ -82,6 +109,9 @@ struct RenderResult {
   Image image;                // the first response's image (pixel means)
   std::vector<Image> images;  // one per response, in order
   Image aovs;                 // the scene's render.aovs (aov_film.h); empty without
+  // The error channel's mean over the odd-indexed samples (Film::oddHalfImage), for a share
+  // of the tiles to carry to the merge; empty below 2 spp.
+  Image oddHalf;
   RenderStats stats;
 };
 

@@ -61,12 +61,15 @@ SobolSampler::SobolSampler(std::uint64_t seed, SobolDraw draw)
 }
 
 void SobolSampler::startPixelSample(glm::ivec2 pixel, int sampleIndex) {
-  if (pixel != pixel_) {  // consecutive samples share the pixel's key and seeds
-    pixelKey_ = pixelKeyOf(seed_, pixel);
+  if (pixel != pixel_) {  // consecutive samples share the pixel's keys and seeds
+    halfKeys_[0] = pixelKeyOf(seed_, pixel);
+    halfKeys_[1] = pixelKeyOf(seed_ ^ kSecondHalfSalt, pixel);
     pixel_ = pixel;
-    cachedEnd_ = 0;
+    cachedEnd_[0] = cachedEnd_[1] = 0;
   }
-  reversedIndex_ = sobol::reverseBits(static_cast<std::uint32_t>(sampleIndex));
+  half_ = sampleIndex & 1;
+  pixelKey_ = halfKeys_[half_];
+  reversedIndex_ = sobol::reverseBits(static_cast<std::uint32_t>(sampleIndex) >> 1);
   dimension_ = 0;
   blockStart_ = kNoBlock;
 }
@@ -85,12 +88,9 @@ void SobolSampler::seedsOfBlock(int firstDimension, std::uint32_t* shuffle, std:
 }
 
 void SobolSampler::cacheSeeds(int end) {
-  for (; cachedEnd_ < end; cachedEnd_ += kBlock) {
-    std::uint32_t* shuffle = shuffleSeeds_ + cachedEnd_;
-    std::uint32_t* x = xSeeds_ + cachedEnd_;
-    std::uint32_t* y = ySeeds_ + cachedEnd_;
-    seedsOfBlock(cachedEnd_, shuffle, x, y);
-  }
+  SeedCache& c = seeds_[half_];
+  for (int& e = cachedEnd_[half_]; e < end; e += kBlock)
+    seedsOfBlock(e, c.shuffle + e, c.x + e, c.y + e);
 }
 
 void SobolSampler::fillBlock() {
@@ -103,9 +103,10 @@ void SobolSampler::fillBlock() {
   // here.
   if (dimension_ >= 0 && dimension_ <= kCachedDimensions - kBlock) {
     cacheSeeds(dimension_ + kBlock);
-    shuffle = shuffleSeeds_ + dimension_;
-    xs = xSeeds_ + dimension_;
-    ys = ySeeds_ + dimension_;
+    const SeedCache& c = seeds_[half_];
+    shuffle = c.shuffle + dimension_;
+    xs = c.x + dimension_;
+    ys = c.y + dimension_;
   } else {
     seedsOfBlock(dimension_, local[0], local[1], local[2]);
     shuffle = local[0];

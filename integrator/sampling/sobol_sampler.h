@@ -1,8 +1,19 @@
 // SobolSampler: Owen-scrambled, shuffled Sobol' (0,2)-sequences, one independent pair per
 // dimension slot ("padded" Sobol', Burley 2020, "Practical Hash-based Owen Scrambling").
 //
-// For dimension d of pixel p and sample index i:
-//   (lo, hi) = the two halves of the pixel key hash(render seed, p)
+// A pixel's samples are two independent replicates (issue 38): sample index s belongs to
+// half h = s mod 2 as its point i = ⌊s/2⌋, and each half has its own pixel key, so the
+// even-indexed and the odd-indexed samples are independently scrambled nets of ⌈n/2⌉ and
+// ⌊n/2⌋ points. Their two half images are then independent estimates of the pixel, whose
+// difference estimates the render's error (integrator/render/error_estimate.h); split from
+// one net, the halves would be complementary strata (even and odd Sobol' points lie in
+// opposite halves of the pixel) and their difference would measure the image's structure,
+// not its noise. The price: each half is stratified on its own, not the union
+// (docs/performance.md, "Error estimate", measures it).
+//
+// For dimension d of pixel p and point i of half h:
+//   (lo, hi) = the two halves of the pixel key hash(render seed, p) for h = 0,
+//              hash(render seed ⊕ kSecondHalfSalt, p) for h = 1
 //   k       = h(h(d ⊕ hi) ⊕ lo),   s0 = h(k ⊕ hi),   s1 = h(k + C₁),   s2 = h(k + C₂)
 //             (h: a 32-bit integer hash, sobol::hash32)
 //   i'      = owen(i, s0)                      (shuffles which sample gets which point)
@@ -130,6 +141,8 @@ class SobolSampler final : public Sampler {
     return hashValues(seed, static_cast<std::uint32_t>(pixel.x),
                       static_cast<std::uint32_t>(pixel.y));
   }
+  // The second half's seed is the render seed with these bits flipped.
+  static constexpr std::uint64_t kSecondHalfSalt = 0x9e3779b97f4a7c15ull;
   // The pair's three scramble seeds from (pixel key, dimension); see the top of the file.
   // The dimension as unsigned 32 bits (a negative int wraps; blocks of lanes wrap alike).
   struct Seeds {
@@ -186,9 +199,11 @@ class SobolSampler final : public Sampler {
                     std::uint32_t* y) const;
 
   std::uint64_t seed_;
-  std::uint64_t pixelKey_ = 0;
+  std::uint64_t pixelKey_ = 0;       // the current half's
   glm::ivec2 pixel_{-1};             // no pixel yet (pixels are never negative)
-  std::uint32_t reversedIndex_ = 0;  // the sample index, bit-reversed
+  int half_ = 0;                     // the current sample's half (sample index mod 2)
+  std::uint64_t halfKeys_[2] = {};   // pixel_'s key for each half
+  std::uint32_t reversedIndex_ = 0;  // the sample's point in its half, bit-reversed
   int dimension_ = 0;
   static constexpr int kNoBlock = std::numeric_limits<int>::min() / 2;  // far from any dimension
 
@@ -196,9 +211,12 @@ class SobolSampler final : public Sampler {
   bool avx2_ = false;          // simd::cpuHasAvx2(): the SIMD build on a CPU with AVX2
   int blockStart_ = kNoBlock;  // first dimension of x_, y_
   float x_[kBlock] = {}, y_[kBlock] = {};
-  int cachedEnd_ = 0;  // dimensions [0, cachedEnd_) of pixel_ have their seeds below
-  std::uint32_t shuffleSeeds_[kCachedDimensions] = {}, xSeeds_[kCachedDimensions] = {},
-                ySeeds_[kCachedDimensions] = {};
+  // Per half: dimensions [0, cachedEnd_[h]) of pixel_ have their seeds in seeds_[h].
+  int cachedEnd_[2] = {};
+  struct SeedCache {
+    std::uint32_t shuffle[kCachedDimensions], x[kCachedDimensions], y[kCachedDimensions];
+  };
+  SeedCache seeds_[2] = {};
 };
 
 }  // namespace camsim

@@ -42,6 +42,11 @@ const std::vector<OverrideSetting> kSettings = {
     integerSetting("spp", "render.spp", "samples per pixel (overrides the scene's render.spp)",
                    R::kSpp),
     integerSetting("seed", "render.seed", "render seed (overrides render.seed)", R::kSeed),
+    numberSetting("target_error", "render.target_error", "", "E",
+                  "render in passes until the estimated MRAE is at most E (spp: the first pass)",
+                  R::kTargetError),
+    numberSetting("time_limit_s", "render.time_limit_s", "s", "S",
+                  "render in passes, stopping before S seconds of render time", R::kTimeLimitS),
     numberSetting("exposure_time_s", "camera.shutter", "s", "S",
                   "effective exposure time in seconds (stretches the scene's shutter)",
                   R::kExposureTimeS),
@@ -192,8 +197,8 @@ const OverrideSetting& setting(std::string_view key) {
 }  // namespace
 
 bool Overrides::empty() const {
-  return !sensor && !spp && !seed && !exposureTimeS && !fNumber && !iso && !noise && !noiseSeed &&
-         !pose && !projection;
+  return !sensor && !spp && !seed && !targetError && !timeLimitS && !exposureTimeS && !fNumber &&
+         !iso && !noise && !noiseSeed && !pose && !projection;
 }
 
 const std::vector<OverrideSetting>& overrideSettings() {
@@ -244,6 +249,8 @@ void setOverrideNumber(Overrides& o, const OverrideSetting& s, double value,
   if (s.type != OverrideType::kNumber) fail(source, "expected " + overrideRangeText(s));
   if (!std::isfinite(value)) fail(source, "'" + formatShortest(value) + "' is not a finite number");
   if (!s.numbers.contains(value)) outOfRange(s, formatShortest(value), source);
+  if (s.key == "target_error") o.targetError = value;
+  if (s.key == "time_limit_s") o.timeLimitS = value;
   if (s.key == "exposure_time_s") o.exposureTimeS = value;
   if (s.key == "f_number") o.fNumber = value;
   if (s.key == "iso") o.iso = value;
@@ -295,6 +302,10 @@ void applyOverrides(SceneDescription& d, const Overrides& o, const SourceLocatio
   if (o.seed) setOverrideInteger(checked, setting("seed"), *o.seed, src("seed"));
   if (o.noiseSeed)
     setOverrideInteger(checked, setting("noise_seed"), *o.noiseSeed, src("noise_seed"));
+  if (o.targetError)
+    setOverrideNumber(checked, setting("target_error"), *o.targetError, src("target_error"));
+  if (o.timeLimitS)
+    setOverrideNumber(checked, setting("time_limit_s"), *o.timeLimitS, src("time_limit_s"));
   if (o.exposureTimeS)
     setOverrideNumber(checked, setting("exposure_time_s"), *o.exposureTimeS,
                       src("exposure_time_s"));
@@ -304,6 +315,8 @@ void applyOverrides(SceneDescription& d, const Overrides& o, const SourceLocatio
   if (o.sensor) setSensor(d, *o.sensor, where);
   if (o.spp) d.render.spp = static_cast<int>(*o.spp);
   if (o.seed) d.render.seed = static_cast<std::uint64_t>(*o.seed);
+  if (o.targetError) d.render.targetError = *o.targetError;
+  if (o.timeLimitS) d.render.timeLimitS = *o.timeLimitS;
   if (o.exposureTimeS)
     d.camera.shutter = d.camera.shutter.scaled(*o.exposureTimeS / d.camera.shutter.effectiveTime());
   if (o.fNumber) d.camera.fNumber = *o.fNumber;  // the stop follows (apertureDiameter)
@@ -329,6 +342,8 @@ std::string overridesText(const Overrides& o) {
   if (o.sensor) add("sensor", *o.sensor);
   if (o.spp) add("spp", std::to_string(*o.spp));
   if (o.seed) add("seed", std::to_string(*o.seed));
+  if (o.targetError) add("target_error", formatShortest(*o.targetError));
+  if (o.timeLimitS) add("time_limit_s", formatShortest(*o.timeLimitS));
   if (o.exposureTimeS) add("exposure_time_s", formatShortest(*o.exposureTimeS));
   if (o.fNumber) add("f_number", formatShortest(*o.fNumber));
   if (o.iso) add("iso", formatShortest(*o.iso));

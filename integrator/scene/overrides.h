@@ -8,6 +8,8 @@
 // | sensor          | sensor.model             | —    | a preset name or a sensor file     |
 // | spp             | render.spp               | —    | integer, setting_ranges::kSpp      |
 // | seed            | render.seed              | —    | integer, kSeed                     |
+// | target_error    | render.target_error      | —    | number, kTargetError (an MRAE)     |
+// | time_limit_s    | render.time_limit_s      | s    | number, kTimeLimitS                |
 // | exposure_time_s | camera.shutter           | s    | number, kExposureTimeS (the scene's|
 // |                 |                          |      | shutter curve stretched to it)     |
 // | f_number        | camera.f_number          | —    | number, kFNumber (the stop follows)|
@@ -72,6 +74,8 @@ struct Overrides {
   std::optional<std::string> sensor;
   std::optional<std::int64_t> spp;
   std::optional<std::int64_t> seed;
+  std::optional<double> targetError;
+  std::optional<double> timeLimitS;
   std::optional<double> exposureTimeS;
   std::optional<double> fNumber;
   std::optional<double> iso;

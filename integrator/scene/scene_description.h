@@ -92,6 +92,11 @@ struct RenderSettings {
   int maxDepth = 16;                          // maximum number of scattering events on a path
   int rrDepth = 3;                            // Russian roulette starts after this many bounces
   std::vector<Aov> aovs;  // none by default: a plain render records no first hit
+  // Passes (integrator/render/render.h): spp is then the first pass, the minimum.
+  std::optional<double> targetError;  // estimated MRAE to stop at (error_estimate.h)
+  std::optional<double> timeLimitS;   // s of render time not to pass
+  int maxSpp = 1 << 20;               // the most samples per pixel passes may reach
+  bool passes() const { return targetError.has_value() || timeLimitS.has_value(); }
 };
 
 // A frame sequence (the scene's `frames` block): frame k (0-based) is sequence frame

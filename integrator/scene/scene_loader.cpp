@@ -68,6 +68,16 @@ RenderSettings parseRender(YamlMap map) {
     r.maxDepth = static_cast<int>(v->integer(0, SceneLimits::kMaxDepth));
   if (auto v = map.find("rr_depth"))
     r.rrDepth = static_cast<int>(v->integer(1, SceneLimits::kMaxDepth));
+  namespace R = setting_ranges;
+  if (auto v = map.find("target_error"))
+    r.targetError = v->number(R::kTargetError.lo, R::kTargetError.hi, R::kTargetError.loOpen);
+  if (auto v = map.find("time_limit_s"))
+    r.timeLimitS = v->number(R::kTimeLimitS.lo, R::kTimeLimitS.hi, R::kTimeLimitS.loOpen);
+  if (auto v = map.find("max_spp")) {
+    r.maxSpp = static_cast<int>(v->integer(R::kSpp.lo, R::kSpp.hi));
+    if (r.maxSpp < r.spp)
+      v->fail("max_spp " + std::to_string(r.maxSpp) + " is below spp " + std::to_string(r.spp));
+  }
   if (auto v = map.find("aovs")) {
     for (const YamlValue& item : v->items()) {
       const Aov aov = item.choice<Aov>("aov");
@@ -76,7 +86,8 @@ RenderSettings parseRender(YamlMap map) {
       r.aovs.push_back(aov);
     }
   }
-  map.finish({"sampler", "spp", "seed", "max_depth", "rr_depth", "aovs"});
+  map.finish({"sampler", "spp", "seed", "max_depth", "rr_depth", "aovs", "target_error",
+              "time_limit_s", "max_spp"});
   return r;
 }
 

@@ -50,6 +50,10 @@ inline constexpr SettingRange kIso{1.0, 1e7, false};
 // opens at 0 lasts at most kShutterTime: the effective exposure time's range.
 inline constexpr double kShutterTime = 1e6;
 inline constexpr SettingRange kExposureTimeS{0.0, kShutterTime, true};
+// render.target_error: an estimated MRAE (error_estimate.h), a fraction of the pixel values.
+inline constexpr SettingRange kTargetError{0.0, 1.0, true};
+// render.time_limit_s: s of render time (a year).
+inline constexpr SettingRange kTimeLimitS{0.0, 3.2e7, true};
 
 }  // namespace setting_ranges
 }  // namespace camsim

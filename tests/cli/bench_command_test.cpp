@@ -155,8 +155,9 @@ std::vector<std::string> splitLine(const std::string& line) {
 
 TEST(BenchCsv, HasTheDocumentedColumns) {
   const std::vector<std::string> expected = {
-      "scene",         "sampler",    "spp",      "width", "height",       "seconds",  "cpu_seconds",
-      "samples_per_s", "rays_per_s", "rmse_rel", "mrae",  "ref_rmse_rel", "ref_mrae", "in_fit"};
+      "scene",       "sampler",       "spp",          "width",    "height", "seconds",
+      "cpu_seconds", "samples_per_s", "rays_per_s",   "rmse_rel", "mrae",   "ref_rmse_rel",
+      "ref_mrae",    "in_fit",        "est_rmse_rel", "est_mrae"};
   EXPECT_EQ(benchCsvColumns(), expected);
   BenchRow r;
   r.scene = "cornell_box";
@@ -168,6 +169,7 @@ TEST(BenchCsv, HasTheDocumentedColumns) {
   r.samples = 1000;
   r.rays = 5000;
   r.error = {0.25, 0.5};
+  r.estimate = {0.2, 0.4};
   r.inFit = true;
   std::istringstream csv(formatBenchCsv({r, r}));
   std::string header, line;
@@ -183,6 +185,8 @@ TEST(BenchCsv, HasTheDocumentedColumns) {
     EXPECT_DOUBLE_EQ(std::stod(f[8]), 2500.0);  // rays/s
     EXPECT_DOUBLE_EQ(std::stod(f[9]), 0.25);
     EXPECT_EQ(f[13], "1");
+    EXPECT_DOUBLE_EQ(std::stod(f[14]), 0.2);
+    EXPECT_DOUBLE_EQ(std::stod(f[15]), 0.4);
     ++lines;
   }
   EXPECT_EQ(lines, 2);

@@ -253,7 +253,7 @@ TEST(BenchBinary, SmallRunWritesTablesAndCsvs) {
   const std::string csv = readFile(out / "bench.csv");
   EXPECT_EQ(csv.substr(0, csv.find('\n')),
             "scene,sampler,spp,width,height,seconds,cpu_seconds,samples_per_s,"
-            "rays_per_s,rmse_rel,mrae,ref_rmse_rel,ref_mrae,in_fit");
+            "rays_per_s,rmse_rel,mrae,ref_rmse_rel,ref_mrae,in_fit,est_rmse_rel,est_mrae");
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'),
             1 + 2 * 2);  // header + 2 samplers × budgets 1, 2
   EXPECT_NE(readFile(out / "bench_limit.csv").find("cornell_box,mix,"), std::string::npos);

@@ -101,9 +101,9 @@ TEST(OverrideRanges, TableHasEveryRangedSetting) {
   std::vector<std::string> keys;
   for (const Case& c : boundaryCases())
     if (keys.empty() || keys.back() != c.setting->key) keys.emplace_back(c.setting->key);
-  EXPECT_EQ(keys, (std::vector<std::string>{"spp", "seed", "exposure_time_s", "f_number", "iso",
-                                            "noise_seed"}));
-  EXPECT_EQ(boundaryCases().size(), 24u);
+  EXPECT_EQ(keys, (std::vector<std::string>{"spp", "seed", "target_error", "time_limit_s",
+                                            "exposure_time_s", "f_number", "iso", "noise_seed"}));
+  EXPECT_EQ(boundaryCases().size(), 32u);
 }
 
 TEST(OverrideRanges, LibraryApplyAgreesWithTheTable) {

@@ -8,7 +8,7 @@ usage: calibration_round_trip.py CAMSIM [--model opencv|kannala_brandt|both] [--
 For each model: a 10 x 7 checkerboard of 40 mm squares (9 x 6 inner corners, reflectances
 0.8 / 0.05) on a white 80 mm margin, lit by a parallel (delta) light along the board's
 normal and rendered with max_depth 1 (direct light only: no noise but the pixel area's and
-the wavelengths' sampling), 8 spp, from 24 fixed poses (a seeded generator, camsim render
+the wavelengths' sampling), 16 spp, from 24 fixed poses (a seeded generator, camsim render
 --pose; two render processes at a time). The linear EXR's luminance goes to
 cv2.findChessboardCorners (on an 8-bit copy) and cv2.cornerSubPix (on the float image), then
   opencv          cv2.calibrateCameraExtended with CALIB_RATIONAL_MODEL (k1..k6, p1, p2);
@@ -50,7 +50,7 @@ POSES = 24
 MODELS = {
     "opencv": {
         "resolution": (640, 480),
-        "spp": 8,
+        "spp": 16,
         "window": 5,
         "tilt": (30, 60),
         "distance": (0.4, 0.8),
@@ -61,7 +61,7 @@ MODELS = {
     },
     "kannala_brandt": {
         "resolution": (512, 384),
-        "spp": 8,
+        "spp": 16,
         "window": 4,
         "tilt": (0, 60),
         "distance": (0.25, 0.6),

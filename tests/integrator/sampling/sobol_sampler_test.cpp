@@ -1,6 +1,7 @@
-// SobolSampler: every 2D pair of the first 2^m samples of a pixel — and of every aligned
-// block of 2^m samples, i.e. each pair is a (0, 2)-sequence — is a (0, m, 2)-net (one point
-// in every elementary interval), 1D slots are stratified, 1D and 2D results are
+// SobolSampler: a pixel's even- and odd-indexed samples are two independent replicates
+// (their half images uncorrelated); in each, every 2D pair of the first 2^m points — and of
+// every aligned block of 2^m points, i.e. each pair is a (0, 2)-sequence — is a (0, m, 2)-net
+// (one point in every elementary interval), 1D slots are stratified, 1D and 2D results are
 // deterministic, and pixels/dimensions get independent scrambles; drawing in AVX2 blocks
 // gives the numbers of drawing one at a time, bit for bit, whatever the order of draws.
 #include <gtest/gtest.h>
@@ -19,11 +20,13 @@
 namespace camsim {
 namespace {
 
-std::vector<glm::vec2> pairs(std::uint64_t seed, glm::ivec2 pixel, int dimension, int n) {
+// Points 0 … n − 1 of one half (sample indices 2i + half).
+std::vector<glm::vec2> pairs(std::uint64_t seed, glm::ivec2 pixel, int dimension, int n,
+                             int half = 0) {
   SobolSampler s(seed);
   std::vector<glm::vec2> out;
   for (int i = 0; i < n; ++i) {
-    s.startPixelSample(pixel, i);
+    s.startPixelSample(pixel, 2 * i + half);
     s.setDimension(dimension);
     out.push_back(s.get2D());
   }
@@ -31,19 +34,20 @@ std::vector<glm::vec2> pairs(std::uint64_t seed, glm::ivec2 pixel, int dimension
 }
 
 TEST(SobolSampler, EveryPairIsAZeroMTwoNet) {
-  for (int dimension : {1, 3, 6, 9, 40})
-    for (int m = 1; m <= 10; ++m) {
-      const int n = 1 << m;
-      const auto pts = pairs(7, {5, 9}, dimension, n);
-      for (int a = 0; a <= m; ++a) {  // intervals of 2^-a × 2^-(m-a)
-        std::set<std::pair<int, int>> cells;
-        for (const glm::vec2& p : pts)
-          cells.emplace(static_cast<int>(std::ldexp(static_cast<double>(p.x), a)),
-                        static_cast<int>(std::ldexp(static_cast<double>(p.y), m - a)));
-        EXPECT_EQ(static_cast<int>(cells.size()), n)
-            << "dimension " << dimension << " m " << m << " a " << a;
+  for (int half : {0, 1})
+    for (int dimension : {1, 3, 6, 9, 40})
+      for (int m = 1; m <= 10; ++m) {
+        const int n = 1 << m;
+        const auto pts = pairs(7, {5, 9}, dimension, n, half);
+        for (int a = 0; a <= m; ++a) {  // intervals of 2^-a × 2^-(m-a)
+          std::set<std::pair<int, int>> cells;
+          for (const glm::vec2& p : pts)
+            cells.emplace(static_cast<int>(std::ldexp(static_cast<double>(p.x), a)),
+                          static_cast<int>(std::ldexp(static_cast<double>(p.y), m - a)));
+          EXPECT_EQ(static_cast<int>(cells.size()), n)
+              << "dimension " << dimension << " m " << m << " a " << a;
+        }
       }
-    }
 }
 
 // The (0, 2)-sequence property: not only the first 2^m samples but every aligned block of
@@ -51,21 +55,22 @@ TEST(SobolSampler, EveryPairIsAZeroMTwoNet) {
 // render that continues past a power of two stays stratified. (The index shuffle maps
 // aligned blocks to aligned blocks: bit j of owen(i) depends only on bits ≥ j of i.)
 TEST(SobolSampler, EveryAlignedBlockOfEveryPairIsAZeroMTwoNet) {
-  for (int dimension : {1, 6, 11})
-    for (int m = 1; m <= 8; ++m)
-      for (int block : {1, 2, 5}) {
-        const int n = 1 << m;
-        const auto all = pairs(13, {2, 7}, dimension, (block + 1) * n);
-        const std::vector<glm::vec2> pts(all.begin() + block * n, all.end());
-        for (int a = 0; a <= m; ++a) {
-          std::set<std::pair<int, int>> cells;
-          for (const glm::vec2& p : pts)
-            cells.emplace(static_cast<int>(std::ldexp(static_cast<double>(p.x), a)),
-                          static_cast<int>(std::ldexp(static_cast<double>(p.y), m - a)));
-          EXPECT_EQ(static_cast<int>(cells.size()), n)
-              << "dimension " << dimension << " m " << m << " block " << block << " a " << a;
+  for (int half : {0, 1})
+    for (int dimension : {1, 6, 11})
+      for (int m = 1; m <= 8; ++m)
+        for (int block : {1, 2, 5}) {
+          const int n = 1 << m;
+          const auto all = pairs(13, {2, 7}, dimension, (block + 1) * n, half);
+          const std::vector<glm::vec2> pts(all.begin() + block * n, all.end());
+          for (int a = 0; a <= m; ++a) {
+            std::set<std::pair<int, int>> cells;
+            for (const glm::vec2& p : pts)
+              cells.emplace(static_cast<int>(std::ldexp(static_cast<double>(p.x), a)),
+                            static_cast<int>(std::ldexp(static_cast<double>(p.y), m - a)));
+            EXPECT_EQ(static_cast<int>(cells.size()), n)
+                << "dimension " << dimension << " m " << m << " block " << block << " a " << a;
+          }
         }
-      }
 }
 
 // A pair depends only on (seed, pixel, sample index, dimension): not on the sampler copy nor
@@ -88,17 +93,45 @@ TEST(SobolSampler, EveryDrawTakesOneDimension) {
 
 TEST(SobolSampler, OneDimensionalSlotsAreStratifiedAndDeterministic) {
   SobolSampler s(3), t(3);
-  std::set<int> strata;
-  for (int i = 0; i < 256; ++i) {
+  std::set<int> strata[2];
+  for (int i = 0; i < 512; ++i) {
     s.startPixelSample({1, 2}, i);
     t.startPixelSample({1, 2}, i);
     s.setDimension(kDimTime);
     t.setDimension(kDimTime);
     const float u = s.get1D();
     EXPECT_EQ(u, t.get1D());
-    strata.insert(static_cast<int>(u * 256.0f));
+    strata[i % 2].insert(static_cast<int>(u * 256.0f));
   }
-  EXPECT_EQ(strata.size(), 256u);
+  EXPECT_EQ(strata[0].size(), 256u);
+  EXPECT_EQ(strata[1].size(), 256u);
+}
+
+// The halves are independent replicates: over 4000 pixels, the correlation of the even and
+// the odd samples' means of f(x) = x (2 points each) is 0 within 4 standard errors
+// (1/√4000 each). Halves cut from one net would be complementary strata: −1 (the even points
+// of a Sobol' pair lie in one half of [0, 1), the odd ones in the other).
+TEST(SobolSampler, TheTwoHalvesAreUncorrelated) {
+  for (int dimension : {int{kDimPixel}, kDimPath + 3}) {
+    constexpr int kPixels = 4000;
+    double sa = 0.0, sb = 0.0, saa = 0.0, sbb = 0.0, sab = 0.0;
+    for (int p = 0; p < kPixels; ++p) {
+      SobolSampler s(11);
+      double mean[2] = {0.0, 0.0};
+      for (int i = 0; i < 4; ++i) {
+        s.startPixelSample({p % 64, p / 64}, i);
+        s.setDimension(dimension);
+        mean[i % 2] += 0.5 * static_cast<double>(s.get2D().x);
+      }
+      sa += mean[0], sb += mean[1], saa += mean[0] * mean[0], sbb += mean[1] * mean[1];
+      sab += mean[0] * mean[1];
+    }
+    const double n = kPixels;
+    const double cov = sab / n - (sa / n) * (sb / n);
+    const double corr =
+        cov / std::sqrt((saa / n - sa * sa / (n * n)) * (sbb / n - sb * sb / (n * n)));
+    EXPECT_LT(std::abs(corr), 4.0 / std::sqrt(n)) << "dimension " << dimension;
+  }
 }
 
 TEST(SobolSampler, PixelsAndDimensionsAreScrambledIndependently) {
