@@ -89,3 +89,20 @@ def test_sensor_override_equals_the_scene_with_that_sensor():
     b = camsim.Scene.from_dict(with_sensor)
     assert a.sensor == b.sensor and a.iso == b.iso
     np.testing.assert_array_equal(a.render()["raw"], b.render()["raw"])
+
+
+def test_every_capture_estimates_its_error_and_passes_reach_a_target():
+    scene = camsim.Scene.from_dict(small_scene(seed=4, spp=4))
+    r = camsim.capture(scene, threads=2)
+    est = r["meta"]["render"]["estimated_error"]
+    assert est["channel"] == "Y" and est["rmse"] > 0 and est["mrae"] > 0
+    assert "passes" not in r["meta"]["render"]
+    target = est["mrae"] / 3  # needs about 9x the samples: two passes (4x, then 4x or 2x)
+    p = camsim.capture(scene, threads=1, target_error=target)
+    assert p["meta"]["render"]["passes"]["stopped_by"] == "target_error"
+    spp = p["meta"]["render"]["spp"]
+    assert spp > 4 and p["meta"]["render"]["estimated_error"]["mrae"] <= target
+    # The image is the one-pass render at that spp, bit for bit.
+    q = camsim.capture(scene, threads=2, spp=spp)
+    np.testing.assert_array_equal(p["xyz"], q["xyz"])
+    assert q["meta"]["render"]["estimated_error"] == p["meta"]["render"]["estimated_error"]
