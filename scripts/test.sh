@@ -87,10 +87,12 @@ release_suite() {
 # runs the same path tracer), BenchBinary.AMissingSceneExitsTwoAfterTheOthers (the other
 # BenchBinary tests), MetallicRoughnessMaterial.WhiteFurnace (its SamplesFollowPdf test) and
 # EldPresetPtc.SonyA7S2MeasuresAsThePublishedFits (56 s under ASan; the PhotonTransfer* and
-# DarkFrameAnalysis.* tests run the same measurement).
+# DarkFrameAnalysis.* tests run the same measurement), and
+# ErrorEstimate.EstimatesTheRendersErrorAgainstAConvergedReference (two 2048-spp references;
+# the other ErrorEstimate and the RenderPasses tests run the same film and estimate code).
 asan_suite() {
   local asan=detect_leaks=1:strict_init_order=1:detect_stack_use_after_return=1
-  local slow='^(ColorChecker\.(MeasuredCameraWithFittedCcm|WhiteBalanceMakesNeutralPatchesNeutral)|DepthOfField\.AplanaticBlurDiscIsUniformlyLit|ColmapTriangulation\.(Fisheye)?PointsLieOnTheTrueSurfaces|DielectricMaterial\.ChiSquareRoughGlassAllModels|ConductorMaterial\.WhiteFurnaceAlbedoTable|DepthOfField\.SixBladesGiveHexagonOfRightOrientationAndArea|DatasetCommand\.KilledMidItemResumesWithNothingLostOrTwice|Furnace\.RussianRouletteStaysUnbiased|BenchBinary\.AMissingSceneExitsTwoAfterTheOthers|MetallicRoughnessMaterial\.WhiteFurnace|EldPresetPtc\.SonyA7S2MeasuresAsThePublishedFits)$'
+  local slow='^(ColorChecker\.(MeasuredCameraWithFittedCcm|WhiteBalanceMakesNeutralPatchesNeutral)|DepthOfField\.AplanaticBlurDiscIsUniformlyLit|ColmapTriangulation\.(Fisheye)?PointsLieOnTheTrueSurfaces|DielectricMaterial\.ChiSquareRoughGlassAllModels|ConductorMaterial\.WhiteFurnaceAlbedoTable|DepthOfField\.SixBladesGiveHexagonOfRightOrientationAndArea|DatasetCommand\.KilledMidItemResumesWithNothingLostOrTwice|Furnace\.RussianRouletteStaysUnbiased|BenchBinary\.AMissingSceneExitsTwoAfterTheOthers|MetallicRoughnessMaterial\.WhiteFurnace|EldPresetPtc\.SonyA7S2MeasuresAsThePublishedFits|ErrorEstimate\.EstimatesTheRendersErrorAgainstAConvergedReference)$'
   cmake -S . -B "$asan_dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
     -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" -DCAMSIM_SANITIZE=ON \
     -DCAMSIM_SIMD=OFF -DCAMSIM_BUILD_BENCH=OFF -DCAMSIM_PYTHON=OFF -DCAMSIM_UNITY_BUILD=ON \

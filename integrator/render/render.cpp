@@ -150,7 +150,7 @@ const char* renderStopName(RenderStop stop) {
 
 namespace {
 
-double secondsSince(std::chrono::steady_clock::time_point start) {
+double elapsedSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
@@ -265,7 +265,7 @@ RenderResult render(const Scene& scene, const std::vector<const SpectralResponse
       break;
     }
     if (whole && pass.end >= 2) estimate = film.estimateError(pass.end);
-    pass = {pass.end, nextPassEnd(options, pass.end, estimate, secondsSince(start), stats.stop)};
+    pass = {pass.end, nextPassEnd(options, pass.end, estimate, elapsedSince(start), stats.stop)};
   }
 
   RenderResult result;
@@ -292,7 +292,7 @@ RenderResult render(const Scene& scene, const std::vector<const SpectralResponse
   result.stats.threads = threads;
   result.stats.modelled = dims;
   result.stats.cancelled = cancelled;
-  result.stats.seconds = secondsSince(start);
+  result.stats.seconds = elapsedSince(start);
   return result;
 }
 
