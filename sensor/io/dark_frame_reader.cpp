@@ -82,6 +82,15 @@ RawImage readRawDng(const fs::path& path) {
          std::to_string(bits) + " bit, " + std::to_string(samples) + " samples, compression " +
          std::to_string(compression) + (TIFFIsTiled(t) ? ", tiled" : "") + ")");
   if (TIFFScanlineSize64(t) != static_cast<std::uint64_t>(width) * 2u) fail("unexpected row size");
+  // Uncompressed 16-bit data must be in the file: a header that claims more is refused
+  // before anything is allocated (a 600-byte file claimed 65536 × 31000 pixels: 4 GB).
+  std::error_code sizeError;
+  const std::uintmax_t fileBytes = fs::file_size(path, sizeError);
+  const std::uint64_t dataBytes = static_cast<std::uint64_t>(width) * height * 2u;
+  if (sizeError || dataBytes > fileBytes)
+    fail("its " + std::to_string(width) + "×" + std::to_string(height) + " 16-bit raw data needs " +
+         std::to_string(dataBytes) + " bytes, the file has " +
+         std::to_string(sizeError ? 0 : fileBytes));
 
   RawImage raw;
   raw.width = static_cast<int>(width);

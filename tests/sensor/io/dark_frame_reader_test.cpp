@@ -217,5 +217,19 @@ TEST(DarkFrames, BadSetsAreRefusedNamingTheFile) {
   EXPECT_THROW(loadDarkFrames(empty.path(), s), InputError);
 }
 
+// A header that claims more pixels than the file holds is refused before anything is
+// allocated (the fuzzer's 968-byte file claimed about 4 GB of raw data).
+TEST(DarkFrames, AHeaderClaimingMoreDataThanTheFileIsRefused) {
+  const std::filesystem::path file = std::filesystem::path(CAMSIM_SOURCE_DIR) /
+                                     "fuzz/regressions/raw_dng/header_claims_4gb_of_pixels.dng";
+  try {
+    readRawDng(file);
+    FAIL() << "accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.key(), "dark_frames");
+    EXPECT_NE(std::string(e.what()).find("bytes, the file has 968"), std::string::npos) << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace camsim::dark_frame_reader_test
