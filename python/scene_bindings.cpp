@@ -180,8 +180,10 @@ independent Scene (without the built one).
 
   const auto overridesDoc = R"doc(
 overrides: an optional dict of the CLI's render flags, applied after loading, in this order:
-  sensor (preset name or sensor file), spp (int), seed (int), exposure_time_s (s: the
-  scene's shutter stretched to this effective time, as --exposure-time), f_number,
+  sensor (preset name or sensor file), spp (int), seed (int), target_error (an estimated
+  MRAE: render in passes until it is reached), time_limit_s (s: passes stop before it),
+  exposure_time_s (s: the scene's shutter stretched to this effective time, as
+  --exposure-time-s), f_number,
   iso (scenes with a sensor), noise ("none" | "photon" | "full"), noise_seed (int),
   pose (as set_pose: {position, look_at, up} or a 4×4 world_from_camera), projection (the
   camera model: camera.projection's map as a dict or YAML/JSON text, as set_projection).
