@@ -389,7 +389,7 @@ CaptureResult mergedCapture(AssembledTiles tiles, SceneDescription description) 
     if (y >= 0)
       out.stats.estimatedError =
           ErrorEstimate{estimateFromHalves(out.film, y, tiles.oddHalf, out.stats.spp),
-                        tiles.oddHalf.channels.front(), out.stats.spp};
+                        tiles.oddHalf.channels.front()};
   }
   out.aovs = std::move(tiles.aovs);
   return out;

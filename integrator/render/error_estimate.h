@@ -65,7 +65,6 @@ ErrorMetrics relativeErrors(std::size_t count, ErrorAt error, ReferenceAt refere
 struct ErrorEstimate {
   ErrorMetrics error;
   std::string channel;  // the channel it is on: "Y" (the XYZ film's), or the response's
-  int samplesPerPixel = 0;
 };
 
 // The estimate from a width × height image's pixel values I (every `stride`-th float, row

@@ -5,7 +5,6 @@ namespace camsim {
 Film::Film(glm::ivec2 resolution, std::vector<const SpectralResponse*> responses)
     : resolution_(resolution), responses_(std::move(responses)) {
   // The error channel: the first "Y" of a response that is not a mosaic, else offset 0.
-  errorChannelName_.clear();
   for (std::size_t k = 0; k < responses_.size(); ++k) {
     const SpectralResponse* r = responses_[k];
     if (!r->isMosaic())

@@ -249,7 +249,8 @@ RenderResult render(const Scene& scene, const std::vector<const SpectralResponse
   CAMSIM_CHECK(whole || (!options.targetError && !options.timeLimitS));
   RenderStats stats;
   stats.stop = RenderStop::kSpp;
-  std::optional<ErrorMetrics> estimate;
+  const bool inPasses = options.targetError || options.timeLimitS;
+  std::optional<ErrorMetrics> estimate;  // in passes: the last pass's, which decides the next
   tbb::task_arena arena(threads);
   for (SampleRange pass{0, options.spp}; pass.end > pass.first;) {
     arena.execute([&] {
@@ -264,16 +265,21 @@ RenderResult render(const Scene& scene, const std::vector<const SpectralResponse
       stats.stop = RenderStop::kCancelled;
       break;
     }
-    if (whole && pass.end >= 2) estimate = film.estimateError(pass.end);
+    if (inPasses && pass.end >= 2) estimate = film.estimateError(pass.end);
     pass = {pass.end, nextPassEnd(options, pass.end, estimate, elapsedSince(start), stats.stop)};
   }
 
   RenderResult result;
   result.stats = stats;
   result.images = film.toImages(stats.spp);
-  if (estimate && !cancelled)
-    result.stats.estimatedError = ErrorEstimate{*estimate, film.errorChannel(), stats.spp};
-  if (stats.spp >= 2 && !cancelled) result.oddHalf = film.oddHalfImage(stats.spp);
+  if (stats.spp >= 2 && !cancelled) {
+    result.oddHalf = film.oddHalfImage(stats.spp);
+    if (!estimate &&
+        whole)  // from the images just made (Film::estimateError would make them again)
+      estimate = estimateFromHalves(result.images[film.errorImage()], film.errorImageChannel(),
+                                    result.oddHalf, stats.spp);
+    if (estimate) result.stats.estimatedError = ErrorEstimate{*estimate, film.errorChannel()};
+  }
   if (aovs.enabled()) result.aovs = aovs.takeImage();
   // A cancelled render holds only the tiles that finished its last pass, each with all its
   // samples.
