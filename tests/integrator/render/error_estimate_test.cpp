@@ -4,9 +4,11 @@
 // target error on the same spp for any thread count, bit for bit the render at that spp.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <random>
+#include <string>
 #include <vector>
 
 #include "integrator/measure/bench_metrics.h"
@@ -51,6 +53,56 @@ TEST(ErrorEstimate, MatchesTheErrorOfGaussianPixels) {
   }
 }
 
+// Pixels carried by rare bright paths: each sample is t + 0.1 t·(Gaussian) plus, with
+// probability p = 0.02, a hit of H = 50 (r = t + pH). At 4 and 16 spp most pixels hold no
+// hit, so their 3×3 median is about t, not r: with t = 1 (half of r from hits) that
+// denominator made the rMSE estimate 3.3–3.9× the image's true rMSE; with t = 0.2 (83 %
+// from hits) the MRAE estimate 2.9× its true MRAE (a NumPy model of the rule before
+// the rare part). The truth is this image's error against the exact r. Tolerances: the
+// issue's factor 1.5 (rMSE, t = 1; measured 1.11 and 1.17); 1.25 on MRAE (t = 0.2;
+// measured 1.06 and 1.15).
+TEST(ErrorEstimate, MatchesTheErrorOfPixelsCarriedByRarePaths) {
+  constexpr int kWidth = 200, kHeight = 100;
+  constexpr std::size_t kPixels = static_cast<std::size_t>(kWidth) * kHeight;
+  constexpr double kHit = 50.0, kP = 0.02;
+  for (const double typical : {1.0, 0.2})
+    for (int n : {4, 16}) {
+      std::mt19937_64 rng(29 + static_cast<unsigned>(n));
+      std::normal_distribution<double> gauss(0.0, 1.0);
+      std::uniform_real_distribution<double> uniform(0.0, 1.0);
+      std::vector<float> means(kPixels), oddMeans(kPixels);
+      const double r = typical + kP * kHit;
+      double sumSq = 0.0, sumAbs = 0.0;
+      for (std::size_t i = 0; i < kPixels; ++i) {
+        double all = 0.0, odd = 0.0;
+        for (int s = 0; s < n; ++s) {
+          const double v = typical * (1.0 + 0.1 * gauss(rng)) + (uniform(rng) < kP ? kHit : 0.0);
+          all += v;
+          if (s % 2 == 1) odd += v;
+        }
+        means[i] = static_cast<float>(all / n);
+        oddMeans[i] = static_cast<float>(odd / (n / 2));
+      }
+      const double eps = 0.01 * r;
+      for (std::size_t i = 0; i < kPixels; ++i) {
+        const double e = static_cast<double>(means[i]) - r;
+        sumSq += e * e / (r * r + eps * eps);
+        sumAbs += std::abs(e) / (r + eps);
+      }
+      const double trueRmse = sumSq / kPixels, trueMrae = sumAbs / kPixels;
+      const ErrorMetrics est =
+          estimateFromHalves(means.data(), 1, oddMeans.data(), kWidth, kHeight, n);
+      const std::string what = "t " + std::to_string(typical) + ", " + std::to_string(n) + " spp";
+      if (typical == 1.0) {
+        EXPECT_GT(est.rmse / trueRmse, 1.0 / 1.5) << what;
+        EXPECT_LT(est.rmse / trueRmse, 1.5) << what;
+      } else {
+        EXPECT_GT(est.mrae / trueMrae, 1.0 / 1.25) << what;
+        EXPECT_LT(est.mrae / trueMrae, 1.25) << what;
+      }
+    }
+}
+
 SceneDescription smallCornell() {
   SceneDescription d =
       loadScene(std::filesystem::path(CAMSIM_SOURCE_DIR) / "scenes/cornell_box.yaml");
@@ -77,8 +129,8 @@ Image luminance(const Image& xyz) {
 // rMSE at 64 spp. (At 16 spp one 48² render's rMSE is itself a wild draw — a few pixels'
 // rare bright paths carry it: two seeds' true rMSE differ by 30 % — and the estimate was
 // 1.86× and 0.62× of it for the two samplers; measured at 128 px in the bench table.)
-// Measured when written: rMSE ratios 1.10 (independent), 0.96 (Sobol'); MRAE 1.05, 0.99,
-// 0.88, 0.92.
+// Measured with the rare-path rule (error_estimate.h): rMSE ratios at 64 spp 1.04
+// (independent), 0.89 (Sobol'); MRAE 1.01, 1.02 (independent, 16 and 64 spp), 0.86, 0.93.
 TEST(ErrorEstimate, EstimatesTheRendersErrorAgainstAConvergedReference) {
   const Scene scene(smallCornell());
   RenderOptions o;
