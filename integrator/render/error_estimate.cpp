@@ -1,7 +1,6 @@
 #include "integrator/render/error_estimate.h"
 
 #include <algorithm>
-#include <utility>
 #include <vector>
 
 #include "sensor/base/check.h"
@@ -22,73 +21,93 @@ double median3(double a, double b, double c) {
   return std::max(std::min(a, b), std::min(std::max(a, b), c));
 }
 
-// Sorts a row of three in place.
+// Sorts three values (branch-free: min and max).
 void sort3(double& a, double& b, double& c) {
-  if (b < a) std::swap(a, b);
-  if (c < b) std::swap(b, c);
-  if (b < a) std::swap(a, b);
+  const double lo = std::min(a, b), hi = std::max(a, b);
+  a = std::min(lo, c);
+  b = std::max(lo, std::min(hi, c));
+  c = std::max(hi, c);
 }
 
-// The median of each pixel's 3×3 neighbourhood (the part inside the image). Inside, with
-// each row of three sorted, the median of nine is the median of the rows' largest low,
-// median middle and smallest high (exact, branch-free; nth_element at the border).
-std::vector<double> median3x3(const std::vector<double>& v, int width, int height) {
-  std::vector<double> out(v.size());
-  for (int y = 0; y < height; ++y)
-    for (int x = 0; x < width; ++x) {
-      if (x > 0 && y > 0 && x + 1 < width && y + 1 < height) {
-        double lo[3], mid[3], hi[3];
-        for (int j = 0; j < 3; ++j) {
-          const std::size_t row = index(x - 1, y - 1 + j, width);
-          lo[j] = v[row];
-          mid[j] = v[row + 1];
-          hi[j] = v[row + 2];
-          sort3(lo[j], mid[j], hi[j]);
-        }
-        out[index(x, y, width)] =
-            median3(std::max({lo[0], lo[1], lo[2]}), median3(mid[0], mid[1], mid[2]),
-                    std::min({hi[0], hi[1], hi[2]}));
-        continue;
+// The median of at(i) over the pixel's 3×3 neighbourhood (the part inside the image).
+// Inside, with each column of three sorted, the median of nine is the median of the
+// columns' largest low, median middle and smallest high (exact and branch-free; each column
+// is sorted once per row and serves three pixels); at the border, nth_element.
+template <typename At>
+std::vector<float> median3x3(At at, int width, int height) {
+  std::vector<float> out(static_cast<std::size_t>(width) * static_cast<std::size_t>(height));
+  auto border = [&](int x, int y) {
+    double window[9];
+    int k = 0;
+    for (int j = std::max(y - 1, 0); j <= std::min(y + 1, height - 1); ++j)
+      for (int i = std::max(x - 1, 0); i <= std::min(x + 1, width - 1); ++i)
+        window[k++] = at(index(i, j, width));
+    std::nth_element(window, window + k / 2, window + k);
+    out[index(x, y, width)] = static_cast<float>(window[k / 2]);
+  };
+  for (int y = 0; y < height; ++y) {
+    if (y == 0 || y + 1 == height || width < 3) {
+      for (int x = 0; x < width; ++x) border(x, y);
+      continue;
+    }
+    border(0, y);
+    border(width - 1, y);
+    double lo[3], mid[3], hi[3];  // columns x − 1, x, x + 1, each sorted
+    auto column = [&](int slot, int x) {
+      lo[slot] = at(index(x, y - 1, width));
+      mid[slot] = at(index(x, y, width));
+      hi[slot] = at(index(x, y + 1, width));
+      sort3(lo[slot], mid[slot], hi[slot]);
+    };
+    column(0, 0);
+    column(1, 1);
+    for (int x = 1; x + 1 < width; ++x) {
+      column((x + 1) % 3, x + 1);
+      out[index(x, y, width)] = static_cast<float>(median3(std::max({lo[0], lo[1], lo[2]}),
+                                                           median3(mid[0], mid[1], mid[2]),
+                                                           std::min({hi[0], hi[1], hi[2]})));
+    }
+  }
+  return out;
+}
+
+// Window means of an image from its summed-area table: O(1) per pixel and window.
+class WindowMeans {
+ public:
+  WindowMeans(const std::vector<float>& v, int width, int height)
+      : v_(v),
+        width_(width),
+        height_(height),
+        sat_((static_cast<std::size_t>(width) + 1) * (static_cast<std::size_t>(height) + 1), 0.0) {
+    const std::size_t w1 = static_cast<std::size_t>(width) + 1;
+    for (int y = 0; y < height; ++y) {
+      double row = 0.0;
+      for (int x = 0; x < width; ++x) {
+        row += static_cast<double>(v[index(x, y, width)]);
+        sat_[(static_cast<std::size_t>(y) + 1) * w1 + static_cast<std::size_t>(x) + 1] =
+            sat_[static_cast<std::size_t>(y) * w1 + static_cast<std::size_t>(x) + 1] + row;
       }
-      double window[9];
-      int k = 0;
-      for (int j = std::max(y - 1, 0); j <= std::min(y + 1, height - 1); ++j)
-        for (int i = std::max(x - 1, 0); i <= std::min(x + 1, width - 1); ++i)
-          window[k++] = v[index(i, j, width)];
-      std::nth_element(window, window + k / 2, window + k);
-      out[index(x, y, width)] = window[k / 2];
-    }
-  return out;
-}
-
-// Each pixel's mean of v over the (2 radius + 1)² window around it (the part inside the
-// image) without the pixel itself, from a summed-area table: O(1) per pixel.
-std::vector<double> othersMean(const std::vector<double>& v, int width, int height, int radius) {
-  const std::size_t w1 = static_cast<std::size_t>(width) + 1;
-  std::vector<double> sat(w1 * (static_cast<std::size_t>(height) + 1), 0.0);
-  for (int y = 0; y < height; ++y) {
-    double row = 0.0;
-    for (int x = 0; x < width; ++x) {
-      row += v[index(x, y, width)];
-      sat[(static_cast<std::size_t>(y) + 1) * w1 + static_cast<std::size_t>(x) + 1] =
-          sat[static_cast<std::size_t>(y) * w1 + static_cast<std::size_t>(x) + 1] + row;
     }
   }
-  std::vector<double> out(v.size());
-  for (int y = 0; y < height; ++y) {
+  // The mean over the (2 radius + 1)² window around (x, y) (the part inside the image)
+  // without the pixel itself; 0 when the window holds no other pixel.
+  double othersMean(int x, int y, int radius) const {
+    const std::size_t w1 = static_cast<std::size_t>(width_) + 1;
     const std::size_t y0 = static_cast<std::size_t>(std::max(y - radius, 0));
-    const std::size_t y1 = static_cast<std::size_t>(std::min(y + radius, height - 1)) + 1;
-    for (int x = 0; x < width; ++x) {
-      const std::size_t x0 = static_cast<std::size_t>(std::max(x - radius, 0));
-      const std::size_t x1 = static_cast<std::size_t>(std::min(x + radius, width - 1)) + 1;
-      const double sum = sat[y1 * w1 + x1] - sat[y0 * w1 + x1] - sat[y1 * w1 + x0] +
-                         sat[y0 * w1 + x0] - v[index(x, y, width)];
-      const std::size_t others = (y1 - y0) * (x1 - x0) - 1;
-      out[index(x, y, width)] = others > 0 ? sum / static_cast<double>(others) : 0.0;
-    }
+    const std::size_t y1 = static_cast<std::size_t>(std::min(y + radius, height_ - 1)) + 1;
+    const std::size_t x0 = static_cast<std::size_t>(std::max(x - radius, 0));
+    const std::size_t x1 = static_cast<std::size_t>(std::min(x + radius, width_ - 1)) + 1;
+    const double sum = sat_[y1 * w1 + x1] - sat_[y0 * w1 + x1] - sat_[y1 * w1 + x0] +
+                       sat_[y0 * w1 + x0] - static_cast<double>(v_[index(x, y, width_)]);
+    const std::size_t others = (y1 - y0) * (x1 - x0) - 1;
+    return others > 0 ? sum / static_cast<double>(others) : 0.0;
   }
-  return out;
-}
+
+ private:
+  const std::vector<float>& v_;
+  int width_, height_;
+  std::vector<double> sat_;  // (width + 1) × (height + 1), row 0 and column 0 zero
+};
 
 }  // namespace
 
@@ -99,31 +118,43 @@ ErrorMetrics estimateFromHalves(const float* values, std::size_t stride, const f
   const double nB = static_cast<double>(samplesPerPixel / 2), nA = n - nB;
   const double scale = 1.0 / std::sqrt(n * (1.0 / nA + 1.0 / nB));
   const std::size_t count = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
-  std::vector<double> value(count), error(count), spread(count);
+  auto value = [&](std::size_t i) { return static_cast<double>(values[i * stride]); };  // I
+  // ê. The even samples' mean a = (n I − n_B b)/n_A, so a − b = n (I − b)/n_A.
+  const double factor = n / nA * scale;
+  auto error = [&](std::size_t i) {
+    return factor * (value(i) - static_cast<double>(oddMeans[i]));
+  };
   double total = 0.0;
-  for (std::size_t i = 0; i < count; ++i) {
-    total += value[i] = static_cast<double>(values[i * stride]);
-    // The even samples' mean a = (n I − n_B b)/n_A, so a − b = n (I − b)/n_A.
-    error[i] = n * (value[i] - static_cast<double>(oddMeans[i])) / nA * scale;
-    spread[i] = std::abs(error[i]);
-  }
-  const std::vector<double> typical = median3x3(value, width, height);  // m
-  const std::vector<double> noise = median3x3(spread, width, height);   // s
+  for (std::size_t i = 0; i < count; ++i) total += value(i);
+  // Stored as float (the film's precision), which halves the memory the estimate touches.
+  std::vector<float> typical = median3x3(value, width, height);  // m
+  std::vector<float> noise =
+      median3x3([&](std::size_t i) { return std::abs(error(i)); }, width, height);  // s
   // h: the pixel's departure from m, as far as its halves disagree beyond the local noise.
-  std::vector<double> rare(count);
+  std::vector<float> rare(count);
   for (std::size_t i = 0; i < count; ++i) {
-    const double d = value[i] - typical[i];
-    const double h = std::max(std::min(std::abs(d), spread[i]) - noise[i], 0.0);
-    rare[i] = d < 0.0 ? -h : h;
+    const double d = value(i) - static_cast<double>(typical[i]);
+    const double h =
+        std::max(std::min(std::abs(d), std::abs(error(i))) - static_cast<double>(noise[i]), 0.0);
+    rare[i] = static_cast<float>(d < 0.0 ? -h : h);
   }
-  const std::vector<double> rareWide = othersMean(rare, width, height, kReferenceRadius);
-  const std::vector<double> rareNear = othersMean(rare, width, height, kMissedRadius);
+  const WindowMeans rareMeans(rare, width, height);
+  // r̂ and the MRAE's |e| per pixel, in place of m and s (each pixel reads only its own).
+  std::vector<float>& reference = typical;
+  std::vector<float>& missed = noise;
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      const std::size_t i = index(x, y, width);
+      reference[i] = static_cast<float>(std::max(
+          static_cast<double>(typical[i]) + rareMeans.othersMean(x, y, kReferenceRadius), 0.0));
+      missed[i] = static_cast<float>(
+          std::max(std::abs(error(i)), rareMeans.othersMean(x, y, kMissedRadius)));
+    }
   const double mean = total / static_cast<double>(count);
-  auto reference = [&](std::size_t i) { return std::max(typical[i] + rareWide[i], 0.0); };
-  const ErrorMetrics squared = relativeErrors(
-      count, [&](std::size_t i) { return error[i]; }, reference, mean);
+  auto at = [&](std::size_t i) { return static_cast<double>(reference[i]); };
+  const ErrorMetrics squared = relativeErrors(count, error, at, mean);
   const ErrorMetrics absolute = relativeErrors(
-      count, [&](std::size_t i) { return std::max(spread[i], rareNear[i]); }, reference, mean);
+      count, [&](std::size_t i) { return static_cast<double>(missed[i]); }, at, mean);
   return {squared.rmse, absolute.mrae};
 }
 
