@@ -128,7 +128,7 @@ Image luminance(const Image& xyz) {
 // is taken out as the bench does): within a factor 1.5 (the bound), MRAE at both,
 // rMSE at 64 spp. (At 16 spp one 48² render's rMSE is itself a wild draw — a few pixels'
 // rare bright paths carry it: two seeds' true rMSE differ by 30 % — and the estimate was
-// 1.86× and 0.62× of it for the two samplers; measured at 128 px in the bench table.)
+// 1.21× and 0.51× of it for the two samplers; measured at 128 px in the bench table.)
 // Measured with the rare-path rule (error_estimate.h): rMSE ratios at 64 spp 1.04
 // (independent), 0.89 (Sobol'); MRAE 1.01, 1.02 (independent, 16 and 64 spp), 0.86, 0.93.
 TEST(ErrorEstimate, EstimatesTheRendersErrorAgainstAConvergedReference) {
