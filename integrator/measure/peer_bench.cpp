@@ -35,7 +35,8 @@ struct Halves {
 
 Image average(const Image& a, const Image& b) {
   Image r = a;
-  for (std::size_t i = 0; i < r.pixels.size(); ++i) r.pixels[i] = 0.5f * (a.pixels[i] + b.pixels[i]);
+  for (std::size_t i = 0; i < r.pixels.size(); ++i)
+    r.pixels[i] = 0.5f * (a.pixels[i] + b.pixels[i]);
   return r;
 }
 
@@ -72,10 +73,10 @@ void writeHalves(const std::filesystem::path& file, const Halves& h, std::ostrea
   try {
     OutputSet::prepareDirectory(file.parent_path());
     OutputSet out(file.parent_path());
-    writeExr(out.add(file.filename().string()), img,
-             {{"camsim:version", CAMSIM_VERSION},
-              {"camsim:render_seconds", formatNumber(h.seconds, 6)}},
-             std::nullopt);
+    writeExr(
+        out.add(file.filename().string()), img,
+        {{"camsim:version", CAMSIM_VERSION}, {"camsim:render_seconds", formatNumber(h.seconds, 6)}},
+        std::nullopt);
     out.commit();
   } catch (const InputError& e) {
     log << "warning: cannot write the peer reference cache (" << e.what() << "): not cached\n";
@@ -89,8 +90,8 @@ std::map<int, double> runBlender(const PeerPlan& plan, const std::string& script
   const std::filesystem::path logFile = plan.scratchDir / (tag + ".log");
   std::ofstream(py) << script;
   const std::vector<std::string> argv = {
-      plan.blender,   "-b",       "--factory-startup", "-noaudio", "--python-exit-code", "3",
-      "--python",     py.string()};
+      plan.blender,         "-b", "--factory-startup", "-noaudio",
+      "--python-exit-code", "3",  "--python",          py.string()};
   std::vector<char*> cargv;
   for (const std::string& a : argv) cargv.push_back(const_cast<char*>(a.c_str()));
   cargv.push_back(nullptr);
@@ -131,12 +132,14 @@ PeerRun runCamsim(const PeerInput& in, const SceneDescription& d, const PeerPlan
   PeerRun run;
   run.renderer = "camsim";
   const Scene scene(d);
-  const std::filesystem::path cache = plan.cacheDir / ("peer-" + in.name + "-camsim-" + key + ".exr");
+  const std::filesystem::path cache =
+      plan.cacheDir / ("peer-" + in.name + "-camsim-" + key + ".exr");
   std::optional<Halves> ref = readHalves(cache);
   if (!ref) {
     log << "peer: " << in.name << ": camsim reference, " << plan.refSpp << " spp\n";
     ref.emplace();
-    for (auto [seed, out] : {std::pair<std::uint64_t, Image*>{kSeedA, &ref->a}, {kSeedB, &ref->b}}) {
+    for (auto [seed, out] :
+         {std::pair<std::uint64_t, Image*>{kSeedA, &ref->a}, {kSeedB, &ref->b}}) {
       const RenderResult r = renderXyz(
           scene, benchRenderOptions(plan.refSpp / 2, seed, plan.threads, SamplerKind::kSobol));
       ref->seconds += r.stats.seconds;
@@ -177,7 +180,8 @@ PeerRun runCycles(const PeerInput& in, const SceneDescription& d, const PeerPlan
             std::to_string(std::filesystem::last_write_time(p, ec).time_since_epoch().count());
   }
   const std::string key = fnv1aHex(camsimKey + "\n" + bare.script + "\n" + stamp);
-  const std::filesystem::path cache = plan.cacheDir / ("peer-" + in.name + "-cycles-" + key + ".exr");
+  const std::filesystem::path cache =
+      plan.cacheDir / ("peer-" + in.name + "-cycles-" + key + ".exr");
   const std::filesystem::path dir = plan.scratchDir;
   std::optional<Halves> ref = readHalves(cache);
   if (!ref) {
@@ -185,7 +189,8 @@ PeerRun runCycles(const PeerInput& in, const SceneDescription& d, const PeerPlan
     CyclesSettings s = settings;
     s.renders = {{plan.refSpp / 2, kSeedA, (dir / (in.name + "-ref-a.exr")).string()},
                  {plan.refSpp / 2, kSeedB, (dir / (in.name + "-ref-b.exr")).string()}};
-    const std::map<int, double> t = runBlender(plan, translateToCycles(d, s).script, in.name + "-ref");
+    const std::map<int, double> t =
+        runBlender(plan, translateToCycles(d, s).script, in.name + "-ref");
     ref.emplace();
     ref->a = readCyclesImage(s.renders[0].file);
     ref->b = readCyclesImage(s.renders[1].file);
@@ -202,10 +207,12 @@ PeerRun runCycles(const PeerInput& in, const SceneDescription& d, const PeerPlan
     s.renders.push_back(
         {spp, kLadderSeed, (dir / (in.name + "-" + std::to_string(spp) + ".exr")).string()});
   log << "peer: " << in.name << ": Cycles ladder\n";
-  const std::map<int, double> t = runBlender(plan, translateToCycles(d, s).script, in.name + "-ladder");
+  const std::map<int, double> t =
+      runBlender(plan, translateToCycles(d, s).script, in.name + "-ladder");
   for (std::size_t i = 0; i < s.renders.size(); ++i) {
     const auto found = t.find(static_cast<int>(i));
-    if (found == t.end()) throw std::runtime_error("blender printed no time for render " + std::to_string(i));
+    if (found == t.end())
+      throw std::runtime_error("blender printed no time for render " + std::to_string(i));
     PeerLadderPoint p{s.renders[i].spp, found->second,
                       peerCompare(readCyclesImage(s.renders[i].file), reference)};
     log << "peer: " << in.name << " cycles " << p.spp << " spp: " << formatNumber(p.seconds, 3)
@@ -237,11 +244,11 @@ PeerSceneResult runPeerScene(const PeerInput& input, const PeerPlan& plan, std::
   r.height = d.camera.resolution.y;
   r.maxDepth = d.render.maxDepth;
   // The scene text plus the depth: the key of both references.
-  const ReferenceRequest request{input.name,         input.sceneText + "\nmax_depth " +
-                                                         std::to_string(r.maxDepth),
-                                 d.inputFiles,       d.camera.resolution,
-                                 d.sourceFile,       plan.refSpp,
-                                 plan.threads};
+  const ReferenceRequest request{
+      input.name,   input.sceneText + "\nmax_depth " + std::to_string(r.maxDepth),
+      d.inputFiles, d.camera.resolution,
+      d.sourceFile, plan.refSpp,
+      plan.threads};
   const std::string keyText = "camsim-peer/1\n" + referenceKeyText(request);
   // Translate first: a scene Cycles cannot take fails before any render.
   translateToCycles(d, CyclesSettings{});

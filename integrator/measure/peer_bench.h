@@ -24,8 +24,8 @@
 namespace camsim {
 
 struct PeerPlan {
-  int refSpp = 4096;      // total over the two halves
-  int minSpp = 16;        // the ladders' first rung
+  int refSpp = 4096;       // total over the two halves
+  int minSpp = 16;         // the ladders' first rung
   int cyclesMaxSpp = 256;  // Cycles' top: the target error
   int camsimMaxSpp = 1024;
   int threads = 1;

@@ -134,17 +134,18 @@ std::string formatPeerReport(const std::vector<PeerSceneResult>& results, int th
          "(around bpy.ops.render.render: its scene sync and BVH build included, Blender's "
          "start-up excluded)\n";
   char line[256];
-  std::snprintf(line, sizeof line, "%-13s %-7s %6s %9s %10s %10s %10s %10s\n", "scene",
-                "renderer", "spp", "seconds", "rMSE RGB", "error*RGB", "rMSE Y", "error* Y");
+  std::snprintf(line, sizeof line, "%-13s %-7s %6s %9s %10s %10s %10s %10s\n", "scene", "renderer",
+                "spp", "seconds", "rMSE RGB", "error*RGB", "rMSE Y", "error* Y");
   for (const PeerSceneResult& r : results) {
     out << "\n"
         << r.scene << " " << r.width << "x" << r.height << ", camsim max_depth " << r.maxDepth
         << " / Cycles max_bounces " << r.maxDepth - 1 << "\n";
     for (const PeerRun* run : {&r.cycles, &r.camsim})
-      out << "  " << run->renderer << " reference floor: rMSE RGB "
-          << sci(run->floor.rgb.rmse) << ", Y " << sci(run->floor.y.rmse)
-          << (run->referenceCached ? " (cached)"
-                                   : " (rendered in " + formatFixed(run->referenceSeconds, 1) + " s)")
+      out << "  " << run->renderer << " reference floor: rMSE RGB " << sci(run->floor.rgb.rmse)
+          << ", Y " << sci(run->floor.y.rmse)
+          << (run->referenceCached
+                  ? " (cached)"
+                  : " (rendered in " + formatFixed(run->referenceSeconds, 1) + " s)")
           << "\n";
     out << line;
     for (const PeerRun* run : {&r.cycles, &r.camsim})
@@ -173,7 +174,11 @@ std::string formatPeerReport(const std::vector<PeerSceneResult>& results, int th
       out << "  " << r.scene << ": RGB " << formatFixed(r.rgb.ratio(), 3)
           << (r.rgb.extrapolated ? "*" : "") << ", Y " << formatFixed(r.y.ratio(), 3)
           << (r.y.extrapolated ? "*" : "") << "\n";
-    out << "  (* extrapolated beyond camsim's ladder)\n";
+    for (const PeerSceneResult& r : results)
+      if (r.rgb.extrapolated || r.y.extrapolated) {
+        out << "  (* extrapolated beyond camsim's ladder)\n";
+        break;
+      }
   }
   return out.str();
 }
@@ -185,12 +190,11 @@ std::string formatPeerCsv(const std::vector<PeerSceneResult>& results) {
   for (const PeerSceneResult& r : results)
     for (const PeerRun* run : {&r.cycles, &r.camsim})
       for (const PeerLadderPoint& p : run->ladder)
-        out << csvField(r.scene) << "," << run->renderer << "," << r.width << "," << r.height
-            << "," << r.maxDepth << "," << p.spp << "," << formatShortest(p.seconds) << ","
-            << formatShortest(p.error.rgb.rmse) << "," << formatShortest(run->floor.rgb.rmse)
-            << "," << formatShortest(p.error.rgb.mrae) << "," << formatShortest(p.error.y.rmse)
-            << "," << formatShortest(run->floor.y.rmse) << "," << formatShortest(p.error.y.mrae)
-            << "\n";
+        out << csvField(r.scene) << "," << run->renderer << "," << r.width << "," << r.height << ","
+            << r.maxDepth << "," << p.spp << "," << formatShortest(p.seconds) << ","
+            << formatShortest(p.error.rgb.rmse) << "," << formatShortest(run->floor.rgb.rmse) << ","
+            << formatShortest(p.error.rgb.mrae) << "," << formatShortest(p.error.y.rmse) << ","
+            << formatShortest(run->floor.y.rmse) << "," << formatShortest(p.error.y.mrae) << "\n";
   return out.str();
 }
 

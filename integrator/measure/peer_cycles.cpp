@@ -30,9 +30,10 @@ std::string tuple3(const glm::dvec3& v) {
 
 [[noreturn]] void untranslatable(const SceneDescription& scene, const std::string& what) {
   throw InputError({scene.sourceFile, 0, 0}, "",
-                   what + ": not translatable to Cycles by camsim bench --peer (it covers "
-                          "diffuse and mirror materials of constant reflectance, emitting "
-                          "shapes, pinhole and thin-lens cameras and static scenes)");
+                   what +
+                       ": not translatable to Cycles by camsim bench --peer (it covers "
+                       "diffuse and mirror materials of constant reflectance, emitting "
+                       "shapes, pinhole and thin-lens cameras and static scenes)");
 }
 
 // A triangle soup in render space (m): positions and triangle indices.
@@ -158,8 +159,7 @@ void writeMaterials(std::ostream& py, const SceneDescription& scene) {
     if (m.type == MaterialDescription::Type::kDiffuse) kind = "diffuse";
     if (m.type == MaterialDescription::Type::kMirror) kind = "mirror";
     if (!kind)
-      untranslatable(scene, "material '" + m.name + "' of type " +
-                                std::string(enumName(m.type)));
+      untranslatable(scene, "material '" + m.name + "' of type " + std::string(enumName(m.type)));
     py << "materials.append(material(" << pythonString(m.name) << ", '" << kind << "', "
        << tuple3(constantRgb(scene, m)) << "))\n";
   }
@@ -222,8 +222,7 @@ void writeCamera(std::ostream& py, const SceneDescription& scene) {
     py << "cam.dof.use_dof = True\n"
        << "cam.dof.focus_distance = " << num(c.focusDistance) << "\n"
        << "cam.dof.aperture_fstop = " << num(zi / c.apertureDiameter()) << "\n"
-       << "cam.dof.aperture_blades = " << (c.aperture->blades >= 3 ? c.aperture->blades : 0)
-       << "\n"
+       << "cam.dof.aperture_blades = " << (c.aperture->blades >= 3 ? c.aperture->blades : 0) << "\n"
        << "cam.dof.aperture_rotation = " << num(c.aperture->rotation) << "\n";
   } else {
     py << "cam.dof.use_dof = False\n";
@@ -237,8 +236,7 @@ void writeCamera(std::ostream& py, const SceneDescription& scene) {
      << "scene.camera = cam_ob\n\n";
 }
 
-void writeRenderSettings(std::ostream& py, const SceneDescription& scene,
-                         const CyclesSettings& s) {
+void writeRenderSettings(std::ostream& py, const SceneDescription& scene, const CyclesSettings& s) {
   const int b = s.bounces;
   py << "r = scene.render\n"
      << "r.engine = 'CYCLES'\n"

@@ -48,8 +48,8 @@ struct CyclesRender {
 
 struct CyclesSettings {
   int threads = 1;
-  int bounces = 15;                  // Cycles max_bounces (camsim max_depth − 1)
-  std::string warmupFile;            // empty: no warm-up render
+  int bounces = 15;                   // Cycles max_bounces (camsim max_depth − 1)
+  std::string warmupFile;             // empty: no warm-up render
   std::vector<CyclesRender> renders;  // in order
 };
 
