@@ -61,7 +61,8 @@ TEST(PeerCycles, CornellBoxScriptHasTheSceneValues) {
   EXPECT_EQ(lineStarting(py, "cam.dof.use_dof"), "cam.dof.use_dof = False");
   EXPECT_EQ(lineStarting(py, "r.resolution_x"), "r.resolution_x = 512");
   EXPECT_EQ(lineStarting(py, "r.threads = "), "r.threads = 2");
-  EXPECT_EQ(lineStarting(py, "c.max_bounces"), "c.max_bounces = c.diffuse_bounces = c.glossy_bounces = 15");
+  EXPECT_EQ(lineStarting(py, "c.max_bounces"),
+            "c.max_bounces = c.diffuse_bounces = c.glossy_bounces = 15");
   EXPECT_EQ(lineStarting(py, "c.use_denoising"), "c.use_denoising = False");
   EXPECT_EQ(lineStarting(py, "c.use_adaptive_sampling"), "c.use_adaptive_sampling = False");
   EXPECT_EQ(lineStarting(py, "render(0, "), "render(0, 256, 1, \"/tmp/out \\\"x\\\".exr\")");
@@ -133,8 +134,10 @@ TEST(PeerCompare, TimeToReachInterpolatesInLogLog) {
 TEST(PeerCompare, EqualErrorSubtractsEachFloor) {
   PeerRun cycles, camsim;
   cycles.floor.rgb.rmse = 0.001;
-  cycles.ladder = {{16, 1.0, {{0.017, 0.0}, {0.017, 0.0}}}, {256, 16.0, {{0.002, 0.0}, {0.002, 0.0}}}};
-  camsim.ladder = {{16, 0.5, {{0.004, 0.0}, {0.004, 0.0}}}, {64, 2.0, {{0.001, 0.0}, {0.001, 0.0}}}};
+  cycles.ladder = {{16, 1.0, {{0.017, 0.0}, {0.017, 0.0}}},
+                   {256, 16.0, {{0.002, 0.0}, {0.002, 0.0}}}};
+  camsim.ladder = {{16, 0.5, {{0.004, 0.0}, {0.004, 0.0}}},
+                   {64, 2.0, {{0.001, 0.0}, {0.001, 0.0}}}};
   const EqualError e = equalError(camsim, cycles, false);
   EXPECT_NEAR(e.target, 0.001, 1e-15);
   EXPECT_DOUBLE_EQ(e.cyclesSeconds, 16.0);
