@@ -19,7 +19,32 @@ const std::vector<std::string>& benchSuite() {
   return suite;
 }
 
+const std::vector<std::string>& peerSuite() {
+  static const std::vector<std::string> suite = {"cornell_box", "dof_chart", "small_light"};
+  return suite;
+}
+
 namespace {
+
+// Names separated by commas into `target`.
+void addListOption(CLI::App& app, const std::string& name, std::vector<std::string>& target,
+                   const std::string& help) {
+  app.add_option_function<std::string>(
+         name,
+         [&target, name](const std::string& list) {
+           target.clear();
+           for (std::size_t start = 0; start <= list.size();) {
+             const std::size_t comma = std::min(list.find(',', start), list.size());
+             const std::string item = list.substr(start, comma - start);
+             if (item.empty())
+               throw UsageError(name + " expects names separated by commas, got '" + list + "'");
+             target.push_back(item);
+             start = comma + 1;
+           }
+         },
+         help)
+      ->type_name("a,b");
+}
 
 // An integer option in [lo, hi] into `target` (a std::optional of an integer type); the
 // range ends the help text, so --help states it.
@@ -75,21 +100,8 @@ std::unique_ptr<CLI::App> benchApp(BenchArgs& b) {
          },
          "worker threads (default: all cores) [1, 1024]")
       ->type_name("N");
-  app->add_option_function<std::string>(
-         "--scenes",
-         [&b](const std::string& list) {
-           b.scenes.clear();
-           for (std::size_t start = 0; start <= list.size();) {
-             const std::size_t comma = std::min(list.find(',', start), list.size());
-             const std::string name = list.substr(start, comma - start);
-             if (name.empty())
-               throw UsageError("--scenes expects names separated by commas, got '" + list + "'");
-             b.scenes.push_back(name);
-             start = comma + 1;
-           }
-         },
-         "scenes to run: suite names or scene files (default: the suite)")
-      ->type_name("a,b");
+  addListOption(*app, "--scenes", b.scenes,
+                "scenes to run: suite names or scene files (default: the suite)");
   addIntegerOption(*app, "--max-spp", b.maxSpp, 1, 65536,
                    "largest budget (default 256; --quick 64)", "N");
   addIntegerOption(*app, "--resolution", b.resolution, 4, 8192,
@@ -107,6 +119,34 @@ std::unique_ptr<CLI::App> benchApp(BenchArgs& b) {
   addIntegerOption(*app, "--texture-size", b.textureSize, 0, 16384,
                    "side of the texture-load test's random-colour PNG (default 1024; 0 skips it)",
                    "PX");
+  app->add_option_function<std::string>(
+         "--peer",
+         [&b](const std::string& name) {
+           if (name != "cycles")
+             throw UsageError("--peer expects 'cycles' (the only peer renderer), got '" + name +
+                              "'");
+           b.peer = name;
+         },
+         "also render the peer scenes with Blender's Cycles (Debian's blender on PATH: "
+         "scripts/setup.sh --peer) and compare the time each renderer needs for the same error "
+         "(docs/bench.md)")
+      ->type_name("cycles");
+  app->add_flag("--peer-only", b.peerOnly,
+                "with --peer: only the comparison (no sweeps, limit, mesh or texture tests)");
+  addListOption(*app, "--peer-scenes", b.peerScenes,
+                "scenes for --peer (default: cornell_box,dof_chart,small_light)");
+  addIntegerOption(*app, "--peer-resolution", b.peerResolution, 4, 8192,
+                   "long side of the --peer images (default 512: the scenes' own sizes)", "PX");
+  addIntegerOption(*app, "--peer-ref-spp", b.peerRefSpp, 2, 1 << 20,
+                   "--peer references' samples per pixel, each renderer (default 4096)", "N");
+  addIntegerOption(*app, "--peer-spp", b.peerSpp, 1, 65536,
+                   "Cycles' top spp, the target error (default 256; ladders start at 16)", "N");
+  addIntegerOption(*app, "--peer-camsim-spp", b.peerCamsimSpp, 1, 1 << 20,
+                   "camsim's top spp (default 4 x --peer-spp)", "N");
+  addIntegerOption(*app, "--peer-max-depth", b.peerMaxDepth, 1, 1024,
+                   "scattering events per path for both (Cycles: max_bounces = N - 1; "
+                   "default: each scene's max_depth)",
+                   "N");
   app->footer(
       "Exit codes: 0 success, 1 internal error, 2 bad arguments or a scene that failed to\n"
       "load (the others' results are written).");

@@ -15,6 +15,7 @@
 #include "integrator/measure/bench_limit.h"
 #include "integrator/measure/bench_metrics.h"
 #include "integrator/measure/bench_reference.h"
+#include "integrator/measure/peer_bench.h"
 #include "integrator/scene/scene.h"
 #include "integrator/scene/scene_loader.h"
 #include "sensor/base/file_status.h"
@@ -103,6 +104,38 @@ void measureFeatures(const std::string& name, const Scene& scene,
   }
 }
 
+// --peer cycles: each peer scene at the peer resolution, camsim and Cycles side by side.
+std::vector<PeerSceneResult> runPeer(const BenchArgs& args, const BenchPlan& plan,
+                                     const std::filesystem::path& cacheDir,
+                                     const std::filesystem::path& scratch,
+                                     std::vector<std::string>& failed, std::ostream& log) {
+  PeerPlan p;
+  if (args.peerRefSpp) p.refSpp = *args.peerRefSpp + *args.peerRefSpp % 2;
+  if (args.peerSpp) p.cyclesMaxSpp = *args.peerSpp;
+  p.camsimMaxSpp = args.peerCamsimSpp ? *args.peerCamsimSpp : 4 * p.cyclesMaxSpp;
+  p.minSpp = std::min({p.minSpp, p.cyclesMaxSpp, p.camsimMaxSpp});
+  p.threads = plan.threads;
+  p.maxDepth = args.peerMaxDepth;
+  p.cacheDir = cacheDir;
+  p.scratchDir = scratch / "peer";
+  std::filesystem::create_directories(p.scratchDir);
+  p.blender = *findBlender();
+  std::vector<PeerSceneResult> results;
+  for (const std::string& name : args.peerScenes.empty() ? peerSuite() : args.peerScenes) {
+    try {
+      const LoadedBenchScene s = loadBenchScene(name, args.peerResolution.value_or(512));
+      log << "bench: peer " << s.name << " at "
+          << formatSize(s.description.camera.resolution.x, s.description.camera.resolution.y)
+          << "\n";
+      results.push_back(runPeerScene({s.name, s.text, s.description}, p, log));
+    } catch (const InputError& e) {
+      log << "bench: peer: skipping " << name << ": " << e.what() << "\n";
+      failed.push_back("peer " + name + ": " + e.what());
+    }
+  }
+  return results;
+}
+
 }  // namespace
 
 BenchScratchDirectory::BenchScratchDirectory(std::filesystem::path base) {
@@ -136,12 +169,19 @@ int runBench(const BenchArgs& args, std::ostream& out, std::ostream& log) {
   const auto start = std::chrono::steady_clock::now();
   const double cpuStart = processCpuSeconds();
   const BenchPlan plan = planBench(args);
-  const std::vector<std::string> names = args.scenes.empty() ? benchSuite() : args.scenes;
+  std::vector<std::string> names = args.scenes.empty() ? benchSuite() : args.scenes;
   const std::filesystem::path outDir(args.outputDir);
   const std::filesystem::path cacheDir =
       args.cacheDir ? std::filesystem::path(*args.cacheDir) : defaultBenchCacheDir();
+  if (args.peer && !findBlender()) {
+    log << "camsim bench: --peer cycles needs Debian's blender on PATH (scripts/setup.sh "
+           "--peer installs it)\n";
+    return 2;
+  }
+  const bool full = !(args.peer && args.peerOnly);  // the sweeps, the limit and the rest
+  if (!full) names.clear();
   std::optional<BenchScratchDirectory> scratch;  // made first: fail before any output or render
-  if (plan.meshTriangles > 0 || plan.textureSize > 0) scratch.emplace();
+  if ((full && (plan.meshTriangles > 0 || plan.textureSize > 0)) || args.peer) scratch.emplace();
   for (const auto& stale : OutputSet::prepareDirectory(outDir))
     log << "removed " << stale.string() << " (left by a run that was killed)\n";
   const std::string loadBefore = loadAverage();
@@ -213,7 +253,9 @@ int runBench(const BenchArgs& args, std::ostream& out, std::ostream& log) {
       measureFeatures(s.name, Scene(s.description), s.description, plan, limits, extras, log);
     }
   }
-  if (scratch) {
+  std::vector<PeerSceneResult> peers;
+  if (args.peer) peers = runPeer(args, plan, cacheDir, scratch->path(), failed, log);
+  if (scratch && full) {
     const std::filesystem::path& temp = scratch->path();
     if (plan.meshTriangles > 0) {
       log << "bench: building a " << plan.meshTriangles << "-triangle mesh\n";
@@ -228,21 +270,30 @@ int runBench(const BenchArgs& args, std::ostream& out, std::ostream& log) {
   const double wall =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const double cpu = processCpuSeconds() - cpuStart;
-  report << "references (noise floor of each; rMSE below " << formatNumber(kFloorFactor, 2)
-         << "x the floor is left out of the fit):\n"
-         << refs.str() << "\n"
-         << formatBenchTable(rows) << "(* = in the fit)\n\n"
-         << "log-log slope of rMSE against render time (least squares over the budgets marked *):\n"
-         << formatSlopeTable(slopes) << "\n"
-         << "each render's estimate of its own error (two half-sample images) against its "
-            "error beyond the reference's noise (MRAE* = sqrt(MRAE^2 - floor^2)):\n"
-         << formatEstimateTable(rows) << "\n"
-         << "the limit: the rays of a " << plan.captureSpp
-         << "-spp Sobol' render, replayed through EmbreeScene alone (traversal only), "
-         << plan.threads << " threads; ratio = tracer rays/s / raw rays/s of the same mix:\n"
-         << formatLimitTable(limits) << "\n"
-         << extras.str() << "\n"
-         << "total: " << formatSeconds(wall) << " wall, " << formatNumber(cpu, 4) << " CPU-s ("
+  if (!full) {
+    report.str("");
+    report << "camsim " << CAMSIM_VERSION << " bench --peer cycles --peer-only: " << plan.threads
+           << " threads\n";
+  }
+  if (full)
+    report
+        << "references (noise floor of each; rMSE below " << formatNumber(kFloorFactor, 2)
+        << "x the floor is left out of the fit):\n"
+        << refs.str() << "\n"
+        << formatBenchTable(rows) << "(* = in the fit)\n\n"
+        << "log-log slope of rMSE against render time (least squares over the budgets marked *):\n"
+        << formatSlopeTable(slopes) << "\n"
+        << "each render's estimate of its own error (two half-sample images) against its "
+           "error beyond the reference's noise (MRAE* = sqrt(MRAE^2 - floor^2)):\n"
+        << formatEstimateTable(rows) << "\n"
+        << "the limit: the rays of a " << plan.captureSpp
+        << "-spp Sobol' render, replayed through EmbreeScene alone (traversal only), "
+        << plan.threads << " threads; ratio = tracer rays/s / raw rays/s of the same mix:\n"
+        << formatLimitTable(limits) << "\n"
+        << extras.str() << "\n";
+  if (args.peer)
+    report << formatPeerReport(peers, plan.threads, args.peerRefSpp.value_or(4096)) << "\n";
+  report << "total: " << formatSeconds(wall) << " wall, " << formatNumber(cpu, 4) << " CPU-s ("
          << formatNumber(100.0 * cpu / (wall * plan.threads), 3) << "% of " << plan.threads
          << " cores); load average " << loadBefore << " before, " << loadAverage() << " after\n";
   for (const std::string& f : failed) report << "failed: " << f << "\n";
@@ -250,11 +301,14 @@ int runBench(const BenchArgs& args, std::ostream& out, std::ostream& log) {
   out.flush();
 
   OutputSet outputs(outDir);
-  const std::filesystem::path csv = outputs.addText("bench.csv", formatBenchCsv(rows));
-  outputs.addText("bench_limit.csv", formatLimitCsv(limits));
+  const std::filesystem::path csv =
+      full ? outputs.addText("bench.csv", formatBenchCsv(rows)) : std::filesystem::path();
+  if (full) outputs.addText("bench_limit.csv", formatLimitCsv(limits));
+  if (args.peer) outputs.addText("bench_peer.csv", formatPeerCsv(peers));
   outputs.addText("bench.txt", report.str());
   const std::optional<std::string> python = pythonWithMatplotlib();
-  if (rows.empty()) {
+  if (!full) {
+  } else if (rows.empty()) {
     log << "bench: no rows: plot skipped\n";
   } else if (!python) {
     log << "bench: python3 with matplotlib not found ($CAMSIM_PYTHON or /usr/bin/python3; Debian: "

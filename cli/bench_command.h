@@ -3,6 +3,8 @@
 //   camsim bench [--quick] [--out DIR] [--threads N] [--scenes a,b] [--max-spp N]
 //                [--resolution PX] [--feature-resolution PX] [--ref-spp N] [--cache DIR]
 //                [--mesh-triangles N] [--texture-size PX]
+//                [--peer cycles [--peer-only] [--peer-scenes a,b] [--peer-resolution PX]
+//                 [--peer-ref-spp N] [--peer-spp N] [--peer-camsim-spp N] [--peer-max-depth N]]
 // (the option table, with each option's range, is in bench_args.cpp: camsim bench --help)
 //
 // For each scene of the suite (scenes/NAME.yaml: cornell_box, dof_chart, motion_blur,
@@ -18,6 +20,9 @@
 // Progress on stderr. References are cached in --cache (default: bench-cache/ beside the
 // camsim binary, i.e. in the build directory). A scene that fails to load is reported and
 // skipped; the command then exits with 2 after writing the others' results.
+// --peer cycles adds the side-by-side comparison with Blender's Cycles
+// (integrator/measure/peer_bench.h) to the report and writes DIR/bench_peer.csv; it needs
+// `blender` on PATH (exit 2 without it: scripts/setup.sh --peer installs Debian's).
 #pragma once
 
 #include <cstdint>
@@ -42,6 +47,11 @@ struct BenchArgs {
   std::optional<std::string> cacheDir;
   std::optional<std::uint64_t> meshTriangles;  // 0: skip the mesh build
   std::optional<int> textureSize;              // 0: skip the texture load
+  // --peer cycles (integrator/measure/peer_bench.h): camsim against Blender's Cycles.
+  std::optional<std::string> peer;      // "cycles"
+  bool peerOnly = false;                // skip the sweeps, the limit and the rest
+  std::vector<std::string> peerScenes;  // empty: peerSuite()
+  std::optional<int> peerResolution, peerRefSpp, peerSpp, peerCamsimSpp, peerMaxDepth;
 };
 
 // args[0] == "bench". UsageError on bad usage. Parsed with the command's option table
@@ -49,6 +59,8 @@ struct BenchArgs {
 BenchArgs parseBenchArgs(const std::vector<std::string>& args);
 std::string benchUsageText();
 const std::vector<std::string>& benchSuite();
+// The suite scenes --peer cycles translates: cornell_box, dof_chart, small_light.
+const std::vector<std::string>& peerSuite();
 
 // What a run does, from the arguments (defaults differ with --quick).
 struct BenchPlan {

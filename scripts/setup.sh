@@ -6,6 +6,9 @@
 #                            executable and the Python module (target camsim_python)
 #   scripts/setup.sh --test  for scripts/test.sh: render.txt and scripts/packages/test.txt
 #                            (the test tools); builds everything, the test suite included
+#   scripts/setup.sh --peer  render.txt and scripts/packages/peer.txt (Debian's blender, for
+#                            `camsim bench --peer cycles`; opt-in, CI does not need it);
+#                            builds as the default
 #   CAMSIM_BUILD_DIR  build directory (default: build)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -14,8 +17,9 @@ mode=render
 case "${1:-}" in
   "") ;;
   --test) mode=test ;;
+  --peer) mode=peer ;;
   *)
-    echo "usage: scripts/setup.sh [--test]" >&2
+    echo "usage: scripts/setup.sh [--test | --peer]" >&2
     exit 2
     ;;
 esac
@@ -24,6 +28,7 @@ esac
 read_packages() { sed -e 's/#.*//' -e 's/[[:space:]]//g' -e '/^$/d' "$@"; }
 lists=(scripts/packages/render.txt)
 if [ "$mode" = test ]; then lists+=(scripts/packages/test.txt); fi
+if [ "$mode" = peer ]; then lists+=(scripts/packages/peer.txt); fi
 mapfile -t packages < <(read_packages "${lists[@]}")
 
 t0=$SECONDS
@@ -39,7 +44,7 @@ if ((${#missing[@]})); then
   # The render packages without their recommends (make, libeigen3-dev, libpng-tools, ...:
   # nothing camsim uses); the test tools as Debian recommends them.
   no_recommends=()
-  if [ "$mode" = render ]; then no_recommends=(--no-install-recommends); fi
+  if [ "$mode" != test ]; then no_recommends=(--no-install-recommends); fi
   DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq "${no_recommends[@]}" \
     "${missing[@]}" >/dev/null
 fi
@@ -59,7 +64,7 @@ fi
 t0=$SECONDS
 cmake -S . -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=Release "${options[@]}" >/dev/null
 targets=()
-if [ "$mode" = render ]; then
+if [ "$mode" != test ]; then
   targets=(camsim)
   if grep -q '^CAMSIM_PYTHON:BOOL=ON' "$build_dir/CMakeCache.txt"; then
     targets+=(camsim_python)
