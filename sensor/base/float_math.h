@@ -36,11 +36,18 @@ template <>
 struct IntOf<Float4> {
   using type = Int4;
 };
+template <>
+struct IntOf<Float8> {
+  using type = Int8;
+};
 inline float toFloat(std::int32_t i) {
   return static_cast<float>(i);
 }
 inline Float4 toFloat(Int4 i) {
   return __builtin_convertvector(i, Float4);
+}
+inline Float8 toFloat(Int8 i) {
+  return __builtin_convertvector(i, Float8);
 }
 inline std::int32_t toInt(float x) {  // truncation
   return static_cast<std::int32_t>(x);
@@ -48,8 +55,14 @@ inline std::int32_t toInt(float x) {  // truncation
 inline Int4 toInt(Float4 x) {
   return __builtin_convertvector(x, Int4);
 }
+inline Int8 toInt(Float8 x) {
+  return __builtin_convertvector(x, Int8);
+}
 // Whether any lane of a comparison's result (−1 true, 0 false) is true.
 inline bool any(Int4 mask) {
+  return simd::anyLane(mask);
+}
+inline bool any(Int8 mask) {
   return simd::anyLane(mask);
 }
 }  // namespace lanes

@@ -31,6 +31,9 @@ using Int4 = std::int32_t __attribute__((vector_size(16)));
 // Four doubles (two SSE2 registers on x86-64 without AVX; the compiler splits the operations).
 using Double4 = double __attribute__((vector_size(32)));
 using Long4 = std::int64_t __attribute__((vector_size(32)));  // a Double4 comparison's result
+// Eight floats / ints (two SSE registers, or one AVX register in an AVX2 function).
+using Float8 = float __attribute__((vector_size(32)));
+using Int8 = std::int32_t __attribute__((vector_size(32)));
 
 namespace simd {
 
@@ -49,6 +52,11 @@ inline bool anyLane(Int4 mask) {
 #else
   return (mask[0] | mask[1] | mask[2] | mask[3]) != 0;
 #endif
+}
+
+inline bool anyLane(Int8 mask) {
+  return anyLane(Int4{mask[0], mask[1], mask[2], mask[3]} |
+                 Int4{mask[4], mask[5], mask[6], mask[7]});
 }
 
 }  // namespace simd

@@ -79,7 +79,10 @@ void SampledWavelengths::locateOnGrid() {
 
 // The four wavelengths in one pass of SSE arithmetic (the same bits as one at a time).
 SampledWavelengths SampledWavelengths::sampleVisible(float u) {
-  const VisibleSample<Float4> v = sampleVisibleWithPdf(wrap(u + Float4{0.0f, 0.25f, 0.5f, 0.75f}));
+  FloatW offsets;
+  for (int i = 0; i < kWavelengthSamples; ++i)
+    offsets[i] = static_cast<float>(i) / static_cast<float>(kWavelengthSamples);
+  const VisibleSample<FloatW> v = sampleVisibleWithPdf(wrap(u + offsets));
   SampledWavelengths w;
   w.lambda_ = v.lambda;
   w.pdf_ = v.pdf;

@@ -11,15 +11,27 @@
 
 #include <bit>
 #include <cmath>
+#include <type_traits>
 
 #include "sensor/base/float_math.h"
 #include "sensor/spectra/spectrum.h"
 
 namespace camsim {
 
-inline constexpr int kWavelengthSamples = 4;
+// N = kWavelengthSamples is a build setting (CMake CAMSIM_WAVELENGTHS, 4 or 8): every
+// spectral value of the tracer is one vector of N floats (FloatW). 8 halves the spectral
+// part of the colour noise for about 15 % more time per sample (docs/performance.md,
+// "Wavelengths per path").
+#ifndef CAMSIM_WAVELENGTHS
+#define CAMSIM_WAVELENGTHS 4
+#endif
+inline constexpr int kWavelengthSamples = CAMSIM_WAVELENGTHS;
+static_assert(kWavelengthSamples == 4 || kWavelengthSamples == 8, "4 or 8 wavelengths per path");
+// One vector of the path's wavelengths' values.
+using FloatW = std::conditional_t<kWavelengthSamples == 4, Float4, Float8>;
+using IntW = std::conditional_t<kWavelengthSamples == 4, Int4, Int8>;
 
-// The values live in one 16-byte vector (Float4, float_math.h): the arithmetic is
+// The values live in one vector (FloatW: a 16-byte Float4 for N = 4): the arithmetic is
 // one SSE instruction per operation, and a SampledSpectrum is passed and returned in one
 // xmm register instead of two halves (which the x86-64 ABI gives a struct of four floats,
 // and which cost a store-forwarding stall each time they were joined again). Every
@@ -27,8 +39,8 @@ inline constexpr int kWavelengthSamples = 4;
 class SampledSpectrum {
  public:
   SampledSpectrum() : v_{} {}
-  explicit SampledSpectrum(float c) : v_{c, c, c, c} {}
-  explicit SampledSpectrum(const Float4& v) : v_(v) {}
+  explicit SampledSpectrum(float c) : v_(FloatW{} + c) {}
+  explicit SampledSpectrum(const FloatW& v) : v_(v) {}
 
   float operator[](int i) const { return v_[i]; }
   // Vector types alias their element type (GCC, Clang), so this reference is well defined.
@@ -64,7 +76,7 @@ class SampledSpectrum {
   }
   // Component-wise division with 0/0 := 0 (a zero pdf never carries energy).
   friend SampledSpectrum safeDiv(SampledSpectrum a, const SampledSpectrum& b) {
-    a.v_ = b.v_ != 0.0f ? a.v_ / b.v_ : Float4{};
+    a.v_ = b.v_ != 0.0f ? a.v_ / b.v_ : FloatW{};
     return a;
   }
 
@@ -74,7 +86,7 @@ class SampledSpectrum {
   }
   // No lane has the exponent of ±∞ and NaN.
   bool isFinite() const {
-    return !lanes::any((std::bit_cast<Int4>(v_) & 0x7f800000) == 0x7f800000);
+    return !lanes::any((std::bit_cast<IntW>(v_) & 0x7f800000) == 0x7f800000);
   }
   float maxComponent() const {
     float m = v_[0];
@@ -88,8 +100,7 @@ class SampledSpectrum {
   }
 
  private:
-  static_assert(kWavelengthSamples == 4, "the constructors spell out four lanes");
-  Float4 v_;
+  FloatW v_;
 };
 
 class SampledWavelengths {
@@ -104,8 +115,8 @@ class SampledWavelengths {
   // λᵢ's position on Spectrum's 1 nm grid (see Spectrum::interpolate).
   int gridIndex(int i) const { return gridIndex_[i]; }
   float gridFraction(int i) const { return gridFraction_[i]; }
-  const Int4& gridIndices() const { return gridIndex_; }
-  const Float4& gridFractions() const { return gridFraction_; }
+  const IntW& gridIndices() const { return gridIndex_; }
+  const FloatW& gridFractions() const { return gridFraction_; }
   // After a wavelength-dependent scattering event (dispersion) only the hero wavelength
   // can continue: the others get pdf 0 and the hero's pdf is divided by N, so the film's
   // estimate (1/N) Σ r q / p stays unbiased (pbrt-v4 §4.5.4).
@@ -125,11 +136,10 @@ class SampledWavelengths {
   void locateOnGrid();  // fills gridIndex_/gridFraction_ from lambda_
 
   // One vector each (float_math.h): sampling computes all four lanes at once.
-  static_assert(kWavelengthSamples == 4, "one Float4 holds the wavelengths");
-  Float4 lambda_{};
-  Float4 pdf_{};
-  Int4 gridIndex_{};
-  Float4 gridFraction_{};
+  FloatW lambda_{};
+  FloatW pdf_{};
+  IntW gridIndex_{};
+  FloatW gridFraction_{};
 };
 
 float visibleWavelengthPdf(float lambdaNm);

@@ -87,6 +87,13 @@ class Spectrum {
     const Float4 b = __builtin_shufflevector(p01, p23, 1, 3, 5, 7);
     return a + t * (b - a);
   }
+  Float8 interpolateLanes(const Int8& i, const Float8& t) const {
+    const Float4 lo =
+        interpolateLanes(Int4{i[0], i[1], i[2], i[3]}, Float4{t[0], t[1], t[2], t[3]});
+    const Float4 hi =
+        interpolateLanes(Int4{i[4], i[5], i[6], i[7]}, Float4{t[4], t[5], t[6], t[7]});
+    return __builtin_shufflevector(lo, hi, 0, 1, 2, 3, 4, 5, 6, 7);
+  }
 
   // Value at sample i, i.e. at (360 + i) nm.
   float sample(int i) const { return values_[i]; }

@@ -75,7 +75,7 @@ TEST(AovFilmSimd, TargetAndAvx2CopiesGiveTheSameBytes) {
         v.ns = glm::normalize(v.n + 0.1f * glm::vec3(u(rng), u(rng), u(rng)));
         v.distance = 1.0f + 3.0f * u(rng);
         v.roughness = u(rng);
-        v.albedo = SampledSpectrum(Float4{u(rng), u(rng), u(rng), u(rng)});
+        for (int i = 0; i < kWavelengthSamples; ++i) v.albedo[i] = u(rng);
         SampledWavelengths lambda = SampledWavelengths::sampleVisible(u(rng));
         if (s % 5 == 0) lambda.terminateSecondary();  // pdf 0 at three wavelengths
         const double t = 1.0 / 24.0 + static_cast<double>(u(rng)) / 48.0;

@@ -115,23 +115,25 @@ TEST(SampleVisibleWavelength, IsMonotonic) {
 }
 
 TEST(SampledWavelengths, SampleVisibleIsStratifiedOverCdfQuarters) {
-  // u values chosen away from multiples of 1/4 so no wavelength sits on a quarter boundary.
-  for (const float u : {0.01f, 0.13f, 0.3f, 0.49f, 0.62f, 0.77f, 0.999f}) {
+  // N = kWavelengthSamples strata of the CDF (quarters for N = 4, eighths for 8). u values
+  // chosen away from multiples of 1/8 so no wavelength sits on a stratum boundary.
+  constexpr int n = kWavelengthSamples;
+  for (const float u : {0.01f, 0.06f, 0.3f, 0.49f, 0.62f, 0.73f, 0.999f}) {
     const SampledWavelengths w = SampledWavelengths::sampleVisible(u);
-    std::array<int, kWavelengthSamples> perQuarter{};
-    for (int i = 0; i < kWavelengthSamples; ++i) {
+    std::array<int, n> perQuarter{};
+    for (int i = 0; i < n; ++i) {
       const double cdf = integratePdf(kLambdaMinNm, static_cast<double>(w[i]));
-      const int quarter = std::clamp(static_cast<int>(cdf * 4.0), 0, 3);
+      const int quarter = std::clamp(static_cast<int>(cdf * n), 0, n - 1);
       ++perQuarter[quarter];
-      // The i-th wavelength is the inverse CDF of u + i/4 (mod 1); 1e-4 as above.
-      const double ui = std::fmod(static_cast<double>(u) + i / 4.0, 1.0);
+      // The i-th wavelength is the inverse CDF of u + i/N (mod 1); 1e-4 as above.
+      const double ui = std::fmod(static_cast<double>(u) + static_cast<double>(i) / n, 1.0);
       EXPECT_NEAR(cdf, ui, 1e-4) << "u = " << u << ", i = " << i;
       // The pdf is the visible pdf at that wavelength (computed from t: see below).
       EXPECT_NEAR(w.pdf(i), visibleWavelengthPdf(w[i]), 1e-5f * visibleWavelengthPdf(w[i]))
           << "u = " << u << ", i = " << i;
       EXPECT_EQ(w.pdfs()[i], w.pdf(i));
     }
-    for (int q = 0; q < 4; ++q) EXPECT_EQ(perQuarter[q], 1) << "u = " << u << ", quarter " << q;
+    for (int q = 0; q < n; ++q) EXPECT_EQ(perQuarter[q], 1) << "u = " << u << ", stratum " << q;
   }
 }
 
@@ -153,10 +155,12 @@ TEST(SampledWavelengths, SampleVisiblePdfIsThePdfAtTheSampledWavelength) {
 
 TEST(SampledWavelengths, SampleUniformIsStratifiedWithConstantPdf) {
   const SampledWavelengths w = SampledWavelengths::sampleUniform(0.1f);
-  // Expected λ_i = 360 + 470·((0.1 + i/4) mod 1): 407, 524.5, 642, 759.5 (float: 1e-3 nm).
-  const std::array<double, 4> expected{407.0, 524.5, 642.0, 759.5};
+  // Expected λ_i = 360 + 470·((0.1 + i/N) mod 1): for N = 4 407, 524.5, 642, 759.5
+  // (float: 1e-3 nm).
   for (int i = 0; i < kWavelengthSamples; ++i) {
-    EXPECT_NEAR(static_cast<double>(w[i]), expected[i], 1e-3) << "i = " << i;
+    const double expected =
+        360.0 + 470.0 * std::fmod(0.1 + static_cast<double>(i) / kWavelengthSamples, 1.0);
+    EXPECT_NEAR(static_cast<double>(w[i]), expected, 1e-3) << "i = " << i;
     EXPECT_NEAR(static_cast<double>(w.pdf(i)), 1.0 / 470.0, 1e-9);
   }
 }
@@ -197,8 +201,8 @@ TEST(SampledSpectrum, Arithmetic) {
     EXPECT_EQ(scaled[i], static_cast<float>(2 * (i + 1)));
     EXPECT_EQ(halved[i], 0.5f * static_cast<float>(i + 1));
   }
-  EXPECT_EQ(a.average(), 2.5f);
-  EXPECT_EQ(b.maxComponent(), 7.0f);
+  EXPECT_EQ(a.average(), 0.5f * (kWavelengthSamples + 1));  // (1 + … + N)/N
+  EXPECT_EQ(b.maxComponent(), static_cast<float>(2 * kWavelengthSamples - 1));
   EXPECT_FALSE(a.isZero());
   EXPECT_TRUE(SampledSpectrum().isZero());
   EXPECT_TRUE(a.isFinite());
