@@ -21,7 +21,6 @@ namespace {
 // Part of every cache key: bumped when the renderer's expectation changes, so that no cached
 // reference of the old estimator is reused (2: the aplanatic pupil).
 constexpr const char* kFormatTag = "camsim-bench-reference/2";
-constexpr std::uint64_t kSeedA = 1001, kSeedB = 1002;
 
 std::string fileStamp(const std::filesystem::path& p, bool withContent) {
   std::error_code ec;
@@ -121,8 +120,8 @@ Reference obtainReference(const ReferenceRequest& request, const Scene& scene,
       };
     return renderXyz(scene, o);
   };
-  const RenderResult a = renderHalf(kSeedA, 0);
-  const RenderResult b = renderHalf(kSeedB, 1);
+  const RenderResult a = renderHalf(kReferenceSeedA, 0);
+  const RenderResult b = renderHalf(kReferenceSeedB, 1);
   ref.seconds = a.stats.seconds + b.stats.seconds;
   ref.halfA = luminanceOf(a.image);
   ref.halfB = luminanceOf(b.image);

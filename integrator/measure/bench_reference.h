@@ -34,6 +34,9 @@
 
 namespace camsim {
 
+// The seeds of a reference's two halves (the bench's and the peer bench's, peer_bench.h).
+inline constexpr std::uint64_t kReferenceSeedA = 1001, kReferenceSeedB = 1002;
+
 struct ReferenceRequest {
   std::string name;                               // scene name (file stem)
   std::string sceneText;                          // the scene file as read

@@ -25,7 +25,7 @@
 namespace camsim {
 namespace {
 
-constexpr std::uint64_t kSeedA = 1001, kSeedB = 1002, kLadderSeed = 1;
+constexpr std::uint64_t kLadderSeed = 1;
 
 struct Halves {
   Image a, b;  // R, G, B, Y each
@@ -139,7 +139,7 @@ PeerRun runCamsim(const PeerInput& in, const SceneDescription& d, const PeerPlan
     log << "peer: " << in.name << ": camsim reference, " << plan.refSpp << " spp\n";
     ref.emplace();
     for (auto [seed, out] :
-         {std::pair<std::uint64_t, Image*>{kSeedA, &ref->a}, {kSeedB, &ref->b}}) {
+         {std::pair<std::uint64_t, Image*>{kReferenceSeedA, &ref->a}, {kReferenceSeedB, &ref->b}}) {
       const RenderResult r = renderXyz(
           scene, benchRenderOptions(plan.refSpp / 2, seed, plan.threads, SamplerKind::kSobol));
       ref->seconds += r.stats.seconds;
@@ -187,8 +187,8 @@ PeerRun runCycles(const PeerInput& in, const SceneDescription& d, const PeerPlan
   if (!ref) {
     log << "peer: " << in.name << ": Cycles reference, " << plan.refSpp << " spp\n";
     CyclesSettings s = settings;
-    s.renders = {{plan.refSpp / 2, kSeedA, (dir / (in.name + "-ref-a.exr")).string()},
-                 {plan.refSpp / 2, kSeedB, (dir / (in.name + "-ref-b.exr")).string()}};
+    s.renders = {{plan.refSpp / 2, kReferenceSeedA, (dir / (in.name + "-ref-a.exr")).string()},
+                 {plan.refSpp / 2, kReferenceSeedB, (dir / (in.name + "-ref-b.exr")).string()}};
     const std::map<int, double> t =
         runBlender(plan, translateToCycles(d, s).script, in.name + "-ref");
     ref.emplace();

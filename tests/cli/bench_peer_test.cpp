@@ -17,10 +17,10 @@ TEST(BenchPeerArgs, OptionsAndDefaults) {
   const BenchArgs none = parseBenchArgs({"bench"});
   EXPECT_FALSE(none.peer.has_value());
   EXPECT_FALSE(none.peerOnly);
-  const BenchArgs b = parseBenchArgs(
-      {"bench", "--peer", "cycles", "--peer-only", "--peer-scenes", "cornell_box,dof_chart",
-       "--peer-resolution", "128", "--peer-ref-spp", "1024", "--peer-spp", "64",
-       "--peer-camsim-spp", "512", "--peer-max-depth", "9"});
+  const BenchArgs b =
+      parseBenchArgs({"bench", "--peer", "cycles", "--peer-only", "--peer-scenes",
+                      "cornell_box,dof_chart", "--peer-resolution", "128", "--peer-ref-spp", "1024",
+                      "--peer-spp", "64", "--peer-camsim-spp", "512", "--peer-max-depth", "9"});
   EXPECT_EQ(b.peer, "cycles");
   EXPECT_TRUE(b.peerOnly);
   EXPECT_EQ(b.peerScenes, (std::vector<std::string>{"cornell_box", "dof_chart"}));
@@ -45,8 +45,7 @@ TEST(BenchPeerArgs, WithoutBlenderOnPathExitsTwoNamingTheSetup) {
                                      (empty.path() / "out").string()}),
                      out, log),
             2);
-  EXPECT_NE(log.str().find("--peer cycles needs Debian's blender"), std::string::npos)
-      << log.str();
+  EXPECT_NE(log.str().find("--peer cycles needs Debian's blender"), std::string::npos) << log.str();
   EXPECT_NE(log.str().find("scripts/setup.sh --peer"), std::string::npos) << log.str();
   EXPECT_FALSE(std::filesystem::exists(empty.path() / "out"));
 }
