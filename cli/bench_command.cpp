@@ -104,11 +104,9 @@ void measureFeatures(const std::string& name, const Scene& scene,
   }
 }
 
-// --peer cycles: each peer scene at the peer resolution, camsim and Cycles side by side.
-std::vector<PeerSceneResult> runPeer(const BenchArgs& args, const BenchPlan& plan,
-                                     const std::filesystem::path& cacheDir,
-                                     const std::filesystem::path& scratch,
-                                     std::vector<std::string>& failed, std::ostream& log) {
+// The --peer settings (the refSpp the report names is the one rendered: rounded up to even).
+PeerPlan peerPlanOf(const BenchArgs& args, const BenchPlan& plan,
+                    const std::filesystem::path& cacheDir, const std::filesystem::path& scratch) {
   PeerPlan p;
   if (args.peerRefSpp) p.refSpp = *args.peerRefSpp + *args.peerRefSpp % 2;
   if (args.peerSpp) p.cyclesMaxSpp = *args.peerSpp;
@@ -118,8 +116,14 @@ std::vector<PeerSceneResult> runPeer(const BenchArgs& args, const BenchPlan& pla
   p.maxDepth = args.peerMaxDepth;
   p.cacheDir = cacheDir;
   p.scratchDir = scratch / "peer";
-  std::filesystem::create_directories(p.scratchDir);
   p.blender = *findBlender();
+  return p;
+}
+
+// --peer cycles: each peer scene at the peer resolution, camsim and Cycles side by side.
+std::vector<PeerSceneResult> runPeer(const BenchArgs& args, const PeerPlan& p,
+                                     std::vector<std::string>& failed, std::ostream& log) {
+  std::filesystem::create_directories(p.scratchDir);
   std::vector<PeerSceneResult> results;
   for (const std::string& name : args.peerScenes.empty() ? peerSuite() : args.peerScenes) {
     try {
@@ -134,6 +138,26 @@ std::vector<PeerSceneResult> runPeer(const BenchArgs& args, const BenchPlan& pla
     }
   }
   return results;
+}
+
+// bench.png from bench.csv (a full run's rows), if python3 with matplotlib is there.
+void plotBench(const std::vector<BenchRow>& rows, const BenchPlan& plan,
+               const std::filesystem::path& csv, OutputSet& outputs, std::ostream& log) {
+  const std::optional<std::string> python = pythonWithMatplotlib();
+  if (rows.empty()) {
+    log << "bench: no rows: plot skipped\n";
+  } else if (!python) {
+    log << "bench: python3 with matplotlib not found ($CAMSIM_PYTHON or /usr/bin/python3; Debian: "
+           "apt-get install python3-matplotlib): "
+        << "plot skipped\n";
+  } else {
+    const std::filesystem::path png = outputs.add("bench.png");
+    const std::string note = std::to_string(plan.threads) + " threads, long side " +
+                             std::to_string(plan.longSide) + " px, reference " +
+                             std::to_string(plan.refSpp) + " spp";
+    runPythonScript(*python, benchPlotScriptFile("bench_plot.py"),
+                    {csv.string(), png.string(), note});
+  }
 }
 
 }  // namespace
@@ -189,13 +213,17 @@ int runBench(const BenchArgs& args, std::ostream& out, std::ostream& log) {
   std::ostringstream report;
   std::string budgets;
   for (int spp : plan.budgets()) budgets += (budgets.empty() ? "" : ",") + std::to_string(spp);
-  report << "camsim " << CAMSIM_VERSION << " bench" << (args.quick ? " --quick" : "") << ": "
-         << plan.threads << " threads; images reduced to a long side of " << plan.longSide
-         << " px; budgets " << budgets << " spp per sampler (seed 1)\n"
-         << "error: luminance Y against a reference of " << plan.refSpp
-         << " Sobol' spp (two halves, seeds 1001/1002); rMSE = mean (x-r)^2/(r^2+eps^2), MRAE = "
-            "mean |x-r|/(|r|+eps),"
-            " eps = 1% of mean Y\n\n";
+  if (!full)
+    report << "camsim " << CAMSIM_VERSION << " bench --peer cycles --peer-only: " << plan.threads
+           << " threads\n";
+  else
+    report << "camsim " << CAMSIM_VERSION << " bench" << (args.quick ? " --quick" : "") << ": "
+           << plan.threads << " threads; images reduced to a long side of " << plan.longSide
+           << " px; budgets " << budgets << " spp per sampler (seed 1)\n"
+           << "error: luminance Y against a reference of " << plan.refSpp
+           << " Sobol' spp (two halves, seeds 1001/1002); rMSE = mean (x-r)^2/(r^2+eps^2), MRAE = "
+              "mean |x-r|/(|r|+eps),"
+              " eps = 1% of mean Y\n\n";
 
   std::vector<BenchRow> rows;
   std::vector<SamplerSlopes> slopes;
@@ -254,7 +282,11 @@ int runBench(const BenchArgs& args, std::ostream& out, std::ostream& log) {
     }
   }
   std::vector<PeerSceneResult> peers;
-  if (args.peer) peers = runPeer(args, plan, cacheDir, scratch->path(), failed, log);
+  std::optional<PeerPlan> peerPlan;
+  if (args.peer) {
+    peerPlan = peerPlanOf(args, plan, cacheDir, scratch->path());
+    peers = runPeer(args, *peerPlan, failed, log);
+  }
   if (scratch && full) {
     const std::filesystem::path& temp = scratch->path();
     if (plan.meshTriangles > 0) {
@@ -270,11 +302,6 @@ int runBench(const BenchArgs& args, std::ostream& out, std::ostream& log) {
   const double wall =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const double cpu = processCpuSeconds() - cpuStart;
-  if (!full) {
-    report.str("");
-    report << "camsim " << CAMSIM_VERSION << " bench --peer cycles --peer-only: " << plan.threads
-           << " threads\n";
-  }
   if (full)
     report
         << "references (noise floor of each; rMSE below " << formatNumber(kFloorFactor, 2)
@@ -291,8 +318,7 @@ int runBench(const BenchArgs& args, std::ostream& out, std::ostream& log) {
         << plan.threads << " threads; ratio = tracer rays/s / raw rays/s of the same mix:\n"
         << formatLimitTable(limits) << "\n"
         << extras.str() << "\n";
-  if (args.peer)
-    report << formatPeerReport(peers, plan.threads, args.peerRefSpp.value_or(4096)) << "\n";
+  if (args.peer) report << formatPeerReport(peers, plan.threads, peerPlan->refSpp) << "\n";
   report << "total: " << formatSeconds(wall) << " wall, " << formatNumber(cpu, 4) << " CPU-s ("
          << formatNumber(100.0 * cpu / (wall * plan.threads), 3) << "% of " << plan.threads
          << " cores); load average " << loadBefore << " before, " << loadAverage() << " after\n";
@@ -306,22 +332,7 @@ int runBench(const BenchArgs& args, std::ostream& out, std::ostream& log) {
   if (full) outputs.addText("bench_limit.csv", formatLimitCsv(limits));
   if (args.peer) outputs.addText("bench_peer.csv", formatPeerCsv(peers));
   outputs.addText("bench.txt", report.str());
-  const std::optional<std::string> python = pythonWithMatplotlib();
-  if (!full) {
-  } else if (rows.empty()) {
-    log << "bench: no rows: plot skipped\n";
-  } else if (!python) {
-    log << "bench: python3 with matplotlib not found ($CAMSIM_PYTHON or /usr/bin/python3; Debian: "
-           "apt-get install python3-matplotlib): "
-        << "plot skipped\n";
-  } else {
-    const std::filesystem::path png = outputs.add("bench.png");
-    const std::string note = std::to_string(plan.threads) + " threads, long side " +
-                             std::to_string(plan.longSide) + " px, reference " +
-                             std::to_string(plan.refSpp) + " spp";
-    runPythonScript(*python, benchPlotScriptFile("bench_plot.py"),
-                    {csv.string(), png.string(), note});
-  }
+  if (full) plotBench(rows, plan, csv, outputs, log);
   for (const auto& f : outputs.commit()) log << "bench: wrote " << f.string() << "\n";
   return failed.empty() ? 0 : 2;
 }
