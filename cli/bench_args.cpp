@@ -143,6 +143,21 @@ std::unique_ptr<CLI::App> benchApp(BenchArgs& b) {
                    "Cycles' top spp, the target error (default 256; ladders start at 16)", "N");
   addIntegerOption(*app, "--peer-camsim-spp", b.peerCamsimSpp, 1, 1 << 20,
                    "camsim's top spp (default 4 x --peer-spp)", "N");
+  {
+    const OverrideSetting& setting = *findOverrideSetting("adaptive_threshold");
+    app->add_option_function<std::string>(
+           "--adaptive-threshold",
+           [&b, &setting](const std::string& text) {
+             Overrides o;
+             parseOverride(o, setting, "--adaptive-threshold", text);
+             b.adaptiveThreshold = o.adaptiveThreshold;
+           },
+           "also sweep Sobol' with adaptive sampling at threshold T (sampler sobol+adaptive; "
+           "each budget is the most samples a pixel gets) and compare its time with plain "
+           "Sobol' at the same error (docs/bench.md) " +
+               overrideRangeText(setting))
+        ->type_name("T");
+  }
   addIntegerOption(*app, "--peer-max-depth", b.peerMaxDepth, 1, 1024,
                    "scattering events per path for both (Cycles: max_bounces = N - 1; "
                    "default: each scene's max_depth)",
@@ -198,6 +213,7 @@ BenchPlan planBench(const BenchArgs& args) {
   p.refSpp += p.refSpp % 2;  // two equal halves
   if (args.meshTriangles) p.meshTriangles = *args.meshTriangles;
   if (args.textureSize) p.textureSize = *args.textureSize;
+  p.adaptiveThreshold = args.adaptiveThreshold;
   p.threads = args.threads > 0 ? args.threads : tbb::info::default_concurrency();
   return p;
 }

@@ -51,18 +51,25 @@ LoadedBenchScene loadBenchScene(const std::string& name, int longSide) {
   return s;
 }
 
-// The sweep of one scene: both samplers at every budget, against the reference.
+// The sweep of one scene: both samplers at every budget, against the reference; with
+// --adaptive-threshold, Sobol' with adaptive sampling too (sampler "sobol+adaptive").
 std::vector<BenchRow> sweep(const LoadedBenchScene& s, const Scene& scene, const Reference& ref,
                             const BenchPlan& plan, std::ostream& log) {
   std::vector<BenchRow> rows;
-  for (const SamplerKind kind : {SamplerKind::kIndependent, SamplerKind::kSobol})
+  for (const std::string_view sampler : benchSamplers(plan.adaptiveThreshold.has_value()))
     for (const int spp : plan.budgets()) {
+      const bool adaptive = sampler == kAdaptiveSampler;
+      RenderOptions o =
+          benchRenderOptions(spp, 1, plan.threads,
+                             adaptive ? SamplerKind::kSobol : *enumFromName<SamplerKind>(sampler));
+      if (adaptive)
+        o.adaptive = AdaptiveSampling{*plan.adaptiveThreshold, adaptiveMinSppFor(spp, 0)};
       const double cpu0 = processCpuSeconds();
-      const RenderResult r = renderXyz(scene, benchRenderOptions(spp, 1, plan.threads, kind));
+      const RenderResult r = renderXyz(scene, o);
       BenchRow row;
       row.cpuSeconds = processCpuSeconds() - cpu0;
       row.scene = s.name;
-      row.sampler = samplerName(kind);
+      row.sampler = std::string(sampler);
       row.spp = spp;
       row.width = r.image.width;
       row.height = r.image.height;
@@ -266,10 +273,10 @@ int runBench(const BenchArgs& args, std::ostream& out, std::ostream& log) {
                              : " (rendered in " + formatNumber(ref.seconds, 3) + " s, ")
            << ref.file.filename().string() << ")\n";
       std::vector<BenchRow> sceneRows = sweep(s, scene, ref, plan, log);
-      for (SamplerKind kind : {SamplerKind::kIndependent, SamplerKind::kSobol}) {
+      for (const std::string_view sampler : benchSamplers(plan.adaptiveThreshold.has_value())) {
         std::vector<BenchRow*> mine;
         for (BenchRow& r : sceneRows)
-          if (r.sampler == samplerName(kind)) mine.push_back(&r);
+          if (r.sampler == sampler) mine.push_back(&r);
         slopes.push_back(fitRows(mine));
       }
       rows.insert(rows.end(), sceneRows.begin(), sceneRows.end());
@@ -312,12 +319,19 @@ int runBench(const BenchArgs& args, std::ostream& out, std::ostream& log) {
         << formatSlopeTable(slopes) << "\n"
         << "each render's estimate of its own error (two half-sample images) against its "
            "error beyond the reference's noise (MRAE* = sqrt(MRAE^2 - floor^2)):\n"
-        << formatEstimateTable(rows) << "\n"
-        << "the limit: the rays of a " << plan.captureSpp
-        << "-spp Sobol' render, replayed through EmbreeScene alone (traversal only), "
-        << plan.threads << " threads; ratio = tracer rays/s / raw rays/s of the same mix:\n"
-        << formatLimitTable(limits) << "\n"
-        << extras.str() << "\n";
+        << formatEstimateTable(rows) << "\n";
+  if (full && plan.adaptiveThreshold)
+    report << "adaptive sampling (threshold " << formatNumber(*plan.adaptiveThreshold, 3)
+           << ", min spp max(4, sqrt(budget))) against plain Sobol': the CPU time plain "
+              "Sobol' needs for the same error, interpolated log-log between its budgets; ratio = "
+              "adaptive CPU time / that (below 1: adaptive is faster):\n"
+           << formatAdaptiveTable(rows) << "\n";
+  if (full)
+    report << "the limit: the rays of a " << plan.captureSpp
+           << "-spp Sobol' render, replayed through EmbreeScene alone (traversal only), "
+           << plan.threads << " threads; ratio = tracer rays/s / raw rays/s of the same mix:\n"
+           << formatLimitTable(limits) << "\n"
+           << extras.str() << "\n";
   if (args.peer) report << formatPeerReport(peers, plan.threads, peerPlan->refSpp) << "\n";
   report << "total: " << formatSeconds(wall) << " wall, " << formatNumber(cpu, 4) << " CPU-s ("
          << formatNumber(100.0 * cpu / (wall * plan.threads), 3) << "% of " << plan.threads

@@ -52,6 +52,8 @@ struct BenchArgs {
   bool peerOnly = false;                // skip the sweeps, the limit and the rest
   std::vector<std::string> peerScenes;  // empty: peerSuite()
   std::optional<int> peerResolution, peerRefSpp, peerSpp, peerCamsimSpp, peerMaxDepth;
+  // --adaptive-threshold: also sweep Sobol' with adaptive sampling at this threshold.
+  std::optional<double> adaptiveThreshold;
 };
 
 // args[0] == "bench". UsageError on bad usage. Parsed with the command's option table
@@ -74,9 +76,10 @@ struct BenchPlan {
   int captureSpp = 2;         // the limit's recording render (≤ 4 M rays at 512²)
   int featureSpp = 16;        // thread scaling and motion overhead
   std::uint64_t meshTriangles = 1000000;
-  int textureSize = 1024;            // px, side of the texture-load test's image
-  int threads = 0;                   // resolved: never 0
-  std::vector<int> budgets() const;  // 1, 2, 4, … up to maxSpp (and maxSpp itself)
+  int textureSize = 1024;                   // px, side of the texture-load test's image
+  int threads = 0;                          // resolved: never 0
+  std::optional<double> adaptiveThreshold;  // a third sweep: Sobol' + adaptive sampling
+  std::vector<int> budgets() const;         // 1, 2, 4, … up to maxSpp (and maxSpp itself)
 };
 BenchPlan planBench(const BenchArgs& args);
 

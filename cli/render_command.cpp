@@ -36,6 +36,10 @@ void printRendered(const CaptureResult& r, std::ostream& log) {
       << st.spp << " spp, " << st.threads << " threads, " << formatSeconds(st.seconds) << " ("
       << formatRate(st.samplesPerSecond()) << "samples/s, " << formatRate(st.raysPerSecond())
       << "rays/s), rejected samples (NaN/Inf): " << st.rejectedSamples << "\n";
+  if (r.description.render.adaptiveThreshold)
+    log << "adaptive sampling: threshold "
+        << formatNumber(*r.description.render.adaptiveThreshold, 3) << ", "
+        << formatNumber(st.meanSpp, 3) << " spp on average (at most " << st.spp << ")\n";
   if (r.description.render.passes())
     log << "passes: " << st.passes << ", stopped by " << renderStopName(st.stop) << " at " << st.spp
         << " spp\n";

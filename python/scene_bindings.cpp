@@ -371,6 +371,16 @@ description. Returns the Scene.)doc");
       "Render in passes (render.target_error: the estimated MRAE to stop at; "
       "render.time_limit_s: seconds of render time not to pass); spp is then the first pass. "
       "Returns the Scene.");
+  scene.def(
+      "set_adaptive",
+      [](PyScene& s, const py::object& threshold) -> PyScene& {
+        applyPythonOverrides(s.description, {{"adaptive_threshold", threshold}});
+        return s;
+      },
+      py::arg("threshold"), py::return_value_policy::reference_internal,
+      "Adaptive sampling (render.adaptive_threshold): a pixel stops taking samples once its "
+      "estimated relative error is below threshold (at the image's mean brightness); spp is "
+      "then the most a pixel gets. Returns the Scene.");
 
   scene.def_property_readonly(
       "name", [](const PyScene& s) { return s.description.name; },

@@ -194,6 +194,9 @@ RenderOptions renderOptionsFor(const SceneDescription& desc, const CaptureOption
   o.targetError = desc.render.targetError;
   o.timeLimitS = desc.render.timeLimitS;
   o.maxSpp = std::max(desc.render.maxSpp, desc.render.spp);
+  if (desc.render.adaptiveThreshold)
+    o.adaptive = AdaptiveSampling{*desc.render.adaptiveThreshold,
+                                  adaptiveMinSppFor(desc.render.spp, desc.render.adaptiveMinSpp)};
   o.threads = options.threads;
   o.cancel = options.cancel;
   o.progress = [&out, progress = options.progress](int done, int total) {
@@ -260,6 +263,10 @@ void checkTileable(const SceneDescription& desc, const ModelledDimensions& model
                      "a render in passes cannot be split into tiles (--tiles): where it stops "
                      "depends on the whole image's estimated error (or the time); give a fixed "
                      "render.spp instead");
+  if (desc.render.adaptiveThreshold)
+    throw InputError(where, "render.adaptive_threshold",
+                     "an adaptive render cannot be split into tiles (--tiles): its convergence "
+                     "checks are scaled by the whole image's mean; render it in one process");
   if (!desc.sensor || !modelled.time) return;
   const SensorSettings& sensor = *desc.sensor;
   const bool bracketMoves = std::any_of(sensor.bracketEv.begin(), sensor.bracketEv.end(),

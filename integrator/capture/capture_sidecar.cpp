@@ -291,6 +291,13 @@ JsonObject captureSidecar(const CaptureResult& r, bool reproducible) {
     if (desc.render.timeLimitS) passes.set("time_limit_s", *desc.render.timeLimitS);
     render.set("passes", passes);
   }
+  if (desc.render.adaptiveThreshold) {
+    JsonObject adaptive;
+    adaptive.set("threshold", *desc.render.adaptiveThreshold)
+        .set("min_spp", double(adaptiveMinSppFor(desc.render.spp, desc.render.adaptiveMinSpp)))
+        .set("mean_spp", st.meanSpp);
+    render.set("adaptive", adaptive);
+  }
   if (st.estimatedError) {
     JsonObject estimate;
     estimate.set("rmse", st.estimatedError->error.rmse)

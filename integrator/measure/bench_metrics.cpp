@@ -199,4 +199,57 @@ std::string formatSlopeTable(const std::vector<SamplerSlopes>& slopes) {
   return out.str();
 }
 
+std::vector<std::string_view> benchSamplers(bool adaptive) {
+  std::vector<std::string_view> out = {"independent", "sobol"};
+  if (adaptive) out.push_back(kAdaptiveSampler);
+  return out;
+}
+
+namespace {
+
+// CPU seconds (robust on a shared machine) at which the rows (one scene and sampler, by
+// budget) reach `error` (of what `metric` picks), interpolated log-log between the two
+// consecutive rows that bracket it; NaN outside.
+template <typename Metric>
+double secondsAtError(const std::vector<const BenchRow*>& rows, double error, Metric metric) {
+  for (std::size_t i = 0; i + 1 < rows.size(); ++i) {
+    const double e0 = metric(*rows[i]), e1 = metric(*rows[i + 1]);
+    if (!(e0 >= error && error >= e1 && e0 > e1 && e1 > 0.0)) continue;
+    const double f = std::log(e0 / error) / std::log(e0 / e1);
+    return rows[i]->cpuSeconds * std::pow(rows[i + 1]->cpuSeconds / rows[i]->cpuSeconds, f);
+  }
+  return std::numeric_limits<double>::quiet_NaN();
+}
+
+std::string ratioText(double adaptive, double fixed) {
+  return std::isfinite(fixed) ? formatFixed(fixed, 3) + " " + formatFixed(adaptive / fixed, 3)
+                              : "n/a";
+}
+
+}  // namespace
+
+std::string formatAdaptiveTable(const std::vector<BenchRow>& rows) {
+  char line[256];
+  std::ostringstream out;
+  std::snprintf(line, sizeof line, "%-13s %5s %8s %9s %10s %8s %20s %20s\n", "scene", "spp",
+                "mean spp", "CPU-s", "rMSE", "MRAE", "Sobol' CPU-s, ratio", "Sobol' CPU-s, ratio");
+  out << line;
+  for (const BenchRow& r : rows) {
+    if (r.sampler != kAdaptiveSampler) continue;
+    std::vector<const BenchRow*> fixed;
+    for (const BenchRow& f : rows)
+      if (f.scene == r.scene && f.sampler == "sobol") fixed.push_back(&f);
+    const double pixels = static_cast<double>(r.width) * static_cast<double>(r.height);
+    const auto rmse = [](const BenchRow& b) { return b.error.rmse; };
+    const auto mrae = [](const BenchRow& b) { return b.error.mrae; };
+    std::snprintf(line, sizeof line, "%-13s %5d %8.1f %9.3f %10.3e %8.4f %20s %20s\n",
+                  r.scene.c_str(), r.spp, static_cast<double>(r.samples) / pixels, r.cpuSeconds,
+                  r.error.rmse, r.error.mrae,
+                  ratioText(r.cpuSeconds, secondsAtError(fixed, r.error.rmse, rmse)).c_str(),
+                  ratioText(r.cpuSeconds, secondsAtError(fixed, r.error.mrae, mrae)).c_str());
+    out << line;
+  }
+  return out.str();
+}
+
 }  // namespace camsim

@@ -19,6 +19,7 @@
 #include <cstdint>
 #include <limits>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "integrator/render/error_estimate.h"
@@ -71,6 +72,16 @@ struct SamplerSlopes {
   SlopeFit mraeVsSeconds;  // MRAE (robust to rare bright samples; −0.5 for plain Monte Carlo)
 };
 SamplerSlopes fitRows(std::vector<BenchRow*>& rows);
+
+// The sweeps' samplers: "independent", "sobol", and with adaptive sampling
+// kAdaptiveSampler (Sobol' numbers, adaptive_sampling.h), in that order.
+inline constexpr std::string_view kAdaptiveSampler = "sobol+adaptive";
+std::vector<std::string_view> benchSamplers(bool adaptive);
+// Per kAdaptiveSampler row: the CPU time plain Sobol' rows of the same scene need for its
+// rMSE (then for its MRAE), interpolated linearly in log error – log CPU seconds between the
+// two budgets whose errors bracket it (n/a outside their range), and the row's CPU seconds
+// ÷ that: below 1, adaptive sampling reached the error sooner.
+std::string formatAdaptiveTable(const std::vector<BenchRow>& rows);
 
 // The CSV columns, in order.
 const std::vector<std::string>& benchCsvColumns();

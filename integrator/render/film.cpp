@@ -24,24 +24,54 @@ Film::Film(glm::ivec2 resolution, std::vector<const SpectralResponse*> responses
   const size_t pixels = static_cast<size_t>(resolution.x) * static_cast<size_t>(resolution.y);
   sums_.assign(pixels * stride_, 0.0);
   oddSums_.assign(pixels, 0.0);
+  samples_.assign(pixels, 0);
 }
 
-Image Film::oddHalfImage(int samplesPerPixel) const {
+namespace {
+// sum · (1/n), as the images have always been scaled (the same bits as before).
+double meanOf(double sum, int n) {
+  return n > 0 ? sum * (1.0 / n) : 0.0;
+}
+}  // namespace
+
+double Film::errorValue(glm::ivec2 pixel) const {
+  const size_t p = index(pixel);
+  return meanOf(sums_[p * stride_ + errorOffset_], samples_[p]);
+}
+
+double Film::errorOddMean(glm::ivec2 pixel) const {
+  const size_t p = index(pixel);
+  return meanOf(oddSums_[p], samples_[p] / 2);
+}
+
+double Film::errorMean() const {
+  double total = 0.0;
+  for (size_t p = 0; p < samples_.size(); ++p)
+    total += meanOf(sums_[p * stride_ + errorOffset_], samples_[p]);
+  return samples_.empty() ? 0.0 : total / static_cast<double>(samples_.size());
+}
+
+Image Film::oddHalfImage() const {
   Image image(resolution_.x, resolution_.y, {errorChannelName_});
-  const double scale = samplesPerPixel >= 2 ? 1.0 / (samplesPerPixel / 2) : 0.0;
   for (std::size_t p = 0; p < oddSums_.size(); ++p)
-    image.pixels[p] = static_cast<float>(oddSums_[p] * scale);
+    image.pixels[p] = static_cast<float>(meanOf(oddSums_[p], samples_[p] / 2));
+  return image;
+}
+
+Image Film::sampleCountImage() const {
+  Image image(resolution_.x, resolution_.y, {"spp"});
+  for (std::size_t p = 0; p < samples_.size(); ++p)
+    image.pixels[p] = static_cast<float>(samples_[p]);
   return image;
 }
 
 ErrorMetrics Film::estimateError(int samplesPerPixel) const {
-  const std::vector<Image> images = toImages(samplesPerPixel);
-  return estimateFromHalves(images[errorImage_], errorImageChannel_, oddHalfImage(samplesPerPixel),
+  const std::vector<Image> images = toImages();
+  return estimateFromHalves(images[errorImage_], errorImageChannel_, oddHalfImage(),
                             samplesPerPixel);
 }
 
-std::vector<Image> Film::toImages(int samplesPerPixel) const {
-  const double scale = samplesPerPixel > 0 ? 1.0 / samplesPerPixel : 0.0;
+std::vector<Image> Film::toImages() const {
   std::vector<Image> images;
   size_t offset = 0;
   for (const SpectralResponse* r : responses_) {
@@ -52,10 +82,10 @@ std::vector<Image> Film::toImages(int samplesPerPixel) const {
       for (int c = 0; c < r->channelCount(); ++c) names.push_back(r->channel(c).name);
     Image image(resolution_.x, resolution_.y, names);
     const size_t n = names.size();
-    for (size_t p = 0; p < static_cast<size_t>(resolution_.x) * static_cast<size_t>(resolution_.y);
-         ++p)
+    for (size_t p = 0; p < samples_.size(); ++p)
       for (size_t c = 0; c < n; ++c)
-        image.pixels[p * n + c] = static_cast<float>(sums_[p * stride_ + offset + c] * scale);
+        image.pixels[p * n + c] =
+            static_cast<float>(meanOf(sums_[p * stride_ + offset + c], samples_[p]));
     offset += n;
     images.push_back(std::move(image));
   }

@@ -12,7 +12,8 @@
 // The film also sums, per pixel, the odd-indexed samples of one channel — the error channel:
 // the "Y" of the first response that has one, else the first response's first stored
 // channel — so the render can estimate its own error from the two half-sample images
-// (error_estimate.h): one double more per pixel.
+// (error_estimate.h): one double more per pixel. And it keeps each pixel's sample count n
+// (the render loop sets it), which adaptive sampling makes differ between pixels.
 #pragma once
 
 #include <cmath>
@@ -41,17 +42,24 @@ class Film {
     if (!q.isFinite()) return false;
     // q(λᵢ)/p(λᵢ) once per sample: every channel of every response weights the same values.
     const SampledSpectrum w = safeDiv(q, lambda.pdfs());
-    const size_t p = static_cast<size_t>(pixel.y) * static_cast<size_t>(resolution_.x) +
-                     static_cast<size_t>(pixel.x);
+    const size_t p = index(pixel);
     const double errorValue = addResponses(&sums_[p * stride_], w, lambda, pixel);
     if (sampleIndex & 1) oddSums_[p] += errorValue;
     return true;
   }
 
   glm::ivec2 resolution() const { return resolution_; }
-  // One image per response: its channels named after the response's, or one channel
-  // named after the response for a mosaic.
-  std::vector<Image> toImages(int samplesPerPixel) const;
+  // A pixel's samples so far (rejected ones too: they count as 0): set after adding them.
+  void setSamples(glm::ivec2 pixel, int n) { samples_[index(pixel)] = n; }
+  // The error channel's mean over a pixel's samples, I, and over its odd-indexed ones, b
+  // (0 below 2 samples): what adaptive sampling checks.
+  double errorValue(glm::ivec2 pixel) const;
+  double errorOddMean(glm::ivec2 pixel) const;
+  // The error channel's mean over the image (its pixels' I).
+  double errorMean() const;
+  // One image per response (pixel means over each pixel's own samples): its channels named
+  // after the response's, or one channel named after the response for a mosaic.
+  std::vector<Image> toImages() const;
   // The error channel's name ("Y", or the response's channel or mosaic name); it is
   // channel errorImageChannel() of toImages()[errorImage()].
   const std::string& errorChannel() const { return errorChannelName_; }
@@ -59,12 +67,18 @@ class Film {
   int errorImageChannel() const { return errorImageChannel_; }
   // The mean of the error channel over each pixel's odd-indexed samples (⌊n/2⌋ of n ≥ 2),
   // one channel named errorChannel().
-  Image oddHalfImage(int samplesPerPixel) const;
-  // The render's estimate of its error on the error channel, n ≥ 2 samples per pixel
-  // added (error_estimate.h), from toImages(n) and oddHalfImage(n).
+  Image oddHalfImage() const;
+  // Each pixel's n, one channel named "spp".
+  Image sampleCountImage() const;
+  // The render's estimate of its error on the error channel (error_estimate.h), from
+  // toImages() and oddHalfImage(); samplesPerPixel ≥ 2: the most any pixel has (its k).
   ErrorMetrics estimateError(int samplesPerPixel) const;
 
  private:
+  size_t index(glm::ivec2 pixel) const {
+    return static_cast<size_t>(pixel.y) * static_cast<size_t>(resolution_.x) +
+           static_cast<size_t>(pixel.x);
+  }
   // Adds the sample to a pixel's sums; returns its value on the error channel.
   double addResponses(double* sums, const SampledSpectrum& w, const SampledWavelengths& lambda,
                       glm::ivec2 pixel) const {
@@ -93,6 +107,7 @@ class Film {
   int errorImageChannel_ = 0;
   std::string errorChannelName_;
   std::vector<double> oddSums_;  // per pixel: Σ of the error channel over odd-indexed samples
+  std::vector<int> samples_;     // per pixel: n
 };
 
 }  // namespace camsim

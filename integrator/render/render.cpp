@@ -11,6 +11,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
+#include "integrator/render/adaptive_sampling.h"
 #include "integrator/render/aov_film.h"
 #include "integrator/render/film.h"
 #include "integrator/sampling/sobol_sampler.h"
@@ -33,74 +34,108 @@ bool cancelRequested(const RenderOptions& options) {
   return options.cancel && options.cancel->load(std::memory_order_relaxed);
 }
 
-// Compiled for each concrete sampler (final classes), so that drawing a number is an
-// inlined call, not a virtual one. False when cancelled part way: the tile's pixels hold
-// some of their samples only (render() sets them to 0).
-// One pass's samples of a tile: indices [first, end) of each pixel; AOVs only if `aovs` is
-// enabled (the first pass).
+// One pass's samples of a pixel: indices [first, end). The functions below are compiled for
+// each concrete sampler (final classes), so that drawing a number is an inlined call, not a
+// virtual one.
 struct SampleRange {
   int first = 0, end = 0;
 };
 
+// What every pixel of a pass shares.
 template <typename SamplerT>
-bool renderTile(const Scene& scene, Film& film, const RenderOptions& options,
-                const ModelledDimensions& dims, glm::ivec2 lo, glm::ivec2 hi, SampleRange range,
-                SamplerT& sampler, TileStats& stats, AovFilm& aovs, AovPixel& aovPixel) {
-  const PhysicalCamera& camera = scene.camera();
+struct TileContext {
+  const Scene& scene;
+  Film& film;
+  const RenderOptions& options;
+  const ModelledDimensions& dims;
+  SamplerT& sampler;
+  TileStats& stats;
+  AovFilm& aovs;
+  AovPixel& aovPixel;
+};
+
+// Samples [range.first, range.end) of one pixel (pbrt-v4's EvaluatePixelSample, in a loop);
+// AOVs only in the first pass (range.first = 0). False when cancelled part way.
+template <typename SamplerT>
+bool renderPixel(const TileContext<SamplerT>& t, glm::ivec2 pixel, SampleRange range) {
+  const PhysicalCamera& camera = t.scene.camera();
   const Shutter& shutter = camera.shutter();
   // The photosensitive area: centred in the pixel, sides scaled by √fill.
   const float side = static_cast<float>(std::sqrt(camera.params().fillFactor));
-  const bool withAovs = range.first == 0 && aovs.enabled();  // the first pass's samples
-  for (int y = lo.y; y < hi.y; ++y) {
-    for (int x = lo.x; x < hi.x; ++x) {
-      const glm::ivec2 pixel(x, y);
-      if (withAovs) aovs.startPixel(aovPixel, pixel);
-      for (int s = range.first; s < range.end; ++s) {
-        if ((s - range.first) % kCancelStride == 0 && cancelRequested(options)) return false;
-        sampler.startPixelSample(pixel, s);
-        sampler.setDimension(kDimWavelength);
-        SampledWavelengths lambda = SampledWavelengths::sampleVisible(sampler.get1D());
-        CameraSample cs;
-        sampler.setDimension(kDimPixel);
-        cs.pFilm = glm::vec2(pixel) + 0.5f + (sampler.get2D() - 0.5f) * side;
-        if (dims.aperture) {
-          sampler.setDimension(kDimLens);
-          cs.pLens = sampler.get2D();
-        }
-        cs.time = shutter.open();
-        if (dims.time) {
-          sampler.setDimension(kDimTime);
-          cs.time = shutter.sample(static_cast<double>(sampler.get1D())) + shutter.rowOffset(y);
-        }
-        sampler.setDimension(kDimPath);
-        // The ground truth's depth and normals need the camera's pose at the sample's time:
-        // computed once for the ray and for them.
-        const bool sharePose = aovs.wantsCamera();
-        glm::dmat4 pose;
-        if (sharePose) pose = camera.worldFromCameraAt(cs.time);
-        const glm::dmat4* posePtr = sharePose ? &pose : nullptr;
-        const std::optional<CameraRay> cr =
-            sharePose ? camera.generateRay(cs, lambda, pose) : camera.generateRay(cs, lambda);
-        ++stats.samples;
-        if (!cr) {
-          if (withAovs) aovs.addNoRaySample(aovPixel, {cs.time, lambda, posePtr});
-          continue;
-        }
-        countRay(RayKind::kCamera, cr->ray);
-        if (!withAovs) {
-          const SampledSpectrum L = traceRadiance(scene, cr->ray, lambda, sampler);
-          if (!film.addSample(pixel, s, L * cr->weight, lambda)) ++stats.rejected;
-          continue;
-        }
-        // The first hit is recorded in place, in the pixel's AOV record.
-        VisibleSurface& visible = aovs.nextSurface(aovPixel);
-        const SampledWavelengths lambdaAtCamera = lambda;  // before a dispersive hit ends some
-        const SampledSpectrum L = traceRadiance(scene, cr->ray, lambda, sampler, &visible);
-        if (!film.addSample(pixel, s, L * cr->weight, lambda)) ++stats.rejected;
-        aovs.addSample(aovPixel, {cs.time, lambdaAtCamera, posePtr});
-      }
-      if (withAovs) aovs.endPixel(aovPixel);
+  const bool withAovs = range.first == 0 && t.aovs.enabled();  // the first pass's samples
+  SamplerT& sampler = t.sampler;
+  AovFilm& aovs = t.aovs;
+  if (withAovs) aovs.startPixel(t.aovPixel, pixel);
+  for (int s = range.first; s < range.end; ++s) {
+    if ((s - range.first) % kCancelStride == 0 && cancelRequested(t.options)) return false;
+    sampler.startPixelSample(pixel, s);
+    sampler.setDimension(kDimWavelength);
+    SampledWavelengths lambda = SampledWavelengths::sampleVisible(sampler.get1D());
+    CameraSample cs;
+    sampler.setDimension(kDimPixel);
+    cs.pFilm = glm::vec2(pixel) + 0.5f + (sampler.get2D() - 0.5f) * side;
+    if (t.dims.aperture) {
+      sampler.setDimension(kDimLens);
+      cs.pLens = sampler.get2D();
     }
+    cs.time = shutter.open();
+    if (t.dims.time) {
+      sampler.setDimension(kDimTime);
+      cs.time = shutter.sample(static_cast<double>(sampler.get1D())) + shutter.rowOffset(pixel.y);
+    }
+    sampler.setDimension(kDimPath);
+    // The ground truth's depth and normals need the camera's pose at the sample's time:
+    // computed once for the ray and for them.
+    const bool sharePose = aovs.wantsCamera();
+    glm::dmat4 pose;
+    if (sharePose) pose = camera.worldFromCameraAt(cs.time);
+    const glm::dmat4* posePtr = sharePose ? &pose : nullptr;
+    const std::optional<CameraRay> cr =
+        sharePose ? camera.generateRay(cs, lambda, pose) : camera.generateRay(cs, lambda);
+    ++t.stats.samples;
+    if (!cr) {
+      if (withAovs) aovs.addNoRaySample(t.aovPixel, {cs.time, lambda, posePtr});
+      continue;
+    }
+    countRay(RayKind::kCamera, cr->ray);
+    if (!withAovs) {
+      const SampledSpectrum L = traceRadiance(t.scene, cr->ray, lambda, sampler);
+      if (!t.film.addSample(pixel, s, L * cr->weight, lambda)) ++t.stats.rejected;
+      continue;
+    }
+    // The first hit is recorded in place, in the pixel's AOV record.
+    VisibleSurface& visible = aovs.nextSurface(t.aovPixel);
+    const SampledWavelengths lambdaAtCamera = lambda;  // before a dispersive hit ends some
+    const SampledSpectrum L = traceRadiance(t.scene, cr->ray, lambda, sampler, &visible);
+    if (!t.film.addSample(pixel, s, L * cr->weight, lambda)) ++t.stats.rejected;
+    aovs.addSample(t.aovPixel, {cs.time, lambdaAtCamera, posePtr});
+  }
+  if (withAovs) aovs.endPixel(t.aovPixel);
+  t.film.setSamples(pixel, range.end);
+  return true;
+}
+
+// One pass's samples of the tile lo ≤ p < hi. Adaptive (after the first pass): the active
+// pixels go on to the next multiple of M (or the pass's end), the tile is checked there,
+// and so on (adaptive_sampling.h). False when cancelled part way: the tile's pixels hold
+// some of their samples only (render() sets them to 0).
+template <typename SamplerT>
+bool renderTile(const TileContext<SamplerT>& t, glm::ivec2 lo, glm::ivec2 hi, SampleRange range,
+                AdaptiveState* adaptive) {
+  if (!adaptive || range.first == 0) {
+    for (int y = lo.y; y < hi.y; ++y)
+      for (int x = lo.x; x < hi.x; ++x)
+        if (!renderPixel(t, glm::ivec2(x, y), range)) return false;
+    return true;
+  }
+  const int m = adaptive->settings().minSpp;
+  for (int s = range.first; s < range.end;) {
+    const int check = std::min((s / m + 1) * m, range.end);
+    for (int y = lo.y; y < hi.y; ++y)
+      for (int x = lo.x; x < hi.x; ++x)
+        if (adaptive->active({x, y}) && !renderPixel(t, glm::ivec2(x, y), {s, check})) return false;
+    if (!adaptive->check(t.film, lo, hi)) break;
+    s = check;
   }
   return true;
 }
@@ -209,6 +244,11 @@ RenderResult render(const Scene& scene, const std::vector<const SpectralResponse
   // Per tile of the share: it finished the current pass (a cancel zeroes the others).
   std::vector<std::uint8_t> finished(static_cast<std::size_t>(tileCount), 0);
 
+  // Adaptive sampling: which pixels still take samples (adaptive_sampling.h).
+  std::optional<AdaptiveState> adaptive;
+  if (options.adaptive) adaptive.emplace(*options.adaptive, res);
+  AdaptiveState* const adaptivePtr = adaptive ? &*adaptive : nullptr;
+
   // One pass over the share's tiles; prototype: a SobolSampler or an IndependentSampler,
   // copied per range of tiles.
   auto renderPass = [&](const auto& prototype, SampleRange samples) {
@@ -220,6 +260,8 @@ RenderResult render(const Scene& scene, const std::vector<const SpectralResponse
                         AovPixel aovPixel;
                         const RayStatsScope rays(options.rayObserver);
                         TileStats& stats = perThread.local();
+                        const TileContext<decltype(sampler)> context{
+                            scene, film, options, dims, sampler, stats, aovs, aovPixel};
                         struct AddRays {  // on every exit, also a cancelled one
                           const RayStatsScope& scope;
                           TileStats& stats;
@@ -231,8 +273,7 @@ RenderResult render(const Scene& scene, const std::vector<const SpectralResponse
                             return;
                           }
                           const TileRect rect = renderTileRect(res, share.item(i));
-                          if (!renderTile(scene, film, options, dims, rect.lo, rect.hi, samples,
-                                          sampler, stats, aovs, aovPixel)) {
+                          if (!renderTile(context, rect.lo, rect.hi, samples, adaptivePtr)) {
                             cancelled = true;
                             return;
                           }
@@ -246,13 +287,16 @@ RenderResult render(const Scene& scene, const std::vector<const SpectralResponse
                       });
   };
   const bool whole = share.count == 1;
-  CAMSIM_CHECK(whole || (!options.targetError && !options.timeLimitS));
+  CAMSIM_CHECK(whole || (!options.targetError && !options.timeLimitS && !options.adaptive));
   RenderStats stats;
   stats.stop = RenderStop::kSpp;
   const bool inPasses = options.targetError || options.timeLimitS;
   std::optional<ErrorMetrics> estimate;  // in passes: the last pass's, which decides the next
   tbb::task_arena arena(threads);
-  for (SampleRange pass{0, options.spp}; pass.end > pass.first;) {
+  // Adaptive without passes: M samples everywhere first, then the rest adaptively.
+  const int firstEnd =
+      adaptive && !inPasses ? std::min(adaptive->settings().minSpp, options.spp) : options.spp;
+  for (SampleRange pass{0, firstEnd}; pass.end > pass.first;) {
     arena.execute([&] {
       if (kind == SamplerKind::kSobol)
         renderPass(SobolSampler(options.seed), pass);
@@ -265,21 +309,26 @@ RenderResult render(const Scene& scene, const std::vector<const SpectralResponse
       stats.stop = RenderStop::kCancelled;
       break;
     }
+    if (adaptive && pass.first == 0) adaptive->setImageMean(film.errorMean());
     if (inPasses && pass.end >= 2) estimate = film.estimateError(pass.end);
-    pass = {pass.end, nextPassEnd(options, pass.end, estimate, elapsedSince(start), stats.stop)};
+    const int next = inPasses
+                         ? nextPassEnd(options, pass.end, estimate, elapsedSince(start), stats.stop)
+                         : options.spp;
+    pass = {pass.end, next};
   }
 
   RenderResult result;
   result.stats = stats;
-  result.images = film.toImages(stats.spp);
+  result.images = film.toImages();
   if (stats.spp >= 2 && !cancelled) {
-    result.oddHalf = film.oddHalfImage(stats.spp);
+    result.oddHalf = film.oddHalfImage();
     if (!estimate &&
         whole)  // from the images just made (Film::estimateError would make them again)
       estimate = estimateFromHalves(result.images[film.errorImage()], film.errorImageChannel(),
                                     result.oddHalf, stats.spp);
     if (estimate) result.stats.estimatedError = ErrorEstimate{*estimate, film.errorChannel()};
   }
+  if (adaptive) result.sampleCounts = film.sampleCountImage();
   if (aovs.enabled()) result.aovs = aovs.takeImage();
   // A cancelled render holds only the tiles that finished its last pass, each with all its
   // samples.
@@ -288,6 +337,7 @@ RenderResult render(const Scene& scene, const std::vector<const SpectralResponse
     const TileRect r = renderTileRect(res, share.item(i));
     for (Image& image : result.images) zeroRect(image, r);
     if (!result.aovs.pixels.empty()) zeroRect(result.aovs, r);
+    if (!result.sampleCounts.pixels.empty()) zeroRect(result.sampleCounts, r);
   }
   result.image = result.images.front();
   for (const TileStats& t : perThread) {
@@ -295,6 +345,16 @@ RenderResult render(const Scene& scene, const std::vector<const SpectralResponse
     result.stats.rejectedSamples += t.rejected;
     result.stats.rays += t.rays;
   }
+  const double sharePixels = [&] {
+    double n = 0.0;
+    for (int i = 0; i < tileCount; ++i) {
+      const TileRect r = renderTileRect(res, share.item(i));
+      n += static_cast<double>(r.hi.x - r.lo.x) * static_cast<double>(r.hi.y - r.lo.y);
+    }
+    return n;
+  }();
+  result.stats.meanSpp =
+      sharePixels > 0.0 ? static_cast<double>(result.stats.samples) / sharePixels : 0.0;
   result.stats.threads = threads;
   result.stats.modelled = dims;
   result.stats.cancelled = cancelled;

@@ -27,6 +27,11 @@
 // falls as n^−½), so the same scene and seed stop at the same spp on any thread count. A
 // time limit sizes the last pass from the rate so far, so where it stops depends on the
 // machine; the image is still the render at the spp it reports.
+//
+// Adaptive sampling (options.adaptive; adaptive_sampling.h): the first pass takes M samples
+// per pixel (in passes: spp), then each tile's pixels go on while their own estimated error
+// is above the threshold, checked every M samples, up to options.spp (in passes: each pass's
+// end). A pixel's value is the mean of its own samples 0 … n_p − 1.
 #pragma once
 
 #include <atomic>
@@ -35,6 +40,7 @@
 #include <optional>
 #include <vector>
 
+#include "integrator/render/adaptive_sampling.h"
 #include "integrator/render/error_estimate.h"
 #include "integrator/render/path_tracer.h"
 #include "integrator/scene/scene.h"
@@ -76,6 +82,8 @@ struct RenderOptions {
   std::optional<double> targetError;
   std::optional<double> timeLimitS;
   int maxSpp = 1 << 20;  // passes stop here (setting_ranges::kSpp's maximum)
+  // Adaptive sampling (above); needs the whole image (no share).
+  std::optional<AdaptiveSampling> adaptive;
 };
 
 // Why a render stopped adding samples.
@@ -90,7 +98,8 @@ struct RenderStats {
   int threads = 0;
   bool cancelled = false;
   ModelledDimensions modelled;  // what was integrated over
-  int spp = 0;                  // samples per pixel in the image (all passes)
+  int spp = 0;                  // samples per pixel in the image (all passes; adaptive: the most)
+  double meanSpp = 0.0;         // samples per pixel of the share, averaged (adaptive: < spp)
   int passes = 0;
   RenderStop stop = RenderStop::kSpp;
   // The image's estimate of its own error (error_estimate.h); none below 2 spp, for a share
@@ -112,6 +121,8 @@ struct RenderResult {
   // The error channel's mean over the odd-indexed samples (Film::oddHalfImage), for a share
   // of the tiles to carry to the merge; empty below 2 spp.
   Image oddHalf;
+  // Adaptive renders: each pixel's samples, one channel "spp"; empty otherwise.
+  Image sampleCounts;
   RenderStats stats;
 };
 

@@ -47,6 +47,10 @@ const std::vector<OverrideSetting> kSettings = {
                   R::kTargetError),
     numberSetting("time_limit_s", "render.time_limit_s", "s", "S",
                   "render in passes, stopping before S seconds of render time", R::kTimeLimitS),
+    numberSetting("adaptive_threshold", "render.adaptive_threshold", "", "T",
+                  "adaptive sampling: a pixel stops once its estimated relative error is below T "
+                  "(at the image's mean brightness; spp: the most)",
+                  R::kAdaptiveThreshold),
     numberSetting("exposure_time_s", "camera.shutter", "s", "S",
                   "effective exposure time in seconds (stretches the scene's shutter)",
                   R::kExposureTimeS),
@@ -197,8 +201,8 @@ const OverrideSetting& setting(std::string_view key) {
 }  // namespace
 
 bool Overrides::empty() const {
-  return !sensor && !spp && !seed && !targetError && !timeLimitS && !exposureTimeS && !fNumber &&
-         !iso && !noise && !noiseSeed && !pose && !projection;
+  return !sensor && !spp && !seed && !targetError && !timeLimitS && !adaptiveThreshold &&
+         !exposureTimeS && !fNumber && !iso && !noise && !noiseSeed && !pose && !projection;
 }
 
 const std::vector<OverrideSetting>& overrideSettings() {
@@ -251,6 +255,7 @@ void setOverrideNumber(Overrides& o, const OverrideSetting& s, double value,
   if (!s.numbers.contains(value)) outOfRange(s, formatShortest(value), source);
   if (s.key == "target_error") o.targetError = value;
   if (s.key == "time_limit_s") o.timeLimitS = value;
+  if (s.key == "adaptive_threshold") o.adaptiveThreshold = value;
   if (s.key == "exposure_time_s") o.exposureTimeS = value;
   if (s.key == "f_number") o.fNumber = value;
   if (s.key == "iso") o.iso = value;
@@ -306,6 +311,9 @@ void applyOverrides(SceneDescription& d, const Overrides& o, const SourceLocatio
     setOverrideNumber(checked, setting("target_error"), *o.targetError, src("target_error"));
   if (o.timeLimitS)
     setOverrideNumber(checked, setting("time_limit_s"), *o.timeLimitS, src("time_limit_s"));
+  if (o.adaptiveThreshold)
+    setOverrideNumber(checked, setting("adaptive_threshold"), *o.adaptiveThreshold,
+                      src("adaptive_threshold"));
   if (o.exposureTimeS)
     setOverrideNumber(checked, setting("exposure_time_s"), *o.exposureTimeS,
                       src("exposure_time_s"));
@@ -317,6 +325,7 @@ void applyOverrides(SceneDescription& d, const Overrides& o, const SourceLocatio
   if (o.seed) d.render.seed = static_cast<std::uint64_t>(*o.seed);
   if (o.targetError) d.render.targetError = *o.targetError;
   if (o.timeLimitS) d.render.timeLimitS = *o.timeLimitS;
+  if (o.adaptiveThreshold) d.render.adaptiveThreshold = *o.adaptiveThreshold;
   if (o.exposureTimeS)
     d.camera.shutter = d.camera.shutter.scaled(*o.exposureTimeS / d.camera.shutter.effectiveTime());
   if (o.fNumber) d.camera.fNumber = *o.fNumber;  // the stop follows (apertureDiameter)
@@ -344,6 +353,7 @@ std::string overridesText(const Overrides& o) {
   if (o.seed) add("seed", std::to_string(*o.seed));
   if (o.targetError) add("target_error", formatShortest(*o.targetError));
   if (o.timeLimitS) add("time_limit_s", formatShortest(*o.timeLimitS));
+  if (o.adaptiveThreshold) add("adaptive_threshold", formatShortest(*o.adaptiveThreshold));
   if (o.exposureTimeS) add("exposure_time_s", formatShortest(*o.exposureTimeS));
   if (o.fNumber) add("f_number", formatShortest(*o.fNumber));
   if (o.iso) add("iso", formatShortest(*o.iso));

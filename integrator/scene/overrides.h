@@ -10,6 +10,7 @@
 // | seed            | render.seed              | —    | integer, kSeed                     |
 // | target_error    | render.target_error      | —    | number, kTargetError (an MRAE)     |
 // | time_limit_s    | render.time_limit_s      | s    | number, kTimeLimitS                |
+// | adaptive_threshold | render.adaptive_threshold | — | number, kAdaptiveThreshold         |
 // | exposure_time_s | camera.shutter           | s    | number, kExposureTimeS (the scene's|
 // |                 |                          |      | shutter curve stretched to it)     |
 // | f_number        | camera.f_number          | —    | number, kFNumber (the stop follows)|
@@ -76,6 +77,7 @@ struct Overrides {
   std::optional<std::int64_t> seed;
   std::optional<double> targetError;
   std::optional<double> timeLimitS;
+  std::optional<double> adaptiveThreshold;
   std::optional<double> exposureTimeS;
   std::optional<double> fNumber;
   std::optional<double> iso;

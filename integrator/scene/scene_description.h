@@ -96,6 +96,10 @@ struct RenderSettings {
   std::optional<double> targetError;  // estimated MRAE to stop at (error_estimate.h)
   std::optional<double> timeLimitS;   // s of render time not to pass
   int maxSpp = 1 << 20;               // the most samples per pixel passes may reach
+  // Adaptive sampling (integrator/render/adaptive_sampling.h): on when a threshold is set;
+  // spp is then the most samples a pixel gets (passes: the first pass).
+  std::optional<double> adaptiveThreshold;  // estimated relative error to stop a pixel at
+  int adaptiveMinSpp = 0;                   // even; 0 = automatic (adaptiveMinSppFor)
   bool passes() const { return targetError.has_value() || timeLimitS.has_value(); }
 };
 

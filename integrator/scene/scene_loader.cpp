@@ -78,6 +78,15 @@ RenderSettings parseRender(YamlMap map) {
     if (r.maxSpp < r.spp)
       v->fail("max_spp " + std::to_string(r.maxSpp) + " is below spp " + std::to_string(r.spp));
   }
+  if (auto v = map.find("adaptive_threshold"))
+    r.adaptiveThreshold =
+        v->number(R::kAdaptiveThreshold.lo, R::kAdaptiveThreshold.hi, R::kAdaptiveThreshold.loOpen);
+  if (auto v = map.find("adaptive_min_spp")) {
+    r.adaptiveMinSpp = static_cast<int>(v->integer(R::kAdaptiveMinSpp.lo, R::kAdaptiveMinSpp.hi));
+    if (r.adaptiveMinSpp % 2 != 0)
+      v->fail("adaptive_min_spp " + std::to_string(r.adaptiveMinSpp) +
+              " is odd: the convergence checks compare a pixel's two equal halves of samples");
+  }
   if (auto v = map.find("aovs")) {
     for (const YamlValue& item : v->items()) {
       const Aov aov = item.choice<Aov>("aov");
@@ -87,7 +96,7 @@ RenderSettings parseRender(YamlMap map) {
     }
   }
   map.finish({"sampler", "spp", "seed", "max_depth", "rr_depth", "aovs", "target_error",
-              "time_limit_s", "max_spp"});
+              "time_limit_s", "max_spp", "adaptive_threshold", "adaptive_min_spp"});
   return r;
 }
 

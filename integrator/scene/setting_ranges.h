@@ -11,6 +11,7 @@
 // | f_number        | camera.f_number              | —    | [0.5, 1e4]     |
 // | iso             | sensor.iso                   | —    | [1, 1e7]       |
 // | noise_seed      | sensor.noise_seed            | —    | [0, 2^63 − 1]  |
+// | adaptive_threshold | render.adaptive_threshold | —    | (0, 1]         |
 #pragma once
 
 #include <cstdint>
@@ -54,6 +55,11 @@ inline constexpr SettingRange kExposureTimeS{0.0, kShutterTime, true};
 inline constexpr SettingRange kTargetError{0.0, 1.0, true};
 // render.time_limit_s: s of render time (a year).
 inline constexpr SettingRange kTimeLimitS{0.0, 3.2e7, true};
+// render.adaptive_threshold: a pixel's estimated relative error at the image's mean
+// brightness (integrator/render/adaptive_sampling.h).
+inline constexpr SettingRange kAdaptiveThreshold{0.0, 1.0, true};
+// render.adaptive_min_spp: samples per pixel before (and between) convergence checks; even.
+inline constexpr IntegerRange kAdaptiveMinSpp{2, std::int64_t{1} << 20};
 
 }  // namespace setting_ranges
 }  // namespace camsim

@@ -106,3 +106,17 @@ def test_every_capture_estimates_its_error_and_passes_reach_a_target():
     q = camsim.capture(scene, threads=2, spp=spp)
     np.testing.assert_array_equal(p["xyz"], q["xyz"])
     assert q["meta"]["render"]["estimated_error"] == p["meta"]["render"]["estimated_error"]
+
+
+def test_adaptive_sampling_is_recorded_and_the_same_on_any_thread_count():
+    scene = camsim.Scene.from_dict(small_scene(seed=4, spp=32)).set_adaptive(0.3)
+    a = camsim.capture(scene, threads=1)
+    b = camsim.capture(scene, threads=2)
+    np.testing.assert_array_equal(a["xyz"], b["xyz"])
+    adaptive = a["meta"]["render"]["adaptive"]
+    assert adaptive["threshold"] == 0.3 and adaptive["min_spp"] == 6  # max(4, ceil(sqrt 32)) even
+    assert 6 <= adaptive["mean_spp"] < 32 and a["meta"]["render"]["spp"] == 32
+    plain = camsim.capture(camsim.Scene.from_dict(small_scene(seed=4, spp=32)), threads=2)
+    assert "adaptive" not in plain["meta"]["render"]
+    assert camsim.capture(scene, threads=2, adaptive_threshold=1e-9)["xyz"].tobytes() == \
+        plain["xyz"].tobytes()  # nothing converges: the fixed render

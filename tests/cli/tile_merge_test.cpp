@@ -276,6 +276,13 @@ TEST_F(TileMerge, CapturesThatCannotBeTiledAreRefused) {
   test::writeFile(dir() / "fixed.yaml", movingScene(sensor + "bracket_ev: [0]}\n"));
   const RunResult fixed = render("fixed.yaml", "parts_fixed", " --tiles 0/2");
   EXPECT_EQ(fixed.exitCode, 0) << fixed.err;
+  // Adaptive sampling scales its checks by the whole image's mean.
+  const RunResult adaptive =
+      render("fixed.yaml", "parts_adaptive", " --tiles 0/2 --adaptive-threshold 0.1");
+  EXPECT_EQ(adaptive.exitCode, 2) << adaptive.err;
+  EXPECT_NE(adaptive.err.find("render.adaptive_threshold"), std::string::npos) << adaptive.err;
+  EXPECT_NE(adaptive.err.find("cannot be split into tiles"), std::string::npos) << adaptive.err;
+  EXPECT_TRUE(fileContents(dir() / "parts_adaptive").empty());
 }
 
 TEST(TileMergeArgs, TilesAndReproducibleParse) {
