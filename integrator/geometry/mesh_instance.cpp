@@ -198,13 +198,13 @@ std::optional<SurfaceTangents> MeshInstance::tangentFrame(const Hit& hit,
   return SurfaceTangents{a.a * f->tangent, a.a * f->bitangent};
 }
 
-std::optional<ShapeSample> MeshInstance::sample(const glm::vec3& ref, float u1, glm::vec2 u2,
+std::optional<ShapeSample> MeshInstance::sample(const glm::vec3& ref, float /*u1*/, glm::vec2 u2,
                                                 double time) const {
   CAMSIM_CHECK(samplable_);
   std::optional<ShapeSample> out;
   if (area_ <= 0.0f) return out;
-  const size_t tri = areaDistribution_.sample(u1);
-  const glm::vec2 b = sampleUniformTriangle(u2);  // as TriangleMesh::sample
+  const size_t tri = areaDistribution_.sample(u2.x, &u2.x);  // as TriangleMesh::sample
+  const glm::vec2 b = sampleUniformTriangle(u2);
   ShapeSample& s = out.emplace();
   float area = 0.0f;
   pointOn(tri, b.y, 1.0f - b.x - b.y, time, motion_.empty() ? nullptr : &area, s.point);

@@ -276,7 +276,7 @@ std::optional<SurfaceTangents> TriangleMesh::tangentFrame(const Hit& hit,
   return SurfaceTangents{(d12.y * p02 - d02.y * p12) * inv, (d02.x * p12 - d12.x * p02) * inv};
 }
 
-std::optional<ShapeSample> TriangleMesh::sample(const glm::vec3& ref, float u1, glm::vec2 u2,
+std::optional<ShapeSample> TriangleMesh::sample(const glm::vec3& ref, float /*u1*/, glm::vec2 u2,
                                                 double time) const {
   CAMSIM_CHECK(samplable_);
   // Every return returns `out`, so the sample is built in the caller's slot. Built in a
@@ -284,7 +284,11 @@ std::optional<ShapeSample> TriangleMesh::sample(const glm::vec3& ref, float u1, 
   // bytes: stalled store forwarding, a third of this function's time (pointOn likewise).
   std::optional<ShapeSample> out;
   if (area_ <= 0.0f) return out;
-  const size_t tri = areaDistribution_.sample(u1);
+  // The triangle is chosen by u2.x, rescaled to its share, and the point by that remapped
+  // pair: the pixel's stratified 2D points spread over the whole emitter (a quad's two
+  // triangles each get their half of them), where picking by u1 gave each triangle a random
+  // half of the points, i.e. plain Monte Carlo (Cycles reuses its number the same way).
+  const size_t tri = areaDistribution_.sample(u2.x, &u2.x);
   const glm::vec2 b = sampleUniformTriangle(u2);
   ShapeSample& s = out.emplace();
   float area = 0.0f;
