@@ -58,7 +58,9 @@ std::vector<BenchRow> sweep(const LoadedBenchScene& s, const Scene& scene, const
   for (const SamplerKind kind : {SamplerKind::kIndependent, SamplerKind::kSobol})
     for (const int spp : plan.budgets()) {
       const double cpu0 = processCpuSeconds();
-      const RenderResult r = renderXyz(scene, benchRenderOptions(spp, 1, plan.threads, kind));
+      RenderOptions options = benchRenderOptions(spp, 1, plan.threads, kind);
+      if (plan.guiding) options.guiding = true;
+      const RenderResult r = renderXyz(scene, options);
       BenchRow row;
       row.cpuSeconds = processCpuSeconds() - cpu0;
       row.scene = s.name;
@@ -219,7 +221,8 @@ int runBench(const BenchArgs& args, std::ostream& out, std::ostream& log) {
   else
     report << "camsim " << CAMSIM_VERSION << " bench" << (args.quick ? " --quick" : "") << ": "
            << plan.threads << " threads; images reduced to a long side of " << plan.longSide
-           << " px; budgets " << budgets << " spp per sampler (seed 1)\n"
+           << " px; budgets " << budgets << " spp per sampler (seed 1"
+           << (plan.guiding ? ", path guiding" : "") << ")\n"
            << "error: luminance Y against a reference of " << plan.refSpp
            << " Sobol' spp (two halves, seeds 1001/1002); rMSE = mean (x-r)^2/(r^2+eps^2), MRAE = "
               "mean |x-r|/(|r|+eps),"

@@ -61,8 +61,8 @@ void runJob(CaptureJob& job) {
 
 // The override keyword arguments, in overrides.h's table order (every key of the table).
 constexpr const char* kOverrideKwargs[] = {
-    "sensor",   "spp", "seed",  "target_error", "time_limit_s", "exposure_time_s",
-    "f_number", "iso", "noise", "noise_seed",   "pose",         "projection"};
+    "sensor", "spp",   "seed",       "target_error", "time_limit_s", "exposure_time_s", "f_number",
+    "iso",    "noise", "noise_seed", "pose",         "projection",   "guiding"};
 
 py::object runCapture(PyScene& scene, int threads, const py::object& progress,
                       const std::string& display, const std::string& view, const std::string& look,
@@ -71,12 +71,13 @@ py::object runCapture(PyScene& scene, int threads, const py::object& progress,
                       const py::object& timeLimitS, const py::object& exposureTimeS,
                       const py::object& fNumber, const py::object& iso, const py::object& noise,
                       const py::object& noiseSeed, const py::object& pose,
-                      const py::object& projection) {
+                      const py::object& projection, const py::object& guiding) {
   if (threads < 0) throw py::value_error("threads must be ≥ 0 (0: all hardware threads)");
   // For this capture only (the Scene keeps its settings), checked before anything runs.
   Overrides overrides;
-  const py::object* values[] = {&sensor,  &spp, &seed,  &targetError, &timeLimitS, &exposureTimeS,
-                                &fNumber, &iso, &noise, &noiseSeed,   &pose,       &projection};
+  const py::object* values[] = {&sensor,        &spp,        &seed,   &targetError, &timeLimitS,
+                                &exposureTimeS, &fNumber,    &iso,    &noise,       &noiseSeed,
+                                &pose,          &projection, &guiding};
   static_assert(std::size(values) == std::size(kOverrideKwargs));
   for (std::size_t i = 0; i < std::size(values); ++i)
     if (!values[i]->is_none())
@@ -176,7 +177,7 @@ reuse: render on the renderable scene (Embree BVH, materials, lights) the Scene'
 capture built, when only its camera, exposure, f-number, ISO, sensor, seeds or spp changed
 (the same bytes as a fresh build; meta["scene_reused"] says whether it was); False: build
 it afresh and keep nothing.
-sensor, spp, seed, exposure_time_s, f_number, iso, noise, noise_seed, pose, projection:
+sensor, spp, seed, exposure_time_s, f_number, iso, noise, noise_seed, pose, projection, guiding:
 overrides for this capture only (the Scene keeps its own settings), the keys, ranges and
 messages of load()'s overrides dict and camsim render's flags (integrator/scene/overrides.h):
 e.g. capture(scene, spp=16, seed=3, f_number=2.8). None: the scene's value. projection is the
@@ -196,7 +197,7 @@ void bindCaptureFunctions(py::module_& m) {
         py::arg("exposure_time_s") = py::none(), py::arg("f_number") = py::none(),
         py::arg("iso") = py::none(), py::arg("noise") = py::none(),
         py::arg("noise_seed") = py::none(), py::arg("pose") = py::none(),
-        py::arg("projection") = py::none(), kCaptureDoc);
+        py::arg("projection") = py::none(), py::arg("guiding") = py::none(), kCaptureDoc);
   py::object scene = m.attr("Scene");
   scene.attr("render") = py::cpp_function(
       &runCapture, py::name("render"), py::is_method(scene), py::kw_only(), py::arg("threads") = 0,
@@ -207,7 +208,7 @@ void bindCaptureFunctions(py::module_& m) {
       py::arg("exposure_time_s") = py::none(), py::arg("f_number") = py::none(),
       py::arg("iso") = py::none(), py::arg("noise") = py::none(),
       py::arg("noise_seed") = py::none(), py::arg("pose") = py::none(),
-      py::arg("projection") = py::none(),
+      py::arg("projection") = py::none(), py::arg("guiding") = py::none(),
       ("scene.render(...) is camsim.capture(scene, ...):\n\n" + std::string(kCaptureDoc)).c_str());
 }
 

@@ -11,6 +11,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
+#include "integrator/guiding/path_guide.h"
 #include "integrator/render/aov_film.h"
 #include "integrator/render/film.h"
 #include "integrator/sampling/sobol_sampler.h"
@@ -45,7 +46,8 @@ struct SampleRange {
 template <typename SamplerT>
 bool renderTile(const Scene& scene, Film& film, const RenderOptions& options,
                 const ModelledDimensions& dims, glm::ivec2 lo, glm::ivec2 hi, SampleRange range,
-                SamplerT& sampler, TileStats& stats, AovFilm& aovs, AovPixel& aovPixel) {
+                SamplerT& sampler, TileStats& stats, AovFilm& aovs, AovPixel& aovPixel,
+                const PathGuide* guide) {
   const PhysicalCamera& camera = scene.camera();
   const Shutter& shutter = camera.shutter();
   // The photosensitive area: centred in the pixel, sides scaled by √fill.
@@ -88,14 +90,14 @@ bool renderTile(const Scene& scene, Film& film, const RenderOptions& options,
         }
         countRay(RayKind::kCamera, cr->ray);
         if (!withAovs) {
-          const SampledSpectrum L = traceRadiance(scene, cr->ray, lambda, sampler);
+          const SampledSpectrum L = traceRadiance(scene, cr->ray, lambda, sampler, nullptr, guide);
           if (!film.addSample(pixel, s, L * cr->weight, lambda)) ++stats.rejected;
           continue;
         }
         // The first hit is recorded in place, in the pixel's AOV record.
         VisibleSurface& visible = aovs.nextSurface(aovPixel);
         const SampledWavelengths lambdaAtCamera = lambda;  // before a dispersive hit ends some
-        const SampledSpectrum L = traceRadiance(scene, cr->ray, lambda, sampler, &visible);
+        const SampledSpectrum L = traceRadiance(scene, cr->ray, lambda, sampler, &visible, guide);
         if (!film.addSample(pixel, s, L * cr->weight, lambda)) ++stats.rejected;
         aovs.addSample(aovPixel, {cs.time, lambdaAtCamera, posePtr});
       }
@@ -208,6 +210,11 @@ RenderResult render(const Scene& scene, const std::vector<const SpectralResponse
   std::atomic<bool> cancelled{false};
   // Per tile of the share: it finished the current pass (a cancel zeroes the others).
   std::vector<std::uint8_t> finished(static_cast<std::size_t>(tileCount), 0);
+  // Path guiding (integrator/guiding/path_guide.h): trained before the first pass, frozen.
+  std::optional<PathGuide> guide;
+  if (options.guiding.value_or(scene.settings().guiding))
+    guide = PathGuide::train(scene, options.spp, options.seed, threads);
+  const PathGuide* guidePtr = guide ? &*guide : nullptr;
 
   // One pass over the share's tiles; prototype: a SobolSampler or an IndependentSampler,
   // copied per range of tiles.
@@ -232,7 +239,7 @@ RenderResult render(const Scene& scene, const std::vector<const SpectralResponse
                           }
                           const TileRect rect = renderTileRect(res, share.item(i));
                           if (!renderTile(scene, film, options, dims, rect.lo, rect.hi, samples,
-                                          sampler, stats, aovs, aovPixel)) {
+                                          sampler, stats, aovs, aovPixel, guidePtr)) {
                             cancelled = true;
                             return;
                           }
@@ -296,6 +303,7 @@ RenderResult render(const Scene& scene, const std::vector<const SpectralResponse
     result.stats.rays += t.rays;
   }
   result.stats.threads = threads;
+  if (guide) result.stats.guide = guide->stats();
   result.stats.modelled = dims;
   result.stats.cancelled = cancelled;
   result.stats.seconds = elapsedSince(start);

@@ -35,6 +35,7 @@
 #include <optional>
 #include <vector>
 
+#include "integrator/guiding/path_guide.h"
 #include "integrator/render/error_estimate.h"
 #include "integrator/render/path_tracer.h"
 #include "integrator/scene/scene.h"
@@ -76,6 +77,9 @@ struct RenderOptions {
   std::optional<double> targetError;
   std::optional<double> timeLimitS;
   int maxSpp = 1 << 20;  // passes stop here (setting_ranges::kSpp's maximum)
+  // Overrides the scene's render.guiding (integrator/guiding/path_guide.h): trains a guide
+  // on a quarter of spp before the first pass; its time is in the render's.
+  std::optional<bool> guiding;
 };
 
 // Why a render stopped adding samples.
@@ -96,6 +100,7 @@ struct RenderStats {
   // The image's estimate of its own error (error_estimate.h); none below 2 spp, for a share
   // of the tiles, or when cancelled.
   std::optional<ErrorEstimate> estimatedError;
+  std::optional<GuideStats> guide;  // with path guiding: its training and memory
 
   double samplesPerSecond() const {
     return seconds > 0.0 ? static_cast<double>(samples) / seconds : 0.0;

@@ -78,6 +78,7 @@ RenderSettings parseRender(YamlMap map) {
     if (r.maxSpp < r.spp)
       v->fail("max_spp " + std::to_string(r.maxSpp) + " is below spp " + std::to_string(r.spp));
   }
+  if (auto v = map.find("guiding")) r.guiding = v->boolean();
   if (auto v = map.find("aovs")) {
     for (const YamlValue& item : v->items()) {
       const Aov aov = item.choice<Aov>("aov");
@@ -87,7 +88,7 @@ RenderSettings parseRender(YamlMap map) {
     }
   }
   map.finish({"sampler", "spp", "seed", "max_depth", "rr_depth", "aovs", "target_error",
-              "time_limit_s", "max_spp"});
+              "time_limit_s", "max_spp", "guiding"});
   return r;
 }
 

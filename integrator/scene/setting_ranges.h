@@ -54,6 +54,8 @@ inline constexpr SettingRange kExposureTimeS{0.0, kShutterTime, true};
 inline constexpr SettingRange kTargetError{0.0, 1.0, true};
 // render.time_limit_s: s of render time (a year).
 inline constexpr SettingRange kTimeLimitS{0.0, 3.2e7, true};
+// render.guiding as an override (the scene file's is a boolean): 1 on, 0 off.
+inline constexpr IntegerRange kGuiding{0, 1};
 
 }  // namespace setting_ranges
 }  // namespace camsim

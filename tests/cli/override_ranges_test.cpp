@@ -102,8 +102,9 @@ TEST(OverrideRanges, TableHasEveryRangedSetting) {
   for (const Case& c : boundaryCases())
     if (keys.empty() || keys.back() != c.setting->key) keys.emplace_back(c.setting->key);
   EXPECT_EQ(keys, (std::vector<std::string>{"spp", "seed", "target_error", "time_limit_s",
-                                            "exposure_time_s", "f_number", "iso", "noise_seed"}));
-  EXPECT_EQ(boundaryCases().size(), 32u);
+                                            "exposure_time_s", "f_number", "iso", "noise_seed",
+                                            "guiding"}));
+  EXPECT_EQ(boundaryCases().size(), 36u);
 }
 
 TEST(OverrideRanges, LibraryApplyAgreesWithTheTable) {
