@@ -69,14 +69,19 @@ float PathGuide::pdf(const DirectionalQuadtree& d, const glm::vec3& w) {
   return d.pdf(directionToSquare(w)) * kInvFourPi;
 }
 
-glm::vec3 PathGuide::sample(const DirectionalQuadtree& d, glm::vec2 u) {
-  return squareToDirection(d.sample(u));
+glm::vec3 PathGuide::sample(const DirectionalQuadtree& d, glm::vec2 u, float* pdf) {
+  float density = 0.0f;
+  const glm::vec3 w = squareToDirection(d.sample(u, &density));
+  *pdf = density * kInvFourPi;
+  return w;
 }
 
 PathGuide PathGuide::train(const Scene& scene, int spp, std::uint64_t seed, int threads) {
   const auto start = std::chrono::steady_clock::now();
-  // The cube around the scene's bounding sphere, a little larger so no vertex is on its face.
-  PathGuide guide(SDTree(scene.boundsCentre(), std::max(scene.boundsRadius(), 1e-6f) * 1.001f));
+  // The scene's bounds (all geometry, all time steps), 0.1 % larger: no vertex on a face.
+  const glm::vec3 lo = scene.geometry().boundsLower(), hi = scene.geometry().boundsUpper();
+  const glm::vec3 pad = 1e-3f * glm::max(hi - lo, glm::vec3(0.0f)) + 1e-6f;
+  PathGuide guide(SDTree(lo - pad, glm::max(hi, lo) + pad));
   const glm::ivec2 res = scene.camera().resolution();
   const int tileCount = renderTileCount(res);
   const IndependentSampler prototype(hashValues(seed, kGuideSeedSalt));
@@ -92,17 +97,15 @@ PathGuide PathGuide::train(const Scene& scene, int spp, std::uint64_t seed, int 
     for (int batch = 0; batch < tileCount; batch += kBatchTiles) {
       const int batchEnd = std::min(tileCount, batch + kBatchTiles);
       arena.execute([&] {
-        tbb::parallel_for(tbb::blocked_range<int>(batch, batchEnd, 1),
-                          [&](const tbb::blocked_range<int>& range) {
-                            IndependentSampler sampler = prototype;
-                            for (int t = range.begin(); t != range.end(); ++t) {
-                              std::vector<GuideRecord>& out =
-                                  records[static_cast<std::size_t>(t - batch)];
-                              out.clear();
-                              traceTile(scene, renderTileRect(res, t), first, first + n, sampler,
-                                        sampling, out);
-                            }
-                          });
+        tbb::parallel_for(
+            tbb::blocked_range<int>(batch, batchEnd, 1), [&](const tbb::blocked_range<int>& range) {
+              IndependentSampler sampler = prototype;
+              for (int t = range.begin(); t != range.end(); ++t) {
+                std::vector<GuideRecord>& out = records[static_cast<std::size_t>(t - batch)];
+                out.clear();
+                traceTile(scene, renderTileRect(res, t), first, first + n, sampler, sampling, out);
+              }
+            });
       });
       // Tile order, then each tile's own order: the same sums for any thread count.
       for (int t = batch; t < batchEnd; ++t)

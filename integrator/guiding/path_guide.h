@@ -16,6 +16,10 @@
 // Training uses its own sample streams (the render seed hashed with "guide"), none of the
 // final render's, and its samples are not in the image.
 //
+// Russian roulette (path_tracer.cpp) then takes its survival rate from the throughput with
+// the BSDF's sampling weight f·cos/p_bsdf at guided bounces instead of f·cos/p: a direction
+// the guide favours has a large p, and roulette on the true throughput killed most of the
+// paths guiding found (small_light: no gain at all without this).
 // Unbiasedness: the final render uses the FROZEN guide, so p is a fixed density, positive
 // wherever p_bsdf is (α > 0): plain importance sampling.
 // Determinism: tiles are traced in parallel in batches; each tile keeps its records, and
@@ -52,11 +56,11 @@ struct GuideRecorder {
   struct Vertex {
     glm::vec3 p;
     glm::vec2 square;
-    float pdf;              // sr⁻¹, of the direction sampled there
-    SampledSpectrum beta;   // path throughput after the vertex's scattering
+    float pdf;                // sr⁻¹, of the direction sampled there
+    SampledSpectrum beta;     // path throughput after the vertex's scattering
     SampledSpectrum L{0.0f};  // radiance arrived since, divided by beta
   };
-  std::vector<Vertex> path;          // cleared per path
+  std::vector<Vertex> path;  // cleared per path
   std::vector<GuideRecord>* out = nullptr;
 };
 
@@ -84,7 +88,8 @@ class PathGuide {
     return d.total() > 0.0f ? &d : nullptr;
   }
   static float pdf(const DirectionalQuadtree& d, const glm::vec3& w);  // sr⁻¹, w unit
-  static glm::vec3 sample(const DirectionalQuadtree& d, glm::vec2 u);  // unit direction
+  // A unit direction and its pdf (sr⁻¹).
+  static glm::vec3 sample(const DirectionalQuadtree& d, glm::vec2 u, float* pdf);
   const SDTree& tree() const { return tree_; }
   const GuideStats& stats() const { return stats_; }
 

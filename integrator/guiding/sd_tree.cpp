@@ -53,9 +53,9 @@ void DirectionalQuadtree::record(glm::vec2 p, float weight) {
   }
 }
 
-glm::vec2 DirectionalQuadtree::sample(glm::vec2 u) const {
+glm::vec2 DirectionalQuadtree::sample(glm::vec2 u, float* density) const {
   glm::vec2 origin(0.0f);
-  float size = 1.0f;
+  float size = 1.0f, d = 1.0f;
   std::uint32_t node = 0;
   for (;;) {
     const Node& n = nodes_[node];
@@ -86,9 +86,11 @@ glm::vec2 DirectionalQuadtree::sample(glm::vec2 u) const {
     size *= 0.5f;
     origin += glm::vec2(static_cast<float>(qx), static_cast<float>(qy)) * size;
     const int q = qx + 2 * qy;
+    d *= 4.0f * n.sum[q] / total;
     if (n.child[q] == 0) break;
     node = n.child[q];
   }
+  if (density) *density = d;
   return glm::clamp(origin + u * size, glm::vec2(0.0f), glm::vec2(kOneMinusEpsilon));
 }
 
@@ -108,15 +110,13 @@ float DirectionalQuadtree::pdf(glm::vec2 p) const {
   }
 }
 
-void DirectionalQuadtree::refineInto(DirectionalQuadtree& out, std::uint32_t outNode,
-                                     int oldNode, const float energy[4], float threshold,
-                                     int depth) const {
+void DirectionalQuadtree::refineInto(DirectionalQuadtree& out, std::uint32_t outNode, int oldNode,
+                                     const float energy[4], float threshold, int depth) const {
   for (int q = 0; q < 4; ++q) {
     if (depth + 1 >= kMaxQuadDepth || !(energy[q] > threshold)) continue;
-    const int oldChild =
-        oldNode >= 0 && nodes_[static_cast<std::size_t>(oldNode)].child[q] != 0
-            ? static_cast<int>(nodes_[static_cast<std::size_t>(oldNode)].child[q])
-            : -1;
+    const int oldChild = oldNode >= 0 && nodes_[static_cast<std::size_t>(oldNode)].child[q] != 0
+                             ? static_cast<int>(nodes_[static_cast<std::size_t>(oldNode)].child[q])
+                             : -1;
     float childEnergy[4];
     for (int c = 0; c < 4; ++c)  // an old leaf cell: its energy assumed uniform over it
       childEnergy[c] =
@@ -135,8 +135,9 @@ DirectionalQuadtree DirectionalQuadtree::refined() const {
   return out;
 }
 
-SDTree::SDTree(glm::vec3 centre, float radius)
-    : lo_(centre - glm::vec3(radius)), size_(glm::vec3(2.0f * radius)), nodes_(1), leaves_(1) {
+SDTree::SDTree(glm::vec3 lo, glm::vec3 hi) : lo_(lo), size_(hi - lo), nodes_(1), leaves_(1) {
+  const float longest = std::max({size_.x, size_.y, size_.z, 1e-6f});
+  size_ = glm::max(size_, glm::vec3(1e-6f * longest));
   nodes_[0].leaf = 0;
 }
 
@@ -163,10 +164,14 @@ void SDTree::record(const glm::vec3& p, glm::vec2 square, float weight) {
   if (weight > 0.0f && std::isfinite(weight)) l.building.record(square, weight);
 }
 
-// Splits a leaf in two along depth mod 3, each child keeping half the records (assumed
-// uniform in the cell, as Müller et al.), until a child holds at most `threshold`.
-void SDTree::split(std::uint32_t node, int depth, std::uint64_t records, double threshold) {
+// Splits a leaf (of extent `size`) in two across its longest side, each child keeping half
+// the records (assumed uniform in the cell, as Müller et al.), until a child holds at most
+// `threshold`.
+void SDTree::split(std::uint32_t node, int depth, glm::vec3 size, std::uint64_t records,
+                   double threshold) {
   if (depth >= kMaxSpatialDepth || static_cast<double>(records) <= threshold) return;
+  const int axis = size.x >= size.y && size.x >= size.z ? 0 : (size.y >= size.z ? 1 : 2);
+  size[axis] *= 0.5f;
   const int leaf = nodes_[node].leaf;
   const auto c0 = static_cast<std::uint32_t>(nodes_.size());
   nodes_.resize(nodes_.size() + 2);
@@ -176,22 +181,23 @@ void SDTree::split(std::uint32_t node, int depth, std::uint64_t records, double 
   Node& n = nodes_[node];
   n.child[0] = c0;
   n.child[1] = c0 + 1;
-  n.axis = static_cast<std::uint8_t>(depth % 3);
+  n.axis = static_cast<std::uint8_t>(axis);
   n.leaf = -1;
   nodes_[c0].leaf = leaf;
   nodes_[c0 + 1].leaf = newLeaf;
-  split(c0, depth + 1, records / 2, threshold);
-  split(c0 + 1, depth + 1, records / 2, threshold);
+  split(c0, depth + 1, size, records / 2, threshold);
+  split(c0 + 1, depth + 1, size, records / 2, threshold);
 }
 
-void SDTree::refine(int iteration) {
-  const double threshold = kSpatialC * std::sqrt(std::ldexp(1.0, iteration));
-  // The leaves as they are now, with their depths (split appends nodes: iterate indices).
+void SDTree::refine(int iteration, double spatialC) {
+  const double threshold = spatialC * std::sqrt(std::ldexp(1.0, iteration));
+  // The leaves as they are now, with their depths and extents (split appends nodes).
   struct Pending {
     std::uint32_t node;
     int depth;
+    glm::vec3 size;
   };
-  std::vector<Pending> stack{{0, 0}}, leavesNow;
+  std::vector<Pending> stack{{0, 0, size_}}, leavesNow;
   while (!stack.empty()) {
     const Pending p = stack.back();
     stack.pop_back();
@@ -199,12 +205,14 @@ void SDTree::refine(int iteration) {
     if (n.child[0] == 0) {
       leavesNow.push_back(p);
     } else {
-      stack.push_back({n.child[1], p.depth + 1});
-      stack.push_back({n.child[0], p.depth + 1});
+      glm::vec3 half = p.size;
+      half[n.axis] *= 0.5f;
+      stack.push_back({n.child[1], p.depth + 1, half});
+      stack.push_back({n.child[0], p.depth + 1, half});
     }
   }
   for (const Pending& p : leavesNow)
-    split(p.node, p.depth, leaves_[static_cast<std::size_t>(nodes_[p.node].leaf)].records,
+    split(p.node, p.depth, p.size, leaves_[static_cast<std::size_t>(nodes_[p.node].leaf)].records,
           threshold);
   for (GuideLeaf& l : leaves_) {
     DirectionalQuadtree next = l.building.refined();

@@ -1,16 +1,19 @@
 // The SD-tree of practical path guiding (Müller, Gross, Novák 2017): a binary spatial tree
-// over a cube around the scene, each leaf holding a directional quadtree that approximates
-// the incident radiance there, normalised into a sampling density.
+// over the scene's bounding box, each cell split in half across its longest side (the
+// paper: a cube, axes in turn — the same cells for a cube, but a room is no cube), each
+// leaf holding a directional quadtree that approximates the incident radiance there,
+// normalised into a sampling density.
 //
-// | parameter        | value                     | meaning                                      |
-// |------------------|---------------------------|----------------------------------------------|
-// | kSpatialC        | 4000 records              | a leaf splits above kSpatialC·√(2^k) records |
-// |                  |                           | in training iteration k (paper: 12000, for   |
-// |                  |                           | 720p; our images are 10× smaller)            |
-// | kEnergyFraction  | ρ = 0.01                  | a directional cell with > ρ of its leaf's    |
-// |                  |                           | energy is subdivided, others are merged      |
-// | kMaxQuadDepth    | 20 levels                 | finest directional cell: 2⁻²⁰ of a side      |
-// | kMaxSpatialDepth | 48 levels                 | finest spatial cell: 2⁻¹⁶ of the cube's side |
+// | parameter        | value         | meaning                                                |
+// |------------------|---------------|--------------------------------------------------------|
+// | kSpatialC        | 4000 records  | a leaf splits above kSpatialC·√(2^k) records in        |
+// |                  |               | training iteration k (paper: 12000 at 720p; camsim's   |
+// |                  |               | bench images are ~25× smaller. small_light 240×160, 64 |
+// |                  |               | spp: 1000 gave 5 % lower MRAE per spp, 25 % more time) |
+// | kEnergyFraction  | ρ = 0.01      | a directional cell with > ρ of its leaf's energy is    |
+// |                  |               | subdivided, smaller subtrees merged                    |
+// | kMaxQuadDepth    | 20 levels     | finest directional cell: 2⁻²⁰ of the square's side     |
+// | kMaxSpatialDepth | 48 levels     | finest spatial cell: 2⁻¹⁶ of the box's sides           |
 //
 // Directions use the area-preserving cylindrical map of the sphere onto the unit square:
 //   u = (ω_z + 1)/2, v = φ/(2π), φ = atan2(ω_y, ω_x) ∈ [0, 2π)
@@ -53,8 +56,9 @@ class DirectionalQuadtree {
     const Node& r = nodes_[0];
     return r.sum[0] + r.sum[1] + r.sum[2] + r.sum[3];
   }
-  // A point of [0, 1]² drawn with density pdf(); u uniform in [0, 1)².
-  glm::vec2 sample(glm::vec2 u) const;
+  // A point of [0, 1]² drawn with density pdf(); u uniform in [0, 1)². With `density`, also
+  // pdf() of the point (the product met on the way down: no second descent).
+  glm::vec2 sample(glm::vec2 u, float* density = nullptr) const;
   float pdf(glm::vec2 p) const;  // density on the unit square (integrates to 1)
   // The structure for the next iteration: cells with more than kEnergyFraction of this
   // tree's energy are subdivided (until kMaxQuadDepth), smaller subtrees merged; no energy.
@@ -81,10 +85,11 @@ struct GuideLeaf {
 
 class SDTree {
  public:
-  // The root cell: the cube of side 2·radius around centre (the scene's bounding sphere).
-  SDTree(glm::vec3 centre, float radius);
+  // The root cell: the box lo … hi (the scene's bounds; each side at least 10⁻⁶ of the
+  // longest).
+  SDTree(glm::vec3 lo, glm::vec3 hi);
 
-  // The leaf whose cell contains p (points outside the cube are clamped into it).
+  // The leaf whose cell contains p (points outside the box go to its nearest cell).
   int leafAt(const glm::vec3& p) const;
   const GuideLeaf& leaf(int index) const { return leaves_[static_cast<std::size_t>(index)]; }
   std::size_t leafCount() const { return leaves_.size(); }
@@ -92,9 +97,9 @@ class SDTree {
   // One record: incident-radiance weight at p from direction w (unit, world).
   void record(const glm::vec3& p, glm::vec2 square, float weight);
   // After training iteration k (0-based): splits leaves with more records than
-  // kSpatialC·√(2^k) (the children copy the parent's recorded tree), then makes each
+  // spatialC·√(2^k) (the children copy the parent's recorded tree), then makes each
   // leaf's recorded tree its sampling density and a refined, empty one its next record.
-  void refine(int iteration);
+  void refine(int iteration, double spatialC = kSpatialC);
   // Drops the recording trees (after the last iteration: only sampling is left).
   void freeze();
   std::size_t bytes() const;
@@ -103,9 +108,10 @@ class SDTree {
   struct Node {
     std::uint32_t child[2] = {0, 0};  // 0: a leaf
     std::int32_t leaf = -1;           // its index in leaves_ (leaves only)
-    std::uint8_t axis = 0;            // split axis: depth mod 3
+    std::uint8_t axis = 0;            // split axis: the cell's longest
   };
-  void split(std::uint32_t node, int depth, std::uint64_t records, double threshold);
+  void split(std::uint32_t node, int depth, glm::vec3 size, std::uint64_t records,
+             double threshold);
 
   glm::vec3 lo_, size_;
   std::vector<Node> nodes_;

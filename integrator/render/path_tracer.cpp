@@ -59,10 +59,12 @@ struct ShadingPoint {
   // The pdf the bounce samples wi with (sr⁻¹): the BSDF's, or the BSDF/guide mixture.
   float scatterPdf(const glm::vec3& wiLocal, const glm::vec3& wi,
                    const SampledWavelengths& lambda) const {
-    const float bsdf = material.pdf(woLocal, wiLocal, lambda, ctx);
-    if (!guide) return bsdf;
+    return mixturePdf(material.pdf(woLocal, wiLocal, lambda, ctx), wi);
+  }
+  float mixturePdf(float bsdfPdf, const glm::vec3& wi) const {
+    if (!guide) return bsdfPdf;
     constexpr float a = PathGuide::kBsdfFraction;
-    return a * bsdf + (1.0f - a) * PathGuide::pdf(*guide, wi);
+    return a * bsdfPdf + (1.0f - a) * PathGuide::pdf(*guide, wi);
   }
 };
 
@@ -73,6 +75,7 @@ struct Scatter {
   float pdf = 0.0f;  // of the scheme that sampled it (for a delta lobe: its probability)
   bool specular = false;
   float etap = 1.0f;
+  float bsdfPdf = 0.0f;  // the BSDF's own pdf of wiLocal (sampled as pdf if unguided)
 };
 
 // One-sample MIS of the mixture (path_guide.h): uc < α picks the BSDF (uc/α its lobe
@@ -85,23 +88,34 @@ std::optional<Scatter> scatter(const ShadingPoint& sp, float uc, SamplerT& sampl
   if (!sp.guide) {
     const std::optional<BsdfSample> bs = sp.material.sample(sp.woLocal, uc, u, lambda, sp.ctx);
     if (!bs) return std::nullopt;
-    return Scatter{bs->f, bs->wi, bs->pdf, bs->specular, bs->etap};
+    return Scatter{bs->f, bs->wi, bs->pdf, bs->specular, bs->etap, bs->pdf};
   }
   constexpr float a = PathGuide::kBsdfFraction;
   if (uc < a) {
     const std::optional<BsdfSample> bs = sp.material.sample(sp.woLocal, uc / a, u, lambda, sp.ctx);
     if (!bs) return std::nullopt;
-    if (bs->specular) return Scatter{bs->f, bs->wi, a * bs->pdf, true, bs->etap};
+    if (bs->specular) return Scatter{bs->f, bs->wi, a * bs->pdf, true, bs->etap, bs->pdf};
     // f and pdf evaluated, not the sample's: with several lobes the sample's are the chosen
     // lobe's only, and the mixture needs the same functions of wi for both techniques.
-    return Scatter{sp.material.f(sp.woLocal, bs->wi, lambda, sp.ctx), bs->wi,
-                   sp.scatterPdf(bs->wi, sp.frame.toWorld(bs->wi), lambda), false, bs->etap};
+    const float bsdfPdf = sp.material.pdf(sp.woLocal, bs->wi, lambda, sp.ctx);
+    return Scatter{sp.material.f(sp.woLocal, bs->wi, lambda, sp.ctx),
+                   bs->wi,
+                   sp.mixturePdf(bsdfPdf, sp.frame.toWorld(bs->wi)),
+                   false,
+                   bs->etap,
+                   bsdfPdf};
   }
-  const glm::vec3 wi = PathGuide::sample(*sp.guide, u);
+  float guidePdf = 0.0f;
+  const glm::vec3 wi = PathGuide::sample(*sp.guide, u, &guidePdf);
   const glm::vec3 wiLocal = sp.frame.toLocal(wi);
+  const float bsdfPdf = sp.material.pdf(sp.woLocal, wiLocal, lambda, sp.ctx);
   // etap stays 1: it only steers Russian roulette, which is unbiased for any survival rate.
-  return Scatter{sp.material.f(sp.woLocal, wiLocal, lambda, sp.ctx), wiLocal,
-                 sp.scatterPdf(wiLocal, wi, lambda), false, 1.0f};
+  return Scatter{sp.material.f(sp.woLocal, wiLocal, lambda, sp.ctx),
+                 wiLocal,
+                 a * bsdfPdf + (1.0f - a) * guidePdf,
+                 false,
+                 1.0f,
+                 bsdfPdf};
 }
 
 // One light sample, MIS-weighted against BSDF sampling: uLight chooses the light, the
@@ -139,6 +153,11 @@ SampledSpectrum trace(const Scene& scene, Ray ray, SampledWavelengths& lambda, S
   const RenderSettings& settings = scene.settings();
   const bool haveLights = scene.hasPoweredLights();
   SampledSpectrum L(0.0f), beta(1.0f);
+  // Russian roulette's throughput: beta, except that guided bounces multiply by the BSDF
+  // sampling weight f·cos/p_bsdf instead of f·cos/p_mixture. A guided direction towards
+  // bright light has a high p and so a small weight; roulette on beta would kill most of
+  // the very paths guiding found (any survival rate keeps the estimator unbiased).
+  SampledSpectrum rrBeta(1.0f);
   float etaScale = 1.0f;  // Π etap² of the transmissions so far: beta·etaScale has no η² factors
   float prevBsdfPdf = 0.0f;
   bool prevSpecular = true;  // the camera ray: emitters seen directly get full weight
@@ -218,7 +237,10 @@ SampledSpectrum trace(const Scene& scene, Ray ray, SampledWavelengths& lambda, S
     if (!bs || !(bs->pdf > 0.0f) || bs->f.isZero()) break;
     const glm::vec3 wi = frame.toWorld(bs->wiLocal);
     if (!sidesAgree(si.n, wo, wi, sp.woLocal, bs->wiLocal)) break;
-    beta *= bs->f * (std::abs(bs->wiLocal.z) / bs->pdf);
+    const SampledSpectrum weight = bs->f * (std::abs(bs->wiLocal.z) / bs->pdf);
+    beta *= weight;
+    rrBeta *=
+        sp.guide && bs->bsdfPdf > 0.0f ? bs->f * (std::abs(bs->wiLocal.z) / bs->bsdfPdf) : weight;
     if (recorder && !bs->specular)
       recorder->path.push_back({si.p, directionToSquare(wi), bs->pdf, beta, SampledSpectrum(0.0f)});
     etaScale *= bs->etap * bs->etap;
@@ -231,9 +253,10 @@ SampledSpectrum trace(const Scene& scene, Ray ray, SampledWavelengths& lambda, S
     if (depth + 1 >= settings.rrDepth) {
       // Survival ∝ the throughput without the 1/η² of refraction: inside glass beta is
       // η² smaller although the path carries as much light out again.
-      const float q = std::max(0.0f, 1.0f - beta.maxComponent() * etaScale);
+      const float q = std::max(0.0f, 1.0f - rrBeta.maxComponent() * etaScale);
       if (sampler.get1D() < q) break;
       beta /= 1.0f - q;
+      rrBeta /= 1.0f - q;
     }
   }
   if (recorder && recorder->out)
