@@ -282,7 +282,7 @@ JsonObject captureSidecar(const CaptureResult& r, bool reproducible) {
       .set("max_depth", double(desc.render.maxDepth))
       .set("guiding", desc.render.guiding);
   if (!reproducible) render.set("seconds", st.seconds);
-  if (st.guide) {  // path guiding's cost (integrator/guiding/path_guide.h)
+  if (st.guide) {  // path guiding's cost (integrator/render/path_guide.h)
     JsonObject guide;
     guide.set("train_spp", double(st.guide->trainSpp))
         .set("iterations", double(st.guide->iterations))

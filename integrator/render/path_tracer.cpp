@@ -1,7 +1,7 @@
 #include "integrator/render/path_tracer.h"
 
 #include "integrator/geometry/math.h"
-#include "integrator/guiding/path_guide.h"
+#include "integrator/render/path_guide.h"
 #include "integrator/sampling/sobol_sampler.h"
 
 namespace camsim {

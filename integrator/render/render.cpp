@@ -11,9 +11,9 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
-#include "integrator/guiding/path_guide.h"
 #include "integrator/render/aov_film.h"
 #include "integrator/render/film.h"
+#include "integrator/render/path_guide.h"
 #include "integrator/sampling/sobol_sampler.h"
 #include "sensor/base/check.h"
 
@@ -210,7 +210,7 @@ RenderResult render(const Scene& scene, const std::vector<const SpectralResponse
   std::atomic<bool> cancelled{false};
   // Per tile of the share: it finished the current pass (a cancel zeroes the others).
   std::vector<std::uint8_t> finished(static_cast<std::size_t>(tileCount), 0);
-  // Path guiding (integrator/guiding/path_guide.h): trained before the first pass, frozen.
+  // Path guiding (integrator/render/path_guide.h): trained before the first pass, frozen.
   std::optional<PathGuide> guide;
   if (options.guiding.value_or(scene.settings().guiding))
     guide = PathGuide::train(scene, options.spp, options.seed, threads);

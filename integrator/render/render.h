@@ -35,8 +35,8 @@
 #include <optional>
 #include <vector>
 
-#include "integrator/guiding/path_guide.h"
 #include "integrator/render/error_estimate.h"
+#include "integrator/render/path_guide.h"
 #include "integrator/render/path_tracer.h"
 #include "integrator/scene/scene.h"
 #include "sensor/base/image.h"
@@ -77,7 +77,7 @@ struct RenderOptions {
   std::optional<double> targetError;
   std::optional<double> timeLimitS;
   int maxSpp = 1 << 20;  // passes stop here (setting_ranges::kSpp's maximum)
-  // Overrides the scene's render.guiding (integrator/guiding/path_guide.h): trains a guide
+  // Overrides the scene's render.guiding (integrator/render/path_guide.h): trains a guide
   // on a quarter of spp before the first pass; its time is in the render's.
   std::optional<bool> guiding;
 };

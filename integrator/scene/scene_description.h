@@ -96,7 +96,7 @@ struct RenderSettings {
   std::optional<double> targetError;  // estimated MRAE to stop at (error_estimate.h)
   std::optional<double> timeLimitS;   // s of render time not to pass
   int maxSpp = 1 << 20;               // the most samples per pixel passes may reach
-  bool guiding = false;               // path guiding (integrator/guiding/path_guide.h)
+  bool guiding = false;               // path guiding (integrator/render/path_guide.h)
   bool passes() const { return targetError.has_value() || timeLimitS.has_value(); }
 };
 

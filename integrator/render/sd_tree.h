@@ -25,7 +25,7 @@
 // integrates to 1 over the square. A node without energy samples uniformly below it.
 //
 // Everything here is serial and deterministic: records are inserted in a fixed order by
-// the trainer (integrator/guiding/path_guide.h).
+// the trainer (integrator/render/path_guide.h).
 #pragma once
 
 #include <cstddef>

@@ -1,4 +1,4 @@
-// Path guiding (integrator/guiding/path_guide.h) in the renderer: the guided estimator is
+// Path guiding (integrator/render/path_guide.h) in the renderer: the guided estimator is
 // unbiased (an analytic furnace; a room lit indirectly, guided and unguided means agree),
 // deterministic for any thread count, and the scene setting is parsed and range-checked.
 #include <gtest/gtest.h>
@@ -6,7 +6,7 @@
 #include <cstring>
 #include <string>
 
-#include "integrator/guiding/path_guide.h"
+#include "integrator/render/path_guide.h"
 #include "sensor/base/input_error.h"
 #include "tests/integrator/render_test_support.h"
 

@@ -1,4 +1,4 @@
-#include "integrator/guiding/sd_tree.h"
+#include "integrator/render/sd_tree.h"
 
 #include <algorithm>
 #include <cmath>

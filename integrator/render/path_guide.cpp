@@ -1,4 +1,4 @@
-#include "integrator/guiding/path_guide.h"
+#include "integrator/render/path_guide.h"
 
 #include <algorithm>
 #include <chrono>

@@ -4,7 +4,7 @@
 //   p(ω) = α·p_bsdf(ω) + (1 − α)·p_guide(x, ω),   α = kBsdfFraction = 0.5
 //
 // where p_guide is the SD-tree's learnt density of the incident radiance at x
-// (integrator/guiding/sd_tree.h); next-event estimation's MIS weighs against the same
+// (integrator/render/sd_tree.h); next-event estimation's MIS weighs against the same
 // mixture pdf. Where the guide has no density (no records there), p = p_bsdf.
 //
 // Training (PathGuide::train): iterations k = 0, 1, … of 2^k samples per pixel, while their
@@ -36,7 +36,7 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
-#include "integrator/guiding/sd_tree.h"
+#include "integrator/render/sd_tree.h"
 #include "sensor/spectra/sampled_spectrum.h"
 
 namespace camsim {

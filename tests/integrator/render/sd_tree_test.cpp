@@ -1,4 +1,4 @@
-// The SD-tree (integrator/guiding/sd_tree.h): the cylindrical map, the directional
+// The SD-tree (integrator/render/sd_tree.h): the cylindrical map, the directional
 // quadtree's density (integrates to 1 over the sphere; its samples follow it) and the
 // spatial tree's refinement. Records come from fixed-seed hashes: every number is fixed.
 #include <gtest/gtest.h>
@@ -10,8 +10,8 @@
 
 #include <glm/geometric.hpp>
 
-#include "integrator/guiding/path_guide.h"
-#include "integrator/guiding/sd_tree.h"
+#include "integrator/render/path_guide.h"
+#include "integrator/render/sd_tree.h"
 #include "integrator/sampling/rng.h"
 
 namespace camsim {
