@@ -78,7 +78,11 @@ RenderSettings parseRender(YamlMap map) {
     if (r.maxSpp < r.spp)
       v->fail("max_spp " + std::to_string(r.maxSpp) + " is below spp " + std::to_string(r.spp));
   }
-  if (auto v = map.find("guiding")) r.guiding = v->boolean();
+  if (auto v = map.find("guiding")) {
+    // true/false, or the override's 0/1 (setting_ranges::kGuiding: a dataset item sets it so).
+    const std::string text = v->isScalar() ? v->string() : "";
+    r.guiding = text == "0" || text == "1" ? text == "1" : v->boolean();
+  }
   if (auto v = map.find("aovs")) {
     for (const YamlValue& item : v->items()) {
       const Aov aov = item.choice<Aov>("aov");

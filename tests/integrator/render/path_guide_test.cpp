@@ -117,6 +117,9 @@ TEST(PathGuide, DeterministicForAnyThreadCount) {
 TEST(PathGuide, SettingIsParsedAndChecked) {
   EXPECT_TRUE(loadSceneFromText(room(true), "test.yaml", ".").render.guiding);
   EXPECT_FALSE(loadSceneFromText(room(false), "test.yaml", ".").render.guiding);
+  std::string one = room(true);  // the override's form, 0 or 1, also reads
+  one.replace(one.find("guiding: true"), 13, "guiding: 1");
+  EXPECT_TRUE(loadSceneFromText(one, "test.yaml", ".").render.guiding);
   std::string bad = room(true);
   bad.replace(bad.find("guiding: true"), 13, "guiding: 3");
   try {
