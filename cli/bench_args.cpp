@@ -87,6 +87,9 @@ std::unique_ptr<CLI::App> benchApp(BenchArgs& b) {
       "against time; then the limit: the tracer's rays/s against bare Embree traversal of the\n"
       "same recorded rays, thread scaling, motion-blur overhead, the build of a 1 M-triangle\n"
       "mesh and the load of a 1024x1024 texture.");
+  app->add_flag("--guiding", b.guiding,
+                "the sweeps render with path guiding (its training time included; the "
+                "references stay unguided)");
   app->add_flag("--quick", b.quick,
                 "a quick variant, under a minute (64 px, up to 64 spp, 512-spp references)");
   addDirectoryOption(*app, "-o,--out", b.outputDir,
@@ -215,6 +218,7 @@ BenchPlan planBench(const BenchArgs& args) {
   if (args.textureSize) p.textureSize = *args.textureSize;
   p.adaptiveThreshold = args.adaptiveThreshold;
   p.threads = args.threads > 0 ? args.threads : tbb::info::default_concurrency();
+  p.guiding = args.guiding;
   return p;
 }
 

@@ -65,6 +65,7 @@ std::vector<BenchRow> sweep(const LoadedBenchScene& s, const Scene& scene, const
       if (adaptive)
         o.adaptive = AdaptiveSampling{*plan.adaptiveThreshold, adaptiveMinSppFor(spp, 0)};
       const double cpu0 = processCpuSeconds();
+      if (plan.guiding) o.guiding = true;
       const RenderResult r = renderXyz(scene, o);
       BenchRow row;
       row.cpuSeconds = processCpuSeconds() - cpu0;
@@ -226,7 +227,8 @@ int runBench(const BenchArgs& args, std::ostream& out, std::ostream& log) {
   else
     report << "camsim " << CAMSIM_VERSION << " bench" << (args.quick ? " --quick" : "") << ": "
            << plan.threads << " threads; images reduced to a long side of " << plan.longSide
-           << " px; budgets " << budgets << " spp per sampler (seed 1)\n"
+           << " px; budgets " << budgets << " spp per sampler (seed 1"
+           << (plan.guiding ? ", path guiding" : "") << ")\n"
            << "error: luminance Y against a reference of " << plan.refSpp
            << " Sobol' spp (two halves, seeds 1001/1002); rMSE = mean (x-r)^2/(r^2+eps^2), MRAE = "
               "mean |x-r|/(|r|+eps),"

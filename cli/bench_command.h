@@ -40,6 +40,7 @@ namespace camsim {
 struct BenchArgs {
   bool quick = false;
   bool help = false;
+  bool guiding = false;  // the sweeps render with path guiding (the references never do)
   std::string outputDir = "bench-out";
   int threads = 0;                  // 0: all cores
   std::vector<std::string> scenes;  // empty: benchSuite(); a name or a path to a scene file
@@ -79,6 +80,7 @@ struct BenchPlan {
   int textureSize = 1024;                   // px, side of the texture-load test's image
   int threads = 0;                          // resolved: never 0
   std::optional<double> adaptiveThreshold;  // a third sweep: Sobol' + adaptive sampling
+  bool guiding = false;                     // the sweeps' renders are guided (path_guide.h)
   std::vector<int> budgets() const;         // 1, 2, 4, … up to maxSpp (and maxSpp itself)
 };
 BenchPlan planBench(const BenchArgs& args);

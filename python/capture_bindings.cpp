@@ -63,7 +63,7 @@ void runJob(CaptureJob& job) {
 constexpr const char* kOverrideKwargs[] = {
     "sensor",          "spp",      "seed", "target_error", "time_limit_s", "adaptive_threshold",
     "exposure_time_s", "f_number", "iso",  "noise",        "noise_seed",   "pose",
-    "projection"};
+    "projection",      "guiding"};
 
 py::object runCapture(PyScene& scene, int threads, const py::object& progress,
                       const std::string& display, const std::string& view, const std::string& look,
@@ -72,13 +72,14 @@ py::object runCapture(PyScene& scene, int threads, const py::object& progress,
                       const py::object& timeLimitS, const py::object& adaptiveThreshold,
                       const py::object& exposureTimeS, const py::object& fNumber,
                       const py::object& iso, const py::object& noise, const py::object& noiseSeed,
-                      const py::object& pose, const py::object& projection) {
+                      const py::object& pose, const py::object& projection,
+                      const py::object& guiding) {
   if (threads < 0) throw py::value_error("threads must be ≥ 0 (0: all hardware threads)");
   // For this capture only (the Scene keeps its settings), checked before anything runs.
   Overrides overrides;
   const py::object* values[] = {
       &sensor,  &spp, &seed,  &targetError, &timeLimitS, &adaptiveThreshold, &exposureTimeS,
-      &fNumber, &iso, &noise, &noiseSeed,   &pose,       &projection};
+      &fNumber, &iso, &noise, &noiseSeed,   &pose,       &projection,        &guiding};
   static_assert(std::size(values) == std::size(kOverrideKwargs));
   for (std::size_t i = 0; i < std::size(values); ++i)
     if (!values[i]->is_none())
@@ -179,7 +180,8 @@ capture built, when only its camera, exposure, f-number, ISO, sensor, seeds or s
 (the same bytes as a fresh build; meta["scene_reused"] says whether it was); False: build
 it afresh and keep nothing.
 sensor, spp, seed, target_error, time_limit_s, adaptive_threshold, exposure_time_s, f_number,
-iso, noise, noise_seed, pose, projection: overrides for this capture only (the Scene keeps its own settings), the keys, ranges and
+iso, noise, noise_seed, pose, projection, guiding: overrides for this capture only (the Scene
+keeps its own settings), the keys, ranges and
 messages of load()'s overrides dict and camsim render's flags (integrator/scene/overrides.h):
 e.g. capture(scene, spp=16, seed=3, f_number=2.8). None: the scene's value. projection is the
 camera model, camera.projection's map as a dict or YAML/JSON text, e.g.
@@ -198,7 +200,8 @@ void bindCaptureFunctions(py::module_& m) {
         py::arg("adaptive_threshold") = py::none(), py::arg("exposure_time_s") = py::none(),
         py::arg("f_number") = py::none(), py::arg("iso") = py::none(),
         py::arg("noise") = py::none(), py::arg("noise_seed") = py::none(),
-        py::arg("pose") = py::none(), py::arg("projection") = py::none(), kCaptureDoc);
+        py::arg("pose") = py::none(), py::arg("projection") = py::none(),
+        py::arg("guiding") = py::none(), kCaptureDoc);
   py::object scene = m.attr("Scene");
   scene.attr("render") = py::cpp_function(
       &runCapture, py::name("render"), py::is_method(scene), py::kw_only(), py::arg("threads") = 0,
@@ -209,7 +212,7 @@ void bindCaptureFunctions(py::module_& m) {
       py::arg("adaptive_threshold") = py::none(), py::arg("exposure_time_s") = py::none(),
       py::arg("f_number") = py::none(), py::arg("iso") = py::none(), py::arg("noise") = py::none(),
       py::arg("noise_seed") = py::none(), py::arg("pose") = py::none(),
-      py::arg("projection") = py::none(),
+      py::arg("projection") = py::none(), py::arg("guiding") = py::none(),
       ("scene.render(...) is camsim.capture(scene, ...):\n\n" + std::string(kCaptureDoc)).c_str());
 }
 

@@ -360,6 +360,14 @@ description. Returns the Scene.)doc");
       py::arg("spp"), py::return_value_policy::reference_internal,
       "Samples per pixel (render.spp). Returns the Scene.");
   scene.def(
+      "set_guiding",
+      [](PyScene& s, const py::object& guiding) -> PyScene& {
+        applyPythonOverrides(s.description, {{"guiding", guiding}});
+        return s;
+      },
+      py::arg("guiding"), py::return_value_policy::reference_internal,
+      "Path guiding (render.guiding): 1 on, 0 off. Returns the Scene.");
+  scene.def(
       "set_passes",
       [](PyScene& s, const py::object& targetError, const py::object& timeLimitS) -> PyScene& {
         applyPythonOverrides(s.description,

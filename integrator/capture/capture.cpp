@@ -193,6 +193,7 @@ RenderOptions renderOptionsFor(const SceneDescription& desc, const CaptureOption
   o.seed = desc.render.seed;
   o.targetError = desc.render.targetError;
   o.timeLimitS = desc.render.timeLimitS;
+  o.guiding = desc.render.guiding;
   o.maxSpp = std::max(desc.render.maxSpp, desc.render.spp);
   if (desc.render.adaptiveThreshold)
     o.adaptive = AdaptiveSampling{*desc.render.adaptiveThreshold,

@@ -279,8 +279,19 @@ JsonObject captureSidecar(const CaptureResult& r, bool reproducible) {
   render.set("spp", double(st.spp))
       .setInteger("seed", desc.render.seed)
       .set("sampler", samplerName(desc.render.sampler))
-      .set("max_depth", double(desc.render.maxDepth));
+      .set("max_depth", double(desc.render.maxDepth))
+      .set("guiding", desc.render.guiding);
   if (!reproducible) render.set("seconds", st.seconds);
+  if (st.guide) {  // path guiding's cost (integrator/render/path_guide.h)
+    JsonObject guide;
+    guide.set("train_spp", double(st.guide->trainSpp))
+        .set("iterations", double(st.guide->iterations))
+        .set("records", double(st.guide->records))
+        .set("leaves", double(st.guide->leaves))
+        .set("bytes", double(st.guide->bytes));
+    if (!reproducible) guide.set("train_seconds", st.guide->trainSeconds);
+    render.set("guide", guide);
+  }
   if (desc.render.passes()) {
     JsonObject passes;
     passes.set("first_spp", double(desc.render.spp))

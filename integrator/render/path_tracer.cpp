@@ -1,6 +1,7 @@
 #include "integrator/render/path_tracer.h"
 
 #include "integrator/geometry/math.h"
+#include "integrator/render/path_guide.h"
 #include "integrator/sampling/sobol_sampler.h"
 
 namespace camsim {
@@ -53,7 +54,69 @@ struct ShadingPoint {
   glm::vec3 woLocal;
   const Material& material;
   const BsdfContext& ctx;
+  const DirectionalQuadtree* guide;  // null: unguided here (path_guide.h)
+
+  // The pdf the bounce samples wi with (sr⁻¹): the BSDF's, or the BSDF/guide mixture.
+  float scatterPdf(const glm::vec3& wiLocal, const glm::vec3& wi,
+                   const SampledWavelengths& lambda) const {
+    return mixturePdf(material.pdf(woLocal, wiLocal, lambda, ctx), wi);
+  }
+  float mixturePdf(float bsdfPdf, const glm::vec3& wi) const {
+    if (!guide) return bsdfPdf;
+    constexpr float a = PathGuide::kBsdfFraction;
+    return a * bsdfPdf + (1.0f - a) * PathGuide::pdf(*guide, wi);
+  }
 };
+
+// A bounce's sampled direction: what the path loop needs of a BsdfSample.
+struct Scatter {
+  SampledSpectrum f;  // BSDF, sr⁻¹
+  glm::vec3 wiLocal{0.0f};
+  float pdf = 0.0f;  // of the scheme that sampled it (for a delta lobe: its probability)
+  bool specular = false;
+  float etap = 1.0f;
+  float bsdfPdf = 0.0f;  // the BSDF's own pdf of wiLocal (sampled as pdf if unguided)
+};
+
+// One-sample MIS of the mixture (path_guide.h): uc < α picks the BSDF (uc/α its lobe
+// choice), else the guide; either way the pdf is the mixture's, except for a delta lobe,
+// which only the BSDF samples: its probability is α times the lobe's.
+template <typename SamplerT>
+std::optional<Scatter> scatter(const ShadingPoint& sp, float uc, SamplerT& sampler,
+                               const SampledWavelengths& lambda) {
+  const glm::vec2 u = sampler.get2D();
+  if (!sp.guide) {
+    const std::optional<BsdfSample> bs = sp.material.sample(sp.woLocal, uc, u, lambda, sp.ctx);
+    if (!bs) return std::nullopt;
+    return Scatter{bs->f, bs->wi, bs->pdf, bs->specular, bs->etap, bs->pdf};
+  }
+  constexpr float a = PathGuide::kBsdfFraction;
+  if (uc < a) {
+    const std::optional<BsdfSample> bs = sp.material.sample(sp.woLocal, uc / a, u, lambda, sp.ctx);
+    if (!bs) return std::nullopt;
+    if (bs->specular) return Scatter{bs->f, bs->wi, a * bs->pdf, true, bs->etap, bs->pdf};
+    // f and pdf evaluated, not the sample's: with several lobes the sample's are the chosen
+    // lobe's only, and the mixture needs the same functions of wi for both techniques.
+    const float bsdfPdf = sp.material.pdf(sp.woLocal, bs->wi, lambda, sp.ctx);
+    return Scatter{sp.material.f(sp.woLocal, bs->wi, lambda, sp.ctx),
+                   bs->wi,
+                   sp.mixturePdf(bsdfPdf, sp.frame.toWorld(bs->wi)),
+                   false,
+                   bs->etap,
+                   bsdfPdf};
+  }
+  float guidePdf = 0.0f;
+  const glm::vec3 wi = PathGuide::sample(*sp.guide, u, &guidePdf);
+  const glm::vec3 wiLocal = sp.frame.toLocal(wi);
+  const float bsdfPdf = sp.material.pdf(sp.woLocal, wiLocal, lambda, sp.ctx);
+  // etap stays 1: it only steers Russian roulette, which is unbiased for any survival rate.
+  return Scatter{sp.material.f(sp.woLocal, wiLocal, lambda, sp.ctx),
+                 wiLocal,
+                 a * bsdfPdf + (1.0f - a) * guidePdf,
+                 false,
+                 1.0f,
+                 bsdfPdf};
+}
 
 // One light sample, MIS-weighted against BSDF sampling: uLight chooses the light, the
 // sampler's next 2D draw the point on it. Returns the contribution to L before multiplying
@@ -78,8 +141,7 @@ SampledSpectrum sampleLight(const Scene& scene, const ShadingPoint& sp,
   if (scene.geometry().occluded(shadow)) return SampledSpectrum(0.0f);
   const float lightPdf = pmf * ls->pdf;
   const float weight =
-      ls->delta ? 1.0f
-                : powerHeuristic(lightPdf, sp.material.pdf(sp.woLocal, wiLocal, lambda, sp.ctx));
+      ls->delta ? 1.0f : powerHeuristic(lightPdf, sp.scatterPdf(wiLocal, ls->wi, lambda));
   return f * ls->L * (weight / lightPdf);
 }
 
@@ -87,14 +149,28 @@ SampledSpectrum sampleLight(const Scene& scene, const ShadingPoint& sp,
 // a path draws are direct, inlined calls instead of virtual ones.
 template <typename SamplerT>
 SampledSpectrum trace(const Scene& scene, Ray ray, SampledWavelengths& lambda, SamplerT& sampler,
-                      VisibleSurface* visible) {
+                      VisibleSurface* visible, const PathGuide* guide, GuideRecorder* recorder) {
   const RenderSettings& settings = scene.settings();
   const bool haveLights = scene.hasPoweredLights();
   SampledSpectrum L(0.0f), beta(1.0f);
+  // Russian roulette's throughput: beta, except that guided bounces multiply by the BSDF
+  // sampling weight f·cos/p_bsdf instead of f·cos/p_mixture. A guided direction towards
+  // bright light has a high p and so a small weight; roulette on beta would kill most of
+  // the very paths guiding found (any survival rate keeps the estimator unbiased).
+  SampledSpectrum rrBeta(1.0f);
   float etaScale = 1.0f;  // Π etap² of the transmissions so far: beta·etaScale has no η² factors
   float prevBsdfPdf = 0.0f;
   bool prevSpecular = true;  // the camera ray: emitters seen directly get full weight
   glm::vec3 prevP(0.0f);
+  if (recorder) recorder->path.clear();
+  // Adds a contribution to L and, in training, to the radiance each earlier vertex received.
+  auto add = [&](const SampledSpectrum& c) {
+    L += c;
+    if (!recorder) return;
+    for (GuideRecorder::Vertex& v : recorder->path)
+      for (int i = 0; i < kWavelengthSamples; ++i)
+        if (v.beta[i] > 0.0f) v.L[i] += c[i] / v.beta[i];
+  };
   for (int depth = 0;; ++depth) {
     Hit hit;
     if (!scene.geometry().intersect(ray, hit)) {
@@ -107,7 +183,7 @@ SampledSpectrum trace(const Scene& scene, Ray ray, SampledWavelengths& lambda, S
             prevSpecular ? 1.0f
                          : powerHeuristic(prevBsdfPdf, scene.lightDistribution().pmf(index) *
                                                            light.pdfDirection(d));
-        L += beta * Le * weight;
+        add(beta * Le * weight);
       }
       break;
     }
@@ -136,10 +212,10 @@ SampledSpectrum trace(const Scene& scene, Ray ray, SampledWavelengths& lambda, S
       const SampledSpectrum Le = light->L(si, wo, lambda);
       if (!Le.isZero()) {
         if (prevSpecular) {
-          L += beta * Le;
+          add(beta * Le);
         } else {
           const float lightPdf = scene.lightPmfOfShape(hit.shape) * light->pdf(prevP, si);
-          L += beta * Le * powerHeuristic(prevBsdfPdf, lightPdf);
+          add(beta * Le * powerHeuristic(prevBsdfPdf, lightPdf));
         }
       }
     }
@@ -148,19 +224,25 @@ SampledSpectrum trace(const Scene& scene, Ray ray, SampledWavelengths& lambda, S
     if (material.dispersive()) lambda.terminateSecondary();
 
     const Frame frame = Frame::fromZ(si.ns);
-    const ShadingPoint sp{si, frame, wo, frame.toLocal(wo), material, ctx};
+    const DirectionalQuadtree* density =
+        guide && material.hasNonSpecular() ? guide->densityAt(si.p) : nullptr;
+    const ShadingPoint sp{si, frame, wo, frame.toLocal(wo), material, ctx, density};
     // The bounce's two 1D choices, which light and which BSDF lobe, share one 2D draw (one
     // sampler dimension instead of two).
     const glm::vec2 uChoice = sampler.get2D();
     if (haveLights && material.hasNonSpecular())
-      L += beta * sampleLight(scene, sp, lambda, uChoice.x, sampler);
+      add(beta * sampleLight(scene, sp, lambda, uChoice.x, sampler));
 
-    const std::optional<BsdfSample> bs =
-        material.sample(sp.woLocal, uChoice.y, sampler.get2D(), lambda, sp.ctx);
+    const std::optional<Scatter> bs = scatter(sp, uChoice.y, sampler, lambda);
     if (!bs || !(bs->pdf > 0.0f) || bs->f.isZero()) break;
-    const glm::vec3 wi = frame.toWorld(bs->wi);
-    if (!sidesAgree(si.n, wo, wi, sp.woLocal, bs->wi)) break;
-    beta *= bs->f * (std::abs(bs->wi.z) / bs->pdf);
+    const glm::vec3 wi = frame.toWorld(bs->wiLocal);
+    if (!sidesAgree(si.n, wo, wi, sp.woLocal, bs->wiLocal)) break;
+    const SampledSpectrum weight = bs->f * (std::abs(bs->wiLocal.z) / bs->pdf);
+    beta *= weight;
+    rrBeta *=
+        sp.guide && bs->bsdfPdf > 0.0f ? bs->f * (std::abs(bs->wiLocal.z) / bs->bsdfPdf) : weight;
+    if (recorder && !bs->specular)
+      recorder->path.push_back({si.p, directionToSquare(wi), bs->pdf, beta, SampledSpectrum(0.0f)});
     etaScale *= bs->etap * bs->etap;
     prevBsdfPdf = bs->pdf;
     prevSpecular = bs->specular;
@@ -171,24 +253,30 @@ SampledSpectrum trace(const Scene& scene, Ray ray, SampledWavelengths& lambda, S
     if (depth + 1 >= settings.rrDepth) {
       // Survival ∝ the throughput without the 1/η² of refraction: inside glass beta is
       // η² smaller although the path carries as much light out again.
-      const float q = std::max(0.0f, 1.0f - beta.maxComponent() * etaScale);
+      const float q = std::max(0.0f, 1.0f - rrBeta.maxComponent() * etaScale);
       if (sampler.get1D() < q) break;
       beta /= 1.0f - q;
+      rrBeta /= 1.0f - q;
     }
   }
+  if (recorder && recorder->out)
+    for (const GuideRecorder::Vertex& v : recorder->path)
+      recorder->out->push_back({v.p, v.square, v.L.average() / v.pdf});
   return L;
 }
 
 }  // namespace
 
 SampledSpectrum traceRadiance(const Scene& scene, Ray ray, SampledWavelengths& lambda,
-                              SobolSampler& sampler, VisibleSurface* visible) {
-  return trace(scene, ray, lambda, sampler, visible);
+                              SobolSampler& sampler, VisibleSurface* visible,
+                              const PathGuide* guide, GuideRecorder* recorder) {
+  return trace(scene, ray, lambda, sampler, visible, guide, recorder);
 }
 
 SampledSpectrum traceRadiance(const Scene& scene, Ray ray, SampledWavelengths& lambda,
-                              IndependentSampler& sampler, VisibleSurface* visible) {
-  return trace(scene, ray, lambda, sampler, visible);
+                              IndependentSampler& sampler, VisibleSurface* visible,
+                              const PathGuide* guide, GuideRecorder* recorder) {
+  return trace(scene, ray, lambda, sampler, visible, guide, recorder);
 }
 
 }  // namespace camsim

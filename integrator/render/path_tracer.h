@@ -21,6 +21,8 @@
 namespace camsim {
 
 class SobolSampler;
+class PathGuide;
+struct GuideRecorder;
 
 // The camera ray's first hit, for the ground-truth outputs (aov_film.h), as pbrt-v4's
 // VisibleSurface: filled by traceRadiance when asked for, at no cost otherwise.
@@ -44,11 +46,15 @@ static_assert(offsetof(VisibleSurface, p) + 16 <= sizeof(VisibleSurface) &&
 // material on the path terminates the secondary wavelengths (lambda is updated: the film
 // must use it). Every bounce and shadow ray cast is counted (ray_stats.h). With `visible`,
 // the first hit is recorded there (visible->hit stays false on a miss).
+// With `guide`, non-specular bounces sample the BSDF/guide mixture (path_guide.h); with
+// `recorder` (training), the path's vertices and the radiance they received are recorded.
 // Compiled per concrete sampler (what the render loop uses): its numbers are drawn through
 // inlined, not virtual, calls.
 SampledSpectrum traceRadiance(const Scene& scene, Ray ray, SampledWavelengths& lambda,
-                              SobolSampler& sampler, VisibleSurface* visible = nullptr);
+                              SobolSampler& sampler, VisibleSurface* visible = nullptr,
+                              const PathGuide* guide = nullptr, GuideRecorder* recorder = nullptr);
 SampledSpectrum traceRadiance(const Scene& scene, Ray ray, SampledWavelengths& lambda,
-                              IndependentSampler& sampler, VisibleSurface* visible = nullptr);
+                              IndependentSampler& sampler, VisibleSurface* visible = nullptr,
+                              const PathGuide* guide = nullptr, GuideRecorder* recorder = nullptr);
 
 }  // namespace camsim

@@ -14,6 +14,7 @@
 #include "integrator/render/adaptive_sampling.h"
 #include "integrator/render/aov_film.h"
 #include "integrator/render/film.h"
+#include "integrator/render/path_guide.h"
 #include "integrator/sampling/sobol_sampler.h"
 #include "sensor/base/check.h"
 
@@ -52,6 +53,7 @@ struct TileContext {
   TileStats& stats;
   AovFilm& aovs;
   AovPixel& aovPixel;
+  const PathGuide* guide;  // null: unguided (path_guide.h)
 };
 
 // Samples [range.first, range.end) of one pixel (pbrt-v4's EvaluatePixelSample, in a loop);
@@ -99,14 +101,14 @@ bool renderPixel(const TileContext<SamplerT>& t, glm::ivec2 pixel, SampleRange r
     }
     countRay(RayKind::kCamera, cr->ray);
     if (!withAovs) {
-      const SampledSpectrum L = traceRadiance(t.scene, cr->ray, lambda, sampler);
+      const SampledSpectrum L = traceRadiance(t.scene, cr->ray, lambda, sampler, nullptr, t.guide);
       if (!t.film.addSample(pixel, s, L * cr->weight, lambda)) ++t.stats.rejected;
       continue;
     }
     // The first hit is recorded in place, in the pixel's AOV record.
     VisibleSurface& visible = aovs.nextSurface(t.aovPixel);
     const SampledWavelengths lambdaAtCamera = lambda;  // before a dispersive hit ends some
-    const SampledSpectrum L = traceRadiance(t.scene, cr->ray, lambda, sampler, &visible);
+    const SampledSpectrum L = traceRadiance(t.scene, cr->ray, lambda, sampler, &visible, t.guide);
     if (!t.film.addSample(pixel, s, L * cr->weight, lambda)) ++t.stats.rejected;
     aovs.addSample(t.aovPixel, {cs.time, lambdaAtCamera, posePtr});
   }
@@ -243,6 +245,11 @@ RenderResult render(const Scene& scene, const std::vector<const SpectralResponse
   std::atomic<bool> cancelled{false};
   // Per tile of the share: it finished the current pass (a cancel zeroes the others).
   std::vector<std::uint8_t> finished(static_cast<std::size_t>(tileCount), 0);
+  // Path guiding (integrator/render/path_guide.h): trained before the first pass, frozen.
+  std::optional<PathGuide> guide;
+  if (options.guiding.value_or(scene.settings().guiding))
+    guide = PathGuide::train(scene, options.spp, options.seed, threads);
+  const PathGuide* guidePtr = guide ? &*guide : nullptr;
 
   // Adaptive sampling: which pixels still take samples (adaptive_sampling.h).
   std::optional<AdaptiveState> adaptive;
@@ -261,7 +268,7 @@ RenderResult render(const Scene& scene, const std::vector<const SpectralResponse
                         const RayStatsScope rays(options.rayObserver);
                         TileStats& stats = perThread.local();
                         const TileContext<decltype(sampler)> context{
-                            scene, film, options, dims, sampler, stats, aovs, aovPixel};
+                            scene, film, options, dims, sampler, stats, aovs, aovPixel, guidePtr};
                         struct AddRays {  // on every exit, also a cancelled one
                           const RayStatsScope& scope;
                           TileStats& stats;
@@ -356,6 +363,7 @@ RenderResult render(const Scene& scene, const std::vector<const SpectralResponse
   result.stats.meanSpp =
       sharePixels > 0.0 ? static_cast<double>(result.stats.samples) / sharePixels : 0.0;
   result.stats.threads = threads;
+  if (guide) result.stats.guide = guide->stats();
   result.stats.modelled = dims;
   result.stats.cancelled = cancelled;
   result.stats.seconds = elapsedSince(start);

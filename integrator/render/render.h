@@ -42,6 +42,7 @@
 
 #include "integrator/render/adaptive_sampling.h"
 #include "integrator/render/error_estimate.h"
+#include "integrator/render/path_guide.h"
 #include "integrator/render/path_tracer.h"
 #include "integrator/scene/scene.h"
 #include "sensor/base/image.h"
@@ -84,6 +85,9 @@ struct RenderOptions {
   int maxSpp = 1 << 20;  // passes stop here (setting_ranges::kSpp's maximum)
   // Adaptive sampling (above); needs the whole image (no share).
   std::optional<AdaptiveSampling> adaptive;
+  // Overrides the scene's render.guiding (integrator/render/path_guide.h): trains a guide
+  // on a quarter of spp before the first pass; its time is in the render's.
+  std::optional<bool> guiding;
 };
 
 // Why a render stopped adding samples.
@@ -105,6 +109,7 @@ struct RenderStats {
   // The image's estimate of its own error (error_estimate.h); none below 2 spp, for a share
   // of the tiles, or when cancelled.
   std::optional<ErrorEstimate> estimatedError;
+  std::optional<GuideStats> guide;  // with path guiding: its training and memory
 
   double samplesPerSecond() const {
     return seconds > 0.0 ? static_cast<double>(samples) / seconds : 0.0;

@@ -69,6 +69,9 @@ const std::vector<OverrideSetting> kSettings = {
                     "camera model, the scene's camera.projection map as YAML/JSON flow text: "
                     "'{model: equidistant, max_field_angle_deg: 95}' (docs/camera.md)",
                     OverrideType::kProjection},
+    integerSetting("guiding", "render.guiding",
+                   "path guiding: 1 on, 0 off (overrides render.guiding; docs/scene-format.md)",
+                   R::kGuiding),
 };
 
 std::string vec(const glm::dvec3& v) {
@@ -202,7 +205,8 @@ const OverrideSetting& setting(std::string_view key) {
 
 bool Overrides::empty() const {
   return !sensor && !spp && !seed && !targetError && !timeLimitS && !adaptiveThreshold &&
-         !exposureTimeS && !fNumber && !iso && !noise && !noiseSeed && !pose && !projection;
+         !exposureTimeS && !fNumber && !iso && !noise && !noiseSeed && !pose && !projection &&
+         !guiding;
 }
 
 const std::vector<OverrideSetting>& overrideSettings() {
@@ -246,6 +250,7 @@ void setOverrideInteger(Overrides& o, const OverrideSetting& s, std::int64_t val
   if (s.key == "spp") o.spp = value;
   if (s.key == "seed") o.seed = value;
   if (s.key == "noise_seed") o.noiseSeed = value;
+  if (s.key == "guiding") o.guiding = value;
 }
 
 void setOverrideNumber(Overrides& o, const OverrideSetting& s, double value,
@@ -307,6 +312,7 @@ void applyOverrides(SceneDescription& d, const Overrides& o, const SourceLocatio
   if (o.seed) setOverrideInteger(checked, setting("seed"), *o.seed, src("seed"));
   if (o.noiseSeed)
     setOverrideInteger(checked, setting("noise_seed"), *o.noiseSeed, src("noise_seed"));
+  if (o.guiding) setOverrideInteger(checked, setting("guiding"), *o.guiding, src("guiding"));
   if (o.targetError)
     setOverrideNumber(checked, setting("target_error"), *o.targetError, src("target_error"));
   if (o.timeLimitS)
@@ -326,6 +332,7 @@ void applyOverrides(SceneDescription& d, const Overrides& o, const SourceLocatio
   if (o.targetError) d.render.targetError = *o.targetError;
   if (o.timeLimitS) d.render.timeLimitS = *o.timeLimitS;
   if (o.adaptiveThreshold) d.render.adaptiveThreshold = *o.adaptiveThreshold;
+  if (o.guiding) d.render.guiding = *o.guiding != 0;
   if (o.exposureTimeS)
     d.camera.shutter = d.camera.shutter.scaled(*o.exposureTimeS / d.camera.shutter.effectiveTime());
   if (o.fNumber) d.camera.fNumber = *o.fNumber;  // the stop follows (apertureDiameter)
@@ -361,6 +368,7 @@ std::string overridesText(const Overrides& o) {
   if (o.noiseSeed) add("noise_seed", std::to_string(*o.noiseSeed));
   if (o.pose) add("pose", poseText(*o.pose));
   if (o.projection) add("projection", projectionOverrideText(*o.projection));
+  if (o.guiding) add("guiding", std::to_string(*o.guiding));
   return out;
 }
 

@@ -20,6 +20,7 @@
 // | pose            | camera.world_from_camera | m    | look-at or 4x4 matrix (text below) |
 // | projection      | camera.projection        | —    | the camera model: the scene key's  |
 // |                 |                          |      | map as YAML/JSON flow text         |
+// | guiding         | render.guiding           | —    | integer, kGuiding: 1 on, 0 off     |
 //
 // The CLI flag of a key is "--" + the key with '_' → '-' (--f-number). Text forms (CLI,
 // tile parts): numbers and integers as C++ from_chars reads them; pose as 9 comma-separated
@@ -85,6 +86,7 @@ struct Overrides {
   std::optional<std::int64_t> noiseSeed;
   std::optional<PoseOverride> pose;
   std::optional<ProjectionOverride> projection;
+  std::optional<std::int64_t> guiding;  // 0 or 1
 
   bool empty() const;
 };

@@ -100,6 +100,7 @@ struct RenderSettings {
   // spp is then the most samples a pixel gets (passes: the first pass).
   std::optional<double> adaptiveThreshold;  // estimated relative error to stop a pixel at
   int adaptiveMinSpp = 0;                   // even; 0 = automatic (adaptiveMinSppFor)
+  bool guiding = false;                     // path guiding (integrator/render/path_guide.h)
   bool passes() const { return targetError.has_value() || timeLimitS.has_value(); }
 };
 

@@ -87,6 +87,11 @@ RenderSettings parseRender(YamlMap map) {
       v->fail("adaptive_min_spp " + std::to_string(r.adaptiveMinSpp) +
               " is odd: the convergence checks compare a pixel's two equal halves of samples");
   }
+  if (auto v = map.find("guiding")) {
+    // true/false, or the override's 0/1 (setting_ranges::kGuiding: a dataset item sets it so).
+    const std::string text = v->isScalar() ? v->string() : "";
+    r.guiding = text == "0" || text == "1" ? text == "1" : v->boolean();
+  }
   if (auto v = map.find("aovs")) {
     for (const YamlValue& item : v->items()) {
       const Aov aov = item.choice<Aov>("aov");
@@ -96,7 +101,7 @@ RenderSettings parseRender(YamlMap map) {
     }
   }
   map.finish({"sampler", "spp", "seed", "max_depth", "rr_depth", "aovs", "target_error",
-              "time_limit_s", "max_spp", "adaptive_threshold", "adaptive_min_spp"});
+              "time_limit_s", "max_spp", "adaptive_threshold", "adaptive_min_spp", "guiding"});
   return r;
 }
 

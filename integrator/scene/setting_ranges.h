@@ -60,6 +60,8 @@ inline constexpr SettingRange kTimeLimitS{0.0, 3.2e7, true};
 inline constexpr SettingRange kAdaptiveThreshold{0.0, 1.0, true};
 // render.adaptive_min_spp: samples per pixel before (and between) convergence checks; even.
 inline constexpr IntegerRange kAdaptiveMinSpp{2, std::int64_t{1} << 20};
+// render.guiding as an override (the scene file's is a boolean): 1 on, 0 off.
+inline constexpr IntegerRange kGuiding{0, 1};
 
 }  // namespace setting_ranges
 }  // namespace camsim

@@ -40,8 +40,8 @@ IDS = [f"{s['key']}={v!r}" for s, v, _ in CASES]
 def test_table_has_every_ranged_setting():
     assert [s["key"] for s in RANGED] == ["spp", "seed", "target_error", "time_limit_s",
                                           "adaptive_threshold", "exposure_time_s", "f_number",
-                                          "iso", "noise_seed"]
-    assert len(CASES) == 36
+                                          "iso", "noise_seed", "guiding"]
+    assert len(CASES) == 40
     f = next(s for s in RANGED if s["key"] == "f_number")
     assert (f["lo"], f["hi"], f["range"], f["flag"]) == (0.5, 1e4, "[0.5, 10000]", "--f-number")
 
@@ -66,6 +66,7 @@ SETTERS = {
     "exposure_time_s": lambda s, v: s.set_exposure(exposure_time_s=v),
     "f_number": lambda s, v: s.set_exposure(f_number=v),
     "iso": lambda s, v: s.set_exposure(iso=v),
+    "guiding": lambda s, v: s.set_guiding(v),
 }
 
 

@@ -103,8 +103,8 @@ TEST(OverrideRanges, TableHasEveryRangedSetting) {
     if (keys.empty() || keys.back() != c.setting->key) keys.emplace_back(c.setting->key);
   EXPECT_EQ(keys, (std::vector<std::string>{"spp", "seed", "target_error", "time_limit_s",
                                             "adaptive_threshold", "exposure_time_s", "f_number",
-                                            "iso", "noise_seed"}));
-  EXPECT_EQ(boundaryCases().size(), 36u);
+                                            "iso", "noise_seed", "guiding"}));
+  EXPECT_EQ(boundaryCases().size(), 40u);
 }
 
 TEST(OverrideRanges, LibraryApplyAgreesWithTheTable) {

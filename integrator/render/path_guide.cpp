@@ -1,0 +1,130 @@
+#include "integrator/render/path_guide.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include <tbb/blocked_range.h>
+#include <tbb/info.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include "integrator/render/path_tracer.h"
+#include "integrator/render/render.h"
+#include "integrator/sampling/sampler.h"
+#include "integrator/scene/scene.h"
+
+namespace camsim {
+namespace {
+
+constexpr float kInvFourPi = 0.0795774715459476679f;
+// Tiles traced between two insertions of their records: bounds the records held at once
+// (16² px × 32 spp × ≈ 4 vertices × 24 bytes ≈ 0.8 MB per tile at the last iteration).
+constexpr int kBatchTiles = 32;
+constexpr std::uint64_t kGuideSeedSalt = 0x6775696465ull;  // "guide"
+
+// One training iteration's samples [first, end) of a tile's pixels, as render.cpp's
+// renderTile draws a camera sample (same dimension slots), traced with `guide` (null: the
+// BSDF alone) into `records` in pixel and sample order.
+void traceTile(const Scene& scene, const TileRect& rect, int first, int end,
+               IndependentSampler& sampler, const PathGuide* guide,
+               std::vector<GuideRecord>& records) {
+  const PhysicalCamera& camera = scene.camera();
+  const Shutter& shutter = camera.shutter();
+  const ModelledDimensions& dims = scene.modelled();
+  const float side = static_cast<float>(std::sqrt(camera.params().fillFactor));
+  GuideRecorder recorder;
+  recorder.out = &records;
+  for (int y = rect.lo.y; y < rect.hi.y; ++y) {
+    for (int x = rect.lo.x; x < rect.hi.x; ++x) {
+      const glm::ivec2 pixel(x, y);
+      for (int s = first; s < end; ++s) {
+        sampler.startPixelSample(pixel, s);
+        sampler.setDimension(kDimWavelength);
+        SampledWavelengths lambda = SampledWavelengths::sampleVisible(sampler.get1D());
+        CameraSample cs;
+        sampler.setDimension(kDimPixel);
+        cs.pFilm = glm::vec2(pixel) + 0.5f + (sampler.get2D() - 0.5f) * side;
+        if (dims.aperture) {
+          sampler.setDimension(kDimLens);
+          cs.pLens = sampler.get2D();
+        }
+        cs.time = shutter.open();
+        if (dims.time) {
+          sampler.setDimension(kDimTime);
+          cs.time = shutter.sample(static_cast<double>(sampler.get1D())) + shutter.rowOffset(y);
+        }
+        sampler.setDimension(kDimPath);
+        const std::optional<CameraRay> cr = camera.generateRay(cs, lambda);
+        if (!cr) continue;
+        traceRadiance(scene, cr->ray, lambda, sampler, nullptr, guide, &recorder);
+      }
+    }
+  }
+}
+
+}  // namespace
+
+float PathGuide::pdf(const DirectionalQuadtree& d, const glm::vec3& w) {
+  return d.pdf(directionToSquare(w)) * kInvFourPi;
+}
+
+glm::vec3 PathGuide::sample(const DirectionalQuadtree& d, glm::vec2 u, float* pdf) {
+  float density = 0.0f;
+  const glm::vec3 w = squareToDirection(d.sample(u, &density));
+  *pdf = density * kInvFourPi;
+  return w;
+}
+
+PathGuide PathGuide::train(const Scene& scene, int spp, std::uint64_t seed, int threads) {
+  const auto start = std::chrono::steady_clock::now();
+  // The scene's bounds (all geometry, all time steps), 0.1 % larger: no vertex on a face.
+  const glm::vec3 lo = scene.geometry().boundsLower(), hi = scene.geometry().boundsUpper();
+  const glm::vec3 pad = 1e-3f * glm::max(hi - lo, glm::vec3(0.0f)) + 1e-6f;
+  PathGuide guide(SDTree(lo - pad, glm::max(hi, lo) + pad));
+  const glm::ivec2 res = scene.camera().resolution();
+  const int tileCount = renderTileCount(res);
+  const IndependentSampler prototype(hashValues(seed, kGuideSeedSalt));
+  tbb::task_arena arena(threads > 0 ? threads : tbb::info::default_concurrency());
+  const int budget = std::max(1, spp / 4);
+  std::vector<std::vector<GuideRecord>> records(static_cast<std::size_t>(kBatchTiles));
+  int first = 0;  // sample index: each iteration draws new streams
+  for (int k = 0; k < 30; ++k) {
+    const int n = 1 << k;
+    if (k > 0 && first + n > budget) break;
+    // Iteration 0 samples the BSDF alone (the guide is still empty everywhere anyway).
+    const PathGuide* sampling = k == 0 ? nullptr : &guide;
+    for (int batch = 0; batch < tileCount; batch += kBatchTiles) {
+      const int batchEnd = std::min(tileCount, batch + kBatchTiles);
+      arena.execute([&] {
+        tbb::parallel_for(
+            tbb::blocked_range<int>(batch, batchEnd, 1), [&](const tbb::blocked_range<int>& range) {
+              IndependentSampler sampler = prototype;
+              for (int t = range.begin(); t != range.end(); ++t) {
+                std::vector<GuideRecord>& out = records[static_cast<std::size_t>(t - batch)];
+                out.clear();
+                traceTile(scene, renderTileRect(res, t), first, first + n, sampler, sampling, out);
+              }
+            });
+      });
+      // Tile order, then each tile's own order: the same sums for any thread count.
+      for (int t = batch; t < batchEnd; ++t)
+        for (const GuideRecord& r : records[static_cast<std::size_t>(t - batch)]) {
+          guide.tree_.record(r.p, r.square, r.weight);
+          ++guide.stats_.records;
+        }
+    }
+    guide.tree_.refine(k);
+    first += n;
+    ++guide.stats_.iterations;
+  }
+  guide.tree_.freeze();
+  guide.stats_.trainSpp = first;
+  guide.stats_.leaves = guide.tree_.leafCount();
+  guide.stats_.bytes = guide.tree_.bytes();
+  guide.stats_.trainSeconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return guide;
+}
+
+}  // namespace camsim

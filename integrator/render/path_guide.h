@@ -1,0 +1,101 @@
+// Practical path guiding (Müller, Gross, Novák 2017; issue 38): the path tracer samples a
+// bounce's direction at a non-specular vertex from the one-sample mixture
+//
+//   p(ω) = α·p_bsdf(ω) + (1 − α)·p_guide(x, ω),   α = kBsdfFraction = 0.5
+//
+// where p_guide is the SD-tree's learnt density of the incident radiance at x
+// (integrator/render/sd_tree.h); next-event estimation's MIS weighs against the same
+// mixture pdf. Where the guide has no density (no records there), p = p_bsdf.
+//
+// Training (PathGuide::train): iterations k = 0, 1, … of 2^k samples per pixel, while their
+// total stays within a quarter of the render's spp (256 spp: 1+2+…+32 = 63 spp); the last
+// iteration's records make the guide. Iteration k samples with the guide of iteration k − 1
+// (k = 0: the BSDF alone) and records, at every non-specular vertex of every path, the
+// spectral average (over the path's wavelengths) of the radiance the rest of the path
+// brought in along the sampled direction, divided by the mixture pdf it was sampled with.
+// Training uses its own sample streams (the render seed hashed with "guide"), none of the
+// final render's, and its samples are not in the image.
+//
+// Russian roulette (path_tracer.cpp) then takes its survival rate from the throughput with
+// the BSDF's sampling weight f·cos/p_bsdf at guided bounces instead of f·cos/p: a direction
+// the guide favours has a large p, and roulette on the true throughput killed most of the
+// paths guiding found (small_light: no gain at all without this).
+// Unbiasedness: the final render uses the FROZEN guide, so p is a fixed density, positive
+// wherever p_bsdf is (α > 0): plain importance sampling.
+// Determinism: tiles are traced in parallel in batches; each tile keeps its records, and
+// they are inserted in tile order after each batch (float sums in a fixed order): the same
+// scene and seed give the same guide, and image, for any thread count.
+// Memory: the SD-tree (bytes()), plus during training one batch's records (24 bytes each).
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <utility>
+#include <vector>
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+#include "integrator/render/sd_tree.h"
+#include "sensor/spectra/sampled_spectrum.h"
+
+namespace camsim {
+
+class Scene;
+
+// One training record: a vertex, the square point of its sampled direction, and the
+// weight L/p it adds to the cell there.
+struct GuideRecord {
+  glm::vec3 p{0.0f};
+  glm::vec2 square{0.0f};
+  float weight = 0.0f;
+};
+
+// What a training path keeps of its vertices until it ends (path_tracer.cpp).
+struct GuideRecorder {
+  struct Vertex {
+    glm::vec3 p;
+    glm::vec2 square;
+    float pdf;                // sr⁻¹, of the direction sampled there
+    SampledSpectrum beta;     // path throughput after the vertex's scattering
+    SampledSpectrum L{0.0f};  // radiance arrived since, divided by beta
+  };
+  std::vector<Vertex> path;  // cleared per path
+  std::vector<GuideRecord>* out = nullptr;
+};
+
+struct GuideStats {
+  double trainSeconds = 0.0;
+  int iterations = 0;
+  int trainSpp = 0;  // samples per pixel traced in training (all iterations)
+  std::uint64_t records = 0;
+  std::size_t leaves = 0;
+  std::size_t bytes = 0;  // the SD-tree as the final render uses it
+};
+
+class PathGuide {
+ public:
+  static constexpr float kBsdfFraction = 0.5f;  // α of the mixture above
+
+  // Trains on `scene` with the render's spp, seed and threads (0: all); options as render().
+  static PathGuide train(const Scene& scene, int spp, std::uint64_t seed, int threads);
+  // A guide from a tree (tests).
+  explicit PathGuide(SDTree tree) : tree_(std::move(tree)) {}
+
+  // The density at x, or null where the guide has none (sample with the BSDF alone).
+  const DirectionalQuadtree* densityAt(const glm::vec3& x) const {
+    const DirectionalQuadtree& d = tree_.leaf(tree_.leafAt(x)).sampling;
+    return d.total() > 0.0f ? &d : nullptr;
+  }
+  static float pdf(const DirectionalQuadtree& d, const glm::vec3& w);  // sr⁻¹, w unit
+  // A unit direction and its pdf (sr⁻¹).
+  static glm::vec3 sample(const DirectionalQuadtree& d, glm::vec2 u, float* pdf);
+  const SDTree& tree() const { return tree_; }
+  const GuideStats& stats() const { return stats_; }
+
+ private:
+  SDTree tree_;
+  GuideStats stats_;
+};
+
+}  // namespace camsim
