@@ -10,6 +10,7 @@
 #include <tbb/task_arena.h>
 
 #include "integrator/render/path_tracer.h"
+#include "integrator/render/pixel_sample.h"
 #include "integrator/render/render.h"
 #include "integrator/sampling/sampler.h"
 #include "integrator/scene/scene.h"
@@ -23,38 +24,24 @@ constexpr float kInvFourPi = 0.0795774715459476679f;
 constexpr int kBatchTiles = 32;
 constexpr std::uint64_t kGuideSeedSalt = 0x6775696465ull;  // "guide"
 
-// One training iteration's samples [first, end) of a tile's pixels, as render.cpp's
-// renderTile draws a camera sample (same dimension slots), traced with `guide` (null: the
-// BSDF alone) into `records` in pixel and sample order.
+// One training iteration's samples [first, end) of a tile's pixels, their camera samples
+// drawn as the render's (pixel_sample.h), traced with `guide` (null: the BSDF alone) into
+// `records` in pixel and sample order.
 void traceTile(const Scene& scene, const TileRect& rect, int first, int end,
                IndependentSampler& sampler, const PathGuide* guide,
                std::vector<GuideRecord>& records) {
   const PhysicalCamera& camera = scene.camera();
-  const Shutter& shutter = camera.shutter();
   const ModelledDimensions& dims = scene.modelled();
-  const float side = static_cast<float>(std::sqrt(camera.params().fillFactor));
+  const float side = photositeSide(camera);
   GuideRecorder recorder;
   recorder.out = &records;
   for (int y = rect.lo.y; y < rect.hi.y; ++y) {
     for (int x = rect.lo.x; x < rect.hi.x; ++x) {
       const glm::ivec2 pixel(x, y);
       for (int s = first; s < end; ++s) {
-        sampler.startPixelSample(pixel, s);
-        sampler.setDimension(kDimWavelength);
-        SampledWavelengths lambda = SampledWavelengths::sampleVisible(sampler.get1D());
-        CameraSample cs;
-        sampler.setDimension(kDimPixel);
-        cs.pFilm = glm::vec2(pixel) + 0.5f + (sampler.get2D() - 0.5f) * side;
-        if (dims.aperture) {
-          sampler.setDimension(kDimLens);
-          cs.pLens = sampler.get2D();
-        }
-        cs.time = shutter.open();
-        if (dims.time) {
-          sampler.setDimension(kDimTime);
-          cs.time = shutter.sample(static_cast<double>(sampler.get1D())) + shutter.rowOffset(y);
-        }
-        sampler.setDimension(kDimPath);
+        PixelSample ps = drawPixelSample(sampler, camera, dims, pixel, s, side);
+        SampledWavelengths& lambda = ps.lambda;
+        const CameraSample& cs = ps.camera;
         const std::optional<CameraRay> cr = camera.generateRay(cs, lambda);
         if (!cr) continue;
         traceRadiance(scene, cr->ray, lambda, sampler, nullptr, guide, &recorder);

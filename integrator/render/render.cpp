@@ -15,6 +15,7 @@
 #include "integrator/render/aov_film.h"
 #include "integrator/render/film.h"
 #include "integrator/render/path_guide.h"
+#include "integrator/render/pixel_sample.h"
 #include "integrator/sampling/sobol_sampler.h"
 #include "sensor/base/check.h"
 
@@ -61,31 +62,16 @@ struct TileContext {
 template <typename SamplerT>
 bool renderPixel(const TileContext<SamplerT>& t, glm::ivec2 pixel, SampleRange range) {
   const PhysicalCamera& camera = t.scene.camera();
-  const Shutter& shutter = camera.shutter();
-  // The photosensitive area: centred in the pixel, sides scaled by √fill.
-  const float side = static_cast<float>(std::sqrt(camera.params().fillFactor));
+  const float side = photositeSide(camera);
   const bool withAovs = range.first == 0 && t.aovs.enabled();  // the first pass's samples
   SamplerT& sampler = t.sampler;
   AovFilm& aovs = t.aovs;
   if (withAovs) aovs.startPixel(t.aovPixel, pixel);
   for (int s = range.first; s < range.end; ++s) {
     if ((s - range.first) % kCancelStride == 0 && cancelRequested(t.options)) return false;
-    sampler.startPixelSample(pixel, s);
-    sampler.setDimension(kDimWavelength);
-    SampledWavelengths lambda = SampledWavelengths::sampleVisible(sampler.get1D());
-    CameraSample cs;
-    sampler.setDimension(kDimPixel);
-    cs.pFilm = glm::vec2(pixel) + 0.5f + (sampler.get2D() - 0.5f) * side;
-    if (t.dims.aperture) {
-      sampler.setDimension(kDimLens);
-      cs.pLens = sampler.get2D();
-    }
-    cs.time = shutter.open();
-    if (t.dims.time) {
-      sampler.setDimension(kDimTime);
-      cs.time = shutter.sample(static_cast<double>(sampler.get1D())) + shutter.rowOffset(pixel.y);
-    }
-    sampler.setDimension(kDimPath);
+    PixelSample ps = drawPixelSample(sampler, camera, t.dims, pixel, s, side);
+    SampledWavelengths& lambda = ps.lambda;
+    const CameraSample& cs = ps.camera;
     // The ground truth's depth and normals need the camera's pose at the sample's time:
     // computed once for the ray and for them.
     const bool sharePose = aovs.wantsCamera();

@@ -55,6 +55,14 @@ struct LuminanceImage {
   double at(int x, int yy) const { return static_cast<double>(y.at(x, yy, 0)); }
 };
 
+// The mean of Y over the image.
+inline double meanOf(const LuminanceImage& img) {
+  double sum = 0.0;
+  for (int y = 0; y < img.y.height; ++y)
+    for (int x = 0; x < img.y.width; ++x) sum += img.at(x, y);
+  return sum / (img.y.width * img.y.height);
+}
+
 inline LuminanceImage renderLuminance(const std::string& yaml, int spp, std::uint64_t seed = 1,
                                       const std::filesystem::path& baseDir = ".") {
   const SceneDescription desc = loadSceneFromText(yaml, "test.yaml", baseDir);

@@ -15,14 +15,8 @@ namespace {
 
 using test::flatY;
 using test::LuminanceImage;
+using test::meanOf;
 using test::renderLuminance;
-
-double meanOf(const LuminanceImage& img) {
-  double sum = 0.0;
-  for (int y = 0; y < img.y.height; ++y)
-    for (int x = 0; x < img.y.width; ++x) sum += img.at(x, y);
-  return sum / (img.y.width * img.y.height);
-}
 
 // A 2 m room of reflectance 0.6 lit by a 5 cm sphere under a 60 cm square baffle: the
 // floor the camera sees is lit mostly by the ceiling's pool (the indirect light guiding

@@ -34,14 +34,8 @@ using test::num;
 
 using test::flatY;
 using test::LuminanceImage;
+using test::meanOf;
 using test::renderLuminance;
-
-double meanOf(const LuminanceImage& img) {
-  double sum = 0.0;
-  for (int y = 0; y < img.y.height; ++y)
-    for (int x = 0; x < img.y.width; ++x) sum += img.at(x, y);
-  return sum / (img.y.width * img.y.height);
-}
 
 void expectClean(const LuminanceImage& img) {
   EXPECT_EQ(img.stats.rejectedSamples, 0u);
