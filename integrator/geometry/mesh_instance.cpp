@@ -203,12 +203,11 @@ std::optional<ShapeSample> MeshInstance::sample(const glm::vec3& ref, float /*u1
   CAMSIM_CHECK(samplable_);
   std::optional<ShapeSample> out;
   if (area_ <= 0.0f) return out;
-  const size_t tri = areaDistribution_.sample(u2.x, &u2.x);  // as TriangleMesh::sample
-  const glm::vec2 b = sampleUniformTriangle(u2);
+  const TrianglePoint t = pickTrianglePoint(areaDistribution_, u2);
   ShapeSample& s = out.emplace();
   float area = 0.0f;
-  pointOn(tri, b.y, 1.0f - b.x - b.y, time, motion_.empty() ? nullptr : &area, s.point);
-  const float pdfArea = areaPdf(tri, area);
+  pointOn(t.tri, t.b1, t.b2, time, motion_.empty() ? nullptr : &area, s.point);
+  const float pdfArea = areaPdf(t.tri, area);
   completeAreaSample(out, ref, pdfArea);
   return out;
 }

@@ -284,16 +284,11 @@ std::optional<ShapeSample> TriangleMesh::sample(const glm::vec3& ref, float /*u1
   // bytes: stalled store forwarding, a third of this function's time (pointOn likewise).
   std::optional<ShapeSample> out;
   if (area_ <= 0.0f) return out;
-  // The triangle is chosen by u2.x, rescaled to its share, and the point by that remapped
-  // pair: the pixel's stratified 2D points spread over the whole emitter (a quad's two
-  // triangles each get their half of them), where picking by u1 gave each triangle a random
-  // half of the points, i.e. plain Monte Carlo (Cycles reuses its number the same way).
-  const size_t tri = areaDistribution_.sample(u2.x, &u2.x);
-  const glm::vec2 b = sampleUniformTriangle(u2);
+  const TrianglePoint t = pickTrianglePoint(areaDistribution_, u2);
   ShapeSample& s = out.emplace();
   float area = 0.0f;
-  pointOn(tri, b.y, 1.0f - b.x - b.y, time, &area, s.point);
-  const float pdfArea = areaPdf(tri, area);
+  pointOn(t.tri, t.b1, t.b2, time, &area, s.point);
+  const float pdfArea = areaPdf(t.tri, area);
   completeAreaSample(out, ref, pdfArea);
   return out;
 }

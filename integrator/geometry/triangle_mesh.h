@@ -39,6 +39,21 @@
 
 namespace camsim {
 
+// A point on a mesh chosen by area, as TriangleMesh and MeshInstance sample their lights:
+// the triangle by u.x (∝ area), u.x rescaled to its share of the triangle, and the point by
+// that remapped pair, so the pixel's stratified 2D points spread over the whole emitter (a
+// quad's two triangles each get their half of them; picking by a separate number gave each
+// triangle a random half of the points, plain Monte Carlo; Cycles reuses its number so too).
+struct TrianglePoint {
+  size_t tri = 0;
+  float b1 = 0.0f, b2 = 0.0f;  // barycentrics of vertices 1 and 2
+};
+inline TrianglePoint pickTrianglePoint(const DiscreteDistribution& areas, glm::vec2 u) {
+  const size_t tri = areas.sample(u.x, &u.x);
+  const glm::vec2 b = sampleUniformTriangle(u);
+  return {tri, b.y, 1.0f - b.x - b.y};
+}
+
 class TriangleMesh final : public Shape {
  public:
   // positions / normals: the stored pose (normals may be empty). indices: 3 per triangle.

@@ -54,7 +54,7 @@ struct ShadingPoint {
   glm::vec3 woLocal;
   const Material& material;
   const BsdfContext& ctx;
-  const DirectionalQuadtree* guide;  // null: unguided here (path_guide.h)
+  const DirectionalQuadtree* guideDensity;  // the guide's directions here; null: unguided
 
   // The pdf the bounce samples wi with (sr⁻¹): the BSDF's, or the BSDF/guide mixture.
   float scatterPdf(const glm::vec3& wiLocal, const glm::vec3& wi,
@@ -62,9 +62,9 @@ struct ShadingPoint {
     return mixturePdf(material.pdf(woLocal, wiLocal, lambda, ctx), wi);
   }
   float mixturePdf(float bsdfPdf, const glm::vec3& wi) const {
-    if (!guide) return bsdfPdf;
+    if (!guideDensity) return bsdfPdf;
     constexpr float a = PathGuide::kBsdfFraction;
-    return a * bsdfPdf + (1.0f - a) * PathGuide::pdf(*guide, wi);
+    return a * bsdfPdf + (1.0f - a) * PathGuide::pdf(*guideDensity, wi);
   }
 };
 
@@ -85,7 +85,7 @@ template <typename SamplerT>
 std::optional<Scatter> scatter(const ShadingPoint& sp, float uc, SamplerT& sampler,
                                const SampledWavelengths& lambda) {
   const glm::vec2 u = sampler.get2D();
-  if (!sp.guide) {
+  if (!sp.guideDensity) {
     const std::optional<BsdfSample> bs = sp.material.sample(sp.woLocal, uc, u, lambda, sp.ctx);
     if (!bs) return std::nullopt;
     return Scatter{bs->f, bs->wi, bs->pdf, bs->specular, bs->etap, bs->pdf};
@@ -106,7 +106,7 @@ std::optional<Scatter> scatter(const ShadingPoint& sp, float uc, SamplerT& sampl
                    bsdfPdf};
   }
   float guidePdf = 0.0f;
-  const glm::vec3 wi = PathGuide::sample(*sp.guide, u, &guidePdf);
+  const glm::vec3 wi = PathGuide::sample(*sp.guideDensity, u, &guidePdf);
   const glm::vec3 wiLocal = sp.frame.toLocal(wi);
   const float bsdfPdf = sp.material.pdf(sp.woLocal, wiLocal, lambda, sp.ctx);
   // etap stays 1: it only steers Russian roulette, which is unbiased for any survival rate.
@@ -146,8 +146,10 @@ SampledSpectrum sampleLight(const Scene& scene, const ShadingPoint& sp,
 }
 
 // The path loop, compiled once per sampler type: for the final samplers the ≈ 20 numbers
-// a path draws are direct, inlined calls instead of virtual ones.
-template <typename SamplerT>
+// a path draws are direct, inlined calls instead of virtual ones. Guided (a guide or a
+// training recorder) is a second instantiation, so that the unguided loop carries none of
+// guiding's bookkeeping (the recorder's additions, the roulette throughput, the mixture).
+template <bool Guided, typename SamplerT>
 SampledSpectrum trace(const Scene& scene, Ray ray, SampledWavelengths& lambda, SamplerT& sampler,
                       VisibleSurface* visible, const PathGuide* guide, GuideRecorder* recorder) {
   const RenderSettings& settings = scene.settings();
@@ -162,10 +164,11 @@ SampledSpectrum trace(const Scene& scene, Ray ray, SampledWavelengths& lambda, S
   float prevBsdfPdf = 0.0f;
   bool prevSpecular = true;  // the camera ray: emitters seen directly get full weight
   glm::vec3 prevP(0.0f);
-  if (recorder) recorder->path.clear();
+  if (Guided && recorder) recorder->path.clear();
   // Adds a contribution to L and, in training, to the radiance each earlier vertex received.
   auto add = [&](const SampledSpectrum& c) {
     L += c;
+    if constexpr (!Guided) return;
     if (!recorder) return;
     for (GuideRecorder::Vertex& v : recorder->path)
       for (int i = 0; i < kWavelengthSamples; ++i)
@@ -225,7 +228,7 @@ SampledSpectrum trace(const Scene& scene, Ray ray, SampledWavelengths& lambda, S
 
     const Frame frame = Frame::fromZ(si.ns);
     const DirectionalQuadtree* density =
-        guide && material.hasNonSpecular() ? guide->densityAt(si.p) : nullptr;
+        Guided && guide && material.hasNonSpecular() ? guide->densityAt(si.p) : nullptr;
     const ShadingPoint sp{si, frame, wo, frame.toLocal(wo), material, ctx, density};
     // The bounce's two 1D choices, which light and which BSDF lobe, share one 2D draw (one
     // sampler dimension instead of two).
@@ -239,9 +242,11 @@ SampledSpectrum trace(const Scene& scene, Ray ray, SampledWavelengths& lambda, S
     if (!sidesAgree(si.n, wo, wi, sp.woLocal, bs->wiLocal)) break;
     const SampledSpectrum weight = bs->f * (std::abs(bs->wiLocal.z) / bs->pdf);
     beta *= weight;
-    rrBeta *=
-        sp.guide && bs->bsdfPdf > 0.0f ? bs->f * (std::abs(bs->wiLocal.z) / bs->bsdfPdf) : weight;
-    if (recorder && !bs->specular)
+    if constexpr (Guided)
+      rrBeta *= sp.guideDensity && bs->bsdfPdf > 0.0f
+                    ? bs->f * (std::abs(bs->wiLocal.z) / bs->bsdfPdf)
+                    : weight;
+    if (Guided && recorder && !bs->specular)
       recorder->path.push_back({si.p, directionToSquare(wi), bs->pdf, beta, SampledSpectrum(0.0f)});
     etaScale *= bs->etap * bs->etap;
     prevBsdfPdf = bs->pdf;
@@ -253,13 +258,14 @@ SampledSpectrum trace(const Scene& scene, Ray ray, SampledWavelengths& lambda, S
     if (depth + 1 >= settings.rrDepth) {
       // Survival ∝ the throughput without the 1/η² of refraction: inside glass beta is
       // η² smaller although the path carries as much light out again.
-      const float q = std::max(0.0f, 1.0f - rrBeta.maxComponent() * etaScale);
+      const float q =
+          std::max(0.0f, 1.0f - (Guided ? rrBeta : beta).maxComponent() * etaScale);
       if (sampler.get1D() < q) break;
       beta /= 1.0f - q;
-      rrBeta /= 1.0f - q;
+      if constexpr (Guided) rrBeta /= 1.0f - q;
     }
   }
-  if (recorder && recorder->out)
+  if (Guided && recorder && recorder->out)
     for (const GuideRecorder::Vertex& v : recorder->path)
       recorder->out->push_back({v.p, v.square, v.L.average() / v.pdf});
   return L;
@@ -270,13 +276,15 @@ SampledSpectrum trace(const Scene& scene, Ray ray, SampledWavelengths& lambda, S
 SampledSpectrum traceRadiance(const Scene& scene, Ray ray, SampledWavelengths& lambda,
                               SobolSampler& sampler, VisibleSurface* visible,
                               const PathGuide* guide, GuideRecorder* recorder) {
-  return trace(scene, ray, lambda, sampler, visible, guide, recorder);
+  if (guide || recorder) return trace<true>(scene, ray, lambda, sampler, visible, guide, recorder);
+  return trace<false>(scene, ray, lambda, sampler, visible, nullptr, nullptr);
 }
 
 SampledSpectrum traceRadiance(const Scene& scene, Ray ray, SampledWavelengths& lambda,
                               IndependentSampler& sampler, VisibleSurface* visible,
                               const PathGuide* guide, GuideRecorder* recorder) {
-  return trace(scene, ray, lambda, sampler, visible, guide, recorder);
+  if (guide || recorder) return trace<true>(scene, ray, lambda, sampler, visible, guide, recorder);
+  return trace<false>(scene, ray, lambda, sampler, visible, nullptr, nullptr);
 }
 
 }  // namespace camsim
