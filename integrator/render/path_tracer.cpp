@@ -258,8 +258,7 @@ SampledSpectrum trace(const Scene& scene, Ray ray, SampledWavelengths& lambda, S
     if (depth + 1 >= settings.rrDepth) {
       // Survival ∝ the throughput without the 1/η² of refraction: inside glass beta is
       // η² smaller although the path carries as much light out again.
-      const float q =
-          std::max(0.0f, 1.0f - (Guided ? rrBeta : beta).maxComponent() * etaScale);
+      const float q = std::max(0.0f, 1.0f - (Guided ? rrBeta : beta).maxComponent() * etaScale);
       if (sampler.get1D() < q) break;
       beta /= 1.0f - q;
       if constexpr (Guided) rrBeta /= 1.0f - q;
