@@ -158,10 +158,12 @@ EdgeLocation locateEdge(const EdgePatch& patch, bool rising, int order) {
   const double sign = rising ? 1.0 : -1.0;
   const double middle = 0.5 * patch.cols;
   EdgeLocation loc;
-  rowCentroids(patch, sign, [&](int) { return middle; }, loc);
+  rowCentroids(
+      patch, sign, [&](int) { return middle; }, loc);
   fitRows(order, loc, middle);
   const EdgeLine first = loc.line;
-  rowCentroids(patch, sign, [&](int r) { return first.at(r + 0.5); }, loc);
+  rowCentroids(
+      patch, sign, [&](int r) { return first.at(r + 0.5); }, loc);
   fitRows(order, loc, middle);
   return loc;
 }

@@ -28,7 +28,8 @@ struct EdgePatch {
   int cols = 0;
   std::vector<double> values;  // values[r·cols + c]
   double at(int r, int c) const {
-    return values[static_cast<std::size_t>(r) * static_cast<std::size_t>(cols) + static_cast<std::size_t>(c)];
+    return values[static_cast<std::size_t>(r) * static_cast<std::size_t>(cols) +
+                  static_cast<std::size_t>(c)];
   }
 };
 

@@ -2,13 +2,17 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
 #include <sstream>
 
 #include <glm/mat3x3.hpp>
 
 #include "sensor/base/format.h"
 #include "sensor/base/input_error.h"
+#include "sensor/io/exr_io.h"
 #include "sensor/io/json_writer.h"
+#include "sensor/io/png_io.h"
+#include "sensor/spectra/color_space.h"
 
 namespace camsim {
 
@@ -77,22 +81,72 @@ Image selectMtfChannels(const Image& image, const std::string& selection,
       std::vector<float> y(static_cast<size_t>(image.width) * static_cast<size_t>(image.height));
       for (int py = 0; py < image.height; ++py)
         for (int px = 0; px < image.width; ++px)
-          y[static_cast<size_t>(py) * static_cast<size_t>(image.width) +
-            static_cast<size_t>(px)] =
-              static_cast<float>(yWeights[0] * image.at(px, py, r) +
-                                 yWeights[1] * image.at(px, py, g) +
-                                 yWeights[2] * image.at(px, py, b));
+          y[static_cast<size_t>(py) * static_cast<size_t>(image.width) + static_cast<size_t>(px)] =
+              static_cast<float>(yWeights[0] * static_cast<double>(image.at(px, py, r)) +
+                                 yWeights[1] * static_cast<double>(image.at(px, py, g)) +
+                                 yWeights[2] * static_cast<double>(image.at(px, py, b)));
       addChannel(out, "Y", y);
     } else if (name == "Y" && image.channelCount() == 1) {
       addChannel(out, "Y", channelValues(image, 0));
     } else {
       std::string have;
-      for (const std::string& c : image.channels) have += (have.empty() ? "" : ", ") + c;
-      throw InputError({source, 0, 0}, "channel",
-                       "no channel '" + name + "' (R, G, B, Y, all or one of the image's: " +
-                           have + ")");
+      for (const std::string& n : image.channels) have += (have.empty() ? "" : ", ") + n;
+      throw InputError(
+          {source, 0, 0}, "channel",
+          "no channel '" + name + "' (R, G, B, Y, all or one of the image's: " + have + ")");
     }
   }
+  return out;
+}
+
+namespace {
+
+MtfImage fromPng(const std::filesystem::path& path, bool linear) {
+  const PngImage png = readPng(path);
+  MtfImage out;
+  out.format = "png";
+  out.encoding = linear ? "linear" : "sRGB decoded";
+  out.yWeights = rec709LuminanceWeights();
+  const bool grey = png.channels <= 2;
+  out.image =
+      grey ? Image(png.width, png.height, {"Y"}) : Image(png.width, png.height, {"R", "G", "B"});
+  const double scale = 1.0 / ((1 << png.bitDepth) - 1);
+  const int kept = out.image.channelCount();
+  for (int y = 0; y < png.height; ++y)
+    for (int x = 0; x < png.width; ++x)
+      for (int c = 0; c < kept; ++c) {
+        const size_t i =
+            (static_cast<size_t>(y) * static_cast<size_t>(png.width) + static_cast<size_t>(x)) *
+                static_cast<size_t>(png.channels) +
+            static_cast<size_t>(c);
+        const double v = png.samples[i] * scale;
+        out.image.at(x, y, c) = static_cast<float>(linear ? v : srgbDecode(v));
+      }
+  return out;
+}
+
+}  // namespace
+
+MtfImage readMtfImage(const std::filesystem::path& path, bool pngIsLinear) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError({path.string(), 0, 0}, "", "cannot open the image");
+  unsigned char magic[8] = {};
+  in.read(reinterpret_cast<char*>(magic), sizeof magic);
+  const bool exr = in.gcount() >= 4 && magic[0] == 0x76 && magic[1] == 0x2f && magic[2] == 0x31 &&
+                   magic[3] == 0x01;
+  const bool png =
+      in.gcount() == 8 && magic[0] == 0x89 && magic[1] == 'P' && magic[2] == 'N' && magic[3] == 'G';
+  if (png) return fromPng(path, pngIsLinear);
+  if (!exr) throw InputError({path.string(), 0, 0}, "", "not an OpenEXR or PNG file");
+  ExrFile file = readExr(path);
+  MtfImage out;
+  out.format = "exr";
+  out.encoding = "linear";
+  out.image = std::move(file.image);
+  out.yWeights = file.chromaticities
+                     ? luminanceWeights(file.chromaticities->red, file.chromaticities->green,
+                                        file.chromaticities->blue, file.chromaticities->white)
+                     : rec709LuminanceWeights();
   return out;
 }
 
@@ -112,7 +166,8 @@ MtfMeasurement measureMtf(const Image& image, const EdgeRoi& roi, const SfrOptio
   for (int c = 0; c < image.channelCount(); ++c) {
     SfrOptions o = options;
     o.source = options.source + " (channel " + image.channels[static_cast<size_t>(c)] + ")";
-    m.channels.push_back({image.channels[static_cast<size_t>(c)], measureSfr(image.channel(c), roi, o)});
+    m.channels.push_back(
+        {image.channels[static_cast<size_t>(c)], measureSfr(image.channel(c), roi, o)});
   }
   return m;
 }
@@ -154,8 +209,9 @@ std::string formatMtfJson(const MtfMeasurement& m) {
       .set("frequency_mm", "cycles/mm (cycles/pixel / pixel pitch)")
       .set("angle", "degrees from the image axis the edge runs along")
       .set("position", "pixels, image coordinates (x right, y down, pixel i spans [i, i+1])")
-      .set("mtf", "normalised to 1 at zero frequency; includes everything in the image, "
-                  "pixel aperture too");
+      .set("mtf",
+           "normalised to 1 at zero frequency; includes everything in the image, "
+           "pixel aperture too");
   const MtfChannel& ref = m.reference();
   const MtfChannel* green = nullptr;
   for (const MtfChannel& c : m.channels)
@@ -172,20 +228,23 @@ std::string formatMtfJson(const MtfMeasurement& m) {
         .set("edge_x_px", s.edgeX)
         .set("edge_y_px", s.edgeY);
     if (green)
-      j.set("misregistration_px", s.vertical ? s.edgeX - green->sfr.edgeX
-                                             : s.edgeY - green->sfr.edgeY);
+      j.set("misregistration_px",
+            s.vertical ? s.edgeX - green->sfr.edgeX : s.edgeY - green->sfr.edgeY);
     j.set("edge_fit", s.fit)
         .set("rows_used", static_cast<double>(s.rowsUsed))
         .set("empty_bins", static_cast<double>(s.emptyBins))
+        .set("bin_offset_rms_px", s.binOffsetRmsPx)
+        .set("phases_per_pixel", s.phasesPerPixel)
         .set("contrast", s.contrast)
         .set("warnings", s.warnings);
     channels.push_back(j);
   }
   root.set("format", "camsim-mtf").set("version", 1.0).set("source", m.source);
-  root.set("method", "ISO 12233:2017 e-SFR (slanted edge) as Burns' sfrmat4: per-row centroid "
-                     "of the Hamming-windowed derivative, polynomial edge fit, 4x "
-                     "oversampled ESF, central-difference LSF with its correction, Hamming "
-                     "window, DFT normalised at DC");
+  root.set("method",
+           "ISO 12233:2017 e-SFR (slanted edge) as Burns' sfrmat4: per-row centroid "
+           "of the Hamming-windowed derivative, polynomial edge fit, 4x "
+           "oversampled ESF, central-difference LSF with its correction, Hamming "
+           "window, DFT normalised at DC");
   root.set("roi", roi).set("units", units);
   root.set("edge_orientation", ref.sfr.vertical ? "vertical" : "horizontal")
       .set("edge_angle_deg", ref.sfr.angleDeg)
@@ -201,9 +260,9 @@ std::string formatMtfSummary(const MtfMeasurement& m) {
   const double pitchMm = m.options.pixelPitchM * 1e3;
   const MtfChannel& ref = m.reference();
   out << "e-SFR (ISO 12233:2017) of " << m.source << ", ROI " << m.roi.x << "," << m.roi.y << ","
-      << m.roi.width << "," << m.roi.height << ": " << (ref.sfr.vertical ? "vertical" : "horizontal")
-      << " edge at " << formatFixed(ref.sfr.angleDeg, 2) << "°, " << ref.sfr.rowsUsed
-      << " rows along it\n";
+      << m.roi.width << "," << m.roi.height << ": "
+      << (ref.sfr.vertical ? "vertical" : "horizontal") << " edge at "
+      << formatFixed(ref.sfr.angleDeg, 2) << "°, " << ref.sfr.rowsUsed << " rows along it\n";
   for (const MtfChannel& c : m.channels) {
     out << "  " << c.name << std::string(c.name.size() < 6 ? 6 - c.name.size() : 1, ' ') << "MTF50 "
         << (c.sfr.mtf50 ? formatFixed(*c.sfr.mtf50, 4) + " cy/px" : std::string("> 1 cy/px"));

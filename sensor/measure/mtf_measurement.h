@@ -1,7 +1,7 @@
 // The e-SFR of several channels of one image (slanted_edge.h per channel), the entry point
 // for `camsim mtf` and for whatever hands over an image in memory (a capture's film or
-// developed image, a scene-generated edge behind a lens): pick the channels, measure each,
-// format the CSV and the JSON.
+// developed image, a scene-generated edge behind a lens): read the file, pick the channels,
+// measure each, format the CSV and the JSON.
 //
 //   channel   meaning
 //   R, G, B   the image's channels of those names (camsim's NAME.exr: linear Rec.709)
@@ -14,9 +14,25 @@
 // A selection is one of these or several separated by commas ("R,G"). Each channel gets
 // its own edge fit, so the edge positions differ by the lateral colour (misregistration,
 // sfrmat's fourth column, reported against G when there is one).
+//
+// The image read from a file: an OpenEXR (camsim's NAME.exr: R, G, B linear Rec.709 and
+// more layers; any EXR with named channels) or a PNG.
+//
+//   file   channels kept                 values                     Y weights
+//   EXR    every channel, by its name    as stored (linear)         from the file's
+//                                                                   chromaticities, else
+//                                                                   Rec.709
+//   PNG    grey → Y; RGB(A) → R, G, B    sample/(2^bits − 1), then  Rec.709
+//          (alpha dropped)               the sRGB decoding unless
+//                                        `linear`
+// An e-SFR needs linear values (ISO 12233 applies the inverse OECF first). camsim's PNG is
+// a display picture through a tone curve (OpenColorIO's view): decoding its sRGB does not
+// undo that curve, so measure NAME.exr; a PNG from elsewhere is decoded as sRGB, or taken
+// as is with `linear`.
 #pragma once
 
 #include <array>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -25,6 +41,17 @@
 #include "sensor/spectra/cie.h"
 
 namespace camsim {
+
+struct MtfImage {
+  Image image;
+  std::array<double, 3> yWeights{};  // Y = w·(R, G, B)
+  std::string format;                // "exr" or "png"
+  std::string encoding;              // "linear" or "sRGB decoded"
+};
+
+// The file by its first bytes (EXR or PNG); InputError naming the file if it is missing,
+// neither, or unreadable.
+MtfImage readMtfImage(const std::filesystem::path& path, bool pngIsLinear);
 
 // Y of linear RGB with these primaries and white (each row of xyzFromRgb scaled so that
 // RGB = (1,1,1) is the white with Y = 1).

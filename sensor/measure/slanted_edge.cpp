@@ -13,12 +13,12 @@
 namespace camsim {
 namespace {
 
-constexpr int kMinRoiSide = 8;           // px
-constexpr double kMinContrast = 0.02;    // below: no edge to measure
-constexpr double kWarnContrast = 0.2;    // sfrmat4 warns below 20 %
-constexpr double kMinAngleDeg = 1.0;     // nearer 0°: too few phases per pixel
-constexpr double kMaxAngleDeg = 40.0;    // nearer 45°: orientation ambiguous, phases repeat
-constexpr double kEdgeMarginPx = 2.0;    // the edge keeps this far from the ROI's sides
+constexpr int kMinRoiSide = 8;         // px
+constexpr double kMinContrast = 0.02;  // below: no edge to measure
+constexpr double kWarnContrast = 0.2;  // sfrmat4 warns below 20 %
+constexpr double kMinAngleDeg = 1.0;   // nearer 0°: too few phases per pixel
+constexpr double kMaxAngleDeg = 40.0;  // nearer 45°: orientation ambiguous, phases repeat
+constexpr double kEdgeMarginPx = 2.0;  // the edge keeps this far from the ROI's sides
 constexpr double kMaxEmptyFraction = 0.1;
 // A bin's samples should spread evenly over its ¼ px (RMS 0.072 px from its centre for
 // one sample at a random place). Phases that repeat every few rows (a slope near p/q)
@@ -37,8 +37,9 @@ double phasesPerPixel(const EdgeLine& line, int firstRow, int rows) {
     const double x = line.at(r + 0.5);
     phase.push_back(x - std::floor(x));
   }
+  if (phase.empty()) return 0.0;
   std::sort(phase.begin(), phase.end());
-  double gap = phase.front() + 1.0 - phase.back();
+  double gap = phase[0] + 1.0 - phase[phase.size() - 1];
   for (size_t i = 1; i < phase.size(); ++i) gap = std::max(gap, phase[i] - phase[i - 1]);
   return gap > 0.0 ? 1.0 / gap : 1e9;
 }
@@ -57,11 +58,11 @@ EdgePatch patchOf(const Image& image, const EdgeRoi& roi, bool vertical) {
   EdgePatch p;
   p.rows = vertical ? roi.height : roi.width;
   p.cols = vertical ? roi.width : roi.height;
-  p.values.resize(static_cast<size_t>(p.rows) * static_cast<size_t>(p.cols));
+  p.values.reserve(static_cast<size_t>(p.rows) * static_cast<size_t>(p.cols));
   for (int r = 0; r < p.rows; ++r)
     for (int c = 0; c < p.cols; ++c)
-      p.values[static_cast<size_t>(r) * static_cast<size_t>(p.cols) + static_cast<size_t>(c)] =
-          vertical ? image.at(roi.x + c, roi.y + r, 0) : image.at(roi.x + r, roi.y + c, 0);
+      p.values.push_back(vertical ? image.at(roi.x + c, roi.y + r, 0)
+                                  : image.at(roi.x + r, roi.y + c, 0));
   return p;
 }
 
@@ -93,16 +94,16 @@ void projectEsf(const EdgePatch& p, const EdgeLine& line, int firstRow, int rows
   if (first < 0) fail(o, "roi", "no pixel projects onto the edge's normal");
   std::vector<double>& esf = out.esf;
   esf.assign(static_cast<size_t>(n), 0.0);
-  double offset2 = 0.0;
-  int filled = 0;
+  double offset2 = 0.0;  // Σ k·d²: each bin weighted by its samples (sparse end bins count less)
+  long samples = 0;
   for (int b = 0; b < n; ++b)
     if (const int k = count[static_cast<size_t>(b)]; k > 0) {
       esf[static_cast<size_t>(b)] = sum[static_cast<size_t>(b)] / k;
       const double d = sumU[static_cast<size_t>(b)] / k - (b - n / 2 + 0.5) / kSfrOversampling;
-      offset2 += d * d;
-      ++filled;
+      offset2 += k * d * d;
+      samples += k;
     }
-  out.binOffsetRmsPx = std::sqrt(offset2 / filled);
+  out.binOffsetRmsPx = std::sqrt(offset2 / static_cast<double>(samples));
   int& emptyBins = out.emptyBins;
   emptyBins = 0;
   for (int b = first + 1; b < last; ++b) {
@@ -182,7 +183,8 @@ EdgeRoi parseEdgeRoi(const std::string& text, const std::string& source) {
         v > 1'000'000'000 || (i >= 2 && v < 1) || comma == std::string::npos)
       throw InputError({source, 0, 0}, "roi",
                        "expected x,y,w,h (pixels: x, y ≥ 0 the top-left corner, w, h ≥ 1), "
-                       "got '" + text + "'");
+                       "got '" +
+                           text + "'");
     *fields[i] = static_cast<int>(v);
     pos = comma + 1;
   }
@@ -219,22 +221,28 @@ double mtfAt(const std::vector<double>& frequency, const std::vector<double>& mt
 
 SfrResult measureSfr(const Image& image, const EdgeRoi& roi, const SfrOptions& o) {
   if (image.channelCount() != 1)
-    fail(o, "channel", "the e-SFR measures one channel at a time, got " +
-                           std::to_string(image.channelCount()));
+    fail(o, "channel",
+         "the e-SFR measures one channel at a time, got " + std::to_string(image.channelCount()));
   if (o.fitOrder != 1 && o.fitOrder != 2)
     fail(o, "fit_order", "the edge fit's order is 1 or 2, got " + std::to_string(o.fitOrder));
+  if (!(o.pixelPitchM >= 0.0 && o.pixelPitchM <= kMaxPixelPitchM))
+    fail(o, "pixel_pitch",
+         "the pixel pitch must be in (0, 1000] µm, got " + formatNumber(o.pixelPitchM * 1e6, 6) +
+             " µm");
   const std::string size = std::to_string(image.width) + "×" + std::to_string(image.height);
   if (roi.x < 0 || roi.y < 0 || roi.width < 1 || roi.height < 1 ||
       roi.width > image.width - roi.x || roi.height > image.height - roi.y)
     fail(o, "roi", "the ROI " + roiText(roi) + " is not inside the " + size + " px image");
   if (roi.width < kMinRoiSide || roi.height < kMinRoiSide)
-    fail(o, "roi", "the ROI " + roiText(roi) + " is smaller than " + std::to_string(kMinRoiSide) +
-                       " × " + std::to_string(kMinRoiSide) + " px");
+    fail(o, "roi",
+         "the ROI " + roiText(roi) + " is smaller than " + std::to_string(kMinRoiSide) + " × " +
+             std::to_string(kMinRoiSide) + " px");
   for (int y = roi.y; y < roi.y + roi.height; ++y)
     for (int x = roi.x; x < roi.x + roi.width; ++x)
       if (!std::isfinite(image.at(x, y, 0)))
-        fail(o, "roi", "pixel (" + std::to_string(x) + ", " + std::to_string(y) +
-                           ") in the ROI is not finite");
+        fail(o, "roi",
+             "pixel (" + std::to_string(x) + ", " + std::to_string(y) +
+                 ") in the ROI is not finite");
 
   // Orientation: the pair of opposite sides that differ more (sfrmat's rotatev2).
   const EdgePatch vPatch = patchOf(image, roi, true), hPatch = patchOf(image, roi, false);
@@ -255,30 +263,33 @@ SfrResult measureSfr(const Image& image, const EdgeRoi& roi, const SfrOptions& o
   out.vertical = vertical;
   out.contrast = std::abs(sides.contrast());
   if (!(out.contrast >= kMinContrast))
-    fail(o, "roi", "no contrast across the edge: the two sides differ by " +
-                       formatFixed(100.0 * out.contrast, 2) + " % (at least " +
-                       formatFixed(100.0 * kMinContrast, 0) + " % needed)");
+    fail(o, "roi",
+         "no contrast across the edge: the two sides differ by " +
+             formatFixed(100.0 * out.contrast, 2) + " % (at least " +
+             formatFixed(100.0 * kMinContrast, 0) + " % needed)");
   if (out.contrast < kWarnContrast)
     out.warnings.push_back("edge contrast " + formatFixed(100.0 * out.contrast, 1) +
                            " % is below 20 %: the SFR may be in error (sfrmat4's warning)");
   if (std::min(across, down) > 0.9 * std::max(across, down) &&
       o.orientation == EdgeOrientation::kAuto)
-    fail(o, "edge", "the ROI's sides differ as much left to right as top to bottom: the edge is "
-                    "near 45° or does not cross the ROI; choose an ROI the edge crosses "
-                    "from one side to the opposite one");
+    fail(o, "edge",
+         "the ROI's sides differ as much left to right as top to bottom: the edge is "
+         "near 45° or does not cross the ROI; choose an ROI the edge crosses "
+         "from one side to the opposite one");
 
   // The edge, per row, and its fit.
   const EdgeLocation loc = locateEdge(patch, sides.high > sides.low, o.fitOrder);
   if (loc.rowsFitted < std::max(3, (patch.rows + 1) / 2))
-    fail(o, "edge", "a rising edge was found in only " + std::to_string(loc.rowsFitted) + " of " +
-                        std::to_string(patch.rows) + " rows");
+    fail(o, "edge",
+         "a rising edge was found in only " + std::to_string(loc.rowsFitted) + " of " +
+             std::to_string(patch.rows) + " rows");
   for (int r = 0; r < patch.rows; ++r) {
     const double x = loc.line.at(r + 0.5);
     if (!std::isfinite(x) || x < kEdgeMarginPx || x > patch.cols - kEdgeMarginPx)
-      fail(o, "edge", "the fitted edge leaves the ROI (or comes within " +
-                          formatFixed(kEdgeMarginPx, 0) + " px of its side) at ROI " +
-                          (vertical ? "row " : "column ") + std::to_string(r) +
-                          ": centre the ROI on the edge");
+      fail(o, "edge",
+           "the fitted edge leaves the ROI (or comes within " + formatFixed(kEdgeMarginPx, 0) +
+               " px of its side) at ROI " + (vertical ? "row " : "column ") + std::to_string(r) +
+               ": centre the ROI on the edge");
   }
   const double middle = 0.5 * patch.rows;
   out.fit = loc.line.coefficients;
@@ -288,31 +299,35 @@ SfrResult measureSfr(const Image& image, const EdgeRoi& roi, const SfrOptions& o
   out.edgeX = vertical ? roi.x + edgeMid : roi.x + middle;
   out.edgeY = vertical ? roi.y + middle : roi.y + edgeMid;
   if (out.angleDeg < kMinAngleDeg || out.angleDeg > kMaxAngleDeg)
-    fail(o, "edge", "the edge is " + formatFixed(out.angleDeg, 2) + "° from the " +
-                        (vertical ? "vertical" : "horizontal") + ", too near " +
-                        (out.angleDeg < kMinAngleDeg ? "0°" : "45°") + ": it must be tilted by " +
-                        formatFixed(kMinAngleDeg, 0) + "° to " + formatFixed(kMaxAngleDeg, 0) +
-                        "° (ISO 12233 suggests about 5°)");
+    fail(o, "edge",
+         "the edge is " + formatFixed(out.angleDeg, 2) + "° from the " +
+             (vertical ? "vertical" : "horizontal") + ", too near " +
+             (out.angleDeg < kMinAngleDeg ? "0°" : "45°") + ": it must be tilted by " +
+             formatFixed(kMinAngleDeg, 0) + "° to " + formatFixed(kMaxAngleDeg, 0) +
+             "° (ISO 12233 suggests about 5°)");
 
   // Step 1: a whole number of phase cycles, centred.
   const double shift = patch.rows * std::abs(out.slope);  // px the edge moves along the ROI
   const double cycles = std::floor(shift);
   if (cycles < 1.0)
-    fail(o, "roi", "too few rows along the edge: over the ROI's " + std::to_string(patch.rows) +
-                       " rows the edge moves " + formatFixed(shift, 2) +
-                       " px, at least one whole pixel is needed (" +
-                       std::to_string(static_cast<int>(std::ceil(1.0 / std::abs(out.slope)))) +
-                       " rows at " + formatFixed(out.angleDeg, 2) + "°)");
-  out.rowsUsed = std::clamp(static_cast<int>(std::lround(cycles / std::abs(out.slope))), 1,
-                            patch.rows);
+    fail(o, "roi",
+         "too few rows along the edge: over the ROI's " + std::to_string(patch.rows) +
+             " rows the edge moves " + formatFixed(shift, 2) +
+             " px, at least one whole pixel is needed (" +
+             std::to_string(static_cast<int>(std::ceil(1.0 / std::abs(out.slope)))) + " rows at " +
+             formatFixed(out.angleDeg, 2) + "°)");
+  out.rowsUsed =
+      std::clamp(static_cast<int>(std::lround(cycles / std::abs(out.slope))), 1, patch.rows);
   const int firstRow = (patch.rows - out.rowsUsed) / 2;
 
   projectEsf(patch, loc.line, firstRow, out.rowsUsed, o, out);
-  const std::string offset = "the quarter-pixel bins are filled unevenly (their samples' mean "
-                             "lies " + formatFixed(out.binOffsetRmsPx, 3) +
-                             " px RMS from the bin centres): the slope " +
-                             formatFixed(out.slope, 4) + " is near a ratio of small integers, "
-                             "whose phases repeat every few rows";
+  const std::string offset =
+      "the quarter-pixel bins are filled unevenly (their samples' mean "
+      "lies " +
+      formatFixed(out.binOffsetRmsPx, 3) + " px RMS from the bin centres): the slope " +
+      formatFixed(out.slope, 4) +
+      " is near a ratio of small integers, "
+      "whose phases repeat every few rows";
   if (out.binOffsetRmsPx > kMaxBinOffsetPx)
     fail(o, "edge", offset + "; tilt the edge by a degree or two");
   out.phasesPerPixel = phasesPerPixel(loc.line, firstRow, out.rowsUsed);

@@ -8,7 +8,7 @@
 //   EdgeRoi w, h       px         its width and height
 //   fitOrder           —          1: straight edge (ISO 12233:2017); 2: sfrmat4's npol = 2
 //   orientation        —          auto (sfrmat's rotatev2 test), vertical or horizontal
-//   pixelPitchM        m          > 0: frequencies also in cycles/mm
+//   pixelPitchM        m          > 0: frequencies also in cycles/mm; 0 … 1 mm
 //
 // Steps (the edge located per row and fitted as in edge_locate.h; a horizontal edge is
 // transposed first, so "rows" run along the edge):
@@ -64,30 +64,31 @@ struct EnumNames<EdgeOrientation> {
 struct SfrOptions {
   int fitOrder = 1;  // 1 or 2
   EdgeOrientation orientation = EdgeOrientation::kAuto;
-  double pixelPitchM = 0.0;  // m; 0: unknown (no cycles/mm)
+  double pixelPitchM = 0.0;      // m; 0: unknown (no cycles/mm)
   std::string source = "image";  // the image's name in error messages (a file path)
 };
 
-inline constexpr int kSfrOversampling = 4;  // bins per pixel (ISO 12233)
-inline constexpr double kNyquist = 0.5;     // cycles/px
+inline constexpr int kSfrOversampling = 4;       // bins per pixel (ISO 12233)
+inline constexpr double kMaxPixelPitchM = 1e-3;  // m: pitches above 1 mm are refused
+inline constexpr double kNyquist = 0.5;          // cycles/px
 
 struct SfrResult {
-  std::vector<double> frequency;  // cycles/px along the edge normal, 0 … 1 in steps of 4/N
-  std::vector<double> mtf;        // normalised at DC (mtf[0] = 1)
-  std::optional<double> mtf50;    // cycles/px; none if the MTF stays above 0.5 to 1 cycle/px
-  double mtfAtNyquist = 0.0;      // interpolated at 0.5 cycles/px
-  bool vertical = true;           // the edge runs top to bottom (else left to right)
-  double slope = 0.0;             // dx/dy (vertical) or dy/dx (horizontal) at the ROI's middle
-  double angleDeg = 0.0;          // |atan slope| in degrees: the edge's angle from the axis
+  std::vector<double> frequency;    // cycles/px along the edge normal, 0 … 1 in steps of 4/N
+  std::vector<double> mtf;          // normalised at DC (mtf[0] = 1)
+  std::optional<double> mtf50;      // cycles/px; none if the MTF stays above 0.5 to 1 cycle/px
+  double mtfAtNyquist = 0.0;        // interpolated at 0.5 cycles/px
+  bool vertical = true;             // the edge runs top to bottom (else left to right)
+  double slope = 0.0;               // dx/dy (vertical) or dy/dx (horizontal) at the ROI's middle
+  double angleDeg = 0.0;            // |atan slope| in degrees: the edge's angle from the axis
   double edgeX = 0.0, edgeY = 0.0;  // px, image coordinates of the edge at the ROI's middle
-  std::vector<double> fit;          // the fit x(y) (ROI-local, rows along the edge), c₀, c₁[, c₂]
-  int rowsUsed = 0;                 // rows projected (whole phase cycles)
-  int emptyBins = 0;                // interpolated bins (within the filled range)
-  double binOffsetRmsPx = 0.0;      // RMS of each bin's mean u from its centre (px)
-  double phasesPerPixel = 0.0;      // 1 / the widest gap between the rows' edge phases
-  double contrast = 0.0;            // (bright − dark)/(bright + dark) of the two sides
-  std::vector<double> esf;          // N bins of ¼ px, u = (b − N/2 + ½)/4 px
-  std::vector<double> lsf;          // windowed LSF, same bins
+  std::vector<double> fit;      // the fit x(y) (ROI-local, rows along the edge), c₀, c₁[, c₂]
+  int rowsUsed = 0;             // rows projected (whole phase cycles)
+  int emptyBins = 0;            // interpolated bins (within the filled range)
+  double binOffsetRmsPx = 0.0;  // RMS of each bin's mean u from its centre, per sample (px)
+  double phasesPerPixel = 0.0;  // 1 / the widest gap between the rows' edge phases
+  double contrast = 0.0;        // (bright − dark)/(bright + dark) of the two sides
+  std::vector<double> esf;      // N bins of ¼ px, u = (b − N/2 + ½)/4 px
+  std::vector<double> lsf;      // windowed LSF, same bins
   std::vector<std::string> warnings;  // e.g. a contrast below 20 % (sfrmat4's warning)
 
   // Frequencies in cycles/mm for a pitch in m (empty if pitch ≤ 0).

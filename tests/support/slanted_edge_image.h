@@ -24,7 +24,7 @@ namespace camsim::test {
 enum class EdgeBlur { kGaussian, kDisc };
 
 struct SyntheticEdge {
-  int width = 64, height = 128;  // px
+  int width = 64, height = 128;           // px
   double centreX = 32.0, centreY = 64.0;  // a point of the edge (px)
   double angleDeg = 5.0;
   bool vertical = true;
@@ -40,7 +40,8 @@ inline double edgeEsf(const SyntheticEdge& e, double u) {
   const double r = 0.5 * e.size;
   if (u <= -r) return 0.0;
   if (u >= r) return 1.0;
-  return 0.5 + (u * std::sqrt(r * r - u * u) + r * r * std::asin(u / r)) / (std::numbers::pi * r * r);
+  return 0.5 +
+         (u * std::sqrt(r * r - u * u) + r * r * std::asin(u / r)) / (std::numbers::pi * r * r);
 }
 
 // ∫ E du, zero far on the dark side.
@@ -54,7 +55,8 @@ inline double edgeEsfIntegral(const SyntheticEdge& e, double u) {
   if (u <= -r) return 0.0;
   if (u >= r) return u;
   const double s = std::sqrt(r * r - u * u);
-  return 0.5 * u + (-s * s * s / 3.0 + r * r * (u * std::asin(u / r) + s)) / (std::numbers::pi * r * r);
+  return 0.5 * u +
+         (-s * s * s / 3.0 + r * r * (u * std::asin(u / r) + s)) / (std::numbers::pi * r * r);
 }
 
 inline Image syntheticEdgeImage(const SyntheticEdge& e, const char* name = "Y") {

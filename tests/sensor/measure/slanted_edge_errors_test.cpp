@@ -52,8 +52,8 @@ TEST(SlantedEdgeErrors, NonFinitePixelsAndWrongChannelCountOrFitOrder) {
   Image img = test::syntheticEdgeImage(SyntheticEdge{});
   img.at(3, 4, 0) = std::numeric_limits<float>::quiet_NaN();
   EXPECT_TRUE(contains(refusal(img, {0, 0, 64, 128}, {}, "roi"), "pixel (3, 4)"));
-  EXPECT_TRUE(contains(refusal(Image(64, 128, {"R", "G"}), {0, 0, 64, 128}, {}, "channel"),
-                       "one channel"));
+  EXPECT_TRUE(
+      contains(refusal(Image(64, 128, {"R", "G"}), {0, 0, 64, 128}, {}, "channel"), "one channel"));
   SfrOptions cubic;
   cubic.fitOrder = 3;
   refusal(test::syntheticEdgeImage(SyntheticEdge{}), {0, 0, 64, 128}, cubic, "fit_order");
@@ -91,8 +91,8 @@ TEST(SlantedEdgeErrors, EdgeTooNearTheAxisOr45Degrees) {
   tall.height = 48;
   tall.centreX = 48.0;
   tall.centreY = 24.0;
-  EXPECT_TRUE(contains(refusal(test::syntheticEdgeImage(tall), {0, 0, 96, 48}, {}, "edge"),
-                       "1° to 40°"));
+  EXPECT_TRUE(
+      contains(refusal(test::syntheticEdgeImage(tall), {0, 0, 96, 48}, {}, "edge"), "1° to 40°"));
 }
 
 TEST(SlantedEdgeErrors, NoEdgeCrossingTheRoi) {
@@ -148,9 +148,9 @@ TEST(SlantedEdgeErrors, TooFewRowsOrAnEdgeLeavingTheRoi) {
   EXPECT_TRUE(contains(refusal(test::syntheticEdgeImage(shallow), {16, 56, 32, 16}, {}, "roi"),
                        "too few rows"));
   // The edge (x = 32 ± 5.6 px over the rows) runs out of a ROI ending at x = 34.
-  EXPECT_TRUE(contains(refusal(test::syntheticEdgeImage(SyntheticEdge{}), {0, 0, 34, 128}, {},
-                               "edge"),
-                       "leaves the ROI"));
+  EXPECT_TRUE(
+      contains(refusal(test::syntheticEdgeImage(SyntheticEdge{}), {0, 0, 34, 128}, {}, "edge"),
+               "leaves the ROI"));
 }
 
 TEST(SlantedEdgeErrors, RoiText) {
@@ -182,8 +182,8 @@ TEST(SlantedEdgeErrors, RandomImagesGiveAnErrorOrFiniteNumbers) {
     const double a = (rng.uniformOpen() - 0.5) * 2.0, off = rng.uniformOpen() * w;
     for (int y = 0; y < h; ++y)
       for (int x = 0; x < w; ++x)
-        img.at(x, y, 0) = static_cast<float>((step && x - off > a * y ? 1.0 : 0.0) +
-                                             0.05 * rng.normal());
+        img.at(x, y, 0) =
+            static_cast<float>((step && x - off > a * y ? 1.0 : 0.0) + 0.05 * rng.normal());
     try {
       const SfrResult r = measureSfr(img, {0, 0, w, h});
       ++measured;

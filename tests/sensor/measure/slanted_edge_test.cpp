@@ -119,7 +119,8 @@ Image curvedEdge(double kappa) {
       const double y = py + 0.5 - 64.0;
       const double edge = 32.0 + s * y + kappa * y * y, slope = s + 2.0 * kappa * y;
       const double u = (px + 0.5 - edge) / std::sqrt(1.0 + slope * slope);
-      img.at(px, py, 0) = static_cast<float>(0.1 + 0.8 * 0.5 * std::erfc(-u / (0.6 * std::sqrt(2.0))));
+      img.at(px, py, 0) =
+          static_cast<float>(0.1 + 0.8 * 0.5 * std::erfc(-u / (0.6 * std::sqrt(2.0))));
     }
   return img;
 }
