@@ -262,7 +262,8 @@ std::string formatMtfSummary(const MtfMeasurement& m) {
   out << "e-SFR (ISO 12233:2017) of " << m.source << ", ROI " << m.roi.x << "," << m.roi.y << ","
       << m.roi.width << "," << m.roi.height << ": "
       << (ref.sfr.vertical ? "vertical" : "horizontal") << " edge at "
-      << formatFixed(ref.sfr.angleDeg, 2) << "°, " << ref.sfr.rowsUsed << " rows along it\n";
+      << formatFixed(ref.sfr.angleDeg, 2) << "°, " << ref.sfr.rowsUsed
+      << (ref.sfr.vertical ? " rows" : " columns") << " along it\n";
   for (const MtfChannel& c : m.channels) {
     out << "  " << c.name << std::string(c.name.size() < 6 ? 6 - c.name.size() : 1, ' ') << "MTF50 "
         << (c.sfr.mtf50 ? formatFixed(*c.sfr.mtf50, 4) + " cy/px" : std::string("> 1 cy/px"));
