@@ -84,6 +84,7 @@ constexpr CommandSummary kCommands[] = {
      "re-exposes a render's noise-free electrons (NAME_raw.exr) into N raw frames without "
      "rendering again"},
     {"ptc", "EMVA 1288 photon-transfer measurement of a sensor"},
+    {"mtf", "ISO 12233 slanted-edge MTF (e-SFR) of a region of an image"},
     {"bench", "speed against error of the renderer on reference scenes"},
 };
 

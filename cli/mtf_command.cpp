@@ -1,0 +1,136 @@
+#include "cli/mtf_command.h"
+
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <memory>
+#include <ostream>
+
+#include "cli/args.h"
+#include "cli/command_line.h"
+#include "cli/python_script.h"
+#include "sensor/io/output_set.h"
+#include "sensor/measure/mtf_measurement.h"
+
+namespace camsim {
+namespace {
+
+std::unique_ptr<CLI::App> mtfApp(MtfArgs& a) {
+  auto app = newCommandApp(
+      "mtf",
+      "Measures the ISO 12233:2017 slanted-edge MTF (e-SFR, as Burns' sfrmat4) of IMAGE (an\n"
+      "OpenEXR such as camsim's NAME.exr, or a PNG) in the region --roi, which one edge\n"
+      "tilted 1-40 degrees (ideally about 5) from the vertical or horizontal crosses from\n"
+      "side to side. Prints MTF50 per channel and writes into DIR:\n"
+      "  mtf.csv   frequency (cycles/pixel along the edge normal, to 1; cycles/mm with\n"
+      "            --pitch-um) and the MTF of each channel, normalised at zero frequency\n"
+      "  mtf.json  MTF50, MTF at Nyquist, edge angle and position per channel, ROI, units\n"
+      "  mtf.png   the curves (needs python3-matplotlib; skipped with a note without it)\n"
+      "The MTF is the image's: with a rendered or captured image, the lens times the pixel\n"
+      "aperture (and sensor and ISP when they ran), as ISO reports it. docs/mtf.md.");
+  app->add_option("image", a.image, "the image: OpenEXR or PNG")->type_name("IMAGE")->required();
+  app->add_option("--roi", a.roi, "region of interest: left, top, width, height (pixels)")
+      ->type_name("x,y,w,h")
+      ->required();
+  app->add_option("--channel", a.channel,
+                  "R, G, B, Y (luminance from the file's primaries), all (R, G, B and Y; a "
+                  "grey image: Y), an EXR channel by name, or several separated by commas "
+                  "(default all)")
+      ->type_name("C");
+  app->add_option_function<std::string>(
+         "--pitch-um",
+         [&a](const std::string& t) {
+           char* end = nullptr;
+           errno = 0;
+           const double v = std::strtod(t.c_str(), &end);
+           if (t.empty() || end != t.c_str() + t.size() || errno != 0 || !(v > 0.0))
+             throw UsageError("--pitch-um: expected a pixel pitch in micrometres, got '" + t + "'");
+           a.pitchUm = v;
+         },
+         "pixel pitch in micrometres: frequencies also in cycles/mm")
+      ->type_name("P");
+  app->add_option_function<std::string>(
+         "--fit-order",
+         [&a](const std::string& t) {
+           a.fitOrder = static_cast<int>(parseInteger("--fit-order", t, 1, 2));
+         },
+         "the edge fit: 1 a straight line (ISO 12233:2017, default), 2 a parabola (sfrmat4's "
+         "npol = 2, for a curved edge)")
+      ->type_name("1|2");
+  app->add_option_function<std::string>(
+         "--edge",
+         [&a](const std::string& t) {
+           const std::optional<EdgeOrientation> e = enumFromName<EdgeOrientation>(t);
+           if (!e)
+             throw UsageError("--edge: expected one of " + enumNameList<EdgeOrientation>() +
+                              ", got '" + t + "'");
+           a.edge = *e;
+         },
+         "the edge's orientation: auto (default: the pair of ROI sides that differ more), "
+         "vertical or horizontal (refused if the ROI's edge runs the other way)")
+      ->type_name("E");
+  app->add_flag("--linear", a.linear,
+                "a PNG's samples are linear (default: sRGB-decoded; EXRs are linear)");
+  addOutputOption(*app, a.outputDir, "output directory (created if missing; default: out)");
+  return app;
+}
+
+}  // namespace
+
+std::string mtfUsageText() {
+  MtfArgs a;
+  return commandHelp(*mtfApp(a));
+}
+
+MtfArgs parseMtfArgs(const std::vector<std::string>& args) {
+  MtfArgs a;
+  if (!parseCommand(*mtfApp(a), args)) a.help = true;
+  return a;
+}
+
+std::vector<std::filesystem::path> runMtf(const MtfArgs& args, std::ostream& out,
+                                          std::ostream& log) {
+  const EdgeRoi roi = parseEdgeRoi(args.roi);
+  const MtfImage input = readMtfImage(args.image, args.linear);
+  const Image channels = selectMtfChannels(input.image, args.channel, input.yWeights, args.image);
+  SfrOptions options;
+  options.fitOrder = args.fitOrder;
+  options.orientation = args.edge;
+  options.pixelPitchM = args.pitchUm ? *args.pitchUm * 1e-6 : 0.0;
+  options.source = args.image;
+  const MtfMeasurement m = measureMtf(channels, roi, options);
+  if (input.format == "png" && !args.linear)
+    log << "camsim mtf: " << args.image << " read as sRGB-encoded and decoded; a tone-mapped "
+        << "picture (camsim's NAME.png) does not give the linear MTF: measure NAME.exr\n";
+  out << formatMtfSummary(m);
+
+  const std::filesystem::path outDir(args.outputDir);
+  for (const auto& stale : OutputSet::prepareDirectory(outDir))
+    log << "removed " << stale.string() << " (left by a run that was killed)\n";
+  OutputSet outputs(outDir);
+  const std::filesystem::path csv = outputs.addText("mtf.csv", formatMtfCsv(m));
+  const std::filesystem::path json = outputs.addText("mtf.json", formatMtfJson(m));
+  if (const std::optional<std::string> python = pythonWithMatplotlib(); !python) {
+    log << "camsim mtf: python3 with matplotlib not found ($CAMSIM_PYTHON or /usr/bin/python3; "
+           "Debian: apt-get install python3-matplotlib): plot skipped, CSV and JSON only\n";
+  } else {
+    out.flush();
+    runPythonScript(*python, mtfPlotScriptFile("mtf_plot.py"),
+                    {csv.string(), json.string(), outputs.add("mtf.png").string()});
+  }
+  const std::vector<std::filesystem::path> files = outputs.commit();
+  for (const auto& f : files) log << "camsim mtf: wrote " << f.string() << "\n";
+  return files;
+}
+
+int runMtfCommand(const std::vector<std::string>& args, std::ostream& out, std::ostream& log) {
+  const MtfArgs parsed = parseMtfArgs(args);
+  if (parsed.help) {
+    out << mtfUsageText();
+    return 0;
+  }
+  runMtf(parsed, out, log);
+  return 0;
+}
+
+}  // namespace camsim

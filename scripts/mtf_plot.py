@@ -1,0 +1,63 @@
+#!/usr/bin/env python3
+# Plot of `camsim mtf` (embedded in the binary and run with /usr/bin/python3 -c).
+#   mtf_plot.py CSV JSON PNG
+# CSV: frequency_cy_px[, frequency_cy_mm], mtf_<channel>... (cli/mtf_command.cpp,
+# sensor/measure/mtf_measurement.h); JSON: the report (MTF50 per channel, edge, ROI).
+# One curve per channel (R, G, B in their colours, Y black) from 0 to 1 cycle/pixel, the
+# Nyquist frequency (0.5) marked, each MTF50 as a dot; a top axis in cycles/mm when the
+# pixel pitch is known.
+import csv
+import json
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+COLOURS = {"R": "tab:red", "G": "tab:green", "B": "tab:blue", "Y": "black"}
+
+
+def main(argv):
+    csv_path, json_path, png_path = argv[1:4]
+    with open(csv_path, newline="") as f:
+        rows = list(csv.DictReader(f))
+    with open(json_path) as f:
+        report = json.load(f)
+    freq = [float(r["frequency_cy_px"]) for r in rows]
+    fig, ax = plt.subplots(figsize=(7, 4.6), dpi=110)
+    others = iter(["tab:purple", "tab:orange", "tab:brown", "tab:gray", "tab:olive"])
+    for channel in report["channels"]:
+        name = channel["name"]
+        colour = COLOURS.get(name) or next(others, "tab:cyan")
+        mtf = [float(r["mtf_" + name]) for r in rows]
+        mtf50 = channel["mtf50_cy_px"]
+        label = f"{name}: MTF50 {mtf50:.3f} cy/px" if mtf50 is not None else f"{name}: MTF50 > 1"
+        ax.plot(freq, mtf, color=colour, lw=1.6 if name == "Y" else 1.2, label=label)
+        if mtf50 is not None:
+            ax.plot([mtf50], [0.5], "o", color=colour, ms=4)
+    ax.axvline(0.5, color="0.5", ls="--", lw=1)
+    ax.text(0.505, 1.02, "Nyquist", color="0.4", fontsize=8, va="bottom")
+    ax.axhline(0.5, color="0.8", lw=0.8)
+    ax.set_xlim(0, 1)
+    ax.set_ylim(0, max(1.1, max(float(r["mtf_" + c["name"]]) for r in rows
+                                 for c in report["channels"]) * 1.05))
+    ax.set_xlabel("spatial frequency (cycles/pixel, along the edge normal)")
+    ax.set_ylabel("MTF (e-SFR)")
+    pitch = report.get("pixel_pitch_um")
+    if pitch:
+        top = ax.secondary_xaxis("top", functions=(lambda f: f / (pitch * 1e-3),
+                                                   lambda n: n * pitch * 1e-3))
+        top.set_xlabel("cycles/mm")
+    roi = report["roi"]
+    ax.set_title(f"{report['source'].split('/')[-1]}  ROI {roi['x']},{roi['y']},"
+                 f"{roi['width']},{roi['height']}  {report['edge_orientation']} edge "
+                 f"{report['edge_angle_deg']:.2f}°", fontsize=9)
+    ax.legend(fontsize=8, loc="upper right")
+    ax.grid(alpha=0.3)
+    fig.tight_layout()
+    fig.savefig(png_path, format="png")
+
+
+if __name__ == "__main__":
+    main(sys.argv)
