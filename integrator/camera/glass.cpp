@@ -23,8 +23,8 @@ Glass Glass::abbe(double nd, double abbeNumber) {
   g.model_ = GlassModel::kAbbe;
   g.nd_ = nd;
   // n_F − n_C = B (1/λ_F² − 1/λ_C²) = (n_d − 1)/V_d; n_d = A + B/λ_d².
-  g.cauchyB_ = (nd - 1.0) / abbeNumber /
-               (1.0 / (kLambdaFNm * kLambdaFNm) - 1.0 / (kLambdaCNm * kLambdaCNm));
+  g.cauchyB_ =
+      (nd - 1.0) / abbeNumber / (1.0 / (kLambdaFNm * kLambdaFNm) - 1.0 / (kLambdaCNm * kLambdaCNm));
   g.cauchyA_ = nd - g.cauchyB_ / (kLambdaDNm * kLambdaDNm);
   return g;
 }
@@ -67,7 +67,8 @@ double Glass::Spline::operator()(double at) const {
   if (at >= x.back()) return y.back();
   const size_t i = static_cast<size_t>(std::upper_bound(x.begin(), x.end(), at) - x.begin()) - 1;
   const double h = x[i + 1] - x[i], a = (x[i + 1] - at) / h, b = 1.0 - a;
-  return a * y[i] + b * y[i + 1] + ((a * a * a - a) * m[i] + (b * b * b - b) * m[i + 1]) * h * h / 6.0;
+  return a * y[i] + b * y[i + 1] +
+         ((a * a * a - a) * m[i] + (b * b * b - b) * m[i + 1]) * h * h / 6.0;
 }
 
 double Glass::index(double lambdaNm) const {

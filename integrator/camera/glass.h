@@ -46,8 +46,8 @@ class Glass {
   double index(double lambdaNm) const;
   bool disperses() const { return model_ == GlassModel::kAbbe || model_ == GlassModel::kTable; }
   GlassModel model() const { return model_; }
-  double nd() const { return nd_; }                 // n at λ_d
-  double abbeNumber() const;                        // V_d; +∞ without dispersion
+  double nd() const { return nd_; }                  // n at λ_d
+  double abbeNumber() const;                         // V_d; +∞ without dispersion
   const std::string& name() const { return name_; }  // the catalogue name, or ""
 
  private:

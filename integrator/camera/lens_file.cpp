@@ -45,7 +45,8 @@ class Parser {
 
   double number(int line, const Token& t, const std::string& key) {
     double v = 0.0;
-    if (!parseNumber(t.text, v)) fail(line, t.column, key, "'" + shortText(t.text) + "' is no number");
+    if (!parseNumber(t.text, v))
+      fail(line, t.column, key, "'" + shortText(t.text) + "' is no number");
     if (!std::isfinite(v)) fail(line, t.column, key, "must be finite, not " + shortText(t.text));
     return v;
   }
@@ -65,7 +66,8 @@ Glass Parser::glass(int line, const Token& t, std::string_view name, double nd) 
     valid = valid && (std::isalnum(static_cast<unsigned char>(ch)) || ch == '_' || ch == '-' ||
                       ch == '.' || ch == '+');
   if (!valid)
-    fail(line, t.column, "glass", "'" + shortText(name) + "' is no glass name (letters, digits, _ - . +)");
+    fail(line, t.column, "glass",
+         "'" + shortText(name) + "' is no glass name (letters, digits, _ - . +)");
   auto it = tables_.find(name);
   if (it == tables_.end()) {
     const std::string file = "glasses/" + std::string(name) + ".csv";
@@ -89,13 +91,7 @@ Glass Parser::glass(int line, const Token& t, std::string_view name, double nd) 
     }
   }
   const SpectralTable& table = it->second;
-  Glass g = Glass::table(std::string(name), table.wavelengthsNm, table.values[0], nd);
-  for (int lambda = 360; lambda <= 830; ++lambda)  // the shift keeps n a glass's
-    if (!(g.index(lambda) >= 1.0 && g.index(lambda) <= 4.0))
-      fail(line, t.column, "glass",
-           "glass '" + std::string(name) + "' shifted to N = " + std::to_string(nd) +
-               " leaves [1, 4] at " + std::to_string(lambda) + " nm");
-  return g;
+  return Glass::table(std::string(name), table.wavelengthsNm, table.values[0], nd);
 }
 
 LensSurface Parser::surface(int line, const std::vector<Token>& tokens) {
@@ -128,7 +124,8 @@ LensSurface Parser::surface(int line, const std::vector<Token>& tokens) {
     const size_t eq = t.text.find('=');
     if (eq == std::string_view::npos || eq == 0)
       fail(line, t.column, "",
-           "'" + shortText(t.text) + "' after the 4 columns is no key=value (glass, abbe, conic, a4 … a16)");
+           "'" + shortText(t.text) +
+               "' after the 4 columns is no key=value (glass, abbe, conic, a4 … a16)");
     const std::string key(t.text.substr(0, eq));
     const std::string_view value = t.text.substr(eq + 1);
     if (!seen.emplace(key, t.column).second) fail(line, t.column, key, "given twice on one line");
@@ -165,6 +162,14 @@ LensSurface Parser::surface(int line, const std::vector<Token>& tokens) {
     s.medium = Glass::abbe(v[2], abbe);
   else if (!s.stop)
     s.medium = Glass::constant(v[2]);
+  if (s.medium.disperses()) {  // the dispersion keeps n a glass's over the hero wavelengths
+    const Token& t = glassToken ? *glassToken : *abbeToken;
+    for (int lambda = 360; lambda <= 830; ++lambda)
+      if (!(s.medium.index(lambda) >= 1.0 && s.medium.index(lambda) <= 4.0))
+        fail(line, t.column, glassToken ? "glass" : "abbe",
+             "with N = " + std::to_string(v[2]) + " the index leaves [1, 4] at " +
+                 std::to_string(lambda) + " nm");
+  }
 
   // The surface must exist over its clear aperture.
   const SurfaceShape shape = SurfaceShape::from(s, 0.0);
@@ -180,7 +185,9 @@ LensSurface Parser::surface(int line, const std::vector<Token>& tokens) {
 
 }  // namespace
 
-TableSearch defaultGlassSearch() { return TableSearch{{lutsDirectory() / "spectra"}, nullptr}; }
+TableSearch defaultGlassSearch() {
+  return TableSearch{{lutsDirectory() / "spectra"}, nullptr};
+}
 
 LensPrescription parseLensPrescription(std::string_view text, const std::string& sourceName,
                                        const TableSearch& glassSearch) {
@@ -222,7 +229,8 @@ LensPrescription parseLensPrescription(std::string_view text, const std::string&
   if (lens.surfaces.empty()) parser.fail(0, 0, "", "no surfaces");
   if (lens.stopIndex < 0) parser.fail(0, 0, "", "no aperture stop (a line with N = 0)");
   if (lens.surfaces.back().medium.nd() != 1.0)
-    parser.fail(lastLine, 0, "N", "the last surface must have air (N = 1) behind it: the sensor is in air");
+    parser.fail(lastLine, 0, "N",
+                "the last surface must have air (N = 1) behind it: the sensor is in air");
   return lens;
 }
 

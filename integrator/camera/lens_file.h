@@ -44,7 +44,7 @@
 namespace camsim {
 
 struct LensPrescription {
-  std::string source;                // file name, for messages
+  std::string source;                 // file name, for messages
   std::vector<LensSurface> surfaces;  // object side first
   int stopIndex = -1;                 // index of the stop in surfaces
 };

@@ -124,9 +124,9 @@ std::optional<PupilSample> ExitPupilBounds::sample(glm::dvec2 filmPoint, glm::dv
   // u.y picks the half (y < 0 mirrored), then a row by area, then y within the row.
   const bool lower = u.y < 0.5;
   const double v = lower ? 2.0 * u.y : 2.0 * u.y - 1.0;
-  const size_t i = std::min(
-      static_cast<size_t>(std::upper_bound(b.cdf.begin(), b.cdf.end(), v) - b.cdf.begin()),
-      b.rows.size() - 1);
+  const size_t i =
+      std::min(static_cast<size_t>(std::upper_bound(b.cdf.begin(), b.cdf.end(), v) - b.cdf.begin()),
+               b.rows.size() - 1);
   const double c0 = i > 0 ? b.cdf[i - 1] : 0.0;
   const double t = std::clamp((v - c0) / (b.cdf[i] - c0), 0.0, 1.0);
   const Row& row = b.rows[i];
@@ -141,7 +141,8 @@ bool ExitPupilBounds::covers(glm::dvec2 filmPoint, glm::dvec2 rearPoint) const {
   if (!(r <= filmRadius_)) return false;
   const int k = std::min(static_cast<int>(r / filmRadius_ * intervals()), intervals() - 1);
   const double c = r > 0.0 ? filmPoint.x / r : 1.0, s = r > 0.0 ? filmPoint.y / r : 0.0;
-  const double x = c * rearPoint.x + s * rearPoint.y, y = std::abs(-s * rearPoint.x + c * rearPoint.y);
+  const double x = c * rearPoint.x + s * rearPoint.y,
+               y = std::abs(-s * rearPoint.x + c * rearPoint.y);
   for (const Row& row : bounds_[static_cast<size_t>(k)].rows)
     if (y >= row.y0 && y <= row.y1 && x >= row.x0 && x <= row.x1) return true;
   return false;

@@ -84,10 +84,10 @@ class ExitPupilBounds {
     double y0, y1, x0, x1;  // m, a strip of the upper half (y ≥ 0)
   };
   struct Bound {
-    std::vector<Row> rows;     // non-empty rows, increasing y
-    std::vector<double> cdf;   // cumulative row area over the half, normalised to 1 at the end
-    PupilBox box;              // around the rows and their mirror images
-    double area = 0.0;         // m², both halves
+    std::vector<Row> rows;    // non-empty rows, increasing y
+    std::vector<double> cdf;  // cumulative row area over the half, normalised to 1 at the end
+    PupilBox box;             // around the rows and their mirror images
+    double area = 0.0;        // m², both halves
   };
   std::vector<Bound> bounds_;
   double filmRadius_ = 0.0;
@@ -98,9 +98,9 @@ class ExitPupilBounds {
 // The fraction of camera rays lost: film points uniform over a sensor of sensorSize (m,
 // centred on the axis), pupil points from bounds.sample, traced at lambdaNm; a fixed seed.
 struct PupilLoss {
-  long long rays = 0;       // sampled with a non-empty box
-  long long lost = 0;       // of those, lost in the lens
-  long long noBox = 0;      // film points with an empty box (outside the image circle)
+  long long rays = 0;   // sampled with a non-empty box
+  long long lost = 0;   // of those, lost in the lens
+  long long noBox = 0;  // film points with an empty box (outside the image circle)
   double lostFraction() const { return rays > 0 ? static_cast<double>(lost) / rays : 0.0; }
 };
 PupilLoss measurePupilLoss(const LensSystem& lens, const ExitPupilBounds& bounds,

@@ -44,7 +44,8 @@ double sagSlopeOverR(const SurfaceShape& s, double rSquared) {
   // d/dr of the conic term is c r / √(…); of a_{2i} r^{2i} it is 2i a_{2i} r^{2i−1}.
   const double slope = root > 0.0 ? c / root : 0.0;  // root > 0 where sagDefined
   double poly = 0.0;
-  for (int i = kAsphereTerms - 1; i >= 0; --i) poly = poly * rSquared + 2.0 * (i + 2) * s.asphere[i];
+  for (int i = kAsphereTerms - 1; i >= 0; --i)
+    poly = poly * rSquared + 2.0 * (i + 2) * s.asphere[i];
   return slope + poly * rSquared;  // Σ 2i a_{2i} r^{2i−2} = r² Σ 2(j+2) a r^{2j}
 }
 
@@ -65,7 +66,7 @@ double baseRoot(const SurfaceShape& s, const glm::dvec3& o, const glm::dvec3& d)
   if (a == 0.0) {  // a plane
     if (b == 0.0) return -1.0;
     const double t = -cc / b;
-    return t > 0.0 ? t : -1.0;
+    return t > 0.0 && std::isfinite(t) ? t : -1.0;
   }
   const double disc = b * b - 4.0 * a * cc;
   if (!(disc >= 0.0)) return -1.0;
@@ -75,7 +76,7 @@ double baseRoot(const SurfaceShape& s, const glm::dvec3& o, const glm::dvec3& d)
   if (t0 > t1) std::swap(t0, t1);
   for (const double t : {t0, t1}) {
     const double w = ow + t * d.z;
-    if (t > 0.0 && 1.0 + c * w > 0.0) return t;
+    if (t > 0.0 && std::isfinite(t) && 1.0 + c * w > 0.0) return t;
   }
   return -1.0;
 }

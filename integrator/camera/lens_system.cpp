@@ -10,8 +10,7 @@
 namespace camsim {
 
 LensSystem::LensSystem(LensPrescription prescription)
-    : lens_(std::move(prescription)),
-      stop_(1.0, 0, 0.0) {
+    : lens_(std::move(prescription)), stop_(1.0, 0, 0.0) {
   const int count = static_cast<int>(lens_.surfaces.size());
   CAMSIM_CHECK(count >= 1 && count <= kMaxLensSurfaces);
   CAMSIM_CHECK(lens_.stopIndex >= 0 && lens_.stopIndex < count);
@@ -48,6 +47,9 @@ LensSystem LensSystem::forCamera(LensPrescription prescription) {
          std::to_string(-m.a / m.c * 1e3) + " mm)");
   if (!(std::abs(lens.frontGroup(n).a) > 1e-9) || !(std::abs(lens.rearGroup(n).d) > 1e-9))
     fail("the stop images to infinity (a telecentric lens): not supported");
+  for (const ParaxialField& field : paraxialFields(lens.paraxial()))
+    if (!std::isfinite(field.value) && field.name != std::string("object_distance"))
+      fail(std::string("the lens's paraxial ") + field.name + " is not finite");
   return lens;
 }
 
@@ -72,7 +74,9 @@ double LensSystem::minFNumber() const {
   return f / (maxStopDiameter() / std::abs(frontGroup(n).a));
 }
 
-double LensSystem::rearClearRadius() const { return std::sqrt(shapes_.back().clearRadius2); }
+double LensSystem::rearClearRadius() const {
+  return std::sqrt(shapes_.back().clearRadius2);
+}
 
 bool LensSystem::disperses() const {
   for (const LensSurface& s : lens_.surfaces)
@@ -82,7 +86,8 @@ bool LensSystem::disperses() const {
 
 LensSystem::Indices LensSystem::indicesAt(double lambdaNm) const {
   Indices n;
-  for (size_t i = 0; i < lens_.surfaces.size(); ++i) n.after[i] = lens_.surfaces[i].medium.index(lambdaNm);
+  for (size_t i = 0; i < lens_.surfaces.size(); ++i)
+    n.after[i] = lens_.surfaces[i].medium.index(lambdaNm);
   return n;
 }
 
@@ -138,7 +143,8 @@ ParaxialData LensSystem::paraxial(double lambdaNm, double objectDistance,
   p.pupilMagnification = p.exitPupilDiameter / p.entrancePupilDiameter;
   p.fNumber = f / p.entrancePupilDiameter;
   p.sensorSize = sensorSize;
-  const glm::dvec3 half(0.5 * sensorSize.x, 0.5 * sensorSize.y, 0.5 * std::hypot(sensorSize.x, sensorSize.y));
+  const glm::dvec3 half(0.5 * sensorSize.x, 0.5 * sensorSize.y,
+                        0.5 * std::hypot(sensorSize.x, sensorSize.y));
   glm::dvec3 fov;
   if (std::isinf(objectDistance)) {
     p.imageDistance = p.backFocalLength;

@@ -66,7 +66,7 @@ struct ParaxialData {
   double pupilMagnification = 0.0;            // XPD / EPD
   double fNumber = 0.0;                       // EFL / EPD
   double imageDistance = 0.0;                 // m, rear vertex → paraxial image of the object
-  double magnification = 0.0;                // lateral, signed (< 0: inverted)
+  double magnification = 0.0;                 // lateral, signed (< 0: inverted)
   double workingFNumber = 0.0;                // 1 / (2|u'|), the marginal ray's image slope
   glm::dvec2 sensorSize{0.0};                 // m, the sensor the field of view is for
   double fieldOfViewHorizontal = 0.0;         // rad, full angle seen from the entrance pupil
@@ -75,7 +75,9 @@ struct ParaxialData {
 };
 
 // ParaxialData as (name, unit, value) rows, one per field, in the struct's order: what a
-// sidecar or EXR header writes (names snake_case, units "m", "nm", "rad", "").
+// sidecar or EXR header writes (names snake_case, units "m", "nm", "rad", ""). At infinity
+// object_distance is +∞ (sensor/io's JSON writer writes null, as focus_distance_m); for a
+// lens that passed forCamera every other value is finite.
 struct ParaxialField {
   const char* name;
   const char* unit;
@@ -95,8 +97,8 @@ class LensSystem {
   // file's diameter, circular.
   explicit LensSystem(LensPrescription prescription);
   // For a camera: also throws InputError (naming the file) unless the lens converges
-  // (0 < EFL < ∞), forms a real image behind its rear vertex (BFL > 0) and has an
-  // entrance and exit pupil at finite distance.
+  // (0 < EFL < ∞), forms a real image behind its rear vertex (BFL > 0), has an entrance
+  // and exit pupil at finite distance and finite paraxial data (at λ_d, infinity focus).
   static LensSystem forCamera(LensPrescription prescription);
 
   // The stop's circle-equivalent diameter (m, in (0, file's diameter]) and shape.
@@ -140,7 +142,8 @@ class LensSystem {
   ParaxialData paraxial(double lambdaNm = kLambdaDNm, double objectDistance = kInfiniteDistance,
                         glm::dvec2 sensorSize = {0.036, 0.024}) const;
   // The sensor distance s (m) that focuses an object at objectDistance (m from the front
-  // vertex, +∞ default) at λ.
+  // vertex, +∞ default) at λ. An object has a real image only beyond the front focal point
+  // (objectDistance > ParaxialData::frontFocalLength): the caller range-checks.
   double focusSensorDistance(double objectDistance = kInfiniteDistance,
                              double lambdaNm = kLambdaDNm,
                              FocusMethod method = FocusMethod::kParaxial) const;

@@ -96,8 +96,9 @@ double LensSystem::focusSensorDistance(double objectDistance, double lambdaNm,
     swqq += h * q * q;
     ++through;
   }
-  if (through < 8 || !(swqq > 0.0)) return paraxialS;
-  return -swpq / swqq;
+  const double best = -swpq / swqq;
+  if (through < 8 || !std::isfinite(best)) return paraxialS;
+  return best;
 }
 
 std::optional<double> LensSystem::tracedFocalLength(double height, double lambdaNm) const {

@@ -52,10 +52,10 @@ TEST(Glass, CatalogueTableFollowsSellmeier) {
   EXPECT_DOUBLE_EQ(shifted.index(kLambdaDNm), 1.6);
   EXPECT_NEAR(shifted.index(450.0) - 1.6, g.index(450.0) - 1.5168, 1e-12);
   // Outside the table (SF10 starts at 380 nm) n holds the end value.
-  const Glass sf10 = parseLensPrescription("40 4 1.728 20 glass=SF10\n0 1 0 10\n-40 0 1 20\n",
-                                           "sf10.dat")
-                         .surfaces[0]
-                         .medium;
+  const Glass sf10 =
+      parseLensPrescription("40 4 1.728 20 glass=SF10\n0 1 0 10\n-40 0 1 20\n", "sf10.dat")
+          .surfaces[0]
+          .medium;
   EXPECT_DOUBLE_EQ(sf10.index(360.0), sf10.index(380.0));
   EXPECT_GT(sf10.index(380.0), sf10.index(381.0));
 }

@@ -80,9 +80,10 @@ TEST(LensFile, ExtensionKeysConvertToSi) {
 TEST(LensFile, GlassTablesAreLookedUpOnTheSearchPathAndRecorded) {
   std::vector<std::filesystem::path> read;
   TableSearch search{{lutsDirectory() / "spectra"}, &read};
-  parseLensPrescription("40 4 1.5168 20 glass=BK7\n0 1 0 10\n-40 0 1.6 20 glass=BK7\n"
-                        "-100 0 1 20\n",
-                        "g.dat", search);
+  parseLensPrescription(
+      "40 4 1.5168 20 glass=BK7\n0 1 0 10\n-40 0 1.6 20 glass=BK7\n"
+      "-100 0 1 20\n",
+      "g.dat", search);
   ASSERT_EQ(read.size(), 1u);  // read once for two lines
   EXPECT_EQ(read[0].filename(), "BK7.csv");
 }
@@ -116,6 +117,7 @@ TEST(LensFile, BadInputNamesFileLineColumnAndKey) {
       {"50 2 1.5 20 glass=BK7 abbe=60\n" + stop + rear, 1, 23, "abbe", "either"},
       {"50 2 1 20 abbe=60\n" + stop + rear, 1, 11, "abbe", "air"},
       {"50 2 1.5 20 abbe=2\n" + stop + rear, 1, 13, "abbe", "[5, 200]"},
+      {"50 2 3 20 abbe=5\n" + stop + rear, 1, 11, "abbe", "leaves [1, 4] at 360 nm"},
       {"50 2 1.5 20 conic=1 conic=2\n" + stop + rear, 1, 21, "conic", "twice"},
       {"50 2 1.5 20 conic=x\n" + stop + rear, 1, 13, "conic", "no number"},
       {"50 2 1.5 20 a4=1e300\n" + stop + rear, 1, 13, "a4", "too large"},

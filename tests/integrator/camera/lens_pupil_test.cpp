@@ -15,8 +15,8 @@ namespace camsim {
 namespace lens_pupil_test {
 
 LensSystem lensFile(const std::string& name) {
-  return LensSystem::forCamera(readLensPrescription(std::filesystem::path(CAMSIM_SOURCE_DIR) /
-                                                    "luts" / "lenses" / name));
+  return LensSystem::forCamera(
+      readLensPrescription(std::filesystem::path(CAMSIM_SOURCE_DIR) / "luts" / "lenses" / name));
 }
 
 const glm::dvec2 kSensor(0.036, 0.024);  // m
@@ -29,8 +29,7 @@ struct Uniform {
 
 bool passes(const LensSystem& lens, double s, glm::dvec2 film, glm::dvec2 rear) {
   const glm::dvec3 o(film, -s);
-  return lens.traceFromFilm({o, glm::normalize(glm::dvec3(rear, 0.0) - o)}, kLambdaDNm)
-      .has_value();
+  return lens.traceFromFilm({o, glm::normalize(glm::dvec3(rear, 0.0) - o)}, kLambdaDNm).has_value();
 }
 
 TEST(LensPupil, EveryPassingRayIsInsideItsBound) {
@@ -51,6 +50,8 @@ TEST(LensPupil, EveryPassingRayIsInsideItsBound) {
       ++passing;
       outside += bounds.covers(film, rear) ? 0 : 1;
     }
+    std::printf("%s: %d of 300000 random pairs pass, %d outside their bound\n", file, passing,
+                outside);
     EXPECT_GT(passing, 5000) << file;
     EXPECT_EQ(outside, 0) << file << ": " << outside << " of " << passing;
   }
@@ -85,10 +86,11 @@ TEST(LensPupil, SampledDensityGivesThePassingArea) {
     }
     const double a1 = area * viaSample / n, a2 = box.area() * viaBox / n;
     const double a3 = 4.0 * e * e * viaSquare / n;
-    std::printf("dgauss film r %.0f mm: passing area %.3f / %.3f / %.3f mm² (bound, box, "
-                "square); lost %.1f %% from the bound, %.1f %% from the box\n",
-                r * 1e3, a1 * 1e6, a2 * 1e6, a3 * 1e6, 100.0 * (1.0 - viaSample / double(n)),
-                100.0 * (1.0 - viaBox / double(n)));
+    std::printf(
+        "dgauss film r %.0f mm: passing area %.3f / %.3f / %.3f mm² (bound, box, "
+        "square); lost %.1f %% from the bound, %.1f %% from the box\n",
+        r * 1e3, a1 * 1e6, a2 * 1e6, a3 * 1e6, 100.0 * (1.0 - viaSample / double(n)),
+        100.0 * (1.0 - viaBox / double(n)));
     // Binomial standard errors: < 0.5 % for the bound and box, ≈ 1 % for the square;
     // tolerance 4 %.
     EXPECT_NEAR(a1 / a3, 1.0, 0.04) << r;
@@ -107,10 +109,10 @@ TEST(LensPupil, FewSampledRaysAreLost) {
     const LensSystem lens = lensFile(c.file);
     const ExitPupilBounds bounds(lens, lens.focusSensorDistance(), kFilmRadius);
     const PupilLoss loss = measurePupilLoss(lens, bounds, kSensor, 100000);
-    std::printf("%s: %.1f %% of sampled rays lost (%lld of %lld); %lld film points outside "
-                "the image circle; %lld rays traced for the bounds\n",
-                c.file, 100.0 * loss.lostFraction(), loss.lost, loss.rays, loss.noBox,
-                bounds.raysTraced());
+    std::printf(
+        "%s: %.1f %% of sampled rays lost (%lld of %lld); %lld film points outside "
+        "the image circle; %lld rays traced for the bounds\n",
+        c.file, 100.0 * loss.lostFraction(), loss.lost, loss.rays, loss.noBox, bounds.raysTraced());
     EXPECT_LT(loss.lostFraction(), c.maxLost) << c.file;
   }
 }

@@ -59,7 +59,8 @@ TEST(LensSurface, IntersectionsLieOnTheSurfaceNearTheVertex) {
   SurfaceShape plane;
   plane.vertexZ = -0.001;
   const SurfaceShape aspheric = asphere();
-  for (const SurfaceShape* s : std::initializer_list<const SurfaceShape*>{&sphere, &plane, &aspheric}) {
+  for (const SurfaceShape* s :
+       std::initializer_list<const SurfaceShape*>{&sphere, &plane, &aspheric}) {
     for (const double dirZ : {1.0, -1.0}) {
       for (double h = 0.0; h <= 0.014; h += 0.002) {
         const glm::dvec3 o(h, -0.3 * h, s->vertexZ - dirZ * 0.03);
@@ -74,8 +75,7 @@ TEST(LensSurface, IntersectionsLieOnTheSurfaceNearTheVertex) {
   }
   // A sphere in closed form: a ray parallel to the axis at height h meets the cap at
   // vertexZ − (R − √(R² − h²)), R = −40 mm here, so towards +z.
-  const std::optional<double> t =
-      intersectSurface(sphere, {0.01, 0.0, -0.05}, {0.0, 0.0, 1.0});
+  const std::optional<double> t = intersectSurface(sphere, {0.01, 0.0, -0.05}, {0.0, 0.0, 1.0});
   ASSERT_TRUE(t);
   EXPECT_NEAR(-0.05 + *t, 0.002 + (0.04 - std::sqrt(0.04 * 0.04 - 1e-4)), 1e-15);
   // A ray that misses the sphere, and one that starts past the surface.

@@ -19,8 +19,8 @@ LensSystem lensFromText(const std::string& text) {
 }
 
 LensSystem lensFile(const std::string& name) {
-  return LensSystem::forCamera(readLensPrescription(std::filesystem::path(CAMSIM_SOURCE_DIR) /
-                                                    "luts" / "lenses" / name));
+  return LensSystem::forCamera(
+      readLensPrescription(std::filesystem::path(CAMSIM_SOURCE_DIR) / "luts" / "lenses" / name));
 }
 
 TEST(LensSystem, SingletMatchesTheThickLensFormulas) {
@@ -42,8 +42,9 @@ TEST(LensSystem, SingletMatchesTheThickLensFormulas) {
 
 TEST(LensSystem, CementedDoubletMatchesGullstrand) {
   // An achromat: R = 61.47, −44.64, −129.94 mm; 6 mm of n 1.5168, 2.5 mm of n 1.6727.
-  const LensSystem lens = lensFromText("0 1 0 25\n61.47 6 1.5168 30\n-44.64 2.5 1.6727 30\n"
-                                       "-129.94 0 1 30\n");
+  const LensSystem lens = lensFromText(
+      "0 1 0 25\n61.47 6 1.5168 30\n-44.64 2.5 1.6727 30\n"
+      "-129.94 0 1 30\n");
   const double n1 = 1.5168, n2 = 1.6727, t1 = 0.006, t2 = 0.0025;
   const double p1 = (n1 - 1.0) / 0.06147, p2 = (n2 - n1) / -0.04464, p3 = (1.0 - n2) / -0.12994;
   // Surfaces 1 and 2 in glass n1: Gullstrand's power and the rear principal plane's shift
@@ -119,7 +120,8 @@ TEST(LensSystem, FocusObeysNewtonsEquationAndBreathes) {
   EXPECT_NEAR(inf.fieldOfViewHorizontal, 2.0 * std::atan(0.018 / inf.effectiveFocalLength), 1e-15);
   // Best-RMS focus is a minimum of the real bundle's spot size: checked through the
   // paraxial image it departs from by less than the depth of focus at f/2 (±0.05 mm).
-  const double best = lens.focusSensorDistance(kInfiniteDistance, kLambdaDNm, FocusMethod::kBestRms);
+  const double best =
+      lens.focusSensorDistance(kInfiniteDistance, kLambdaDNm, FocusMethod::kBestRms);
   EXPECT_LT(std::abs(best - inf.backFocalLength), 5e-5);
 }
 
@@ -148,13 +150,15 @@ TEST(LensSystem, ForCameraRejectsWhatCannotImage) {
 }
 
 TEST(LensSystem, ParaxialFieldsAreNamedOnceAndFinite) {
-  const ParaxialData p = lensFile("telephoto.250mm.dat").paraxial(kLambdaDNm, 5.0);
+  const LensSystem lens = lensFile("telephoto.250mm.dat");
   std::set<std::string> names;
-  for (const ParaxialField& field : paraxialFields(p)) {
+  for (const ParaxialField& field : paraxialFields(lens.paraxial(kLambdaDNm, 5.0))) {
     EXPECT_TRUE(names.insert(field.name).second) << field.name;
     EXPECT_TRUE(std::isfinite(field.value)) << field.name;
   }
   EXPECT_EQ(names.size(), 22u);
+  for (const ParaxialField& field : paraxialFields(lens.paraxial()))  // at infinity
+    EXPECT_EQ(std::isfinite(field.value), field.name != std::string("object_distance"));
 }
 
 }  // namespace lens_system_test

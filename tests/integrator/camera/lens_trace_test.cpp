@@ -18,8 +18,8 @@ LensSystem lensFromText(const std::string& text) {
 }
 
 LensSystem lensFile(const std::string& name) {
-  return LensSystem::forCamera(readLensPrescription(std::filesystem::path(CAMSIM_SOURCE_DIR) /
-                                                    "luts" / "lenses" / name));
+  return LensSystem::forCamera(
+      readLensPrescription(std::filesystem::path(CAMSIM_SOURCE_DIR) / "luts" / "lenses" / name));
 }
 
 TEST(LensTrace, PlaneParallelPlateDisplacesAsSnellSays) {
@@ -35,13 +35,29 @@ TEST(LensTrace, PlaneParallelPlateDisplacesAsSnellSays) {
     EXPECT_NEAR(glm::length(out->direction - d), 0.0, 1e-15);
     const double shift = glm::length(glm::cross(out->origin - o, d));
     const double s = std::sin(theta);
-    EXPECT_NEAR(shift, t * s * (1.0 - std::cos(theta) / std::sqrt(n * n - s * s)), 1e-15)
-        << theta;
+    EXPECT_NEAR(shift, t * s * (1.0 - std::cos(theta) / std::sqrt(n * n - s * s)), 1e-15) << theta;
     // The other way: the same displacement.
     const glm::dvec3 front(0.0, 0.0, 0.012);
     const std::optional<LensRay> in = plate.traceFromObject({front, -d}, 550.0);
     ASSERT_TRUE(in);
     EXPECT_NEAR(glm::length(glm::cross(in->origin - front, d)), shift, 1e-15);
+  }
+}
+
+TEST(LensTrace, ConicSurfaceFocusesWithoutAberration) {
+  // An ellipsoid of eccentricity 1/n (k = −1/n²) refracts parallel rays from air into glass
+  // to one point, nR/(n − 1) behind its vertex (Descartes). The exit plane is put there:
+  // every real ray, at any height, meets it on the axis.
+  // n = 1.5, R = 20 mm: k = −4/9, the focus 60 mm behind the vertex.
+  char text[200];
+  std::snprintf(text, sizeof text, "0 1 0 24\n20 60 1.5 24 conic=%.17g\n0 0 1 24\n", -4.0 / 9.0);
+  const LensSystem lens = lensFromText(text);
+  ASSERT_TRUE(lens.shape(1).aspheric);
+  for (double h = 0.0005; h < 0.012; h += 0.0005) {
+    const std::optional<LensRay> out =
+        lens.traceFromObject({{h, 0.0, lens.frontVertexZ() + 0.01}, {0.0, 0.0, -1.0}}, 550.0);
+    ASSERT_TRUE(out) << h;
+    EXPECT_NEAR(out->origin.x, 0.0, 1e-13) << h;
   }
 }
 
@@ -86,8 +102,7 @@ TEST(LensTrace, RayTracedOutAndBackReturnsToItsFilmPoint) {
 
 TEST(LensTrace, RealRaysFindTheParaxialPupils) {
   // Two singlets with the stop between them, stopped down so that rays stay paraxial.
-  LensSystem lens =
-      lensFromText("100 3 1.5 30\n-100 20 1 30\n0 15 0 4\n80 3 1.5 30\n-80 0 1 30\n");
+  LensSystem lens = lensFromText("100 3 1.5 30\n-100 20 1 30\n0 15 0 4\n80 3 1.5 30\n-80 0 1 30\n");
   lens.setStop(0.002);
   const ParaxialData p = lens.paraxial();
   const auto parallelPasses = [&](double h) {
