@@ -23,7 +23,7 @@ struct Token {
   int column = 0;  // 1-based
 };
 
-bool parseNumber(std::string_view s, double& out) {
+bool parseLensNumber(std::string_view s, double& out) {
   if (!s.empty() && s.front() == '+') s.remove_prefix(1);
   if (s.empty()) return false;
   const auto [ptr, ec] = std::from_chars(s.data(), s.data() + s.size(), out);
@@ -45,7 +45,7 @@ class Parser {
 
   double number(int line, const Token& t, const std::string& key) {
     double v = 0.0;
-    if (!parseNumber(t.text, v))
+    if (!parseLensNumber(t.text, v))
       fail(line, t.column, key, "'" + shortText(t.text) + "' is no number");
     if (!std::isfinite(v)) fail(line, t.column, key, "must be finite, not " + shortText(t.text));
     return v;

@@ -1,6 +1,6 @@
 // LensSystem: a sequential lens (lens_file.h) placed in lens space (lens_surface.h: z along
 // the axis towards the object, z = 0 at the rear vertex, the sensor at z = −s), with
-//   - paraxial data by ray-transfer matrices at one wavelength (lens_paraxial.cpp),
+//   - paraxial data by ray-transfer matrices at one wavelength (lens_system.cpp),
 //   - real rays traced from the sensor out of the front, or from the object in, at one
 //     wavelength: spheres, planes and even aspheres, Snell refraction, total internal
 //     reflection and every clear aperture and the stop losing the ray (lens_trace.cpp),
@@ -151,8 +151,9 @@ class LensSystem {
   // side: h / tan u' of the ray leaving the rear; none if the ray is lost.
   std::optional<double> tracedFocalLength(double height, double lambdaNm = kLambdaDNm) const;
   // The angle (rad) to the axis, in object space, of the chief ray (through the stop's
-  // centre) from the film point at height filmHeight (m) with the sensor at s; none if no
-  // chief ray gets through. Half the full field angle at the sensor's corner.
+  // centre) from the film point at height filmHeight (m) with the sensor at s: half the
+  // full field angle at the sensor's corner. Clear apertures are ignored (a vignetted chief
+  // ray still gives the field); none if the aim fails (the ray misses a surface).
   std::optional<double> chiefRayAngle(double filmHeight, double sensorDistance,
                                       double lambdaNm = kLambdaDNm) const;
 
