@@ -285,8 +285,9 @@ TEST(ModelledDimensions, DescribesApertureTimeAndRollingShutter) {
   EXPECT_TRUE(r.stats.modelled.time);
   EXPECT_EQ(r.stats.modelled.movingObjects, 1);
   EXPECT_TRUE(r.stats.modelled.rollingShutter);
-  EXPECT_EQ(r.stats.modelled.describe().substr(0, 58),
-            "aperture (6 blades), time (1 moving object, rolling shutte");
+  EXPECT_TRUE(r.stats.modelled.diffraction);  // aperture.diffraction's default
+  EXPECT_EQ(r.stats.modelled.describe().substr(0, 71),
+            "aperture (6 blades, diffraction), time (1 moving object, rolling shutte");
 }
 
 // The static distortion-free pinhole generates rays in float from constants (the fast
