@@ -57,8 +57,13 @@ Pass timePass(const PhysicalCamera& camera) {
   const auto start = std::chrono::steady_clock::now();
   for (int y = 0; y < res.y; ++y)
     for (int x = 0; x < res.x; ++x) {
-      const float i = float(x + y * res.x);
-      auto r2 = [i](float a) { return std::fmod(0.5f + a * i, 1.0f); };
+      const double i = double(x + y * res.x);
+      // frac(0.5 + a·i) (floor, not fmod: fmodf of large arguments would cost more than the
+      // camera ray)
+      auto r2 = [i](double a) {
+        const double v = 0.5 + a * i;
+        return static_cast<float>(v - std::floor(v));
+      };
       CameraSample s;
       s.pFilm = {float(x) + r2(0.7548777f), float(y) + r2(0.5698403f)};
       s.pLens = {r2(0.8191725f), r2(0.6710436f)};

@@ -46,9 +46,8 @@ DiffractionSample Diffraction::sample(glm::vec2 u, float uChoice,
 double Diffraction::psf(glm::dvec2 offset, double lambdaNm) const {
   const double scale = lambdaNm * 1e-9 * workingFNumber_;
   // R⁻¹ offset / scale: back into the table's axes and units.
-  const glm::dvec2 t(
-      (cosRotation_ * offset.x + sinRotation_ * offset.y) / scale,
-      (-sinRotation_ * offset.x + cosRotation_ * offset.y) / scale);
+  const glm::dvec2 t((cosRotation_ * offset.x + sinRotation_ * offset.y) / scale,
+                     (-sinRotation_ * offset.x + cosRotation_ * offset.y) / scale);
   return psf_->density(t) / (scale * scale);
 }
 

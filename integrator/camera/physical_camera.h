@@ -187,7 +187,7 @@ class PhysicalCamera final : public Camera {
                       double time, double scale, const SampledWavelengths& lambda) const;
 
   PhysicalCameraParams p_;
-  std::optional<Aperture> stop_;  // from p_.aperture and p_.apertureDiameter()
+  std::optional<Aperture> stop_;            // from p_.aperture and p_.apertureDiameter()
   std::optional<Diffraction> diffraction_;  // with an aperture whose diffraction is on
   glm::dvec2 pixelsPerMetre_{0.0};          // film offset (m, y up) → pixels (y down)
   double imageDistance_;

@@ -83,17 +83,17 @@ class StopPsf {
   void buildPolygon();
 
   int blades_;
-  int rows_ = 0;     // radial cells
-  int columns_ = 1;  // angular cells over 2π
-  int period_ = 1;   // angular cells per period 2π/N (the circle: 1)
-  std::vector<double> edges_;                    // rows_ + 1 radial edges (λN_w)
+  int rows_ = 0;               // radial cells
+  int columns_ = 1;            // angular cells over 2π
+  int period_ = 1;             // angular cells per period 2π/N (the circle: 1)
+  std::vector<double> edges_;  // rows_ + 1 radial edges (λN_w)
   // The N-gon's edges, counter-clockwise: outward normal × length L, tangent × L/2, midpoint.
   struct Edge {
     glm::dvec2 normal, halfTangent, midpoint;
   };
   std::vector<Edge> polygonEdges_;
-  std::vector<double> density_;                  // rows_ × period_ cell densities, (λN_w)⁻²
-  PiecewiseConstant2D table_;                    // columns_ × rows_ cell probabilities
+  std::vector<double> density_;  // rows_ × period_ cell densities, (λN_w)⁻²
+  PiecewiseConstant2D table_;    // columns_ × rows_ cell probabilities
   double truncated_ = 0.0;
 };
 

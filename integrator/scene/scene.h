@@ -22,10 +22,10 @@ namespace camsim {
 
 // What the renderer integrates over, beyond pixel area: only what can change the image.
 struct ModelledDimensions {
-  bool aperture = false;  // lens positions (thin lens); false: pinhole
-  int blades = 0;         // 0: circular stop
+  bool aperture = false;     // lens positions (thin lens); false: pinhole
+  int blades = 0;            // 0: circular stop
   bool diffraction = false;  // the stop's PSF (aperture.diffraction): film-point jitter
-  bool time = false;      // shutter time: something moves during the exposure
+  bool time = false;         // shutter time: something moves during the exposure
   int movingObjects = 0;
   bool cameraMoves = false;
   bool rollingShutter = false;

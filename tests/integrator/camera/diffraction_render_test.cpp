@@ -95,7 +95,8 @@ TEST(DiffractionRender, StripesLoseContrastByTheDiffractionMtf) {
   double weighted = 0.0, total = 0.0;
   for (int lambda = 360; lambda <= 830; ++lambda) {
     const double nu = f0 * lambda * 1e-9 * nw;
-    const double mtf = nu >= 1.0 ? 0.0 : 2.0 / M_PI * (std::acos(nu) - nu * std::sqrt(1.0 - nu * nu));
+    const double mtf =
+        nu >= 1.0 ? 0.0 : 2.0 / M_PI * (std::acos(nu) - nu * std::sqrt(1.0 - nu * nu));
     const double y = static_cast<double>(ybar(static_cast<float>(lambda)));
     weighted += y * mtf;
     total += y;

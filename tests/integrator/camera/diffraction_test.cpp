@@ -47,7 +47,8 @@ TEST(Diffraction, OtfOfTheCircularStopIsTheDiffractionLimitedMtf) {
       for (const glm::dvec2 dir : {glm::dvec2(1.0, 0.0), glm::dvec2(M_SQRT1_2, M_SQRT1_2)}) {
         double sum = 0.0;
         for (const DiffractionSample& s : samples)
-          sum += static_cast<double>(s.weight[i]) * std::cos(2.0 * M_PI * f * glm::dot(dir, s.offset));
+          sum +=
+              static_cast<double>(s.weight[i]) * std::cos(2.0 * M_PI * f * glm::dot(dir, s.offset));
         const double otf = sum / n;
         EXPECT_NEAR(otf, circularMtf(nu), 0.02) << "λ = " << lambda[i] << " nm, ν = " << nu;
         worst = std::max(worst, std::abs(otf - circularMtf(nu)));
@@ -85,7 +86,8 @@ TEST(Diffraction, MisWeightsAverageToOnePerWavelength) {
 }
 
 // PSF_λ(δ) = p(δ/(λN_w))/(λN_w)²: doubling λN_w doubles the pattern and quarters its level;
-// the circle's peak is π/4 / (λN_w)².
+// near the circle's peak (π/4 per (λN_w)²) it is the centre cell's mean, E(h)/(πh²) for the
+// cell's radius h = 1/16 λN_w (the table normalised to its energy).
 TEST(Diffraction, PsfScalesWithLambdaTimesWorkingFNumber) {
   const Diffraction a(ApertureShape{6, 0.2}, 4.0), b(ApertureShape{6, 0.2}, 8.0);
   for (const glm::dvec2 d : {glm::dvec2(1e-6, 0.5e-6), glm::dvec2(-3e-6, 7e-6)}) {
@@ -96,7 +98,11 @@ TEST(Diffraction, PsfScalesWithLambdaTimesWorkingFNumber) {
   }
   const Diffraction circle(ApertureShape{0, 0.0}, 8.0);
   const double s = 550e-9 * 8.0;
-  EXPECT_NEAR(circle.psf({0.01 * s, 0.0}, 550.0) * s * s, 0.25 * M_PI, 0.002);
+  const double h = circle.shape().radialEdge(1);
+  const double centreMean =
+      StopPsf::airyEncircledEnergy(h) / (M_PI * h * h) / (1.0 - circle.shape().truncatedEnergy());
+  EXPECT_NEAR(circle.psf({0.01 * s, 0.0}, 550.0) * s * s / centreMean, 1.0, 1e-9);
+  EXPECT_NEAR(centreMean, 0.25 * M_PI, 0.005);
 }
 
 // The stop's rotation turns the spikes with it, in camera axes (x right, y up): a hexagon
