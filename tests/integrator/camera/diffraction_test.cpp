@@ -3,7 +3,9 @@
 // the turned stop's spikes in camera axes.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <vector>
 
 #include <glm/geometric.hpp>
@@ -59,8 +61,8 @@ TEST(Diffraction, OtfOfTheCircularStopIsTheDiffractionLimitedMtf) {
 }
 
 // One-sample MIS: the weights of each wavelength average to 1 (unbiased), lie in [0, n], for
-// a circular and a bladed stop, wavelengths spread over 360–830 nm (n = 2^18 samples: σ of a
-// mean below 0.003; tolerance 0.01).
+// a circular and a bladed stop, wavelengths spread over 360–830 nm (n = 2^18 samples:
+// measured within 0.0021 of 1; tolerance 0.005).
 TEST(Diffraction, MisWeightsAverageToOnePerWavelength) {
   for (const ApertureShape stop : {ApertureShape{0, 0.0}, ApertureShape{6, 0.3}}) {
     const Diffraction diffraction(stop, 2.8);
@@ -78,9 +80,14 @@ TEST(Diffraction, MisWeightsAverageToOnePerWavelength) {
           sum[static_cast<size_t>(i)] += static_cast<double>(s.weight[i]);
         }
       }
-      for (int i = 0; i < kWavelengthSamples; ++i)
-        EXPECT_NEAR(sum[static_cast<size_t>(i)] / n, 1.0, 0.01)
+      double worst = 0.0;
+      for (int i = 0; i < kWavelengthSamples; ++i) {
+        EXPECT_NEAR(sum[static_cast<size_t>(i)] / n, 1.0, 0.005)
             << stop.blades << " blades, λ = " << lambda[i] << " nm";
+        worst = std::max(worst, std::abs(sum[static_cast<size_t>(i)] / n - 1.0));
+      }
+      std::printf("[measured] %d blades, λ0 = %.0f nm: worst |mean w_i − 1| = %.5f\n", stop.blades,
+                  lambda0, worst);
     }
   }
 }
