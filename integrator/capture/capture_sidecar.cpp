@@ -145,7 +145,8 @@ JsonObject cameraJson(const PhysicalCameraParams& p, const glm::dvec3& renderOri
     j.set("aperture", JsonObject()
                           .setJson("blades", std::to_string(p.aperture->blades))
                           .setJson("rotation_deg", exact(glm::degrees(p.aperture->rotation)))
-                          .set("pupil", std::string(enumName(p.pupil))));
+                          .set("pupil", std::string(enumName(p.pupil)))
+                          .setJson("diffraction", p.aperture->diffraction ? "true" : "false"));
   j.set(plainDistortion(p) ? "distortion" : "projection", projectionJson(p))
       .set("shutter", shutterJson(p.shutter));
 
@@ -163,6 +164,7 @@ JsonObject cameraJson(const PhysicalCameraParams& p, const glm::dvec3& renderOri
            p.aperture
                ? (p.aperture->blades ? std::to_string(p.aperture->blades) + " blades" : "circular")
                : "pinhole")
+      .set("working_f_number", camera.imageDistance() / p.apertureDiameter())
       .set("shutter_open_s", p.shutter.open())
       .set("shutter_close_s", p.shutter.close())
       .set("exposure_time_s", p.shutter.effectiveTime())

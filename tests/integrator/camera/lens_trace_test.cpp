@@ -94,7 +94,8 @@ TEST(LensTrace, RayTracedOutAndBackReturnsToItsFilmPoint) {
 
 TEST(LensTrace, RealRaysFindTheParaxialPupils) {
   // Two singlets with the stop between them, stopped down so that rays stay paraxial.
-  LensSystem lens = test::lensFromText("100 3 1.5 30\n-100 20 1 30\n0 15 0 4\n80 3 1.5 30\n-80 0 1 30\n");
+  LensSystem lens =
+      test::lensFromText("100 3 1.5 30\n-100 20 1 30\n0 15 0 4\n80 3 1.5 30\n-80 0 1 30\n");
   lens.setStop(0.002);
   const ParaxialData p = lens.paraxial();
   const auto parallelPasses = [&](double h) {
