@@ -5,6 +5,7 @@
 // | diameter  | m    | f/N     | entrance-pupil diameter D of the circular stop |
 // | blades    | —    | 0       | 0: circular; N ≥ 3: a regular N-gon |
 // | rotation  | rad  | 0       | polygon orientation: a vertex at angle `rotation` from +x (camera right), counter-clockwise towards +y (up) |
+// | diffraction | —  | on      | the stop's Fraunhofer PSF blurs the image (Diffraction, diffraction.h) |
 //
 // A polygonal stop has the same area as the circle of diameter D = f/N, so exposure
 // follows the f-number whatever the blade count: circumradius R = D/2 · √(2π / (N sin(2π/N))).
@@ -20,6 +21,9 @@ namespace camsim {
 struct ApertureShape {
   int blades = 0;         // 0: circular; N >= 3: a regular N-gon
   double rotation = 0.0;  // rad, as Aperture's
+  // camera.aperture.diffraction: the stop diffracts (on by default: at f/8 on a 5 µm pixel it
+  // changes most pixels of a sharp edge; docs/camera.md, "Diffraction at the stop").
+  bool diffraction = true;
 };
 
 class Aperture {

@@ -24,6 +24,10 @@ struct CameraSample {
   glm::vec2 pFilm{0.0f};  // pixels
   glm::vec2 pLens{0.5f};  // [0,1)², used only by cameras with an aperture
   double time = 0.0;      // s
+  // [0,1)² and [0,1), used only by cameras whose stop diffracts (diffraction.h): the offset
+  // drawn from the PSF and the choice of the wavelength whose PSF it is drawn from.
+  glm::vec2 pDiffraction{0.5f};
+  float uDiffractionWavelength = 0.5f;
 };
 
 struct CameraRay {

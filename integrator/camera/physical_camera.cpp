@@ -50,6 +50,9 @@ PhysicalCamera::PhysicalCamera(PhysicalCameraParams params) : p_(std::move(param
   turningPupil_ = projection_.model != ProjectionModel::kOpenCv;
   const double diameter = p_.apertureDiameter();
   if (p_.aperture) stop_.emplace(diameter, p_.aperture->blades, p_.aperture->rotation);
+  if (p_.aperture && p_.aperture->diffraction)
+    diffraction_.emplace(*p_.aperture, imageDistance_ / diameter);  // N_w = z_i / D
+  pixelsPerMetre_ = glm::dvec2(1.0 / pitch.x, -1.0 / pitch.y);
   apertureArea_ = stop_ ? stop_->area() : M_PI * 0.25 * diameter * diameter;
   transmittanceIsOne_ =
       p_.lensTransmittance.minValue() == 1.0 && p_.lensTransmittance.maxValue() == 1.0;
@@ -96,7 +99,26 @@ std::optional<CameraRay> PhysicalCamera::generateRay(const CameraSample& sample,
                                                      const SampledWavelengths& lambda,
                                                      const glm::dmat4& m) const {
   if (fastPinhole_) return generatePinholeRay(sample);
-  if (lensCamera_) return generateLensRay(sample, lambda, m);
+  if (diffraction_) return generateDiffractedRay(sample, lambda, m);
+  return generateLensRay(sample, lambda, m);
+}
+
+std::optional<CameraRay> PhysicalCamera::generateDiffractedRay(const CameraSample& sample,
+                                                               const SampledWavelengths& lambda,
+                                                               const glm::dmat4& m) const {
+  const DiffractionSample d =
+      diffraction_->sample(sample.pDiffraction, sample.uDiffractionWavelength, lambda);
+  CameraSample moved = sample;
+  moved.pFilm = glm::vec2(glm::dvec2(sample.pFilm) + d.offset * pixelsPerMetre_);
+  std::optional<CameraRay> cr = generateLensRay(moved, lambda, m);
+  if (cr) cr->weight *= d.weight;
+  return cr;
+}
+
+std::optional<CameraRay> PhysicalCamera::generateLensRay(const CameraSample& sample,
+                                                         const SampledWavelengths& lambda,
+                                                         const glm::dmat4& m) const {
+  if (lensCamera_) return generateTracedRay(sample, lambda, m);
   if (!idealPinhole_) return generateModelRay(sample, lambda, m);
   // Sensor point, upright image coordinates (m): x right, y up, origin at the centre.
   const glm::dvec2 ndc = glm::dvec2(sample.pFilm) / glm::dvec2(p_.resolution);

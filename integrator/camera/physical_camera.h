@@ -42,6 +42,12 @@
 //   forward off axis; that shift, a few mm, is neglected.
 // A film point outside the model's image (past its field limit or image circle) has no ray.
 //
+// Diffraction at the stop (aperture.diffraction, on by default; a pinhole has none): the
+// film point u is first moved by an offset δ drawn from the stop's PSF at one of the path's
+// wavelengths, u' = u + (δ_x / pitch_x, −δ_y / pitch_y), and the ray's weight is multiplied
+// by the MIS weights w_i(δ) — a convolution of the geometric image with the PSF per
+// wavelength, with N_w = z_i / D (Diffraction, diffraction.h, states the model).
+//
 // | parameter        | unit | default   | meaning |
 // |------------------|------|-----------|---------|
 // | sensor size      | m    | 36×24 mm  | |
@@ -51,6 +57,7 @@
 // | f-number N       | —    | 8         | D = f/N |
 // | focus distance   | m    | ∞         | z_o, measured from the lens |
 // | aperture         | —    | none      | none: pinhole; else circular or N blades (see Aperture) |
+// | diffraction      | —    | on        | with an aperture: the stop's Fraunhofer PSF (Diffraction) |
 // | pupil            | —    | aplanatic | aplanatic (sine condition) or flat: the weight above |
 // | lens transmittance | —  | 1         | T_lens(λ) |
 // | projection       | —    | opencv, no distortion | the camera model (projection.h): OpenCV's full distortion, the fisheye, omnidirectional and equirectangular models |
@@ -67,6 +74,7 @@
 
 #include "integrator/camera/aperture.h"
 #include "integrator/camera/camera.h"
+#include "integrator/camera/diffraction.h"
 #include "integrator/camera/lens_camera.h"
 #include "integrator/camera/projection.h"
 #include "integrator/camera/shutter.h"
@@ -143,6 +151,8 @@ class PhysicalCamera final : public Camera {
   double imageDistance() const { return imageDistance_; }  // z_i, m
   double pixelArea() const { return pixelArea_; }          // photosensitive area, m²
   double apertureArea() const { return apertureArea_; }    // m²
+  // The stop's diffraction, or null (a pinhole, or aperture.diffraction off).
+  const Diffraction* diffraction() const { return diffraction_ ? &*diffraction_ : nullptr; }
   glm::dmat4 worldFromCameraAt(double t) const;
   // OpenCV intrinsics (pixels): fx, fy, cx, cy (fixed when the camera is made).
   const glm::dvec4& intrinsics() const { return intrinsics_; }
@@ -171,6 +181,14 @@ class PhysicalCamera final : public Camera {
 
  private:
   std::optional<CameraRay> generatePinholeRay(const CameraSample& sample) const;
+  // The geometric camera's ray for the sample's film point (no diffraction).
+  std::optional<CameraRay> generateLensRay(const CameraSample& sample,
+                                           const SampledWavelengths& lambda,
+                                           const glm::dmat4& worldFromCamera) const;
+  // The film point moved by the PSF's offset, its ray weighted per wavelength.
+  std::optional<CameraRay> generateDiffractedRay(const CameraSample& sample,
+                                                 const SampledWavelengths& lambda,
+                                                 const glm::dmat4& worldFromCamera) const;
   std::optional<CameraRay> generateModelRay(const CameraSample& sample,
                                             const SampledWavelengths& lambda,
                                             const glm::dmat4& worldFromCamera) const;
@@ -179,14 +197,16 @@ class PhysicalCamera final : public Camera {
   // Through the traced lens (physical_camera_lens.cpp): builds lensCamera_ and sets the
   // thin-lens stand-in's focal length, f-number and stop shape from it.
   void initLens();
-  std::optional<CameraRay> generateLensRay(const CameraSample& sample,
-                                           const SampledWavelengths& lambda,
-                                           const glm::dmat4& worldFromCamera) const;
+  std::optional<CameraRay> generateTracedRay(const CameraSample& sample,
+                                             const SampledWavelengths& lambda,
+                                             const glm::dmat4& worldFromCamera) const;
   CameraRay cameraRay(const glm::dmat4& m, const glm::dvec3& origin, const glm::dvec3& direction,
                       double time, double scale, const SampledWavelengths& lambda) const;
 
   PhysicalCameraParams p_;
-  std::optional<Aperture> stop_;  // from p_.aperture and p_.apertureDiameter()
+  std::optional<Aperture> stop_;            // from p_.aperture and p_.apertureDiameter()
+  std::optional<Diffraction> diffraction_;  // with an aperture whose diffraction is on
+  glm::dvec2 pixelsPerMetre_{0.0};          // film offset (m, y up) → pixels (y down)
   double imageDistance_;
   double pixelArea_;
   double apertureArea_;

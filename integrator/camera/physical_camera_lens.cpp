@@ -19,9 +19,9 @@ void PhysicalCamera::initLens() {
   if (!p_.aperture) p_.aperture = ApertureShape{p_.lens->blades, p_.lens->rotation};
 }
 
-std::optional<CameraRay> PhysicalCamera::generateLensRay(const CameraSample& sample,
-                                                         const SampledWavelengths& lambda,
-                                                         const glm::dmat4& m) const {
+std::optional<CameraRay> PhysicalCamera::generateTracedRay(const CameraSample& sample,
+                                                           const SampledWavelengths& lambda,
+                                                           const glm::dmat4& m) const {
   // Sensor point, upright image coordinates (m): x right, y up, origin at the centre.
   const glm::dvec2 ndc = glm::dvec2(sample.pFilm) / glm::dvec2(p_.resolution);
   const glm::dvec2 s((ndc.x - 0.5) * p_.sensorSize.x, (0.5 - ndc.y) * p_.sensorSize.y);

@@ -177,7 +177,8 @@ JsonObject cameraJson(const PhysicalCameraParams& p, const glm::dvec3& renderOri
     j.set("aperture", JsonObject()
                           .setJson("blades", std::to_string(p.aperture->blades))
                           .setJson("rotation_deg", exact(glm::degrees(p.aperture->rotation)))
-                          .set("pupil", std::string(enumName(p.pupil))));
+                          .set("pupil", std::string(enumName(p.pupil)))
+                          .setJson("diffraction", p.aperture->diffraction ? "true" : "false"));
   if (!p.lens)  // the lens replaces the camera model (the loader refuses both)
     j.set(plainDistortion(p) ? "distortion" : "projection", projectionJson(p));
   j.set("shutter", shutterJson(p.shutter));
@@ -196,6 +197,7 @@ JsonObject cameraJson(const PhysicalCameraParams& p, const glm::dvec3& renderOri
            p.aperture
                ? (p.aperture->blades ? std::to_string(p.aperture->blades) + " blades" : "circular")
                : "pinhole")
+      .set("working_f_number", camera.imageDistance() / p.apertureDiameter())
       .set("shutter_open_s", p.shutter.open())
       .set("shutter_close_s", p.shutter.close())
       .set("exposure_time_s", p.shutter.effectiveTime())

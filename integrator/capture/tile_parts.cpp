@@ -175,7 +175,8 @@ std::string modelledDimsText(const ModelledDimensions& m) {
          " camera_moves=" + std::to_string(int(m.cameraMoves)) +
          " rolling_shutter=" + std::to_string(int(m.rollingShutter)) +
          " wavelengths=" + std::to_string(m.wavelengths) +
-         " time_steps=" + std::to_string(m.timeSteps);
+         " time_steps=" + std::to_string(m.timeSteps) +
+         " diffraction=" + std::to_string(int(m.diffraction));
 }
 
 std::optional<ModelledDimensions> parseModelledDims(const std::string& text) {
@@ -205,11 +206,13 @@ std::optional<ModelledDimensions> parseModelledDims(const std::string& text) {
       m.wavelengths = *v;
     else if (key == "time_steps")
       m.timeSteps = *v;
+    else if (key == "diffraction")
+      m.diffraction = *v != 0;
     else
       return std::nullopt;
     ++fields;
   }
-  if (fields != 8) return std::nullopt;
+  if (fields != 9) return std::nullopt;
   return m;
 }
 

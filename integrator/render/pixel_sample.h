@@ -1,7 +1,8 @@
 // The camera sample of one pixel sample, drawn in the fixed dimension slots of sampler.h:
-// wavelengths → film position, uniform over the photosensitive area (centred in the pixel,
-// sides scaled by √fill) → lens position (only if the camera has an aperture) → time from
-// the shutter curve, offset by the row for a rolling shutter (only if something moves).
+// diffraction's offset and wavelength choice (only if the stop diffracts) → wavelengths →
+// film position, uniform over the photosensitive area (centred in the pixel, sides scaled by
+// √fill) → lens position (only if the camera has an aperture) → time from the shutter
+// curve, offset by the row for a rolling shutter (only if something moves).
 // The sampler is left at kDimPath for the path. One function for the render loop
 // (render.cpp) and the guide's training (path_guide.cpp), so both draw the same numbers.
 #pragma once
@@ -32,8 +33,14 @@ PixelSample drawPixelSample(SamplerT& sampler, const PhysicalCamera& camera,
                             const ModelledDimensions& dims, glm::ivec2 pixel, int sampleIndex,
                             float side) {
   sampler.startPixelSample(pixel, sampleIndex);
+  CameraSample diffraction;
+  if (dims.diffraction) {  // first: the Sobol' sampler's block from −2 then holds 0 … 13 too
+    sampler.setDimension(kDimDiffraction);
+    diffraction.pDiffraction = sampler.get2D();
+    diffraction.uDiffractionWavelength = sampler.get1D();
+  }
   sampler.setDimension(kDimWavelength);
-  PixelSample ps{SampledWavelengths::sampleVisible(sampler.get1D()), CameraSample{}};
+  PixelSample ps{SampledWavelengths::sampleVisible(sampler.get1D()), diffraction};
   CameraSample& cs = ps.camera;
   sampler.setDimension(kDimPixel);
   cs.pFilm = glm::vec2(pixel) + 0.5f + (sampler.get2D() - 0.5f) * side;

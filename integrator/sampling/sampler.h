@@ -15,8 +15,12 @@
 
 namespace camsim {
 
-// Fixed dimension slots of a camera sample; path tracing uses kPath onwards.
+// Fixed dimension slots of a camera sample; path tracing uses kPath onwards. Diffraction's
+// two slots lie below 0, apart from all the others: a render with it on draws every other
+// number as one without it does.
 enum SampleDimension : int {
+  kDimDiffraction = -2,            // 2D: the offset from the stop's PSF
+  kDimDiffractionWavelength = -1,  // 1D: whose wavelength's PSF
   kDimWavelength = 0,
   kDimPixel = 1,  // 2D
   kDimLens = 2,   // 2D

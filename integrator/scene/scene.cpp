@@ -17,8 +17,8 @@ namespace camsim {
 std::string ModelledDimensions::describe() const {
   std::string out;
   if (aperture)
-    out +=
-        blades > 0 ? "aperture (" + std::to_string(blades) + " blades), " : "aperture (circular), ";
+    out += "aperture (" + (blades > 0 ? std::to_string(blades) + " blades" : "circular") +
+           (diffraction ? ", diffraction), " : "), ");
   else
     out += "pinhole, ";
   if (time) {
@@ -99,6 +99,7 @@ void Scene::analyseExposure() {
   exposureEnd_ = w.y;
   modelled_.aperture = camera_->hasAperture();
   modelled_.blades = camera_->params().aperture ? camera_->params().aperture->blades : 0;
+  modelled_.diffraction = camera_->diffraction() != nullptr;
   modelled_.cameraMoves = camera_->moves(exposureStart_, exposureEnd_);
   modelled_.movingObjects = 0;
   for (const RigidMotion& m : motions_)

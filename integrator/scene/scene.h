@@ -22,16 +22,18 @@ namespace camsim {
 
 // What the renderer integrates over, beyond pixel area: only what can change the image.
 struct ModelledDimensions {
-  bool aperture = false;  // lens positions (thin lens); false: pinhole
-  int blades = 0;         // 0: circular stop
-  bool time = false;      // shutter time: something moves during the exposure
+  bool aperture = false;     // lens positions (thin lens); false: pinhole
+  int blades = 0;            // 0: circular stop
+  bool diffraction = false;  // the stop's PSF (aperture.diffraction): film-point jitter
+  bool time = false;         // shutter time: something moves during the exposure
   int movingObjects = 0;
   bool cameraMoves = false;
   bool rollingShutter = false;
   int wavelengths = kWavelengthSamples;
   int timeSteps = 1;  // Embree motion time steps (largest over shapes)
 
-  // e.g. "aperture (6 blades), time (2 moving objects, rolling shutter), 4 wavelengths"
+  // e.g. "aperture (6 blades, diffraction), time (2 moving objects, rolling shutter), 4
+  // wavelengths"
   std::string describe() const;
 };
 

@@ -286,8 +286,10 @@ PhysicalCameraParams parseCamera(YamlMap map, const TableSearch& search) {
     }
     if (auto r = am.find("rotation_deg")) rotation = glm::radians(r->number(-360.0, 360.0));
     if (auto pu = am.find("pupil")) c.pupil = pu->choice<LensPupil>("pupil");
-    am.finish({"blades", "rotation_deg", "pupil"});
-    c.aperture = ApertureShape{blades, rotation};
+    ApertureShape shape{blades, rotation};
+    if (auto d = am.find("diffraction")) shape.diffraction = d->boolean();
+    am.finish({"blades", "rotation_deg", "pupil", "diffraction"});
+    c.aperture = shape;
   }
   if (auto t = map.find("lens_transmittance"))
     c.lensTransmittance = parseSpectrum(*t, SpectrumUse::kReflectance, search);

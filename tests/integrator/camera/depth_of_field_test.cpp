@@ -14,7 +14,8 @@
 //
 // The lit area is measured independently of any shape model as total energy / plateau
 // level (the plateau is the mean of the pixels well inside the spot: convolution keeps the
-// integral and, inside, the level).
+// integral and, inside, the level). These are geometric optics: diffraction is off (its
+// PSF, whose second moment grows with the table's extent, is tested in diffraction_test.cpp).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -64,7 +65,7 @@ Image renderSpot(double s, double sf, int blades, double rotationDeg, double emi
       ", f_number: " + num(fNumber) + ",\n  focus_distance_m: " + num(sf) +
       ", aperture: {blades: " + std::to_string(blades) + ", rotation_deg: " + num(rotationDeg) +
       ", pupil: " + pupil +
-      "}}\n"
+      ", diffraction: false}}\n"
       "render: {max_depth: 0}\n"
       "shapes:\n"
       "  - {type: sphere, centre: [0, 0, " +

@@ -16,6 +16,7 @@
 #include "integrator/scene/scene.h"
 #include "integrator/scene/scene_loader.h"
 #include "sensor/base/input_error.h"
+#include "tests/integrator/lens_test_support.h"
 
 namespace camsim {
 namespace lens_camera_test {
@@ -28,8 +29,7 @@ const char* const kSinglet =
 
 LensSpec specFile(const std::string& name, double fNumber) {
   LensSpec spec;
-  spec.prescription =
-      readLensPrescription(std::filesystem::path(CAMSIM_SOURCE_DIR) / "luts" / "lenses" / name);
+  spec.prescription = readLensPrescription(test::lensPath(name));
   spec.fNumber = fNumber;
   return spec;
 }
@@ -62,12 +62,13 @@ TEST(LensCamera, ThinSingletGivesTheThinLensOnAxisExposureAtF11) {
   spec.fNumber = 11.0;
   PhysicalCameraParams lensParams = baseParams();
   lensParams.lens = spec;
+  lensParams.aperture = ApertureShape{0, 0.0, false};  // geometric optics: no diffraction
   const PhysicalCamera lensCamera(lensParams);
   // The thin lens at the same focal length (the singlet's EFL) and f-number, aplanatic.
   PhysicalCameraParams thinParams = baseParams();
   thinParams.focalLength = lensCamera.lensCamera()->paraxial().effectiveFocalLength;
   thinParams.fNumber = 11.0;
-  thinParams.aperture = ApertureShape{};
+  thinParams.aperture = ApertureShape{0, 0.0, false};
   const PhysicalCamera thin(thinParams);
   const double traced = meanCentreWeight(lensCamera, 256);
   const double expected = meanCentreWeight(thin, 4);  // the same for every lens point

@@ -9,13 +9,10 @@
 #include "integrator/camera/lens_file.h"
 #include "sensor/base/input_error.h"
 #include "sensor/base/luts_directory.h"
+#include "tests/integrator/lens_test_support.h"
 
 namespace camsim {
 namespace lens_file_test {
-
-std::filesystem::path lensFile(const std::string& name) {
-  return std::filesystem::path(CAMSIM_SOURCE_DIR) / "luts" / "lenses" / name;
-}
 
 TEST(LensFile, ReadsPbrtFilesInMetres) {
   struct Case {
@@ -27,7 +24,7 @@ TEST(LensFile, ReadsPbrtFilesInMetres) {
   for (const Case& c : {Case{"dgauss.50mm.dat", 11, 5, 29.475, 17.1},
                         Case{"fisheye.10mm.dat", 12, 6, 30.2249, 6.08},
                         Case{"telephoto.250mm.dat", 7, 3, 54.6275, 40.5}}) {
-    const LensPrescription lens = readLensPrescription(lensFile(c.file));
+    const LensPrescription lens = readLensPrescription(test::lensPath(c.file));
     ASSERT_EQ(lens.surfaces.size(), c.surfaces) << c.file;
     EXPECT_EQ(lens.stopIndex, c.stop) << c.file;
     EXPECT_DOUBLE_EQ(lens.surfaces[0].radius, c.firstRadiusMm * 1e-3) << c.file;
@@ -42,7 +39,7 @@ TEST(LensFile, ReadsPbrtFilesInMetres) {
     }
     EXPECT_EQ(lens.surfaces.back().medium.nd(), 1.0);
   }
-  const LensPrescription dgauss = readLensPrescription(lensFile("dgauss.50mm.dat"));
+  const LensPrescription dgauss = readLensPrescription(test::lensPath("dgauss.50mm.dat"));
   EXPECT_DOUBLE_EQ(dgauss.surfaces[3].thickness, 3.275e-3);
   EXPECT_DOUBLE_EQ(dgauss.surfaces[3].medium.nd(), 1.699);
   EXPECT_EQ(dgauss.surfaces[3].line, 9);  // after five comment lines

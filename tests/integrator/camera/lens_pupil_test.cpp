@@ -10,14 +10,10 @@
 
 #include "integrator/camera/lens_pupil.h"
 #include "integrator/sampling/rng.h"
+#include "tests/integrator/lens_test_support.h"
 
 namespace camsim {
 namespace lens_pupil_test {
-
-LensSystem lensFile(const std::string& name) {
-  return LensSystem::forCamera(
-      readLensPrescription(std::filesystem::path(CAMSIM_SOURCE_DIR) / "luts" / "lenses" / name));
-}
 
 const glm::dvec2 kSensor(0.036, 0.024);  // m
 const double kFilmRadius = 0.5 * std::hypot(0.036, 0.024);
@@ -34,7 +30,7 @@ bool passes(const LensSystem& lens, double s, glm::dvec2 film, glm::dvec2 rear) 
 
 TEST(LensPupil, EveryPassingRayIsInsideItsBound) {
   for (const char* file : {"dgauss.50mm.dat", "fisheye.10mm.dat", "telephoto.250mm.dat"}) {
-    const LensSystem lens = lensFile(file);
+    const LensSystem lens = test::cameraLens(file);
     const double s = lens.focusSensorDistance();
     const ExitPupilBounds bounds(lens, s, kFilmRadius);
     // Film points uniform over the film disc, rear points over a square twice the rear
@@ -61,7 +57,7 @@ TEST(LensPupil, SampledDensityGivesThePassingArea) {
   // The rear-plane area whose rays pass, for three film points of the double-Gauss,
   // estimated three ways: bound area × passing fraction of sample(); the same with points
   // uniform in the bound's box; points uniform in a square around the rear element.
-  const LensSystem lens = lensFile("dgauss.50mm.dat");
+  const LensSystem lens = test::cameraLens("dgauss.50mm.dat");
   const double s = lens.focusSensorDistance();
   const ExitPupilBounds bounds(lens, s, kFilmRadius);
   constexpr int n = 200000;
@@ -106,7 +102,7 @@ TEST(LensPupil, FewSampledRaysAreLost) {
   };
   for (const Case& c : {Case{"dgauss.50mm.dat", 0.12}, Case{"fisheye.10mm.dat", 0.16},
                         Case{"telephoto.250mm.dat", 0.11}}) {
-    const LensSystem lens = lensFile(c.file);
+    const LensSystem lens = test::cameraLens(c.file);
     const ExitPupilBounds bounds(lens, lens.focusSensorDistance(), kFilmRadius);
     const PupilLoss loss = measurePupilLoss(lens, bounds, kSensor, 100000);
     std::printf(

@@ -10,22 +10,14 @@
 
 #include "integrator/camera/lens_system.h"
 #include "sensor/base/input_error.h"
+#include "tests/integrator/lens_test_support.h"
 
 namespace camsim {
 namespace lens_system_test {
 
-LensSystem lensFromText(const std::string& text) {
-  return LensSystem(parseLensPrescription(text, "test.dat"));
-}
-
-LensSystem lensFile(const std::string& name) {
-  return LensSystem::forCamera(
-      readLensPrescription(std::filesystem::path(CAMSIM_SOURCE_DIR) / "luts" / "lenses" / name));
-}
-
 TEST(LensSystem, SingletMatchesTheThickLensFormulas) {
   // R1 = 50 mm, R2 = −80 mm, t = 6 mm, n = 1.6, the stop 5 mm behind.
-  const LensSystem lens = lensFromText("50 6 1.6 30\n-80 5 1 30\n0 0 0 20\n");
+  const LensSystem lens = test::lensFromText("50 6 1.6 30\n-80 5 1 30\n0 0 0 20\n");
   const ParaxialData p = lens.paraxial();
   const double n = 1.6, r1 = 0.050, r2 = -0.080, t = 0.006;
   const double f = 1.0 / ((n - 1.0) * (1.0 / r1 - 1.0 / r2 + (n - 1.0) * t / (n * r1 * r2)));
@@ -42,7 +34,7 @@ TEST(LensSystem, SingletMatchesTheThickLensFormulas) {
 
 TEST(LensSystem, CementedDoubletMatchesGullstrand) {
   // An achromat: R = 61.47, −44.64, −129.94 mm; 6 mm of n 1.5168, 2.5 mm of n 1.6727.
-  const LensSystem lens = lensFromText(
+  const LensSystem lens = test::lensFromText(
       "0 1 0 25\n61.47 6 1.5168 30\n-44.64 2.5 1.6727 30\n"
       "-129.94 0 1 30\n");
   const double n1 = 1.5168, n2 = 1.6727, t1 = 0.006, t2 = 0.0025;
@@ -64,7 +56,7 @@ TEST(LensSystem, PublishedLensesHaveTheirFocalLengths) {
   };
   for (const Case& c : {Case{"dgauss.50mm.dat", 0.050}, Case{"fisheye.10mm.dat", 0.010},
                         Case{"telephoto.250mm.dat", 0.250}}) {
-    const LensSystem lens = lensFile(c.file);
+    const LensSystem lens = test::cameraLens(c.file);
     const ParaxialData p = lens.paraxial();
     const std::optional<double> traced = lens.tracedFocalLength(1e-6);
     ASSERT_TRUE(traced) << c.file;
@@ -79,7 +71,7 @@ TEST(LensSystem, PublishedLensesHaveTheirFocalLengths) {
 
 TEST(LensSystem, Bk7SingletLongitudinalColourMatchesTheThinLens) {
   // A plano-convex BK7 lens, f = 100 mm at d, 2.5 mm thick; the stop in front.
-  const LensSystem lens = lensFromText("0 1 0 20\n51.68 2.5 1.5168 20 glass=BK7\n0 0 1 20\n");
+  const LensSystem lens = test::lensFromText("0 1 0 20\n51.68 2.5 1.5168 20 glass=BK7\n0 0 1 20\n");
   const Glass& bk7 = lens.prescription().surfaces[1].medium;
   const double f = lens.paraxial().effectiveFocalLength;
   const double expected =
@@ -100,7 +92,7 @@ TEST(LensSystem, Bk7SingletLongitudinalColourMatchesTheThinLens) {
 }
 
 TEST(LensSystem, FocusObeysNewtonsEquationAndBreathes) {
-  const LensSystem lens = lensFile("dgauss.50mm.dat");
+  const LensSystem lens = test::cameraLens("dgauss.50mm.dat");
   const ParaxialData inf = lens.paraxial();
   EXPECT_DOUBLE_EQ(lens.focusSensorDistance(), inf.backFocalLength);
   for (const double d : {0.5, 1.0, 3.0}) {
@@ -126,12 +118,12 @@ TEST(LensSystem, FocusObeysNewtonsEquationAndBreathes) {
 }
 
 TEST(LensSystem, StopForFNumberAndPupils) {
-  LensSystem lens = lensFile("dgauss.50mm.dat");
+  LensSystem lens = test::cameraLens("dgauss.50mm.dat");
   EXPECT_NEAR(lens.minFNumber(), lens.paraxial().fNumber, 1e-12);
   lens.setStop(lens.stopDiameterForFNumber(4.0));
   EXPECT_NEAR(lens.paraxial().fNumber, 4.0, 1e-12);
   // A front stop is its own entrance pupil.
-  const LensSystem front = lensFromText("0 10 0 8\n60 4 1.5 30\n-60 0 1 30\n");
+  const LensSystem front = test::lensFromText("0 10 0 8\n60 4 1.5 30\n-60 0 1 30\n");
   const ParaxialData p = front.paraxial();
   EXPECT_NEAR(p.entrancePupilZ, front.frontVertexZ(), 1e-15);
   EXPECT_NEAR(p.entrancePupilDiameter, 0.008, 1e-15);
@@ -150,7 +142,7 @@ TEST(LensSystem, ForCameraRejectsWhatCannotImage) {
 }
 
 TEST(LensSystem, ParaxialFieldsAreNamedOnceAndFinite) {
-  const LensSystem lens = lensFile("telephoto.250mm.dat");
+  const LensSystem lens = test::cameraLens("telephoto.250mm.dat");
   std::set<std::string> names;
   for (const ParaxialField& field : paraxialFields(lens.paraxial(kLambdaDNm, 5.0))) {
     EXPECT_TRUE(names.insert(field.name).second) << field.name;

@@ -9,23 +9,15 @@
 #include <glm/geometric.hpp>
 
 #include "integrator/camera/lens_system.h"
+#include "tests/integrator/lens_test_support.h"
 
 namespace camsim {
 namespace lens_trace_test {
 
-LensSystem lensFromText(const std::string& text) {
-  return LensSystem(parseLensPrescription(text, "test.dat"));
-}
-
-LensSystem lensFile(const std::string& name) {
-  return LensSystem::forCamera(
-      readLensPrescription(std::filesystem::path(CAMSIM_SOURCE_DIR) / "luts" / "lenses" / name));
-}
-
 TEST(LensTrace, PlaneParallelPlateDisplacesAsSnellSays) {
   // 10 mm of n = 1.5 between two planes: a ray leaves parallel to itself, displaced
   // sideways by t sin θ (1 − cos θ / √(n² − sin² θ)).
-  const LensSystem plate = lensFromText("0 1 0 80\n0 10 1.5 80\n0 0 1 80\n");
+  const LensSystem plate = test::lensFromText("0 1 0 80\n0 10 1.5 80\n0 0 1 80\n");
   const double t = 0.010, n = 1.5;
   for (const double theta : {0.0, 0.1, 0.3, 0.6, 1.0}) {
     const glm::dvec3 d(std::sin(theta), 0.0, std::cos(theta));
@@ -51,7 +43,7 @@ TEST(LensTrace, ConicSurfaceFocusesWithoutAberration) {
   // n = 1.5, R = 20 mm: k = −4/9, the focus 60 mm behind the vertex.
   char text[200];
   std::snprintf(text, sizeof text, "0 1 0 24\n20 60 1.5 24 conic=%.17g\n0 0 1 24\n", -4.0 / 9.0);
-  const LensSystem lens = lensFromText(text);
+  const LensSystem lens = test::lensFromText(text);
   ASSERT_TRUE(lens.shape(1).aspheric);
   for (double h = 0.0005; h < 0.012; h += 0.0005) {
     const std::optional<LensRay> out =
@@ -65,7 +57,7 @@ TEST(LensTrace, TotalInternalReflectionLosesTheRay) {
   // From the film, rays parallel to the axis enter a flat rear face and meet a sphere of
   // R = 10 mm from inside the glass (n = 1.5) at sin i = h/R: totally reflected beyond
   // h = R/n = 6.667 mm.
-  const LensSystem lens = lensFromText("0 1 0 40\n10 20 1.5 19\n0 0 1 19\n");
+  const LensSystem lens = test::lensFromText("0 1 0 40\n10 20 1.5 19\n0 0 1 19\n");
   const auto passes = [&](double h) {
     return lens.traceFromFilm({{h, 0.0, -0.01}, {0.0, 0.0, 1.0}}, 550.0).has_value();
   };
@@ -77,7 +69,7 @@ TEST(LensTrace, TotalInternalReflectionLosesTheRay) {
 
 TEST(LensTrace, RayTracedOutAndBackReturnsToItsFilmPoint) {
   for (const char* file : {"dgauss.50mm.dat", "fisheye.10mm.dat", "telephoto.250mm.dat"}) {
-    const LensSystem lens = lensFile(file);
+    const LensSystem lens = test::cameraLens(file);
     const double s = lens.focusSensorDistance();
     int traced = 0;
     for (double h = 0.0; h <= 0.012; h += 0.002)
@@ -102,7 +94,8 @@ TEST(LensTrace, RayTracedOutAndBackReturnsToItsFilmPoint) {
 
 TEST(LensTrace, RealRaysFindTheParaxialPupils) {
   // Two singlets with the stop between them, stopped down so that rays stay paraxial.
-  LensSystem lens = lensFromText("100 3 1.5 30\n-100 20 1 30\n0 15 0 4\n80 3 1.5 30\n-80 0 1 30\n");
+  LensSystem lens =
+      test::lensFromText("100 3 1.5 30\n-100 20 1 30\n0 15 0 4\n80 3 1.5 30\n-80 0 1 30\n");
   lens.setStop(0.002);
   const ParaxialData p = lens.paraxial();
   const auto parallelPasses = [&](double h) {
@@ -127,7 +120,7 @@ TEST(LensTrace, RealRaysFindTheParaxialPupils) {
 }
 
 TEST(LensTrace, BladedStopCutsItsPolygon) {
-  LensSystem lens = lensFromText("0 1 0 20\n50 3 1.5 30\n-50 0 1 30\n");
+  LensSystem lens = test::lensFromText("0 1 0 20\n50 3 1.5 30\n-50 0 1 30\n");
   lens.setStop(0.010, 6, 0.2);
   const double r = lens.stop().circumradius();
   const double apothem = r * std::cos(M_PI / 6.0);
@@ -142,7 +135,7 @@ TEST(LensTrace, BladedStopCutsItsPolygon) {
 
 TEST(LensTrace, ChiefRayAnglesGrowWithFieldAndStartParaxial) {
   for (const char* file : {"dgauss.50mm.dat", "fisheye.10mm.dat", "telephoto.250mm.dat"}) {
-    const LensSystem lens = lensFile(file);
+    const LensSystem lens = test::cameraLens(file);
     const double s = lens.focusSensorDistance(), f = lens.paraxial().effectiveFocalLength;
     const std::optional<double> small = lens.chiefRayAngle(1e-6, s);
     ASSERT_TRUE(small) << file;

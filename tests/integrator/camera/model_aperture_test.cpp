@@ -6,6 +6,7 @@
 // D/2 facing the chief ray for the others. The weight does not depend on the lens point.
 // Checked for film points across each model's image, including > 90° off axis, against
 // the geometry stated here (the ray misses the point of focus by < 1e-6 z_o: its float direction; weights to 1e-6), not the library's own functions.
+// Diffraction is off: it would move the film point (diffraction_test.cpp tests it).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -25,7 +26,7 @@ PhysicalCamera cameraWith(const std::string& projection) {
   const std::string yaml =
       "camera: {position: [0, 0, 0], look_at: [0, 0, 1], resolution: [64, 64], "
       "sensor_width_mm: 3.2, sensor_height_mm: 3.2, focal_length_mm: 1, f_number: 2, "
-      "focus_distance_m: 0.8, aperture: {blades: 0}, projection: " +
+      "focus_distance_m: 0.8, aperture: {blades: 0, diffraction: false}, projection: " +
       projection +
       "}\nshapes: [{type: sphere, centre: [0, 0, 5], radius: 1, emission: {luminance: 1}}]\n";
   return PhysicalCamera(loadSceneFromText(yaml, "aperture.yaml", ".").camera);

@@ -69,6 +69,7 @@ double diskProjectedSolidAngle(double x, double D, double zi) {
 // meters: on axis E = π L T / (4 N_w²), N_w = N (1 + m). Its weight does not depend on the
 // lens point, so a uniform field has no lens noise: the only error is float rounding and the
 // cos⁴ of the 20 µm pixel (< 1e-7). Tolerance 0.1 %, for a circular and a bladed stop.
+// Diffraction off: its per-wavelength weights would add noise (the next test has it on).
 TEST(CameraEquation, AplanaticOnAxisIrradianceIsTheCameraEquation) {
   struct Case {
     double N;
@@ -82,7 +83,8 @@ TEST(CameraEquation, AplanaticOnAxisIrradianceIsTheCameraEquation) {
         "focal_length_mm: 50, f_number: " +
         std::to_string(c.N) +
         (c.focus > 0 ? ", focus_distance_m: " + std::to_string(c.focus) : "") +
-        ", aperture: {blades: " + std::to_string(c.blades) + "}, shutter: {open: 0, close: 0.01}";
+        ", aperture: {blades: " + std::to_string(c.blades) +
+        ", diffraction: false}, shutter: {open: 0, close: 0.01}";
     const RenderResult r = renderScene(uniformField(extra), 64);
     const double f = 0.05;
     const double zi = c.focus > 0 ? f * c.focus / (c.focus - f) : f;
@@ -93,6 +95,26 @@ TEST(CameraEquation, AplanaticOnAxisIrradianceIsTheCameraEquation) {
     std::printf("[measured] aplanatic N %.1f focus %.2f blades %d: E / (pi L / 4 Nw^2) = %.6f\n",
                 c.N, c.focus, c.blades, ratio);
     EXPECT_NEAR(ratio, 1.0, 1e-3) << "N " << c.N << " focus " << c.focus;
+  }
+}
+
+// Diffraction moves light, it does not remove it: with it on (the default) the same on-axis
+// pixel in the same uniform field measures the camera equation within the noise of the
+// per-wavelength MIS weights (16384 spp; tolerance 0.5 %), for a circular and a bladed stop.
+TEST(CameraEquation, DiffractionKeepsTheOnAxisIrradiance) {
+  for (const int blades : {0, 6}) {
+    const std::string extra =
+        "sensor_width_mm: 0.02, sensor_height_mm: 0.02, resolution: [1, 1], "
+        "focal_length_mm: 50, f_number: 2.8, aperture: {blades: " +
+        std::to_string(blades) + "}, shutter: {open: 0, close: 0.01}";
+    const RenderResult r = renderScene(uniformField(extra), 16384);
+    EXPECT_TRUE(r.stats.modelled.diffraction);
+    const double Nw = 2.8;
+    const double expected =
+        M_PI * emitterLuminance() / (4.0 * Nw * Nw) * (0.02e-3 * 0.02e-3) * 0.01;
+    const double ratio = static_cast<double>(r.image.at(0, 0, 1)) / expected;
+    std::printf("[measured] diffraction, %d blades: E / (pi L / 4 Nw^2) = %.6f\n", blades, ratio);
+    EXPECT_NEAR(ratio, 1.0, 5e-3) << blades << " blades";
   }
 }
 
@@ -155,12 +177,12 @@ TEST(CameraEquation, FlatPupilOffAxisFollowsApertureSolidAngleAndCos4AtF16) {
 
 // Off axis the aplanatic lens keeps the chief ray's cos⁴θ (natural vignetting), whatever
 // the aperture: E = π L / (4 N²) · cos⁴θ, averaged across each 0.5 mm pixel. No lens
-// noise (the weight is the same for every lens point): tolerance 0.1 %.
+// noise (the weight is the same for every lens point; diffraction off): tolerance 0.1 %.
 TEST(CameraEquation, AplanaticOffAxisIsCos4OfTheChiefRay) {
   const double f = 0.025, N = 2.0, pitch = 0.5e-3, area = pitch * 0.02e-3;
   const RenderResult r = renderScene(
       uniformField("sensor_width_mm: 20.5, sensor_height_mm: 0.02, resolution: [41, 1], "
-                   "focal_length_mm: 25, f_number: 2, aperture: {blades: 0}, "
+                   "focal_length_mm: 25, f_number: 2, aperture: {blades: 0, diffraction: false}, "
                    "shutter: {open: 0, close: 0.01}"),
       256);
   for (int px : {20, 30, 35, 40}) {
@@ -285,8 +307,9 @@ TEST(ModelledDimensions, DescribesApertureTimeAndRollingShutter) {
   EXPECT_TRUE(r.stats.modelled.time);
   EXPECT_EQ(r.stats.modelled.movingObjects, 1);
   EXPECT_TRUE(r.stats.modelled.rollingShutter);
-  EXPECT_EQ(r.stats.modelled.describe().substr(0, 58),
-            "aperture (6 blades), time (1 moving object, rolling shutte");
+  EXPECT_TRUE(r.stats.modelled.diffraction);  // aperture.diffraction's default
+  EXPECT_EQ(r.stats.modelled.describe().substr(0, 71),
+            "aperture (6 blades, diffraction), time (1 moving object, rolling shutte");
 }
 
 // The static distortion-free pinhole generates rays in float from constants (the fast

@@ -20,6 +20,7 @@ TEST(TileParts, ModelledDimensionsRoundTrip) {
   ModelledDimensions m;
   m.aperture = true;
   m.blades = 6;
+  m.diffraction = true;
   m.time = true;
   m.movingObjects = 2;
   m.cameraMoves = true;
@@ -31,11 +32,15 @@ TEST(TileParts, ModelledDimensionsRoundTrip) {
   EXPECT_EQ(back->describe(), m.describe());
   EXPECT_EQ(modelledDimsText(*back), modelledDimsText(m));
   EXPECT_EQ(modelledDimsText(*parseModelledDims(modelledDimsText({}))), modelledDimsText({}));
-  for (const char* bad : {"", "aperture=1",
-                          "aperture=x blades=0 time=0 moving_objects=0 "
-                          "camera_moves=0 rolling_shutter=0 wavelengths=4 time_steps=1",
-                          "colour=1 blades=0 time=0 moving_objects=0 camera_moves=0 "
-                          "rolling_shutter=0 wavelengths=4 time_steps=1"})
+  for (const char* bad :
+       {"", "aperture=1",
+        "aperture=x blades=0 time=0 moving_objects=0 "
+        "camera_moves=0 rolling_shutter=0 wavelengths=4 time_steps=1 diffraction=0",
+        "colour=1 blades=0 time=0 moving_objects=0 camera_moves=0 "
+        "rolling_shutter=0 wavelengths=4 time_steps=1 diffraction=0",
+        // a part of a build before diffraction: its 8 fields
+        "aperture=1 blades=0 time=0 moving_objects=0 "
+        "camera_moves=0 rolling_shutter=0 wavelengths=4 time_steps=1"})
     EXPECT_FALSE(parseModelledDims(bad).has_value()) << bad;
 }
 

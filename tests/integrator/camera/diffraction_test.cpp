@@ -1,0 +1,138 @@
+// Diffraction: the jitter's optical transfer function against the diffraction-limited MTF of
+// a circular pupil, the MIS weights' mean per wavelength, the PSF's scaling with λN_w, and
+// the turned stop's spikes in camera axes.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+#include <glm/geometric.hpp>
+
+#include "integrator/camera/diffraction.h"
+#include "integrator/sampling/rng.h"
+
+namespace camsim {
+namespace diffraction_test {
+
+// MTF of an aberration-free circular pupil at ν = f·λ·N (ν ≥ 1: 0).
+double circularMtf(double nu) {
+  if (nu >= 1.0) return 0.0;
+  return 2.0 / M_PI * (std::acos(nu) - nu * std::sqrt(1.0 - nu * nu));
+}
+
+// The wavelengths λ₀ = lambda0 and its rotations over [360, 830] nm.
+SampledWavelengths wavelengthsFrom(double lambda0) {
+  return SampledWavelengths::sampleUniform(static_cast<float>((lambda0 - 360.0) / 470.0));
+}
+
+// The OTF of wavelength i is E[w_i cos(2π f·δ)] (the MIS estimator of ∫ PSF_λi(δ) cos(2π f·δ)):
+// at f/8 and 550 nm (λ₀), along x and along a diagonal, it is the circular pupil's MTF within
+// 0.02 at ν = 0 … 1 in steps of 0.05 (n = 2^18 samples; the estimate's σ ≤ 0.003). The other
+// wavelengths of the path, each with its own ν, meet the same bound.
+TEST(Diffraction, OtfOfTheCircularStopIsTheDiffractionLimitedMtf) {
+  constexpr double kN = 8.0;
+  const Diffraction diffraction(ApertureShape{0, 0.0}, kN);
+  const SampledWavelengths lambda = wavelengthsFrom(550.0);
+  ASSERT_NEAR(lambda[0], 550.0, 1e-3);
+  constexpr int n = 1 << 18;
+  std::vector<DiffractionSample> samples(n);
+  Pcg32 rng(5, 8);
+  for (DiffractionSample& s : samples)
+    s = diffraction.sample({rng.uniform(), rng.uniform()}, rng.uniform(), lambda);
+  for (int i = 0; i < kWavelengthSamples; ++i) {
+    const double lambdaM = static_cast<double>(lambda[i]) * 1e-9;
+    double worst = 0.0;
+    for (int step = 0; step <= 20; ++step) {
+      const double nu = 0.05 * step, f = nu / (lambdaM * kN);  // cycles per m
+      for (const glm::dvec2 dir : {glm::dvec2(1.0, 0.0), glm::dvec2(M_SQRT1_2, M_SQRT1_2)}) {
+        double sum = 0.0;
+        for (const DiffractionSample& s : samples)
+          sum +=
+              static_cast<double>(s.weight[i]) * std::cos(2.0 * M_PI * f * glm::dot(dir, s.offset));
+        const double otf = sum / n;
+        EXPECT_NEAR(otf, circularMtf(nu), 0.02) << "λ = " << lambda[i] << " nm, ν = " << nu;
+        worst = std::max(worst, std::abs(otf - circularMtf(nu)));
+      }
+    }
+    RecordProperty("worst_mtf_error_" + std::to_string(i), std::to_string(worst));
+  }
+}
+
+// One-sample MIS: the weights of each wavelength average to 1 (unbiased), lie in [0, n], for
+// a circular and a bladed stop, wavelengths spread over 360–830 nm (n = 2^18 samples:
+// measured within 0.0021 of 1; tolerance 0.005).
+TEST(Diffraction, MisWeightsAverageToOnePerWavelength) {
+  for (const ApertureShape stop : {ApertureShape{0, 0.0}, ApertureShape{6, 0.3}}) {
+    const Diffraction diffraction(stop, 2.8);
+    for (double lambda0 : {380.0, 550.0, 700.0}) {
+      const SampledWavelengths lambda = wavelengthsFrom(lambda0);
+      constexpr int n = 1 << 18;
+      Pcg32 rng(11, static_cast<std::uint64_t>(stop.blades));
+      std::vector<double> sum(kWavelengthSamples, 0.0);
+      for (int k = 0; k < n; ++k) {
+        const DiffractionSample s =
+            diffraction.sample({rng.uniform(), rng.uniform()}, rng.uniform(), lambda);
+        for (int i = 0; i < kWavelengthSamples; ++i) {
+          ASSERT_GE(s.weight[i], 0.0f);
+          ASSERT_LE(s.weight[i], kWavelengthSamples * (1.0f + 1e-6f));
+          sum[static_cast<size_t>(i)] += static_cast<double>(s.weight[i]);
+        }
+      }
+      double worst = 0.0;
+      for (int i = 0; i < kWavelengthSamples; ++i) {
+        EXPECT_NEAR(sum[static_cast<size_t>(i)] / n, 1.0, 0.005)
+            << stop.blades << " blades, λ = " << lambda[i] << " nm";
+        worst = std::max(worst, std::abs(sum[static_cast<size_t>(i)] / n - 1.0));
+      }
+      std::printf("[measured] %d blades, λ0 = %.0f nm: worst |mean w_i − 1| = %.5f\n", stop.blades,
+                  lambda0, worst);
+    }
+  }
+}
+
+// PSF_λ(δ) = p(δ/(λN_w))/(λN_w)²: doubling λN_w doubles the pattern and quarters its level;
+// near the circle's peak (π/4 per (λN_w)²) it is the centre cell's mean, E(h)/(πh²) for the
+// cell's radius h = 1/16 λN_w (the table normalised to its energy).
+TEST(Diffraction, PsfScalesWithLambdaTimesWorkingFNumber) {
+  const Diffraction a(ApertureShape{6, 0.2}, 4.0), b(ApertureShape{6, 0.2}, 8.0);
+  for (const glm::dvec2 d : {glm::dvec2(1e-6, 0.5e-6), glm::dvec2(-3e-6, 7e-6)}) {
+    const double pa = a.psf(d, 500.0);
+    EXPECT_GT(pa, 0.0);
+    EXPECT_NEAR(b.psf(2.0 * d, 500.0) * 4.0 / pa, 1.0, 1e-9);
+    EXPECT_NEAR(a.psf(2.0 * d, 1000.0) * 4.0 / pa, 1.0, 1e-9);
+  }
+  const Diffraction circle(ApertureShape{0, 0.0}, 8.0);
+  const double s = 550e-9 * 8.0;
+  const double h = circle.shape().radialEdge(1);
+  const double centreMean =
+      StopPsf::airyEncircledEnergy(h) / (M_PI * h * h) / (1.0 - circle.shape().truncatedEnergy());
+  EXPECT_NEAR(circle.psf({0.01 * s, 0.0}, 550.0) * s * s / centreMean, 1.0, 1e-9);
+  EXPECT_NEAR(centreMean, 0.25 * M_PI, 0.005);
+}
+
+// The stop's rotation turns the spikes with it, in camera axes (x right, y up): a hexagon
+// turned by 10° has its edge normals at 40° + 60°k; most offsets between 3 and 64 λN_w lie
+// within ±3° of them.
+TEST(Diffraction, TurnedStopTurnsItsSpikes) {
+  const double rotation = 10.0 * M_PI / 180.0;
+  const Diffraction diffraction(ApertureShape{6, rotation}, 8.0);
+  const SampledWavelengths lambda = wavelengthsFrom(550.0);
+  Pcg32 rng(3, 1);
+  int onNormals = 0, onVertices = 0;
+  for (int k = 0; k < (1 << 18); ++k) {
+    const DiffractionSample s =
+        diffraction.sample({rng.uniform(), rng.uniform()}, rng.uniform(), lambda);
+    const double scale = 550e-9 * 8.0;  // λ₀; the other λ only scale the radius
+    const double r = glm::length(s.offset) / scale;
+    if (r < 3.0 || r > 64.0) continue;
+    const double a = std::atan2(s.offset.y, s.offset.x) * 180.0 / M_PI;
+    onNormals += std::abs(std::remainder(a - 40.0, 60.0)) <= 3.0 ? 1 : 0;
+    onVertices += std::abs(std::remainder(a - 10.0, 60.0)) <= 3.0 ? 1 : 0;
+  }
+  EXPECT_GT(onNormals, 8 * onVertices) << onNormals << " vs " << onVertices;
+}
+
+}  // namespace diffraction_test
+}  // namespace camsim
