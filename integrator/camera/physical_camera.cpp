@@ -30,6 +30,7 @@ glm::dvec3 turnedLensPoint(const glm::dvec2& lens, const glm::dvec3& d) {
 }  // namespace
 
 PhysicalCamera::PhysicalCamera(PhysicalCameraParams params) : p_(std::move(params)) {
+  if (p_.lens) initLens();
   const double f = p_.focalLength;
   CAMSIM_CHECK(f > 0.0 && p_.fNumber > 0.0 && p_.fillFactor > 0.0 && p_.fillFactor <= 1.0);
   CAMSIM_CHECK(p_.focusDistance == 0.0 || p_.focusDistance > f);
@@ -55,7 +56,8 @@ PhysicalCamera::PhysicalCamera(PhysicalCameraParams params) : p_(std::move(param
   apertureArea_ = stop_ ? stop_->area() : M_PI * 0.25 * diameter * diameter;
   transmittanceIsOne_ =
       p_.lensTransmittance.minValue() == 1.0 && p_.lensTransmittance.maxValue() == 1.0;
-  fastPinhole_ = !p_.aperture && idealPinhole_ && p_.motion.empty() && transmittanceIsOne_;
+  fastPinhole_ =
+      !lensCamera_ && !p_.aperture && idealPinhole_ && p_.motion.empty() && transmittanceIsOne_;
   const glm::dmat4& m = p_.worldFromCamera;
   right_ = glm::vec3(m[0]);
   up_ = glm::vec3(m[1]);
@@ -116,6 +118,7 @@ std::optional<CameraRay> PhysicalCamera::generateDiffractedRay(const CameraSampl
 std::optional<CameraRay> PhysicalCamera::generateLensRay(const CameraSample& sample,
                                                          const SampledWavelengths& lambda,
                                                          const glm::dmat4& m) const {
+  if (lensCamera_) return generateTracedRay(sample, lambda, m);
   if (!idealPinhole_) return generateModelRay(sample, lambda, m);
   // Sensor point, upright image coordinates (m): x right, y up, origin at the centre.
   const glm::dvec2 ndc = glm::dvec2(sample.pFilm) / glm::dvec2(p_.resolution);

@@ -66,6 +66,7 @@
 // | motion           | m, ° | static    | camera keyframes: translate adds to the position (world), rotate turns about the camera centre in camera axes |
 #pragma once
 
+#include <memory>
 #include <optional>
 
 #include <glm/geometric.hpp>
@@ -74,6 +75,7 @@
 #include "integrator/camera/aperture.h"
 #include "integrator/camera/camera.h"
 #include "integrator/camera/diffraction.h"
+#include "integrator/camera/lens_camera.h"
 #include "integrator/camera/projection.h"
 #include "integrator/camera/shutter.h"
 #include "integrator/geometry/motion.h"
@@ -109,6 +111,10 @@ struct PhysicalCameraParams {
   Projection projection;
   bool intrinsicsFromLens = true;
   Shutter shutter = Shutter::box(0.0, 1.0 / 60.0);
+  // A traced lens (lens_camera.h) instead of the thin lens: when set, the camera's rays and
+  // weights come from it, and focalLength, fNumber become the lens's paraxial EFL and
+  // f-number at λ_d (the thin-lens stand-in the intrinsics and project() use).
+  std::optional<LensSpec> lens;
 
   // D = f/N (m): the entrance pupil's diameter — the one place it is derived.
   double apertureDiameter() const { return focalLength / fNumber; }
@@ -137,6 +143,11 @@ class PhysicalCamera final : public Camera {
   const Shutter& shutter() const override { return p_.shutter; }
 
   const PhysicalCameraParams& params() const { return p_; }
+  // The traced lens, or null for the thin lens.
+  const LensCamera* lensCamera() const { return lensCamera_.get(); }
+  // Whether the camera ray depends on the wavelength (a traced lens that disperses): the
+  // caller terminates the secondary wavelengths before generateRay (it traces λ[0] only).
+  bool lensDisperses() const { return lensCamera_ && lensCamera_->disperses(); }
   double imageDistance() const { return imageDistance_; }  // z_i, m
   double pixelArea() const { return pixelArea_; }          // photosensitive area, m²
   double apertureArea() const { return apertureArea_; }    // m²
@@ -183,6 +194,12 @@ class PhysicalCamera final : public Camera {
                                             const glm::dmat4& worldFromCamera) const;
   // The ray from camera-space origin along direction (world through m) with weight scale
   // (× T_lens(λ)): the last step of both general paths.
+  // Through the traced lens (physical_camera_lens.cpp): builds lensCamera_ and sets the
+  // thin-lens stand-in's focal length, f-number and stop shape from it.
+  void initLens();
+  std::optional<CameraRay> generateTracedRay(const CameraSample& sample,
+                                             const SampledWavelengths& lambda,
+                                             const glm::dmat4& worldFromCamera) const;
   CameraRay cameraRay(const glm::dmat4& m, const glm::dvec3& origin, const glm::dvec3& direction,
                       double time, double scale, const SampledWavelengths& lambda) const;
 
@@ -206,6 +223,8 @@ class PhysicalCamera final : public Camera {
   glm::vec3 origin_{0.0f}, right_{0.0f}, up_{0.0f}, forward_{0.0f};
   glm::vec2 filmScale_{0.0f}, filmOffset_{0.0f};
   float zi_ = 0.0f, weightScale_ = 0.0f;
+  // The traced lens (p_.lens), built once; shared by copies of the camera.
+  std::shared_ptr<const LensCamera> lensCamera_;
 };
 
 }  // namespace camsim

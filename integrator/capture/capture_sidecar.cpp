@@ -117,6 +117,34 @@ JsonObject projectionJson(const PhysicalCameraParams& c) {
   return j;
 }
 
+// `camera.lens` as the scene writes it: the file, the f-number and focus distance (m from
+// the entrance pupil; omitted at infinity) the camera used.
+JsonObject lensJson(const LensSpec& spec) {
+  JsonObject j;
+  j.set("file", spec.prescription.source);
+  if (spec.fNumber > 0.0) j.setJson("f_number", exact(spec.fNumber));
+  if (spec.focusDistance > 0.0) j.setJson("focus_distance_m", exact(spec.focusDistance));
+  return j;
+}
+
+// The traced lens's derived data: the sensor distance focusing placed, the camera origin
+// (the entrance pupil, lens-space z) and the paraxial data at λ_d (LensSystem::paraxial,
+// names with their unit as suffix; a non-finite value, the object at infinity, is null).
+JsonObject lensDerivedJson(const LensCamera& lens) {
+  JsonObject j;
+  j.set("sensor_distance_m", lens.sensorDistance())
+      .set("camera_origin", "entrance pupil")
+      .setJson("disperses", lens.disperses() ? "true" : "false");  // then λ[0] only is traced
+  for (const ParaxialField& f : paraxialFields(lens.paraxial())) {
+    const std::string name = std::string(f.name) + (*f.unit ? std::string("_") + f.unit : "");
+    if (std::isfinite(f.value))
+      j.set(name, f.value);
+    else
+      j.setJson(name, "null");
+  }
+  return j;
+}
+
 // The camera's scene inputs in the scene's keys and units (docs/scene-format.md), then
 // `derived`: what follows from them (SI units, intrinsics). `motion`, `lens_transmittance`
 // and `gltf` are not written: a paste-back keeps the scene's own (docs/output.md).
@@ -139,16 +167,21 @@ JsonObject cameraJson(const PhysicalCameraParams& p, const glm::dvec3& renderOri
     j.setJson("sensor_width_mm", millimetres(p.sensorSize.x))
         .setJson("sensor_height_mm", millimetres(p.sensorSize.y))
         .setJson("fill_factor", exact(p.fillFactor));
-  j.setJson("focal_length_mm", millimetres(p.focalLength)).setJson("f_number", exact(p.fNumber));
-  if (p.focusDistance > 0.0) j.setJson("focus_distance_m", exact(p.focusDistance));
+  if (p.lens) {
+    j.set("lens", lensJson(*p.lens));  // the thin lens's keys are refused beside it
+  } else {
+    j.setJson("focal_length_mm", millimetres(p.focalLength)).setJson("f_number", exact(p.fNumber));
+    if (p.focusDistance > 0.0) j.setJson("focus_distance_m", exact(p.focusDistance));
+  }
   if (p.aperture)
     j.set("aperture", JsonObject()
                           .setJson("blades", std::to_string(p.aperture->blades))
                           .setJson("rotation_deg", exact(glm::degrees(p.aperture->rotation)))
                           .set("pupil", std::string(enumName(p.pupil)))
                           .setJson("diffraction", p.aperture->diffraction ? "true" : "false"));
-  j.set(plainDistortion(p) ? "distortion" : "projection", projectionJson(p))
-      .set("shutter", shutterJson(p.shutter));
+  if (!p.lens)  // the lens replaces the camera model (the loader refuses both)
+    j.set(plainDistortion(p) ? "distortion" : "projection", projectionJson(p));
+  j.set("shutter", shutterJson(p.shutter));
 
   JsonObject d;
   d.set("sensor_size_m", std::vector<double>{p.sensorSize.x, p.sensorSize.y})
@@ -176,6 +209,7 @@ JsonObject cameraJson(const PhysicalCameraParams& p, const glm::dvec3& renderOri
                               p.projection.k3});
   // The model as cameras.json writes it (camera_export.h): model, coefficients and the
   // field angle where it limits the image.
+  if (const LensCamera* lens = camera.lensCamera()) d.set("lens", lensDerivedJson(*lens));
   JsonObject model;
   addCameraModel(model, cameraExport(camera));
   return j.set("derived", d.set("projection", model));

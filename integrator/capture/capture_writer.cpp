@@ -1,6 +1,7 @@
 #include "integrator/capture/capture_writer.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 #include "integrator/camera/physical_camera.h"
@@ -72,6 +73,16 @@ Metadata filmMetadata(const CaptureResult& r, bool reproducible) {
                     number(p.projection.k1) + " " + number(p.projection.k2) + " " +
                         number(p.projection.p1) + " " + number(p.projection.p2) + " " +
                         number(p.projection.k3)});
+  // A traced lens: its file, sensor distance and paraxial data at λ_d (camsim:lens_<name>_<unit>;
+  // the object distance at infinity is "inf").
+  if (const LensCamera* lens = camera.lensCamera()) {
+    meta.push_back({"camsim:lens_file", p.lens->prescription.source});
+    meta.push_back({"camsim:lens_sensor_distance_m", number(lens->sensorDistance())});
+    for (const ParaxialField& f : paraxialFields(lens->paraxial()))
+      meta.push_back(
+          {std::string("camsim:lens_") + f.name + (*f.unit ? std::string("_") + f.unit : ""),
+           std::isfinite(f.value) ? number(f.value) : "inf"});
+  }
   if (!reproducible) meta.push_back({"camsim:render_seconds", std::to_string(st.seconds)});
   return meta;
 }

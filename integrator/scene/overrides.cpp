@@ -336,6 +336,17 @@ void applyOverrides(SceneDescription& d, const Overrides& o, const SourceLocatio
   if (o.exposureTimeS)
     d.camera.shutter = d.camera.shutter.scaled(*o.exposureTimeS / d.camera.shutter.effectiveTime());
   if (o.fNumber) d.camera.fNumber = *o.fNumber;  // the stop follows (apertureDiameter)
+  if (o.fNumber && d.camera.lens) {              // a traced lens: its stop, within the lens's range
+    const double widest = LensSystem(d.camera.lens->prescription).minFNumber();
+    if (*o.fNumber < widest * (1.0 - 1e-9))
+      throw InputError(where, "camera.lens.f_number",
+                       "f_number " + formatNumber(*o.fNumber, 6) +
+                           " is faster than the lens's widest, f/" + formatNumber(widest, 6));
+    d.camera.lens->fNumber = *o.fNumber;
+  }
+  if (o.projection && d.camera.lens)
+    throw InputError(where, "camera.projection",
+                     "the scene's camera.lens replaces the camera model: no projection override");
   const std::pair<std::string_view, bool> needSensor[] = {{"iso", o.iso.has_value()},
                                                           {"noise", o.noise.has_value()},
                                                           {"noise_seed", o.noiseSeed.has_value()}};

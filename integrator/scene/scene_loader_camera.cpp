@@ -309,10 +309,11 @@ PhysicalCameraParams parseCamera(YamlMap map, const TableSearch& search) {
   if (auto pr = map.find("projection")) parseProjection(*pr, c);
   if (auto s = map.find("shutter")) c.shutter = parseShutter(YamlMap(*s));
   if (auto m = map.find("motion")) c.motion = parseMotion(*m, true, glm::dvec3(0.0));
+  if (auto l = map.find("lens")) parseCameraLens(*l, map, search, c);
   map.finish({"position", "look_at", "up", "world_from_camera", "sensor_width_mm",
               "sensor_height_mm", "resolution", "fill_factor", "focal_length_mm", "f_number",
               "focus_distance_m", "aperture", "lens_transmittance", "distortion", "projection",
-              "shutter", "motion", "gltf"});
+              "shutter", "motion", "gltf", "lens"});
   return c;
 }
 

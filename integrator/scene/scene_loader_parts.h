@@ -25,6 +25,12 @@ glm::vec3 toPoint(const YamlValue& where, const glm::dvec3& v);
 float positiveFloat(const YamlValue& where, double v);
 // `camera:` → camera parameters (see docs/scene-format.md).
 PhysicalCameraParams parseCamera(YamlMap map, const TableSearch& search);
+// `camera.lens` (scene_loader_lens.cpp): the prescription and its f-number and focus
+// distance into c.lens, with the thin-lens stand-in's focal length and f-number; refuses the
+// thin lens's keys in `camera` beside it. Parsed after camera.aperture (its blades shape the stop).
+void parseCameraLens(const YamlValue& value, const YamlMap& camera, const TableSearch& search,
+                     PhysicalCameraParams& c);
+
 // `sensor:` → sensor settings; sets the camera's sensor size and fill factor from the
 // sensor's pixel pitch (cameraMap: the camera's keys, to reject conflicting ones).
 SensorSettings parseSensorSettings(YamlMap map, const std::filesystem::path& baseDir,

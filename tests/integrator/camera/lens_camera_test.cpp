@@ -1,0 +1,191 @@
+// The traced lens in the camera (integrator/camera/lens_camera.h): a thin, weak singlet at
+// f/8 gives the thin-lens camera's on-axis exposure; the double-Gauss's relative
+// illumination across the field matches an independent integration over its rear plane;
+// a scene renders through it; the loader's errors for camera.lens.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+
+#include <glm/geometric.hpp>
+
+#include "integrator/camera/lens_camera.h"
+#include "integrator/camera/physical_camera.h"
+#include "integrator/render/render.h"
+#include "integrator/scene/scene.h"
+#include "integrator/scene/scene_loader.h"
+#include "sensor/base/input_error.h"
+#include "tests/integrator/lens_test_support.h"
+
+namespace camsim {
+namespace lens_camera_test {
+
+// A plano-convex BK7-index singlet, f = R/(n − 1) = 100 mm, the stop 1 mm in front (mm).
+const char* const kSinglet =
+    "0      1.0  0       16\n"
+    "51.68  3.0  1.5168  30\n"
+    "0      95   1       30\n";
+
+LensSpec specFile(const std::string& name, double fNumber) {
+  LensSpec spec;
+  spec.prescription = readLensPrescription(test::lensPath(name));
+  spec.fNumber = fNumber;
+  return spec;
+}
+
+// The mean measurement weight at the film centre over a stratified n × n pupil grid (lost
+// rays count 0), for a camera with a 36 × 24 mm sensor at 360 × 240 px.
+double meanCentreWeight(const PhysicalCamera& camera, int n) {
+  const SampledWavelengths lambda = SampledWavelengths::sampleUniform(0.5f);
+  CameraSample cs;
+  cs.pFilm = glm::vec2(camera.resolution()) * 0.5f;
+  double sum = 0.0;
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      cs.pLens = glm::vec2((i + 0.5f) / n, (j + 0.5f) / n);
+      if (auto r = camera.generateRay(cs, lambda)) sum += static_cast<double>(r->weight[0]);
+    }
+  return sum / (double(n) * n);
+}
+
+PhysicalCameraParams baseParams() {
+  PhysicalCameraParams p;
+  p.sensorSize = {0.036, 0.024};
+  p.resolution = {360, 240};
+  return p;
+}
+
+TEST(LensCamera, ThinSingletGivesTheThinLensOnAxisExposureAtF11) {
+  LensSpec spec;
+  spec.prescription = parseLensPrescription(kSinglet, "singlet");
+  spec.fNumber = 11.0;
+  PhysicalCameraParams lensParams = baseParams();
+  lensParams.lens = spec;
+  lensParams.aperture = ApertureShape{0, 0.0, false};  // geometric optics: no diffraction
+  const PhysicalCamera lensCamera(lensParams);
+  // The thin lens at the same focal length (the singlet's EFL) and f-number, aplanatic.
+  PhysicalCameraParams thinParams = baseParams();
+  thinParams.focalLength = lensCamera.lensCamera()->paraxial().effectiveFocalLength;
+  thinParams.fNumber = 11.0;
+  thinParams.aperture = ApertureShape{0, 0.0, false};
+  const PhysicalCamera thin(thinParams);
+  const double traced = meanCentreWeight(lensCamera, 256);
+  const double expected = meanCentreWeight(thin, 4);  // the same for every lens point
+  std::printf("singlet f/11 on axis: traced %.6g, thin lens %.6g (ratio %.5f), EFL %.4f mm\n",
+              traced, expected, traced / expected, thinParams.focalLength * 1e3);
+  EXPECT_NEAR(traced / expected, 1.0, 0.01);
+}
+
+// ∫ cosθ_film cosθ_rear / d² over the rear-plane points whose rays pass, by a dense grid
+// over a square twice the rear element (the independent reference).
+double gridIntegral(const LensSystem& lens, double s, glm::dvec2 film, int n) {
+  const double e = 2.0 * lens.rearClearRadius();
+  const double cell = 2.0 * e / n;
+  const LensSystem::Indices idx = lens.indicesAt(kLambdaDNm);
+  const glm::dvec3 o(film, -s);
+  double sum = 0.0;
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      const glm::dvec3 p(-e + (i + 0.5) * cell, -e + (j + 0.5) * cell, 0.0);
+      const glm::dvec3 v = p - o;
+      const double d2 = glm::dot(v, v);
+      if (lens.traceFromFilm({o, v / std::sqrt(d2)}, idx)) sum += v.z * v.z / (d2 * d2);
+    }
+  return sum * cell * cell;
+}
+
+TEST(LensCamera, RelativeIlluminationMatchesAGridOverTheRearPlane) {
+  const LensCamera camera(specFile("dgauss.50mm.dat", 0.0), {0.036, 0.024});
+  const double s = camera.sensorDistance();
+  double centreSampled = 0.0, centreGrid = 0.0;
+  for (double h : {0.0, 0.008, 0.014, 0.020}) {
+    const glm::dvec2 film(h, 0.0);  // upright; LensCamera inverts it
+    const int n = 300;
+    double sum = 0.0;
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < n; ++j)
+        if (auto r = camera.generate(film, {(i + 0.5) / n, (j + 0.5) / n}, kLambdaDNm))
+          sum += r->geometric;
+    const double sampled = sum / (double(n) * n);
+    const double grid = gridIntegral(camera.lens(), s, -film, 600);
+    if (h == 0.0) {
+      centreSampled = sampled;
+      centreGrid = grid;
+    }
+    std::printf("dgauss f/2.03 at %2.0f mm: sampled %.6g sr, grid %.6g sr (ratio %.5f), RI %.4f\n",
+                h * 1e3, sampled, grid, sampled / grid, grid / centreGrid);
+    EXPECT_NEAR(sampled / grid, 1.0, 0.02) << h;
+    EXPECT_NEAR((sampled / centreSampled) / (grid / centreGrid), 1.0, 0.02) << h;
+  }
+  // On axis the cone's projected solid angle is about π/(4 N_w²) (the lens nearly obeys the
+  // sine condition); at 20 mm the double-Gauss vignettes.
+  const double nw = camera.paraxial().workingFNumber;
+  EXPECT_NEAR(centreGrid / (M_PI / (4.0 * nw * nw)), 1.0, 0.05);
+  EXPECT_LT(gridIntegral(camera.lens(), s, {-0.020, 0.0}, 300) / centreGrid, 0.8);
+}
+
+TEST(LensCamera, ASceneRendersThroughTheDoubleGauss) {
+  const std::string text = R"(format: camsim-scene/1
+render: {spp: 16, max_depth: 1}
+camera:
+  position: [0, 0, 0]
+  look_at: [0, 0, 1]
+  resolution: [36, 24]
+  lens: {file: dgauss.50mm.dat}
+shapes:
+  - name: dome
+    type: sphere
+    centre: [0, 0, 0]
+    radius: 50
+    emission: {luminance: 1000, two_sided: true}
+)";
+  const Scene scene(loadSceneFromText(text, "lens.yaml", CAMSIM_SOURCE_DIR));
+  ASSERT_NE(scene.camera().lensCamera(), nullptr);
+  RenderOptions options;
+  options.spp = 16;
+  options.seed = 3;
+  options.threads = 2;
+  const RenderResult r = render(scene, SpectralResponse::cieXyz(), options);
+  double centre = 0.0, corner = 0.0;
+  for (int y = 0; y < 24; ++y)
+    for (int x = 0; x < 36; ++x) {
+      const float v = r.image.at(x, y, 1);
+      ASSERT_TRUE(std::isfinite(v));
+      ASSERT_GE(v, 0.0f);
+    }
+  for (int y = 10; y < 14; ++y)
+    for (int x = 16; x < 20; ++x) centre += static_cast<double>(r.image.at(x, y, 1));
+  for (int y = 0; y < 4; ++y)
+    for (int x = 0; x < 4; ++x) corner += static_cast<double>(r.image.at(x, y, 1));
+  std::printf("dome through dgauss f/2: centre %.4g, corner %.4g (ratio %.3f)\n", centre, corner,
+              corner / centre);
+  EXPECT_GT(centre, 0.0);
+  EXPECT_LT(corner, 0.8 * centre);
+}
+
+void expectLoadError(const std::string& lens, const std::string& extra, const std::string& what) {
+  const std::string text =
+      "format: camsim-scene/1\ncamera:\n  position: [0, 0, 0]\n"
+      "  look_at: [0, 0, 1]\n" +
+      extra + "  lens: " + lens + "\nshapes: []\n";
+  try {
+    loadSceneFromText(text, "bad.yaml", CAMSIM_SOURCE_DIR);
+    ADD_FAILURE() << "no error for " << lens << " / " << extra;
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find(what), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("bad.yaml"), std::string::npos) << e.what();
+  }
+}
+
+TEST(LensCamera, LoaderErrors) {
+  expectLoadError("{file: dgauss.50mm.dat, f_number: 1.4}", "", "faster than the lens");
+  expectLoadError("{file: no_such_lens.dat}", "", "no_such_lens");
+  expectLoadError("{file: dgauss.50mm.dat, focus: 2}", "", "focus");
+  expectLoadError("{file: dgauss.50mm.dat, focus_distance_m: 0.04}", "", "focus distance");
+  expectLoadError("{file: dgauss.50mm.dat}", "  focal_length_mm: 50\n", "focal_length_mm");
+  expectLoadError("{f_number: 2}", "", "file");
+}
+
+}  // namespace lens_camera_test
+}  // namespace camsim
