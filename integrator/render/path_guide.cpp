@@ -41,7 +41,6 @@ void traceTile(const Scene& scene, const TileRect& rect, int first, int end,
       for (int s = first; s < end; ++s) {
         PixelSample ps = drawPixelSample(sampler, camera, dims, pixel, s, side);
         SampledWavelengths& lambda = ps.lambda;
-        if (camera.lensDisperses()) lambda.terminateSecondary();  // as render.cpp
         const CameraSample& cs = ps.camera;
         const std::optional<CameraRay> cr = camera.generateRay(cs, lambda);
         if (!cr) continue;

@@ -41,6 +41,8 @@ PixelSample drawPixelSample(SamplerT& sampler, const PhysicalCamera& camera,
   }
   sampler.setDimension(kDimWavelength);
   PixelSample ps{SampledWavelengths::sampleVisible(sampler.get1D()), diffraction};
+  // A dispersing traced lens sends each wavelength its own way; it traces λ[0] only.
+  if (camera.lensDisperses()) ps.lambda.terminateSecondary();
   CameraSample& cs = ps.camera;
   sampler.setDimension(kDimPixel);
   cs.pFilm = glm::vec2(pixel) + 0.5f + (sampler.get2D() - 0.5f) * side;

@@ -71,8 +71,6 @@ bool renderPixel(const TileContext<SamplerT>& t, glm::ivec2 pixel, SampleRange r
     if ((s - range.first) % kCancelStride == 0 && cancelRequested(t.options)) return false;
     PixelSample ps = drawPixelSample(sampler, camera, t.dims, pixel, s, side);
     SampledWavelengths& lambda = ps.lambda;
-    // A dispersing traced lens sends each wavelength its own way; it traces λ[0] only.
-    if (camera.lensDisperses()) lambda.terminateSecondary();
     const CameraSample& cs = ps.camera;
     // The ground truth's depth and normals need the camera's pose at the sample's time:
     // computed once for the ray and for them.

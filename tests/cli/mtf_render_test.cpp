@@ -72,7 +72,7 @@ TEST(MtfRender, DefocusedEdgeThroughTheThinLensIsTheDiscTimesThePhotosite) {
 
 TEST(MtfRender, PinholeEdgeIsThePhotositeAperture) {
   std::string text = sceneText();
-  const size_t at = text.find("  aperture: {}");
+  const size_t at = text.find("  aperture: {");
   ASSERT_NE(at, std::string::npos);
   text.erase(at, text.find('\n', at) - at);  // a pinhole: everything sharp
   test::TempDir dir;
