@@ -23,6 +23,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "bench/bench_rounds.h"
 #include "integrator/camera/physical_camera.h"
 #include "integrator/scene/scene_loader.h"
 
@@ -129,19 +130,9 @@ double roundTrip(const PhysicalCamera& camera, int& valid) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  int rounds = 7;
-  for (int i = 1; i < argc; ++i) {
-    if (std::strcmp(argv[i], "--rounds") == 0 && i + 1 < argc) {
-      rounds = std::atoi(argv[++i]);
-    } else {
-      std::fprintf(stderr, "usage: camera_model_bench [--rounds N]\n");
-      return 2;
-    }
-  }
-  if (rounds < 1) {
-    std::fprintf(stderr, "camera_model_bench: --rounds must be at least 1\n");
-    return 2;
-  }
+  const std::optional<int> parsed = camsim::bench::parseRounds(argc, argv, "camera_model_bench", 7);
+  if (!parsed) return 2;
+  const int rounds = *parsed;
   const std::vector<Model> ms = models();
   std::vector<PhysicalCamera> cameras;
   for (const Model& m : ms) cameras.push_back(makeCamera(m));

@@ -20,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/bench_rounds.h"
 #include "integrator/camera/physical_camera.h"
 #include "integrator/camera/stop_psf.h"
 #include "integrator/scene/scene_loader.h"
@@ -81,19 +82,9 @@ Pass timePass(const PhysicalCamera& camera) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  int rounds = 7;
-  for (int i = 1; i < argc; ++i) {
-    if (std::strcmp(argv[i], "--rounds") == 0 && i + 1 < argc) {
-      rounds = std::atoi(argv[++i]);
-    } else {
-      std::fprintf(stderr, "usage: diffraction_bench [--rounds N]\n");
-      return 2;
-    }
-  }
-  if (rounds < 1) {
-    std::fprintf(stderr, "diffraction_bench: --rounds must be at least 1\n");
-    return 2;
-  }
+  const std::optional<int> parsed = camsim::bench::parseRounds(argc, argv, "diffraction_bench", 7);
+  if (!parsed) return 2;
+  const int rounds = *parsed;
   for (int blades : {0, 6}) {
     const auto start = std::chrono::steady_clock::now();
     const camsim::StopPsf table(blades);

@@ -26,6 +26,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/bench_rounds.h"
 #include "integrator/sampling/sobol_sampler.h"
 #include "sensor/base/simd.h"
 
@@ -112,20 +113,9 @@ size_t mismatches(const std::vector<float>& a, const std::vector<float>& b) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  int rounds = 64;
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    if (arg == "--rounds" && i + 1 < argc) {
-      rounds = std::atoi(argv[++i]);
-    } else {
-      std::fprintf(stderr, "usage: sobol_lanes_bench [--rounds N]\n");
-      return 2;
-    }
-  }
-  if (rounds < 1) {
-    std::fprintf(stderr, "sobol_lanes_bench: --rounds must be a positive integer\n");
-    return 2;
-  }
+  const std::optional<int> parsed = camsim::bench::parseRounds(argc, argv, "sobol_lanes_bench", 64);
+  if (!parsed) return 2;
+  const int rounds = *parsed;
   const Lanes lanes = makeLanes();
   const size_t total = lanes.pixelKeys.size() * kDimensions;
   std::vector<float> reference(total), sampler(total), baseline(total), avx2(total);
