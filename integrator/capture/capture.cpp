@@ -87,7 +87,7 @@ class CaptureScene {
   const Scene& at(const SceneDescription& d, const PhysicalCameraParams& camera) {
     Scene& scene = at(d);
     try {
-      scene.setCamera(camera, d, exposureWindow(PhysicalCamera(camera)));
+      scene.setCamera(camera, d, exposureWindow(camera));
     } catch (...) {
       if (cache_) cache_->clear();  // a failed rebuild leaves the Scene unusable
       throw;

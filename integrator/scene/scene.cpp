@@ -35,18 +35,19 @@ std::string ModelledDimensions::describe() const {
   return out + std::to_string(wavelengths) + " wavelengths";
 }
 
-glm::dvec2 exposureWindow(const PhysicalCamera& camera) {
-  const Shutter& shutter = camera.shutter();
-  return {shutter.open(), shutter.close() + shutter.rowOffset(camera.resolution().y - 1)};
+// From the parameters alone: a camera need not be made (a traced lens's would build its
+// pupil bounds, ≈ 0.1 s, only to read the shutter).
+glm::dvec2 exposureWindow(const PhysicalCameraParams& camera) {
+  const Shutter& shutter = camera.shutter;
+  return {shutter.open(), shutter.close() + shutter.rowOffset(camera.resolution.y - 1)};
 }
 
 glm::dvec2 sequenceWindow(const SceneDescription& d) {
   const int count = d.frames ? d.frames->count : 1;
-  return {exposureWindow(PhysicalCamera(d.frameCamera(0))).x,
-          exposureWindow(PhysicalCamera(d.frameCamera(count - 1))).y};
+  return {exposureWindow(d.frameCamera(0)).x, exposureWindow(d.frameCamera(count - 1)).y};
 }
 
-Scene::Scene(const SceneDescription& d) : Scene(d, exposureWindow(PhysicalCamera(d.camera))) {}
+Scene::Scene(const SceneDescription& d) : Scene(d, exposureWindow(d.camera)) {}
 
 void Scene::setCamera(const PhysicalCameraParams& camera) {
   camera_ = std::make_unique<PhysicalCamera>(camera);
@@ -90,7 +91,7 @@ void Scene::retarget(const SceneDescription& next) {
   CAMSIM_CHECK(canRetarget(next));
   settings_ = next.render;
   const PhysicalCameraParams& camera = next.camera;
-  setCamera(camera, next, exposureWindow(PhysicalCamera(camera)));
+  setCamera(camera, next, exposureWindow(camera));
 }
 
 void Scene::analyseExposure() {

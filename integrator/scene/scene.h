@@ -38,7 +38,10 @@ struct ModelledDimensions {
 };
 
 // The interval ray times fall in: shutter open → close of the last row (s).
-glm::dvec2 exposureWindow(const PhysicalCamera& camera);
+glm::dvec2 exposureWindow(const PhysicalCameraParams& camera);
+inline glm::dvec2 exposureWindow(const PhysicalCamera& camera) {
+  return exposureWindow(camera.params());
+}
 // The whole frame sequence's (description.frames; none: the one frame's): frame 0's shutter
 // open → the last frame's last row closed (s). Geometry and motion are built over it once.
 glm::dvec2 sequenceWindow(const SceneDescription& description);
