@@ -26,11 +26,17 @@ std::unique_ptr<CLI::App> mtfApp(MtfArgs& a) {
       "            --pitch-um) and the MTF of each channel, normalised at zero frequency\n"
       "  mtf.json  MTF50, MTF at Nyquist, edge angle and position per channel, ROI, units\n"
       "  mtf.png   the curves (needs python3-matplotlib; skipped with a note without it)\n"
+      "With --roi repeated (edges at several field heights): mtf_1.csv, mtf_1.json,\n"
+      "mtf_1.png, … per region, and mtf_fields.csv: each region's field height (its\n"
+      "centre's distance from the image centre over the half diagonal) and MTF50.\n"
       "The MTF is the image's: with a rendered or captured image, the lens times the pixel\n"
       "aperture (and sensor and ISP when they ran), as ISO reports it. docs/mtf.md.");
   app->add_option("image", a.image, "the image: OpenEXR or PNG")->type_name("IMAGE")->required();
-  app->add_option("--roi", a.roi, "region of interest: left, top, width, height (pixels)")
+  app->add_option("--roi", a.rois,
+                  "region of interest: left, top, width, height (pixels); repeat it to "
+                  "measure several edges, e.g. at several field heights")
       ->type_name("x,y,w,h")
+      ->allow_extra_args(false)
       ->required();
   app->add_option("--channel", a.channel,
                   "R, G, B, Y (luminance from the file's primaries), all (R, G, B and Y; a "
@@ -90,7 +96,8 @@ MtfArgs parseMtfArgs(const std::vector<std::string>& args) {
 
 std::vector<std::filesystem::path> runMtf(const MtfArgs& args, std::ostream& out,
                                           std::ostream& log) {
-  const EdgeRoi roi = parseEdgeRoi(args.roi);
+  std::vector<EdgeRoi> rois;
+  for (const std::string& text : args.rois) rois.push_back(parseEdgeRoi(text));
   const MtfImage input = readMtfImage(args.image, args.linear);
   const Image channels = selectMtfChannels(input.image, args.channel, input.yWeights, args.image);
   SfrOptions options;
@@ -98,26 +105,33 @@ std::vector<std::filesystem::path> runMtf(const MtfArgs& args, std::ostream& out
   options.orientation = args.edge;
   options.pixelPitchM = args.pitchUm ? *args.pitchUm * 1e-6 : 0.0;
   options.source = args.image;
-  const MtfMeasurement m = measureMtf(channels, roi, options);
+  std::vector<MtfMeasurement> regions;
+  for (const EdgeRoi& roi : rois) regions.push_back(measureMtf(channels, roi, options));
   if (input.format == "png" && !args.linear)
     log << "camsim mtf: " << args.image << " read as sRGB-encoded and decoded; a tone-mapped "
         << "picture (camsim's NAME.png) does not give the linear MTF: measure NAME.exr\n";
-  out << formatMtfSummary(m);
+  for (const MtfMeasurement& m : regions) out << formatMtfSummary(m);
 
   const std::filesystem::path outDir(args.outputDir);
   for (const auto& stale : OutputSet::prepareDirectory(outDir))
     log << "removed " << stale.string() << " (left by a run that was killed)\n";
   OutputSet outputs(outDir);
-  const std::filesystem::path csv = outputs.addText("mtf.csv", formatMtfCsv(m));
-  const std::filesystem::path json = outputs.addText("mtf.json", formatMtfJson(m));
-  if (const std::optional<std::string> python = pythonWithMatplotlib(); !python) {
+  // One ROI: mtf.csv, mtf.json, mtf.png; several: mtf_1.csv … and mtf_fields.csv.
+  const std::optional<std::string> python = pythonWithMatplotlib();
+  if (!python)
     log << "camsim mtf: python3 with matplotlib not found ($CAMSIM_PYTHON or /usr/bin/python3; "
            "Debian: apt-get install python3-matplotlib): plot skipped, CSV and JSON only\n";
-  } else {
-    out.flush();
-    runPythonScript(*python, mtfPlotScriptFile("mtf_plot.py"),
-                    {csv.string(), json.string(), outputs.add("mtf.png").string()});
+  for (size_t r = 0; r < regions.size(); ++r) {
+    const std::string stem = regions.size() == 1 ? "mtf" : "mtf_" + std::to_string(r + 1);
+    const std::filesystem::path csv = outputs.addText(stem + ".csv", formatMtfCsv(regions[r]));
+    const std::filesystem::path json = outputs.addText(stem + ".json", formatMtfJson(regions[r]));
+    if (python) {
+      out.flush();
+      runPythonScript(*python, mtfPlotScriptFile("mtf_plot.py"),
+                      {csv.string(), json.string(), outputs.add(stem + ".png").string()});
+    }
   }
+  if (regions.size() > 1) outputs.addText("mtf_fields.csv", formatMtfFieldsCsv(regions));
   const std::vector<std::filesystem::path> files = outputs.commit();
   for (const auto& f : files) log << "camsim mtf: wrote " << f.string() << "\n";
   return files;

@@ -24,7 +24,7 @@ namespace camsim {
 
 struct MtfArgs {
   std::string image;
-  std::string roi;              // "x,y,w,h", parsed by parseEdgeRoi
+  std::vector<std::string> rois;  // "x,y,w,h" each (--roi once or more), parseEdgeRoi
   std::string channel = "all";  // sensor/measure/mtf_measurement.h's selection
   std::optional<double> pitchUm;
   int fitOrder = 1;

@@ -50,8 +50,12 @@ def main(argv):
                                                    lambda n: n * pitch * 1e-3))
         top.set_xlabel("cycles/mm")
     roi = report["roi"]
+    field = report.get("field", {})
+    where = f"  field {field['relative_height']:.2f}" if "relative_height" in field else ""
+    if "height_mm" in field:
+        where += f" ({field['height_mm']:.1f} mm)"
     ax.set_title(f"{report['source'].split('/')[-1]}  ROI {roi['x']},{roi['y']},"
-                 f"{roi['width']},{roi['height']}  {report['edge_orientation']} edge "
+                 f"{roi['width']},{roi['height']}{where}  {report['edge_orientation']} edge "
                  f"{report['edge_angle_deg']:.2f}°", fontsize=9)
     ax.legend(fontsize=8, loc="upper right")
     ax.grid(alpha=0.3)

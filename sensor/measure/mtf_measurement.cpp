@@ -163,6 +163,8 @@ MtfMeasurement measureMtf(const Image& image, const EdgeRoi& roi, const SfrOptio
   m.source = options.source;
   m.roi = roi;
   m.options = options;
+  m.imageWidth = image.width;
+  m.imageHeight = image.height;
   for (int c = 0; c < image.channelCount(); ++c) {
     SfrOptions o = options;
     o.source = options.source + " (channel " + image.channels[static_cast<size_t>(c)] + ")";
@@ -170,6 +172,17 @@ MtfMeasurement measureMtf(const Image& image, const EdgeRoi& roi, const SfrOptio
         {image.channels[static_cast<size_t>(c)], measureSfr(image.channel(c), roi, o)});
   }
   return m;
+}
+
+double MtfMeasurement::fieldHeightPx() const {
+  const double dx = roi.x + 0.5 * roi.width - 0.5 * imageWidth;
+  const double dy = roi.y + 0.5 * roi.height - 0.5 * imageHeight;
+  return std::hypot(dx, dy);
+}
+
+double MtfMeasurement::relativeFieldHeight() const {
+  const double halfDiagonal = 0.5 * std::hypot(imageWidth, imageHeight);
+  return halfDiagonal > 0.0 ? fieldHeightPx() / halfDiagonal : 0.0;
 }
 
 std::string formatMtfCsv(const MtfMeasurement& m) {
@@ -245,7 +258,15 @@ std::string formatMtfJson(const MtfMeasurement& m) {
            "of the Hamming-windowed derivative, polynomial edge fit, 4x "
            "oversampled ESF, central-difference LSF with its correction, Hamming "
            "window, DFT normalised at DC");
-  root.set("roi", roi).set("units", units);
+  JsonObject field;
+  field.set("image_width_px", static_cast<double>(m.imageWidth))
+      .set("image_height_px", static_cast<double>(m.imageHeight))
+      .set("relative_height", m.relativeFieldHeight())
+      .set("height_px", m.fieldHeightPx());
+  if (mm) field.set("height_mm", m.fieldHeightPx() * pitchMm);
+  units.set("field", "the ROI centre's distance from the image centre; relative: over the "
+                     "half diagonal (0 centre, 1 corner)");
+  root.set("roi", roi).set("field", field).set("units", units);
   root.set("edge_orientation", ref.sfr.vertical ? "vertical" : "horizontal")
       .set("edge_angle_deg", ref.sfr.angleDeg)
       .set("fit_order", static_cast<double>(m.options.fitOrder))
@@ -263,7 +284,10 @@ std::string formatMtfSummary(const MtfMeasurement& m) {
       << m.roi.width << "," << m.roi.height << ": "
       << (ref.sfr.vertical ? "vertical" : "horizontal") << " edge at "
       << formatFixed(ref.sfr.angleDeg, 2) << "°, " << ref.sfr.rowsUsed
-      << (ref.sfr.vertical ? " rows" : " columns") << " along it\n";
+      << (ref.sfr.vertical ? " rows" : " columns") << " along it; field height "
+      << formatFixed(m.relativeFieldHeight(), 2);
+  if (pitchMm > 0.0) out << " (" << formatFixed(m.fieldHeightPx() * pitchMm, 1) << " mm)";
+  out << "\n";
   for (const MtfChannel& c : m.channels) {
     out << "  " << c.name << std::string(c.name.size() < 6 ? 6 - c.name.size() : 1, ' ') << "MTF50 "
         << (c.sfr.mtf50 ? formatFixed(*c.sfr.mtf50, 4) + " cy/px" : std::string("> 1 cy/px"));
@@ -271,6 +295,28 @@ std::string formatMtfSummary(const MtfMeasurement& m) {
       out << " (" << formatFixed(*c.sfr.mtf50 / pitchMm, 1) << " cy/mm)";
     out << ", MTF at Nyquist " << formatFixed(c.sfr.mtfAtNyquist, 3) << "\n";
     for (const std::string& w : c.sfr.warnings) out << "    warning: " << w << "\n";
+  }
+  return out.str();
+}
+
+std::string formatMtfFieldsCsv(const std::vector<MtfMeasurement>& regions) {
+  std::ostringstream out;
+  out << "region,roi_x,roi_y,roi_width,roi_height,relative_field_height,field_height_px,"
+         "field_height_mm,channel,mtf50_cy_px,mtf50_cy_mm,mtf_at_nyquist\n";
+  for (size_t r = 0; r < regions.size(); ++r) {
+    const MtfMeasurement& m = regions[r];
+    const double pitchMm = m.options.pixelPitchM * 1e3;
+    const auto orEmpty = [](bool has, double v) { return has ? formatNumber(v, 6) : ""; };
+    for (const MtfChannel& c : m.channels) {
+      out << r + 1 << "," << m.roi.x << "," << m.roi.y << "," << m.roi.width << ","
+          << m.roi.height << "," << formatNumber(m.relativeFieldHeight(), 6) << ","
+          << formatNumber(m.fieldHeightPx(), 6) << ","
+          << orEmpty(pitchMm > 0.0, m.fieldHeightPx() * pitchMm) << "," << c.name << ","
+          << orEmpty(c.sfr.mtf50.has_value(), c.sfr.mtf50.value_or(0.0)) << ","
+          << orEmpty(c.sfr.mtf50.has_value() && pitchMm > 0.0,
+                     c.sfr.mtf50.value_or(0.0) / (pitchMm > 0.0 ? pitchMm : 1.0))
+          << "," << formatNumber(c.sfr.mtfAtNyquist, 6) << "\n";
+    }
   }
   return out.str();
 }

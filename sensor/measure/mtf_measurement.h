@@ -73,7 +73,13 @@ struct MtfMeasurement {
   std::string source;  // the image (a path, or a name for an image in memory)
   EdgeRoi roi;
   SfrOptions options;
+  int imageWidth = 0, imageHeight = 0;  // px, the whole image's
   std::vector<MtfChannel> channels;
+  // Where the ROI sits (ISO 12233's relative field height): the distance of its centre
+  // from the image centre over the half diagonal, 0 at the centre, 1 in a corner; and that
+  // distance in px (× the pixel pitch: on the sensor).
+  double relativeFieldHeight() const;
+  double fieldHeightPx() const;
   // The channel whose edge angle and orientation the report gives: Y, else G, else the
   // first.
   const MtfChannel& reference() const;
@@ -91,5 +97,9 @@ std::string formatMtfCsv(const MtfMeasurement& m);
 std::string formatMtfJson(const MtfMeasurement& m);
 // The printed summary: a line per channel with MTF50 and the MTF at Nyquist.
 std::string formatMtfSummary(const MtfMeasurement& m);
+// mtf_fields.csv, the report over several ROIs (field heights): region (1, 2, …), ROI,
+// relative field height, height in px and (with the pitch) mm, then per channel MTF50
+// (cycles/px, /mm) and the MTF at Nyquist; one row per region and channel.
+std::string formatMtfFieldsCsv(const std::vector<MtfMeasurement>& regions);
 
 }  // namespace camsim

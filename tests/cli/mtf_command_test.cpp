@@ -37,7 +37,7 @@ using test::TempDir;
 TEST(MtfArgs, ParsesImageRoiAndOptions) {
   MtfArgs a = parseMtfArgs({"mtf", "edge.exr", "--roi", "1,2,30,40"});
   EXPECT_EQ(a.image, "edge.exr");
-  EXPECT_EQ(a.roi, "1,2,30,40");
+  EXPECT_EQ(a.rois, std::vector<std::string>{"1,2,30,40"});
   EXPECT_EQ(a.channel, "all");
   EXPECT_EQ(a.outputDir, "out");
   EXPECT_FALSE(a.pitchUm.has_value());
@@ -49,6 +49,10 @@ TEST(MtfArgs, ParsesImageRoiAndOptions) {
   EXPECT_EQ(a.edge, EdgeOrientation::kHorizontal);
   EXPECT_TRUE(a.linear);
   EXPECT_EQ(a.outputDir, "dir");
+  // --roi repeated: one region each, and the image may follow it.
+  a = parseMtfArgs({"mtf", "--roi", "0,0,8,8", "--roi", "8,0,8,8", "e.exr"});
+  EXPECT_EQ(a.rois, (std::vector<std::string>{"0,0,8,8", "8,0,8,8"}));
+  EXPECT_EQ(a.image, "e.exr");
   EXPECT_TRUE(parseMtfArgs({"mtf", "--help"}).help);
   EXPECT_NE(mtfUsageText().find("camsim mtf"), std::string::npos);
   EXPECT_NE(usageText().find("mtf"), std::string::npos);  // listed by camsim --help
@@ -160,6 +164,33 @@ TEST(MtfBinary, WithoutPythonWritesCsvAndJsonOnly) {
   EXPECT_EQ(test::readMtfCsv(out / "mtf.csv").columns,
             (std::vector<std::string>{"frequency_cy_px", "mtf_G", "mtf_B"}));
   EXPECT_EQ(fileCount(out), 2u);
+}
+
+TEST(MtfBinary, SeveralRoisGiveAReportPerFieldHeight) {
+  TempDir dir;
+  const fs::path exr = writeRgbEdge(dir.path()), out = dir.path() / "mtf";
+  // The two halves of the 64 × 128 px edge: centres (32, 32) and (32, 96), each 32 px
+  // from the image centre (32, 64), whose half diagonal is 71.55 px: field height 0.4472.
+  const RunResult r = test::runCamsim("mtf " + quote(exr.string()) +
+                                          " --roi 0,0,64,64 --roi 0,64,64,64 --channel G "
+                                          "--pitch-um 2 -o " + quote(out.string()),
+                                      dir.path(), "CAMSIM_PYTHON=/nonexistent/python3");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_NE(r.out.find("ROI 0,0,64,64: vertical edge at 5.00°, 57 rows along it; field height "
+                       "0.45 (0.1 mm)"),
+            std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("ROI 0,64,64,64"), std::string::npos) << r.out;
+  EXPECT_EQ(fileCount(out), 5u);  // mtf_1.csv, mtf_1.json, mtf_2.csv, mtf_2.json, mtf_fields.csv
+  const std::string json = readFile(out / "mtf_2.json");
+  EXPECT_NE(json.find("\"relative_height\": 0.44721"), std::string::npos) << json;
+  EXPECT_NEAR(test::jsonChannelNumber(json, "G", "mtf50_cy_px"), 0.3197, 0.005) << json;
+  const std::string fields = readFile(out / "mtf_fields.csv");
+  EXPECT_EQ(fields.substr(0, fields.find('\n')),
+            "region,roi_x,roi_y,roi_width,roi_height,relative_field_height,field_height_px,"
+            "field_height_mm,channel,mtf50_cy_px,mtf50_cy_mm,mtf_at_nyquist");
+  EXPECT_NE(fields.find("\n1,0,0,64,64,0.447214,32,0.064,G,0.3"), std::string::npos) << fields;
+  EXPECT_NE(fields.find("\n2,0,64,64,64,0.447214,32,0.064,G,0.3"), std::string::npos) << fields;
 }
 
 TEST(MtfBinary, ReadsAGreyPng) {
