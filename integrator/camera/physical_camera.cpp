@@ -29,6 +29,13 @@ glm::dvec3 turnedLensPoint(const glm::dvec2& lens, const glm::dvec3& d) {
 
 }  // namespace
 
+double PhysicalCamera::workingFNumber() const {
+  // A traced lens: its exit pupil's, not the thin-lens stand-in's (pupil magnification and
+  // close focus are in it).
+  return lensCamera_ ? lensCamera_->paraxial().workingFNumber
+                     : imageDistance_ / p_.apertureDiameter();
+}
+
 PhysicalCamera::PhysicalCamera(PhysicalCameraParams params) : p_(std::move(params)) {
   if (p_.lens) initLens();
   const double f = p_.focalLength;
@@ -50,8 +57,7 @@ PhysicalCamera::PhysicalCamera(PhysicalCameraParams params) : p_(std::move(param
   turningPupil_ = projection_.model != ProjectionModel::kOpenCv;
   const double diameter = p_.apertureDiameter();
   if (p_.aperture) stop_.emplace(diameter, p_.aperture->blades, p_.aperture->rotation);
-  if (p_.aperture && p_.aperture->diffraction)
-    diffraction_.emplace(*p_.aperture, imageDistance_ / diameter);  // N_w = z_i / D
+  if (p_.aperture && p_.aperture->diffraction) diffraction_.emplace(*p_.aperture, workingFNumber());
   pixelsPerMetre_ = glm::dvec2(1.0 / pitch.x, -1.0 / pitch.y);
   apertureArea_ = stop_ ? stop_->area() : M_PI * 0.25 * diameter * diameter;
   transmittanceIsOne_ =

@@ -149,6 +149,9 @@ class PhysicalCamera final : public Camera {
   // caller terminates the secondary wavelengths before generateRay (it traces λ[0] only).
   bool lensDisperses() const { return lensCamera_ && lensCamera_->disperses(); }
   double imageDistance() const { return imageDistance_; }  // z_i, m
+  // N_w, the scale of diffraction's PSF: z_i / D for the thin lens; a traced lens's
+  // paraxial working f-number 1/(2|u'|) at the scene's object distance.
+  double workingFNumber() const;
   double pixelArea() const { return pixelArea_; }          // photosensitive area, m²
   double apertureArea() const { return apertureArea_; }    // m²
   // The stop's diffraction, or null (a pinhole, or aperture.diffraction off).

@@ -197,7 +197,7 @@ JsonObject cameraJson(const PhysicalCameraParams& p, const glm::dvec3& renderOri
            p.aperture
                ? (p.aperture->blades ? std::to_string(p.aperture->blades) + " blades" : "circular")
                : "pinhole")
-      .set("working_f_number", camera.imageDistance() / p.apertureDiameter())
+      .set("working_f_number", camera.workingFNumber())
       .set("shutter_open_s", p.shutter.open())
       .set("shutter_close_s", p.shutter.close())
       .set("exposure_time_s", p.shutter.effectiveTime())

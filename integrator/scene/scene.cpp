@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <filesystem>
 #include <iterator>
 #include <map>
 #include <utility>
@@ -16,7 +17,12 @@ namespace camsim {
 
 std::string ModelledDimensions::describe() const {
   std::string out;
-  if (aperture)
+  const std::string stop = (blades > 0 ? std::to_string(blades) + "-blade" : "circular") +
+                           std::string(" stop") + (diffraction ? ", diffraction" : "");
+  if (!tracedLens.empty())
+    out += "traced lens " + tracedLens + " (" + std::to_string(lensSurfaces) + " surfaces" +
+           (lensDisperses ? ", dispersion; " : "; ") + stop + "), ";
+  else if (aperture)
     out += "aperture (" + (blades > 0 ? std::to_string(blades) + " blades" : "circular") +
            (diffraction ? ", diffraction), " : "), ");
   else
@@ -99,8 +105,18 @@ void Scene::analyseExposure() {
   exposureStart_ = w.x;
   exposureEnd_ = w.y;
   modelled_.aperture = camera_->hasAperture();
-  modelled_.blades = camera_->params().aperture ? camera_->params().aperture->blades : 0;
+  const PhysicalCameraParams& params = camera_->params();
+  modelled_.blades = params.lens       ? params.lens->blades
+                     : params.aperture ? params.aperture->blades
+                                       : 0;
   modelled_.diffraction = camera_->diffraction() != nullptr;
+  const LensCamera* lens = camera_->lensCamera();
+  modelled_.tracedLens = lens ? std::filesystem::path(lens->lens().prescription().source)
+                                    .filename()
+                                    .string()
+                              : std::string();
+  modelled_.lensSurfaces = lens ? lens->lens().surfaceCount() : 0;
+  modelled_.lensDisperses = lens && lens->disperses();
   modelled_.cameraMoves = camera_->moves(exposureStart_, exposureEnd_);
   modelled_.movingObjects = 0;
   for (const RigidMotion& m : motions_)

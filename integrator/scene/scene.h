@@ -22,7 +22,10 @@ namespace camsim {
 
 // What the renderer integrates over, beyond pixel area: only what can change the image.
 struct ModelledDimensions {
-  bool aperture = false;     // lens positions (thin lens); false: pinhole
+  bool aperture = false;     // lens positions (thin or traced lens); false: pinhole
+  std::string tracedLens;    // the traced lens's file name (camera.lens); empty: thin lens
+  int lensSurfaces = 0;      // its surfaces, the stop included
+  bool lensDisperses = false;
   int blades = 0;            // 0: circular stop
   bool diffraction = false;  // the stop's PSF (aperture.diffraction): film-point jitter
   bool time = false;         // shutter time: something moves during the exposure
@@ -33,7 +36,8 @@ struct ModelledDimensions {
   int timeSteps = 1;  // Embree motion time steps (largest over shapes)
 
   // e.g. "aperture (6 blades, diffraction), time (2 moving objects, rolling shutter), 4
-  // wavelengths"
+  // wavelengths"; a traced lens: "traced lens dgauss.50mm.dat (11 surfaces, dispersion;
+  // circular stop, diffraction), …"
   std::string describe() const;
 };
 

@@ -312,6 +312,24 @@ TEST(ModelledDimensions, DescribesApertureTimeAndRollingShutter) {
             "aperture (6 blades, diffraction), time (1 moving object, rolling shutte");
 }
 
+// A traced lens says so, with its file, its surfaces and whether it disperses.
+TEST(PhysicalCamera, ModelledLineNamesATracedLens) {
+  ModelledDimensions m;
+  m.aperture = true;
+  m.tracedLens = "dgauss.50mm.abbe.dat";
+  m.lensSurfaces = 11;
+  m.lensDisperses = true;
+  m.diffraction = true;
+  EXPECT_EQ(m.describe(),
+            "traced lens dgauss.50mm.abbe.dat (11 surfaces, dispersion; circular stop, "
+            "diffraction), static (no time sampling), 4 wavelengths");
+  m.lensDisperses = false;
+  m.diffraction = false;
+  m.blades = 6;
+  EXPECT_EQ(m.describe().substr(0, 64),
+            "traced lens dgauss.50mm.abbe.dat (11 surfaces; 6-blade stop), s");
+}
+
 // The static distortion-free pinhole generates rays in float from constants (the fast
 // path); any other camera goes through the double-precision general path. A keyframe list
 // holding only the rest pose moves nothing but takes the general path, so the two must
