@@ -81,7 +81,8 @@ std::unique_ptr<CLI::App> psfApp(PsfArgs& a) {
          "cells per pixel per axis, [1, 16], size × K ≤ 2048 (default 4)")
       ->type_name("K");
   app->add_option_function<std::string>(
-         "--rays", [&a](const std::string& t) { a.settings.rays = parseInteger("--rays", t, -kBig, kBig); },
+         "--rays",
+         [&a](const std::string& t) { a.settings.rays = parseInteger("--rays", t, -kBig, kBig); },
          "rays traced per entry, [1000, 1e8] (default 1000000)")
       ->type_name("N");
   app->add_option_function<std::string>(
@@ -140,10 +141,11 @@ void writePsfPreview(const std::filesystem::path& path, const PsfImage& psf) {
     for (int x = 0; x < w; ++x) {
       const double e = psf.energy[static_cast<size_t>(y / zoom) * static_cast<size_t>(n) +
                                   static_cast<size_t>(x / zoom)];
-      const double v = e > 0.0 && peak > 0.0 ? std::clamp(1.0 + std::log10(e / peak) / 4.0, 0.0, 1.0)
-                                             : 0.0;
+      const double v =
+          e > 0.0 && peak > 0.0 ? std::clamp(1.0 + std::log10(e / peak) / 4.0, 0.0, 1.0) : 0.0;
       const auto grey = static_cast<std::uint8_t>(std::lround(255.0 * v));
-      const size_t i = (static_cast<size_t>(y) * static_cast<size_t>(w) + static_cast<size_t>(x)) * 3;
+      const size_t i =
+          (static_cast<size_t>(y) * static_cast<size_t>(w) + static_cast<size_t>(x)) * 3;
       rgb[i] = rgb[i + 1] = rgb[i + 2] = grey;
     }
   writePng8(path, w, w, rgb, false);
@@ -204,10 +206,10 @@ std::vector<std::filesystem::path> runPsf(const PsfArgs& args, std::ostream& out
     const PsfImage& p = images.back();
     out << psfEntryName(s.field, s.wavelengthNm) << ": field " << s.field << " (h "
         << psfFixed(p.imageHeight * 1e3, 3) << " mm), " << s.wavelengthNm << " nm: centroid ("
-        << psfFixed(p.centroidX * 1e6, 3) << ", " << psfFixed(p.centroidY * 1e6, 3)
-        << ") µm, RMS " << psfFixed(p.rmsRadius * 1e6, 2) << " µm, EE50 "
-        << psfFixed(p.encircled50 * 1e6, 2) << " µm, EE80 " << psfFixed(p.encircled80 * 1e6, 2)
-        << " µm, lost " << psfFixed(p.lostFraction * 100.0, 1) << " %\n";
+        << psfFixed(p.centroidX * 1e6, 3) << ", " << psfFixed(p.centroidY * 1e6, 3) << ") µm, RMS "
+        << psfFixed(p.rmsRadius * 1e6, 2) << " µm, EE50 " << psfFixed(p.encircled50 * 1e6, 2)
+        << " µm, EE80 " << psfFixed(p.encircled80 * 1e6, 2) << " µm, lost "
+        << psfFixed(p.lostFraction * 100.0, 1) << " %\n";
   }
 
   const std::filesystem::path outDir(args.outputDir);
@@ -238,8 +240,8 @@ std::vector<std::filesystem::path> runPsf(const PsfArgs& args, std::ostream& out
       .set("png", "log10(cell / peak) over 4 decades, black below");
   root.set("format", "camsim-psf")
       .set("scene", args.scene)
-      .set("lens", camera.lensCamera() ? scene.camera.lens->prescription.source
-                                       : std::string("thin lens"))
+      .set("lens",
+           camera.lensCamera() ? scene.camera.lens->prescription.source : std::string("thin lens"))
       .setInteger("seed", args.settings.seed)
       .set("units", units)
       .set("entries", json);

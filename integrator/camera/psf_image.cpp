@@ -56,15 +56,16 @@ struct PsfTracedRays {
   double lostFraction = 0.0;
 };
 
-PsfTracedRays tracePsfLens(const LensCamera& camera, const PsfSettings& settings, double imageHeight,
-                     double objectDistance, Pcg32& rng) {
+PsfTracedRays tracePsfLens(const LensCamera& camera, const PsfSettings& settings,
+                           double imageHeight, double objectDistance, Pcg32& rng) {
   const LensSystem& lens = camera.lens();
   const LensSystem open = withoutRims(lens);
   const double sensor = camera.sensorDistance();
   const std::optional<double> angle = lens.chiefRayAngle(imageHeight, sensor, kLambdaDNm);
   if (!angle)
-    refusePsf("field", psfNumber(settings.field) + ": the film point " + psfNumber(imageHeight * 1e3) +
-                        " mm off axis has no chief ray through the lens");
+    refusePsf("field", psfNumber(settings.field) + ": the film point " +
+                           psfNumber(imageHeight * 1e3) +
+                           " mm off axis has no chief ray through the lens");
   const double slope = std::tan(*angle);  // the object is on the +x side (upright image)
   const bool infinite = std::isinf(objectDistance);
   const double front = lens.frontVertexZ();
@@ -106,7 +107,7 @@ PsfTracedRays tracePsfLens(const LensCamera& camera, const PsfSettings& settings
 
 // The thin lens (or pinhole): every ray through the stop lands (psf_image.h's equations).
 std::vector<PsfHit> tracePsfThinLens(const PhysicalCamera& camera, const PsfSettings& settings,
-                               double imageHeight, double objectDistance, Pcg32& rng) {
+                                     double imageHeight, double objectDistance, Pcg32& rng) {
   const PhysicalCameraParams& p = camera.params();
   const double f = p.focalLength, zi = camera.imageDistance();
   const bool infinite = std::isinf(objectDistance);
@@ -128,7 +129,7 @@ std::vector<PsfHit> tracePsfThinLens(const PhysicalCamera& camera, const PsfSett
 
 // The radius about c enclosing `fraction` of the weight (hits sorted by radius).
 double psfEncircledRadius(const std::vector<std::pair<double, double>>& byRadius, double total,
-                       double fraction) {
+                          double fraction) {
   double sum = 0.0;
   for (const auto& [r, w] : byRadius) {
     sum += w;
@@ -142,25 +143,29 @@ double psfEncircledRadius(const std::vector<std::pair<double, double>>& byRadius
 void checkPsfSettings(const PsfSettings& s) {
   if (!(s.field >= 0.0 && s.field <= psf_ranges::kFieldMax))
     refusePsf("field", psfNumber(s.field) + " is outside [0, " + psfNumber(psf_ranges::kFieldMax) +
-                        "] (the image height over the sensor's half width)");
+                           "] (the image height over the sensor's half width)");
   if (!(s.wavelengthNm >= psf_ranges::kLambdaMinNm && s.wavelengthNm <= psf_ranges::kLambdaMaxNm))
-    refusePsf("wavelength", psfNumber(s.wavelengthNm) + " nm is outside [" + psfNumber(psf_ranges::kLambdaMinNm) +
-                             ", " + psfNumber(psf_ranges::kLambdaMaxNm) + "] nm");
+    refusePsf("wavelength", psfNumber(s.wavelengthNm) + " nm is outside [" +
+                                psfNumber(psf_ranges::kLambdaMinNm) + ", " +
+                                psfNumber(psf_ranges::kLambdaMaxNm) + "] nm");
   if (s.size < psf_ranges::kSizeMin || s.size > psf_ranges::kSizeMax)
-    refusePsf("size", std::to_string(s.size) + " px is outside [" + std::to_string(psf_ranges::kSizeMin) +
-                       ", " + std::to_string(psf_ranges::kSizeMax) + "]");
+    refusePsf("size", std::to_string(s.size) + " px is outside [" +
+                          std::to_string(psf_ranges::kSizeMin) + ", " +
+                          std::to_string(psf_ranges::kSizeMax) + "]");
   if (s.oversample < psf_ranges::kOversampleMin || s.oversample > psf_ranges::kOversampleMax)
     refusePsf("oversample", std::to_string(s.oversample) + " is outside [" +
-                             std::to_string(psf_ranges::kOversampleMin) + ", " +
-                             std::to_string(psf_ranges::kOversampleMax) + "]");
+                                std::to_string(psf_ranges::kOversampleMin) + ", " +
+                                std::to_string(psf_ranges::kOversampleMax) + "]");
   if (static_cast<std::int64_t>(s.size) * s.oversample > psf_ranges::kCellsMax)
     refusePsf("oversample", "size × oversample = " + std::to_string(s.size * s.oversample) +
-                             " cells per side is over " + std::to_string(psf_ranges::kCellsMax));
+                                " cells per side is over " + std::to_string(psf_ranges::kCellsMax));
   if (s.rays < psf_ranges::kRaysMin || s.rays > psf_ranges::kRaysMax)
-    refusePsf("rays", std::to_string(s.rays) + " is outside [" + std::to_string(psf_ranges::kRaysMin) + ", " +
-                       std::to_string(psf_ranges::kRaysMax) + "]");
+    refusePsf("rays", std::to_string(s.rays) + " is outside [" +
+                          std::to_string(psf_ranges::kRaysMin) + ", " +
+                          std::to_string(psf_ranges::kRaysMax) + "]");
   if (!(s.objectDistance >= 0.0 && std::isfinite(s.objectDistance)))
-    refusePsf("object_distance", psfNumber(s.objectDistance) + " m: expected ≥ 0 (0: the focus distance)");
+    refusePsf("object_distance",
+              psfNumber(s.objectDistance) + " m: expected ≥ 0 (0: the focus distance)");
 }
 
 PsfImage computePsf(const PhysicalCamera& camera, const PsfSettings& settings) {
@@ -175,11 +180,12 @@ PsfImage computePsf(const PhysicalCamera& camera, const PsfSettings& settings) {
   out.objectDistance = distance > 0.0 ? distance : kInfiniteDistance;
   if (!traced && !(out.objectDistance > p.focalLength))
     refusePsf("object_distance", psfNumber(distance) + " m is not beyond the focal length " +
-                                  psfNumber(p.focalLength * 1e3) + " mm: no real image");
+                                     psfNumber(p.focalLength * 1e3) + " mm: no real image");
   if (traced && std::isfinite(out.objectDistance)) {
     const double fromVertex = objectDistanceFromVertex(traced->lens(), out.objectDistance);
     if (!(fromVertex > traced->lens().paraxial().frontFocalLength))
-      refusePsf("object_distance", psfNumber(distance) + " m is inside the lens's front focal length");
+      refusePsf("object_distance",
+                psfNumber(distance) + " m is inside the lens's front focal length");
   }
 
   Pcg32 rng(settings.seed, 0x9f5b1c3d7e2a4u);  // the PSF's own stream of the seed
@@ -192,7 +198,8 @@ PsfImage computePsf(const PhysicalCamera& camera, const PsfSettings& settings) {
     hits = tracePsfThinLens(camera, settings, out.imageHeight, out.objectDistance, rng);
   }
   if (hits.empty())
-    refusePsf("field", psfNumber(settings.field) + ": no ray from the object point reaches the film");
+    refusePsf("field",
+              psfNumber(settings.field) + ": no ray from the object point reaches the film");
   if (const Diffraction* d = camera.diffraction()) {
     out.workingFNumber = d->workingFNumber();
     // δ as Diffraction::sample draws it for one wavelength: the stop's table (its shape),

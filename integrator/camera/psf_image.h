@@ -55,13 +55,13 @@
 namespace camsim {
 
 struct PsfSettings {
-  double field = 0.0;            // F, relative to the sensor's half width
-  double wavelengthNm = 550.0;   // nm
-  int size = 32;                 // px
-  int oversample = 4;            // cells per px per axis
-  std::int64_t rays = 1000000;   // traced
-  std::uint64_t seed = 0;        // stream
-  double objectDistance = 0.0;   // m; 0: the camera's focus distance
+  double field = 0.0;           // F, relative to the sensor's half width
+  double wavelengthNm = 550.0;  // nm
+  int size = 32;                // px
+  int oversample = 4;           // cells per px per axis
+  std::int64_t rays = 1000000;  // traced
+  std::uint64_t seed = 0;       // stream
+  double objectDistance = 0.0;  // m; 0: the camera's focus distance
 };
 
 // The ranges of the table above, named once (InputError keys "field", "wavelength",
@@ -80,21 +80,21 @@ void checkPsfSettings(const PsfSettings& settings);
 
 struct PsfImage {
   PsfSettings settings;
-  double imageHeight = 0.0;        // m, h: s_ref's x
-  double objectDistance = 0.0;     // m, the object point's distance used (∞ at infinity)
-  double workingFNumber = 0.0;     // N_w of the diffraction used (0: none)
-  int cells = 0;                   // n per side
-  double cellWidth = 0.0;          // m
-  double cellHeight = 0.0;         // m
-  std::vector<double> energy;      // n·n, row-major, row 0 at the top; sums to 1 (or all 0)
-  double centroidX = 0.0;          // m, from s_ref
-  double centroidY = 0.0;          // m
-  double rmsRadius = 0.0;          // m, about the centroid
-  double encircled50 = 0.0;        // m, radius about the centroid
-  double encircled80 = 0.0;        // m
-  double lostFraction = 0.0;       // of the weight through the stop, blocked by a rim
-  double outsideFraction = 0.0;    // of the weight landed, outside the grid
-  std::int64_t landed = 0;         // rays that reached the film
+  double imageHeight = 0.0;      // m, h: s_ref's x
+  double objectDistance = 0.0;   // m, the object point's distance used (∞ at infinity)
+  double workingFNumber = 0.0;   // N_w of the diffraction used (0: none)
+  int cells = 0;                 // n per side
+  double cellWidth = 0.0;        // m
+  double cellHeight = 0.0;       // m
+  std::vector<double> energy;    // n·n, row-major, row 0 at the top; sums to 1 (or all 0)
+  double centroidX = 0.0;        // m, from s_ref
+  double centroidY = 0.0;        // m
+  double rmsRadius = 0.0;        // m, about the centroid
+  double encircled50 = 0.0;      // m, radius about the centroid
+  double encircled80 = 0.0;      // m
+  double lostFraction = 0.0;     // of the weight through the stop, blocked by a rim
+  double outsideFraction = 0.0;  // of the weight landed, outside the grid
+  std::int64_t landed = 0;       // rays that reached the film
 };
 
 // The PSF of `camera` (a PhysicalCamera as the renderer builds it from the scene) at the

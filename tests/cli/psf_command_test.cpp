@@ -37,8 +37,8 @@ TEST(PsfArgs, ParsesListsAndOptions) {
   EXPECT_EQ(a.settings.oversample, 4);
   EXPECT_EQ(a.outputDir, "out");
   a = parsePsfArgs({"psf", "s.yaml", "--field", "0,0.5,1.2", "--wavelength", "450,650", "--size",
-                    "16", "--oversample", "8", "--rays", "5000", "--seed", "7",
-                    "--object-distance", "2.5", "-o", "d"});
+                    "16", "--oversample", "8", "--rays", "5000", "--seed", "7", "--object-distance",
+                    "2.5", "-o", "d"});
   EXPECT_EQ(a.fields, (std::vector<double>{0.0, 0.5, 1.2}));
   EXPECT_EQ(a.wavelengthsNm, (std::vector<double>{450.0, 650.0}));
   EXPECT_EQ(a.settings.size, 16);
@@ -94,7 +94,7 @@ TEST(PsfBinary, WritesImagesAndJson) {
     ASSERT_EQ(exr.image.channels, std::vector<std::string>{"Y"});
     EXPECT_EQ(exr.image.width, 32);
     double sum = 0.0;
-    for (float v : exr.image.pixels) sum += v;
+    for (float v : exr.image.pixels) sum += static_cast<double>(v);
     EXPECT_NEAR(sum, 1.0, 1e-4) << name;
     EXPECT_TRUE(fs::is_regular_file(out / (std::string(name) + ".png")));
   }
@@ -112,7 +112,7 @@ TEST(PsfBinary, WritesImagesAndJson) {
 TEST(PsfBinary, BadFieldExitsTwoAndWritesNothing) {
   TempDir dir;
   const fs::path out = dir.path() / "psf";
-  for (const std::string& bad : {"--field 1.7", "--field 0,abc", "--wavelength 900"}) {
+  for (const std::string bad : {"--field 1.7", "--field 0,abc", "--wavelength 900"}) {
     const RunResult r = test::runCamsim(
         "psf " + quote(kScene.string()) + " " + bad + " -o " + quote(out.string()), dir.path());
     EXPECT_EQ(r.exitCode, 2) << bad;
