@@ -50,6 +50,43 @@ LensSystem withoutRims(const LensSystem& lens) {
   return out;
 }
 
+// The real chief ray in object space (lens axes, heading +z) from the upright film point
+// (h, 0) — lens space (−h, 0, −s) — through the stop's centre at λ_d, traced through `open`
+// (rims widened: a vignetted chief ray still counts, as LensSystem::chiefRayAngle's). Aimed
+// by the secant method on the stop's height, from the rear group alone (the surfaces behind
+// the stop, whose front surface is then the stop's plane). None if the aim fails.
+std::optional<LensRay> psfChiefRay(const LensSystem& open, double h, double sensor) {
+  LensPrescription rearGroup = open.prescription();
+  rearGroup.surfaces.erase(rearGroup.surfaces.begin(),
+                           rearGroup.surfaces.begin() + rearGroup.stopIndex);
+  rearGroup.stopIndex = 0;
+  const LensSystem rear(std::move(rearGroup));  // its stop at the file's diameter
+  const LensSystem::Indices nRear = rear.indicesAt(kLambdaDNm);
+  const glm::dvec3 film(-h, 0.0, -sensor);
+  const auto aim = [&film](double x) {
+    return LensRay{film, glm::normalize(glm::dvec3(x, 0.0, 0.0) - film)};
+  };
+  const auto stopHeight = [&](double x) -> std::optional<double> {
+    const std::optional<LensRay> atStop = rear.traceFromFilm(aim(x), nRear);
+    if (!atStop) return std::nullopt;
+    return atStop->origin.x;
+  };
+  double x0 = 0.0, x1 = 0.1 * open.rearClearRadius() * (h >= 0.0 ? 1.0 : -1.0);
+  std::optional<double> g0 = stopHeight(x0), g1 = stopHeight(x1);
+  if (g0 && *g0 == 0.0) x1 = x0, g1 = g0;
+  for (int iteration = 0; iteration < 60 && g0 && g1; ++iteration) {
+    if (std::abs(*g1) < 1e-13) break;
+    if (*g1 == *g0) return std::nullopt;
+    const double x2 = x1 - *g1 * (x1 - x0) / (*g1 - *g0);
+    x0 = x1;
+    g0 = g1;
+    x1 = x2;
+    g1 = stopHeight(x1);
+  }
+  if (!g1 || !(std::abs(*g1) < 1e-9)) return std::nullopt;
+  return open.traceFromFilm(aim(x1), kLambdaDNm);
+}
+
 // Where the traced lens's rays land (upright film, m), and the vignetted share.
 struct PsfTracedRays {
   std::vector<PsfHit> hits;
@@ -61,17 +98,20 @@ PsfTracedRays tracePsfLens(const LensCamera& camera, const PsfSettings& settings
   const LensSystem& lens = camera.lens();
   const LensSystem open = withoutRims(lens);
   const double sensor = camera.sensorDistance();
-  const std::optional<double> angle = lens.chiefRayAngle(imageHeight, sensor, kLambdaDNm);
-  if (!angle)
+  const std::optional<LensRay> chief = psfChiefRay(open, imageHeight, sensor);
+  if (!chief)
     refusePsf("field", psfNumber(settings.field) + ": the film point " +
                            psfNumber(imageHeight * 1e3) +
                            " mm off axis has no chief ray through the lens");
-  const double slope = std::tan(*angle);  // the object is on the +x side (upright image)
   const bool infinite = std::isinf(objectDistance);
   const double front = lens.frontVertexZ();
   const double discRadius = 1.5 * std::sqrt(lens.shape(0).clearRadius2);
-  const glm::dvec3 object(objectDistance * slope, 0.0, camera.entrancePupilZ() + objectDistance);
-  const glm::dvec3 parallel = glm::normalize(glm::dvec3(-slope, 0.0, -1.0));
+  // The object point on the chief ray at objectDistance from the entrance pupil (the
+  // object is on the +x side: the upright image); at infinity the rays come along it.
+  const double reach =
+      (camera.entrancePupilZ() + objectDistance - chief->origin.z) / chief->direction.z;
+  const glm::dvec3 object = infinite ? glm::dvec3(0.0) : chief->origin + reach * chief->direction;
+  const glm::dvec3 parallel = -chief->direction;
   const LensSystem::Indices n = lens.indicesAt(settings.wavelengthNm);
 
   PsfTracedRays out;

@@ -18,9 +18,9 @@
 // centre): the reference point is s_ref = (h, 0). The object point is the one whose chief
 // ray lands there: the thin lens's chief ray goes straight through the lens centre, so the
 // point is at slope h / z_i (z_i the camera's image distance); the traced lens's is the real
-// chief ray from s_ref through the stop's centre at λ_d (LensSystem::chiefRayAngle), its
-// object-space angle θ taken from the entrance pupil's centre: object height d·tan θ. At
-// infinity (d = ∞) the rays are parallel at that angle.
+// chief ray from s_ref through the stop's centre at λ_d (aimed as LensSystem::chiefRayAngle
+// aims it), the object point on it at distance d from the entrance pupil (the plane
+// z = z_EP + d, lens space). At infinity (d = ∞) the rays are parallel to it.
 //   thin lens: a ray from the object through the stop point L (Aperture::sample: uniform
 //     over the stop's shape, blades included) goes to the conjugate O' = −t·z_i' (t the
 //     object's slope, z_i' = f·d/(d − f), f at infinity) and meets the film at z_i:

@@ -8,6 +8,7 @@
 //   - the double Gauss (luts/lenses/dgauss.50mm.dat) at its best focus: the on-axis centroid
 //     within 0.3 µm of the axis, and the vignetted fraction small on axis (0.7 %), growing
 //     over fields 0, 0.5, 0.9 (27.5 %, 55.4 %);
+//   - the double Gauss at f/22: the centroid on the real chief ray's image point (0.5 µm);
 //   - every setting's range (InputError naming it), and the same seed the same image.
 #include "integrator/camera/psf_image.h"
 
@@ -135,6 +136,30 @@ TEST(PsfImage, DoubleGaussCentredOnAxisAndVignettedOffAxis) {
     EXPECT_GT(psf.landed, set.rays / 10);
   }
   EXPECT_GT(previous, 0.05);  // wide open, 0.9 of the half width is vignetted
+}
+
+// Stopped down to f/22 the aberrations shrink (coma as the aperture squared) and the
+// vignetting goes: the spot's centroid comes to the real chief ray's image point, the
+// reference, off axis as on it (the object point is on the real chief ray).
+TEST(PsfImage, DoubleGaussStoppedDownCentresOnTheChiefRay) {
+  PhysicalCameraParams p;
+  p.resolution = {3600, 2400};
+  LensSpec spec;
+  spec.prescription = readLensPrescription(test::lensPath("dgauss.50mm.dat"));
+  spec.fNumber = 22.0;
+  spec.focusDistance = 3.0;
+  p.lens = spec;
+  p.aperture = ApertureShape{0, 0.0, false};
+  const PhysicalCamera camera(p);
+  for (double field : {0.5, 0.9}) {
+    PsfSettings set = settings(field, 40000);
+    set.wavelengthNm = kLambdaDNm;
+    const PsfImage psf = computePsf(camera, set);
+    std::printf("  dgauss f/22 field %.1f: centroid (%.3f, %.3f) µm, RMS %.2f µm, lost %.4f\n",
+                field, psf.centroidX * 1e6, psf.centroidY * 1e6, psf.rmsRadius * 1e6,
+                psf.lostFraction);
+    EXPECT_LT(std::hypot(psf.centroidX, psf.centroidY), 0.5e-6) << field;
+  }
 }
 
 TEST(PsfImage, RangesAreCheckedAndNamed) {
