@@ -73,7 +73,10 @@ std::optional<LensRay> psfChiefRay(const LensSystem& open, double h, double sens
   };
   double x0 = 0.0, x1 = 0.1 * open.rearClearRadius() * (h >= 0.0 ? 1.0 : -1.0);
   std::optional<double> g0 = stopHeight(x0), g1 = stopHeight(x1);
-  if (g0 && *g0 == 0.0) x1 = x0, g1 = g0;
+  if (g0 && *g0 == 0.0) {  // on axis: the aim through the rear vertex is the chief ray
+    x1 = x0;
+    g1 = g0;
+  }
   for (int iteration = 0; iteration < 60 && g0 && g1; ++iteration) {
     if (std::abs(*g1) < 1e-13) break;
     if (*g1 == *g0) return std::nullopt;
