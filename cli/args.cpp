@@ -85,6 +85,7 @@ constexpr CommandSummary kCommands[] = {
      "rendering again"},
     {"ptc", "EMVA 1288 photon-transfer measurement of a sensor"},
     {"mtf", "ISO 12233 slanted-edge MTF (e-SFR) of a region of an image"},
+    {"psf", "PSF images of a scene's lens at chosen field points and wavelengths"},
     {"bench", "speed against error of the renderer on reference scenes"},
 };
 

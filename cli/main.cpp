@@ -12,6 +12,7 @@
 #include "cli/expose_command.h"
 #include "cli/merge_command.h"
 #include "cli/mtf_command.h"
+#include "cli/psf_command.h"
 #include "cli/ptc_command.h"
 #include "cli/render_command.h"
 #include "sensor/base/input_error.h"
@@ -57,6 +58,7 @@ int main(int argc, char** argv) {
       return camsim::runDatasetCommand(args, std::cout, std::cerr, &gCancel, &gSignal);
     }
     if (!args.empty() && args[0] == "mtf") return camsim::runMtfCommand(args, std::cout, std::cerr);
+    if (!args.empty() && args[0] == "psf") return camsim::runPsfCommand(args, std::cout, std::cerr);
     if (!args.empty() && args[0] == "bench")
       return camsim::runBenchCommand(args, std::cout, std::cerr);
     const camsim::Command cmd = camsim::parseArgs(args);

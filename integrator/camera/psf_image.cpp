@@ -1,0 +1,300 @@
+// PSF images: the forward trace and the statistics of psf_image.h (which states the model).
+#include "integrator/camera/psf_image.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <optional>
+#include <string>
+#include <utility>
+
+#include <glm/geometric.hpp>
+
+#include "integrator/geometry/math.h"
+#include "integrator/sampling/rng.h"
+#include "sensor/base/input_error.h"
+
+namespace camsim {
+namespace {
+
+std::string psfNumber(double v) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.10g", v);
+  return buffer;
+}
+
+[[noreturn]] void refusePsf(const std::string& key, const std::string& message) {
+  throw InputError({}, key, message);
+}
+
+// A ray that reached the film: upright film point (m) and its weight.
+struct PsfHit {
+  glm::dvec2 s{0.0};
+  double weight = 1.0;
+};
+
+// The lens with every clear aperture but the stop's widened (to 3× its diameter, within the
+// sphere's own limit; aspheres keep theirs): what passes it passed the stop's opening.
+LensSystem withoutRims(const LensSystem& lens) {
+  LensPrescription p = lens.prescription();
+  for (LensSurface& s : p.surfaces) {
+    if (s.stop || s.aspheric()) continue;
+    double wider = 3.0 * s.apertureDiameter;
+    if (s.radius != 0.0) wider = std::min(wider, 1.998 * std::abs(s.radius));
+    s.apertureDiameter = std::max(s.apertureDiameter, wider);
+  }
+  LensSystem out(std::move(p));
+  const Aperture& stop = lens.stop();
+  const double diameter = std::sqrt(4.0 * stop.area() / M_PI);
+  out.setStop(std::min(diameter, out.maxStopDiameter()), stop.blades(), stop.rotation());
+  return out;
+}
+
+// The real chief ray in object space (lens axes, heading +z) from the upright film point
+// (h, 0) — lens space (−h, 0, −s) — through the stop's centre at λ_d, traced through `open`
+// (rims widened: a vignetted chief ray still counts, as LensSystem::chiefRayAngle's). Aimed
+// by the secant method on the stop's height, from the rear group alone (the surfaces behind
+// the stop, whose front surface is then the stop's plane). None if the aim fails.
+std::optional<LensRay> psfChiefRay(const LensSystem& open, double h, double sensor) {
+  LensPrescription rearGroup = open.prescription();
+  rearGroup.surfaces.erase(rearGroup.surfaces.begin(),
+                           rearGroup.surfaces.begin() + rearGroup.stopIndex);
+  rearGroup.stopIndex = 0;
+  const LensSystem rear(std::move(rearGroup));  // its stop at the file's diameter
+  const LensSystem::Indices nRear = rear.indicesAt(kLambdaDNm);
+  const glm::dvec3 film(-h, 0.0, -sensor);
+  const auto aim = [&film](double x) {
+    return LensRay{film, glm::normalize(glm::dvec3(x, 0.0, 0.0) - film)};
+  };
+  const auto stopHeight = [&](double x) -> std::optional<double> {
+    const std::optional<LensRay> atStop = rear.traceFromFilm(aim(x), nRear);
+    if (!atStop) return std::nullopt;
+    return atStop->origin.x;
+  };
+  double x0 = 0.0, x1 = 0.1 * open.rearClearRadius() * (h >= 0.0 ? 1.0 : -1.0);
+  std::optional<double> g0 = stopHeight(x0), g1 = stopHeight(x1);
+  if (g0 && *g0 == 0.0) {  // on axis: the aim through the rear vertex is the chief ray
+    x1 = x0;
+    g1 = g0;
+  }
+  for (int iteration = 0; iteration < 60 && g0 && g1; ++iteration) {
+    if (std::abs(*g1) < 1e-13) break;
+    if (*g1 == *g0) return std::nullopt;
+    const double x2 = x1 - *g1 * (x1 - x0) / (*g1 - *g0);
+    x0 = x1;
+    g0 = g1;
+    x1 = x2;
+    g1 = stopHeight(x1);
+  }
+  if (!g1 || !(std::abs(*g1) < 1e-9)) return std::nullopt;
+  return open.traceFromFilm(aim(x1), kLambdaDNm);
+}
+
+// Where the traced lens's rays land (upright film, m), and the vignetted share.
+struct PsfTracedRays {
+  std::vector<PsfHit> hits;
+  double lostFraction = 0.0;
+};
+
+PsfTracedRays tracePsfLens(const LensCamera& camera, const PsfSettings& settings,
+                           double imageHeight, double objectDistance, Pcg32& rng) {
+  const LensSystem& lens = camera.lens();
+  const LensSystem open = withoutRims(lens);
+  const double sensor = camera.sensorDistance();
+  const std::optional<LensRay> chief = psfChiefRay(open, imageHeight, sensor);
+  if (!chief)
+    refusePsf("field", psfNumber(settings.field) + ": the film point " +
+                           psfNumber(imageHeight * 1e3) +
+                           " mm off axis has no chief ray through the lens");
+  const bool infinite = std::isinf(objectDistance);
+  const double front = lens.frontVertexZ();
+  const double discRadius = 1.5 * std::sqrt(lens.shape(0).clearRadius2);
+  // The object point on the chief ray at objectDistance from the entrance pupil (the
+  // object is on the +x side: the upright image); at infinity the rays come along it.
+  const double reach =
+      (camera.entrancePupilZ() + objectDistance - chief->origin.z) / chief->direction.z;
+  const glm::dvec3 object = infinite ? glm::dvec3(0.0) : chief->origin + reach * chief->direction;
+  const glm::dvec3 parallel = -chief->direction;
+  const LensSystem::Indices n = lens.indicesAt(settings.wavelengthNm);
+
+  PsfTracedRays out;
+  out.hits.reserve(static_cast<size_t>(settings.rays));
+  double through = 0.0, passed = 0.0;
+  for (std::int64_t i = 0; i < settings.rays; ++i) {
+    const glm::vec2 u(rng.uniform(), rng.uniform());
+    const glm::dvec2 p = discRadius * glm::dvec2(sampleUniformDiskConcentric(u));
+    const glm::dvec3 target(p, front);
+    LensRay ray;
+    double weight = 1.0;
+    if (infinite) {  // start in front of any bulge of the front surface
+      ray.direction = parallel;
+      ray.origin = target - 4.0 * discRadius * parallel;
+    } else {
+      const glm::dvec3 v = target - object;
+      ray.origin = object;
+      ray.direction = glm::normalize(v);
+      const double c = -ray.direction.z;  // cos θ to the axis
+      weight = c * c * c * c;
+    }
+    if (open.traceFromObject(ray, n)) through += weight;
+    const std::optional<LensRay> leaving = lens.traceFromObject(ray, n);
+    if (!leaving || !(leaving->direction.z < 0.0)) continue;
+    passed += weight;
+    const double t = (-sensor - leaving->origin.z) / leaving->direction.z;
+    const glm::dvec3 hit = leaving->origin + t * leaving->direction;
+    out.hits.push_back({glm::dvec2(-hit.x, -hit.y), weight});  // the lens inverts
+  }
+  out.lostFraction = through > 0.0 ? std::clamp(1.0 - passed / through, 0.0, 1.0) : 1.0;
+  return out;
+}
+
+// The thin lens (or pinhole): every ray through the stop lands (psf_image.h's equations).
+std::vector<PsfHit> tracePsfThinLens(const PhysicalCamera& camera, const PsfSettings& settings,
+                                     double imageHeight, double objectDistance, Pcg32& rng) {
+  const PhysicalCameraParams& p = camera.params();
+  const double f = p.focalLength, zi = camera.imageDistance();
+  const bool infinite = std::isinf(objectDistance);
+  const double conjugate = infinite ? f : f * objectDistance / (objectDistance - f);  // z_i'
+  const glm::dvec2 slope(imageHeight / zi, 0.0);
+  const glm::dvec2 image = -slope * conjugate;  // O', inverted
+  std::optional<Aperture> stop;
+  if (p.aperture) stop.emplace(p.apertureDiameter(), p.aperture->blades, p.aperture->rotation);
+  std::vector<PsfHit> hits;
+  hits.reserve(static_cast<size_t>(settings.rays));
+  for (std::int64_t i = 0; i < settings.rays; ++i) {
+    const glm::vec2 u(rng.uniform(), rng.uniform());
+    const glm::dvec2 lens = stop ? glm::dvec2(stop->sample(u)) : glm::dvec2(0.0);
+    const glm::dvec2 film = lens + (image - lens) * (zi / conjugate);
+    hits.push_back({-film, 1.0});
+  }
+  return hits;
+}
+
+// The radius about c enclosing `fraction` of the weight (hits sorted by radius).
+double psfEncircledRadius(const std::vector<std::pair<double, double>>& byRadius, double total,
+                          double fraction) {
+  double sum = 0.0;
+  for (const auto& [r, w] : byRadius) {
+    sum += w;
+    if (sum >= fraction * total) return r;
+  }
+  return byRadius.empty() ? 0.0 : byRadius.back().first;
+}
+
+}  // namespace
+
+void checkPsfSettings(const PsfSettings& s) {
+  if (!(s.field >= 0.0 && s.field <= psf_ranges::kFieldMax))
+    refusePsf("field", psfNumber(s.field) + " is outside [0, " + psfNumber(psf_ranges::kFieldMax) +
+                           "] (the image height over the sensor's half width)");
+  if (!(s.wavelengthNm >= psf_ranges::kLambdaMinNm && s.wavelengthNm <= psf_ranges::kLambdaMaxNm))
+    refusePsf("wavelength", psfNumber(s.wavelengthNm) + " nm is outside [" +
+                                psfNumber(psf_ranges::kLambdaMinNm) + ", " +
+                                psfNumber(psf_ranges::kLambdaMaxNm) + "] nm");
+  if (s.size < psf_ranges::kSizeMin || s.size > psf_ranges::kSizeMax)
+    refusePsf("size", std::to_string(s.size) + " px is outside [" +
+                          std::to_string(psf_ranges::kSizeMin) + ", " +
+                          std::to_string(psf_ranges::kSizeMax) + "]");
+  if (s.oversample < psf_ranges::kOversampleMin || s.oversample > psf_ranges::kOversampleMax)
+    refusePsf("oversample", std::to_string(s.oversample) + " is outside [" +
+                                std::to_string(psf_ranges::kOversampleMin) + ", " +
+                                std::to_string(psf_ranges::kOversampleMax) + "]");
+  if (static_cast<std::int64_t>(s.size) * s.oversample > psf_ranges::kCellsMax)
+    refusePsf("oversample", "size × oversample = " + std::to_string(s.size * s.oversample) +
+                                " cells per side is over " + std::to_string(psf_ranges::kCellsMax));
+  if (s.rays < psf_ranges::kRaysMin || s.rays > psf_ranges::kRaysMax)
+    refusePsf("rays", std::to_string(s.rays) + " is outside [" +
+                          std::to_string(psf_ranges::kRaysMin) + ", " +
+                          std::to_string(psf_ranges::kRaysMax) + "]");
+  if (!(s.objectDistance >= 0.0 && std::isfinite(s.objectDistance)))
+    refusePsf("object_distance",
+              psfNumber(s.objectDistance) + " m: expected ≥ 0 (0: the focus distance)");
+}
+
+PsfImage computePsf(const PhysicalCamera& camera, const PsfSettings& settings) {
+  checkPsfSettings(settings);
+  const PhysicalCameraParams& p = camera.params();
+  const LensCamera* traced = camera.lensCamera();
+  PsfImage out;
+  out.settings = settings;
+  out.imageHeight = settings.field * 0.5 * p.sensorSize.x;
+  const double focus = traced ? traced->focusDistance() : p.focusDistance;
+  const double distance = settings.objectDistance > 0.0 ? settings.objectDistance : focus;
+  out.objectDistance = distance > 0.0 ? distance : kInfiniteDistance;
+  if (!traced && !(out.objectDistance > p.focalLength))
+    refusePsf("object_distance", psfNumber(distance) + " m is not beyond the focal length " +
+                                     psfNumber(p.focalLength * 1e3) + " mm: no real image");
+  if (traced && std::isfinite(out.objectDistance)) {
+    const double fromVertex = objectDistanceFromVertex(traced->lens(), out.objectDistance);
+    if (!(fromVertex > traced->lens().paraxial().frontFocalLength))
+      refusePsf("object_distance",
+                psfNumber(distance) + " m is inside the lens's front focal length");
+  }
+
+  Pcg32 rng(settings.seed, 0x9f5b1c3d7e2a4u);  // the PSF's own stream of the seed
+  std::vector<PsfHit> hits;
+  if (traced) {
+    PsfTracedRays r = tracePsfLens(*traced, settings, out.imageHeight, out.objectDistance, rng);
+    hits = std::move(r.hits);
+    out.lostFraction = r.lostFraction;
+  } else {
+    hits = tracePsfThinLens(camera, settings, out.imageHeight, out.objectDistance, rng);
+  }
+  if (hits.empty())
+    refusePsf("field",
+              psfNumber(settings.field) + ": no ray from the object point reaches the film");
+  if (const Diffraction* d = camera.diffraction()) {
+    out.workingFNumber = d->workingFNumber();
+    // δ as Diffraction::sample draws it for one wavelength: the stop's table (its shape),
+    // turned by the stop's rotation, scaled by λN_w with the renderer's N_w.
+    const double scale = settings.wavelengthNm * 1e-9 * d->workingFNumber();
+    const double rotation = p.aperture ? p.aperture->rotation : 0.0;
+    const double c = std::cos(rotation), sn = std::sin(rotation);
+    for (PsfHit& h : hits) {
+      const glm::dvec2 t = d->shape().sample({rng.uniform(), rng.uniform()});
+      h.s += scale * glm::dvec2(c * t.x - sn * t.y, sn * t.x + c * t.y);
+    }
+  }
+  out.landed = static_cast<std::int64_t>(hits.size());
+
+  // The grid: s_ref at the centre of cell (n/2, n/2); row 0 at the top.
+  const int n = settings.size * settings.oversample;
+  out.cells = n;
+  out.cellWidth = p.sensorSize.x / p.resolution.x / settings.oversample;
+  out.cellHeight = p.sensorSize.y / p.resolution.y / settings.oversample;
+  out.energy.assign(static_cast<size_t>(n) * static_cast<size_t>(n), 0.0);
+  double total = 0.0, inside = 0.0, cx = 0.0, cy = 0.0;
+  for (const PsfHit& h : hits) {
+    const double dx = h.s.x - out.imageHeight, dy = h.s.y;
+    total += h.weight;
+    cx += h.weight * dx;
+    cy += h.weight * dy;
+    const double col = std::floor(dx / out.cellWidth + 0.5) + n / 2;
+    const double row = n / 2 - std::floor(dy / out.cellHeight + 0.5);
+    if (col < 0 || row < 0 || col >= n || row >= n) continue;
+    out.energy[static_cast<size_t>(row) * static_cast<size_t>(n) + static_cast<size_t>(col)] +=
+        h.weight;
+    inside += h.weight;
+  }
+  if (inside > 0.0)
+    for (double& e : out.energy) e /= inside;
+  out.outsideFraction = total > 0.0 ? 1.0 - inside / total : 1.0;
+  out.centroidX = cx / total;
+  out.centroidY = cy / total;
+
+  std::vector<std::pair<double, double>> byRadius;
+  byRadius.reserve(hits.size());
+  double second = 0.0;
+  for (const PsfHit& h : hits) {
+    const double r = std::hypot(h.s.x - out.imageHeight - out.centroidX, h.s.y - out.centroidY);
+    second += h.weight * r * r;
+    byRadius.emplace_back(r, h.weight);
+  }
+  out.rmsRadius = std::sqrt(second / total);
+  std::sort(byRadius.begin(), byRadius.end());
+  out.encircled50 = psfEncircledRadius(byRadius, total, 0.5);
+  out.encircled80 = psfEncircledRadius(byRadius, total, 0.8);
+  return out;
+}
+
+}  // namespace camsim
