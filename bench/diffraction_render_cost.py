@@ -7,14 +7,15 @@ by design: on is the geometric image convolved with the stop's PSF). docs/perfor
 Time: CPU seconds (user + system) of each `camsim render` process (os.wait4), which a shared
 host's waiting does not inflate; it includes the scene load and writing the outputs, the same
 for off and on, so the extra per sample, (on - off) / samples, is the cleaner figure.
-Error: rMSE of luminance Y (Rec.709 Y of the EXR's linear RGB) against the reference, as
-camsim bench's (docs/bench.md): mean (x - r)^2 / (r^2 + eps^2), eps = 1 % of the reference's
-mean. Each reference is two renders of REF_SPP/2 at seeds 1001 and 1002 (kept in OUT and
-reused); its own error, the rMSE of (a - b)/2 against (a + b)/2, is the floor printed and
-subtracted (the references are not rendered again while OUT holds them: delete OUT after
-a change to the scene or to camsim). Time to equal error: with rMSE proportional to 1/spp (Monte Carlo's slope; the
-Sobol' sampler may do a little better), the CPU time each needs for the same rMSE scales as
-time x rMSE, so (t_on rMSE_on) / (t_off rMSE_off) is the cost of diffraction at equal error.
+Error: rMSE and MRAE of luminance Y (Rec.709 Y of the EXR's linear RGB) against the
+reference, as camsim bench's (docs/bench.md): rMSE = mean (x - r)^2 / (r^2 + eps^2), MRAE =
+mean |x - r| / (|r| + eps), eps = 1 % of the reference's mean. Each reference is two renders
+of REF_SPP/2 at seeds 1001 and 1002 (kept in OUT and reused: delete OUT after a change to
+the scene or to camsim); its own error, the rMSE of (a - b)/2 against (a + b)/2, is the
+floor printed and subtracted. Time to equal error: with rMSE proportional to 1/spp (Monte
+Carlo's slope; the Sobol' sampler may do better), the CPU time each needs for the same rMSE
+scales as time x rMSE, so (t_on rMSE_on) / (t_off rMSE_off) is diffraction's cost at equal
+error.
 
 usage: /usr/bin/python3 bench/diffraction_render_cost.py CAMSIM [--scene S] [--spp N]
            [--ref-spp N] [--pairs N] [--out DIR]
@@ -68,6 +69,11 @@ def rmse(x, r):
     return float((e * e / (r * r + eps * eps)).mean())
 
 
+def mrae(x, r):
+    eps = 0.01 * abs(r.mean())
+    return float((np.abs(x - r) / (np.abs(r) + eps)).mean())
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("camsim")
@@ -90,7 +96,7 @@ def main():
         # In OUT (a scene that names files relative to its folder would need them there).
         scenes[name] = out / f"{stem}_diffraction_{name}.yaml"
         scenes[name].write_text(variant(text, scenes[name].stem, on))
-    refs, floors = {}, {}
+    refs, floors, mrae_floors = {}, {}, {}
     for name in configs:
         cache = out / f"{stem}_{name}_ref{args.ref_spp}.npz"
         if cache.exists():
@@ -102,30 +108,35 @@ def main():
             np.savez(cache, a=a, b=b)
         refs[name] = 0.5 * (a + b)
         floors[name] = rmse(refs[name] + 0.5 * (a - b), refs[name])
+        mrae_floors[name] = mrae(refs[name] + 0.5 * (a - b), refs[name])
     times = {name: [] for name in configs}
     errors = {name: [] for name in configs}
+    maes = {name: [] for name in configs}
     for pair in range(args.pairs):
         order = list(configs) if pair % 2 == 0 else list(reversed(list(configs)))
         for name in order:
             y, cpu = render(args.camsim, scenes[name], out, args.spp, pair + 1)
             times[name].append(cpu)
             errors[name].append(rmse(y, refs[name]))
+            maes[name].append(mrae(y, refs[name]))
     h, w = next(iter(refs.values())).shape
     samples = float(w * h * args.spp)
     med = {n: float(np.median(times[n])) for n in configs}
     err = {n: float(np.mean(errors[n])) - floors[n] for n in configs}
     print(f"{stem}: {w} x {h} px, {args.spp} spp ({samples / 1e6:.2f} M samples), 1 thread, "
           f"{args.pairs} alternated pairs; references {args.ref_spp} spp")
-    print(f"{'diffraction':12s} {'CPU s per render':28s} {'median':>8s} {'rMSE (mean)':>12s} "
-          f"{'ref floor':>10s} {'rMSE - floor':>12s}")
+    print(f"{'diffraction':12s} {'CPU s per render':24s} {'median':>7s} {'rMSE per render':30s} "
+          f"{'ref floor':>9s} {'rMSE-floor':>10s} {'MRAE (mean)':>11s} {'ref floor':>9s}")
     for n in configs:
-        print(f"{n:12s} {', '.join(f'{t:.2f}' for t in times[n]):28s} {med[n]:8.2f} "
-              f"{np.mean(errors[n]):12.3e} {floors[n]:10.2e} {err[n]:12.3e}")
+        print(f"{n:12s} {', '.join(f'{t:.2f}' for t in times[n]):24s} {med[n]:7.2f} "
+              f"{', '.join(f'{e:.2e}' for e in errors[n]):30s} {floors[n]:9.2e} {err[n]:10.3e} "
+              f"{np.mean(maes[n]):11.4f} {mrae_floors[n]:9.4f}")
     ratio = med["on"] / med["off"]
     extra = (med["on"] - med["off"]) / samples * 1e6
     print(f"on / off CPU at equal spp: {ratio:.2f}x (extra {extra:.3f} us per sample); "
           f"rMSE on / off: {err['on'] / err['off']:.2f}; "
-          f"time to equal error (t x rMSE) on / off: {ratio * err['on'] / err['off']:.2f}x")
+          f"time to equal error (t x rMSE) on / off: {ratio * err['on'] / err['off']:.2f}x; "
+          f"MRAE on / off: {np.mean(maes['on']) / np.mean(maes['off']):.2f}")
     return 0
 
 
