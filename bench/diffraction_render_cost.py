@@ -13,9 +13,10 @@ mean |x - r| / (|r| + eps), eps = 1 % of the reference's mean. Each reference is
 of REF_SPP/2 at seeds 1001 and 1002 (kept in OUT and reused: delete OUT after a change to
 the scene or to camsim); its own error, the rMSE of (a - b)/2 against (a + b)/2, is the
 floor printed and subtracted. Time to equal error: with rMSE proportional to 1/spp (Monte
-Carlo's slope; the Sobol' sampler may do better), the CPU time each needs for the same rMSE
-scales as time x rMSE, so (t_on rMSE_on) / (t_off rMSE_off) is diffraction's cost at equal
-error.
+Carlo's slope), the CPU time each needs for the same rMSE scales as time x rMSE, so
+(t_on rMSE_on) / (t_off rMSE_off) is diffraction's cost at equal error; the Sobol' sampler
+converges faster on smooth images, so the slope between SPP and REF_SPP is printed too, and
+the time diffraction on needs at its own slope to reach the off render's rMSE.
 
 usage: /usr/bin/python3 bench/diffraction_render_cost.py CAMSIM [--scene S] [--spp N]
            [--ref-spp N] [--pairs N] [--out DIR]
@@ -137,6 +138,14 @@ def main():
           f"rMSE on / off: {err['on'] / err['off']:.2f}; "
           f"time to equal error (t x rMSE) on / off: {ratio * err['on'] / err['off']:.2f}x; "
           f"MRAE on / off: {np.mean(maes['on']) / np.mean(maes['off']):.2f}")
+    # The slope of log rMSE against log spp between the renders and the references (whose
+    # error the floor estimates), and with it the CPU time diffraction on needs to reach the
+    # off render's rMSE: t_on * (rMSE_on / rMSE_off)^(1 / |slope_on|).
+    slope = {n: np.log(err[n] / floors[n]) / np.log(args.spp / args.ref_spp) for n in configs}
+    reach = med["on"] * (err["on"] / err["off"]) ** (1.0 / abs(slope["on"]))
+    print(f"rMSE slope against spp ({args.spp} -> {args.ref_spp}): off {slope['off']:.2f}, on "
+          f"{slope['on']:.2f}; on reaches off's rMSE in {reach:.1f} CPU s, "
+          f"{reach / med['off']:.1f}x off's time")
     return 0
 
 
