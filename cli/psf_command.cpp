@@ -46,7 +46,8 @@ std::unique_ptr<CLI::App> psfApp(PsfArgs& a) {
       "psf",
       "PSF images of SCENE's camera (the thin lens of camera.aperture or the traced lens of\n"
       "camera.lens): the image on the film of an object point at the focus distance, at\n"
-      "relative field height F along +x (0 the axis, 1 the sensor's half width) and\n"
+      "relative field height F along +x (0 the axis, 1 a corner's height: the sensor's half\n"
+      "diagonal, as camsim mtf's field height) and\n"
       "wavelength λ, forward-traced over the pupil with the stop's diffraction when\n"
       "camera.aperture.diffraction is on. Writes into DIR per (F, λ) psf_f<F>_<λ>nm.exr\n"
       "(channel Y, sum 1, one pixel per cell of pitch/K) and .png (log10 over 4 decades),\n"

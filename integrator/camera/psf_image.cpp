@@ -186,7 +186,7 @@ double psfEncircledRadius(const std::vector<std::pair<double, double>>& byRadius
 void checkPsfSettings(const PsfSettings& s) {
   if (!(s.field >= 0.0 && s.field <= psf_ranges::kFieldMax))
     refusePsf("field", psfNumber(s.field) + " is outside [0, " + psfNumber(psf_ranges::kFieldMax) +
-                           "] (the image height over the sensor's half width)");
+                           "] (the image height over the sensor's half diagonal)");
   if (!(s.wavelengthNm >= psf_ranges::kLambdaMinNm && s.wavelengthNm <= psf_ranges::kLambdaMaxNm))
     refusePsf("wavelength", psfNumber(s.wavelengthNm) + " nm is outside [" +
                                 psfNumber(psf_ranges::kLambdaMinNm) + ", " +
@@ -217,7 +217,7 @@ PsfImage computePsf(const PhysicalCamera& camera, const PsfSettings& settings) {
   const LensCamera* traced = camera.lensCamera();
   PsfImage out;
   out.settings = settings;
-  out.imageHeight = settings.field * 0.5 * p.sensorSize.x;
+  out.imageHeight = settings.field * 0.5 * std::hypot(p.sensorSize.x, p.sensorSize.y);
   const double focus = traced ? traced->focusDistance() : p.focusDistance;
   const double distance = settings.objectDistance > 0.0 ? settings.objectDistance : focus;
   out.objectDistance = distance > 0.0 ? distance : kInfiniteDistance;

@@ -6,7 +6,7 @@
 //
 // | parameter      | unit | range        | meaning |
 // |----------------|------|--------------|---------|
-// | field F        | —    | [0, 1.5]     | relative image height along +x: h = F · W/2, W the sensor's width |
+// | field F        | —    | [0, 1.5]     | relative field height along +x: h = F · D/2, D the sensor's diagonal (camsim mtf's and ISO 12233's convention: 1 a corner's height) |
 // | wavelength λ   | nm   | [360, 830]   | the one wavelength traced (and diffracted) |
 // | size           | px   | [4, 512]     | the grid's side in film pixels (photosites) |
 // | oversample K   | —    | [1, 16]      | cells per photosite per axis (size·K ≤ 2048) |
@@ -56,7 +56,7 @@
 namespace camsim {
 
 struct PsfSettings {
-  double field = 0.0;           // F, relative to the sensor's half width
+  double field = 0.0;           // F, relative to the sensor's half diagonal
   double wavelengthNm = 550.0;  // nm
   int size = 32;                // px
   int oversample = 4;           // cells per px per axis
