@@ -13,9 +13,9 @@
 //   Σ_k W_k · lit(ray_k) / Σ_k W_k
 //
 // over its rays (film point over the pixel, lens and diffraction numbers stratified, Pcg32
-// with a fixed seed; W_k the camera's measurement weight at lane 0, 0 for a lost ray): its exposure to a lit
-// half-plane over its exposure to a uniformly lit plane, the same samples in both (a
-// flat-field-corrected edge). The ratio removes the noise of the weights — a traced lens's
+// with a fixed seed; W_k the camera's measurement weight at lane 0, 0 for a lost ray): its
+// exposure to a lit half-plane over its exposure to a uniformly lit plane, the same samples
+// in both (a flat-field-corrected edge). The ratio removes the noise of the weights — a traced lens's
 // pupil samples vary in weight, and some are lost — that would otherwise lie on the whole lit
 // side; only the pixels the blur reaches are noisy. It is the edge's ESF integrated over the
 // photosite, the camera's relative illumination across a pixel divided out.
@@ -85,8 +85,8 @@ inline Image renderEdgeAtOneWavelength(const PhysicalCamera& camera, const EdgeT
         const auto r = camera.generateRay(cs, lambda);
         if (!r || !(r->ray.d.z > 0.0f)) continue;
         const double w = static_cast<double>(r->weight[0]);
-        const double s = (target.distance - static_cast<double>(r->ray.o.z)) /
-                         static_cast<double>(r->ray.d.z);
+        const double s =
+            (target.distance - static_cast<double>(r->ray.o.z)) / static_cast<double>(r->ray.d.z);
         const double x = static_cast<double>(r->ray.o.x) + s * static_cast<double>(r->ray.d.x);
         const double y = static_cast<double>(r->ray.o.y) + s * static_cast<double>(r->ray.d.y);
         all += w;

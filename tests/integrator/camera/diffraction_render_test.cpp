@@ -165,9 +165,10 @@ TEST(DiffractionRender, EdgeMtfAtF8And550NmIsTheDiffractionLimitedMtf) {
       worstAt = f;
     }
   }
-  std::printf("[measured] edge at f/8 (N_w %.4f), 550 nm, 2 um pixels: max |MTF error| to the "
-              "cut-off %.3f cy/px: %.4f at %.3f cy/px\n",
-              nw, cutoff, worst, worstAt);
+  std::printf(
+      "[measured] edge at f/8 (N_w %.4f), 550 nm, 2 um pixels: max |MTF error| to the "
+      "cut-off %.3f cy/px: %.4f at %.3f cy/px\n",
+      nw, cutoff, worst, worstAt);
   EXPECT_LT(worst, 0.02);
 }
 

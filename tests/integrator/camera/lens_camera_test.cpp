@@ -222,8 +222,7 @@ double tracedDiscPx(const LensCamera& lc, double distance, double fraction) {
   const ParaxialData& pa = lc.paraxial();
   const glm::dvec3 object(0.0, 0.0, pa.entrancePupilZ + distance);
   const glm::dvec3 pupil(fraction * 0.5 * pa.entrancePupilDiameter, 0.0, pa.entrancePupilZ);
-  const auto out =
-      lc.lens().traceFromObject({object, glm::normalize(pupil - object)}, kLambdaDNm);
+  const auto out = lc.lens().traceFromObject({object, glm::normalize(pupil - object)}, kLambdaDNm);
   if (!out) return -1.0;
   const double t = (-lc.sensorDistance() - out->origin.z) / out->direction.z;
   return 2.0 * std::abs(out->origin.x + t * out->direction.x) / fraction / kBlurPitch;
@@ -247,21 +246,23 @@ TEST(LensCamera, SingletBlursADefocusedEdgeAsTheThinLens) {
   const SfrResult traced = measureBlur(singlet);
   const double f = thinParams.focalLength;
   const double c = f / 16.0 * f * (2.0 - 1.5) / (1.5 * (2.0 - f)) / kBlurPitch;  // px
-  std::printf("[measured] singlet f/16 blur disc of a point at 1.5 m: paraxial rays %.3f px, "
-              "rim rays %.3f px; thin lens %.3f px\n",
-              tracedDiscPx(*singlet.lensCamera(), 1.5, 0.01),
-              tracedDiscPx(*singlet.lensCamera(), 1.5, 0.999), c);
+  std::printf(
+      "[measured] singlet f/16 blur disc of a point at 1.5 m: paraxial rays %.3f px, "
+      "rim rays %.3f px; thin lens %.3f px\n",
+      tracedDiscPx(*singlet.lensCamera(), 1.5, 0.01),
+      tracedDiscPx(*singlet.lensCamera(), 1.5, 0.999), c);
   const double lobe = 1.25 / c;  // cycles/px
   const double d = mtfDistance(traced, thin, lobe);
   const double slowerBy5 =
       mtfDistance(measureBlur(PhysicalCamera(singletParams({16.8, 2.0}))), thin, lobe);
   const double focusFarBy5 =
       mtfDistance(measureBlur(PhysicalCamera(singletParams({16.0, 2.1}))), thin, lobe);
-  std::printf("[measured] singlet f/16 vs thin lens (EFL %.3f mm, disc %.2f px): max |dMTF| to %.3f "
-              "cy/px %.4f; "
-              "f/16.8: %.4f; focus 2.1 m: %.4f; MTF50 %.4f vs %.4f cy/px\n",
-              f * 1e3, c, lobe, d, slowerBy5, focusFarBy5, traced.mtf50.value_or(-1.0),
-              thin.mtf50.value_or(-1.0));
+  std::printf(
+      "[measured] singlet f/16 vs thin lens (EFL %.3f mm, disc %.2f px): max |dMTF| to %.3f "
+      "cy/px %.4f; "
+      "f/16.8: %.4f; focus 2.1 m: %.4f; MTF50 %.4f vs %.4f cy/px\n",
+      f * 1e3, c, lobe, d, slowerBy5, focusFarBy5, traced.mtf50.value_or(-1.0),
+      thin.mtf50.value_or(-1.0));
   EXPECT_LT(d, 0.02);
   EXPECT_GT(slowerBy5, 0.02);
   EXPECT_GT(focusFarBy5, 0.02);
