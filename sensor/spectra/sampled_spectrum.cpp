@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "sensor/base/check.h"
 #include "sensor/base/float_math.h"
 
 namespace camsim {
@@ -97,6 +98,18 @@ SampledWavelengths SampledWavelengths::sampleUniform(float u) {
     const float ui = wrap(u + static_cast<float>(i) / kWavelengthSamples);
     w.lambda_[i] = kLambdaMinNm + ui * range;
     w.pdf_[i] = 1.0f / range;
+  }
+  w.locateOnGrid();
+  return w;
+}
+
+SampledWavelengths SampledWavelengths::monochromatic(float lambdaNm) {
+  CAMSIM_CHECK(lambdaNm >= static_cast<float>(kLambdaMinNm) &&
+               lambdaNm <= static_cast<float>(kLambdaMaxNm));
+  SampledWavelengths w;
+  for (int i = 0; i < kWavelengthSamples; ++i) {
+    w.lambda_[i] = lambdaNm;
+    w.pdf_[i] = 1.0f;
   }
   w.locateOnGrid();
   return w;

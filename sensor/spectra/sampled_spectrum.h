@@ -109,6 +109,9 @@ class SampledWavelengths {
   static SampledWavelengths sampleVisible(float u);
   // Stratified uniform sampling over [360, 830] nm (pdf 1/470 nm⁻¹), for tests.
   static SampledWavelengths sampleUniform(float u);
+  // Every lane at λ (nm, in [360, 830]) with pdf 1: one wavelength, for tests that trace
+  // camera rays at a single wavelength (the diffraction PSF at 550 nm alone).
+  static SampledWavelengths monochromatic(float lambdaNm);
 
   float operator[](int i) const { return lambda_[i]; }
   float pdf(int i) const { return pdf_[i]; }

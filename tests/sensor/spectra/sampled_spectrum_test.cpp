@@ -165,6 +165,17 @@ TEST(SampledWavelengths, SampleUniformIsStratifiedWithConstantPdf) {
   }
 }
 
+TEST(SampledWavelengths, MonochromaticPutsEveryLaneAtOneWavelength) {
+  const SampledWavelengths w = SampledWavelengths::monochromatic(550.5f);
+  const SampledSpectrum yBar = sampleSpectrum(Cie1931::get().y, w);
+  for (int i = 0; i < kWavelengthSamples; ++i) {
+    EXPECT_EQ(w[i], 550.5f) << "i = " << i;
+    EXPECT_EQ(w.pdf(i), 1.0f);
+    EXPECT_FLOAT_EQ(yBar[i], Cie1931::get().y(550.5f));  // the grid position is λ's
+  }
+  EXPECT_FALSE(w.secondaryTerminated());
+}
+
 TEST(SampledWavelengths, MonteCarloIntegralOfYBarMatchesTheTableSum) {
   // ∫ȳ dλ ≈ (1/N) Σ_samples (1/4) Σ_i ȳ(λ_i) / p(λ_i), N = 2^16 with a fixed seed.
   const Spectrum& yBar = Cie1931::get().y;
