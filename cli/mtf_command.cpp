@@ -27,8 +27,9 @@ std::unique_ptr<CLI::App> mtfApp(MtfArgs& a) {
       "  mtf.json  MTF50, MTF at Nyquist, edge angle and position per channel, ROI, units\n"
       "  mtf.png   the curves (needs python3-matplotlib; skipped with a note without it)\n"
       "With --roi repeated (edges at several field heights): mtf_1.csv, mtf_1.json,\n"
-      "mtf_1.png, … per region, and mtf_fields.csv: each region's field height (its\n"
-      "centre's distance from the image centre over the half diagonal) and MTF50.\n"
+      "mtf_1.png, … per region, mtf_fields.csv (each region's field height: its centre's\n"
+      "distance from the image centre over the half diagonal; and MTF50) and\n"
+      "mtf_fields.png (one curve per region: Y, else the first channel).\n"
       "The MTF is the image's: with a rendered or captured image, the lens times the pixel\n"
       "aperture (and sensor and ISP when they ran), as ISO reports it. docs/mtf.md.");
   app->add_option("image", a.image, "the image: OpenEXR or PNG")->type_name("IMAGE")->required();
@@ -121,17 +122,26 @@ std::vector<std::filesystem::path> runMtf(const MtfArgs& args, std::ostream& out
   if (!python)
     log << "camsim mtf: python3 with matplotlib not found ($CAMSIM_PYTHON or /usr/bin/python3; "
            "Debian: apt-get install python3-matplotlib): plot skipped, CSV and JSON only\n";
+  std::vector<std::string> fieldPlotArgs;  // --fields PNG CSV1 JSON1 …: mtf_fields.png
   for (size_t r = 0; r < regions.size(); ++r) {
     const std::string stem = regions.size() == 1 ? "mtf" : "mtf_" + std::to_string(r + 1);
     const std::filesystem::path csv = outputs.addText(stem + ".csv", formatMtfCsv(regions[r]));
     const std::filesystem::path json = outputs.addText(stem + ".json", formatMtfJson(regions[r]));
+    fieldPlotArgs.insert(fieldPlotArgs.end(), {csv.string(), json.string()});
     if (python) {
       out.flush();
       runPythonScript(*python, mtfPlotScriptFile("mtf_plot.py"),
                       {csv.string(), json.string(), outputs.add(stem + ".png").string()});
     }
   }
-  if (regions.size() > 1) outputs.addText("mtf_fields.csv", formatMtfFieldsCsv(regions));
+  if (regions.size() > 1) {
+    outputs.addText("mtf_fields.csv", formatMtfFieldsCsv(regions));
+    if (python) {
+      fieldPlotArgs.insert(fieldPlotArgs.begin(),
+                           {"--fields", outputs.add("mtf_fields.png").string()});
+      runPythonScript(*python, mtfPlotScriptFile("mtf_plot.py"), fieldPlotArgs);
+    }
+  }
   const std::vector<std::filesystem::path> files = outputs.commit();
   for (const auto& f : files) log << "camsim mtf: wrote " << f.string() << "\n";
   return files;

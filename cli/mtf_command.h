@@ -25,7 +25,7 @@ namespace camsim {
 struct MtfArgs {
   std::string image;
   std::vector<std::string> rois;  // "x,y,w,h" each (--roi once or more), parseEdgeRoi
-  std::string channel = "all";  // sensor/measure/mtf_measurement.h's selection
+  std::string channel = "all";    // sensor/measure/mtf_measurement.h's selection
   std::optional<double> pitchUm;
   int fitOrder = 1;
   EdgeOrientation edge = EdgeOrientation::kAuto;

@@ -17,6 +17,7 @@
 #include <glm/geometric.hpp>
 
 #include "integrator/camera/lens_system.h"
+#include "integrator/camera/secant.h"
 
 namespace camsim {
 
@@ -123,19 +124,10 @@ std::optional<double> LensSystem::chiefRayAngle(double filmHeight, double sensor
     if (!atStop) return std::nullopt;
     return atStop->origin.x;
   };
-  double x0 = 0.0, x1 = -0.1 * rearClearRadius() * (filmHeight >= 0.0 ? 1.0 : -1.0);
-  std::optional<double> g0 = stopHeight(x0), g1 = stopHeight(x1);
-  for (int iteration = 0; iteration < 60 && g0 && g1; ++iteration) {
-    if (std::abs(*g1) < 1e-13) break;
-    if (*g1 == *g0) return std::nullopt;
-    const double x2 = x1 - *g1 * (x1 - x0) / (*g1 - *g0);
-    x0 = x1;
-    g0 = g1;
-    x1 = x2;
-    g1 = stopHeight(x1);
-  }
-  if (!g1 || !(std::abs(*g1) < 1e-9)) return std::nullopt;
-  const LensRay chief{film, glm::normalize(glm::dvec3(x1, 0.0, 0.0) - film)};
+  const std::optional<double> x1 =
+      secantRoot(stopHeight, 0.0, -0.1 * rearClearRadius() * (filmHeight >= 0.0 ? 1.0 : -1.0));
+  if (!x1) return std::nullopt;
+  const LensRay chief{film, glm::normalize(glm::dvec3(*x1, 0.0, 0.0) - film)};
   const std::optional<LensRay> out = traceBack(chief, n, 0, false);
   if (!out) return std::nullopt;
   return std::atan2(std::hypot(out->direction.x, out->direction.y), out->direction.z);

@@ -152,8 +152,8 @@ class PhysicalCamera final : public Camera {
   // N_w, the scale of diffraction's PSF: z_i / D for the thin lens; a traced lens's
   // paraxial working f-number 1/(2|u'|) at the scene's object distance.
   double workingFNumber() const;
-  double pixelArea() const { return pixelArea_; }          // photosensitive area, m²
-  double apertureArea() const { return apertureArea_; }    // m²
+  double pixelArea() const { return pixelArea_; }        // photosensitive area, m²
+  double apertureArea() const { return apertureArea_; }  // m²
   // The stop's diffraction, or null (a pinhole, or aperture.diffraction off).
   const Diffraction* diffraction() const { return diffraction_ ? &*diffraction_ : nullptr; }
   glm::dmat4 worldFromCameraAt(double t) const;

@@ -10,6 +10,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "integrator/camera/secant.h"
 #include "integrator/geometry/math.h"
 #include "integrator/sampling/rng.h"
 #include "sensor/base/input_error.h"
@@ -71,23 +72,10 @@ std::optional<LensRay> psfChiefRay(const LensSystem& open, double h, double sens
     if (!atStop) return std::nullopt;
     return atStop->origin.x;
   };
-  double x0 = 0.0, x1 = 0.1 * open.rearClearRadius() * (h >= 0.0 ? 1.0 : -1.0);
-  std::optional<double> g0 = stopHeight(x0), g1 = stopHeight(x1);
-  if (g0 && *g0 == 0.0) {  // on axis: the aim through the rear vertex is the chief ray
-    x1 = x0;
-    g1 = g0;
-  }
-  for (int iteration = 0; iteration < 60 && g0 && g1; ++iteration) {
-    if (std::abs(*g1) < 1e-13) break;
-    if (*g1 == *g0) return std::nullopt;
-    const double x2 = x1 - *g1 * (x1 - x0) / (*g1 - *g0);
-    x0 = x1;
-    g0 = g1;
-    x1 = x2;
-    g1 = stopHeight(x1);
-  }
-  if (!g1 || !(std::abs(*g1) < 1e-9)) return std::nullopt;
-  return open.traceFromFilm(aim(x1), kLambdaDNm);
+  const std::optional<double> x =
+      secantRoot(stopHeight, 0.0, 0.1 * open.rearClearRadius() * (h >= 0.0 ? 1.0 : -1.0));
+  if (!x) return std::nullopt;
+  return open.traceFromFilm(aim(*x), kLambdaDNm);
 }
 
 // Where the traced lens's rays land (upright film, m), and the vignetted share.

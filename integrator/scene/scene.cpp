@@ -111,10 +111,9 @@ void Scene::analyseExposure() {
                                        : 0;
   modelled_.diffraction = camera_->diffraction() != nullptr;
   const LensCamera* lens = camera_->lensCamera();
-  modelled_.tracedLens = lens ? std::filesystem::path(lens->lens().prescription().source)
-                                    .filename()
-                                    .string()
-                              : std::string();
+  modelled_.tracedLens =
+      lens ? std::filesystem::path(lens->lens().prescription().source).filename().string()
+           : std::string();
   modelled_.lensSurfaces = lens ? lens->lens().surfaceCount() : 0;
   modelled_.lensDisperses = lens && lens->disperses();
   modelled_.cameraMoves = camera_->moves(exposureStart_, exposureEnd_);

@@ -22,9 +22,9 @@ namespace camsim {
 
 // What the renderer integrates over, beyond pixel area: only what can change the image.
 struct ModelledDimensions {
-  bool aperture = false;     // lens positions (thin or traced lens); false: pinhole
-  std::string tracedLens;    // the traced lens's file name (camera.lens); empty: thin lens
-  int lensSurfaces = 0;      // its surfaces, the stop included
+  bool aperture = false;   // lens positions (thin or traced lens); false: pinhole
+  std::string tracedLens;  // the traced lens's file name (camera.lens); empty: thin lens
+  int lensSurfaces = 0;    // its surfaces, the stop included
   bool lensDisperses = false;
   int blades = 0;            // 0: circular stop
   bool diffraction = false;  // the stop's PSF (aperture.diffraction): film-point jitter

@@ -264,8 +264,9 @@ std::string formatMtfJson(const MtfMeasurement& m) {
       .set("relative_height", m.relativeFieldHeight())
       .set("height_px", m.fieldHeightPx());
   if (mm) field.set("height_mm", m.fieldHeightPx() * pitchMm);
-  units.set("field", "the ROI centre's distance from the image centre; relative: over the "
-                     "half diagonal (0 centre, 1 corner)");
+  units.set("field",
+            "the ROI centre's distance from the image centre; relative: over the "
+            "half diagonal (0 centre, 1 corner)");
   root.set("roi", roi).set("field", field).set("units", units);
   root.set("edge_orientation", ref.sfr.vertical ? "vertical" : "horizontal")
       .set("edge_angle_deg", ref.sfr.angleDeg)
@@ -308,8 +309,8 @@ std::string formatMtfFieldsCsv(const std::vector<MtfMeasurement>& regions) {
     const double pitchMm = m.options.pixelPitchM * 1e3;
     const auto orEmpty = [](bool has, double v) { return has ? formatNumber(v, 6) : ""; };
     for (const MtfChannel& c : m.channels) {
-      out << r + 1 << "," << m.roi.x << "," << m.roi.y << "," << m.roi.width << ","
-          << m.roi.height << "," << formatNumber(m.relativeFieldHeight(), 6) << ","
+      out << r + 1 << "," << m.roi.x << "," << m.roi.y << "," << m.roi.width << "," << m.roi.height
+          << "," << formatNumber(m.relativeFieldHeight(), 6) << ","
           << formatNumber(m.fieldHeightPx(), 6) << ","
           << orEmpty(pitchMm > 0.0, m.fieldHeightPx() * pitchMm) << "," << c.name << ","
           << orEmpty(c.sfr.mtf50.has_value(), c.sfr.mtf50.value_or(0.0)) << ","

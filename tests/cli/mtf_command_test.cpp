@@ -173,7 +173,8 @@ TEST(MtfBinary, SeveralRoisGiveAReportPerFieldHeight) {
   // from the image centre (32, 64), whose half diagonal is 71.55 px: field height 0.4472.
   const RunResult r = test::runCamsim("mtf " + quote(exr.string()) +
                                           " --roi 0,0,64,64 --roi 0,64,64,64 --channel G "
-                                          "--pitch-um 2 -o " + quote(out.string()),
+                                          "--pitch-um 2 -o " +
+                                          quote(out.string()),
                                       dir.path(), "CAMSIM_PYTHON=/nonexistent/python3");
   ASSERT_EQ(r.exitCode, 0) << r.err;
   EXPECT_NE(r.out.find("ROI 0,0,64,64: vertical edge at 5.00°, 57 rows along it; field height "
@@ -191,6 +192,15 @@ TEST(MtfBinary, SeveralRoisGiveAReportPerFieldHeight) {
             "field_height_mm,channel,mtf50_cy_px,mtf50_cy_mm,mtf_at_nyquist");
   EXPECT_NE(fields.find("\n1,0,0,64,64,0.447214,32,0.064,G,0.3"), std::string::npos) << fields;
   EXPECT_NE(fields.find("\n2,0,64,64,64,0.447214,32,0.064,G,0.3"), std::string::npos) << fields;
+  if (!hasMatplotlib()) GTEST_SKIP() << "no matplotlib for /usr/bin/python3: plots not checked";
+  const fs::path plotted = dir.path() / "plotted";
+  const RunResult p =
+      test::runCamsim("mtf " + quote(exr.string()) + " --roi 0,0,64,64 --roi 0,64,64,64 -o " +
+                          quote(plotted.string()),
+                      dir.path());
+  ASSERT_EQ(p.exitCode, 0) << p.err;
+  EXPECT_EQ(fileCount(plotted), 8u);  // and mtf_1.png, mtf_2.png, mtf_fields.png
+  EXPECT_EQ(readFile(plotted / "mtf_fields.png").substr(0, 8), std::string("\x89PNG\r\n\x1a\n", 8));
 }
 
 TEST(MtfBinary, ReadsAGreyPng) {

@@ -87,7 +87,7 @@ TEST(PsfBinary, WritesImagesAndJson) {
                                           quote(out.string()),
                                       dir.path());
   ASSERT_EQ(r.exitCode, 0) << r.err;
-  EXPECT_NE(r.out.find("psf_f0.5_550nm: field 0.5 (h 9.000 mm), 550 nm: centroid"),
+  EXPECT_NE(r.out.find("psf_f0.5_550nm: field 0.5 (h 10.817 mm), 550 nm: centroid"),
             std::string::npos)
       << r.out;
   for (const char* name : {"psf_f0_550nm", "psf_f0.5_550nm"}) {
@@ -106,7 +106,8 @@ TEST(PsfBinary, WritesImagesAndJson) {
           quote((out / "psf.json").string()),
       dir.path());
   ASSERT_EQ(json.exitCode, 0) << json.err;
-  EXPECT_EQ(json.out.substr(0, 3), "8.9") << json.out;  // 9 mm, as the sensor's float width
+  // Half of the 36 × 24 mm sensor's diagonal: 10.8167 mm.
+  EXPECT_EQ(json.out.substr(0, 5), "10.81") << json.out;
   EXPECT_NE(json.out.find("True"), std::string::npos) << json.out;
 }
 

@@ -326,7 +326,7 @@ TEST(PhysicalCamera, ModelledLineNamesATracedLens) {
   m.lensDisperses = false;
   m.diffraction = false;
   m.blades = 6;
-  EXPECT_EQ(m.describe().substr(0, 64),
+  EXPECT_EQ(m.describe().substr(0, 63),
             "traced lens dgauss.50mm.abbe.dat (11 surfaces; 6-blade stop), s");
 }
 
