@@ -14,7 +14,7 @@
 #      (CAMSIM_SIMD=OFF: sensor/base/simd.h's portable path, no AVX2 copy, no x86 flag), so
 #      the whole suite runs on both paths without a build stage of its own; the libraries
 #      unity-built (CAMSIM_UNITY_BUILD: a few large translation units, half the compiling;
-#      the Release build still compiles each file on its own);
+#      as setup.sh builds the Release stage and README's first command);
 #   3. the libFuzzer harnesses (Clang, CAMSIM_FUZZ=ON, -O1 -g1 as in stage 2, the SIMD path, the libraries
 #      unity-built) in build-fuzz/: every seed and regression input replayed once (CTest),
 #      then each harness fuzzed for CAMSIM_FUZZ_SECONDS (default 20) by scripts/fuzz.sh.
