@@ -12,6 +12,7 @@
 #include "cli/args.h"
 #include "cli/command_line.h"
 #include "integrator/scene/scene_loader.h"
+#include "sensor/base/format.h"
 #include "sensor/base/input_error.h"
 #include "sensor/io/exr_io.h"
 #include "sensor/io/json_writer.h"
@@ -126,12 +127,6 @@ std::vector<PsfSettings> psfEntries(const PsfArgs& a) {
   return entries;
 }
 
-std::string psfFixed(double v, int decimals) {
-  char buffer[48];
-  std::snprintf(buffer, sizeof buffer, "%.*f", decimals, v);
-  return buffer;
-}
-
 // The preview: log10 of the cell over the peak, 4 decades to black, each cell a square of
 // `zoom` pixels (the picture at least 256 px wide).
 void writePsfPreview(const std::filesystem::path& path, const PsfImage& psf) {
@@ -206,11 +201,12 @@ std::vector<std::filesystem::path> runPsf(const PsfArgs& args, std::ostream& out
     images.push_back(computePsf(camera, s));
     const PsfImage& p = images.back();
     out << psfEntryName(s.field, s.wavelengthNm) << ": field " << s.field << " (h "
-        << psfFixed(p.imageHeight * 1e3, 3) << " mm), " << s.wavelengthNm << " nm: centroid ("
-        << psfFixed(p.centroidX * 1e6, 3) << ", " << psfFixed(p.centroidY * 1e6, 3) << ") µm, RMS "
-        << psfFixed(p.rmsRadius * 1e6, 2) << " µm, EE50 " << psfFixed(p.encircled50 * 1e6, 2)
-        << " µm, EE80 " << psfFixed(p.encircled80 * 1e6, 2) << " µm, lost "
-        << psfFixed(p.lostFraction * 100.0, 1) << " %\n";
+        << formatFixed(p.imageHeight * 1e3, 3) << " mm), " << s.wavelengthNm << " nm: centroid ("
+        << formatFixed(p.centroidX * 1e6, 3) << ", " << formatFixed(p.centroidY * 1e6, 3)
+        << ") µm, RMS " << formatFixed(p.rmsRadius * 1e6, 2) << " µm, EE50 "
+        << formatFixed(p.encircled50 * 1e6, 2) << " µm, EE80 "
+        << formatFixed(p.encircled80 * 1e6, 2) << " µm, lost "
+        << formatFixed(p.lostFraction * 100.0, 1) << " %\n";
   }
 
   const std::filesystem::path outDir(args.outputDir);

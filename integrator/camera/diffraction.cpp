@@ -23,8 +23,7 @@ DiffractionSample Diffraction::sample(glm::vec2 u, float uChoice,
   const glm::dvec2 t = psf_->sample(u);
   const double scaleJ = static_cast<double>(lambda[j]) * 1e-9 * workingFNumber_;  // m per λN_w
   DiffractionSample out;
-  out.offset = scaleJ * glm::dvec2(cosRotation_ * t.x - sinRotation_ * t.y,
-                                   sinRotation_ * t.x + cosRotation_ * t.y);
+  out.offset = toFilm(t, scaleJ);
   // Every wavelength's PSF at this δ: the same direction (column), radius |t|·scale_j/scale_i.
   const int column = psf_->densityColumn(t);
   const double radius = std::hypot(t.x, t.y);
@@ -41,6 +40,10 @@ DiffractionSample Diffraction::sample(glm::vec2 u, float uChoice,
   for (int i = 0; i < n; ++i)
     out.weight[i] = mixture > 0.0 ? static_cast<float>(density[i] / mixture) : 0.0f;
   return out;
+}
+
+glm::dvec2 Diffraction::sampleOffset(glm::vec2 u, double lambdaNm) const {
+  return toFilm(psf_->sample(u), lambdaNm * 1e-9 * workingFNumber_);
 }
 
 double Diffraction::psf(glm::dvec2 offset, double lambdaNm) const {

@@ -55,10 +55,19 @@ class Diffraction {
 
   // δ and the weights from uniform numbers: u for the offset, uChoice for the wavelength.
   DiffractionSample sample(glm::vec2 u, float uChoice, const SampledWavelengths& lambda) const;
+  // δ (m) drawn from PSF_λ alone (one wavelength, no weights: camsim psf), from u.
+  glm::dvec2 sampleOffset(glm::vec2 u, double lambdaNm) const;
   // PSF_λ(δ) (m⁻²) for the offset δ (m) and wavelength λ (nm): the tabulated density.
   double psf(glm::dvec2 offset, double lambdaNm) const;
 
  private:
+  // The table's offset t (units of λN_w, the stop unturned) turned by the stop's rotation
+  // and scaled to metres.
+  glm::dvec2 toFilm(glm::dvec2 t, double metresPerUnit) const {
+    return metresPerUnit * glm::dvec2(cosRotation_ * t.x - sinRotation_ * t.y,
+                                      sinRotation_ * t.x + cosRotation_ * t.y);
+  }
+
   std::shared_ptr<const StopPsf> psf_;
   double workingFNumber_;
   double cosRotation_, sinRotation_;

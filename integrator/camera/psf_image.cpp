@@ -3,7 +3,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <optional>
 #include <string>
 #include <utility>
@@ -13,15 +12,15 @@
 #include "integrator/camera/secant.h"
 #include "integrator/geometry/math.h"
 #include "integrator/sampling/rng.h"
+#include "sensor/base/format.h"
 #include "sensor/base/input_error.h"
 
 namespace camsim {
 namespace {
 
+// Numbers in messages with 10 significant digits (sensor/base/format.h).
 std::string psfNumber(double v) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.10g", v);
-  return buffer;
+  return formatNumber(v, 10);
 }
 
 [[noreturn]] void refusePsf(const std::string& key, const std::string& message) {
@@ -173,12 +172,13 @@ double psfEncircledRadius(const std::vector<std::pair<double, double>>& byRadius
 
 void checkPsfSettings(const PsfSettings& s) {
   if (!(s.field >= 0.0 && s.field <= psf_ranges::kFieldMax))
-    refusePsf("field", psfNumber(s.field) + " is outside [0, " + psfNumber(psf_ranges::kFieldMax) +
-                           "] (the image height over the sensor's half diagonal)");
+    refusePsf("field", psfNumber(s.field) + " is outside " +
+                           formatRange(0.0, psf_ranges::kFieldMax) +
+                           " (the image height over the sensor's half diagonal)");
   if (!(s.wavelengthNm >= psf_ranges::kLambdaMinNm && s.wavelengthNm <= psf_ranges::kLambdaMaxNm))
-    refusePsf("wavelength", psfNumber(s.wavelengthNm) + " nm is outside [" +
-                                psfNumber(psf_ranges::kLambdaMinNm) + ", " +
-                                psfNumber(psf_ranges::kLambdaMaxNm) + "] nm");
+    refusePsf("wavelength", psfNumber(s.wavelengthNm) + " nm is outside " +
+                                formatRange(psf_ranges::kLambdaMinNm, psf_ranges::kLambdaMaxNm) +
+                                " nm");
   if (s.size < psf_ranges::kSizeMin || s.size > psf_ranges::kSizeMax)
     refusePsf("size", std::to_string(s.size) + " px is outside [" +
                           std::to_string(psf_ranges::kSizeMin) + ", " +
@@ -233,14 +233,10 @@ PsfImage computePsf(const PhysicalCamera& camera, const PsfSettings& settings) {
               psfNumber(settings.field) + ": no ray from the object point reaches the film");
   if (const Diffraction* d = camera.diffraction()) {
     out.workingFNumber = d->workingFNumber();
-    // δ as Diffraction::sample draws it for one wavelength: the stop's table (its shape),
-    // turned by the stop's rotation, scaled by λN_w with the renderer's N_w.
-    const double scale = settings.wavelengthNm * 1e-9 * d->workingFNumber();
-    const double rotation = p.aperture ? p.aperture->rotation : 0.0;
-    const double c = std::cos(rotation), sn = std::sin(rotation);
+    // δ drawn from the renderer's own PSF at this one wavelength.
     for (PsfHit& h : hits) {
-      const glm::dvec2 t = d->shape().sample({rng.uniform(), rng.uniform()});
-      h.s += scale * glm::dvec2(c * t.x - sn * t.y, sn * t.x + c * t.y);
+      const glm::vec2 u{rng.uniform(), rng.uniform()};
+      h.s += d->sampleOffset(u, settings.wavelengthNm);
     }
   }
   out.landed = static_cast<std::int64_t>(hits.size());
