@@ -46,8 +46,8 @@ std::string plyText(const ObjectModel& m) {
   std::vector<glm::dvec3> normals(m.vertices.size(), glm::dvec3(0.0));
   for (std::size_t t = 0; t + 2 < m.indices.size(); t += 3) {
     const std::uint32_t v[3] = {m.indices[t], m.indices[t + 1], m.indices[t + 2]};
-    const glm::dvec3 n = glm::cross(m.vertices[v[1]] - m.vertices[v[0]],
-                                    m.vertices[v[2]] - m.vertices[v[0]]);
+    const glm::dvec3 n =
+        glm::cross(m.vertices[v[1]] - m.vertices[v[0]], m.vertices[v[2]] - m.vertices[v[0]]);
     const double length = glm::length(n);
     if (!(length > 0.0)) continue;
     for (int c = 0; c < 3; ++c) {

@@ -105,7 +105,8 @@ std::vector<std::filesystem::path> BopWriter::addFrame(const CaptureResult& r, i
   double maxDepth = 0.0;
   if (depthChannel >= 0)
     for (int y = 0; y < a.height; ++y)
-      for (int x = 0; x < a.width; ++x) maxDepth = std::max(maxDepth, double(a.at(x, y, depthChannel)));
+      for (int x = 0; x < a.width; ++x)
+        maxDepth = std::max(maxDepth, double(a.at(x, y, depthChannel)));
   const double depthScale = bopDepthScale(maxDepth * kMmPerM);
   if (depthChannel >= 0)
     for (int y = 0; y < a.height; ++y)
@@ -136,9 +137,10 @@ std::vector<std::filesystem::path> BopWriter::addFrame(const CaptureResult& r, i
                           a.channelIndex("visible_" + number + ".A"));
     if (masks_ && (channels.back().first < 0 || channels.back().second < 0)) {
       masks_ = false;
-      skipped_.push_back("bop: mask/, mask_visib/ and scene_gt_info.json not written: the "
-                         "render has no amodal_" + number + ".A / visible_" + number +
-                         ".A channel (render.aovs: amodal)");
+      skipped_.push_back(
+          "bop: mask/, mask_visib/ and scene_gt_info.json not written: the "
+          "render has no amodal_" +
+          number + ".A / visible_" + number + ".A channel (render.aovs: amodal)");
     }
   }
   gt_.set(key, gt);
@@ -165,14 +167,14 @@ std::vector<std::filesystem::path> BopWriter::addFrame(const CaptureResult& r, i
       const Mask visib = maskOf(a, channels[g].second);
       std::uint64_t valid = 0;
       for (std::size_t i = 0; i < pixels; ++i) valid += all.pixels[i] && depth[i] > 0 ? 1 : 0;
-      info.push_back(JsonObject()
-                         .setJson("bbox_obj", all.box())
-                         .setJson("bbox_visib", visib.box())
-                         .setInteger("px_count_all", all.count)
-                         .setInteger("px_count_valid", valid)
-                         .setInteger("px_count_visib", visib.count)
-                         .set("visib_fract", all.count > 0 ? double(visib.count) / double(all.count)
-                                                           : 0.0));
+      info.push_back(
+          JsonObject()
+              .setJson("bbox_obj", all.box())
+              .setJson("bbox_visib", visib.box())
+              .setInteger("px_count_all", all.count)
+              .setInteger("px_count_valid", valid)
+              .setInteger("px_count_visib", visib.count)
+              .set("visib_fract", all.count > 0 ? double(visib.count) / double(all.count) : 0.0));
       const std::string name = image + "_" + sixDigits(static_cast<long>(g)) + ".png";
       writePng(amodal.add(name), grey(a, std::move(all.pixels), 8));
       writePng(visible.add(name), grey(a, visib.pixels, 8));

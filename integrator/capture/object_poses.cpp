@@ -80,9 +80,9 @@ ObjectModel objectModel(const SceneDescription& d, std::size_t shape) {
       const double theta = std::numbers::pi * j / kSphereRings;
       for (int i = 0; i < kSphereSegments; ++i) {
         const double phi = 2.0 * std::numbers::pi * i / kSphereSegments;
-        m.vertices.push_back(shapeMatrix * (r * glm::dvec3(std::sin(theta) * std::cos(phi),
-                                                           std::cos(theta),
-                                                           std::sin(theta) * std::sin(phi))));
+        m.vertices.push_back(shapeMatrix *
+                             (r * glm::dvec3(std::sin(theta) * std::cos(phi), std::cos(theta),
+                                             std::sin(theta) * std::sin(phi))));
       }
     }
     auto at = [](int j, int i) {
@@ -100,7 +100,8 @@ ObjectModel objectModel(const SceneDescription& d, std::size_t shape) {
     const glm::dmat4 rawFromStored = glm::inverse(s.objectFromModel);
     m.vertices.reserve(mesh.positions.size());
     for (const glm::vec3& p : mesh.positions)
-      m.vertices.push_back(shapeMatrix * glm::dvec3(rawFromStored * glm::dvec4(glm::dvec3(p), 1.0)));
+      m.vertices.push_back(shapeMatrix *
+                           glm::dvec3(rawFromStored * glm::dvec4(glm::dvec3(p), 1.0)));
     m.indices = mesh.indices;
   }
   m.boxMin = glm::dvec3(std::numeric_limits<double>::max());
@@ -135,8 +136,7 @@ glm::dmat4 cameraCvFromRender(const PhysicalCamera& camera, double t) {
   return glm::inverse(worldFromCv);
 }
 
-std::vector<ObjectPose> objectPoses(const SceneDescription& d,
-                                    const PhysicalCameraParams& params) {
+std::vector<ObjectPose> objectPoses(const SceneDescription& d, const PhysicalCameraParams& params) {
   const PhysicalCamera camera(params);
   const double t = params.shutter.centre();
   const glm::dmat4 cameraFromRender = cameraCvFromRender(camera, t);

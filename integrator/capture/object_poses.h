@@ -47,11 +47,11 @@ struct ObjectModel {
 };
 
 struct ObjectPose {
-  std::size_t shape = 0;          // index into SceneDescription::shapes
-  std::uint32_t instance = 0;     // shape + 1: the instance number (scene_ids.h, AOV names)
-  std::uint32_t classNumber = 0;  // the class's number (scene_ids.h: the class_id value)
-  glm::dmat3 rotation{1.0};       // model → camera (OpenCV axes)
-  glm::dvec3 translation{0.0};    // m
+  std::size_t shape = 0;                // index into SceneDescription::shapes
+  std::uint32_t instance = 0;           // shape + 1: the instance number (scene_ids.h, AOV names)
+  std::uint32_t classNumber = 0;        // the class's number (scene_ids.h: the class_id value)
+  glm::dmat3 rotation{1.0};             // model → camera (OpenCV axes)
+  glm::dvec3 translation{0.0};          // m
   glm::dvec3 boxMin{0.0}, boxMax{0.0};  // m, model coordinates
 };
 

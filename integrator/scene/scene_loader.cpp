@@ -71,9 +71,9 @@ void parseExports(const YamlValue& list, SceneDescription& scene) {
   const Projection& p = scene.camera.projection;
   const Projection none;  // every distortion coefficient 0
   if (p.model != ProjectionModel::kOpenCv || p.k1 != none.k1 || p.k2 != none.k2 ||
-      p.k3 != none.k3 || p.k4 != none.k4 || p.k5 != none.k5 || p.k6 != none.k6 ||
-      p.p1 != none.p1 || p.p2 != none.p2 || p.s1 != none.s1 || p.s2 != none.s2 ||
-      p.s3 != none.s3 || p.s4 != none.s4 || p.tauX != none.tauX || p.tauY != none.tauY)
+      p.k3 != none.k3 || p.k4 != none.k4 || p.k5 != none.k5 || p.k6 != none.k6 || p.p1 != none.p1 ||
+      p.p2 != none.p2 || p.s1 != none.s1 || p.s2 != none.s2 || p.s3 != none.s3 || p.s4 != none.s4 ||
+      p.tauX != none.tauX || p.tauY != none.tauY)
     list.fail(
         "export 'bop' needs the camera projection 'opencv' without distortion: BOP's "
         "scene_camera.json describes the camera by its 3×3 K alone");

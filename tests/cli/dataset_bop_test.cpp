@@ -55,12 +55,12 @@ TEST(DatasetBop, EachItemIsABopSceneOfItsIndexThatShardsAndResumeKeep) {
   const fs::path whole = dir.path() / "whole", parts = dir.path() / "parts";
   const auto r = test::runCamsim("dataset " + manifest + " -o " + whole.string(), dir.path());
   ASSERT_EQ(r.exitCode, 0) << r.err;
-  for (const char* f : {"items/000000/bop/train_pbr/000000/scene_gt.json",
-                        "items/000000/bop/train_pbr/000000/rgb/000000.png",
-                        "items/000000/bop/train_pbr/000000/depth/000000.png",
-                        "items/000001/bop/train_pbr/000001/scene_camera.json",
-                        "items/000001/bop/models/obj_000003.ply",
-                        "items/000001/bop/models/models_info.json"})
+  for (const char* f :
+       {"items/000000/bop/train_pbr/000000/scene_gt.json",
+        "items/000000/bop/train_pbr/000000/rgb/000000.png",
+        "items/000000/bop/train_pbr/000000/depth/000000.png",
+        "items/000001/bop/train_pbr/000001/scene_camera.json",
+        "items/000001/bop/models/obj_000003.ply", "items/000001/bop/models/models_info.json"})
     EXPECT_TRUE(fs::is_regular_file(whole / f)) << f;
   // item.json lists the BOP files by their path in the item folder.
   const std::string item = test::readFile(whole / "items/000001/item.json");
@@ -68,7 +68,8 @@ TEST(DatasetBop, EachItemIsABopSceneOfItsIndexThatShardsAndResumeKeep) {
   // Two instances of one mesh, class 3: one model, two entries.
   const std::string gt = test::readFile(whole / "items/000000/bop/train_pbr/000000/scene_gt.json");
   int entries = 0;
-  for (auto p = gt.find("\"obj_id\": 3"); p != std::string::npos; p = gt.find("\"obj_id\": 3", p + 1))
+  for (auto p = gt.find("\"obj_id\": 3"); p != std::string::npos;
+       p = gt.find("\"obj_id\": 3", p + 1))
     ++entries;
   EXPECT_EQ(entries, 2) << gt;
 

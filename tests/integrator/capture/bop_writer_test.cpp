@@ -53,7 +53,11 @@ CaptureResult handBuilt() {
     for (int x = 0; x < kW; ++x) {
       r.aovs.at(x, y, 0) = (x == 0 && y == 0) ? 0.0f : static_cast<float>(2.5 + 0.1 * x);
       const bool rows = y >= 1 && y <= 3;
-      const float a1 = rows ? (x >= 1 && x <= 4 ? 1.0f : x == 5 ? 0.5f : x == 6 ? 0.49f : 0.0f) : 0.0f;
+      const float a1 = rows ? (x >= 1 && x <= 4 ? 1.0f
+                               : x == 5         ? 0.5f
+                               : x == 6         ? 0.49f
+                                                : 0.0f)
+                            : 0.0f;
       r.aovs.at(x, y, 1) = a1;
       r.aovs.at(x, y, 2) = x >= 3 ? a1 : 0.0f;
       r.aovs.at(x, y, 3) = (x <= 1 && y >= 3) ? 0.75f : 0.0f;
@@ -85,9 +89,10 @@ TEST(BopWriter, WritesEveryFileWithMasksCountsAndDepthInMm) {
   (void)writeBop(r, tmp.path(), 7, &skipped);
   EXPECT_TRUE(skipped.empty());
   const fs::path scene = tmp.path() / "bop" / "train_pbr" / "000007";
-  for (const char* f : {"scene_camera.json", "scene_gt.json", "scene_gt_info.json", "rgb/000000.png",
-                        "depth/000000.png", "mask/000000_000000.png", "mask/000000_000001.png",
-                        "mask_visib/000000_000000.png", "mask_visib/000000_000001.png"})
+  for (const char* f :
+       {"scene_camera.json", "scene_gt.json", "scene_gt_info.json", "rgb/000000.png",
+        "depth/000000.png", "mask/000000_000000.png", "mask/000000_000001.png",
+        "mask_visib/000000_000000.png", "mask_visib/000000_000001.png"})
     EXPECT_TRUE(fs::is_regular_file(scene / f)) << f;
   for (const char* f : {"obj_000001.ply", "obj_000002.ply", "models_info.json"})
     EXPECT_TRUE(fs::is_regular_file(tmp.path() / "bop" / "models" / f)) << f;

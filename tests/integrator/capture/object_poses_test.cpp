@@ -84,8 +84,8 @@ TEST(ObjectPoses, ModelPointsProjectOntoThePositionAovsPixels) {
   ASSERT_GE(px, 0);
   const glm::dvec4 k = PhysicalCamera(d.camera).intrinsics();
   // The placement as the scene states it, inverted by hand: world = T + R_axis(35°) · model.
-  const glm::dmat3 turn(glm::rotate(glm::dmat4(1.0), glm::radians(35.0),
-                                    glm::normalize(glm::dvec3(1.0, 2.0, 0.5))));
+  const glm::dmat3 turn(
+      glm::rotate(glm::dmat4(1.0), glm::radians(35.0), glm::normalize(glm::dvec3(1.0, 2.0, 0.5))));
   const glm::dvec3 centre(0.05, -0.1, 0.2);
   int checked = 0;
   double worst = 0.0;
@@ -110,19 +110,19 @@ TEST(ObjectPoses, ModelPointsProjectOntoThePositionAovsPixels) {
 // PhysicalCamera::project images the vertices its motion places at that time (the camera
 // pans too); within 1e-6 px.
 TEST(ObjectPoses, AMovingMeshIsPosedAtTheShuttersCentre) {
-  const std::string text =
-      cameraText(",\n shutter: {open: 0.1, close: 0.3},\n"
-                 " motion: [{time: 0, rotate: {axis: [0, 1, 0], angle_deg: 0}},\n"
-                 "          {time: 1, rotate: {axis: [0, 1, 0], angle_deg: 10}}]") +
-      "materials: {m: {type: diffuse}}\n"
-      "shapes:\n"
-      "  - type: mesh\n"
-      "    class: box\n"
-      "    material: m\n" +
-      std::string(kCube) +
-      "    motion: [{time: 0, translate: [0, 0, 0], scale: 0.3},\n"
-      "             {time: 1, translate: [0.4, 0.1, 0.5], scale: 0.3,\n"
-      "              rotate: {axis: [0, 0, 1], angle_deg: 60}}]\n";
+  const std::string text = cameraText(
+                               ",\n shutter: {open: 0.1, close: 0.3},\n"
+                               " motion: [{time: 0, rotate: {axis: [0, 1, 0], angle_deg: 0}},\n"
+                               "          {time: 1, rotate: {axis: [0, 1, 0], angle_deg: 10}}]") +
+                           "materials: {m: {type: diffuse}}\n"
+                           "shapes:\n"
+                           "  - type: mesh\n"
+                           "    class: box\n"
+                           "    material: m\n" +
+                           std::string(kCube) +
+                           "    motion: [{time: 0, translate: [0, 0, 0], scale: 0.3},\n"
+                           "             {time: 1, translate: [0.4, 0.1, 0.5], scale: 0.3,\n"
+                           "              rotate: {axis: [0, 0, 1], angle_deg: 60}}]\n";
   const SceneDescription d = loadSceneFromText(text, "moving.yaml", ".");
   const ShapeDescription& s = d.shapes[0];
   const double t = d.camera.shutter.centre();
@@ -135,7 +135,8 @@ TEST(ObjectPoses, AMovingMeshIsPosedAtTheShuttersCentre) {
     const glm::dvec3 placed(s.motion.at(t) * glm::dvec4(glm::dvec3(s.mesh.positions[i]), 1.0));
     const std::optional<glm::dvec2> truth = camera.project(placed, t);
     ASSERT_TRUE(truth);
-    const glm::dvec2 u = projectK(camera.intrinsics(), p.rotation * model.vertices[i] + p.translation);
+    const glm::dvec2 u =
+        projectK(camera.intrinsics(), p.rotation * model.vertices[i] + p.translation);
     EXPECT_LT(glm::length(u - *truth), 1e-6) << i;
   }
 }
@@ -162,7 +163,8 @@ TEST(ObjectPoses, AMirroredInstanceKeepsAProperRotation) {
   EXPECT_NEAR(glm::determinant(p.rotation), 1.0, 1e-9);
   for (std::size_t i = 0; i < model.vertices.size(); ++i) {
     const glm::dvec3 placed(s.placement * glm::dvec4(glm::dvec3(s.sharedMesh->positions[i]), 1.0));
-    const glm::dvec2 u = projectK(camera.intrinsics(), p.rotation * model.vertices[i] + p.translation);
+    const glm::dvec2 u =
+        projectK(camera.intrinsics(), p.rotation * model.vertices[i] + p.translation);
     EXPECT_LT(glm::length(u - *camera.project(placed, t)), 1e-6) << i;
   }
 }
@@ -199,9 +201,8 @@ TEST(ObjectPoses, AMeshFilesModelIsTheFileTimesItsScale) {
   const std::vector<ObjectPose> poses = objectPoses(d, d.camera);
   ASSERT_EQ(poses.size(), 3u);
   const PhysicalCamera camera(d.camera);
-  const glm::dvec3 centre =
-      glm::dvec3(cameraCvFromRender(camera, 0.0) *
-                 glm::dvec4(glm::dvec3(0.5, 0.0, 1.0) - d.renderOrigin, 1.0));
+  const glm::dvec3 centre = glm::dvec3(cameraCvFromRender(camera, 0.0) *
+                                       glm::dvec4(glm::dvec3(0.5, 0.0, 1.0) - d.renderOrigin, 1.0));
   EXPECT_LT(glm::length(poses[2].translation - centre), 1e-9);
   std::filesystem::remove_all(dir);
 }
