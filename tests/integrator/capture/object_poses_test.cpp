@@ -102,7 +102,7 @@ TEST(ObjectPoses, ModelPointsProjectOntoThePositionAovsPixels) {
       ++checked;
     }
   EXPECT_GT(checked, 40);
-  EXPECT_LT(worst, 0.05);
+  EXPECT_LT(worst, 0.05) << checked;
 }
 
 // A moving mesh (keyframed translation and turn) is posed at the frame's reference time,
@@ -195,15 +195,15 @@ TEST(ObjectPoses, AMeshFilesModelIsTheFileTimesItsScale) {
     EXPECT_NEAR(m.vertices[2].x, 0.0, 1e-6);
   }
   const ObjectModel ball = objectModel(d, 2);
-  EXPECT_NEAR(ball.boxMax.y, 0.2, 1e-12);
-  EXPECT_NEAR(ball.boxMin.y, -0.2, 1e-12);
+  EXPECT_NEAR(ball.boxMax.y, 0.2, 1e-8);  // the radius as stored, in float
+  EXPECT_NEAR(ball.boxMin.y, -0.2, 1e-8);
   // Its pose's translation is the centre in camera coordinates.
   const std::vector<ObjectPose> poses = objectPoses(d, d.camera);
   ASSERT_EQ(poses.size(), 3u);
   const PhysicalCamera camera(d.camera);
   const glm::dvec3 centre = glm::dvec3(cameraCvFromRender(camera, 0.0) *
                                        glm::dvec4(glm::dvec3(0.5, 0.0, 1.0) - d.renderOrigin, 1.0));
-  EXPECT_LT(glm::length(poses[2].translation - centre), 1e-9);
+  EXPECT_LT(glm::length(poses[2].translation - centre), 1e-7);  // the centre is stored in float
   std::filesystem::remove_all(dir);
 }
 
