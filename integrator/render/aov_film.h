@@ -18,6 +18,7 @@
 // | motion      | motion_fw.X/Y, motion_bw.X/Y | px   | where the hit point is imaged in the next / previous frame minus where it is in this one, all at the frames' reference times (shutter centres): OpenCV pixel axes (x right, y down) |
 // | valid       | valid.A                      | —    | fraction of the pixel's samples whose film point lies inside the camera model's image (1 for the pinhole; 0 outside a fisheye's image circle, where the image is black) |
 // | motion      | flow_fw.X/Y/Z, flow_bw.X/Y/Z | m    | 3-D scene flow: the hit point's world position at the next / previous frame's reference time minus at this frame's |
+// | amodal      | amodal_<n>.A, visible_<n>.A  | —    | per labelled shape n: the fractions of the pixel's samples whose ray passes through it anywhere / first hits it (mask_film.h) |
 //
 // The motion field follows the exact rigid motion of the hit point: the sample's hit, at
 // the sample's time t, is taken back to object space through the shape's keyframed
@@ -47,6 +48,7 @@
 
 #include "integrator/camera/pose_projector.h"
 #include "integrator/render/id_film.h"
+#include "integrator/render/mask_film.h"
 #include "integrator/render/path_tracer.h"
 #include "integrator/scene/scene.h"
 #include "sensor/base/image.h"
@@ -61,6 +63,7 @@ struct AovSample {
   double time = 0.0;                 // the sample's time, s
   const SampledWavelengths& lambda;  // as the camera ray started (before a dispersive hit)
   const glm::dmat4* worldFromCamera = nullptr;  // the camera's pose at `time` when wantsCamera()
+  const Ray* cameraRay = nullptr;               // the camera ray (null: none), for the masks
 };
 
 // One camera sample's ground truth between addSample and its pixel's next summing: its first
@@ -113,6 +116,7 @@ struct AovPixel : AovPixelState {
   // The motion field's samples waiting for their projections, in sample order: each one's
   // hit at the three frame times, four at a time (PoseProjector).
   PosePoints motion;
+  MaskFilm::Counts masks;  // the amodal aov's counts (cleared by startPixel)
 };
 
 class AovFilm {
@@ -142,6 +146,10 @@ class AovFilm {
   }
   // The sample whose surface nextSurface handed out (call them in pairs).
   void addSample(AovPixel& px, const AovSample& sample) const {
+    if (masks_) {
+      const VisibleSurface& v = px.records[static_cast<std::size_t>(px.pending)].visible;
+      masks_->add(px.masks, sample.cameraRay, v.hit ? v.shape : -1);
+    }
     if (avx2_)
       addSampleAvx2(px, sample);
     else
@@ -201,9 +209,11 @@ class AovFilm {
   std::optional<PoseProjector> projector_;          // the camera at the three frame times
   std::vector<std::array<glm::dmat4, 3>> shapeAt_;  // per shape: its motion at each (moving)
   std::vector<char> shapeMoves_;                    // per shape: it has keyframed motion
-  bool wantsMaterial_ = false;   // traceRadiance evaluates the hit's material (albedo, roughness)
-  bool wantsCamera_ = false;     // depth or normals: the camera's pose at the sample's time
-  std::vector<IdFilm> idFilms_;  // in the scene's order of the id aovs
+  bool wantsMaterial_ = false;     // traceRadiance evaluates the hit's material (albedo, roughness)
+  bool wantsCamera_ = false;       // depth or normals: the camera's pose at the sample's time
+  std::vector<IdFilm> idFilms_;    // in the scene's order of the id aovs
+  std::optional<MaskFilm> masks_;  // the amodal aov
+  std::size_t maskChannel_ = 0;    // its first channel (after the id aovs')
   std::vector<std::uint32_t> idEntries_;  // per shape, per IdFilm: the shape's table entry
   bool cameraTurns_ = false;              // the camera moves during the exposure
   glm::dmat4 worldFromCamera_{1.0};       // its pose when it does not

@@ -63,8 +63,9 @@ enum class Aov : std::uint8_t {
   kMaterialId,  // the same for their material
   kMotion,      // 2-D motion vectors and 3-D scene flow to the previous and next frame
   kValid,       // the fraction of the pixel's samples inside the camera model's image
+  kAmodal,      // per labelled shape: its amodal and its visible coverage (mask_film.h)
 };
-inline constexpr int kAovCount = 11;
+inline constexpr int kAovCount = 12;
 // The scene's `render.aovs` names, also the sidecar's and the EXR layers'
 // (sensor/base/enum_names.h).
 template <>
@@ -79,7 +80,8 @@ struct EnumNames<Aov> {
                                                       {Aov::kClassId, "class_id"},
                                                       {Aov::kMaterialId, "material_id"},
                                                       {Aov::kMotion, "motion"},
-                                                      {Aov::kValid, "valid"}};
+                                                      {Aov::kValid, "valid"},
+                                                      {Aov::kAmodal, "amodal"}};
 };
 inline const char* aovName(Aov a) {
   return enumName(a).data();
