@@ -58,7 +58,7 @@ FrameSequence parseFrames(YamlMap map) {
 
 // `exports:` — a list of layouts (ExportFormat), each once. bop needs a camera that a 3×3
 // K describes (the opencv model without distortion) and adds the AOVs its files are made
-// of: depth (depth/) and amodal (mask/, mask_visib/, the pixel counts).
+// of: depth (depth/) and, when a shape is labelled, amodal (mask/, mask_visib/, the counts).
 void parseExports(const YamlValue& list, SceneDescription& scene) {
   scene.keyPlaces["exports"] = list.where();
   for (const YamlValue& item : list.items()) {
@@ -77,11 +77,13 @@ void parseExports(const YamlValue& list, SceneDescription& scene) {
     list.fail(
         "export 'bop' needs the camera projection 'opencv' without distortion: BOP's "
         "scene_camera.json describes the camera by its 3×3 K alone");
-  // The AOVs by name: 'amodal' once camsim's render has it (the masks are left out without).
+  // amodal only with a labelled shape (its masks are theirs; without one there is no object).
   std::vector<Aov>& aovs = scene.render.aovs;
-  for (const char* name : {"depth", "amodal"})
-    if (const std::optional<Aov> a = enumFromName<Aov>(name))
-      if (std::find(aovs.begin(), aovs.end(), *a) == aovs.end()) aovs.push_back(*a);
+  const bool labelled = std::any_of(scene.shapes.begin(), scene.shapes.end(),
+                                    [](const ShapeDescription& s) { return !s.className.empty(); });
+  for (const Aov a : {Aov::kDepth, Aov::kAmodal})
+    if ((a != Aov::kAmodal || labelled) && std::find(aovs.begin(), aovs.end(), a) == aovs.end())
+      aovs.push_back(a);
 }
 
 RenderSettings parseRender(YamlMap map) {

@@ -238,12 +238,28 @@ TEST(BopWriter, OneObjIdNeedsOneModel) {
   EXPECT_EQ(bopModels(twice).size(), 1u);
 }
 
-// `exports: [bop]` adds the depth AOV its depth images are made of.
-TEST(BopWriter, TheExportAddsTheDepthAov) {
+// `exports: [bop]` adds the AOVs its files are made of: depth, and amodal when a shape is
+// labelled (a scene without one loads, with depth alone: no objects, no masks).
+TEST(BopWriter, TheExportAddsTheDepthAndAmodalAovs) {
+  const auto has = [](const SceneDescription& d, Aov a) {
+    return std::find(d.render.aovs.begin(), d.render.aovs.end(), a) != d.render.aovs.end();
+  };
   const SceneDescription d = twoObjects();
   ASSERT_EQ(d.exports.size(), 1u);
-  EXPECT_NE(std::find(d.render.aovs.begin(), d.render.aovs.end(), Aov::kDepth),
-            d.render.aovs.end());
+  EXPECT_TRUE(has(d, Aov::kDepth));
+  EXPECT_TRUE(has(d, Aov::kAmodal));
+  const SceneDescription none = loadSceneFromText(
+      "exports: [bop]
+"
+      "camera: {position: [0, 0, -3], look_at: [0, 0, 0], resolution: [8, 6]}
+"
+      "materials: {m: {type: diffuse}}
+"
+      "shapes: [{type: sphere, centre: [0, 0, 0], radius: 0.5, material: m}]
+",
+      "unlabelled.yaml", ".");
+  EXPECT_TRUE(has(none, Aov::kDepth));
+  EXPECT_FALSE(has(none, Aov::kAmodal));
 }
 
 }  // namespace bop_writer_test
