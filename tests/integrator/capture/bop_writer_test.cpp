@@ -249,14 +249,10 @@ TEST(BopWriter, TheExportAddsTheDepthAndAmodalAovs) {
   EXPECT_TRUE(has(d, Aov::kDepth));
   EXPECT_TRUE(has(d, Aov::kAmodal));
   const SceneDescription none = loadSceneFromText(
-      "exports: [bop]
-"
-      "camera: {position: [0, 0, -3], look_at: [0, 0, 0], resolution: [8, 6]}
-"
-      "materials: {m: {type: diffuse}}
-"
-      "shapes: [{type: sphere, centre: [0, 0, 0], radius: 0.5, material: m}]
-",
+      "exports: [bop]\n"
+      "camera: {position: [0, 0, -3], look_at: [0, 0, 0], resolution: [8, 6]}\n"
+      "materials: {m: {type: diffuse}}\n"
+      "shapes: [{type: sphere, centre: [0, 0, 0], radius: 0.5, material: m}]\n",
       "unlabelled.yaml", ".");
   EXPECT_TRUE(has(none, Aov::kDepth));
   EXPECT_FALSE(has(none, Aov::kAmodal));
