@@ -6,6 +6,7 @@ namespace camsim {
 
 SequenceSummary captureScene(SceneDescription description, const CaptureOptions& options,
                              const std::function<void(CaptureResult&&, int)>& onFrame) {
+  checkBopExport(description);
   if (!description.frames) {
     CaptureResult result = capture(std::move(description), options);
     SequenceSummary summary;
@@ -35,10 +36,22 @@ CaptureRunWriter::CaptureRunWriter(CaptureOutputOptions out, bool sequence)
 WrittenCapture CaptureRunWriter::write(const CaptureResult& result) {
   WrittenCapture written = writeCapture(result, out_);
   files_.insert(files_.end(), written.files.begin(), written.files.end());
-  if (result.cancelled)
+  skipped_.insert(skipped_.end(), written.skipped.begin(), written.skipped.end());
+  if (result.cancelled) {
     cancelled_ = true;
-  else if (sequence_)
-    frames_.push_back(datasetFrame(result));
+    return written;
+  }
+  if (!sequence_) return written;
+  const SceneDescription& d = result.description;
+  if (d.exportsTo(ExportFormat::kBop)) {
+    if (!bop_) bop_.emplace(out_.directory, out_.bopScene);
+    const int first = d.frames ? d.frames->first : 0;
+    for (auto& f : bop_->addFrame(result, first + static_cast<int>(frames_.size()))) {
+      files_.push_back(f);
+      written.files.push_back(std::move(f));
+    }
+  }
+  frames_.push_back(datasetFrame(result));
   return written;
 }
 
@@ -46,6 +59,10 @@ std::vector<std::filesystem::path> CaptureRunWriter::finish() {
   if (!sequence_ || cancelled_) return {};
   std::vector<std::filesystem::path> written =
       writeDatasetMetadata(frames_, out_.directory, &skipped_);
+  if (bop_) {
+    for (auto& f : bop_->finish()) written.push_back(std::move(f));
+    skipped_.insert(skipped_.end(), bop_->skipped().begin(), bop_->skipped().end());
+  }
   files_.insert(files_.end(), written.begin(), written.end());
   return written;
 }

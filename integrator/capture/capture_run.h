@@ -12,9 +12,11 @@
 
 #include <filesystem>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "integrator/capture/bop_writer.h"
 #include "integrator/capture/capture.h"
 #include "integrator/capture/capture_writer.h"
 #include "integrator/capture/dataset_writer.h"
@@ -23,12 +25,16 @@ namespace camsim {
 
 // A cancelled frame is handed on (result.cancelled) and ends the run; the summary counts
 // the frames handed on (frames), those rendered (rendered) and whether it was cancelled.
+// A scene whose BOP export cannot be written (checkBopExport) is an InputError before any
+// rendering.
 SequenceSummary captureScene(SceneDescription description, const CaptureOptions& options,
                              const std::function<void(CaptureResult&&, int)>& onFrame);
 
 // The files of a run into one directory: writeCapture() for each frame as it arrives and,
 // for a sequence, the camera exports of all its frames (writeDatasetMetadata: cameras.json,
-// transforms.json, COLMAP; docs/output.md) once the last has been written.
+// transforms.json, COLMAP; docs/output.md) once the last has been written. With
+// `exports: [bop]` a sequence is one BOP scene (bop_writer.h): each frame's images as it
+// arrives (image id = its sequence frame number), the models and JSON files at finish().
 class CaptureRunWriter {
  public:
   CaptureRunWriter(CaptureOutputOptions out, bool sequence);
@@ -47,6 +53,7 @@ class CaptureRunWriter {
   bool sequence_;
   bool cancelled_ = false;
   std::vector<DatasetFrame> frames_;
+  std::optional<BopWriter> bop_;  // a sequence with exports: [bop]
   std::vector<std::filesystem::path> files_;
   std::vector<std::string> skipped_;
 };

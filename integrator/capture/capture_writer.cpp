@@ -6,6 +6,7 @@
 
 #include "integrator/camera/physical_camera.h"
 #include "integrator/capture/aov_previews.h"
+#include "integrator/capture/bop_writer.h"
 #include "integrator/capture/camera_export.h"
 #include "integrator/capture/capture_sidecar.h"
 #include "integrator/render/cryptomatte.h"
@@ -227,6 +228,10 @@ WrittenCapture writeCapture(const CaptureResult& result, const CaptureOutputOpti
   const std::filesystem::path stalePartial = options.directory / (desc.name + ".partial.exr");
   std::error_code ec;
   if (std::filesystem::remove(stalePartial, ec)) written.removed.push_back(stalePartial);
+  // The BOP layout after NAME.png, which it copies (a sequence's: CaptureRunWriter).
+  if (desc.exportsTo(ExportFormat::kBop) && !desc.frames)
+    for (auto& f : writeBop(result, options.directory, options.bopScene, &written.skipped))
+      written.files.push_back(std::move(f));
   return written;
 }
 

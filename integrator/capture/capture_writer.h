@@ -11,6 +11,9 @@
 //   NAME.png              the picture through OpenColorIO's display/view/look
 //   NAME.json             every setting used, the modelled dimensions, the ISP's matrices
 //   NAME_<layer>.png      with aovPreviews: false-colour quick looks of the AOVs
+//   bop/                  with `exports: [bop]` and no `frames` block: the capture as
+//                         image 0 of a BOP scene (bop_writer.h; a sequence's is written
+//                         by CaptureRunWriter, capture_run.h)
 // A cancelled capture writes only NAME.partial.exr with the tiles that finished (nothing
 // when none had), never a final name. docs/output.md lists every key.
 #pragma once
@@ -32,11 +35,15 @@ struct CaptureOutputOptions {
   // Same scene, seed and build → the same bytes in every file: the render's wall time
   // (camsim:render_seconds, render.seconds) is left out. Datasets and tile merges set it.
   bool reproducible = false;
+  // The BOP export's scene id (`exports: [bop]`, bop_writer.h): 0 for a render, the item's
+  // index in a dataset run.
+  int bopScene = 0;
 };
 
 struct WrittenCapture {
   std::vector<std::filesystem::path> files;    // final names
   std::vector<std::filesystem::path> removed;  // a NAME.partial.exr an interrupted run left
+  std::vector<std::string> skipped{};  // exports (or parts) left out, a line each with the reason
 };
 
 // Throws InputError (nothing is written then) when a file cannot be written.

@@ -203,8 +203,9 @@ ItemReport writeItem(const Manifest& manifest, ItemWork& w) {
   std::error_code ec;
   try {
     if (w.capture) {
-      for (auto& f : writeCapture(*w.capture, {w.tmp, w.picture, false, true}).files)
-        w.files.push_back(f);
+      CaptureOutputOptions out{w.tmp, w.picture, false, true};
+      out.bopScene = static_cast<int>(index);  // the item's BOP scene (bop_writer.h)
+      for (auto& f : writeCapture(*w.capture, out).files) w.files.push_back(f);
       w.capture.reset();
     }
     OutputSet extra(w.tmp);
@@ -219,11 +220,14 @@ ItemReport writeItem(const Manifest& manifest, ItemWork& w) {
         JsonObject().setInteger("item", index).set("parameters", parametersJson(w.item)).str() +
             "\n");
     for (auto& f : extra.commit()) w.files.push_back(f);
+    // Each file by its path in the item folder (colmap/…, bop/…: in subfolders).
     std::vector<JsonObject> files;
-    for (const fs::path& f : w.files)
+    for (const fs::path& f : w.files) {
+      const fs::path inItem = f.lexically_relative(w.tmp);
       files.push_back(JsonObject()
-                          .set("path", f.filename().string())
-                          .set("fnv1a64", fnv1aHex(readWholeFile(w.tmp / f.filename()))));
+                          .set("path", inItem.generic_string())
+                          .set("fnv1a64", fnv1aHex(readWholeFile(w.tmp / inItem))));
+    }
     OutputSet last(w.tmp);
     last.addText("item.json", JsonObject()
                                       .setInteger("item", index)

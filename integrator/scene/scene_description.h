@@ -246,7 +246,27 @@ struct ShapeDescription {
   // included); a static instance has an empty motion.
   std::shared_ptr<const MeshData> sharedMesh;
   glm::dmat4 placement{1.0};
+  // kMesh: the model frame of the object pose (integrator/capture/object_poses.h): the
+  // mesh's coordinates (`mesh`, or `sharedMesh`) are objectFromModel · (model coordinates),
+  // so that the model is the mesh as its source gives it and the rest is pose. The loader
+  // sets: a mesh file's `translate` (minus the render shift of a static shape), the render
+  // shift of inline vertices and rectangles, a glTF primitive's node transform. Identity
+  // for descriptions built in code.
+  glm::dmat4 objectFromModel{1.0};
 };
+
+// `exports:` — dataset layouts written beside a capture's files (docs/output.md): each
+// named once here, parsed by the loader.
+enum class ExportFormat : std::uint8_t {
+  kBop,  // the BOP 6-DoF pose layout under bop/ (integrator/capture/bop_writer.h)
+};
+template <>
+struct EnumNames<ExportFormat> {
+  static constexpr EnumName<ExportFormat> kTable[] = {{ExportFormat::kBop, "bop"}};
+};
+inline const char* exportFormatName(ExportFormat f) {
+  return enumName(f).data();
+}
 
 // `sensor:` — the camera's sensor and how it is exposed and read out.
 struct SensorSettings {
@@ -285,6 +305,12 @@ struct SceneDescription {
   // error names the file, line and key. Empty for descriptions built in code.
   std::map<std::string, SourceLocation> keyPlaces;
   std::optional<FrameSequence> frames;  // none: one capture at the camera's shutter
+  std::vector<ExportFormat> exports;    // `exports:`, in the file's order, each once
+  bool exportsTo(ExportFormat f) const {
+    for (ExportFormat e : exports)
+      if (e == f) return true;
+    return false;
+  }
   // What the loader left out or changed, one sentence each naming the file and the JSON
   // path (or line) and key: features of imported assets that camsim ignores or approximates
   // (docs/scene-format.md lists them). The CLI prints them; the sidecar lists them as

@@ -56,6 +56,36 @@ FrameSequence parseFrames(YamlMap map) {
   return f;
 }
 
+// `exports:` — a list of layouts (ExportFormat), each once. bop needs a camera that a 3×3
+// K describes (the opencv model without distortion) and adds the AOVs its files are made
+// of: depth (depth/) and, when a shape is labelled, amodal (mask/, mask_visib/, the counts).
+void parseExports(const YamlValue& list, SceneDescription& scene) {
+  scene.keyPlaces["exports"] = list.where();
+  for (const YamlValue& item : list.items()) {
+    const ExportFormat f = item.choice<ExportFormat>("export");
+    if (scene.exportsTo(f))
+      item.fail(std::string("export '") + exportFormatName(f) + "' is listed twice");
+    scene.exports.push_back(f);
+  }
+  if (!scene.exportsTo(ExportFormat::kBop)) return;
+  const Projection& p = scene.camera.projection;
+  const Projection none;  // every distortion coefficient 0
+  if (p.model != ProjectionModel::kOpenCv || p.k1 != none.k1 || p.k2 != none.k2 ||
+      p.k3 != none.k3 || p.k4 != none.k4 || p.k5 != none.k5 || p.k6 != none.k6 || p.p1 != none.p1 ||
+      p.p2 != none.p2 || p.s1 != none.s1 || p.s2 != none.s2 || p.s3 != none.s3 || p.s4 != none.s4 ||
+      p.tauX != none.tauX || p.tauY != none.tauY)
+    list.fail(
+        "export 'bop' needs the camera projection 'opencv' without distortion: BOP's "
+        "scene_camera.json describes the camera by its 3×3 K alone");
+  // amodal only with a labelled shape (its masks are theirs; without one there is no object).
+  std::vector<Aov>& aovs = scene.render.aovs;
+  const bool labelled = std::any_of(scene.shapes.begin(), scene.shapes.end(),
+                                    [](const ShapeDescription& s) { return !s.className.empty(); });
+  for (const Aov a : {Aov::kDepth, Aov::kAmodal})
+    if ((a != Aov::kAmodal || labelled) && std::find(aovs.begin(), aovs.end(), a) == aovs.end())
+      aovs.push_back(a);
+}
+
 RenderSettings parseRender(YamlMap map) {
   RenderSettings r;
   if (auto v = map.find("sampler")) r.sampler = v->choice<SamplerKind>("sampler");
@@ -224,6 +254,7 @@ void parseShape(YamlMap map, size_t index, Context& ctx, SceneDescription& scene
                         point(ev, corner + v)};
     s.mesh.indices = {0, 1, 2, 0, 2, 3};
     s.mesh.uvs = {{0.0f, 0.0f}, {1.0f, 0.0f}, {1.0f, 1.0f}, {0.0f, 1.0f}};  // corner, +u, +u+v, +v
+    s.objectFromModel[3] = glm::dvec4(-shift, 1.0);  // the model: the corners as written
     if (!(glm::length(glm::cross(u, v)) > 0.0))
       ev.fail("edge_u and edge_v must span a non-zero area");
     if (!(meshArea2(s.mesh) > 0.0))  // render space is centred on the camera, in float
@@ -251,10 +282,13 @@ void parseShape(YamlMap map, size_t index, Context& ctx, SceneDescription& scene
         file->failInNamedFile(e);
       }
       checkMesh(*file, s.mesh);
+      // The model frame (object_poses.h): the file's vertices × scale; translate is pose.
+      s.objectFromModel[3] = glm::dvec4(placement.offset, 1.0);
       meshFile = file;
       meshPath = p;
     } else if (vertices) {
       for (const YamlValue& v : vertices->items()) s.mesh.positions.push_back(point(v, v.vec3()));
+      s.objectFromModel[3] = glm::dvec4(-shift, 1.0);  // the model: the vertices as written
       if (s.mesh.positions.size() < 3) vertices->fail("a mesh needs at least 3 vertices");
       const YamlValue faces = map.require("faces");
       s.mesh.indices = parseFaces(faces, s.mesh.positions.size());
@@ -405,6 +439,7 @@ SceneDescription loadSceneFromText(const std::string& text, const std::string& d
     scene.lights.insert(scene.lights.begin(), own.begin(), own.end());
   }
   if (auto f = top.find("frames")) scene.frames = parseFrames(YamlMap(*f));
+  if (auto e = top.find("exports")) parseExports(*e, scene);
   const std::vector<Aov>& aovs = scene.render.aovs;
   if (!scene.frames && std::find(aovs.begin(), aovs.end(), Aov::kMotion) != aovs.end())
     YamlMap(*top.find("render"))
@@ -421,7 +456,7 @@ SceneDescription loadSceneFromText(const std::string& text, const std::string& d
             "aov 'amodal' needs a labelled shape: its masks are of the shapes that have a "
             "`class:`, and none has");
   top.finish({"format", "name", "spectra_path", "render", "camera", "sensor", "isp", "materials",
-              "shapes", "lights", "frames", "include"});
+              "shapes", "lights", "frames", "include", "exports"});
   // Each file once (as first read), however it was named: keyed by its canonical path
   // (symbolic links and ./.. resolved), one lookup per read.
   std::vector<std::filesystem::path> once;

@@ -105,6 +105,7 @@ struct Walk {
       s.placement = m;
     } else {
       s.mesh = transformed(p.mesh, m, p.path);
+      s.objectFromModel = m;  // the model: the primitive's own coordinates (object_poses.h)
     }
     if (p.colorAlpha)
       scene.notes.push_back(inc.where + ": " + p.path +

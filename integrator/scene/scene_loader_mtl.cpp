@@ -306,6 +306,7 @@ std::vector<ShapeDescription> splitByFileMaterials(
     piece.material = index;
     piece.emission = shape.emission;
     piece.motion = shape.motion;
+    piece.objectFromModel = shape.objectFromModel;
     piece.mesh = subMesh(shape.mesh, trianglesOf[index], remap);
     if (!(meshArea2(piece.mesh) > 0.0)) {
       notes.add(obj, lineOf[index], "usemtl " + nameOf[index],

@@ -146,6 +146,13 @@ inline const ErrorCase kErrorCases[] = {
     {"UnknownFramesKey",
      "frames: {count: 2, fps: 30}\n" + kCamera + kMaterials + "shapes:\n" + kSphere, 1, 20,
      "frames.fps", "unknown key"},
+    {"UnknownExport", "exports: [kitti]\n" + kPrefix + kSphere, 1, 11, "exports[0]",
+     "unknown export 'kitti' (known: bop)"},
+    {"ExportTwice", "exports: [bop, bop]\n" + kPrefix + kSphere, 1, 16, "exports[1]",
+     "export 'bop' is listed twice"},
+    {"BopExportNeedsAPinhole",
+     "exports: [bop]\n" + withCameraLine("  projection: {model: equidistant}\n"), 1, 10, "exports",
+     "needs the camera projection 'opencv' without distortion"},
     {"EmptyShapes", kCamera + kMaterials + "shapes: []\n", 6, 9, "shapes", "no shapes"},
     {"DuplicateKey",
      withShapes("  - type: sphere\n    centre: [0, 0, 0]\n    radius: 1\n    radius: 2\n"

@@ -1,0 +1,159 @@
+// The BOP export's object models (bop_writer.h): one per obj_id, its PLY in mm with vertex
+// normals, and models_info.json's diameter and box.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <map>
+#include <numeric>
+
+#include <glm/geometric.hpp>
+
+#include "integrator/capture/bop_writer.h"
+#include "integrator/scene/scene_ids.h"
+#include "sensor/base/input_error.h"
+#include "sensor/io/output_set.h"
+
+namespace camsim {
+namespace {
+
+constexpr double kMmPerM = 1000.0;
+constexpr double kSameModel = 1e-4;  // relative to the model's box diagonal
+
+SourceLocation exportsPlace(const SceneDescription& d) {
+  const auto place = d.keyPlaces.find("exports");
+  return place != d.keyPlaces.end() ? place->second : SourceLocation{d.sourceFile, 0, 0};
+}
+
+// Whether b is a's model: the same triangles, each vertex within kSameModel of a's size.
+bool sameModel(const ObjectModel& a, const ObjectModel& b) {
+  if (a.vertices.size() != b.vertices.size() || a.indices != b.indices) return false;
+  const double tolerance = kSameModel * glm::length(a.boxMax - a.boxMin) + 1e-9;
+  for (std::size_t i = 0; i < a.vertices.size(); ++i)
+    if (!(glm::length(a.vertices[i] - b.vertices[i]) <= tolerance)) return false;
+  return true;
+}
+
+std::string number(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.9g", v);
+  return buf;
+}
+
+// ASCII PLY in mm: positions, angle-weighted vertex normals (each corner's face normal
+// weighted by its angle there), triangles.
+std::string plyText(const ObjectModel& m) {
+  std::vector<glm::dvec3> normals(m.vertices.size(), glm::dvec3(0.0));
+  for (std::size_t t = 0; t + 2 < m.indices.size(); t += 3) {
+    const std::uint32_t v[3] = {m.indices[t], m.indices[t + 1], m.indices[t + 2]};
+    const glm::dvec3 n =
+        glm::cross(m.vertices[v[1]] - m.vertices[v[0]], m.vertices[v[2]] - m.vertices[v[0]]);
+    const double length = glm::length(n);
+    if (!(length > 0.0)) continue;
+    for (int c = 0; c < 3; ++c) {
+      const glm::dvec3 e1 = m.vertices[v[(c + 1) % 3]] - m.vertices[v[c]];
+      const glm::dvec3 e2 = m.vertices[v[(c + 2) % 3]] - m.vertices[v[c]];
+      const double l1 = glm::length(e1), l2 = glm::length(e2);
+      if (!(l1 > 0.0 && l2 > 0.0)) continue;
+      const double angle = std::acos(std::clamp(glm::dot(e1, e2) / (l1 * l2), -1.0, 1.0));
+      normals[v[c]] += angle * n / length;
+    }
+  }
+  std::string s = "ply\nformat ascii 1.0\ncomment camsim BOP model, mm\nelement vertex " +
+                  std::to_string(m.vertices.size()) +
+                  "\nproperty float x\nproperty float y\nproperty float z\nproperty float nx\n"
+                  "property float ny\nproperty float nz\nelement face " +
+                  std::to_string(m.indices.size() / 3) +
+                  "\nproperty list uchar int vertex_indices\nend_header\n";
+  for (std::size_t i = 0; i < m.vertices.size(); ++i) {
+    const glm::dvec3 p = m.vertices[i] * kMmPerM;
+    const double l = glm::length(normals[i]);
+    const glm::dvec3 n = l > 0.0 ? normals[i] / l : glm::dvec3(0.0);
+    s += number(p.x) + " " + number(p.y) + " " + number(p.z) + " " + number(n.x) + " " +
+         number(n.y) + " " + number(n.z) + "\n";
+  }
+  for (std::size_t t = 0; t + 2 < m.indices.size(); t += 3)
+    s += "3 " + std::to_string(m.indices[t]) + " " + std::to_string(m.indices[t + 1]) + " " +
+         std::to_string(m.indices[t + 2]) + "\n";
+  return s;
+}
+
+}  // namespace
+
+std::vector<BopModel> bopModels(const SceneDescription& d) {
+  const SceneIds ids = sceneIds(d);
+  const IdTable& classes = ids[IdKind::kClass];
+  std::map<std::uint32_t, BopModel> byId;
+  for (std::size_t s = 0; s < d.shapes.size(); ++s) {
+    if (classes.ofShape[s] == 0) continue;
+    const std::uint32_t objId = classes.numbers[classes.ofShape[s]];
+    ObjectModel model = objectModel(d, s);
+    const auto [it, added] = byId.try_emplace(objId, BopModel{objId, s, {}});
+    if (added) {
+      it->second.model = std::move(model);
+      continue;
+    }
+    if (!sameModel(it->second.model, model))
+      throw InputError(exportsPlace(d), "exports",
+                       "bop: shapes '" + d.shapes[it->second.shape].label + "' and '" +
+                           d.shapes[s].label + "' have class " + std::to_string(objId) +
+                           " (BOP's obj_id) but different models: give them different classes, "
+                           "or place one mesh with `instances:` (docs/output.md, \"BOP layout\")");
+  }
+  std::vector<BopModel> out;
+  for (auto& [id, m] : byId) out.push_back(std::move(m));
+  return out;
+}
+
+BopModelInfo bopModelInfo(const ObjectModel& m) {
+  BopModelInfo info;
+  info.min = m.boxMin * kMmPerM;
+  info.size = (m.boxMax - m.boxMin) * kMmPerM;
+  // The diameter, exactly: the largest distance between two vertices, pairs pruned by
+  // |p_i − p_j| ≤ r_i + r_j (r: distance from the box centre), vertices by falling r.
+  const glm::dvec3 centre = 0.5 * (m.boxMin + m.boxMax);
+  std::vector<double> r(m.vertices.size());
+  for (std::size_t i = 0; i < r.size(); ++i) r[i] = glm::length(m.vertices[i] - centre);
+  std::vector<std::size_t> order(r.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return r[a] > r[b]; });
+  double best = 0.0;
+  for (std::size_t a = 0; a < order.size(); ++a) {
+    if (a + 1 < order.size() && r[order[a]] + r[order[a + 1]] <= best) break;
+    for (std::size_t b = a + 1; b < order.size(); ++b) {
+      if (r[order[a]] + r[order[b]] <= best) break;
+      best = std::max(best, glm::length(m.vertices[order[a]] - m.vertices[order[b]]));
+    }
+  }
+  info.diameter = best * kMmPerM;
+  return info;
+}
+
+std::vector<std::filesystem::path> writeBopModels(const std::vector<BopModel>& models,
+                                                  const std::filesystem::path& directory) {
+  std::filesystem::create_directories(directory);
+  OutputSet outputs(directory);
+  JsonObject info;
+  for (const BopModel& m : models) {
+    char name[32];
+    std::snprintf(name, sizeof name, "obj_%06u.ply", static_cast<unsigned>(m.objId));
+    outputs.addText(name, plyText(m.model));
+    const BopModelInfo i = bopModelInfo(m.model);
+    info.set(std::to_string(m.objId), JsonObject()
+                                          .set("diameter", i.diameter)
+                                          .set("min_x", i.min.x)
+                                          .set("min_y", i.min.y)
+                                          .set("min_z", i.min.z)
+                                          .set("size_x", i.size.x)
+                                          .set("size_y", i.size.y)
+                                          .set("size_z", i.size.z));
+  }
+  outputs.addText("models_info.json", info.str() + "\n");
+  return outputs.commit();
+}
+
+void checkBopExport(const SceneDescription& d) {
+  if (d.exportsTo(ExportFormat::kBop)) (void)bopModels(d);
+}
+
+}  // namespace camsim

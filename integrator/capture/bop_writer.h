@@ -1,0 +1,107 @@
+// The BOP layout (the 6-DoF pose benchmark's; thodan/bop_toolkit, docs/bop_datasets_format.md)
+// of a capture or a sequence, selected by the scene's `exports: [bop]` and written under the
+// capture's output directory (docs/output.md, "BOP layout"):
+//
+//   bop/models/obj_NNNNNN.ply       each obj_id's model (object_poses.h's model frame), ASCII
+//                                   PLY in mm: x y z, angle-weighted vertex normals, triangles
+//   bop/models/models_info.json     per obj_id: diameter, min_x/y/z, size_x/y/z (mm)
+//   bop/train_pbr/SSSSSS/           one BOP scene: a capture is image 0, a sequence one image
+//                                   per frame (image id = its sequence frame number)
+//     scene_camera.json             per image: cam_K (px, pixel centres at integers), cam_R_w2c,
+//                                   cam_t_w2c (mm; world = the scene file's), depth_scale (mm)
+//     scene_gt.json                 per image, per labelled shape: obj_id, cam_R_m2c (row-major),
+//                                   cam_t_m2c (mm), at the frame's reference time
+//     scene_gt_info.json            per image and object: bbox_obj, bbox_visib ([x, y, w, h]
+//                                   px, bop_toolkit's: w = x_max − x_min), px_count_all,
+//                                   px_count_valid, px_count_visib, visib_fract
+//     rgb/IIIIII.png                NAME.png, the capture's developed picture
+//     depth/IIIIII.png              16-bit: depth (mm) / depth_scale, rounded; 0 where nothing
+//                                   was hit
+//     mask/IIIIII_GGGGGG.png        amodal mask of annotation GGGGGG (0/255)
+//     mask_visib/IIIIII_GGGGGG.png  its visible mask (0/255)
+//
+// | quantity     | unit | rule |
+// |--------------|------|------|
+// | obj_id       | —    | the shape's class number (scene_ids.h: an integer class itself, a named class after the largest integer); every shape of one obj_id must have the same model (within 10⁻⁴ of its size), else InputError |
+// | depth_scale  | mm   | the smallest of 0.1, 1, 10, … mm per unit that holds the image's largest depth in 16 bits |
+// | mask         | —    | a pixel is in the mask when its coverage (amodal_<n>.A / visible_<n>.A) is ≥ 0.5 |
+// | px_count_all | px   | pixels of the amodal mask (inside the image: camsim renders no margin) |
+// | px_count_valid | px | pixels of the amodal mask with a depth value (depth PNG > 0) |
+// | px_count_visib | px | pixels of the visible mask |
+// | visib_fract  | —    | px_count_visib / px_count_all (0 when px_count_all is 0) |
+// | bbox_*       | px   | [x_min, y_min, x_max − x_min, y_max − y_min] of the mask's pixels; [−1, −1, −1, −1] when empty |
+// Scene id SSSSSS: 0 for `camsim render`, the item's index in a `camsim dataset` run (the
+// items' scene folders gather under one train_pbr/ without renumbering). Without the amodal
+// AOV's channels in the render, mask/, mask_visib/ and scene_gt_info.json are left out and a
+// `skipped` line says so.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "integrator/capture/capture.h"
+#include "integrator/capture/object_poses.h"
+#include "sensor/io/json_writer.h"
+
+namespace camsim {
+
+// One model per obj_id of the scene's labelled shapes: the model of its first shape.
+// Throws InputError (naming `exports` and both shapes) when two shapes of one obj_id have
+// different models.
+struct BopModel {
+  std::uint32_t objId = 0;
+  std::size_t shape = 0;  // the shape it was taken from
+  ObjectModel model;
+};
+std::vector<BopModel> bopModels(const SceneDescription& d);
+
+// What the models_info.json entry of a model holds (mm): the largest distance between two
+// of its vertices, and its box.
+struct BopModelInfo {
+  double diameter = 0.0;
+  glm::dvec3 min{0.0}, size{0.0};
+};
+BopModelInfo bopModelInfo(const ObjectModel& model);
+
+// bop/models/: obj_NNNNNN.ply per model and models_info.json, into directory.
+std::vector<std::filesystem::path> writeBopModels(const std::vector<BopModel>& models,
+                                                  const std::filesystem::path& directory);
+
+// The 16-bit depth step (mm) for a largest depth of maxDepthMm.
+double bopDepthScale(double maxDepthMm);
+
+// The BOP scene of one capture or sequence, written as its frames arrive.
+class BopWriter {
+ public:
+  // directory: the capture's output directory (bop/ is made in it); sceneId: SSSSSS.
+  BopWriter(std::filesystem::path directory, int sceneId);
+  // Writes the frame's rgb, depth and masks (its picture NAME.png must be in the directory
+  // already) and keeps its JSON entries. imageId: 0 for a capture, a sequence's frame number.
+  std::vector<std::filesystem::path> addFrame(const CaptureResult& result, int imageId);
+  // Writes the models and the scene's JSON files.
+  std::vector<std::filesystem::path> finish();
+  // What was left out, a line each (no amodal AOV: no masks).
+  const std::vector<std::string>& skipped() const { return skipped_; }
+
+ private:
+  std::filesystem::path directory_, scene_;
+  std::vector<BopModel> models_;
+  bool modelsKnown_ = false;
+  bool masks_ = true;  // every frame so far had the amodal channels
+  JsonObject camera_, gt_, gtInfo_;
+  std::vector<std::string> skipped_;
+};
+
+// A capture's whole BOP scene (image 0): addFrame and finish; skipped lines appended.
+std::vector<std::filesystem::path> writeBop(const CaptureResult& result,
+                                            const std::filesystem::path& directory, int sceneId,
+                                            std::vector<std::string>* skipped = nullptr);
+
+// The scene's BOP export checked before anything renders (the models of its obj_ids agree):
+// InputError otherwise. Nothing for a scene without `exports: [bop]`.
+void checkBopExport(const SceneDescription& d);
+
+}  // namespace camsim

@@ -1,0 +1,98 @@
+// `camsim dataset` with the BOP export (integrator/capture/bop_writer.h) on the real binary:
+// a manifest selects it with `set: {exports: [bop]}`; each item writes its own BOP scene,
+// numbered by the item's index, listed in item.json by its path in the item folder, so that
+// shards write the items of one run byte for byte and --resume skips them.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <map>
+
+#include "tests/support/run_command.h"
+#include "tests/support/temp_dir.h"
+#include "tests/support/text_file.h"
+
+namespace camsim {
+namespace dataset_bop_test {
+
+namespace fs = std::filesystem;
+
+const char* const kScene =
+    "name: table\n"
+    "render: {spp: 2, max_depth: 1}\n"
+    "camera: {position: [0, 0, -2], look_at: [0, 0, 0], resolution: [24, 16]}\n"
+    "materials: {m: {type: diffuse}}\n"
+    "shapes:\n"
+    "  - {type: rectangle, corner: [-2, -2, 1], edge_u: [4, 0, 0], edge_v: [0, 4, 0], "
+    "material: m}\n"
+    "  - type: mesh\n"
+    "    class: 3\n"
+    "    material: m\n"
+    "    vertices: [[0, 0, 0], [0.3, 0, 0], [0, 0.3, 0]]\n"
+    "    faces: [[0, 1, 2]]\n"
+    "    instances: [{translate: [0, 0, 0]}, {translate: [-0.4, 0, 0.2]}]\n"
+    "lights: [{type: point, position: [0, 1, -2], intensity: 20}]\n";
+
+const char* const kManifest =
+    "format: camsim-dataset/1\nscene: table.yaml\n"
+    "set: {exports: [bop]}\n"
+    "items:\n"
+    "  - {camera.position: [0, 0, -2]}\n"
+    "  - {camera.position: [0.3, 0.1, -2]}\n";
+
+std::map<std::string, std::string> tree(const fs::path& dir) {
+  std::map<std::string, std::string> files;
+  for (const auto& e : fs::recursive_directory_iterator(dir))
+    if (e.is_regular_file() && e.path().filename() != "index.jsonl")
+      files[fs::relative(e.path(), dir).string()] = test::readFile(e.path());
+  return files;
+}
+
+TEST(DatasetBop, EachItemIsABopSceneOfItsIndexThatShardsAndResumeKeep) {
+  test::TempDir dir;
+  test::writeFile(dir.path() / "table.yaml", kScene);
+  test::writeFile(dir.path() / "bop.yaml", kManifest);
+  const std::string manifest = test::quote((dir.path() / "bop.yaml").string());
+  const fs::path whole = dir.path() / "whole", parts = dir.path() / "parts";
+  const auto r = test::runCamsim("dataset " + manifest + " -o " + whole.string(), dir.path());
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  for (const char* f :
+       {"items/000000/bop/train_pbr/000000/scene_gt.json",
+        "items/000000/bop/train_pbr/000000/rgb/000000.png",
+        "items/000000/bop/train_pbr/000000/depth/000000.png",
+        "items/000001/bop/train_pbr/000001/scene_camera.json",
+        "items/000001/bop/models/obj_000003.ply", "items/000001/bop/models/models_info.json"})
+    EXPECT_TRUE(fs::is_regular_file(whole / f)) << f;
+  // item.json lists the BOP files by their path in the item folder.
+  const std::string item = test::readFile(whole / "items/000001/item.json");
+  EXPECT_NE(item.find("\"bop/train_pbr/000001/scene_gt.json\""), std::string::npos) << item;
+  // Two instances of one mesh, class 3: one model, two entries.
+  const std::string gt = test::readFile(whole / "items/000000/bop/train_pbr/000000/scene_gt.json");
+  int entries = 0;
+  for (auto p = gt.find("\"obj_id\": 3"); p != std::string::npos;
+       p = gt.find("\"obj_id\": 3", p + 1))
+    ++entries;
+  EXPECT_EQ(entries, 2) << gt;
+
+  for (int k = 0; k < 2; ++k) {
+    const auto s = test::runCamsim(
+        "dataset " + manifest + " -o " + parts.string() + " --shard " + std::to_string(k) + "/2",
+        dir.path());
+    ASSERT_EQ(s.exitCode, 0) << s.err;
+  }
+  const auto a = tree(whole), b = tree(parts);
+  EXPECT_EQ(a.size(), b.size());
+  for (const auto& [name, content] : a) {
+    ASSERT_TRUE(b.count(name)) << name;
+    EXPECT_TRUE(b.at(name) == content) << name << " differs";
+  }
+  // --resume finds every item up to date (its BOP files included) and renders nothing.
+  const auto again =
+      test::runCamsim("dataset " + manifest + " -o " + whole.string() + " --resume", dir.path());
+  ASSERT_EQ(again.exitCode, 0) << again.err;
+  EXPECT_EQ(tree(whole), a);
+  const std::string index = test::readFile(whole / "index.jsonl");
+  EXPECT_EQ(index.find("\"item\": 0", index.find("\"item\": 0") + 1), std::string::npos) << index;
+}
+
+}  // namespace dataset_bop_test
+}  // namespace camsim
