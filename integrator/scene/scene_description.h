@@ -63,8 +63,10 @@ enum class Aov : std::uint8_t {
   kMaterialId,  // the same for their material
   kMotion,      // 2-D motion vectors and 3-D scene flow to the previous and next frame
   kValid,       // the fraction of the pixel's samples inside the camera model's image
+  kOcclusion,   // which hit points the previous / next frame's camera does not see
+  kBoundary,    // occlusion boundaries: pixels whose samples see several objects or depths
 };
-inline constexpr int kAovCount = 11;
+inline constexpr int kAovCount = 13;
 // The scene's `render.aovs` names, also the sidecar's and the EXR layers'
 // (sensor/base/enum_names.h).
 template <>
@@ -79,7 +81,9 @@ struct EnumNames<Aov> {
                                                       {Aov::kClassId, "class_id"},
                                                       {Aov::kMaterialId, "material_id"},
                                                       {Aov::kMotion, "motion"},
-                                                      {Aov::kValid, "valid"}};
+                                                      {Aov::kValid, "valid"},
+                                                      {Aov::kOcclusion, "occlusion"},
+                                                      {Aov::kBoundary, "boundary"}};
 };
 inline const char* aovName(Aov a) {
   return enumName(a).data();
