@@ -42,6 +42,7 @@
 #include <vector>
 
 #include <glm/mat4x4.hpp>
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 #include "integrator/camera/pose_projector.h"
@@ -75,8 +76,8 @@ struct BoundarySums {
   // camera ray and missed.
   float value(int hits, int misses) const {
     if (hits == 0) return 0.0f;
-    const bool step =
-        static_cast<double>(farthest) - nearest > kDepthStep * static_cast<double>(nearest);
+    const double d0 = nearest, d1 = farthest;
+    const bool step = d1 - d0 > kDepthStep * d0;
     return misses > 0 || severalShapes || step ? 1.0f : 0.0f;
   }
 };

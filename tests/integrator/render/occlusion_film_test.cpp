@@ -70,7 +70,7 @@ double sum(const Image& im, const char* channel) {
 // from its changes, found every `scan` px and bisected. Sets thinner than `scan` that do
 // not touch a change of the rest are missed; the sets here have no such parts.
 double areaOf(const std::function<bool(double, double)>& inside, double u0, double u1, double v0,
-              double v1, double h = 0.005, double scan = 0.25) {
+              double v1, double h, double scan = 0.25) {
   double area = 0.0;
   const int rows = static_cast<int>(std::ceil((v1 - v0) / h));
   const int cols = static_cast<int>(std::ceil((u1 - u0) / scan));
@@ -144,9 +144,11 @@ TEST(OcclusionFilm, BallCrescentAreasMatchTheAnalyticReference) {
     const glm::dvec3 x = t * dir + (sk - s1);
     return glm::dot(x - sk, -x) < 0.0;
   };
-  const double lo = kC - 40.0, hi = kC + 40.0;
-  const double fw = areaOf([&](double u, double v) { return hiddenAt(2, u, v); }, lo, hi, lo, hi);
-  const double bw = areaOf([&](double u, double v) { return hiddenAt(0, u, v); }, lo, hi, lo, hi);
+  const double lo = kC - 32.0, hi = kC + 32.0;  // the ball's images: 20 px in radius, 8 px apart
+  const double fw =
+      areaOf([&](double u, double v) { return hiddenAt(2, u, v); }, lo, hi, lo, hi, 0.02);
+  const double bw =
+      areaOf([&](double u, double v) { return hiddenAt(0, u, v); }, lo, hi, lo, hi, 0.02);
   const double renderedFw = sum(a, "occlusion_fw.A"), renderedBw = sum(a, "occlusion_bw.A");
   std::printf("crescent ahead: %.3f px² rendered, %.3f px² exact (%+.3f %%); behind: %.3f, "
               "%.3f (%+.3f %%)\n",
@@ -160,8 +162,11 @@ TEST(OcclusionFilm, BallCrescentAreasMatchTheAnalyticReference) {
   // Ahead of the ball forward, behind it backward, nothing elsewhere (x: columns).
   for (int y = 0; y < kRes; ++y)
     for (int x = 0; x < kRes; ++x) {
-      if (x < kC) ASSERT_EQ(value(a, x, y, "occlusion_fw.A"), 0.0) << x << "," << y;
-      if (x > kC) ASSERT_EQ(value(a, x, y, "occlusion_bw.A"), 0.0) << x << "," << y;
+      if (x < kC) {
+        ASSERT_EQ(value(a, x, y, "occlusion_fw.A"), 0.0) << x << "," << y;
+      } else {
+        ASSERT_EQ(value(a, x, y, "occlusion_bw.A"), 0.0) << x << "," << y;
+      }
     }
 }
 
@@ -196,10 +201,10 @@ TEST(OcclusionFilm, CameraTurningAboutItsCentreOccludesNothing) {
     return !q || q->x < -0.5 || q->x >= kRes - 0.5 || q->y < -0.5 || q->y >= kRes - 0.5;
   };
   const double e = kRes - 0.5;
-  const double fw = areaOf([&](double u, double v) { return outsideAt(2, u, v); }, -0.5, e, -0.5, e,
-                           0.02);
-  const double bw = areaOf([&](double u, double v) { return outsideAt(0, u, v); }, -0.5, e, -0.5, e,
-                           0.02);
+  const double fw =
+      areaOf([&](double u, double v) { return outsideAt(2, u, v); }, -0.5, e, -0.5, e, 0.05, 1.0);
+  const double bw =
+      areaOf([&](double u, double v) { return outsideAt(0, u, v); }, -0.5, e, -0.5, e, 0.05, 1.0);
   const double renderedFw = sum(a, "outside_fw.A"), renderedBw = sum(a, "outside_bw.A");
   std::printf("turning camera: outside %.2f / %.2f px² (exact %.2f / %.2f), occluded 0\n",
               renderedFw, renderedBw, fw, bw);
@@ -282,16 +287,23 @@ TEST(OcclusionFilm, OtherAovsUnchangedAndBitIdenticalAcrossThreadCounts) {
 }
 
 TEST(OcclusionFilm, NeedsAFramesBlock) {
-  const std::string text =
-      "camera: {position: [0, 0, 0], look_at: [0, 0, -1]}\n"
-      "render: {aovs: [occlusion]}\n"
-      "shapes: [{type: sphere, centre: [0, 0, -3], radius: 1}]\n";
-  EXPECT_THROW(loadSceneFromText(text, "occlusion.yaml", "."), InputError);
-  EXPECT_NO_THROW(loadSceneFromText(
-      "camera: {position: [0, 0, 0], look_at: [0, 0, -1]}\n"
-      "render: {aovs: [boundary]}\n"
-      "shapes: [{type: sphere, centre: [0, 0, -3], radius: 1}]\n",
-      "boundary.yaml", "."));
+  const auto text = [](const std::string& aovs) {
+    return "camera: {position: [0, 0, 0], look_at: [0, 0, -1]}\n"
+           "render: {aovs: " +
+           aovs +
+           "}\n"
+           "materials: {grey: {type: diffuse, reflectance: 0.5}}\n"
+           "shapes: [{type: sphere, centre: [0, 0, -3], radius: 1, material: grey}]\n";
+  };
+  try {
+    loadSceneFromText(text("[depth, occlusion]"), "occlusion.yaml", ".");
+    ADD_FAILURE() << "occlusion without frames was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("aov 'occlusion' needs a frames block"),
+              std::string::npos)
+        << e.what();
+  }
+  EXPECT_NO_THROW(loadSceneFromText(text("[boundary]"), "boundary.yaml", "."));
 }
 
 // What the ray through (u, v) hits first in the boundary scene: 0 nothing, 1 the ball, 2
