@@ -200,7 +200,7 @@ class AovFilm {
   std::size_t validChannel_ = 0;      // of valid.A
   std::size_t occlusionChannel_ = 0;  // of occlusion_fw.A
   std::size_t boundaryChannel_ = 0;   // of boundary.A
-  bool stagesMotion_ = false;  // motion or occlusion: each hit is moved to the frame times
+  bool stagesMotion_ = false;         // motion or occlusion: each hit is moved to the frame times
   // x̄·D65, ȳ·D65, z̄·D65 interleaved on Spectrum's 1 nm grid (lane 3: 0): one 16-byte pair
   // per wavelength gives all three (a sample touches 4–8 cache lines of it, not 12–24).
   std::vector<Float4> whiteXyz_;

@@ -53,9 +53,8 @@ std::unique_ptr<Shape> movedCopy(const Shape& shape, const RigidMotion& motion,
     for (int i = 0; i < 3; ++i)
       moved.translation = std::max(moved.translation, static_cast<float>(std::abs(m[3][i])));
   }
-  return std::make_unique<TriangleMesh>(mesh.positions(), std::vector<glm::vec3>{},
-                                        mesh.indices(), span, std::vector<glm::vec2>{}, false,
-                                        std::move(moved));
+  return std::make_unique<TriangleMesh>(mesh.positions(), std::vector<glm::vec3>{}, mesh.indices(),
+                                        span, std::vector<glm::vec2>{}, false, std::move(moved));
 }
 
 }  // namespace

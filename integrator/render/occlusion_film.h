@@ -15,7 +15,8 @@
 // of x_j through the camera at t_j (PhysicalCamera::projectFrom):
 //
 //   outside_j   ⇔  q_j does not exist or lies outside the image
-//   occluded_j  ⇔  not outside_j, and a surface at t_j lies on o_j + s (x_j − o_j), 0 < s < 1 − ε
+//   occluded_j  ⇔  not outside_j, and a surface at t_j lies on o_j + s (x_j − o_j),
+//                  0 < s < 1 − ε
 //   visible_j   ⇔  neither:  occlusion + outside + visible = 1 per pixel (disjoint)
 //
 // ε = 1e-4 (kEndGap): surfaces within 1e-4 of the point's distance in front of it do not
@@ -63,8 +64,8 @@ struct OcclusionSums {
 // A pixel's hits for its boundary value: the shapes and the distances seen.
 struct BoundarySums {
   static constexpr double kDepthStep = 0.05;  // τ, relative
-  int shape = -1;             // the first hit's shape (−1: none yet)
-  bool severalShapes = false;  // a hit on another shape
+  int shape = -1;                             // the first hit's shape (−1: none yet)
+  bool severalShapes = false;                 // a hit on another shape
   float nearest = std::numeric_limits<float>::infinity(), farthest = 0.0f;  // m
   void add(int hitShape, float distance) {
     if (shape < 0) shape = hitShape;
@@ -103,13 +104,13 @@ class OcclusionFilm {
  private:
   enum class Seen { kVisible, kOccluded, kOutside };
   Seen classify(const glm::dvec3& x, std::size_t j) const;  // the point x at times_[j]
-  bool hidden(const Ray& ray) const;                         // a surface on the segment
+  bool hidden(const Ray& ray) const;                        // a surface on the segment
 
   const Scene& scene_;
   std::array<double, 3> times_;
   std::array<glm::dmat4, 3> worldFromCamera_;
-  glm::dvec2 imageEnd_{0.0};      // (W − ½, H − ½) px
-  std::vector<char> keyframed_;   // per shape: it has keyframes (the scene's BVH skips it)
+  glm::dvec2 imageEnd_{0.0};     // (W − ½, H − ½) px
+  std::vector<char> keyframed_;  // per shape: it has keyframes (the scene's BVH skips it)
   bool anyKeyframed_ = false;
   std::vector<std::unique_ptr<Shape>> movedShapes_;  // the keyframed shapes' copies
   std::unique_ptr<EmbreeScene> moved_;               // their BVH over [times[0], times[2]]

@@ -29,8 +29,8 @@ constexpr double kF = 50.0 / (24.0 / kRes), kC = 0.5 * kRes - 0.5;
 
 // 96 × 96 pinhole at the origin looking along −z (+y up: image right is world +x, image
 // down world −y); frames at 10 Hz with a 0.036° shutter (10 µs: no motion blur to speak of).
-SceneDescription scene(const std::string& shapes, const std::string& camera, const std::string& aovs,
-                       int spp = 64) {
+SceneDescription scene(const std::string& shapes, const std::string& camera,
+                       const std::string& aovs, int spp = 64) {
   const std::string text =
       "camera: {position: [0, 0, 0], look_at: [0, 0, -1], up: [0, 1, 0], resolution: [" +
       std::to_string(kRes) + ", " + std::to_string(kRes) +
@@ -106,7 +106,8 @@ glm::dvec3 rayThrough(double u, double v) {
 }
 // Nearest t > 0 with |t d − s| = r (d from the origin), or −1.
 double sphereHit(const glm::dvec3& d, const glm::dvec3& s, double r) {
-  const double dd = glm::dot(d, d), ds = glm::dot(d, s), disc = ds * ds - dd * (glm::dot(s, s) - r * r);
+  const double dd = glm::dot(d, d), ds = glm::dot(d, s),
+               disc = ds * ds - dd * (glm::dot(s, s) - r * r);
   if (disc < 0.0) return -1.0;
   const double t = (ds - std::sqrt(disc)) / dd;
   return t > 0.0 ? t : -1.0;
@@ -121,14 +122,14 @@ double sphereHit(const glm::dvec3& d, const glm::dvec3& s, double r) {
 // 1 ± 1, integrated over the image (areaOf).
 TEST(OcclusionFilm, BallCrescentAreasMatchTheAnalyticReference) {
   const double r = 0.25, z = -2.5;
-  const SceneDescription d =
-      scene("  - {name: wall, type: rectangle, corner: [-5, -5, -5], edge_u: [10, 0, 0], "
-            "edge_v: [0, 10, 0], material: grey}\n"
-            "  - {name: ball, type: sphere, centre: [-0.1, 0, " +
-                num(z) + "], radius: " + num(r) +
-                ", material: grey, motion: [{time: 0, translate: [0, 0, 0]}, {time: 1, "
-                "translate: [1, 0, 0]}]}\n",
-            "", "[occlusion]");
+  const SceneDescription d = scene(
+      "  - {name: wall, type: rectangle, corner: [-5, -5, -5], edge_u: [10, 0, 0], "
+      "edge_v: [0, 10, 0], material: grey}\n"
+      "  - {name: ball, type: sphere, centre: [-0.1, 0, " +
+          num(z) + "], radius: " + num(r) +
+          ", material: grey, motion: [{time: 0, translate: [0, 0, 0]}, {time: 1, "
+          "translate: [1, 0, 0]}]}\n",
+      "", "[occlusion]");
   const Image a = renderFrame(d, 1).aovs;
   // The ball's centre at each frame's reference time (the shutter's centre).
   const auto centreAt = [&](int k) {
@@ -150,10 +151,11 @@ TEST(OcclusionFilm, BallCrescentAreasMatchTheAnalyticReference) {
   const double bw =
       areaOf([&](double u, double v) { return hiddenAt(0, u, v); }, lo, hi, lo, hi, 0.02);
   const double renderedFw = sum(a, "occlusion_fw.A"), renderedBw = sum(a, "occlusion_bw.A");
-  std::printf("crescent ahead: %.3f px² rendered, %.3f px² exact (%+.3f %%); behind: %.3f, "
-              "%.3f (%+.3f %%)\n",
-              renderedFw, fw, 100.0 * (renderedFw / fw - 1.0), renderedBw, bw,
-              100.0 * (renderedBw / bw - 1.0));
+  std::printf(
+      "crescent ahead: %.3f px² rendered, %.3f px² exact (%+.3f %%); behind: %.3f, "
+      "%.3f (%+.3f %%)\n",
+      renderedFw, fw, 100.0 * (renderedFw / fw - 1.0), renderedBw, bw,
+      100.0 * (renderedBw / bw - 1.0));
   EXPECT_GT(fw, 200.0);  // ≈ 2 ρ δ = 2 · 20 · 8 px²
   EXPECT_NEAR(renderedFw, fw, 0.01 * fw);
   EXPECT_NEAR(renderedBw, bw, 0.01 * bw);
@@ -234,7 +236,8 @@ TEST(OcclusionFilm, CameraMovingInsideConvexRoomsOccludesNothing) {
       "material: grey}\n"
       "  - {type: rectangle, corner: [-2, 1.5, -6], edge_u: [4, 0, 0], edge_v: [0, 0, 7], "
       "material: grey}\n";
-  const std::string sphere = "  - {type: sphere, centre: [0.3, 0, -0.5], radius: 3, material: grey}\n";
+  const std::string sphere =
+      "  - {type: sphere, centre: [0.3, 0, -0.5], radius: 3, material: grey}\n";
   for (const std::string& shapes : {room, sphere}) {
     const Image a = renderFrame(scene(shapes, cameraMotion, "[occlusion]", 16), 1).aovs;
     EXPECT_EQ(sum(a, "coverage.A"), kRes * kRes);  // every sample hits
@@ -299,8 +302,7 @@ TEST(OcclusionFilm, NeedsAFramesBlock) {
     loadSceneFromText(text("[depth, occlusion]"), "occlusion.yaml", ".");
     ADD_FAILURE() << "occlusion without frames was accepted";
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("aov 'occlusion' needs a frames block"),
-              std::string::npos)
+    EXPECT_NE(std::string(e.what()).find("aov 'occlusion' needs a frames block"), std::string::npos)
         << e.what();
   }
   EXPECT_NO_THROW(loadSceneFromText(text("[boundary]"), "boundary.yaml", "."));
@@ -329,14 +331,16 @@ TEST(OcclusionBoundary, ObjectEdgesAndDepthStepsAgainstTheFootprint) {
     return corner(q[0], q[2], zd) + ", " + corner(q[1], q[2], zd) + ", " + corner(q[1], q[3], zd) +
            ", " + corner(q[0], q[3], zd);
   };
-  const std::string shapes =
-      "  - {name: wall, type: rectangle, corner: " + corner(wallU, -50, 5) + ", edge_u: [20, 0, 0], " +
-      "edge_v: [0, -20, 0], material: grey}\n"
-      "  - {name: ball, type: sphere, centre: [" + num(ball[0]) + ", " + num(ball[1]) + ", " +
-      num(ball[2]) + "], radius: " + num(ballR) +
-      ", material: grey}\n"
-      "  - {name: steps, type: mesh, material: grey, vertices: [" + square(nearSq, 3) + ", " +
-      square(farSq, 4) + "], faces: [[0, 1, 2], [0, 2, 3], [4, 5, 6], [4, 6, 7]]}\n";
+  const std::string shapes = "  - {name: wall, type: rectangle, corner: " + corner(wallU, -50, 5) +
+                             ", edge_u: [20, 0, 0], " +
+                             "edge_v: [0, -20, 0], material: grey}\n"
+                             "  - {name: ball, type: sphere, centre: [" +
+                             num(ball[0]) + ", " + num(ball[1]) + ", " + num(ball[2]) +
+                             "], radius: " + num(ballR) +
+                             ", material: grey}\n"
+                             "  - {name: steps, type: mesh, material: grey, vertices: [" +
+                             square(nearSq, 3) + ", " + square(farSq, 4) +
+                             "], faces: [[0, 1, 2], [0, 2, 3], [4, 5, 6], [4, 6, 7]]}\n";
   const Image a = renderFrame(scene(shapes, "", "[boundary]"), 1).aovs;
   const auto seen = [&](double u, double v) {
     const glm::dvec3 dir = rayThrough(u, v);
@@ -346,7 +350,9 @@ TEST(OcclusionBoundary, ObjectEdgesAndDepthStepsAgainstTheFootprint) {
       if (t > 0.0 && (s.what == 0 || t * len < s.distance)) s = {what, t * len};
     };
     closer(1, sphereHit(dir, glm::dvec3(ball[0], ball[1], ball[2]), ballR));
-    const auto in = [&](const double* q) { return u >= q[0] && u <= q[1] && v >= q[2] && v <= q[3]; };
+    const auto in = [&](const double* q) {
+      return u >= q[0] && u <= q[1] && v >= q[2] && v <= q[3];
+    };
     if (in(nearSq)) closer(2, 3.0);
     if (in(farSq)) closer(3, 4.0);
     if (u >= wallU) closer(4, 5.0);
@@ -367,7 +373,8 @@ TEST(OcclusionBoundary, ObjectEdgesAndDepthStepsAgainstTheFootprint) {
           farthest = std::max(farthest, s.distance);
         }
       const double b = value(a, x, y, "boundary.A");
-      const int kinds = static_cast<int>(std::count_if(count, count + 5, [](int c) { return c > 0; }));
+      const int kinds =
+          static_cast<int>(std::count_if(count, count + 5, [](int c) { return c > 0; }));
       if (kinds == 1 && (count[0] > 0 || farthest - nearest < 0.045 * nearest)) {
         ASSERT_EQ(b, 0.0) << x << "," << y;
         ++zeros;
