@@ -9,8 +9,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <array>
 #include <functional>
 #include <string>
+
+#include <glm/trigonometric.hpp>
 
 #include "integrator/render/render.h"
 #include "integrator/scene/scene.h"
@@ -170,6 +173,81 @@ TEST(OcclusionFilm, BallCrescentAreasMatchTheAnalyticReference) {
         ASSERT_EQ(value(a, x, y, "occlusion_bw.A"), 0.0) << x << "," << y;
       }
     }
+}
+
+// Whether image point q lies inside the convex quad c (corners in order, either turn).
+bool insideQuad(const std::array<glm::dvec2, 4>& c, glm::dvec2 q) {
+  int sign = 0;
+  for (std::size_t i = 0; i < 4; ++i) {
+    const glm::dvec2 e = c[(i + 1) % 4] - c[i], w = q - c[i];
+    const int s = e.x * w.y - e.y * w.x > 0.0 ? 1 : -1;
+    if (sign != 0 && s != sign) return false;
+    sign = s;
+  }
+  return true;
+}
+
+// The keyframed copies of meshes (occlusion_film.cpp: a baked rectangle and an instanced
+// mesh take other paths than a sphere): a card (rectangle) sliding +x at 2.5 m and an
+// instance of a square mesh sliding −x and spinning 10° per frame about the optical axis at
+// 3 m (another, static instance of the mesh makes it instanced), before a wall. Both stay
+// fronto-parallel, so each image is the exact projected quad: forward, the wall points of
+// frame 1 inside a card's quad at frame 2 and outside it at frame 1; backward, frame 0's.
+TEST(OcclusionFilm, MovingMeshesCoverTheExactArea) {
+  const SceneDescription d = scene(
+      "  - {name: wall, type: rectangle, corner: [-5, -5, -5], edge_u: [10, 0, 0], "
+      "edge_v: [0, 10, 0], material: grey}\n"
+      "  - {name: card, type: rectangle, corner: [-0.5, 0.05, -2.5], edge_u: [0.3, 0, 0], "
+      "edge_v: [0, 0.3, 0], material: grey, motion: [{time: 0, translate: [0, 0, 0]}, "
+      "{time: 1, translate: [1, 0, 0]}]}\n"
+      "  - type: mesh\n"
+      "    material: grey\n"
+      "    vertices: [[-0.15, -0.15, 0], [0.15, -0.15, 0], [0.15, 0.15, 0], [-0.15, 0.15, 0]]\n"
+      "    faces: [[0, 1, 2], [0, 2, 3]]\n"
+      "    instances:\n"
+      "      - {translate: [0.3, 0.3, -4]}\n"
+      "      - {motion: [{time: 0, translate: [0.35, -0.3, -3], rotate: {axis: [0, 0, 1], "
+      "angle_deg: 0}}, {time: 1, translate: [-0.65, -0.3, -3], rotate: {axis: [0, 0, 1], "
+      "angle_deg: 100}}]}\n",
+      "", "[occlusion]");
+  const Image a = renderFrame(d, 1).aovs;
+  // The moving cards' image quads at frame k.
+  const auto project = [](const glm::dvec3& p) {
+    return glm::dvec2(kC + kF * p.x / -p.z, kC - kF * p.y / -p.z);
+  };
+  const auto quadsAt = [&](int k) {
+    const double t = d.frameCamera(k).shutter.centre(), th = glm::radians(100.0 * t);
+    std::array<std::array<glm::dvec2, 4>, 2> q;
+    const double card[4][2] = {{-0.5, 0.05}, {-0.2, 0.05}, {-0.2, 0.35}, {-0.5, 0.35}};
+    const double square[4][2] = {{-0.15, -0.15}, {0.15, -0.15}, {0.15, 0.15}, {-0.15, 0.15}};
+    for (std::size_t i = 0; i < 4; ++i) {
+      q[0][i] = project({card[i][0] + t, card[i][1], -2.5});
+      const double x = square[i][0], y = square[i][1];
+      q[1][i] = project({0.35 - t + std::cos(th) * x - std::sin(th) * y,
+                         -0.3 + std::sin(th) * x + std::cos(th) * y, -3.0});
+    }
+    return q;
+  };
+  const auto q1 = quadsAt(1);
+  const auto hiddenAt = [&](const std::array<std::array<glm::dvec2, 4>, 2>& qk, double u,
+                            double v) {
+    const glm::dvec2 p(u, v);
+    if (insideQuad(q1[0], p) || insideQuad(q1[1], p)) return false;  // a card: stays in view
+    return insideQuad(qk[0], p) || insideQuad(qk[1], p);
+  };
+  const auto q0 = quadsAt(0), q2 = quadsAt(2);
+  const double e = kRes - 0.5;
+  const double fw =
+      areaOf([&](double u, double v) { return hiddenAt(q2, u, v); }, -0.5, e, -0.5, e, 0.02);
+  const double bw =
+      areaOf([&](double u, double v) { return hiddenAt(q0, u, v); }, -0.5, e, -0.5, e, 0.02);
+  const double renderedFw = sum(a, "occlusion_fw.A"), renderedBw = sum(a, "occlusion_bw.A");
+  std::printf("moving meshes: %.3f / %.3f px² rendered, %.3f / %.3f exact\n", renderedFw,
+              renderedBw, fw, bw);
+  EXPECT_GT(fw, 250.0);  // the card's 8 × 24 px strip and the square's swept edges
+  EXPECT_NEAR(renderedFw, fw, 0.01 * fw);
+  EXPECT_NEAR(renderedBw, bw, 0.01 * bw);
+  EXPECT_EQ(sum(a, "outside_fw.A") + sum(a, "outside_bw.A"), 0.0);
 }
 
 // A static ball, wall and tilted plane; the camera turns about its own centre (4° about a
