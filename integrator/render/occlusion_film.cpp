@@ -11,10 +11,13 @@
 #include "integrator/geometry/sphere.h"
 #include "integrator/geometry/triangle_mesh.h"
 #include "integrator/scene/scene.h"
-#include "sensor/base/check.h"
 
 namespace camsim {
 namespace {
+
+double spanEnd(const std::array<double, 3>& times) {
+  return times[2] > times[0] ? times[2] : times[0] + 1.0;
+}
 
 // A keyframed shape copied into a BVH of its own with two time steps, its poses at
 // times[0] and times[2] (the ends of the span: Embree's time 0 and 1, no interpolation).
@@ -23,7 +26,9 @@ namespace {
 // render space), the same exact motion the motion field moves hit points with.
 std::unique_ptr<Shape> movedCopy(const Shape& shape, const RigidMotion& motion,
                                  const std::array<double, 3>& times) {
-  const TimeSteps span{times[0], times[2], 2};
+  // Without a frame interval (no frames block) the three times coincide: both steps then
+  // hold the one pose, over a span of 1 s.
+  const TimeSteps span{times[0], spanEnd(times), 2};
   const auto toTimes = [&](int step) {
     const glm::dmat4 inverse = glm::inverse(motion.at(shape.timeSteps().timeOf(step)));
     return std::array<glm::dmat4, 2>{motion.at(times[0]) * inverse, motion.at(times[2]) * inverse};
@@ -62,7 +67,6 @@ std::unique_ptr<Shape> movedCopy(const Shape& shape, const RigidMotion& motion,
 OcclusionFilm::OcclusionFilm(const Scene& scene, const std::array<double, 3>& times,
                              const std::array<glm::dmat4, 3>& worldFromCamera)
     : scene_(scene), times_(times), worldFromCamera_(worldFromCamera) {
-  CAMSIM_CHECK(times[0] < times[2]);
   imageEnd_ = glm::dvec2(scene.camera().resolution()) - 0.5;
   keyframed_.assign(scene.shapeCount(), 0);
   for (std::size_t s = 0; s < scene.shapeCount(); ++s) {
@@ -72,7 +76,8 @@ OcclusionFilm::OcclusionFilm(const Scene& scene, const std::array<double, 3>& ti
     movedShapes_.push_back(movedCopy(scene.shape(static_cast<int>(s)), motion, times));
   }
   anyKeyframed_ = !movedShapes_.empty();
-  if (anyKeyframed_) moved_ = std::make_unique<EmbreeScene>(movedShapes_, times[0], times[2]);
+  if (anyKeyframed_)
+    moved_ = std::make_unique<EmbreeScene>(movedShapes_, times[0], spanEnd(times));
 }
 
 OcclusionFilm::~OcclusionFilm() = default;
