@@ -76,8 +76,7 @@ OcclusionFilm::OcclusionFilm(const Scene& scene, const std::array<double, 3>& ti
     movedShapes_.push_back(movedCopy(scene.shape(static_cast<int>(s)), motion, times));
   }
   anyKeyframed_ = !movedShapes_.empty();
-  if (anyKeyframed_)
-    moved_ = std::make_unique<EmbreeScene>(movedShapes_, times[0], spanEnd(times));
+  if (anyKeyframed_) moved_ = std::make_unique<EmbreeScene>(movedShapes_, times[0], spanEnd(times));
 }
 
 OcclusionFilm::~OcclusionFilm() = default;
