@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "sensor/spectra/color_space.h"
 
@@ -108,6 +111,30 @@ std::vector<AovPreview> aovPreviews(const Image& a) {
       const std::array<double, 3> rgb = hsv(h, std::min(1.0, std::hypot(dx, dy) / scale), 1.0);
       for (int c = 0; c < 3; ++c)
         p.rgb[px * 3 + static_cast<std::size_t>(c)] = byte(rgb[static_cast<std::size_t>(c)]);
+    }
+  }
+  // The masks (mask_film.h): each labelled shape's pixels (coverage ≥ ½) in its instance
+  // colour, averaged where several overlap; amodal and visible side by side in two files.
+  for (const char* kind : {"amodal", "visible"}) {
+    const std::string prefix = std::string(kind) + "_";
+    std::vector<std::pair<int, std::array<double, 3>>> masks;  // channel, colour
+    for (int c = 0; c < a.channelCount(); ++c) {
+      const std::string& name = a.channels[static_cast<std::size_t>(c)];
+      if (name.rfind(prefix, 0) != 0) continue;
+      const auto v = static_cast<std::uint32_t>(std::stoul(name.substr(prefix.size())));
+      masks.emplace_back(c, hsv(std::fmod(v * 0.618033988749895, 1.0), 0.75, 0.95));
+    }
+    if (masks.empty()) continue;
+    AovPreview& p = make(kind);
+    for (std::size_t px = 0; px < n; ++px) {
+      std::array<double, 3> sum{};
+      int count = 0;
+      for (const auto& [c, rgb] : masks) {
+        if (value(px, c) < 0.5) continue;
+        for (std::size_t k = 0; k < 3; ++k) sum[k] += rgb[k];
+        ++count;
+      }
+      for (std::size_t k = 0; count > 0 && k < 3; ++k) p.rgb[px * 3 + k] = byte(sum[k] / count);
     }
   }
   if (const int v = a.channelIndex("valid.A"); v >= 0) {

@@ -8,6 +8,7 @@
 // | NAME_albedo.png    | albedo.R, .G, .B     | sRGB-encoded, clipped to [0, 1] |
 // | NAME_instance.png, NAME_class.png, NAME_material.png | KIND.id | a colour per id (id 0 black) |
 // | NAME_motion.png    | motion_fw.X, .Y      | hue: direction, saturation: length over the 99th percentile length |
+// | NAME_amodal.png, NAME_visible.png | amodal_<n>.A, visible_<n>.A | each labelled shape's pixels (coverage ≥ ½) in its instance's colour (as NAME_instance.png), the mean colour where several overlap; none black |
 // | NAME_valid.png     | valid.A              | grey: the fraction of the pixel inside the camera model's image (white inside, black outside) |
 #pragma once
 

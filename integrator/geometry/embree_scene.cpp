@@ -10,6 +10,7 @@
 #include <set>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 
 #include "integrator/geometry/embree_memory.h"
 #include "integrator/geometry/mesh_instance.h"
@@ -54,11 +55,49 @@ void filterHit(const RTCFilterFunctionNArguments* args) {
   }
 }
 
-// Makes Embree ask `filters` about every candidate hit on geom (before it is committed).
-void attachFilter(RTCGeometry geom, const std::vector<const HitFilter*>* filters) {
-  rtcSetGeometryUserData(geom, const_cast<std::vector<const HitFilter*>*>(filters));
-  rtcSetGeometryIntersectFilterFunction(geom, filterHit);
-  rtcSetGeometryOccludedFilterFunction(geom, filterHit);
+// The intersection context of EmbreeScene::crossedShapes: Embree hands it to the filter,
+// which lists there every shape a candidate hit is on (base first: Embree's pointer to the
+// context is a pointer to this).
+struct CrossingContext {
+  RTCIntersectContext base;
+  int* shapes;   // the list: distinct shape indices, in the order traversal met them
+  int capacity;  // its room
+  int count;     // shapes met; more than capacity when some did not fit
+};
+static_assert(std::is_standard_layout_v<CrossingContext>);
+
+// A crossings scene's filter: the holes as filterHit makes them, then every remaining
+// candidate is listed (once per shape) and rejected, so that traversal goes on to the next.
+void collectCrossing(const RTCFilterFunctionNArguments* args) {
+  filterHit(args);
+  auto* c = reinterpret_cast<CrossingContext*>(args->context);
+  for (unsigned i = 0; i < args->N; ++i) {
+    if (args->valid[i] == 0) continue;
+    args->valid[i] = 0;
+    const unsigned instance = RTCHitN_instID(args->hit, args->N, i, 0);
+    const int shape = static_cast<int>(
+        instance != RTC_INVALID_GEOMETRY_ID ? instance : RTCHitN_geomID(args->hit, args->N, i));
+    const int listed = std::min(c->count, c->capacity);
+    if (std::find(c->shapes, c->shapes + listed, shape) != c->shapes + listed) continue;
+    if (c->count < c->capacity) c->shapes[c->count] = shape;
+    ++c->count;
+  }
+}
+
+// How a geometry's candidate hits are vetted: the per-shape filters (Embree's user data)
+// and the function asking them (filterHit, collectCrossing); null function: every hit
+// stands.
+struct Vetting {
+  const std::vector<const HitFilter*>* filters = nullptr;
+  RTCFilterFunctionN function = nullptr;
+};
+
+// Makes Embree vet every candidate hit on geom (before it is committed).
+void attachFilter(RTCGeometry geom, Vetting vet) {
+  if (!vet.function) return;
+  rtcSetGeometryUserData(geom, const_cast<std::vector<const HitFilter*>*>(vet.filters));
+  rtcSetGeometryIntersectFilterFunction(geom, vet.function);
+  rtcSetGeometryOccludedFilterFunction(geom, vet.function);
 }
 
 // A triangle mesh's own arrays as an Embree geometry (not committed).
@@ -79,17 +118,18 @@ RTCGeometry makeTriangles(RTCDevice device, const TriangleMesh& mesh) {
 }
 
 // The shape's pose at rest, or a moving shape's reference pose, as a static Embree
-// geometry (committed); filters: non-null to have Embree ask them about its hits.
-RTCGeometry makeGeometry(RTCDevice device, const Shape& shape,
-                         const std::vector<const HitFilter*>* filters) {
+// geometry (committed), its hits vetted by `vet`.
+RTCGeometry makeGeometry(RTCDevice device, const Shape& shape, Vetting vet) {
   RTCGeometry geom = nullptr;
   const auto k = static_cast<size_t>(shape.instanceMotion().reference);
   if (const auto* mesh = dynamic_cast<const TriangleMesh*>(&shape)) {
     geom = makeTriangles(device, *mesh);
-    if (filters) attachFilter(geom, filters);
+    attachFilter(geom, vet);
   } else if (const auto* sphere = dynamic_cast<const Sphere*>(&shape)) {
-    CAMSIM_CHECK(!filters && "hit filters take triangles' barycentrics: meshes only");
+    // A sphere has no HitFilter (they take triangles' barycentrics): only the crossings'.
+    CAMSIM_CHECK(vet.function != filterHit && "hit filters: meshes only");
     geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_SPHERE_POINT);
+    attachFilter(geom, vet);
     auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0,
                                                           RTC_FORMAT_FLOAT4, sizeof(float) * 4, 1));
     const glm::vec3& c = sphere->centres()[k];
@@ -129,8 +169,8 @@ RTCScene sceneOf(RTCDevice device, RTCGeometry geom, RTCBuildQuality quality) {
 // A moving shape: its reference pose in a scene of its own (built at `quality`), placed by
 // a motion-blurred instance with one transform per time step.
 RTCGeometry makeInstance(RTCDevice device, const Shape& shape, RTCBuildQuality quality,
-                         const std::vector<const HitFilter*>* filters) {
-  RTCScene object = sceneOf(device, makeGeometry(device, shape, filters), quality);
+                         Vetting vet) {
+  RTCScene object = sceneOf(device, makeGeometry(device, shape, vet), quality);
   RTCGeometry instance = instanceOf(device, object, shape.instanceMotion().steps);
   rtcReleaseScene(object);  // the instance holds it
   return instance;
@@ -158,6 +198,7 @@ struct EmbreeScene::Impl {
   EmbreeMemoryCount memory;
   std::vector<const HitFilter*> filters;  // per shape (null: opaque); Embree's filter reads it
   std::map<const TriangleMesh*, RTCScene> meshScenes;  // one BVH per instanced mesh
+  bool crossings = false;  // a crossings scene: every hit vetted by collectCrossing
 
   ~Impl() {
     if (scene) rtcReleaseScene(scene);
@@ -165,12 +206,18 @@ struct EmbreeScene::Impl {
     if (device) rtcReleaseDevice(device);
   }
 
+  // How the hits on shape `id` are vetted (an instanced mesh: `filtered`, whether any of
+  // its instances has a filter).
+  Vetting vetting(bool filtered) const {
+    if (crossings) return {&filters, collectCrossing};
+    return filtered ? Vetting{&filters, filterHit} : Vetting{};
+  }
   // The BVH of an instanced mesh, built on first use; filtered if any of its instances is.
   RTCScene meshScene(const TriangleMesh& mesh, bool filtered) {
     RTCScene& object = meshScenes[&mesh];
     if (!object) {
       RTCGeometry geom = makeTriangles(device, mesh);
-      if (filtered) attachFilter(geom, &filters);
+      attachFilter(geom, vetting(filtered));
       rtcCommitGeometry(geom);
       object = sceneOf(device, geom, qualityFor(mesh.triangleCount()));
     }
@@ -179,9 +226,12 @@ struct EmbreeScene::Impl {
 };
 
 EmbreeScene::EmbreeScene(const std::vector<std::unique_ptr<Shape>>& shapes, double motionStart,
-                         double motionEnd, const std::vector<const HitFilter*>& filters)
+                         double motionEnd, const std::vector<const HitFilter*>& filters,
+                         const std::vector<char>& crossingsOf)
     : impl_(std::make_unique<Impl>()) {
   CAMSIM_CHECK(filters.empty() || filters.size() == shapes.size());
+  CAMSIM_CHECK(crossingsOf.empty() || crossingsOf.size() == shapes.size());
+  impl_->crossings = !crossingsOf.empty();
   setMotionSpan(motionStart, motionEnd);
   impl_->device = rtcNewDevice(nullptr);
   if (!impl_->device) throw std::runtime_error("cannot create Embree device");
@@ -191,7 +241,7 @@ EmbreeScene::EmbreeScene(const std::vector<std::unique_ptr<Shape>>& shapes, doub
   impl_->filters.resize(shapes.size(), nullptr);
   const bool anyFilter = std::any_of(impl_->filters.begin(), impl_->filters.end(),
                                      [](const HitFilter* f) { return f != nullptr; });
-  if (anyFilter &&
+  if ((anyFilter || impl_->crossings) &&
       !rtcGetDeviceProperty(impl_->device, RTC_DEVICE_PROPERTY_FILTER_FUNCTION_SUPPORTED))
     throw std::runtime_error("this Embree library was built without filter functions");
   // An instanced mesh is filtered if any of its instances is (the filter asks per instance).
@@ -201,14 +251,15 @@ EmbreeScene::EmbreeScene(const std::vector<std::unique_ptr<Shape>>& shapes, doub
       if (impl_->filters[id]) filteredMeshes.insert(instance->mesh().get());
   impl_->scene = rtcNewScene(impl_->device);
   size_t triangles = 0;  // in the top-level BVH: an instance counts as none
-  for (const auto& shape : shapes)
-    if (const auto* mesh = dynamic_cast<const TriangleMesh*>(shape.get()))
-      triangles += mesh->triangleCount();
+  for (size_t id = 0; id < shapes.size(); ++id)
+    if (const auto* mesh = dynamic_cast<const TriangleMesh*>(shapes[id].get()))
+      if (!impl_->crossings || crossingsOf[id]) triangles += mesh->triangleCount();
   const RTCBuildQuality quality = qualityFor(triangles);
   rtcSetSceneBuildQuality(impl_->scene, quality);
   for (size_t id = 0; id < shapes.size(); ++id) {
+    if (impl_->crossings && !crossingsOf[id]) continue;  // left out; its id stays free
     const Shape& shape = *shapes[id];
-    const std::vector<const HitFilter*>* filtersOf = impl_->filters[id] ? &impl_->filters : nullptr;
+    const Vetting vet = impl_->vetting(impl_->filters[id] != nullptr);
     hasInstances_ = hasInstances_ || !shape.instanceMotion().empty();
     RTCGeometry geom = nullptr;
     if (const auto* instance = dynamic_cast<const MeshInstance*>(&shape)) {
@@ -219,9 +270,9 @@ EmbreeScene::EmbreeScene(const std::vector<std::unique_ptr<Shape>>& shapes, doub
                             ? std::vector<glm::mat4>{instance->placement()}
                             : instance->instanceMotion().steps);
     } else if (shape.instanceMotion().empty()) {
-      geom = makeGeometry(impl_->device, shape, filtersOf);
+      geom = makeGeometry(impl_->device, shape, vet);
     } else {
-      geom = makeInstance(impl_->device, shape, quality, filtersOf);
+      geom = makeInstance(impl_->device, shape, quality, vet);
     }
     rtcAttachGeometryByID(impl_->scene, geom, static_cast<unsigned>(id));
     rtcReleaseGeometry(geom);
@@ -272,12 +323,8 @@ bool traceable(const Ray& r) {
          r.tMax >= 0.0f;
 }
 
-}  // namespace
-
-bool EmbreeScene::intersect(const Ray& ray, Hit& hit) const {
-  if (!traceable(ray)) return false;
-  RTCIntersectContext context;
-  rtcInitIntersectContext(&context);
+// A closest-hit query for Embree: the ray with t in (0, tMax], at Embree's `time`, no hit yet.
+RTCRayHit rayHitOf(const Ray& ray, float time) {
   RTCRayHit rh;
   rh.ray.org_x = ray.o.x;
   rh.ray.org_y = ray.o.y;
@@ -287,13 +334,23 @@ bool EmbreeScene::intersect(const Ray& ray, Hit& hit) const {
   rh.ray.dir_z = ray.d.z;
   rh.ray.tnear = 0.0f;
   rh.ray.tfar = ray.tMax;
-  rh.ray.time = embreeTime(ray.time);
+  rh.ray.time = time;
   rh.ray.mask = 0xFFFFFFFFu;
   rh.ray.id = 0;
   rh.ray.flags = 0;
   rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
   rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
   rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  return rh;
+}
+
+}  // namespace
+
+bool EmbreeScene::intersect(const Ray& ray, Hit& hit) const {
+  if (!traceable(ray)) return false;
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  RTCRayHit rh = rayHitOf(ray, embreeTime(ray.time));
   rtcIntersect1(impl_->scene, &context, &rh);
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
   // A shape traced as an instance is named by the instance's id (its scene holds one geometry).
@@ -325,6 +382,19 @@ bool EmbreeScene::occluded(const Ray& ray) const {
   r.flags = 0;
   rtcOccluded1(impl_->scene, &context, &r);
   return r.tfar < 0.0f;  // Embree sets tfar = −inf on occlusion
+}
+
+int EmbreeScene::crossedShapes(const Ray& ray, std::span<int> shapes) const {
+  CAMSIM_CHECK(impl_->crossings);
+  if (!traceable(ray)) return 0;
+  CrossingContext c;
+  rtcInitIntersectContext(&c.base);
+  c.shapes = shapes.data();
+  c.capacity = static_cast<int>(shapes.size());
+  c.count = 0;
+  RTCRayHit rh = rayHitOf(ray, embreeTime(ray.time));
+  rtcIntersect1(impl_->scene, &c.base, &rh);  // every candidate rejected: traversal runs to tMax
+  return c.count;
 }
 
 }  // namespace camsim

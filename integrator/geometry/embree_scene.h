@@ -23,11 +23,17 @@
 // and occlusion filter functions on its triangles (for an instanced mesh: on the shared
 // geometry, asking the filter of the instance hit), so every kind of ray skips the hits it
 // rejects; shapes without one pay nothing.
+// Crossings scenes (the amodal masks, integrator/render/mask_film.h): built from some of the
+// shapes only (the others' ids stay free), they answer crossedShapes() — every shape a ray
+// passes through, as if nothing occluded anything — with one traversal: a filter on every
+// geometry lists the shape of each candidate hit and rejects it, so Embree goes on to the
+// ray's end. The holes of the shapes' HitFilters are skipped there too.
 #pragma once
 
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <vector>
 
 #include "integrator/geometry/hit_filter.h"
@@ -40,9 +46,11 @@ class EmbreeScene {
  public:
   // [motionStart, motionEnd] (s): the interval moving shapes' steps cover (ignored if nothing
   // moves). filters: empty, or one per shape (null: opaque; triangle meshes and mesh
-  // instances only), not owned: they must outlive this scene.
+  // instances only), not owned: they must outlive this scene. crossingsOf: empty, or one per
+  // shape: a crossings scene of the shapes it marks (non-zero), for crossedShapes() only.
   EmbreeScene(const std::vector<std::unique_ptr<Shape>>& shapes, double motionStart,
-              double motionEnd, const std::vector<const HitFilter*>& filters = {});
+              double motionEnd, const std::vector<const HitFilter*>& filters = {},
+              const std::vector<char>& crossingsOf = {});
   ~EmbreeScene();
   EmbreeScene(const EmbreeScene&) = delete;
   EmbreeScene& operator=(const EmbreeScene&) = delete;
@@ -51,6 +59,11 @@ class EmbreeScene {
   bool intersect(const Ray& ray, Hit& hit) const;
   // True if anything is hit with t in (0, ray.tMax).
   bool occluded(const Ray& ray) const;
+  // A crossings scene's: the shapes the ray passes through with t in (0, ray.tMax], each
+  // once, whatever lies in front of them. Writes the first shapes.size() of them (shape
+  // indices, in the order traversal met them) and returns how many there are (more than
+  // shapes.size() when some did not fit).
+  int crossedShapes(const Ray& ray, std::span<int> shapes) const;
   // Axis-aligned bounds of all geometry over all time steps (m); lower > upper if empty.
   glm::vec3 boundsLower() const { return lower_; }
   glm::vec3 boundsUpper() const { return upper_; }

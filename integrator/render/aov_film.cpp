@@ -43,6 +43,8 @@ std::vector<std::string> channelsOf(Aov aov) {
     case Aov::kClassId:
     case Aov::kMaterialId:
       return {};  // IdFilm's channels
+    case Aov::kAmodal:
+      return {};  // MaskFilm's
   }
   return {};
 }
@@ -119,6 +121,11 @@ AovFilm::AovFilm(const Scene& scene, bool allowAvx2) : scene_(scene), aovs_(scen
   idChannel_ = channels.size();
   for (const IdFilm& f : idFilms_)
     channels.insert(channels.end(), f.channels().begin(), f.channels().end());
+  if (std::find(aovs_.begin(), aovs_.end(), Aov::kAmodal) != aovs_.end()) {
+    masks_.emplace(scene);
+    maskChannel_ = channels.size();
+    for (std::string& c : masks_->channels()) channels.push_back(std::move(c));
+  }
   const glm::ivec2 res = scene.camera().resolution();
   image_ = Image(res.x, res.y, std::move(channels));
   avx2_ = allowAvx2 && simd::cpuHasAvx2();
@@ -127,6 +134,9 @@ AovFilm::AovFilm(const Scene& scene, bool allowAvx2) : scene_(scene), aovs_(scen
 void AovFilm::startPixel(AovPixel& px, glm::ivec2 pixel) const {
   static_cast<AovPixelState&>(px) = AovPixelState{};
   px.pixel = pixel;
+  if (!masks_) return;
+  if (px.masks.amodal.empty()) px.masks = masks_->emptyCounts();  // the thread's first pixel
+  MaskFilm::clear(px.masks);
 }
 
 void AovFilm::endPixel(AovPixel& px) {
@@ -150,6 +160,7 @@ void AovFilm::writePixel(const AovPixel& px, float* o) const {
   if (boundaryChannel_ > 0)  // misses: the samples with a camera ray that hit nothing
     o[boundaryChannel_] =
         px.boundary.value(static_cast<int>(hits), px.samples - static_cast<int>(hits) - px.noRay);
+  if (masks_) masks_->write(px.masks, px.samples, o + maskChannel_);
   if (hits == 0.0) return;  // the averaged channels stay 0
   // Σ · (1/hits): one division for the ≈ 25 means (a division per mean was most of a
   // pixel's cost here).

@@ -18,6 +18,7 @@
 // | motion      | motion_fw.X/Y, motion_bw.X/Y | px   | where the hit point is imaged in the next / previous frame minus where it is in this one, all at the frames' reference times (shutter centres): OpenCV pixel axes (x right, y down) |
 // | valid       | valid.A                      | —    | fraction of the pixel's samples whose film point lies inside the camera model's image (1 for the pinhole; 0 outside a fisheye's image circle, where the image is black) |
 // | motion      | flow_fw.X/Y/Z, flow_bw.X/Y/Z | m    | 3-D scene flow: the hit point's world position at the next / previous frame's reference time minus at this frame's |
+// | amodal      | amodal_<n>.A, visible_<n>.A  | —    | per labelled shape n: the fractions of the pixel's samples whose ray passes through it anywhere / first hits it (mask_film.h) |
 // | occlusion   | occlusion_fw.A, occlusion_bw.A, outside_fw.A, outside_bw.A | — | fractions of the hitting samples whose point (the motion field's) is hidden in / outside the next / previous frame's image (occlusion_film.h) |
 // | boundary    | boundary.A                   | —    | 1 on an occlusion boundary: several shapes, hits and misses, or a depth step among the pixel's samples (occlusion_film.h) |
 //
@@ -49,6 +50,7 @@
 
 #include "integrator/camera/pose_projector.h"
 #include "integrator/render/id_film.h"
+#include "integrator/render/mask_film.h"
 #include "integrator/render/occlusion_film.h"
 #include "integrator/render/path_tracer.h"
 #include "integrator/scene/scene.h"
@@ -64,6 +66,7 @@ struct AovSample {
   double time = 0.0;                 // the sample's time, s
   const SampledWavelengths& lambda;  // as the camera ray started (before a dispersive hit)
   const glm::dmat4* worldFromCamera = nullptr;  // the camera's pose at `time` when wantsCamera()
+  const Ray* cameraRay = nullptr;               // the camera ray (null: none), for the masks
 };
 
 // One camera sample's ground truth between addSample and its pixel's next summing: its first
@@ -118,6 +121,7 @@ struct AovPixel : AovPixelState {
   // The motion field's samples waiting for their projections, in sample order: each one's
   // hit at the three frame times, four at a time (PoseProjector).
   PosePoints motion;
+  MaskFilm::Counts masks;  // the amodal aov's counts (cleared by startPixel)
 };
 
 class AovFilm {
@@ -147,6 +151,10 @@ class AovFilm {
   }
   // The sample whose surface nextSurface handed out (call them in pairs).
   void addSample(AovPixel& px, const AovSample& sample) const {
+    if (masks_) {
+      const VisibleSurface& v = px.records[static_cast<std::size_t>(px.pending)].visible;
+      masks_->add(px.masks, sample.cameraRay, v.hit ? v.shape : -1);
+    }
     if (avx2_)
       addSampleAvx2(px, sample);
     else
@@ -213,6 +221,11 @@ class AovFilm {
   bool wantsMaterial_ = false;   // traceRadiance evaluates the hit's material (albedo, roughness)
   bool wantsCamera_ = false;     // depth or normals: the camera's pose at the sample's time
   std::vector<IdFilm> idFilms_;  // in the scene's order of the id aovs
+  bool wantsMaterial_ = false;     // traceRadiance evaluates the hit's material (albedo, roughness)
+  bool wantsCamera_ = false;       // depth or normals: the camera's pose at the sample's time
+  std::vector<IdFilm> idFilms_;    // in the scene's order of the id aovs
+  std::optional<MaskFilm> masks_;  // the amodal aov
+  std::size_t maskChannel_ = 0;    // its first channel (after the id aovs')
   std::vector<std::uint32_t> idEntries_;  // per shape, per IdFilm: the shape's table entry
   bool cameraTurns_ = false;              // the camera moves during the exposure
   glm::dmat4 worldFromCamera_{1.0};       // its pose when it does not

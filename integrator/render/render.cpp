@@ -96,7 +96,7 @@ bool renderPixel(const TileContext<SamplerT>& t, glm::ivec2 pixel, SampleRange r
     const SampledWavelengths lambdaAtCamera = lambda;  // before a dispersive hit ends some
     const SampledSpectrum L = traceRadiance(t.scene, cr->ray, lambda, sampler, &visible, t.guide);
     if (!t.film.addSample(pixel, s, L * cr->weight, lambda)) ++t.stats.rejected;
-    aovs.addSample(t.aovPixel, {cs.time, lambdaAtCamera, posePtr});
+    aovs.addSample(t.aovPixel, {cs.time, lambdaAtCamera, posePtr, &cr->ray});
   }
   if (withAovs) aovs.endPixel(t.aovPixel);
   t.film.setSamples(pixel, range.end);

@@ -73,6 +73,7 @@ void Scene::setCamera(const PhysicalCameraParams& camera, const SceneDescription
       weighLights();   // the bounds (sun, environment) and the area lights' powers
     } else {
       geometry_->setMotionSpan(motionSpan.x, motionSpan.y);  // only Embree's time map moves
+      if (labelledGeometry_) labelledGeometry_->setMotionSpan(motionSpan.x, motionSpan.y);
     }
   }
   setCamera(camera);
@@ -157,8 +158,9 @@ Scene::Scene(const SceneDescription& d, glm::dvec2 motionSpan)
 }
 
 void Scene::buildShapes(const SceneDescription& d) {
-  // What points at the shapes goes first: the BVH, the area lights, the cut-outs.
+  // What points at the shapes goes first: the BVHs, the area lights, the cut-outs.
   geometry_.reset();
+  labelledGeometry_.reset();
   lights_.erase(lights_.begin(), lights_.begin() + static_cast<std::ptrdiff_t>(areaLights_));
   areaLights_ = 0;
   filters_.clear();
@@ -247,6 +249,14 @@ void Scene::buildShapes(const SceneDescription& d) {
   lights_.insert(lights_.begin(), std::make_move_iterator(areaLights.begin()),
                  std::make_move_iterator(areaLights.end()));
   geometry_ = std::make_unique<EmbreeScene>(shapes_, motionSpan_.x, motionSpan_.y, filterOfShape);
+  const std::vector<Aov>& aovs = settings_.aovs;
+  if (std::find(aovs.begin(), aovs.end(), Aov::kAmodal) != aovs.end()) {
+    std::vector<char> labelled(shapes_.size());
+    for (std::size_t i = 0; i < shapes_.size(); ++i)
+      labelled[i] = ids_[IdKind::kClass].ofShape[i] != 0;
+    labelledGeometry_ = std::make_unique<EmbreeScene>(shapes_, motionSpan_.x, motionSpan_.y,
+                                                      filterOfShape, labelled);
+  }
   if (geometry_->boundsLower().x <= geometry_->boundsUpper().x) {
     boundsCentre_ = 0.5f * (geometry_->boundsLower() + geometry_->boundsUpper());
     boundsRadius_ = 0.5f * glm::length(geometry_->boundsUpper() - geometry_->boundsLower());

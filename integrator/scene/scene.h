@@ -92,6 +92,9 @@ class Scene {
   double exposureStart() const { return exposureStart_; }
   double exposureEnd() const { return exposureEnd_; }
   const EmbreeScene& geometry() const { return *geometry_; }
+  // With the amodal aov: a crossings scene (embree_scene.h) of the labelled shapes (those
+  // with a `class:`), for the amodal masks; else null.
+  const EmbreeScene* labelledGeometry() const { return labelledGeometry_.get(); }
   const Shape& shape(int index) const { return *shapes_[static_cast<size_t>(index)]; }
   std::size_t shapeCount() const { return shapes_.size(); }
   // A shape's keyframed motion, object → render space (empty: static). For a mesh instance
@@ -176,6 +179,7 @@ class Scene {
   std::map<int, std::shared_ptr<const FloatTexture>> alphaOfMaterial_;
   std::size_t areaLights_ = 0;  // lights_[0, areaLights_) are the emitting shapes'
   std::unique_ptr<EmbreeScene> geometry_;
+  std::unique_ptr<EmbreeScene> labelledGeometry_;  // with the amodal aov (labelledGeometry())
 };
 
 }  // namespace camsim

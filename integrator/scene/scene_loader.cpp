@@ -412,6 +412,14 @@ SceneDescription loadSceneFromText(const std::string& text, const std::string& d
         ->fail(
             "aov 'motion' needs a frames block: its vectors point to the previous and the next "
             "frame");
+  if (std::find(aovs.begin(), aovs.end(), Aov::kAmodal) != aovs.end() &&
+      std::none_of(scene.shapes.begin(), scene.shapes.end(),
+                   [](const ShapeDescription& s) { return !s.className.empty(); }))
+    YamlMap(*top.find("render"))
+        .find("aovs")
+        ->fail(
+            "aov 'amodal' needs a labelled shape: its masks are of the shapes that have a "
+            "`class:`, and none has");
   if (!scene.frames && std::find(aovs.begin(), aovs.end(), Aov::kOcclusion) != aovs.end())
     YamlMap(*top.find("render"))
         .find("aovs")
