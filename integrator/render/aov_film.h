@@ -218,9 +218,6 @@ class AovFilm {
   std::vector<std::array<glm::dmat4, 3>> shapeAt_;  // per shape: its motion at each (moving)
   std::vector<char> shapeMoves_;                    // per shape: it has keyframed motion
   std::unique_ptr<OcclusionFilm> occlusion_;        // aov occlusion: the visibility tests
-  bool wantsMaterial_ = false;   // traceRadiance evaluates the hit's material (albedo, roughness)
-  bool wantsCamera_ = false;     // depth or normals: the camera's pose at the sample's time
-  std::vector<IdFilm> idFilms_;  // in the scene's order of the id aovs
   bool wantsMaterial_ = false;     // traceRadiance evaluates the hit's material (albedo, roughness)
   bool wantsCamera_ = false;       // depth or normals: the camera's pose at the sample's time
   std::vector<IdFilm> idFilms_;    // in the scene's order of the id aovs
