@@ -35,6 +35,10 @@ std::vector<std::string> channelsOf(Aov aov) {
               "flow_fw.Y",   "flow_fw.Z",   "flow_bw.X",   "flow_bw.Y",   "flow_bw.Z"};
     case Aov::kValid:
       return {"valid.A"};
+    case Aov::kOcclusion:
+      return OcclusionFilm::channels();
+    case Aov::kBoundary:
+      return {"boundary.A"};
     case Aov::kInstanceId:
     case Aov::kClassId:
     case Aov::kMaterialId:
@@ -69,6 +73,8 @@ AovFilm::AovFilm(const Scene& scene, bool allowAvx2) : scene_(scene), aovs_(scen
     if (name == "roughness.Y") roughnessChannel_ = c;
     if (name == "motion_fw.X") motionChannel_ = c;
     if (name == "valid.A") validChannel_ = c;
+    if (name == "occlusion_fw.A") occlusionChannel_ = c;
+    if (name == "boundary.A") boundaryChannel_ = c;
   }
   if (albedoChannel_ > 0) {
     const RgbColorSpace& rec709 = RgbColorSpace::linearRec709();
@@ -86,7 +92,8 @@ AovFilm::AovFilm(const Scene& scene, bool allowAvx2) : scene_(scene), aovs_(scen
   shapeMoves_.assign(scene.shapeCount(), 0);
   for (std::size_t s = 0; s < scene.shapeCount(); ++s)
     shapeMoves_[s] = !scene.motion(static_cast<int>(s)).empty();
-  if (motionChannel_ > 0) {
+  stagesMotion_ = motionChannel_ > 0 || occlusionChannel_ > 0;
+  if (stagesMotion_) {
     // The frame times' poses once, not per sample.
     // previous, this and the next frame's reference time (shutter centres), s
     const double t = scene.camera().shutter().centre(), dt = scene.frameInterval();
@@ -100,6 +107,8 @@ AovFilm::AovFilm(const Scene& scene, bool allowAvx2) : scene_(scene), aovs_(scen
       if (shapeMoves_[s])
         for (std::size_t j = 0; j < 3; ++j)
           shapeAt_[s][j] = scene.motion(static_cast<int>(s)).at(frameTimes[j]);
+    if (occlusionChannel_ > 0)
+      occlusion_ = std::make_unique<OcclusionFilm>(scene, frameTimes, cameraAt);
   }
   for (std::size_t s = 0; s < scene.shapeCount(); ++s)
     for (IdKind k : idKinds) idEntries_.push_back(scene.ids()[k].ofShape[s]);
@@ -132,7 +141,7 @@ void AovFilm::startPixel(AovPixel& px, glm::ivec2 pixel) const {
 
 void AovFilm::endPixel(AovPixel& px) {
   sumRecords(px);
-  if (motionChannel_ > 0) flushMotion(px);
+  if (stagesMotion_) flushMotion(px);
   // The image's pixel is still 0 (the constructor's), as writePixel expects.
   writePixel(px, &image_.pixels[image_.index(px.pixel.x, px.pixel.y, 0)]);
 }
@@ -147,6 +156,10 @@ void AovFilm::writePixel(const AovPixel& px, float* o) const {
     ids += idFilms_[k].channels().size();
   }
   if (motionChannel_ > 0) writeMotion(px, o + motionChannel_);
+  if (occlusionChannel_ > 0) OcclusionFilm::write(px.occlusion, o + occlusionChannel_);
+  if (boundaryChannel_ > 0)  // misses: the samples with a camera ray that hit nothing
+    o[boundaryChannel_] =
+        px.boundary.value(static_cast<int>(hits), px.samples - static_cast<int>(hits) - px.noRay);
   if (masks_) masks_->write(px.masks, px.samples, o + maskChannel_);
   if (hits == 0.0) return;  // the averaged channels stay 0
   // Σ · (1/hits): one division for the ≈ 25 means (a division per mean was most of a

@@ -19,6 +19,8 @@
 // | valid       | valid.A                      | —    | fraction of the pixel's samples whose film point lies inside the camera model's image (1 for the pinhole; 0 outside a fisheye's image circle, where the image is black) |
 // | motion      | flow_fw.X/Y/Z, flow_bw.X/Y/Z | m    | 3-D scene flow: the hit point's world position at the next / previous frame's reference time minus at this frame's |
 // | amodal      | amodal_<n>.A, visible_<n>.A  | —    | per labelled shape n: the fractions of the pixel's samples whose ray passes through it anywhere / first hits it (mask_film.h) |
+// | occlusion   | occlusion_fw.A, occlusion_bw.A, outside_fw.A, outside_bw.A | — | fractions of the hitting samples whose point (the motion field's) is hidden in / outside the next / previous frame's image (occlusion_film.h) |
+// | boundary    | boundary.A                   | —    | 1 on an occlusion boundary: several shapes, hits and misses, or a depth step among the pixel's samples (occlusion_film.h) |
 //
 // The motion field follows the exact rigid motion of the hit point: the sample's hit, at
 // the sample's time t, is taken back to object space through the shape's keyframed
@@ -49,6 +51,7 @@
 #include "integrator/camera/pose_projector.h"
 #include "integrator/render/id_film.h"
 #include "integrator/render/mask_film.h"
+#include "integrator/render/occlusion_film.h"
 #include "integrator/render/path_tracer.h"
 #include "integrator/scene/scene.h"
 #include "sensor/base/image.h"
@@ -97,6 +100,8 @@ struct AovPixelState {
   // up in endPixel; count: the samples in the mean (in front of the lens at all three times).
   MotionVectorSums motionLanes{};
   std::array<double, 6> flow{};  // Σ scene flow, forward then backward (m), moving hits only
+  OcclusionSums occlusion;       // aov occlusion (occlusion_film.h)
+  BoundarySums boundary;         // aov boundary
   std::array<IdFilm::Slots, kIdKindCount> ids{};  // one per id aov
   // The previous sample's shape (−1: a miss; kNoShape: none yet) and its slot in each id
   // aov: consecutive samples on the same shape add to those slots without a search.
@@ -201,6 +206,9 @@ class AovFilm {
   std::size_t roughnessChannel_ = 0;  // of roughness.Y
   std::size_t motionChannel_ = 0;     // of motion_fw.X
   std::size_t validChannel_ = 0;      // of valid.A
+  std::size_t occlusionChannel_ = 0;  // of occlusion_fw.A
+  std::size_t boundaryChannel_ = 0;   // of boundary.A
+  bool stagesMotion_ = false;         // motion or occlusion: each hit is moved to the frame times
   // x̄·D65, ȳ·D65, z̄·D65 interleaved on Spectrum's 1 nm grid (lane 3: 0): one 16-byte pair
   // per wavelength gives all three (a sample touches 4–8 cache lines of it, not 12–24).
   std::vector<Float4> whiteXyz_;
@@ -209,6 +217,7 @@ class AovFilm {
   std::optional<PoseProjector> projector_;          // the camera at the three frame times
   std::vector<std::array<glm::dmat4, 3>> shapeAt_;  // per shape: its motion at each (moving)
   std::vector<char> shapeMoves_;                    // per shape: it has keyframed motion
+  std::unique_ptr<OcclusionFilm> occlusion_;        // aov occlusion: the visibility tests
   bool wantsMaterial_ = false;     // traceRadiance evaluates the hit's material (albedo, roughness)
   bool wantsCamera_ = false;       // depth or normals: the camera's pose at the sample's time
   std::vector<IdFilm> idFilms_;    // in the scene's order of the id aovs

@@ -109,6 +109,7 @@ template <glm::vec3 VisibleSurface::*field>
       }
     }
     if (shapeHit < 0) continue;
+    if (boundaryChannel_) px.boundary.add(shapeHit, v.distance);
     Double4 p;
     load<&VisibleSurface::p>(p, v);
     px.scalars += Double4{1.0, depthChannel_ ? r.depth : 0.0, static_cast<double>(v.distance),
@@ -129,7 +130,7 @@ template <glm::vec3 VisibleSurface::*field>
       px.albedo += __builtin_convertvector(r.albedo, Double4);
       px.white += __builtin_convertvector(r.white, Double4);
     }
-    if (motionChannel_) {
+    if (stagesMotion_) {
       // The hit at each frame's reference time: a static shape's stays where it is; a moving
       // one's is taken to object space at the sample's time and moved to each frame time
       // (the poses at the frame times were computed once, in the constructor). Projected
@@ -189,10 +190,12 @@ void AovFilm::addSampleAvx2(AovPixel& px, const AovSample& sample) const {
 
 void AovFilm::flushMotion(AovPixel& px) const {
   if (px.motionPending == 0) return;
-  Long4 front;
-  projector_->addMotionVectors(px.motion, px.motionPending, px.motionLanes, front);
+  if (occlusion_) occlusion_->add(px.motion, px.motionPending, px.occlusion);
+  Long4 front{};
+  if (motionChannel_)
+    projector_->addMotionVectors(px.motion, px.motionPending, px.motionLanes, front);
   // Scene flow: +0 for a static shape's hit, so only the moving ones are summed (rare).
-  if (px.motionMoves != std::array<bool, 4>{}) {
+  if (motionChannel_ && px.motionMoves != std::array<bool, 4>{}) {
     const PosePoints& a = px.motion;
     for (int lane = 0; lane < px.motionPending; ++lane) {
       if (!front[lane] || !px.motionMoves[static_cast<std::size_t>(lane)]) continue;

@@ -64,8 +64,10 @@ enum class Aov : std::uint8_t {
   kMotion,      // 2-D motion vectors and 3-D scene flow to the previous and next frame
   kValid,       // the fraction of the pixel's samples inside the camera model's image
   kAmodal,      // per labelled shape: its amodal and its visible coverage (mask_film.h)
+  kOcclusion,   // which hit points the previous / next frame's camera does not see
+  kBoundary,    // occlusion boundaries: pixels whose samples see several objects or depths
 };
-inline constexpr int kAovCount = 12;
+inline constexpr int kAovCount = 14;
 // The scene's `render.aovs` names, also the sidecar's and the EXR layers'
 // (sensor/base/enum_names.h).
 template <>
@@ -81,7 +83,9 @@ struct EnumNames<Aov> {
                                                       {Aov::kMaterialId, "material_id"},
                                                       {Aov::kMotion, "motion"},
                                                       {Aov::kValid, "valid"},
-                                                      {Aov::kAmodal, "amodal"}};
+                                                      {Aov::kAmodal, "amodal"},
+                                                      {Aov::kOcclusion, "occlusion"},
+                                                      {Aov::kBoundary, "boundary"}};
 };
 inline const char* aovName(Aov a) {
   return enumName(a).data();

@@ -455,6 +455,12 @@ SceneDescription loadSceneFromText(const std::string& text, const std::string& d
         ->fail(
             "aov 'amodal' needs a labelled shape: its masks are of the shapes that have a "
             "`class:`, and none has");
+  if (!scene.frames && std::find(aovs.begin(), aovs.end(), Aov::kOcclusion) != aovs.end())
+    YamlMap(*top.find("render"))
+        .find("aovs")
+        ->fail(
+            "aov 'occlusion' needs a frames block: it tells what the previous and the next "
+            "frame see");
   top.finish({"format", "name", "spectra_path", "render", "camera", "sensor", "isp", "materials",
               "shapes", "lights", "frames", "include", "exports"});
   // Each file once (as first read), however it was named: keyed by its canonical path

@@ -1,9 +1,9 @@
 // AovFilm's per-sample code is compiled twice (aov_film_add.cpp): for the build's target and
 // for AVX2. Both must give the same bytes: the same first hits (on moving and static
 // shapes, misses, a turning camera for the camera-axes normals, the motion field, albedo
-// at terminated wavelengths) added to two films, one held to the target's copy, end in
-// identical images. Where the CPU has no AVX2 (or the portable build), both films run the
-// same copy and the test says so.
+// at terminated wavelengths, occlusion and boundaries) added to two films, one held to the
+// target's copy, end in identical images. Where the CPU has no AVX2 (or the portable
+// build), both films run the same copy and the test says so.
 #include <gtest/gtest.h>
 
 #include <cstring>
@@ -30,7 +30,7 @@ camera:
     - {time: 0.25, translate: [0.2, 0, 0], rotate: {axis: [0, 1, 0], angle_deg: 2}}
 render:
   spp: 16
-  aovs: [depth, distance, position, normal, albedo, roughness, instance_id, class_id, material_id, motion]
+  aovs: [depth, distance, position, normal, albedo, roughness, instance_id, class_id, material_id, motion, occlusion, boundary]
 frames: {count: 3, rate_hz: 24, shutter_angle_deg: 180}
 materials:
   grey: {type: diffuse, reflectance: 0.5}
@@ -105,7 +105,8 @@ TEST(AovFilmSimd, TargetAndAvx2CopiesGiveTheSameBytes) {
   ASSERT_EQ(ia.pixels.size(), ib.pixels.size());
   EXPECT_EQ(std::memcmp(ia.pixels.data(), ib.pixels.data(), ia.pixels.size() * sizeof(float)), 0);
   // The images are not empty: the motion, albedo and camera-axes normals were exercised.
-  for (const char* c : {"motion_fw.X", "flow_fw.X", "albedo.G", "N_cam.X", "depth.Z"}) {
+  for (const char* c :
+       {"motion_fw.X", "flow_fw.X", "albedo.G", "N_cam.X", "depth.Z", "boundary.A"}) {
     const int i = ia.channelIndex(c);
     ASSERT_GE(i, 0) << c;
     bool nonZero = false;
