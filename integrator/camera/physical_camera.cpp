@@ -9,15 +9,6 @@
 namespace camsim {
 namespace {
 
-// The opencv model with every distortion coefficient 0 and no field limit inside 90°: the
-// ideal pinhole's mapping.
-bool isUndistortedOpenCv(const Projection& p) {
-  return p.model == ProjectionModel::kOpenCv && p.k1 == 0.0 && p.k2 == 0.0 && p.k3 == 0.0 &&
-         p.k4 == 0.0 && p.k5 == 0.0 && p.k6 == 0.0 && p.p1 == 0.0 && p.p2 == 0.0 && p.s1 == 0.0 &&
-         p.s2 == 0.0 && p.s3 == 0.0 && p.s4 == 0.0 && p.tauX == 0.0 && p.tauY == 0.0 &&
-         p.maxFieldAngle >= 0.5 * M_PI;
-}
-
 // The lens point (x, y, 0) of a pupil turned from facing +z to face the unit direction d:
 // the rotation about z × d that takes z to d (d straight back: a half turn about x).
 glm::dvec3 turnedLensPoint(const glm::dvec2& lens, const glm::dvec3& d) {

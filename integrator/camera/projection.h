@@ -130,4 +130,13 @@ std::optional<ModelRay> unprojectWithDensity(const Projection& p, glm::dvec2 pix
 void checkProjection(const Projection& p, const SourceLocation& where = {},
                      const std::string& keyPrefix = "camera.projection");
 
+// The opencv model with every distortion coefficient 0 and no field limit inside 90°: the
+// ideal pinhole's mapping.
+inline bool isUndistortedOpenCv(const Projection& p) {
+  return p.model == ProjectionModel::kOpenCv && p.k1 == 0.0 && p.k2 == 0.0 && p.k3 == 0.0 &&
+         p.k4 == 0.0 && p.k5 == 0.0 && p.k6 == 0.0 && p.p1 == 0.0 && p.p2 == 0.0 && p.s1 == 0.0 &&
+         p.s2 == 0.0 && p.s3 == 0.0 && p.s4 == 0.0 && p.tauX == 0.0 && p.tauY == 0.0 &&
+         p.maxFieldAngle >= 0.5 * std::numbers::pi;
+}
+
 }  // namespace camsim

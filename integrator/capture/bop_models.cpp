@@ -17,7 +17,6 @@
 namespace camsim {
 namespace {
 
-constexpr double kMmPerM = 1000.0;
 constexpr double kSameModel = 1e-4;  // relative to the model's box diagonal
 
 SourceLocation exportsPlace(const SceneDescription& d) {
@@ -28,7 +27,8 @@ SourceLocation exportsPlace(const SceneDescription& d) {
 // Whether b is a's model: the same triangles, each vertex within kSameModel of a's size.
 bool sameModel(const ObjectModel& a, const ObjectModel& b) {
   if (a.vertices.size() != b.vertices.size() || a.indices != b.indices) return false;
-  const double tolerance = kSameModel * glm::length(a.boxMax - a.boxMin) + 1e-9;
+  const double tolerance =
+      kSameModel * glm::length(a.boxMax - a.boxMin) + 4.0 * std::max(a.rounding, b.rounding) + 1e-9;
   for (std::size_t i = 0; i < a.vertices.size(); ++i)
     if (!(glm::length(a.vertices[i] - b.vertices[i]) <= tolerance)) return false;
   return true;
@@ -98,7 +98,10 @@ std::vector<BopModel> bopModels(const SceneDescription& d) {
                        "bop: shapes '" + d.shapes[it->second.shape].label + "' and '" +
                            d.shapes[s].label + "' have class " + std::to_string(objId) +
                            " (BOP's obj_id) but different models: give them different classes, "
-                           "or place one mesh with `instances:` (docs/output.md, \"BOP layout\")");
+                           "or place one mesh with `instances:`; a labelled OBJ split by its "
+                           "`usemtl` groups, or a glTF asset of several primitives, is several "
+                           "shapes of one class: give the OBJ one `material:`, or the pieces "
+                           "classes of their own (docs/output.md, \"BOP layout\")");
   }
   std::vector<BopModel> out;
   for (auto& [id, m] : byId) out.push_back(std::move(m));

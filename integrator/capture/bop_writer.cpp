@@ -13,7 +13,6 @@
 namespace camsim {
 namespace {
 
-constexpr double kMmPerM = 1000.0;
 constexpr double kInMask = 0.5;  // coverage at which a pixel is in a mask
 
 std::string sixDigits(long v) {

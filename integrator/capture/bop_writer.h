@@ -48,6 +48,8 @@
 
 namespace camsim {
 
+inline constexpr double kMmPerM = 1000.0;  // BOP's lengths are in mm
+
 // One model per obj_id of the scene's labelled shapes: the model of its first shape.
 // Throws InputError (naming `exports` and both shapes) when two shapes of one obj_id have
 // different models.

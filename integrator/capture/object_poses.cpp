@@ -2,12 +2,14 @@
 // and the rest (its polar decomposition), the rest baked into the model.
 #include "integrator/capture/object_poses.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numbers>
 #include <optional>
 #include <string>
 
+#include <glm/geometric.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/matrix.hpp>
 
@@ -99,9 +101,17 @@ ObjectModel objectModel(const SceneDescription& d, std::size_t shape) {
     const MeshData& mesh = s.sharedMesh ? *s.sharedMesh : s.mesh;
     const glm::dmat4 rawFromStored = glm::inverse(s.objectFromModel);
     m.vertices.reserve(mesh.positions.size());
-    for (const glm::vec3& p : mesh.positions)
+    double largest = 0.0;  // the largest stored coordinate's magnitude, m
+    for (const glm::vec3& p : mesh.positions) {
       m.vertices.push_back(shapeMatrix *
                            glm::dvec3(rawFromStored * glm::dvec4(glm::dvec3(p), 1.0)));
+      largest =
+          std::max({largest, std::abs(double{p.x}), std::abs(double{p.y}), std::abs(double{p.z})});
+    }
+    const glm::dmat3 toModel = shapeMatrix * glm::dmat3(rawFromStored);
+    double gain = 0.0;  // a bound on the map's stretch: its Frobenius norm
+    for (int c = 0; c < 3; ++c) gain += glm::dot(toModel[c], toModel[c]);
+    m.rounding = std::sqrt(gain) * largest * double{std::numeric_limits<float>::epsilon()};
     m.indices = mesh.indices;
   }
   m.boxMin = glm::dvec3(std::numeric_limits<double>::max());

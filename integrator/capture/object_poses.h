@@ -44,6 +44,10 @@ struct ObjectModel {
   std::vector<glm::dvec3> vertices;     // m
   std::vector<std::uint32_t> indices;   // three per triangle, the rendered winding
   glm::dvec3 boxMin{0.0}, boxMax{0.0};  // m, the vertices' bounds
+  // m: how far the vertices may be off from the float positions they were made from (a
+  // float's rounding at the largest stored coordinate, through the model's scale): two
+  // copies of one mesh placed far apart differ by about this much.
+  double rounding = 0.0;
 };
 
 struct ObjectPose {

@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <set>
 #include <string>
@@ -49,6 +50,12 @@ MemoryEstimate estimateRenderMemory(const SceneDescription& desc) {
     const std::uint64_t frames = desc.sensor->bracketEv.empty() ? 1 : desc.sensor->bracketEv.size();
     imageBytesPerPixel += frames * (4 * 4 + 2) + 8 * 3;
   }
+  // The amodal aov: two float channels per labelled shape (mask_film.h), in the AOV image
+  // and again in the EXR image written with them.
+  const std::vector<Aov>& aovs = desc.render.aovs;
+  if (std::find(aovs.begin(), aovs.end(), Aov::kAmodal) != aovs.end())
+    for (const ShapeDescription& shape : desc.shapes)
+      if (!shape.className.empty()) imageBytesPerPixel += 2 * 2 * 4;
   m.film = pixels * filmChannels * 8;
   m.images = pixels * imageBytesPerPixel;
   // An instanced mesh is stored once (however many shapes place it), each instance costs

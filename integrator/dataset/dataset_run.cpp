@@ -14,6 +14,7 @@
 
 #include <tbb/parallel_for.h>
 
+#include "integrator/capture/bop_writer.h"
 #include "integrator/capture/capture_run.h"
 #include "integrator/capture/capture_writer.h"
 #include "integrator/dataset/dataset_item.h"
@@ -91,7 +92,7 @@ void checkItems(const Manifest& manifest, const std::string& outputKey,
   std::mutex progress;
   tbb::parallel_for(std::size_t{0}, n, [&](std::size_t i) {
     try {
-      (void)resolveItem(manifest, manifest.items[i], outputKey);
+      checkBopExport(resolveItem(manifest, manifest.items[i], outputKey).description);
     } catch (...) {
       errors[i] = std::current_exception();
     }

@@ -56,6 +56,12 @@ FrameSequence parseFrames(YamlMap map) {
   return f;
 }
 
+// Whether some shape has a `class:` (the amodal aov's masks are of those shapes).
+bool hasLabelledShape(const SceneDescription& scene) {
+  return std::any_of(scene.shapes.begin(), scene.shapes.end(),
+                     [](const ShapeDescription& s) { return !s.className.empty(); });
+}
+
 // `exports:` — a list of layouts (ExportFormat), each once. bop needs a camera that a 3×3
 // K describes (the opencv model without distortion) and adds the AOVs its files are made
 // of: depth (depth/) and, when a shape is labelled, amodal (mask/, mask_visib/, the counts).
@@ -68,19 +74,13 @@ void parseExports(const YamlValue& list, SceneDescription& scene) {
     scene.exports.push_back(f);
   }
   if (!scene.exportsTo(ExportFormat::kBop)) return;
-  const Projection& p = scene.camera.projection;
-  const Projection none;  // every distortion coefficient 0
-  if (p.model != ProjectionModel::kOpenCv || p.k1 != none.k1 || p.k2 != none.k2 ||
-      p.k3 != none.k3 || p.k4 != none.k4 || p.k5 != none.k5 || p.k6 != none.k6 || p.p1 != none.p1 ||
-      p.p2 != none.p2 || p.s1 != none.s1 || p.s2 != none.s2 || p.s3 != none.s3 || p.s4 != none.s4 ||
-      p.tauX != none.tauX || p.tauY != none.tauY)
+  if (!isUndistortedOpenCv(scene.camera.projection) || scene.camera.lens)
     list.fail(
-        "export 'bop' needs the camera projection 'opencv' without distortion: BOP's "
-        "scene_camera.json describes the camera by its 3×3 K alone");
+        "export 'bop' needs the camera projection 'opencv' without distortion and no traced "
+        "lens: BOP's scene_camera.json describes the camera by its 3×3 K alone");
   // amodal only with a labelled shape (its masks are theirs; without one there is no object).
   std::vector<Aov>& aovs = scene.render.aovs;
-  const bool labelled = std::any_of(scene.shapes.begin(), scene.shapes.end(),
-                                    [](const ShapeDescription& s) { return !s.className.empty(); });
+  const bool labelled = hasLabelledShape(scene);
   for (const Aov a : {Aov::kDepth, Aov::kAmodal})
     if ((a != Aov::kAmodal || labelled) && std::find(aovs.begin(), aovs.end(), a) == aovs.end())
       aovs.push_back(a);
@@ -440,27 +440,20 @@ SceneDescription loadSceneFromText(const std::string& text, const std::string& d
   }
   if (auto f = top.find("frames")) scene.frames = parseFrames(YamlMap(*f));
   if (auto e = top.find("exports")) parseExports(*e, scene);
+  // An aov that needs what the scene lacks: an error at render.aovs.
   const std::vector<Aov>& aovs = scene.render.aovs;
-  if (!scene.frames && std::find(aovs.begin(), aovs.end(), Aov::kMotion) != aovs.end())
-    YamlMap(*top.find("render"))
-        .find("aovs")
-        ->fail(
-            "aov 'motion' needs a frames block: its vectors point to the previous and the next "
-            "frame");
-  if (std::find(aovs.begin(), aovs.end(), Aov::kAmodal) != aovs.end() &&
-      std::none_of(scene.shapes.begin(), scene.shapes.end(),
-                   [](const ShapeDescription& s) { return !s.className.empty(); }))
-    YamlMap(*top.find("render"))
-        .find("aovs")
-        ->fail(
-            "aov 'amodal' needs a labelled shape: its masks are of the shapes that have a "
-            "`class:`, and none has");
-  if (!scene.frames && std::find(aovs.begin(), aovs.end(), Aov::kOcclusion) != aovs.end())
-    YamlMap(*top.find("render"))
-        .find("aovs")
-        ->fail(
-            "aov 'occlusion' needs a frames block: it tells what the previous and the next "
-            "frame see");
+  const auto require = [&](Aov a, bool met, const char* what) {
+    if (!met && std::find(aovs.begin(), aovs.end(), a) != aovs.end())
+      YamlMap(*top.find("render"))
+          .find("aovs")
+          ->fail(std::string("aov '") + aovName(a) + "' needs " + what);
+  };
+  require(Aov::kMotion, scene.frames.has_value(),
+          "a frames block: its vectors point to the previous and the next frame");
+  require(Aov::kAmodal, hasLabelledShape(scene),
+          "a labelled shape: its masks are of the shapes that have a `class:`, and none has");
+  require(Aov::kOcclusion, scene.frames.has_value(),
+          "a frames block: it tells what the previous and the next frame see");
   top.finish({"format", "name", "spectra_path", "render", "camera", "sensor", "isp", "materials",
               "shapes", "lights", "frames", "include", "exports"});
   // Each file once (as first read), however it was named: keyed by its canonical path

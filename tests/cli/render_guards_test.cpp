@@ -107,6 +107,11 @@ TEST(MemoryEstimate, CountsFilmImagesAndTriangles) {
   EXPECT_GE(m.images, 500000u * 6u * 4u);  // at least the EXR image (R, G, B, X, Y, Z floats)
   EXPECT_EQ(m.meshes, 2u * 100u);          // a quad: two triangles
   EXPECT_EQ(m.total(), m.film + m.images + m.meshes);
+  // The amodal aov: 2 floats per labelled shape per pixel, twice (the AOV and EXR images).
+  SceneDescription masked = desc;
+  masked.shapes[0].className = masked.shapes[1].className = "thing";
+  masked.render.aovs = {Aov::kAmodal};
+  EXPECT_EQ(estimateRenderMemory(masked).images, m.images + 500000u * 2u * 16u);
   EXPECT_NO_THROW(checkMemoryLimit(desc, 1.0));
   EXPECT_THROW(checkMemoryLimit(desc, 0.01), InputError);
   // 16384² px is within SceneLimits but needs > 16 GB: over the default limit on machines

@@ -157,6 +157,22 @@ TEST(AmodalMasks, SphereBehindACardKeepsItsWholeDisc) {
   EXPECT_EQ(a.channelIndex("amodal_2.A"), -1);                    // the card is unlabelled
 }
 
+// The same bytes on 1 and 2 threads (the masks' counts are per pixel, in sample order).
+TEST(AmodalMasks, SameBytesForAnyThreadCount) {
+  const SceneDescription d = cards(", shutter: {open: 0, close: 0.01}",
+                                   ", motion: [{time: 0, translate: [0, 0, 0]}, {time: 0.01, "
+                                   "translate: [0.02, 0, 0]}]");
+  std::vector<float> pixels[2];
+  for (int threads : {1, 2}) {
+    RenderOptions o;
+    o.spp = 4;
+    o.threads = threads;
+    pixels[threads - 1] = render(Scene(d), SpectralResponse::cieXyz(), o).aovs.pixels;
+  }
+  ASSERT_FALSE(pixels[0].empty());
+  EXPECT_TRUE(pixels[0] == pixels[1]);
+}
+
 TEST(AmodalMasks, NeedALabelledShape) {
   try {
     loadSceneFromText(
