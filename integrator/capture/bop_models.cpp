@@ -11,6 +11,7 @@
 
 #include "integrator/capture/bop_writer.h"
 #include "integrator/scene/scene_ids.h"
+#include "sensor/base/format.h"
 #include "sensor/base/input_error.h"
 #include "sensor/io/output_set.h"
 
@@ -32,12 +33,6 @@ bool sameModel(const ObjectModel& a, const ObjectModel& b) {
   for (std::size_t i = 0; i < a.vertices.size(); ++i)
     if (!(glm::length(a.vertices[i] - b.vertices[i]) <= tolerance)) return false;
   return true;
-}
-
-std::string number(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.9g", v);
-  return buf;
 }
 
 // ASCII PLY in mm: positions, angle-weighted vertex normals (each corner's face normal
@@ -69,8 +64,8 @@ std::string plyText(const ObjectModel& m) {
     const glm::dvec3 p = m.vertices[i] * kMmPerM;
     const double l = glm::length(normals[i]);
     const glm::dvec3 n = l > 0.0 ? normals[i] / l : glm::dvec3(0.0);
-    s += number(p.x) + " " + number(p.y) + " " + number(p.z) + " " + number(n.x) + " " +
-         number(n.y) + " " + number(n.z) + "\n";
+    for (const double v : {p.x, p.y, p.z, n.x, n.y, n.z}) s += formatNumber(v, 9) + " ";
+    s.back() = '\n';
   }
   for (std::size_t t = 0; t + 2 < m.indices.size(); t += 3)
     s += "3 " + std::to_string(m.indices[t]) + " " + std::to_string(m.indices[t + 1]) + " " +

@@ -20,8 +20,8 @@
 namespace camsim {
 namespace {
 
-constexpr int kSphereSegments = 32;  // the sphere model's longitudes
-constexpr int kSphereRings = 16;     // and latitudes
+constexpr int kModelSphereSegments = 32;  // the sphere model's longitudes
+constexpr int kModelSphereRings = 16;     // and latitudes
 
 // L = R · S with R a proper rotation (det +1) and S = Rᵀ L (symmetric positive definite, or
 // with a point reflection when L mirrors): Higham's iteration X ← (X + X⁻ᵀ) / 2, which
@@ -78,23 +78,23 @@ ObjectModel objectModel(const SceneDescription& d, std::size_t shape) {
   ObjectModel m;
   if (s.kind == ShapeDescription::Kind::kSphere) {
     const double r = s.radius;
-    for (int j = 0; j <= kSphereRings; ++j) {
-      const double theta = std::numbers::pi * j / kSphereRings;
-      for (int i = 0; i < kSphereSegments; ++i) {
-        const double phi = 2.0 * std::numbers::pi * i / kSphereSegments;
+    for (int j = 0; j <= kModelSphereRings; ++j) {
+      const double theta = std::numbers::pi * j / kModelSphereRings;
+      for (int i = 0; i < kModelSphereSegments; ++i) {
+        const double phi = 2.0 * std::numbers::pi * i / kModelSphereSegments;
         m.vertices.push_back(shapeMatrix *
                              (r * glm::dvec3(std::sin(theta) * std::cos(phi), std::cos(theta),
                                              std::sin(theta) * std::sin(phi))));
       }
     }
     auto at = [](int j, int i) {
-      return static_cast<std::uint32_t>(j * kSphereSegments + (i % kSphereSegments));
+      return static_cast<std::uint32_t>(j * kModelSphereSegments + (i % kModelSphereSegments));
     };
-    for (int j = 0; j < kSphereRings; ++j)
-      for (int i = 0; i < kSphereSegments; ++i) {
+    for (int j = 0; j < kModelSphereRings; ++j)
+      for (int i = 0; i < kModelSphereSegments; ++i) {
         // Outward-facing (counter-clockwise seen from outside), degenerate at the poles.
         if (j > 0) m.indices.insert(m.indices.end(), {at(j, i), at(j, i + 1), at(j + 1, i)});
-        if (j + 1 < kSphereRings)
+        if (j + 1 < kModelSphereRings)
           m.indices.insert(m.indices.end(), {at(j, i + 1), at(j + 1, i + 1), at(j + 1, i)});
       }
   } else {
