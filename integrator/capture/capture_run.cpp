@@ -2,6 +2,8 @@
 
 #include <utility>
 
+#include "integrator/capture/kitti_writer.h"
+
 namespace camsim {
 
 SequenceSummary captureScene(SceneDescription description, const CaptureOptions& options,
@@ -47,6 +49,14 @@ WrittenCapture CaptureRunWriter::write(const CaptureResult& result) {
     if (!bop_) bop_.emplace(out_.directory, out_.bopScene);
     const int first = d.frames ? d.frames->first : 0;
     for (auto& f : bop_->addFrame(result, first + static_cast<int>(frames_.size()))) {
+      files_.push_back(f);
+      written.files.push_back(std::move(f));
+    }
+  }
+  if (d.exportsTo(ExportFormat::kKitti)) {
+    const int first = d.frames ? d.frames->first : 0;
+    for (auto& f : writeKittiFrame(result, out_.directory,
+                                   first + static_cast<int>(frames_.size()), &skipped_)) {
       files_.push_back(f);
       written.files.push_back(std::move(f));
     }

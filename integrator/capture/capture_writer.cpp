@@ -7,6 +7,7 @@
 #include "integrator/camera/physical_camera.h"
 #include "integrator/capture/aov_previews.h"
 #include "integrator/capture/bop_writer.h"
+#include "integrator/capture/kitti_writer.h"
 #include "integrator/capture/camera_export.h"
 #include "integrator/capture/capture_sidecar.h"
 #include "integrator/render/cryptomatte.h"
@@ -232,6 +233,9 @@ WrittenCapture writeCapture(const CaptureResult& result, const CaptureOutputOpti
   // The BOP layout after NAME.png, which it copies (a sequence's: CaptureRunWriter).
   if (desc.exportsTo(ExportFormat::kBop) && !desc.frames)
     for (auto& f : writeBop(result, options.directory, options.bopScene, &written.skipped))
+      written.files.push_back(std::move(f));
+  if (desc.exportsTo(ExportFormat::kKitti) && !desc.frames)
+    for (auto& f : writeKittiFrame(result, options.directory, 0, &written.skipped))
       written.files.push_back(std::move(f));
   return written;
 }

@@ -262,11 +262,13 @@ struct ShapeDescription {
 // `exports:` — dataset layouts written beside a capture's files (docs/output.md): each
 // named once here, parsed by the loader.
 enum class ExportFormat : std::uint8_t {
-  kBop,  // the BOP 6-DoF pose layout under bop/ (integrator/capture/bop_writer.h)
+  kBop,    // the BOP 6-DoF pose layout under bop/ (integrator/capture/bop_writer.h)
+  kKitti,  // the KITTI object layout under kitti/ (integrator/capture/kitti_writer.h)
 };
 template <>
 struct EnumNames<ExportFormat> {
-  static constexpr EnumName<ExportFormat> kTable[] = {{ExportFormat::kBop, "bop"}};
+  static constexpr EnumName<ExportFormat> kTable[] = {{ExportFormat::kBop, "bop"},
+                                                      {ExportFormat::kKitti, "kitti"}};
 };
 inline const char* exportFormatName(ExportFormat f) {
   return enumName(f).data();

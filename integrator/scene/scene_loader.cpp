@@ -62,9 +62,9 @@ bool hasLabelledShape(const SceneDescription& scene) {
                      [](const ShapeDescription& s) { return !s.className.empty(); });
 }
 
-// `exports:` — a list of layouts (ExportFormat), each once. bop needs a camera that a 3×3
-// K describes (the opencv model without distortion) and adds the AOVs its files are made
-// of: depth (depth/) and, when a shape is labelled, amodal (mask/, mask_visib/, the counts).
+// `exports:` — a list of layouts (ExportFormat), each once. bop and kitti need a camera that
+// a pinhole matrix describes (the opencv model without distortion) and add the AOVs their
+// files are made of: depth (BOP's depth/) and, when a shape is labelled, amodal (the masks).
 void parseExports(const YamlValue& list, SceneDescription& scene) {
   scene.keyPlaces["exports"] = list.where();
   for (const YamlValue& item : list.items()) {
@@ -73,17 +73,20 @@ void parseExports(const YamlValue& list, SceneDescription& scene) {
       item.fail(std::string("export '") + exportFormatName(f) + "' is listed twice");
     scene.exports.push_back(f);
   }
-  if (!scene.exportsTo(ExportFormat::kBop)) return;
-  if (!isUndistortedOpenCv(scene.camera.projection) || scene.camera.lens)
-    list.fail(
-        "export 'bop' needs the camera projection 'opencv' without distortion and no traced "
-        "lens: BOP's scene_camera.json describes the camera by its 3×3 K alone");
-  // amodal only with a labelled shape (its masks are theirs; without one there is no object).
+  // Both describe the camera by a pinhole matrix (BOP's 3×3 K, KITTI's 3×4 P2).
+  for (const ExportFormat f : scene.exports)
+    if (!isUndistortedOpenCv(scene.camera.projection) || scene.camera.lens)
+      list.fail(std::string("export '") + exportFormatName(f) +
+                "' needs the camera projection 'opencv' without distortion and no traced lens: "
+                "its files describe the camera by a pinhole matrix alone");
+  // The aovs their files are made of: BOP's depth/ and, for both, the masks (BOP's mask/,
+  // mask_visib/ and counts; KITTI's `occluded`) — amodal only with a labelled shape.
   std::vector<Aov>& aovs = scene.render.aovs;
-  const bool labelled = hasLabelledShape(scene);
-  for (const Aov a : {Aov::kDepth, Aov::kAmodal})
-    if ((a != Aov::kAmodal || labelled) && std::find(aovs.begin(), aovs.end(), a) == aovs.end())
-      aovs.push_back(a);
+  const auto add = [&aovs](Aov a) {
+    if (std::find(aovs.begin(), aovs.end(), a) == aovs.end()) aovs.push_back(a);
+  };
+  if (scene.exportsTo(ExportFormat::kBop)) add(Aov::kDepth);
+  if (!scene.exports.empty() && hasLabelledShape(scene)) add(Aov::kAmodal);
 }
 
 RenderSettings parseRender(YamlMap map) {

@@ -1,0 +1,181 @@
+#include "integrator/capture/kitti_writer.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <numbers>
+#include <optional>
+
+#include <glm/geometric.hpp>
+#include <glm/matrix.hpp>
+
+#include "integrator/capture/object_poses.h"
+#include "sensor/base/format.h"
+#include "sensor/io/output_set.h"
+
+namespace camsim {
+namespace {
+
+constexpr double kNearest = 0.1;             // m: a box corner nearer the camera is left out
+constexpr double kInMask = 0.5;              // coverage at which a pixel is in a mask (BOP's)
+constexpr double kUprightCos = 0.984807753;  // cos 10°
+
+double wrapAngle(double a) {
+  while (a > std::numbers::pi) a -= 2.0 * std::numbers::pi;
+  while (a < -std::numbers::pi) a += 2.0 * std::numbers::pi;
+  return a;
+}
+
+// KITTI's rect frame in camera (OpenCV) axes: its columns x, y, z — y down along gravity
+// (render space's −y), z the camera's forward made level, x = y × z.
+glm::dmat3 cameraFromRect(const glm::dmat4& cameraFromRender) {
+  const glm::dvec3 down = glm::normalize(glm::dmat3(cameraFromRender) * glm::dvec3(0, -1, 0));
+  glm::dvec3 forward = glm::dvec3(0, 0, 1) - down * down.z;
+  // A camera looking straight up or down: its own y as forward instead.
+  if (glm::length(forward) < 1e-9) forward = glm::dvec3(0, 1, 0) - down * down.y;
+  forward = glm::normalize(forward);
+  return glm::dmat3(glm::cross(down, forward), down, forward);
+}
+
+// The fraction of an object's amodal mask that is visible (both masks: coverage ≥ ½), or
+// none without the channels or with an empty amodal mask.
+std::optional<double> visibleFraction(const Image& a, std::uint32_t instance) {
+  const std::string n = std::to_string(instance);
+  const int am = a.channelIndex("amodal_" + n + ".A"), vi = a.channelIndex("visible_" + n + ".A");
+  if (am < 0 || vi < 0) return std::nullopt;
+  std::uint64_t all = 0, visible = 0;
+  for (int y = 0; y < a.height; ++y)
+    for (int x = 0; x < a.width; ++x) {
+      all += a.at(x, y, am) >= kInMask ? 1 : 0;
+      visible += a.at(x, y, vi) >= kInMask ? 1 : 0;
+    }
+  if (all == 0) return std::nullopt;
+  return static_cast<double>(visible) / static_cast<double>(all);
+}
+
+std::string typeOf(const ShapeDescription& s) {
+  if (s.classNumber && std::to_string(*s.classNumber) == s.className)
+    return "Class" + s.className;
+  std::string t = s.className;
+  std::replace(t.begin(), t.end(), ' ', '_');
+  return t;
+}
+
+std::string line(const std::string& key, const double* m, int n) {
+  std::string s = key + ":";
+  for (int i = 0; i < n; ++i) s += " " + formatNumber(m[i], 12);
+  return s + "\n";
+}
+
+}  // namespace
+
+KittiFrame kittiFrame(const CaptureResult& result) {
+  const SceneDescription& d = result.description;
+  const PhysicalCamera camera(d.camera);
+  const glm::dmat4 cameraFromRender = cameraCvFromRender(camera, d.camera.shutter.centre());
+  const glm::dmat3 camRect = cameraFromRect(cameraFromRender);
+  const glm::dmat3 rectCam = glm::transpose(camRect);
+  const glm::dvec4 k = camera.intrinsics();  // fx, fy, cx, cy
+  const glm::dmat3 kMatrix(k.x, 0.0, 0.0, 0.0, k.y, 0.0, k.z, k.w, 1.0);  // columns
+  const glm::dmat3 kr = kMatrix * camRect;
+  KittiFrame f;
+  f.p2.assign(12, 0.0);
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) f.p2[static_cast<std::size_t>(4 * r + c)] = kr[c][r];
+  const double w = d.camera.resolution.x, h = d.camera.resolution.y;
+
+  for (const ObjectPose& pose : objectPoses(d, d.camera)) {
+    const ShapeDescription& s = d.shapes[pose.shape];
+    const glm::dmat3 rectFromModel = rectCam * pose.rotation;
+    const glm::dvec3 tRect = rectCam * pose.translation;
+    KittiLabel l;
+    l.type = typeOf(s);
+    l.h = pose.boxMax.y - pose.boxMin.y;
+    l.w = pose.boxMax.z - pose.boxMin.z;
+    l.l = pose.boxMax.x - pose.boxMin.x;
+    const glm::dvec3 bottom(0.5 * (pose.boxMin.x + pose.boxMax.x), pose.boxMin.y,
+                            0.5 * (pose.boxMin.z + pose.boxMax.z));
+    const glm::dvec3 at = rectFromModel * bottom + tRect;
+    l.x = at.x;
+    l.y = at.y;
+    l.z = at.z;
+    const glm::dvec3 ax = rectFromModel * glm::dvec3(1, 0, 0);
+    l.rotationY = wrapAngle(std::atan2(-ax.z, ax.x));
+    l.alpha = wrapAngle(l.rotationY - std::atan2(l.x, l.z));
+    if (glm::dot(rectFromModel * glm::dvec3(0, 1, 0), glm::dvec3(0, -1, 0)) < kUprightCos)
+      f.skipped.push_back("kitti: '" + s.label +
+                          "' is not upright (its model's y more than 10° from up): its box is "
+                          "labelled turned into rect");
+    // The KITTI box as a devkit reader builds it, through P2.
+    const double c = std::cos(l.rotationY), sn = std::sin(l.rotationY);
+    glm::dvec2 lo(1e300), hi(-1e300);
+    bool behind = false;
+    for (int i = 0; i < 8; ++i) {
+      const double lx = (i & 1 ? 0.5 : -0.5) * l.l, lz = (i & 2 ? 0.5 : -0.5) * l.w;
+      const double ly = i & 4 ? -l.h : 0.0;
+      const glm::dvec3 p(c * lx + sn * lz + l.x, ly + l.y, -sn * lx + c * lz + l.z);
+      const glm::dvec3 q = kr * p;
+      if ((camRect * p).z < kNearest) behind = true;
+      const glm::dvec2 uv(q.x / q.z, q.y / q.z);
+      lo = glm::min(lo, uv);
+      hi = glm::max(hi, uv);
+    }
+    if (behind) {
+      f.skipped.push_back("kitti: '" + s.label + "' left out: its box reaches behind the camera");
+      continue;
+    }
+    const double boxArea = (hi.x - lo.x) * (hi.y - lo.y);
+    const double inW = std::max(0.0, std::min(hi.x, w - 0.5) - std::max(lo.x, -0.5));
+    const double inH = std::max(0.0, std::min(hi.y, h - 0.5) - std::max(lo.y, -0.5));
+    if (inW <= 0.0 || inH <= 0.0) continue;  // outside the image
+    l.truncated = boxArea > 0.0 ? std::clamp(1.0 - inW * inH / boxArea, 0.0, 1.0) : 0.0;
+    l.left = std::clamp(lo.x, 0.0, w - 1.0);
+    l.right = std::clamp(hi.x, 0.0, w - 1.0);
+    l.top = std::clamp(lo.y, 0.0, h - 1.0);
+    l.bottom = std::clamp(hi.y, 0.0, h - 1.0);
+    const std::optional<double> v = visibleFraction(result.aovs, pose.instance);
+    l.occluded = !v ? 3 : *v >= 0.95 ? 0 : *v >= 0.5 ? 1 : 2;
+    f.labels.push_back(l);
+  }
+  return f;
+}
+
+std::vector<std::filesystem::path> writeKittiFrame(const CaptureResult& result,
+                                                   const std::filesystem::path& directory,
+                                                   int imageId, std::vector<std::string>* skipped) {
+  const KittiFrame f = kittiFrame(result);
+  char id[16];
+  std::snprintf(id, sizeof id, "%06d", imageId);
+  const std::filesystem::path root = directory / "kitti";
+  std::string calib;
+  for (const char* p : {"P0", "P1", "P2", "P3"}) calib += line(p, f.p2.data(), 12);
+  const double identity3[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+  const double identity34[12] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
+  calib += line("R0_rect", identity3, 9);
+  calib += line("Tr_velo_to_cam", identity34, 12);
+  calib += line("Tr_imu_to_velo", identity34, 12);
+  std::string labels;
+  for (const KittiLabel& l : f.labels) {
+    const auto n = [](double v) { return formatNumber(v, 8); };
+    labels += l.type + " " + n(l.truncated) + " " + std::to_string(l.occluded) + " " +
+              n(l.alpha) + " " + n(l.left) + " " + n(l.top) + " " + n(l.right) + " " +
+              n(l.bottom) + " " + n(l.h) + " " + n(l.w) + " " + n(l.l) + " " + n(l.x) + " " +
+              n(l.y) + " " + n(l.z) + " " + n(l.rotationY) + "\n";
+  }
+  std::vector<std::filesystem::path> files;
+  for (const char* sub : {"image_2", "calib", "label_2"}) {
+    (void)OutputSet::prepareDirectory(root / sub);
+    OutputSet set(root / sub);
+    const std::string name = std::string(id) + (std::string(sub) == "image_2" ? ".png" : ".txt");
+    if (std::string(sub) == "image_2")
+      std::filesystem::copy_file(directory / (result.description.name + ".png"), set.add(name),
+                                 std::filesystem::copy_options::overwrite_existing);
+    else
+      set.addText(name, std::string(sub) == "calib" ? calib : labels);
+    for (auto& file : set.commit()) files.push_back(std::move(file));
+  }
+  if (skipped) skipped->insert(skipped->end(), f.skipped.begin(), f.skipped.end());
+  return files;
+}
+
+}  // namespace camsim
