@@ -46,8 +46,8 @@ std::optional<double> visibleFraction(const Image& a, std::uint32_t instance) {
   std::uint64_t all = 0, visible = 0;
   for (int y = 0; y < a.height; ++y)
     for (int x = 0; x < a.width; ++x) {
-      all += a.at(x, y, am) >= kInMask ? 1 : 0;
-      visible += a.at(x, y, vi) >= kInMask ? 1 : 0;
+      all += double{a.at(x, y, am)} >= kInMask ? 1 : 0;
+      visible += double{a.at(x, y, vi)} >= kInMask ? 1 : 0;
     }
   if (all == 0) return std::nullopt;
   return static_cast<double>(visible) / static_cast<double>(all);
