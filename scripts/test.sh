@@ -17,7 +17,7 @@
 #      as setup.sh builds the Release stage and README's first command);
 #   3. the libFuzzer harnesses (Clang, CAMSIM_FUZZ=ON, -O1 -g1 as in stage 2, the SIMD path, the libraries
 #      unity-built) in build-fuzz/: every seed and regression input replayed once (CTest),
-#      then each harness fuzzed for CAMSIM_FUZZ_SECONDS (default 20) by scripts/fuzz.sh.
+#      then each harness fuzzed for CAMSIM_FUZZ_SECONDS (default 12) by scripts/fuzz.sh.
 # Every stage runs even when an earlier one failed; the script fails if any did. Each stage
 # prints its wall time, and its build and test parts separately (docs/testing.md's table).
 # Environment: CAMSIM_BUILD_DIR, CAMSIM_ASAN_BUILD_DIR, CAMSIM_FUZZ_BUILD_DIR (build
@@ -29,7 +29,7 @@ cd "$(dirname "$0")/.."
 build_dir=${CAMSIM_BUILD_DIR:-build}
 asan_dir=${CAMSIM_ASAN_BUILD_DIR:-build-asan}
 fuzz_dir=${CAMSIM_FUZZ_BUILD_DIR:-build-fuzz}
-fuzz_seconds=${CAMSIM_FUZZ_SECONDS:-20}
+fuzz_seconds=${CAMSIM_FUZZ_SECONDS:-12}
 jobs=${CAMSIM_JOBS:-$(nproc)}
 failed=()
 start=$SECONDS
