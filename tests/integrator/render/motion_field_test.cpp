@@ -13,6 +13,7 @@
 #include "integrator/render/render.h"
 #include "integrator/scene/scene.h"
 #include "integrator/scene/scene_loader.h"
+#include "tests/support/render_frame.h"
 #include "tests/support/scene_text.h"
 
 namespace camsim {
@@ -46,16 +47,6 @@ SceneDescription scene(const std::string& shapes, const std::string& camera = ""
   return loadSceneFromText(text, "motion.yaml", ".");
 }
 
-// Frame k's AOVs (its own camera and shutter).
-Image renderFrame(const SceneDescription& d, int k, int threads = 0) {
-  SceneDescription f = d;
-  f.camera = d.frameCamera(k);
-  RenderOptions o;
-  o.spp = d.render.spp;
-  o.threads = threads;
-  return render(Scene(f), SpectralResponse::cieXyz(), o).aovs;
-}
-
 double flowAt(const Image& im, int x, int y, const char* channel) {
   return static_cast<double>(im.at(x, y, im.channelIndex(channel)));
 }
@@ -72,7 +63,7 @@ TEST(MotionField, TranslatingPlane) {
                                    ", motion: [{time: 0, translate: [0, 0, 0]}, {time: 1, "
                                    "translate: [" +
                                    num(v) + ", 0, 0]}]}\n");
-  const Image a = renderFrame(d, 1);
+  const Image a = test::renderSequenceFrame(d, 1).aovs;
   const double shift = kFx * v * kDt / 2.0;
   for (int y = 0; y < kFieldRes; ++y)
     for (int x = 0; x < kFieldRes; ++x) {
@@ -99,7 +90,7 @@ TEST(MotionField, SpinningPlane) {
       "}}, {time: 0.2, rotate: {axis: [0, 0, 1], angle_deg: " + num(omega * 0.2 * 180.0 / M_PI) +
       "}}, {time: 0.3, rotate: {axis: [0, 0, 1], angle_deg: " + num(omega * 0.3 * 180.0 / M_PI) +
       "}}]}\n");
-  const Image a = renderFrame(d, 1);
+  const Image a = test::renderSequenceFrame(d, 1).aovs;
   const double th = omega * kDt, c = std::cos(th), s = std::sin(th);
   double worst = 0.0;
   for (int y = 0; y < kFieldRes; ++y)
@@ -126,7 +117,7 @@ TEST(MotionField, MovingCamera) {
       scene(std::string(kPlane) + "}\n",
             ", motion: [{time: 0, translate: [0, 0, 0]}, {time: 1, translate: [0.5, 0, 0]}]",
             "[motion, depth, normal]");
-  const Image a = renderFrame(d, 1);
+  const Image a = test::renderSequenceFrame(d, 1).aovs;
   const double shift = kFx * 0.05 / 2.0;
   for (int y = 0; y < kFieldRes; ++y)
     for (int x = 0; x < kFieldRes; ++x) {
@@ -150,7 +141,7 @@ TEST(MotionField, ReprojectionAgreesWithForwardVectors) {
       "  - {name: ball, type: sphere, centre: [0.2, -0.1, -3], radius: 0.6, material: grey}\n",
       ", motion: [{time: 0, translate: [0, 0, 0]}, {time: 1, translate: [0.4, 0.1, -0.3], "
       "rotate: {axis: [0, 1, 0.2], angle_deg: 20}}]");
-  const Image a = renderFrame(d, 1);
+  const Image a = test::renderSequenceFrame(d, 1).aovs;
   const PhysicalCamera camera(d.frameCamera(1));
   const double t1 = d.frameCamera(1).shutter.centre(), t2 = d.frameCamera(2).shutter.centre();
   ASSERT_NEAR(t2 - t1, kDt, 1e-12);
@@ -193,7 +184,8 @@ TEST(MotionField, AllAovsBitIdenticalAcrossThreadCounts) {
       ", motion: [{time: 0, translate: [0, 0, 0]}, {time: 1, translate: [0.4, 0.1, -0.3]}]",
       "[depth, distance, position, normal, albedo, roughness, instance_id, class_id, "
       "material_id, motion]");
-  const Image one = renderFrame(d, 1, 1), two = renderFrame(d, 1, 2);
+  const Image one = test::renderSequenceFrame(d, 1, 1).aovs,
+              two = test::renderSequenceFrame(d, 1, 2).aovs;
   ASSERT_EQ(one.channels, two.channels);
   EXPECT_EQ(one.pixels, two.pixels);
   for (float v : one.pixels) ASSERT_TRUE(std::isfinite(v));

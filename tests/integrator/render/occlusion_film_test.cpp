@@ -19,6 +19,7 @@
 #include "integrator/scene/scene.h"
 #include "integrator/scene/scene_loader.h"
 #include "sensor/base/input_error.h"
+#include "tests/support/render_frame.h"
 #include "tests/support/scene_text.h"
 
 namespace camsim {
@@ -47,15 +48,6 @@ SceneDescription scene(const std::string& shapes, const std::string& camera,
       "shapes:\n" +
       shapes + "lights:\n  - {type: point, position: [0, 0, 0], intensity: 1}\n";
   return loadSceneFromText(text, "occlusion.yaml", ".");
-}
-
-RenderResult renderFrame(const SceneDescription& d, int k, int threads = 0) {
-  SceneDescription f = d;
-  f.camera = d.frameCamera(k);
-  RenderOptions o;
-  o.spp = d.render.spp;
-  o.threads = threads;
-  return render(Scene(f), SpectralResponse::cieXyz(), o);
 }
 
 double value(const Image& im, int x, int y, const char* channel) {
@@ -133,7 +125,7 @@ TEST(OcclusionFilm, BallCrescentAreasMatchTheAnalyticReference) {
           ", material: grey, motion: [{time: 0, translate: [0, 0, 0]}, {time: 1, "
           "translate: [1, 0, 0]}]}\n",
       "", "[occlusion]");
-  const Image a = renderFrame(d, 1).aovs;
+  const Image a = test::renderSequenceFrame(d, 1).aovs;
   // The ball's centre at each frame's reference time (the shutter's centre).
   const auto centreAt = [&](int k) {
     return glm::dvec3(-0.1 + d.frameCamera(k).shutter.centre(), 0.0, z);
@@ -210,7 +202,7 @@ TEST(OcclusionFilm, MovingMeshesCoverTheExactArea) {
       "angle_deg: 0}}, {time: 1, translate: [-0.65, -0.3, -3], rotate: {axis: [0, 0, 1], "
       "angle_deg: 100}}]}\n",
       "", "[occlusion]");
-  const Image a = renderFrame(d, 1).aovs;
+  const Image a = test::renderSequenceFrame(d, 1).aovs;
   // The moving cards' image quads at frame k.
   const auto project = [](const glm::dvec3& p) {
     return glm::dvec2(kC + kF * p.x / -p.z, kC - kF * p.y / -p.z);
@@ -264,7 +256,7 @@ TEST(OcclusionFilm, CameraTurningAboutItsCentreOccludesNothing) {
       ", motion: [{time: 0, rotate: {axis: [0.3, 1, 0.2], angle_deg: 0}}, {time: 1, rotate: "
       "{axis: [0.3, 1, 0.2], angle_deg: 40}}]",
       "[occlusion, motion]", 16);
-  const Image a = renderFrame(d, 1).aovs;
+  const Image a = test::renderSequenceFrame(d, 1).aovs;
   for (int y = 0; y < kRes; ++y)
     for (int x = 0; x < kRes; ++x) {
       ASSERT_EQ(value(a, x, y, "occlusion_fw.A"), 0.0) << x << "," << y;
@@ -317,7 +309,8 @@ TEST(OcclusionFilm, CameraMovingInsideConvexRoomsOccludesNothing) {
   const std::string sphere =
       "  - {type: sphere, centre: [0.3, 0, -0.5], radius: 3, material: grey}\n";
   for (const std::string& shapes : {room, sphere}) {
-    const Image a = renderFrame(scene(shapes, cameraMotion, "[occlusion]", 16), 1).aovs;
+    const Image a =
+        test::renderSequenceFrame(scene(shapes, cameraMotion, "[occlusion]", 16), 1).aovs;
     EXPECT_EQ(sum(a, "coverage.A"), kRes * kRes);  // every sample hits
     for (int y = 0; y < kRes; ++y)
       for (int x = 0; x < kRes; ++x) {
@@ -340,9 +333,11 @@ TEST(OcclusionFilm, OtherAovsUnchangedAndBitIdenticalAcrossThreadCounts) {
   const std::string camera =
       ", motion: [{time: 0, translate: [0, 0, 0]}, {time: 1, translate: [0.4, 0.1, -0.3]}]";
   const std::string base = "[depth, normal, instance_id, motion, valid";
-  const RenderResult without = renderFrame(scene(shapes, camera, base + "]", 16), 1, 2);
+  const RenderResult without =
+      test::renderSequenceFrame(scene(shapes, camera, base + "]", 16), 1, 2);
   const SceneDescription d = scene(shapes, camera, base + ", occlusion, boundary]", 16);
-  const RenderResult one = renderFrame(d, 1, 1), two = renderFrame(d, 1, 2);
+  const RenderResult one = test::renderSequenceFrame(d, 1, 1),
+                     two = test::renderSequenceFrame(d, 1, 2);
   ASSERT_EQ(one.aovs.channels, two.aovs.channels);
   EXPECT_EQ(one.aovs.pixels, two.aovs.pixels);
   EXPECT_EQ(without.image.pixels, two.image.pixels);
@@ -361,7 +356,8 @@ TEST(OcclusionFilm, OtherAovsUnchangedAndBitIdenticalAcrossThreadCounts) {
   EXPECT_GT(sum(one.aovs, "boundary.A"), 50.0);
   for (float v : one.aovs.pixels) ASSERT_TRUE(std::isfinite(v));
   // occlusion alone (no motion channels) gives the same fractions.
-  const Image alone = renderFrame(scene(shapes, camera, "[occlusion]", 16), 1, 2).aovs;
+  const Image alone =
+      test::renderSequenceFrame(scene(shapes, camera, "[occlusion]", 16), 1, 2).aovs;
   for (const char* c : {"occlusion_fw.A", "occlusion_bw.A", "outside_fw.A", "outside_bw.A"})
     for (int y = 0; y < kRes; ++y)
       for (int x = 0; x < kRes; ++x) ASSERT_EQ(value(alone, x, y, c), value(one.aovs, x, y, c));
@@ -419,7 +415,7 @@ TEST(OcclusionBoundary, ObjectEdgesAndDepthStepsAgainstTheFootprint) {
                              "  - {name: steps, type: mesh, material: grey, vertices: [" +
                              square(nearSq, 3) + ", " + square(farSq, 4) +
                              "], faces: [[0, 1, 2], [0, 2, 3], [4, 5, 6], [4, 6, 7]]}\n";
-  const Image a = renderFrame(scene(shapes, "", "[boundary]"), 1).aovs;
+  const Image a = test::renderSequenceFrame(scene(shapes, "", "[boundary]"), 1).aovs;
   const auto seen = [&](double u, double v) {
     const glm::dvec3 dir = rayThrough(u, v);
     const double len = glm::length(dir);
