@@ -46,7 +46,7 @@ WrittenCapture CaptureRunWriter::write(const CaptureResult& result) {
   if (!sequence_) return written;
   const SceneDescription& d = result.description;
   if (d.exportsTo(ExportFormat::kBop)) {
-    if (!bop_) bop_.emplace(out_.directory, out_.bopScene);
+    if (!bop_) bop_.emplace(out_.directory, out_.datasetItem);
     const int first = d.frames ? d.frames->first : 0;
     for (auto& f : bop_->addFrame(result, first + static_cast<int>(frames_.size()))) {
       files_.push_back(f);

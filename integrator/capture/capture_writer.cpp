@@ -232,10 +232,10 @@ WrittenCapture writeCapture(const CaptureResult& result, const CaptureOutputOpti
   if (std::filesystem::remove(stalePartial, ec)) written.removed.push_back(stalePartial);
   // The BOP layout after NAME.png, which it copies (a sequence's: CaptureRunWriter).
   if (desc.exportsTo(ExportFormat::kBop) && !desc.frames)
-    for (auto& f : writeBop(result, options.directory, options.bopScene, &written.skipped))
+    for (auto& f : writeBop(result, options.directory, options.datasetItem, &written.skipped))
       written.files.push_back(std::move(f));
   if (desc.exportsTo(ExportFormat::kKitti) && !desc.frames)
-    for (auto& f : writeKittiFrame(result, options.directory, 0, &written.skipped))
+    for (auto& f : writeKittiFrame(result, options.directory, options.datasetItem, &written.skipped))
       written.files.push_back(std::move(f));
   return written;
 }

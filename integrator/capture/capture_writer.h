@@ -35,9 +35,9 @@ struct CaptureOutputOptions {
   // Same scene, seed and build → the same bytes in every file: the render's wall time
   // (camsim:render_seconds, render.seconds) is left out. Datasets and tile merges set it.
   bool reproducible = false;
-  // The BOP export's scene id (`exports: [bop]`, bop_writer.h): 0 for a render, the item's
-  // index in a dataset run.
-  int bopScene = 0;
+  // The dataset item's index (0 for a render): the BOP export's scene id (bop_writer.h) and a
+  // single capture's KITTI image id (kitti_writer.h), so items' exports merge by copying.
+  int datasetItem = 0;
 };
 
 struct WrittenCapture {

@@ -1,7 +1,8 @@
 // The KITTI object layout (the KITTI Vision Benchmark's 3-D object detection devkit,
 // readme.txt) of a capture or a sequence, selected by the scene's `exports: [kitti]` and
 // written under the capture's output directory, one image per frame (image id IIIIII = the
-// sequence frame number; 0 for a capture):
+// sequence frame number; for a capture the dataset item's index, 0 for a render, so the
+// kitti/ folders of a dataset's single-capture items merge by copying):
 //
 //   kitti/image_2/IIIIII.png   NAME.png, the developed picture
 //   kitti/calib/IIIIII.txt     P0, P1, P2, P3 (3×4, row-major), R0_rect (3×3), Tr_velo_to_cam,

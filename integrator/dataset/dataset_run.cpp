@@ -56,7 +56,7 @@ std::vector<fs::path> removeTemporaries(const fs::path& items, std::size_t index
 bool renderItem(SceneDescription desc, ItemWork& w, const DatasetRunOptions& options,
                 const std::function<void(double)>& fraction) {
   CaptureOutputOptions out{w.tmp, options.picture, false, true};
-  out.bopScene = static_cast<int>(w.item.index);  // the item's BOP scene (bop_writer.h)
+  out.datasetItem = static_cast<int>(w.item.index);  // BOP scene, KITTI image (capture_writer.h)
   CaptureOptions co;
   co.threads = options.threads;
   co.cancel = options.cancel;

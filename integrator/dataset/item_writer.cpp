@@ -204,7 +204,7 @@ ItemReport writeItem(const Manifest& manifest, ItemWork& w) {
   try {
     if (w.capture) {
       CaptureOutputOptions out{w.tmp, w.picture, false, true};
-      out.bopScene = static_cast<int>(index);  // the item's BOP scene (bop_writer.h)
+      out.datasetItem = static_cast<int>(index);  // BOP scene, KITTI image (capture_writer.h)
       for (auto& f : writeCapture(*w.capture, out).files) w.files.push_back(f);
       w.capture.reset();
     }

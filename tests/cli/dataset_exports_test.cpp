@@ -1,7 +1,8 @@
-// `camsim dataset` with the BOP export (integrator/capture/bop_writer.h) on the real binary:
-// a manifest selects it with `set: {exports: [bop]}`; each item writes its own BOP scene,
-// numbered by the item's index, listed in item.json by its path in the item folder, so that
-// shards write the items of one run byte for byte and --resume skips them.
+// `camsim dataset` with the BOP and KITTI exports (integrator/capture/bop_writer.h,
+// kitti_writer.h) on the real binary: a manifest selects them with `set: {exports: [bop,
+// kitti]}`; each item writes its own BOP scene and KITTI image, numbered by the item's index,
+// listed in item.json by their paths in the item folder, so that shards write the items of
+// one run byte for byte and --resume skips them.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -12,7 +13,7 @@
 #include "tests/support/text_file.h"
 
 namespace camsim {
-namespace dataset_bop_test {
+namespace dataset_exports_test {
 
 namespace fs = std::filesystem;
 
@@ -34,7 +35,7 @@ const char* const kScene =
 
 const char* const kManifest =
     "format: camsim-dataset/1\nscene: table.yaml\n"
-    "set: {exports: [bop]}\n"
+    "set: {exports: [bop, kitti]}\n"
     "items:\n"
     "  - {camera.position: [0, 0, -2]}\n"
     "  - {camera.position: [0.3, 0.1, -2]}\n";
@@ -47,7 +48,7 @@ std::map<std::string, std::string> tree(const fs::path& dir) {
   return files;
 }
 
-TEST(DatasetBop, EachItemIsABopSceneOfItsIndexThatShardsAndResumeKeep) {
+TEST(DatasetExports, EachItemIsABopSceneAndAKittiImageOfItsIndexThatShardsAndResumeKeep) {
   test::TempDir dir;
   test::writeFile(dir.path() / "table.yaml", kScene);
   test::writeFile(dir.path() / "bop.yaml", kManifest);
@@ -60,11 +61,18 @@ TEST(DatasetBop, EachItemIsABopSceneOfItsIndexThatShardsAndResumeKeep) {
         "items/000000/bop/train_pbr/000000/rgb/000000.png",
         "items/000000/bop/train_pbr/000000/depth/000000.png",
         "items/000001/bop/train_pbr/000001/scene_camera.json",
-        "items/000001/bop/models/obj_000003.ply", "items/000001/bop/models/models_info.json"})
+        "items/000001/bop/models/obj_000003.ply", "items/000001/bop/models/models_info.json",
+        "items/000000/kitti/image_2/000000.png", "items/000000/kitti/label_2/000000.txt",
+        "items/000001/kitti/calib/000001.txt", "items/000001/kitti/label_2/000001.txt"})
     EXPECT_TRUE(fs::is_regular_file(whole / f)) << f;
   // item.json lists the BOP files by their path in the item folder.
   const std::string item = test::readFile(whole / "items/000001/item.json");
   EXPECT_NE(item.find("\"bop/train_pbr/000001/scene_gt.json\""), std::string::npos) << item;
+  EXPECT_NE(item.find("\"kitti/label_2/000001.txt\""), std::string::npos) << item;
+  // The two instances of class 3 are two KITTI labels of type Class3.
+  const std::string labels = test::readFile(whole / "items/000001/kitti/label_2/000001.txt");
+  EXPECT_EQ(labels.find("Class3 "), 0U) << labels;
+  EXPECT_NE(labels.find("\nClass3 "), std::string::npos) << labels;
   // Two instances of one mesh, class 3: one model, two entries.
   const std::string gt = test::readFile(whole / "items/000000/bop/train_pbr/000000/scene_gt.json");
   int entries = 0;
@@ -94,5 +102,5 @@ TEST(DatasetBop, EachItemIsABopSceneOfItsIndexThatShardsAndResumeKeep) {
   EXPECT_EQ(index.find("\"item\": 0", index.find("\"item\": 0") + 1), std::string::npos) << index;
 }
 
-}  // namespace dataset_bop_test
+}  // namespace dataset_exports_test
 }  // namespace camsim
