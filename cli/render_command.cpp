@@ -57,7 +57,7 @@ RenderCommandResult runTilePart(SceneDescription desc, const RenderArgs& args,
                                 CaptureOptions options, std::ostream& log) {
   const Share share = *args.tiles;
   options.tiles = share;
-  checkBopExport(desc);  // the merge writes the layout: refuse before rendering, as a render
+  checkPoseExports(desc);  // the merge writes the layout: refuse before rendering, as a render
   const std::string what = "part " + std::to_string(share.index) + " of " +
                            std::to_string(share.count) + " of " + desc.name;
   ProgressBar progress("rendering " + what);

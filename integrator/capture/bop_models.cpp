@@ -150,8 +150,14 @@ std::vector<std::filesystem::path> writeBopModels(const std::vector<BopModel>& m
   return outputs.commit();
 }
 
-void checkBopExport(const SceneDescription& d) {
-  if (d.exportsTo(ExportFormat::kBop)) (void)bopModels(d);
+void checkPoseExports(const SceneDescription& d) {
+  if (d.exportsTo(ExportFormat::kBop)) {
+    (void)bopModels(d);
+  } else if (d.exportsTo(ExportFormat::kKitti)) {
+    const SceneIds ids = sceneIds(d);
+    for (std::size_t i = 0; i < d.shapes.size(); ++i)
+      if (ids[IdKind::kClass].ofShape[i] != 0) (void)objectModel(d, i);
+  }
 }
 
 }  // namespace camsim

@@ -102,8 +102,9 @@ std::vector<std::filesystem::path> writeBop(const CaptureResult& result,
                                             const std::filesystem::path& directory, int sceneId,
                                             std::vector<std::string>* skipped = nullptr);
 
-// The scene's BOP export checked before anything renders (the models of its obj_ids agree):
-// InputError otherwise. Nothing for a scene without `exports: [bop]`.
-void checkBopExport(const SceneDescription& d);
+// The scene's BOP and KITTI exports checked before anything renders — every labelled shape
+// has a rigid pose (objectModel), and BOP's models of one obj_id agree: InputError
+// otherwise. Nothing for a scene without either export.
+void checkPoseExports(const SceneDescription& d);
 
 }  // namespace camsim

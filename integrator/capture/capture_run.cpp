@@ -8,7 +8,7 @@ namespace camsim {
 
 SequenceSummary captureScene(SceneDescription description, const CaptureOptions& options,
                              const std::function<void(CaptureResult&&, int)>& onFrame) {
-  checkBopExport(description);
+  checkPoseExports(description);
   if (!description.frames) {
     CaptureResult result = capture(std::move(description), options);
     SequenceSummary summary;

@@ -25,8 +25,8 @@ namespace camsim {
 
 // A cancelled frame is handed on (result.cancelled) and ends the run; the summary counts
 // the frames handed on (frames), those rendered (rendered) and whether it was cancelled.
-// A scene whose BOP export cannot be written (checkBopExport) is an InputError before any
-// rendering.
+// A scene whose BOP or KITTI export cannot be written (checkPoseExports) is an InputError
+// before any rendering.
 SequenceSummary captureScene(SceneDescription description, const CaptureOptions& options,
                              const std::function<void(CaptureResult&&, int)>& onFrame);
 

@@ -212,7 +212,7 @@ std::string captureFrameFile(const CaptureResult& result, std::size_t frame) {
 WrittenCapture writeCapture(const CaptureResult& result, const CaptureOutputOptions& options) {
   if (result.cancelled) return writePartial(result, options.directory);
   const SceneDescription& desc = result.description;
-  checkBopExport(desc);  // before any file: its models must be writable (a merge's parts)
+  checkPoseExports(desc);  // before any file: its models must be writable (a merge's parts)
   const Metadata meta = filmMetadata(result, options.reproducible);
   OutputSet outputs(options.directory);
   writeExr(outputs.add(desc.name + ".exr"), withLayers(xyzExrImage(result.film), result.aovs),

@@ -92,7 +92,7 @@ void checkItems(const Manifest& manifest, const std::string& outputKey,
   std::mutex progress;
   tbb::parallel_for(std::size_t{0}, n, [&](std::size_t i) {
     try {
-      checkBopExport(resolveItem(manifest, manifest.items[i], outputKey).description);
+      checkPoseExports(resolveItem(manifest, manifest.items[i], outputKey).description);
     } catch (...) {
       errors[i] = std::current_exception();
     }

@@ -224,7 +224,7 @@ TEST(BopWriter, OneObjIdNeedsOneModel) {
   d.shapes[1].classNumber = 1u;
   d.shapes[1].className = "1";
   try {
-    checkBopExport(d);
+    checkPoseExports(d);
     FAIL() << "no error";
   } catch (const InputError& e) {
     const std::string m = e.what();
@@ -234,7 +234,7 @@ TEST(BopWriter, OneObjIdNeedsOneModel) {
   SceneDescription twice = twoObjects();
   twice.shapes[1] = twice.shapes[0];
   twice.shapes[1].placement[3] = glm::dvec4(1.0, 2.0, 3.0, 1.0);
-  EXPECT_NO_THROW(checkBopExport(twice));
+  EXPECT_NO_THROW(checkPoseExports(twice));
   EXPECT_EQ(bopModels(twice).size(), 1u);
 }
 
