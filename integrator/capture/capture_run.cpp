@@ -55,8 +55,8 @@ WrittenCapture CaptureRunWriter::write(const CaptureResult& result) {
   }
   if (d.exportsTo(ExportFormat::kKitti)) {
     const int first = d.frames ? d.frames->first : 0;
-    for (auto& f : writeKittiFrame(result, out_.directory,
-                                   first + static_cast<int>(frames_.size()), &skipped_)) {
+    for (auto& f : writeKittiFrame(result, out_.directory, first + static_cast<int>(frames_.size()),
+                                   &skipped_)) {
       files_.push_back(f);
       written.files.push_back(std::move(f));
     }

@@ -7,9 +7,9 @@
 #include "integrator/camera/physical_camera.h"
 #include "integrator/capture/aov_previews.h"
 #include "integrator/capture/bop_writer.h"
-#include "integrator/capture/kitti_writer.h"
 #include "integrator/capture/camera_export.h"
 #include "integrator/capture/capture_sidecar.h"
+#include "integrator/capture/kitti_writer.h"
 #include "integrator/render/cryptomatte.h"
 #include "integrator/scene/scene_ids.h"
 #include "sensor/base/format.h"
@@ -235,7 +235,8 @@ WrittenCapture writeCapture(const CaptureResult& result, const CaptureOutputOpti
     for (auto& f : writeBop(result, options.directory, options.datasetItem, &written.skipped))
       written.files.push_back(std::move(f));
   if (desc.exportsTo(ExportFormat::kKitti) && !desc.frames)
-    for (auto& f : writeKittiFrame(result, options.directory, options.datasetItem, &written.skipped))
+    for (auto& f :
+         writeKittiFrame(result, options.directory, options.datasetItem, &written.skipped))
       written.files.push_back(std::move(f));
   return written;
 }

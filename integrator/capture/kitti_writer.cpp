@@ -54,8 +54,7 @@ std::optional<double> visibleFraction(const Image& a, std::uint32_t instance) {
 }
 
 std::string typeOf(const ShapeDescription& s) {
-  if (s.classNumber && std::to_string(*s.classNumber) == s.className)
-    return "Class" + s.className;
+  if (s.classNumber && std::to_string(*s.classNumber) == s.className) return "Class" + s.className;
   std::string t = s.className;
   std::replace(t.begin(), t.end(), ' ', '_');
   return t;
@@ -75,7 +74,7 @@ KittiFrame kittiFrame(const CaptureResult& result) {
   const glm::dmat4 cameraFromRender = cameraCvFromRender(camera, d.camera.shutter.centre());
   const glm::dmat3 camRect = cameraFromRect(cameraFromRender);
   const glm::dmat3 rectCam = glm::transpose(camRect);
-  const glm::dvec4 k = camera.intrinsics();  // fx, fy, cx, cy
+  const glm::dvec4 k = camera.intrinsics();                               // fx, fy, cx, cy
   const glm::dmat3 kMatrix(k.x, 0.0, 0.0, 0.0, k.y, 0.0, k.z, k.w, 1.0);  // columns
   const glm::dmat3 kr = kMatrix * camRect;
   KittiFrame f;
@@ -157,10 +156,10 @@ std::vector<std::filesystem::path> writeKittiFrame(const CaptureResult& result,
   std::string labels;
   for (const KittiLabel& l : f.labels) {
     const auto n = [](double v) { return formatNumber(v, 8); };
-    labels += l.type + " " + n(l.truncated) + " " + std::to_string(l.occluded) + " " +
-              n(l.alpha) + " " + n(l.left) + " " + n(l.top) + " " + n(l.right) + " " +
-              n(l.bottom) + " " + n(l.h) + " " + n(l.w) + " " + n(l.l) + " " + n(l.x) + " " +
-              n(l.y) + " " + n(l.z) + " " + n(l.rotationY) + "\n";
+    labels += l.type + " " + n(l.truncated) + " " + std::to_string(l.occluded) + " " + n(l.alpha) +
+              " " + n(l.left) + " " + n(l.top) + " " + n(l.right) + " " + n(l.bottom) + " " +
+              n(l.h) + " " + n(l.w) + " " + n(l.l) + " " + n(l.x) + " " + n(l.y) + " " + n(l.z) +
+              " " + n(l.rotationY) + "\n";
   }
   std::vector<std::filesystem::path> files;
   for (const char* sub : {"image_2", "calib", "label_2"}) {
