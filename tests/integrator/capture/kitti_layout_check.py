@@ -6,7 +6,8 @@ camsim binary and checks, for a level camera and one looking down:
   - kitti/image_2/000000.png is NAME.png; calib/000000.txt holds P0..P3 (12 numbers each),
     R0_rect (9), Tr_velo_to_cam and Tr_imu_to_velo (12); P0 = P1 = P2 = P3;
   - the level camera's P2 is K [I | 0] with K from the scene (f / pitch, pixel centres at
-    integers);
+    integers); both cameras' P2 is the K of the capture's sidecar (derived.opencv_fx_fy_cx_cy)
+    times [R | 0], R a rotation;
   - label_2/000000.txt: 15 fields per line; the turned box's type, dimensions (h, w, l),
     bottom-centre location and rotation_y against the closed forms (1e-4), alpha =
     rotation_y - atan2(x, z);
@@ -18,6 +19,7 @@ camsim binary and checks, for a level camera and one looking down:
   - occluded: the box in front 0, the ball behind it partly hidden (1 or 2).
 Exit 0 on success, 1 on a failed check."""
 import argparse
+import json
 import math
 import pathlib
 import subprocess
@@ -142,6 +144,13 @@ def check_case(out, name, position, look_at, level):
     if level:
         check(np.allclose(p2, np.hstack([k, np.zeros((3, 1))]), atol=1e-6),
               f"{name}: P2 {p2} is K [I | 0]")
+    # calib matches the intrinsics the capture exports (its sidecar's opencv fx, fy, cx, cy):
+    # P2 = K' [R | 0] with R a rotation, so P2[:, :3] P2[:, :3]^T = K' K'^T.
+    fx, fy, cx, cy = json.loads((out / (name + ".json")).read_text())[
+        "camera"]["derived"]["opencv_fx_fy_cx_cy"]
+    exported = np.array([[fx, 0, cx], [0, fy, cy], [0, 0, 1]])
+    check(np.allclose(p2[:, :3] @ p2[:, :3].T, exported @ exported.T, rtol=1e-9, atol=1e-9)
+          and np.allclose(p2[:, 3], 0), f"{name}: P2 {p2} is the exported K {exported} [R | 0]")
     labels = [line.split() for line in (kitti / "label_2" / "000000.txt").read_text().splitlines()]
     check(all(len(fields) == 15 for fields in labels), f"{name}: 15 fields per label")
     by_type = {fields[0]: [float(v) for v in fields[1:]] for fields in labels}
