@@ -164,6 +164,7 @@ py::dict captureDict(const Owner& o) {
     out["sensor_film"] = image(o, r.sensorFilm);
   }
   if (!r.aovs.pixels.empty()) out["aovs"] = aovLayers(o);
+  if (!r.sampleCounts.pixels.empty()) out["spp"] = image(o, r.sampleCounts);
   const py::module_ json = py::module_::import("json");
   py::dict meta = json.attr("loads")(o->sidecarJson);
   meta["pose"] = json.attr("loads")(o->posesJson);

@@ -158,6 +158,7 @@ own buffers (no copy; each array keeps the whole capture alive, docs/python.md):
   display    float32 (H, W, 3)  through OpenColorIO's display/view/look (sRGB: 0–1)
   display8   uint8   (H, W, 3)  display quantised: NAME.png's pixels
   aovs       dict layer → array (depth (H, W) m, P (H, W, 3) m, N …, instance (H, W) uint32 …)
+  spp        float32 (H, W)     adaptive sampling only: each pixel's samples (NAME.exr's spp)
 with a sensor also
   electrons  float32 (H, W, C)  expected e⁻ per photosite of the developed frame, noise-free
   raw        uint16  (H, W)     its digital numbers (DN; a stacked sensor: dict plane → array)

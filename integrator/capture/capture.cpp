@@ -222,6 +222,7 @@ void renderFilm(const Scene& scene, const RenderOptions& o, CaptureResult& out) 
   if (desc.sensor) out.sensorFilm = std::move(film.images[1]);
   out.aovs = std::move(film.aovs);
   out.oddHalf = std::move(film.oddHalf);
+  out.sampleCounts = std::move(film.sampleCounts);
 }
 
 // Steps 2–6 once the film is there; step 4 renders on `scenes`.
@@ -350,6 +351,7 @@ SequenceSummary captureSequence(SceneDescription description, const CaptureOptio
       out.film = first.film;
       out.sensorFilm = first.sensorFilm;
       out.aovs = first.aovs;
+      out.sampleCounts = first.sampleCounts;
       out.tilesDone = out.tilesTotal = first.tilesTotal;
     }
     CaptureScene scenes(scene);
@@ -364,6 +366,7 @@ SequenceSummary captureSequence(SceneDescription description, const CaptureOptio
       first.film = out.film;
       first.sensorFilm = out.sensorFilm;
       first.aovs = out.aovs;
+      first.sampleCounts = out.sampleCounts;
       first.tilesTotal = out.tilesTotal;
     }
     onFrame(std::move(out), k);

@@ -86,6 +86,7 @@ struct CaptureResult {
   Image sensorFilm;  // with a sensor: expected e⁻ at the scene's exposure time; else empty
   Image aovs;        // the ground truth render.aovs asks for (aov_film.h); else empty
   Image oddHalf;     // RenderResult::oddHalf: for a tile part's error estimate at the merge
+  Image sampleCounts;  // adaptive sampling: each pixel's samples (channel "spp"); else empty
 
   double exposureScale = 1.0;               // auto-exposure's factor on every frame's exposure time
   std::vector<CaptureFrame> frames;         // with a sensor: one per bracket, in the scene's order

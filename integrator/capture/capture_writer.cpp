@@ -215,7 +215,8 @@ WrittenCapture writeCapture(const CaptureResult& result, const CaptureOutputOpti
   checkPoseExports(desc);  // before any file: its models must be writable (a merge's parts)
   const Metadata meta = filmMetadata(result, options.reproducible);
   OutputSet outputs(options.directory);
-  writeExr(outputs.add(desc.name + ".exr"), withLayers(xyzExrImage(result.film), result.aovs),
+  writeExr(outputs.add(desc.name + ".exr"),
+           withLayers(withLayers(xyzExrImage(result.film), result.aovs), result.sampleCounts),
            withCryptomatte(meta, desc), rec709Chromaticities());
   if (options.aovPreviews && !result.aovs.pixels.empty())
     for (const AovPreview& p : aovPreviews(result.aovs))

@@ -116,7 +116,10 @@ def test_adaptive_sampling_is_recorded_and_the_same_on_any_thread_count():
     adaptive = a["meta"]["render"]["adaptive"]
     assert adaptive["threshold"] == 0.3 and adaptive["min_spp"] == 6  # max(4, ceil(sqrt 32)) even
     assert 6 <= adaptive["mean_spp"] < 32 and a["meta"]["render"]["spp"] == 32
+    spp = a["spp"]  # each pixel's samples: their mean is mean_spp
+    assert spp.shape == a["xyz"].shape[:2] and 6 <= spp.min() and spp.max() <= 32
+    assert abs(float(spp.mean(dtype=np.float64)) - adaptive["mean_spp"]) < 1e-9
     plain = camsim.capture(camsim.Scene.from_dict(small_scene(seed=4, spp=32)), threads=2)
-    assert "adaptive" not in plain["meta"]["render"]
+    assert "adaptive" not in plain["meta"]["render"] and "spp" not in plain
     assert camsim.capture(scene, threads=2, adaptive_threshold=1e-9)["xyz"].tobytes() == \
         plain["xyz"].tobytes()  # nothing converges: the fixed render

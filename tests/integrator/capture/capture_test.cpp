@@ -170,5 +170,37 @@ TEST(Capture, AovsAreLayersOfTheFilmExr) {
   EXPECT_NE(json.find("\"aovs\": [\"depth\", \"normal\"]"), std::string::npos) << json;
 }
 
+// Adaptive sampling: each pixel's sample count is the `spp` channel of NAME.exr, between the
+// minimum and the scene's spp, averaging the render's mean_spp.
+TEST(Capture, AnAdaptiveRendersSampleCountsAreALayerOfTheFilmExr) {
+  SceneDescription d = plane("");
+  d.render.spp = 32;
+  d.render.adaptiveThreshold = 0.05;
+  d.render.adaptiveMinSpp = 4;
+  const CaptureResult r = capture(d);
+  camsim::test::TempDir dir;
+  writeCapture(r, {dir.path(), {}});
+  const ExrFile exr = readExr(dir.path() / (r.description.name + ".exr"));
+  const int c = exr.image.channelIndex("spp");
+  ASSERT_GE(c, 0);
+  double sum = 0.0;
+  float lo = 1e9f, hi = 0.0f;
+  for (int y = 0; y < exr.image.height; ++y)
+    for (int x = 0; x < exr.image.width; ++x) {
+      const float n = exr.image.at(x, y, c);
+      sum += n;
+      lo = std::min(lo, n);
+      hi = std::max(hi, n);
+    }
+  EXPECT_GE(lo, 4.0f);
+  EXPECT_LE(hi, 32.0f);
+  EXPECT_LT(lo, hi) << "the plane's edge and its flat inside take different counts";
+  EXPECT_NEAR(sum / (exr.image.width * exr.image.height), r.stats.meanSpp, 1e-6);
+  // A fixed render has no such layer.
+  d.render.adaptiveThreshold.reset();
+  const CaptureResult fixed = capture(d);
+  EXPECT_TRUE(fixed.sampleCounts.pixels.empty());
+}
+
 }  // namespace
 }  // namespace camsim
