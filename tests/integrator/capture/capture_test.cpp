@@ -188,7 +188,7 @@ TEST(Capture, AnAdaptiveRendersSampleCountsAreALayerOfTheFilmExr) {
   for (int y = 0; y < exr.image.height; ++y)
     for (int x = 0; x < exr.image.width; ++x) {
       const float n = exr.image.at(x, y, c);
-      sum += n;
+      sum += double{n};
       lo = std::min(lo, n);
       hi = std::max(hi, n);
     }
