@@ -75,7 +75,7 @@ struct Reader {
           case TINYGLTF_COMPONENT_TYPE_FLOAT: {
             float f;
             std::memcpy(&f, q, 4);
-            x = f;
+            x = static_cast<double>(f);
             break;
           }
           case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:

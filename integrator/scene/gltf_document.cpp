@@ -103,7 +103,7 @@ void readImages(const tinygltf::Model& model, GltfDocument& doc, const std::stri
                                                 static_cast<unsigned>(im.image[o + 1]) << 8;
           v = raw * scale;
         } else if (c < 3 && comps < 3) {
-          v = texels->values[p * 4];  // grey: R = G = B
+          v = static_cast<double>(texels->values[p * 4]);  // grey: R = G = B
         }
         texels->values[p * 4 + c] = static_cast<float>(v);
       }
