@@ -96,13 +96,7 @@ std::unique_ptr<CLI::App> renderApp(RenderArgs& r) {
          "scene file, YAML or JSON (docs/scene-format.md); none: the built-in Cornell box")
       ->type_name("SCENE");
   addOutputOption(*app, r.outputDir, "output directory (created if missing; default: out)");
-  app->add_option_function<std::string>(
-         "--threads",
-         [&r](const std::string& t) {
-           r.threads = static_cast<int>(parseInteger("--threads", t, 1, 1024));
-         },
-         "worker threads (default: all cores); the image does not depend on it")
-      ->type_name("N");
+  addThreadsOption(*app, r.threads, "the image does not depend on it");
   app->add_option_function<std::string>(
          "--max-memory-gb",
          [&r](const std::string& t) { r.maxMemoryGb = parsePositive("--max-memory-gb", t, 1e9); },

@@ -95,14 +95,7 @@ std::unique_ptr<CLI::App> benchApp(BenchArgs& b) {
   addDirectoryOption(*app, "-o,--out", b.outputDir,
                      "output directory (default bench-out/): bench.csv, bench_limit.csv, "
                      "bench.txt and bench.png (the plot needs python3-matplotlib)");
-  // --threads is a plain int: 0 (all cores) unless given.
-  app->add_option_function<std::string>(
-         "--threads",
-         [&b](const std::string& t) {
-           b.threads = static_cast<int>(parseInteger("--threads", t, 1, 1024));
-         },
-         "worker threads (default: all cores) [1, 1024]")
-      ->type_name("N");
+  addThreadsOption(*app, b.threads, "each scene's renders use them");
   addListOption(*app, "--scenes", b.scenes,
                 "scenes to run: suite names or scene files (default: the suite)");
   addIntegerOption(*app, "--max-spp", b.maxSpp, 1, 65536,

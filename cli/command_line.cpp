@@ -77,6 +77,16 @@ void addPictureOptions(CLI::App& app, std::string& ocioConfig, std::string& disp
   app.add_option("--look", look, "look (default: none)")->type_name("L")->group(group);
 }
 
+void addThreadsOption(CLI::App& app, int& threads, const std::string& what) {
+  app.add_option_function<std::string>(
+         "--threads",
+         [&threads](const std::string& t) {
+           threads = static_cast<int>(parseInteger("--threads", t, 1, 1024));
+         },
+         "worker threads [1, 1024] (default: all cores); " + what)
+      ->type_name("N");
+}
+
 void addOutputOption(CLI::App& app, std::string& dir, const std::string& help) {
   app.add_option_function<std::string>(
          "-o,--output",

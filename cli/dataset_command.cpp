@@ -63,13 +63,7 @@ std::unique_ptr<CLI::App> datasetApp(DatasetArgs& a) {
          "--item", [&a](const std::string& t) { a.item = count("--item", t, 0); },
          "render only item N (of this shard)")
       ->type_name("N");
-  app->add_option_function<std::string>(
-         "--threads",
-         [&a](const std::string& t) {
-           a.threads = static_cast<int>(parseInteger("--threads", t, 0, 4096));
-         },
-         "worker threads (default: all cores)")
-      ->type_name("N");
+  addThreadsOption(*app, a.threads, "the items' bytes do not depend on it");
   app->add_flag("--check", a.check,
                 "check the manifest and every item, print the item count, render nothing");
   app->add_option_function<std::string>(
