@@ -83,9 +83,9 @@ struct CaptureResult {
   int tilesDone = 0, tilesTotal = 0;
   bool sceneReused = false;  // step 1 rendered on options.sceneCache's Scene, not a new one
   Image film;                // CIE XYZ: energy × 683 lm/W per photosite (Y in lm·s), absolute
-  Image sensorFilm;  // with a sensor: expected e⁻ at the scene's exposure time; else empty
-  Image aovs;        // the ground truth render.aovs asks for (aov_film.h); else empty
-  Image oddHalf;     // RenderResult::oddHalf: for a tile part's error estimate at the merge
+  Image sensorFilm;    // with a sensor: expected e⁻ at the scene's exposure time; else empty
+  Image aovs;          // the ground truth render.aovs asks for (aov_film.h); else empty
+  Image oddHalf;       // RenderResult::oddHalf: for a tile part's error estimate at the merge
   Image sampleCounts;  // adaptive sampling: each pixel's samples (channel "spp"); else empty
 
   double exposureScale = 1.0;               // auto-exposure's factor on every frame's exposure time

@@ -1,5 +1,6 @@
 #include "integrator/capture/capture_run.h"
 
+#include <algorithm>
 #include <utility>
 
 #include "integrator/capture/kitti_writer.h"
@@ -55,11 +56,16 @@ WrittenCapture CaptureRunWriter::write(const CaptureResult& result) {
   }
   if (d.exportsTo(ExportFormat::kKitti)) {
     const int first = d.frames ? d.frames->first : 0;
+    std::vector<std::string> notes;
     for (auto& f : writeKittiFrame(result, out_.directory, first + static_cast<int>(frames_.size()),
-                                   &skipped_)) {
+                                   &notes)) {
       files_.push_back(f);
       written.files.push_back(std::move(f));
     }
+    // Each note once for the sequence, not once per frame.
+    for (std::string& n : notes)
+      if (std::find(skipped_.begin(), skipped_.end(), n) == skipped_.end())
+        skipped_.push_back(std::move(n));
   }
   frames_.push_back(datasetFrame(result));
   return written;

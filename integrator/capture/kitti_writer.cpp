@@ -3,8 +3,11 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
+#include <cstdio>
 #include <numbers>
 #include <optional>
+#include <string>
 
 #include <glm/geometric.hpp>
 #include <glm/matrix.hpp>
@@ -31,8 +34,10 @@ double wrapAngle(double a) {
 glm::dmat3 cameraFromRect(const glm::dmat4& cameraFromRender) {
   const glm::dvec3 down = glm::normalize(glm::dmat3(cameraFromRender) * glm::dvec3(0, -1, 0));
   glm::dvec3 forward = glm::dvec3(0, 0, 1) - down * down.z;
-  // A camera looking straight up or down: its own y as forward instead.
-  if (glm::length(forward) < 1e-9) forward = glm::dvec3(0, 1, 0) - down * down.y;
+  // A camera looking straight down (up): forward is where the image's top (bottom) faces, the
+  // limit of a camera tilted ever further — its −y (+y).
+  if (glm::length(forward) < 1e-9)
+    forward = glm::dvec3(0, down.z > 0.0 ? -1.0 : 1.0, 0) - down * down.y;
   forward = glm::normalize(forward);
   return glm::dmat3(glm::cross(down, forward), down, forward);
 }
@@ -82,6 +87,11 @@ KittiFrame kittiFrame(const CaptureResult& result) {
   for (int r = 0; r < 3; ++r)
     for (int c = 0; c < 3; ++c) f.p2[static_cast<std::size_t>(4 * r + c)] = kr[c][r];
   const double w = d.camera.resolution.x, h = d.camera.resolution.y;
+  const double tilt = std::acos(std::clamp(camRect[2].z, -1.0, 1.0)) * 180.0 / std::numbers::pi;
+  if (tilt > 1.0)
+    f.skipped.push_back("kitti: the camera is " + formatNumber(tilt, 3) +
+                        "° off level: P2 = K R (rect stays level), so a reader that takes fx, fy, "
+                        "cx, cy from P2's entries needs K from cameras.json or NAME.json instead");
 
   for (const ObjectPose& pose : objectPoses(d, d.camera)) {
     const ShapeDescription& s = d.shapes[pose.shape];
@@ -99,7 +109,7 @@ KittiFrame kittiFrame(const CaptureResult& result) {
     l.y = at.y;
     l.z = at.z;
     const glm::dvec3 ax = rectFromModel * glm::dvec3(1, 0, 0);
-    l.rotationY = wrapAngle(std::atan2(-ax.z, ax.x));
+    l.rotationY = std::atan2(-ax.z, ax.x);  // in [−π, π]
     l.alpha = wrapAngle(l.rotationY - std::atan2(l.x, l.z));
     if (glm::dot(rectFromModel * glm::dvec3(0, 1, 0), glm::dvec3(0, -1, 0)) < kUprightCos)
       f.skipped.push_back("kitti: '" + s.label +
@@ -114,7 +124,8 @@ KittiFrame kittiFrame(const CaptureResult& result) {
       const double ly = i & 4 ? -l.h : 0.0;
       const glm::dvec3 p(c * lx + sn * lz + l.x, ly + l.y, -sn * lx + c * lz + l.z);
       const glm::dvec3 q = kr * p;
-      if ((camRect * p).z < kNearest) behind = true;
+      // Behind the camera's plane, or behind rect's (where devkit readers drop a box).
+      if ((camRect * p).z < kNearest || p.z < kNearest) behind = true;
       const glm::dvec2 uv(q.x / q.z, q.y / q.z);
       lo = glm::min(lo, uv);
       hi = glm::max(hi, uv);
@@ -126,7 +137,10 @@ KittiFrame kittiFrame(const CaptureResult& result) {
     const double boxArea = (hi.x - lo.x) * (hi.y - lo.y);
     const double inW = std::max(0.0, std::min(hi.x, w - 0.5) - std::max(lo.x, -0.5));
     const double inH = std::max(0.0, std::min(hi.y, h - 0.5) - std::max(lo.y, -0.5));
-    if (inW <= 0.0 || inH <= 0.0) continue;  // outside the image
+    // Outside the image (no note): the clipped box would have no width or height.
+    if (std::min(hi.x, w - 1.0) <= std::max(lo.x, 0.0) ||
+        std::min(hi.y, h - 1.0) <= std::max(lo.y, 0.0))
+      continue;
     l.truncated = boxArea > 0.0 ? std::clamp(1.0 - inW * inH / boxArea, 0.0, 1.0) : 0.0;
     l.left = std::clamp(lo.x, 0.0, w - 1.0);
     l.right = std::clamp(hi.x, 0.0, w - 1.0);
@@ -161,18 +175,19 @@ std::vector<std::filesystem::path> writeKittiFrame(const CaptureResult& result,
               n(l.h) + " " + n(l.w) + " " + n(l.l) + " " + n(l.x) + " " + n(l.y) + " " + n(l.z) +
               " " + n(l.rotationY) + "\n";
   }
-  std::vector<std::filesystem::path> files;
-  for (const char* sub : {"image_2", "calib", "label_2"}) {
+  // All three written, then committed together: no image without its calib and labels.
+  const std::string name(id);
+  for (const char* sub : {"image_2", "calib", "label_2"})
     (void)OutputSet::prepareDirectory(root / sub);
-    OutputSet set(root / sub);
-    const std::string name = std::string(id) + (std::string(sub) == "image_2" ? ".png" : ".txt");
-    if (std::string(sub) == "image_2")
-      std::filesystem::copy_file(directory / (result.description.name + ".png"), set.add(name),
-                                 std::filesystem::copy_options::overwrite_existing);
-    else
-      set.addText(name, std::string(sub) == "calib" ? calib : labels);
-    for (auto& file : set.commit()) files.push_back(std::move(file));
-  }
+  OutputSet image(root / "image_2"), calibSet(root / "calib"), labelSet(root / "label_2");
+  std::filesystem::copy_file(directory / (result.description.name + ".png"),
+                             image.add(name + ".png"),
+                             std::filesystem::copy_options::overwrite_existing);
+  calibSet.addText(name + ".txt", calib);
+  labelSet.addText(name + ".txt", labels);
+  std::vector<std::filesystem::path> files;
+  for (OutputSet* set : {&image, &calibSet, &labelSet})
+    for (auto& file : set->commit()) files.push_back(std::move(file));
   if (skipped) skipped->insert(skipped->end(), f.skipped.begin(), f.skipped.end());
   return files;
 }

@@ -8,7 +8,8 @@
 //   kitti/calib/IIIIII.txt     P0, P1, P2, P3 (3×4, row-major), R0_rect (3×3), Tr_velo_to_cam,
 //                              Tr_imu_to_velo (3×4): one camera, so P0 = P1 = P2 = P3; no
 //                              lidar or IMU, so both Tr are [I | 0]
-//   kitti/label_2/IIIIII.txt   one line per labelled shape in front of the camera:
+//   kitti/label_2/IIIIII.txt   one line per labelled shape in front of the camera and in
+//                              the image:
 //                              type truncated occluded alpha left top right bottom h w l x y z
 //                              rotation_y
 //
@@ -29,8 +30,10 @@
 // | truncated    | —    | 1 − area(box ∩ image) / area(box) of those bounds before the clip |
 // | occluded     | —    | from the masks' visible fraction v (amodal aov, bop_writer.h's rule): 0 if v ≥ 0.95, 1 if v ≥ 0.5, 2 below; 3 (unknown) without the amodal channels |
 // A shape whose model is not upright (its y not within 10° of world up) is labelled with its
-// box turned into rect regardless (a skipped line says which); one with a corner of its box
-// behind 0.1 m in front of the camera is left out.
+// box turned into rect regardless (a note says which); one with a corner of its box nearer
+// than 0.1 m along the camera's or rect's z is left out with a note; one whose clipped box
+// would be empty, silently. A camera more than 1° off level gets a note: P2 = K R, so
+// readers that take K from P2's entries need a level camera.
 #pragma once
 
 #include <filesystem>

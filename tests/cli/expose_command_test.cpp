@@ -165,8 +165,7 @@ TEST(ExposeBinary, BadInputExitsTwoNamingFileAndKeyAndWritesNothing) {
   // --threads with every command's range (command_line.h's addThreadsOption).
   r = expose(quote(raw.string()) + " --threads -3");
   EXPECT_EQ(r.exitCode, 2);
-  EXPECT_NE(r.err.find("--threads must be in [1, 1024], got -3"), std::string::npos)
-      << r.err;
+  EXPECT_NE(r.err.find("--threads must be in [1, 1024], got -3"), std::string::npos) << r.err;
   // A sensor calibrated from ISO 50 to 800 (the preset, renamed, with an iso_table).
   std::string text = readFile(fs::path(CAMSIM_LUTS_DIR) / "sensors" / "smartphone-1.4um.yaml");
   text += "\niso_table:\n  - {iso: 50}\n  - {iso: 800}\n";

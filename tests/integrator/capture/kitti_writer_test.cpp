@@ -16,6 +16,8 @@
 #include "integrator/capture/bop_writer.h"
 #include "integrator/scene/scene_loader.h"
 #include "sensor/base/input_error.h"
+#include "tests/support/temp_dir.h"
+#include "tests/support/text_file.h"
 
 namespace camsim {
 namespace kitti_writer_test {
@@ -176,19 +178,54 @@ TEST(KittiWriter, ABoxBehindTheCameraIsLeftOutSaying) {
   EXPECT_NE(f.skipped[0].find("behind the camera"), std::string::npos) << f.skipped[0];
 }
 
-// occluded from the masks: 10 amodal pixels of which 6, 9 or 10 visible → 1, 1, 0; 4 → 2.
+// occluded from the masks: of 20 amodal pixels 20 or 19 visible (≥ 0.95) → 0; 18 … 10
+// (≥ 0.5) → 1; 9 → 2.
 TEST(KittiWriter, OccludedIsTheVisibleFractionsClass) {
-  for (const auto& [visible, want] : {std::pair{10, 0}, {9, 1}, {6, 1}, {5, 1}, {4, 2}}) {
+  for (const auto& [visible, want] :
+       {std::pair{20, 0}, {19, 0}, {18, 1}, {12, 1}, {10, 1}, {9, 2}}) {
     CaptureResult r = described(sceneText({0, 0.3, -3}, {0, 0.3, 0}));
     r.aovs = Image(kW, kH, {"amodal_1.A", "visible_1.A"});
-    for (int x = 0; x < 10; ++x) {
+    for (int x = 0; x < 20; ++x) {
       r.aovs.at(x, 0, 0) = 1.0f;
       r.aovs.at(x, 0, 1) = x < visible ? 0.75f : 0.25f;  // coverage ≥ ½ counts
     }
     const KittiFrame f = kittiFrame(r);
     ASSERT_EQ(f.labels.size(), 1U);
-    EXPECT_EQ(f.labels[0].occluded, want) << visible << " of 10 visible";
+    EXPECT_EQ(f.labels[0].occluded, want) << visible << " of 20 visible";
   }
+}
+
+// Looking straight down from 3 m up with the image's top towards world +z (`up`): rect's
+// forward is where the image's top faces — the limit of a camera tilted ever further down —
+// so a box 0.6 m that way is 0.6 m ahead (the wrong limit puts it behind and leaves it out),
+// and the 90° tilt gets its note.
+TEST(KittiWriter, AStraightDownCamerasRectLooksWhereTheImagesTopFaces) {
+  std::string text = sceneText({0.2, 3, -0.6}, {0.2, 0, -0.6});
+  text.replace(text.find("resolution:"), 0, "up: [0, 0, 1], ");
+  const KittiFrame f = kittiFrame(described(text));
+  ASSERT_EQ(f.labels.size(), 1U);
+  const KittiLabel& l = f.labels[0];
+  EXPECT_NEAR(l.x, 0.0, 1e-9);
+  EXPECT_NEAR(l.y, 3.0, 1e-9);
+  EXPECT_NEAR(l.z, 0.6, 1e-9);
+  EXPECT_NEAR(l.rotationY, 150.0 * std::numbers::pi / 180.0, 1e-9);
+  ASSERT_EQ(f.skipped.size(), 1U);
+  EXPECT_NE(f.skipped[0].find("90° off level"), std::string::npos) << f.skipped[0];
+}
+
+// A frame whose one box is left out still writes its three files, the label file empty.
+TEST(KittiWriter, AFrameWithoutLabelsWritesAnEmptyLabelFile) {
+  CaptureResult r = described(sceneText({0, 0.3, 2}, {0, 0.3, 5}));
+  const camsim::test::TempDir dir;
+  camsim::test::writeFile(dir.path() / (r.description.name + ".png"), "png");
+  std::vector<std::string> notes;
+  const auto files = writeKittiFrame(r, dir.path(), 7, &notes);
+  EXPECT_EQ(files.size(), 3U);
+  EXPECT_EQ(camsim::test::readFile(dir.path() / "kitti/image_2/000007.png"), "png");
+  EXPECT_EQ(camsim::test::readFile(dir.path() / "kitti/label_2/000007.txt"), "");
+  EXPECT_EQ(camsim::test::readFile(dir.path() / "kitti/calib/000007.txt").substr(0, 4), "P0: ");
+  ASSERT_EQ(notes.size(), 1U);
+  EXPECT_NE(notes[0].find("behind the camera"), std::string::npos);
 }
 
 // A labelled shape whose keyframes scale it has no rigid pose: refused before rendering.
