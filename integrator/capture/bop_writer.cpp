@@ -13,8 +13,6 @@
 namespace camsim {
 namespace {
 
-constexpr double kInMask = 0.5;  // coverage at which a pixel is in a mask
-
 std::string sixDigits(long v) {
   char buf[24];
   std::snprintf(buf, sizeof buf, "%06ld", v);
@@ -49,7 +47,7 @@ Mask maskOf(const Image& aovs, int channel) {
   m.pixels.assign(static_cast<std::size_t>(aovs.width) * static_cast<std::size_t>(aovs.height), 0);
   for (int y = 0; y < aovs.height; ++y)
     for (int x = 0; x < aovs.width; ++x) {
-      if (!(double(aovs.at(x, y, channel)) >= kInMask)) continue;
+      if (!(double(aovs.at(x, y, channel)) >= kMaskCoverage)) continue;
       m.pixels[static_cast<std::size_t>(y) * static_cast<std::size_t>(aovs.width) +
                static_cast<std::size_t>(x)] = 255;
       if (m.count++ == 0) m.x0 = m.x1 = x, m.y0 = m.y1 = y;

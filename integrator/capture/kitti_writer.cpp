@@ -20,7 +20,6 @@ namespace camsim {
 namespace {
 
 constexpr double kNearest = 0.1;             // m: a box corner nearer the camera is left out
-constexpr double kInMask = 0.5;              // coverage at which a pixel is in a mask (BOP's)
 constexpr double kUprightCos = 0.984807753;  // cos 10°
 
 double wrapAngle(double a) {
@@ -51,8 +50,8 @@ std::optional<double> visibleFraction(const Image& a, std::uint32_t instance) {
   std::uint64_t all = 0, visible = 0;
   for (int y = 0; y < a.height; ++y)
     for (int x = 0; x < a.width; ++x) {
-      all += double{a.at(x, y, am)} >= kInMask ? 1 : 0;
-      visible += double{a.at(x, y, vi)} >= kInMask ? 1 : 0;
+      all += double{a.at(x, y, am)} >= kMaskCoverage ? 1 : 0;
+      visible += double{a.at(x, y, vi)} >= kMaskCoverage ? 1 : 0;
     }
   if (all == 0) return std::nullopt;
   return static_cast<double>(visible) / static_cast<double>(all);

@@ -50,6 +50,10 @@ struct ObjectModel {
   double rounding = 0.0;
 };
 
+// The coverage at which a pixel is in an object's mask (the amodal aov's amodal_<n>.A and
+// visible_<n>.A): BOP's mask PNGs and pixel counts, KITTI's `occluded`.
+inline constexpr double kMaskCoverage = 0.5;
+
 struct ObjectPose {
   std::size_t shape = 0;                // index into SceneDescription::shapes
   std::uint32_t instance = 0;           // shape + 1: the instance number (scene_ids.h, AOV names)
