@@ -84,6 +84,28 @@ void collectCrossing(const RTCFilterFunctionNArguments* args) {
   }
 }
 
+// The intersection context of EmbreeScene::occluded(ray, ignored): the shapes whose hits
+// do not count (base first, as for CrossingContext).
+struct IgnoringContext {
+  RTCIntersectContext base;
+  const char* ignored;  // per shape: non-zero to ignore
+  std::size_t count;    // shapes listed
+};
+static_assert(std::is_standard_layout_v<IgnoringContext>);
+
+// The context filter of occluded(ray, ignored): rejects the candidate hits on ignored
+// shapes, so that traversal goes on to the others.
+void skipIgnored(const RTCFilterFunctionNArguments* args) {
+  const auto* c = reinterpret_cast<const IgnoringContext*>(args->context);
+  for (unsigned i = 0; i < args->N; ++i) {
+    if (args->valid[i] == 0) continue;
+    const unsigned instance = RTCHitN_instID(args->hit, args->N, i, 0);
+    const unsigned shape =
+        instance != RTC_INVALID_GEOMETRY_ID ? instance : RTCHitN_geomID(args->hit, args->N, i);
+    if (shape < c->count && c->ignored[shape]) args->valid[i] = 0;
+  }
+}
+
 // How a geometry's candidate hits are vetted: the per-shape filters (Embree's user data)
 // and the function asking them (filterHit, collectCrossing); null function: every hit
 // stands.
@@ -159,6 +181,7 @@ RTCGeometry instanceOf(RTCDevice device, RTCScene object, const std::vector<glm:
 // A scene holding one committed geometry (built at `quality`).
 RTCScene sceneOf(RTCDevice device, RTCGeometry geom, RTCBuildQuality quality) {
   RTCScene object = rtcNewScene(device);
+  rtcSetSceneFlags(object, RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION);  // occluded(ray, ignored)
   rtcSetSceneBuildQuality(object, quality);
   rtcAttachGeometry(object, geom);
   rtcReleaseGeometry(geom);
@@ -250,6 +273,7 @@ EmbreeScene::EmbreeScene(const std::vector<std::unique_ptr<Shape>>& shapes, doub
     if (const auto* instance = dynamic_cast<const MeshInstance*>(shapes[id].get()))
       if (impl_->filters[id]) filteredMeshes.insert(instance->mesh().get());
   impl_->scene = rtcNewScene(impl_->device);
+  rtcSetSceneFlags(impl_->scene, RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION);  // occluded(ray, ignored)
   size_t triangles = 0;  // in the top-level BVH: an instance counts as none
   for (size_t id = 0; id < shapes.size(); ++id)
     if (const auto* mesh = dynamic_cast<const TriangleMesh*>(shapes[id].get()))
@@ -364,9 +388,16 @@ bool EmbreeScene::intersect(const Ray& ray, Hit& hit) const {
 }
 
 bool EmbreeScene::occluded(const Ray& ray) const {
+  return occluded(ray, {});
+}
+
+bool EmbreeScene::occluded(const Ray& ray, std::span<const char> ignored) const {
   if (!traceable(ray)) return false;
-  RTCIntersectContext context;
-  rtcInitIntersectContext(&context);
+  IgnoringContext context;
+  rtcInitIntersectContext(&context.base);
+  context.ignored = ignored.data();
+  context.count = ignored.size();
+  if (!ignored.empty()) context.base.filter = skipIgnored;
   RTCRay r;
   r.org_x = ray.o.x;
   r.org_y = ray.o.y;
@@ -380,7 +411,7 @@ bool EmbreeScene::occluded(const Ray& ray) const {
   r.mask = 0xFFFFFFFFu;
   r.id = 0;
   r.flags = 0;
-  rtcOccluded1(impl_->scene, &context, &r);
+  rtcOccluded1(impl_->scene, &context.base, &r);
   return r.tfar < 0.0f;  // Embree sets tfar = −inf on occlusion
 }
 

@@ -28,6 +28,9 @@
 // passes through, as if nothing occluded anything — with one traversal: a filter on every
 // geometry lists the shape of each candidate hit and rejects it, so Embree goes on to the
 // ray's end. The holes of the shapes' HitFilters are skipped there too.
+// An occlusion query may ignore some shapes (occluded(ray, ignored)): a filter passed with
+// the query (Embree's context filter, run on every geometry after its own HitFilter)
+// rejects their hits; the other queries carry no such filter and pay nothing.
 #pragma once
 
 #include <cstddef>
@@ -59,6 +62,9 @@ class EmbreeScene {
   bool intersect(const Ray& ray, Hit& hit) const;
   // True if anything is hit with t in (0, ray.tMax).
   bool occluded(const Ray& ray) const;
+  // The same, hits on the shapes `ignored` marks (non-zero; one entry per shape, or
+  // empty: none ignored) not counting: one traversal, whose filter rejects their hits.
+  bool occluded(const Ray& ray, std::span<const char> ignored) const;
   // A crossings scene's: the shapes the ray passes through with t in (0, ray.tMax], each
   // once, whatever lies in front of them. Writes the first shapes.size() of them (shape
   // indices, in the order traversal met them) and returns how many there are (more than

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
+#include <span>
 
 #include <glm/geometric.hpp>
 #include <glm/matrix.hpp>
@@ -83,24 +84,11 @@ OcclusionFilm::~OcclusionFilm() = default;
 
 bool OcclusionFilm::hidden(const Ray& ray) const {
   if (moved_ && moved_->occluded(ray)) return true;
-  const EmbreeScene& geometry = scene_.geometry();
-  if (!anyKeyframed_) return geometry.occluded(ray);
   // The scene's BVH holds the keyframed shapes where they are during this frame's exposure:
-  // their hits are stepped over (by 10⁻⁶ of the segment, past the surface's rounding) until
-  // a shape without keyframes is hit or the segment ends.
-  constexpr int kMaxSteps = 1000;  // not reached by any scene with fewer layers on one ray
-  const float past = 1e-6f * ray.tMax;
-  Ray r = ray;
-  for (int i = 0; i < kMaxSteps; ++i) {
-    Hit hit;
-    if (!geometry.intersect(r, hit)) return false;
-    if (!keyframed_[static_cast<std::size_t>(hit.shape)]) return hit.t < r.tMax;
-    const float step = hit.t + past;
-    r.o = r.at(step);
-    r.tMax -= step;
-    if (!(r.tMax > 0.0f)) return false;
-  }
-  return false;
+  // their hits are rejected by the query's filter (one traversal), their copies in moved_
+  // stand for them.
+  return scene_.geometry().occluded(
+      ray, anyKeyframed_ ? std::span<const char>(keyframed_) : std::span<const char>());
 }
 
 OcclusionFilm::Seen OcclusionFilm::classify(const glm::dvec3& x, std::size_t j) const {

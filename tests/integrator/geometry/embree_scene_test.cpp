@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -220,6 +221,46 @@ TEST(EmbreeScene, FarFromTheOriginSpawnedRaysStillMissTheirOwnSurface) {
   ASSERT_NO_FATAL_FAILURE(traceTargets(scene, 5e-4f, stats));
   EXPECT_GT(stats.spawned, 100000);
   EXPECT_EQ(stats.selfHits, 0) << "of " << stats.spawned << " spawned rays";
+}
+
+// occluded(ray, ignored): hits on the shapes marked do not count, those behind them still
+// do, whatever the geometry: a static quad (shape 0) at z = 2, a moving sphere (1: an
+// instance) of radius 0.5 at z = 3 and a static sphere (2) at z = 4, on the ray from the
+// origin along +z.
+TEST(EmbreeScene, OcclusionIgnoresTheMarkedShapesOnly) {
+  const char* row = R"(
+camera: {position: [0, 0, 0], look_at: [0, 0, 1], sensor_width_mm: 36, sensor_height_mm: 24,
+         resolution: [36, 24], focal_length_mm: 50, shutter: {open: 0, close: 0.01}}
+materials: {grey: {type: diffuse, reflectance: 0.5}}
+shapes:
+  - {type: mesh, material: grey, vertices: [[-1, -1, 2], [1, -1, 2], [1, 1, 2], [-1, 1, 2]],
+     faces: [[0, 1, 2, 3]]}
+  - type: sphere
+    material: grey
+    centre: [0, 0, 0]
+    radius: 0.5
+    motion: [{time: 0, translate: [0, 0, 3]}, {time: 0.01, translate: [0.1, 0, 3]}]
+  - {type: sphere, material: grey, centre: [0, 0, 4], radius: 0.5}
+)";
+  const Scene scene(loadSceneFromText(row, "row.yaml", "."));
+  const EmbreeScene& geometry = scene.geometry();
+  const auto occluded = [&](float tMax, std::array<char, 3> ignored) {
+    Ray ray;
+    ray.o = glm::vec3(0.0f);
+    ray.d = glm::vec3(0.0f, 0.0f, 1.0f);
+    ray.tMax = tMax;
+    ray.time = 0.005;
+    return geometry.occluded(ray, ignored);
+  };
+  EXPECT_TRUE(occluded(5.0f, {0, 0, 0}));
+  EXPECT_TRUE(occluded(5.0f, {1, 0, 0}));  // the moving sphere behind the quad
+  EXPECT_TRUE(occluded(5.0f, {1, 1, 0}));  // the static sphere behind both
+  EXPECT_TRUE(occluded(5.0f, {0, 1, 1}));
+  EXPECT_TRUE(occluded(5.0f, {1, 0, 1}));
+  EXPECT_FALSE(occluded(5.0f, {1, 1, 1}));
+  EXPECT_FALSE(occluded(2.4f, {1, 0, 0}));  // the moving sphere begins at z = 2.5
+  EXPECT_TRUE(occluded(2.6f, {1, 0, 0}));
+  EXPECT_FALSE(occluded(3.4f, {1, 1, 0}));  // the static sphere begins at z = 3.5
 }
 
 }  // namespace
