@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <utility>
 
+#include "integrator/scene/scene_ids.h"
 #include "sensor/base/format.h"
 #include "sensor/io/output_set.h"
 #include "sensor/io/png_io.h"
@@ -81,8 +82,15 @@ BopWriter::BopWriter(std::filesystem::path directory, int sceneId)
 
 std::vector<std::filesystem::path> BopWriter::addFrame(const CaptureResult& r, int imageId) {
   const SceneDescription& d = r.description;
-  if (!modelsKnown_) {
+  if (!modelsKnown_) {  // once: a sequence's frames share their shapes
     models_ = bopModels(d);
+    const SceneIds ids = sceneIds(d);
+    const IdTable& classes = ids[IdKind::kClass];
+    shapeModels_.assign(d.shapes.size(), nullptr);
+    for (std::size_t s = 0; s < d.shapes.size(); ++s)
+      for (const BopModel& m : models_)
+        if (classes.ofShape[s] != 0 && m.objId == classes.numbers[classes.ofShape[s]])
+          shapeModels_[s] = &m.model;
     modelsKnown_ = true;
   }
   const std::string image = sixDigits(imageId), key = std::to_string(imageId);
@@ -121,7 +129,7 @@ std::vector<std::filesystem::path> BopWriter::addFrame(const CaptureResult& r, i
                        .set("cam_t_w2c", millimetres(glm::dvec3(cameraFromWorld[3])))
                        .setJson("depth_scale", n(depthScale)));
 
-  const std::vector<ObjectPose> poses = objectPoses(d, d.camera);
+  const std::vector<ObjectPose> poses = objectPoses(d, d.camera, shapeModels_);
   std::vector<JsonObject> gt, info;
   std::vector<std::pair<int, int>> channels;  // per annotation: amodal, visible
   for (const ObjectPose& p : poses) {

@@ -91,6 +91,7 @@ class BopWriter {
  private:
   std::filesystem::path directory_, scene_;
   std::vector<BopModel> models_;
+  std::vector<const ObjectModel*> shapeModels_;  // per shape: its obj_id's model (null: none)
   bool modelsKnown_ = false;
   bool masks_ = true;  // every frame so far had the amodal channels
   JsonObject camera_, gt_, gtInfo_;

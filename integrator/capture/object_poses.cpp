@@ -14,6 +14,7 @@
 #include <glm/matrix.hpp>
 
 #include "integrator/scene/scene_ids.h"
+#include "sensor/base/check.h"
 #include "sensor/base/format.h"
 #include "sensor/base/input_error.h"
 
@@ -147,6 +148,12 @@ glm::dmat4 cameraCvFromRender(const PhysicalCamera& camera, double t) {
 }
 
 std::vector<ObjectPose> objectPoses(const SceneDescription& d, const PhysicalCameraParams& params) {
+  return objectPoses(d, params, {});
+}
+
+std::vector<ObjectPose> objectPoses(const SceneDescription& d, const PhysicalCameraParams& params,
+                                    std::span<const ObjectModel* const> models) {
+  CAMSIM_CHECK(models.empty() || models.size() == d.shapes.size());
   const PhysicalCamera camera(params);
   const double t = params.shutter.centre();
   const glm::dmat4 cameraFromRender = cameraCvFromRender(camera, t);
@@ -155,7 +162,9 @@ std::vector<ObjectPose> objectPoses(const SceneDescription& d, const PhysicalCam
   std::vector<ObjectPose> poses;
   for (std::size_t i = 0; i < d.shapes.size(); ++i) {
     if (classes.ofShape[i] == 0) continue;  // unlabelled
-    const ObjectModel model = objectModel(d, i);
+    const ObjectModel* given = models.empty() ? nullptr : models[i];
+    const ObjectModel made = given ? ObjectModel{} : objectModel(d, i);
+    const ObjectModel& model = given ? *given : made;
     const glm::dmat4 m = cameraFromRender * renderFromModel(d.shapes[i], t);
     ObjectPose p;
     p.shape = i;

@@ -28,6 +28,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include <glm/mat3x3.hpp>
@@ -78,5 +79,12 @@ glm::dmat4 cameraCvFromRender(const PhysicalCamera& camera, double t);
 // The poses of every labelled shape of d, in shape order, with `camera` (a frame's camera:
 // description.camera of a capture or of a sequence's frame) at its reference time.
 std::vector<ObjectPose> objectPoses(const SceneDescription& d, const PhysicalCameraParams& camera);
+
+// The same with the models already made, so that none is rebuilt (a sequence's writers
+// pose every frame): models[i] is d.shapes[i]'s model or one standing for it (BOP: its
+// obj_id's), null for an unlabelled shape (size: d.shapes.size()). A pose's box is its
+// model's. A labelled shape given null has its model made here.
+std::vector<ObjectPose> objectPoses(const SceneDescription& d, const PhysicalCameraParams& camera,
+                                    std::span<const ObjectModel* const> models);
 
 }  // namespace camsim

@@ -227,5 +227,40 @@ TEST(ObjectPoses, AShapeWhoseScaleChangesHasNoRigidPose) {
   }
 }
 
+// Models given (as a sequence's BOP writer keeps them): the same poses bit for bit, each
+// box the given model's; a labelled shape given none has its own model made; an unlabelled
+// one has no pose.
+TEST(ObjectPoses, GivenModelsGiveTheSamePosesWithTheirBoxes) {
+  const std::string text = cameraText() +
+                           "materials: {m: {type: diffuse}}\n"
+                           "shapes:\n"
+                           "  - {type: sphere, centre: [0.5, 0, 1], radius: 0.2, class: 4, "
+                           "material: m}\n"
+                           "  - {type: sphere, centre: [0, 0, 0], radius: 1, material: m}\n"
+                           "  - {type: sphere, centre: [-0.5, 0.1, 2], radius: 0.2, class: 4, "
+                           "material: m}\n"
+                           "  - {type: sphere, centre: [0, -0.3, 2], radius: 0.3, class: 5, "
+                           "material: m}\n";
+  const SceneDescription d = loadSceneFromText(text, "given.yaml", ".");
+  const std::vector<ObjectPose> made = objectPoses(d, d.camera);
+  const ObjectModel own = objectModel(d, 0);
+  ObjectModel other;  // a stand-in with a box of its own
+  other.boxMin = glm::dvec3(-1.0, -2.0, -3.0);
+  other.boxMax = glm::dvec3(1.0, 2.0, 3.0);
+  const std::vector<const ObjectModel*> models{&own, nullptr, &other, nullptr};
+  const std::vector<ObjectPose> given = objectPoses(d, d.camera, models);
+  ASSERT_EQ(made.size(), 3u);
+  ASSERT_EQ(given.size(), 3u);
+  for (std::size_t i = 0; i < 3; ++i) {
+    EXPECT_EQ(given[i].shape, made[i].shape);
+    EXPECT_EQ(given[i].classNumber, made[i].classNumber);
+    EXPECT_TRUE(given[i].rotation == made[i].rotation) << i;
+    EXPECT_TRUE(given[i].translation == made[i].translation) << i;
+  }
+  EXPECT_TRUE(given[0].boxMin == own.boxMin && given[0].boxMax == own.boxMax);
+  EXPECT_TRUE(given[1].boxMin == other.boxMin && given[1].boxMax == other.boxMax);
+  EXPECT_TRUE(given[2].boxMin == made[2].boxMin && given[2].boxMax == made[2].boxMax);
+}
+
 }  // namespace object_poses_test
 }  // namespace camsim
