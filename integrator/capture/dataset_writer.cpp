@@ -9,6 +9,7 @@
 
 #include "integrator/camera/physical_camera.h"
 #include "integrator/capture/camera_export.h"
+#include "integrator/capture/object_poses.h"
 #include "sensor/base/format.h"
 #include "sensor/io/json_writer.h"
 #include "sensor/io/output_set.h"
@@ -104,9 +105,8 @@ DatasetFrame datasetFrame(const CaptureResult& r) {
 }
 
 glm::dmat4 worldFromCameraOpenCv(const DatasetFrame& frame, const PhysicalCamera& camera) {
-  glm::dmat4 m = camera.worldFromCameraAt(frame.camera.shutter.centre());
-  m[1] = -m[1];  // camsim's up → OpenCV's down
-  m[3] += glm::dvec4(frame.renderOrigin, 0.0);
+  glm::dmat4 m = renderFromCameraCv(camera, frame.camera.shutter.centre());
+  m[3] += glm::dvec4(frame.renderOrigin, 0.0);  // render → world
   return m;
 }
 

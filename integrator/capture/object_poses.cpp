@@ -141,10 +141,14 @@ glm::dmat4 renderFromModel(const ShapeDescription& s, double t) {
   return out;
 }
 
+glm::dmat4 renderFromCameraCv(const PhysicalCamera& camera, double t) {
+  glm::dmat4 m = camera.worldFromCameraAt(t);
+  m[1] = -m[1];  // camsim's up → OpenCV's down
+  return m;
+}
+
 glm::dmat4 cameraCvFromRender(const PhysicalCamera& camera, double t) {
-  glm::dmat4 worldFromCv = camera.worldFromCameraAt(t);
-  worldFromCv[1] = -worldFromCv[1];  // camsim's up → OpenCV's down
-  return glm::inverse(worldFromCv);
+  return glm::inverse(renderFromCameraCv(camera, t));
 }
 
 std::vector<ObjectPose> objectPoses(const SceneDescription& d, const PhysicalCameraParams& params) {

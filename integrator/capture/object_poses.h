@@ -72,8 +72,14 @@ ObjectModel objectModel(const SceneDescription& d, std::size_t shape);
 // SceneDescription::renderOrigin).
 glm::dmat4 renderFromModel(const ShapeDescription& s, double t);
 
-// Camera (OpenCV axes) from render space at time t: the inverse of the camera's pose with
-// its y axis turned down.
+// Render space from camera at time t in OpenCV axes (columns: x right, y down, z forward,
+// the position; m): the camera's pose (columns right, up, forward, position) with its y
+// axis turned down. The one definition of the camera's OpenCV pose: object poses, BOP's
+// cam_R_w2c, KITTI's rect frame and the datasets' world_from_camera_opencv
+// (dataset_writer.h) all derive from it.
+glm::dmat4 renderFromCameraCv(const PhysicalCamera& camera, double t);
+
+// Camera (OpenCV axes) from render space at time t: renderFromCameraCv's inverse.
 glm::dmat4 cameraCvFromRender(const PhysicalCamera& camera, double t);
 
 // The poses of every labelled shape of d, in shape order, with `camera` (a frame's camera:
