@@ -72,9 +72,11 @@ WrittenCapture CaptureRunWriter::write(const CaptureResult& result) {
 }
 
 std::vector<std::filesystem::path> CaptureRunWriter::finish() {
-  if (!sequence_ || cancelled_) return {};
-  std::vector<std::filesystem::path> written =
-      writeDatasetMetadata(frames_, out_.directory, &skipped_);
+  if (!sequence_) return {};
+  // A cancelled sequence has no camera exports, but its BOP scene is finished over the
+  // frames done: bop/ never holds images without their scene_gt / scene_camera entries.
+  std::vector<std::filesystem::path> written;
+  if (!cancelled_) written = writeDatasetMetadata(frames_, out_.directory, &skipped_);
   if (bop_) {
     for (auto& f : bop_->finish()) written.push_back(std::move(f));
     skipped_.insert(skipped_.end(), bop_->skipped().begin(), bop_->skipped().end());

@@ -40,7 +40,8 @@ class CaptureRunWriter {
   CaptureRunWriter(CaptureOutputOptions out, bool sequence);
   // Writes one frame (a cancelled one: only NAME.partial.exr of its finished tiles).
   WrittenCapture write(const CaptureResult& result);
-  // The sequence's camera exports (nothing for one frame or after a cancelled frame).
+  // The sequence's camera exports (nothing for one frame or after a cancelled frame) and
+  // its BOP scene's models and JSON files (after a cancelled frame: of the frames done).
   std::vector<std::filesystem::path> finish();
   // Every final file written so far, in order.
   const std::vector<std::filesystem::path>& files() const { return files_; }

@@ -2,6 +2,7 @@
 // CaptureRunWriter: a sequence's frames and camera exports, one frame's files alone.
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <filesystem>
 #include <string>
 #include <utility>
@@ -9,14 +10,17 @@
 
 #include "integrator/capture/capture_run.h"
 #include "integrator/scene/scene_loader.h"
+#include "tests/support/text_file.h"
 
 namespace camsim {
 namespace {
 
 // A 40×24 image of a lit sphere moving along x (3 tiles of 16×16 across, 2 down: every
-// frame of a sequence is rendered); `frames` adds a frames block of that many frames.
-SceneDescription tinyScene(int frames) {
+// frame of a sequence is rendered); `frames` adds a frames block of that many frames,
+// `extra` top-level lines.
+SceneDescription tinyScene(int frames, const std::string& extra = "") {
   std::string text =
+      extra +
       "name: tiny\n"
       "camera: {position: [0, 0, 0], look_at: [0, 0, 1], resolution: [40, 24]}\n"
       "render: {spp: 1, max_depth: 1}\n"
@@ -104,6 +108,43 @@ TEST(CaptureRunWriter, OneFrameHasNoCameraExports) {
   captureScene(tinyScene(0), {}, [&](CaptureResult&& c, int) { writer.write(c); });
   EXPECT_TRUE(writer.finish().empty());
   EXPECT_TRUE(std::filesystem::exists(dir / "tiny.exr"));
+  EXPECT_FALSE(std::filesystem::exists(dir / "cameras.json"));
+}
+
+// A sequence with `exports: [bop]` cancelled during frame 1: its BOP scene is finished over
+// frame 0 — image 0's files and its JSON entries, no image without them — and the camera
+// exports are not written (fails if finish() left the BOP JSON out after a cancel, or listed
+// the cancelled frame).
+TEST(CaptureRunWriter, ACancelledSequenceFinishesItsBopSceneOverTheFramesDone) {
+  const std::filesystem::path dir =
+      std::filesystem::path(::testing::TempDir()) / "capture_run_writer_cancelled_bop";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  CaptureOutputOptions out;
+  out.directory = dir;
+  out.reproducible = true;
+  CaptureRunWriter writer(out, true);
+  SceneDescription d = tinyScene(3, "exports: [bop]\n");
+  std::atomic<bool> cancel{false};
+  CaptureOptions options;
+  options.threads = 1;
+  options.cancel = &cancel;
+  const SequenceSummary summary = captureScene(std::move(d), options, [&](CaptureResult&& c, int) {
+    writer.write(c);
+    cancel = true;  // frame 1 is cancelled
+  });
+  ASSERT_TRUE(summary.cancelled);
+  writer.finish();
+  const std::filesystem::path scene = dir / "bop" / "train_pbr" / "000000";
+  EXPECT_TRUE(std::filesystem::exists(scene / "rgb" / "000000.png"));
+  EXPECT_FALSE(std::filesystem::exists(scene / "rgb" / "000001.png"));
+  for (const char* name : {"scene_camera.json", "scene_gt.json"}) {
+    const std::string text = test::readFile(scene / name);
+    ASSERT_FALSE(text.empty()) << name;
+    EXPECT_NE(text.find("\"0\""), std::string::npos) << name << ": " << text;
+    EXPECT_EQ(text.find("\"1\""), std::string::npos) << name << ": " << text;
+  }
+  EXPECT_TRUE(std::filesystem::exists(dir / "bop" / "models" / "models_info.json"));
   EXPECT_FALSE(std::filesystem::exists(dir / "cameras.json"));
 }
 
