@@ -20,11 +20,6 @@ namespace {
 
 constexpr double kSameModel = 1e-4;  // relative to the model's box diagonal
 
-SourceLocation exportsPlace(const SceneDescription& d) {
-  const auto place = d.keyPlaces.find("exports");
-  return place != d.keyPlaces.end() ? place->second : SourceLocation{d.sourceFile, 0, 0};
-}
-
 // Whether b is a's model: the same triangles, each vertex within kSameModel of a's size.
 bool sameModel(const ObjectModel& a, const ObjectModel& b) {
   if (a.vertices.size() != b.vertices.size() || a.indices != b.indices) return false;

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <utility>
 
+#include "integrator/capture/dataset_writer.h"
 #include "integrator/scene/scene_ids.h"
 #include "sensor/base/format.h"
 #include "sensor/io/output_set.h"
@@ -20,10 +21,10 @@ std::string sixDigits(long v) {
   return buf;
 }
 
+// BOP's nine numbers of a rotation: its rows (dataset_writer.h) one after another.
 std::vector<double> rowMajor(const glm::dmat3& m) {
   std::vector<double> r;
-  for (int row = 0; row < 3; ++row)
-    for (int col = 0; col < 3; ++col) r.push_back(m[col][row]);
+  for (const std::vector<double>& row : matrixRows(m)) r.insert(r.end(), row.begin(), row.end());
   return r;
 }
 

@@ -17,13 +17,6 @@
 namespace camsim {
 namespace {
 
-std::vector<std::vector<double>> rows(const glm::dmat4& m) {
-  std::vector<std::vector<double>> r(4, std::vector<double>(4));
-  for (int i = 0; i < 4; ++i)
-    for (int j = 0; j < 4; ++j) r[static_cast<size_t>(i)][static_cast<size_t>(j)] = m[j][i];
-  return r;
-}
-
 // OpenGL / Blender axes: x right, y up, z backward.
 glm::dmat4 toOpenGl(glm::dmat4 m) {
   m[1] = -m[1];
@@ -131,8 +124,8 @@ std::vector<std::filesystem::path> writeDatasetMetadata(const std::vector<Datase
         .setJson("cx", formatShortest(e.cx))
         .setJson("cy", formatShortest(e.cy));
     addCameraModel(frame, e);
-    cameraFrames.push_back(frame.set("world_from_camera_opencv", rows(cv))
-                               .set("world_from_camera_opengl", rows(toOpenGl(cv)))
+    cameraFrames.push_back(frame.set("world_from_camera_opencv", matrixRows(cv))
+                               .set("world_from_camera_opengl", matrixRows(toOpenGl(cv)))
                                .set("time_s", p.shutter.centre())
                                .set("shutter_open_s", p.shutter.open())
                                .set("shutter_close_s", p.shutter.close())
@@ -143,7 +136,7 @@ std::vector<std::filesystem::path> writeDatasetMetadata(const std::vector<Datase
                                .set("iso", f.isoValue)
                                .set("system_gain_dn_per_e", f.systemGainDnPerE));
     nerfFrames.push_back(
-        JsonObject().set("file_path", f.image).set("transform_matrix", rows(toOpenGl(cv))));
+        JsonObject().set("file_path", f.image).set("transform_matrix", matrixRows(toOpenGl(cv))));
     // COLMAP: camera-from-world (OpenCV axes) as a unit quaternion and translation.
     const glm::dmat3 worldFromCam(cv);
     const glm::dmat3 camFromWorld = glm::transpose(worldFromCam);

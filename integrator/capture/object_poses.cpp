@@ -64,13 +64,16 @@ glm::dmat3 modelShape(const ShapeDescription& s, double scale) {
 
 }  // namespace
 
+SourceLocation exportsPlace(const SceneDescription& d) {
+  const auto place = d.keyPlaces.find("exports");
+  return place != d.keyPlaces.end() ? place->second : SourceLocation{d.sourceFile, 0, 0};
+}
+
 ObjectModel objectModel(const SceneDescription& d, std::size_t shape) {
   const ShapeDescription& s = d.shapes[shape];
   const std::optional<double> scale = motionScale(s);
   if (!scale) {
-    const auto place = d.keyPlaces.find("exports");
-    throw InputError(place != d.keyPlaces.end() ? place->second : SourceLocation{d.sourceFile},
-                     "exports",
+    throw InputError(exportsPlace(d), "exports",
                      "shape '" + s.label +
                          "': its motion's keyframes scale it differently over time, so no rigid "
                          "pose describes it (give every keyframe the same scale)");

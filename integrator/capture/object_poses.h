@@ -37,6 +37,7 @@
 
 #include "integrator/camera/physical_camera.h"
 #include "integrator/scene/scene_description.h"
+#include "sensor/base/input_error.h"
 
 namespace camsim {
 
@@ -63,6 +64,10 @@ struct ObjectPose {
   glm::dvec3 translation{0.0};          // m
   glm::dvec3 boxMin{0.0}, boxMax{0.0};  // m, model coordinates
 };
+
+// Where the pose exports' input errors point: the scene's `exports` key (the scene file
+// alone when it has none).
+SourceLocation exportsPlace(const SceneDescription& d);
 
 // The model of d.shapes[shape] (labelled or not). Throws InputError naming the shape when
 // its motion's keyframes scale it differently (no rigid pose).
