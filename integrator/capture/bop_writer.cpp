@@ -6,7 +6,7 @@
 #include <cstdio>
 #include <utility>
 
-#include "integrator/capture/dataset_writer.h"
+#include "integrator/capture/matrix_rows.h"
 #include "integrator/scene/scene_ids.h"
 #include "sensor/base/format.h"
 #include "sensor/io/output_set.h"
@@ -19,13 +19,6 @@ std::string sixDigits(long v) {
   char buf[24];
   std::snprintf(buf, sizeof buf, "%06ld", v);
   return buf;
-}
-
-// BOP's nine numbers of a rotation: its rows (dataset_writer.h) one after another.
-std::vector<double> rowMajor(const glm::dmat3& m) {
-  std::vector<double> r;
-  for (const std::vector<double>& row : matrixRows(m)) r.insert(r.end(), row.begin(), row.end());
-  return r;
 }
 
 std::vector<double> millimetres(const glm::dvec3& v) {

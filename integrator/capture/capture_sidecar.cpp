@@ -11,6 +11,7 @@
 
 #include "integrator/camera/physical_camera.h"
 #include "integrator/capture/camera_export.h"
+#include "integrator/capture/matrix_rows.h"
 #include "integrator/render/cryptomatte.h"
 #include "integrator/scene/scene_ids.h"
 #include "sensor/base/format.h"
@@ -19,13 +20,6 @@
 
 namespace camsim {
 namespace {
-
-std::vector<double> matrixRows(const glm::dmat3& m) {
-  std::vector<double> v;
-  for (int r = 0; r < 3; ++r)
-    for (int c = 0; c < 3; ++c) v.push_back(m[c][r]);
-  return v;
-}
 
 // A number as the shortest decimal that reads back as the same double: the scene inputs
 // below must paste back into a scene and give the same bytes (JsonObject keeps 10 digits).
@@ -273,8 +267,8 @@ JsonObject ispJson(const CaptureResult& r) {
            r.description.sensor->spec.cfa.isStacked()
                ? "Bradford from the white's XYZ to D65 (ccm_camera_to_xyz_d65)"
                : "Bradford to D65, in the CCM fit")
-      .set("ccm_camera_to_xyz_d65", matrixRows(dev.colorCorrection.cameraToXyz))
-      .set("xyz_d65_to_working", matrixRows(dev.colorCorrection.xyzToWorking))
+      .set("ccm_camera_to_xyz_d65", rowMajor(dev.colorCorrection.cameraToXyz))
+      .set("xyz_d65_to_working", rowMajor(dev.colorCorrection.xyzToWorking))
       .set("working_space", "ACEScg");
   return j.set("derived", d);
 }

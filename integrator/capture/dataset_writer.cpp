@@ -9,6 +9,7 @@
 
 #include "integrator/camera/physical_camera.h"
 #include "integrator/capture/camera_export.h"
+#include "integrator/capture/matrix_rows.h"
 #include "integrator/capture/object_poses.h"
 #include "sensor/base/format.h"
 #include "sensor/io/json_writer.h"

@@ -25,12 +25,10 @@
 // corner at 0, so their cx, cy are OpenCV's + 0.5.
 #pragma once
 
-#include <cstddef>
 #include <filesystem>
 #include <string>
 #include <vector>
 
-#include <glm/mat3x3.hpp>
 #include <glm/mat4x4.hpp>
 
 #include "integrator/camera/physical_camera.h"
@@ -51,17 +49,6 @@ struct DatasetFrame {
 };
 
 DatasetFrame datasetFrame(const CaptureResult& result);
-
-// A square matrix's entries row by row (glm stores columns: rows[i][j] = m[j][i]), as the
-// JSON exports write matrices (cameras.json's poses; BOP's rotations, flattened).
-template <glm::length_t N>
-std::vector<std::vector<double>> matrixRows(const glm::mat<N, N, double>& m) {
-  std::vector<std::vector<double>> rows(N, std::vector<double>(N));
-  for (glm::length_t i = 0; i < N; ++i)
-    for (glm::length_t j = 0; j < N; ++j)
-      rows[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)] = m[j][i];
-  return rows;
-}
 
 // World-from-camera at the frame's reference time, OpenCV axes (columns x right, y down,
 // z forward, position), world coordinates; camera is PhysicalCamera(frame.camera).
