@@ -10,6 +10,7 @@
 
 #include "integrator/capture/capture_run.h"
 #include "integrator/scene/scene_loader.h"
+#include "tests/support/temp_dir.h"
 #include "tests/support/text_file.h"
 
 namespace camsim {
@@ -78,10 +79,8 @@ TEST(CaptureScene, ASequenceReportsProgressOverAllItsFrames) {
 }
 
 TEST(CaptureRunWriter, ASequenceWritesItsFramesThenItsCameraExports) {
-  const std::filesystem::path dir =
-      std::filesystem::path(::testing::TempDir()) / "capture_run_writer_sequence";
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
+  const test::TempDir temp;
+  const std::filesystem::path& dir = temp.path();
   CaptureOutputOptions out;
   out.directory = dir;
   out.reproducible = true;
@@ -97,10 +96,8 @@ TEST(CaptureRunWriter, ASequenceWritesItsFramesThenItsCameraExports) {
 }
 
 TEST(CaptureRunWriter, OneFrameHasNoCameraExports) {
-  const std::filesystem::path dir =
-      std::filesystem::path(::testing::TempDir()) / "capture_run_writer_one";
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
+  const test::TempDir temp;
+  const std::filesystem::path& dir = temp.path();
   CaptureOutputOptions out;
   out.directory = dir;
   out.reproducible = true;
@@ -116,10 +113,8 @@ TEST(CaptureRunWriter, OneFrameHasNoCameraExports) {
 // exports are not written (fails if finish() left the BOP JSON out after a cancel, or listed
 // the cancelled frame).
 TEST(CaptureRunWriter, ACancelledSequenceFinishesItsBopSceneOverTheFramesDone) {
-  const std::filesystem::path dir =
-      std::filesystem::path(::testing::TempDir()) / "capture_run_writer_cancelled_bop";
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
+  const test::TempDir temp;
+  const std::filesystem::path& dir = temp.path();
   CaptureOutputOptions out;
   out.directory = dir;
   out.reproducible = true;
