@@ -1,11 +1,12 @@
-// The BOP export's object models (bop_writer.h): one per obj_id, its PLY in mm with vertex
-// normals, and models_info.json's diameter and box.
+// The pose exports' models (bop_writer.h): a run's PoseModels table — BOP's one model per
+// obj_id and every labelled shape's box — its PLY in mm with vertex normals, and
+// models_info.json's diameter and box.
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <limits>
 #include <map>
 #include <numeric>
+#include <utility>
 
 #include <glm/geometric.hpp>
 
@@ -70,14 +71,23 @@ std::string plyText(const ObjectModel& m) {
 
 }  // namespace
 
-std::vector<BopModel> bopModels(const SceneDescription& d) {
+PoseModels::PoseModels(const SceneDescription& d) {
+  const bool bop = d.exportsTo(ExportFormat::kBop);
+  if (!bop && !d.exportsTo(ExportFormat::kKitti)) return;
   const SceneIds ids = sceneIds(d);
   const IdTable& classes = ids[IdKind::kClass];
   std::map<std::uint32_t, BopModel> byId;
+  boxes_.resize(d.shapes.size());
+  ownOfShape_.assign(d.shapes.size(), nullptr);
   for (std::size_t s = 0; s < d.shapes.size(); ++s) {
     if (classes.ofShape[s] == 0) continue;
-    const std::uint32_t objId = classes.numbers[classes.ofShape[s]];
     ObjectModel model = objectModel(d, s);
+    boxes_[s].boxMin = model.boxMin;
+    boxes_[s].boxMax = model.boxMax;
+    boxes_[s].rounding = model.rounding;
+    ownOfShape_[s] = &boxes_[s];
+    if (!bop) continue;
+    const std::uint32_t objId = classes.numbers[classes.ofShape[s]];
     const auto [it, added] = byId.try_emplace(objId, BopModel{objId, s, {}});
     if (added) {
       it->second.model = std::move(model);
@@ -93,8 +103,20 @@ std::vector<BopModel> bopModels(const SceneDescription& d) {
                            "shapes of one class: give the OBJ one `material:`, or the pieces "
                            "classes of their own (docs/output.md, \"BOP layout\")");
   }
-  std::vector<BopModel> out;
-  for (auto& [id, m] : byId) out.push_back(std::move(m));
+  if (!bop) return;
+  for (auto& [id, m] : byId) bop_.push_back(std::move(m));
+  bopOfShape_ = bopShapeModels(d, bop_);
+}
+
+std::vector<const ObjectModel*> bopShapeModels(const SceneDescription& d,
+                                               const std::vector<BopModel>& models) {
+  const SceneIds ids = sceneIds(d);
+  const IdTable& classes = ids[IdKind::kClass];
+  std::vector<const ObjectModel*> out(d.shapes.size(), nullptr);
+  for (std::size_t s = 0; s < d.shapes.size(); ++s)
+    for (const BopModel& m : models)
+      if (classes.ofShape[s] != 0 && m.objId == classes.numbers[classes.ofShape[s]])
+        out[s] = &m.model;
   return out;
 }
 
@@ -128,9 +150,7 @@ std::vector<std::filesystem::path> writeBopModels(const std::vector<BopModel>& m
   OutputSet outputs(directory);
   JsonObject info;
   for (const BopModel& m : models) {
-    char name[32];
-    std::snprintf(name, sizeof name, "obj_%06u.ply", static_cast<unsigned>(m.objId));
-    outputs.addText(name, plyText(m.model));
+    outputs.addText("obj_" + sixDigits(m.objId) + ".ply", plyText(m.model));
     const BopModelInfo i = bopModelInfo(m.model);
     info.set(std::to_string(m.objId), JsonObject()
                                           .set("diameter", i.diameter)
@@ -146,13 +166,7 @@ std::vector<std::filesystem::path> writeBopModels(const std::vector<BopModel>& m
 }
 
 void checkPoseExports(const SceneDescription& d) {
-  if (d.exportsTo(ExportFormat::kBop)) {
-    (void)bopModels(d);
-  } else if (d.exportsTo(ExportFormat::kKitti)) {
-    const SceneIds ids = sceneIds(d);
-    for (std::size_t i = 0; i < d.shapes.size(); ++i)
-      if (ids[IdKind::kClass].ofShape[i] != 0) (void)objectModel(d, i);
-  }
+  (void)PoseModels(d);
 }
 
 }  // namespace camsim

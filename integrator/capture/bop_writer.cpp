@@ -3,23 +3,16 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <utility>
 
 #include "integrator/capture/matrix_rows.h"
-#include "integrator/scene/scene_ids.h"
+#include "sensor/base/check.h"
 #include "sensor/base/format.h"
 #include "sensor/io/output_set.h"
 #include "sensor/io/png_io.h"
 
 namespace camsim {
 namespace {
-
-std::string sixDigits(long v) {
-  char buf[24];
-  std::snprintf(buf, sizeof buf, "%06ld", v);
-  return buf;
-}
 
 std::vector<double> millimetres(const glm::dvec3& v) {
   return {v.x * kMmPerM, v.y * kMmPerM, v.z * kMmPerM};
@@ -70,23 +63,15 @@ double bopDepthScale(double maxDepthMm) {
   return scale;
 }
 
-BopWriter::BopWriter(std::filesystem::path directory, int sceneId)
+BopWriter::BopWriter(std::filesystem::path directory, int sceneId, const PoseModels& models)
     : directory_(std::move(directory)),
-      scene_(directory_ / "bop" / "train_pbr" / sixDigits(sceneId)) {}
+      scene_(directory_ / "bop" / "train_pbr" / sixDigits(sceneId)),
+      models_(&models) {}
 
 std::vector<std::filesystem::path> BopWriter::addFrame(const CaptureResult& r, int imageId) {
   const SceneDescription& d = r.description;
-  if (!modelsKnown_) {  // once: a sequence's frames share their shapes
-    models_ = bopModels(d);
-    const SceneIds ids = sceneIds(d);
-    const IdTable& classes = ids[IdKind::kClass];
-    shapeModels_.assign(d.shapes.size(), nullptr);
-    for (std::size_t s = 0; s < d.shapes.size(); ++s)
-      for (const BopModel& m : models_)
-        if (classes.ofShape[s] != 0 && m.objId == classes.numbers[classes.ofShape[s]])
-          shapeModels_[s] = &m.model;
-    modelsKnown_ = true;
-  }
+  // The run's models are this scene's (PoseModels of a scene with `exports: [bop]`).
+  CAMSIM_CHECK(models_->bopOfShape().size() == d.shapes.size());
   const std::string image = sixDigits(imageId), key = std::to_string(imageId);
   const Image& a = r.aovs;
   // The camera at the frame's reference time: world (the scene file's) → camera, OpenCV.
@@ -123,7 +108,7 @@ std::vector<std::filesystem::path> BopWriter::addFrame(const CaptureResult& r, i
                        .set("cam_t_w2c", millimetres(glm::dvec3(cameraFromWorld[3])))
                        .setJson("depth_scale", n(depthScale)));
 
-  const std::vector<ObjectPose> poses = objectPoses(d, d.camera, shapeModels_);
+  const std::vector<ObjectPose> poses = objectPoses(d, d.camera, models_->bopOfShape());
   std::vector<JsonObject> gt, info;
   std::vector<std::pair<int, int>> channels;  // per annotation: amodal, visible
   for (const ObjectPose& p : poses) {
@@ -188,7 +173,8 @@ std::vector<std::filesystem::path> BopWriter::addFrame(const CaptureResult& r, i
 }
 
 std::vector<std::filesystem::path> BopWriter::finish() {
-  std::vector<std::filesystem::path> files = writeBopModels(models_, directory_ / "bop" / "models");
+  std::vector<std::filesystem::path> files =
+      writeBopModels(models_->bop(), directory_ / "bop" / "models");
   (void)OutputSet::prepareDirectory(scene_);
   OutputSet scene(scene_);
   scene.addText("scene_camera.json", camera_.str() + "\n");
@@ -198,10 +184,10 @@ std::vector<std::filesystem::path> BopWriter::finish() {
   return files;
 }
 
-std::vector<std::filesystem::path> writeBop(const CaptureResult& result,
+std::vector<std::filesystem::path> writeBop(const CaptureResult& result, const PoseModels& models,
                                             const std::filesystem::path& directory, int sceneId,
                                             std::vector<std::string>* skipped) {
-  BopWriter writer(directory, sceneId);
+  BopWriter writer(directory, sceneId, models);
   std::vector<std::filesystem::path> files = writer.addFrame(result, 0);
   for (auto& f : writer.finish()) files.push_back(std::move(f));
   if (skipped) skipped->insert(skipped->end(), writer.skipped().begin(), writer.skipped().end());

@@ -38,7 +38,7 @@
 
 #include <cstdint>
 #include <filesystem>
-#include <map>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -51,14 +51,48 @@ namespace camsim {
 inline constexpr double kMmPerM = 1000.0;  // BOP's lengths are in mm
 
 // One model per obj_id of the scene's labelled shapes: the model of its first shape.
-// Throws InputError (naming `exports` and both shapes) when two shapes of one obj_id have
-// different models.
 struct BopModel {
   std::uint32_t objId = 0;
   std::size_t shape = 0;  // the shape it was taken from
   ObjectModel model;
 };
-std::vector<BopModel> bopModels(const SceneDescription& d);
+
+// Per shape of d: its obj_id's model among models (null for an unlabelled shape, or one
+// whose obj_id models lacks): the models BOP's poses take (objectPoses), so that every shape
+// of an obj_id gets the box of the model written for it.
+std::vector<const ObjectModel*> bopShapeModels(const SceneDescription& d,
+                                               const std::vector<BopModel>& models);
+
+// The models a run's pose exports pose its frames with, made once (from the first frame's
+// description: a sequence's frames share their shapes) and handed to both writers, so that
+// neither remakes them per frame:
+//   bop()         with `exports: [bop]`: one model per obj_id, its first shape's
+//   bopOfShape()  per shape: its obj_id's model (bopShapeModels), for BOP's poses
+//   ownOfShape()  per shape: its own model's box alone (no vertices), for KITTI's h, w, l
+// Making it checks the scene as checkPoseExports does: every labelled shape has a rigid pose
+// (objectModel), and with `exports: [bop]` the shapes of one obj_id have one model (within
+// 10⁻⁴ of its size) — InputError (naming `exports` and both shapes) otherwise. Empty for a
+// scene without either export. Not copyable: the per-shape tables point into it (a move
+// keeps them valid).
+class PoseModels {
+ public:
+  PoseModels() = default;
+  explicit PoseModels(const SceneDescription& d);
+  PoseModels(const PoseModels&) = delete;
+  PoseModels& operator=(const PoseModels&) = delete;
+  PoseModels(PoseModels&&) = default;
+  PoseModels& operator=(PoseModels&&) = default;
+  ~PoseModels() = default;
+
+  const std::vector<BopModel>& bop() const { return bop_; }
+  std::span<const ObjectModel* const> bopOfShape() const { return bopOfShape_; }
+  std::span<const ObjectModel* const> ownOfShape() const { return ownOfShape_; }
+
+ private:
+  std::vector<BopModel> bop_;
+  std::vector<ObjectModel> boxes_;  // per shape: its model's box and rounding alone
+  std::vector<const ObjectModel*> bopOfShape_, ownOfShape_;
+};
 
 // What the models_info.json entry of a model holds (mm): the largest distance between two
 // of its vertices, and its box.
@@ -78,8 +112,10 @@ double bopDepthScale(double maxDepthMm);
 // The BOP scene of one capture or sequence, written as its frames arrive.
 class BopWriter {
  public:
-  // directory: the capture's output directory (bop/ is made in it); sceneId: SSSSSS.
-  BopWriter(std::filesystem::path directory, int sceneId);
+  // directory: the capture's output directory (bop/ is made in it); sceneId: SSSSSS;
+  // models: the run's (PoseModels of the frames' scene), kept by address: it must outlive
+  // the writer.
+  BopWriter(std::filesystem::path directory, int sceneId, const PoseModels& models);
   // Writes the frame's rgb, depth and masks (its picture NAME.png must be in the directory
   // already) and keeps its JSON entries. imageId: 0 for a capture, a sequence's frame number.
   std::vector<std::filesystem::path> addFrame(const CaptureResult& result, int imageId);
@@ -90,22 +126,21 @@ class BopWriter {
 
  private:
   std::filesystem::path directory_, scene_;
-  std::vector<BopModel> models_;
-  std::vector<const ObjectModel*> shapeModels_;  // per shape: its obj_id's model (null: none)
-  bool modelsKnown_ = false;
+  const PoseModels* models_;
   bool masks_ = true;  // every frame so far had the amodal channels
   JsonObject camera_, gt_, gtInfo_;
   std::vector<std::string> skipped_;
 };
 
 // A capture's whole BOP scene (image 0): addFrame and finish; skipped lines appended.
-std::vector<std::filesystem::path> writeBop(const CaptureResult& result,
+// models: PoseModels(result.description), made by the caller.
+std::vector<std::filesystem::path> writeBop(const CaptureResult& result, const PoseModels& models,
                                             const std::filesystem::path& directory, int sceneId,
                                             std::vector<std::string>* skipped = nullptr);
 
 // The scene's BOP and KITTI exports checked before anything renders — every labelled shape
 // has a rigid pose (objectModel), and BOP's models of one obj_id agree: InputError
-// otherwise. Nothing for a scene without either export.
+// otherwise (PoseModels(d), made and dropped). Nothing for a scene without either export.
 void checkPoseExports(const SceneDescription& d);
 
 }  // namespace camsim

@@ -37,7 +37,9 @@ CaptureRunWriter::CaptureRunWriter(CaptureOutputOptions out, bool sequence)
     : out_(std::move(out)), sequence_(sequence) {}
 
 WrittenCapture CaptureRunWriter::write(const CaptureResult& result) {
-  WrittenCapture written = writeCapture(result, out_);
+  // Once for the run: a sequence's frames share their shapes.
+  if (!result.cancelled && !models_) models_.emplace(result.description);
+  WrittenCapture written = writeCapture(result, out_, models_ ? &*models_ : nullptr);
   files_.insert(files_.end(), written.files.begin(), written.files.end());
   skipped_.insert(skipped_.end(), written.skipped.begin(), written.skipped.end());
   if (result.cancelled) {
@@ -46,19 +48,18 @@ WrittenCapture CaptureRunWriter::write(const CaptureResult& result) {
   }
   if (!sequence_) return written;
   const SceneDescription& d = result.description;
+  // The image id of both exports: the frame's sequence frame number.
+  const int image = (d.frames ? d.frames->first : 0) + static_cast<int>(frames_.size());
   if (d.exportsTo(ExportFormat::kBop)) {
-    if (!bop_) bop_.emplace(out_.directory, out_.datasetItem);
-    const int first = d.frames ? d.frames->first : 0;
-    for (auto& f : bop_->addFrame(result, first + static_cast<int>(frames_.size()))) {
+    if (!bop_) bop_.emplace(out_.directory, out_.datasetItem, *models_);
+    for (auto& f : bop_->addFrame(result, image)) {
       files_.push_back(f);
       written.files.push_back(std::move(f));
     }
   }
   if (d.exportsTo(ExportFormat::kKitti)) {
-    const int first = d.frames ? d.frames->first : 0;
     std::vector<std::string> notes;
-    for (auto& f : writeKittiFrame(result, out_.directory, first + static_cast<int>(frames_.size()),
-                                   &notes)) {
+    for (auto& f : writeKittiFrame(result, models_->ownOfShape(), out_.directory, image, &notes)) {
       files_.push_back(f);
       written.files.push_back(std::move(f));
     }

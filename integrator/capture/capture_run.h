@@ -35,9 +35,14 @@ SequenceSummary captureScene(SceneDescription description, const CaptureOptions&
 // transforms.json, COLMAP; docs/output.md) once the last has been written. With
 // `exports: [bop]` a sequence is one BOP scene (bop_writer.h): each frame's images as it
 // arrives (image id = its sequence frame number), the models and JSON files at finish().
+// The pose exports' models (PoseModels) are made once, at the first frame, and serve every
+// frame's BOP and KITTI files.
 class CaptureRunWriter {
  public:
   CaptureRunWriter(CaptureOutputOptions out, bool sequence);
+  // Not copyable: its BOP writer keeps its models' address.
+  CaptureRunWriter(const CaptureRunWriter&) = delete;
+  CaptureRunWriter& operator=(const CaptureRunWriter&) = delete;
   // Writes one frame (a cancelled one: only NAME.partial.exr of its finished tiles).
   WrittenCapture write(const CaptureResult& result);
   // The sequence's camera exports (nothing for one frame or after a cancelled frame) and
@@ -54,7 +59,8 @@ class CaptureRunWriter {
   bool sequence_;
   bool cancelled_ = false;
   std::vector<DatasetFrame> frames_;
-  std::optional<BopWriter> bop_;  // a sequence with exports: [bop]
+  std::optional<PoseModels> models_;  // made at the first finished frame
+  std::optional<BopWriter> bop_;      // a sequence with exports: [bop]
   std::vector<std::filesystem::path> files_;
   std::vector<std::string> skipped_;
 };

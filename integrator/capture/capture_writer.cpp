@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 
 #include "integrator/camera/physical_camera.h"
 #include "integrator/capture/aov_previews.h"
@@ -209,10 +210,13 @@ std::string captureFrameFile(const CaptureResult& result, std::size_t frame) {
                   : ".dng");
 }
 
-WrittenCapture writeCapture(const CaptureResult& result, const CaptureOutputOptions& options) {
+WrittenCapture writeCapture(const CaptureResult& result, const CaptureOutputOptions& options,
+                            const PoseModels* models) {
   if (result.cancelled) return writePartial(result, options.directory);
   const SceneDescription& desc = result.description;
-  checkPoseExports(desc);  // before any file: its models must be writable (a merge's parts)
+  // Before any file: the models must be writable (a merge's parts).
+  std::optional<PoseModels> made;
+  if (!models) models = &made.emplace(desc);
   const Metadata meta = filmMetadata(result, options.reproducible);
   OutputSet outputs(options.directory);
   writeExr(outputs.add(desc.name + ".exr"),
@@ -233,11 +237,12 @@ WrittenCapture writeCapture(const CaptureResult& result, const CaptureOutputOpti
   if (std::filesystem::remove(stalePartial, ec)) written.removed.push_back(stalePartial);
   // The BOP layout after NAME.png, which it copies (a sequence's: CaptureRunWriter).
   if (desc.exportsTo(ExportFormat::kBop) && !desc.frames)
-    for (auto& f : writeBop(result, options.directory, options.datasetItem, &written.skipped))
+    for (auto& f :
+         writeBop(result, *models, options.directory, options.datasetItem, &written.skipped))
       written.files.push_back(std::move(f));
   if (desc.exportsTo(ExportFormat::kKitti) && !desc.frames)
-    for (auto& f :
-         writeKittiFrame(result, options.directory, options.datasetItem, &written.skipped))
+    for (auto& f : writeKittiFrame(result, models->ownOfShape(), options.directory,
+                                   options.datasetItem, &written.skipped))
       written.files.push_back(std::move(f));
   return written;
 }

@@ -46,8 +46,14 @@ struct WrittenCapture {
   std::vector<std::string> skipped{};  // exports (or parts) left out, a line each with the reason
 };
 
-// Throws InputError (nothing is written then) when a file cannot be written.
-WrittenCapture writeCapture(const CaptureResult& result, const CaptureOutputOptions& options);
+class PoseModels;  // bop_writer.h
+
+// Throws InputError (nothing is written then) when a file cannot be written. models: the
+// run's pose-export models (PoseModels of result.description, made once for a sequence's
+// frames by CaptureRunWriter); null: made here, before any file is written (which checks
+// that the BOP and KITTI exports can be written).
+WrittenCapture writeCapture(const CaptureResult& result, const CaptureOutputOptions& options,
+                            const PoseModels* models = nullptr);
 
 // The file frame i is written as (its DNG, else its raw EXR): for messages.
 std::string captureFrameFile(const CaptureResult& result, std::size_t frame);

@@ -4,7 +4,6 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
-#include <cstdio>
 #include <numbers>
 #include <optional>
 #include <string>
@@ -41,20 +40,36 @@ glm::dmat3 cameraFromRect(const glm::dmat4& cameraFromRender) {
   return glm::dmat3(glm::cross(down, forward), down, forward);
 }
 
-// The fraction of an object's amodal mask that is visible (both masks: coverage ≥ ½), or
-// none without the channels or with an empty amodal mask.
-std::optional<double> visibleFraction(const Image& a, std::uint32_t instance) {
-  const std::string n = std::to_string(instance);
-  const int am = a.channelIndex("amodal_" + n + ".A"), vi = a.channelIndex("visible_" + n + ".A");
-  if (am < 0 || vi < 0) return std::nullopt;
-  std::uint64_t all = 0, visible = 0;
-  for (int y = 0; y < a.height; ++y)
-    for (int x = 0; x < a.width; ++x) {
-      all += double{a.at(x, y, am)} >= kMaskCoverage ? 1 : 0;
-      visible += double{a.at(x, y, vi)} >= kMaskCoverage ? 1 : 0;
-    }
-  if (all == 0) return std::nullopt;
-  return static_cast<double>(visible) / static_cast<double>(all);
+// Per pose: the fraction of its object's amodal mask that is visible (both masks: coverage
+// ≥ ½), or none without the channels or with an empty amodal mask. One pass over the image
+// counts every object's pixels.
+std::vector<std::optional<double>> visibleFractions(const Image& a,
+                                                    const std::vector<ObjectPose>& poses) {
+  struct Counts {
+    int amodal = -1, visible = -1;  // channels
+    std::uint64_t all = 0, seen = 0;
+  };
+  std::vector<Counts> counts;                               // the poses with both channels
+  std::vector<std::size_t> of(poses.size(), poses.size());  // per pose: its counts' index
+  for (std::size_t i = 0; i < poses.size(); ++i) {
+    const std::string n = std::to_string(poses[i].instance);
+    const int am = a.channelIndex("amodal_" + n + ".A"), vi = a.channelIndex("visible_" + n + ".A");
+    if (am < 0 || vi < 0) continue;
+    of[i] = counts.size();
+    counts.push_back(Counts{am, vi, 0, 0});
+  }
+  if (!counts.empty())
+    for (int y = 0; y < a.height; ++y)
+      for (int x = 0; x < a.width; ++x)
+        for (Counts& c : counts) {
+          c.all += double{a.at(x, y, c.amodal)} >= kMaskCoverage ? 1 : 0;
+          c.seen += double{a.at(x, y, c.visible)} >= kMaskCoverage ? 1 : 0;
+        }
+  std::vector<std::optional<double>> out(poses.size());
+  for (std::size_t i = 0; i < poses.size(); ++i)
+    if (of[i] < counts.size() && counts[of[i]].all > 0)
+      out[i] = static_cast<double>(counts[of[i]].seen) / static_cast<double>(counts[of[i]].all);
+  return out;
 }
 
 std::string typeOf(const ShapeDescription& s) {
@@ -72,7 +87,7 @@ std::string line(const std::string& key, const double* m, int n) {
 
 }  // namespace
 
-KittiFrame kittiFrame(const CaptureResult& result) {
+KittiFrame kittiFrame(const CaptureResult& result, std::span<const ObjectModel* const> models) {
   const SceneDescription& d = result.description;
   const PhysicalCamera camera(d.camera);
   const glm::dmat4 cameraFromRender = cameraCvFromRender(camera, d.camera.shutter.centre());
@@ -92,7 +107,10 @@ KittiFrame kittiFrame(const CaptureResult& result) {
                         "° off level: P2 = K R (rect stays level), so a reader that takes fx, fy, "
                         "cx, cy from P2's entries needs K from cameras.json or NAME.json instead");
 
-  for (const ObjectPose& pose : objectPoses(d, d.camera)) {
+  const std::vector<ObjectPose> poses = objectPoses(d, d.camera, models);
+  const std::vector<std::optional<double>> visible = visibleFractions(result.aovs, poses);
+  for (std::size_t g = 0; g < poses.size(); ++g) {
+    const ObjectPose& pose = poses[g];
     const ShapeDescription& s = d.shapes[pose.shape];
     const glm::dmat3 rectFromModel = rectCam * pose.rotation;
     const glm::dvec3 tRect = rectCam * pose.translation;
@@ -145,7 +163,7 @@ KittiFrame kittiFrame(const CaptureResult& result) {
     l.right = std::clamp(hi.x, 0.0, w - 1.0);
     l.top = std::clamp(lo.y, 0.0, h - 1.0);
     l.bottom = std::clamp(hi.y, 0.0, h - 1.0);
-    const std::optional<double> v = visibleFraction(result.aovs, pose.instance);
+    const std::optional<double>& v = visible[g];
     l.occluded = !v ? 3 : *v >= 0.95 ? 0 : *v >= 0.5 ? 1 : 2;
     f.labels.push_back(l);
   }
@@ -153,11 +171,10 @@ KittiFrame kittiFrame(const CaptureResult& result) {
 }
 
 std::vector<std::filesystem::path> writeKittiFrame(const CaptureResult& result,
+                                                   std::span<const ObjectModel* const> models,
                                                    const std::filesystem::path& directory,
                                                    int imageId, std::vector<std::string>* skipped) {
-  const KittiFrame f = kittiFrame(result);
-  char id[16];
-  std::snprintf(id, sizeof id, "%06d", imageId);
+  const KittiFrame f = kittiFrame(result, models);
   const std::filesystem::path root = directory / "kitti";
   std::string calib;
   for (const char* p : {"P0", "P1", "P2", "P3"}) calib += line(p, f.p2.data(), 12);
@@ -175,7 +192,7 @@ std::vector<std::filesystem::path> writeKittiFrame(const CaptureResult& result,
               " " + n(l.rotationY) + "\n";
   }
   // All three written, then committed together: no image without its calib and labels.
-  const std::string name(id);
+  const std::string name = sixDigits(imageId);
   for (const char* sub : {"image_2", "calib", "label_2"})
     (void)OutputSet::prepareDirectory(root / sub);
   OutputSet image(root / "image_2"), calibSet(root / "calib"), labelSet(root / "label_2");

@@ -37,10 +37,12 @@
 #pragma once
 
 #include <filesystem>
+#include <span>
 #include <string>
 #include <vector>
 
 #include "integrator/capture/capture.h"
+#include "integrator/capture/object_poses.h"
 
 namespace camsim {
 
@@ -62,11 +64,14 @@ struct KittiFrame {
   std::vector<double> p2;  // 12
   std::vector<std::string> skipped;
 };
-KittiFrame kittiFrame(const CaptureResult& result);
+// models: what objectPoses takes, each labelled shape's own model (a run's
+// PoseModels::ownOfShape, bop_writer.h: its box alone); empty: each made here.
+KittiFrame kittiFrame(const CaptureResult& result, std::span<const ObjectModel* const> models = {});
 
 // Writes kitti/image_2, calib and label_2 files of the frame into directory (NAME.png must
-// be there already); skipped lines appended.
+// be there already); skipped lines appended. models: as kittiFrame's.
 std::vector<std::filesystem::path> writeKittiFrame(const CaptureResult& result,
+                                                   std::span<const ObjectModel* const> models,
                                                    const std::filesystem::path& directory,
                                                    int imageId,
                                                    std::vector<std::string>* skipped = nullptr);

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <numbers>
 #include <optional>
@@ -154,10 +155,6 @@ glm::dmat4 cameraCvFromRender(const PhysicalCamera& camera, double t) {
   return glm::inverse(renderFromCameraCv(camera, t));
 }
 
-std::vector<ObjectPose> objectPoses(const SceneDescription& d, const PhysicalCameraParams& params) {
-  return objectPoses(d, params, {});
-}
-
 std::vector<ObjectPose> objectPoses(const SceneDescription& d, const PhysicalCameraParams& params,
                                     std::span<const ObjectModel* const> models) {
   CAMSIM_CHECK(models.empty() || models.size() == d.shapes.size());
@@ -184,6 +181,12 @@ std::vector<ObjectPose> objectPoses(const SceneDescription& d, const PhysicalCam
     poses.push_back(p);
   }
   return poses;
+}
+
+std::string sixDigits(long v) {
+  char buf[24];
+  std::snprintf(buf, sizeof buf, "%06ld", v);
+  return buf;
 }
 
 }  // namespace camsim

@@ -29,6 +29,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <span>
+#include <string>
 #include <vector>
 
 #include <glm/mat3x3.hpp>
@@ -88,14 +89,17 @@ glm::dmat4 renderFromCameraCv(const PhysicalCamera& camera, double t);
 glm::dmat4 cameraCvFromRender(const PhysicalCamera& camera, double t);
 
 // The poses of every labelled shape of d, in shape order, with `camera` (a frame's camera:
-// description.camera of a capture or of a sequence's frame) at its reference time.
-std::vector<ObjectPose> objectPoses(const SceneDescription& d, const PhysicalCameraParams& camera);
-
-// The same with the models already made, so that none is rebuilt (a sequence's writers
-// pose every frame): models[i] is d.shapes[i]'s model or one standing for it (BOP: its
-// obj_id's), null for an unlabelled shape (size: d.shapes.size()). A pose's box is its
-// model's. A labelled shape given null has its model made here.
+// description.camera of a capture or of a sequence's frame) at its reference time. models:
+// the models already made, so that none is rebuilt (a run's writers pose every frame from
+// one table, PoseModels: bop_writer.h): models[i] is d.shapes[i]'s model or one standing for
+// it (BOP: its obj_id's; KITTI: its box alone), null for an unlabelled shape (size:
+// d.shapes.size()), or empty. A pose's box is its model's. A labelled shape given null, or
+// no models at all, has its model made here.
 std::vector<ObjectPose> objectPoses(const SceneDescription& d, const PhysicalCameraParams& camera,
                                     std::span<const ObjectModel* const> models);
+
+// The exports' six-digit numbers in file and folder names (BOP's scene, image, annotation
+// and obj ids, KITTI's image ids): v zero-padded to six digits, more when it needs them.
+std::string sixDigits(long v);
 
 }  // namespace camsim

@@ -86,7 +86,7 @@ TEST(BopWriter, WritesEveryFileWithMasksCountsAndDepthInMm) {
   const CaptureResult r = handBuilt();
   writePicture(tmp.path(), r.description.name);
   std::vector<std::string> skipped;
-  (void)writeBop(r, tmp.path(), 7, &skipped);
+  (void)writeBop(r, PoseModels(r.description), tmp.path(), 7, &skipped);
   EXPECT_TRUE(skipped.empty());
   const fs::path scene = tmp.path() / "bop" / "train_pbr" / "000007";
   for (const char* f :
@@ -181,7 +181,7 @@ TEST(BopWriter, WithoutTheAmodalAovTheMasksAreLeftOut) {
   r.aovs = depthOnly;
   writePicture(tmp.path(), r.description.name);
   std::vector<std::string> skipped;
-  (void)writeBop(r, tmp.path(), 0, &skipped);
+  (void)writeBop(r, PoseModels(r.description), tmp.path(), 0, &skipped);
   ASSERT_EQ(skipped.size(), 1u);
   EXPECT_NE(skipped[0].find("amodal_1.A"), std::string::npos) << skipped[0];
   const fs::path scene = tmp.path() / "bop/train_pbr/000000";
@@ -194,7 +194,8 @@ TEST(BopWriter, WithoutTheAmodalAovTheMasksAreLeftOut) {
 TEST(BopWriter, TwoFramesAreTwoImagesOfOneScene) {
   test::TempDir tmp;
   CaptureResult r = handBuilt();
-  BopWriter writer(tmp.path(), 3);
+  const PoseModels models(r.description);
+  BopWriter writer(tmp.path(), 3, models);
   for (int k = 0; k < 2; ++k) {
     r.description.name = "bop_000" + std::to_string(k);
     writePicture(tmp.path(), r.description.name);
@@ -235,7 +236,40 @@ TEST(BopWriter, OneObjIdNeedsOneModel) {
   twice.shapes[1] = twice.shapes[0];
   twice.shapes[1].placement[3] = glm::dvec4(1.0, 2.0, 3.0, 1.0);
   EXPECT_NO_THROW(checkPoseExports(twice));
-  EXPECT_EQ(bopModels(twice).size(), 1u);
+  EXPECT_EQ(PoseModels(twice).bop().size(), 1u);
+}
+
+// The run's model table: BOP's poses take each shape's obj_id model (the first shape's),
+// KITTI's each shape's own box; both the boxes objectModel gives, an unlabelled shape none.
+TEST(BopWriter, PoseModelsMapEveryShapeToItsObjIdsModelAndItsOwnBox) {
+  SceneDescription d = twoObjects();
+  d.shapes.push_back(d.shapes[0]);  // a second copy of the class-1 cube, placed elsewhere
+  d.shapes[2].placement[3] = glm::dvec4(1.0, 2.0, 3.0, 1.0);
+  d.shapes.push_back(d.shapes[1]);  // and an unlabelled ball
+  d.shapes[3].classNumber.reset();
+  d.shapes[3].className.clear();
+  PoseModels models(d);
+  ASSERT_EQ(models.bop().size(), 2u);
+  EXPECT_EQ(models.bop()[0].objId, 1u);
+  EXPECT_EQ(models.bop()[0].shape, 0u);
+  EXPECT_EQ(models.bop()[1].objId, 2u);
+  ASSERT_EQ(models.bopOfShape().size(), 4u);
+  ASSERT_EQ(models.ownOfShape().size(), 4u);
+  EXPECT_EQ(models.bopOfShape()[0], &models.bop()[0].model);
+  EXPECT_EQ(models.bopOfShape()[1], &models.bop()[1].model);
+  EXPECT_EQ(models.bopOfShape()[2], &models.bop()[0].model);
+  EXPECT_EQ(models.bopOfShape()[3], nullptr);
+  EXPECT_EQ(models.ownOfShape()[3], nullptr);
+  for (std::size_t s = 0; s < 3; ++s) {
+    const ObjectModel own = objectModel(d, s);
+    ASSERT_NE(models.ownOfShape()[s], nullptr) << s;
+    EXPECT_TRUE(models.ownOfShape()[s]->boxMin == own.boxMin) << s;
+    EXPECT_TRUE(models.ownOfShape()[s]->boxMax == own.boxMax) << s;
+    EXPECT_TRUE(models.ownOfShape()[s]->vertices.empty()) << s;  // the box alone
+  }
+  // Moved, the table still points into itself.
+  const PoseModels moved(std::move(models));
+  EXPECT_EQ(moved.bopOfShape()[2], &moved.bop()[0].model);
 }
 
 // `exports: [bop]` adds the AOVs its files are made of: depth, and amodal when a shape is

@@ -10,6 +10,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <utility>
 
 #include <glm/geometric.hpp>
 
@@ -195,6 +196,42 @@ TEST(KittiWriter, OccludedIsTheVisibleFractionsClass) {
   }
 }
 
+// Two objects' `occluded` from one pass over the masks (20 amodal pixels each, 19 and 9 of
+// them visible), and the run's models (PoseModels: each shape's box alone) give the labels
+// that the models made here give.
+TEST(KittiWriter, EveryObjectsOccludedFromOnePassWithTheRunsModels) {
+  std::string text = sceneText({0, 0.3, -3}, {0, 0.3, 0});
+  text.replace(text.find("}]\nlights"), 2,
+               "}, {translate: [-0.4, 0, 0.5], scale: [0.6, 0.4, 0.3]}]");
+  CaptureResult r = described(text);
+  r.aovs = Image(kW, kH, {"amodal_1.A", "visible_1.A", "amodal_2.A", "visible_2.A"});
+  for (int x = 0; x < 20; ++x) {
+    r.aovs.at(x, 0, 0) = 1.0f;
+    r.aovs.at(x, 0, 1) = x < 19 ? 1.0f : 0.0f;
+    r.aovs.at(x, 1, 2) = 1.0f;
+    r.aovs.at(x, 1, 3) = x < 9 ? 1.0f : 0.0f;
+  }
+  const PoseModels models(r.description);
+  const KittiFrame made = kittiFrame(r), given = kittiFrame(r, models.ownOfShape());
+  ASSERT_EQ(made.labels.size(), 2U);
+  ASSERT_EQ(given.labels.size(), 2U);
+  EXPECT_EQ(given.labels[0].occluded, 0);
+  EXPECT_EQ(given.labels[1].occluded, 2);
+  for (std::size_t i = 0; i < 2; ++i) {
+    const KittiLabel &a = made.labels[i], &b = given.labels[i];
+    EXPECT_EQ(a.occluded, b.occluded) << i;
+    for (const auto& [u, v] : {std::pair{a.h, b.h},
+                               {a.w, b.w},
+                               {a.l, b.l},
+                               {a.x, b.x},
+                               {a.y, b.y},
+                               {a.z, b.z},
+                               {a.left, b.left},
+                               {a.right, b.right}})
+      EXPECT_EQ(u, v) << i;
+  }
+}
+
 // Looking straight down from 3 m up with the image's top towards world +z (`up`): rect's
 // forward is where the image's top faces — the limit of a camera tilted ever further down —
 // so a box 0.6 m that way is 0.6 m ahead (the wrong limit puts it behind and leaves it out),
@@ -219,7 +256,7 @@ TEST(KittiWriter, AFrameWithoutLabelsWritesAnEmptyLabelFile) {
   const camsim::test::TempDir dir;
   camsim::test::writeFile(dir.path() / (r.description.name + ".png"), "png");
   std::vector<std::string> notes;
-  const auto files = writeKittiFrame(r, dir.path(), 7, &notes);
+  const auto files = writeKittiFrame(r, {}, dir.path(), 7, &notes);
   EXPECT_EQ(files.size(), 3U);
   EXPECT_EQ(camsim::test::readFile(dir.path() / "kitti/image_2/000007.png"), "png");
   EXPECT_EQ(camsim::test::readFile(dir.path() / "kitti/label_2/000007.txt"), "");

@@ -67,7 +67,7 @@ TEST(ObjectPoses, ModelPointsProjectOntoThePositionAovsPixels) {
     for (int c = 0; c < 3; ++c) EXPECT_NEAR(model.vertices[i][c], 0.4 * kCubeVertices[i][c], 1e-12);
   EXPECT_NEAR(model.boxMax.x - model.boxMin.x, 0.4, 1e-12);
 
-  const std::vector<ObjectPose> poses = objectPoses(d, d.camera);
+  const std::vector<ObjectPose> poses = objectPoses(d, d.camera, {});
   ASSERT_EQ(poses.size(), 1u);
   const ObjectPose& p = poses[0];
   EXPECT_EQ(p.classNumber, 3u);
@@ -129,7 +129,7 @@ TEST(ObjectPoses, AMovingMeshIsPosedAtTheShuttersCentre) {
   EXPECT_NEAR(t, 0.2, 1e-12);
   const PhysicalCamera camera(d.camera);
   const ObjectModel model = objectModel(d, 0);
-  const ObjectPose p = objectPoses(d, d.camera).at(0);
+  const ObjectPose p = objectPoses(d, d.camera, {}).at(0);
   for (std::size_t i = 0; i < model.vertices.size(); ++i) {
     EXPECT_NEAR(glm::length(model.vertices[i]), 0.3 * std::sqrt(0.75), 1e-9);  // scale baked
     const glm::dvec3 placed(s.motion.at(t) * glm::dvec4(glm::dvec3(s.mesh.positions[i]), 1.0));
@@ -159,7 +159,7 @@ TEST(ObjectPoses, AMirroredInstanceKeepsAProperRotation) {
   const PhysicalCamera camera(d.camera);
   const double t = d.camera.shutter.centre();
   const ObjectModel model = objectModel(d, 0);
-  const ObjectPose p = objectPoses(d, d.camera).at(0);
+  const ObjectPose p = objectPoses(d, d.camera, {}).at(0);
   EXPECT_NEAR(glm::determinant(p.rotation), 1.0, 1e-9);
   for (std::size_t i = 0; i < model.vertices.size(); ++i) {
     const glm::dvec3 placed(s.placement * glm::dvec4(glm::dvec3(s.sharedMesh->positions[i]), 1.0));
@@ -198,7 +198,7 @@ TEST(ObjectPoses, AMeshFilesModelIsTheFileTimesItsScale) {
   EXPECT_NEAR(ball.boxMax.y, 0.2, 1e-8);  // the radius as stored, in float
   EXPECT_NEAR(ball.boxMin.y, -0.2, 1e-8);
   // Its pose's translation is the centre in camera coordinates.
-  const std::vector<ObjectPose> poses = objectPoses(d, d.camera);
+  const std::vector<ObjectPose> poses = objectPoses(d, d.camera, {});
   ASSERT_EQ(poses.size(), 3u);
   const PhysicalCamera camera(d.camera);
   const glm::dvec3 centre = glm::dvec3(cameraCvFromRender(camera, 0.0) *
@@ -242,7 +242,7 @@ TEST(ObjectPoses, GivenModelsGiveTheSamePosesWithTheirBoxes) {
                            "  - {type: sphere, centre: [0, -0.3, 2], radius: 0.3, class: 5, "
                            "material: m}\n";
   const SceneDescription d = loadSceneFromText(text, "given.yaml", ".");
-  const std::vector<ObjectPose> made = objectPoses(d, d.camera);
+  const std::vector<ObjectPose> made = objectPoses(d, d.camera, {});
   const ObjectModel own = objectModel(d, 0);
   ObjectModel other;  // a stand-in with a box of its own
   other.boxMin = glm::dvec3(-1.0, -2.0, -3.0);
