@@ -22,7 +22,7 @@
 
 #include "bench/bench_rounds.h"
 #include "integrator/camera/physical_camera.h"
-#include "integrator/camera/stop_psf.h"
+#include "integrator/camera/psf_grid.h"
 #include "integrator/scene/scene_loader.h"
 
 namespace {
@@ -66,7 +66,8 @@ Pass timePass(const PhysicalCamera& camera) {
         return static_cast<float>(v - std::floor(v));
       };
       CameraSample s;
-      s.pFilm = {float(x) + r2(0.7548777f), float(y) + r2(0.5698403f)};
+      s.pPhotosite = {r2(0.7548777f) - 0.5f, r2(0.5698403f) - 0.5f};
+      s.pFilm = glm::vec2(float(x) + 0.5f, float(y) + 0.5f) + s.pPhotosite;
       s.pLens = {r2(0.8191725f), r2(0.6710436f)};
       s.pDiffraction = {r2(0.5497004f), r2(0.4501678f)};
       s.uDiffractionWavelength = r2(0.6180340f);
@@ -87,11 +88,11 @@ int main(int argc, char** argv) {
   const int rounds = *parsed;
   for (int blades : {0, 6}) {
     const auto start = std::chrono::steady_clock::now();
-    const camsim::StopPsf table(blades);
+    const camsim::PsfGrid table(camsim::ApertureShape{blades, 0.0});
     std::printf("PSF table, %s: built in %.3f s (%d × %d cells, %.3f %% of the energy left out)\n",
                 blades ? "6 blades" : "circular",
                 std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
-                table.rows(), table.columns(), 100.0 * table.truncatedEnergy());
+                table.cellsPerAxis(), table.cellsPerAxis(), 100.0 * table.truncatedEnergy());
   }
   const std::vector<Config> configs = {{"circular, off", 0, false},
                                        {"circular, diffraction", 0, true},

@@ -95,6 +95,7 @@ Samples makeSamples() {
   s.camera.resize(kSamples);
   for (CameraSample& c : s.camera) {
     c.pFilm = {rng.uniform() * float(kWidth), rng.uniform() * float(kHeight)};
+    c.pPhotosite = c.pFilm - glm::floor(c.pFilm) - 0.5f;
     c.pLens = {rng.uniform(), rng.uniform()};
     c.pDiffraction = {rng.uniform(), rng.uniform()};
     c.uDiffractionWavelength = rng.uniform();
@@ -129,13 +130,14 @@ Pass timePass(const PhysicalCamera& camera, const Samples& s) {
   return p;
 }
 
-// Diffraction::sample alone over the samples: s per call.
-double timeJitter(const camsim::Diffraction& d, const Samples& s, double& checksum) {
+// Diffraction::sample alone over the samples: s per call (photosites of `pitch` m).
+double timeJitter(const camsim::Diffraction& d, const Samples& s, double pitch, double& checksum) {
   const double start = cpuSeconds();
   for (int i = 0; i < kSamples; ++i) {
     const CameraSample& c = s.camera[static_cast<size_t>(i)];
     const camsim::DiffractionSample j =
-        d.sample(c.pDiffraction, c.uDiffractionWavelength, lambdaOf(s, i));
+        d.sample(c.pDiffraction, c.uDiffractionWavelength, lambdaOf(s, i),
+                 {pitch * glm::dvec2(c.pPhotosite), glm::dvec2(0.5 * pitch)});
     checksum += j.offset.x + double(j.weight[0]);
   }
   return (cpuSeconds() - start) / kSamples;
@@ -184,7 +186,7 @@ int main(int argc, char** argv) {
       rays[k] = p.rays;
       checksum += p.checksum;
       if (const camsim::Diffraction* d = cameras[k].diffraction())
-        jitter[k].push_back(timeJitter(*d, samples, checksum));
+        jitter[k].push_back(timeJitter(*d, samples, 30e-6, checksum));  // 30 µm pitch
     }
     for (size_t m = 0; m < ms.size(); ++m) {
       const camsim::LensCamera* lens = cameras[2 * m].lensCamera();

@@ -22,6 +22,10 @@ class Shutter;
 
 struct CameraSample {
   glm::vec2 pFilm{0.0f};  // pixels
+  // pFilm's offset from the centre of the photosite it was drawn in (pixels, pFilm's axes);
+  // used only by cameras whose stop diffracts: the weights integrate the PSF over the
+  // photosite (diffraction.h).
+  glm::vec2 pPhotosite{0.0f};
   glm::vec2 pLens{0.5f};  // [0,1)², used only by cameras with an aperture
   double time = 0.0;      // s
   // [0,1)² and [0,1), used only by cameras whose stop diffracts (diffraction.h): the offset

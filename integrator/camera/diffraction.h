@@ -7,7 +7,8 @@
 // | N_w            | —    | working f-number z_i / D (z_i the image distance, D = f/N the stop's diameter) |
 // | λ_i            | nm   | the path's wavelengths (SampledWavelengths), i = 1 … n |
 // | δ              | m    | offset on the film from the geometric image point, x right, y up (upright image) |
-// | PSF_λ(δ)       | m⁻²  | p(R⁻¹δ / (λN_w)) / (λN_w)², p the stop's PSF in units of λN_w (StopPsf), R the stop's rotation |
+// | PSF_λ(δ)       | m⁻²  | p(δ / (λN_w)) / (λN_w)², p the turned stop's PSF in units of λN_w (PsfGrid) |
+// | B, c           | m    | the photosite (the pixel's photosensitive square, √fill of its sides) and its centre |
 //
 // Model: scalar Fraunhofer diffraction at the exit pupil and an isoplanatic PSF (the same
 // PSF over the whole field, the on-axis one: the pupil's foreshortening off axis and the
@@ -19,15 +20,25 @@
 // centrosymmetric, |P̂(−k)| = |P̂(k)|, so x + δ is the same: δ is added.)
 //
 // The path carries n wavelengths, each with its own PSF. One-sample MIS with the balance
-// heuristic: choose j uniformly (probability 1/n, its own uniform number), draw δ from
-// PSF_λj exactly (the table's distribution), and weight wavelength i by
+// heuristic over the film point y = x + δ that the camera is evaluated at: choose j uniformly
+// (probability 1/n, its own uniform number), draw δ from PSF_λj exactly (the grid's
+// distribution, PsfGrid), so y's density given j is
 //
-//   w_i(δ) = PSF_λi(δ) / ((1/n) Σ_j PSF_λj(δ))    — δ's density is that mixture q(δ)
+//   q_j(y) = M_λj(B_y) / |B|,   B_y = the photosite moved to centre y − c (c its centre),
 //
-// so E[w_i · g(λ_i, δ)] = ∫ PSF_λi(δ) g(λ_i, δ) d²δ for every i and every g: unbiased per
-// wavelength, also when only the hero survives a dispersive hit, and 0 ≤ w_i ≤ n. The
-// camera multiplies its ray's weight by w (Diffraction::sample), and moves the film point by
-// δ before it maps it to a ray.
+// M_λ the PSF's probability inside a box (PsfGrid::boxMass, exact for the grid), and weight
+// wavelength i by
+//
+//   w_i = M_λi(B_y) / ((1/n) Σ_j M_λj(B_y))     (y's density is the mixture (1/n) Σ_j q_j)
+//
+// so E[w_i · g(λ_i, y)] = ∫ g(λ_i, y) q_i(y) dy = (1/|B|) ∫_B ∫ PSF_λi(δ) g(λ_i, x + δ) dδ dx
+// for every i and every g: unbiased per wavelength, also when only the hero survives a
+// dispersive hit, and 0 ≤ w_i ≤ n. The box's probability is the PSF integrated over the
+// photosite — a Rao–Blackwellisation over the film point x: w_i varies far less between
+// wavelengths than the point densities' ratio PSF_λi(δ) / mean_j PSF_λj(δ) (the estimator
+// a point photosite falls back to), so the wavelengths' colour noise drops (docs/camera.md,
+// "Diffraction at the stop"). The camera multiplies its ray's weight by w
+// (Diffraction::sample) and moves the film point by δ before it maps it to a ray.
 #pragma once
 
 #include <memory>
@@ -35,10 +46,17 @@
 #include <glm/vec2.hpp>
 
 #include "integrator/camera/aperture.h"
-#include "integrator/camera/stop_psf.h"
+#include "integrator/camera/psf_grid.h"
 #include "sensor/spectra/sampled_spectrum.h"
 
 namespace camsim {
+
+// The photosite the film point x was drawn in, uniformly: x's offset from its centre and the
+// half-sides (m, camera axes: x right, y up). Half-sides 0: a point photosite.
+struct Photosite {
+  glm::dvec2 offset{0.0};
+  glm::dvec2 halfSide{0.0};
+};
 
 struct DiffractionSample {
   glm::dvec2 offset{0.0};        // δ, m, camera axes: x right, y up
@@ -51,26 +69,23 @@ class Diffraction {
   Diffraction(const ApertureShape& stop, double workingFNumber);
 
   double workingFNumber() const { return workingFNumber_; }
-  const StopPsf& shape() const { return *psf_; }
+  const PsfGrid& grid() const { return *grid_; }
 
-  // δ and the weights from uniform numbers: u for the offset, uChoice for the wavelength.
-  DiffractionSample sample(glm::vec2 u, float uChoice, const SampledWavelengths& lambda) const;
+  // δ and the weights from uniform numbers: u for the offset, uChoice for the wavelength;
+  // site: the photosite the film point was drawn in.
+  DiffractionSample sample(glm::vec2 u, float uChoice, const SampledWavelengths& lambda,
+                           const Photosite& site) const;
   // δ (m) drawn from PSF_λ alone (one wavelength, no weights: camsim psf), from u.
   glm::dvec2 sampleOffset(glm::vec2 u, double lambdaNm) const;
   // PSF_λ(δ) (m⁻²) for the offset δ (m) and wavelength λ (nm): the tabulated density.
   double psf(glm::dvec2 offset, double lambdaNm) const;
 
  private:
-  // The table's offset t (units of λN_w, the stop unturned) turned by the stop's rotation
-  // and scaled to metres.
-  glm::dvec2 toFilm(glm::dvec2 t, double metresPerUnit) const {
-    return metresPerUnit * glm::dvec2(cosRotation_ * t.x - sinRotation_ * t.y,
-                                      sinRotation_ * t.x + cosRotation_ * t.y);
-  }
+  // m per λN_w for wavelength λ (nm).
+  double metresPerUnit(double lambdaNm) const { return lambdaNm * 1e-9 * workingFNumber_; }
 
-  std::shared_ptr<const StopPsf> psf_;
+  std::shared_ptr<const PsfGrid> grid_;
   double workingFNumber_;
-  double cosRotation_, sinRotation_;
 };
 
 }  // namespace camsim

@@ -50,6 +50,7 @@ PhysicalCamera::PhysicalCamera(PhysicalCameraParams params) : p_(std::move(param
   if (p_.aperture) stop_.emplace(diameter, p_.aperture->blades, p_.aperture->rotation);
   if (p_.aperture && p_.aperture->diffraction) diffraction_.emplace(*p_.aperture, workingFNumber());
   pixelsPerMetre_ = glm::dvec2(1.0 / pitch.x, -1.0 / pitch.y);
+  photositeHalfSide_ = 0.5 * std::sqrt(p_.fillFactor) * pitch;
   apertureArea_ = stop_ ? stop_->area() : M_PI * 0.25 * diameter * diameter;
   transmittanceIsOne_ =
       p_.lensTransmittance.minValue() == 1.0 && p_.lensTransmittance.maxValue() == 1.0;
@@ -104,7 +105,8 @@ std::optional<CameraRay> PhysicalCamera::generateDiffractedRay(const CameraSampl
                                                                const SampledWavelengths& lambda,
                                                                const glm::dmat4& m) const {
   const DiffractionSample d =
-      diffraction_->sample(sample.pDiffraction, sample.uDiffractionWavelength, lambda);
+      diffraction_->sample(sample.pDiffraction, sample.uDiffractionWavelength, lambda,
+                           {glm::dvec2(sample.pPhotosite) / pixelsPerMetre_, photositeHalfSide_});
   CameraSample moved = sample;
   moved.pFilm = glm::vec2(glm::dvec2(sample.pFilm) + d.offset * pixelsPerMetre_);
   std::optional<CameraRay> cr = generateLensRay(moved, lambda, m);

@@ -210,6 +210,7 @@ class PhysicalCamera final : public Camera {
   std::optional<Aperture> stop_;            // from p_.aperture and p_.apertureDiameter()
   std::optional<Diffraction> diffraction_;  // with an aperture whose diffraction is on
   glm::dvec2 pixelsPerMetre_{0.0};          // film offset (m, y up) → pixels (y down)
+  glm::dvec2 photositeHalfSide_{0.0};       // m: half the photosensitive square's sides (√fill)
   double imageDistance_;
   double pixelArea_;
   double apertureArea_;

@@ -32,8 +32,8 @@
 //     the sensor plane z = −s.
 //   diffraction (camera.aperture.diffraction, default on; not for a pinhole): each ray that
 //     lands is moved by δ drawn from the stop's Fraunhofer PSF at λ: the PhysicalCamera's
-//     own Diffraction (its StopPsf table, its N_w = z_i / D as the renderer builds it),
-//     turned by the stop's rotation and scaled by λN_w, as Diffraction::sample does.
+//     own Diffraction (its PsfGrid table, its N_w = z_i / D as the renderer builds it),
+//     in the film's axes (the stop turned) and scaled by λN_w, as Diffraction::sample does.
 // Vignetting: lostFraction = 1 − W(lens)/W(stop only), the weight of the rays that pass the
 // real lens over that of the rays that pass the same lens with every clear aperture but the
 // stop's widened (traced lens only; the thin lens has no rims: 0) — the share of the light

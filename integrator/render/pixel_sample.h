@@ -45,7 +45,8 @@ PixelSample drawPixelSample(SamplerT& sampler, const PhysicalCamera& camera,
   if (camera.lensDisperses()) ps.lambda.terminateSecondary();
   CameraSample& cs = ps.camera;
   sampler.setDimension(kDimPixel);
-  cs.pFilm = glm::vec2(pixel) + 0.5f + (sampler.get2D() - 0.5f) * side;
+  cs.pPhotosite = (sampler.get2D() - 0.5f) * side;
+  cs.pFilm = glm::vec2(pixel) + 0.5f + cs.pPhotosite;
   if (dims.aperture) {
     sampler.setDimension(kDimLens);
     cs.pLens = sampler.get2D();
