@@ -24,7 +24,9 @@ struct CameraSample {
   glm::vec2 pFilm{0.0f};  // pixels
   // pFilm's offset from the centre of the photosite it was drawn in (pixels, pFilm's axes);
   // used only by cameras whose stop diffracts: the weights integrate the PSF over the
-  // photosite (diffraction.h).
+  // photosite (diffraction.h), which is unbiased only if pFilm is uniform over the
+  // photosite (the centred square of √fill of the pixel's sides) and this is its offset —
+  // as drawPixelSample (integrator/render/pixel_sample.h) draws them.
   glm::vec2 pPhotosite{0.0f};
   glm::vec2 pLens{0.5f};  // [0,1)², used only by cameras with an aperture
   double time = 0.0;      // s

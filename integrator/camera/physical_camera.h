@@ -45,8 +45,10 @@
 // Diffraction at the stop (aperture.diffraction, on by default; a pinhole has none): the
 // film point u is first moved by an offset δ drawn from the stop's PSF at one of the path's
 // wavelengths, u' = u + (δ_x / pitch_x, −δ_y / pitch_y), and the ray's weight is multiplied
-// by the MIS weights w_i(δ) — a convolution of the geometric image with the PSF per
-// wavelength, with N_w = z_i / D (Diffraction, diffraction.h, states the model).
+// by the MIS weights w_i — the PSF of each wavelength integrated over the photosite moved to
+// u' (from the sample's pPhotosite and the photosite's √fill sides) over their mean: a
+// convolution of the geometric image with the PSF per wavelength, with N_w = z_i / D
+// (Diffraction, diffraction.h, states the model).
 //
 // | parameter        | unit | default   | meaning |
 // |------------------|------|-----------|---------|

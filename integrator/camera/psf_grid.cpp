@@ -7,6 +7,7 @@
 #include <utility>
 
 #include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
 #include "integrator/camera/stop_psf.h"
 #include "sensor/base/check.h"
@@ -163,7 +164,9 @@ std::shared_ptr<const PsfGrid> PsfGrid::forStop(const ApertureShape& stop) {
   static std::map<std::pair<int, double>, std::shared_ptr<const PsfGrid>> grids;
   const std::lock_guard<std::mutex> lock(mutex);
   std::shared_ptr<const PsfGrid>& g = grids[{stop.blades, stop.blades == 0 ? 0.0 : stop.rotation}];
-  if (!g) g = std::make_shared<const PsfGrid>(stop);
+  // Built in an isolated arena: its parallel loops never pick up an outer task that could
+  // wait on this lock.
+  if (!g) tbb::this_task_arena::isolate([&] { g = std::make_shared<const PsfGrid>(stop); });
   return g;
 }
 

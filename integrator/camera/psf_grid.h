@@ -10,11 +10,12 @@
 // | M(box)    | —    | the table's probability inside an axis-aligned box [lo, hi] |
 //
 // The grid: per axis the edges ±b·sinh(k/a), k = 0 … K (b/a = 1/16 λN_w at the centre, a
-// ratio e^{1/a} = 1.02 per cell far out, as StopPsf's radial edges) up to kExtent = 256
+// ratio e^{1/a} = 1.02 per cell far out) up to kExtent = 256
 // λN_w, so 2K cells per axis. A cell's probability is the analytic PSF integrated over it
-// (two-point Gauss–Legendre on sub-cells of at most ½ λN_w per side; the PSF's central
-// symmetry p(−u) = p(u) — and for an unturned stop its mirror in the x axis — computes a
-// half or a quarter of the cells), normalised to 1; the energy past the grid is
+// (two-point Gauss–Legendre on sub-cells of at most ½ λN_w per side; the circle's Airy
+// pattern read from radial tables; the PSF's central symmetry p(−u) = p(u) computes half the
+// cells, an unturned N-gon's mirror in the x axis a quarter, the circle's x ↔ y symmetry an
+// eighth), normalised to 1; the energy past the grid is
 // truncatedEnergy(). Sampling picks a cell with its probability and a point uniform in it.
 //
 // Box integrals: with S(i, j) the summed probability of the cells below column i and row j,
