@@ -139,11 +139,11 @@ PsfGrid::PsfGrid(const ApertureShape& stop) {
     while (k + 1 < static_cast<size_t>(half) && r >= edges_[static_cast<size_t>(half) + k + 1]) ++k;
     guide_[b] = static_cast<int>(k);
   }
-  mass_ = cellMasses(stop, edges_);
+  std::vector<double> mass = cellMasses(stop, edges_);
   long double total = 0.0L;
-  for (const double m : mass_) total += m;
+  for (const double m : mass) total += m;
   truncated_ = 1.0 - static_cast<double>(total);  // the table's energy against Parseval's 1
-  for (double& m : mass_) m = static_cast<double>(m / total);
+  for (double& m : mass) m = static_cast<double>(m / total);
   // S(i, j): the cells below column i and row j, accumulated in long double.
   const size_t stride = static_cast<size_t>(cells_) + 1;
   summed_.assign(stride * stride, 0.0);
@@ -151,12 +151,13 @@ PsfGrid::PsfGrid(const ApertureShape& stop) {
   for (size_t j = 0; j < static_cast<size_t>(cells_); ++j) {
     long double row = 0.0L;
     for (size_t i = 0; i < static_cast<size_t>(cells_); ++i) {
-      column[i + 1] += mass_[j * static_cast<size_t>(cells_) + i];
+      column[i + 1] += mass[j * static_cast<size_t>(cells_) + i];
       row += column[i + 1];
       summed_[(j + 1) * stride + i + 1] = static_cast<double>(row);
     }
   }
-  table_ = PiecewiseConstant2D(mass_, cells_, cells_);
+  rows_.resize(stride);
+  for (size_t j = 0; j < stride; ++j) rows_[j] = summed_[j * stride + stride - 1];
 }
 
 std::shared_ptr<const PsfGrid> PsfGrid::forStop(const ApertureShape& stop) {
@@ -200,12 +201,28 @@ double PsfGrid::boxMass(glm::dvec2 lo, glm::dvec2 hi) const {
   return std::max(m, 0.0);  // rounding can leave −1e-17 for an empty box
 }
 
+// A cell by its probability, from the summed table itself (so sampling and boxMass read the
+// same numbers): the row j whose cumulative R(j) = S(n, j) brackets u_y·R(n), then the
+// column i whose in-row cumulative S(i, j+1) − S(i, j) brackets u_x times the row's total;
+// the remainders place the point uniformly in the cell.
 glm::dvec2 PsfGrid::sample(glm::vec2 u) const {
-  const Sample2D s = table_.sample(u);
-  const double fx = std::clamp(static_cast<double>(s.uv.x) * cells_ - s.column, 0.0, 1.0);
-  const double fy = std::clamp(static_cast<double>(s.uv.y) * cells_ - s.row, 0.0, 1.0);
-  const size_t i = static_cast<size_t>(s.column), j = static_cast<size_t>(s.row);
-  return {edges_[i] + fx * (edges_[i + 1] - edges_[i]),
+  const size_t n = static_cast<size_t>(cells_), stride = n + 1;
+  const double ty = static_cast<double>(u.y) * rows_[n];
+  size_t j = static_cast<size_t>(std::upper_bound(rows_.begin(), rows_.end(), ty) - rows_.begin());
+  j = std::clamp<size_t>(j, 1, n) - 1;
+  const double* below = &summed_[j * stride];
+  const double* above = below + stride;
+  auto inRow = [&](size_t i) { return above[i] - below[i]; };
+  const double tx = static_cast<double>(u.x) * inRow(n);
+  size_t lo = 0, hi = n;  // inRow(lo) ≤ tx < inRow(hi)
+  while (hi - lo > 1) {
+    const size_t mid = (lo + hi) / 2;
+    (inRow(mid) <= tx ? lo : hi) = mid;
+  }
+  const double cellMass = inRow(lo + 1) - inRow(lo), rowMass = rows_[j + 1] - rows_[j];
+  const double fx = cellMass > 0.0 ? std::clamp((tx - inRow(lo)) / cellMass, 0.0, 1.0) : 0.5;
+  const double fy = rowMass > 0.0 ? std::clamp((ty - rows_[j]) / rowMass, 0.0, 1.0) : 0.5;
+  return {edges_[lo] + fx * (edges_[lo + 1] - edges_[lo]),
           edges_[j] + fy * (edges_[j + 1] - edges_[j])};
 }
 
@@ -214,7 +231,9 @@ double PsfGrid::density(glm::dvec2 u) const {
   const AxisPosition x = locate(u.x), y = locate(u.y);
   const size_t i = static_cast<size_t>(x.cell), j = static_cast<size_t>(y.cell);
   const double area = (edges_[i + 1] - edges_[i]) * (edges_[j + 1] - edges_[j]);
-  return mass_[j * static_cast<size_t>(cells_) + i] / area;
+  const double m = summed(x.cell + 1, y.cell + 1) - summed(x.cell + 1, y.cell) -
+                   summed(x.cell, y.cell + 1) + summed(x.cell, y.cell);
+  return std::max(m, 0.0) / area;
 }
 
 }  // namespace camsim

@@ -32,7 +32,6 @@
 #include <glm/vec2.hpp>
 
 #include "integrator/camera/aperture.h"
-#include "integrator/sampling/distribution_2d.h"
 
 namespace camsim {
 
@@ -78,9 +77,8 @@ class PsfGrid {
   int cells_ = 0;               // per axis
   std::vector<int> guide_;      // per bucket of |x|: the first cell it meets, from the centre
   std::vector<double> edges_;   // cells_ + 1 (λN_w)
-  std::vector<double> mass_;    // cells_ × cells_, row by row (y), normalised
   std::vector<double> summed_;  // (cells_ + 1)², S(i, j)
-  PiecewiseConstant2D table_;
+  std::vector<double> rows_;    // cells_ + 1: R(j) = S(cells_, j), the rows' cumulative
   double truncated_ = 0.0;
 };
 
