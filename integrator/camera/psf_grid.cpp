@@ -51,7 +51,7 @@ AxisNodes axisNodes(const std::vector<double>& edges) {
 // The cells' probabilities, unnormalised: the analytic PSF integrated over each cell of the
 // grid with these edges (both axes), in film axes for the stop's turn.
 std::vector<double> cellMasses(const ApertureShape& stop, const std::vector<double>& edges) {
-  const std::shared_ptr<const StopPsf> shape = StopPsf::forBlades(stop.blades);
+  const StopPsf shape(stop.blades);
   const int n = static_cast<int>(edges.size()) - 1, half = n / 2;
   const AxisNodes nodes = axisNodes(edges);
   // The PSF's symmetries pick each cell's representative: p(−u) = p(u) always; an unturned
@@ -80,7 +80,7 @@ std::vector<double> cellMasses(const ApertureShape& stop, const std::vector<doub
   auto tabulate = [&](std::vector<double>& t, double perUnit, double from, double to) {
     t.resize(static_cast<size_t>(std::ceil((to - from) * perUnit)) + 2);
     tbb::parallel_for(size_t{0}, t.size(), [&](size_t k) {
-      t[k] = shape->analytic({from + static_cast<double>(k) / perUnit, 0.0});
+      t[k] = shape.analytic({from + static_cast<double>(k) / perUnit, 0.0});
     });
   };
   if (transpose) {
@@ -92,7 +92,7 @@ std::vector<double> cellMasses(const ApertureShape& stop, const std::vector<doub
     return t[k] + (x - static_cast<double>(k)) * (t[k + 1] - t[k]);
   };
   auto psfAt = [&](double x, double y) {
-    if (!transpose) return shape->analytic({c * x + s * y, -s * x + c * y});
+    if (!transpose) return shape.analytic({c * x + s * y, -s * x + c * y});
     const double r = std::hypot(x, y);
     return r < kNear ? lerp(fine, r * kFinePerUnit) : lerp(coarse, (r - kNear) * kCoarsePerUnit);
   };

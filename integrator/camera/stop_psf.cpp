@@ -1,8 +1,6 @@
 #include "integrator/camera/stop_psf.h"
 
 #include <cmath>
-#include <map>
-#include <mutex>
 
 #include "sensor/base/check.h"
 
@@ -38,15 +36,6 @@ StopPsf::StopPsf(int blades) : blades_(blades) {
     polygonEdges_.push_back(
         {glm::dvec2(edge.y, -edge.x), 0.5 * edge, 0.5 * circumradius * (v0 + v1)});
   }
-}
-
-std::shared_ptr<const StopPsf> StopPsf::forBlades(int blades) {
-  static std::mutex mutex;
-  static std::map<int, std::shared_ptr<const StopPsf>> tables;
-  const std::lock_guard<std::mutex> lock(mutex);
-  std::shared_ptr<const StopPsf>& t = tables[blades];
-  if (!t) t = std::make_shared<const StopPsf>(blades);
-  return t;
 }
 
 std::complex<double> StopPsf::pupilTransform(glm::dvec2 k) const {

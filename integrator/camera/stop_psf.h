@@ -26,7 +26,6 @@
 #pragma once
 
 #include <complex>
-#include <memory>
 #include <vector>
 
 #include <glm/vec2.hpp>
@@ -35,9 +34,7 @@ namespace camsim {
 
 class StopPsf {
  public:
-  explicit StopPsf(int blades);
-  // The shared model of a shape (built once per blade count, then kept; thread-safe).
-  static std::shared_ptr<const StopPsf> forBlades(int blades);
+  explicit StopPsf(int blades);  // cheap: the N-gon's edges (PsfGrid caches what is costly)
 
   int blades() const { return blades_; }
   // The analytic PSF p(u) of the shape ((λN_w)⁻²) and the pupil's Fourier transform F(k).

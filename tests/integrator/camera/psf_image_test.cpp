@@ -95,8 +95,8 @@ TEST(PsfImage, AiryEncircledEnergyAtF8) {
   // (1.6163 is where the intensity [2J₁(v)/v]² falls to half its peak, not the EE50.)
   EXPECT_NEAR(M_PI * x50, 1.68022, 1e-4);
   EXPECT_NEAR(M_PI * x80, 2.81783, 1e-4);
-  const std::shared_ptr<const StopPsf> circle = StopPsf::forBlades(0);
-  EXPECT_NEAR(circle->analytic({1.6163 / M_PI, 0.0}) / circle->analytic({0.0, 0.0}), 0.5, 1e-4);
+  const StopPsf circle(0);
+  EXPECT_NEAR(circle.analytic({1.6163 / M_PI, 0.0}) / circle.analytic({0.0, 0.0}), 0.5, 1e-4);
   const PhysicalCamera camera(thinLens(true, 0.0));  // focus and object at infinity
   PsfSettings set = settings(0.0, 200000);
   set.wavelengthNm = 550.0;
