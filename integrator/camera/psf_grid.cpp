@@ -120,6 +120,38 @@ std::vector<double> cellMasses(const ApertureShape& stop, const std::vector<doub
   return mass;
 }
 
+// A guide to a nondecreasing cumulative F(0) = 0 … F(n) cut into `shares` equal parts:
+// entry b (b = 0 … shares) is the last index i < n with F(i) ≤ (b/shares)·F(n).
+template <class Cumulative>
+void buildGuide(const Cumulative& f, size_t n, size_t shares, std::uint16_t* guide) {
+  size_t i = 0;
+  for (size_t b = 0; b <= shares; ++b) {
+    const double bound = static_cast<double>(b) / static_cast<double>(shares) * f(n);
+    while (i + 1 < n && f(i + 1) <= bound) ++i;
+    guide[b] = static_cast<std::uint16_t>(i);
+  }
+}
+
+// The index lo < n with F(lo) ≤ t < F(lo + 1) for t in [0, F(n)): a binary search between
+// the guide's entries for t's share (widened by a step if rounding put t past them).
+template <class Cumulative>
+size_t guidedFind(const Cumulative& f, size_t n, double t, size_t shares,
+                  const std::uint16_t* guide) {
+  const double total = f(n);
+  const size_t b =
+      total > 0.0
+          ? std::min(static_cast<size_t>(t / total * static_cast<double>(shares)), shares - 1)
+          : 0;
+  size_t lo = guide[b], hi = std::min<size_t>(guide[b + 1] + 1u, n);
+  while (lo > 0 && f(lo) > t) --lo;
+  while (hi < n && f(hi) <= t) ++hi;
+  while (hi - lo > 1) {  // f(lo) ≤ t < f(hi)
+    const size_t mid = (lo + hi) / 2;
+    (f(mid) <= t ? lo : hi) = mid;
+  }
+  return lo;
+}
+
 }  // namespace
 
 PsfGrid::PsfGrid(const ApertureShape& stop) {
@@ -158,6 +190,16 @@ PsfGrid::PsfGrid(const ApertureShape& stop) {
   }
   rows_.resize(stride);
   for (size_t j = 0; j < stride; ++j) rows_[j] = summed_[j * stride + stride - 1];
+  const size_t n = static_cast<size_t>(cells_);
+  rowGuide_.resize(kRowShares + 1);
+  buildGuide([&](size_t j) { return rows_[j]; }, n, kRowShares, rowGuide_.data());
+  columnGuide_.resize(n * (kColumnShares + 1));
+  for (size_t j = 0; j < n; ++j) {
+    const double* below = &summed_[j * stride];
+    const double* above = below + stride;
+    buildGuide([&](size_t i) { return above[i] - below[i]; }, n, kColumnShares,
+               &columnGuide_[j * (kColumnShares + 1)]);
+  }
 }
 
 std::shared_ptr<const PsfGrid> PsfGrid::forStop(const ApertureShape& stop) {
@@ -203,26 +245,22 @@ double PsfGrid::boxMass(glm::dvec2 lo, glm::dvec2 hi) const {
 
 // A cell by its probability, from the summed table itself (so sampling and boxMass read the
 // same numbers): the row j whose cumulative R(j) = S(n, j) brackets u_y·R(n), then the
-// column i whose in-row cumulative S(i, j+1) − S(i, j) brackets u_x times the row's total;
-// the remainders place the point uniformly in the cell.
+// column i whose in-row cumulative S(i, j+1) − S(i, j) brackets u_x times the row's total
+// (each found from its guide); the remainders place the point uniformly in the cell.
 glm::dvec2 PsfGrid::sample(glm::vec2 u) const {
   const size_t n = static_cast<size_t>(cells_), stride = n + 1;
+  const auto row = [&](size_t j) { return rows_[j]; };
   const double ty = static_cast<double>(u.y) * rows_[n];
-  size_t j = static_cast<size_t>(std::upper_bound(rows_.begin(), rows_.end(), ty) - rows_.begin());
-  j = std::clamp<size_t>(j, 1, n) - 1;
+  const size_t j = guidedFind(row, n, ty, kRowShares, rowGuide_.data());
   const double* below = &summed_[j * stride];
   const double* above = below + stride;
-  auto inRow = [&](size_t i) { return above[i] - below[i]; };
+  const auto inRow = [&](size_t i) { return above[i] - below[i]; };
   const double tx = static_cast<double>(u.x) * inRow(n);
-  size_t lo = 0, hi = n;  // inRow(lo) ≤ tx < inRow(hi)
-  while (hi - lo > 1) {
-    const size_t mid = (lo + hi) / 2;
-    (inRow(mid) <= tx ? lo : hi) = mid;
-  }
-  const double cellMass = inRow(lo + 1) - inRow(lo), rowMass = rows_[j + 1] - rows_[j];
-  const double fx = cellMass > 0.0 ? std::clamp((tx - inRow(lo)) / cellMass, 0.0, 1.0) : 0.5;
+  const size_t i = guidedFind(inRow, n, tx, kColumnShares, &columnGuide_[j * (kColumnShares + 1)]);
+  const double cellMass = inRow(i + 1) - inRow(i), rowMass = rows_[j + 1] - rows_[j];
+  const double fx = cellMass > 0.0 ? std::clamp((tx - inRow(i)) / cellMass, 0.0, 1.0) : 0.5;
   const double fy = rowMass > 0.0 ? std::clamp((ty - rows_[j]) / rowMass, 0.0, 1.0) : 0.5;
-  return {edges_[lo] + fx * (edges_[lo + 1] - edges_[lo]),
+  return {edges_[i] + fx * (edges_[i + 1] - edges_[i]),
           edges_[j] + fy * (edges_[j + 1] - edges_[j])};
 }
 

@@ -26,6 +26,7 @@
 // exact for the sampled distribution (to double rounding, ~1e-16 of S).
 #pragma once
 
+#include <cstdint>
 #include <memory>
 #include <vector>
 
@@ -73,6 +74,10 @@ class PsfGrid {
 
   // Guide buckets per λN_w for locate(): no cell is narrower (the centre's is 1/16 λN_w).
   static constexpr double kGuidePerUnit = 16.0;
+  // sample()'s guides: the rows' cumulative and each row's own cut into equal shares of
+  // probability; a share's search starts between its two bounds (a few cells, not log₂ 514
+  // probes through two 4 KB rows).
+  static constexpr size_t kRowShares = 1024, kColumnShares = 64;
 
   int cells_ = 0;               // per axis
   std::vector<int> guide_;      // per bucket of |x|: the first cell it meets, from the centre
@@ -82,6 +87,8 @@ class PsfGrid {
   // the summed table's last column, so that sample()'s row search reads 4 KB in order
   // instead of one cache line per row (the column is strided by a whole row).
   std::vector<double> rows_;
+  std::vector<std::uint16_t> rowGuide_;     // kRowShares + 1 (ProbabilityGuide, psf_grid.cpp)
+  std::vector<std::uint16_t> columnGuide_;  // per row kColumnShares + 1
   double truncated_ = 0.0;
 };
 
