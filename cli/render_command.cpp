@@ -136,7 +136,7 @@ RenderCommandResult runRender(const RenderArgs& args, std::ostream& log,
   ProgressBar progress("rendering " + desc.name +
                        (sequence ? " (" + std::to_string(count) + " frames)" : ""));
   options.progress = [&](int done, int total) { progress.update(done, total); };
-  CaptureRunWriter writer(out, sequence);
+  CaptureRunWriter writer(out, desc);  // the pose exports' models: a bad scene fails here
   const SequenceSummary summary =
       captureScene(std::move(desc), options, [&](CaptureResult&& r, int) {
         printCaptureNotes(r, log);

@@ -51,6 +51,9 @@ void runJob(CaptureJob& job) {
       job.done = done;
     };
     options.sceneCache = job.built.get();
+    // No files here, but a scene whose BOP or KITTI export cannot be written is refused
+    // before it renders, as `camsim render` refuses it.
+    checkPoseExports(job.description);
     captureScene(std::move(job.description), options, [&job](CaptureResult&& r, int) {
       if (!r.cancelled) job.results.push_back(keep(std::move(r), job.picture));
     });

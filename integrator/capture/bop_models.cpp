@@ -150,7 +150,7 @@ std::vector<std::filesystem::path> writeBopModels(const std::vector<BopModel>& m
   OutputSet outputs(directory);
   JsonObject info;
   for (const BopModel& m : models) {
-    outputs.addText("obj_" + sixDigits(m.objId) + ".ply", plyText(m.model));
+    outputs.addText("obj_" + formatSixDigits(m.objId) + ".ply", plyText(m.model));
     const BopModelInfo i = bopModelInfo(m.model);
     info.set(std::to_string(m.objId), JsonObject()
                                           .set("diameter", i.diameter)

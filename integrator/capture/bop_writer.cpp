@@ -65,14 +65,14 @@ double bopDepthScale(double maxDepthMm) {
 
 BopWriter::BopWriter(std::filesystem::path directory, int sceneId, const PoseModels& models)
     : directory_(std::move(directory)),
-      scene_(directory_ / "bop" / "train_pbr" / sixDigits(sceneId)),
+      scene_(directory_ / "bop" / "train_pbr" / formatSixDigits(sceneId)),
       models_(&models) {}
 
 std::vector<std::filesystem::path> BopWriter::addFrame(const CaptureResult& r, int imageId) {
   const SceneDescription& d = r.description;
   // The run's models are this scene's (PoseModels of a scene with `exports: [bop]`).
   CAMSIM_CHECK(models_->bopOfShape().size() == d.shapes.size());
-  const std::string image = sixDigits(imageId), key = std::to_string(imageId);
+  const std::string image = formatSixDigits(imageId), key = std::to_string(imageId);
   const Image& a = r.aovs;
   // The camera at the frame's reference time: world (the scene file's) → camera, OpenCV.
   const PhysicalCamera camera(d.camera);
@@ -159,7 +159,7 @@ std::vector<std::filesystem::path> BopWriter::addFrame(const CaptureResult& r, i
               .setInteger("px_count_valid", valid)
               .setInteger("px_count_visib", visib.count)
               .set("visib_fract", all.count > 0 ? double(visib.count) / double(all.count) : 0.0));
-      const std::string name = image + "_" + sixDigits(static_cast<long>(g)) + ".png";
+      const std::string name = image + "_" + formatSixDigits(static_cast<long long>(g)) + ".png";
       writePng(amodal.add(name), grey(a, std::move(all.pixels), 8));
       writePng(visible.add(name), grey(a, visib.pixels, 8));
     }

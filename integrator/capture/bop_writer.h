@@ -63,9 +63,9 @@ struct BopModel {
 std::vector<const ObjectModel*> bopShapeModels(const SceneDescription& d,
                                                const std::vector<BopModel>& models);
 
-// The models a run's pose exports pose its frames with, made once (from the first frame's
-// description: a sequence's frames share their shapes) and handed to both writers, so that
-// neither remakes them per frame:
+// The models a run's pose exports pose its frames with, made once, before the run renders
+// (CaptureRunWriter's constructor, from the scene: a capture changes its frames' cameras,
+// never their shapes), and handed to both writers, so that neither remakes them per frame:
 //   bop()         with `exports: [bop]`: one model per obj_id, its first shape's
 //   bopOfShape()  per shape: its obj_id's model (bopShapeModels), for BOP's poses
 //   ownOfShape()  per shape: its own model's box alone (no vertices), for KITTI's h, w, l
@@ -141,6 +141,9 @@ std::vector<std::filesystem::path> writeBop(const CaptureResult& result, const P
 // The scene's BOP and KITTI exports checked before anything renders — every labelled shape
 // has a rigid pose (objectModel), and BOP's models of one obj_id agree: InputError
 // otherwise (PoseModels(d), made and dropped). Nothing for a scene without either export.
+// For what writes no pose exports (a tile part, a Python capture, a dataset's check of all
+// its items): a run that writes them makes the models it keeps (CaptureRunWriter), the same
+// check.
 void checkPoseExports(const SceneDescription& d);
 
 }  // namespace camsim

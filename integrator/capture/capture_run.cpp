@@ -9,7 +9,6 @@ namespace camsim {
 
 SequenceSummary captureScene(SceneDescription description, const CaptureOptions& options,
                              const std::function<void(CaptureResult&&, int)>& onFrame) {
-  checkPoseExports(description);
   if (!description.frames) {
     CaptureResult result = capture(std::move(description), options);
     SequenceSummary summary;
@@ -33,13 +32,13 @@ SequenceSummary captureScene(SceneDescription description, const CaptureOptions&
                          });
 }
 
-CaptureRunWriter::CaptureRunWriter(CaptureOutputOptions out, bool sequence)
-    : out_(std::move(out)), sequence_(sequence) {}
+// The models of the scene before it renders are its frames': a capture changes its camera,
+// name and sensor, never its shapes.
+CaptureRunWriter::CaptureRunWriter(CaptureOutputOptions out, const SceneDescription& description)
+    : out_(std::move(out)), sequence_(description.frames.has_value()), models_(description) {}
 
 WrittenCapture CaptureRunWriter::write(const CaptureResult& result) {
-  // Once for the run: a sequence's frames share their shapes.
-  if (!result.cancelled && !models_) models_.emplace(result.description);
-  WrittenCapture written = writeCapture(result, out_, models_ ? &*models_ : nullptr);
+  WrittenCapture written = writeCapture(result, out_, &models_);
   files_.insert(files_.end(), written.files.begin(), written.files.end());
   skipped_.insert(skipped_.end(), written.skipped.begin(), written.skipped.end());
   if (result.cancelled) {
@@ -51,7 +50,7 @@ WrittenCapture CaptureRunWriter::write(const CaptureResult& result) {
   // The image id of both exports: the frame's sequence frame number.
   const int image = (d.frames ? d.frames->first : 0) + static_cast<int>(frames_.size());
   if (d.exportsTo(ExportFormat::kBop)) {
-    if (!bop_) bop_.emplace(out_.directory, out_.datasetItem, *models_);
+    if (!bop_) bop_.emplace(out_.directory, out_.datasetItem, models_);
     for (auto& f : bop_->addFrame(result, image)) {
       files_.push_back(f);
       written.files.push_back(std::move(f));
@@ -59,7 +58,7 @@ WrittenCapture CaptureRunWriter::write(const CaptureResult& result) {
   }
   if (d.exportsTo(ExportFormat::kKitti)) {
     std::vector<std::string> notes;
-    for (auto& f : writeKittiFrame(result, models_->ownOfShape(), out_.directory, image, &notes)) {
+    for (auto& f : writeKittiFrame(result, models_.ownOfShape(), out_.directory, image, &notes)) {
       files_.push_back(f);
       written.files.push_back(std::move(f));
     }

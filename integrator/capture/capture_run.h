@@ -25,8 +25,9 @@ namespace camsim {
 
 // A cancelled frame is handed on (result.cancelled) and ends the run; the summary counts
 // the frames handed on (frames), those rendered (rendered) and whether it was cancelled.
-// A scene whose BOP or KITTI export cannot be written (checkPoseExports) is an InputError
-// before any rendering.
+// It does not check the pose exports: the caller refuses a scene whose BOP or KITTI export
+// cannot be written before calling it — a writing run by making its CaptureRunWriter (which
+// makes the run's models), any other with checkPoseExports (bop_writer.h).
 SequenceSummary captureScene(SceneDescription description, const CaptureOptions& options,
                              const std::function<void(CaptureResult&&, int)>& onFrame);
 
@@ -35,11 +36,13 @@ SequenceSummary captureScene(SceneDescription description, const CaptureOptions&
 // transforms.json, COLMAP; docs/output.md) once the last has been written. With
 // `exports: [bop]` a sequence is one BOP scene (bop_writer.h): each frame's images as it
 // arrives (image id = its sequence frame number), the models and JSON files at finish().
-// The pose exports' models (PoseModels) are made once, at the first frame, and serve every
-// frame's BOP and KITTI files.
+// The pose exports' models (PoseModels) are made once, by the constructor — before anything
+// renders, so a scene whose BOP or KITTI export cannot be written is an InputError then, as
+// checkPoseExports — and serve every frame's BOP and KITTI files.
 class CaptureRunWriter {
  public:
-  CaptureRunWriter(CaptureOutputOptions out, bool sequence);
+  // description: the run's scene, as handed to captureScene (a sequence: it has `frames`).
+  CaptureRunWriter(CaptureOutputOptions out, const SceneDescription& description);
   // Not copyable: its BOP writer keeps its models' address.
   CaptureRunWriter(const CaptureRunWriter&) = delete;
   CaptureRunWriter& operator=(const CaptureRunWriter&) = delete;
@@ -59,8 +62,8 @@ class CaptureRunWriter {
   bool sequence_;
   bool cancelled_ = false;
   std::vector<DatasetFrame> frames_;
-  std::optional<PoseModels> models_;  // made at the first finished frame
-  std::optional<BopWriter> bop_;      // a sequence with exports: [bop]
+  PoseModels models_;             // of the run's scene, made by the constructor
+  std::optional<BopWriter> bop_;  // a sequence with exports: [bop]
   std::vector<std::filesystem::path> files_;
   std::vector<std::string> skipped_;
 };

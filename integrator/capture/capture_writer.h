@@ -49,9 +49,10 @@ struct WrittenCapture {
 class PoseModels;  // bop_writer.h
 
 // Throws InputError (nothing is written then) when a file cannot be written. models: the
-// run's pose-export models (PoseModels of result.description, made once for a sequence's
-// frames by CaptureRunWriter); null: made here, before any file is written (which checks
-// that the BOP and KITTI exports can be written).
+// run's pose-export models (PoseModels of result.description, made once per run before it
+// renders: CaptureRunWriter's, a dataset item's); null (a capture written alone: a merge,
+// a test): made here, before any file is written (which checks that the BOP and KITTI
+// exports can be written).
 WrittenCapture writeCapture(const CaptureResult& result, const CaptureOutputOptions& options,
                             const PoseModels* models = nullptr);
 

@@ -192,7 +192,7 @@ std::vector<std::filesystem::path> writeKittiFrame(const CaptureResult& result,
               " " + n(l.rotationY) + "\n";
   }
   // All three written, then committed together: no image without its calib and labels.
-  const std::string name = sixDigits(imageId);
+  const std::string name = formatSixDigits(imageId);
   for (const char* sub : {"image_2", "calib", "label_2"})
     (void)OutputSet::prepareDirectory(root / sub);
   OutputSet image(root / "image_2"), calibSet(root / "calib"), labelSet(root / "label_2");

@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <limits>
 #include <numbers>
 #include <optional>
@@ -181,12 +180,6 @@ std::vector<ObjectPose> objectPoses(const SceneDescription& d, const PhysicalCam
     poses.push_back(p);
   }
   return poses;
-}
-
-std::string sixDigits(long v) {
-  char buf[24];
-  std::snprintf(buf, sizeof buf, "%06ld", v);
-  return buf;
 }
 
 }  // namespace camsim

@@ -29,7 +29,6 @@
 #include <cstddef>
 #include <cstdint>
 #include <span>
-#include <string>
 #include <vector>
 
 #include <glm/mat3x3.hpp>
@@ -97,9 +96,5 @@ glm::dmat4 cameraCvFromRender(const PhysicalCamera& camera, double t);
 // no models at all, has its model made here.
 std::vector<ObjectPose> objectPoses(const SceneDescription& d, const PhysicalCameraParams& camera,
                                     std::span<const ObjectModel* const> models);
-
-// The exports' six-digit numbers in file and folder names (BOP's scene, image, annotation
-// and obj ids, KITTI's image ids): v zero-padded to six digits, more when it needs them.
-std::string sixDigits(long v);
 
 }  // namespace camsim

@@ -1,12 +1,12 @@
 #include "integrator/dataset/dataset_item.h"
 
-#include <cstdio>
 #include <fstream>
 #include <map>
 #include <sstream>
 
 #include "integrator/scene/scene_loader.h"
 #include "sensor/base/fnv1a.h"
+#include "sensor/base/format.h"
 #include "sensor/base/input_error.h"
 #include "sensor/base/yaml_reader.h"
 
@@ -29,9 +29,7 @@ std::string fileContentHash(const std::filesystem::path& file) {
 }  // namespace
 
 std::string itemFolderName(std::size_t index) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%06zu", index);
-  return buf;
+  return formatSixDigits(static_cast<long long>(index));
 }
 
 void checkBaseScene(const Manifest& manifest) {

@@ -8,6 +8,7 @@
 #include <future>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <set>
 #include <thread>
 #include <utility>
@@ -62,18 +63,26 @@ bool renderItem(SceneDescription desc, ItemWork& w, const DatasetRunOptions& opt
   co.cancel = options.cancel;
   co.progress = [&](int done, int total) { fraction(static_cast<double>(done) / total); };
   const bool sequence = desc.frames.has_value();
-  CaptureRunWriter writer(out, sequence);
+  // The item's pose-export models, made once before it renders: a sequence's by its writer,
+  // a single capture's kept for writeItem.
+  std::optional<CaptureRunWriter> writer;
+  if (sequence)
+    writer.emplace(out, desc);
+  else
+    w.models = PoseModels(desc);
   const SequenceSummary s = captureScene(std::move(desc), co, [&](CaptureResult&& c, int) {
     if (c.cancelled) return;
     w.renderSeconds += c.stats.seconds;
-    if (sequence)
-      writer.write(c);
+    if (writer)
+      writer->write(c);
     else
       w.capture = std::move(c);
   });
   if (s.cancelled) return false;
-  writer.finish();
-  w.files.insert(w.files.end(), writer.files().begin(), writer.files().end());
+  if (writer) {
+    writer->finish();
+    w.files.insert(w.files.end(), writer->files().begin(), writer->files().end());
+  }
   return true;
 }
 

@@ -205,7 +205,7 @@ ItemReport writeItem(const Manifest& manifest, ItemWork& w) {
     if (w.capture) {
       CaptureOutputOptions out{w.tmp, w.picture, false, true};
       out.datasetItem = static_cast<int>(index);  // BOP scene, KITTI image (capture_writer.h)
-      for (auto& f : writeCapture(*w.capture, out).files) w.files.push_back(f);
+      for (auto& f : writeCapture(*w.capture, out, &w.models).files) w.files.push_back(f);
       w.capture.reset();
     }
     OutputSet extra(w.tmp);

@@ -20,6 +20,7 @@
 #include <utility>
 #include <vector>
 
+#include "integrator/capture/bop_writer.h"
 #include "integrator/capture/capture.h"
 #include "integrator/dataset/dataset_item.h"
 #include "integrator/dataset/dataset_run.h"
@@ -30,6 +31,7 @@ namespace camsim {
 struct ItemWork {
   ResolvedItem item;
   std::optional<CaptureResult> capture;      // a single capture, still to write
+  PoseModels models;                         // its pose exports' (made before it rendered)
   std::vector<std::filesystem::path> files;  // already written (a sequence's frames)
   double renderSeconds = 0.0;
   std::filesystem::path tmp, finalDir, indexFile;

@@ -37,4 +37,10 @@ std::string formatSize(int width, int height) {
   return std::to_string(width) + "x" + std::to_string(height);
 }
 
+std::string formatSixDigits(long long v) {
+  char buf[24];
+  std::snprintf(buf, sizeof buf, "%06lld", v);
+  return buf;
+}
+
 }  // namespace camsim

@@ -4,6 +4,7 @@
 //   formatFixed(v, d)   printf "%.{d}f"  (d decimals)
 //   formatRate(r)       "12.35 M", "4.20 k" or "17.00 " (two decimals, SI prefix; for "…/s")
 //   formatSize(w, h)    "512x512" (an image size in pixels)
+//   formatSixDigits(v)  printf "%06lld": "000042", "1234567" (numbers in file and folder names)
 #pragma once
 
 #include <string>
@@ -20,5 +21,9 @@ std::string formatFixed(double v, int decimals);
 std::string formatShortest(double v);
 std::string formatRate(double perSecond);
 std::string formatSize(int width, int height);
+// The six-digit numbers of file and folder names (BOP's scene, image, annotation and obj ids,
+// KITTI's image ids, a dataset's item folders): v zero-padded to six digits, more when it
+// needs them.
+std::string formatSixDigits(long long v);
 
 }  // namespace camsim

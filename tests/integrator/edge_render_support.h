@@ -12,13 +12,18 @@
 //
 //   Σ_k W_k · lit(ray_k) / Σ_k W_k
 //
-// over its rays (film point over the pixel, lens and diffraction numbers stratified, Pcg32
-// with a fixed seed; W_k the camera's measurement weight at lane 0, 0 for a lost ray): its
+// over its rays (film point over the photosite, lens and diffraction numbers stratified,
+// Pcg32 with a fixed seed; W_k the camera's measurement weight at lane 0, 0 for a lost ray): its
 // exposure to a lit half-plane over its exposure to a uniformly lit plane, the same samples
 // in both (a flat-field-corrected edge). The ratio removes the noise of the weights — a traced lens's
 // pupil samples vary in weight, and some are lost — that would otherwise lie on the whole lit
 // side; only the pixels the blur reaches are noisy. It is the edge's ESF integrated over the
-// photosite, the camera's relative illumination across a pixel divided out.
+// photosite, the camera's relative illumination across a pixel divided out. The film point
+// follows drawPixelSample's rule (integrator/render/pixel_sample.h): uniform over the
+// photosite (the pixel's centred square of √fill sides), pPhotosite its offset from the
+// pixel's centre (a diffracting stop's weights integrate the PSF over the photosite around
+// the film point from it: CameraSample, camera.h). drawPixelSample itself does not fit: it
+// draws from the render's sampler, not these padded strata.
 #pragma once
 
 #include <algorithm>
@@ -32,6 +37,7 @@
 #include <glm/vec2.hpp>
 
 #include "integrator/camera/physical_camera.h"
+#include "integrator/render/pixel_sample.h"
 #include "integrator/sampling/rng.h"
 #include "sensor/base/image.h"
 #include "sensor/spectra/sampled_spectrum.h"
@@ -56,6 +62,7 @@ inline Image renderEdgeAtOneWavelength(const PhysicalCamera& camera, const EdgeT
   const SampledWavelengths lambda = SampledWavelengths::monochromatic(lambdaNm);
   const double t = target.angleDeg * std::numbers::pi / 180.0;
   const double nx = std::cos(t), ny = -std::sin(t);
+  const float side = photositeSide(camera);  // the photosite's side, pixels
   const int n = static_cast<int>(std::lround(std::sqrt(static_cast<double>(spp))));
   const auto stratum = [n](int i, float jitter) {
     return std::min((static_cast<float>(i) + jitter) / static_cast<float>(n), 0x1.fffffep-1f);
@@ -77,8 +84,8 @@ inline Image renderEdgeAtOneWavelength(const PhysicalCamera& camera, const EdgeT
         const int l = lensStratum[static_cast<size_t>(k)];
         const int d = diffractionStratum[static_cast<size_t>(k)];
         CameraSample cs;
-        cs.pFilm = glm::vec2(static_cast<float>(px) + stratum(k % n, u[0]),
-                             static_cast<float>(py) + stratum(k / n, u[1]));
+        cs.pPhotosite = (glm::vec2(stratum(k % n, u[0]), stratum(k / n, u[1])) - 0.5f) * side;
+        cs.pFilm = glm::vec2(static_cast<float>(px), static_cast<float>(py)) + 0.5f + cs.pPhotosite;
         cs.pLens = glm::vec2(stratum(l % n, u[2]), stratum(l / n, u[3]));
         cs.pDiffraction = glm::vec2(stratum(d % n, u[4]), stratum(d / n, u[5]));
         cs.uDiffractionWavelength = u[6];

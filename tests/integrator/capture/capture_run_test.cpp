@@ -10,6 +10,7 @@
 
 #include "integrator/capture/capture_run.h"
 #include "integrator/scene/scene_loader.h"
+#include "sensor/base/input_error.h"
 #include "tests/support/temp_dir.h"
 #include "tests/support/text_file.h"
 
@@ -84,8 +85,9 @@ TEST(CaptureRunWriter, ASequenceWritesItsFramesThenItsCameraExports) {
   CaptureOutputOptions out;
   out.directory = dir;
   out.reproducible = true;
-  CaptureRunWriter writer(out, true);
-  captureScene(tinyScene(2), {}, [&](CaptureResult&& c, int) { writer.write(c); });
+  const SceneDescription d = tinyScene(2);
+  CaptureRunWriter writer(out, d);
+  captureScene(d, {}, [&](CaptureResult&& c, int) { writer.write(c); });
   const std::size_t frameFiles = writer.files().size();
   const std::vector<std::filesystem::path> exports = writer.finish();
   EXPECT_FALSE(exports.empty());
@@ -101,8 +103,9 @@ TEST(CaptureRunWriter, OneFrameHasNoCameraExports) {
   CaptureOutputOptions out;
   out.directory = dir;
   out.reproducible = true;
-  CaptureRunWriter writer(out, false);
-  captureScene(tinyScene(0), {}, [&](CaptureResult&& c, int) { writer.write(c); });
+  const SceneDescription d = tinyScene(0);
+  CaptureRunWriter writer(out, d);
+  captureScene(d, {}, [&](CaptureResult&& c, int) { writer.write(c); });
   EXPECT_TRUE(writer.finish().empty());
   EXPECT_TRUE(std::filesystem::exists(dir / "tiny.exr"));
   EXPECT_FALSE(std::filesystem::exists(dir / "cameras.json"));
@@ -118,8 +121,8 @@ TEST(CaptureRunWriter, ACancelledSequenceFinishesItsBopSceneOverTheFramesDone) {
   CaptureOutputOptions out;
   out.directory = dir;
   out.reproducible = true;
-  CaptureRunWriter writer(out, true);
   SceneDescription d = tinyScene(3, "exports: [bop]\n");
+  CaptureRunWriter writer(out, d);
   std::atomic<bool> cancel{false};
   CaptureOptions options;
   options.threads = 1;
@@ -141,6 +144,30 @@ TEST(CaptureRunWriter, ACancelledSequenceFinishesItsBopSceneOverTheFramesDone) {
   }
   EXPECT_TRUE(std::filesystem::exists(dir / "bop" / "models" / "models_info.json"));
   EXPECT_FALSE(std::filesystem::exists(dir / "cameras.json"));
+}
+
+// The run's pose-export models are made by the writer's constructor, before anything renders:
+// a scene whose BOP export cannot be written (two spheres of obj_id 1, of different radii) is
+// an InputError at its `exports` then, with nothing written (fails if the models were made
+// at the first frame instead).
+TEST(CaptureRunWriter, RefusesASceneWhosePoseExportsCannotBeWrittenOnConstruction) {
+  const test::TempDir temp;
+  CaptureOutputOptions out;
+  out.directory = temp.path() / "out";
+  SceneDescription d = tinyScene(2, "exports: [bop]\n");
+  d.shapes[0].classNumber = 1u;
+  d.shapes[0].className = "1";
+  d.shapes.push_back(d.shapes[0]);
+  d.shapes[1].label = "small";
+  d.shapes[1].radius = 0.25;
+  try {
+    const CaptureRunWriter writer(out, d);
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.key(), "exports") << e.what();
+    EXPECT_NE(std::string(e.what()).find("different models"), std::string::npos) << e.what();
+  }
+  EXPECT_FALSE(std::filesystem::exists(out.directory));
 }
 
 }  // namespace

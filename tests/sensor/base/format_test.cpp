@@ -18,5 +18,12 @@ TEST(Format, NumbersFixedAndRates) {
   EXPECT_EQ(formatRate(17.0), "17.00 ");
 }
 
+// Zero-padded to six digits, never cut: the exports' ids and the dataset's item folders.
+TEST(Format, SixDigits) {
+  EXPECT_EQ(formatSixDigits(0), "000000");
+  EXPECT_EQ(formatSixDigits(42), "000042");
+  EXPECT_EQ(formatSixDigits(1234567), "1234567");
+}
+
 }  // namespace
 }  // namespace camsim
