@@ -253,16 +253,21 @@ SampledSpectrum trace(const Scene& scene, Ray ray, SampledWavelengths& lambda, S
     prevSpecular = bs->specular;
     prevP = si.p;
     ray = Ray{si.spawnOrigin(wi), wi, std::numeric_limits<float>::infinity(), ray.time};
-    countRay(RayKind::kBounce, ray);
 
     if (depth + 1 >= settings.rrDepth) {
-      // Survival ∝ the throughput without the 1/η² of refraction: inside glass beta is
-      // η² smaller although the path carries as much light out again.
-      const float q = std::max(0.0f, 1.0f - (Guided ? rrBeta : beta).maxComponent() * etaScale);
+      // Survival √(max β), at most 1 (Cycles' rule; docs/performance.md, "Russian roulette:
+      // survival √β"): after a survival β is √ of what it was, so a path is not cut at its
+      // first roulette, where pbrt's survival ∝ β ends most of them (0.73³ = 0.39 after
+      // three white walls); far on, both survive with the albedo. β without the 1/η² of
+      // refraction: inside glass beta is η² smaller although the path carries as much
+      // light out again.
+      const float q =
+          std::max(0.0f, 1.0f - std::sqrt((Guided ? rrBeta : beta).maxComponent() * etaScale));
       if (sampler.get1D() < q) break;
       beta /= 1.0f - q;
       if constexpr (Guided) rrBeta /= 1.0f - q;
     }
+    countRay(RayKind::kBounce, ray);  // after roulette: a path it ends never traces the ray
   }
   if (Guided && recorder && recorder->out)
     for (const GuideRecorder::Vertex& v : recorder->path)

@@ -5,8 +5,8 @@
 //
 // with next-event estimation (one light sample per bounce, lights chosen ∝ power) and
 // BSDF sampling, combined by multiple importance sampling (power heuristic, β = 2), and
-// Russian roulette after settings.rrDepth bounces (survival ∝ max throughput, without the
-// 1/η² radiance scaling of refractions: pbrt-v4's etaScale).
+// Russian roulette after settings.rrDepth bounces (survival √ of the max throughput,
+// Cycles' rule, without the 1/η² radiance scaling of refractions: pbrt-v4's etaScale).
 #pragma once
 
 #include <cstddef>
