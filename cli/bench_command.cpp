@@ -168,6 +168,21 @@ void plotBench(const std::vector<BenchRow>& rows, const BenchPlan& plan,
   }
 }
 
+// bench_peer.png from bench_peer.csv (scripts/peer_plot.py), if python3 with matplotlib is
+// there.
+void plotPeers(const std::vector<PeerSceneResult>& peers, int threads,
+               const std::filesystem::path& csv, OutputSet& outputs, std::ostream& log) {
+  const std::optional<std::string> python = pythonWithMatplotlib();
+  if (peers.empty()) return;
+  if (!python) {
+    log << "bench: python3 with matplotlib not found: peer plot skipped\n";
+    return;
+  }
+  const std::filesystem::path png = outputs.add("bench_peer.png");
+  runPythonScript(*python, benchPlotScriptFile("peer_plot.py"),
+                  {csv.string(), png.string(), std::to_string(threads) + " threads"});
+}
+
 }  // namespace
 
 BenchScratchDirectory::BenchScratchDirectory(std::filesystem::path base) {
@@ -346,9 +361,11 @@ int runBench(const BenchArgs& args, std::ostream& out, std::ostream& log) {
   const std::filesystem::path csv =
       full ? outputs.addText("bench.csv", formatBenchCsv(rows)) : std::filesystem::path();
   if (full) outputs.addText("bench_limit.csv", formatLimitCsv(limits));
-  if (args.peer) outputs.addText("bench_peer.csv", formatPeerCsv(peers));
+  const std::filesystem::path peerCsv =
+      args.peer ? outputs.addText("bench_peer.csv", formatPeerCsv(peers)) : std::filesystem::path();
   outputs.addText("bench.txt", report.str());
   if (full) plotBench(rows, plan, csv, outputs, log);
+  if (args.peer) plotPeers(peers, plan.threads, peerCsv, outputs, log);
   for (const auto& f : outputs.commit()) log << "bench: wrote " << f.string() << "\n";
   return failed.empty() ? 0 : 2;
 }
