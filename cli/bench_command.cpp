@@ -8,6 +8,7 @@
 #include <optional>
 #include <ostream>
 #include <sstream>
+#include <stdexcept>
 
 #include "cli/args.h"
 #include "cli/python_script.h"
@@ -172,10 +173,11 @@ void plotBench(const std::vector<BenchRow>& rows, const BenchPlan& plan,
 // there.
 void plotPeers(const std::vector<PeerSceneResult>& peers, int threads,
                const std::filesystem::path& csv, OutputSet& outputs, std::ostream& log) {
-  const std::optional<std::string> python = pythonWithMatplotlib();
   if (peers.empty()) return;
+  const std::optional<std::string> python = pythonWithMatplotlib();
   if (!python) {
-    log << "bench: python3 with matplotlib not found: peer plot skipped\n";
+    log << "bench: python3 with matplotlib not found ($CAMSIM_PYTHON or /usr/bin/python3; Debian: "
+           "apt-get install python3-matplotlib): peer plot skipped\n";
     return;
   }
   const std::filesystem::path png = outputs.add("bench_peer.png");
@@ -357,16 +359,22 @@ int runBench(const BenchArgs& args, std::ostream& out, std::ostream& log) {
   out << report.str();
   out.flush();
 
+  // The measurements first, then the plots from them: a plot that fails (its script's
+  // error) is skipped with a note and never costs the run's tables.
   OutputSet outputs(outDir);
-  const std::filesystem::path csv =
-      full ? outputs.addText("bench.csv", formatBenchCsv(rows)) : std::filesystem::path();
+  if (full) outputs.addText("bench.csv", formatBenchCsv(rows));
   if (full) outputs.addText("bench_limit.csv", formatLimitCsv(limits));
-  const std::filesystem::path peerCsv =
-      args.peer ? outputs.addText("bench_peer.csv", formatPeerCsv(peers)) : std::filesystem::path();
+  if (args.peer) outputs.addText("bench_peer.csv", formatPeerCsv(peers));
   outputs.addText("bench.txt", report.str());
-  if (full) plotBench(rows, plan, csv, outputs, log);
-  if (args.peer) plotPeers(peers, plan.threads, peerCsv, outputs, log);
   for (const auto& f : outputs.commit()) log << "bench: wrote " << f.string() << "\n";
+  try {
+    OutputSet plots(outDir);
+    if (full) plotBench(rows, plan, outDir / "bench.csv", plots, log);
+    if (args.peer) plotPeers(peers, plan.threads, outDir / "bench_peer.csv", plots, log);
+    for (const auto& f : plots.commit()) log << "bench: wrote " << f.string() << "\n";
+  } catch (const std::runtime_error& e) {
+    log << "bench: plot skipped: " << e.what() << "\n";
+  }
   return failed.empty() ? 0 : 2;
 }
 

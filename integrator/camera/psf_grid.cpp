@@ -137,11 +137,10 @@ void buildGuide(const Cumulative& f, size_t n, size_t shares, std::uint16_t* gui
 template <class Cumulative>
 size_t guidedFind(const Cumulative& f, size_t n, double t, size_t shares,
                   const std::uint16_t* guide) {
-  const double total = f(n);
+  // t's share; NaN (a zero total, a NaN t) and ≤ 0 start at the first.
+  const double share = t / f(n) * static_cast<double>(shares);
   const size_t b =
-      total > 0.0
-          ? std::min(static_cast<size_t>(t / total * static_cast<double>(shares)), shares - 1)
-          : 0;
+      share > 0.0 ? static_cast<size_t>(std::min(share, static_cast<double>(shares - 1))) : 0;
   size_t lo = guide[b], hi = std::min<size_t>(guide[b + 1] + 1u, n);
   while (lo > 0 && f(lo) > t) --lo;
   while (hi < n && f(hi) <= t) ++hi;
@@ -191,6 +190,7 @@ PsfGrid::PsfGrid(const ApertureShape& stop) {
   rows_.resize(stride);
   for (size_t j = 0; j < stride; ++j) rows_[j] = summed_[j * stride + stride - 1];
   const size_t n = static_cast<size_t>(cells_);
+  CAMSIM_CHECK(n <= 65535);  // the guides' entries are 16-bit cell indices
   rowGuide_.resize(kRowShares + 1);
   buildGuide([&](size_t j) { return rows_[j]; }, n, kRowShares, rowGuide_.data());
   columnGuide_.resize(n * (kColumnShares + 1));

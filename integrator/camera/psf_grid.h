@@ -87,7 +87,7 @@ class PsfGrid {
   // the summed table's last column, so that sample()'s row search reads 4 KB in order
   // instead of one cache line per row (the column is strided by a whole row).
   std::vector<double> rows_;
-  std::vector<std::uint16_t> rowGuide_;     // kRowShares + 1 (ProbabilityGuide, psf_grid.cpp)
+  std::vector<std::uint16_t> rowGuide_;     // kRowShares + 1 (buildGuide, psf_grid.cpp)
   std::vector<std::uint16_t> columnGuide_;  // per row kColumnShares + 1
   double truncated_ = 0.0;
 };

@@ -123,3 +123,22 @@ def test_adaptive_sampling_is_recorded_and_the_same_on_any_thread_count():
     assert "adaptive" not in plain["meta"]["render"] and "spp" not in plain
     assert camsim.capture(scene, threads=2, adaptive_threshold=1e-9)["xyz"].tobytes() == \
         plain["xyz"].tobytes()  # nothing converges: the fixed render
+
+
+def test_a_pose_export_that_cannot_be_written_is_refused_before_rendering():
+    """Two shapes of one BOP class (obj_id) with different models: the capture raises
+    camsim.InputError at key `exports` before it renders, as `camsim render` exits 2."""
+    d = small_scene()
+    d["exports"] = ["bop"]
+    d["shapes"][0]["class"] = 1
+    d["shapes"].append(dict(d["shapes"][0], centre=[1, 0, 0], radius=0.25, name="small"))
+    scene = camsim.Scene.from_dict(d)
+    calls = []
+    try:
+        scene.render(threads=1, progress=lambda *a: calls.append(a))
+    except camsim.InputError as e:
+        assert e.key == "exports", str(e)
+        assert "different models" in str(e), str(e)
+    else:
+        raise AssertionError("no error")
+    assert calls == []  # refused before any pixel was rendered

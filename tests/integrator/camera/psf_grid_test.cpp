@@ -1,7 +1,7 @@
 // PsfGrid: the table's normalisation and closeness to the analytic PSF, its box integrals
 // against direct cell sums and against its own samples, its symmetry shortcuts against the
-// direct computation, its sampling's exact inversion of the cumulative, and its samples against the Airy encircled energy (KS) and the
-// bladed stops' spikes.
+// direct computation, its sampling's exact inversion of the cumulative, and its samples
+// against the Airy encircled energy (KS) and the bladed stops' spikes.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -110,8 +110,8 @@ TEST(PsfGrid, BoxMassIsExactForTheSampledTable) {
 // guides start the search in: for a sample p from (u_x, u_y), the probability below p.y is
 // u_y and, within p's row of cells, the share left of p.x is u_x (1e-9; a wrong row or
 // column is off by at least a cell's probability, ≥ 1e-6 near the centre), for random
-// numbers and for the guides' bounds b/64 and b/1024 themselves, 0 and the largest float
-// below 1.
+// numbers and for guide bounds themselves (every b/64 for the columns, every 16th b/1024
+// for the rows), 0 and the largest float below 1.
 TEST(PsfGrid, SamplingInvertsTheCumulative) {
   for (const ApertureShape stop : {ApertureShape{0, 0.0}, ApertureShape{5, 0.3}}) {
     const PsfGrid grid(stop);
