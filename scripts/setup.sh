@@ -58,8 +58,11 @@ options=()
 # Both unity-build the libraries (and the tests) (docs/testing.md, "Unity builds"): the
 # gate's Release stage builds what README's first command builds, a third faster; a
 # developer's own `cmake` build compiles every file on its own (CAMSIM_UNITY_BUILD's default).
+# --test compiles the test executables at -O1 (CAMSIM_TEST_FLAGS; the libraries they test stay
+# at Release's -O3): 165 -> 109 s to build them on 2 cores, the suite as fast (211 s, 218 at -O3).
 if [ "$mode" = test ]; then
-  options=(-DCAMSIM_BUILD_TESTS=ON -DCAMSIM_BUILD_BENCH=ON -DCAMSIM_UNITY_BUILD=ON)
+  options=(-DCAMSIM_BUILD_TESTS=ON -DCAMSIM_BUILD_BENCH=ON -DCAMSIM_UNITY_BUILD=ON
+    -DCAMSIM_TEST_FLAGS=-O1)
 elif [ ! -f "$build_dir/CMakeCache.txt" ]; then
   options=(-DCAMSIM_BUILD_TESTS=OFF -DCAMSIM_BUILD_BENCH=OFF -DCAMSIM_UNITY_BUILD=ON)
 fi
