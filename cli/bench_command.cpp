@@ -149,40 +149,28 @@ std::vector<PeerSceneResult> runPeer(const BenchArgs& args, const PeerPlan& p,
   return results;
 }
 
-// bench.png from bench.csv (a full run's rows), if python3 with matplotlib is there.
-void plotBench(const std::vector<BenchRow>& rows, const BenchPlan& plan,
+// bench.png from bench.csv (a full run's rows) by `python`, which has matplotlib.
+void plotBench(const std::string& python, const std::vector<BenchRow>& rows, const BenchPlan& plan,
                const std::filesystem::path& csv, OutputSet& outputs, std::ostream& log) {
-  const std::optional<std::string> python = pythonWithMatplotlib();
   if (rows.empty()) {
     log << "bench: no rows: plot skipped\n";
-  } else if (!python) {
-    log << "bench: python3 with matplotlib not found ($CAMSIM_PYTHON or /usr/bin/python3; Debian: "
-           "apt-get install python3-matplotlib): "
-        << "plot skipped\n";
-  } else {
-    const std::filesystem::path png = outputs.add("bench.png");
-    const std::string note = std::to_string(plan.threads) + " threads, long side " +
-                             std::to_string(plan.longSide) + " px, reference " +
-                             std::to_string(plan.refSpp) + " spp";
-    runPythonScript(*python, benchPlotScriptFile("bench_plot.py"),
-                    {csv.string(), png.string(), note});
-  }
-}
-
-// bench_peer.png from bench_peer.csv (scripts/peer_plot.py), if python3 with matplotlib is
-// there.
-void plotPeers(const std::vector<PeerSceneResult>& peers, int threads,
-               const std::filesystem::path& csv, OutputSet& outputs, std::ostream& log) {
-  if (peers.empty()) return;
-  const std::optional<std::string> python = pythonWithMatplotlib();
-  if (!python) {
-    log << "bench: python3 with matplotlib not found ($CAMSIM_PYTHON or /usr/bin/python3; Debian: "
-           "apt-get install python3-matplotlib): peer plot skipped\n";
     return;
   }
+  const std::filesystem::path png = outputs.add("bench.png");
+  const std::string note = std::to_string(plan.threads) + " threads, long side " +
+                           std::to_string(plan.longSide) + " px, reference " +
+                           std::to_string(plan.refSpp) + " spp";
+  runPythonScript(python, benchPlotScriptFile("bench_plot.py"), {csv.string(), png.string(), note});
+}
+
+// bench_peer.png from bench_peer.csv and bench_peer_equal.csv (scripts/peer_plot.py draws
+// the report's equal-error figures, it computes none).
+void plotPeers(const std::string& python, int threads, const std::filesystem::path& csv,
+               const std::filesystem::path& equalCsv, OutputSet& outputs) {
   const std::filesystem::path png = outputs.add("bench_peer.png");
-  runPythonScript(*python, benchPlotScriptFile("peer_plot.py"),
-                  {csv.string(), png.string(), std::to_string(threads) + " threads"});
+  runPythonScript(
+      python, benchPlotScriptFile("peer_plot.py"),
+      {csv.string(), equalCsv.string(), png.string(), std::to_string(threads) + " threads"});
 }
 
 }  // namespace
@@ -365,15 +353,26 @@ int runBench(const BenchArgs& args, std::ostream& out, std::ostream& log) {
   if (full) outputs.addText("bench.csv", formatBenchCsv(rows));
   if (full) outputs.addText("bench_limit.csv", formatLimitCsv(limits));
   if (args.peer) outputs.addText("bench_peer.csv", formatPeerCsv(peers));
+  if (args.peer) outputs.addText("bench_peer_equal.csv", formatPeerEqualCsv(peers));
   outputs.addText("bench.txt", report.str());
   for (const auto& f : outputs.commit()) log << "bench: wrote " << f.string() << "\n";
-  try {
-    OutputSet plots(outDir);
-    if (full) plotBench(rows, plan, outDir / "bench.csv", plots, log);
-    if (args.peer) plotPeers(peers, plan.threads, outDir / "bench_peer.csv", plots, log);
-    for (const auto& f : plots.commit()) log << "bench: wrote " << f.string() << "\n";
-  } catch (const std::runtime_error& e) {
-    log << "bench: plot skipped: " << e.what() << "\n";
+  const bool peerPlot = args.peer && !peers.empty();
+  const std::optional<std::string> python =
+      full || peerPlot ? pythonWithMatplotlib() : std::nullopt;
+  if ((full || peerPlot) && !python) {
+    log << "bench: python3 with matplotlib not found ($CAMSIM_PYTHON or /usr/bin/python3; Debian: "
+           "apt-get install python3-matplotlib): plots skipped\n";
+  } else if (python) {
+    try {
+      OutputSet plots(outDir);
+      if (full) plotBench(*python, rows, plan, outDir / "bench.csv", plots, log);
+      if (peerPlot)
+        plotPeers(*python, plan.threads, outDir / "bench_peer.csv", outDir / "bench_peer_equal.csv",
+                  plots);
+      for (const auto& f : plots.commit()) log << "bench: wrote " << f.string() << "\n";
+    } catch (const std::runtime_error& e) {
+      log << "bench: plot skipped: " << e.what() << "\n";
+    }
   }
   return failed.empty() ? 0 : 2;
 }

@@ -1,17 +1,16 @@
 #!/usr/bin/env python3
 # Plot of `camsim bench --peer cycles` (embedded in the binary and run with /usr/bin/python3 -c).
-#   peer_plot.py CSV PNG [NOTE]
-# CSV: bench_peer.csv as written by integrator/measure/peer_bench.cpp (columns scene, renderer,
-# width, height, max_depth, spp, seconds, rmse_rgb, floor_rmse_rgb, mrae_rgb, rmse_y,
-# floor_rmse_y, mrae_y). Per scene two panels, linear Rec.709 RGB and luminance Y: each
-# renderer's error* (rMSE beyond its own reference's floor) against its render time, log-log,
-# each point labelled with its spp, and the target — Cycles' error* at its top spp — as a
-# dashed line, with camsim's time for it and the ratio to Cycles' in the legend
-# (interpolated in log-log between camsim's two ladder renders around the target, as the
-# report's table; none when the target lies outside camsim's ladder). Also usable by hand on
-# a saved CSV.
+#   peer_plot.py CSV EQUAL_CSV PNG [NOTE]
+# CSV: bench_peer.csv as written by integrator/measure/peer_compare.cpp (columns scene,
+# renderer, width, height, max_depth, spp, seconds, rmse_rgb, floor_rmse_rgb, mrae_rgb, rmse_y,
+# floor_rmse_y, mrae_y); EQUAL_CSV: bench_peer_equal.csv (scene, channel, target, cycles_spp,
+# cycles_seconds, camsim_seconds, extrapolated, ratio), the report's equal-error lines. Per
+# scene two panels, linear Rec.709 RGB and luminance Y: each renderer's error* (rMSE beyond its
+# own reference's floor) against its render time, log-log, each point labelled with its spp,
+# and the target — Cycles' error* at its top spp — as a dashed line, with camsim's time for it
+# and the ratio to Cycles' in the legend, as the report computed them (this script draws, it
+# computes none). Also usable by hand on saved CSVs.
 import csv
-import math
 import sys
 
 import matplotlib
@@ -23,17 +22,7 @@ COLOURS = {"camsim": "tab:blue", "cycles": "tab:orange"}
 NAMES = {"camsim": "camsim", "cycles": "Cycles"}
 
 
-def time_at(points, target):
-    """camsim's time for error `target`, log-log between the ladder renders around it."""
-    pts = sorted(points)
-    for (t0, e0), (t1, e1) in zip(pts, pts[1:]):
-        if e0 > 0 and e1 > 0 and (e0 - target) * (e1 - target) <= 0 and e0 != e1:
-            f = (math.log(target) - math.log(e0)) / (math.log(e1) - math.log(e0))
-            return math.exp(math.log(t0) + f * (math.log(t1) - math.log(t0)))
-    return None
-
-
-def panel(ax, rows, key, floor_key, title):
+def panel(ax, rows, equal, key, floor_key, title):
     series = {}
     for r in rows:
         err = float(r[key]) - float(r[floor_key])
@@ -47,14 +36,15 @@ def panel(ax, rows, key, floor_key, title):
         for t, e, spp in pts:
             ax.annotate(str(spp), (t, e), textcoords="offset points", xytext=(3, 3), fontsize=6,
                         color=colour)
-    cycles = series.get("cycles", [])
-    if cycles:
-        t_top, target, spp_top = max(cycles, key=lambda p: p[2])
-        label = f"target: Cycles at {spp_top} spp, {t_top:.1f} s"
-        t_cam = time_at([(p[0], p[1]) for p in series.get("camsim", [])], target)
-        if t_cam:
-            label += f"; camsim {t_cam:.1f} s = {t_cam / t_top:.2f}×"
-        ax.axhline(target, color="grey", ls="--", lw=1, label=label)
+    if equal and float(equal["target"]) > 0:
+        label = (f"target: Cycles at {equal['cycles_spp']} spp, "
+                 f"{float(equal['cycles_seconds']):.3g} s")
+        if equal["camsim_seconds"]:
+            label += (f"; camsim {float(equal['camsim_seconds']):.3g} s = "
+                      f"{float(equal['ratio']):.2f}×")
+            if equal["extrapolated"] == "1":
+                label += " (extrapolated)"
+        ax.axhline(float(equal["target"]), color="grey", ls="--", lw=1, label=label)
     ax.set_xscale("log")
     ax.set_yscale("log")
     ax.set_title(title, fontsize=10)
@@ -65,18 +55,22 @@ def panel(ax, rows, key, floor_key, title):
 
 
 def main(argv):
-    csv_path, png_path = argv[1], argv[2]
-    note = argv[3] if len(argv) > 3 else ""
+    csv_path, equal_path, png_path = argv[1], argv[2], argv[3]
+    note = argv[4] if len(argv) > 4 else ""
     with open(csv_path, newline="") as f:
         rows = list(csv.DictReader(f))
+    with open(equal_path, newline="") as f:
+        equal = {(r["scene"], r["channel"]): r for r in csv.DictReader(f)}
     scenes = list(dict.fromkeys(r["scene"] for r in rows))
     fig, axes = plt.subplots(max(1, len(scenes)), 2, figsize=(9.6, 3.9 * max(1, len(scenes))),
                              dpi=100, squeeze=False)
     for (ax_rgb, ax_y), scene in zip(axes, scenes):
         mine = [r for r in rows if r["scene"] == scene]
         size = f"{mine[0]['width']}×{mine[0]['height']} px, {mine[0]['max_depth']} events"
-        panel(ax_rgb, mine, "rmse_rgb", "floor_rmse_rgb", f"{scene} ({size}): linear RGB")
-        panel(ax_y, mine, "rmse_y", "floor_rmse_y", f"{scene}: luminance Y")
+        panel(ax_rgb, mine, equal.get((scene, "rgb")), "rmse_rgb", "floor_rmse_rgb",
+              f"{scene} ({size}): linear RGB")
+        panel(ax_y, mine, equal.get((scene, "y")), "rmse_y", "floor_rmse_y",
+              f"{scene}: luminance Y")
     fig.suptitle("camsim and Cycles: error against time" + (f" ({note})" if note else ""),
                  fontsize=11)
     fig.tight_layout()

@@ -63,25 +63,23 @@ bool renderItem(SceneDescription desc, ItemWork& w, const DatasetRunOptions& opt
   co.cancel = options.cancel;
   co.progress = [&](int done, int total) { fraction(static_cast<double>(done) / total); };
   const bool sequence = desc.frames.has_value();
-  // The item's pose-export models, made once before it renders: a sequence's by its writer,
-  // a single capture's kept for writeItem.
-  std::optional<CaptureRunWriter> writer;
-  if (sequence)
-    writer.emplace(out, desc);
-  else
-    w.models = PoseModels(desc);
+  // The item's one writer, made before it renders (the pose exports' models with it: a scene
+  // whose BOP or KITTI export cannot be written is refused here). It writes a sequence's
+  // frames as they arrive; a single capture is kept for writeItem, which overlaps the next
+  // item's rendering.
+  w.writer.emplace(out, desc);
   const SequenceSummary s = captureScene(std::move(desc), co, [&](CaptureResult&& c, int) {
     if (c.cancelled) return;
     w.renderSeconds += c.stats.seconds;
-    if (writer)
-      writer->write(c);
+    if (sequence)
+      w.writer->write(c);
     else
       w.capture = std::move(c);
   });
   if (s.cancelled) return false;
-  if (writer) {
-    writer->finish();
-    w.files.insert(w.files.end(), writer->files().begin(), writer->files().end());
+  if (sequence) {
+    w.writer->finish();
+    w.files.insert(w.files.end(), w.writer->files().begin(), w.writer->files().end());
   }
   return true;
 }
@@ -93,6 +91,8 @@ void count(DatasetRunSummary& s, const ItemReport& r) {
 }
 
 // Every item resolved and loaded, on all cores; the first error (in item order) is thrown.
+// The pose exports are checked here for every item before any renders (their models made and
+// dropped: all items' at once would hold every scene); each item's writer makes its own.
 void checkItems(const Manifest& manifest, const std::string& outputKey,
                 const DatasetRunOptions& options) {
   const std::size_t n = manifest.items.size();
@@ -265,6 +265,7 @@ DatasetRunSummary runDataset(const Manifest& manifest, const DatasetRunOptions& 
       throw;
     } catch (const std::exception& e) {
       work->capture.reset();
+      work->writer.reset();
       work->files.clear();
       work->renderSeconds = 0.0;
       collect();

@@ -9,7 +9,6 @@
 #include <fstream>
 #include <sstream>
 
-#include "integrator/capture/capture_writer.h"
 #include "sensor/base/fnv1a.h"
 #include "sensor/base/input_error.h"
 #include "sensor/base/yaml_reader.h"
@@ -203,9 +202,8 @@ ItemReport writeItem(const Manifest& manifest, ItemWork& w) {
   std::error_code ec;
   try {
     if (w.capture) {
-      CaptureOutputOptions out{w.tmp, w.picture, false, true};
-      out.datasetItem = static_cast<int>(index);  // BOP scene, KITTI image (capture_writer.h)
-      for (auto& f : writeCapture(*w.capture, out, &w.models).files) w.files.push_back(f);
+      for (auto& f : w.writer->write(*w.capture).files) w.files.push_back(f);
+      w.writer->finish();  // a single capture: nothing more (capture_run.h)
       w.capture.reset();
     }
     OutputSet extra(w.tmp);

@@ -20,8 +20,8 @@
 #include <utility>
 #include <vector>
 
-#include "integrator/capture/bop_writer.h"
 #include "integrator/capture/capture.h"
+#include "integrator/capture/capture_run.h"
 #include "integrator/dataset/dataset_item.h"
 #include "integrator/dataset/dataset_run.h"
 #include "sensor/io/json_writer.h"
@@ -30,8 +30,10 @@ namespace camsim {
 
 struct ItemWork {
   ResolvedItem item;
-  std::optional<CaptureResult> capture;      // a single capture, still to write
-  PoseModels models;                         // its pose exports' (made before it rendered)
+  std::optional<CaptureResult> capture;  // a single capture, still to write
+  // The item's files' writer, made before it renders (its pose exports' models with it:
+  // capture_run.h); a sequence's frames written as they arrive, a single capture by writeItem.
+  std::optional<CaptureRunWriter> writer;
   std::vector<std::filesystem::path> files;  // already written (a sequence's frames)
   double renderSeconds = 0.0;
   std::filesystem::path tmp, finalDir, indexFile;

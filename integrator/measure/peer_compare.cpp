@@ -198,4 +198,20 @@ std::string formatPeerCsv(const std::vector<PeerSceneResult>& results) {
   return out.str();
 }
 
+std::string formatPeerEqualCsv(const std::vector<PeerSceneResult>& results) {
+  std::ostringstream out;
+  out << "scene,channel,target,cycles_spp,cycles_seconds,camsim_seconds,extrapolated,ratio\n";
+  for (const PeerSceneResult& r : results)
+    for (const auto& [name, e] : {std::pair<const char*, const EqualError&>{"rgb", r.rgb},
+                                  std::pair<const char*, const EqualError&>{"y", r.y}}) {
+      const bool reached = std::isfinite(e.camsimSeconds);
+      out << csvField(r.scene) << "," << name << "," << formatShortest(e.target) << ","
+          << (r.cycles.ladder.empty() ? 0 : r.cycles.ladder.back().spp) << ","
+          << formatShortest(e.cyclesSeconds) << ","
+          << (reached ? formatShortest(e.camsimSeconds) : "") << "," << (e.extrapolated ? 1 : 0)
+          << "," << (reached ? formatShortest(e.ratio()) : "") << "\n";
+    }
+  return out.str();
+}
+
 }  // namespace camsim

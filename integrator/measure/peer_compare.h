@@ -84,5 +84,8 @@ struct PeerSceneResult {
 std::string formatPeerReport(const std::vector<PeerSceneResult>& results, int threads,
                              int referenceSpp);
 std::string formatPeerCsv(const std::vector<PeerSceneResult>& results);
+// bench_peer_equal.csv: per scene, RGB and Y, the equal-error line of the report (what
+// scripts/peer_plot.py draws; camsim_seconds and ratio empty when not reached).
+std::string formatPeerEqualCsv(const std::vector<PeerSceneResult>& results);
 
 }  // namespace camsim

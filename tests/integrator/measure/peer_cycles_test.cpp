@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
 #include <sstream>
 
 #include "integrator/measure/peer_compare.h"
@@ -144,6 +145,19 @@ TEST(PeerCompare, EqualErrorSubtractsEachFloor) {
   EXPECT_NEAR(e.camsimSeconds, 2.0, 1e-12);
   EXPECT_NEAR(e.ratio(), 0.125, 1e-12);
   EXPECT_FALSE(e.extrapolated);
+}
+
+TEST(PeerCompare, EqualErrorCsvHoldsTheReportsFigures) {
+  // What scripts/peer_plot.py draws: RGB reached by interpolation, Y never reached (NaN).
+  PeerSceneResult r;
+  r.scene = "cornell_box";
+  r.cycles.ladder = {{256, 16.0, {}}};
+  r.rgb = {0.001, 16.0, 2.0, false};
+  r.y = {0.0005, 16.0, std::numeric_limits<double>::quiet_NaN(), true};
+  EXPECT_EQ(formatPeerEqualCsv({r}),
+            "scene,channel,target,cycles_spp,cycles_seconds,camsim_seconds,extrapolated,ratio\n"
+            "cornell_box,rgb,0.001,256,16,2,0,0.125\n"
+            "cornell_box,y,5e-04,256,16,,1,\n");
 }
 
 }  // namespace
