@@ -10,8 +10,7 @@
 #      it fails, saying why, where the daemons cannot start);
 #   2. the same suite built with AddressSanitizer + UndefinedBehaviorSanitizer (GCC,
 #      CAMSIM_SANITIZE=ON, -O1 -g1: line tables for the reports, a quarter faster to compile
-#      than -g; the test executables at -g0, half their compiling: CAMSIM_TEST_FLAGS) in
-#      build-asan/, less the slow tests of tests/asan_skip.txt; built portable
+#      than -g) in build-asan/, less the slow tests of tests/asan_skip.txt; built portable
 #      (CAMSIM_SIMD=OFF: sensor/base/simd.h's portable path, no AVX2 copy, no x86 flag), so
 #      the whole suite runs on both paths without a build stage of its own; the libraries
 #      unity-built (CAMSIM_UNITY_BUILD: a few large translation units, half the compiling;
@@ -83,7 +82,7 @@ asan_suite() {
   cmake -S . -B "$asan_dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
     -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" -DCAMSIM_SANITIZE=ON \
     -DCAMSIM_SIMD=OFF -DCAMSIM_BUILD_BENCH=OFF -DCAMSIM_PYTHON=OFF -DCAMSIM_UNITY_BUILD=ON \
-    -DCAMSIM_TEST_FLAGS=-g0 >/dev/null &&
+    >/dev/null &&
     part "ASan build" cmake --build "$asan_dir" -j"$jobs" &&
     ASAN_OPTIONS=${ASAN_OPTIONS:-$asan} \
       UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1} \
