@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cstdlib>
 #include <fstream>
+#include <functional>
 #include <optional>
 #include <ostream>
 #include <sstream>
@@ -149,13 +150,10 @@ std::vector<PeerSceneResult> runPeer(const BenchArgs& args, const PeerPlan& p,
   return results;
 }
 
-// bench.png from bench.csv (a full run's rows) by `python`, which has matplotlib.
-void plotBench(const std::string& python, const std::vector<BenchRow>& rows, const BenchPlan& plan,
-               const std::filesystem::path& csv, OutputSet& outputs, std::ostream& log) {
-  if (rows.empty()) {
-    log << "bench: no rows: plot skipped\n";
-    return;
-  }
+// bench.png from bench.csv (a full run's rows, at least one) by `python`, which has
+// matplotlib.
+void plotBench(const std::string& python, const BenchPlan& plan, const std::filesystem::path& csv,
+               OutputSet& outputs) {
   const std::filesystem::path png = outputs.add("bench.png");
   const std::string note = std::to_string(plan.threads) + " threads, long side " +
                            std::to_string(plan.longSide) + " px, reference " +
@@ -356,24 +354,30 @@ int runBench(const BenchArgs& args, std::ostream& out, std::ostream& log) {
   if (args.peer) outputs.addText("bench_peer_equal.csv", formatPeerEqualCsv(peers));
   outputs.addText("bench.txt", report.str());
   for (const auto& f : outputs.commit()) log << "bench: wrote " << f.string() << "\n";
-  const bool peerPlot = args.peer && !peers.empty();
+  if (full && rows.empty()) log << "bench: no rows: plot skipped\n";
+  const bool benchPlot = full && !rows.empty(), peerPlot = args.peer && !peers.empty();
   const std::optional<std::string> python =
-      full || peerPlot ? pythonWithMatplotlib() : std::nullopt;
-  if ((full || peerPlot) && !python) {
+      benchPlot || peerPlot ? pythonWithMatplotlib() : std::nullopt;
+  if ((benchPlot || peerPlot) && !python)
     log << "bench: python3 with matplotlib not found ($CAMSIM_PYTHON or /usr/bin/python3; Debian: "
            "apt-get install python3-matplotlib): plots skipped\n";
-  } else if (python) {
+  // Each plot on its own: one whose script fails costs neither the other nor the tables.
+  const auto plot = [&](const std::function<void(OutputSet&)>& draw) {
     try {
       OutputSet plots(outDir);
-      if (full) plotBench(*python, rows, plan, outDir / "bench.csv", plots, log);
-      if (peerPlot)
-        plotPeers(*python, plan.threads, outDir / "bench_peer.csv", outDir / "bench_peer_equal.csv",
-                  plots);
+      draw(plots);
       for (const auto& f : plots.commit()) log << "bench: wrote " << f.string() << "\n";
     } catch (const std::runtime_error& e) {
       log << "bench: plot skipped: " << e.what() << "\n";
     }
-  }
+  };
+  if (python && benchPlot)
+    plot([&](OutputSet& plots) { plotBench(*python, plan, outDir / "bench.csv", plots); });
+  if (python && peerPlot)
+    plot([&](OutputSet& plots) {
+      plotPeers(*python, plan.threads, outDir / "bench_peer.csv", outDir / "bench_peer_equal.csv",
+                plots);
+    });
   return failed.empty() ? 0 : 2;
 }
 

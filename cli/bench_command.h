@@ -21,8 +21,9 @@
 // camsim binary, i.e. in the build directory). A scene that fails to load is reported and
 // skipped; the command then exits with 2 after writing the others' results.
 // --peer cycles adds the side-by-side comparison with Blender's Cycles
-// (integrator/measure/peer_bench.h) to the report and writes DIR/bench_peer.csv and, with
-// matplotlib, DIR/bench_peer.png (scripts/peer_plot.py: error against time); it needs
+// (integrator/measure/peer_bench.h) to the report and writes DIR/bench_peer.csv (the ladders),
+// DIR/bench_peer_equal.csv (the equal-error lines) and, with matplotlib, DIR/bench_peer.png
+// (scripts/peer_plot.py: error against time); it needs
 // `blender` on PATH (exit 2 without it: scripts/setup.sh --peer installs Debian's).
 #pragma once
 

@@ -8,8 +8,9 @@
 # scene two panels, linear Rec.709 RGB and luminance Y: each renderer's error* (rMSE beyond its
 # own reference's floor) against its render time, log-log, each point labelled with its spp,
 # and the target — Cycles' error* at its top spp — as a dashed line, with camsim's time for it
-# and the ratio to Cycles' in the legend, as the report computed them (this script draws, it
-# computes none). Also usable by hand on saved CSVs.
+# and the ratio to Cycles' in the legend, as the report computed them (the equal-error figures
+# are read, not recomputed; a point's error* is rMSE − floor, points at or below 0 left out of
+# the log axes). Also usable by hand on saved CSVs.
 import csv
 import sys
 

@@ -190,14 +190,14 @@ DatasetRunSummary runDataset(const Manifest& manifest, const DatasetRunOptions& 
   // Item n is written on the writer thread, and item n + 2 loaded, while item n + 1 renders
   // (single captures; a sequence writes its frames as they finish). Reports and progress
   // come from this thread.
-  std::thread writer;
+  std::thread writerThread;  // writes item n while item n + 1 renders
   std::exception_ptr writerError;
   std::future<ResolvedItem> next;  // item n + 1, loaded while item n renders
   std::optional<ItemReport> written;
   std::size_t finished = 0;
   auto collect = [&]() {
-    if (!writer.joinable()) return;
-    writer.join();
+    if (!writerThread.joinable()) return;
+    writerThread.join();
     if (writerError) std::rethrow_exception(std::exchange(writerError, nullptr));
     count(summary, *written);
     if (options.onItem) options.onItem(*written);
@@ -209,7 +209,7 @@ DatasetRunSummary runDataset(const Manifest& manifest, const DatasetRunOptions& 
     ~JoinOnExit() {
       if (t.joinable()) t.join();
     }
-  } joinOnExit{writer};
+  } joinOnExit{writerThread};
   struct WaitOnExit {  // nor may the loading of the next item outlive this call
     std::future<ResolvedItem>& f;
     ~WaitOnExit() {
@@ -287,7 +287,7 @@ DatasetRunSummary runDataset(const Manifest& manifest, const DatasetRunOptions& 
       break;
     }
     collect();  // the previous item's files are complete before this one's are written
-    writer = std::thread([&manifest, work, &written, &writerError] {
+    writerThread = std::thread([&manifest, work, &written, &writerError] {
       try {
         written = writeItem(manifest, *work);
       } catch (...) {

@@ -204,7 +204,8 @@ std::string formatPeerEqualCsv(const std::vector<PeerSceneResult>& results) {
   for (const PeerSceneResult& r : results)
     for (const auto& [name, e] : {std::pair<const char*, const EqualError&>{"rgb", r.rgb},
                                   std::pair<const char*, const EqualError&>{"y", r.y}}) {
-      const bool reached = std::isfinite(e.camsimSeconds);
+      // Not reached: NaN (outside camsim's ladder), or no Cycles ladder at all (defaults).
+      const bool reached = !r.cycles.ladder.empty() && std::isfinite(e.camsimSeconds);
       out << csvField(r.scene) << "," << name << "," << formatShortest(e.target) << ","
           << (r.cycles.ladder.empty() ? 0 : r.cycles.ladder.back().spp) << ","
           << formatShortest(e.cyclesSeconds) << ","

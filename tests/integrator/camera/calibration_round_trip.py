@@ -149,7 +149,7 @@ def poses(name, m):
     seeded generator: tilted by m["tilt"] (30-60 deg for opencv: the rational model's
     principal point needs the perspective of tilted views), aimed off the
     board's centre, rolled by up to 30 deg. Pose i is the first draw whose board centre
-    images in cell i of a 4 x 4 grid over the frame (so that the views cover the whole image,
+    images in cell i mod 16 of a 4 x 4 grid over the frame (so that the views cover the whole image,
     the distortion's far field included) and whose whole board (its outer corners and edge
     midpoints, with one square of the margin) images at least 4 px inside the frame (the
     detector needs every inner corner and a white border). Candidates are drawn and
@@ -177,10 +177,11 @@ def poses(name, m):
                                   board_points(False))
         inside = (theta < 85).all(1) & (uv >= edge).all((1, 2)) & \
             (uv[..., 0] <= w - 1 - edge).all(1) & (uv[..., 1] <= h - 1 - edge).all(1)
-        centre = uv.mean(1)
+        found = np.flatnonzero(inside)  # the board in the frame: its centre's cell is 0-15
+        centre = uv[found].mean(1)
         cells = (centre[:, 0] * 4 / w).astype(int) + 4 * (centre[:, 1] * 4 / h).astype(int)
-        for i in np.flatnonzero(inside):
-            if cells[i] == len(out) % 16 and len(out) < POSES:
+        for i, cell in zip(found, cells):
+            if cell == len(out) % 16 and len(out) < POSES:
                 out.append((position[i], look_at[i], up[i]))
     return out
 
