@@ -117,13 +117,12 @@ def board_points(inner):
                      for y in (-1, 0, 1) if x or y])
 
 
-def project_truth(name, m, poses, points):
+def project_truth(name, m, position, look_at, up, points):
     """The true pixels of world points (OpenCV's own projectPoints / fisheye.projectPoints
-    with the truth) and their field angles (deg), shape (len(poses), len(points), 2) and
-    (len(poses), len(points)), the camera placed as camsim's --pose places it: right =
-    forward x up, OpenCV axes (right, -true up, forward). poses: (position, look_at, up)
-    triples; many at once are one projectPoints call."""
-    position, look_at, up = (np.array([p[i] for p in poses], dtype=float) for i in range(3))
+    with the truth) and their field angles (deg), shape (N, len(points), 2) and
+    (N, len(points)), for N cameras placed as camsim's --pose places them: position, look_at
+    and up are (N, 3) arrays; right = forward x up, OpenCV axes (right, -true up, forward).
+    All N are one projectPoints call."""
     forward = look_at - position
     forward /= np.linalg.norm(forward, axis=1, keepdims=True)
     right = np.cross(forward, up / np.linalg.norm(up, axis=1, keepdims=True))
@@ -141,7 +140,7 @@ def project_truth(name, m, poses, points):
         uv, _ = cv2.fisheye.projectPoints(flat.reshape(-1, 1, 3), np.zeros((1, 1, 3)),
                                           np.zeros((1, 1, 3)), K, dist)
     theta = np.degrees(np.arctan2(np.hypot(camera[..., 0], camera[..., 1]), camera[..., 2]))
-    return uv.reshape(len(poses), len(points), 2), theta
+    return uv.reshape(len(position), len(points), 2), theta
 
 
 def poses(name, m):
@@ -149,8 +148,8 @@ def poses(name, m):
     seeded generator: tilted by m["tilt"] (30-60 deg for opencv: the rational model's
     principal point needs the perspective of tilted views), aimed off the
     board's centre, rolled by up to 30 deg. Pose i is the first draw whose board centre
-    images in cell i mod 16 of a 4 x 4 grid over the frame (so that the views cover the whole image,
-    the distortion's far field included) and whose whole board (its outer corners and edge
+    images in cell i mod 16 of a 4 x 4 grid over the frame (so that the views cover the whole
+    image, the distortion's far field included) and whose whole board (its outer corners and edge
     midpoints, with one square of the margin) images at least 4 px inside the frame (the
     detector needs every inner corner and a white border). Candidates are drawn and
     projected 4096 at a time (one at a time they took 14 s of numpy calls; now 2 s);
@@ -173,8 +172,7 @@ def poses(name, m):
                             np.zeros(len(u))], axis=1)
         roll = np.radians(draw(5, -30, 30))
         up = np.stack([np.sin(roll), np.cos(roll), np.zeros(len(u))], axis=1)
-        uv, theta = project_truth(name, m, list(zip(position, look_at, up)),
-                                  board_points(False))
+        uv, theta = project_truth(name, m, position, look_at, up, board_points(False))
         inside = (theta < 85).all(1) & (uv >= edge).all((1, 2)) & \
             (uv[..., 0] <= w - 1 - edge).all(1) & (uv[..., 1] <= h - 1 - edge).all(1)
         found = np.flatnonzero(inside)  # the board in the frame: its centre's cell is 0-15
@@ -260,7 +258,8 @@ def run_model(camsim, name, work, fx_scale):
             continue
         views.append(corners.reshape(-1, 2))
         # Each found corner against the nearest true corner (the detector's order is its own).
-        truth_uv, theta = (a[0] for a in project_truth(name, m, [pose_list[i]], board_points(True)))
+        truth_uv, theta = (a[0] for a in project_truth(name, m, *(v[None] for v in pose_list[i]),
+                                                         board_points(True)))
         gap = views[-1][:, None, :] - truth_uv[None, :, :]
         offsets.append(gap[np.arange(len(gap)), np.argmin(np.hypot(gap[..., 0], gap[..., 1]), 1)])
         largest_theta = max(largest_theta, theta.max())
