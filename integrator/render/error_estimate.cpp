@@ -11,6 +11,13 @@ namespace {
 // The windows' radii in pixels (docs in error_estimate.h).
 constexpr int kReferenceRadius = 7;  // 15 × 15: the rare paths' share of r̂
 constexpr int kMissedRadius = 3;     // 7 × 7: what a pixel's halves both missed
+constexpr int kEdgeRadius = 1;       // 3 × 3: a rare-path pixel's neighbours
+// The rare share's window: the smallest that holds this many other pixels with h > 0.
+constexpr int kRarePixels = 4;
+// A pixel is carried by its rare part h when h is more than this share of its value.
+constexpr double kCarried = 0.9;
+// The missed share's bound: this many times the least half-window mean.
+constexpr double kSided = 3.0;
 
 std::size_t index(int x, int y, int width) {
   return static_cast<std::size_t>(y) * static_cast<std::size_t>(width) +
@@ -89,18 +96,39 @@ class WindowMeans {
       }
     }
   }
-  // The mean over the (2 radius + 1)² window around (x, y) (the part inside the image)
-  // without the pixel itself; 0 when the window holds no other pixel.
-  double othersMean(int x, int y, int radius) const {
+  // The sum over the pixels (x + dx, y + dy) with dx in [left, right], dy in [top, bottom]
+  // (the part inside the image; the window holds the pixel) without the pixel itself, and
+  // how many pixels that is.
+  double othersSum(int x, int y, int left, int right, int top, int bottom,
+                   std::size_t* others = nullptr) const {
     const std::size_t w1 = static_cast<std::size_t>(width_) + 1;
-    const std::size_t y0 = static_cast<std::size_t>(std::max(y - radius, 0));
-    const std::size_t y1 = static_cast<std::size_t>(std::min(y + radius, height_ - 1)) + 1;
-    const std::size_t x0 = static_cast<std::size_t>(std::max(x - radius, 0));
-    const std::size_t x1 = static_cast<std::size_t>(std::min(x + radius, width_ - 1)) + 1;
-    const double sum = sat_[y1 * w1 + x1] - sat_[y0 * w1 + x1] - sat_[y1 * w1 + x0] +
-                       sat_[y0 * w1 + x0] - static_cast<double>(v_[index(x, y, width_)]);
-    const std::size_t others = (y1 - y0) * (x1 - x0) - 1;
+    const std::size_t y0 = static_cast<std::size_t>(std::max(y + top, 0));
+    const std::size_t y1 = static_cast<std::size_t>(std::min(y + bottom, height_ - 1)) + 1;
+    const std::size_t x0 = static_cast<std::size_t>(std::max(x + left, 0));
+    const std::size_t x1 = static_cast<std::size_t>(std::min(x + right, width_ - 1)) + 1;
+    if (others) *others = (y1 - y0) * (x1 - x0) - 1;
+    return sat_[y1 * w1 + x1] - sat_[y0 * w1 + x1] - sat_[y1 * w1 + x0] + sat_[y0 * w1 + x0] -
+           static_cast<double>(v_[index(x, y, width_)]);
+  }
+  double othersSum(int x, int y, int radius) const {
+    return othersSum(x, y, -radius, radius, -radius, radius);
+  }
+  // Their mean; 0 when the window holds no other pixel.
+  double othersMean(int x, int y, int left, int right, int top, int bottom) const {
+    std::size_t others = 0;
+    const double sum = othersSum(x, y, left, right, top, bottom, &others);
     return others > 0 ? sum / static_cast<double>(others) : 0.0;
+  }
+  double othersMean(int x, int y, int radius) const {
+    return othersMean(x, y, -radius, radius, -radius, radius);
+  }
+  // The least of the means over the window's four halves (left, right, top, bottom, each
+  // with the pixel's row or column): small unless the pixel has its like on every side.
+  double leastHalfMean(int x, int y, int radius) const {
+    return std::min({othersMean(x, y, -radius, 0, -radius, radius),
+                     othersMean(x, y, 0, radius, -radius, radius),
+                     othersMean(x, y, -radius, radius, -radius, 0),
+                     othersMean(x, y, -radius, radius, 0, radius)});
   }
 
  private:
@@ -138,17 +166,40 @@ ErrorMetrics estimateFromHalves(const float* values, std::size_t stride, const f
         std::max(std::min(std::abs(d), std::abs(error(i))) - static_cast<double>(noise[i]), 0.0);
     rare[i] = static_cast<float>(d < 0.0 ? -h : h);
   }
-  const WindowMeans rareMeans(rare, width, height);
+  std::vector<float> valueCopy(count), rareCount(count);
+  for (std::size_t i = 0; i < count; ++i) {
+    valueCopy[i] = static_cast<float>(value(i));
+    rareCount[i] = rare[i] > 0.0f ? 1.0f : 0.0f;
+  }
+  const WindowMeans rareMeans(rare, width, height), rareCounts(rareCount, width, height),
+      valueMeans(valueCopy, width, height);
+  // The rare share: over the 15 × 15 window, or over the smallest window that holds
+  // kRarePixels others with h > 0 where that is more (a small cluster of rare paths: a
+  // bokeh disc).
+  auto rareShare = [&](int x, int y) {
+    const double wide = rareMeans.othersMean(x, y, kReferenceRadius);
+    for (int radius = 1; radius < kReferenceRadius; ++radius)
+      if (rareCounts.othersSum(x, y, radius) >= kRarePixels - 0.5)
+        return std::max(rareMeans.othersMean(x, y, radius), wide);
+    return wide;
+  };
   // r̂ and the MRAE's |e| per pixel, in place of m and s (each pixel reads only its own).
   std::vector<float>& reference = typical;
   std::vector<float>& missed = noise;
   for (int y = 0; y < height; ++y)
     for (int x = 0; x < width; ++x) {
       const std::size_t i = index(x, y, width);
-      reference[i] = static_cast<float>(std::max(
-          static_cast<double>(typical[i]) + rareMeans.othersMean(x, y, kReferenceRadius), 0.0));
-      missed[i] = static_cast<float>(
-          std::max(std::abs(error(i)), rareMeans.othersMean(x, y, kMissedRadius)));
+      double r = static_cast<double>(typical[i]) + rareShare(x, y);
+      // A pixel carried by a rare path of its own, at the edge of their cluster: its
+      // neighbours' mean, where that is more.
+      if (static_cast<double>(rare[i]) > kCarried * value(i))
+        r = std::max(r, valueMeans.othersMean(x, y, kEdgeRadius));
+      reference[i] = static_cast<float>(std::max(r, 0.0));
+      // What both halves missed: the rare share nearby, but not beyond the edge of a
+      // cluster (at most kSided × the least of the wide window's half means).
+      const double share = std::min(rareMeans.othersMean(x, y, kMissedRadius),
+                                    kSided * rareMeans.leastHalfMean(x, y, kReferenceRadius));
+      missed[i] = static_cast<float>(std::max(std::abs(error(i)), share));
     }
   const double mean = total / static_cast<double>(count);
   auto at = [&](std::size_t i) { return static_cast<double>(reference[i]); };
