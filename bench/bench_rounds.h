@@ -1,10 +1,11 @@
 // The micro-benchmarks' one option, `--rounds N` (N ≥ 1 timed rounds; atoi's parse: a
-// non-number reads 0 and is refused).
+// non-number reads 0 and is refused), and the clock they time a round with.
 #pragma once
 
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <ctime>
 #include <optional>
 
 namespace camsim::bench {
@@ -26,6 +27,14 @@ inline std::optional<int> parseRounds(int argc, char** argv, const char* program
     return std::nullopt;
   }
   return rounds;
+}
+
+// The calling thread's CPU time, s: a one-thread measurement that other processes on the
+// machine do not inflate.
+inline double threadCpuSeconds() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
 }
 
 }  // namespace camsim::bench

@@ -8,15 +8,18 @@
 //
 // usage: error_estimate_bench [SCENE.yaml] [--spp N] [--rounds N]   (default 16 spp, 20 rounds)
 #include <algorithm>
+#include <cerrno>
 #include <cstdio>
 #include <cstdlib>
-#include <ctime>
+#include <exception>
 #include <filesystem>
 #include <string>
 #include <vector>
 
+#include "bench/bench_rounds.h"
+#include "integrator/measure/bench_metrics.h"
+#include "integrator/measure/bench_reference.h"
 #include "integrator/render/error_estimate.h"
-#include "integrator/render/render.h"
 #include "integrator/scene/scene.h"
 #include "integrator/scene/scene_loader.h"
 #include "sensor/base/input_error.h"
@@ -25,58 +28,58 @@ namespace {
 
 using namespace camsim;
 
-double cpuSeconds() {
-  timespec t{};
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
-}
-
-double threadCpuSeconds() {
-  timespec t{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
-}
-
 [[noreturn]] void usage() {
   std::fprintf(stderr, "usage: error_estimate_bench [SCENE.yaml] [--spp N] [--rounds N]\n");
   std::exit(2);
 }
 
+// A whole decimal number in [low, 1e6], or exit 2 naming the option.
+int wholeNumber(const char* option, const char* text, int low) {
+  char* end = nullptr;
+  errno = 0;
+  const long v = std::strtol(text, &end, 10);
+  if (errno != 0 || end == text || *end != '\0' || v < low || v > 1000000) {
+    std::fprintf(stderr,
+                 "error_estimate_bench: %s must be a whole number in [%d, 1000000], got '%s'\n",
+                 option, low, text);
+    std::exit(2);
+  }
+  return static_cast<int>(v);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string scenePath = std::string(CAMSIM_SOURCE_DIR) + "/scenes/cornell_box.yaml";
+  std::string scenePath;
   int spp = 16, rounds = 20;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
-    if ((arg == "--spp" || arg == "--rounds") && i + 1 < argc) {
-      (arg == "--spp" ? spp : rounds) = std::atoi(argv[++i]);
-    } else if (!arg.empty() && arg[0] != '-') {
+    if (arg == "--spp" && i + 1 < argc) {
+      spp = wholeNumber("--spp", argv[++i], 2);
+    } else if (arg == "--rounds" && i + 1 < argc) {
+      rounds = wholeNumber("--rounds", argv[++i], 1);
+    } else if (!arg.empty() && arg[0] != '-' && scenePath.empty()) {
       scenePath = arg;
     } else {
       usage();
     }
   }
-  if (spp < 2 || rounds < 1) {
-    std::fprintf(stderr, "error_estimate_bench: --spp must be at least 2, --rounds at least 1\n");
-    return 2;
-  }
+  if (scenePath.empty()) scenePath = std::string(CAMSIM_SOURCE_DIR) + "/scenes/cornell_box.yaml";
   try {
     const Scene scene(loadScene(scenePath));
     RenderOptions options;
     options.spp = spp;
-    const SpectralResponse xyz = SpectralResponse::cieXyz();
-    const double renderStart = cpuSeconds();
-    const RenderResult result = render(scene, xyz, options);
-    const double renderCpu = cpuSeconds() - renderStart;
+    const double renderStart = processCpuSeconds();
+    const RenderResult result = renderXyz(scene, options);
+    const double renderCpu = processCpuSeconds() - renderStart;
     const Image& image = result.image;
     const int y = image.channelIndex("Y");
     std::vector<double> ms;
     ErrorMetrics estimate;
     for (int r = 0; r < rounds; ++r) {
-      const double start = threadCpuSeconds();
+      const double start = bench::threadCpuSeconds();
       estimate = estimateFromHalves(image, y, result.oddHalf, spp);
-      ms.push_back(1e3 * (threadCpuSeconds() - start));
+      ms.push_back(1e3 * (bench::threadCpuSeconds() - start));
     }
     std::sort(ms.begin(), ms.end());
     const double median = ms[ms.size() / 2];
@@ -89,6 +92,9 @@ int main(int argc, char** argv) {
   } catch (const InputError& e) {
     std::fprintf(stderr, "error_estimate_bench: %s\n", e.what());
     return 2;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "error_estimate_bench: internal error: %s\n", e.what());
+    return 1;
   }
   return 0;
 }

@@ -11,7 +11,6 @@ Usage: PYTHONPATH=build/python /usr/bin/python3 bench/error_estimate_seeds.py SC
 import os
 import re
 import sys
-import tempfile
 
 import numpy as np
 
@@ -25,32 +24,48 @@ def metrics(e, r, mean):
     return (e * e / (r * r + eps * eps)).mean(), (np.abs(e) / (np.abs(r) + eps)).mean()
 
 
+def fail(message):
+    """A clear message and exit 2 (bad input), as camsim's own tools."""
+    print(f"error_estimate_seeds: {message}", file=sys.stderr)
+    sys.exit(2)
+
+
 def load_at(scene_file, sampler):
-    """The scene at the bench's sweep size with `sampler`: a copy of the file beside it (its
-    relative paths), loaded and removed."""
-    text = open(scene_file).read()
+    """The scene at the bench's sweep size (cli/bench_args.cpp, reducedResolution) with
+    `sampler`, from the file's text (its relative paths resolved beside it)."""
+    try:
+        text = open(scene_file).read()
+    except OSError as e:
+        fail(f"{scene_file}: {e.strerror}")
     m = re.search(r"resolution: \[(\d+), (\d+)\]", text)
+    if not m:
+        fail(f"{scene_file}: no 'resolution: [W, H]' line to scale")
     w, h = int(m.group(1)), int(m.group(2))
     side = max(w, h)
-    size = [max(1, round(v * 128 / side)) for v in (w, h)] if side > 128 else [w, h]
+    # int(v * 128 / side + 0.5): lround's rounding of halves away from zero
+    size = [max(1, int(v * 128 / side + 0.5)) for v in (w, h)] if side > 128 else [w, h]
     text = text.replace(m.group(0), f"resolution: [{size[0]}, {size[1]}]")
     text, n = re.subn(r"\nrender:\n", f"\nrender:\n  sampler: {sampler}\n", text, count=1)
     if n != 1:
-        sys.exit(f"{scene_file}: no block-style render: section to set the sampler in")
-    fd, path = tempfile.mkstemp(suffix=".yaml", dir=os.path.dirname(os.path.abspath(scene_file)))
+        fail(f"{scene_file}: no block-style 'render:' section to set the sampler in")
     try:
-        with os.fdopen(fd, "w") as f:
-            f.write(text)
-        return camsim.load(path)
-    finally:
-        os.remove(path)
+        return camsim.Scene.from_yaml(text, name=scene_file,
+                                      base_dir=os.path.dirname(os.path.abspath(scene_file)))
+    except camsim.InputError as e:
+        fail(str(e))
 
 
 def main():
     if len(sys.argv) != 3:
-        sys.exit(__doc__)
+        print(__doc__, file=sys.stderr)
+        sys.exit(2)
     scene_file, ref_file = sys.argv[1:]
-    ref = camsim.read_exr(ref_file)["channels"]
+    try:
+        ref = camsim.read_exr(ref_file)["channels"]
+    except camsim.InputError as e:  # names the file
+        fail(str(e))
+    if not {"Y", "A.Y", "B.Y"} <= ref.keys():
+        fail(f"{ref_file}: not a camsim bench reference (channels Y, A.Y, B.Y)")
     r = ref["Y"].astype(float)
     a, b = ref["A.Y"].astype(float), ref["B.Y"].astype(float)
     floor = metrics(0.5 * (a - b), 0.5 * (a + b), 0.5 * (a.mean() + b.mean()))
@@ -63,11 +78,16 @@ def main():
                 out = scene.render(spp=spp, seed=seed, threads=2)
                 x = out["xyz"][..., 1].astype(float)
                 if x.shape != r.shape:
-                    sys.exit(f"{ref_file}: {r.shape} pixels, the render {x.shape}")
+                    fail(f"{ref_file}: {r.shape[1]}x{r.shape[0]} px, the render "
+                         f"{x.shape[1]}x{x.shape[0]}: not this scene's reference")
                 rmse, mrae = metrics(x - r, r, r.mean())
+                true_rmse = rmse - floor[0]
+                true_mrae = np.sqrt(max(mrae ** 2 - floor[1] ** 2, 0.0))
+                if true_rmse <= 0.0 or true_mrae <= 0.0:
+                    fail(f"{ref_file}: the render at {spp} spp is within the reference's "
+                         "noise: render a reference of more spp (camsim bench --ref-spp)")
                 est = out["meta"]["render"]["estimated_error"]
-                ratios.append((est["rmse"] / (rmse - floor[0]),
-                               est["mrae"] / np.sqrt(max(mrae ** 2 - floor[1] ** 2, 0.0))))
+                ratios.append((est["rmse"] / true_rmse, est["mrae"] / true_mrae))
             o = np.array(ratios)
             cells = [f"{np.median(o[:, k]):.2f} [{o[:, k].min():.2f}, {o[:, k].max():.2f}]"
                      for k in (0, 1)]

@@ -36,7 +36,6 @@
 // usage: lens_camera_bench [--rounds N]   (default 7)
 #include <algorithm>
 #include <cstdio>
-#include <ctime>
 #include <string>
 #include <vector>
 
@@ -79,9 +78,7 @@ PhysicalCamera makeCamera(const Model& m, bool diffraction) {
 
 // The thread's CPU time, s.
 double cpuSeconds() {
-  timespec t{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
+  return camsim::bench::threadCpuSeconds();
 }
 
 struct Samples {

@@ -1,6 +1,7 @@
 #include "integrator/render/error_estimate.h"
 
 #include <algorithm>
+#include <cstdint>
 #include <vector>
 
 #include "sensor/base/check.h"
@@ -11,9 +12,8 @@ namespace {
 // The windows' radii in pixels (docs in error_estimate.h).
 constexpr int kReferenceRadius = 7;  // 15 × 15: the rare paths' share of r̂
 constexpr int kMissedRadius = 3;     // 7 × 7: what a pixel's halves both missed
-constexpr int kEdgeRadius = 1;       // 3 × 3: a rare-path pixel's neighbours
 // The rare share's window: the smallest that holds this many other pixels with h > 0.
-constexpr int kRarePixels = 4;
+constexpr std::uint32_t kRarePixels = 4;
 // A pixel is carried by its rare part h when h is more than this share of its value.
 constexpr double kCarried = 0.9;
 // The missed share's bound: this many times the least half-window mean.
@@ -78,29 +78,33 @@ std::vector<float> median3x3(At at, int width, int height) {
   return out;
 }
 
-// Window means of an image from its summed-area table: O(1) per pixel and window.
-class WindowMeans {
+// Window sums of an image from its summed-area table: O(1) per pixel and window. Sum is
+// the table's type (double for values, std::uint32_t for counts: exact, half the memory);
+// at(i) is pixel i's value.
+template <typename Sum, typename At>
+class WindowSums {
  public:
-  WindowMeans(const std::vector<float>& v, int width, int height)
-      : v_(v),
+  WindowSums(At at, int width, int height)
+      : at_(at),
         width_(width),
         height_(height),
-        sat_((static_cast<std::size_t>(width) + 1) * (static_cast<std::size_t>(height) + 1), 0.0) {
+        sat_((static_cast<std::size_t>(width) + 1) * (static_cast<std::size_t>(height) + 1),
+             Sum(0)) {
     const std::size_t w1 = static_cast<std::size_t>(width) + 1;
     for (int y = 0; y < height; ++y) {
-      double row = 0.0;
+      Sum row(0);
       for (int x = 0; x < width; ++x) {
-        row += static_cast<double>(v[index(x, y, width)]);
+        row += at(index(x, y, width));
         sat_[(static_cast<std::size_t>(y) + 1) * w1 + static_cast<std::size_t>(x) + 1] =
             sat_[static_cast<std::size_t>(y) * w1 + static_cast<std::size_t>(x) + 1] + row;
       }
     }
   }
   // The sum over the pixels (x + dx, y + dy) with dx in [left, right], dy in [top, bottom]
-  // (the part inside the image; the window holds the pixel) without the pixel itself, and
-  // how many pixels that is.
-  double othersSum(int x, int y, int left, int right, int top, int bottom,
-                   std::size_t* others = nullptr) const {
+  // (left, top ≤ 0 ≤ right, bottom: the window holds the pixel; the part inside the image)
+  // without the pixel itself, and how many pixels that is.
+  Sum othersSum(int x, int y, int left, int right, int top, int bottom,
+                std::size_t* others = nullptr) const {
     const std::size_t w1 = static_cast<std::size_t>(width_) + 1;
     const std::size_t y0 = static_cast<std::size_t>(std::max(y + top, 0));
     const std::size_t y1 = static_cast<std::size_t>(std::min(y + bottom, height_ - 1)) + 1;
@@ -108,22 +112,22 @@ class WindowMeans {
     const std::size_t x1 = static_cast<std::size_t>(std::min(x + right, width_ - 1)) + 1;
     if (others) *others = (y1 - y0) * (x1 - x0) - 1;
     return sat_[y1 * w1 + x1] - sat_[y0 * w1 + x1] - sat_[y1 * w1 + x0] + sat_[y0 * w1 + x0] -
-           static_cast<double>(v_[index(x, y, width_)]);
+           at_(index(x, y, width_));
   }
-  double othersSum(int x, int y, int radius) const {
-    return othersSum(x, y, -radius, radius, -radius, radius);
+  Sum othersSum(int x, int y, int radius, std::size_t* others = nullptr) const {
+    return othersSum(x, y, -radius, radius, -radius, radius, others);
   }
   // Their mean; 0 when the window holds no other pixel.
   double othersMean(int x, int y, int left, int right, int top, int bottom) const {
     std::size_t others = 0;
-    const double sum = othersSum(x, y, left, right, top, bottom, &others);
+    const double sum = static_cast<double>(othersSum(x, y, left, right, top, bottom, &others));
     return others > 0 ? sum / static_cast<double>(others) : 0.0;
   }
   double othersMean(int x, int y, int radius) const {
     return othersMean(x, y, -radius, radius, -radius, radius);
   }
   // The least of the means over the window's four halves (left, right, top, bottom, each
-  // with the pixel's row or column): small unless the pixel has its like on every side.
+  // with the pixel's column or row): small unless the pixel has its like on every side.
   double leastHalfMean(int x, int y, int radius) const {
     return std::min({othersMean(x, y, -radius, 0, -radius, radius),
                      othersMean(x, y, 0, radius, -radius, radius),
@@ -132,10 +136,29 @@ class WindowMeans {
   }
 
  private:
-  const std::vector<float>& v_;
+  At at_;
   int width_, height_;
-  std::vector<double> sat_;  // (width + 1) × (height + 1), row 0 and column 0 zero
+  std::vector<Sum> sat_;  // (width + 1) × (height + 1), row 0 and column 0 zero
 };
+
+template <typename Sum, typename At>
+WindowSums<Sum, At> windowSums(At at, int width, int height) {
+  return WindowSums<Sum, At>(at, width, height);
+}
+
+// The mean of at(i) over the pixel's 8 neighbours (those inside the image).
+template <typename At>
+double neighbourMean(At at, int x, int y, int width, int height) {
+  double sum = 0.0;
+  int n = 0;
+  for (int j = std::max(y - 1, 0); j <= std::min(y + 1, height - 1); ++j)
+    for (int i = std::max(x - 1, 0); i <= std::min(x + 1, width - 1); ++i)
+      if (i != x || j != y) {
+        sum += at(index(i, j, width));
+        ++n;
+      }
+  return n > 0 ? sum / n : 0.0;
+}
 
 }  // namespace
 
@@ -154,7 +177,8 @@ ErrorMetrics estimateFromHalves(const float* values, std::size_t stride, const f
   };
   double total = 0.0;
   for (std::size_t i = 0; i < count; ++i) total += value(i);
-  // Stored as float (the film's precision), which halves the memory the estimate touches.
+  // Stored as float (the film's precision): with the two summed-area tables 24 bytes per
+  // pixel.
   std::vector<float> typical = median3x3(value, width, height);  // m
   std::vector<float> noise =
       median3x3([&](std::size_t i) { return std::abs(error(i)); }, width, height);  // s
@@ -166,21 +190,17 @@ ErrorMetrics estimateFromHalves(const float* values, std::size_t stride, const f
         std::max(std::min(std::abs(d), std::abs(error(i))) - static_cast<double>(noise[i]), 0.0);
     rare[i] = static_cast<float>(d < 0.0 ? -h : h);
   }
-  std::vector<float> valueCopy(count), rareCount(count);
-  for (std::size_t i = 0; i < count; ++i) {
-    valueCopy[i] = static_cast<float>(value(i));
-    rareCount[i] = rare[i] > 0.0f ? 1.0f : 0.0f;
-  }
-  const WindowMeans rareMeans(rare, width, height), rareCounts(rareCount, width, height),
-      valueMeans(valueCopy, width, height);
-  // The rare share: over the 15 × 15 window, or over the smallest window that holds
-  // kRarePixels others with h > 0 where that is more (a small cluster of rare paths: a
-  // bokeh disc).
+  const auto rareSums = windowSums<double>(
+      [&](std::size_t i) { return static_cast<double>(rare[i]); }, width, height);
+  const auto rareCounts = windowSums<std::uint32_t>(
+      [&](std::size_t i) { return rare[i] > 0.0f ? 1u : 0u; }, width, height);
+  // The rare share: over the 15 × 15 window, or where that is more over the smallest window
+  // that holds kRarePixels others with h > 0 (a cluster of rare paths: a bokeh disc).
   auto rareShare = [&](int x, int y) {
-    const double wide = rareMeans.othersMean(x, y, kReferenceRadius);
+    const double wide = rareSums.othersMean(x, y, kReferenceRadius);
     for (int radius = 1; radius < kReferenceRadius; ++radius)
-      if (rareCounts.othersSum(x, y, radius) >= kRarePixels - 0.5)
-        return std::max(rareMeans.othersMean(x, y, radius), wide);
+      if (rareCounts.othersSum(x, y, radius) >= kRarePixels)
+        return std::max(rareSums.othersMean(x, y, radius), wide);
     return wide;
   };
   // r̂ and the MRAE's |e| per pixel, in place of m and s (each pixel reads only its own).
@@ -192,13 +212,13 @@ ErrorMetrics estimateFromHalves(const float* values, std::size_t stride, const f
       double r = static_cast<double>(typical[i]) + rareShare(x, y);
       // A pixel carried by a rare path of its own, at the edge of their cluster: its
       // neighbours' mean, where that is more.
-      if (static_cast<double>(rare[i]) > kCarried * value(i))
-        r = std::max(r, valueMeans.othersMean(x, y, kEdgeRadius));
+      if (rare[i] > 0.0f && static_cast<double>(rare[i]) > kCarried * value(i))
+        r = std::max(r, neighbourMean(value, x, y, width, height));
       reference[i] = static_cast<float>(std::max(r, 0.0));
       // What both halves missed: the rare share nearby, but not beyond the edge of a
       // cluster (at most kSided × the least of the wide window's half means).
-      const double share = std::min(rareMeans.othersMean(x, y, kMissedRadius),
-                                    kSided * rareMeans.leastHalfMean(x, y, kReferenceRadius));
+      const double share = std::min(rareSums.othersMean(x, y, kMissedRadius),
+                                    kSided * rareSums.leastHalfMean(x, y, kReferenceRadius));
       missed[i] = static_cast<float>(std::max(std::abs(error(i)), share));
     }
   const double mean = total / static_cast<double>(count);

@@ -59,8 +59,11 @@ TEST(ErrorEstimate, MatchesTheErrorOfGaussianPixels) {
 // denominator made the rMSE estimate 3.3–3.9× the image's true rMSE; with t = 0.2 (83 %
 // from hits) the MRAE estimate 2.9× its true MRAE (a NumPy model of the rule before
 // the rare part). The truth is this image's error against the exact r. Tolerances: the
-// issue's factor 1.5 (rMSE, t = 1; measured 0.79 and 1.09 at 4 and 16 spp); 1.25 on MRAE
-// (t = 0.2; measured 0.81 and 0.96).
+// issue's factor 1.5 in both (rMSE at t = 1: measured 0.79 and 1.09 at 4 and 16 spp; MRAE at
+// t = 0.2: 0.81 and 0.96). With hits in 8 % of the pixels at 4 spp the cluster window
+// (error_estimate.h) fires in places and lifts r̂: the fixed windows measured 1.11, 1.17 and
+// 1.06, 1.15 here; a rule that fired only where hits are denser than around them centred
+// these but pushed dof_chart's rMSE estimate to 2–3× (docs/performance.md).
 TEST(ErrorEstimate, MatchesTheErrorOfPixelsCarriedByRarePaths) {
   constexpr int kWidth = 200, kHeight = 100;
   constexpr std::size_t kPixels = static_cast<std::size_t>(kWidth) * kHeight;
@@ -97,8 +100,8 @@ TEST(ErrorEstimate, MatchesTheErrorOfPixelsCarriedByRarePaths) {
         EXPECT_GT(est.rmse / trueRmse, 1.0 / 1.5) << what;
         EXPECT_LT(est.rmse / trueRmse, 1.5) << what;
       } else {
-        EXPECT_GT(est.mrae / trueMrae, 1.0 / 1.25) << what;
-        EXPECT_LT(est.mrae / trueMrae, 1.25) << what;
+        EXPECT_GT(est.mrae / trueMrae, 1.0 / 1.5) << what;
+        EXPECT_LT(est.mrae / trueMrae, 1.5) << what;
       }
     }
 }
@@ -108,17 +111,17 @@ TEST(ErrorEstimate, MatchesTheErrorOfPixelsCarriedByRarePaths) {
 // of H = 1000 over a background t = 1 with 10 % Gaussian noise (r = t + pH inside, t
 // outside); 0.32 and 1.28 hits per disc pixel at 16 and 64 spp. The fixed windows alone
 // (the 15 × 15 rare share, the 7 × 7 missed share) spread the discs' share over the dark
-// around them: MRAE 2.64× and 3.08× the truth, rMSE 8.5× and 20.7× (measured before the
+// around them: MRAE 2.64× and 3.43× the truth, rMSE 8.6× and 26.5× (measured before the
 // cluster rules of error_estimate.h). With them: MRAE within the factor 1.5
-// (measured 1.02, 1.30); rMSE within a factor 4 (measured 2.0, 3.2: the discs' edge pixels
+// (measured 1.11, 1.35); rMSE within a factor 4 (measured 2.5, 3.2: the discs' edge pixels
 // carry it, half of whose neighbours are dark, and a hit of 1000 over r = 21 makes their
-// error large), a bound the fixed windows fail by 2–5×.
+// error large), a bound the fixed windows fail by 2–7×.
 TEST(ErrorEstimate, MatchesTheErrorOfClustersOfRarePaths) {
   constexpr int kWidth = 200, kHeight = 100, kRadius = 6;
   constexpr std::size_t kPixels = static_cast<std::size_t>(kWidth) * kHeight;
   constexpr double kHit = 1000.0, kP = 0.02, kTypical = 1.0;
   auto inDisc = [&](int x, int y) {
-    const int dx = (x + 20) % 40 - 20, dy = (y % 50) - 25;  // centres (20 + 40 i, 25 + 50 j)
+    const int dx = x % 40 - 20, dy = y % 50 - 25;  // centres (20 + 40 i, 25 + 50 j)
     return dx * dx + dy * dy <= kRadius * kRadius;
   };
   for (int n : {16, 64}) {
