@@ -34,9 +34,12 @@ def load_at(scene_file, sampler):
     """The scene at the bench's sweep size (cli/bench_args.cpp, reducedResolution) with
     `sampler`, from the file's text (its relative paths resolved beside it)."""
     try:
-        text = open(scene_file).read()
+        with open(scene_file, encoding="utf-8") as f:
+            text = f.read()
     except OSError as e:
         fail(f"{scene_file}: {e.strerror}")
+    except UnicodeDecodeError as e:
+        fail(f"{scene_file}: not UTF-8 text ({e.reason} at byte {e.start})")
     m = re.search(r"resolution: \[(\d+), (\d+)\]", text)
     if not m:
         fail(f"{scene_file}: no 'resolution: [W, H]' line to scale")
@@ -68,6 +71,8 @@ def main():
         fail(f"{ref_file}: not a camsim bench reference (channels Y, A.Y, B.Y)")
     r = ref["Y"].astype(float)
     a, b = ref["A.Y"].astype(float), ref["B.Y"].astype(float)
+    if not r.mean() > 0.0:
+        fail(f"{ref_file}: the reference is black (mean Y {r.mean()}): no relative error")
     floor = metrics(0.5 * (a - b), 0.5 * (a + b), 0.5 * (a.mean() + b.mean()))
     name = os.path.splitext(os.path.basename(scene_file))[0]
     for sampler in ("independent", "sobol"):
@@ -75,7 +80,10 @@ def main():
         for spp in (16, 64, 256):
             ratios = []
             for seed in SEEDS:
-                out = scene.render(spp=spp, seed=seed, threads=2)
+                try:
+                    out = scene.render(spp=spp, seed=seed, threads=2)
+                except camsim.InputError as e:
+                    fail(str(e))
                 x = out["xyz"][..., 1].astype(float)
                 if x.shape != r.shape:
                     fail(f"{ref_file}: {r.shape[1]}x{r.shape[0]} px, the render "
@@ -83,10 +91,13 @@ def main():
                 rmse, mrae = metrics(x - r, r, r.mean())
                 true_rmse = rmse - floor[0]
                 true_mrae = np.sqrt(max(mrae ** 2 - floor[1] ** 2, 0.0))
-                if true_rmse <= 0.0 or true_mrae <= 0.0:
+                if not (true_rmse > 0.0 and true_mrae > 0.0):
                     fail(f"{ref_file}: the render at {spp} spp is within the reference's "
                          "noise: render a reference of more spp (camsim bench --ref-spp)")
                 est = out["meta"]["render"]["estimated_error"]
+                if est["channel"] != "Y":
+                    fail(f"{scene_file}: the render estimates its error on {est['channel']}, "
+                         "not the XYZ film's Y the reference holds (a scene with a sensor)")
                 ratios.append((est["rmse"] / true_rmse, est["mrae"] / true_mrae))
             o = np.array(ratios)
             cells = [f"{np.median(o[:, k]):.2f} [{o[:, k].min():.2f}, {o[:, k].max():.2f}]"

@@ -32,35 +32,35 @@
 // | s        | 3 × 3 (with the pixel)  | median of |ê|: the local noise                      |
 // | h        | the pixel               | sign(I − m) · max(min(|I − m|, |ê|) − s, 0): rare   |
 // | share    | 15 × 15, or smaller     | mean of h (below)                                   |
-// | r̂        | 3 × 3 (h > 0.9 I only)  | m + share, at least 0; at least the mean of I where |
-// |          |                         | h > 0.9 I: the rmse's and mrae's r                  |
+// | r̂        | 3 × 3 (carried pixels)  | m + share, at least 0; where h > max(0, 0.9 I) at   |
+// |          |                         | least the neighbours' mean of I: the metrics' r     |
 // | |e|      | 7 × 7, 15 × 15 halves   | max(|ê|, min(mean of h, 3 × least half mean of h))  |
 //
-// h is the part of a pixel's departure from m that its two halves disagree on (a firefly
-// lands in one half: |ê| ≈ |I − m|; an edge or texture is in both: |ê| ≪ |I − m|) beyond the
-// local noise (Gaussian noise adds nothing on average); its mean over a window is the rare
-// paths' share of r, which m misses. The pixel's own h is left out, so that a firefly does
-// not divide itself. Rare paths spread over a wall (a room lit by a small lamp) need the wide
-// window; rare paths in a small cluster with sharp edges (a lamp's bokeh disc seen through a
-// defocused lens) need a window no wider than the cluster, else their share is spread over
-// the dark around it. So the share is the wide window's mean, or, where it is more, the mean
-// over the smallest square window (3 × 3 … 13 × 13) that holds 4 other pixels with h > 0.
-// At a cluster's edge even that window is half outside: a pixel carried by a rare path of
-// its own (h > 0.9 I) takes at least its neighbours' mean. The MRAE needs more: when neither
-// half caught a rare path, |I − r| is that share while ê is 0 (for one rare kind of path
-// E|ê| → E|I − r|/2), so |e| is at least the rare share nearby — but not across a cluster's
-// edge: at most 3 × the least of the means over the four halves (left, right, top, bottom,
-// each with the pixel's column or row) of the 15 × 15 window, which is small unless rare
-// paths lie on every side. Memory: 24 bytes per pixel (three float images, a double and a
-// 32-bit summed-area table). Measured
-// (docs/performance.md, "Error estimate"; 128 px, 16–256 spp, both samplers, against
-// 16384-spp references) est/true MRAE stays within [0.79, 1.05] on cornell_box, motion_blur,
-// metals_glass, small_light and dof_chart, rMSE within [0.70, 1.20] but for dof_chart with
-// the independent sampler, whose true rMSE is carried by single rare paths into pixels at
-// the edge of a bokeh disc (r ≈ 1/20 of the disc's; one such catch, of probability ≈ 0.4 %
-// per render at 16 spp, held 77 % of a render's rMSE): no estimate from the image knows that
-// r. Before the cluster rules dof_chart's MRAE was 1.26–3.17× over, its rMSE up to 317×. Over is the safe side for the passes (they
-// take more samples).
+// h is the part of a pixel's departure from m that its two halves disagree on (a firefly lands in
+// one half: |ê| ≈ |I − m|; an edge or texture is in both: |ê| ≪ |I − m|) beyond the local noise
+// (Gaussian noise adds nothing on average); its mean over a window is the rare paths' share of r,
+// which m misses. The pixel's own h is left out, so that a firefly does not divide itself. Rare
+// paths spread over a wall (a room lit by a small lamp) need the wide window; rare paths in a
+// small cluster with sharp edges (a lamp's bokeh disc seen through a defocused lens) need a window
+// no wider than the cluster, else their share is spread over the dark around it. So the share is
+// the wide window's mean, or, where it is more, the mean over the smallest square window
+// (3 × 3 … 13 × 13) that holds 4 other pixels with h > 0. At a cluster's edge even that window is
+// half outside: a pixel carried by a rare path of its own (h > max(0, 0.9 I)) takes at least its
+// neighbours' mean. The MRAE needs more: when neither half caught a rare path, |I − r| is that
+// share while ê is 0 (for one rare kind of path E|ê| → E|I − r|/2), so |e| is at least the rare
+// share nearby — but not across a cluster's edge: at most 3 × the least of the means over the four
+// halves (left, right, top, bottom, each with the pixel's column or row) of the 15 × 15 window,
+// which is small unless rare paths lie on every side. Memory: 24 bytes per pixel (three float
+// images, a double and a 32-bit summed-area table). Measured (docs/performance.md, "Error
+// estimate"; 128 px, 16–256 spp, both samplers, against 16384-spp references): in the bench's run
+// est/true MRAE is within [0.79, 1.05] on cornell_box, motion_blur, metals_glass, small_light and
+// dof_chart (over 16 seeds per cell the medians are 0.79–0.96; a draw that catches a lone lamp
+// path goes down to 0.42 on dof_chart), rMSE within [0.70, 1.20] but for dof_chart with the
+// independent sampler, whose true rMSE is carried by single rare paths into pixels at the edge of
+// a bokeh disc (r ≈ 1/20 of the disc's; in the bench's render at 16 spp one such catch, of
+// probability ≈ 0.4 % per such pixel and render, held 77 % of the rMSE): no estimate from the
+// image knows that r. Before the cluster rules dof_chart's MRAE was 1.26–3.17× over, its rMSE up
+// to 317×. Over is the safe side for the passes (they take more samples).
 #pragma once
 
 #include <cmath>
