@@ -76,10 +76,7 @@ PhysicalCamera makeCamera(const Model& m, bool diffraction) {
   return PhysicalCamera(camsim::loadSceneFromText(yaml, "bench.yaml", ".").camera);
 }
 
-// The thread's CPU time, s.
-double cpuSeconds() {
-  return camsim::bench::threadCpuSeconds();
-}
+using camsim::bench::threadCpuSeconds;  // the clock: this thread's CPU time, s
 
 struct Samples {
   std::vector<CameraSample> camera;
@@ -115,7 +112,7 @@ struct Pass {
 
 Pass timePass(const PhysicalCamera& camera, const Samples& s) {
   Pass p{0.0, 0, 0.0};
-  const double start = cpuSeconds();
+  const double start = threadCpuSeconds();
   for (int i = 0; i < kSamples; ++i) {
     const std::optional<camsim::CameraRay> r =
         camera.generateRay(s.camera[static_cast<size_t>(i)], lambdaOf(s, i));
@@ -123,13 +120,13 @@ Pass timePass(const PhysicalCamera& camera, const Samples& s) {
     ++p.rays;
     p.checksum += double(r->ray.d.x) + double(r->weight[0]);
   }
-  p.seconds = cpuSeconds() - start;
+  p.seconds = threadCpuSeconds() - start;
   return p;
 }
 
 // Diffraction::sample alone over the samples: s per call (photosites of `pitch` m).
 double timeJitter(const camsim::Diffraction& d, const Samples& s, double pitch, double& checksum) {
-  const double start = cpuSeconds();
+  const double start = threadCpuSeconds();
   for (int i = 0; i < kSamples; ++i) {
     const CameraSample& c = s.camera[static_cast<size_t>(i)];
     const camsim::DiffractionSample j =
@@ -137,7 +134,7 @@ double timeJitter(const camsim::Diffraction& d, const Samples& s, double pitch, 
                  {pitch * glm::dvec2(c.pPhotosite), glm::dvec2(0.5 * pitch)});
     checksum += j.offset.x + double(j.weight[0]);
   }
-  return (cpuSeconds() - start) / kSamples;
+  return (threadCpuSeconds() - start) / kSamples;
 }
 
 // Samples that get no exit-pupil bound (outside the image circle): the film point as
@@ -188,10 +185,10 @@ int main(int argc, char** argv) {
     for (size_t m = 0; m < ms.size(); ++m) {
       const camsim::LensCamera* lens = cameras[2 * m].lensCamera();
       if (!lens) continue;
-      const double start = cpuSeconds();
+      const double start = threadCpuSeconds();
       const camsim::ExitPupilBounds b(lens->lens(), lens->sensorDistance(),
                                       0.5 * glm::length(cameras[2 * m].params().sensorSize));
-      bounds[m].push_back(cpuSeconds() - start);
+      bounds[m].push_back(threadCpuSeconds() - start);
       traced[m] = b.raysTraced();
       checksum += b.area(0);
     }
