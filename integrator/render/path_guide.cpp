@@ -20,7 +20,7 @@ namespace {
 
 constexpr float kInvFourPi = 0.0795774715459476679f;
 // Tiles traced between two insertions of their records: bounds the records held at once
-// (16² px × 32 spp × ≈ 4 vertices × 24 bytes ≈ 0.8 MB per tile at the last iteration).
+// (16² px × 32 spp × ≈ 4 vertices × 40 bytes ≈ 1.3 MB per tile at the last iteration).
 constexpr int kBatchTiles = 32;
 constexpr std::uint64_t kGuideSeedSalt = 0x6775696465ull;  // "guide"
 
@@ -97,7 +97,7 @@ PathGuide PathGuide::train(const Scene& scene, int spp, std::uint64_t seed, int 
       // Tile order, then each tile's own order: the same sums for any thread count.
       for (int t = batch; t < batchEnd; ++t)
         for (const GuideRecord& r : records[static_cast<std::size_t>(t - batch)]) {
-          guide.tree_.record(r.p, r.square, r.weight);
+          guide.tree_.record(r.p, r.square, r.weight, r.source, r.sourceWeight);
           ++guide.stats_.records;
         }
     }

@@ -54,17 +54,21 @@ struct ShadingPoint {
   glm::vec3 woLocal;
   const Material& material;
   const BsdfContext& ctx;
-  const DirectionalQuadtree* guideDensity;  // the guide's directions here; null: unguided
+  const GuideQuery& guide;  // the guide here; density null: unguided
 
-  // The pdf the bounce samples wi with (sr⁻¹): the BSDF's, or the BSDF/guide mixture.
+  // The pdf the bounce samples wi with (sr⁻¹): the BSDF's, or the mixture (path_guide.h).
   float scatterPdf(const glm::vec3& wiLocal, const glm::vec3& wi,
                    const SampledWavelengths& lambda) const {
     return mixturePdf(material.pdf(woLocal, wiLocal, lambda, ctx), wi);
   }
+  float lobeFraction() const { return guide.lobe.kappa > 0.0f ? PathGuide::kLobeFraction : 0.0f; }
   float mixturePdf(float bsdfPdf, const glm::vec3& wi) const {
-    if (!guideDensity) return bsdfPdf;
+    if (!guide.density) return bsdfPdf;
     constexpr float a = PathGuide::kBsdfFraction;
-    return a * bsdfPdf + (1.0f - a) * PathGuide::pdf(*guideDensity, wi);
+    const float g = lobeFraction();
+    float p = a * bsdfPdf + (1.0f - a - g) * PathGuide::pdf(*guide.density, wi);
+    if (g > 0.0f) p += g * guide.lobe.pdf(wi);
+    return p;
   }
 };
 
@@ -79,13 +83,14 @@ struct Scatter {
 };
 
 // One-sample MIS of the mixture (path_guide.h): uc < α picks the BSDF (uc/α its lobe
-// choice), else the guide; either way the pdf is the mixture's, except for a delta lobe,
-// which only the BSDF samples: its probability is α times the lobe's.
+// choice), else the guide's density or its source lobe; either way the pdf is the
+// mixture's, except for a delta lobe, which only the BSDF samples: its probability is α
+// times the lobe's.
 template <typename SamplerT>
 std::optional<Scatter> scatter(const ShadingPoint& sp, float uc, SamplerT& sampler,
                                const SampledWavelengths& lambda) {
   const glm::vec2 u = sampler.get2D();
-  if (!sp.guideDensity) {
+  if (!sp.guide.density) {
     const std::optional<BsdfSample> bs = sp.material.sample(sp.woLocal, uc, u, lambda, sp.ctx);
     if (!bs) return std::nullopt;
     return Scatter{bs->f, bs->wi, bs->pdf, bs->specular, bs->etap, bs->pdf};
@@ -105,14 +110,16 @@ std::optional<Scatter> scatter(const ShadingPoint& sp, float uc, SamplerT& sampl
                    bs->etap,
                    bsdfPdf};
   }
-  float guidePdf = 0.0f;
-  const glm::vec3 wi = PathGuide::sample(*sp.guideDensity, u, &guidePdf);
+  float unused = 0.0f;
+  const glm::vec3 wi = uc < 1.0f - sp.lobeFraction()
+                           ? PathGuide::sample(*sp.guide.density, u, &unused)
+                           : sp.guide.lobe.sample(u, &unused);
   const glm::vec3 wiLocal = sp.frame.toLocal(wi);
   const float bsdfPdf = sp.material.pdf(sp.woLocal, wiLocal, lambda, sp.ctx);
   // etap stays 1: it only steers Russian roulette, which is unbiased for any survival rate.
   return Scatter{sp.material.f(sp.woLocal, wiLocal, lambda, sp.ctx),
                  wiLocal,
-                 a * bsdfPdf + (1.0f - a) * guidePdf,
+                 sp.mixturePdf(bsdfPdf, wi),
                  false,
                  1.0f,
                  bsdfPdf};
@@ -173,6 +180,12 @@ SampledSpectrum trace(const Scene& scene, Ray ray, SampledWavelengths& lambda, S
     for (GuideRecorder::Vertex& v : recorder->path)
       for (int i = 0; i < kWavelengthSamples; ++i)
         if (v.beta[i] > 0.0f) v.L[i] += c[i] / v.beta[i];
+    // The latest vertex's next vertex is this one: c left it directly (source_lobe.h).
+    if (!recorder->path.empty()) {
+      GuideRecorder::Vertex& v = recorder->path.back();
+      for (int i = 0; i < kWavelengthSamples; ++i)
+        if (v.beta[i] > 0.0f) v.Ld[i] += c[i] / v.beta[i];
+    }
   };
   for (int depth = 0;; ++depth) {
     Hit hit;
@@ -193,6 +206,10 @@ SampledSpectrum trace(const Scene& scene, Ray ray, SampledWavelengths& lambda, S
     const Shape& shape = scene.shape(hit.shape);
     const Material& material = scene.material(hit.shape);
     SurfaceInteraction si = shape.interaction(hit, ray);
+    if (Guided && recorder && !recorder->path.empty() && !recorder->path.back().hasNext) {
+      recorder->path.back().next = si.p;  // the light a vertex receives leaves from here
+      recorder->path.back().hasNext = true;
+    }
     si.ns = shadingNormal(shape, hit, si, material);
     const glm::vec3 wo = -glm::normalize(ray.d);
     // One per point: its texture memo serves aov, f, pdf, sample (and vertex colours).
@@ -227,9 +244,9 @@ SampledSpectrum trace(const Scene& scene, Ray ray, SampledWavelengths& lambda, S
     if (material.dispersive()) lambda.terminateSecondary();
 
     const Frame frame = Frame::fromZ(si.ns);
-    const DirectionalQuadtree* density =
-        Guided && guide && material.hasNonSpecular() ? guide->densityAt(si.p) : nullptr;
-    const ShadingPoint sp{si, frame, wo, frame.toLocal(wo), material, ctx, density};
+    const GuideQuery here =
+        Guided && guide && material.hasNonSpecular() ? guide->at(si.p) : GuideQuery{};
+    const ShadingPoint sp{si, frame, wo, frame.toLocal(wo), material, ctx, here};
     // The bounce's two 1D choices, which light and which BSDF lobe, share one 2D draw (one
     // sampler dimension instead of two).
     const glm::vec2 uChoice = sampler.get2D();
@@ -243,11 +260,12 @@ SampledSpectrum trace(const Scene& scene, Ray ray, SampledWavelengths& lambda, S
     const SampledSpectrum weight = bs->f * (std::abs(bs->wiLocal.z) / bs->pdf);
     beta *= weight;
     if constexpr (Guided)
-      rrBeta *= sp.guideDensity && bs->bsdfPdf > 0.0f
+      rrBeta *= sp.guide.density && bs->bsdfPdf > 0.0f
                     ? bs->f * (std::abs(bs->wiLocal.z) / bs->bsdfPdf)
                     : weight;
     if (Guided && recorder && !bs->specular)
-      recorder->path.push_back({si.p, directionToSquare(wi), bs->pdf, beta, SampledSpectrum(0.0f)});
+      recorder->path.push_back({si.p, directionToSquare(wi), bs->pdf, beta, SampledSpectrum(0.0f),
+                                SampledSpectrum(0.0f), glm::vec3(0.0f), false});
     etaScale *= bs->etap * bs->etap;
     prevBsdfPdf = bs->pdf;
     prevSpecular = bs->specular;
@@ -270,8 +288,11 @@ SampledSpectrum trace(const Scene& scene, Ray ray, SampledWavelengths& lambda, S
     countRay(RayKind::kBounce, ray);  // after roulette: a path it ends never traces the ray
   }
   if (Guided && recorder && recorder->out)
-    for (const GuideRecorder::Vertex& v : recorder->path)
-      recorder->out->push_back({v.p, v.square, v.L.average() / v.pdf});
+    for (const GuideRecorder::Vertex& v : recorder->path) {
+      const float Ld = v.Ld.average();
+      recorder->out->push_back(
+          {v.p, v.square, v.L.average() / v.pdf, v.next, v.hasNext ? Ld * Ld / v.pdf : 0.0f});
+    }
   return L;
 }
 

@@ -159,10 +159,13 @@ int SDTree::leafAt(const glm::vec3& p) const {
   }
 }
 
-void SDTree::record(const glm::vec3& p, glm::vec2 square, float weight) {
+void SDTree::record(const glm::vec3& p, glm::vec2 square, float weight, const glm::vec3& source,
+                    float sourceWeight) {
   GuideLeaf& l = leaves_[static_cast<std::size_t>(leafAt(p))];
   ++l.records;
-  if (weight > 0.0f && std::isfinite(weight)) l.building.record(square, weight);
+  if (!(weight > 0.0f && std::isfinite(weight))) return;
+  l.building.record(square, weight);
+  l.moments.add(source, sourceWeight);
 }
 
 // Splits a leaf (of extent `size`) in two across its longest side, each child keeping half
@@ -219,6 +222,8 @@ void SDTree::refine(int iteration, double spatialC) {
     DirectionalQuadtree next = l.building.refined();
     l.sampling = std::move(l.building);
     l.building = std::move(next);
+    l.lobe = SourceLobe::fit(l.moments);
+    l.moments = SourceMoments();
     l.records = 0;
   }
 }
@@ -226,6 +231,7 @@ void SDTree::refine(int iteration, double spatialC) {
 void SDTree::freeze() {
   for (GuideLeaf& l : leaves_) {
     l.building = DirectionalQuadtree();
+    l.moments = SourceMoments();
     l.records = 0;
   }
 }

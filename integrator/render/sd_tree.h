@@ -35,6 +35,8 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
+#include "integrator/render/source_lobe.h"
+
 namespace camsim {
 
 inline constexpr double kSpatialC = 4000.0;
@@ -77,9 +79,12 @@ class DirectionalQuadtree {
   std::vector<Node> nodes_;
 };
 
-// One spatial leaf: the density sampled this iteration and the one being recorded.
+// One spatial leaf: the density and source lobe sampled this iteration, and the ones being
+// recorded.
 struct GuideLeaf {
   DirectionalQuadtree sampling, building;
+  SourceLobe lobe;
+  SourceMoments moments;
   std::uint64_t records = 0;  // records into `building` this iteration
 };
 
@@ -94,11 +99,14 @@ class SDTree {
   const GuideLeaf& leaf(int index) const { return leaves_[static_cast<std::size_t>(index)]; }
   std::size_t leafCount() const { return leaves_.size(); }
 
-  // One record: incident-radiance weight at p from direction w (unit, world).
-  void record(const glm::vec3& p, glm::vec2 square, float weight);
+  // One record: incident-radiance weight at p from direction w (unit, world), and the
+  // source lobe's weight of `source`, the point the light left (source_lobe.h).
+  void record(const glm::vec3& p, glm::vec2 square, float weight, const glm::vec3& source,
+              float sourceWeight);
   // After training iteration k (0-based): splits leaves with more records than
   // spatialC·√(2^k) (the children copy the parent's recorded tree), then makes each
-  // leaf's recorded tree its sampling density and a refined, empty one its next record.
+  // leaf's recorded tree its sampling density and a refined, empty one its next record
+  // (and the recorded moments its source lobe).
   void refine(int iteration, double spatialC = kSpatialC);
   // Drops the recording trees (after the last iteration: only sampling is left).
   void freeze();

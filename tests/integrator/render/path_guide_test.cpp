@@ -3,6 +3,8 @@
 // deterministic for any thread count, and the scene setting is parsed and range-checked.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <string>
 
@@ -106,6 +108,28 @@ TEST(PathGuide, DeterministicForAnyThreadCount) {
   // The option overrides the scene: off, no guide.
   options.guiding = false;
   EXPECT_FALSE(render(scene, response, options).stats.guide.has_value());
+}
+
+// The room's trained guide: at the floor, in front of the baffle, the source lobe looks up
+// at the ceiling the sphere lights directly (its centroid in the room's top 0.5 m, the
+// brightest light the floor gets); the lobe is sharp (κ ≥ 4) and it is that leaf's lobe.
+TEST(PathGuide, SourceLobeLooksAtTheDirectlyLitCeiling) {
+  const Scene scene(loadSceneFromText(room(true), "test.yaml", "."));
+  const PathGuide guide = PathGuide::train(scene, 256, 1, 2);
+  const glm::vec3 origin(scene.renderOrigin());
+  const glm::vec3 floor = glm::vec3(1.0f, 0.01f, 0.3f) - origin;  // world → render space
+  const GuideQuery q = guide.at(floor);
+  ASSERT_NE(q.density, nullptr);
+  const SourceLobe& lobe = guide.tree().leaf(guide.tree().leafAt(floor)).lobe;
+  const glm::vec3 c = lobe.centre + origin;
+  std::printf("[measured] floor's source lobe: centre (%.2f, %.2f, %.2f) m, sigma %.2f m, "
+              "kappa %.1f, mu.y %.2f\n",
+              static_cast<double>(c.x), static_cast<double>(c.y), static_cast<double>(c.z),
+              std::sqrt(static_cast<double>(lobe.spread2)), static_cast<double>(q.lobe.kappa),
+              static_cast<double>(q.lobe.mu.y));
+  EXPECT_GT(c.y, 1.5f);
+  EXPECT_GE(q.lobe.kappa, SourceLobe::kMinKappa);
+  EXPECT_GT(q.lobe.mu.y, 0.7f);
 }
 
 TEST(PathGuide, SettingIsParsedAndChecked) {

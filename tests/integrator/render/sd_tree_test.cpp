@@ -138,18 +138,24 @@ TEST(SdTree, SamplesFollowThePdf) {
 
 // 100 000 records spread over the cube: iteration 0's threshold (kSpatialC = 4000) splits
 // the root into 2^5 = 32 leaves (100 000 / 2^5 ≈ 3125 ≤ 4000); every leaf then samples the
-// parent's density, and leafAt finds a leaf for any point, inside or outside the cube.
+// parent's density and source lobe, and leafAt finds a leaf for any point, inside or outside the cube.
 TEST(SdTree, SpatialRefinement) {
   SDTree tree({-1.0f, -1.0f, -1.0f}, {1.0f, 1.0f, 1.0f});
   for (std::uint64_t i = 0; i < 100000; ++i) {
     const glm::vec3 p(2.0f * uniform(i, 31) - 1.0f, 2.0f * uniform(i, 32) - 1.0f,
                       2.0f * uniform(i, 33) - 1.0f);
-    tree.record(p, directionToSquare(glm::normalize(glm::vec3(0.2f, 1.0f, 0.1f))), 1.0f);
+    // Every record's light left one point: each leaf's source lobe is that point.
+    tree.record(p, directionToSquare(glm::normalize(glm::vec3(0.2f, 1.0f, 0.1f))), 1.0f,
+                {0.5f, 4.0f, -0.25f}, 2.0f);
   }
   tree.refine(0);
   EXPECT_EQ(tree.leafCount(), 32u);
-  for (std::size_t l = 0; l < tree.leafCount(); ++l)
-    EXPECT_FLOAT_EQ(tree.leaf(static_cast<int>(l)).sampling.total(), 100000.0f);
+  for (std::size_t l = 0; l < tree.leafCount(); ++l) {
+    const GuideLeaf& leaf = tree.leaf(static_cast<int>(l));
+    EXPECT_FLOAT_EQ(leaf.sampling.total(), 100000.0f);
+    EXPECT_NEAR(glm::length(leaf.lobe.centre - glm::vec3(0.5f, 4.0f, -0.25f)), 0.0f, 1e-5f);
+    EXPECT_FLOAT_EQ(leaf.lobe.spread2, SourceLobe::kMinSpread);
+  }
   EXPECT_GE(tree.leafAt({5.0f, -5.0f, 0.0f}), 0);
   EXPECT_NE(tree.leafAt({-0.9f, -0.9f, -0.9f}), tree.leafAt({0.9f, 0.9f, 0.9f}));
   tree.freeze();
