@@ -63,8 +63,8 @@ struct GuideRecorder {
   struct Vertex {
     glm::vec3 p;
     glm::vec2 square;
-    float pdf;                // sr⁻¹, of the direction sampled there
-    SampledSpectrum beta;     // path throughput after the vertex's scattering
+    float pdf;                 // sr⁻¹, of the direction sampled there
+    SampledSpectrum beta;      // path throughput after the vertex's scattering
     SampledSpectrum L{0.0f};   // radiance arrived since, divided by beta
     SampledSpectrum Ld{0.0f};  // of which emitted or lit directly at the next vertex
     glm::vec3 next{0.0f};      // where the sampled ray hit (hasNext)

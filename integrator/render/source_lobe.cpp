@@ -21,8 +21,7 @@ void SourceMoments::add(const glm::vec3& source, float weight) {
 float VmfLobe::pdf(const glm::vec3& w) const {
   if (kappa <= 0.0f) return 0.0f;
   // κ/(2π(1 − e^(−2κ))) e^(κ(μ·ω − 1)): the form without overflow for large κ.
-  return kappa / (kTwoPi * -std::expm1(-2.0f * kappa)) *
-         std::exp(kappa * (glm::dot(mu, w) - 1.0f));
+  return kappa / (kTwoPi * -std::expm1(-2.0f * kappa)) * std::exp(kappa * (glm::dot(mu, w) - 1.0f));
 }
 
 glm::vec3 VmfLobe::sample(glm::vec2 u, float* density) const {
@@ -33,8 +32,8 @@ glm::vec3 VmfLobe::sample(glm::vec2 u, float* density) const {
   const float sinTheta = std::sqrt(std::max(0.0f, 1.0f - cosTheta * cosTheta));
   const float phi = kTwoPi * u.y;
   const Frame frame = Frame::fromZ(mu);
-  const glm::vec3 w = glm::normalize(
-      frame.toWorld({sinTheta * std::cos(phi), sinTheta * std::sin(phi), cosTheta}));
+  const glm::vec3 w =
+      glm::normalize(frame.toWorld({sinTheta * std::cos(phi), sinTheta * std::sin(phi), cosTheta}));
   *density = pdf(w);
   return w;
 }

@@ -52,7 +52,7 @@ struct SourceMoments {
 struct VmfLobe {
   glm::vec3 mu{0.0f, 0.0f, 1.0f};
   float kappa = 0.0f;
-  float pdf(const glm::vec3& w) const;           // sr⁻¹, w unit
+  float pdf(const glm::vec3& w) const;              // sr⁻¹, w unit
   glm::vec3 sample(glm::vec2 u, float* pdf) const;  // u uniform in [0, 1)²
 };
 

@@ -122,11 +122,12 @@ TEST(PathGuide, SourceLobeLooksAtTheDirectlyLitCeiling) {
   ASSERT_NE(q.density, nullptr);
   const SourceLobe& lobe = guide.tree().leaf(guide.tree().leafAt(floor)).lobe;
   const glm::vec3 c = lobe.centre + origin;
-  std::printf("[measured] floor's source lobe: centre (%.2f, %.2f, %.2f) m, sigma %.2f m, "
-              "kappa %.1f, mu.y %.2f\n",
-              static_cast<double>(c.x), static_cast<double>(c.y), static_cast<double>(c.z),
-              std::sqrt(static_cast<double>(lobe.spread2)), static_cast<double>(q.lobe.kappa),
-              static_cast<double>(q.lobe.mu.y));
+  std::printf(
+      "[measured] floor's source lobe: centre (%.2f, %.2f, %.2f) m, sigma %.2f m, "
+      "kappa %.1f, mu.y %.2f\n",
+      static_cast<double>(c.x), static_cast<double>(c.y), static_cast<double>(c.z),
+      std::sqrt(static_cast<double>(lobe.spread2)), static_cast<double>(q.lobe.kappa),
+      static_cast<double>(q.lobe.mu.y));
   EXPECT_GT(c.y, 1.5f);
   EXPECT_GE(q.lobe.kappa, SourceLobe::kMinKappa);
   EXPECT_GT(q.lobe.mu.y, 0.7f);
