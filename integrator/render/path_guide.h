@@ -2,7 +2,8 @@
 // bounce's direction at a non-specular vertex from the one-sample mixture
 //
 //   p(ω) = α·p_bsdf(ω) + (1 − α − γ)·p_guide(x, ω) + γ·p_lobe(x, ω)
-//   α = kBsdfFraction = 0.5, γ = kLobeFraction = 0.25 where the leaf has a source lobe, else 0
+//   α = kBsdfFraction = 0.5, γ = kLobeFraction = 0.25 where the leaf has a source lobe
+//   and x is far enough from its cloud (κ ≥ 4, source_lobe.h), else 0
 //
 // where p_guide is the SD-tree's learnt density of the incident radiance at x
 // (integrator/render/sd_tree.h) and p_lobe the vMF lobe towards the leaf's learnt light
@@ -67,6 +68,7 @@ struct GuideRecorder {
     SampledSpectrum beta;      // path throughput after the vertex's scattering
     SampledSpectrum L{0.0f};   // radiance arrived since, divided by beta
     SampledSpectrum Ld{0.0f};  // of which emitted or lit directly at the next vertex
+    bool direct = true;        // Ld still open: no specular vertex after this one yet
     glm::vec3 next{0.0f};      // where the sampled ray hit (hasNext)
     bool hasNext = false;
   };

@@ -110,16 +110,23 @@ std::optional<Scatter> scatter(const ShadingPoint& sp, float uc, SamplerT& sampl
                    bs->etap,
                    bsdfPdf};
   }
-  float unused = 0.0f;
-  const glm::vec3 wi = uc < 1.0f - sp.lobeFraction()
-                           ? PathGuide::sample(*sp.guide.density, u, &unused)
-                           : sp.guide.lobe.sample(u, &unused);
+  // The technique that drew wi gives its own pdf on the way (no second quadtree descent).
+  const float g = sp.lobeFraction();
+  float treePdf = 0.0f, lobePdf = 0.0f;
+  glm::vec3 wi;
+  if (uc < 1.0f - g) {
+    wi = PathGuide::sample(*sp.guide.density, u, &treePdf);
+    if (g > 0.0f) lobePdf = sp.guide.lobe.pdf(wi);
+  } else {
+    wi = sp.guide.lobe.sample(u, &lobePdf);
+    treePdf = PathGuide::pdf(*sp.guide.density, wi);
+  }
   const glm::vec3 wiLocal = sp.frame.toLocal(wi);
   const float bsdfPdf = sp.material.pdf(sp.woLocal, wiLocal, lambda, sp.ctx);
   // etap stays 1: it only steers Russian roulette, which is unbiased for any survival rate.
   return Scatter{sp.material.f(sp.woLocal, wiLocal, lambda, sp.ctx),
                  wiLocal,
-                 sp.mixturePdf(bsdfPdf, wi),
+                 a * bsdfPdf + (1.0f - a - g) * treePdf + g * lobePdf,
                  false,
                  1.0f,
                  bsdfPdf};
@@ -181,7 +188,7 @@ SampledSpectrum trace(const Scene& scene, Ray ray, SampledWavelengths& lambda, S
       for (int i = 0; i < kWavelengthSamples; ++i)
         if (v.beta[i] > 0.0f) v.L[i] += c[i] / v.beta[i];
     // The latest vertex's next vertex is this one: c left it directly (source_lobe.h).
-    if (!recorder->path.empty()) {
+    if (!recorder->path.empty() && recorder->path.back().direct) {
       GuideRecorder::Vertex& v = recorder->path.back();
       for (int i = 0; i < kWavelengthSamples; ++i)
         if (v.beta[i] > 0.0f) v.Ld[i] += c[i] / v.beta[i];
@@ -263,9 +270,13 @@ SampledSpectrum trace(const Scene& scene, Ray ray, SampledWavelengths& lambda, S
       rrBeta *= sp.guide.density && bs->bsdfPdf > 0.0f
                     ? bs->f * (std::abs(bs->wiLocal.z) / bs->bsdfPdf)
                     : weight;
-    if (Guided && recorder && !bs->specular)
-      recorder->path.push_back({si.p, directionToSquare(wi), bs->pdf, beta, SampledSpectrum(0.0f),
-                                SampledSpectrum(0.0f), glm::vec3(0.0f), false});
+    if (Guided && recorder) {
+      if (!bs->specular)
+        recorder->path.push_back({si.p, directionToSquare(wi), bs->pdf, beta, SampledSpectrum(0.0f),
+                                  SampledSpectrum(0.0f), true, glm::vec3(0.0f), false});
+      else if (!recorder->path.empty())  // light past here did not leave `next` directly
+        recorder->path.back().direct = false;
+    }
     etaScale *= bs->etap * bs->etap;
     prevBsdfPdf = bs->pdf;
     prevSpecular = bs->specular;

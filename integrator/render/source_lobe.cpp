@@ -15,13 +15,17 @@ void SourceMoments::add(const glm::vec3& source, float weight) {
   const double wd = weight;
   w += wd;
   for (int a = 0; a < 3; ++a) q[a] += wd * static_cast<double>(source[a]);
-  q2 += wd * static_cast<double>(glm::dot(source, source));
+  const glm::dvec3 qd(source);
+  q2 += wd * glm::dot(qd, qd);
 }
 
 float VmfLobe::pdf(const glm::vec3& w) const {
   if (kappa <= 0.0f) return 0.0f;
-  // κ/(2π(1 − e^(−2κ))) e^(κ(μ·ω − 1)): the form without overflow for large κ.
-  return kappa / (kTwoPi * -std::expm1(-2.0f * kappa)) * std::exp(kappa * (glm::dot(mu, w) - 1.0f));
+  // κ/(2π(1 − e^(−2κ))) e^(κ(μ·ω − 1)): the form without overflow for large κ, and
+  // μ·ω − 1 = −½|ω − μ|² without the cancellation (at κ = 10⁵ one ulp of μ·ω moved the pdf
+  // by 0.6 %).
+  const glm::vec3 d = w - mu;
+  return kappa / (kTwoPi * -std::expm1(-2.0f * kappa)) * std::exp(-0.5f * kappa * glm::dot(d, d));
 }
 
 glm::vec3 VmfLobe::sample(glm::vec2 u, float* density) const {
@@ -55,7 +59,7 @@ VmfLobe SourceLobe::at(const glm::vec3& x) const {
   const glm::vec3 toC = centre - x;
   const float d2 = glm::dot(toC, toC);
   const float kappa = kSharpness * d2 / spread2;
-  if (!(kappa >= kMinKappa)) return v;
+  if (!(kappa >= kMinKappa) || !std::isfinite(d2)) return v;
   v.mu = toC / std::sqrt(d2);
   v.kappa = std::min(kappa, kMaxKappa);
   return v;

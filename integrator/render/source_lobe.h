@@ -8,8 +8,8 @@
 // the source subtends, so the quadtree blurs it over 0.1–0.3 sr. The lobe keeps instead
 // the moments of the records' source points q (the recorded path's next vertex), each
 // weighted by w = L_d²/p, L_d the radiance that left q directly (emitted there, or light
-// sampled there: not what arrived after further bounces), p the pdf of the recorded
-// direction. w estimates ∫ L_d² dω — the second moment, which a bright, small source
+// sampled there: not what arrived after further bounces, nor past a specular vertex after
+// q), p the pdf of the recorded direction. w estimates ∫ L_d² dω — the second moment, which a bright, small source
 // dominates (small_light: the shade's inside, L ≈ 10³ cd/m² over 0.005 sr, against the
 // ceiling's pool, 33 cd/m² over 0.3 sr; weighted by L/p, the radiance, the cloud was the
 // whole room, σ ≈ 1.5 m):
@@ -26,9 +26,9 @@
 // |----------------|-------|-------------------------------------------------------------|
 // | kSharpness     | 3     | κ = 3d²/σ²: the lobe's angular variance 1/κ per axis is the |
 // |                |       | cloud's, σ²/3 per axis over d² (small_light, 128 px, MRAE   |
-// |                |       | @ 128 spp: 0.3 → 0.46, 1 → 0.37, 3 → 0.32, 10 → 0.38)       |
+// |                |       | @ 128 spp: 0.3 → 0.46, 1 → 0.37, 3 → 0.32, 10 → 0.39)       |
 // | kMinKappa      | 4     | below it (x inside or near the cloud) the lobe is not used  |
-// | kMaxKappa      | 10⁵   | caps κ (a source 3 mrad across)                              |
+// | kMaxKappa      | 10⁵   | caps κ (1/√κ: 3 mrad per axis)                              |
 // | kMinSpread     | 1e-6  | σ² floor, m²                                                 |
 //
 // The lobe is one more technique of the path tracer's one-sample mixture (path_guide.h);
