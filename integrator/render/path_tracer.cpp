@@ -110,7 +110,10 @@ std::optional<Scatter> scatter(const ShadingPoint& sp, float uc, SamplerT& sampl
                    bs->etap,
                    bsdfPdf};
   }
-  // The technique that drew wi gives its own pdf on the way (no second quadtree descent).
+  // The technique that drew wi gives its own density on the way (no second quadtree
+  // descent): for the tree, the cell it drew from. Mapping wi back (as the other branches
+  // and NEE do) can land in the neighbouring cell within ~10⁻⁷ of a cell's edge: the same
+  // rounding the map itself has.
   const float g = sp.lobeFraction();
   float treePdf = 0.0f, lobePdf = 0.0f;
   glm::vec3 wi;

@@ -23,7 +23,7 @@ glm::vec2 intoQuadrant(glm::vec2 p, int q) {
 }
 
 // atan2(y, x) in [0, 2π): atan on [0, 1] as an odd polynomial of degree 15 (coefficients
-// fitted to atan by reweighted least squares on Chebyshev nodes; max error 1.3·10⁻⁷ rad
+// fitted to atan by reweighted least squares on Chebyshev nodes; max error 1.4·10⁻⁷ rad
 // evaluated in float, the size of atan2f's own rounding near π), then the octant. A guided
 // bounce evaluates the map two or three times: atan2f was 9 % of a guided small_light
 // render's profile (perf, 2026-12-06).

@@ -17,7 +17,7 @@
 //
 // Directions use the area-preserving cylindrical map of the sphere onto the unit square:
 //   u = (ω_z + 1)/2, v = φ/(2π), φ = atan2(ω_y, ω_x) ∈ [0, 2π) (a polynomial atan2, within
-//   1.3·10⁻⁷ rad: the cells' edges move by less than float's rounding of φ)
+//   1.4·10⁻⁷ rad: the cells' edges move by less than float's rounding of φ)
 // (world axes), whose Jacobian is constant: p_Ω(ω) = p_square(u, v) / (4π) sr⁻¹.
 //
 // A quadtree node holds, per quadrant, the energy (sum of record weights) of its subtree.

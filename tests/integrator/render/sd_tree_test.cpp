@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <numbers>
 #include <vector>
 
 #include <glm/geometric.hpp>
@@ -50,6 +51,29 @@ TEST(SdTree, CylindricalMapRoundTrips) {
     const float dv = std::abs(back.y - p.y);
     EXPECT_LT(std::min(dv, 1.0f - dv), 1e-5f);
   }
+}
+
+// The map's azimuth is a polynomial atan2 (sd_tree.cpp): against atan2 in double over
+// 400 000 directions on all octants (and the axes), φ = 2πv within 8·10⁻⁷ rad on the
+// circle (measured 5.7·10⁻⁷: the polynomial's 1.4·10⁻⁷ plus float's rounding of v near 1,
+// an ulp of 6·10⁻⁸ = 3.7·10⁻⁷ rad; a wrong coefficient errs by 10⁻⁵ or more), v in [0, 1].
+TEST(SdTree, AzimuthMatchesAtan2) {
+  double worst = 0.0;
+  for (std::uint64_t i = 0; i < 400000; ++i) {
+    glm::vec3 w = squareToDirection({uniform(i, 11), uniform(i, 12)});
+    if (i % 1000 == 0) w = glm::vec3(i % 3000 == 0 ? 1.0f : -1.0f, 0.0f, 0.0f);
+    if (i % 1000 == 500) w = glm::vec3(0.0f, i % 2000 == 500 ? 1.0f : -1.0f, 0.0f);
+    const float v = directionToSquare(w).y;
+    ASSERT_GE(v, 0.0f);
+    ASSERT_LE(v, 1.0f);
+    double ref = std::atan2(static_cast<double>(w.y), static_cast<double>(w.x));
+    if (ref < 0.0) ref += 2.0 * std::numbers::pi;
+    double d = std::abs(2.0 * std::numbers::pi * static_cast<double>(v) - ref);
+    d = std::min(d, 2.0 * std::numbers::pi - d);
+    worst = std::max(worst, d);
+  }
+  std::printf("[measured] azimuth: worst error %.3g rad\n", worst);
+  EXPECT_LT(worst, 8e-7);
 }
 
 TEST(SdTree, RefinementFollowsTheEnergy) {
