@@ -110,9 +110,9 @@ struct SurfaceTangents {
 };
 
 struct ShapeSample {
-  SurfaceInteraction point;
-  glm::vec3 wi{0.0f};  // unit direction from the reference point to point.p
-  float pdf = 0.0f;    // solid angle (sr⁻¹) as seen from the reference point
+  SurfaceInteraction point;  // uv only where it comes free (meshes); no light reads it
+  glm::vec3 wi{0.0f};        // unit direction from the reference point to point.p
+  float pdf = 0.0f;          // solid angle (sr⁻¹) as seen from the reference point
 };
 // CMakeLists.txt's -mmemset-strategy zeroes up to CAMSIM_MEMSET_INLINE_BYTES (a compile
 // definition from the same CMake variable) with plain stores (GCC's default above 80 bytes

@@ -1,7 +1,8 @@
 // Sphere (see sphere.h). Texture coordinates of a point with unit normal n (from the
-// centre): u = φ/2π in [0, 1) with φ = atan2(n.y, n.x) about +z, v = θ/π with θ = acos(n.z)
-// from +z (v = 0 at the +z pole, 1 at −z). The axes are the world's (a sphere has no
-// orientation of its own).
+// centre; docs/scene-format.md): u = φ/2π in [0, 1) with φ = atan2(n.x, n.z) about +y (from
+// +z towards +x), v = 1 − θ/π with θ = acos(n.y) from +y (v = 1 at the top pole, 0 at the
+// bottom). The axes are the world's (a sphere has no orientation of its own). Hits get
+// them; light samples do not (no light reads them).
 #include "integrator/geometry/sphere.h"
 
 #include <algorithm>
@@ -49,14 +50,17 @@ SurfaceInteraction Sphere::surfacePoint(const Pose& pose, const glm::vec3& direc
   si.p = pose.centre + pose.radius * si.n;
   si.pError = gammaBound(5) * (glm::abs(si.p) + glm::abs(pose.centre));
   if (!instance_.empty()) si.pError += instance_.error(si.p);
-  // World up is +y: u = φ/2π about +y (φ from +z towards +x), v = 1 − θ/π (θ from +y), so
-  // an image's top row (v = 1) maps to the top pole and the picture is not mirrored when
-  // seen from a camera looking along +z.
-  float u = std::atan2(si.n.x, si.n.z) / (2.0f * kPi);
-  if (u < 0.0f) u += 1.0f;
-  si.uv = {u < 1.0f ? u : 0.0f, 1.0f - std::acos(std::clamp(si.n.y, -1.0f, 1.0f)) / kPi};
   si.time = time;
   return si;
+}
+
+// World up is +y: u = φ/2π about +y (φ from +z towards +x), v = 1 − θ/π (θ from +y), so an
+// image's top row (v = 1) maps to the top pole and the picture is not mirrored when seen
+// from a camera looking along +z.
+glm::vec2 Sphere::uvOf(const glm::vec3& n) {
+  float u = std::atan2(n.x, n.z) / (2.0f * kPi);
+  if (u < 0.0f) u += 1.0f;
+  return {u < 1.0f ? u : 0.0f, 1.0f - std::acos(std::clamp(n.y, -1.0f, 1.0f)) / kPi};
 }
 
 bool Sphere::inside(const Pose& pose, const glm::vec3& ref) {
@@ -65,7 +69,9 @@ bool Sphere::inside(const Pose& pose, const glm::vec3& ref) {
 
 SurfaceInteraction Sphere::interaction(const Hit& hit, const Ray& ray) const {
   const Pose pose = at(ray.time);
-  return surfacePoint(pose, ray.at(hit.t) - pose.centre, ray.time);
+  SurfaceInteraction si = surfacePoint(pose, ray.at(hit.t) - pose.centre, ray.time);
+  si.uv = uvOf(si.n);
+  return si;
 }
 
 // n = (sinθ sinφ, cosθ, sinθ cosφ): ∂n/∂φ = (n.z, 0, −n.x); v = 1 − θ/π grows towards +y,

@@ -39,7 +39,10 @@ class Sphere final : public Shape {
     float radius;
   };
   Pose at(double time) const;
+  // The point in `direction` from the centre: position, normals, error bound, time; no uv
+  // (a light sample does not read it: its atan2 and acos were 4 % of a small_light render).
   SurfaceInteraction surfacePoint(const Pose& pose, const glm::vec3& direction, double time) const;
+  static glm::vec2 uvOf(const glm::vec3& n);  // the texture coordinates at normal n
   static bool inside(const Pose& pose, const glm::vec3& ref);
 
   std::vector<glm::vec3> centres_;
