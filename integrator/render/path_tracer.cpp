@@ -187,14 +187,15 @@ SampledSpectrum trace(const Scene& scene, Ray ray, SampledWavelengths& lambda, S
     L += c;
     if constexpr (!Guided) return;
     if (!recorder) return;
-    for (GuideRecorder::Vertex& v : recorder->path)
-      for (int i = 0; i < kWavelengthSamples; ++i)
-        if (v.beta[i] > 0.0f) v.L[i] += c[i] / v.beta[i];
-    // The latest vertex's next vertex is this one: c left it directly (source_lobe.h).
-    if (!recorder->path.empty() && recorder->path.back().direct) {
-      GuideRecorder::Vertex& v = recorder->path.back();
-      for (int i = 0; i < kWavelengthSamples; ++i)
-        if (v.beta[i] > 0.0f) v.Ld[i] += c[i] / v.beta[i];
+    for (GuideRecorder::Vertex& v : recorder->path) {
+      // The latest vertex's next vertex is this one: c left it directly (source_lobe.h).
+      const bool direct = v.direct && &v == &recorder->path.back();
+      for (int i = 0; i < kWavelengthSamples; ++i) {
+        if (!(v.beta[i] > 0.0f)) continue;
+        const float x = c[i] / v.beta[i];
+        v.L[i] += x;
+        if (direct) v.Ld[i] += x;
+      }
     }
   };
   for (int depth = 0;; ++depth) {
