@@ -150,6 +150,11 @@ class PhysicalCamera final : public Camera {
   // Whether the camera ray depends on the wavelength (a traced lens that disperses): the
   // caller terminates the secondary wavelengths before generateRay (it traces λ[0] only).
   bool lensDisperses() const { return lensCamera_ && lensCamera_->disperses(); }
+  // Whether every ray's path and weight are the same at every wavelength (no diffraction,
+  // no dispersing lens, no spectral lens transmittance).
+  bool wavelengthIndependent() const {
+    return !diffraction_ && !lensDisperses() && transmittanceIsOne_;
+  }
   double imageDistance() const { return imageDistance_; }  // z_i, m
   // N_w, the scale of diffraction's PSF: z_i / D for the thin lens; a traced lens's
   // paraxial working f-number 1/(2|u'|) at the scene's object distance.

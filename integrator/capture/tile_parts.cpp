@@ -176,7 +176,8 @@ std::string modelledDimsText(const ModelledDimensions& m) {
          " rolling_shutter=" + std::to_string(int(m.rollingShutter)) +
          " wavelengths=" + std::to_string(m.wavelengths) +
          " time_steps=" + std::to_string(m.timeSteps) +
-         " diffraction=" + std::to_string(int(m.diffraction));
+         " diffraction=" + std::to_string(int(m.diffraction)) +
+         " spectral_cv=" + std::to_string(int(m.spectralControlVariate));
 }
 
 std::optional<ModelledDimensions> parseModelledDims(const std::string& text) {
@@ -208,11 +209,13 @@ std::optional<ModelledDimensions> parseModelledDims(const std::string& text) {
       m.timeSteps = *v;
     else if (key == "diffraction")
       m.diffraction = *v != 0;
+    else if (key == "spectral_cv")
+      m.spectralControlVariate = *v != 0;
     else
       return std::nullopt;
     ++fields;
   }
-  if (fields != 9) return std::nullopt;
+  if (fields != 10) return std::nullopt;
   return m;
 }
 

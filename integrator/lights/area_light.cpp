@@ -18,8 +18,11 @@ std::optional<LightSample> AreaLight::sample(const glm::vec3& ref, double time, 
   if (front_ && front_->entirelyBehind(ref)) return out;  // L would be 0
   const std::optional<ShapeSample> ss = shape_.sample(ref, u1, u2, time);
   if (!ss) return out;
-  const SampledSpectrum Le = L(ss->point, -ss->wi, lambda);
-  if (Le.isZero()) return out;
+  if (!emitsTowards(ss->point, -ss->wi)) return out;
+  const SampledSpectrum Le = sampleSpectrum(radiance_, lambda);
+  // Black at these wavelengths: nothing to add, unless the control variate adds its term
+  // (which must not depend on the wavelengths drawn).
+  if (Le.isZero() && !cvBins_) return out;
   LightSample& ls = out.emplace();
   ls.L = Le;
   ls.wi = ss->wi;
@@ -30,6 +33,15 @@ std::optional<LightSample> AreaLight::sample(const glm::vec3& ref, double time, 
 
 float AreaLight::pdf(const glm::vec3& ref, const SurfaceInteraction& onLight) const {
   return shape_.pdf(ref, onLight);
+}
+
+void AreaLight::setControlVariateReference(const Spectrum& reference) {
+  const Spectrum one = Spectrum::constant(1.0);
+  const std::array<double, kSpectralBins> mine = binIntegrals(radiance_, one),
+                                          ref = binIntegrals(reference, one);
+  SpectralBins& bins = cvBins_.emplace();
+  for (std::size_t b = 0; b < mine.size(); ++b)
+    bins[static_cast<int>(b)] = ref[b] > 0.0 ? static_cast<float>(mine[b] / ref[b]) : 0.0f;
 }
 
 double AreaLight::power() const {

@@ -10,9 +10,16 @@
 // A one-sided planar emitter (a lamp quad) rejects a reference point behind its plane
 // before sampling a point on it (FrontPlane, shape.h): the sample would have L = 0. Same
 // images; in the Cornell box a sixth of the light samples (points on the ceiling).
+//
+// The spectral control variate (integrator/render/spectral_control_variate.h) writes the
+// path's light as B(λ)·E(λ), E the scene's reference emission: this light's bins hold
+// ∫_bin L_e dλ / ∫_bin E dλ (1 in every bin for the reference light itself).
 #pragma once
 
+#include <optional>
+
 #include "integrator/lights/light.h"
+#include "sensor/spectra/spectral_bins.h"
 #include "sensor/spectra/spectrum.h"
 
 namespace camsim {
@@ -24,9 +31,17 @@ class AreaLight final : public Light {
   // Radiance leaving the light point along w (unit, away from the surface).
   SampledSpectrum L(const SurfaceInteraction& onLight, const glm::vec3& w,
                     const SampledWavelengths& lambda) const {
-    if (!twoSided_ && glm::dot(onLight.n, w) <= 0.0f) return SampledSpectrum(0.0f);
+    if (!emitsTowards(onLight, w)) return SampledSpectrum(0.0f);
     return sampleSpectrum(radiance_, lambda);
   }
+  // Whether the light point emits along w at all (whatever the wavelength).
+  bool emitsTowards(const SurfaceInteraction& onLight, const glm::vec3& w) const {
+    return twoSided_ || glm::dot(onLight.n, w) > 0.0f;
+  }
+  const Spectrum& radiance() const { return radiance_; }
+  // Sets the bins above against the reference emission E (W·m⁻²·sr⁻¹·nm⁻¹, any scale).
+  void setControlVariateReference(const Spectrum& reference);
+  const SpectralBins* controlVariateBins() const override { return cvBins_ ? &*cvBins_ : nullptr; }
 
   std::optional<LightSample> sample(const glm::vec3& ref, double time, float u1, glm::vec2 u2,
                                     const SampledWavelengths& lambda) const override;
@@ -38,6 +53,7 @@ class AreaLight final : public Light {
   Spectrum radiance_;
   bool twoSided_;
   std::optional<FrontPlane> front_;  // one-sided planar emitters: skip points behind
+  std::optional<SpectralBins> cvBins_;
 };
 
 }  // namespace camsim

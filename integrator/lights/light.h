@@ -23,6 +23,7 @@
 
 #include "integrator/geometry/shape.h"
 #include "sensor/spectra/sampled_spectrum.h"
+#include "sensor/spectra/spectral_bins.h"
 
 namespace camsim {
 
@@ -57,6 +58,9 @@ class Light {
     return SampledSpectrum(0.0f);
   }
   virtual float pdfDirection(const glm::vec3& /*direction*/) const { return 0.0f; }
+  // The light's emission as bins of the scene's reference emission (area_light.h), for
+  // the spectral control variate; null: its light is not written so.
+  virtual const SpectralBins* controlVariateBins() const { return nullptr; }
   // Called once by Scene with the bounding sphere of the geometry (m), before power().
   virtual void setSceneBounds(const glm::vec3& /*centre*/, float /*radius*/) {}
 };

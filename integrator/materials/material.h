@@ -66,6 +66,19 @@ struct BsdfContext {
     }
     return memo_.value;
   }
+  // The texture (times the vertex colours) at the bins' centres (spectral_bins.h), for the
+  // spectral control variate: a constant texture's stored bins, else `out` filled. Not
+  // memoised.
+  const SpectralBins* lookupBins(const SpectrumTexture& texture, SpectralBins& out) const {
+    if (const SpectralBins* c = texture.constantBins(); c && !vertexColors) return c;
+    for (int k = 0; k < kSpectralBins / kWavelengthSamples; ++k) {
+      const SampledWavelengths& centres = SampledWavelengths::binCentres(k);
+      SampledSpectrum v = texture.evaluate(uv, centres);
+      if (vertexColors) v *= vertexColors->evaluate(triangle, b1, b2, centres);
+      for (int i = 0; i < kWavelengthSamples; ++i) out[k * kWavelengthSamples + i] = v[i];
+    }
+    return &out;
+  }
   // How many lookups evaluated the texture (tests check that a bounce does it once).
   int textureEvaluations() const { return memo_.misses; }
 
@@ -112,6 +125,20 @@ class Material {
   virtual float pdf(const glm::vec3& wo, const glm::vec3& wi, const SampledWavelengths& lambda,
                     const BsdfContext& ctx) const = 0;
   virtual SurfaceAov aov(const SampledWavelengths& lambda, const BsdfContext& ctx) const = 0;
+  // For a Lambertian reflector — f(wo, wi, λ) = R(λ)/π where wo and wi are on the same
+  // side, else 0, and sample() draws wi ∝ |cos θi| — R at the bins' centres (the spectral
+  // control variate, integrator/render/spectral_control_variate.h): stored bins or `scratch`
+  // filled; null for any other BSDF.
+  virtual const SpectralBins* lambertianBins(const BsdfContext& /*ctx*/,
+                                             SpectralBins& /*scratch*/) const {
+    return nullptr;
+  }
+  // lambertianBins() where the bins are stored and no vertex colours multiply them.
+  const SpectralBins* lambertianBinsAt(const BsdfContext& ctx, SpectralBins& scratch) const {
+    if (traits_.constantLambertianBins && !ctx.vertexColors) [[likely]]
+      return traits_.constantLambertianBins;
+    return lambertianBins(ctx, scratch);
+  }
   // What the path loop asks at every bounce, fixed when the material is made (plain
   // members, not virtual calls).
   // False for a material that reflects nothing (lets the integrator stop a path).
@@ -131,6 +158,9 @@ class Material {
     bool reflects = true;
     bool nonSpecular = true;
     bool dispersive = false;
+    // A Lambertian reflector's R bins when its reflectance is one constant spectrum (the
+    // common case needs no virtual call); null otherwise.
+    const SpectralBins* constantLambertianBins = nullptr;
   };
   Traits traits_;  // set by the constructors of the materials
 

@@ -27,6 +27,21 @@ Film::Film(glm::ivec2 resolution, std::vector<const SpectralResponse*> responses
   samples_.assign(pixels, 0);
 }
 
+void Film::setSpectralReference(const Spectrum& reference) {
+  reference_ = reference;
+  cvWeights_.clear();
+  cvFirst_.clear();
+  for (const SpectralResponse* r : responses_) {
+    cvFirst_.push_back(cvWeights_.size());
+    for (int c = 0; c < r->channelCount(); ++c) {
+      const std::array<double, kSpectralBins> w = binIntegrals(r->channel(c).curve, reference);
+      SpectralBins& bins = cvWeights_.emplace_back();
+      for (int b = 0; b < kSpectralBins; ++b)
+        bins[b] = static_cast<float>(w[static_cast<std::size_t>(b)]);
+    }
+  }
+}
+
 namespace {
 // sum · (1/n), as the images have always been scaled (the same bits as before).
 double meanOf(double sum, int n) {

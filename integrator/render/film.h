@@ -14,8 +14,14 @@
 // channel — so the render can estimate its own error from the two half-sample images
 // (error_estimate.h): one double more per pixel. And it keeps each pixel's sample count n
 // (the render loop sets it), which adaptive sampling makes differ between pixels.
+//
+// With a spectral reference E (setSpectralReference) a sample may bring the control
+// variate's bins B (integrator/render/spectral_control_variate.h): the film then adds
+//   (1/N) Σᵢ r_c(λᵢ) (q(λᵢ) − B[bin(λᵢ)] E(λᵢ)) / p(λᵢ)  +  Σ_b B_b ∫_bin b r_c E dλ,
+// whose expectation over the wavelengths is the same v_c; the integrals are computed once.
 #pragma once
 
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <string>
@@ -27,6 +33,7 @@
 #include "sensor/base/image.h"
 #include "sensor/model/spectral_response.h"
 #include "sensor/spectra/sampled_spectrum.h"
+#include "sensor/spectra/spectral_bins.h"
 
 namespace camsim {
 
@@ -37,16 +44,24 @@ class Film {
   // q: the sample's weighted spectral quantity (radiance × camera weight); sampleIndex: the
   // sample's index in its pixel (its parity picks the half). Returns false (and adds
   // nothing) if q is not finite.
+  // cv: the sample's control-variate bins (null: none; ignored without a reference).
   bool addSample(glm::ivec2 pixel, int sampleIndex, const SampledSpectrum& q,
-                 const SampledWavelengths& lambda) {
+                 const SampledWavelengths& lambda, const SpectralBins* cv = nullptr) {
     if (!q.isFinite()) return false;
+    if (cv && cvWeights_.empty()) cv = nullptr;
+    if (cv && !cv->isFinite()) return false;
     // q(λᵢ)/p(λᵢ) once per sample: every channel of every response weights the same values.
-    const SampledSpectrum w = safeDiv(q, lambda.pdfs());
+    const SampledSpectrum w =
+        safeDiv(cv ? q - cv->at(lambda) * sampleSpectrum(reference_, lambda) : q, lambda.pdfs());
+    if (cv && !w.isFinite()) return false;
     const size_t p = index(pixel);
-    const double errorValue = addResponses(&sums_[p * stride_], w, lambda, pixel);
+    const double errorValue = addResponses(&sums_[p * stride_], w, lambda, pixel, cv);
     if (sampleIndex & 1) oddSums_[p] += errorValue;
     return true;
   }
+  // Enables the control variate's term above with reference emission E.
+  void setSpectralReference(const Spectrum& reference);
+  bool hasSpectralReference() const { return !cvWeights_.empty(); }
 
   glm::ivec2 resolution() const { return resolution_; }
   // A pixel's samples so far (rejected ones too: they count as 0): set after adding them.
@@ -81,18 +96,26 @@ class Film {
   }
   // Adds the sample to a pixel's sums; returns its value on the error channel.
   double addResponses(double* sums, const SampledSpectrum& w, const SampledWavelengths& lambda,
-                      glm::ivec2 pixel) const {
+                      glm::ivec2 pixel, const SpectralBins* cv) const {
     const double* const errorSum = sums + errorOffset_;
     double errorValue = 0.0;
     const auto add = [&](double v) {
       if (sums == errorSum) errorValue = v;
       *sums++ += v;
     };
-    for (const SpectralResponse* r : responses_) {
+    // The control variate's weights of channel c of response k: cvWeights_[cvFirst_[k] + c].
+    const auto term = [&](std::size_t k, int c) {
+      return cv ? static_cast<double>(
+                      (*cv * cvWeights_[cvFirst_[k] + static_cast<std::size_t>(c)]).sum())
+                : 0.0;
+    };
+    for (std::size_t k = 0; k < responses_.size(); ++k) {
+      const SpectralResponse* r = responses_[k];
       if (r->isMosaic()) {
-        add(r->estimate(r->mosaic().channelAt(pixel.x, pixel.y), w, lambda));
+        const int c = r->mosaic().channelAt(pixel.x, pixel.y);
+        add(r->estimate(c, w, lambda) + term(k, c));
       } else {
-        for (int c = 0; c < r->channelCount(); ++c) add(r->estimate(c, w, lambda));
+        for (int c = 0; c < r->channelCount(); ++c) add(r->estimate(c, w, lambda) + term(k, c));
       }
     }
     return errorValue;
@@ -108,6 +131,10 @@ class Film {
   std::string errorChannelName_;
   std::vector<double> oddSums_;  // per pixel: Σ of the error channel over odd-indexed samples
   std::vector<int> samples_;     // per pixel: n
+  // The control variate (empty: off): E, and ∫_bin r_c E dλ per bin for every channel.
+  Spectrum reference_;
+  std::vector<SpectralBins> cvWeights_;
+  std::vector<std::size_t> cvFirst_;  // per response: its first channel's place in cvWeights_
 };
 
 }  // namespace camsim

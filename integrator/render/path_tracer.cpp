@@ -2,6 +2,7 @@
 
 #include "integrator/geometry/math.h"
 #include "integrator/render/path_guide.h"
+#include "integrator/render/spectral_control_variate.h"
 #include "integrator/sampling/sobol_sampler.h"
 
 namespace camsim {
@@ -137,10 +138,11 @@ std::optional<Scatter> scatter(const ShadingPoint& sp, float uc, SamplerT& sampl
 
 // One light sample, MIS-weighted against BSDF sampling: uLight chooses the light, the
 // sampler's next 2D draw the point on it. Returns the contribution to L before multiplying
-// by the path throughput.
+// by the path throughput; adds the control variate's (cv on: Lambertian, its R set).
 template <typename SamplerT>
 SampledSpectrum sampleLight(const Scene& scene, const ShadingPoint& sp,
-                            const SampledWavelengths& lambda, float uLight, SamplerT& sampler) {
+                            const SampledWavelengths& lambda, float uLight, SamplerT& sampler,
+                            SpectralControlVariate& cv) {
   const glm::vec2 uPoint = sampler.get2D();
   float uRemapped = 0.0f;
   const size_t index = scene.lightDistribution().sample(uLight, &uRemapped);
@@ -152,13 +154,18 @@ SampledSpectrum sampleLight(const Scene& scene, const ShadingPoint& sp,
   if (!sidesAgree(sp.si.n, sp.wo, ls->wi, sp.woLocal, wiLocal)) return SampledSpectrum(0.0f);
   const SampledSpectrum f =
       sp.material.f(sp.woLocal, wiLocal, lambda, sp.ctx) * std::abs(wiLocal.z);
-  if (f.isZero()) return SampledSpectrum(0.0f);
+  // The variate's term does not depend on f being 0 at the drawn wavelengths: only on the
+  // sides (where a Lambertian f is 0 at every wavelength).
+  const SpectralBins* cvLight =
+      cv.on && sp.woLocal.z * wiLocal.z > 0.0f ? scene.light(index).controlVariateBins() : nullptr;
+  if (f.isZero() && !cvLight) return SampledSpectrum(0.0f);
   const Ray shadow = ls->infinite ? escapeRay(sp.si, ls->wi) : shadowRay(sp.si, ls->point);
   countRay(RayKind::kShadow, shadow);
   if (scene.geometry().occluded(shadow)) return SampledSpectrum(0.0f);
   const float lightPdf = pmf * ls->pdf;
   const float weight =
       ls->delta ? 1.0f : powerHeuristic(lightPdf, sp.scatterPdf(wiLocal, ls->wi, lambda));
+  if (cvLight) cv.addLightSample(*cvLight, std::abs(wiLocal.z) * (weight / lightPdf));
   return f * ls->L * (weight / lightPdf);
 }
 
@@ -168,8 +175,11 @@ SampledSpectrum sampleLight(const Scene& scene, const ShadingPoint& sp,
 // guiding's bookkeeping (the recorder's additions, the roulette throughput, the mixture).
 template <bool Guided, typename SamplerT>
 SampledSpectrum trace(const Scene& scene, Ray ray, SampledWavelengths& lambda, SamplerT& sampler,
-                      VisibleSurface* visible, const PathGuide* guide, GuideRecorder* recorder) {
+                      VisibleSurface* visible, const PathGuide* guide, GuideRecorder* recorder,
+                      SpectralBins* cvOut) {
   const RenderSettings& settings = scene.settings();
+  SpectralControlVariate cv;  // spectral_control_variate.h
+  cv.on = !Guided && cvOut;
   const bool haveLights = scene.hasPoweredLights();
   SampledSpectrum L(0.0f), beta(1.0f);
   // Russian roulette's throughput: beta, except that guided bounces multiply by the BSDF
@@ -241,18 +251,22 @@ SampledSpectrum trace(const Scene& scene, Ray ray, SampledWavelengths& lambda, S
 
     if (const AreaLight* light = scene.areaLight(hit.shape)) {
       const SampledSpectrum Le = light->L(si, wo, lambda);
-      if (!Le.isZero()) {
-        if (prevSpecular) {
-          add(beta * Le);
-        } else {
+      const SpectralBins* cvLight =
+          cv.on && light->emitsTowards(si, wo) ? light->controlVariateBins() : nullptr;
+      if (!Le.isZero() || cvLight) {
+        float weight = 1.0f;
+        if (!prevSpecular) {
           const float lightPdf = scene.lightPmfOfShape(hit.shape) * light->pdf(prevP, si);
-          add(beta * Le * powerHeuristic(prevBsdfPdf, lightPdf));
+          weight = powerHeuristic(prevBsdfPdf, lightPdf);
         }
+        if (!Le.isZero()) add(beta * Le * weight);
+        cv.addEmission(cvLight, weight);
       }
     }
     if (depth >= settings.maxDepth) break;
     if (!material.reflects()) break;
     if (material.dispersive()) lambda.terminateSecondary();
+    cv.enter(material, ctx);
 
     const Frame frame = Frame::fromZ(si.ns);
     const GuideQuery here =
@@ -262,14 +276,17 @@ SampledSpectrum trace(const Scene& scene, Ray ray, SampledWavelengths& lambda, S
     // sampler dimension instead of two).
     const glm::vec2 uChoice = sampler.get2D();
     if (haveLights && material.hasNonSpecular())
-      add(beta * sampleLight(scene, sp, lambda, uChoice.x, sampler));
+      add(beta * sampleLight(scene, sp, lambda, uChoice.x, sampler, cv));
 
     const std::optional<Scatter> bs = scatter(sp, uChoice.y, sampler, lambda);
-    if (!bs || !(bs->pdf > 0.0f) || bs->f.isZero()) break;
+    if (!bs || !(bs->pdf > 0.0f)) break;
+    // f = 0 at the drawn wavelengths ends the path unless the variate still carries it.
+    if (bs->f.isZero() && !(cv.on && !cv.reflectance->isZero())) break;
     const glm::vec3 wi = frame.toWorld(bs->wiLocal);
     if (!sidesAgree(si.n, wo, wi, sp.woLocal, bs->wiLocal)) break;
     const SampledSpectrum weight = bs->f * (std::abs(bs->wiLocal.z) / bs->pdf);
     beta *= weight;
+    if (cv.on) cv.scatter(std::abs(bs->wiLocal.z) / bs->pdf);
     if constexpr (Guided)
       rrBeta *= sp.guide.density && bs->bsdfPdf > 0.0f
                     ? bs->f * (std::abs(bs->wiLocal.z) / bs->bsdfPdf)
@@ -294,10 +311,13 @@ SampledSpectrum trace(const Scene& scene, Ray ray, SampledWavelengths& lambda, S
       // 38 % against 61 %); far on, both survive with the albedo. β without the 1/η² of
       // refraction: inside glass beta is η² smaller although the path carries as much
       // light out again.
-      const float q =
-          std::max(0.0f, 1.0f - std::sqrt((Guided ? rrBeta : beta).maxComponent() * etaScale));
+      // With the spectral control variate on, its bins: no decision may depend on the
+      // wavelengths drawn (spectral_control_variate.h).
+      const float rrMax = cv.on ? cv.beta.maxComponent() : (Guided ? rrBeta : beta).maxComponent();
+      const float q = std::max(0.0f, 1.0f - std::sqrt(rrMax * etaScale));
       if (sampler.get1D() < q) break;
       beta /= 1.0f - q;
+      if (cv.on) cv.beta *= 1.0f / (1.0f - q);
       if constexpr (Guided) rrBeta /= 1.0f - q;
     }
     countRay(RayKind::kBounce, ray);  // after roulette: a path it ends never traces the ray
@@ -308,6 +328,7 @@ SampledSpectrum trace(const Scene& scene, Ray ray, SampledWavelengths& lambda, S
       recorder->out->push_back(
           {v.p, v.square, v.L.average() / v.pdf, v.next, v.hasNext ? Ld * Ld / v.pdf : 0.0f});
     }
+  if (cvOut) *cvOut = cv.L;
   return L;
 }
 
@@ -315,16 +336,18 @@ SampledSpectrum trace(const Scene& scene, Ray ray, SampledWavelengths& lambda, S
 
 SampledSpectrum traceRadiance(const Scene& scene, Ray ray, SampledWavelengths& lambda,
                               SobolSampler& sampler, VisibleSurface* visible,
-                              const PathGuide* guide, GuideRecorder* recorder) {
-  if (guide || recorder) return trace<true>(scene, ray, lambda, sampler, visible, guide, recorder);
-  return trace<false>(scene, ray, lambda, sampler, visible, nullptr, nullptr);
+                              const PathGuide* guide, GuideRecorder* recorder, SpectralBins* cv) {
+  if (guide || recorder)
+    return trace<true>(scene, ray, lambda, sampler, visible, guide, recorder, cv);
+  return trace<false>(scene, ray, lambda, sampler, visible, nullptr, nullptr, cv);
 }
 
 SampledSpectrum traceRadiance(const Scene& scene, Ray ray, SampledWavelengths& lambda,
                               IndependentSampler& sampler, VisibleSurface* visible,
-                              const PathGuide* guide, GuideRecorder* recorder) {
-  if (guide || recorder) return trace<true>(scene, ray, lambda, sampler, visible, guide, recorder);
-  return trace<false>(scene, ray, lambda, sampler, visible, nullptr, nullptr);
+                              const PathGuide* guide, GuideRecorder* recorder, SpectralBins* cv) {
+  if (guide || recorder)
+    return trace<true>(scene, ray, lambda, sampler, visible, guide, recorder, cv);
+  return trace<false>(scene, ray, lambda, sampler, visible, nullptr, nullptr, cv);
 }
 
 }  // namespace camsim

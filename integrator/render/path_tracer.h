@@ -17,6 +17,7 @@
 #include "integrator/sampling/sampler.h"
 #include "integrator/scene/scene.h"
 #include "sensor/spectra/sampled_spectrum.h"
+#include "sensor/spectra/spectral_bins.h"
 
 namespace camsim {
 
@@ -50,11 +51,15 @@ static_assert(offsetof(VisibleSurface, p) + 16 <= sizeof(VisibleSurface) &&
 // `recorder` (training), the path's vertices and the radiance they received are recorded.
 // Compiled per concrete sampler (what the render loop uses): its numbers are drawn through
 // inlined, not virtual, calls.
+// With `cv` (unguided paths only; the scene has a spectral reference) the path also writes
+// its spectral control variate's bins there (spectral_control_variate.h).
 SampledSpectrum traceRadiance(const Scene& scene, Ray ray, SampledWavelengths& lambda,
                               SobolSampler& sampler, VisibleSurface* visible = nullptr,
-                              const PathGuide* guide = nullptr, GuideRecorder* recorder = nullptr);
+                              const PathGuide* guide = nullptr, GuideRecorder* recorder = nullptr,
+                              SpectralBins* cv = nullptr);
 SampledSpectrum traceRadiance(const Scene& scene, Ray ray, SampledWavelengths& lambda,
                               IndependentSampler& sampler, VisibleSurface* visible = nullptr,
-                              const PathGuide* guide = nullptr, GuideRecorder* recorder = nullptr);
+                              const PathGuide* guide = nullptr, GuideRecorder* recorder = nullptr,
+                              SpectralBins* cv = nullptr);
 
 }  // namespace camsim

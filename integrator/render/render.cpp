@@ -86,16 +86,24 @@ bool renderPixel(const TileContext<SamplerT>& t, glm::ivec2 pixel, SampleRange r
       continue;
     }
     countRay(RayKind::kCamera, cr->ray);
+    // The spectral control variate's bins (spectral_control_variate.h); the camera weight is
+    // the same at every wavelength when the film has a reference.
+    SpectralBins cv;
+    SpectralBins* const cvPtr = t.film.hasSpectralReference() ? &cv : nullptr;
     if (!withAovs) {
-      const SampledSpectrum L = traceRadiance(t.scene, cr->ray, lambda, sampler, nullptr, t.guide);
-      if (!t.film.addSample(pixel, s, L * cr->weight, lambda)) ++t.stats.rejected;
+      const SampledSpectrum L =
+          traceRadiance(t.scene, cr->ray, lambda, sampler, nullptr, t.guide, nullptr, cvPtr);
+      if (cvPtr) cv *= cr->weight[0];
+      if (!t.film.addSample(pixel, s, L * cr->weight, lambda, cvPtr)) ++t.stats.rejected;
       continue;
     }
     // The first hit is recorded in place, in the pixel's AOV record.
     VisibleSurface& visible = aovs.nextSurface(t.aovPixel);
     const SampledWavelengths lambdaAtCamera = lambda;  // before a dispersive hit ends some
-    const SampledSpectrum L = traceRadiance(t.scene, cr->ray, lambda, sampler, &visible, t.guide);
-    if (!t.film.addSample(pixel, s, L * cr->weight, lambda)) ++t.stats.rejected;
+    const SampledSpectrum L =
+        traceRadiance(t.scene, cr->ray, lambda, sampler, &visible, t.guide, nullptr, cvPtr);
+    if (cvPtr) cv *= cr->weight[0];
+    if (!t.film.addSample(pixel, s, L * cr->weight, lambda, cvPtr)) ++t.stats.rejected;
     aovs.addSample(t.aovPixel, {cs.time, lambdaAtCamera, posePtr, &cr->ray});
   }
   if (withAovs) aovs.endPixel(t.aovPixel);
@@ -236,6 +244,12 @@ RenderResult render(const Scene& scene, const std::vector<const SpectralResponse
   if (options.guiding.value_or(scene.settings().guiding))
     guide = PathGuide::train(scene, options.spp, options.seed, threads);
   const PathGuide* guidePtr = guide ? &*guide : nullptr;
+  // The spectral control variate: unguided paths, a camera that treats every wavelength
+  // alike, an emitting shape for the reference (spectral_control_variate.h).
+  if (const Spectrum* reference = scene.spectralReference();
+      reference && !guidePtr && scene.camera().wavelengthIndependent())
+    film.setSpectralReference(*reference);
+  dims.spectralControlVariate = film.hasSpectralReference();
 
   // Adaptive sampling: which pixels still take samples (adaptive_sampling.h).
   std::optional<AdaptiveState> adaptive;

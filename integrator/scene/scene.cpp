@@ -38,7 +38,8 @@ std::string ModelledDimensions::describe() const {
   } else {
     out += "static (no time sampling), ";
   }
-  return out + std::to_string(wavelengths) + " wavelengths";
+  return out + std::to_string(wavelengths) + " wavelengths" +
+         (spectralControlVariate ? " with the spectral control variate" : "");
 }
 
 // From the parameters alone: a camera need not be made (a traced lens's would build its
@@ -83,7 +84,7 @@ bool Scene::canRetarget(const SceneDescription& next) const {
   const RenderSettings& a = settings_;
   const RenderSettings& b = next.render;
   if (a.sampler != b.sampler || a.maxDepth != b.maxDepth || a.rrDepth != b.rrDepth ||
-      a.aovs != b.aovs)
+      a.aovs != b.aovs || a.spectralControlVariate != b.spectralControlVariate)
     return false;
   if (next.renderOrigin != renderOrigin_ ||
       (next.frames ? 1.0 / next.frames->rateHz : 0.0) != frameInterval_)
@@ -272,6 +273,17 @@ void Scene::weighLights() {
     powers.push_back(lights_[i]->power());
   }
   lightDistribution_ = powers.empty() ? DiscreteDistribution() : DiscreteDistribution(powers);
+  // The spectral control variate's reference emission: the most powerful emitting shape's
+  // (the first of equals); every area light then holds its bins against it.
+  spectralReference_.reset();
+  if (!settings_.spectralControlVariate) return;
+  std::size_t best = areaLights_;
+  for (std::size_t i = 0; i < areaLights_; ++i)
+    if (powers[i] > 0.0 && (best == areaLights_ || powers[i] > powers[best])) best = i;
+  if (best == areaLights_) return;
+  spectralReference_ = dynamic_cast<const AreaLight&>(*lights_[best]).radiance();
+  for (std::size_t i = 0; i < areaLights_; ++i)
+    dynamic_cast<AreaLight&>(*lights_[i]).setControlVariateReference(*spectralReference_);
 }
 
 }  // namespace camsim

@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -33,6 +34,9 @@ struct ModelledDimensions {
   bool cameraMoves = false;
   bool rollingShutter = false;
   int wavelengths = kWavelengthSamples;
+  // The spectral control variate (integrator/render/spectral_control_variate.h): set by the
+  // render when it used it.
+  bool spectralControlVariate = false;
   int timeSteps = 1;  // Embree motion time steps (largest over shapes)
 
   // e.g. "aperture (6 blades, diffraction), time (2 moving objects, rolling shutter), 4
@@ -133,6 +137,12 @@ class Scene {
   float boundsRadius() const { return boundsRadius_; }
   const Light& light(size_t i) const { return *lights_[i]; }
   const DiscreteDistribution& lightDistribution() const { return lightDistribution_; }
+  // The spectral control variate's reference emission E (W·m⁻²·sr⁻¹·nm⁻¹: the most
+  // powerful emitting shape's radiance), or null: off (render.spectral_control_variate
+  // false, or no emitting shape). integrator/render/spectral_control_variate.h.
+  const Spectrum* spectralReference() const {
+    return spectralReference_ ? &*spectralReference_ : nullptr;
+  }
   // Probability that NEE picks the light of an emitting shape.
   float lightPmfOfShape(int shape) const {
     return lightDistribution_.pmf(lightIndexOfShape_[static_cast<size_t>(shape)]);
@@ -173,6 +183,7 @@ class Scene {
   std::vector<const AreaLight*> lightOfShape_;
   std::vector<size_t> lightIndexOfShape_;
   DiscreteDistribution lightDistribution_;
+  std::optional<Spectrum> spectralReference_;
   std::vector<std::unique_ptr<HitFilter>> filters_;  // alpha cut-outs; geometry_ points to them
   // Each cut-out material's alpha texture (null: opaque everywhere), made at its first use
   // and kept when buildShapes runs again, so that its file is read once.

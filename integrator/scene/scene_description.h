@@ -107,6 +107,8 @@ struct RenderSettings {
   std::optional<double> adaptiveThreshold;  // estimated relative error to stop a pixel at
   int adaptiveMinSpp = 0;                   // even; 0 = automatic (adaptiveMinSppFor)
   bool guiding = false;                     // path guiding (integrator/render/path_guide.h)
+  // The spectral control variate (integrator/render/spectral_control_variate.h).
+  bool spectralControlVariate = true;
   bool passes() const { return targetError.has_value() || timeLimitS.has_value(); }
 };
 

@@ -125,6 +125,7 @@ RenderSettings parseRender(YamlMap map) {
     const std::string text = v->isScalar() ? v->string() : "";
     r.guiding = text == "0" || text == "1" ? text == "1" : v->boolean();
   }
+  if (auto v = map.find("spectral_control_variate")) r.spectralControlVariate = v->boolean();
   if (auto v = map.find("aovs")) {
     for (const YamlValue& item : v->items()) {
       const Aov aov = item.choice<Aov>("aov");
@@ -134,7 +135,8 @@ RenderSettings parseRender(YamlMap map) {
     }
   }
   map.finish({"sampler", "spp", "seed", "max_depth", "rr_depth", "aovs", "target_error",
-              "time_limit_s", "max_spp", "adaptive_threshold", "adaptive_min_spp", "guiding"});
+              "time_limit_s", "max_spp", "adaptive_threshold", "adaptive_min_spp", "guiding",
+              "spectral_control_variate"});
   return r;
 }
 

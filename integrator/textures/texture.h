@@ -11,6 +11,7 @@
 #include <glm/vec2.hpp>
 
 #include "sensor/spectra/sampled_spectrum.h"
+#include "sensor/spectra/spectral_bins.h"
 #include "sensor/spectra/spectrum.h"
 
 namespace camsim {
@@ -21,6 +22,8 @@ class SpectrumTexture {
   virtual SampledSpectrum evaluate(glm::vec2 uv, const SampledWavelengths& lambda) const = 0;
   // Largest value anywhere (0 means the texture is black everywhere).
   virtual double maxValue() const = 0;
+  // A constant texture's values at the bins' centres (spectral_bins.h); null: it varies.
+  virtual const SpectralBins* constantBins() const { return nullptr; }
 };
 
 class FloatTexture {
@@ -31,14 +34,17 @@ class FloatTexture {
 
 class ConstantSpectrumTexture final : public SpectrumTexture {
  public:
-  explicit ConstantSpectrumTexture(Spectrum value) : value_(std::move(value)) {}
+  explicit ConstantSpectrumTexture(Spectrum value)
+      : value_(std::move(value)), bins_(binCentreValues(value_)) {}
   SampledSpectrum evaluate(glm::vec2, const SampledWavelengths& lambda) const override {
     return sampleSpectrum(value_, lambda);
   }
   double maxValue() const override { return value_.maxValue(); }
+  const SpectralBins* constantBins() const override { return &bins_; }
 
  private:
   Spectrum value_;
+  SpectralBins bins_;
 };
 
 class ConstantFloatTexture final : public FloatTexture {

@@ -1,15 +1,17 @@
 #include "sensor/spectra/sampled_spectrum.h"
 
 #include <algorithm>
+#include <array>
 
 #include "sensor/base/check.h"
 #include "sensor/base/float_math.h"
+#include "sensor/spectra/spectral_bins.h"
 
 namespace camsim {
 namespace {
 
-constexpr double kA = 0.0072;      // nm⁻¹
-constexpr double kCentre = 538.0;  // nm
+constexpr double kA = kVisiblePdfA;
+constexpr double kCentre = kVisiblePdfCentreNm;
 
 // Single precision on purpose: every pixel sample draws kWavelengthSamples wavelengths, and
 // the double-precision atanh/cosh of libm cost several times the rest of the sampling. In
@@ -83,11 +85,15 @@ SampledWavelengths SampledWavelengths::sampleVisible(float u) {
   FloatW offsets;
   for (int i = 0; i < kWavelengthSamples; ++i)
     offsets[i] = static_cast<float>(i) / static_cast<float>(kWavelengthSamples);
-  const VisibleSample<FloatW> v = sampleVisibleWithPdf(wrap(u + offsets));
+  const FloatW ui = wrap(u + offsets);
+  const VisibleSample<FloatW> v = sampleVisibleWithPdf(ui);
   SampledWavelengths w;
   w.lambda_ = v.lambda;
   w.pdf_ = v.pdf;
   w.locateOnGrid();
+  // The bin of equal probability is ⌊B·u⌋: u is the wavelength's place in the CDF.
+  const IntW bins = lanes::toInt(ui * static_cast<float>(kSpectralBins));
+  w.bin_ = bins > kSpectralBins - 1 ? IntW{} + (kSpectralBins - 1) : bins;
   return w;
 }
 
@@ -98,6 +104,7 @@ SampledWavelengths SampledWavelengths::sampleUniform(float u) {
     const float ui = wrap(u + static_cast<float>(i) / kWavelengthSamples);
     w.lambda_[i] = kLambdaMinNm + ui * range;
     w.pdf_[i] = 1.0f / range;
+    w.bin_[i] = binOf(w.lambda_[i]);
   }
   w.locateOnGrid();
   return w;
@@ -110,9 +117,29 @@ SampledWavelengths SampledWavelengths::monochromatic(float lambdaNm) {
   for (int i = 0; i < kWavelengthSamples; ++i) {
     w.lambda_[i] = lambdaNm;
     w.pdf_[i] = 1.0f;
+    w.bin_[i] = binOf(lambdaNm);
   }
   w.locateOnGrid();
   return w;
+}
+
+const SampledWavelengths& SampledWavelengths::binCentres(int k) {
+  constexpr int kGroups = kSpectralBins / kWavelengthSamples;
+  static const std::array<SampledWavelengths, kGroups> groups = [] {
+    std::array<SampledWavelengths, kGroups> g;
+    for (int j = 0; j < kGroups; ++j) {
+      SampledWavelengths& w = g[static_cast<std::size_t>(j)];
+      for (int i = 0; i < kWavelengthSamples; ++i) {
+        w.bin_[i] = j * kWavelengthSamples + i;
+        w.lambda_[i] = binCentreNm(w.bin_[i]);
+        w.pdf_[i] = 1.0f;
+      }
+      w.locateOnGrid();
+    }
+    return g;
+  }();
+  CAMSIM_CHECK(k >= 0 && k < kGroups);
+  return groups[static_cast<std::size_t>(k)];
 }
 
 }  // namespace camsim

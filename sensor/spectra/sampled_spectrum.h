@@ -30,6 +30,12 @@ static_assert(kWavelengthSamples == 4 || kWavelengthSamples == 8, "4 or 8 wavele
 // One vector of the path's wavelengths' values.
 using FloatW = std::conditional_t<kWavelengthSamples == 4, Float4, Float8>;
 using IntW = std::conditional_t<kWavelengthSamples == 4, Int4, Int8>;
+// Bins of equal probability under the visible pdf (spectral_bins.h): each sampled
+// wavelength knows its bin.
+inline constexpr int kSpectralBins = 16;
+// The visible pdf's constants (above): a (nm⁻¹) and its centre (nm).
+inline constexpr double kVisiblePdfA = 0.0072;
+inline constexpr double kVisiblePdfCentreNm = 538.0;
 
 // The values live in one vector (FloatW: a 16-byte Float4 for N = 4): the arithmetic is
 // one SSE instruction per operation, and a SampledSpectrum is passed and returned in one
@@ -112,6 +118,9 @@ class SampledWavelengths {
   // Every lane at λ (nm, in [360, 830]) with pdf 1: one wavelength, for tests that trace
   // camera rays at a single wavelength (the diffraction PSF at 550 nm alone).
   static SampledWavelengths monochromatic(float lambdaNm);
+  // The centres of bins k·N … k·N + N − 1 (spectral_bins.h), pdf 1: a texture evaluated at
+  // these, for k = 0 … kSpectralBins/N − 1, gives its values at every bin's centre.
+  static const SampledWavelengths& binCentres(int k);
 
   float operator[](int i) const { return lambda_[i]; }
   float pdf(int i) const { return pdf_[i]; }
@@ -120,6 +129,8 @@ class SampledWavelengths {
   float gridFraction(int i) const { return gridFraction_[i]; }
   const IntW& gridIndices() const { return gridIndex_; }
   const FloatW& gridFractions() const { return gridFraction_; }
+  // λᵢ's bin of equal probability under the visible pdf (spectral_bins.h), 0 … 15.
+  int bin(int i) const { return bin_[i]; }
   // After a wavelength-dependent scattering event (dispersion) only the hero wavelength
   // can continue: the others get pdf 0 and the hero's pdf is divided by N, so the film's
   // estimate (1/N) Σ r q / p stays unbiased (pbrt-v4 §4.5.4).
@@ -143,6 +154,7 @@ class SampledWavelengths {
   FloatW pdf_{};
   IntW gridIndex_{};
   FloatW gridFraction_{};
+  IntW bin_{};
 };
 
 float visibleWavelengthPdf(float lambdaNm);

@@ -292,7 +292,8 @@ TEST(ModelledDimensions, StaticSceneNeedsNoTime) {
   EXPECT_TRUE(on.stats.modelled.time);
   EXPECT_FALSE(off.stats.modelled.aperture);
   EXPECT_EQ(off.stats.modelled.describe(), "pinhole, static (no time sampling), " +
-                                               std::to_string(kWavelengthSamples) + " wavelengths");
+                                               std::to_string(kWavelengthSamples) +
+                                               " wavelengths with the spectral control variate");
   ASSERT_EQ(off.image.pixels.size(), on.image.pixels.size());
   EXPECT_EQ(0, std::memcmp(off.image.pixels.data(), on.image.pixels.data(),
                            off.image.pixels.size() * sizeof(float)));

@@ -161,12 +161,14 @@ TEST(HardCases, NeedleAndDegenerateTrianglesChangeNothing) {
 // A uniform field: the camera and a sphere of `material` inside a closed, purely emitting
 // sphere (Lₑ = 0.01, black, two-sided). What the sphere reflects is albedo(ωo)·Lₑ. Without
 // the inner sphere (material empty) the camera sees the field itself: the same seed gives
-// the same wavelengths per pixel sample, so ratios to that render carry no wavelength noise.
+// the same wavelengths per pixel sample, so ratios to that render carry no wavelength noise
+// (the spectral control variate is off: it would make the field's colour exact per sample
+// and the conductor's, which it does not write as bins, not).
 std::string hardUniformField(const std::string& material) {
   return "camera: {position: [0, 0, -3], look_at: [0, 0, 0], sensor_width_mm: 8, sensor_height_mm: "
          "8,\n"
          "         focal_length_mm: 50, resolution: [6, 6]}\n"
-         "render: {max_depth: 40, rr_depth: 10000}\n"
+         "render: {max_depth: 40, rr_depth: 10000, spectral_control_variate: false}\n"
          "materials: {m: " +
          (material.empty() ? std::string("{type: diffuse}") : material) +
          "}\n"
@@ -240,12 +242,13 @@ TEST(HardCases, ShadingNormalsFacingAwayFromTheGeometry) {
 
 // Camera → mirror (k = 0.8, 45°) → emitter: L = k·Lₑ exactly. The reference is the same
 // emitter seen directly (same seed, so the same wavelengths): the ratio is k to float
-// rounding.
+// rounding (the spectral control variate off, as in hardUniformField).
 TEST(HardCases, MirrorReflectsAnEmitterAtKTimesLe) {
   const std::string camera =
       "camera: {position: [0, 0, -2], look_at: [0, 0, 0], sensor_width_mm: 2, sensor_height_mm: "
       "2,\n"
-      "         focal_length_mm: 50, resolution: [4, 4]}\n";
+      "         focal_length_mm: 50, resolution: [4, 4]}\n"
+      "render: {spectral_control_variate: false}\n";
   const std::string viaMirror = camera +
                                 "materials: {m: {type: mirror, reflectance: 0.8}}\n"
                                 "shapes:\n"
