@@ -310,7 +310,8 @@ JsonObject captureSidecar(const CaptureResult& r, bool reproducible) {
       .setInteger("seed", desc.render.seed)
       .set("sampler", samplerName(desc.render.sampler))
       .set("max_depth", double(desc.render.maxDepth))
-      .set("guiding", desc.render.guiding);
+      .set("guiding", desc.render.guiding)
+      .set("spectral_control_variate", st.modelled.spectralControlVariate);
   if (!reproducible) render.set("seconds", st.seconds);
   if (st.guide) {  // path guiding's cost (integrator/render/path_guide.h)
     JsonObject guide;

@@ -87,7 +87,8 @@ AssembledTiles assembleTileParts(const std::vector<std::filesystem::path>& files
 CaptureResult mergedCapture(AssembledTiles tiles, SceneDescription description);
 
 // "aperture=1 blades=6 time=1 moving_objects=2 camera_moves=0 rolling_shutter=0
-// wavelengths=4 time_steps=2" and back (nullopt when it does not read).
+// wavelengths=4 time_steps=2 diffraction=0 spectral_cv=1" and back (nullopt when it does not
+// read, e.g. a part of an older build with fewer fields).
 std::string modelledDimsText(const ModelledDimensions& m);
 std::optional<ModelledDimensions> parseModelledDims(const std::string& text);
 

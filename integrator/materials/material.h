@@ -66,9 +66,10 @@ struct BsdfContext {
     }
     return memo_.value;
   }
-  // The texture (times the vertex colours) at the bins' centres (spectral_bins.h), for the
-  // spectral control variate: a constant texture's stored bins, else `out` filled. Not
-  // memoised.
+  // The texture (times the vertex colours) in bins (spectral_bins.h), for the spectral
+  // control variate: a constant texture's stored bins (its averages), else `out` filled with
+  // its values at the bins' centres — four more evaluations of the texture per bounce
+  // (each evaluation serves four bins). Not memoised: a bounce asks once.
   const SpectralBins* lookupBins(const SpectrumTexture& texture, SpectralBins& out) const {
     if (const SpectralBins* c = texture.constantBins(); c && !vertexColors) return c;
     for (int k = 0; k < kSpectralBins / kWavelengthSamples; ++k) {

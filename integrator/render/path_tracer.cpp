@@ -312,7 +312,10 @@ SampledSpectrum trace(const Scene& scene, Ray ray, SampledWavelengths& lambda, S
       // refraction: inside glass beta is η² smaller although the path carries as much
       // light out again.
       // With the spectral control variate on, its bins: no decision may depend on the
-      // wavelengths drawn (spectral_control_variate.h).
+      // wavelengths drawn (spectral_control_variate.h). Bins all 0 (a reflectance that is
+      // 0 at every bin's representative value) carry no more terms: the variate stops, and
+      // roulette reads the wavelengths' throughput, which may still carry light.
+      if (cv.on && cv.beta.isZero()) cv.on = false;
       const float rrMax = cv.on ? cv.beta.maxComponent() : (Guided ? rrBeta : beta).maxComponent();
       const float q = std::max(0.0f, 1.0f - std::sqrt(rrMax * etaScale));
       if (sampler.get1D() < q) break;

@@ -22,7 +22,7 @@ class SpectrumTexture {
   virtual SampledSpectrum evaluate(glm::vec2 uv, const SampledWavelengths& lambda) const = 0;
   // Largest value anywhere (0 means the texture is black everywhere).
   virtual double maxValue() const = 0;
-  // A constant texture's values at the bins' centres (spectral_bins.h); null: it varies.
+  // A constant texture's bins (spectral_bins.h: its averages over them); null: it varies.
   virtual const SpectralBins* constantBins() const { return nullptr; }
 };
 
@@ -35,7 +35,7 @@ class FloatTexture {
 class ConstantSpectrumTexture final : public SpectrumTexture {
  public:
   explicit ConstantSpectrumTexture(Spectrum value)
-      : value_(std::move(value)), bins_(binCentreValues(value_)) {}
+      : value_(std::move(value)), bins_(binAverages(value_)) {}
   SampledSpectrum evaluate(glm::vec2, const SampledWavelengths& lambda) const override {
     return sampleSpectrum(value_, lambda);
   }

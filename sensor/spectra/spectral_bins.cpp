@@ -68,6 +68,15 @@ std::array<double, kSpectralBins> binIntegrals(const Spectrum& a, const Spectrum
   return out;
 }
 
+SpectralBins binAverages(const Spectrum& s) {
+  const std::array<double, kSpectralBins> integrals = binIntegrals(s, Spectrum::constant(1.0));
+  SpectralBins out;
+  for (int b = 0; b < kSpectralBins; ++b)
+    out[b] = static_cast<float>(integrals[static_cast<std::size_t>(b)] /
+                                (binEdgeNm(b + 1) - binEdgeNm(b)));
+  return out;
+}
+
 SpectralBins binCentreValues(const Spectrum& s) {
   SpectralBins out;
   for (int b = 0; b < kSpectralBins; ++b) out[b] = s(binCentreNm(b));

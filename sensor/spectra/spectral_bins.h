@@ -97,5 +97,7 @@ int binOf(float lambdaNm);
 std::array<double, kSpectralBins> binIntegrals(const Spectrum& a, const Spectrum& b);
 // s at each bin's centre wavelength.
 SpectralBins binCentreValues(const Spectrum& s);
+// s averaged over each bin: ∫_bin s dλ / (λ_b+1 − λ_b).
+SpectralBins binAverages(const Spectrum& s);
 
 }  // namespace camsim

@@ -27,6 +27,7 @@ TEST(TileParts, ModelledDimensionsRoundTrip) {
   m.rollingShutter = true;
   m.wavelengths = 4;
   m.timeSteps = 3;
+  m.spectralControlVariate = true;
   const std::optional<ModelledDimensions> back = parseModelledDims(modelledDimsText(m));
   ASSERT_TRUE(back.has_value());
   EXPECT_EQ(back->describe(), m.describe());
@@ -35,12 +36,15 @@ TEST(TileParts, ModelledDimensionsRoundTrip) {
   for (const char* bad :
        {"", "aperture=1",
         "aperture=x blades=0 time=0 moving_objects=0 "
-        "camera_moves=0 rolling_shutter=0 wavelengths=4 time_steps=1 diffraction=0",
+        "camera_moves=0 rolling_shutter=0 wavelengths=4 time_steps=1 diffraction=0 spectral_cv=0",
         "colour=1 blades=0 time=0 moving_objects=0 camera_moves=0 "
-        "rolling_shutter=0 wavelengths=4 time_steps=1 diffraction=0",
+        "rolling_shutter=0 wavelengths=4 time_steps=1 diffraction=0 spectral_cv=0",
         // a part of a build before diffraction: its 8 fields
         "aperture=1 blades=0 time=0 moving_objects=0 "
-        "camera_moves=0 rolling_shutter=0 wavelengths=4 time_steps=1"})
+        "camera_moves=0 rolling_shutter=0 wavelengths=4 time_steps=1",
+        // a part of a build before the spectral control variate: its 9 fields
+        "aperture=1 blades=0 time=0 moving_objects=0 "
+        "camera_moves=0 rolling_shutter=0 wavelengths=4 time_steps=1 diffraction=0"})
     EXPECT_FALSE(parseModelledDims(bad).has_value()) << bad;
 }
 

@@ -63,9 +63,9 @@ TEST(SpectralBins, SampledWavelengthsKnowTheirBins) {
 }
 
 // ∫_bin a·b of piecewise-linear spectra: the bins of 1·1 sum to 470 nm; of a ramp times a
-// constant, the closed form c·(λ₁² − λ₀²)/2 per bin (1e-9 relative: double rounding); of two
-// spectra with a kink at 500.5 nm... their product is quadratic per piece, which Simpson's
-// rule integrates exactly: checked against a 1e-3 nm midpoint sum (1e-7).
+// constant, the closed form c·(λ₁² − λ₀²)/2 per bin (1e-9 relative: double rounding); of a
+// spectrum with a steep step between 500 and 501 nm and the ramp: quadratic on each piece,
+// which Simpson's rule integrates exactly: checked against a 1e-3 nm midpoint sum (1e-6).
 TEST(SpectralBins, BinIntegralsAreExactForPiecewiseLinearSpectra) {
   const Spectrum one = Spectrum::constant(1.0);
   double total = 0.0;
@@ -112,13 +112,27 @@ TEST(SpectralBins, Arithmetic) {
   a[13] = -1.0f;
   a[7] = 100.0f;
   EXPECT_EQ(a.maxComponent(), 100.0f);
-  SpectralBins z(0.0f);
-  z[11] = 1e-30f;
-  EXPECT_FALSE(z.isZero());
-  a[13] = std::numeric_limits<float>::quiet_NaN();
-  EXPECT_FALSE(a.isFinite());
-  a[13] = std::numeric_limits<float>::infinity();
-  EXPECT_FALSE(a.isFinite());
+  // isZero and isFinite see every bin (each quarter of the vector).
+  for (int k = 0; k < kSpectralBins; ++k) {
+    SpectralBins z(0.0f);
+    z[k] = 1e-30f;
+    EXPECT_FALSE(z.isZero()) << k;
+    z[k] = std::numeric_limits<float>::quiet_NaN();
+    EXPECT_FALSE(z.isFinite()) << k;
+    z[k] = -std::numeric_limits<float>::infinity();
+    EXPECT_FALSE(z.isFinite()) << k;
+    z[k] = 3e38f;
+    EXPECT_TRUE(z.isFinite()) << k;
+  }
+  // A constant spectrum's averages: a step from 0 at 599 nm to 1 at 600 nm (the 1 nm grid's
+  // ramp) is 0 below and 1 above, its bin holding 600 nm the share above plus ½ nm.
+  const std::array<double, 4> sx{360.0, 599.999, 600.0, 830.0}, sy{0.0, 0.0, 1.0, 1.0};
+  const SpectralBins step = binAverages(Spectrum::fromSamples(sx, sy, Extrapolation::kClamp));
+  const int b600 = binOf(600.0f);
+  EXPECT_EQ(step[b600 - 1], 0.0f);
+  EXPECT_NEAR(step[b600 + 1], 1.0, 1e-6);
+  EXPECT_NEAR(step[b600],
+              (binEdgeNm(b600 + 1) - 600.0 + 0.5) / (binEdgeNm(b600 + 1) - binEdgeNm(b600)), 1e-6);
   const SampledWavelengths w = SampledWavelengths::sampleVisible(0.1f);
   const SampledSpectrum s = b.at(w);
   for (int i = 0; i < kWavelengthSamples; ++i) EXPECT_EQ(s[i], b[w.bin(i)]);
