@@ -35,13 +35,11 @@ float AreaLight::pdf(const glm::vec3& ref, const SurfaceInteraction& onLight) co
   return shape_.pdf(ref, onLight);
 }
 
-void AreaLight::setControlVariateReference(const Spectrum& reference) {
-  const Spectrum one = Spectrum::constant(1.0);
-  const std::array<double, kSpectralBins> mine = binIntegrals(radiance_, one),
-                                          ref = binIntegrals(reference, one);
+void AreaLight::setControlVariateReference(const SpectralBins& referenceAverages) {
+  const SpectralBins mine = binAverages(radiance_);
   SpectralBins& bins = cvBins_.emplace();
-  for (std::size_t b = 0; b < mine.size(); ++b)
-    bins[static_cast<int>(b)] = ref[b] > 0.0 ? static_cast<float>(mine[b] / ref[b]) : 0.0f;
+  for (int b = 0; b < kSpectralBins; ++b)
+    bins[b] = referenceAverages[b] > 0.0f ? mine[b] / referenceAverages[b] : 0.0f;
 }
 
 double AreaLight::power() const {

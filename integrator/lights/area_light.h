@@ -39,8 +39,9 @@ class AreaLight final : public Light {
     return twoSided_ || glm::dot(onLight.n, w) > 0.0f;
   }
   const Spectrum& radiance() const { return radiance_; }
-  // Sets the bins above against the reference emission E (W·m⁻²·sr⁻¹·nm⁻¹, any scale).
-  void setControlVariateReference(const Spectrum& reference);
+  // Sets the bins above against the reference emission E, given as E's bin averages
+  // (binAverages; W·m⁻²·sr⁻¹·nm⁻¹, any scale).
+  void setControlVariateReference(const SpectralBins& referenceAverages);
   const SpectralBins* controlVariateBins() const override { return cvBins_ ? &*cvBins_ : nullptr; }
 
   std::optional<LightSample> sample(const glm::vec3& ref, double time, float u1, glm::vec2 u2,

@@ -68,8 +68,9 @@ struct BsdfContext {
   }
   // The texture (times the vertex colours) in bins (spectral_bins.h), for the spectral
   // control variate: a constant texture's stored bins (its averages), else `out` filled with
-  // its values at the bins' centres — four more evaluations of the texture per bounce
-  // (each evaluation serves four bins). Not memoised: a bounce asks once.
+  // its values at the bins' centres — 16/N more evaluations of the texture per bounce (each
+  // serves the N bins of one SampledWavelengths::binCentres group), a constant texture with
+  // vertex colours included. Not memoised: a bounce asks once.
   const SpectralBins* lookupBins(const SpectrumTexture& texture, SpectralBins& out) const {
     if (const SpectralBins* c = texture.constantBins(); c && !vertexColors) return c;
     for (int k = 0; k < kSpectralBins / kWavelengthSamples; ++k) {
@@ -127,9 +128,9 @@ class Material {
                     const BsdfContext& ctx) const = 0;
   virtual SurfaceAov aov(const SampledWavelengths& lambda, const BsdfContext& ctx) const = 0;
   // For a Lambertian reflector — f(wo, wi, λ) = R(λ)/π where wo and wi are on the same
-  // side, else 0, and sample() draws wi ∝ |cos θi| — R at the bins' centres (the spectral
-  // control variate, integrator/render/spectral_control_variate.h): stored bins or `scratch`
-  // filled; null for any other BSDF.
+  // side, else 0, and sample() draws wi ∝ |cos θi| — R in bins (BsdfContext::lookupBins; the
+  // spectral control variate, integrator/render/spectral_control_variate.h): stored bins or
+  // `scratch` filled; null for any other BSDF.
   virtual const SpectralBins* lambertianBins(const BsdfContext& /*ctx*/,
                                              SpectralBins& /*scratch*/) const {
     return nullptr;

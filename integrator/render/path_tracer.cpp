@@ -158,7 +158,8 @@ SampledSpectrum sampleLight(const Scene& scene, const ShadingPoint& sp,
   // sides (where a Lambertian f is 0 at every wavelength).
   const SpectralBins* cvLight =
       cv.on && sp.woLocal.z * wiLocal.z > 0.0f ? scene.light(index).controlVariateBins() : nullptr;
-  if (f.isZero() && !cvLight) return SampledSpectrum(0.0f);
+  // (An area light's sample may be black at the drawn wavelengths: it is kept for the term.)
+  if ((f.isZero() || ls->L.isZero()) && !cvLight) return SampledSpectrum(0.0f);
   const Ray shadow = ls->infinite ? escapeRay(sp.si, ls->wi) : shadowRay(sp.si, ls->point);
   countRay(RayKind::kShadow, shadow);
   if (scene.geometry().occluded(shadow)) return SampledSpectrum(0.0f);
@@ -312,10 +313,7 @@ SampledSpectrum trace(const Scene& scene, Ray ray, SampledWavelengths& lambda, S
       // refraction: inside glass beta is η² smaller although the path carries as much
       // light out again.
       // With the spectral control variate on, its bins: no decision may depend on the
-      // wavelengths drawn (spectral_control_variate.h). Bins all 0 (a reflectance that is
-      // 0 at every bin's representative value) carry no more terms: the variate stops, and
-      // roulette reads the wavelengths' throughput, which may still carry light.
-      if (cv.on && cv.beta.isZero()) cv.on = false;
+      // wavelengths drawn (spectral_control_variate.h; they are not all 0 while it is on).
       const float rrMax = cv.on ? cv.beta.maxComponent() : (Guided ? rrBeta : beta).maxComponent();
       const float q = std::max(0.0f, 1.0f - std::sqrt(rrMax * etaScale));
       if (sampler.get1D() < q) break;

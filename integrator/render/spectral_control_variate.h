@@ -20,17 +20,20 @@
 // |------------|----------------------------|------------------------------------------------|
 // | beta       | —                          | the throughput's bins: Π R_k[b] × the scalar    |
 // |            |                            | factors (|cos|/(π p), roulette) of β            |
-// | R_k[b]     | —                          | a Lambertian vertex's reflectance at bin b's    |
-// |            |                            | centre (Material::lambertianBins)               |
+// | R_k[b]     | —                          | a Lambertian vertex's reflectance in bin b: a   |
+// |            |                            | constant one's average over the bin, a textured |
+// |            |                            | one's value at its centre (lambertianBins)      |
 // | light[b]   | —                          | the light's ∫_bin L_e / ∫_bin E (area_light.h)  |
-// | L          | W·m⁻²·sr⁻¹·nm⁻¹ / E's unit  | Σ over contributions of beta·(R)·light·weight   |
+// | L          | —                          | Σ over contributions of beta·(R)·light·weight:  |
+// |            |                            | the bins B of S = B·E (the render loop scales   |
+// |            |                            | them by the camera's weight, as q)              |
 //
 // S must not depend on the wavelengths drawn, and neither may any decision of the path
 // while the variate is on: it is on from the camera (which must treat every wavelength
 // alike, PhysicalCamera::wavelengthIndependent) through Lambertian vertices only — the
 // first other material turns it off for the rest of the path (its later contributions are
-// the plain estimate) — and Russian roulette then reads beta's bins, not the wavelengths'
-// throughput. Only emitting shapes (area lights) contribute to L; other lights' light is
+// the plain estimate), as does a bounce that leaves beta's bins all 0 — and Russian roulette
+// then reads beta's bins, not the wavelengths' throughput. Only emitting shapes (area lights) contribute to L; other lights' light is
 // the plain estimate. Guided paths do not use it.
 #pragma once
 
@@ -62,10 +65,13 @@ struct SpectralControlVariate {
   void addLightSample(const SpectralBins& light, float scale) {
     L.addScaled(beta * *reflectance * light, scale * kInvPi);
   }
-  // A cosine-sampled bounce: β gains R·|cos θ|/(π p).
+  // A cosine-sampled bounce: β gains R·|cos θ|/(π p). Bins all 0 (R 0 at every bin's value)
+  // carry no more terms: the variate stops, and the path goes on as the plain estimate
+  // (its drawn wavelengths may still carry light; roulette then reads them).
   void scatter(float cosOverPdf) {
     beta *= *reflectance;
     beta *= cosOverPdf * kInvPi;
+    on = !beta.isZero();
   }
 };
 

@@ -282,8 +282,9 @@ void Scene::weighLights() {
     if (powers[i] > 0.0 && (best == areaLights_ || powers[i] > powers[best])) best = i;
   if (best == areaLights_) return;
   spectralReference_ = dynamic_cast<const AreaLight&>(*lights_[best]).radiance();
+  const SpectralBins referenceAverages = binAverages(*spectralReference_);
   for (std::size_t i = 0; i < areaLights_; ++i)
-    dynamic_cast<AreaLight&>(*lights_[i]).setControlVariateReference(*spectralReference_);
+    dynamic_cast<AreaLight&>(*lights_[i]).setControlVariateReference(referenceAverages);
 }
 
 }  // namespace camsim

@@ -10,24 +10,32 @@
 namespace camsim {
 namespace {
 
-constexpr double kA = kVisiblePdfA;
-constexpr double kCentre = kVisiblePdfCentreNm;
+constexpr double kA = 0.0072;      // nm⁻¹
+constexpr double kCentre = 538.0;  // nm
 
 // Single precision on purpose: every pixel sample draws kWavelengthSamples wavelengths, and
 // the double-precision atanh/cosh of libm cost several times the rest of the sampling. In
 // float, λ is within ≈ 2e-4 nm of the exact inverse CDF and visibleWavelengthPdf within
 // ≈ 1e-6 relative; sampleVisible's p from t agrees with it within 1e-5 (the tests bound all
 // three), far below what a 1 nm spectrum grid resolves.
+// The CDF's bounds in double: tanh(a(360 − 538)) and tanh(a(830 − 538)) − it (= Z).
+struct VisibleBounds {
+  double tanhLo, tanhRange;
+  VisibleBounds()
+      : tanhLo(std::tanh(kA * (kLambdaMinNm - kCentre))),
+        tanhRange(std::tanh(kA * (kLambdaMaxNm - kCentre)) - tanhLo) {}
+};
+const VisibleBounds& bounds() {
+  static const VisibleBounds b;
+  return b;
+}
 struct VisibleConstants {
-  float tanhLo, tanhRange;  // tanh(a(360 − 538)), tanh(a(830 − 538)) − tanhLo
+  float tanhLo, tanhRange;  // the bounds, in float
   float pdfScale;           // a / Z
-  VisibleConstants() {
-    const double lo = std::tanh(kA * (kLambdaMinNm - kCentre)),
-                 hi = std::tanh(kA * (kLambdaMaxNm - kCentre));
-    tanhLo = static_cast<float>(lo);
-    tanhRange = static_cast<float>(hi - lo);
-    pdfScale = static_cast<float>(kA / (hi - lo));
-  }
+  VisibleConstants()
+      : tanhLo(static_cast<float>(bounds().tanhLo)),
+        tanhRange(static_cast<float>(bounds().tanhRange)),
+        pdfScale(static_cast<float>(kA / bounds().tanhRange)) {}
 };
 const VisibleConstants& visible() {
   static const VisibleConstants c;
@@ -68,6 +76,14 @@ float visibleWavelengthPdf(float lambdaNm) {
   if (lambdaNm < kLambdaMinNm || lambdaNm > kLambdaMaxNm) return 0.0f;
   const float e = std::exp(static_cast<float>(2.0 * kA) * (lambdaNm - static_cast<float>(kCentre)));
   return visible().pdfScale * 4.0f * e / ((e + 1.0f) * (e + 1.0f));
+}
+
+double visibleWavelengthCdf(double lambdaNm) {
+  return (std::tanh(kA * (lambdaNm - kCentre)) - bounds().tanhLo) / bounds().tanhRange;
+}
+
+double visibleWavelengthQuantile(double u) {
+  return kCentre + std::atanh(bounds().tanhLo + u * bounds().tanhRange) / kA;
 }
 
 float sampleVisibleWavelength(float u) {

@@ -33,9 +33,6 @@ using IntW = std::conditional_t<kWavelengthSamples == 4, Int4, Int8>;
 // Bins of equal probability under the visible pdf (spectral_bins.h): each sampled
 // wavelength knows its bin.
 inline constexpr int kSpectralBins = 16;
-// The visible pdf's constants (above): a (nm⁻¹) and its centre (nm).
-inline constexpr double kVisiblePdfA = 0.0072;
-inline constexpr double kVisiblePdfCentreNm = 538.0;
 
 // The values live in one vector (FloatW: a 16-byte Float4 for N = 4): the arithmetic is
 // one SSE instruction per operation, and a SampledSpectrum is passed and returned in one
@@ -159,6 +156,10 @@ class SampledWavelengths {
 
 float visibleWavelengthPdf(float lambdaNm);
 float sampleVisibleWavelength(float u);
+// The visible pdf's CDF P(λ) = (tanh(a(λ − 538)) − tanh(a(360 − 538)))/Z and its inverse, in
+// double precision (the bins of spectral_bins.h).
+double visibleWavelengthCdf(double lambdaNm);
+double visibleWavelengthQuantile(double u);
 
 // The spectrum's values at the path's wavelengths (equal to s(lambda[i])).
 inline SampledSpectrum sampleSpectrum(const Spectrum& s, const SampledWavelengths& lambda) {

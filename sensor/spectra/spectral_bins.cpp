@@ -6,24 +6,6 @@
 namespace camsim {
 namespace {
 
-// The visible pdf's CDF (sampled_spectrum.h) in double: P(λ) = (tanh(a(λ − c)) − t₀)/Z.
-struct Cdf {
-  double tanhLo, tanhRange;
-  Cdf()
-      : tanhLo(std::tanh(kVisiblePdfA * (kLambdaMinNm - kVisiblePdfCentreNm))),
-        tanhRange(std::tanh(kVisiblePdfA * (kLambdaMaxNm - kVisiblePdfCentreNm)) - tanhLo) {}
-  double at(double lambdaNm) const {
-    return (std::tanh(kVisiblePdfA * (lambdaNm - kVisiblePdfCentreNm)) - tanhLo) / tanhRange;
-  }
-  double inverse(double u) const {
-    return kVisiblePdfCentreNm + std::atanh(tanhLo + u * tanhRange) / kVisiblePdfA;
-  }
-};
-const Cdf& cdf() {
-  static const Cdf c;
-  return c;
-}
-
 // A spectrum's piecewise-linear value at λ in [360, 830] nm, in double.
 double valueAt(const Spectrum& s, double lambdaNm) {
   const double x = std::clamp(lambdaNm - kLambdaMinNm, 0.0, double(kSpectrumSamples - 1));
@@ -38,15 +20,15 @@ double valueAt(const Spectrum& s, double lambdaNm) {
 double binEdgeNm(int b) {
   if (b <= 0) return kLambdaMinNm;
   if (b >= kSpectralBins) return kLambdaMaxNm;
-  return cdf().inverse(static_cast<double>(b) / kSpectralBins);
+  return visibleWavelengthQuantile(static_cast<double>(b) / kSpectralBins);
 }
 
 float binCentreNm(int b) {
-  return static_cast<float>(cdf().inverse((b + 0.5) / kSpectralBins));
+  return static_cast<float>(visibleWavelengthQuantile((b + 0.5) / kSpectralBins));
 }
 
 int binOf(float lambdaNm) {
-  const double u = cdf().at(lambdaNm);
+  const double u = visibleWavelengthCdf(lambdaNm);
   return std::clamp(static_cast<int>(u * kSpectralBins), 0, kSpectralBins - 1);
 }
 
@@ -74,12 +56,6 @@ SpectralBins binAverages(const Spectrum& s) {
   for (int b = 0; b < kSpectralBins; ++b)
     out[b] = static_cast<float>(integrals[static_cast<std::size_t>(b)] /
                                 (binEdgeNm(b + 1) - binEdgeNm(b)));
-  return out;
-}
-
-SpectralBins binCentreValues(const Spectrum& s) {
-  SpectralBins out;
-  for (int b = 0; b < kSpectralBins; ++b) out[b] = s(binCentreNm(b));
   return out;
 }
 

@@ -11,8 +11,9 @@
 // | binOf(λ)          | —    | ⌊B·P(λ)⌋, at most B − 1                                    |
 //
 // The bins are narrow where p is large (15.9 nm about 538 nm) and wide in the tails
-// (360–405.2 and 715.7–830 nm). A path's sampled wavelengths know their bins (SampledWavelengths::bin), so a
-// binned spectrum is read at them with one gather (at()).
+// (360–405.2 and 715.7–830 nm). A path's sampled wavelengths know their bins
+// (SampledWavelengths::bin), so a binned spectrum is read at them with one lookup per
+// wavelength (at()).
 //
 // binIntegrals(a, b) = ∫_bin a(λ)·b(λ) dλ for each bin, with a and b the piecewise-linear
 // spectra Spectrum::operator() evaluates: exact (Simpson's rule on each piece between grid
@@ -95,8 +96,6 @@ float binCentreNm(int b);
 int binOf(float lambdaNm);
 // ∫ over each bin of a(λ)·b(λ) dλ (exact for the piecewise-linear spectra).
 std::array<double, kSpectralBins> binIntegrals(const Spectrum& a, const Spectrum& b);
-// s at each bin's centre wavelength.
-SpectralBins binCentreValues(const Spectrum& s);
 // s averaged over each bin: ∫_bin s dλ / (λ_b+1 − λ_b).
 SpectralBins binAverages(const Spectrum& s);
 

@@ -114,7 +114,7 @@ TEST(SpectralControlVariate, WhiteLightOnWhiteWallsHasNoColourNoise) {
   EXPECT_GT(without, 1e-3);
 }
 
-// Expectation kept, on a scene that exercises every branch: coloured and textured
+// Expectation kept, on a scene that exercises the main branches: coloured and textured
 // Lambertian walls, a second emitter whose band (600–640 nm, an eighth of the visible pdf) is 0 at every drawn
 // wavelength half of the time, a point light (not written as bins), a metal (which turns the variate off
 // for the rest of the path) and no roulette, so that the same seed traces the same paths
