@@ -9,7 +9,7 @@ namespace camsim {
 DiffuseMaterial::DiffuseMaterial(std::unique_ptr<SpectrumTexture> reflectance)
     : reflectance_(std::move(reflectance)) {
   traits_.reflects = reflectance_->maxValue() > 0.0;
-  traits_.constantLambertianBins = reflectance_->constantBins();
+  traits_.lambertianReflectance = reflectance_.get();
 }
 
 DiffuseMaterial::DiffuseMaterial(Spectrum reflectance)

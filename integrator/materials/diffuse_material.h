@@ -28,9 +28,6 @@ class DiffuseMaterial final : public Material {
   float pdf(const glm::vec3& wo, const glm::vec3& wi, const SampledWavelengths& lambda,
             const BsdfContext& ctx) const override;
   SurfaceAov aov(const SampledWavelengths& lambda, const BsdfContext& ctx) const override;
-  const SpectralBins* lambertianBins(const BsdfContext& ctx, SpectralBins& scratch) const override {
-    return ctx.lookupBins(*reflectance_, scratch);
-  }
 
  private:
   std::unique_ptr<SpectrumTexture> reflectance_;

@@ -131,15 +131,9 @@ class Material {
   // side, else 0, and sample() draws wi ∝ |cos θi| — R in bins (BsdfContext::lookupBins; the
   // spectral control variate, integrator/render/spectral_control_variate.h): stored bins or
   // `scratch` filled; null for any other BSDF.
-  virtual const SpectralBins* lambertianBins(const BsdfContext& /*ctx*/,
-                                             SpectralBins& /*scratch*/) const {
-    return nullptr;
-  }
-  // lambertianBins() where the bins are stored and no vertex colours multiply them.
-  const SpectralBins* lambertianBinsAt(const BsdfContext& ctx, SpectralBins& scratch) const {
-    if (traits_.constantLambertianBins && !ctx.vertexColors) [[likely]]
-      return traits_.constantLambertianBins;
-    return lambertianBins(ctx, scratch);
+  const SpectralBins* lambertianBins(const BsdfContext& ctx, SpectralBins& scratch) const {
+    const SpectrumTexture* r = traits_.lambertianReflectance;
+    return r ? ctx.lookupBins(*r, scratch) : nullptr;
   }
   // What the path loop asks at every bounce, fixed when the material is made (plain
   // members, not virtual calls).
@@ -160,9 +154,8 @@ class Material {
     bool reflects = true;
     bool nonSpecular = true;
     bool dispersive = false;
-    // A Lambertian reflector's R bins when its reflectance is one constant spectrum (the
-    // common case needs no virtual call); null otherwise.
-    const SpectralBins* constantLambertianBins = nullptr;
+    // A Lambertian reflector's reflectance R (lambertianBins); null for any other BSDF.
+    const SpectrumTexture* lambertianReflectance = nullptr;
   };
   Traits traits_;  // set by the constructors of the materials
 

@@ -54,7 +54,7 @@ struct SpectralControlVariate {
   // At a scattering vertex: stays on only at a Lambertian reflector.
   void enter(const Material& material, const BsdfContext& ctx) {
     if (!on) return;
-    reflectance = material.lambertianBinsAt(ctx, scratch);
+    reflectance = material.lambertianBins(ctx, scratch);
     on = reflectance != nullptr;
   }
   // Emission hit with MIS weight w; light: the light's bins (null: not written so).

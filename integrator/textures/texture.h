@@ -7,6 +7,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 
 #include <glm/vec2.hpp>
 
@@ -23,7 +24,11 @@ class SpectrumTexture {
   // Largest value anywhere (0 means the texture is black everywhere).
   virtual double maxValue() const = 0;
   // A constant texture's bins (spectral_bins.h: its averages over them); null: it varies.
-  virtual const SpectralBins* constantBins() const { return nullptr; }
+  // A plain member, not a virtual call: the path loop asks at every Lambertian bounce.
+  const SpectralBins* constantBins() const { return constantBins_ ? &*constantBins_ : nullptr; }
+
+ protected:
+  std::optional<SpectralBins> constantBins_;  // set by a constant texture's constructor
 };
 
 class FloatTexture {
@@ -34,17 +39,16 @@ class FloatTexture {
 
 class ConstantSpectrumTexture final : public SpectrumTexture {
  public:
-  explicit ConstantSpectrumTexture(Spectrum value)
-      : value_(std::move(value)), bins_(binAverages(value_)) {}
+  explicit ConstantSpectrumTexture(Spectrum value) : value_(std::move(value)) {
+    constantBins_ = binAverages(value_);
+  }
   SampledSpectrum evaluate(glm::vec2, const SampledWavelengths& lambda) const override {
     return sampleSpectrum(value_, lambda);
   }
   double maxValue() const override { return value_.maxValue(); }
-  const SpectralBins* constantBins() const override { return &bins_; }
 
  private:
   Spectrum value_;
-  SpectralBins bins_;
 };
 
 class ConstantFloatTexture final : public FloatTexture {

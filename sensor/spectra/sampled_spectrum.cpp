@@ -130,10 +130,11 @@ SampledWavelengths SampledWavelengths::monochromatic(float lambdaNm) {
   CAMSIM_CHECK(lambdaNm >= static_cast<float>(kLambdaMinNm) &&
                lambdaNm <= static_cast<float>(kLambdaMaxNm));
   SampledWavelengths w;
+  const int bin = binOf(lambdaNm);
   for (int i = 0; i < kWavelengthSamples; ++i) {
     w.lambda_[i] = lambdaNm;
     w.pdf_[i] = 1.0f;
-    w.bin_[i] = binOf(lambdaNm);
+    w.bin_[i] = bin;
   }
   w.locateOnGrid();
   return w;
