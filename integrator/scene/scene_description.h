@@ -96,7 +96,7 @@ struct RenderSettings {
   int spp = 64;                               // samples per pixel
   std::uint64_t seed = 0;                     // render seed
   int maxDepth = 16;                          // maximum number of scattering events on a path
-  int rrDepth = 3;                            // Russian roulette starts after this many bounces
+  int rrDepth = 4;                            // Russian roulette starts after this many bounces
   std::vector<Aov> aovs;  // none by default: a plain render records no first hit
   // Passes (integrator/render/render.h): spp is then the first pass, the minimum.
   std::optional<double> targetError;  // estimated MRAE to stop at (error_estimate.h)
