@@ -172,9 +172,9 @@ PsfGrid::PsfGrid(const ApertureShape& stop) {
   }
   std::vector<double> mass = cellMasses(stop, edges_);
   long double total = 0.0L;
-  for (const double m : mass) total += m;
+  for (const double m : mass) total += static_cast<long double>(m);
   truncated_ = 1.0 - static_cast<double>(total);  // the table's energy against Parseval's 1
-  for (double& m : mass) m = static_cast<double>(m / total);
+  for (double& m : mass) m = static_cast<double>(static_cast<long double>(m) / total);
   // S(i, j): the cells below column i and row j, accumulated in long double.
   const size_t stride = static_cast<size_t>(cells_) + 1;
   summed_.assign(stride * stride, 0.0);
@@ -182,7 +182,7 @@ PsfGrid::PsfGrid(const ApertureShape& stop) {
   for (size_t j = 0; j < static_cast<size_t>(cells_); ++j) {
     long double row = 0.0L;
     for (size_t i = 0; i < static_cast<size_t>(cells_); ++i) {
-      column[i + 1] += mass[j * static_cast<size_t>(cells_) + i];
+      column[i + 1] += static_cast<long double>(mass[j * static_cast<size_t>(cells_) + i]);
       row += column[i + 1];
       summed_[(j + 1) * stride + i + 1] = static_cast<double>(row);
     }

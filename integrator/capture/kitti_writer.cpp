@@ -62,8 +62,8 @@ std::vector<std::optional<double>> visibleFractions(const Image& a,
     for (int y = 0; y < a.height; ++y)
       for (int x = 0; x < a.width; ++x)
         for (Counts& c : counts) {
-          c.all += double{a.at(x, y, c.amodal)} >= kMaskCoverage ? 1 : 0;
-          c.seen += double{a.at(x, y, c.visible)} >= kMaskCoverage ? 1 : 0;
+          c.all += static_cast<double>(a.at(x, y, c.amodal)) >= kMaskCoverage ? 1 : 0;
+          c.seen += static_cast<double>(a.at(x, y, c.visible)) >= kMaskCoverage ? 1 : 0;
         }
   std::vector<std::optional<double>> out(poses.size());
   for (std::size_t i = 0; i < poses.size(); ++i)

@@ -81,7 +81,7 @@ ObjectModel objectModel(const SceneDescription& d, std::size_t shape) {
   const glm::dmat3 shapeMatrix = modelShape(s, *scale);
   ObjectModel m;
   if (s.kind == ShapeDescription::Kind::kSphere) {
-    const double r = s.radius;
+    const double r = static_cast<double>(s.radius);
     for (int j = 0; j <= kModelSphereRings; ++j) {
       const double theta = std::numbers::pi * j / kModelSphereRings;
       for (int i = 0; i < kModelSphereSegments; ++i) {
@@ -109,13 +109,14 @@ ObjectModel objectModel(const SceneDescription& d, std::size_t shape) {
     for (const glm::vec3& p : mesh.positions) {
       m.vertices.push_back(shapeMatrix *
                            glm::dvec3(rawFromStored * glm::dvec4(glm::dvec3(p), 1.0)));
-      largest =
-          std::max({largest, std::abs(double{p.x}), std::abs(double{p.y}), std::abs(double{p.z})});
+      largest = std::max({largest, std::abs(static_cast<double>(p.x)),
+                          std::abs(static_cast<double>(p.y)), std::abs(static_cast<double>(p.z))});
     }
     const glm::dmat3 toModel = shapeMatrix * glm::dmat3(rawFromStored);
     double gain = 0.0;  // a bound on the map's stretch: its Frobenius norm
     for (int c = 0; c < 3; ++c) gain += glm::dot(toModel[c], toModel[c]);
-    m.rounding = std::sqrt(gain) * largest * double{std::numeric_limits<float>::epsilon()};
+    m.rounding =
+        std::sqrt(gain) * largest * static_cast<double>(std::numeric_limits<float>::epsilon());
     m.indices = mesh.indices;
   }
   m.boxMin = glm::dvec3(std::numeric_limits<double>::max());

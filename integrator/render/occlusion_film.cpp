@@ -37,7 +37,7 @@ std::unique_ptr<Shape> movedCopy(const Shape& shape, const RigidMotion& motion,
   if (const auto* sphere = dynamic_cast<const Sphere*>(&shape)) {  // step 0's centre, radius
     const std::array<glm::dmat4, 2> y = toTimes(0);
     const glm::dvec4 c(glm::dvec3(sphere->centres()[0]), 1.0);
-    const double r = sphere->radii()[0];
+    const double r = static_cast<double>(sphere->radii()[0]);
     return std::make_unique<Sphere>(
         std::vector<glm::vec3>{glm::vec3(y[0] * c), glm::vec3(y[1] * c)},
         std::vector<float>{static_cast<float>(r * glm::length(glm::dvec3(y[0][0]))),

@@ -77,7 +77,7 @@ struct BoundarySums {
   // camera ray and missed.
   float value(int hits, int misses) const {
     if (hits == 0) return 0.0f;
-    const double d0 = nearest, d1 = farthest;
+    const double d0 = static_cast<double>(nearest), d1 = static_cast<double>(farthest);
     const bool step = d1 - d0 > kDepthStep * d0;
     return misses > 0 || severalShapes || step ? 1.0f : 0.0f;
   }

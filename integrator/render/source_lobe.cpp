@@ -12,7 +12,7 @@ constexpr float kTwoPi = 6.28318530717958647692f;
 
 void SourceMoments::add(const glm::vec3& source, float weight) {
   if (!(weight > 0.0f) || !std::isfinite(weight)) return;
-  const double wd = weight;
+  const double wd = static_cast<double>(weight);
   w += wd;
   for (int a = 0; a < 3; ++a) q[a] += wd * static_cast<double>(source[a]);
   const glm::dvec3 qd(source);

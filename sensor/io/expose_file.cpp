@@ -147,7 +147,7 @@ ElectronsExr readElectronsExr(const std::filesystem::path& path) {
       const float v = exr.image.pixels[p * all + static_cast<std::size_t>(layers[c])];
       if (!std::isfinite(v) || v < 0.0f)
         fail(path, kLayerPrefix + names[c],
-             "value " + formatShortest(v) + " at pixel " + std::to_string(p) +
+             "value " + formatShortest(static_cast<double>(v)) + " at pixel " + std::to_string(p) +
                  ": electrons must be finite and ≥ 0");
       e.electrons.pixels[p * n + c] = v;
     }

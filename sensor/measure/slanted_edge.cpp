@@ -61,8 +61,8 @@ EdgePatch patchOf(const Image& image, const EdgeRoi& roi, bool vertical) {
   p.values.reserve(static_cast<size_t>(p.rows) * static_cast<size_t>(p.cols));
   for (int r = 0; r < p.rows; ++r)
     for (int c = 0; c < p.cols; ++c)
-      p.values.push_back(vertical ? image.at(roi.x + c, roi.y + r, 0)
-                                  : image.at(roi.x + r, roi.y + c, 0));
+      p.values.push_back(static_cast<double>(vertical ? image.at(roi.x + c, roi.y + r, 0)
+                                                      : image.at(roi.x + r, roi.y + c, 0)));
   return p;
 }
 

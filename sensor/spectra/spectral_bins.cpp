@@ -11,7 +11,7 @@ double valueAt(const Spectrum& s, double lambdaNm) {
   const double x = std::clamp(lambdaNm - kLambdaMinNm, 0.0, double(kSpectrumSamples - 1));
   const int i = std::min(static_cast<int>(x), kSpectrumSamples - 2);
   const double t = x - i;
-  const double a = s.sample(i), b = s.sample(i + 1);
+  const double a = static_cast<double>(s.sample(i)), b = static_cast<double>(s.sample(i + 1));
   return a + t * (b - a);
 }
 
@@ -28,7 +28,7 @@ float binCentreNm(int b) {
 }
 
 int binOf(float lambdaNm) {
-  const double u = visibleWavelengthCdf(lambdaNm);
+  const double u = visibleWavelengthCdf(static_cast<double>(lambdaNm));
   return std::clamp(static_cast<int>(u * kSpectralBins), 0, kSpectralBins - 1);
 }
 
