@@ -310,6 +310,7 @@ JsonObject captureSidecar(const CaptureResult& r, bool reproducible) {
       .setInteger("seed", desc.render.seed)
       .set("sampler", samplerName(desc.render.sampler))
       .set("max_depth", double(desc.render.maxDepth))
+      .set("rr_depth", double(desc.render.rrDepth))
       .set("guiding", desc.render.guiding)
       .set("spectral_control_variate", st.modelled.spectralControlVariate);
   if (!reproducible) render.set("seconds", st.seconds);

@@ -36,6 +36,13 @@ def test_same_seed_same_arrays_for_any_thread_count():
     assert (a["meta"]["threads"], b["meta"]["threads"]) == (1, 2)  # threads= honoured
 
 
+def test_the_sidecar_says_where_russian_roulette_starts():
+    d = small_scene(spp=1)
+    assert camsim.Scene.from_dict(d).render(threads=1)["meta"]["render"]["rr_depth"] == 4
+    d["render"]["rr_depth"] = 7
+    assert camsim.Scene.from_dict(d).render(threads=1)["meta"]["render"]["rr_depth"] == 7
+
+
 def test_a_sequence_returns_one_result_per_frame():
     d = small_scene(spp=2)
     d["frames"] = {"count": 3, "rate_hz": 24}
