@@ -13,29 +13,23 @@ namespace {
 constexpr double kA = 0.0072;      // nm⁻¹
 constexpr double kCentre = 538.0;  // nm
 
+// The CDF's bounds, tanh(a(360 − 538)) and Z = tanh(a(830 − 538)) − it, in double for
+// visibleWavelengthCdf/Quantile (the bins of spectral_bins.h), and in float for sampling.
 // Single precision on purpose: every pixel sample draws kWavelengthSamples wavelengths, and
 // the double-precision atanh/cosh of libm cost several times the rest of the sampling. In
 // float, λ is within ≈ 2e-4 nm of the exact inverse CDF and visibleWavelengthPdf within
 // ≈ 1e-6 relative; sampleVisible's p from t agrees with it within 1e-5 (the tests bound all
 // three), far below what a 1 nm spectrum grid resolves.
-// The CDF's bounds in double: tanh(a(360 − 538)) and tanh(a(830 − 538)) − it (= Z).
-struct VisibleBounds {
-  double tanhLo, tanhRange;
-  VisibleBounds()
-      : tanhLo(std::tanh(kA * (kLambdaMinNm - kCentre))),
-        tanhRange(std::tanh(kA * (kLambdaMaxNm - kCentre)) - tanhLo) {}
-};
-const VisibleBounds& bounds() {
-  static const VisibleBounds b;
-  return b;
-}
 struct VisibleConstants {
-  float tanhLo, tanhRange;  // the bounds, in float
+  double tanhLoD, tanhRangeD;
+  float tanhLo, tanhRange;  // the same, in float
   float pdfScale;           // a / Z
   VisibleConstants()
-      : tanhLo(static_cast<float>(bounds().tanhLo)),
-        tanhRange(static_cast<float>(bounds().tanhRange)),
-        pdfScale(static_cast<float>(kA / bounds().tanhRange)) {}
+      : tanhLoD(std::tanh(kA * (kLambdaMinNm - kCentre))),
+        tanhRangeD(std::tanh(kA * (kLambdaMaxNm - kCentre)) - tanhLoD),
+        tanhLo(static_cast<float>(tanhLoD)),
+        tanhRange(static_cast<float>(tanhRangeD)),
+        pdfScale(static_cast<float>(kA / tanhRangeD)) {}
 };
 const VisibleConstants& visible() {
   static const VisibleConstants c;
@@ -79,11 +73,11 @@ float visibleWavelengthPdf(float lambdaNm) {
 }
 
 double visibleWavelengthCdf(double lambdaNm) {
-  return (std::tanh(kA * (lambdaNm - kCentre)) - bounds().tanhLo) / bounds().tanhRange;
+  return (std::tanh(kA * (lambdaNm - kCentre)) - visible().tanhLoD) / visible().tanhRangeD;
 }
 
 double visibleWavelengthQuantile(double u) {
-  return kCentre + std::atanh(bounds().tanhLo + u * bounds().tanhRange) / kA;
+  return kCentre + std::atanh(visible().tanhLoD + u * visible().tanhRangeD) / kA;
 }
 
 float sampleVisibleWavelength(float u) {
