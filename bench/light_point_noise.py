@@ -6,7 +6,8 @@ on PYTHONPATH in turn) can be compared on a busy machine. Metrics as camsim benc
 (docs/bench.md): rMSE = mean e^2/(r^2 + eps^2), MRAE = mean |e|/(|r| + eps), eps = 1 % of
 the reference's mean. docs/performance.md, "Error per sample: what Cycles does differently".
 
-Usage: PYTHONPATH=build/python /usr/bin/python3 bench/light_point_noise.py LABEL [OUT_DIR]
+Usage: PYTHONPATH=build/python /usr/bin/python3 bench/light_point_noise.py LABEL [OUT_DIR [SEEDS]]
+(SEEDS: how many seeds per spp, 4 by default; se is the standard error of their mean)
 """
 import os
 import re
@@ -31,6 +32,7 @@ def metrics(x, r):
 def main():
     label = sys.argv[1] if len(sys.argv) > 1 else "build"
     out = sys.argv[2] if len(sys.argv) > 2 else "light-point-noise"
+    seeds = int(sys.argv[3]) if len(sys.argv) > 3 else 4
     os.makedirs(out, exist_ok=True)
     text = open(os.path.join(HERE, "..", "scenes", "cornell_box.yaml")).read()
     text = re.sub(r"resolution: \[512, 512\]", "resolution: [128, 128]", text)
@@ -49,16 +51,17 @@ def main():
     ref_rgb = ref @ XYZ_TO_REC709.T
     for spp in (64, 256):
         rows = []
-        for seed in (1, 2, 3, 4):
+        for seed in range(1, seeds + 1):
             x = scene.render(spp=spp, seed=seed, threads=2)["xyz"]
             rmse_y, mrae_y = metrics(x[..., 1], ref[..., 1])
             rgb = x @ XYZ_TO_REC709.T
             rmse_rgb = np.mean([metrics(rgb[..., c], ref_rgb[..., c])[0] for c in range(3)])
             rows.append((rmse_y, mrae_y, rmse_rgb))
         o = np.array(rows)
-        print(f"{label} spp {spp}: rMSE Y {o[:, 0].mean():.4e} (+-{o[:, 0].std():.1e}), "
-              f"MRAE Y {o[:, 1].mean():.4f}, rMSE RGB {o[:, 2].mean():.4e} "
-              f"(+-{o[:, 2].std():.1e})", flush=True)
+        se = o.std(axis=0) / np.sqrt(len(o))
+        print(f"{label} spp {spp}: rMSE Y {o[:, 0].mean():.4e} (+-{o[:, 0].std():.1e}, "
+              f"se {se[0]:.1e}), MRAE Y {o[:, 1].mean():.4f}, rMSE RGB {o[:, 2].mean():.4e} "
+              f"(+-{o[:, 2].std():.1e}, se {se[2]:.1e})", flush=True)
 
 
 if __name__ == "__main__":

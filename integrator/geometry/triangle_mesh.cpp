@@ -72,6 +72,11 @@ TriangleMesh::TriangleMesh(std::vector<glm::vec3> positions, std::vector<glm::ve
   }
   area_ = static_cast<float>(total);
   if (samplable_ && total > 0.0) areaDistribution_ = DiscreteDistribution(areas);
+  // Two triangles (p0, p1, p2), (p0, p2, p3) of equal area at rest (within 1e-6 of the
+  // total: a rectangle's float corners; a density off by that much is far below noise).
+  parallelogram_ = samplable_ && triangleCount() == 2 && indices_[3] == indices_[0] &&
+                   indices_[4] == indices_[2] && total > 0.0 &&
+                   std::abs(areas[0] - areas[1]) <= 1e-6 * total;
   if (samplable_ && steps_.count == 1)
     frontPlane_ = findFrontPlane(positions_, normals_, indices_, areas);
 }
@@ -284,7 +289,8 @@ std::optional<ShapeSample> TriangleMesh::sample(const glm::vec3& ref, float /*u1
   // bytes: stalled store forwarding, a third of this function's time (pointOn likewise).
   std::optional<ShapeSample> out;
   if (area_ <= 0.0f) return out;
-  const TrianglePoint t = pickTrianglePoint(areaDistribution_, u2);
+  const TrianglePoint t =
+      parallelogram_ ? parallelogramPoint(u2) : pickTrianglePoint(areaDistribution_, u2);
   ShapeSample& s = out.emplace();
   float area = 0.0f;
   pointOn(t.tri, t.b1, t.b2, time, &area, s.point);

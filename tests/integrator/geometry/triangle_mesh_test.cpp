@@ -2,7 +2,8 @@
 // the density pdf() gives the same point (sample() reuses the area pointOn computed; pdf()
 // computes it from the triangle at the point's time); a planar emitter's front plane only
 // ever rejects reference points that every sampled point faces away from; a static mesh's
-// stored normals are the bits a moving mesh computes at rest.
+// stored normals are the bits a moving mesh computes at rest; a parallelogram is sampled as
+// one.
 #include "integrator/geometry/triangle_mesh.h"
 
 #include <gtest/gtest.h>
@@ -78,6 +79,47 @@ TEST(TriangleMesh, StoredNormalsAreTheOnesAMovingMeshComputes) {
         glm::length(cross) > 0.0 ? glm::normalize(cross) : glm::dvec3(0.0, 0.0, 1.0);
     EXPECT_LT(glm::length(glm::dvec3(a.n) - exact), 1e-6) << "triangle " << tri;
   }
+}
+
+// A parallelogram of two triangles (a rectangle light) is sampled as one: the sample's
+// point is the affine image of u (so a stratified 2D set stays one over the emitter), with
+// the density 1/area that pdf() gives its point. A quad whose triangles differ in area is
+// not: its triangles get samples in proportion to their areas.
+TEST(TriangleMesh, AParallelogramIsSampledAsOne) {
+  const glm::vec3 p0(0.3f, -0.2f, 1.0f), e1(0.5f, 0.1f, 0.0f), e2(0.2f, 0.3f, 0.4f);
+  const TriangleMesh quad = staticMesh({p0, p0 + e1, p0 + e1 + e2, p0 + e2}, {0, 1, 2, 0, 2, 3});
+  const glm::vec3 ref(0.4f, 0.1f, -1.0f);
+  const float area = glm::length(glm::cross(e1, e2));
+  constexpr int kGrid = 16;
+  int inFirst = 0;
+  for (int i = 0; i < kGrid; ++i)
+    for (int j = 0; j < kGrid; ++j) {
+      const glm::vec2 u((i + 0.5f) / kGrid, (j + 0.37f) / kGrid);
+      const std::optional<ShapeSample> s = quad.sample(ref, 0.5f, u, 0.0);
+      ASSERT_TRUE(s) << i << ", " << j;
+      const glm::vec3 expected = p0 + u.x * e1 + u.y * e2;
+      EXPECT_LT(glm::length(s->point.p - expected), 1e-6f) << i << ", " << j;
+      EXPECT_NEAR(s->pdf / quad.pdf(ref, s->point), 1.0f, 1e-6f);
+      EXPECT_EQ(s->point.prim, u.y <= u.x ? 0 : 1);
+      // Solid angle to area: p_A = p_ω·|cos θ|/d².
+      EXPECT_NEAR(s->pdf * std::abs(glm::dot(s->point.n, s->wi)) /
+                      glm::dot(s->point.p - ref, s->point.p - ref),
+                  1.0f / area, 1e-5f / area);
+      inFirst += s->point.prim == 0;
+    }
+  EXPECT_EQ(inFirst, kGrid * (kGrid + 1) / 2);
+  // A trapezoid: triangle 0 holds 3/4 of the area, and so of the samples.
+  const TriangleMesh trapezoid =
+      staticMesh({{0, 0, 0}, {3, 0, 0}, {2, 1, 0}, {1, 1, 0}}, {0, 1, 2, 0, 2, 3});
+  int first = 0;
+  for (int i = 0; i < kGrid; ++i)
+    for (int j = 0; j < kGrid; ++j) {
+      const std::optional<ShapeSample> s =
+          trapezoid.sample({1.5f, 0.5f, 1.0f}, 0.5f, {(i + 0.5f) / kGrid, (j + 0.5f) / kGrid}, 0.0);
+      ASSERT_TRUE(s);
+      first += s->point.prim == 0;
+    }
+  EXPECT_EQ(first, kGrid * kGrid * 3 / 4);
 }
 
 TEST(TriangleMesh, UnitQuadHasAFrontPlaneThatRejectsOnlyPointsBehindIt) {
