@@ -154,6 +154,11 @@ std::unique_ptr<CLI::App> benchApp(BenchArgs& b) {
                overrideRangeText(setting))
         ->type_name("T");
   }
+  addIntegerOption(*app, "--peer-rounds", b.peerRounds, 1, 20,
+                   "with --peer: time each renderer's ladder K times, taking turns, each rung "
+                   "keeping its fastest time (the report gives the range of the rounds' own "
+                   "ratios; default 1)",
+                   "K");
   addIntegerOption(*app, "--peer-max-depth", b.peerMaxDepth, 1, 1024,
                    "scattering events per path for both (Cycles: max_bounces = N - 1; "
                    "default: each scene's max_depth)",

@@ -124,6 +124,7 @@ PeerPlan peerPlanOf(const BenchArgs& args, const BenchPlan& plan,
   p.minSpp = std::min({p.minSpp, p.cyclesMaxSpp, p.camsimMaxSpp});
   p.threads = plan.threads;
   p.maxDepth = args.peerMaxDepth;
+  p.rounds = args.peerRounds.value_or(1);
   p.cacheDir = cacheDir;
   p.scratchDir = scratch / "peer";
   p.blender = *findBlender();

@@ -55,6 +55,7 @@ struct BenchArgs {
   bool peerOnly = false;                // skip the sweeps, the limit and the rest
   std::vector<std::string> peerScenes;  // empty: peerSuite()
   std::optional<int> peerResolution, peerRefSpp, peerSpp, peerCamsimSpp, peerMaxDepth;
+  std::optional<int> peerRounds;  // timed ladders per renderer (each rung its fastest)
   // --adaptive-threshold: also sweep Sobol' with adaptive sampling at this threshold.
   std::optional<double> adaptiveThreshold;
 };

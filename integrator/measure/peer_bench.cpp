@@ -127,11 +127,12 @@ Image readCyclesImage(const std::filesystem::path& file) {
   return peerRgbyFromRgb(readExr(file).image);
 }
 
-PeerRun runCamsim(const PeerInput& in, const SceneDescription& d, const PeerPlan& plan,
-                  const std::string& key, std::ostream& log) {
+// camsim's reference (rendered, or read from the cache): the run without its ladder, and the
+// reference image (the halves' mean).
+PeerRun camsimReference(const PeerInput& in, const Scene& scene, const PeerPlan& plan,
+                        const std::string& key, std::ostream& log, Image& reference) {
   PeerRun run;
   run.renderer = "camsim";
-  const Scene scene(d);
   const std::filesystem::path cache =
       plan.cacheDir / ("peer-" + in.name + "-camsim-" + key + ".exr");
   std::optional<Halves> ref = readHalves(cache);
@@ -150,28 +151,35 @@ PeerRun runCamsim(const PeerInput& in, const SceneDescription& d, const PeerPlan
   run.referenceCached = ref->cached;
   run.referenceSeconds = ref->seconds;
   run.floor = peerNoise(ref->a, ref->b);
-  const Image reference = average(ref->a, ref->b);
-  for (int spp = plan.minSpp; spp <= plan.camsimMaxSpp; spp *= 2) {
-    const RenderResult r =
-        renderXyz(scene, benchRenderOptions(spp, kLadderSeed, plan.threads, SamplerKind::kSobol));
-    PeerLadderPoint p{spp, r.stats.seconds, peerCompare(peerRgbyFromXyz(r.image), reference)};
-    log << "peer: " << in.name << " camsim " << spp << " spp: " << formatNumber(p.seconds, 3)
-        << " s, rMSE RGB " << formatNumber(p.error.rgb.rmse, 3) << "\n";
-    run.ladder.push_back(p);
-  }
+  reference = average(ref->a, ref->b);
   return run;
 }
 
-PeerRun runCycles(const PeerInput& in, const SceneDescription& d, const PeerPlan& plan,
-                  const std::string& camsimKey, int bounces, std::ostream& log,
-                  std::vector<std::string>& approximations) {
+// One timed camsim ladder (seed 1), each render against the reference.
+std::vector<PeerLadderPoint> camsimLadder(const PeerInput& in, const Scene& scene,
+                                          const PeerPlan& plan, const Image& reference,
+                                          std::ostream& log) {
+  std::vector<PeerLadderPoint> ladder;
+  for (int spp = plan.minSpp; spp <= plan.camsimMaxSpp; spp *= 2) {
+    const RenderResult r =
+        renderXyz(scene, benchRenderOptions(spp, kLadderSeed, plan.threads, SamplerKind::kSobol));
+    PeerLadderPoint p{spp, r.stats.seconds, peerCompare(peerRgbyFromXyz(r.image), reference),
+                      r.stats.seconds};
+    log << "peer: " << in.name << " camsim " << spp << " spp: " << formatNumber(p.seconds, 3)
+        << " s, rMSE RGB " << formatNumber(p.error.rgb.rmse, 3) << "\n";
+    ladder.push_back(p);
+  }
+  return ladder;
+}
+
+// Cycles' reference (rendered, or read from the cache): the run without its ladder, and the
+// reference image. settings: the translation's (threads, bounces).
+PeerRun cyclesReference(const PeerInput& in, const SceneDescription& d, const PeerPlan& plan,
+                        const CyclesSettings& settings, const std::string& camsimKey,
+                        std::ostream& log, Image& reference) {
   PeerRun run;
   run.renderer = "cycles";
-  CyclesSettings settings;
-  settings.threads = plan.threads;
-  settings.bounces = bounces;
   const CyclesTranslation bare = translateToCycles(d, settings);  // the key's script
-  approximations = bare.approximations;
   std::error_code ec;
   std::string stamp;
   if (const std::optional<std::string> exe = findBlender()) {
@@ -200,7 +208,16 @@ PeerRun runCycles(const PeerInput& in, const SceneDescription& d, const PeerPlan
   run.referenceCached = ref->cached;
   run.referenceSeconds = ref->seconds;
   run.floor = peerNoise(ref->a, ref->b);
-  const Image reference = average(ref->a, ref->b);
+  reference = average(ref->a, ref->b);
+  return run;
+}
+
+// One timed Cycles ladder (seed 1, one Blender process after a warm-up render), each render
+// against the reference.
+std::vector<PeerLadderPoint> cyclesLadder(const PeerInput& in, const SceneDescription& d,
+                                          const PeerPlan& plan, const CyclesSettings& settings,
+                                          const Image& reference, std::ostream& log) {
+  const std::filesystem::path dir = plan.scratchDir;
   CyclesSettings s = settings;
   s.warmupFile = (dir / (in.name + "-warmup.exr")).string();
   for (int spp = plan.minSpp; spp <= plan.cyclesMaxSpp; spp *= 2)
@@ -209,17 +226,18 @@ PeerRun runCycles(const PeerInput& in, const SceneDescription& d, const PeerPlan
   log << "peer: " << in.name << ": Cycles ladder\n";
   const std::map<int, double> t =
       runBlender(plan, translateToCycles(d, s).script, in.name + "-ladder");
+  std::vector<PeerLadderPoint> ladder;
   for (std::size_t i = 0; i < s.renders.size(); ++i) {
     const auto found = t.find(static_cast<int>(i));
     if (found == t.end())
       throw std::runtime_error("blender printed no time for render " + std::to_string(i));
     PeerLadderPoint p{s.renders[i].spp, found->second,
-                      peerCompare(readCyclesImage(s.renders[i].file), reference)};
+                      peerCompare(readCyclesImage(s.renders[i].file), reference), found->second};
     log << "peer: " << in.name << " cycles " << p.spp << " spp: " << formatNumber(p.seconds, 3)
         << " s, rMSE RGB " << formatNumber(p.error.rgb.rmse, 3) << "\n";
-    run.ladder.push_back(p);
+    ladder.push_back(p);
   }
-  return run;
+  return ladder;
 }
 
 }  // namespace
@@ -250,10 +268,32 @@ PeerSceneResult runPeerScene(const PeerInput& input, const PeerPlan& plan, std::
       d.sourceFile, plan.refSpp,
       plan.threads};
   const std::string keyText = "camsim-peer/1\n" + referenceKeyText(request);
+  CyclesSettings settings;
+  settings.threads = plan.threads;
+  settings.bounces = r.maxDepth - 1;
   // Translate first: a scene Cycles cannot take fails before any render.
-  translateToCycles(d, CyclesSettings{});
-  r.cycles = runCycles(input, d, plan, keyText, r.maxDepth - 1, log, r.approximations);
-  r.camsim = runCamsim(input, d, plan, fnv1aHex(keyText), log);
+  r.approximations = translateToCycles(d, settings).approximations;
+  const Scene scene(d);
+  Image cyclesRef, camsimRef;
+  r.cycles = cyclesReference(input, d, plan, settings, keyText, log, cyclesRef);
+  r.camsim = camsimReference(input, scene, plan, fnv1aHex(keyText), log, camsimRef);
+  r.rounds = plan.rounds;
+  for (int round = 1; round <= plan.rounds; ++round) {
+    if (plan.rounds > 1)
+      log << "peer: " << input.name << ": round " << round << " of " << plan.rounds << "\n";
+    PeerRun cycles = r.cycles, camsim = r.camsim;
+    cycles.ladder = cyclesLadder(input, d, plan, settings, cyclesRef, log);
+    camsim.ladder = camsimLadder(input, scene, plan, camsimRef, log);
+    r.rgbRoundRatios.push_back(equalError(camsim, cycles, false).ratio());
+    r.yRoundRatios.push_back(equalError(camsim, cycles, true).ratio());
+    if (round == 1) {
+      r.cycles.ladder = cycles.ladder;
+      r.camsim.ladder = camsim.ladder;
+    } else {
+      keepFastest(r.cycles.ladder, cycles.ladder);
+      keepFastest(r.camsim.ladder, camsim.ladder);
+    }
+  }
   r.rgb = equalError(r.camsim, r.cycles, false);
   r.y = equalError(r.camsim, r.cycles, true);
   return r;

@@ -6,7 +6,9 @@
 // each timed. camsim: Sobol', renderXyz on the bench's XYZ film; Cycles: the translated
 // scene (peer_cycles.h) run by `blender -b --factory-startup --python SCRIPT` (stdout and
 // stderr in a log in the scratch directory, quoted in the error if Blender fails), one
-// Blender process for the reference and one for the ladder (after a 1-spp warm-up render).
+// Blender process for the reference and one per ladder (after a 1-spp warm-up render).
+// Rounds (PeerPlan::rounds, `--peer-rounds`): the two ladders K times, Cycles' then camsim's
+// in each round; each rung keeps its fastest time (keepFastest, peer_compare.h).
 // KEY (FNV-1a 64): camsim's reference key text (bench_reference.h: version, scene text,
 // input files, resolution, spp) plus, for Cycles, the translated script without its render
 // list and the blender executable's size and modification time.
@@ -30,6 +32,7 @@ struct PeerPlan {
   int camsimMaxSpp = 1024;
   int threads = 1;
   std::optional<int> maxDepth;  // overrides the scene's (Cycles: − 1)
+  int rounds = 1;  // timed ladders per renderer, taking turns; each rung keeps its fastest
   std::filesystem::path cacheDir, scratchDir;
   std::string blender = "blender";  // the executable (a path from findBlender)
 };

@@ -122,6 +122,13 @@ EqualError equalError(const PeerRun& camsim, const PeerRun& cycles, bool luminan
   return e;
 }
 
+void keepFastest(std::vector<PeerLadderPoint>& kept, const std::vector<PeerLadderPoint>& round) {
+  for (std::size_t i = 0; i < kept.size() && i < round.size(); ++i) {
+    kept[i].seconds = std::min(kept[i].seconds, round[i].seconds);
+    kept[i].slowest = std::max(kept[i].slowest, round[i].seconds);
+  }
+}
+
 std::string formatPeerReport(const std::vector<PeerSceneResult>& results, int threads,
                              int referenceSpp) {
   std::ostringstream out;
@@ -164,6 +171,19 @@ std::string formatPeerReport(const std::vector<PeerSceneResult>& results, int th
           << " s; camsim reaches it in " << formatFixed(e.camsimSeconds, 3) << " s"
           << (e.extrapolated ? " (extrapolated beyond its ladder)" : "")
           << ": time ratio camsim/Cycles " << formatFixed(e.ratio(), 3) << "\n";
+    if (r.rounds > 1 && !r.cycles.ladder.empty() && !r.camsim.ladder.empty()) {
+      const auto range = [](const std::vector<double>& v) {
+        if (v.empty()) return std::string("-");
+        const auto [lo, hi] = std::minmax_element(v.begin(), v.end());
+        return formatFixed(*lo, 3) + "–" + formatFixed(*hi, 3);
+      };
+      out << "  rounds: " << r.rounds << " (each rung's time the fastest of its " << r.rounds
+          << " renders; slowest: Cycles " << r.cycles.ladder.back().spp << " spp "
+          << formatFixed(r.cycles.ladder.back().slowest, 3) << " s, camsim "
+          << r.camsim.ladder.back().spp << " spp " << formatFixed(r.camsim.ladder.back().slowest, 3)
+          << " s); each round's own ratio: RGB " << range(r.rgbRoundRatios) << ", Y "
+          << range(r.yRoundRatios) << "\n";
+    }
     out << "  approximated:";
     for (const std::string& a : r.approximations) out << "\n    - " << a;
     out << "\n";

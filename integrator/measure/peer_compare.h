@@ -13,6 +13,10 @@
 // target; the time camsim needs for it is interpolated linearly in (log seconds, log error*)
 // between the two ladder renders around it (extrapolated on the log-log least-squares line
 // of the whole ladder when it does not reach it, and marked so). Ratio = camsim's time ÷ Cycles' time at the top.
+// Rounds: the renders' times vary from run to run (Cycles' 256-spp Cornell box took 56.9 to
+// 63.9 s on one idle machine, its images the same): with K rounds each renderer renders its
+// ladder K times, taking turns, each rung keeps its fastest time, and the report also gives
+// the range of the K rounds' own ratios.
 #pragma once
 
 #include <string>
@@ -39,8 +43,10 @@ PeerErrors peerNoise(const Image& halfA, const Image& halfB);
 
 struct PeerLadderPoint {
   int spp = 0;
-  double seconds = 0.0;  // wall time of the render (Cycles: around bpy.ops.render.render)
+  double seconds = 0.0;  // wall time of the render (Cycles: around bpy.ops.render.render);
+                         // with several rounds the fastest round's
   PeerErrors error;      // against the renderer's own reference, floor included
+  double slowest = 0.0;  // the slowest round's time (seconds' with one round)
 };
 
 struct PeerRun {
@@ -50,6 +56,10 @@ struct PeerRun {
   bool referenceCached = false;
   std::vector<PeerLadderPoint> ladder;  // by increasing spp
 };
+
+// Folds a later round's ladder into the kept one, rung by rung: seconds the fastest, slowest
+// the slowest (the renders, and so the errors, are the same every round).
+void keepFastest(std::vector<PeerLadderPoint>& kept, const std::vector<PeerLadderPoint>& round);
 
 // rMSE − the floor's rMSE, not below 1e-12 of the rMSE (log-log needs it positive).
 double beyondFloor(double rmse, double floorRmse);
@@ -79,6 +89,10 @@ struct PeerSceneResult {
   PeerRun camsim, cycles;
   EqualError rgb, y;
   std::vector<std::string> approximations;
+  // Rounds (PeerPlan::rounds): each ladder's times are every rung's fastest; each round's own
+  // ratios (its camsim ladder against its Cycles ladder), in round order.
+  int rounds = 1;
+  std::vector<double> rgbRoundRatios, yRoundRatios;
 };
 
 std::string formatPeerReport(const std::vector<PeerSceneResult>& results, int threads,

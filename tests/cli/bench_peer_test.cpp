@@ -17,10 +17,10 @@ TEST(BenchPeerArgs, OptionsAndDefaults) {
   const BenchArgs none = parseBenchArgs({"bench"});
   EXPECT_FALSE(none.peer.has_value());
   EXPECT_FALSE(none.peerOnly);
-  const BenchArgs b =
-      parseBenchArgs({"bench", "--peer", "cycles", "--peer-only", "--peer-scenes",
-                      "cornell_box,dof_chart", "--peer-resolution", "128", "--peer-ref-spp", "1024",
-                      "--peer-spp", "64", "--peer-camsim-spp", "512", "--peer-max-depth", "9"});
+  const BenchArgs b = parseBenchArgs(
+      {"bench", "--peer", "cycles", "--peer-only", "--peer-scenes", "cornell_box,dof_chart",
+       "--peer-resolution", "128", "--peer-ref-spp", "1024", "--peer-spp", "64",
+       "--peer-camsim-spp", "512", "--peer-max-depth", "9", "--peer-rounds", "3"});
   EXPECT_EQ(b.peer, "cycles");
   EXPECT_TRUE(b.peerOnly);
   EXPECT_EQ(b.peerScenes, (std::vector<std::string>{"cornell_box", "dof_chart"}));
@@ -29,6 +29,10 @@ TEST(BenchPeerArgs, OptionsAndDefaults) {
   EXPECT_EQ(b.peerSpp, 64);
   EXPECT_EQ(b.peerCamsimSpp, 512);
   EXPECT_EQ(b.peerMaxDepth, 9);
+  EXPECT_EQ(b.peerRounds, 3);
+  EXPECT_FALSE(none.peerRounds.has_value());  // one round
+  EXPECT_THROW(parseBenchArgs({"bench", "--peer-rounds", "0"}), UsageError);
+  EXPECT_THROW(parseBenchArgs({"bench", "--peer-rounds", "21"}), UsageError);
   EXPECT_EQ(peerSuite(), (std::vector<std::string>{"cornell_box", "dof_chart", "small_light"}));
   EXPECT_THROW(parseBenchArgs({"bench", "--peer", "mitsuba"}), UsageError);
   EXPECT_THROW(parseBenchArgs({"bench", "--peer-resolution", "3"}), UsageError);

@@ -147,6 +147,34 @@ TEST(PeerCompare, EqualErrorSubtractsEachFloor) {
   EXPECT_FALSE(e.extrapolated);
 }
 
+TEST(PeerCompare, RoundsKeepEachRungsFastestAndReportTheirRatios) {
+  std::vector<PeerLadderPoint> kept = {{16, 1.0, {}, 1.0}, {256, 16.0, {}, 16.0}};
+  keepFastest(kept, {{16, 1.2, {}, 1.2}, {256, 14.5, {}, 14.5}});
+  keepFastest(kept, {{16, 0.9, {}, 0.9}, {256, 15.0, {}, 15.0}});
+  EXPECT_DOUBLE_EQ(kept[0].seconds, 0.9);
+  EXPECT_DOUBLE_EQ(kept[0].slowest, 1.2);
+  EXPECT_DOUBLE_EQ(kept[1].seconds, 14.5);
+  EXPECT_DOUBLE_EQ(kept[1].slowest, 16.0);
+  PeerSceneResult r;
+  r.scene = "cornell_box";
+  r.cycles.renderer = "cycles";
+  r.camsim.renderer = "camsim";
+  r.cycles.ladder = kept;
+  r.camsim.ladder = {{64, 2.0, {}, 2.5}};
+  r.rgb = {0.001, 14.5, 7.0, false};
+  r.y = {0.001, 14.5, 6.5, false};
+  EXPECT_EQ(formatPeerReport({r}, 2, 2048).find("rounds:"), std::string::npos);  // one round
+  r.rounds = 3;
+  r.rgbRoundRatios = {0.52, 0.46, 0.49};
+  r.yRoundRatios = {0.50, 0.45, 0.47};
+  const std::string report = formatPeerReport({r}, 2, 2048);
+  EXPECT_NE(report.find("rounds: 3 (each rung's time the fastest of its 3 renders; slowest: "
+                        "Cycles 256 spp 16.000 s, camsim 64 spp 2.500 s); each round's own "
+                        "ratio: RGB 0.460–0.520, Y 0.450–0.500"),
+            std::string::npos)
+      << report;
+}
+
 TEST(PeerCompare, EqualErrorCsvHoldsTheReportsFigures) {
   // What scripts/peer_plot.py draws: RGB reached by interpolation, Y never reached (NaN).
   PeerSceneResult r;
