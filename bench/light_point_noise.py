@@ -58,7 +58,7 @@ def main():
             rmse_rgb = np.mean([metrics(rgb[..., c], ref_rgb[..., c])[0] for c in range(3)])
             rows.append((rmse_y, mrae_y, rmse_rgb))
         o = np.array(rows)
-        se = o.std(axis=0) / np.sqrt(len(o))
+        se = o.std(axis=0, ddof=1) / np.sqrt(len(o)) if len(o) > 1 else 0 * o[0]
         print(f"{label} spp {spp}: rMSE Y {o[:, 0].mean():.4e} (+-{o[:, 0].std():.1e}, "
               f"se {se[0]:.1e}), MRAE Y {o[:, 1].mean():.4f}, rMSE RGB {o[:, 2].mean():.4e} "
               f"(+-{o[:, 2].std():.1e}, se {se[2]:.1e})", flush=True)

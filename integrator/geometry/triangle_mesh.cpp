@@ -72,11 +72,13 @@ TriangleMesh::TriangleMesh(std::vector<glm::vec3> positions, std::vector<glm::ve
   }
   area_ = static_cast<float>(total);
   if (samplable_ && total > 0.0) areaDistribution_ = DiscreteDistribution(areas);
-  // Two triangles (p0, p1, p2), (p0, p2, p3) of equal area at rest (within 1e-6 of the
-  // total: a rectangle's float corners; a density off by that much is far below noise).
+  // Two triangles (p0, p1, p2), (p0, p2, p3) of nearly equal area at rest (within 1e-3 of
+  // the total: a rectangle's float corners even far from the camera). Their density is
+  // exactly ½ / area_k (areaPdf), so "nearly" costs no bias, only variance.
   parallelogram_ = samplable_ && triangleCount() == 2 && indices_[3] == indices_[0] &&
-                   indices_[4] == indices_[2] && total > 0.0 &&
-                   std::abs(areas[0] - areas[1]) <= 1e-6 * total;
+                   indices_[4] == indices_[2] && areas[0] > 0.0 && areas[1] > 0.0 &&
+                   std::abs(areas[0] - areas[1]) <= 1e-3 * total;
+  if (parallelogram_) restAreas_ = {static_cast<float>(areas[0]), static_cast<float>(areas[1])};
   if (samplable_ && steps_.count == 1)
     frontPlane_ = findFrontPlane(positions_, normals_, indices_, areas);
 }
@@ -153,8 +155,13 @@ float TriangleMesh::triangleArea(size_t tri, double time) const {
 }
 
 // Density by area of sample() producing a point of triangle tri whose area at that time
-// is `area` (m²; a static mesh's density does not depend on it).
+// is `area` (m²; a static mesh's density does not depend on it). parallelogramPoint draws
+// each of its two triangles with probability ½.
 float TriangleMesh::areaPdf(size_t tri, float area) const {
+  if (parallelogram_) {
+    const float a = steps_.count == 1 ? restAreas_[tri] : area;
+    return a > 0.0f ? 0.5f / a : 0.0f;
+  }
   if (steps_.count == 1) return 1.0f / area_;
   return area > 0.0f ? areaDistribution_.pmf(tri) / area : 0.0f;
 }

@@ -26,10 +26,12 @@
 // Only a mesh that a light samples (an emitter) keeps the per-triangle area distribution
 // and, if it is static, planar and one-sided, its FrontPlane (shape.h).
 // A static mesh (one time step) skips the time interpolation, and its area pdf is 1/area:
-// P(k)/area_k with P(k) = area_k/area. Two triangles of equal area on a diagonal (a rectangle
-// light) are sampled by parallelogramPoint: the same density, a better spread of the points.
+// P(k)/area_k with P(k) = area_k/area. Two triangles of nearly equal area on a diagonal (a
+// rectangle light; not an instanced one: MeshInstance) are sampled by parallelogramPoint,
+// P(k) = ½: a better spread of the points, no search, no root.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -40,7 +42,8 @@
 
 namespace camsim {
 
-// A point on a mesh chosen by area, as TriangleMesh and MeshInstance sample their lights:
+// A point on a mesh chosen by area, as MeshInstance and TriangleMesh (but for the
+// parallelogram below) sample their lights:
 // the triangle by u.x (∝ area), u.x rescaled to its share of the triangle, and the point by
 // that remapped pair, so the pixel's stratified 2D points spread over the whole emitter (a
 // quad's two triangles each get their half of them; picking by a separate number gave each
@@ -54,10 +57,11 @@ inline TrianglePoint pickTrianglePoint(const DiscreteDistribution& areas, glm::v
   const glm::vec2 b = sampleUniformTriangle(u);
   return {tri, b.y, 1.0f - b.x - b.y};
 }
-// Two triangles of equal area on one diagonal, (p0, p1, p2) and (p0, p2, p3) (a rectangle
-// light's): u.y ≤ u.x is triangle 0 at barycentrics (u.x − u.y, u.y), else triangle 1 at
-// (u.x, u.y − u.x). Each half of the square maps linearly (Jacobian 1) onto its triangle and
-// the two agree on the diagonal, so the density is 1/area as pickTrianglePoint's, and for a
+// Two triangles of (nearly) equal area on one diagonal, (p0, p1, p2) and (p0, p2, p3) (a
+// rectangle light's): u.y ≤ u.x is triangle 0 at barycentrics (u.x − u.y, u.y), else triangle
+// 1 at (u.x, u.y − u.x). Each half of the square maps linearly (Jacobian 1) onto its triangle
+// and the two agree on the diagonal, so the density is ½ / area_k (1/area for equal areas,
+// as pickTrianglePoint's), and for a
 // parallelogram u is the point p0 + u.x·(p1 − p0) + u.y·(p2 − p1): the pixel's 2D points
 // stay one stratified net over the emitter (the triangle choice and the square-root warp
 // bend it), for no search and no root.
@@ -147,6 +151,7 @@ class TriangleMesh final : public Shape {
   float area_ = 0.0f;
   std::optional<FrontPlane> frontPlane_;  // static planar meshes only
   bool parallelogram_ = false;            // samplable, sampled by parallelogramPoint
+  std::array<float, 2> restAreas_{};      // its two triangles' areas at rest (m², areaPdf)
 };
 
 }  // namespace camsim

@@ -16,6 +16,7 @@
 #include "integrator/measure/bench_reference.h"
 #include "integrator/measure/peer_cycles.h"
 #include "integrator/scene/scene.h"
+#include "sensor/base/check.h"
 #include "sensor/base/fnv1a.h"
 #include "sensor/base/format.h"
 #include "sensor/base/input_error.h"
@@ -277,6 +278,7 @@ PeerSceneResult runPeerScene(const PeerInput& input, const PeerPlan& plan, std::
   Image cyclesRef, camsimRef;
   r.cycles = cyclesReference(input, d, plan, settings, keyText, log, cyclesRef);
   r.camsim = camsimReference(input, scene, plan, fnv1aHex(keyText), log, camsimRef);
+  CAMSIM_CHECK(plan.rounds >= 1);
   r.rounds = plan.rounds;
   for (int round = 1; round <= plan.rounds; ++round) {
     if (plan.rounds > 1)

@@ -7,8 +7,9 @@
 // scene (peer_cycles.h) run by `blender -b --factory-startup --python SCRIPT` (stdout and
 // stderr in a log in the scratch directory, quoted in the error if Blender fails), one
 // Blender process for the reference and one per ladder (after a 1-spp warm-up render).
-// Rounds (PeerPlan::rounds, `--peer-rounds`): the two ladders K times, Cycles' then camsim's
-// in each round; each rung keeps its fastest time (keepFastest, peer_compare.h).
+// Both references come first (rendered or read from the cache), then the ladders. Rounds
+// (PeerPlan::rounds, `--peer-rounds`, ≥ 1): the two ladders K times, Cycles' then camsim's in
+// each round; each rung keeps its fastest time (keepFastest, peer_compare.h).
 // KEY (FNV-1a 64): camsim's reference key text (bench_reference.h: version, scene text,
 // input files, resolution, spp) plus, for Cycles, the translated script without its render
 // list and the blender executable's size and modification time.

@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "integrator/measure/bench_metrics.h"
+#include "sensor/base/check.h"
 #include "sensor/spectra/color_space.h"
 
 namespace camsim {
@@ -123,7 +124,9 @@ EqualError equalError(const PeerRun& camsim, const PeerRun& cycles, bool luminan
 }
 
 void keepFastest(std::vector<PeerLadderPoint>& kept, const std::vector<PeerLadderPoint>& round) {
-  for (std::size_t i = 0; i < kept.size() && i < round.size(); ++i) {
+  CAMSIM_CHECK(kept.size() == round.size());
+  for (std::size_t i = 0; i < kept.size(); ++i) {
+    CAMSIM_CHECK(kept[i].spp == round[i].spp);
     kept[i].seconds = std::min(kept[i].seconds, round[i].seconds);
     kept[i].slowest = std::max(kept[i].slowest, round[i].seconds);
   }
@@ -166,16 +169,24 @@ std::string formatPeerReport(const std::vector<PeerSceneResult>& results, int th
       }
     for (const auto& [name, e] : {std::pair<const char*, const EqualError&>{"RGB", r.rgb},
                                   std::pair<const char*, const EqualError&>{"Y", r.y}})
-      out << "  equal error on " << name << ": Cycles " << r.cycles.ladder.back().spp
-          << " spp error* " << sci(e.target) << " in " << formatFixed(e.cyclesSeconds, 3)
+      out << "  equal error on " << name << ": Cycles "
+          << (r.cycles.ladder.empty() ? 0 : r.cycles.ladder.back().spp) << " spp error* "
+          << sci(e.target) << " in " << formatFixed(e.cyclesSeconds, 3)
           << " s; camsim reaches it in " << formatFixed(e.camsimSeconds, 3) << " s"
           << (e.extrapolated ? " (extrapolated beyond its ladder)" : "")
           << ": time ratio camsim/Cycles " << formatFixed(e.ratio(), 3) << "\n";
     if (r.rounds > 1 && !r.cycles.ladder.empty() && !r.camsim.ladder.empty()) {
+      // Over the rounds that reached the target (a ratio is NaN where camsim's ladder did not).
       const auto range = [](const std::vector<double>& v) {
-        if (v.empty()) return std::string("-");
-        const auto [lo, hi] = std::minmax_element(v.begin(), v.end());
-        return formatFixed(*lo, 3) + "–" + formatFixed(*hi, 3);
+        std::vector<double> reached;
+        for (const double x : v)
+          if (std::isfinite(x)) reached.push_back(x);
+        if (reached.empty()) return std::string("not reached");
+        const auto [lo, hi] = std::minmax_element(reached.begin(), reached.end());
+        std::string text = formatFixed(*lo, 3) + "–" + formatFixed(*hi, 3);
+        if (reached.size() < v.size())
+          text += " (" + std::to_string(v.size() - reached.size()) + " not reached)";
+        return text;
       };
       out << "  rounds: " << r.rounds << " (each rung's time the fastest of its " << r.rounds
           << " renders; slowest: Cycles " << r.cycles.ladder.back().spp << " spp "

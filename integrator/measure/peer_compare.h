@@ -14,7 +14,7 @@
 // between the two ladder renders around it (extrapolated on the log-log least-squares line
 // of the whole ladder when it does not reach it, and marked so). Ratio = camsim's time ÷ Cycles' time at the top.
 // Rounds: the renders' times vary from run to run (Cycles' 256-spp Cornell box took 56.9 to
-// 63.9 s on one idle machine, its images the same): with K rounds each renderer renders its
+// 65.2 s in five runs on one idle machine, its images the same): with K rounds each renderer renders its
 // ladder K times, taking turns, each rung keeps its fastest time, and the report also gives
 // the range of the K rounds' own ratios.
 #pragma once
@@ -57,8 +57,9 @@ struct PeerRun {
   std::vector<PeerLadderPoint> ladder;  // by increasing spp
 };
 
-// Folds a later round's ladder into the kept one, rung by rung: seconds the fastest, slowest
-// the slowest (the renders, and so the errors, are the same every round).
+// Folds a later round's ladder into the kept one, rung by rung (the same spp, checked):
+// seconds the fastest, slowest the slowest (the renders, and so the errors, are the same
+// every round).
 void keepFastest(std::vector<PeerLadderPoint>& kept, const std::vector<PeerLadderPoint>& round);
 
 // rMSE − the floor's rMSE, not below 1e-12 of the rMSE (log-log needs it positive).

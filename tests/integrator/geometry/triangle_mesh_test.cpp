@@ -108,6 +108,22 @@ TEST(TriangleMesh, AParallelogramIsSampledAsOne) {
       inFirst += s->point.prim == 0;
     }
   EXPECT_EQ(inFirst, kGrid * (kGrid + 1) / 2);
+  // Nearly a parallelogram (triangle 1 is 0.06 % larger): still sampled so, and its density is
+  // each triangle's own ½ / area_k, not 1/area (which is 0.03 % off on either triangle).
+  const glm::vec3 p3 = p0 + 1.0012f * e2;
+  const TriangleMesh nearly = staticMesh({p0, p0 + e1, p0 + e1 + e2, p3}, {0, 1, 2, 0, 2, 3});
+  const float areas[2] = {0.5f * glm::length(glm::cross(e1, e2)),
+                          0.5f * glm::length(glm::cross(e1 + e2, p3 - p0))};
+  for (const glm::vec2 u : {glm::vec2(0.7f, 0.2f), glm::vec2(0.2f, 0.7f)}) {
+    const std::optional<ShapeSample> s = nearly.sample(ref, 0.5f, u, 0.0);
+    ASSERT_TRUE(s);
+    const int tri = s->point.prim;
+    EXPECT_EQ(tri, u.y <= u.x ? 0 : 1);
+    EXPECT_NEAR(s->pdf * std::abs(glm::dot(s->point.n, s->wi)) /
+                    glm::dot(s->point.p - ref, s->point.p - ref),
+                0.5f / areas[tri], 2e-6f / areas[tri]);
+    EXPECT_NEAR(s->pdf / nearly.pdf(ref, s->point), 1.0f, 1e-6f);
+  }
   // A trapezoid: triangle 0 holds 3/4 of the area, and so of the samples.
   const TriangleMesh trapezoid =
       staticMesh({{0, 0, 0}, {3, 0, 0}, {2, 1, 0}, {1, 1, 0}}, {0, 1, 2, 0, 2, 3});

@@ -173,6 +173,12 @@ TEST(PeerCompare, RoundsKeepEachRungsFastestAndReportTheirRatios) {
                         "ratio: RGB 0.460–0.520, Y 0.450–0.500"),
             std::string::npos)
       << report;
+  // A round whose camsim ladder did not reach the target has a NaN ratio: left out, counted.
+  r.yRoundRatios = {0.50, std::numeric_limits<double>::quiet_NaN(), 0.47};
+  EXPECT_NE(formatPeerReport({r}, 2, 2048).find("Y 0.470–0.500 (1 not reached)"),
+            std::string::npos);
+  r.yRoundRatios.assign(3, std::numeric_limits<double>::quiet_NaN());
+  EXPECT_NE(formatPeerReport({r}, 2, 2048).find("Y not reached"), std::string::npos);
 }
 
 TEST(PeerCompare, EqualErrorCsvHoldsTheReportsFigures) {
