@@ -128,12 +128,22 @@ Image readCyclesImage(const std::filesystem::path& file) {
   return peerRgbyFromRgb(readExr(file).image);
 }
 
+// A renderer's reference run from its two halves: cached or not, their time, the noise floor
+// they leave, and the reference image (the halves' mean).
+PeerRun referenceRun(const std::string& renderer, const Halves& ref, Image& reference) {
+  PeerRun run;
+  run.renderer = renderer;
+  run.referenceCached = ref.cached;
+  run.referenceSeconds = ref.seconds;
+  run.floor = peerNoise(ref.a, ref.b);
+  reference = average(ref.a, ref.b);
+  return run;
+}
+
 // camsim's reference (rendered, or read from the cache): the run without its ladder, and the
 // reference image (the halves' mean).
 PeerRun camsimReference(const PeerInput& in, const Scene& scene, const PeerPlan& plan,
                         const std::string& key, std::ostream& log, Image& reference) {
-  PeerRun run;
-  run.renderer = "camsim";
   const std::filesystem::path cache =
       plan.cacheDir / ("peer-" + in.name + "-camsim-" + key + ".exr");
   std::optional<Halves> ref = readHalves(cache);
@@ -149,11 +159,7 @@ PeerRun camsimReference(const PeerInput& in, const Scene& scene, const PeerPlan&
     }
     writeHalves(cache, *ref, log);
   }
-  run.referenceCached = ref->cached;
-  run.referenceSeconds = ref->seconds;
-  run.floor = peerNoise(ref->a, ref->b);
-  reference = average(ref->a, ref->b);
-  return run;
+  return referenceRun("camsim", *ref, reference);
 }
 
 // One timed camsim ladder (seed 1), each render against the reference.
@@ -178,8 +184,6 @@ std::vector<PeerLadderPoint> camsimLadder(const PeerInput& in, const Scene& scen
 PeerRun cyclesReference(const PeerInput& in, const SceneDescription& d, const PeerPlan& plan,
                         const CyclesSettings& settings, const std::string& camsimKey,
                         std::ostream& log, Image& reference) {
-  PeerRun run;
-  run.renderer = "cycles";
   const CyclesTranslation bare = translateToCycles(d, settings);  // the key's script
   std::error_code ec;
   std::string stamp;
@@ -206,11 +210,7 @@ PeerRun cyclesReference(const PeerInput& in, const SceneDescription& d, const Pe
     for (const auto& [i, sec] : t) ref->seconds += i >= 0 ? sec : 0.0;
     writeHalves(cache, *ref, log);
   }
-  run.referenceCached = ref->cached;
-  run.referenceSeconds = ref->seconds;
-  run.floor = peerNoise(ref->a, ref->b);
-  reference = average(ref->a, ref->b);
-  return run;
+  return referenceRun("cycles", *ref, reference);
 }
 
 // One timed Cycles ladder (seed 1, one Blender process after a warm-up render), each render
