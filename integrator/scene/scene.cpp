@@ -250,6 +250,7 @@ void Scene::buildShapes(const SceneDescription& d) {
   lights_.insert(lights_.begin(), std::make_move_iterator(areaLights.begin()),
                  std::make_move_iterator(areaLights.end()));
   geometry_ = std::make_unique<EmbreeScene>(shapes_, motionSpan_.x, motionSpan_.y, filterOfShape);
+  checkInstanceRanges(d, shapes_, geometry_->boundsLower(), geometry_->boundsUpper());
   const std::vector<Aov>& aovs = settings_.aovs;
   if (std::find(aovs.begin(), aovs.end(), Aov::kAmodal) != aovs.end()) {
     std::vector<char> labelled(shapes_.size());

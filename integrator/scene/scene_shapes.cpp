@@ -174,4 +174,42 @@ std::unique_ptr<Shape> buildShape(const SceneDescription& d, const ShapeDescript
   return std::make_unique<MeshInstance>(instanced, poses, steps, s.emission.has_value());
 }
 
+void checkInstanceRanges(const SceneDescription& d,
+                         const std::vector<std::unique_ptr<Shape>>& shapes, glm::vec3 lower,
+                         glm::vec3 upper) {
+  double reach = 1.0;
+  if (lower.x <= upper.x)
+    for (int a = 0; a < 3; ++a)
+      reach = std::max({reach, std::abs(static_cast<double>(lower[a])),
+                        std::abs(static_cast<double>(upper[a]))});
+  for (size_t i = 0; i < shapes.size() && i < d.shapes.size(); ++i) {
+    std::vector<glm::mat4> transforms = shapes[i]->instanceMotion().steps;
+    if (const auto* instance = dynamic_cast<const MeshInstance*>(shapes[i].get()))
+      if (transforms.empty()) transforms.push_back(instance->placement());
+    for (const glm::mat4& x : transforms) {
+      const glm::dmat3 a{glm::dmat4(x)};
+      const glm::dmat3 inv = glm::inverse(a);
+      double norm = 0.0;  // ‖A⁻¹‖∞, the largest row sum
+      for (int r = 0; r < 3; ++r)
+        norm = std::max(norm, std::abs(inv[0][r]) + std::abs(inv[1][r]) + std::abs(inv[2][r]));
+      const double t = std::max({std::abs(static_cast<double>(x[3][0])),
+                                 std::abs(static_cast<double>(x[3][1])),
+                                 std::abs(static_cast<double>(x[3][2]))});
+      const double far = norm * (reach + t);
+      if (!(std::isfinite(glm::determinant(a)) && glm::determinant(a) != 0.0 &&
+            far <= kMaxInstanceReach))
+        throw InputError({d.sourceFile, 0, 0}, d.shapes[i].label,
+                         "a keyframe scale or placement scales the shape by as little as " +
+                             formatNumber(norm > 0.0 ? 1.0 / norm : 0.0) +
+                             ": rays from a scene reaching " + formatNumber(reach) +
+                             " m would reach " + formatNumber(far) +
+                             " m in the shape's own space, past the " +
+                             formatNumber(kMaxInstanceReach) +
+                             " m Embree traces there (limit kMaxInstanceReach); here a scale "
+                             "must be at least " +
+                             formatNumber((reach + t) / kMaxInstanceReach));
+    }
+  }
+}
+
 }  // namespace camsim

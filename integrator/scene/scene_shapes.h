@@ -8,6 +8,7 @@
 
 #include <map>
 #include <memory>
+#include <vector>
 
 #include "integrator/geometry/shape.h"
 #include "integrator/geometry/triangle_mesh.h"
@@ -30,5 +31,19 @@ std::shared_ptr<const TriangleMesh> objectMesh(const MeshData& mesh);
 std::unique_ptr<Shape> buildShape(const SceneDescription& d, const ShapeDescription& s, double t0,
                                   double t1, const std::shared_ptr<const TriangleMesh>& instanced,
                                   std::map<const MeshData*, double>& meshReach, bool& moving);
+
+// After the shapes' BVH is built, with its bounds [lower, upper] (render space, m; lower >
+// upper for no geometry): every transform Embree moves rays by (a moving mesh's time steps,
+// an instance's placement) must keep the rays inside the range Embree traces. Embree moves
+// a ray into the shape's space with the inverse transform and refuses (asserts on) a ray
+// whose coordinates there pass ±1.8e18; rays start within the bounds or at the camera (the
+// render origin), so ‖A⁻¹‖∞ (R + |t|∞) ≤ kMaxInstanceReach is required, R the bounds' largest
+// coordinate (at least 1 m), A the transform's linear part and t its translation. The margin
+// of 1e16 against 1.8e18 covers the transforms Embree interpolates between time steps. An
+// InputError names the shape (a keyframe or placement scale about 1e-16 of the scene's size).
+void checkInstanceRanges(const SceneDescription& d,
+                         const std::vector<std::unique_ptr<Shape>>& shapes, glm::vec3 lower,
+                         glm::vec3 upper);
+inline constexpr double kMaxInstanceReach = 1e16;  // m in a shape's own space
 
 }  // namespace camsim

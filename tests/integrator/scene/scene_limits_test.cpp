@@ -187,6 +187,46 @@ TEST(SceneLimits, SmallestSphereRadiusBuilds) {
   }
 }
 
+// A keyframe or placement scale so small that Embree, moving a ray into the shape's space
+// with the inverse transform, meets coordinates past its ±1.8e18 m: it aborted on its own
+// assertion (ray.valid()) during the render. Now refused when the scene is built, naming the
+// shape; a millimetre-to-metre scale (1e-3) and a small but traceable one (1e-12) still
+// build and render finite.
+TEST(SceneLimits, ScalesTooSmallForEmbreeAreRefusedByShape) {
+  const std::string triangle = "vertices: [[-1, -1, 2], [1, -1, 2], [0, 1, 2]], faces: [[0, 1, 2]]";
+  const auto moving = [&](const std::string& scale) {
+    return "  - {type: mesh, " + triangle + ", material: m, motion: [{time: 0, scale: 1}, {time: "
+           "0.01, scale: " + scale + "}]}\n";
+  };
+  const auto instanced = [&](const std::string& scale) {
+    return "  - {type: mesh, " + triangle + ", material: m, instances: [{scale: [1, 1, " + scale +
+           "]}, {translate: [1, 0, 0]}]}\n";
+  };
+  for (const std::string& shape : {moving("1e-30"), moving("1e-20"), instanced("1e-20")}) {
+    SCOPED_TRACE(shape);
+    try {
+      const Scene scene(loadSceneFromText(
+          kHeader + kLimitsCamera + kSun + kMaterial + "shapes:\n" + kBall + shape, "tiny.yaml",
+          "."));
+      ADD_FAILURE() << "built";
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.key().rfind("shapes[1]", 0), 0u) << e.what();
+      EXPECT_EQ(e.where().file, "tiny.yaml");
+      EXPECT_NE(e.message().find("Embree traces there"), std::string::npos) << e.what();
+    }
+  }
+  for (const std::string& shape : {moving("1e-3"), moving("1e-12"), instanced("1e-3")}) {
+    SCOPED_TRACE(shape);
+    const Scene scene(loadSceneFromText(
+        kHeader + kLimitsCamera + kSun + kMaterial + "shapes:\n" + kBall + shape, "small.yaml",
+        "."));
+    RenderOptions options;
+    options.spp = 2;
+    const RenderResult r = render(scene, SpectralResponse::cieXyz(), options);
+    for (float v : r.image.pixels) ASSERT_TRUE(std::isfinite(v));
+  }
+}
+
 // A bulb of radius 1e-7 m lights the ball as a point light of the same intensity
 // I = L π r² does (0.0314 cd for 1e12 cd/m²), within 2 % of the image sum at 64 spp: the
 // sample on a tiny sphere is placed from its centre, not from the shading point, whose
