@@ -192,22 +192,21 @@ void checkInstanceRanges(const SceneDescription& d,
       double norm = 0.0;  // ‖A⁻¹‖∞, the largest row sum
       for (int r = 0; r < 3; ++r)
         norm = std::max(norm, std::abs(inv[0][r]) + std::abs(inv[1][r]) + std::abs(inv[2][r]));
-      const double t = std::max({std::abs(static_cast<double>(x[3][0])),
-                                 std::abs(static_cast<double>(x[3][1])),
-                                 std::abs(static_cast<double>(x[3][2]))});
+      const double t =
+          std::max({std::abs(static_cast<double>(x[3][0])), std::abs(static_cast<double>(x[3][1])),
+                    std::abs(static_cast<double>(x[3][2]))});
       const double far = norm * (reach + t);
       if (!(std::isfinite(glm::determinant(a)) && glm::determinant(a) != 0.0 &&
             far <= kMaxInstanceReach))
-        throw InputError({d.sourceFile, 0, 0}, d.shapes[i].label,
-                         "a keyframe scale or placement scales the shape by as little as " +
-                             formatNumber(norm > 0.0 ? 1.0 / norm : 0.0) +
-                             ": rays from a scene reaching " + formatNumber(reach) +
-                             " m would reach " + formatNumber(far) +
-                             " m in the shape's own space, past the " +
-                             formatNumber(kMaxInstanceReach) +
-                             " m Embree traces there (limit kMaxInstanceReach); here a scale "
-                             "must be at least " +
-                             formatNumber((reach + t) / kMaxInstanceReach));
+        throw InputError(
+            {d.sourceFile, 0, 0}, d.shapes[i].label,
+            "a keyframe scale or placement scales the shape by as little as " +
+                formatNumber(norm > 0.0 ? 1.0 / norm : 0.0) + ": rays from a scene reaching " +
+                formatNumber(reach) + " m would reach " + formatNumber(far) +
+                " m in the shape's own space, past the " + formatNumber(kMaxInstanceReach) +
+                " m Embree traces there (limit kMaxInstanceReach); here a scale "
+                "must be at least " +
+                formatNumber((reach + t) / kMaxInstanceReach));
     }
   }
 }

@@ -195,8 +195,10 @@ TEST(SceneLimits, SmallestSphereRadiusBuilds) {
 TEST(SceneLimits, ScalesTooSmallForEmbreeAreRefusedByShape) {
   const std::string triangle = "vertices: [[-1, -1, 2], [1, -1, 2], [0, 1, 2]], faces: [[0, 1, 2]]";
   const auto moving = [&](const std::string& scale) {
-    return "  - {type: mesh, " + triangle + ", material: m, motion: [{time: 0, scale: 1}, {time: "
-           "0.01, scale: " + scale + "}]}\n";
+    return "  - {type: mesh, " + triangle +
+           ", material: m, motion: [{time: 0, scale: 1}, {time: "
+           "0.01, scale: " +
+           scale + "}]}\n";
   };
   const auto instanced = [&](const std::string& scale) {
     return "  - {type: mesh, " + triangle + ", material: m, instances: [{scale: [1, 1, " + scale +
@@ -217,9 +219,9 @@ TEST(SceneLimits, ScalesTooSmallForEmbreeAreRefusedByShape) {
   }
   for (const std::string& shape : {moving("1e-3"), moving("1e-12"), instanced("1e-3")}) {
     SCOPED_TRACE(shape);
-    const Scene scene(loadSceneFromText(
-        kHeader + kLimitsCamera + kSun + kMaterial + "shapes:\n" + kBall + shape, "small.yaml",
-        "."));
+    const Scene scene(
+        loadSceneFromText(kHeader + kLimitsCamera + kSun + kMaterial + "shapes:\n" + kBall + shape,
+                          "small.yaml", "."));
     RenderOptions options;
     options.spp = 2;
     const RenderResult r = render(scene, SpectralResponse::cieXyz(), options);
