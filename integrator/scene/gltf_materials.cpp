@@ -34,6 +34,7 @@
 
 #include "integrator/scene/gltf_convert.h"
 #include "integrator/textures/texture_encoding.h"
+#include "sensor/base/format.h"
 #include "sensor/base/input_error.h"
 #include "sensor/spectra/cie.h"
 #include "sensor/spectra/color_space.h"
@@ -237,6 +238,13 @@ std::optional<EmissionDescription> gltfEmission(const GltfInclude& inc, int mate
              std::to_string(mean.b / n) + ") scales emissiveFactor");
   }
   if (!(lumaOf(e) > 0.0)) return std::nullopt;
+  // The scene format's limit on an emitter's luminance (scene_loader.cpp): past it a float
+  // spectrum overflows, and every path that sees the shape is infinite.
+  const double target = inc.emissiveLuminance * lumaOf(e);
+  if (!(target <= 1e15))
+    throw InputError({inc.doc.file.string(), 0, 0}, m.path + ".emissiveFactor",
+                     "emissiveFactor × emissiveStrength × the include's emissive_luminance give " +
+                         formatNumber(target) + " cd/m², above the 1e15 cd/m² an emitter may have");
   EmissionDescription d;
   const Spectrum shape = rgbToEmissionShape(e, RgbColorSpace::linearRec709());
   d.radiance = shape * (inc.emissiveLuminance * lumaOf(e) / luminance(shape));

@@ -91,8 +91,12 @@ void readGltfMaterials(const tinygltf::Model& model, GltfDocument& doc, const st
     g.emissiveTexture = textureRef(model, m.emissiveTexture.index, m.emissiveTexture.texCoord, 1.0,
                                    m.emissiveTexture.extensions, g.path + ".emissiveTexture");
     g.texCoord = materialTexCoord(g, doc.notes);
-    for (size_t c = 0; c < 3 && c < m.emissiveFactor.size(); ++c)
+    for (size_t c = 0; c < 3 && c < m.emissiveFactor.size(); ++c) {
       g.emissiveFactor[static_cast<int>(c)] = m.emissiveFactor[c];
+      if (!std::isfinite(m.emissiveFactor[c]) || m.emissiveFactor[c] < 0.0)
+        throw InputError({name, 0, 0}, g.path + ".emissiveFactor[" + std::to_string(c) + "]",
+                         "must be a finite number >= 0");
+    }
     if (m.alphaMode == "MASK")
       g.alphaMode = GltfMaterial::AlphaMode::kMask;
     else if (m.alphaMode == "BLEND")

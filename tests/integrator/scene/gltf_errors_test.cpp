@@ -352,5 +352,52 @@ TEST(GltfErrors, NumberBeyondDoubleRangeIsAnInputError) {
   EXPECT_NE(r.message.find("not valid JSON"), std::string::npos) << r.message;
 }
 
+// Found by probing the command line: an emissive factor of 1e38 (or KHR_materials_emissive_
+// strength 1e38) loaded, and its float spectrum overflowed: every pixel NaN, exit 0. Now the
+// emitter's luminance is held to the scene format's 1e15 cd/m², a negative factor refused,
+// both named by JSON path; a bright but finite one (1e12 cd/m²) still loads.
+TEST(GltfErrors, EmissionBeyondTheSceneLimitIsRefused) {
+  const auto load = [](const std::string& name, const std::string& material) {
+    test::GltfBuilder b;
+    b.floats({0, 0, 0, 1, 0, 0, 0, 1, 0}, "VEC3");
+    const fs::path dir = scratch(name);
+    test::writeText(
+        dir / "tri.gltf",
+        b.json(R"("meshes":[{"primitives":[{"attributes":{"POSITION":0},"material":0}]}],)"
+               R"("nodes":[{"mesh":0}],"scenes":[{"nodes":[0]}],"materials":[)" +
+               material + "]"));
+    return loadSceneFromText(
+        "camera: {position: [0, 0, 5], look_at: [0, 0, 0], resolution: [8, 8]}\n"
+        "include:\n  - gltf: tri.gltf\n",
+        "emit.yaml", dir);
+  };
+  const struct {
+    const char* material;
+    const char* key;
+  } cases[] = {
+      {R"({"emissiveFactor":[1e38,1e38,1e38]})", "materials[0].emissiveFactor"},
+      {R"({"emissiveFactor":[1,1,1],"extensions":{"KHR_materials_emissive_strength":)"
+       R"({"emissiveStrength":1e38}}})",
+       "materials[0].emissiveFactor"},
+      {R"({"emissiveFactor":[1,-1,1]})", "materials[0].emissiveFactor[1]"},
+  };
+  int k = 0;
+  for (const auto& c : cases) {
+    SCOPED_TRACE(c.material);
+    try {
+      load("emit" + std::to_string(k++), c.material);
+      ADD_FAILURE() << "loaded";
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.key(), c.key) << e.what();
+      EXPECT_EQ(fs::path(e.where().file).filename(), "tri.gltf") << e.what();
+    }
+  }
+  const SceneDescription bright = load(
+      "emit_ok", R"({"emissiveFactor":[1,1,1],"extensions":{"KHR_materials_emissive_strength":)"
+                 R"({"emissiveStrength":1e10}}})");
+  ASSERT_EQ(bright.shapes.size(), 1u);
+  EXPECT_TRUE(bright.shapes[0].emission.has_value());
+}
+
 }  // namespace
 }  // namespace camsim
