@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <charconv>
+#include <cmath>
 #include <map>
 #include <set>
 #include <sstream>
@@ -149,8 +150,19 @@ ReadPart readPart(const std::filesystem::path& file) {
       if (from < 0)
         throw InputError({file.string(), 0, 0}, kChannelKeys[i],
                          "no channel " + std::string(kPrefixes[i]) + (*lists[i])[c]);
-      for (std::size_t px = 0; px < image.pixels.size() / n; ++px)
-        image.pixels[px * n + c] = exr.image.pixels[px * m + static_cast<std::size_t>(from)];
+      for (std::size_t px = 0; px < image.pixels.size() / n; ++px) {
+        const float v = exr.image.pixels[px * m + static_cast<std::size_t>(from)];
+        // A render writes finite film, sensor and half-sample values (it rejects non-finite
+        // samples); one that is not would pass into every merged image. AOVs are the
+        // render's own (their conventions: output.md) and are copied as they are.
+        if (i != 2 && !std::isfinite(v))
+          throw InputError(
+              {file.string(), 0, 0}, std::string(kPrefixes[i]) + (*lists[i])[c],
+              "pixel (" + std::to_string(px % static_cast<std::size_t>(h.resolution.x)) + ", " +
+                  std::to_string(px / static_cast<std::size_t>(h.resolution.x)) +
+                  ") is not finite: not as camsim render --tiles writes it");
+        image.pixels[px * n + c] = v;
+      }
     }
   }
   if (h.filmChannels.empty()) throw bad("camsim:film_channels");

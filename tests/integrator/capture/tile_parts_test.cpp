@@ -5,12 +5,14 @@
 #include <gtest/gtest.h>
 
 #include <cstring>
+#include <limits>
 #include <string>
 #include <vector>
 
 #include "integrator/capture/tile_parts.h"
 #include "integrator/scene/scene_loader.h"
 #include "sensor/base/input_error.h"
+#include "sensor/io/exr_io.h"
 #include "tests/support/temp_dir.h"
 
 namespace camsim {
@@ -102,6 +104,39 @@ TEST(TileParts, SplitCaptureEqualsTheWholeCapture) {
   EXPECT_THROW(mergedCapture(assembleTileParts(files), other), InputError);
   files.pop_back();
   EXPECT_THROW(assembleTileParts(files), InputError);  // a share missing
+}
+
+// Found by probing the command line: a part whose film held a NaN (or Inf) merged into an
+// image of NaN with exit 0; a render never writes one. Now the part is refused, naming the
+// file, the channel and the pixel; an AOV value is copied as it is.
+TEST(TileParts, NonFiniteFilmInAPartIsRefused) {
+  const test::TempDir dir;
+  const SceneDescription desc = loadSceneFromText(kScene, "split.yaml", ".");
+  std::vector<std::filesystem::path> files;
+  for (int k = 0; k < 2; ++k) {
+    CaptureOptions options;
+    options.tiles = Share{k, 2};
+    files.push_back(
+        writeTilePart(renderCaptureFilms(desc, options), {k, 2}, {dir.path(), {}, true}));
+  }
+  EXPECT_NO_THROW(assembleTileParts(files));
+  for (const float bad :
+       {std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity()}) {
+    ExrFile exr = readExr(files[1]);
+    const int c = exr.image.channelIndex("film.Y");
+    ASSERT_GE(c, 0);
+    exr.image.pixels[static_cast<std::size_t>(3 * exr.image.channelCount() + c)] = bad;
+    const std::filesystem::path edited = dir.path() / "edited.exr";
+    writeExr(edited, exr.image, exr.metadata, exr.chromaticities);
+    try {
+      assembleTileParts({files[0], edited});
+      ADD_FAILURE() << "assembled a part with " << bad;
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.where().file, edited.string());
+      EXPECT_EQ(e.key(), "film.Y");
+      EXPECT_NE(e.message().find("pixel (3, 0) is not finite"), std::string::npos) << e.what();
+    }
+  }
 }
 
 }  // namespace
