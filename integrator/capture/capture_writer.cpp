@@ -92,9 +92,7 @@ Metadata filmMetadata(const CaptureResult& r, bool reproducible) {
 
 std::string frameStem(const CaptureResult& r, std::size_t i) {
   if (r.description.sensor->bracketEv.empty()) return r.description.name;
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "_ev%+g", r.frames[i].ev);
-  return r.description.name + buf;
+  return r.description.name + bracketSuffix(r.frames[i].ev);
 }
 
 // NAME[_evX].dng and NAME[_evX]_raw.exr per frame (a stacked sensor: a raw EXR per plane).

@@ -286,6 +286,9 @@ struct SensorSettings {
   std::optional<AutoExposure> autoExposure;
   std::vector<double> bracketEv;  // exposure offsets in stops; empty: one exposure
 };
+// A bracketed frame's file-name suffix, "_ev" and the offset as %+g (6 significant digits):
+// NAME_ev+1.dng. The loader refuses offsets that give the same suffix.
+std::string bracketSuffix(double ev);
 
 struct SceneDescription {
   std::string sourceFile;   // what it was loaded from ("<default>" for the embedded scene)

@@ -1,12 +1,19 @@
 // The scene loader's `sensor:` block (docs/scene-format.md): which sensor, ISO, noise,
 // auto-exposure and brackets. The sensor description itself is parsed by sensor/.
 #include <cmath>
+#include <cstdio>
 
 #include "integrator/scene/scene_loader.h"
 #include "integrator/scene/scene_loader_parts.h"
 #include "sensor/spectra/spectral_data.h"
 
 namespace camsim {
+
+std::string bracketSuffix(double ev) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "_ev%+g", ev);
+  return buf;
+}
 
 SensorSettings parseSensorSettings(YamlMap map, const std::filesystem::path& baseDir,
                                    const YamlValue& camera, PhysicalCameraParams& cameraParams) {
@@ -49,8 +56,14 @@ SensorSettings parseSensorSettings(YamlMap map, const std::filesystem::path& bas
     s.bracketEv = b->numbers();
     if (s.bracketEv.empty() || s.bracketEv.size() > 16)
       b->fail("give 1 to 16 exposure offsets in stops");
-    for (double ev : s.bracketEv)
-      if (std::abs(ev) > 20.0) b->fail("exposure offsets must lie within ±20 stops");
+    for (size_t i = 0; i < s.bracketEv.size(); ++i) {
+      if (std::abs(s.bracketEv[i]) > 20.0) b->fail("exposure offsets must lie within ±20 stops");
+      for (size_t j = 0; j < i; ++j)
+        if (bracketSuffix(s.bracketEv[j]) == bracketSuffix(s.bracketEv[i]))
+          b->fail("offsets " + std::to_string(j) + " and " + std::to_string(i) +
+                  " name the same files (NAME" + bracketSuffix(s.bracketEv[i]) +
+                  ".dng: 6 significant digits): give each exposure once");
+    }
   }
   map.finish({"model", "iso", "noise", "noise_seed", "frame", "auto_exposure", "bracket_ev"});
 

@@ -55,6 +55,11 @@ inline const ErrorCase kErrorCases[] = {
     {"SyntaxBadIndentation", kCamera + " up: [0, 1, 0]\n" + kMaterials + "shapes:\n" + kSphere, 4,
      2, "", "YAML syntax error"},
     {"UnknownTopLevelKey", withShapes(kSphere) + "lamps: []\n", 8, 1, "lamps", "unknown key"},
+    // Two offsets that print alike named the same files: the second frame's rename failed
+    // after the first's files were in place (exit 1, a half-written folder).
+    {"BracketOffsetsNamingTheSameFiles",
+     withShapes(kSphere) + "sensor: {model: smartphone-1.4um, bracket_ev: [0.1, 0.10000000001]}\n",
+     8, 47, "sensor.bracket_ev", "name the same files (NAME_ev+0.1.dng"},
     {"MisspeltShapeKey",
      withShapes(kSphere +
                 "  - type: sphere\n    centre: [0, 0, 0]\n    radus: 1\n    material: m\n"),
