@@ -37,6 +37,16 @@ std::vector<double> parsePsfList(const std::string& flag, const std::string& tex
   while (true) {
     const std::size_t comma = text.find(',', start);
     values.push_back(parsePsfNumber(flag, text.substr(start, comma - start)));
+    // Each value names files (psf_f<F>_<λ>nm, %g: 6 significant digits): two that print
+    // alike would write the same files twice.
+    char mine[32], other[32];
+    std::snprintf(mine, sizeof mine, "%g", values.back());
+    for (std::size_t i = 0; i + 1 < values.size(); ++i) {
+      std::snprintf(other, sizeof other, "%g", values[i]);
+      if (std::string(mine) == other)
+        throw UsageError(flag + ": " + mine + " is given twice (values name the output files, " +
+                         "to 6 significant digits)");
+    }
     if (comma == std::string::npos) return values;
     start = comma + 1;
   }

@@ -67,6 +67,10 @@ TEST(PsfArgs, BadValuesNameTheirOption) {
       {{"psf", "s.yaml", "--oversample", "0"}, "--oversample"},
       {{"psf", "s.yaml", "--rays", "10"}, "--rays"},
       {{"psf", "s.yaml", "--object-distance", "-3"}, "--object-distance"},
+      // Values that name the same files (%g): the second write failed after the first's
+      // files were in place (exit 1; found by probing).
+      {{"psf", "s.yaml", "--field", "0,0"}, "--field: 0 is given twice"},
+      {{"psf", "s.yaml", "--wavelength", "550,550.0000001"}, "--wavelength: 550 is given twice"},
   };
   for (const auto& [args, name] : cases) {
     try {
