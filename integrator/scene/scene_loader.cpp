@@ -386,9 +386,22 @@ SceneDescription loadSceneFromText(const std::string& text, const std::string& d
       v->fail("unsupported format '" + v->string() + "' (this camsim reads camsim-scene/1)");
   }
   scene.name = std::filesystem::path(displayName).stem().string();
-  if (auto v = top.find("name")) scene.name = v->string();
-  if (scene.name.empty() || scene.name.find_first_of("/\\") != std::string::npos)
-    top.self().fail("name must be a non-empty file name without '/'");
+  // The name is the stem of every file a render writes (NAME.exr, its temporary
+  // .NAME.exr.camsim-tmp-XXXXXX, NAME_ev+0.5_raw.exr): one printable file name, at most
+  // kMaxNameBytes so that those stay within the 255 bytes a file name may have.
+  const std::optional<YamlValue> nameValue = top.find("name");
+  if (nameValue) scene.name = nameValue->string();
+  const YamlValue& nameAt = nameValue ? *nameValue : top.self();
+  if (scene.name.empty() || scene.name.find_first_of("/\\") != std::string::npos ||
+      scene.name == "." || scene.name == "..")
+    nameAt.fail("name must be a non-empty file name without '/'");
+  if (std::any_of(scene.name.begin(), scene.name.end(),
+                  [](char c) { return static_cast<unsigned char>(c) < 0x20 || c == 0x7f; }))
+    nameAt.fail("name must not hold control characters (it names the output files)");
+  if (scene.name.size() > SceneLimits::kMaxNameBytes)
+    nameAt.fail("name is " + std::to_string(scene.name.size()) + " bytes long; at most " +
+                std::to_string(SceneLimits::kMaxNameBytes) +
+                " (it names the output files; limit SceneLimits::kMaxNameBytes)");
   if (auto v = top.find("render")) scene.render = parseRender(YamlMap(*v));
   std::vector<GltfInclude> includes;
   if (auto inc = top.find("include")) includes = parseGltfIncludes(*inc, baseDir, ctx.search);

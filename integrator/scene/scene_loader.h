@@ -30,6 +30,7 @@ struct SceneLimits {
   // Every coordinate of render space (positions, translations, geometry over its motion), m:
   // Embree refuses rays whose origin or direction exceeds ~1.8e18 in any component.
   static constexpr double kMaxCoordinate = 1e15;
+  static constexpr std::size_t kMaxNameBytes = 128;  // the scene's name (output file stem)
   // A sphere's radius, m: Embree squares it in single precision.
   static constexpr double kMinSphereRadius = 1e-9;
   // A sun disc's angular diameter (°) when not 0: smaller discs are lost to float rounding

@@ -55,6 +55,13 @@ inline const ErrorCase kErrorCases[] = {
     {"SyntaxBadIndentation", kCamera + " up: [0, 1, 0]\n" + kMaterials + "shapes:\n" + kSphere, 4,
      2, "", "YAML syntax error"},
     {"UnknownTopLevelKey", withShapes(kSphere) + "lamps: []\n", 8, 1, "lamps", "unknown key"},
+    // The name is the output files' stem: a NUL or a newline in it, or 235 bytes (its temporary
+    // file's name then passed 255 bytes), failed when writing (exit 1; found by probing).
+    {"NameWithAControlCharacter", "name: \"a\\nb\"\n" + kPrefix + kSphere, 1, 7, "name",
+     "control characters"},
+    {"NameTooLong", "name: " + std::string(235, 'a') + "\n" + kPrefix + kSphere, 1, 7, "name",
+     "name is 235 bytes long; at most 128"},
+    {"NameDotDot", "name: ..\n" + kPrefix + kSphere, 1, 7, "name", "non-empty file name"},
     // Two offsets that print alike named the same files: the second frame's rename failed
     // after the first's files were in place (exit 1, a half-written folder).
     {"BracketOffsetsNamingTheSameFiles",
