@@ -125,12 +125,15 @@ std::string formatBenchCsv(const std::vector<BenchRow>& rows) {
   for (std::size_t i = 0; i < columns.size(); ++i) out << (i ? "," : "") << columns[i];
   out << "\n";
   auto g = [](double v) { return formatNumber(v, 9); };
+  // The render's own estimate needs two samples per pixel: empty below that (not "nan").
+  auto estimate = [](double v) { return std::isfinite(v) ? formatNumber(v, 9) : std::string(); };
   for (const BenchRow& r : rows)
     out << csvField(r.scene) << "," << csvField(r.sampler) << "," << r.spp << "," << r.width << ","
         << r.height << "," << g(r.seconds) << "," << g(r.cpuSeconds) << ","
         << g(r.samplesPerSecond()) << "," << g(r.raysPerSecond()) << "," << g(r.error.rmse) << ","
         << g(r.error.mrae) << "," << g(r.floor.rmse) << "," << g(r.floor.mrae) << ","
-        << (r.inFit ? 1 : 0) << "," << g(r.estimate.rmse) << "," << g(r.estimate.mrae) << "\n";
+        << (r.inFit ? 1 : 0) << "," << estimate(r.estimate.rmse) << "," << estimate(r.estimate.mrae)
+        << "\n";
   return out.str();
 }
 

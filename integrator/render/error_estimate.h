@@ -86,6 +86,7 @@ ErrorMetrics relativeErrors(std::size_t count, ErrorAt error, ReferenceAt refere
   double se = 0.0, ae = 0.0;
   for (std::size_t i = 0; i < count; ++i) {
     const double e = error(i), r = reference(i);
+    if (e == 0.0) continue;  // also where r = 0 and ε underflows (a black image): 0, not 0/0
     se += e * e / (r * r + eps * eps);
     ae += std::abs(e) / (std::abs(r) + eps);
   }

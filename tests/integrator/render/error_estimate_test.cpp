@@ -301,5 +301,21 @@ TEST(ErrorEstimate, NoneBelowTwoSppOrForAShare) {
   EXPECT_FALSE(renderXyz(scene, o).stats.estimatedError.has_value());
 }
 
+// A black image (every sample 0: a scene whose lights are off) has no error: 0, not the
+// 0/0 = NaN that ε = 1 % of a zero mean gave ("-nan" in the EXR header; found by probing).
+// One lit pixel among black ones still counts.
+TEST(ErrorEstimate, ABlackImageHasNoError) {
+  const std::vector<float> zeros(64, 0.0f);
+  const ErrorMetrics black = estimateFromHalves(zeros.data(), 1, zeros.data(), 8, 8, 4);
+  EXPECT_EQ(black.rmse, 0.0);
+  EXPECT_EQ(black.mrae, 0.0);
+  std::vector<float> means = zeros, odd = zeros;
+  means[5] = 1.0f;
+  odd[5] = 0.5f;
+  const ErrorMetrics one = estimateFromHalves(means.data(), 1, odd.data(), 8, 8, 4);
+  EXPECT_TRUE(std::isfinite(one.rmse) && one.rmse > 0.0) << one.rmse;
+  EXPECT_TRUE(std::isfinite(one.mrae) && one.mrae > 0.0) << one.mrae;
+}
+
 }  // namespace
 }  // namespace camsim::error_estimate_test
