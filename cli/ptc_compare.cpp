@@ -14,17 +14,14 @@
 #include "cli/ptc_report.h"
 #include "sensor/base/format.h"
 #include "sensor/base/input_error.h"
+#include "sensor/base/input_file.h"
 #include "sensor/base/yaml_reader.h"
 
 namespace camsim {
 namespace {
 
 YamlValue loadReport(const std::string& file) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw InputError({file, 0, 0}, "", "cannot read the report");
-  std::ostringstream text;
-  text << in.rdbuf();
-  const YamlValue root = parseYaml(text.str(), file);
+  const YamlValue root = parseYaml(readInputFile(file, "ptc report"), file);
   if (!root.isMap()) root.fail("expected a camsim ptc report (a JSON object)");
   YamlMap map(root);
   const YamlValue format = map.require("format");

@@ -1,4 +1,5 @@
 #include "integrator/camera/lens_file.h"
+#include "sensor/base/input_file.h"
 
 #include <cctype>
 #include <charconv>
@@ -236,11 +237,7 @@ LensPrescription parseLensPrescription(std::string_view text, const std::string&
 
 LensPrescription readLensPrescription(const std::filesystem::path& file,
                                       const TableSearch& glassSearch) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw InputError({file.string(), 0, 0}, "", "cannot read the lens file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return parseLensPrescription(text.str(), file.string(), glassSearch);
+  return parseLensPrescription(readInputFile(file, "lens file"), file.string(), glassSearch);
 }
 
 }  // namespace camsim

@@ -19,6 +19,7 @@
 
 #include "integrator/scene/gltf_document.h"
 #include "sensor/base/input_error.h"
+#include "sensor/base/input_file.h"
 
 namespace camsim {
 
@@ -320,12 +321,9 @@ GltfDocument parseGltf(const std::string& bytes, const std::string& displayName,
 }
 
 GltfDocument readGltf(const std::filesystem::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw InputError({file.string(), 0, 0}, "", "cannot open glTF file");
-  std::ostringstream text;
-  text << in.rdbuf();
+  const std::string text = readInputFile(file, "glTF file");
   const std::filesystem::path dir = file.parent_path().empty() ? "." : file.parent_path();
-  return parseGltf(text.str(), file.string(), dir);
+  return parseGltf(text, file.string(), dir);
 }
 
 }  // namespace camsim

@@ -1,4 +1,5 @@
 #include "integrator/scene/scene_loader.h"
+#include "sensor/base/input_file.h"
 
 #include <algorithm>
 #include <cctype>
@@ -497,12 +498,7 @@ std::string readSceneFile(const std::filesystem::path& file) {
                      "`include: [{gltf: " +
                          file.filename().string() +
                          "}]` beside a camera (docs/scene-format.md, \"include\")");
-  std::ifstream in(file, std::ios::binary);
-  if (!in || isDirectory(file))
-    throw InputError({file.string(), 0, 0}, "", "cannot open scene file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
+  return readInputFile(file, "scene file");
 }
 
 std::filesystem::path sceneBaseDir(const std::filesystem::path& file) {

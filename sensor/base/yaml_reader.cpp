@@ -285,14 +285,25 @@ std::optional<Bracket> unclosedBracket(const std::string& text, size_t end) {
 
 // yaml-cpp 0.7 accepts a quoted scalar left open when the text ends with a line break: the
 // scalar swallows the rest of the file. Check that every quoted scalar is closed.
-void checkQuotesClosed(const YAML::Node& node, const std::string& text, const std::string& file) {
+// visits: the nodes seen so far, aliases expanded (an alias is its anchor's whole tree again);
+// at most maxVisits. A text of n bytes holds at most about n nodes; aliases nested k deep,
+// each used m times, expand to m^k (the "billion laughs": nine levels of ten took minutes,
+// here and in every walk of the tree after it), so an expansion far beyond the text is
+// refused before anything walks it.
+void checkQuotesClosed(const YAML::Node& node, const std::string& text, const std::string& file,
+                       std::size_t& visits, std::size_t maxVisits) {
+  if (++visits > maxVisits)
+    throw InputError({file, 1, 1}, "",
+                     "the YAML aliases (*name) expand to more than " + std::to_string(maxVisits) +
+                         " nodes: aliases of aliases nested this deep are not a scene");
   if (node.IsMap()) {
     for (auto it = node.begin(); it != node.end(); ++it) {
-      checkQuotesClosed(it->first, text, file);
-      checkQuotesClosed(it->second, text, file);
+      checkQuotesClosed(it->first, text, file, visits, maxVisits);
+      checkQuotesClosed(it->second, text, file, visits, maxVisits);
     }
   } else if (node.IsSequence()) {
-    for (size_t i = 0; i < node.size(); ++i) checkQuotesClosed(node[i], text, file);
+    for (size_t i = 0; i < node.size(); ++i)
+      checkQuotesClosed(node[i], text, file, visits, maxVisits);
   } else if (node.IsScalar()) {
     const YAML::Mark mark = node.Mark();
     if (mark.pos < 0 || static_cast<size_t>(mark.pos) >= text.size()) return;
@@ -389,7 +400,8 @@ YamlValue parseYaml(const std::string& text, const std::string& file) {
     throwSyntaxError(e, text, file);
   }
   if (!first) return YamlValue(YAML::Node(), "", file);
-  checkQuotesClosed(first, text, file);
+  std::size_t visits = 0;
+  checkQuotesClosed(first, text, file, visits, 64 * text.size() + 1000000);
   // YAML::Load alone would silently drop everything after a second '---'.
   for (size_t i = 1; i < counter.documents.size(); ++i) {
     if (counter.documents[i].hasContent) {

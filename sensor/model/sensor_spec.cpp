@@ -1,4 +1,5 @@
 #include "sensor/model/sensor_spec.h"
+#include "sensor/base/input_file.h"
 
 #include <algorithm>
 #include <cctype>
@@ -319,13 +320,8 @@ SensorSpec loadSensorSpec(const std::string& presetOrPath, const fs::path& lutsD
                          "' (presets: " + (list.empty() ? "none found" : list) +
                          "; a file path needs a '/' or a .yaml extension)");
   }
-  std::ifstream in(path, std::ios::binary);
-  if (!in)
-    throw InputError({path.string(), 0, 0}, "",
-                     "cannot read the sensor description '" + path.string() + "'");
-  std::ostringstream text;
-  text << in.rdbuf();
-  SensorSpec spec = parseSensorSpec(text.str(), path.string(), path.parent_path(), lutsDir);
+  SensorSpec spec = parseSensorSpec(readInputFile(path, "sensor description"), path.string(),
+                                    path.parent_path(), lutsDir);
   spec.sourceFiles.insert(spec.sourceFiles.begin(), path);
   return spec;
 }

@@ -1,4 +1,5 @@
 #include "sensor/spectra/spectral_data.h"
+#include "sensor/base/input_file.h"
 
 #include <charconv>
 #include <cmath>
@@ -113,11 +114,7 @@ SpectralTable parseSpectralCsv(std::string_view text, const std::string& sourceN
 }
 
 SpectralTable readSpectralCsv(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError({path.string(), 0, 0}, "", "cannot open spectral table");
-  std::ostringstream buffer;
-  buffer << in.rdbuf();
-  return parseSpectralCsv(buffer.str(), path.string());
+  return parseSpectralCsv(readInputFile(path, "spectral table"), path.string());
 }
 
 std::vector<std::string> cieIlluminantNames() {
