@@ -25,6 +25,28 @@
 namespace camsim {
 namespace {
 
+// A sensor whose configuration leaves no photon-transfer curve (every level clipped or
+// black: a full well below an electron, a black level at the white level, every pixel
+// stuck) measures no finite gain, quantum efficiency or saturation; its table, CSV and plots
+// would be NaN and the plot script failed (exit 1; found by probing). Refused before
+// anything is written, naming the sensor's file.
+void requireUsableMeasurement(const PtcResult& m, const SensorSpec& sensor, double iso) {
+  const std::pair<const char*, double> checks[] = {{"system gain K", m.systemGainK},
+                                                   {"quantum efficiency", m.quantumEfficiency},
+                                                   {"saturation μ_p.sat", m.muPSat},
+                                                   {"SNR maximum", m.snrMax}};
+  for (const auto& [what, value] : checks)
+    if (!std::isfinite(value) || !(value > 0.0) || m.gainFitCount < 2)
+      throw InputError(
+          {sensor.sourceFiles.empty() ? sensor.name : sensor.sourceFiles.front().string(), 0, 0},
+          "",
+          "at ISO " + formatShortest(iso) + " this sensor gives no photon-transfer curve (" + what +
+              " measured as " + formatShortest(value) + ", " + std::to_string(m.gainFitCount) +
+              " levels in the gain fit): its exposures clip or read black before they "
+              "vary; check full_well_e, conversion_gain_e_per_dn, read_noise_e, "
+              "black_level_dn and the defects");
+}
+
 // Fixed with an explicit sign (deviations: "+0.12").
 std::string formatSigned(double v, int decimals) {
   return (std::signbit(v) ? "" : "+") + formatFixed(v, decimals);  // as printf "%+.*f"
@@ -236,6 +258,7 @@ std::vector<std::filesystem::path> runPtc(const PtcArgs& args, std::ostream& out
         << " photosites)\n";
     PtcIsoReport r;
     r.measured = measurePhotonTransfer(sensor, options);
+    requireUsableMeasurement(r.measured, sensor, iso);
     r.configured = configuredPhotonTransfer(sensor, options);
     r.uncertainty = photonTransferUncertainty(r.measured);
     const PtcResult& m = r.measured;

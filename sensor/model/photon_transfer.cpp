@@ -254,6 +254,13 @@ PtcResult measurePhotonTransfer(const SensorSpec& sensor, const PtcOptions& opti
       eta[i] = static_cast<float>(sensor.fillFactor * qe);
       if (c == channel) pixels.push_back(i);
     }
+  // A layout whose photosites carry no single channel (a stacked sensor: cfa xyz) leaves
+  // none to analyse; the statistics below need two (found by probing: a check failed).
+  if (pixels.size() < 2)
+    throw InputError(where, "cfa",
+                     "no photosites of channel " + std::to_string(channel) +
+                         " to measure (a stacked layout such as xyz has no photon-transfer "
+                         "measurement here; docs/ptc.md)");
   const ExposureSettings settings{options.exposureTimeS, photonTransferIso(sensor, options)};
   const std::uint64_t seed = photonTransferSeed(sensor, options);
   auto frame = [&](double muP, std::uint64_t index) {

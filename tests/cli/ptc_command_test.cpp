@@ -146,5 +146,36 @@ TEST(PtcBinary, BadSensorExitsTwoWithALocatedMessageAndWritesNothing) {
   EXPECT_EQ(camsim("", "ptc --help", dir.path()).exitCode, 0);
 }
 
+// Sensors the description allows but that give no photon-transfer curve: a full well of
+// 1e-30 e⁻ (every level clipped: NaN in the table, and the plot script failed with exit 1)
+// and a stacked xyz layout (no photosite of one channel: a check failed, exit 134). Both
+// exit 2 naming the sensor, and write no file (found by probing).
+TEST(PtcBinary, SensorsWithoutACurveExitTwoAndWriteNothing) {
+  TempDir dir;
+  std::string text = readFile(fs::path(CAMSIM_LUTS_DIR) / "sensors" / "smartphone-1.4um.yaml");
+  const std::size_t at = text.find("full_well_e: ");
+  ASSERT_NE(at, std::string::npos);
+  const std::size_t end = text.find('\n', at);
+  text.replace(at, end - at, "full_well_e: 1e-30");
+  const fs::path tiny = dir.path() / "tiny_well.yaml";
+  test::writeFile(tiny, text);
+  const fs::path stacked = dir.path() / "stacked.yaml";
+  test::writeFile(stacked, R"({"pixel_pitch_um": 2, "qe": {"ideal_xyz": true}, "cfa": "xyz"})");
+  const struct {
+    fs::path sensor;
+    const char* says;
+  } cases[] = {{tiny, "gives no photon-transfer curve"}, {stacked, "no photosites of channel"}};
+  for (const auto& c : cases) {
+    const fs::path out = dir.path() / ("ptc_" + c.sensor.stem().string());
+    const RunResult r =
+        camsim("", "ptc " + quote(c.sensor.string()) + " -o " + quote(out.string()), dir.path());
+    EXPECT_EQ(r.exitCode, 2) << r.err;
+    EXPECT_NE(r.err.find(c.says), std::string::npos) << r.err;
+    EXPECT_EQ(r.err.find("internal error"), std::string::npos) << r.err;
+    // The folder is made before measuring (an unwritable one fails first); no file in it.
+    EXPECT_TRUE(!fs::exists(out) || fs::is_empty(out)) << out;
+  }
+}
+
 }  // namespace
 }  // namespace camsim
