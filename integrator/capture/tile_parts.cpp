@@ -152,10 +152,9 @@ ReadPart readPart(const std::filesystem::path& file) {
                          "no channel " + std::string(kPrefixes[i]) + (*lists[i])[c]);
       for (std::size_t px = 0; px < image.pixels.size() / n; ++px) {
         const float v = exr.image.pixels[px * m + static_cast<std::size_t>(from)];
-        // A render writes finite film, sensor and half-sample values (it rejects non-finite
-        // samples); one that is not would pass into every merged image. AOVs are the
-        // render's own (their conventions: output.md) and are copied as they are.
-        if (i != 2 && !std::isfinite(v))
+        // A render writes finite values only (it rejects non-finite samples; an AOV pixel
+        // no sample hit holds 0: output.md); one that is not would pass into the merge.
+        if (!std::isfinite(v))
           throw InputError(
               {file.string(), 0, 0}, std::string(kPrefixes[i]) + (*lists[i])[c],
               "pixel (" + std::to_string(px % static_cast<std::size_t>(h.resolution.x)) + ", " +

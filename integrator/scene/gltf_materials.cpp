@@ -26,6 +26,7 @@
 //   uv' = R(r) · (uv ⊙ s) + (o.x + s.y sin r, 1 − o.y − s.y cos r)
 // with R(r) the counter-clockwise rotation in camsim's (u, v) (TextureDescription::
 // uvRotation): the same turn of the image as glTF's counter-clockwise one.
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <tuple>
@@ -246,7 +247,10 @@ std::optional<EmissionDescription> gltfEmission(const GltfInclude& inc, int mate
                      "emissiveFactor × emissiveStrength × the include's emissive_luminance give " +
                          formatNumber(target) + " cd/m², above the 1e15 cd/m² an emitter may have");
   EmissionDescription d;
-  const Spectrum shape = rgbToEmissionShape(e, RgbColorSpace::linearRec709());
+  // The colour's shape from e scaled to a largest component of 1 (e itself may be ~1e300:
+  // the float spectrum overflowed); the luminance is applied next.
+  const double largest = std::max({e.r, e.g, e.b});
+  const Spectrum shape = rgbToEmissionShape(e / largest, RgbColorSpace::linearRec709());
   d.radiance = shape * (inc.emissiveLuminance * lumaOf(e) / luminance(shape));
   d.twoSided = m.doubleSided;
   return d;

@@ -174,39 +174,79 @@ std::unique_ptr<Shape> buildShape(const SceneDescription& d, const ShapeDescript
   return std::make_unique<MeshInstance>(instanced, poses, steps, s.emission.has_value());
 }
 
+namespace {
+
+// One transform Embree moves rays by (see checkInstanceRanges): its linear part must invert
+// in float (|det A| ≥ kMinInstanceDeterminant: Embree inverts in single precision through the
+// determinant, and past FLT_MIN the instance silently vanishes) and keep every ray inside
+// Embree's range. label: the shape's key; when: "" or " at its keyframe at t = … s".
+void checkInstanceTransform(const SceneDescription& d, const std::string& label,
+                            const glm::dmat4& x, double reach, const std::string& when) {
+  const glm::dmat3 a{x};
+  const double det = glm::determinant(a);
+  const glm::dmat3 inv = glm::inverse(a);
+  double norm = 0.0;  // ‖A⁻¹‖∞, the largest row sum: about 1 / the smallest scale
+  for (int r = 0; r < 3; ++r)
+    norm = std::max(norm, std::abs(inv[0][r]) + std::abs(inv[1][r]) + std::abs(inv[2][r]));
+  const double t = std::max({std::abs(x[3][0]), std::abs(x[3][1]), std::abs(x[3][2])});
+  const double far = 2.0 * norm * (reach + t);  // origin and direction (|d| ≤ 2 R) there
+  if (std::isfinite(det) && std::abs(det) >= kMinInstanceDeterminant && std::isfinite(far) &&
+      far <= kMaxInstanceReach)
+    return;
+  throw InputError(
+      {d.sourceFile, 0, 0}, label,
+      "a keyframe or placement scale too small for the tracer" + when +
+          ": it scales the shape by about " + formatNumber(norm > 0.0 ? 1.0 / norm : 0.0) +
+          " (relative to its largest keyframe scale, for a moving mesh), and a "
+          "transform must keep |det| ≥ " +
+          formatNumber(kMinInstanceDeterminant) +
+          " (a uniform scale of at least 1e-10) and, in a scene reaching " + formatNumber(reach) +
+          " m (shapes, lights, camera), keep rays within " + formatNumber(kMaxInstanceReach) +
+          " m in the shape's own space (limits kMinInstanceDeterminant, "
+          "kMaxInstanceReach)");
+}
+
+}  // namespace
+
 void checkInstanceRanges(const SceneDescription& d,
                          const std::vector<std::unique_ptr<Shape>>& shapes, glm::vec3 lower,
                          glm::vec3 upper) {
+  // Every ray starts within the geometry's bounds, at the camera or towards a point or spot
+  // light (a shadow ray's direction is as long as the way to the light).
   double reach = 1.0;
-  if (lower.x <= upper.x)
-    for (int a = 0; a < 3; ++a)
-      reach = std::max({reach, std::abs(static_cast<double>(lower[a])),
-                        std::abs(static_cast<double>(upper[a]))});
+  const auto extend = [&](const glm::dvec3& p) {
+    reach = std::max({reach, std::abs(p.x), std::abs(p.y), std::abs(p.z)});
+  };
+  if (lower.x <= upper.x) {
+    extend(glm::dvec3(lower));
+    extend(glm::dvec3(upper));
+  }
+  for (const LightDescription& l : d.lights) extend(glm::dvec3(l.position));
+  for (const Keyframe& k : d.camera.motion.keys()) extend(k.translate);
   for (size_t i = 0; i < shapes.size() && i < d.shapes.size(); ++i) {
+    const ShapeDescription& s = d.shapes[i];
+    // What Embree gets for this exposure window.
     std::vector<glm::mat4> transforms = shapes[i]->instanceMotion().steps;
-    if (const auto* instance = dynamic_cast<const MeshInstance*>(shapes[i].get()))
-      if (transforms.empty()) transforms.push_back(instance->placement());
-    for (const glm::mat4& x : transforms) {
-      const glm::dmat3 a{glm::dmat4(x)};
-      const glm::dmat3 inv = glm::inverse(a);
-      double norm = 0.0;  // ‖A⁻¹‖∞, the largest row sum
-      for (int r = 0; r < 3; ++r)
-        norm = std::max(norm, std::abs(inv[0][r]) + std::abs(inv[1][r]) + std::abs(inv[2][r]));
-      const double t =
-          std::max({std::abs(static_cast<double>(x[3][0])), std::abs(static_cast<double>(x[3][1])),
-                    std::abs(static_cast<double>(x[3][2]))});
-      const double far = norm * (reach + t);
-      if (!(std::isfinite(glm::determinant(a)) && glm::determinant(a) != 0.0 &&
-            far <= kMaxInstanceReach))
-        throw InputError(
-            {d.sourceFile, 0, 0}, d.shapes[i].label,
-            "a keyframe scale or placement scales the shape by as little as " +
-                formatNumber(norm > 0.0 ? 1.0 / norm : 0.0) + ": rays from a scene reaching " +
-                formatNumber(reach) + " m would reach " + formatNumber(far) +
-                " m in the shape's own space, past the " + formatNumber(kMaxInstanceReach) +
-                " m Embree traces there (limit kMaxInstanceReach); here a scale "
-                "must be at least " +
-                formatNumber((reach + t) / kMaxInstanceReach));
+    const auto* instance = dynamic_cast<const MeshInstance*>(shapes[i].get());
+    if (instance && transforms.empty()) transforms.push_back(instance->placement());
+    for (const glm::mat4& x : transforms)
+      checkInstanceTransform(d, s.label, glm::dmat4(x), reach, "");
+    // And what it could get for any other window (a sequence's later frame, a re-exposed
+    // bracket): an instance at each keyframe; a moving mesh baked at one keyframe's pose and
+    // moved to another's. Checked at the first build, before anything is written.
+    if (s.kind != ShapeDescription::Kind::kMesh || s.motion.empty()) continue;
+    const std::vector<Keyframe>& keys = s.motion.keys();
+    for (const Keyframe& k : keys) {
+      const glm::dmat4 pose = s.motion.at(k.time);
+      const std::string when = " at its keyframe at t = " + formatNumber(k.time) + " s";
+      if (instance) {
+        checkInstanceTransform(d, s.label, pose * s.placement, reach, when);
+        continue;
+      }
+      for (const Keyframe& other : keys)  // baked at a pose of a larger scale (motion.h)
+        if (other.scale >= k.scale)
+          checkInstanceTransform(d, s.label, pose * glm::inverse(s.motion.at(other.time)), reach,
+                                 when);
     }
   }
 }

@@ -34,16 +34,19 @@ std::unique_ptr<Shape> buildShape(const SceneDescription& d, const ShapeDescript
 
 // After the shapes' BVH is built, with its bounds [lower, upper] (render space, m; lower >
 // upper for no geometry): every transform Embree moves rays by (a moving mesh's time steps,
-// an instance's placement) must keep the rays inside the range Embree traces. Embree moves
-// a ray into the shape's space with the inverse transform and refuses (asserts on) a ray
-// whose coordinates there pass ±1.8e18; rays start within the bounds or at the camera (the
-// render origin), so ‖A⁻¹‖∞ (R + |t|∞) ≤ kMaxInstanceReach is required, R the bounds' largest
-// coordinate (at least 1 m), A the transform's linear part and t its translation. The margin
-// of 1e16 against 1.8e18 covers the transforms Embree interpolates between time steps. An
-// InputError names the shape (a keyframe or placement scale about 1e-16 of the scene's size).
+// an instance's placement; and, for any exposure window, those at the shape's keyframes)
+// must be one Embree can invert and trace through. Embree inverts it in float through its
+// determinant (below FLT_MIN the instance silently vanishes: |det A| ≥
+// kMinInstanceDeterminant) and refuses (asserts on) a ray whose origin or direction in the
+// shape's space passes ±1.8e18; rays start within the bounds, at the camera, or head for a
+// point or spot light (a shadow ray's direction is as long as the way there), so
+// 2 ‖A⁻¹‖∞ (R + |t|∞) ≤ kMaxInstanceReach, R the largest coordinate of those (at least 1 m),
+// A the linear part and t the translation. The margin of 1e16 against 1.8e18 covers the
+// transforms Embree interpolates between time steps. An InputError names the shape.
 void checkInstanceRanges(const SceneDescription& d,
                          const std::vector<std::unique_ptr<Shape>>& shapes, glm::vec3 lower,
                          glm::vec3 upper);
-inline constexpr double kMaxInstanceReach = 1e16;  // m in a shape's own space
+inline constexpr double kMaxInstanceReach = 1e16;         // m in a shape's own space
+inline constexpr double kMinInstanceDeterminant = 1e-30;  // |det| of a transform's linear part
 
 }  // namespace camsim

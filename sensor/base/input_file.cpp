@@ -22,6 +22,13 @@ std::string readInputFile(const std::filesystem::path& path, const std::string& 
   if (!std::filesystem::is_regular_file(status) && !std::filesystem::is_fifo(status))
     throw InputError({name, 0, 0}, "",
                      "cannot read " + what + ": not a regular file or a pipe (a device?)");
+  if (std::filesystem::is_regular_file(status)) {  // a pipe's size is known only at its end
+    const std::uintmax_t size = std::filesystem::file_size(path, ec);
+    if (!ec && size > maxBytes)
+      throw InputError({name, 0, 0}, "",
+                       what + " is larger than " + formatNumber(static_cast<double>(maxBytes)) +
+                           " bytes (limit kMaxInputFileBytes)");
+  }
   const auto closer = [](std::FILE* f) { std::fclose(f); };
   const std::unique_ptr<std::FILE, decltype(closer)> file(std::fopen(name.c_str(), "rb"), closer);
   if (!file) throw InputError({name, 0, 0}, "", "cannot open " + what);

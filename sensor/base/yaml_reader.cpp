@@ -285,6 +285,9 @@ std::optional<Bracket> unclosedBracket(const std::string& text, size_t end) {
 
 // yaml-cpp 0.7 accepts a quoted scalar left open when the text ends with a line break: the
 // scalar swallows the rest of the file. Check that every quoted scalar is closed.
+// At least this many nodes, aliases expanded, are always allowed (a few seconds' walk).
+constexpr std::size_t kMaxYamlNodes = 50000000;
+
 // visits: the nodes seen so far, aliases expanded (an alias is its anchor's whole tree again);
 // at most maxVisits. A text of n bytes holds at most about n nodes; aliases nested k deep,
 // each used m times, expand to m^k (the "billion laughs": nine levels of ten took minutes,
@@ -295,7 +298,9 @@ void checkQuotesClosed(const YAML::Node& node, const std::string& text, const st
   if (++visits > maxVisits)
     throw InputError({file, 1, 1}, "",
                      "the YAML aliases (*name) expand to more than " + std::to_string(maxVisits) +
-                         " nodes: aliases of aliases nested this deep are not a scene");
+                         " nodes (aliases used very many times, or nested in one another; "
+                         "limit kMaxYamlNodes or 64 per byte of text): place a repeated mesh "
+                         "with `instances:` instead");
   if (node.IsMap()) {
     for (auto it = node.begin(); it != node.end(); ++it) {
       checkQuotesClosed(it->first, text, file, visits, maxVisits);
@@ -401,7 +406,7 @@ YamlValue parseYaml(const std::string& text, const std::string& file) {
   }
   if (!first) return YamlValue(YAML::Node(), "", file);
   std::size_t visits = 0;
-  checkQuotesClosed(first, text, file, visits, 64 * text.size() + 1000000);
+  checkQuotesClosed(first, text, file, visits, std::max(64 * text.size(), kMaxYamlNodes));
   // YAML::Load alone would silently drop everything after a second '---'.
   for (size_t i = 1; i < counter.documents.size(); ++i) {
     if (counter.documents[i].hasContent) {

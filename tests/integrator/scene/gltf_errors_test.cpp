@@ -13,6 +13,7 @@
 #include "integrator/scene/gltf_document.h"
 #include "integrator/scene/scene_loader.h"
 #include "sensor/base/input_error.h"
+#include "sensor/spectra/cie.h"
 #include "tests/integrator/scene/gltf_test_support.h"
 
 namespace camsim {
@@ -357,7 +358,8 @@ TEST(GltfErrors, NumberBeyondDoubleRangeIsAnInputError) {
 // emitter's luminance is held to the scene format's 1e15 cd/m², a negative factor refused,
 // both named by JSON path; a bright but finite one (1e12 cd/m²) still loads.
 TEST(GltfErrors, EmissionBeyondTheSceneLimitIsRefused) {
-  const auto load = [](const std::string& name, const std::string& material) {
+  const auto load = [](const std::string& name, const std::string& material,
+                       const std::string& option = "") {
     test::GltfBuilder b;
     b.floats({0, 0, 0, 1, 0, 0, 0, 1, 0}, "VEC3");
     const fs::path dir = scratch(name);
@@ -368,7 +370,8 @@ TEST(GltfErrors, EmissionBeyondTheSceneLimitIsRefused) {
                material + "]"));
     return loadSceneFromText(
         "camera: {position: [0, 0, 5], look_at: [0, 0, 0], resolution: [8, 8]}\n"
-        "include:\n  - gltf: tri.gltf\n",
+        "include:\n  - gltf: tri.gltf\n" +
+            option,
         "emit.yaml", dir);
   };
   const struct {
@@ -397,6 +400,18 @@ TEST(GltfErrors, EmissionBeyondTheSceneLimitIsRefused) {
                  R"({"emissiveStrength":1e10}}})");
   ASSERT_EQ(bright.shapes.size(), 1u);
   EXPECT_TRUE(bright.shapes[0].emission.has_value());
+  // A strength of 1e300 against an emissive_luminance of 1e-300 is 1 cd/m²: the colour's
+  // shape is taken from the normalised factor (from e itself its float spectrum overflowed
+  // and a light's weight went negative: a failed check, exit 134).
+  const SceneDescription balanced =
+      load("emit_balanced",
+           R"({"emissiveFactor":[1,0.5,0.25],"extensions":{"KHR_materials_emissive_strength":)"
+           R"({"emissiveStrength":1e300}}})",
+           "    emissive_luminance: 1e-300\n");
+  ASSERT_EQ(balanced.shapes.size(), 1u);
+  ASSERT_TRUE(balanced.shapes[0].emission.has_value());
+  const double y = luminance(balanced.shapes[0].emission->radiance);
+  EXPECT_NEAR(y, 1e-300 * 1e300 * (0.2126 + 0.7152 * 0.5 + 0.0722 * 0.25), 1e-3) << y;
 }
 
 }  // namespace
