@@ -31,22 +31,26 @@ double parsePsfNumber(const std::string& flag, const std::string& text) {
   return v;
 }
 
+// A field or wavelength as it appears in the output files' names: %g, 6 significant digits.
+std::string psfNumberText(double v) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%g", v);
+  return buffer;
+}
+
 std::vector<double> parsePsfList(const std::string& flag, const std::string& text) {
   std::vector<double> values;
   std::size_t start = 0;
   while (true) {
     const std::size_t comma = text.find(',', start);
     values.push_back(parsePsfNumber(flag, text.substr(start, comma - start)));
-    // Each value names files (psf_f<F>_<λ>nm, %g: 6 significant digits): two that print
-    // alike would write the same files twice.
-    char mine[32], other[32];
-    std::snprintf(mine, sizeof mine, "%g", values.back());
-    for (std::size_t i = 0; i + 1 < values.size(); ++i) {
-      std::snprintf(other, sizeof other, "%g", values[i]);
-      if (std::string(mine) == other)
+    // Each value names files (psfEntryName): two that print alike would write the same
+    // files twice.
+    const std::string mine = psfNumberText(values.back());
+    for (std::size_t i = 0; i + 1 < values.size(); ++i)
+      if (psfNumberText(values[i]) == mine)
         throw UsageError(flag + ": " + mine + " is given twice (values name the output files, " +
                          "to 6 significant digits)");
-    }
     if (comma == std::string::npos) return values;
     start = comma + 1;
   }
@@ -181,9 +185,7 @@ JsonObject psfEntryJson(const PsfImage& psf, const std::string& name) {
 }  // namespace
 
 std::string psfEntryName(double field, double wavelengthNm) {
-  char buffer[96];
-  std::snprintf(buffer, sizeof buffer, "psf_f%g_%gnm", field, wavelengthNm);
-  return buffer;
+  return "psf_f" + psfNumberText(field) + "_" + psfNumberText(wavelengthNm) + "nm";
 }
 
 std::string psfUsageText() {

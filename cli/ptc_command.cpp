@@ -31,20 +31,22 @@ namespace {
 // would be NaN and the plot script failed (exit 1; found by probing). Refused before
 // anything is written, naming the sensor's file.
 void requireUsableMeasurement(const PtcResult& m, const SensorSpec& sensor, double iso) {
+  const auto refuse = [&](const std::string& measured) {
+    return InputError(
+        {sensor.sourceFiles.empty() ? sensor.name : sensor.sourceFiles.front().string(), 0, 0}, "",
+        "at ISO " + formatShortest(iso) + " this sensor gives no photon-transfer curve (" +
+            measured +
+            "): its exposures clip or read black before they vary; check full_well_e, "
+            "conversion_gain_e_per_dn, read_noise_e, black_level_dn and the defects");
+  };
+  if (m.gainFitCount < 2) throw refuse(std::to_string(m.gainFitCount) + " levels in the gain fit");
   const std::pair<const char*, double> checks[] = {{"system gain K", m.systemGainK},
                                                    {"quantum efficiency", m.quantumEfficiency},
                                                    {"saturation μ_p.sat", m.muPSat},
                                                    {"SNR maximum", m.snrMax}};
   for (const auto& [what, value] : checks)
-    if (!std::isfinite(value) || !(value > 0.0) || m.gainFitCount < 2)
-      throw InputError(
-          {sensor.sourceFiles.empty() ? sensor.name : sensor.sourceFiles.front().string(), 0, 0},
-          "",
-          "at ISO " + formatShortest(iso) + " this sensor gives no photon-transfer curve (" + what +
-              " measured as " + formatShortest(value) + ", " + std::to_string(m.gainFitCount) +
-              " levels in the gain fit): its exposures clip or read black before they "
-              "vary; check full_well_e, conversion_gain_e_per_dn, read_noise_e, "
-              "black_level_dn and the defects");
+    if (!std::isfinite(value) || !(value > 0.0))
+      throw refuse(std::string(what) + " measured as " + formatShortest(value));
 }
 
 // Fixed with an explicit sign (deviations: "+0.12").

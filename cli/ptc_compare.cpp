@@ -5,11 +5,9 @@
 // per ISO for the plot, is not compared). Quantities whose value is null
 // (not measurable: the σ_pre/σ_post split with too few ISOs) in both are skipped.
 #include <cmath>
-#include <fstream>
 #include <limits>
 #include <optional>
 #include <ostream>
-#include <sstream>
 
 #include "cli/ptc_report.h"
 #include "sensor/base/format.h"

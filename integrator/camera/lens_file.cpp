@@ -1,14 +1,12 @@
 #include "integrator/camera/lens_file.h"
-#include "sensor/base/input_file.h"
 
 #include <cctype>
 #include <charconv>
 #include <cmath>
-#include <fstream>
 #include <map>
-#include <sstream>
 
 #include "sensor/base/input_error.h"
+#include "sensor/base/input_file.h"
 #include "sensor/base/luts_directory.h"
 #include "sensor/spectra/spectral_data.h"
 

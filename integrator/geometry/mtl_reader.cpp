@@ -15,11 +15,9 @@
 
 #include "integrator/geometry/mesh_io.h"
 #include "sensor/base/input_error.h"
+#include "sensor/base/input_file.h"
 
 namespace camsim {
-namespace mesh_io_detail {
-std::string readWholeFile(const std::filesystem::path& path);  // mesh_io.cpp
-}
 
 namespace {
 
@@ -268,7 +266,7 @@ MtlLibrary parseMtl(std::string_view text, const std::string& sourceName) {
 }
 
 MtlLibrary readMtl(const std::filesystem::path& path) {
-  const std::string text = mesh_io_detail::readWholeFile(path);
+  const std::string text = readInputFile(path, "material library");
   return parseMtl(text, path.string());
 }
 

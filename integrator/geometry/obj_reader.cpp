@@ -34,11 +34,9 @@
 
 #include "integrator/geometry/mesh_io.h"
 #include "sensor/base/input_error.h"
+#include "sensor/base/input_file.h"
 
 namespace camsim {
-namespace mesh_io_detail {
-std::string readWholeFile(const std::filesystem::path& path);  // mesh_io.cpp
-}
 
 namespace {
 
@@ -364,7 +362,7 @@ MeshData parseObj(std::string_view text, const std::string& sourceName,
 }
 
 MeshData readObj(const std::filesystem::path& path, const MeshPlacement& placement) {
-  const std::string text = mesh_io_detail::readWholeFile(path);
+  const std::string text = readInputFile(path, "mesh file");
   return parseObj(text, path.string(), placement);
 }
 

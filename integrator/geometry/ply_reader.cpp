@@ -22,11 +22,9 @@
 #include "integrator/geometry/mesh_io.h"
 #include "integrator/geometry/ply_values.h"
 #include "sensor/base/input_error.h"
+#include "sensor/base/input_file.h"
 
 namespace camsim {
-namespace mesh_io_detail {
-std::string readWholeFile(const std::filesystem::path& path);  // mesh_io.cpp
-}
 
 // The reader's steps join ply_values.h's namespace (not an anonymous one, whose names a
 // unity build would share with the files compiled beside this one).
@@ -367,7 +365,7 @@ MeshData parsePly(std::string_view bytes, const std::string& sourceName,
 }
 
 MeshData readPly(const std::filesystem::path& path, const MeshPlacement& placement) {
-  const std::string bytes = mesh_io_detail::readWholeFile(path);
+  const std::string bytes = readInputFile(path, "mesh file");
   return parsePly(bytes, path.string(), placement);
 }
 

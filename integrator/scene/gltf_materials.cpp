@@ -251,7 +251,7 @@ std::optional<EmissionDescription> gltfEmission(const GltfInclude& inc, int mate
   // the float spectrum overflowed); the luminance is applied next.
   const double largest = std::max({e.r, e.g, e.b});
   const Spectrum shape = rgbToEmissionShape(e / largest, RgbColorSpace::linearRec709());
-  d.radiance = shape * (inc.emissiveLuminance * lumaOf(e) / luminance(shape));
+  d.radiance = shape * (target / luminance(shape));
   d.twoSided = m.doubleSided;
   return d;
 }

@@ -1,15 +1,12 @@
 #include "integrator/scene/scene_loader.h"
-#include "sensor/base/input_file.h"
 
 #include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <cstdlib>
-#include <fstream>
 #include <map>
 #include <optional>
 #include <set>
-#include <sstream>
 
 #include <glm/geometric.hpp>
 
@@ -19,6 +16,7 @@
 #include "sensor/base/file_status.h"
 #include "sensor/base/fnv1a.h"
 #include "sensor/base/format.h"
+#include "sensor/base/input_file.h"
 #include "sensor/base/yaml_reader.h"
 #include "sensor/spectra/cie.h"
 #include "sensor/spectra/spectral_data.h"

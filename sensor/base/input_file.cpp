@@ -22,12 +22,14 @@ std::string readInputFile(const std::filesystem::path& path, const std::string& 
   if (!std::filesystem::is_regular_file(status) && !std::filesystem::is_fifo(status))
     throw InputError({name, 0, 0}, "",
                      "cannot read " + what + ": not a regular file or a pipe (a device?)");
+  const auto tooLarge = [&] {
+    return InputError({name, 0, 0}, "",
+                      what + " is larger than " + formatNumber(static_cast<double>(maxBytes)) +
+                          " bytes (limit kMaxInputFileBytes)");
+  };
   if (std::filesystem::is_regular_file(status)) {  // a pipe's size is known only at its end
     const std::uintmax_t size = std::filesystem::file_size(path, ec);
-    if (!ec && size > maxBytes)
-      throw InputError({name, 0, 0}, "",
-                       what + " is larger than " + formatNumber(static_cast<double>(maxBytes)) +
-                           " bytes (limit kMaxInputFileBytes)");
+    if (!ec && size > maxBytes) throw tooLarge();
   }
   const auto closer = [](std::FILE* f) { std::fclose(f); };
   const std::unique_ptr<std::FILE, decltype(closer)> file(std::fopen(name.c_str(), "rb"), closer);
@@ -37,10 +39,7 @@ std::string readInputFile(const std::filesystem::path& path, const std::string& 
   while (true) {
     const std::size_t got = std::fread(buffer, 1, sizeof buffer, file.get());
     if (got > 0) {
-      if (bytes.size() + got > maxBytes)
-        throw InputError({name, 0, 0}, "",
-                         what + " is larger than " + formatNumber(static_cast<double>(maxBytes)) +
-                             " bytes (limit kMaxInputFileBytes)");
+      if (bytes.size() + got > maxBytes) throw tooLarge();
       bytes.append(buffer, got);
     }
     if (got < sizeof buffer) break;

@@ -1,15 +1,13 @@
 #include "sensor/model/sensor_spec.h"
-#include "sensor/base/input_file.h"
 
 #include <algorithm>
 #include <cctype>
 #include <cmath>
-#include <fstream>
 #include <set>
-#include <sstream>
 
 #include "sensor/base/file_status.h"
 #include "sensor/base/input_error.h"
+#include "sensor/base/input_file.h"
 #include "sensor/base/table_search.h"
 #include "sensor/base/yaml_reader.h"
 #include "sensor/spectra/cie.h"

@@ -1,12 +1,10 @@
 #include "sensor/spectra/spectral_data.h"
-#include "sensor/base/input_file.h"
 
 #include <charconv>
 #include <cmath>
-#include <fstream>
-#include <sstream>
 
 #include "sensor/base/input_error.h"
+#include "sensor/base/input_file.h"
 
 namespace camsim {
 namespace {
