@@ -60,6 +60,13 @@ struct GltfImage {
   std::shared_ptr<const TextureImage> texels;
 };
 
+// The JSON paths, below a material's, of the extension values camsim reads.
+inline constexpr const char* kEmissiveStrengthKey =
+    ".extensions.KHR_materials_emissive_strength.emissiveStrength";
+inline constexpr const char* kTransmissionKey =
+    ".extensions.KHR_materials_transmission.transmissionFactor";
+inline constexpr const char* kIorKey = ".extensions.KHR_materials_ior.ior";
+
 struct GltfMaterial {
   enum class AlphaMode { kOpaque, kMask, kBlend };
   std::string name, path;

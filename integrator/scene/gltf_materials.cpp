@@ -34,6 +34,7 @@
 #include <glm/geometric.hpp>
 
 #include "integrator/scene/gltf_convert.h"
+#include "integrator/scene/scene_loader.h"
 #include "integrator/textures/texture_encoding.h"
 #include "sensor/base/format.h"
 #include "sensor/base/input_error.h"
@@ -239,13 +240,16 @@ std::optional<EmissionDescription> gltfEmission(const GltfInclude& inc, int mate
              std::to_string(mean.b / n) + ") scales emissiveFactor");
   }
   if (!(lumaOf(e) > 0.0)) return std::nullopt;
-  // The scene format's limit on an emitter's luminance (scene_loader.cpp): past it a float
-  // spectrum overflows, and every path that sees the shape is infinite.
+  // The scene format's limit on an emitter's luminance (SceneLimits): past it a float
+  // spectrum overflows, and every path that sees the shape is infinite. The error names the
+  // strength when it is what lifted the factor past 1.
   const double target = inc.emissiveLuminance * lumaOf(e);
-  if (!(target <= 1e15))
-    throw InputError({inc.doc.file.string(), 0, 0}, m.path + ".emissiveFactor",
+  if (!(target <= SceneLimits::kMaxLuminance))
+    throw InputError({inc.doc.file.string(), 0, 0},
+                     m.path + (m.emissiveStrength > 1.0 ? kEmissiveStrengthKey : ".emissiveFactor"),
                      "emissiveFactor × emissiveStrength × the include's emissive_luminance give " +
-                         formatNumber(target) + " cd/m², above the 1e15 cd/m² an emitter may have");
+                         formatNumber(target) + " cd/m², above the " +
+                         formatNumber(SceneLimits::kMaxLuminance) + " cd/m² an emitter may have");
   EmissionDescription d;
   // The colour's shape from e scaled to a largest component of 1 (e itself may be ~1e300:
   // the float spectrum overflowed); the luminance is applied next.

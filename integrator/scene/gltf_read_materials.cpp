@@ -117,16 +117,16 @@ void readGltfMaterials(const tinygltf::Model& model, GltfDocument& doc, const st
         g.otherExtensions.push_back(ext);
     }
     for (const auto& [key, v] : std::initializer_list<std::pair<const char*, double>>{
-             {"metallicFactor", g.metallicFactor},
-             {"roughnessFactor", g.roughnessFactor},
-             {"alphaCutoff", g.alphaCutoff},
-             {"emissiveStrength", g.emissiveStrength},
-             {"ior", g.ior}})
+             {".pbrMetallicRoughness.metallicFactor", g.metallicFactor},
+             {".pbrMetallicRoughness.roughnessFactor", g.roughnessFactor},
+             {".alphaCutoff", g.alphaCutoff},
+             {kEmissiveStrengthKey, g.emissiveStrength},
+             {kTransmissionKey, g.transmission},
+             {kIorKey, g.ior}})
       if (!std::isfinite(v) || v < 0.0)
-        throw InputError({name, 0, 0}, g.path + "." + key, "must be a finite number >= 0");
+        throw InputError({name, 0, 0}, g.path + key, "must be a finite number >= 0");
     if (g.ior < 1.0 && g.ior != 0.0)
-      throw InputError({name, 0, 0}, g.path + ".extensions.KHR_materials_ior.ior",
-                       "must be >= 1 (or 0)");
+      throw InputError({name, 0, 0}, g.path + kIorKey, "must be >= 1 (or 0)");
     doc.materials.push_back(std::move(g));
   }
 }

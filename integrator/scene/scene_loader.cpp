@@ -148,7 +148,7 @@ EmissionDescription parseEmission(YamlMap map, const Context& ctx) {
   const auto scale = map.find("scale");
   if (lum && scale) scale->fail("give either luminance (cd/m²) or scale, not both");
   if (lum) {
-    const double target = lum->number(0.0, 1e15);
+    const double target = lum->number(0.0, SceneLimits::kMaxLuminance);
     const double shapeLuminance = luminance(shape);
     if (target > 0.0 && !(shapeLuminance > 0.0))
       (spectrum ? *spectrum : *lum)

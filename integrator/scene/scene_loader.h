@@ -31,6 +31,9 @@ struct SceneLimits {
   // Embree refuses rays whose origin or direction exceeds ~1.8e18 in any component.
   static constexpr double kMaxCoordinate = 1e15;
   static constexpr std::size_t kMaxNameBytes = 128;  // the scene's name (output file stem)
+  // An emitter's luminance, cd/m² (scene emission and glTF emission alike): past it a float
+  // spectrum overflows and every path that sees the shape is infinite.
+  static constexpr double kMaxLuminance = 1e15;
   // A sphere's radius, m: Embree squares it in single precision.
   static constexpr double kMinSphereRadius = 1e-9;
   // A sun disc's angular diameter (°) when not 0: smaller discs are lost to float rounding

@@ -381,7 +381,7 @@ TEST(GltfErrors, EmissionBeyondTheSceneLimitIsRefused) {
       {R"({"emissiveFactor":[1e38,1e38,1e38]})", "materials[0].emissiveFactor"},
       {R"({"emissiveFactor":[1,1,1],"extensions":{"KHR_materials_emissive_strength":)"
        R"({"emissiveStrength":1e38}}})",
-       "materials[0].emissiveFactor"},
+       "materials[0].extensions.KHR_materials_emissive_strength.emissiveStrength"},
       {R"({"emissiveFactor":[1,-1,1]})", "materials[0].emissiveFactor[1]"},
   };
   int k = 0;
