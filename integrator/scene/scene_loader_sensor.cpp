@@ -57,6 +57,7 @@ SensorSettings parseSensorSettings(YamlMap map, const std::filesystem::path& bas
     if (s.bracketEv.empty() || s.bracketEv.size() > 16)
       b->fail("give 1 to 16 exposure offsets in stops");
     for (size_t i = 0; i < s.bracketEv.size(); ++i) {
+      s.bracketEv[i] += 0.0;  // -0 is +0: one exposure, one file name
       if (std::abs(s.bracketEv[i]) > 20.0) b->fail("exposure offsets must lie within ±20 stops");
       for (size_t j = 0; j < i; ++j)
         if (bracketSuffix(s.bracketEv[j]) == bracketSuffix(s.bracketEv[i]))

@@ -67,6 +67,10 @@ inline const ErrorCase kErrorCases[] = {
     {"BracketOffsetsNamingTheSameFiles",
      withShapes(kSphere) + "sensor: {model: smartphone-1.4um, bracket_ev: [0.1, 0.10000000001]}\n",
      8, 47, "sensor.bracket_ev", "name the same files (NAME_ev+0.1.dng"},
+    // 0 and -0 are one exposure; printed apart (_ev+0, _ev-0) they rendered it twice.
+    {"BracketOffsetsZeroAndNegativeZero",
+     withShapes(kSphere) + "sensor: {model: smartphone-1.4um, bracket_ev: [0, -0]}\n", 8, 47,
+     "sensor.bracket_ev", "name the same files (NAME_ev+0.dng"},
     {"MisspeltShapeKey",
      withShapes(kSphere +
                 "  - type: sphere\n    centre: [0, 0, 0]\n    radus: 1\n    material: m\n"),
