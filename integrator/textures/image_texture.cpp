@@ -94,6 +94,19 @@ TextureImage fromExr(const std::filesystem::path& file, TextureEncoding encoding
     }
     source = {grey};
   }
+  // A NaN or infinite texel has no reflectance, roughness or normal to give (NaN read as 0,
+  // +inf as 1 or an infinite roughness, silently): refused, named by texel and channel.
+  std::vector<int> used = source;
+  if (const int a = in.channelIndex("A"); a >= 0) used.push_back(a);
+  const size_t texelCount = static_cast<size_t>(in.width) * static_cast<size_t>(in.height);
+  for (size_t t = 0; t < texelCount; ++t)
+    for (const int c : used)
+      if (const float v = in.pixels[t * in.channels.size() + static_cast<size_t>(c)];
+          !std::isfinite(v))
+        fail(file, "texel (" + std::to_string(t % static_cast<size_t>(in.width)) + ", " +
+                       std::to_string(t / static_cast<size_t>(in.width)) + ") of channel " +
+                       in.channels[static_cast<size_t>(c)] + " is " + (std::isnan(v) ? "NaN" : "infinite") +
+                       ": a texture's values must be finite");
   TextureImage image;
   image.width = in.width;
   image.height = in.height;

@@ -7,9 +7,13 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
+#include <string>
+#include <vector>
 
 #include "integrator/scene/factory.h"
 #include "integrator/textures/image_texture.h"
+#include "sensor/base/input_error.h"
 #include "sensor/io/exr_io.h"
 #include "tests/integrator/texture_test_support.h"
 #include "tests/support/temp_dir.h"
@@ -76,6 +80,37 @@ TEST(ImageTextureChannels, GreyImagesAndExrAlpha) {
   }
   d.channel = -1;
   EXPECT_FLOAT_EQ(makeFloatTexture(d)->evaluate({0.25f, 0.5f}), 0.25f);  // mean of R, G, B
+}
+
+// Found by probing: a NaN texel read as 0 (a black surface, a mirror's roughness), +inf as a
+// reflectance of 1 or an infinite roughness, silently. Refused, named by texel and channel.
+TEST(ImageTextureChannels, NonFiniteExrTexelsAreRefused) {
+  test::TempDir dir;
+  const float inf = std::numeric_limits<float>::infinity();
+  const struct {
+    std::vector<std::string> channels;
+    int x, c;
+    float value;
+    const char* says;
+  } cases[] = {
+      {{"R", "G", "B"}, 1, 2, std::nanf(""), "texel (1, 0) of channel B is NaN"},
+      {{"R", "G", "B"}, 0, 0, inf, "texel (0, 0) of channel R is infinite"},
+      {{"Y"}, 1, 0, -inf, "texel (1, 0) of channel Y is infinite"},
+      {{"R", "G", "B", "A"}, 1, 3, std::nanf(""), "texel (1, 0) of channel A is NaN"},
+  };
+  for (const auto& k : cases) {
+    Image im(2, 1, k.channels);
+    im.at(k.x, 0, k.c) = k.value;
+    const auto file = dir.path() / "bad.exr";
+    writeExr(file, im, {}, std::nullopt);
+    try {
+      loadTextureImage(file, TextureEncoding::kRaw);
+      ADD_FAILURE() << k.says << ": loaded";
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.where().file, file.string());
+      EXPECT_NE(e.message().find(k.says), std::string::npos) << e.what();
+    }
+  }
 }
 
 }  // namespace
