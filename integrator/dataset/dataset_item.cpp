@@ -48,20 +48,26 @@ ResolvedItem resolveItem(const Manifest& manifest, const DatasetItem& item,
     edits.insert(edits.begin(), {"name", manifest.scene.stem().string(), item.where, "scene"});
   const EditedYaml edited = applyYamlEdits(manifest.sceneText, manifest.scene.string(), edits);
   r.sceneText = edited.text;
-  const std::string itemName = "item " + std::to_string(item.index);
+  r.edits = edits;
+  r.editPaths = edited.canonicalPaths;
+  r.where = item.where;
   // Stable across runs, shards and machines (it is written into the outputs).
   const std::string displayName = manifest.scene.filename().string() + " (dataset " +
-                                  manifest.file.filename().string() + ", " + itemName + ")";
+                                  manifest.file.filename().string() + ", item " +
+                                  std::to_string(item.index) + ")";
   try {
     r.description = loadSceneFromText(r.sceneText, displayName, sceneBaseDir(manifest.scene));
   } catch (const InputError& e) {
-    for (std::size_t k = edits.size(); k-- > 0;)
-      if (under(e.key(), edited.canonicalPaths[k]))
-        throw InputError(edits[k].where, edits[k].key,
-                         itemName + ": " + e.key() + " = " + edits[k].value + ": " + e.message());
-    throw InputError(item.where, e.key(),
-                     itemName + " (the base scene with this item's values): " + e.message());
+    throw r.manifestError(e);
   }
+  // An item's own files (item.json, params.json) beside the render's NAME.json: a scene
+  // named after one of them overwrote it, and item.json then listed a hash of the other.
+  for (const char* reserved : {"item", "params"})
+    if (r.description.name == reserved)
+      throw r.manifestError(InputError({displayName, 0, 0}, "name",
+                                       std::string("the name '") + reserved +
+                                           "' is taken by the item's own " + reserved +
+                                           ".json (docs/dataset-format.md): choose another"));
   std::map<std::string, std::string> last;
   for (std::size_t k = 0; k < edits.size(); ++k) {
     if (edited.canonicalPaths[k].empty() || edits[k].path == "name") continue;
@@ -74,6 +80,16 @@ ResolvedItem resolveItem(const Manifest& manifest, const DatasetItem& item,
     key += "\n" + f.string() + " " + fileContentHash(f);
   r.hash = fnv1aHex(key);
   return r;
+}
+
+InputError ResolvedItem::manifestError(const InputError& e) const {
+  const std::string itemName = "item " + std::to_string(index);
+  for (std::size_t k = edits.size(); k-- > 0;)
+    if (under(e.key(), editPaths[k]))
+      return InputError(edits[k].where, edits[k].key,
+                        itemName + ": " + e.key() + " = " + edits[k].value + ": " + e.message());
+  return InputError(where, e.key(),
+                    itemName + " (the base scene with this item's values): " + e.message());
 }
 
 }  // namespace camsim

@@ -4,7 +4,8 @@
 // Errors name the manifest: an error the loader reports at a key an edit set (or below it)
 // is reported at that edit's line in the manifest ("sweep.yaml:14:7: key
 // 'grid.camera.f_number': item 3: …"); any other error of an item names the item's manifest
-// entry and the scene key. The base scene alone is checked first, with its own lines.
+// entry and the scene key. The base scene alone is checked first, with its own lines. An
+// error found later, while the item renders, is mapped the same way (manifestError).
 #pragma once
 
 #include <string>
@@ -13,6 +14,8 @@
 
 #include "integrator/dataset/manifest.h"
 #include "integrator/scene/scene_description.h"
+#include "sensor/base/input_error.h"
+#include "sensor/base/yaml_edit.h"
 
 namespace camsim {
 
@@ -26,6 +29,14 @@ struct ResolvedItem {
   // every file it reads (meshes, textures, tables): a changed base scene, asset or option
   // changes it.
   std::string hash;
+  // What maps a loader's or a render's error back to the manifest (above).
+  std::vector<YamlEdit> edits;
+  std::vector<std::string> editPaths;  // each edit's canonical path (EditedYaml)
+  SourceLocation where;                // the item's manifest entry
+
+  // An error the scene loader or the render raised about the resolved scene, at the line in
+  // the manifest that set its key, or else at the item's entry.
+  InputError manifestError(const InputError& e) const;
 };
 
 // Checks that the base scene loads on its own (InputError with its own file:line).

@@ -115,6 +115,37 @@ void checkItems(const Manifest& manifest, const std::string& outputKey,
     if (e) std::rethrow_exception(e);
 }
 
+// A folder that holds another manifest's dataset is refused before anything is written
+// (found by probing: a second manifest's run into the folder left the first's items beside
+// its own, and two "item 0 done" lines in the index). The same manifest, by name or by
+// content, may run again — edited, with --resume keeping what is up to date — but not over
+// item folders past its item count, left by a longer earlier version.
+void checkEarlierRun(const Manifest& manifest, const fs::path& directory) {
+  const fs::path record = directory / "dataset.json";
+  std::error_code ec;
+  if (!fs::is_regular_file(record, ec)) return;
+  YamlMap earlier(parseYaml(readWholeFile(record), record.string()));
+  const YamlValue name = earlier.require("manifest");
+  const std::string hash = earlier.require("manifest_fnv1a64").string();
+  if (name.string() != manifest.file.filename().string() && hash != fnv1aHex(manifest.text))
+    name.fail("this folder holds the dataset of another manifest ('" + name.string() +
+              "'); write " + manifest.file.filename().string() +
+              "'s elsewhere (another --output) or remove this folder");
+  if (!fs::is_directory(directory / "items", ec)) return;
+  for (const auto& entry : fs::directory_iterator(directory / "items", ec)) {
+    const std::string folder = entry.path().filename().string();
+    if (folder.empty() || folder.size() > 18 ||
+        folder.find_first_not_of("0123456789") != std::string::npos)
+      continue;
+    if (std::stoull(folder) >= manifest.items.size())
+      throw InputError({entry.path().string(), 0, 0}, "",
+                       "an item this manifest does not have (it has " +
+                           std::to_string(manifest.items.size()) +
+                           " items), left by an earlier run: remove it, or write to another "
+                           "--output folder");
+  }
+}
+
 }  // namespace
 
 const char* itemStatusName(ItemStatus status) {
@@ -153,6 +184,7 @@ DatasetRunSummary runDataset(const Manifest& manifest, const DatasetRunOptions& 
   // Every item checked before anything is written or rendered.
   checkBaseScene(manifest);
   checkItems(manifest, outputKey, options);
+  checkEarlierRun(manifest, options.directory);
   std::vector<std::size_t> mine;
   for (const DatasetItem& item : manifest.items)
     if (options.shard.owns(item.index) && (!options.onlyItem || *options.onlyItem == item.index))
@@ -259,10 +291,10 @@ DatasetRunSummary runDataset(const Manifest& manifest, const DatasetRunOptions& 
       rendered = renderItem(work->item.description, *work, options, [&](double f) {
         if (options.progress) options.progress(finished, mine.size(), f);
       });
-    } catch (const InputError&) {
+    } catch (const InputError& e) {  // found while rendering (white balance, metering…)
       std::error_code ec;
       fs::remove_all(work->tmp, ec);
-      throw;
+      throw work->item.manifestError(e);
     } catch (const std::exception& e) {
       work->capture.reset();
       work->writer.reset();

@@ -105,7 +105,8 @@ TextureImage fromExr(const std::filesystem::path& file, TextureEncoding encoding
           !std::isfinite(v))
         fail(file, "texel (" + std::to_string(t % static_cast<size_t>(in.width)) + ", " +
                        std::to_string(t / static_cast<size_t>(in.width)) + ") of channel " +
-                       in.channels[static_cast<size_t>(c)] + " is " + (std::isnan(v) ? "NaN" : "infinite") +
+                       in.channels[static_cast<size_t>(c)] + " is " +
+                       (std::isnan(v) ? "NaN" : "infinite") +
                        ": a texture's values must be finite");
   TextureImage image;
   image.width = in.width;
