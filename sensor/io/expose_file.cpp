@@ -1,8 +1,12 @@
 // Re-exposure of a render's raw EXR (expose_file.h): read, check, expose, write.
 #include "sensor/io/expose_file.h"
 
+#include <cerrno>
 #include <cmath>
 #include <cstdlib>
+#include <limits>
+#include <optional>
+#include <string>
 #include <utility>
 
 #include "sensor/base/check.h"
@@ -43,11 +47,26 @@ double numberAttribute(const std::filesystem::path& file, const std::string& key
 std::optional<std::uint64_t> seedAttribute(const std::filesystem::path& file, const Metadata& m) {
   const std::string* text = findMetadata(m, "camsim:noise_seed");
   if (!text) return std::nullopt;
+  // Digits only, within a scene's noise_seed range [0, 2^63 − 1] (setting_ranges.h):
+  // strtoull alone took "-1" and saturated 1e20 to 2^64 − 1.
+  constexpr std::uint64_t kMax = std::numeric_limits<std::int64_t>::max();
+  errno = 0;
   char* end = nullptr;
   const unsigned long long v = std::strtoull(text->c_str(), &end, 10);
-  if (text->empty() || end != text->c_str() + text->size())
-    fail(file, "camsim:noise_seed", "expected an unsigned integer, got '" + *text + "'");
+  if (text->empty() || text->find_first_not_of("0123456789") != std::string::npos ||
+      end != text->c_str() + text->size() || errno == ERANGE || v > kMax)
+    fail(file, "camsim:noise_seed", "expected an integer in [0, 2^63 - 1], got '" + *text + "'");
   return static_cast<std::uint64_t>(v);
+}
+
+// An optional attribute that must be a finite number > 0 (the lens's f-number, focal length).
+std::optional<double> positiveAttribute(const std::filesystem::path& file, const Metadata& m,
+                                        const std::string& key) {
+  const std::string* text = findMetadata(m, key);
+  if (!text) return std::nullopt;
+  const double v = numberAttribute(file, key, *text);
+  if (!(v > 0.0)) fail(file, key, "expected a number > 0, got '" + *text + "'");
+  return v;
 }
 
 // Static or not: camsim:static_scene (1/0), else camsim:modelled's words, else refused.
@@ -159,6 +178,8 @@ ElectronsExr readElectronsExr(const std::filesystem::path& path) {
   if (const std::string* iso = findMetadata(e.metadata, "camsim:iso"))
     e.iso = numberAttribute(path, "camsim:iso", *iso);
   e.noiseSeed = seedAttribute(path, e.metadata);
+  e.fNumber = positiveAttribute(path, e.metadata, "camsim:f_number");
+  e.focalLengthM = positiveAttribute(path, e.metadata, "camsim:focal_length_m");
   readMotion(e);
   return e;
 }
@@ -265,10 +286,8 @@ void writeExposedFrame(const ExposeJob& job, std::uint64_t frame, const std::vec
     return;
   }
   DngCapture dng;
-  if (const std::string* f = findMetadata(meta, "camsim:f_number"))
-    dng.fNumber = std::strtod(f->c_str(), nullptr);
-  if (const std::string* f = findMetadata(meta, "camsim:focal_length_m"))
-    dng.focalLengthMm = std::strtod(f->c_str(), nullptr) * 1e3;
+  if (job.input.fNumber) dng.fNumber = *job.input.fNumber;
+  if (job.input.focalLengthM) dng.focalLengthMm = *job.input.focalLengthM * 1e3;
   dng.dateTimeOriginal = "2000:01:01 00:00:00";  // fixed, as a render's: same seed, same bytes
   dng.exposureTimeS = job.exposure.exposureTimeS;
   dng.iso = job.exposure.iso;

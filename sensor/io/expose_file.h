@@ -65,6 +65,7 @@ struct ElectronsExr {
   double exposureTimeS = 0.0;
   std::optional<double> iso;
   std::optional<std::uint64_t> noiseSeed;
+  std::optional<double> fNumber, focalLengthM;  // camsim:f_number, camsim:focal_length_m (m), > 0
   bool staticScene = false;
   std::string motion;  // why it is not static (camsim:modelled), for messages
 };

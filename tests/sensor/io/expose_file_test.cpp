@@ -241,6 +241,42 @@ TEST(ExposeFile, BadInputsNameTheFileAndKey) {
   EXPECT_EQ(key, "sensor");
 }
 
+// Found by probing: a noise seed of -1 or 1e20 became 2^64 - 1, and an f-number or focal
+// length of 0, -2 or nan was taken (the DNG then lost its tag), each exit 0.
+TEST(ExposeFile, HeaderValuesOutOfRangeAreRefusedByKey) {
+  const struct {
+    const char* key;
+    const char* value;
+    const char* says;
+  } cases[] = {
+      {"camsim:noise_seed", "-1", "[0, 2^63 - 1]"},
+      {"camsim:noise_seed", "99999999999999999999", "[0, 2^63 - 1]"},
+      {"camsim:noise_seed", "9223372036854775808", "[0, 2^63 - 1]"},
+      {"camsim:noise_seed", "+5", "[0, 2^63 - 1]"},
+      {"camsim:f_number", "0", "> 0"},
+      {"camsim:f_number", "-2", "> 0"},
+      {"camsim:f_number", "nan", "expected a number"},
+      {"camsim:focal_length_m", "0", "> 0"},
+  };
+  for (const auto& c : cases) {
+    SCOPED_TRACE(std::string(c.key) + "=" + c.value);
+    TempDir dir;
+    Metadata m = rawMeta("smartphone-1.4um", "RGGB", "1");
+    for (auto& [k, v] : m)
+      if (k == c.key) v = c.value;
+    std::string key;
+    const std::string e = errorOf(writeLevels(dir.path(), m), ExposeFileSettings{}, &key);
+    EXPECT_EQ(key, c.key) << e;
+    EXPECT_NE(e.find(c.says), std::string::npos) << e;
+  }
+  // The largest seed and a real lens still read.
+  TempDir dir;
+  Metadata m = rawMeta("smartphone-1.4um", "RGGB", "1");
+  for (auto& [k, v] : m)
+    if (k == "camsim:noise_seed") v = "9223372036854775807";
+  EXPECT_EQ(errorOf(writeLevels(dir.path(), m), ExposeFileSettings{}), "");
+}
+
 TEST(ExposeFile, IsoOutsideTheCalibratedRangeIsRefused) {
   TempDir dir;
   // The smartphone preset, renamed, with a measured ISO table of 50–800.
