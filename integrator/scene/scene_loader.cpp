@@ -278,7 +278,12 @@ void parseShape(YamlMap map, size_t index, Context& ctx, SceneDescription& scene
       ctx.search.noteRead(p);
       MeshPlacement placement;  // applied in double as the file is read
       if (auto sc = map.find("scale")) placement.scale = sc->number(0.0, 1e12, true);
-      if (auto tr = map.find("translate")) placement.offset = tr->vec3();
+      if (auto tr = map.find("translate")) {
+        placement.offset = tr->vec3();
+        // Checked before the file is read: past the range float positions collapse, and
+        // the mesh was refused as of zero area.
+        (void)point(*tr, placement.offset);
+      }
       placement.offset -= shift;
       try {
         s.mesh = readMeshFile(p, placement);

@@ -94,9 +94,14 @@ void parseProjection(const YamlValue& value, PhysicalCameraParams& c) {
 // upWhere: the `up` key, or null for the default +y (then look_at is named).
 glm::dmat4 lookAt(const YamlValue& where, const YamlValue& positionWhere, const YamlValue* upWhere,
                   glm::dvec3 position, glm::dvec3 target, glm::dvec3 up) {
+  toPoint(positionWhere, position);  // range check only: the position stays double
+  // Scaled by its largest component before normalising (as up, below): a look_at of 1e300
+  // overflowed the length, and the zero direction was blamed on up.
   const glm::dvec3 toTarget = target - position;
-  if (glm::length(toTarget) == 0.0) where.fail("look_at equals position");
-  const glm::dvec3 forward = glm::normalize(toTarget);
+  const double toMax = std::max({std::abs(toTarget.x), std::abs(toTarget.y), std::abs(toTarget.z)});
+  if (!(toMax > 0.0)) where.fail("look_at equals position");
+  if (!std::isfinite(toMax)) where.fail("look_at must be a finite point");
+  const glm::dvec3 forward = glm::normalize(toTarget / toMax);
   // Right-handed world: right = forward × up (looking along +z with +y up, right is −x).
   // up is scaled by its largest component first, so that no length under- or overflows.
   const double upMax = std::max({std::abs(up.x), std::abs(up.y), std::abs(up.z)});
@@ -110,7 +115,6 @@ glm::dmat4 lookAt(const YamlValue& where, const YamlValue& positionWhere, const 
   m[0] = glm::dvec4(right, 0.0);
   m[1] = glm::dvec4(trueUp, 0.0);
   m[2] = glm::dvec4(forward, 0.0);
-  toPoint(positionWhere, position);  // range check only: the position stays double
   m[3] = glm::dvec4(position, 1.0);
   return m;
 }

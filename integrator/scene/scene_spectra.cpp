@@ -58,7 +58,7 @@ Spectrum parseSpectrum(const YamlValue& value, SpectrumUse use, const TableSearc
     for (int i = 0; i < 3; ++i)
       if (rgb[i] < 0.0 || rgb[i] > hi)
         rgbValue.fail(reflectance ? "RGB reflectance components must lie in [0, 1]"
-                                  : "RGB components must be ≥ 0");
+                                  : "RGB components must lie in [0, 1e30]");
     if (reflectance) return rgbToReflectance(rgb, RgbColorSpace::linearRec709());
     if (rgb.x + rgb.y + rgb.z == 0.0) return Spectrum::constant(0.0);
     return rgbToEmissionShape(rgb, RgbColorSpace::linearRec709());

@@ -157,6 +157,23 @@ TEST(SceneLimits, ScaledShapesAreCheckedPerShape) {
   }
 }
 
+// A mesh file's translate past ±1e15 m is named by its key (the collapsed float positions
+// were refused as "mesh has zero area", naming the file).
+TEST(SceneLimits, AMeshFilesTranslateIsRangeChecked) {
+  const test::TempDir dir;
+  test::writeFile(dir.path() / "tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+  try {
+    (void)loadSceneFromText(kHeader + kLimitsCamera + kSun + kMaterial + "shapes:\n" + kBall +
+                                "  - {type: mesh, file: tri.obj, translate: [1e20, 0, 0], "
+                                "material: m}\n",
+                            "far.yaml", dir.path());
+    ADD_FAILURE() << "loaded";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.key(), "shapes[1].translate") << e.what();
+    EXPECT_NE(e.message().find("within ±1e15 m"), std::string::npos) << e.what();
+  }
+}
+
 // The loader's smallest sphere radius, 1e-9 m (SceneLimits::kMinSphereRadius), builds and
 // renders: it is stored as the float 9.99999972e-10, which the build's reach check once
 // compared in double against 1e-9 and refused (found by fuzz_scene_render,

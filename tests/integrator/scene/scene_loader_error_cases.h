@@ -209,6 +209,15 @@ inline const ErrorCase kErrorCases[] = {
      "up must be a non-zero direction"},
     {"UpParallelToViewAfterScaling", withCameraLine("  up: [0, 0, 1e-300]\n"), 4, 7, "camera.up",
      "up is parallel to the viewing direction"},
+    // A far camera position was blamed on look_at ("up is parallel to the viewing direction").
+    {"CameraPositionBeyondRenderSpace",
+     "camera:\n  position: [1e300, 0, -1]\n  look_at: [0, 0, 0]\n" + kMaterials + "shapes:\n" +
+         kSphere,
+     2, 13, "camera.position", "within ±1e15 m"},
+    // The message stated only the lower end of the range.
+    {"EmissionRgbAboveItsRange",
+     sphereWith("1", ", emission: {spectrum: {rgb: [1e38, 0, 0]}, luminance: 1}"), 7, 77,
+     "shapes[0].emission.spectrum.rgb", "must lie in [0, 1e30]"},
     {"CameraKeyframeBeyondRenderSpace",
      withCameraLine("  motion: [{time: 0, translate: [1e19, 0, 0]}]\n"), 4, 33,
      "camera.motion[0].translate", "within ±1e15 m"},

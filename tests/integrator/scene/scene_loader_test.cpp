@@ -128,6 +128,21 @@ TEST(SceneLoaderTest, WorldFromCameraMatchesLookAt) {
       EXPECT_EQ(a.camera.worldFromCamera[c][r], b.camera.worldFromCamera[c][r]) << c << r;
 }
 
+// A far look_at is a direction: 1e300 overflowed the length, and the zero direction was
+// refused as "up is parallel to the viewing direction".
+TEST(SceneLoaderTest, AFarLookAtIsItsDirection) {
+  const SceneDescription near = loadSceneFromText(
+      "camera: {position: [0, 0, 0], look_at: [1, 0, 1]}\n" + kMaterials + "shapes:\n" + kSphere,
+      "near.yaml", ".");
+  const SceneDescription far =
+      loadSceneFromText("camera: {position: [0, 0, 0], look_at: [1e300, 0, 1e300]}\n" + kMaterials +
+                            "shapes:\n" + kSphere,
+                        "far.yaml", ".");
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 4; ++r)
+      EXPECT_EQ(near.camera.worldFromCamera[c][r], far.camera.worldFromCamera[c][r]) << c << r;
+}
+
 TEST(SceneLoaderTest, CornellBoxLoads) {
   const fs::path file = fs::path(CAMSIM_SOURCE_DIR) / "scenes" / "cornell_box.yaml";
   const std::string text = readFile(file);
