@@ -28,7 +28,7 @@ void parseCameraLens(const YamlValue& value, const YamlMap& camera, const TableS
   if (!search.directories.empty()) lensSearch.directories.push_back(search.directories.front());
   lensSearch.directories.push_back(lutsDirectory() / "lenses");
   lensSearch.filesRead = search.filesRead;
-  const std::filesystem::path file = lensSearch.find(fileValue, fileValue.string());
+  const std::filesystem::path file = lensSearch.find(fileValue, fileValue.string(), "lens file");
   LensSpec spec;
   std::optional<LensSystem> lens;
   try {

@@ -30,12 +30,13 @@ std::optional<std::filesystem::path> TableSearch::locate(const std::string& name
   return found;
 }
 
-std::filesystem::path TableSearch::find(const YamlValue& where, const std::string& name) const {
+std::filesystem::path TableSearch::find(const YamlValue& where, const std::string& name,
+                                        const std::string& what) const {
   if (name.empty()) where.fail("empty file name");
   if (std::optional<std::filesystem::path> found = locate(name)) return *found;
   std::string searched;
   for (const auto& dir : directories) searched += (searched.empty() ? "" : ", ") + dir.string();
-  where.fail("spectral table '" + name + "' not found" +
+  where.fail(what + " '" + name + "' not found" +
              (std::filesystem::path(name).is_absolute() ? std::string()
                                                         : " (searched: " + searched + ")"));
 }

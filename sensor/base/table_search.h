@@ -28,8 +28,10 @@ struct TableSearch {
   // recorded. Nothing if there is no such regular file (or the name is empty).
   std::optional<std::filesystem::path> locate(const std::string& name) const;
   // locate(name) for the table written at `where`; fails there when the name is empty or
-  // no such file exists, naming the folders searched.
-  std::filesystem::path find(const YamlValue& where, const std::string& name) const;
+  // no such file exists, naming the folders searched and what it is ("spectral table",
+  // "lens file").
+  std::filesystem::path find(const YamlValue& where, const std::string& name,
+                             const std::string& what = "spectral table") const;
 };
 
 }  // namespace camsim

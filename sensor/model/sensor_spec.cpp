@@ -226,10 +226,22 @@ SensorSpec parseSensorSpec(const std::string& yamlText, const std::string& displ
   spec.pixelPitchM = map.require("pixel_pitch_um").number(0.0, 1000.0, true) * 1e-6;
   if (const auto v = map.find("fill_factor")) spec.fillFactor = v->number(0.0, 1.0, true);
   if (const auto v = map.find("cfa")) spec.cfa = parseCfa(*v);
-  spec.qe = parseQe(map.require("qe"), spec.cfa, tables);
+  // Each channel must respond somewhere in camsim's spectral range: a channel that cannot
+  // see light was found only after rendering, and blamed on isp.white_balance.
+  const auto checkResponse = [&](const YamlValue& where, const char* cause) {
+    for (std::size_t c = 0; c < spec.qe.size(); ++c)
+      if (!(spec.qe[c].maxValue() > 0.0))
+        where.fail("channel " + spec.cfa.channels[c] + " has no response within " +
+                   std::to_string(kLambdaMinNm) + "-" + std::to_string(kLambdaMaxNm) +
+                   " nm, the range camsim traces" + cause);
+  };
+  const YamlValue qeValue = map.require("qe");
+  spec.qe = parseQe(qeValue, spec.cfa, tables);
+  checkResponse(qeValue, "");
   if (const auto v = map.find("ir_cut")) {
     const Spectrum t = parseIrCut(*v, tables);
     for (Spectrum& s : spec.qe) s *= t;
+    checkResponse(*v, " once the IR-cut filter is applied");
   }
   if (const auto v = map.find("full_well_e")) spec.fullWellE = v->number(0.0, 1e9, true);
   if (const auto v = map.find("conversion_gain_e_per_dn"))

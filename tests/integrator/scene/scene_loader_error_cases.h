@@ -218,6 +218,9 @@ inline const ErrorCase kErrorCases[] = {
     {"EmissionRgbAboveItsRange",
      sphereWith("1", ", emission: {spectrum: {rgb: [1e38, 0, 0]}, luminance: 1}"), 7, 77,
      "shapes[0].emission.spectrum.rgb", "must lie in [0, 1e30]"},
+    // A missing lens file was "spectral table 'nosuch.dat' not found".
+    {"MissingLensFile", withCameraLine("  lens: {file: nosuch.dat}\n"), 4, 16, "camera.lens.file",
+     "lens file 'nosuch.dat' not found (searched: "},
     {"CameraKeyframeBeyondRenderSpace",
      withCameraLine("  motion: [{time: 0, translate: [1e19, 0, 0]}]\n"), 4, 33,
      "camera.motion[0].translate", "within ±1e15 m"},

@@ -189,6 +189,33 @@ TEST(SensorSpec, CsvQeAndIrCutTablesResolveNextToTheDescription) {
       parse("pixel_pitch_um: 2\nqe: {csv: big.csv, columns: [y], peak_qe: 0.4}\n", dir.path())
           .qe[0](500.0f),
       0.4, 1e-6);
+  // A channel without response within 360-830 nm (an IR-only curve, or one the IR-cut filter
+  // blocks) is refused at its key: it was found only after rendering, as a white-balance
+  // error of the scene.
+  test::writeFile(dir.path() / "ir_qe.csv", "wavelength_nm,r,g\n900,0.5,0.5\n1000,0.5,0.5\n");
+  test::writeFile(dir.path() / "red.csv",
+                  "wavelength_nm,r,g\n360,0,0.5\n590,0,0.5\n600,0.5,0.5\n830,0.5,0.5\n");
+  test::writeFile(dir.path() / "cut.csv", "wavelength_nm,t\n360,1\n550,1\n560,0\n830,0\n");
+  const struct {
+    std::string text, key, says;
+  } blind[] = {
+      {"cfa: {tile: [[0, 1], [1, 0]], channels: [R, G]}\nqe: {csv: ir_qe.csv, columns: [r, g]}\n",
+       "qe", "channel R has no response within 360-830 nm"},
+      {"cfa: {tile: [[0, 1], [1, 0]], channels: [R, G]}\nqe: {csv: red.csv, columns: [r, g]}\n"
+       "ir_cut: {csv: cut.csv}\n",
+       "ir_cut",
+       "channel R has no response within 360-830 nm, the range camsim traces once the "
+       "IR-cut filter is applied"},
+  };
+  for (const auto& c : blind) {
+    try {
+      parse("pixel_pitch_um: 2\n" + c.text, dir.path());
+      ADD_FAILURE() << "accepted:\n" << c.text;
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.key(), c.key) << e.what();
+      EXPECT_NE(e.message().find(c.says), std::string::npos) << e.what();
+    }
+  }
 }
 
 TEST(SensorSpec, PresetsLoad) {
