@@ -246,7 +246,14 @@ std::vector<std::filesystem::path> runPtc(const PtcArgs& args, std::ostream& out
   if (args.seed) options.seed = *args.seed;
   const std::vector<double> isos =
       args.isos.empty() ? std::vector<double>{sensor.baseIso} : args.isos;
-  for (double iso : isos) noiseAtIso(sensor, iso);  // an ISO the sensor refuses: before any work
+  for (double iso : isos) {  // an ISO the sensor refuses: before any work
+    try {
+      (void)noiseAtIso(sensor, iso);
+    } catch (const InputError& e) {
+      if (args.isos.empty()) throw;  // the sensor's own base ISO
+      throw InputError({"<command line>", 0, 0}, "--iso", e.message());
+    }
+  }
   for (const auto& stale : OutputSet::prepareDirectory(outDir))
     log << "removed " << stale.string() << " (left by a run that was killed)\n";
 

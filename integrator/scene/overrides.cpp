@@ -10,6 +10,7 @@
 
 #include "integrator/scene/overrides_projection.h"
 #include "integrator/scene/scene_loader.h"
+#include "sensor/model/sensor_noise.h"
 #include "sensor/model/sensor_spec.h"
 
 #include "sensor/base/format.h"
@@ -182,7 +183,12 @@ void setSensor(SceneDescription& d, const std::string& presetOrPath, const Sourc
     spec = loadSensorSpec(presetOrPath, lutsDirectory());
   } catch (const InputError& e) {
     if (e.where().line > 0) throw;  // inside the sensor file: its own location
-    throw InputError(where, "sensor.model", e.message());
+    // Otherwise the option, and the file when the error names one (an empty file, say).
+    const std::string& file = e.where().file;
+    throw InputError(where, "sensor.model",
+                     file.empty() || e.message().find(file) != std::string::npos
+                         ? e.message()
+                         : file + ": " + e.message());
   }
   SensorSettings s = d.sensor.value_or(SensorSettings{});
   s.spec = std::move(spec);
@@ -354,7 +360,14 @@ void applyOverrides(SceneDescription& d, const Overrides& o, const SourceLocatio
     if (given && !d.sensor)
       throw InputError(where, std::string(setting(key).sceneKey),
                        "needs a scene with a sensor (a sensor override or the scene's sensor:)");
-  if (o.iso) d.sensor->iso = *o.iso;
+  if (o.iso) {
+    d.sensor->iso = *o.iso;
+    try {
+      (void)noiseAtIso(d.sensor->spec, *o.iso);  // a calibrated sensor's ISO range
+    } catch (const InputError& e) {
+      throw InputError(where, std::string(setting("iso").sceneKey), e.message());
+    }
+  }
   if (o.noise) d.sensor->noise = *o.noise;
   if (o.noiseSeed) d.sensor->noiseSeed = static_cast<std::uint64_t>(*o.noiseSeed);
   if (o.pose) setPose(d, *o.pose, where);

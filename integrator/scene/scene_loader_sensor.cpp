@@ -5,6 +5,7 @@
 
 #include "integrator/scene/scene_loader.h"
 #include "integrator/scene/scene_loader_parts.h"
+#include "sensor/model/sensor_noise.h"
 #include "sensor/spectra/spectral_data.h"
 
 namespace camsim {
@@ -29,7 +30,14 @@ SensorSettings parseSensorSettings(YamlMap map, const std::filesystem::path& bas
     model.failInNamedFile(e);  // an error inside the sensor file keeps its own place too
   }
   s.iso = s.spec.baseIso;
-  if (auto v = map.find("iso")) s.iso = v->number(setting_ranges::kIso.lo, setting_ranges::kIso.hi);
+  if (auto v = map.find("iso")) {
+    s.iso = v->number(setting_ranges::kIso.lo, setting_ranges::kIso.hi);
+    try {
+      (void)noiseAtIso(s.spec, s.iso);  // a calibrated sensor's ISO range (its iso_table)
+    } catch (const InputError& e) {
+      v->fail(e.message());
+    }
+  }
   if (auto v = map.find("noise")) s.noise = v->choice<NoiseMode>("noise mode");
   if (auto v = map.find("noise_seed"))
     s.noiseSeed = static_cast<std::uint64_t>(

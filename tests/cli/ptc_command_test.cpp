@@ -171,10 +171,26 @@ TEST(PtcBinary, SensorsWithoutACurveExitTwoAndWriteNothing) {
         camsim("", "ptc " + quote(c.sensor.string()) + " -o " + quote(out.string()), dir.path());
     EXPECT_EQ(r.exitCode, 2) << r.err;
     EXPECT_NE(r.err.find(c.says), std::string::npos) << r.err;
+    // Named by its file (it was the description's name, "stacked").
+    EXPECT_NE(r.err.find(c.sensor.string() + ": "), std::string::npos) << r.err;
     EXPECT_EQ(r.err.find("internal error"), std::string::npos) << r.err;
     // The folder is made before measuring (an unwritable one fails first); no file in it.
     EXPECT_TRUE(!fs::exists(out) || fs::is_empty(out)) << out;
   }
+}
+
+// An --iso outside a calibrated sensor's iso_table names the option (it said "<input>: key
+// 'iso'"); the sensor's own base ISO is not the option's.
+TEST(PtcBinary, AnIsoOutsideTheCalibrationNamesTheOption) {
+  TempDir dir;
+  const fs::path out = dir.path() / "ptc";
+  const RunResult r =
+      camsim("", "ptc eld-canon-5d4 --iso 50 -o " + quote(out.string()), dir.path());
+  EXPECT_EQ(r.exitCode, 2) << r.err;
+  EXPECT_NE(r.err.find("<command line>: key '--iso': ISO 50 is outside the range"),
+            std::string::npos)
+      << r.err;
+  EXPECT_FALSE(fs::exists(out));
 }
 
 }  // namespace

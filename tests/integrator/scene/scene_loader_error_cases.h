@@ -67,6 +67,11 @@ inline const ErrorCase kErrorCases[] = {
     {"BracketOffsetsNamingTheSameFiles",
      withShapes(kSphere) + "sensor: {model: smartphone-1.4um, bracket_ev: [0.1, 0.10000000001]}\n",
      8, 47, "sensor.bracket_ev", "name the same files (NAME_ev+0.1.dng"},
+    // An ISO outside a calibrated sensor's iso_table: found when the sensor model was built,
+    // with no file or line.
+    {"SensorIsoOutsideItsCalibration",
+     withShapes(kSphere) + "sensor: {model: eld-canon-5d4, iso: 50}\n", 8, 37, "sensor.iso",
+     "ISO 50 is outside the range the sensor 'eld-canon-5d4' was calibrated at"},
     // 0 and -0 are one exposure; printed apart (_ev+0, _ev-0) they rendered it twice.
     {"BracketOffsetsZeroAndNegativeZero",
      withShapes(kSphere) + "sensor: {model: smartphone-1.4um, bracket_ev: [0, -0]}\n", 8, 47,
