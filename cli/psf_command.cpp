@@ -120,8 +120,15 @@ std::unique_ptr<CLI::App> psfApp(PsfArgs& a) {
   return app;
 }
 
-// Every entry's settings, each checked by the library; its InputError as a UsageError
-// naming the option ("field" → --field).
+// The library's InputError about a setting as a UsageError naming its option
+// ("object_distance" → --object-distance).
+[[noreturn]] void throwAsOption(const InputError& e) {
+  std::string flag = "--" + e.key();
+  std::replace(flag.begin(), flag.end(), '_', '-');
+  throw UsageError(flag + ": " + e.message());
+}
+
+// Every entry's settings, each checked by the library (the ranges, before the scene loads).
 std::vector<PsfSettings> psfEntries(const PsfArgs& a) {
   std::vector<PsfSettings> entries;
   for (double field : a.fields)
@@ -132,9 +139,7 @@ std::vector<PsfSettings> psfEntries(const PsfArgs& a) {
       try {
         checkPsfSettings(s);
       } catch (const InputError& e) {
-        std::string flag = "--" + e.key();
-        std::replace(flag.begin(), flag.end(), '_', '-');
-        throw UsageError(flag + ": " + e.message());
+        throwAsOption(e);
       }
       entries.push_back(s);
     }
@@ -210,7 +215,14 @@ std::vector<std::filesystem::path> runPsf(const PsfArgs& args, std::ostream& out
   const PhysicalCamera camera(scene.camera);
   std::vector<PsfImage> images;
   for (const PsfSettings& s : entries) {
-    images.push_back(computePsf(camera, s));
+    // The settings against this camera (a distance inside its focal length, a field off its
+    // film): the same options' errors, found once the camera is known.
+    try {
+      images.push_back(computePsf(camera, s));
+    } catch (const InputError& e) {
+      if (e.where().file.empty()) throwAsOption(e);
+      throw;
+    }
     const PsfImage& p = images.back();
     out << psfEntryName(s.field, s.wavelengthNm) << ": field " << s.field << " (h "
         << formatFixed(p.imageHeight * 1e3, 3) << " mm), " << s.wavelengthNm << " nm: centroid ("
