@@ -3,7 +3,9 @@
 // other lists by position. moved ⇔ |a − b| > k·√(u_a² + u_b²) (ptc_report.h); a fit with
 // another number of conversion-gain segments has moved too (fits.dark_noise_e, plain numbers
 // per ISO for the plot, is not compared). Quantities whose value is null
-// (not measurable: the σ_pre/σ_post split with too few ISOs) in both are skipped.
+// (not measurable: the σ_pre/σ_post split with too few ISOs) in both are skipped; one that
+// a report lacks has moved. An ISO measured in one report only is listed, not moved. Both
+// files must be reports of version 1 with at least one ISO.
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -25,7 +27,12 @@ YamlValue loadReport(const std::string& file) {
   const YamlValue format = map.require("format");
   if (format.string() != "camsim-ptc")
     format.fail("expected \"camsim-ptc\" (a report written by camsim ptc)");
-  map.require("isos").items();
+  // The report layout this camsim writes (ptc_report.cpp); another may mean other paths.
+  const YamlValue version = map.require("version");
+  if (version.number(0.0, 1e9) != 1.0)
+    version.fail("this camsim reads reports of version 1 (it is " + version.string() + ")");
+  const YamlValue isos = map.require("isos");
+  if (isos.items().empty()) isos.fail("a report with no ISO measured: nothing to compare");
   if (!map.require("fits").isMap()) map.require("fits").fail("expected an object");
   return root;
 }
@@ -47,13 +54,19 @@ class Comparer {
       if (ma.has("value")) return quantity(ma, mb, label);
       for (const std::string& key : ma.keys()) {
         const YamlValue va = *ma.find(key);
+        // A quantity one report has and the other lacks cannot be shown unchanged: moved.
         if (!mb.has(key)) {
           if (va.isMap() || va.isSequence())
-            structural(va.key(), label + key, "missing in B", false);
+            structural(va.key(), label + key, "missing in B", true);
           continue;
         }
         const std::string sub = key == "quantities" ? label : label + key + (va.isMap() ? "." : "");
         walk(va, *mb.find(key), sub);
+      }
+      for (const std::string& key : mb.keys()) {
+        const YamlValue vb = *mb.find(key);
+        if (!ma.has(key) && (vb.isMap() || vb.isSequence()))
+          structural(vb.key(), label + key, "missing in A", true);
       }
     } else if (a.isSequence()) {
       if (!b.isSequence()) b.fail("expected a list, as in the first report");

@@ -163,7 +163,7 @@ TEST(PtcCompare, ReportsAnotherSeedPassesAThreePercentGainChangeMoves) {
 TEST(PtcCompare, BadFilesExitTwoNamingFileAndPath) {
   test::TempDir dir;
   const std::string good =
-      "{\"format\": \"camsim-ptc\", \"isos\": [{\"iso\": 100, \"quantities\": "
+      "{\"format\": \"camsim-ptc\", \"version\": 1, \"isos\": [{\"iso\": 100, \"quantities\": "
       "{\"system_gain_k\": {\"unit\": \"DN/e-\", \"value\": 0.25, \"uncertainty\": 0.001}}}],"
       " \"fits\": {}}\n";
   test::writeFile(dir.path() / "a.json", good);
@@ -197,6 +197,29 @@ TEST(PtcCompare, BadFilesExitTwoNamingFileAndPath) {
   r = compare(dir.path(), "a.json", "two.json");
   EXPECT_EQ(r.exitCode, 0) << r.out << r.err;
   EXPECT_NE(r.out.find("not measured in A"), std::string::npos) << r.out;
+  // Found by probing, each exit 0 before: another version or none, no ISO at all, and a
+  // quantity one report lacks ("missing in B", then "0 moved").
+  const auto replaced = [&](const std::string& from, const std::string& to) {
+    std::string t = good;
+    t.replace(t.find(from), from.size(), to);
+    return t;
+  };
+  const struct {
+    std::string text, says;
+    int exitCode;
+  } cases[] = {
+      {replaced("\"version\": 1", "\"version\": 2"), "reads reports of version 1", 2},
+      {replaced("\"version\": 1, ", ""), "version", 2},
+      {"{\"format\": \"camsim-ptc\", \"version\": 1, \"isos\": [], \"fits\": {}}\n",
+       "no ISO measured", 2},
+      {replaced("\"system_gain_k\"", "\"read_noise_e\""), "MOVED", 1},
+  };
+  for (const auto& c : cases) {
+    test::writeFile(dir.path() / "c.json", c.text);
+    r = compare(dir.path(), "a.json", "c.json");
+    EXPECT_EQ(r.exitCode, c.exitCode) << c.text << r.out << r.err;
+    EXPECT_NE((r.out + r.err).find(c.says), std::string::npos) << c.text << r.out << r.err;
+  }
 }
 
 TEST(PtcArgs, IsoListAndCompare) {
