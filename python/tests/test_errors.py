@@ -101,6 +101,18 @@ def test_dict_key_path_of_a_nested_error():
             "shapes": [{"type": "sphere", "centre": [0, math.nan, 0], "radius": 1}]})
 
 
+@pytest.mark.parametrize("name", ["a\tb", "a\x00b", "a\x07b"], ids=["tab", "nul", "bel"])
+def test_a_control_character_in_a_dict_name_is_refused_as_in_yaml(name):
+    # Found by probing: the dict's JSON text turned every control character but a newline
+    # into a space, and the name 'a b' was taken; a YAML scene refuses it.
+    with pytest.raises(camsim.InputError, match=r"key 'name'.*control characters"):
+        camsim.Scene.from_dict({
+            "name": name,
+            "camera": {"position": [0, 0, -1], "look_at": [0, 0, 0]},
+            "materials": {"m": {"type": "diffuse"}},
+            "shapes": [{"type": "sphere", "centre": [0, 0, 0], "radius": 1, "material": "m"}]})
+
+
 def test_bad_overrides_name_the_key():
     with pytest.raises(camsim.InputError, match="key 'overrides.spp'"):
         camsim.default_scene(overrides={"spp": "many"})

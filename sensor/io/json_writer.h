@@ -110,6 +110,13 @@ class JsonObject {
     std::snprintf(buf, sizeof buf, "%.10g", v);
     return buf;
   }
+  // A control character as JSON's \u escape (a space before: Scene.from_dict turned a tab
+  // in a name into a space, which the loader then took).
+  static std::string hexEscape(unsigned char c) {
+    char buf[8];
+    std::snprintf(buf, sizeof buf, "\\u%04x", c);
+    return buf;
+  }
   static std::string quote(const std::string& s) {
     std::string out = "\"";
     for (char c : s) {
@@ -117,8 +124,8 @@ class JsonObject {
         out += '\\', out += c;
       else if (c == '\n')
         out += "\\n";
-      else if (static_cast<unsigned char>(c) < 0x20)
-        out += ' ';
+      else if (static_cast<unsigned char>(c) < 0x20)  // kept: read back, a tab is a tab
+        out += hexEscape(static_cast<unsigned char>(c));
       else
         out += c;
     }
