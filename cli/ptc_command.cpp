@@ -254,6 +254,7 @@ std::vector<std::filesystem::path> runPtc(const PtcArgs& args, std::ostream& out
       throw InputError({"<command line>", 0, 0}, "--iso", e.message());
     }
   }
+  const NewDirectoryCleanup cleanup(outDir);  // an error from here on: no empty folder left
   for (const auto& stale : OutputSet::prepareDirectory(outDir))
     log << "removed " << stale.string() << " (left by a run that was killed)\n";
 

@@ -124,6 +124,7 @@ RenderCommandResult runRender(const RenderArgs& args, std::ostream& log,
   options.threads = args.threads;
   options.cancel = cancel;
   if (args.tiles && desc.frames) checkTileable(desc, ModelledDimensions{});  // before any file
+  const NewDirectoryCleanup cleanup(out.directory);  // an error from here on: no empty folder
   for (const auto& stale : OutputSet::prepareDirectory(out.directory))
     log << "removed " << stale.string() << " (left by a run that was killed)\n";
   if (args.tiles) return runTilePart(std::move(desc), args, options, log);

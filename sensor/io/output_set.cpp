@@ -5,6 +5,7 @@
 
 #include <cerrno>
 #include <charconv>
+#include <exception>
 #include <fstream>
 #include <stdexcept>
 #include <string_view>
@@ -46,6 +47,24 @@ std::vector<std::filesystem::path> OutputSet::prepareDirectory(
     throw InputError({directory.string(), 0, 0}, "",
                      "cannot create output directory" + (ec ? ": " + ec.message() : ""));
   return cleanStaleTemporaries(directory);
+}
+
+NewDirectoryCleanup::NewDirectoryCleanup(const std::filesystem::path& directory)
+    : exceptions_(std::uncaught_exceptions()) {
+  std::error_code ec;
+  std::filesystem::path start = std::filesystem::absolute(directory, ec).lexically_normal();
+  if (start.filename().empty()) start = start.parent_path();  // "out/"
+  for (std::filesystem::path p = start;
+       !ec && !p.empty() && !std::filesystem::exists(p, ec) && p != p.parent_path();
+       p = p.parent_path())
+    missing_.push_back(p);
+}
+
+NewDirectoryCleanup::~NewDirectoryCleanup() {
+  if (std::uncaught_exceptions() <= exceptions_) return;
+  std::error_code ec;
+  for (const auto& p : missing_)  // remove() only removes an empty folder
+    if (!std::filesystem::remove(p, ec)) return;
 }
 
 std::filesystem::path OutputSet::addText(const std::string& fileName, const std::string& text) {

@@ -52,4 +52,20 @@ class OutputSet {
   bool committed_ = false;
 };
 
+// The folders a command is about to create for its output (`directory` and its missing
+// parents), removed again if the command ends by an exception while they are still empty:
+// a run refused after making its folder (a bad view name, a sensor without a curve) left
+// the empty folder behind. A folder that existed before, or holds anything, is kept.
+class NewDirectoryCleanup {
+ public:
+  explicit NewDirectoryCleanup(const std::filesystem::path& directory);
+  ~NewDirectoryCleanup();
+  NewDirectoryCleanup(const NewDirectoryCleanup&) = delete;
+  NewDirectoryCleanup& operator=(const NewDirectoryCleanup&) = delete;
+
+ private:
+  std::vector<std::filesystem::path> missing_;  // deepest first
+  int exceptions_;                              // std::uncaught_exceptions() when made
+};
+
 }  // namespace camsim

@@ -189,6 +189,36 @@ TEST_F(OutputSetTest, UncommittedSetDoesNotTouchExistingFinalFiles) {
   EXPECT_EQ(entries(), 1u);
 }
 
+// The folders a command created for its output go again, if still empty, when it ends by an
+// exception; folders that existed, or hold a file, or a command that ends normally, stay.
+TEST_F(OutputSetTest, NewDirectoryCleanupRemovesOnlyTheEmptyFoldersItsRunMade) {
+  namespace fs = std::filesystem;
+  const fs::path nested = dir_ / "a" / "b" / "c";
+  const auto failAfterMaking = [](const fs::path& out, bool writeAFile) {
+    try {
+      const NewDirectoryCleanup cleanup(out);
+      OutputSet::prepareDirectory(out);
+      if (writeAFile) test::writeFile(out / "kept.txt", "x");
+      throw std::runtime_error("refused");
+    } catch (const std::runtime_error&) {
+    }
+  };
+  failAfterMaking(nested, false);
+  EXPECT_FALSE(fs::exists(dir_ / "a"));  // all three made by the run, all three removed
+  EXPECT_TRUE(fs::is_directory(dir_));   // the existing parent stays
+  fs::create_directories(dir_ / "a");
+  failAfterMaking(nested.string() + "/", false);
+  EXPECT_FALSE(fs::exists(dir_ / "a" / "b"));
+  EXPECT_TRUE(fs::is_directory(dir_ / "a"));  // existed before the run
+  failAfterMaking(nested, true);
+  EXPECT_TRUE(fs::exists(nested / "kept.txt"));  // not empty: kept, and its parents
+  {
+    const NewDirectoryCleanup cleanup(dir_ / "ok");
+    OutputSet::prepareDirectory(dir_ / "ok");
+  }
+  EXPECT_TRUE(fs::is_directory(dir_ / "ok"));  // no exception: kept, even empty
+}
+
 TEST(OutputSetNames, TemporaryOwnerReadsThePidOfTemporaryNamesOnly) {
   EXPECT_EQ(OutputSet::temporaryOwner(".a.exr.camsim-tmp-1234"), 1234);
   EXPECT_EQ(OutputSet::temporaryOwner(".cornell_box.partial.exr.camsim-tmp-7"), 7);
