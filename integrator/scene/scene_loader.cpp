@@ -398,7 +398,7 @@ SceneDescription loadSceneFromText(const std::string& text, const std::string& d
   const YamlValue& nameAt = nameValue ? *nameValue : top.self();
   if (scene.name.empty() || scene.name.find_first_of("/\\") != std::string::npos ||
       scene.name == "." || scene.name == "..")
-    nameAt.fail("name must be a non-empty file name without '/'");
+    nameAt.fail("name must be a non-empty file name: not '.' or '..', without '/' or '\\'");
   if (std::any_of(scene.name.begin(), scene.name.end(),
                   [](char c) { return static_cast<unsigned char>(c) < 0x20 || c == 0x7f; }))
     nameAt.fail("name must not hold control characters (it names the output files)");

@@ -61,7 +61,10 @@ inline const ErrorCase kErrorCases[] = {
      "control characters"},
     {"NameTooLong", "name: " + std::string(235, 'a') + "\n" + kPrefix + kSphere, 1, 7, "name",
      "name is 235 bytes long; at most 128"},
-    {"NameDotDot", "name: ..\n" + kPrefix + kSphere, 1, 7, "name", "non-empty file name"},
+    {"NameDotDot", "name: ..\n" + kPrefix + kSphere, 1, 7, "name",
+     "non-empty file name: not '.' or '..'"},
+    {"NameWithABackslash", "name: 'a\\b'\n" + kPrefix + kSphere, 1, 7, "name",
+     "without '/' or '\\'"},
     // Two offsets that print alike named the same files: the second frame's rename failed
     // after the first's files were in place (exit 1, a half-written folder).
     {"BracketOffsetsNamingTheSameFiles",
