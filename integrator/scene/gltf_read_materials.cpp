@@ -125,6 +125,12 @@ void readGltfMaterials(const tinygltf::Model& model, GltfDocument& doc, const st
              {kIorKey, g.ior}})
       if (!std::isfinite(v) || v < 0.0)
         throw InputError({name, 0, 0}, g.path + key, "must be a finite number >= 0");
+    // Factors glTF bounds to [0, 1] (a roughness of 2 was clamped to 1 without a word).
+    for (const auto& [key, v] : std::initializer_list<std::pair<const char*, double>>{
+             {".pbrMetallicRoughness.metallicFactor", g.metallicFactor},
+             {".pbrMetallicRoughness.roughnessFactor", g.roughnessFactor},
+             {kTransmissionKey, g.transmission}})
+      if (v > 1.0) throw InputError({name, 0, 0}, g.path + key, "must lie in [0, 1]");
     if (g.ior < 1.0 && g.ior != 0.0)
       throw InputError({name, 0, 0}, g.path + kIorKey, "must be >= 1 (or 0)");
     doc.materials.push_back(std::move(g));

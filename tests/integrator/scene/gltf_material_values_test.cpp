@@ -90,6 +90,13 @@ TEST(GltfMaterialValues, OutOfRangeValuesNameTheWholePath) {
        "materials[0].extensions.KHR_materials_transmission.transmissionFactor"},
       {R"({"extensions":{"KHR_materials_ior":{"ior":0.5}}})",
        "materials[0].extensions.KHR_materials_ior.ior"},
+      // glTF bounds these to [0, 1]; above it they were clamped silently.
+      {R"({"pbrMetallicRoughness":{"roughnessFactor":2}})",
+       "materials[0].pbrMetallicRoughness.roughnessFactor"},
+      {R"({"pbrMetallicRoughness":{"metallicFactor":1.5}})",
+       "materials[0].pbrMetallicRoughness.metallicFactor"},
+      {R"({"extensions":{"KHR_materials_transmission":{"transmissionFactor":1.01}}})",
+       "materials[0].extensions.KHR_materials_transmission.transmissionFactor"},
   };
   int k = 0;
   for (const auto& c : cases) {
