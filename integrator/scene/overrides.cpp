@@ -192,6 +192,7 @@ void setSensor(SceneDescription& d, const std::string& presetOrPath, const Sourc
   }
   SensorSettings s = d.sensor.value_or(SensorSettings{});
   s.spec = std::move(spec);
+  d.keyPlaces.erase("sensor.model");  // the scene's sensor is not this one
   s.iso = s.spec.baseIso;
   d.camera.sensorSize = glm::dvec2(d.camera.resolution) * s.spec.pixelPitchM;
   d.camera.fillFactor = s.spec.fillFactor;

@@ -420,6 +420,8 @@ SceneDescription loadSceneFromText(const std::string& text, const std::string& d
   if (auto sensor = top.find("sensor")) {
     scene.sensor = parseSensorSettings(YamlMap(*sensor), baseDir, cameraValue, scene.camera);
     scene.keyPlaces["sensor"] = sensor->where();
+    if (auto model = YamlMap(*sensor).find("model"))
+      scene.keyPlaces["sensor.model"] = model->where();
     for (const auto& f : scene.sensor->spec.sourceFiles) ctx.search.noteRead(f);
   }
   if (gltfYfov) {  // on the sensor's height, now that the sensor has set it

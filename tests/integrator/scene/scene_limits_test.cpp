@@ -348,6 +348,27 @@ TEST(SceneLimits, WhiteBalanceRefusalsNameTheSceneKey) {
   EXPECT_EQ(clipped.where().line, 6) << clipped.what();
 }
 
+// A sensor whose CFA no demosaicking reads (a 3×3 tile) is refused after rendering, naming
+// the sensor's file and its key, and the scene line that named it (it named the scene's
+// sensor.model alone, or with a --sensor override the scene file).
+TEST(SceneLimits, ASensorsOwnDataErrorNamesItsFile) {
+  const test::TempDir dir;
+  test::writeFile(dir.path() / "cfa3.yaml",
+                  "pixel_pitch_um: 5\ncfa: {tile: [[0, 1, 2], [1, 2, 0], [2, 0, 1]], channels: "
+                  "[R, G, B]}\nqe: {curves: cameras/sony_ilce_7m3.csv, peak_qe: 0.6}\n");
+  const InputError e = errorOf([&] {
+    capture(loadSceneFromText(kHeader + kLimitsCamera + kSun + "sensor: {model: cfa3.yaml}\n" +
+                                  kMaterial + "shapes:\n" + kBall,
+                              "cfa3_scene.yaml", dir.path()));
+  });
+  EXPECT_EQ(e.where().file, (dir.path() / "cfa3.yaml").string()) << e.what();
+  EXPECT_EQ(e.key(), "cfa") << e.what();
+  EXPECT_NE(std::string(e.what()).find("demosaicking needs a Bayer layout"), std::string::npos)
+      << e.what();
+  EXPECT_NE(std::string(e.what()).find("in the file named by cfa3_scene.yaml:"), std::string::npos)
+      << e.what();
+}
+
 // A spectral table that is not a table, or a sensor file that is not a sensor, names its
 // own place and the scene key that named it (before: only its own place).
 TEST(SceneLimits, TableErrorsNameTheSceneKeyThatNamedTheFile) {
