@@ -2,6 +2,7 @@
 #include "cli/render_command.h"
 
 #include <atomic>
+#include <optional>
 #include <ostream>
 
 #include "integrator/capture/bop_writer.h"
@@ -124,7 +125,9 @@ RenderCommandResult runRender(const RenderArgs& args, std::ostream& log,
   options.threads = args.threads;
   options.cancel = cancel;
   if (args.tiles && desc.frames) checkTileable(desc, ModelledDimensions{});  // before any file
-  const NewDirectoryCleanup cleanup(out.directory);  // an error from here on: no empty folder
+  // An error from here on leaves no empty folder; tile parts share theirs with other jobs.
+  std::optional<NewDirectoryCleanup> cleanup;
+  if (!args.tiles) cleanup.emplace(out.directory);
   for (const auto& stale : OutputSet::prepareDirectory(out.directory))
     log << "removed " << stale.string() << " (left by a run that was killed)\n";
   if (args.tiles) return runTilePart(std::move(desc), args, options, log);

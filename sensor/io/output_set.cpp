@@ -34,6 +34,10 @@ OutputSet::~OutputSet() {
 }
 
 std::filesystem::path OutputSet::add(const std::string& fileName) {
+  // The folder again, should it have gone since it was prepared: another run into it that
+  // failed may remove it while it is still empty (NewDirectoryCleanup).
+  std::error_code ec;
+  std::filesystem::create_directories(directory_, ec);
   const auto temp = directory_ / temporaryName(fileName, static_cast<long>(::getpid()));
   files_.emplace_back(temp, directory_ / fileName);
   return temp;
@@ -51,20 +55,32 @@ std::vector<std::filesystem::path> OutputSet::prepareDirectory(
 
 NewDirectoryCleanup::NewDirectoryCleanup(const std::filesystem::path& directory)
     : exceptions_(std::uncaught_exceptions()) {
+  namespace fs = std::filesystem;
   std::error_code ec;
-  std::filesystem::path start = std::filesystem::absolute(directory, ec).lexically_normal();
+  fs::path start = fs::absolute(directory, ec).lexically_normal();
   if (start.filename().empty()) start = start.parent_path();  // "out/"
-  for (std::filesystem::path p = start;
-       !ec && !p.empty() && !std::filesystem::exists(p, ec) && p != p.parent_path();
-       p = p.parent_path())
-    missing_.push_back(p);
+  // The missing part of the path (nothing there at all: a dangling link is not missing),
+  // made top-down here; only what this process made is recorded.
+  std::vector<fs::path> missing;
+  for (fs::path p = start; !ec && !p.empty() && p != p.parent_path(); p = p.parent_path()) {
+    // (A missing path sets ec to ENOENT as well; any other failure is not "missing".)
+    if (fs::symlink_status(p, ec).type() != fs::file_type::not_found) break;
+    ec.clear();
+    missing.push_back(p);
+  }
+  for (auto p = missing.rbegin(); p != missing.rend(); ++p) {
+    if (!fs::create_directory(*p, ec) || ec) break;
+    made_.insert(made_.begin(), *p);
+  }
 }
 
 NewDirectoryCleanup::~NewDirectoryCleanup() {
+  namespace fs = std::filesystem;
   if (std::uncaught_exceptions() <= exceptions_) return;
   std::error_code ec;
-  for (const auto& p : missing_)  // remove() only removes an empty folder
-    if (!std::filesystem::remove(p, ec)) return;
+  for (const auto& p : made_) {  // deepest first; remove() removes only an empty folder
+    if (!fs::is_directory(fs::symlink_status(p, ec)) || !fs::remove(p, ec)) return;
+  }
 }
 
 std::filesystem::path OutputSet::addText(const std::string& fileName, const std::string& text) {

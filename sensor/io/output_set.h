@@ -52,10 +52,13 @@ class OutputSet {
   bool committed_ = false;
 };
 
-// The folders a command is about to create for its output (`directory` and its missing
-// parents), removed again if the command ends by an exception while they are still empty:
-// a run refused after making its folder (a bad view name, a sensor without a curve) left
-// the empty folder behind. A folder that existed before, or holds anything, is kept.
+// Makes the folders missing for a command's output (`directory` and its missing parents)
+// and removes those it made again if the command ends by an exception while they are still
+// empty: a run refused after making its folder (a bad view name, a sensor without a curve)
+// left the empty folder behind. A folder that existed, another process made, or holds
+// anything is kept; a symbolic link is never removed. Another run into the same new folder
+// recreates it when it writes (OutputSet::add); `--tiles` parts, written by many processes
+// into one folder, do not use it.
 class NewDirectoryCleanup {
  public:
   explicit NewDirectoryCleanup(const std::filesystem::path& directory);
@@ -64,8 +67,8 @@ class NewDirectoryCleanup {
   NewDirectoryCleanup& operator=(const NewDirectoryCleanup&) = delete;
 
  private:
-  std::vector<std::filesystem::path> missing_;  // deepest first
-  int exceptions_;                              // std::uncaught_exceptions() when made
+  std::vector<std::filesystem::path> made_;  // deepest first
+  int exceptions_;                           // std::uncaught_exceptions() when made
 };
 
 }  // namespace camsim

@@ -102,10 +102,13 @@ TEST_F(OutputSetTest, AddTextWritesTheTemporaryAndFailsNamingTheFinalFile) {
     set.commit();
   }
   EXPECT_EQ(test::readFile(dir_ / "table.csv"), "a,b\n1,2\n");
+  // A folder that cannot be made (a file holds its parent's name): a missing one is made
+  // again when written to (a failed run beside may have removed it, NewDirectoryCleanup).
+  test::writeFile(dir_ / "no", "a file");
   OutputSet missing(dir_ / "no" / "such" / "dir");
   try {
     missing.addText("table.csv", "x");
-    FAIL() << "no error for a missing directory";
+    FAIL() << "no error for a folder that cannot be made";
   } catch (const std::runtime_error& e) {
     EXPECT_EQ(dynamic_cast<const InputError*>(&e), nullptr)
         << "an environment error, not bad input";
@@ -217,6 +220,22 @@ TEST_F(OutputSetTest, NewDirectoryCleanupRemovesOnlyTheEmptyFoldersItsRunMade) {
     OutputSet::prepareDirectory(dir_ / "ok");
   }
   EXPECT_TRUE(fs::is_directory(dir_ / "ok"));  // no exception: kept, even empty
+  // A dangling symbolic link is not a missing folder: never removed (the review found
+  // `-o dangling` unlinked).
+  fs::create_symlink(dir_ / "nowhere" / "x", dir_ / "dangling");
+  try {
+    const NewDirectoryCleanup cleanup(dir_ / "dangling");
+    throw std::runtime_error("refused");
+  } catch (const std::runtime_error&) {
+  }
+  EXPECT_TRUE(fs::is_symlink(fs::symlink_status(dir_ / "dangling")));
+  // A folder removed by a failed run is made again by a run that writes into it.
+  OutputSet set(dir_ / "gone");
+  const fs::path temp = set.add("a.txt");
+  EXPECT_TRUE(fs::is_directory(dir_ / "gone"));
+  test::writeFile(temp, "a");
+  set.commit();
+  EXPECT_TRUE(fs::exists(dir_ / "gone" / "a.txt"));
 }
 
 TEST(OutputSetNames, TemporaryOwnerReadsThePidOfTemporaryNamesOnly) {
