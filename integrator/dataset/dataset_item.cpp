@@ -26,6 +26,26 @@ std::string fileContentHash(const std::filesystem::path& file) {
   return fnv1aHex(text.str());
 }
 
+// An item's own files (item.json, params.json) lie beside the render's NAME.json: a scene
+// named after one of them overwrote it, and item.json then listed a hash of the other.
+// Refused where the name comes from: an edit of the item, the base scene's `name`, or the
+// base scene's file name (the manifest's `scene:`).
+void checkItemName(const Manifest& manifest, const DatasetItem& item, const std::string& name) {
+  if (name != "item" && name != "params") return;
+  const std::string taken = "is taken by the item's own " + name + ".json: choose another";
+  for (std::size_t k = item.edits.size(); k-- > 0;)
+    if (item.edits[k].path == "name")
+      throw InputError(item.edits[k].where, item.edits[k].key,
+                       "item " + std::to_string(item.index) + ": name = " + item.edits[k].value +
+                           ": the name '" + name + "' " + taken);
+  const YamlValue base = parseYaml(manifest.sceneText, manifest.scene.string());
+  if (const auto n = YamlMap(base).find("name"))
+    n->fail("the name '" + name + "' of a dataset's base scene " + taken);
+  throw InputError(manifest.sceneWhere, "scene",
+                   "the base scene's file name gives it the name '" + name + "', which " + taken +
+                       " (give the scene a name:)");
+}
+
 }  // namespace
 
 std::string itemFolderName(std::size_t index) {
@@ -52,22 +72,14 @@ ResolvedItem resolveItem(const Manifest& manifest, const DatasetItem& item,
   r.editPaths = edited.canonicalPaths;
   r.where = item.where;
   // Stable across runs, shards and machines (it is written into the outputs).
-  const std::string displayName = manifest.scene.filename().string() + " (dataset " +
-                                  manifest.file.filename().string() + ", item " +
-                                  std::to_string(item.index) + ")";
+  r.displayName = manifest.scene.filename().string() + " (dataset " +
+                  manifest.file.filename().string() + ", item " + std::to_string(item.index) + ")";
   try {
-    r.description = loadSceneFromText(r.sceneText, displayName, sceneBaseDir(manifest.scene));
+    r.description = loadSceneFromText(r.sceneText, r.displayName, sceneBaseDir(manifest.scene));
   } catch (const InputError& e) {
     throw r.manifestError(e);
   }
-  // An item's own files (item.json, params.json) beside the render's NAME.json: a scene
-  // named after one of them overwrote it, and item.json then listed a hash of the other.
-  for (const char* reserved : {"item", "params"})
-    if (r.description.name == reserved)
-      throw r.manifestError(InputError({displayName, 0, 0}, "name",
-                                       std::string("the name '") + reserved +
-                                           "' is taken by the item's own " + reserved +
-                                           ".json (docs/dataset-format.md): choose another"));
+  checkItemName(manifest, item, r.description.name);
   std::map<std::string, std::string> last;
   for (std::size_t k = 0; k < edits.size(); ++k) {
     if (edited.canonicalPaths[k].empty() || edits[k].path == "name") continue;
@@ -84,6 +96,8 @@ ResolvedItem resolveItem(const Manifest& manifest, const DatasetItem& item,
 
 InputError ResolvedItem::manifestError(const InputError& e) const {
   const std::string itemName = "item " + std::to_string(index);
+  if (!e.where().file.empty() && e.where().file != displayName)
+    return InputError(e.where(), e.key(), itemName + ": " + e.message());
   for (std::size_t k = edits.size(); k-- > 0;)
     if (under(e.key(), editPaths[k]))
       return InputError(edits[k].where, edits[k].key,

@@ -33,9 +33,11 @@ struct ResolvedItem {
   std::vector<YamlEdit> edits;
   std::vector<std::string> editPaths;  // each edit's canonical path (EditedYaml)
   SourceLocation where;                // the item's manifest entry
+  std::string displayName;             // the resolved scene's name in messages
 
   // An error the scene loader or the render raised about the resolved scene, at the line in
-  // the manifest that set its key, or else at the item's entry.
+  // the manifest that set its key, or else at the item's entry; one located in a file of its
+  // own (a sensor description, a dark frame) keeps that place, prefixed "item N: ".
   InputError manifestError(const InputError& e) const;
 };
 

@@ -125,6 +125,12 @@ void checkEarlierRun(const Manifest& manifest, const fs::path& directory) {
   std::error_code ec;
   if (!fs::is_regular_file(record, ec)) return;
   YamlMap earlier(parseYaml(readWholeFile(record), record.string()));
+  const auto format = earlier.find("format");
+  if (!format || !format->isScalar() || format->string() != "camsim-dataset-output/1")
+    (format ? *format : earlier.self())
+        .fail(
+            "not a camsim dataset folder (its dataset.json is another program's): write the "
+            "dataset to another --output folder");
   const YamlValue name = earlier.require("manifest");
   const std::string hash = earlier.require("manifest_fnv1a64").string();
   if (name.string() != manifest.file.filename().string() && hash != fnv1aHex(manifest.text))
@@ -132,18 +138,24 @@ void checkEarlierRun(const Manifest& manifest, const fs::path& directory) {
               "'); write " + manifest.file.filename().string() +
               "'s elsewhere (another --output) or remove this folder");
   if (!fs::is_directory(directory / "items", ec)) return;
+  std::set<std::size_t> surplus;  // in order: the smallest is named
   for (const auto& entry : fs::directory_iterator(directory / "items", ec)) {
     const std::string folder = entry.path().filename().string();
     if (folder.empty() || folder.size() > 18 ||
         folder.find_first_not_of("0123456789") != std::string::npos)
       continue;
-    if (std::stoull(folder) >= manifest.items.size())
-      throw InputError({entry.path().string(), 0, 0}, "",
-                       "an item this manifest does not have (it has " +
-                           std::to_string(manifest.items.size()) +
-                           " items), left by an earlier run: remove it, or write to another "
-                           "--output folder");
+    if (const std::size_t index = std::stoull(folder); index >= manifest.items.size())
+      surplus.insert(index);
   }
+  if (surplus.empty()) return;
+  const std::size_t n = manifest.items.size();
+  throw InputError(
+      {(directory / "items" / itemFolderName(*surplus.begin())).string(), 0, 0}, "",
+      "an item this manifest does not have (it has " + std::to_string(n) +
+          (n == 1 ? " item" : " items") + "), left by an earlier run" +
+          (surplus.size() > 1 ? " with " + std::to_string(surplus.size() - 1) + " more" : "") +
+          ": remove them (their index.jsonl lines stay, a log), or write to another --output "
+          "folder");
 }
 
 }  // namespace

@@ -208,6 +208,7 @@ Manifest parseManifest(const std::string& text, const std::string& displayName,
                 "' (this camsim reads camsim-dataset/1)");
   const YamlValue scene = top.require("scene");
   m.scene = baseDir / scene.string();
+  m.sceneWhere = scene.where();
   try {
     m.sceneText = readSceneFile(m.scene);
   } catch (const InputError& e) {

@@ -51,6 +51,7 @@ struct Manifest {
   std::filesystem::path file;   // as given
   std::string text;             // the manifest's own text
   std::filesystem::path scene;  // the base scene, resolved against the manifest's folder
+  SourceLocation sceneWhere;    // the manifest's `scene:` value
   std::string sceneText;        // its text
   std::uint64_t seed = 0;
   bool seedsPerItem = true;

@@ -6,7 +6,6 @@
 // their elements, index accessors of unsigned integers, counts and lengths positive
 // integers, external files present. Value checks that need the data (index values, NaN
 // positions) are done as the data is read (gltf_accessors.cpp).
-#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <cstdint>
@@ -22,6 +21,11 @@
 #include "sensor/base/input_error.h"
 
 namespace camsim {
+
+// gltf_validate_materials.cpp: a material's values of their types.
+void checkGltfMaterialValues(const nlohmann::json& material, const std::string& path,
+                             const std::string& file);
+
 namespace {
 
 using Json = nlohmann::json;
@@ -143,46 +147,6 @@ void checkTextureInfo(const Checker& c, const Json& obj, const std::string& path
   if (const auto r = tt->find("rotation"); r != tt->end() && !r->is_number())
     c.fail(tp + ".rotation", "must be a number (radians)");
   c.integer(*tt, tp, "texCoord", 0, 16, false);
-}
-
-// A material's values are of their type (tinygltf drops a mistyped one for its default,
-// silently): obj[key] a number (n = 0) or an array of n numbers; an extension an object.
-void checkNumbers(const Checker& c, const Json& obj, const std::string& path, const char* key,
-                  size_t n = 0) {
-  const auto v = obj.find(key);
-  if (v == obj.end()) return;
-  const bool ok =
-      n == 0 ? v->is_number()
-             : v->is_array() && v->size() == n &&
-                   std::all_of(v->begin(), v->end(), [](const Json& x) { return x.is_number(); });
-  if (!ok)
-    c.fail(path + "." + key,
-           n == 0 ? "must be a number" : "must be an array of " + std::to_string(n) + " numbers");
-}
-void checkMaterialValues(const Checker& c, const Json& m, const std::string& p) {
-  if (const auto pbr = m.find("pbrMetallicRoughness"); pbr != m.end()) {
-    checkNumbers(c, *pbr, p + ".pbrMetallicRoughness", "baseColorFactor", 4);
-    for (const char* key : {"metallicFactor", "roughnessFactor"})
-      checkNumbers(c, *pbr, p + ".pbrMetallicRoughness", key);
-  }
-  checkNumbers(c, m, p, "emissiveFactor", 3);
-  checkNumbers(c, m, p, "alphaCutoff");
-  if (const auto a = m.find("alphaMode"); a != m.end() && !a->is_string())
-    c.fail(p + ".alphaMode", "must be a string");
-  if (const auto d = m.find("doubleSided"); d != m.end() && !d->is_boolean())
-    c.fail(p + ".doubleSided", "must be true or false");
-  const auto ext = m.find("extensions");
-  if (ext == m.end()) return;
-  if (!ext->is_object()) c.fail(p + ".extensions", "must be an object");
-  for (const auto& [name, key] : {std::pair{"KHR_materials_emissive_strength", "emissiveStrength"},
-                                  {"KHR_materials_transmission", "transmissionFactor"},
-                                  {"KHR_materials_ior", "ior"}}) {
-    const auto e = ext->find(name);
-    if (e == ext->end()) continue;
-    const std::string ep = p + ".extensions." + name;
-    if (!e->is_object()) c.fail(ep, "must be an object");
-    checkNumbers(c, *e, ep, key);
-  }
 }
 
 // A buffer's data holds exactly byteLength bytes (tinygltf refuses any other length with
@@ -352,7 +316,7 @@ void validateGltfJson(const std::string& json, const std::string& displayName,
     }
     for (const char* key : {"normalTexture", "occlusionTexture", "emissiveTexture"})
       checkTextureInfo(c, m, p, key);
-    checkMaterialValues(c, m, p);
+    checkGltfMaterialValues(m, p, c.file);
   }
   for (size_t i = 0; i < c.count("meshes"); ++i) {
     const Json& mesh = c.item("meshes", i);

@@ -232,8 +232,8 @@ SensorSpec parseSensorSpec(const std::string& yamlText, const std::string& displ
     for (std::size_t c = 0; c < spec.qe.size(); ++c)
       if (!(spec.qe[c].maxValue() > 0.0))
         where.fail("channel " + spec.cfa.channels[c] + " has no response within " +
-                   std::to_string(kLambdaMinNm) + "-" + std::to_string(kLambdaMaxNm) +
-                   " nm, the range camsim traces" + cause);
+                   std::to_string(kLambdaMinNm) + "-" + std::to_string(kLambdaMaxNm) + " nm" +
+                   cause + " (the range camsim traces)");
   };
   const YamlValue qeValue = map.require("qe");
   spec.qe = parseQe(qeValue, spec.cfa, tables);

@@ -91,13 +91,18 @@ TEST_F(DatasetReuse, ItemsPastAShorterManifestsCountAreRefused) {
   writeFile(dir_.path() / "a.yaml", manifest(3));
   ASSERT_EQ(run("a.yaml", "").exitCode, 0);
   const auto before = tree(out_);
-  writeFile(dir_.path() / "a.yaml", manifest(2));
+  // One item: the smallest surplus folder named (the iteration order is the filesystem's),
+  // and how many more there are.
+  writeFile(dir_.path() / "a.yaml", manifest(1));
   const auto r = run("a.yaml", "--resume");
   EXPECT_EQ(r.exitCode, 2) << r.err;
-  EXPECT_NE(r.err.find((out_ / "items" / "000002").string()), std::string::npos) << r.err;
-  EXPECT_NE(r.err.find("an item this manifest does not have (it has 2 items)"), std::string::npos)
+  EXPECT_NE(r.err.find((out_ / "items" / "000001").string() + ": "), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("an item this manifest does not have (it has 1 item), left by an earlier "
+                       "run with 1 more"),
+            std::string::npos)
       << r.err;
   EXPECT_EQ(tree(out_), before);
+  fs::remove_all(out_ / "items" / "000001");
   fs::remove_all(out_ / "items" / "000002");
   EXPECT_EQ(run("a.yaml", "--resume").exitCode, 0);
 }
@@ -115,6 +120,37 @@ TEST_F(DatasetReuse, AnItemNamedAfterTheItemsOwnFilesIsRefusedAtItsLine) {
         << r.err;
     EXPECT_FALSE(fs::exists(out_));
   }
+  // A name from the base scene is refused at its line there; from the base scene's file
+  // name, at the manifest's scene: line.
+  std::string named = kBase;
+  named.replace(named.find("name: probe"), 11, "name: item");
+  writeFile(dir_.path() / "named.yaml", named);
+  writeFile(dir_.path() / "n.yaml",
+            "format: camsim-dataset/1\nscene: named.yaml\nitems:\n  - {render.seed: 1}\n");
+  auto r = run("n.yaml", "");
+  EXPECT_EQ(r.exitCode, 2) << r.err;
+  EXPECT_NE(r.err.find("named.yaml:2:7: key 'name'"), std::string::npos) << r.err;
+  std::string unnamed = kBase;
+  unnamed.erase(unnamed.find("name: probe\n"), 12);
+  writeFile(dir_.path() / "params.yaml", unnamed);
+  writeFile(dir_.path() / "n.yaml",
+            "format: camsim-dataset/1\nscene: params.yaml\nitems:\n  - {render.seed: 1}\n");
+  r = run("n.yaml", "");
+  EXPECT_EQ(r.exitCode, 2) << r.err;
+  EXPECT_NE(r.err.find("n.yaml:2:8: key 'scene': the base scene's file name"), std::string::npos)
+      << r.err;
+  EXPECT_FALSE(fs::exists(out_));
+}
+
+// A dataset.json that another program wrote: not a camsim dataset folder (it said
+// "key 'manifest': required key is missing").
+TEST_F(DatasetReuse, AForeignDatasetJsonIsNotACamsimFolder) {
+  fs::create_directories(out_);
+  writeFile(out_ / "dataset.json", "{\"name\": \"someone else's\"}\n");
+  writeFile(dir_.path() / "a.yaml", manifest(1));
+  const auto r = run("a.yaml", "");
+  EXPECT_EQ(r.exitCode, 2) << r.err;
+  EXPECT_NE(r.err.find("not a camsim dataset folder"), std::string::npos) << r.err;
 }
 
 TEST_F(DatasetReuse, AnErrorFoundWhileRenderingNamesTheManifestLine) {
@@ -126,6 +162,19 @@ TEST_F(DatasetReuse, AnErrorFoundWhileRenderingNamesTheManifestLine) {
   EXPECT_NE(r.err.find("wb.yaml:4:"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("key 'set.isp.white_balance': item 1:"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("cannot white-balance"), std::string::npos) << r.err;
+  // An error of a file of its own (a sensor whose CFA no demosaicking reads) keeps that
+  // file's place, prefixed with the item (the review found it moved to the item's entry).
+  writeFile(dir_.path() / "cfa3.yaml",
+            "pixel_pitch_um: 5\ncfa: {tile: [[0, 1, 2], [1, 2, 0], [2, 0, 1]], channels: [R, G, "
+            "B]}\nqe: {curves: cameras/sony_ilce_7m3.csv, peak_qe: 0.6}\n");
+  writeFile(dir_.path() / "s.yaml",
+            "format: camsim-dataset/1\nscene: base.yaml\nitems:\n  - {sensor.model: cfa3.yaml}\n");
+  fs::remove_all(out_);
+  const auto s = run("s.yaml", "--threads 1");
+  EXPECT_EQ(s.exitCode, 2) << s.err;
+  EXPECT_NE(s.err.find("cfa3.yaml: key 'cfa': item 0: demosaicking needs a Bayer layout"),
+            std::string::npos)
+      << s.err;
 }
 
 }  // namespace

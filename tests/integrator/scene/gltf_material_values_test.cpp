@@ -10,6 +10,7 @@
 #include "integrator/scene/gltf_document.h"
 #include "sensor/base/input_error.h"
 #include "tests/integrator/scene/gltf_test_support.h"
+#include "tests/support/temp_dir.h"
 
 namespace camsim {
 namespace {
@@ -18,12 +19,11 @@ namespace fs = std::filesystem;
 
 // A one-triangle file whose material 0 is `material`; the key of the InputError reading it
 // raises ("" if it reads).
-std::string refusedKey(const std::string& name, const std::string& material) {
+std::string refusedKey(const std::string& material) {
   test::GltfBuilder b;
   b.floats({0, 0, 0, 1, 0, 0, 0, 1, 0}, "VEC3");
-  const fs::path dir = fs::temp_directory_path() / ("camsim_gltf_material_" + name);
-  fs::remove_all(dir);
-  fs::create_directories(dir);
+  const test::TempDir tmp;
+  const fs::path dir = tmp.path();
   test::writeText(
       dir / "tri.gltf",
       b.json(R"("meshes":[{"primitives":[{"attributes":{"POSITION":0},"material":0}]}],)"
@@ -62,19 +62,17 @@ TEST(GltfMaterialValues, MistypedValuesAreRefusedByTheirJsonPath) {
        "materials[0].extensions.KHR_materials_transmission.transmissionFactor"},
       {R"({"extensions":{"KHR_materials_ior":7}})", "materials[0].extensions.KHR_materials_ior"},
   };
-  int k = 0;
   for (const auto& c : cases) {
     SCOPED_TRACE(c.material);
-    EXPECT_EQ(refusedKey("typed" + std::to_string(k++), c.material), c.key);
+    EXPECT_EQ(refusedKey(c.material), c.key);
   }
   // Well-typed values and a material without any still read.
-  EXPECT_EQ(refusedKey("typed_ok",
-                       R"({"pbrMetallicRoughness":{"baseColorFactor":[1,0.5,0.5,1],)"
+  EXPECT_EQ(refusedKey(R"({"pbrMetallicRoughness":{"baseColorFactor":[1,0.5,0.5,1],)"
                        R"("roughnessFactor":0.3},"emissiveFactor":[0,0,0],"alphaMode":"MASK",)"
                        R"("alphaCutoff":0.4,"doubleSided":true,"extensions":)"
                        R"({"KHR_materials_ior":{"ior":1.33}}})"),
             "");
-  EXPECT_EQ(refusedKey("typed_empty", "{}"), "");
+  EXPECT_EQ(refusedKey("{}"), "");
 }
 
 TEST(GltfMaterialValues, OutOfRangeValuesNameTheWholePath) {
@@ -98,10 +96,9 @@ TEST(GltfMaterialValues, OutOfRangeValuesNameTheWholePath) {
       {R"({"extensions":{"KHR_materials_transmission":{"transmissionFactor":1.01}}})",
        "materials[0].extensions.KHR_materials_transmission.transmissionFactor"},
   };
-  int k = 0;
   for (const auto& c : cases) {
     SCOPED_TRACE(c.material);
-    EXPECT_EQ(refusedKey("range" + std::to_string(k++), c.material), c.key);
+    EXPECT_EQ(refusedKey(c.material), c.key);
   }
 }
 

@@ -157,23 +157,6 @@ TEST(SceneLimits, ScaledShapesAreCheckedPerShape) {
   }
 }
 
-// A mesh file's translate past ±1e15 m is named by its key (the collapsed float positions
-// were refused as "mesh has zero area", naming the file).
-TEST(SceneLimits, AMeshFilesTranslateIsRangeChecked) {
-  const test::TempDir dir;
-  test::writeFile(dir.path() / "tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
-  try {
-    (void)loadSceneFromText(kHeader + kLimitsCamera + kSun + kMaterial + "shapes:\n" + kBall +
-                                "  - {type: mesh, file: tri.obj, translate: [1e20, 0, 0], "
-                                "material: m}\n",
-                            "far.yaml", dir.path());
-    ADD_FAILURE() << "loaded";
-  } catch (const InputError& e) {
-    EXPECT_EQ(e.key(), "shapes[1].translate") << e.what();
-    EXPECT_NE(e.message().find("within ±1e15 m"), std::string::npos) << e.what();
-  }
-}
-
 // The loader's smallest sphere radius, 1e-9 m (SceneLimits::kMinSphereRadius), builds and
 // renders: it is stored as the float 9.99999972e-10, which the build's reach check once
 // compared in double against 1e-9 and refused (found by fuzz_scene_render,
@@ -346,27 +329,6 @@ TEST(SceneLimits, WhiteBalanceRefusalsNameTheSceneKey) {
   });
   EXPECT_EQ(clipped.key(), "isp.white_balance") << clipped.what();
   EXPECT_EQ(clipped.where().line, 6) << clipped.what();
-}
-
-// A sensor whose CFA no demosaicking reads (a 3×3 tile) is refused after rendering, naming
-// the sensor's file and its key, and the scene line that named it (it named the scene's
-// sensor.model alone, or with a --sensor override the scene file).
-TEST(SceneLimits, ASensorsOwnDataErrorNamesItsFile) {
-  const test::TempDir dir;
-  test::writeFile(dir.path() / "cfa3.yaml",
-                  "pixel_pitch_um: 5\ncfa: {tile: [[0, 1, 2], [1, 2, 0], [2, 0, 1]], channels: "
-                  "[R, G, B]}\nqe: {curves: cameras/sony_ilce_7m3.csv, peak_qe: 0.6}\n");
-  const InputError e = errorOf([&] {
-    capture(loadSceneFromText(kHeader + kLimitsCamera + kSun + "sensor: {model: cfa3.yaml}\n" +
-                                  kMaterial + "shapes:\n" + kBall,
-                              "cfa3_scene.yaml", dir.path()));
-  });
-  EXPECT_EQ(e.where().file, (dir.path() / "cfa3.yaml").string()) << e.what();
-  EXPECT_EQ(e.key(), "cfa") << e.what();
-  EXPECT_NE(std::string(e.what()).find("demosaicking needs a Bayer layout"), std::string::npos)
-      << e.what();
-  EXPECT_NE(std::string(e.what()).find("in the file named by cfa3_scene.yaml:"), std::string::npos)
-      << e.what();
 }
 
 // A spectral table that is not a table, or a sensor file that is not a sensor, names its

@@ -204,8 +204,8 @@ TEST(SensorSpec, CsvQeAndIrCutTablesResolveNextToTheDescription) {
       {"cfa: {tile: [[0, 1], [1, 0]], channels: [R, G]}\nqe: {csv: red.csv, columns: [r, g]}\n"
        "ir_cut: {csv: cut.csv}\n",
        "ir_cut",
-       "channel R has no response within 360-830 nm, the range camsim traces once the "
-       "IR-cut filter is applied"},
+       "channel R has no response within 360-830 nm once the IR-cut filter is applied (the "
+       "range camsim traces)"},
   };
   for (const auto& c : blind) {
     try {

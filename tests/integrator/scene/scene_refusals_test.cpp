@@ -1,0 +1,74 @@
+// Scenes refused by the key that is wrong, found by probing the command line (each named
+// something else before): a mesh file's translate past ±1e15 m ("mesh has zero area"), a
+// sensor's own data refused after rendering (the scene's sensor block).
+#include <gtest/gtest.h>
+
+#include <functional>
+#include <string>
+
+#include "integrator/capture/capture.h"
+#include "integrator/scene/scene_loader.h"
+#include "sensor/base/input_error.h"
+#include "tests/support/temp_dir.h"
+#include "tests/support/text_file.h"
+
+namespace camsim {
+namespace {
+
+const std::string kHeader = "format: camsim-scene/1\nrender: {spp: 4, max_depth: 3}\n";
+const std::string kLimitsCamera =
+    "camera: {position: [0, 0, 5], look_at: [0, 0, 0], resolution: [16, 16]}\n";
+const std::string kSun = "lights: [{type: distant, direction: [0, 0, -1], illuminance: 1000}]\n";
+const std::string kMaterial = "materials: {m: {type: diffuse, reflectance: 0.5}}\n";
+const std::string kBall = "  - {type: sphere, centre: [0, 0, 0], radius: 1, material: m}\n";
+
+InputError errorOf(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const InputError& e) {
+    return e;
+  }
+  ADD_FAILURE() << "no InputError";
+  return InputError({}, "", "");
+}
+
+// A mesh file's translate past ±1e15 m is named by its key (the collapsed float positions
+// were refused as "mesh has zero area", naming the file).
+TEST(SceneRefusals, AMeshFilesTranslateIsRangeChecked) {
+  const test::TempDir dir;
+  test::writeFile(dir.path() / "tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+  try {
+    (void)loadSceneFromText(kHeader + kLimitsCamera + kSun + kMaterial + "shapes:\n" + kBall +
+                                "  - {type: mesh, file: tri.obj, translate: [1e20, 0, 0], "
+                                "material: m}\n",
+                            "far.yaml", dir.path());
+    ADD_FAILURE() << "loaded";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.key(), "shapes[1].translate") << e.what();
+    EXPECT_NE(e.message().find("within ±1e15 m"), std::string::npos) << e.what();
+  }
+}
+
+// A sensor whose CFA no demosaicking reads (a 3×3 tile) is refused after rendering, naming
+// the sensor's file and its key, and the scene line that named it (it named the scene's
+// sensor.model alone, or with a --sensor override the scene file).
+TEST(SceneRefusals, ASensorsOwnDataErrorNamesItsFile) {
+  const test::TempDir dir;
+  test::writeFile(dir.path() / "cfa3.yaml",
+                  "pixel_pitch_um: 5\ncfa: {tile: [[0, 1, 2], [1, 2, 0], [2, 0, 1]], channels: "
+                  "[R, G, B]}\nqe: {curves: cameras/sony_ilce_7m3.csv, peak_qe: 0.6}\n");
+  const InputError e = errorOf([&] {
+    capture(loadSceneFromText(kHeader + kLimitsCamera + kSun + "sensor: {model: cfa3.yaml}\n" +
+                                  kMaterial + "shapes:\n" + kBall,
+                              "cfa3_scene.yaml", dir.path()));
+  });
+  EXPECT_EQ(e.where().file, (dir.path() / "cfa3.yaml").string()) << e.what();
+  EXPECT_EQ(e.key(), "cfa") << e.what();
+  EXPECT_NE(std::string(e.what()).find("demosaicking needs a Bayer layout"), std::string::npos)
+      << e.what();
+  EXPECT_NE(std::string(e.what()).find("in the file named by cfa3_scene.yaml:"), std::string::npos)
+      << e.what();
+}
+
+}  // namespace
+}  // namespace camsim
