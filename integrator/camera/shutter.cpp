@@ -4,6 +4,8 @@
 #include <cmath>
 
 #include "sensor/base/check.h"
+#include "sensor/base/format.h"
+#include "sensor/base/input_error.h"
 
 namespace camsim {
 
@@ -26,24 +28,47 @@ Shutter Shutter::box(double open, double close) {
 
 Shutter Shutter::trapezoid(double open, double close, double rampOpen, double rampClose, Type type,
                            double rowTime) {
-  std::vector<double> t = {open}, s = {rampOpen > 0.0 ? 0.0 : 1.0};
-  if (rampOpen > 0.0) t.push_back(open + rampOpen), s.push_back(1.0);
-  if (rampClose > 0.0 && close - rampClose > t.back())
-    t.push_back(close - rampClose), s.push_back(1.0);
-  t.push_back(close), s.push_back(rampClose > 0.0 ? 0.0 : 1.0);
+  // Knots strictly inside (open, close) only: a ramp that fills the exposure ends at close
+  // itself, and one lost to rounding (open + 1e-20 == open) is no ramp (two equal knot
+  // times aborted the process).
+  const double a = open + rampOpen, b = close - rampClose;
+  const bool up = rampOpen > 0.0 && a > open, down = rampClose > 0.0 && b < close;
+  std::vector<double> t = {open}, s = {up ? 0.0 : 1.0};
+  if (up && a < close) t.push_back(a), s.push_back(1.0);
+  if (down && b > t.back()) t.push_back(b), s.push_back(1.0);
+  if (up && down && t.size() == 1) t.push_back(0.5 * (open + close)), s.push_back(1.0);
+  t.push_back(close), s.push_back(down ? 0.0 : 1.0);
   return Shutter(std::move(t), std::move(s), type, rowTime);
 }
+
+namespace {
+
+// Knot times moved by scaled() or shifted() must stay apart: an exposure too short for the
+// time it opens at (1e-17 s at 0.5 s: 0.5 + 1e-17 == 0.5) cannot be represented.
+void checkApart(const std::vector<double>& t, double exposure) {
+  for (size_t i = 1; i < t.size(); ++i)
+    if (!(t[i] > t[i - 1]))
+      throw InputError({}, "shutter",
+                       "the exposure, " + formatShortest(exposure) +
+                           " s, is too short for the time it opens at, " +
+                           formatShortest(t.front()) +
+                           " s (double precision cannot tell its times apart)");
+}
+
+}  // namespace
 
 Shutter Shutter::scaled(double k) const {
   CAMSIM_CHECK(k > 0.0);
   std::vector<double> t = times_;
   for (double& v : t) v = times_.front() + (v - times_.front()) * k;
+  checkApart(t, (times_.back() - times_.front()) * k);
   return Shutter(std::move(t), values_, type_, rowTime_);
 }
 
 Shutter Shutter::shifted(double dt) const {
   std::vector<double> t = times_;
   for (double& v : t) v += dt;
+  checkApart(t, times_.back() - times_.front());
   return Shutter(std::move(t), values_, type_, rowTime_);
 }
 

@@ -32,8 +32,9 @@ class Shutter {
                            Type type = Type::kGlobal, double rowTime = 0.0);
 
   // The same curve stretched in time by k about the opening time (exposure × k).
+  // InputError (key "shutter") when its times would no longer be apart in double precision.
   Shutter scaled(double k) const;
-  // The same curve moved later by dt seconds (a frame of a sequence).
+  // The same curve moved later by dt seconds (a frame of a sequence); the same error.
   Shutter shifted(double dt) const;
 
   double open() const { return times_.front(); }

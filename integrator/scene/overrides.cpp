@@ -340,8 +340,14 @@ void applyOverrides(SceneDescription& d, const Overrides& o, const SourceLocatio
   if (o.timeLimitS) d.render.timeLimitS = *o.timeLimitS;
   if (o.adaptiveThreshold) d.render.adaptiveThreshold = *o.adaptiveThreshold;
   if (o.guiding) d.render.guiding = *o.guiding != 0;
-  if (o.exposureTimeS)
-    d.camera.shutter = d.camera.shutter.scaled(*o.exposureTimeS / d.camera.shutter.effectiveTime());
+  if (o.exposureTimeS) {
+    try {
+      d.camera.shutter =
+          d.camera.shutter.scaled(*o.exposureTimeS / d.camera.shutter.effectiveTime());
+    } catch (const InputError& e) {
+      throw InputError(where, std::string(setting("exposure_time_s").sceneKey), e.message());
+    }
+  }
   if (o.fNumber) d.camera.fNumber = *o.fNumber;  // the stop follows (apertureDiameter)
   if (o.fNumber && d.camera.lens) {              // a traced lens: its stop, within the lens's range
     const double widest = LensSystem(d.camera.lens->prescription).minFNumber();

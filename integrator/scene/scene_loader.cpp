@@ -462,7 +462,17 @@ SceneDescription loadSceneFromText(const std::string& text, const std::string& d
     std::vector<LightDescription> own = parseLights(*l, ctx.search, baseDir, scene.renderOrigin);
     scene.lights.insert(scene.lights.begin(), own.begin(), own.end());
   }
-  if (auto f = top.find("frames")) scene.frames = parseFrames(YamlMap(*f));
+  if (auto f = top.find("frames")) {
+    scene.frames = parseFrames(YamlMap(*f));
+    // Each frame's shutter where the frame starts: the first and last are the furthest from
+    // 0, where a short exposure's times are the first to run together.
+    try {
+      (void)scene.frameCamera(0);
+      (void)scene.frameCamera(scene.frames->count - 1);
+    } catch (const InputError& e) {
+      f->fail(e.message());
+    }
+  }
   if (auto e = top.find("exports")) parseExports(*e, scene);
   // An aov that needs what the scene lacks: an error at render.aovs.
   const std::vector<Aov>& aovs = scene.render.aovs;

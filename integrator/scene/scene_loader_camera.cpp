@@ -172,10 +172,13 @@ Shutter parseShutter(YamlMap map) {
     close = closeValue->number(-setting_ranges::kShutterTime, setting_ranges::kShutterTime);
   if (!(close > open))
     (closeValue ? *closeValue : map.self()).fail("close must be later than open");
-  if (auto v = map.find("ramp_open")) rampOpen = v->number(0.0, close - open);
+  // The exposure as written: close − open rounds (0.3 − 0.1 < 0.2), and a ramp of the whole
+  // exposure is allowed.
+  const double exposure = (close - open) * (1.0 + 1e-12);
+  if (auto v = map.find("ramp_open")) rampOpen = v->number(0.0, exposure);
   const auto rc = map.find("ramp_close");
-  if (rc) rampClose = rc->number(0.0, close - open);
-  if (rampOpen + rampClose > close - open)
+  if (rc) rampClose = rc->number(0.0, exposure);
+  if (rampOpen + rampClose > exposure)
     rc->fail("ramp_open + ramp_close exceed the exposure (close − open)");
   map.finish({"type", "row_time", "open", "close", "ramp_open", "ramp_close"});
   return Shutter::trapezoid(open, close, rampOpen, rampClose, type, rowTime);

@@ -2,10 +2,13 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <functional>
+#include <string>
 #include <vector>
 
 #include "integrator/camera/shutter.h"
 #include "integrator/sampling/rng.h"
+#include "sensor/base/input_error.h"
 
 namespace camsim {
 namespace {
@@ -18,6 +21,34 @@ TEST(Shutter, EffectiveTimeOfBoxTrapezoidAndCurve) {
   EXPECT_NEAR(curve.effectiveTime(), 0.0005 + 0.00075 + 0.00075, 1e-15);
   EXPECT_DOUBLE_EQ(curve.efficiency(0.0015), 0.75);
   EXPECT_DOUBLE_EQ(curve.efficiency(-1.0), 0.0);
+}
+
+// Found by probing (each aborted the process on a check of equal knot times): a ramp that
+// fills the exposure, ramps lost to rounding, and an exposure scaled or moved until its
+// times run together in double precision (now an InputError keyed "shutter").
+TEST(Shutter, RampsAtTheLimitsAndTimesThatRunTogether) {
+  // ramp_open = the exposure: a ramp 0 → 1 across it (T_eff = half), as is a ramp down.
+  EXPECT_NEAR(Shutter::trapezoid(0.0, 0.01, 0.01, 0.0).effectiveTime(), 0.005, 1e-15);
+  EXPECT_NEAR(Shutter::trapezoid(0.0, 0.01, 0.0, 0.01).effectiveTime(), 0.005, 1e-15);
+  EXPECT_NEAR(Shutter::trapezoid(0.0, 0.01, 0.005, 0.005).effectiveTime(), 0.005, 1e-15);
+  // 0.3 − 0.1 rounds below 0.2: the whole exposure still.
+  EXPECT_NEAR(Shutter::trapezoid(0.1, 0.3, 0.2, 0.0).effectiveTime(), 0.1, 1e-15);
+  // Ramps of 1e-20 s at 0.5 s and at 1 s are lost to rounding: a box.
+  EXPECT_DOUBLE_EQ(Shutter::trapezoid(0.5, 1.0, 1e-20, 0.0).effectiveTime(), 0.5);
+  EXPECT_DOUBLE_EQ(Shutter::trapezoid(0.0, 1.0, 0.0, 1e-20).effectiveTime(), 1.0);
+  const Shutter late = Shutter::box(0.5, 0.51);
+  for (const auto& make : {std::function<Shutter()>([&] { return late.scaled(1e-15); }),
+                           std::function<Shutter()>([&] { return late.shifted(1e16); })}) {
+    try {
+      make();
+      ADD_FAILURE() << "made";
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.key(), "shutter");
+      EXPECT_NE(e.message().find("too short for the time it opens at"), std::string::npos)
+          << e.what();
+    }
+  }
+  EXPECT_NEAR(late.scaled(1e-3).effectiveTime(), 1e-5, 1e-15);  // still apart: fine
 }
 
 // Kolmogorov–Smirnov: the empirical CDF of 2^17 samples against ∫s/T_eff; the 99.9 %

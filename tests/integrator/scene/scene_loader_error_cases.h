@@ -229,6 +229,11 @@ inline const ErrorCase kErrorCases[] = {
     // A missing lens file was "spectral table 'nosuch.dat' not found".
     {"MissingLensFile", withCameraLine("  lens: {file: nosuch.dat}\n"), 4, 16, "camera.lens.file",
      "lens file 'nosuch.dat' not found (searched: "},
+    // A 1 ns exposure 1e10 s after time 0: its times run together (a failed check, exit 134).
+    {"FramesTooLateForTheirExposure",
+     withCameraLine("  shutter: {open: 0, close: 1e-9}\n") +
+         "frames: {count: 2, first: 10000000, rate_hz: 0.001}\n",
+     9, 9, "frames", "too short for the time it opens at"},
     {"CameraKeyframeBeyondRenderSpace",
      withCameraLine("  motion: [{time: 0, translate: [1e19, 0, 0]}]\n"), 4, 33,
      "camera.motion[0].translate", "within ±1e15 m"},
