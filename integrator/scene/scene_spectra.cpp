@@ -1,6 +1,7 @@
 #include "integrator/scene/scene_spectra.h"
 
 #include "sensor/base/file_status.h"
+#include "sensor/base/format.h"
 #include "sensor/spectra/color_space.h"
 #include "sensor/spectra/rgb_uplift.h"
 #include "sensor/spectra/spectral_data.h"
@@ -33,6 +34,14 @@ Spectrum fromTable(YamlMap& map, SpectrumUse use, const TableSearch& search) {
   if (s.minValue() < 0.0) file.fail("spectral table has negative values");
   if (use == SpectrumUse::kReflectance && s.maxValue() > 1.0)
     file.fail("reflectance must lie in [0, 1]; the table exceeds 1");
+  // The ranges an inline value has (1e3 for an index, 1e30 for an emission shape): past
+  // 3.4e38 the float spectrum is infinite, and an emitter's light distribution was NaN (a
+  // failed check, exit 134); an ior of 1e300 from a table was taken.
+  const double hi = use == SpectrumUse::kIndex ? 1e3 : 1e30;
+  if (!(s.maxValue() <= hi))
+    file.fail("spectral table has values above " + formatShortest(hi) +
+              (use == SpectrumUse::kIndex ? " (an index of refraction's limit, as inline)"
+                                          : " (as an inline value)"));
   return s;
 }
 

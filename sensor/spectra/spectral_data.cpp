@@ -1,5 +1,6 @@
 #include "sensor/spectra/spectral_data.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 
@@ -79,6 +80,11 @@ SpectralTable parseSpectralCsv(std::string_view text, const std::string& sourceN
                          "missing header line (e.g. 'wavelength_nm,value'): found a data row");
       for (size_t i = 1; i < fields.size(); ++i) {
         if (fields[i].empty()) throw InputError(where, "", "empty column name in header");
+        // A name given twice: `column: NAME` read the first silently.
+        if (std::find(table.columns.begin(), table.columns.end(), fields[i]) != table.columns.end())
+          throw InputError(
+              where, "",
+              "column name '" + std::string(fields[i]) + "' appears twice in the header");
         table.columns.emplace_back(fields[i]);
       }
       table.values.resize(table.columns.size());

@@ -70,5 +70,34 @@ TEST(SceneRefusals, ASensorsOwnDataErrorNamesItsFile) {
       << e.what();
 }
 
+// Spectral tables are held to an inline value's range: an emission shape of 1e40 overflowed
+// the float spectrum and the light distribution was NaN (a failed check, exit 134); an index
+// of refraction of 1e300 from a table was taken where `ior: 1e300` is refused.
+TEST(SceneRefusals, SpectralTablesAreHeldToTheInlineRange) {
+  const test::TempDir dir;
+  test::writeFile(dir.path() / "hot.csv", "nm,e\n400,1e40\n700,1e40\n");
+  test::writeFile(dir.path() / "dense.csv", "nm,n\n400,1e300\n700,1.5\n");
+  const struct {
+    std::string materials, shapes, key, says;
+  } cases[] = {
+      {kMaterial,
+       "  - {type: sphere, centre: [0, 2, 0], radius: 0.5, emission: {spectrum: {csv: hot.csv, "
+       "column: e}, luminance: 1000}}\n",
+       "shapes[1].emission.spectrum.csv", "above 1e+30"},
+      {"materials: {m: {type: diffuse}, glass: {type: dielectric, ior: {csv: dense.csv}}}\n",
+       "  - {type: sphere, centre: [0, 2, 0], radius: 0.5, material: glass}\n",
+       "materials.glass.ior.csv", "above 1000"},
+  };
+  for (const auto& c : cases) {
+    const InputError e = errorOf([&] {
+      loadSceneFromText(
+          kHeader + kLimitsCamera + kSun + c.materials + "shapes:\n" + kBall + c.shapes,
+          "tables.yaml", dir.path());
+    });
+    EXPECT_EQ(e.key(), c.key) << e.what();
+    EXPECT_NE(e.message().find(c.says), std::string::npos) << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace camsim

@@ -85,6 +85,11 @@ TEST(ParseSpectralCsv, RowWithWrongFieldCount) {
   EXPECT_EQ(errorLine("nm,a\n400,1,\n"), 2);  // trailing comma is an extra (empty) field
 }
 
+// Found by probing: `column: a` read the first of two columns named a, silently.
+TEST(ParseSpectralCsv, ColumnNamedTwice) {
+  EXPECT_EQ(errorLine("nm,a,b,a\n400,1,2,3\n"), 1);
+}
+
 TEST(ParseSpectralCsv, NonNumber) {
   EXPECT_EQ(errorLine("nm,a\n400,1\n500,abc\n"), 3);
   EXPECT_EQ(errorLine("nm,a\n400,1\nfive hundred,2\n"), 3);
