@@ -1,6 +1,7 @@
 #include "cli/command_line.h"
 
 #include "cli/args.h"
+#include "sensor/base/threads.h"
 
 namespace camsim {
 namespace {
@@ -81,9 +82,9 @@ void addThreadsOption(CLI::App& app, int& threads, const std::string& what) {
   app.add_option_function<std::string>(
          "--threads",
          [&threads](const std::string& t) {
-           threads = static_cast<int>(parseInteger("--threads", t, 1, 1024));
+           threads = static_cast<int>(parseInteger("--threads", t, 1, kMaxThreads));
          },
-         "worker threads [1, 1024] (default: all cores); " + what)
+         "worker threads [1, " + std::to_string(kMaxThreads) + "] (default: all cores); " + what)
       ->type_name("N");
 }
 

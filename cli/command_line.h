@@ -38,7 +38,7 @@ void addPictureOptions(CLI::App& app, std::string& ocioConfig, std::string& disp
 // -o/--output DIR (non-empty).
 void addOutputOption(CLI::App& app, std::string& dir, const std::string& help);
 
-// --threads N: worker threads in [1, 1024] (UsageError otherwise); left as it is (0: all
+// --threads N: worker threads in [1, kMaxThreads] (sensor/base/threads.h; UsageError otherwise); left as it is (0: all
 // hardware threads) unless given. What the threads do goes in `help`'s tail.
 void addThreadsOption(CLI::App& app, int& threads, const std::string& what);
 

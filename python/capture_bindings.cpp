@@ -13,6 +13,7 @@
 #include "python/bindings.h"
 #include "python/capture_arrays.h"
 #include "python/worker_threads.h"
+#include "sensor/base/threads.h"
 
 namespace camsim::python {
 namespace {
@@ -77,7 +78,7 @@ py::object runCapture(PyScene& scene, int threads, const py::object& progress,
                       const py::object& iso, const py::object& noise, const py::object& noiseSeed,
                       const py::object& pose, const py::object& projection,
                       const py::object& guiding) {
-  if (threads < 0) throw py::value_error("threads must be ≥ 0 (0: all hardware threads)");
+  checkThreadCount(threads, "<capture>");
   // For this capture only (the Scene keeps its settings), checked before anything runs.
   Overrides overrides;
   const py::object* values[] = {

@@ -28,6 +28,7 @@
 #include "sensor/base/format.h"
 #include "sensor/base/input_error.h"
 #include "sensor/base/luts_directory.h"
+#include "sensor/base/threads.h"
 #include "sensor/io/expose_file.h"
 #include "sensor/io/output_set.h"
 #include "sensor/isp/color_management.h"
@@ -114,7 +115,7 @@ py::array_t<std::uint16_t> exposeFrames(const py::array& electrons, const Sensor
   const long long n = frames.value_or(1);
   if (n < 1 || n > kMaxFrames)
     fail("<expose>", "frames", "expected 1 to " + std::to_string(kMaxFrames) + " frames");
-  if (threads < 0) fail("<expose>", "threads", "expected 0 (all cores) or a positive count");
+  checkThreadCount(threads, "<expose>");
   const ExposureSettings settings{exposureTimeS, iso.value_or(sensor.baseIso)};
   // expose() checks the settings (InputError for ISO ≤ 0, a negative time); check them here
   // once, before the output is allocated, with this function's name.
@@ -156,7 +157,7 @@ py::dict exposeFile(const std::string& path, const std::optional<std::string>& s
                     std::optional<std::uint64_t> seed, long long frames, std::optional<double> iso,
                     double exposureScale, const std::string& noise,
                     const std::optional<std::string>& outputDir, int threads) {
-  if (threads < 0) fail("<expose_file>", "threads", "expected 0 (all cores) or a positive count");
+  checkThreadCount(threads, "<expose_file>");
   ExposeFileSettings settings;
   settings.sensor = sensor.value_or("");
   settings.seed = seed;

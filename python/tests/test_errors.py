@@ -6,6 +6,7 @@ import math
 import os
 import subprocess
 
+import numpy as np
 import pytest
 import yaml
 
@@ -111,6 +112,17 @@ def test_a_control_character_in_a_dict_name_is_refused_as_in_yaml(name):
             "camera": {"position": [0, 0, -1], "look_at": [0, 0, 0]},
             "materials": {"m": {"type": "diffuse"}},
             "shapes": [{"type": "sphere", "centre": [0, 0, 0], "radius": 1, "material": "m"}]})
+
+
+@pytest.mark.parametrize("threads", [-1, 1025, 100000])
+def test_a_thread_count_out_of_range_is_an_input_error(threads):
+    # Found by probing: 65537 threads or more crashed the interpreter in TBB (SIGSEGV).
+    scene = camsim.default_scene(overrides={"spp": 1})
+    with pytest.raises(camsim.InputError, match=r"key 'threads'.*up to 1024"):
+        camsim.capture(scene, threads=threads)
+    with pytest.raises(camsim.InputError, match=r"key 'threads'"):
+        camsim.expose(np.full((8, 8), 100, np.float32), camsim.Sensor("smartphone-1.4um"),
+                      seed=1, threads=threads)
 
 
 def test_bad_overrides_name_the_key():
