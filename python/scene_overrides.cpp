@@ -9,6 +9,8 @@
 #include <utility>
 #include <vector>
 
+#include <pybind11/stl.h>
+
 #include "integrator/scene/overrides.h"
 #include "python/bindings.h"
 #include "sensor/base/input_error.h"

@@ -116,3 +116,22 @@ def test_keyword_overrides_are_for_one_capture():
     b = scene.copy().set_spp(2).set_seed(7).render()
     assert (a["xyz"] == b["xyz"]).all()
     assert a["meta"]["render"]["spp"] == 2
+
+
+def test_a_pose_override_is_applied_as_set_pose():
+    # Found by probing: every pose given as an override (a dict or a 4x4 matrix, to capture()
+    # or load()) was refused, "expected a list of 3 numbers, got list" (the module's file
+    # that converts overrides lacked pybind11's list conversions).
+    scene = camsim.Scene.from_dict(small_scene(seed=0, spp=1))
+    pose = {"position": [0.5, 0.0, -3.0], "look_at": [0, 0, 0], "up": (0.0, 1.0, 0.0)}
+    a = camsim.capture(scene, pose=pose)
+    b = scene.copy().set_pose(**pose).render()
+    assert (a["xyz"] == b["xyz"]).all()
+    # The matrix form is camsim's world_from_camera: OpenCV's with its y column negated.
+    m = [list(row) for row in a["meta"]["pose"]["world_from_camera_opencv"]]
+    for row in m:
+        row[1] = -row[1]
+    c = camsim.capture(scene, pose=m)
+    assert (c["xyz"] == a["xyz"]).all()
+    with pytest.raises(camsim.InputError, match=r"key 'pose.position'.*3 numbers"):
+        camsim.capture(scene, pose={"position": [0, 0], "look_at": [0, 0, 0]})
