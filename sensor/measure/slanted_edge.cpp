@@ -225,10 +225,11 @@ SfrResult measureSfr(const Image& image, const EdgeRoi& roi, const SfrOptions& o
          "the e-SFR measures one channel at a time, got " + std::to_string(image.channelCount()));
   if (o.fitOrder != 1 && o.fitOrder != 2)
     fail(o, "fit_order", "the edge fit's order is 1 or 2, got " + std::to_string(o.fitOrder));
-  if (!(o.pixelPitchM >= 0.0 && o.pixelPitchM <= kMaxPixelPitchM))
+  if (!(o.pixelPitchM == 0.0 ||
+        (o.pixelPitchM >= kMinPixelPitchM && o.pixelPitchM <= kMaxPixelPitchM)))
     fail(o, "pixel_pitch",
-         "the pixel pitch must be in (0, 1000] µm, got " + formatNumber(o.pixelPitchM * 1e6, 6) +
-             " µm");
+         "the pixel pitch must be in [0.01, 1000] µm (or not given), got " +
+             formatNumber(o.pixelPitchM * 1e6, 6) + " µm");
   const std::string size = std::to_string(image.width) + "×" + std::to_string(image.height);
   if (roi.x < 0 || roi.y < 0 || roi.width < 1 || roi.height < 1 ||
       roi.width > image.width - roi.x || roi.height > image.height - roi.y)

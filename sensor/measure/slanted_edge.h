@@ -70,7 +70,9 @@ struct SfrOptions {
 
 inline constexpr int kSfrOversampling = 4;       // bins per pixel (ISO 12233)
 inline constexpr double kMaxPixelPitchM = 1e-3;  // m: pitches above 1 mm are refused
-inline constexpr double kNyquist = 0.5;          // cycles/px
+// m: pitches below 0.01 µm are refused (1e-306 µm gave infinite cycles/mm, and the plot failed)
+inline constexpr double kMinPixelPitchM = 1e-8;
+inline constexpr double kNyquist = 0.5;  // cycles/px
 
 struct SfrResult {
   std::vector<double> frequency;    // cycles/px along the edge normal, 0 … 1 in steps of 4/N

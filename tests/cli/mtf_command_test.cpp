@@ -234,6 +234,8 @@ TEST(MtfBinary, BadInputExitsTwoAndWritesNothing) {
       {quote(exr.string()) + " --roi 10,0,64,128", "not inside the 64×128 px image"},
       {quote(exr.string()) + " --roi 0,0,64,128 --channel Q", "no channel 'Q'"},
       {quote(exr.string()) + " --roi 0,0,64,128 --pitch-um 5000", "pixel pitch"},
+      // Below 0.01 µm: infinite cycles/mm, the plot script failed ("internal error", exit 1).
+      {quote(exr.string()) + " --roi 0,0,64,128 --pitch-um 1e-306", "[0.01, 1000] µm"},
       {quote(exr.string()) + " --roi 0,0,64,128 --edge horizontal", "top to bottom (vertical)"},
       {quote(exr.string()) + " --roi 0,0,36,128", "leaves the ROI"},
   };
