@@ -115,18 +115,19 @@ std::unique_ptr<CLI::App> benchApp(BenchArgs& b) {
   addIntegerOption(*app, "--texture-size", b.textureSize, 0, 16384,
                    "side of the texture-load test's random-colour PNG (default 1024; 0 skips it)",
                    "PX");
-  app->add_option_function<std::string>(
-         "--peer",
-         [&b](const std::string& name) {
-           if (name != "cycles")
-             throw UsageError("--peer expects 'cycles' (the only peer renderer), got '" + name +
-                              "'");
-           b.peer = name;
-         },
-         "also render the peer scenes with Blender's Cycles (Debian's blender on PATH: "
-         "scripts/setup.sh --peer) and compare the time each renderer needs for the same error "
-         "(docs/bench.md)")
-      ->type_name("cycles");
+  CLI::Option* peer =
+      app->add_option_function<std::string>(
+             "--peer",
+             [&b](const std::string& name) {
+               if (name != "cycles")
+                 throw UsageError("--peer expects 'cycles' (the only peer renderer), got '" + name +
+                                  "'");
+               b.peer = name;
+             },
+             "also render the peer scenes with Blender's Cycles (Debian's blender on PATH: "
+             "scripts/setup.sh --peer) and compare the time each renderer needs for the same error "
+             "(docs/bench.md)")
+          ->type_name("cycles");
   app->add_flag("--peer-only", b.peerOnly,
                 "with --peer: only the comparison (no sweeps, limit, mesh or texture tests)");
   addListOption(*app, "--peer-scenes", b.peerScenes,
@@ -163,6 +164,10 @@ std::unique_ptr<CLI::App> benchApp(BenchArgs& b) {
                    "scattering events per path for both (Cycles: max_bounces = N - 1; "
                    "default: each scene's max_depth)",
                    "N");
+  // Each --peer-* option is for --peer: without it the default bench ran, silently.
+  for (const char* name : {"--peer-only", "--peer-scenes", "--peer-resolution", "--peer-ref-spp",
+                           "--peer-spp", "--peer-camsim-spp", "--peer-rounds", "--peer-max-depth"})
+    app->get_option(name)->needs(peer);
   app->footer(
       "Exit codes: 0 success, 1 internal error, 2 bad arguments or a scene that failed to\n"
       "load (the others' results are written).");

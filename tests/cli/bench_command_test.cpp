@@ -234,6 +234,10 @@ TEST(BenchArgs, BadUsageIsAUsageError) {
   EXPECT_THROW(parseBenchArgs({"bench", "--out", ""}), UsageError);
   EXPECT_THROW(parseBenchArgs({"bench", "--cache", ""}), UsageError);
   EXPECT_THROW(parseBenchArgs({"bench", "stray"}), UsageError);
+  // A --peer-* option without --peer (the default bench ran, silently).
+  for (const char* option : {"--peer-only", "--peer-scenes=cornell_box", "--peer-rounds=2"})
+    EXPECT_THROW(parseBenchArgs({"bench", option}), UsageError) << option;
+  EXPECT_NO_THROW(parseBenchArgs({"bench", "--peer", "cycles", "--peer-only"}));
   try {
     (void)parseBenchArgs({"bench", "--frobnicate"});
   } catch (const UsageError& e) {
