@@ -20,8 +20,10 @@ LogLinearFit parseFit(const YamlValue& value) {
   LogLinearFit fit;
   fit.slope = map.require("slope").number(-10.0, 10.0);
   fit.bias = map.require("bias").number(-50.0, 50.0);
-  map.finish({"slope", "bias", "sigma"});  // sigma: ELD's residual spread, informative
+  // sigma: ELD's residual spread, informative — checked, then ignored (read before finish():
+  // a key finish() has not seen read was refused as "not allowed together with …").
   if (const auto s = map.find("sigma")) s->number(0.0, 100.0);
+  map.finish({"slope", "bias", "sigma"});
   return fit;
 }
 
@@ -73,7 +75,7 @@ void parseSensorNoise(YamlMap& map, SensorSpec& spec) {
     const YamlValue iso = m.require("iso");
     d.iso = iso.number(0.0, kMaxIso, true);
     if (d.iso <= spec.baseIso) iso.fail("the switch ISO must be above base_iso");
-    d.conversionGainEPerDn = m.require("conversion_gain_e_per_dn").number(0.0, 1e6, true);
+    d.conversionGainEPerDn = m.require("conversion_gain_e_per_dn").number(1e-6, 1e6);
     d.readNoiseE = m.require("read_noise_e").number(0.0, kMaxNoiseE);
     if (const auto w = m.find("full_well_e")) d.fullWellE = w->number(0.0, 1e9, true);
     m.finish({"iso", "conversion_gain_e_per_dn", "read_noise_e", "full_well_e"});
@@ -117,9 +119,10 @@ void parseSensorNoise(YamlMap& map, SensorSpec& spec) {
   if (ns.shape == ReadNoiseShape::kTukeyLambda && !ns.tukeyScaleFit &&
       std::none_of(ns.isoTable.begin(), ns.isoTable.end(),
                    [](const IsoTableRow& r) { return r.tukeyScaleDn.has_value(); }))
-    map.self().fail(
-        "read_noise_shape: tukey_lambda needs a scale: noise_fits.tukey_scale_dn or an "
-        "iso_table column tukey_scale_dn");
+    (map.has("read_noise_shape") ? *map.find("read_noise_shape") : map.self())
+        .fail(
+            "read_noise_shape: tukey_lambda needs a scale: noise_fits.tukey_scale_dn or an "
+            "iso_table column tukey_scale_dn");
 }
 
 }  // namespace camsim

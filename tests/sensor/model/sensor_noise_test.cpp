@@ -215,7 +215,7 @@ TEST(SensorNoise, MalformedKeysAreRejectedWithTheirKey) {
       {"iso_table: [{iso: 200}, {iso: 400}]\n", "iso_table"},  // base ISO 100 outside
       {"iso_table: []\n", "iso_table"},
       {"iso_table: [{iso: 100, gain: 2}]\n", "iso_table[0].gain"},
-      {"read_noise_shape: tukey_lambda\n", ""},  // no scale
+      {"read_noise_shape: tukey_lambda\n", "read_noise_shape"},  // no scale
       {"read_noise_shape: cauchy\n", "read_noise_shape"},
       {"tukey_lambda: -0.6\n", "tukey_lambda"},
       {"dual_conversion_gain: {iso: 50, conversion_gain_e_per_dn: 1, read_noise_e: 1}\n",
@@ -223,6 +223,8 @@ TEST(SensorNoise, MalformedKeysAreRejectedWithTheirKey) {
       {"dual_conversion_gain: {iso: 800, read_noise_e: 1}\n",
        "dual_conversion_gain.conversion_gain_e_per_dn"},
       {"noise_fits: {read_noise_dn: {slope: 0.5}}\n", "noise_fits.read_noise_dn.bias"},
+      {"noise_fits: {read_noise_dn: {slope: 0.5, bias: 1, sigma: -1}}\n",
+       "noise_fits.read_noise_dn.sigma"},
       {"hot_pixels: {fraction: 2, dark_current_e_per_s: 1}\n", "hot_pixels.fraction"},
       {"stuck_pixels: {fraction: 0.1, value_dn: 70000}\n", "stuck_pixels.value_dn"},
       {"row_noise_dn: -1\n", "row_noise_dn"},
@@ -238,6 +240,12 @@ TEST(SensorNoise, MalformedKeysAreRejectedWithTheirKey) {
       EXPECT_GT(e.where().line, 0) << extra << e.what();
     }
   }
+}
+
+// A fit's sigma (ELD's residual spread) is documented as read and ignored: it was refused,
+// "not allowed together with the keys given here" (found by probing).
+TEST(SensorNoiseSpec, AFitsSigmaIsReadAndIgnored) {
+  EXPECT_NO_THROW(parse("noise_fits: {read_noise_dn: {slope: 0.54, bias: 1.2, sigma: 0.1}}\n"));
 }
 
 // ELD's published numbers (eld_camera_params.json, Profile-1): K_min, and the fits

@@ -88,6 +88,8 @@ TEST(SensorSpec, MalformedDescriptionsAreRejectedWithLineAndKey) {
       {appended("ir_cut: {cutoff_nm: 650}"), "ir_cut.width_nm", 10, 9},
       {appended("ir_cut: {cutoff_nm: 650, width_nm: 20, slope: 2}"), "ir_cut.slope", 10, 0},
       {appended("dark_doubling_c: 0"), "dark_doubling_c", 10, 18},
+      // 1e-300: an infinite gain, refused as "<input>: key 'iso'" when the model was built.
+      {replaced(6, "conversion_gain_e_per_dn: 1e-300"), "conversion_gain_e_per_dn", 6, 27},
       {appended("prnu_percent: 150"), "prnu_percent", 10, 15},
       {appended("noiseless: maybe"), "noiseless", 10, 12},
       {appended("gain: 3"), "gain", 10, 1},                          // unknown key
