@@ -271,6 +271,18 @@ int runBench(const BenchArgs& args, std::ostream& out, std::ostream& log) {
       const Reference ref =
           obtainReference(request, scene, cacheDir, log, [&](int d, int t) { bar.update(d, t); });
       bar.finish();
+      // A black reference (no light reaches the camera) has no relative error: eps is 1 % of
+      // a mean of 0, and every ratio was NaN in bench.txt (the plot script then failed).
+      double total = 0.0;
+      for (const float v : ref.image.pixels) total += static_cast<double>(v);
+      if (!(total > 0.0)) {
+        const std::string why =
+            "its reference image is black (no light reaches the camera): "
+            "relative errors are undefined";
+        log << "bench: skipping " << s.name << ": " << why << "\n";
+        failed.push_back(s.name + ": " + why);
+        continue;
+      }
       refs << "  " << s.name << " "
            << formatSize(s.description.camera.resolution.x, s.description.camera.resolution.y)
            << ": rMSE floor " << formatNumber(ref.noise.rmse, 3) << ", MRAE floor "

@@ -212,7 +212,14 @@ std::vector<std::filesystem::path> runPsf(const PsfArgs& args, std::ostream& out
                                           std::ostream& log) {
   const std::vector<PsfSettings> entries = psfEntries(args);
   const SceneDescription scene = loadScene(args.scene);
-  const PhysicalCamera camera(scene.camera);
+  const PhysicalCamera camera = [&] {
+    try {
+      return PhysicalCamera(scene.camera);
+    } catch (const InputError& e) {  // a lens passing no light: the scene's
+      if (!e.where().file.empty()) throw;
+      throw InputError({scene.sourceFile, 0, 0}, e.key(), e.message());
+    }
+  }();
   std::vector<PsfImage> images;
   for (const PsfSettings& s : entries) {
     // The settings against this camera (a distance inside its focal length, a field off its

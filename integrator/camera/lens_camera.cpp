@@ -5,6 +5,7 @@
 #include <glm/geometric.hpp>
 
 #include "sensor/base/check.h"
+#include "sensor/base/input_error.h"
 
 namespace camsim {
 namespace {
@@ -39,6 +40,15 @@ LensCamera::LensCamera(const LensSpec& spec, glm::dvec2 sensorSize)
       paraxial_(
           lens_.paraxial(kLambdaDNm, objectDistanceFromVertex(lens_, focusDistance_), sensorSize)) {
   CAMSIM_CHECK(sensorDistance_ > 0.0 && std::isfinite(sensorDistance_));
+  // A lens no ray from the film gets through (an aspheric term that bends every ray out, a
+  // clear aperture of 1e-300 mm) rendered black, exit 0: refused (the caller names the file).
+  bool passes = false;
+  for (int k = 0; k < bounds_.intervals() && !passes; ++k) passes = bounds_.area(k) > 0.0;
+  if (!passes)
+    throw InputError({}, "camera.lens",
+                     "no ray from the film gets through this lens at its f-number (every exit "
+                     "pupil bound is empty): check its clear apertures, thicknesses and "
+                     "aspheric terms");
 }
 
 std::optional<LensCameraRay> LensCamera::generate(glm::dvec2 s, glm::dvec2 u,

@@ -148,7 +148,12 @@ Scene::Scene(const SceneDescription& d, glm::dvec2 motionSpan)
       renderOrigin_(d.renderOrigin),
       ids_(sceneIds(d)),
       frameInterval_(d.frames ? 1.0 / d.frames->rateHz : 0.0) {
-  camera_ = std::make_unique<PhysicalCamera>(d.camera);
+  try {
+    camera_ = std::make_unique<PhysicalCamera>(d.camera);
+  } catch (const InputError& e) {  // found building the camera (a lens passing no light)
+    if (!e.where().file.empty()) throw;
+    throw InputError({d.sourceFile, 0, 0}, e.key(), e.message());
+  }
   materials_.push_back(std::make_unique<DiffuseMaterial>(Spectrum::constant(0.0)));  // black
   TextureCache textures;  // a texture named by several materials is uplifted once
   for (const MaterialDescription& m : d.materials) materials_.push_back(makeMaterial(m, &textures));

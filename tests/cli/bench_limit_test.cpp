@@ -272,6 +272,25 @@ TEST(BenchBinary, AMissingSceneExitsTwoAfterTheOthers) {
   EXPECT_NE(readFile(dir.path() / "stderr.txt").find("no_such_scene"), std::string::npos);
   EXPECT_TRUE(fs::is_regular_file(out / "bench.csv"));
   EXPECT_EQ(runBench("--max-spp nope", dir.path()), 2);
+  // A scene without light: its reference is black, every relative error 0/0 — bench.txt
+  // held "-nan" ratios and the run exited 0 (found by probing). Skipped, exit 2.
+  test::writeFile(dir.path() / "dark.yaml",
+                  "name: dark\ncamera: {position: [0, 0, -3], look_at: [0, 0, 0], resolution: "
+                  "[8, 8]}\nmaterials: {m: {type: diffuse}}\nshapes: [{type: sphere, centre: "
+                  "[0, 0, 0], radius: 1, material: m}]\n");
+  EXPECT_EQ(runBench("--scenes cornell_box," + (dir.path() / "dark.yaml").string() +
+                         " --resolution 8 --max-spp 1 --ref-spp 2 --feature-resolution 8 "
+                         "--mesh-triangles 0 --texture-size 0 --out " +
+                         out.string() + " --cache " + (dir.path() / "cache").string(),
+                     dir.path()),
+            2);
+  EXPECT_NE(readFile(dir.path() / "stderr.txt").find("skipping dark: its reference image is black"),
+            std::string::npos)
+      << readFile(dir.path() / "stderr.txt");
+  const std::string text = readFile(out / "bench.txt");
+  EXPECT_EQ(text.find(" -nan"), std::string::npos) << text;
+  EXPECT_EQ(text.find(" nan"), std::string::npos) << text;
+  EXPECT_NE(readFile(out / "bench.txt").find("cornell_box"), std::string::npos);
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "integrator/capture/capture.h"
+#include "integrator/scene/scene.h"
 #include "integrator/scene/scene_loader.h"
 #include "sensor/base/input_error.h"
 #include "tests/support/temp_dir.h"
@@ -97,6 +98,30 @@ TEST(SceneRefusals, SpectralTablesAreHeldToTheInlineRange) {
     EXPECT_EQ(e.key(), c.key) << e.what();
     EXPECT_NE(e.message().find(c.says), std::string::npos) << e.what();
   }
+}
+
+// A traced lens no ray from the film gets through (an aspheric a16 of 1e10 bends every ray
+// out) rendered black at 0 rays/s, exit 0, its sidecar claiming f/4.8: refused when the
+// scene is built, naming the scene file; without the term the lens builds.
+TEST(SceneRefusals, ALensThatPassesNoLightIsRefused) {
+  const test::TempDir dir;
+  const std::string lens =
+      "# radius thickness N aperture\n50 5 1.5 20{a16}\n-50 1 1 20\n0 4 0 10\n";
+  const auto scene = [&](const std::string& a16) {
+    std::string text = lens;
+    text.replace(text.find("{a16}"), 5, a16);
+    test::writeFile(dir.path() / "lens.dat", text);
+    return loadSceneFromText(
+        "camera: {position: [0, 0, 0], look_at: [0, 0, 1], sensor_width_mm: 36, "
+        "sensor_height_mm: 24, resolution: [12, 8], lens: {file: lens.dat}}\n" +
+            kMaterial + "shapes:\n" + kBall,
+        "lens_scene.yaml", dir.path());
+  };
+  const InputError e = errorOf([&] { const Scene built(scene(" a16=1e10")); });
+  EXPECT_EQ(e.where().file, "lens_scene.yaml") << e.what();
+  EXPECT_EQ(e.key(), "camera.lens") << e.what();
+  EXPECT_NE(e.message().find("no ray from the film gets through"), std::string::npos) << e.what();
+  EXPECT_NO_THROW(const Scene built(scene("")));
 }
 
 }  // namespace
