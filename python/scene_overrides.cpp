@@ -6,6 +6,7 @@
 // again.
 #include <initializer_list>
 #include <string>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -39,6 +40,10 @@ T castOverride(const py::handle& value, const std::string& key, const std::strin
   try {
     return value.cast<T>();
   } catch (const py::cast_error&) {
+    // An int too big for 64 bits fails the cast too ("expected an int, got int" before).
+    if constexpr (std::is_integral_v<T>)
+      if (py::isinstance<py::int_>(value))
+        fail(key, "expected " + expected + " within 64 bits, got " + std::string(py::repr(value)));
     fail(key, "expected " + expected + ", got " +
                   std::string(py::str(py::type::of(value).attr("__name__"))));
   }

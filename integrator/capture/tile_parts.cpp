@@ -5,10 +5,12 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <set>
 #include <sstream>
 
+#include "integrator/scene/setting_ranges.h"
 #include "sensor/base/input_error.h"
 #include "sensor/io/exr_io.h"
 #include "sensor/io/output_set.h"
@@ -99,16 +101,21 @@ ReadPart readPart(const std::filesystem::path& file) {
   const auto bad = [&](const std::string& key) {
     return InputError({file.string(), 0, 0}, key, "unreadable value '" + get(key) + "'");
   };
-  const auto integer = [&](const std::string& key, std::int64_t lo) {
+  // An integer in [lo, hi] (an spp of 4294967298 was cut to 2 and merged; an index past the
+  // count said "unreadable value").
+  const auto integer = [&](const std::string& key, std::int64_t lo, std::int64_t hi) {
     const std::optional<std::int64_t> v = parseNumber<std::int64_t>(get(key));
-    if (!v || *v < lo) throw bad(key);
+    if (!v) throw bad(key);
+    if (*v < lo || *v > hi)
+      throw InputError({file.string(), 0, 0}, key,
+                       "expected an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) +
+                           "], got " + get(key));
     return *v;
   };
+  constexpr std::int64_t kAny = std::numeric_limits<std::int64_t>::max();
   TilePartHeader& h = p.header;
-  const std::int64_t count = integer("camsim:tile_count", 1);
-  if (count > kMaxTileCount) throw bad("camsim:tile_count");
-  const std::int64_t index = integer("camsim:tile_index", 0);
-  if (index >= count) throw bad("camsim:tile_index");
+  const std::int64_t count = integer("camsim:tile_count", 1, kMaxTileCount);
+  const std::int64_t index = integer("camsim:tile_index", 0, count - 1);
   h.tileCount = static_cast<int>(count);
   p.index = static_cast<int>(index);
   h.version = get("camsim:version");
@@ -123,9 +130,9 @@ ReadPart readPart(const std::filesystem::path& file) {
   h.sceneFnv1a = get("camsim:scene_fnv1a64");
   h.overridesText = get("camsim:overrides");
   h.overrides = parseOverridesText(h.overridesText, file.string() + " camsim:overrides");
-  h.spp = static_cast<int>(integer("camsim:spp", 1));
-  h.seed = static_cast<std::uint64_t>(integer("camsim:seed", 0));
-  if (integer("camsim:tile_size", 1) != kRenderTileSize) throw bad("camsim:tile_size");
+  h.spp = static_cast<int>(integer("camsim:spp", 1, setting_ranges::kSpp.hi));
+  h.seed = static_cast<std::uint64_t>(integer("camsim:seed", 0, kAny));
+  (void)integer("camsim:tile_size", kRenderTileSize, kRenderTileSize);
   std::istringstream res(get("camsim:resolution"));
   if (!(res >> h.resolution.x >> h.resolution.y) ||
       h.resolution != glm::ivec2(exr.image.width, exr.image.height))
@@ -133,10 +140,12 @@ ReadPart readPart(const std::filesystem::path& file) {
   const std::optional<ModelledDimensions> dims = parseModelledDims(get("camsim:modelled_dims"));
   if (!dims) throw bad("camsim:modelled_dims");
   h.modelled = *dims;
-  p.samples = static_cast<std::uint64_t>(integer("camsim:samples", 0));
-  p.rejected = static_cast<std::uint64_t>(integer("camsim:rejected_samples", 0));
-  if (p.attrs.count("camsim:render_seconds"))
+  p.samples = static_cast<std::uint64_t>(integer("camsim:samples", 0, kAny));
+  p.rejected = static_cast<std::uint64_t>(integer("camsim:rejected_samples", 0, kAny));
+  if (p.attrs.count("camsim:render_seconds")) {  // nan, -5 or 1e308 printed nonsense times
     p.seconds = parseNumber<double>(get("camsim:render_seconds"));
+    if (!p.seconds || !(*p.seconds >= 0.0 && *p.seconds <= 1e9)) throw bad("camsim:render_seconds");
+  }
   std::vector<std::string>* lists[kImages] = {&h.filmChannels, &h.sensorChannels, &h.aovChannels,
                                               &h.halfChannels};
   for (int i = 0; i < kImages; ++i) {

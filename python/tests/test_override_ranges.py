@@ -135,3 +135,9 @@ def test_a_pose_override_is_applied_as_set_pose():
     assert (c["xyz"] == a["xyz"]).all()
     with pytest.raises(camsim.InputError, match=r"key 'pose.position'.*3 numbers"):
         camsim.capture(scene, pose={"position": [0, 0], "look_at": [0, 0, 0]})
+
+
+def test_an_int_beyond_64_bits_names_its_value():
+    # "expected an int, got int" before (found by probing).
+    with pytest.raises(camsim.InputError, match=r"key 'overrides.seed'.*within 64 bits, got 9223372036854775808"):
+        camsim.default_scene(overrides={"seed": 2**63})

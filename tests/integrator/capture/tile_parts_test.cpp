@@ -139,5 +139,46 @@ TEST(TileParts, NonFiniteFilmInAPartIsRefused) {
   }
 }
 
+// Found by probing: header values out of range — an spp of 4294967298 was cut to 2 and
+// merged, a tile index past the count was an "unreadable value", a render time of 1e308
+// printed a negative duration. Each refused by key, with its range.
+TEST(TileParts, HeaderValuesOutOfRangeAreRefusedByKey) {
+  const test::TempDir dir;
+  const SceneDescription desc = loadSceneFromText(kScene, "split.yaml", ".");
+  std::vector<std::filesystem::path> files;
+  for (int k = 0; k < 2; ++k) {
+    CaptureOptions options;
+    options.tiles = Share{k, 2};
+    files.push_back(
+        writeTilePart(renderCaptureFilms(desc, options), {k, 2}, {dir.path(), {}, false}));
+  }
+  const struct {
+    const char* key;
+    const char* value;
+    const char* says;
+  } cases[] = {
+      {"camsim:spp", "4294967298", "expected an integer in [1, 1048576]"},
+      {"camsim:tile_index", "3", "expected an integer in [0, 1]"},
+      {"camsim:tile_size", "8", "expected an integer in [16, 16]"},
+      {"camsim:render_seconds", "1e308", "unreadable value"},
+      {"camsim:render_seconds", "nan", "unreadable value"},
+  };
+  for (const auto& c : cases) {
+    SCOPED_TRACE(std::string(c.key) + "=" + c.value);
+    ExrFile exr = readExr(files[1]);
+    for (auto& [key, value] : exr.metadata)
+      if (key == c.key) value = c.value;
+    const std::filesystem::path edited = dir.path() / "edited.exr";
+    writeExr(edited, exr.image, exr.metadata, exr.chromaticities);
+    try {
+      assembleTileParts({files[0], edited});
+      ADD_FAILURE() << "assembled";
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.key(), c.key) << e.what();
+      EXPECT_NE(e.message().find(c.says), std::string::npos) << e.what();
+    }
+  }
+}
+
 }  // namespace
 }  // namespace camsim
