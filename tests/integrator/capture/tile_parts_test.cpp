@@ -106,19 +106,26 @@ TEST(TileParts, SplitCaptureEqualsTheWholeCapture) {
   EXPECT_THROW(assembleTileParts(files), InputError);  // a share missing
 }
 
-// Found by probing the command line: a part whose film held a NaN (or Inf) merged into an
-// image of NaN with exit 0; a render never writes one. Now the part is refused, naming the
-// file, the channel and the pixel; an AOV value is copied as it is.
-TEST(TileParts, NonFiniteFilmInAPartIsRefused) {
-  const test::TempDir dir;
+// The split scene rendered as two tile parts into `dir` (reproducible: no render time).
+std::vector<std::filesystem::path> writeTwoParts(const std::filesystem::path& dir,
+                                                 bool reproducible) {
   const SceneDescription desc = loadSceneFromText(kScene, "split.yaml", ".");
   std::vector<std::filesystem::path> files;
   for (int k = 0; k < 2; ++k) {
     CaptureOptions options;
     options.tiles = Share{k, 2};
     files.push_back(
-        writeTilePart(renderCaptureFilms(desc, options), {k, 2}, {dir.path(), {}, true}));
+        writeTilePart(renderCaptureFilms(desc, options), {k, 2}, {dir, {}, reproducible}));
   }
+  return files;
+}
+
+// Found by probing the command line: a part whose film held a NaN (or Inf) merged into an
+// image of NaN with exit 0; a render never writes one. Now the part is refused, naming the
+// file, the channel and the pixel; an AOV value is copied as it is.
+TEST(TileParts, NonFiniteFilmInAPartIsRefused) {
+  const test::TempDir dir;
+  const std::vector<std::filesystem::path> files = writeTwoParts(dir.path(), true);
   EXPECT_NO_THROW(assembleTileParts(files));
   for (const float bad :
        {std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity()}) {
@@ -144,14 +151,7 @@ TEST(TileParts, NonFiniteFilmInAPartIsRefused) {
 // printed a negative duration. Each refused by key, with its range.
 TEST(TileParts, HeaderValuesOutOfRangeAreRefusedByKey) {
   const test::TempDir dir;
-  const SceneDescription desc = loadSceneFromText(kScene, "split.yaml", ".");
-  std::vector<std::filesystem::path> files;
-  for (int k = 0; k < 2; ++k) {
-    CaptureOptions options;
-    options.tiles = Share{k, 2};
-    files.push_back(
-        writeTilePart(renderCaptureFilms(desc, options), {k, 2}, {dir.path(), {}, false}));
-  }
+  const std::vector<std::filesystem::path> files = writeTwoParts(dir.path(), false);
   const struct {
     const char* key;
     const char* value;

@@ -10,6 +10,7 @@
 #include "integrator/render/render.h"
 #include "integrator/scene/scene.h"
 #include "integrator/scene/scene_loader.h"
+#include "tests/integrator/scene/scene_limits_support.h"
 #include "tests/support/scene_text.h"
 #include "tests/support/temp_dir.h"
 #include "tests/support/text_file.h"
@@ -17,12 +18,12 @@
 namespace camsim {
 namespace {
 
-const std::string kHeader = "format: camsim-scene/1\nrender: {spp: 4, max_depth: 3}\n";
-const std::string kLimitsCamera =
-    "camera: {position: [0, 0, 5], look_at: [0, 0, 0], resolution: [16, 16]}\n";
-const std::string kSun = "lights: [{type: distant, direction: [0, 0, -1], illuminance: 1000}]\n";
-const std::string kMaterial = "materials: {m: {type: diffuse, reflectance: 0.5}}\n";
-const std::string kBall = "  - {type: sphere, centre: [0, 0, 0], radius: 1, material: m}\n";
+using test::errorOf;
+using test::kBall;
+using test::kHeader;
+using test::kLimitsCamera;
+using test::kMaterial;
+using test::kSun;
 
 struct Case {
   const char* name;
@@ -281,16 +282,6 @@ std::string sensorScene(const std::string& resolution, double light, const std::
          "sensor: {model: smartphone-1.4um, iso: 100, noise: none}\n" +
          isp + "lights: [{type: distant, direction: [0, 0, -1], illuminance: " + test::num(light) +
          "}]\n" + kMaterial + "shapes:\n" + kBall;
-}
-
-InputError errorOf(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e;
-  }
-  ADD_FAILURE() << "no InputError";
-  return InputError({}, "", "");
 }
 
 // The white balance's refusals name the scene's isp keys and their lines: at load when the

@@ -10,28 +10,19 @@
 #include "integrator/scene/scene.h"
 #include "integrator/scene/scene_loader.h"
 #include "sensor/base/input_error.h"
+#include "tests/integrator/scene/scene_limits_support.h"
 #include "tests/support/temp_dir.h"
 #include "tests/support/text_file.h"
 
 namespace camsim {
 namespace {
 
-const std::string kHeader = "format: camsim-scene/1\nrender: {spp: 4, max_depth: 3}\n";
-const std::string kLimitsCamera =
-    "camera: {position: [0, 0, 5], look_at: [0, 0, 0], resolution: [16, 16]}\n";
-const std::string kSun = "lights: [{type: distant, direction: [0, 0, -1], illuminance: 1000}]\n";
-const std::string kMaterial = "materials: {m: {type: diffuse, reflectance: 0.5}}\n";
-const std::string kBall = "  - {type: sphere, centre: [0, 0, 0], radius: 1, material: m}\n";
-
-InputError errorOf(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e;
-  }
-  ADD_FAILURE() << "no InputError";
-  return InputError({}, "", "");
-}
+using test::errorOf;
+using test::kBall;
+using test::kHeader;
+using test::kLimitsCamera;
+using test::kMaterial;
+using test::kSun;
 
 // A mesh file's translate past ±1e15 m is named by its key (the collapsed float positions
 // were refused as "mesh has zero area", naming the file).
