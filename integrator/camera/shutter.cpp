@@ -32,11 +32,14 @@ Shutter Shutter::trapezoid(double open, double close, double rampOpen, double ra
   // itself, and one lost to rounding (open + 1e-20 == open) is no ramp (two equal knot
   // times aborted the process).
   const double a = open + rampOpen, b = close - rampClose;
-  const bool up = rampOpen > 0.0 && a > open, down = rampClose > 0.0 && b < close;
+  bool up = rampOpen > 0.0 && a > open, down = rampClose > 0.0 && b < close;
+  // Both ramps and no time between them to peak at (an exposure of one or two ulps): a box.
+  const double mid = 0.5 * (open + close);
+  if (up && down && !(a < close) && !(b > open) && !(mid > open && mid < close)) up = down = false;
   std::vector<double> t = {open}, s = {up ? 0.0 : 1.0};
   if (up && a < close) t.push_back(a), s.push_back(1.0);
   if (down && b > t.back()) t.push_back(b), s.push_back(1.0);
-  if (up && down && t.size() == 1) t.push_back(0.5 * (open + close)), s.push_back(1.0);
+  if (up && down && t.size() == 1) t.push_back(mid), s.push_back(1.0);
   t.push_back(close), s.push_back(down ? 0.0 : 1.0);
   return Shutter(std::move(t), std::move(s), type, rowTime);
 }

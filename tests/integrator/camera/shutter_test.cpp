@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <functional>
 #include <string>
 #include <vector>
@@ -36,6 +37,10 @@ TEST(Shutter, RampsAtTheLimitsAndTimesThatRunTogether) {
   // Ramps of 1e-20 s at 0.5 s and at 1 s are lost to rounding: a box.
   EXPECT_DOUBLE_EQ(Shutter::trapezoid(0.5, 1.0, 1e-20, 0.0).effectiveTime(), 0.5);
   EXPECT_DOUBLE_EQ(Shutter::trapezoid(0.0, 1.0, 0.0, 1e-20).effectiveTime(), 1.0);
+  // Both ramps over an exposure of one ulp: no time to peak between them, a box.
+  const double open = 0.5, close = std::nextafter(0.5, 1.0);
+  EXPECT_DOUBLE_EQ(Shutter::trapezoid(open, close, close - open, close - open).effectiveTime(),
+                   close - open);
   const Shutter late = Shutter::box(0.5, 0.51);
   for (const auto& make : {std::function<Shutter()>([&] { return late.scaled(1e-15); }),
                            std::function<Shutter()>([&] { return late.shifted(1e16); })}) {
