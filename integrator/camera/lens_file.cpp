@@ -5,6 +5,7 @@
 #include <cmath>
 #include <map>
 
+#include "sensor/base/format.h"
 #include "sensor/base/input_error.h"
 #include "sensor/base/input_file.h"
 #include "sensor/base/luts_directory.h"
@@ -166,7 +167,7 @@ LensSurface Parser::surface(int line, const std::vector<Token>& tokens) {
     for (int lambda = 360; lambda <= 830; ++lambda)
       if (!(s.medium.index(lambda) >= 1.0 && s.medium.index(lambda) <= 4.0))
         fail(line, t.column, glassToken ? "glass" : "abbe",
-             "with N = " + std::to_string(v[2]) + " the index leaves [1, 4] at " +
+             "with N = " + formatShortest(v[2]) + " the index leaves [1, 4] at " +
                  std::to_string(lambda) + " nm");
   }
 
@@ -176,8 +177,8 @@ LensSurface Parser::surface(int line, const std::vector<Token>& tokens) {
       !std::isfinite(sagSlopeOverR(shape, shape.clearRadius2))) {
     const bool conic = seen.count("conic") > 0;
     fail(line, conic ? seen.at("conic") : tokens[0].column, conic ? "conic" : "radius",
-         "the surface does not reach its clear aperture (radius " + std::to_string(v[0]) +
-             " mm, aperture " + std::to_string(v[3]) + " mm)");
+         "the surface does not reach its clear aperture (radius " + formatShortest(v[0]) +
+             " mm, aperture " + formatShortest(v[3]) + " mm)");
   }
   return s;
 }

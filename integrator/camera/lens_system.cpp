@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "sensor/base/check.h"
+#include "sensor/base/format.h"
 #include "sensor/base/input_error.h"
 
 namespace camsim {
@@ -40,11 +41,11 @@ LensSystem LensSystem::forCamera(LensPrescription prescription) {
     throw InputError({lens.lens_.source, 0, 0}, "", message);
   };
   if (!(m.c < 0.0) || !std::isfinite(-1.0 / m.c))
-    fail("the lens does not converge (paraxial power " + std::to_string(-m.c) +
+    fail("the lens does not converge (paraxial power " + formatShortest(-m.c) +
          " 1/m at 587.56 nm): no camera lens");
   if (!(-m.a / m.c > 0.0))
     fail("the lens images infinity in front of its rear vertex (back focal length " +
-         std::to_string(-m.a / m.c * 1e3) + " mm)");
+         formatShortest(-m.a / m.c * 1e3) + " mm)");
   if (!(std::abs(lens.frontGroup(n).a) > 1e-9) || !(std::abs(lens.rearGroup(n).d) > 1e-9))
     fail("the stop images to infinity (a telecentric lens): not supported");
   for (const ParaxialField& field : paraxialFields(lens.paraxial()))

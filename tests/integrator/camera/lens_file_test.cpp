@@ -119,7 +119,9 @@ TEST(LensFile, BadInputNamesFileLineColumnAndKey) {
       {"50 2 1.5 20 conic=x\n" + stop + rear, 1, 13, "conic", "no number"},
       {"50 2 1.5 20 a4=1e300\n" + stop + rear, 1, 13, "a4", "too large"},
       {"50 2 1.5 20 3\n" + stop + rear, 1, 13, "", "key=value"},
-      {"9 2 1.5 20\n" + stop + rear, 1, 1, "radius", "clear aperture"},
+      // Numbers in their shortest form (%f gave "9.000000", and 300 digits for 1e300).
+      {"9 2 1.5 20\n" + stop + rear, 1, 1, "radius",
+       "clear aperture (radius 9 mm, aperture 20 mm)"},
       {"20 2 1.5 20 conic=5\n" + stop + rear, 1, 13, "conic", "clear aperture"},
       {"50 2 1.5 20\n0 5 0 10 conic=1\n" + rear, 2, 10, "conic", "stop takes no keys"},
       {"50 2 1.5 20\n" + stop + "-50 0 1.5 20\n", 3, 0, "N", "air"},
