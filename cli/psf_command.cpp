@@ -216,8 +216,7 @@ std::vector<std::filesystem::path> runPsf(const PsfArgs& args, std::ostream& out
     try {
       return PhysicalCamera(scene.camera);
     } catch (const InputError& e) {  // a lens passing no light: the scene's
-      if (!e.where().file.empty()) throw;
-      throw InputError({scene.sourceFile, 0, 0}, e.key(), e.message());
+      throw inFile(e, scene.sourceFile);
     }
   }();
   std::vector<PsfImage> images;

@@ -33,7 +33,7 @@ namespace {
 void requireUsableMeasurement(const PtcResult& m, const SensorSpec& sensor, double iso) {
   const auto refuse = [&](const std::string& measured) {
     return InputError(
-        {sensor.sourceFiles.empty() ? sensor.name : sensor.sourceFiles.front().string(), 0, 0}, "",
+        {sensor.sourceName(), 0, 0}, "",
         "at ISO " + formatShortest(iso) + " this sensor gives no photon-transfer curve (" +
             measured +
             "): its exposures clip or read black before they vary; check full_well_e, "

@@ -37,13 +37,9 @@ namespace {
   // The sensor's own data (a CFA no demosaicking reads) is its description file's, with the
   // scene's line that named it when there is one (a --sensor override has none).
   if (key == "sensor.model" && desc.sensor && !desc.sensor->spec.sourceFiles.empty()) {
-    std::string by;
-    if (place != desc.keyPlaces.end())
-      by = " (in the file named by " + place->second.file + ":" +
-           std::to_string(place->second.line) + ":" + std::to_string(place->second.column) +
-           ", key 'sensor.model')";
-    throw InputError({desc.sensor->spec.sourceFiles.front().string(), 0, 0}, e.key(),
-                     e.message() + by);
+    const InputError own({desc.sensor->spec.sourceName(), 0, 0}, e.key(), e.message());
+    if (place == desc.keyPlaces.end()) throw own;
+    throw namedBy(own, place->second, key);
   }
   if (place == desc.keyPlaces.end()) place = desc.keyPlaces.find(key.substr(0, key.find('.')));
   const bool fromRaw = key.starts_with("isp.") && desc.isp.whiteBalance != W::kIlluminant;

@@ -151,8 +151,7 @@ Scene::Scene(const SceneDescription& d, glm::dvec2 motionSpan)
   try {
     camera_ = std::make_unique<PhysicalCamera>(d.camera);
   } catch (const InputError& e) {  // found building the camera (a lens passing no light)
-    if (!e.where().file.empty()) throw;
-    throw InputError({d.sourceFile, 0, 0}, e.key(), e.message());
+    throw inFile(e, d.sourceFile);
   }
   materials_.push_back(std::make_unique<DiffuseMaterial>(Spectrum::constant(0.0)));  // black
   TextureCache textures;  // a texture named by several materials is uplifted once

@@ -34,4 +34,12 @@ class InputError : public std::runtime_error {
 std::string formatInputError(const SourceLocation& where, const std::string& key,
                              const std::string& message);
 
+// `inner`, an error inside a file another one named (a sensor description, a table), with
+// where it was named: "… (in the file named by FILE:LINE:COL, key 'KEY')".
+InputError namedBy(const InputError& inner, const SourceLocation& by, const std::string& key);
+
+// `e` when it knows its file; else the same error in `file` (a stage that found it without
+// one: the camera's lens, built from a scene).
+InputError inFile(const InputError& e, const std::string& file);
+
 }  // namespace camsim

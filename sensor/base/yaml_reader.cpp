@@ -53,11 +53,7 @@ void YamlValue::failInNamedFile(const InputError& inner) const {
   if (inner.where().line <= 0)
     fail(inner.where().file.empty() ? inner.message()
                                     : inner.where().file + ": " + inner.message());
-  const SourceLocation here = where();
-  std::string named = here.file;
-  if (here.line > 0) named += ":" + std::to_string(here.line) + ":" + std::to_string(here.column);
-  throw InputError(inner.where(), inner.key(),
-                   inner.message() + " (in the file named by " + named + ", key '" + key_ + "')");
+  throw namedBy(inner, where(), key_);
 }
 
 std::string YamlValue::string() const {

@@ -228,9 +228,7 @@ std::uint64_t photonTransferSeed(const SensorSpec& sensor, const PtcOptions& opt
 PtcResult measurePhotonTransfer(const SensorSpec& sensor, const PtcOptions& options) {
   CAMSIM_CHECK(options.width >= 2 && options.height >= 2 && options.levels >= 50 &&
                options.spatialFrames >= 2 && options.maxSaturationFraction > 1.05);
-  // The description's file when it came from one (a preset's too), else its name.
-  const SourceLocation where{
-      sensor.sourceFiles.empty() ? sensor.name : sensor.sourceFiles.front().string(), 0, 0};
+  const SourceLocation where{sensor.sourceName(), 0, 0};
   if (sensor.noiseless)
     throw InputError(where, "",
                      "a noiseless sensor has no photon transfer curve (no temporal noise)");

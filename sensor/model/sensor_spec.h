@@ -67,6 +67,11 @@ struct SensorSpec {
   std::filesystem::path darkFramesDir;
   // The files it was read from: the description (loadSensorSpec) and each CSV, in order.
   std::vector<std::filesystem::path> sourceFiles;
+  // How messages name the description: its file when it came from one (a preset's too),
+  // else its name.
+  std::string sourceName() const {
+    return sourceFiles.empty() ? name : sourceFiles.front().string();
+  }
 
   double whiteLevelDn() const { return static_cast<double>((1u << adcBits) - 1u); }
   // Mean dark electrons per second at the operating temperature.
