@@ -151,6 +151,12 @@ ReadPart readPart(const std::filesystem::path& file) {
   for (int i = 0; i < kImages; ++i) {
     *lists[i] = split(get(kChannelKeys[i]));
     if (lists[i]->empty()) continue;
+    // A name listed twice would reach the EXR writer, whose error names neither file nor key.
+    for (auto it = lists[i]->begin(); it != lists[i]->end(); ++it)
+      if (std::find(lists[i]->begin(), it, *it) != it)
+        throw InputError({file.string(), 0, 0}, kChannelKeys[i],
+                         "names channel " + std::string(kPrefixes[i]) + *it +
+                             " twice: not as camsim render --tiles writes it");
     Image& image = p.images[i];
     image = Image(h.resolution.x, h.resolution.y, *lists[i]);
     const std::size_t n = lists[i]->size(), m = exr.image.channels.size();

@@ -180,5 +180,29 @@ TEST(TileParts, HeaderValuesOutOfRangeAreRefusedByKey) {
   }
 }
 
+// Found by probing: a channel list naming a channel twice ("X,Y,Z,X" in both parts) passed
+// the header checks and failed in the EXR writer with a message naming neither the file nor
+// the key. Now refused by key.
+TEST(TileParts, AChannelListedTwiceIsRefusedByKey) {
+  const test::TempDir dir;
+  std::vector<std::filesystem::path> files = writeTwoParts(dir.path(), false);
+  for (std::filesystem::path& file : files) {
+    ExrFile exr = readExr(file);
+    for (auto& [key, value] : exr.metadata)
+      if (key == "camsim:film_channels") value += "," + value.substr(0, value.find(','));
+    const std::filesystem::path edited = file.string() + ".edited.exr";
+    writeExr(edited, exr.image, exr.metadata, exr.chromaticities);
+    file = edited;
+  }
+  try {
+    assembleTileParts(files);
+    ADD_FAILURE() << "assembled";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.where().file, files[0].string()) << e.what();
+    EXPECT_EQ(e.key(), "camsim:film_channels") << e.what();
+    EXPECT_NE(e.message().find("twice"), std::string::npos) << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace camsim
