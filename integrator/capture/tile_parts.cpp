@@ -14,6 +14,8 @@
 #include "sensor/base/input_error.h"
 #include "sensor/io/exr_io.h"
 #include "sensor/io/output_set.h"
+#include "sensor/model/sensor_spec.h"
+#include "sensor/model/spectral_response.h"
 
 namespace camsim {
 namespace {
@@ -180,6 +182,19 @@ ReadPart readPart(const std::filesystem::path& file) {
     }
   }
   if (h.filmChannels.empty()) throw bad("camsim:film_channels");
+  // Lists a render does not write would fail an internal check later (the colour conversion
+  // needs X, Y, Z; the error estimate one channel of the film): refused here by key.
+  const auto notAsWritten = [&](const char* key, const std::string& why) {
+    return InputError({file.string(), 0, 0}, key, "'" + get(key) + "': " + why);
+  };
+  if (h.filmChannels != SpectralResponse::cieXyz().storedChannelNames())
+    throw notAsWritten("camsim:film_channels", "camsim render --tiles writes X,Y,Z");
+  if (h.halfChannels.size() > 1)
+    throw notAsWritten("camsim:half_channels", "camsim render --tiles writes one channel at most");
+  if (h.halfChannels.size() == 1 && std::find(h.filmChannels.begin(), h.filmChannels.end(),
+                                              h.halfChannels[0]) == h.filmChannels.end())
+    throw notAsWritten("camsim:half_channels",
+                       "camsim render --tiles writes one of the film's channels");
   return p;
 }
 
@@ -401,6 +416,14 @@ CaptureResult mergedCapture(AssembledTiles tiles, SceneDescription description) 
   if (description.sensor.has_value() != !h.sensorChannels.empty())
     throw differs("sensor", description.sensor ? "one" : "none",
                   h.sensorChannels.empty() ? "none" : "one");
+  if (description.sensor) {
+    const std::vector<std::string> planes =
+        sensorResponse(description.sensor->spec).storedChannelNames();
+    if (h.sensorChannels != planes)
+      throw InputError({parts, 0, 0}, "camsim:sensor_channels",
+                       "'" + joined(h.sensorChannels, parts) + "': camsim render --tiles writes " +
+                           joined(planes, parts) + " for the scene's sensor");
+  }
   if (description.render.aovs.empty() != h.aovChannels.empty())
     throw differs("aovs", description.render.aovs.empty() ? "none" : "some",
                   h.aovChannels.empty() ? "none" : "some");

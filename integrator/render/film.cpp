@@ -90,11 +90,7 @@ std::vector<Image> Film::toImages() const {
   std::vector<Image> images;
   size_t offset = 0;
   for (const SpectralResponse* r : responses_) {
-    std::vector<std::string> names;
-    if (r->isMosaic())
-      names.push_back(r->name());
-    else
-      for (int c = 0; c < r->channelCount(); ++c) names.push_back(r->channel(c).name);
+    const std::vector<std::string> names = r->storedChannelNames();
     Image image(resolution_.x, resolution_.y, names);
     const size_t n = names.size();
     for (size_t p = 0; p < samples_.size(); ++p)

@@ -18,6 +18,13 @@ SpectralResponse::SpectralResponse(std::string name, std::string unit,
   mosaic_ = std::move(mosaic);
 }
 
+std::vector<std::string> SpectralResponse::storedChannelNames() const {
+  if (mosaic_) return {name_};
+  std::vector<std::string> names;
+  for (const ResponseChannel& c : channels_) names.push_back(c.name);
+  return names;
+}
+
 SpectralResponse SpectralResponse::electrons(const std::vector<std::string>& names,
                                              const std::vector<Spectrum>& qe,
                                              const CfaLayout* mosaic) {

@@ -47,6 +47,9 @@ class SpectralResponse {
   const CfaLayout& mosaic() const { return *mosaic_; }
   // Channels stored per pixel: 1 for a mosaic, else channelCount().
   int storedChannels() const { return mosaic_ ? 1 : channelCount(); }
+  // Their names, as a film's image of this response is written: the response's own name
+  // for a mosaic (one value per photosite), else the channels' names.
+  std::vector<std::string> storedChannelNames() const;
 
   const std::string& name() const { return name_; }
   // Unit of the integrated value, e.g. "cd/m^2".

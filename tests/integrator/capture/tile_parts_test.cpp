@@ -204,5 +204,59 @@ TEST(TileParts, AChannelListedTwiceIsRefusedByKey) {
   }
 }
 
+// `image` with a channel `name` of zeros added at the end.
+Image withChannel(const Image& image, const std::string& name) {
+  std::vector<std::string> names = image.channels;
+  names.push_back(name);
+  Image out(image.width, image.height, names);
+  const std::size_t n = image.channels.size();
+  for (std::size_t px = 0; px < image.pixels.size() / n; ++px)
+    for (std::size_t c = 0; c < n; ++c) out.pixels[px * (n + 1) + c] = image.pixels[px * n + c];
+  return out;
+}
+
+// Found by probing: parts whose channel lists are not what a render of the scene writes — a
+// film of X, Y only or of other names, two error-estimate channels, a sensor plane too many
+// for the sensor — passed every check and aborted the merge on an internal check (exit 134)
+// in the colour conversion, the error estimate and the ISP. Now refused by key.
+TEST(TileParts, ChannelListsNotAsTheSceneRendersThemAreRefusedByKey) {
+  const test::TempDir dir;
+  const std::vector<std::filesystem::path> files = writeTwoParts(dir.path(), true);
+  const SceneDescription desc = loadSceneFromText(kScene, "split.yaml", ".");
+  const struct {
+    const char* key;
+    const char* list;   // the new list; "+" at the front: appended to the old one
+    const char* added;  // a channel of zeros added to the part, or ""
+    const char* says;
+  } cases[] = {
+      {"camsim:film_channels", "X,Y", "", "writes X,Y,Z"},
+      {"camsim:film_channels", "X,Y,W", "film.W", "writes X,Y,Z"},
+      {"camsim:half_channels", "+,X", "half.X", "one channel at most"},
+      {"camsim:half_channels", "W", "half.W", "one of the film's channels"},
+      {"camsim:sensor_channels", "+,extra", "sensor.extra",
+       "writes electrons for the scene's sensor"},
+  };
+  for (const auto& c : cases) {
+    SCOPED_TRACE(std::string(c.key) + "=" + c.list);
+    std::vector<std::filesystem::path> edited;
+    for (const std::filesystem::path& file : files) {
+      ExrFile exr = readExr(file);
+      for (auto& [key, value] : exr.metadata)
+        if (key == c.key) value = c.list[0] == '+' ? value + (c.list + 1) : std::string(c.list);
+      if (*c.added) exr.image = withChannel(exr.image, c.added);
+      edited.push_back(file.string() + ".edited.exr");
+      writeExr(edited.back(), exr.image, exr.metadata, exr.chromaticities);
+    }
+    try {
+      mergedCapture(assembleTileParts(edited), desc);
+      ADD_FAILURE() << "merged";
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.where().file, edited[0].string()) << e.what();
+      EXPECT_EQ(e.key(), c.key) << e.what();
+      EXPECT_NE(e.message().find(c.says), std::string::npos) << e.what();
+    }
+  }
+}
+
 }  // namespace
 }  // namespace camsim
