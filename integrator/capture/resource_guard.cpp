@@ -7,6 +7,7 @@
 #include <set>
 #include <string>
 
+#include "integrator/render/path_guide.h"
 #include "sensor/base/input_error.h"
 
 namespace camsim {
@@ -69,6 +70,8 @@ MemoryEstimate estimateRenderMemory(const SceneDescription& desc) {
     }
     m.meshes += static_cast<std::uint64_t>(mesh->indices.size() / 3) * kBytesPerTriangle;
   }
+  if (desc.render.guiding)
+    m.guide = PathGuide::trainingBytes(desc.camera.resolution, desc.render.spp, desc.render.maxDepth);
   return m;
 }
 
@@ -99,7 +102,10 @@ void checkMemoryLimit(const SceneDescription& desc, std::optional<double> maxMem
                    "this render needs an estimated " + gb(static_cast<double>(m.total())) +
                        " of memory (film " + gb(static_cast<double>(m.film)) + ", output images " +
                        gb(static_cast<double>(m.images)) + ", meshes " +
-                       gb(static_cast<double>(m.meshes)) + " for " + std::to_string(res.x) + "x" +
+                       gb(static_cast<double>(m.meshes)) +
+                       (m.guide ? ", path guiding's training " + gb(static_cast<double>(m.guide))
+                                : std::string()) +
+                       " for " + std::to_string(res.x) + "x" +
                        std::to_string(res.y) + " px), more than " + which +
                        "; lower camera.resolution or raise the limit with --max-memory-gb GB");
 }

@@ -17,7 +17,8 @@ struct MemoryEstimate {
   std::uint64_t film = 0;    // accumulators: 8 bytes per channel per pixel
   std::uint64_t images = 0;  // output images (EXR, quick look, sensor frames) in memory
   std::uint64_t meshes = 0;  // ~100 bytes per triangle (description, Embree geometry, BVH)
-  std::uint64_t total() const { return film + images + meshes; }
+  std::uint64_t guide = 0;   // path guiding's training records (PathGuide::trainingBytes)
+  std::uint64_t total() const { return film + images + meshes + guide; }
 };
 
 MemoryEstimate estimateRenderMemory(const SceneDescription& desc);

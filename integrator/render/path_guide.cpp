@@ -1,6 +1,7 @@
 #include "integrator/render/path_guide.h"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 
@@ -19,9 +20,13 @@ namespace camsim {
 namespace {
 
 constexpr float kInvFourPi = 0.0795774715459476679f;
-// Tiles traced between two insertions of their records: bounds the records held at once
-// (16² px × 32 spp × ≈ 4 vertices × 40 bytes ≈ 1.3 MB per tile at the last iteration).
+// Tiles, and samples per pixel, traced between two insertions of their records: bound the
+// records held at once to 32 tiles × 16² px × 32 spp × ≈ 4 vertices × 40 bytes ≈ 42 MB at
+// any spp (an iteration of more samples is traced in chunks of kChunkSpp; without them a
+// 16384-spp render held 2048 spp of records per tile, 84 MB each). A chunk of a tile is
+// also how long a cancel waits.
 constexpr int kBatchTiles = 32;
+constexpr int kChunkSpp = 32;
 constexpr std::uint64_t kGuideSeedSalt = 0x6775696465ull;  // "guide"
 
 // One training iteration's samples [first, end) of a tile's pixels, their camera samples
@@ -63,7 +68,23 @@ glm::vec3 PathGuide::sample(const DirectionalQuadtree& d, glm::vec2 u, float* pd
   return w;
 }
 
-PathGuide PathGuide::train(const Scene& scene, int spp, std::uint64_t seed, int threads) {
+std::uint64_t PathGuide::trainingBytes(glm::ivec2 resolution, int spp, int maxDepth) {
+  const int budget = std::max(1, spp / 4);
+  int last = 1, total = 1;  // the largest iteration's samples per pixel, as train's loop
+  while (total + 2 * last <= budget) {
+    last *= 2;
+    total += last;
+  }
+  const auto tiles = static_cast<std::uint64_t>(std::min(renderTileCount(resolution), kBatchTiles));
+  const auto samples = static_cast<std::uint64_t>(std::min(last, kChunkSpp));
+  const auto vertices = static_cast<std::uint64_t>(std::clamp(maxDepth, 1, 8));
+  return tiles * static_cast<std::uint64_t>(kRenderTileSize * kRenderTileSize) * samples *
+         vertices * sizeof(GuideRecord);
+}
+
+PathGuide PathGuide::train(const Scene& scene, int spp, std::uint64_t seed, int threads,
+                           const std::atomic<bool>* cancel) {
+  const auto cancelled = [cancel] { return cancel && cancel->load(std::memory_order_relaxed); };
   const auto start = std::chrono::steady_clock::now();
   // The scene's bounds (all geometry, all time steps), 0.1 % larger: no vertex on a face.
   const glm::vec3 lo = scene.geometry().boundsLower(), hi = scene.geometry().boundsUpper();
@@ -81,26 +102,37 @@ PathGuide PathGuide::train(const Scene& scene, int spp, std::uint64_t seed, int 
     if (k > 0 && first + n > budget) break;
     // Iteration 0 samples the BSDF alone (the guide is still empty everywhere anyway).
     const PathGuide* sampling = k == 0 ? nullptr : &guide;
-    for (int batch = 0; batch < tileCount; batch += kBatchTiles) {
-      const int batchEnd = std::min(tileCount, batch + kBatchTiles);
-      arena.execute([&] {
-        tbb::parallel_for(
-            tbb::blocked_range<int>(batch, batchEnd, 1), [&](const tbb::blocked_range<int>& range) {
-              IndependentSampler sampler = prototype;
-              for (int t = range.begin(); t != range.end(); ++t) {
-                std::vector<GuideRecord>& out = records[static_cast<std::size_t>(t - batch)];
-                out.clear();
-                traceTile(scene, renderTileRect(res, t), first, first + n, sampler, sampling, out);
-              }
-            });
-      });
-      // Tile order, then each tile's own order: the same sums for any thread count.
-      for (int t = batch; t < batchEnd; ++t)
-        for (const GuideRecord& r : records[static_cast<std::size_t>(t - batch)]) {
-          guide.tree_.record(r.p, r.square, r.weight, r.source, r.sourceWeight);
-          ++guide.stats_.records;
-        }
+    for (int chunk = first; chunk < first + n; chunk += kChunkSpp) {
+      const int chunkEnd = std::min(first + n, chunk + kChunkSpp);
+      for (int batch = 0; batch < tileCount; batch += kBatchTiles) {
+        const int batchEnd = std::min(tileCount, batch + kBatchTiles);
+        arena.execute([&] {
+          tbb::parallel_for(tbb::blocked_range<int>(batch, batchEnd, 1),
+                            [&](const tbb::blocked_range<int>& range) {
+                              IndependentSampler sampler = prototype;
+                              for (int t = range.begin(); t != range.end(); ++t) {
+                                std::vector<GuideRecord>& out =
+                                    records[static_cast<std::size_t>(t - batch)];
+                                out.clear();
+                                if (cancelled()) continue;
+                                traceTile(scene, renderTileRect(res, t), chunk, chunkEnd, sampler,
+                                          sampling, out);
+                              }
+                            });
+        });
+        // A cancelled render writes nothing: the guide is left as it is, the render's
+        // first pass sees the cancel too.
+        if (cancelled()) break;
+        // Chunk, tile, then each tile's own order: the same sums for any thread count.
+        for (int t = batch; t < batchEnd; ++t)
+          for (const GuideRecord& r : records[static_cast<std::size_t>(t - batch)]) {
+            guide.tree_.record(r.p, r.square, r.weight, r.source, r.sourceWeight);
+            ++guide.stats_.records;
+          }
+      }
+      if (cancelled()) break;
     }
+    if (cancelled()) break;
     guide.tree_.refine(k);
     first += n;
     ++guide.stats_.iterations;

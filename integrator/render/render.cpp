@@ -242,7 +242,7 @@ RenderResult render(const Scene& scene, const std::vector<const SpectralResponse
   // Path guiding (integrator/render/path_guide.h): trained before the first pass, frozen.
   std::optional<PathGuide> guide;
   if (options.guiding.value_or(scene.settings().guiding))
-    guide = PathGuide::train(scene, options.spp, options.seed, threads);
+    guide = PathGuide::train(scene, options.spp, options.seed, threads, options.cancel);
   const PathGuide* guidePtr = guide ? &*guide : nullptr;
   // The spectral control variate: unguided paths, a camera that treats every wavelength
   // alike, an emitting shape for the reference (spectral_control_variate.h).

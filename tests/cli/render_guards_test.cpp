@@ -114,6 +114,20 @@ TEST(MemoryEstimate, CountsFilmImagesAndTriangles) {
   EXPECT_EQ(estimateRenderMemory(masked).images, m.images + 500000u * 2u * 16u);
   EXPECT_NO_THROW(checkMemoryLimit(desc, 1.0));
   EXPECT_THROW(checkMemoryLimit(desc, 0.01), InputError);
+  // Path guiding's training records (found by probing: not counted, a guided 64×32 render
+  // at 16384 spp peaked at 491 MB under a 0.1 GB limit): a batch of 32 tiles × a chunk of
+  // 32 spp × up to 8 vertices × 40 bytes; a guide trained below 256 spp takes smaller
+  // iterations (spp 64: 16 spp of 1 + 2 + 4 + 8 = 15, the last of 8).
+  SceneDescription guided = desc;
+  guided.render.guiding = true;
+  guided.render.spp = 16384;
+  EXPECT_EQ(estimateRenderMemory(guided).guide, 32u * 256u * 32u * 8u * 40u);
+  EXPECT_EQ(estimateRenderMemory(guided).total(), m.total() + 32u * 256u * 32u * 8u * 40u);
+  guided.render.spp = 64;
+  guided.render.maxDepth = 3;
+  EXPECT_EQ(estimateRenderMemory(guided).guide, 32u * 256u * 8u * 3u * 40u);
+  guided.camera.resolution = {20, 20};  // 4 tiles
+  EXPECT_EQ(estimateRenderMemory(guided).guide, 4u * 256u * 8u * 3u * 40u);
   // 16384² px is within SceneLimits but needs > 16 GB: over the default limit on machines
   // with less than ~27 GB of memory, and always over an explicit 16 GB.
   desc.camera.resolution = {16384, 16384};
