@@ -71,7 +71,8 @@ MemoryEstimate estimateRenderMemory(const SceneDescription& desc) {
     m.meshes += static_cast<std::uint64_t>(mesh->indices.size() / 3) * kBytesPerTriangle;
   }
   if (desc.render.guiding)
-    m.guide = PathGuide::trainingBytes(desc.camera.resolution, desc.render.spp, desc.render.maxDepth);
+    m.guide =
+        PathGuide::trainingBytes(desc.camera.resolution, desc.render.spp, desc.render.maxDepth);
   return m;
 }
 
@@ -98,16 +99,15 @@ void checkMemoryLimit(const SceneDescription& desc, std::optional<double> maxMem
   }
   if (static_cast<double>(m.total()) <= limit) return;
   const auto& res = desc.camera.resolution;
-  throw InputError({desc.sourceFile, 0, 0}, "",
-                   "this render needs an estimated " + gb(static_cast<double>(m.total())) +
-                       " of memory (film " + gb(static_cast<double>(m.film)) + ", output images " +
-                       gb(static_cast<double>(m.images)) + ", meshes " +
-                       gb(static_cast<double>(m.meshes)) +
-                       (m.guide ? ", path guiding's training " + gb(static_cast<double>(m.guide))
-                                : std::string()) +
-                       " for " + std::to_string(res.x) + "x" +
-                       std::to_string(res.y) + " px), more than " + which +
-                       "; lower camera.resolution or raise the limit with --max-memory-gb GB");
+  throw InputError(
+      {desc.sourceFile, 0, 0}, "",
+      "this render needs an estimated " + gb(static_cast<double>(m.total())) + " of memory (film " +
+          gb(static_cast<double>(m.film)) + ", output images " + gb(static_cast<double>(m.images)) +
+          ", meshes " + gb(static_cast<double>(m.meshes)) +
+          (m.guide ? ", path guiding's training " + gb(static_cast<double>(m.guide))
+                   : std::string()) +
+          " for " + std::to_string(res.x) + "x" + std::to_string(res.y) + " px), more than " +
+          which + "; lower camera.resolution or raise the limit with --max-memory-gb GB");
 }
 
 }  // namespace camsim

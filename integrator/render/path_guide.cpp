@@ -107,18 +107,17 @@ PathGuide PathGuide::train(const Scene& scene, int spp, std::uint64_t seed, int 
       for (int batch = 0; batch < tileCount; batch += kBatchTiles) {
         const int batchEnd = std::min(tileCount, batch + kBatchTiles);
         arena.execute([&] {
-          tbb::parallel_for(tbb::blocked_range<int>(batch, batchEnd, 1),
-                            [&](const tbb::blocked_range<int>& range) {
-                              IndependentSampler sampler = prototype;
-                              for (int t = range.begin(); t != range.end(); ++t) {
-                                std::vector<GuideRecord>& out =
-                                    records[static_cast<std::size_t>(t - batch)];
-                                out.clear();
-                                if (cancelled()) continue;
-                                traceTile(scene, renderTileRect(res, t), chunk, chunkEnd, sampler,
-                                          sampling, out);
-                              }
-                            });
+          tbb::parallel_for(
+              tbb::blocked_range<int>(batch, batchEnd, 1),
+              [&](const tbb::blocked_range<int>& range) {
+                IndependentSampler sampler = prototype;
+                for (int t = range.begin(); t != range.end(); ++t) {
+                  std::vector<GuideRecord>& out = records[static_cast<std::size_t>(t - batch)];
+                  out.clear();
+                  if (cancelled()) continue;
+                  traceTile(scene, renderTileRect(res, t), chunk, chunkEnd, sampler, sampling, out);
+                }
+              });
         });
         // A cancelled render writes nothing: the guide is left as it is, the render's
         // first pass sees the cancel too.
