@@ -28,8 +28,9 @@ constexpr const char* kPrefixes[kImages] = {"film.", "sensor.", "aov.", "half."}
 constexpr const char* kChannelKeys[kImages] = {"camsim:film_channels", "camsim:sensor_channels",
                                                "camsim:aov_channels", "camsim:half_channels"};
 // The attributes that differ between the parts of one render; all others must agree.
-const std::set<std::string> kPerPart = {"camsim:tile_index", "camsim:tiles", "camsim:samples",
-                                        "camsim:rejected_samples", "camsim:render_seconds"};
+const std::set<std::string> kPerPart = {"camsim:tile_index",     "camsim:tiles",
+                                        "camsim:samples",        "camsim:rejected_samples",
+                                        "camsim:render_seconds", "camsim:guide_train_seconds"};
 
 constexpr int kMaxTileCount = 1 << 20;  // as camsim render --tiles takes M
 
@@ -83,7 +84,7 @@ struct ReadPart {
   TilePartHeader header;
   int index = 0;
   std::uint64_t samples = 0, rejected = 0;
-  std::optional<double> seconds;
+  std::optional<double> seconds, guideSeconds;
   Image images[kImages];  // film, sensor film, aovs, odd half
 };
 
@@ -144,9 +145,18 @@ ReadPart readPart(const std::filesystem::path& file) {
   h.modelled = *dims;
   p.samples = static_cast<std::uint64_t>(integer("camsim:samples", 0, kAny));
   p.rejected = static_cast<std::uint64_t>(integer("camsim:rejected_samples", 0, kAny));
-  if (p.attrs.count("camsim:render_seconds")) {  // nan, -5 or 1e308 printed nonsense times
-    p.seconds = parseNumber<double>(get("camsim:render_seconds"));
-    if (!p.seconds || !(*p.seconds >= 0.0 && *p.seconds <= 1e9)) throw bad("camsim:render_seconds");
+  const auto seconds = [&](const char* key, std::optional<double>& out) {
+    if (!p.attrs.count(key)) return;  // nan, -5 or 1e308 printed nonsense times
+    out = parseNumber<double>(get(key));
+    if (!out || !(*out >= 0.0 && *out <= 1e9)) throw bad(key);
+  };
+  seconds("camsim:render_seconds", p.seconds);
+  seconds("camsim:guide_train_seconds", p.guideSeconds);
+  h.modelled.tracedLens = get("camsim:traced_lens");
+  if (p.attrs.count("camsim:guide")) {
+    const std::optional<GuideStats> guide = parseGuideStats(get("camsim:guide"));
+    if (!guide) throw bad("camsim:guide");
+    h.guide = *guide;
   }
   std::vector<std::string>* lists[kImages] = {&h.filmChannels, &h.sensorChannels, &h.aovChannels,
                                               &h.halfChannels};
@@ -218,7 +228,9 @@ std::string modelledDimsText(const ModelledDimensions& m) {
          " wavelengths=" + std::to_string(m.wavelengths) +
          " time_steps=" + std::to_string(m.timeSteps) +
          " diffraction=" + std::to_string(int(m.diffraction)) +
-         " spectral_cv=" + std::to_string(int(m.spectralControlVariate));
+         " spectral_cv=" + std::to_string(int(m.spectralControlVariate)) +
+         " lens_surfaces=" + std::to_string(m.lensSurfaces) +
+         " lens_disperses=" + std::to_string(int(m.lensDisperses));
 }
 
 std::optional<ModelledDimensions> parseModelledDims(const std::string& text) {
@@ -252,12 +264,55 @@ std::optional<ModelledDimensions> parseModelledDims(const std::string& text) {
       m.diffraction = *v != 0;
     else if (key == "spectral_cv")
       m.spectralControlVariate = *v != 0;
+    else if (key == "lens_surfaces")
+      m.lensSurfaces = *v;
+    else if (key == "lens_disperses")
+      m.lensDisperses = *v != 0;
     else
       return std::nullopt;
     ++fields;
   }
-  if (fields != 10) return std::nullopt;
+  if (fields != 12) return std::nullopt;
+  // What a render can have modelled (a hand-edited part merged "0 wavelengths").
+  if (m.blades < 0 || m.movingObjects < 0 || m.wavelengths < 1 || m.timeSteps < 1 ||
+      m.lensSurfaces < 0 || m.time != (m.movingObjects > 0 || m.cameraMoves))
+    return std::nullopt;
   return m;
+}
+
+std::string guideStatsText(const GuideStats& g) {
+  return "train_spp=" + std::to_string(g.trainSpp) + " iterations=" + std::to_string(g.iterations) +
+         " records=" + std::to_string(g.records) + " leaves=" + std::to_string(g.leaves) +
+         " bytes=" + std::to_string(g.bytes);
+}
+
+std::optional<GuideStats> parseGuideStats(const std::string& text) {
+  GuideStats g;
+  std::istringstream in(text);
+  std::string item;
+  int fields = 0;
+  while (in >> item) {
+    const std::size_t eq = item.find('=');
+    if (eq == std::string::npos) return std::nullopt;
+    const std::optional<std::uint64_t> v = parseNumber<std::uint64_t>(item.substr(eq + 1));
+    if (!v || *v > (1ull << 62)) return std::nullopt;
+    const std::string key = item.substr(0, eq);
+    if (key == "train_spp" && *v <= (1u << 30))
+      g.trainSpp = static_cast<int>(*v);
+    else if (key == "iterations" && *v <= 30)
+      g.iterations = static_cast<int>(*v);
+    else if (key == "records")
+      g.records = *v;
+    else if (key == "leaves")
+      g.leaves = static_cast<std::size_t>(*v);
+    else if (key == "bytes")
+      g.bytes = static_cast<std::size_t>(*v);
+    else
+      return std::nullopt;
+    ++fields;
+  }
+  if (fields != 5) return std::nullopt;
+  return g;
 }
 
 std::filesystem::path writeTilePart(const CaptureResult& r, Share share,
@@ -301,6 +356,7 @@ std::filesystem::path writeTilePart(const CaptureResult& r, Share share,
                            "; other pixels are 0"},
       {"camsim:modelled", r.stats.modelled.describe()},
       {"camsim:modelled_dims", modelledDimsText(r.stats.modelled)},
+      {"camsim:traced_lens", r.stats.modelled.tracedLens},
       {"camsim:film_channels", lists[0]},
       {"camsim:sensor_channels", lists[1]},
       {"camsim:aov_channels", lists[2]},
@@ -311,8 +367,12 @@ std::filesystem::path writeTilePart(const CaptureResult& r, Share share,
        "a tile part of one frame (camsim merge assembles them): film.* the CIE XYZ film "
        "(NAME.exr's XYZ), sensor.* the expected electrons at the scene's exposure, aov.* the "
        "ground-truth layers of NAME.exr"}};
-  if (!options.reproducible)
+  if (r.stats.guide) meta.push_back({"camsim:guide", guideStatsText(*r.stats.guide)});
+  if (!options.reproducible) {
     meta.push_back({"camsim:render_seconds", std::to_string(r.stats.seconds)});
+    if (r.stats.guide)
+      meta.push_back({"camsim:guide_train_seconds", std::to_string(r.stats.guide->trainSeconds)});
+  }
   OutputSet outputs(options.directory);
   writeExr(outputs.add(tilePartFileName(desc.name, share)), part, meta, std::nullopt);
   return outputs.commit().front();
@@ -372,6 +432,7 @@ AssembledTiles assembleTileParts(const std::vector<std::filesystem::path>& files
     out.samples += p.samples;
     out.rejectedSamples += p.rejected;
     if (p.seconds) out.renderSeconds += *p.seconds;
+    if (p.guideSeconds) out.guideTrainSeconds += *p.guideSeconds;
   }
   std::string given;
   for (std::size_t k = 0; k < byShare.size(); ++k)
@@ -436,6 +497,10 @@ CaptureResult mergedCapture(AssembledTiles tiles, SceneDescription description) 
   out.stats.rejectedSamples = tiles.rejectedSamples;
   out.stats.modelled = h.modelled;
   out.stats.seconds = tiles.renderSeconds;
+  if (h.guide) {  // every part trained the same guide; their training times summed
+    out.stats.guide = *h.guide;
+    out.stats.guide->trainSeconds = tiles.guideTrainSeconds;
+  }
   out.tilesDone = out.tilesTotal = renderTileCount(h.resolution);
   out.film = std::move(tiles.film);
   out.sensorFilm = std::move(tiles.sensorFilm);

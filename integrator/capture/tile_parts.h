@@ -62,6 +62,7 @@ struct TilePartHeader {
   std::uint64_t seed = 0;
   int tileCount = 1;  // M
   ModelledDimensions modelled;
+  std::optional<GuideStats> guide;  // camsim:guide (a guided render), trainSeconds 0
   std::vector<std::string> filmChannels, sensorChannels, aovChannels, halfChannels;
 };
 
@@ -70,7 +71,8 @@ struct AssembledTiles {
   std::vector<std::filesystem::path> files;  // in share order: files[k] holds share k
   Image film, sensorFilm, aovs, oddHalf;     // every tile from its part
   std::uint64_t samples = 0, rejectedSamples = 0;
-  double renderSeconds = 0.0;  // the parts' render times summed (those that have one)
+  double renderSeconds = 0.0;      // the parts' render times summed (those that have one)
+  double guideTrainSeconds = 0.0;  // likewise their guides' training times
 };
 
 // Throws InputError naming the file (for a missing part, the file it would be, beside the
@@ -87,9 +89,15 @@ AssembledTiles assembleTileParts(const std::vector<std::filesystem::path>& files
 CaptureResult mergedCapture(AssembledTiles tiles, SceneDescription description);
 
 // "aperture=1 blades=6 time=1 moving_objects=2 camera_moves=0 rolling_shutter=0
-// wavelengths=4 time_steps=2 diffraction=0 spectral_cv=1" and back (nullopt when it does not
-// read, e.g. a part of an older build with fewer fields).
+// wavelengths=4 time_steps=2 diffraction=0 spectral_cv=1 lens_surfaces=11 lens_disperses=1"
+// and back (nullopt when it does not read, e.g. a part of an older build with fewer fields,
+// or is not what a render models: no wavelength, time without anything moving). The traced
+// lens's name is not in it (a file name may hold spaces): camsim:traced_lens.
 std::string modelledDimsText(const ModelledDimensions& m);
 std::optional<ModelledDimensions> parseModelledDims(const std::string& text);
+// "train_spp=63 iterations=6 records=… leaves=… bytes=…" (camsim:guide) and back; the
+// training time is a part's own (camsim:guide_train_seconds).
+std::string guideStatsText(const GuideStats& g);
+std::optional<GuideStats> parseGuideStats(const std::string& text);
 
 }  // namespace camsim

@@ -191,6 +191,20 @@ TEST_F(TileMerge, MovingSceneWithoutSensorMerges) {
   expectSameFiles("ref_moving", "merged_moving");
 }
 
+// Found by probing: the parts of a guided render carried no guide statistics, so the
+// merged NAME.json lacked render.guide and was not the render's bytes.
+TEST_F(TileMerge, GuidedSceneMergesWithItsGuide) {
+  ASSERT_EQ(render("moving.yaml", "ref_guided", " --reproducible --guiding 1 --spp 8").exitCode, 0);
+  splitInto("moving.yaml", "parts_guided", 2, " --guiding 1 --spp 8");
+  const RunResult r =
+      merge({part("parts_guided", "moving", 0, 2), part("parts_guided", "moving", 1, 2)},
+            "merged_guided");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  expectSameFiles("ref_guided", "merged_guided");
+  const std::string json = fileContents(dir() / "merged_guided").at("moving.json");
+  EXPECT_NE(json.find("\"guide\": {"), std::string::npos) << json;
+}
+
 // Nothing run-dependent is left in a reproducible render: the thread count does not show.
 TEST_F(TileMerge, ReproducibleRenderIsTheSameBytesOnOneThread) {
   const RunResult r = render("tiled.yaml", "ref_1thread",

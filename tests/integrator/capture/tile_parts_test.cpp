@@ -30,6 +30,8 @@ TEST(TileParts, ModelledDimensionsRoundTrip) {
   m.wavelengths = 4;
   m.timeSteps = 3;
   m.spectralControlVariate = true;
+  m.lensSurfaces = 11;     // found by probing: a traced lens's fields were not carried, and the
+  m.lensDisperses = true;  // merge of its parts said "aperture (circular)"
   const std::optional<ModelledDimensions> back = parseModelledDims(modelledDimsText(m));
   ASSERT_TRUE(back.has_value());
   EXPECT_EQ(back->describe(), m.describe());
@@ -46,8 +48,36 @@ TEST(TileParts, ModelledDimensionsRoundTrip) {
         "camera_moves=0 rolling_shutter=0 wavelengths=4 time_steps=1",
         // a part of a build before the spectral control variate: its 9 fields
         "aperture=1 blades=0 time=0 moving_objects=0 "
-        "camera_moves=0 rolling_shutter=0 wavelengths=4 time_steps=1 diffraction=0"})
+        "camera_moves=0 rolling_shutter=0 wavelengths=4 time_steps=1 diffraction=0",
+        // a part of a build before the traced lens's fields: its 10
+        "aperture=1 blades=0 time=0 moving_objects=0 camera_moves=0 rolling_shutter=0 "
+        "wavelengths=4 time_steps=1 diffraction=0 spectral_cv=0",
+        // not what a render models (merged with exit 0 before): no wavelength; time sampled
+        // with nothing moving
+        "aperture=0 blades=0 time=0 moving_objects=0 camera_moves=0 rolling_shutter=0 "
+        "wavelengths=0 time_steps=1 diffraction=0 spectral_cv=1 lens_surfaces=0 lens_disperses=0",
+        "aperture=0 blades=0 time=1 moving_objects=0 camera_moves=0 rolling_shutter=0 "
+        "wavelengths=4 time_steps=1 diffraction=0 spectral_cv=1 lens_surfaces=0 lens_disperses=0"})
     EXPECT_FALSE(parseModelledDims(bad).has_value()) << bad;
+}
+
+// Found by probing: a guided render's parts carried no guide statistics, so the merged
+// NAME.json lacked render.guide. They go through camsim:guide and back.
+TEST(TileParts, GuideStatisticsRoundTrip) {
+  GuideStats g;
+  g.trainSpp = 63;
+  g.iterations = 6;
+  g.records = 123456789012ull;
+  g.leaves = 17;
+  g.bytes = 30656;
+  const std::optional<GuideStats> back = parseGuideStats(guideStatsText(g));
+  ASSERT_TRUE(back.has_value());
+  EXPECT_EQ(guideStatsText(*back), guideStatsText(g));
+  for (const char* bad :
+       {"", "train_spp=63", "train_spp=63 iterations=99 records=1 leaves=1 bytes=1",
+        "train_spp=x iterations=6 records=1 leaves=1 bytes=1",
+        "train_spp=63 iterations=6 records=1 leaves=1 bytes=1 extra=2"})
+    EXPECT_FALSE(parseGuideStats(bad).has_value()) << bad;
 }
 
 const char* kScene =
