@@ -336,8 +336,13 @@ JsonObject captureSidecar(const CaptureResult& r, bool reproducible) {
   }
   if (desc.render.adaptiveThreshold) {
     JsonObject adaptive;
-    adaptive.set("threshold", *desc.render.adaptiveThreshold)
-        .set("min_spp", double(adaptiveMinSppFor(desc.render.spp, desc.render.adaptiveMinSpp)))
+    adaptive
+        .set("threshold", *desc.render.adaptiveThreshold)
+        // The samples every pixel took (found by probing: an adaptive_min_spp above spp
+        // was recorded, though no pixel can take more than spp).
+        .set("min_spp",
+             double(std::min(desc.render.spp,
+                             adaptiveMinSppFor(desc.render.spp, desc.render.adaptiveMinSpp))))
         .set("mean_spp", st.meanSpp);
     render.set("adaptive", adaptive);
   }

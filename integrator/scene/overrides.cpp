@@ -334,7 +334,14 @@ void applyOverrides(SceneDescription& d, const Overrides& o, const SourceLocatio
   if (o.iso) setOverrideNumber(checked, setting("iso"), *o.iso, src("iso"));
 
   if (o.sensor) setSensor(d, *o.sensor, where);
-  if (o.spp) d.render.spp = static_cast<int>(*o.spp);
+  if (o.spp) {
+    // As the loader refuses render.spp above render.max_spp (found by probing: an override
+    // above it rendered, and the sidecar said "stopped by max_spp" at more than max_spp).
+    if (*o.spp > d.render.maxSpp)
+      fail(src("spp"), "spp " + std::to_string(*o.spp) + " is above the scene's render.max_spp " +
+                           std::to_string(d.render.maxSpp));
+    d.render.spp = static_cast<int>(*o.spp);
+  }
   if (o.seed) d.render.seed = static_cast<std::uint64_t>(*o.seed);
   if (o.targetError) d.render.targetError = *o.targetError;
   if (o.timeLimitS) d.render.timeLimitS = *o.timeLimitS;

@@ -205,6 +205,37 @@ TEST(OverrideRanges, IssueExamplesExitTwoNamingFlagAndRange) {
   EXPECT_FALSE(std::filesystem::exists(dir.path() / "out" / "probe.exr"));
 }
 
+// Found by probing: --spp above the scene's render.max_spp rendered (the sidecar then said
+// "stopped by max_spp" at more than max_spp), while the same spp in the file is refused.
+TEST(OverrideRanges, SppAboveTheScenesMaxSppIsRefused) {
+  const SceneDescription base = loadSceneFromText(
+      [] {
+        std::string yaml = kOverrideScene;
+        const std::string from = "render: {spp: 1}";
+        return yaml.replace(yaml.find(from), from.size(),
+                            "render: {spp: 8, max_spp: 16, target_error: 0.01}");
+      }(),
+      "probe.yaml", ".");
+  for (const std::int64_t spp : {8, 16, 17, 1 << 20}) {
+    SceneDescription d = base;
+    Overrides o;
+    o.spp = spp;
+    if (spp <= 16) {
+      applyOverrides(d, o, {"<test>", 0, 0});
+      EXPECT_EQ(d.render.spp, spp);
+      continue;
+    }
+    try {
+      applyOverrides(d, o, {"<test>", 0, 0});
+      ADD_FAILURE() << "took spp " << spp;
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.key(), "render.spp");
+      EXPECT_NE(e.message().find("above the scene's render.max_spp 16"), std::string::npos)
+          << e.what();
+    }
+  }
+}
+
 // Tile parts keep the overrides as data: the text form reads back to the same values.
 TEST(OverrideRanges, TextFormRoundTrips) {
   Overrides o;

@@ -196,6 +196,19 @@ TEST(Capture, AnAdaptiveRendersSampleCountsAreALayerOfTheFilmExr) {
   EXPECT_LE(hi, 32.0f);
   EXPECT_LT(lo, hi) << "the plane's edge and its flat inside take different counts";
   EXPECT_NEAR(sum / (exr.image.width * exr.image.height), r.stats.meanSpp, 1e-6);
+  const std::string json = camsim::test::readFile(dir.path() / (r.description.name + ".json"));
+  EXPECT_NE(json.find("\"min_spp\": 4,"), std::string::npos) << json;
+  // Found by probing: a minimum above spp was recorded as min_spp, though every pixel took
+  // spp; the sidecar says what the pixels took.
+  SceneDescription above = d;
+  above.render.spp = 8;
+  above.render.adaptiveMinSpp = 64;
+  const CaptureResult all = capture(above);
+  camsim::test::TempDir dir2;
+  writeCapture(all, {dir2.path(), {}});
+  EXPECT_EQ(all.stats.meanSpp, 8.0);
+  const std::string json2 = camsim::test::readFile(dir2.path() / (all.description.name + ".json"));
+  EXPECT_NE(json2.find("\"min_spp\": 8,"), std::string::npos) << json2;
   // A fixed render has no such layer.
   d.render.adaptiveThreshold.reset();
   const CaptureResult fixed = capture(d);
