@@ -258,7 +258,7 @@ std::vector<std::filesystem::path> runPsf(const PsfArgs& args, std::ostream& out
     json.push_back(psfEntryJson(p, name));
   }
   JsonObject root, units;
-  units.set("field", "image height / (sensor width / 2), along +x (right)")
+  units.set("field", "image height / (sensor diagonal / 2), along +x (right)")
       .set("image_height", "mm on the film from the sensor's centre")
       .set("offsets", "µm on the film, x right, y up, from the chief ray's image point")
       .set("radii", "µm about the centroid; RMS and the radii enclosing 50 % and 80 %")

@@ -118,8 +118,13 @@ PsfTracedRays tracePsfLens(const LensCamera& camera, const PsfSettings& settings
       ray.origin = target - 4.0 * discRadius * parallel;
     } else {
       const glm::dvec3 v = target - object;
-      ray.origin = object;
       ray.direction = glm::normalize(v);
+      // A far object's ray starts on its line as near the lens as the infinite case's: from
+      // the object point itself, the front surface's intersection (terms ∝ distance²
+      // against a clear radius² of 1e-3 m²) lost all precision beyond about 10 km (probing:
+      // RMS 8× too large at 1e6 m, no ray at all from 1e8 m).
+      ray.origin =
+          glm::length(v) > 4.0 * discRadius ? target - 4.0 * discRadius * ray.direction : object;
       const double c = -ray.direction.z;  // cos θ to the axis
       weight = c * c * c * c;
     }
@@ -260,8 +265,13 @@ PsfImage computePsf(const PhysicalCamera& camera, const PsfSettings& settings) {
         h.weight;
     inside += h.weight;
   }
-  if (inside > 0.0)
-    for (double& e : out.energy) e /= inside;
+  // No ray in the grid: an all-zero image is no PSF (its sum is promised to be 1).
+  if (!(inside > 0.0))
+    refusePsf("size", std::to_string(settings.size) + " px: no ray lands in the grid (the PSF's " +
+                          "centroid is " + std::to_string(std::lround(cx / total * 1e6)) + ", " +
+                          std::to_string(std::lround(cy / total * 1e6)) +
+                          " µm from the chief ray's image point): raise --size");
+  for (double& e : out.energy) e /= inside;
   out.outsideFraction = total > 0.0 ? 1.0 - inside / total : 1.0;
   out.centroidX = cx / total;
   out.centroidY = cy / total;
