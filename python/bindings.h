@@ -43,6 +43,11 @@ void bindSensorFunctions(pybind11::module_& m);
 // The Python exception camsim.InputError (a ValueError), created by module.cpp.
 pybind11::handle inputErrorType();
 
+// A `threads=` argument as the library's count (sensor/base/threads.h), InputError at
+// `where` for any int out of its range: bound as a C int, one past 32 bits was pybind11's
+// TypeError ("incompatible function arguments") instead (found by probing: 2**40).
+int threadCountArg(const pybind11::int_& threads, const std::string& where);
+
 // Overrides of a loaded scene (scene_overrides.cpp), through the library's override table
 // (integrator/scene/overrides.h). Each throws InputError naming the scene key ("<override>"
 // as its file) for a bad value; none reads a file but a sensor override's sensor

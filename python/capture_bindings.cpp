@@ -69,7 +69,7 @@ constexpr const char* kOverrideKwargs[] = {
     "exposure_time_s", "f_number", "iso",  "noise",        "noise_seed",   "pose",
     "projection",      "guiding"};
 
-py::object runCapture(PyScene& scene, int threads, const py::object& progress,
+py::object runCapture(PyScene& scene, const py::int_& threadsArg, const py::object& progress,
                       const std::string& display, const std::string& view, const std::string& look,
                       const std::string& ocioConfig, bool reuse, const py::object& sensor,
                       const py::object& spp, const py::object& seed, const py::object& targetError,
@@ -78,7 +78,7 @@ py::object runCapture(PyScene& scene, int threads, const py::object& progress,
                       const py::object& iso, const py::object& noise, const py::object& noiseSeed,
                       const py::object& pose, const py::object& projection,
                       const py::object& guiding) {
-  checkThreadCount(threads, "<capture>");
+  const int threads = threadCountArg(threadsArg, "<capture>");
   // For this capture only (the Scene keeps its settings), checked before anything runs.
   Overrides overrides;
   const py::object* values[] = {

@@ -6,6 +6,7 @@
 
 #include "python/bindings.h"
 #include "sensor/base/input_error.h"
+#include "sensor/base/threads.h"
 
 namespace camsim::python {
 namespace {
@@ -38,6 +39,19 @@ py::handle gInputError;  // the type object, owned by the module (module attribu
 
 py::handle inputErrorType() {
   return gInputError;
+}
+
+int threadCountArg(const py::int_& threads, const std::string& where) {
+  long long count = -1;
+  try {
+    count = threads.cast<long long>();
+  } catch (const py::cast_error&) {  // beyond 64 bits
+    throw InputError({where, 0, 0}, "threads",
+                     "expected 0 (all cores) or a count up to " + std::to_string(kMaxThreads) +
+                         ", got " + std::string(py::repr(threads)));
+  }
+  checkThreadCount(count, where);
+  return static_cast<int>(count);
 }
 
 }  // namespace camsim::python

@@ -22,6 +22,7 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <limits>
 #include <optional>
 
 #include "python/bindings.h"
@@ -35,6 +36,7 @@
 #include "sensor/isp/isp_pipeline.h"
 #include "sensor/model/sensor_model.h"
 #include "sensor/model/sensor_spec.h"
+#include "sensor/spectra/spectral_data.h"
 
 namespace camsim::python {
 namespace {
@@ -100,7 +102,8 @@ py::array_t<std::uint16_t> exposeFrames(const py::array& electrons, const Sensor
                                         std::uint64_t seed, std::optional<long long> frames,
                                         std::uint64_t firstFrame, double exposureTimeS,
                                         std::optional<double> iso, double exposureScale,
-                                        const std::string& noise, int threads) {
+                                        const std::string& noise, const py::int_& threadsArg) {
+  const int threads = threadCountArg(threadsArg, "<expose>");
   if (!(exposureScale > 0.0 && exposureScale <= kMaxExposureScale))
     fail("<expose>", "exposure_scale",
          "value " + formatShortest(exposureScale) + " is out of range " +
@@ -109,13 +112,19 @@ py::array_t<std::uint16_t> exposeFrames(const py::array& electrons, const Sensor
   // As a capture's bracket and `camsim expose` scale them: a static scene's electrons are
   // linear in the exposure time.
   if (exposureScale != 1.0)
-    for (float& v : img.pixels) v = static_cast<float>(static_cast<double>(v) * exposureScale);
+    for (float& v : img.pixels) {
+      const double scaled = static_cast<double>(v) * exposureScale;
+      if (!(scaled <= static_cast<double>(std::numeric_limits<float>::max())))
+        fail("<expose>", "exposure_scale",
+             formatShortest(exposureScale) + " scales " + formatNumber(static_cast<double>(v), 6) +
+                 " electrons beyond the float range");
+      v = static_cast<float>(scaled);
+    }
   exposureTimeS *= exposureScale;
   const NoiseMode mode = noiseMode(noise);
   const long long n = frames.value_or(1);
   if (n < 1 || n > kMaxFrames)
     fail("<expose>", "frames", "expected 1 to " + std::to_string(kMaxFrames) + " frames");
-  checkThreadCount(threads, "<expose>");
   const ExposureSettings settings{exposureTimeS, iso.value_or(sensor.baseIso)};
   // expose() checks the settings (InputError for ISO ≤ 0, a negative time); check them here
   // once, before the output is allocated, with this function's name.
@@ -156,8 +165,8 @@ py::array_t<std::uint16_t> exposeFrames(const py::array& electrons, const Sensor
 py::dict exposeFile(const std::string& path, const std::optional<std::string>& sensor,
                     std::optional<std::uint64_t> seed, long long frames, std::optional<double> iso,
                     double exposureScale, const std::string& noise,
-                    const std::optional<std::string>& outputDir, int threads) {
-  checkThreadCount(threads, "<expose_file>");
+                    const std::optional<std::string>& outputDir, const py::int_& threadsArg) {
+  const int threads = threadCountArg(threadsArg, "<expose_file>");
   ExposeFileSettings settings;
   settings.sensor = sensor.value_or("");
   settings.seed = seed;
@@ -282,6 +291,14 @@ IspSettings ispSettings(const std::string& whiteBalance, const std::string& illu
     isp.whiteBalance = *wb;
   else
     fail("<develop>", "white_balance", "expected one of " + enumNameList<W>());
+  // Checked here, named (found by probing: the ISP's own error said "<input>", no key).
+  const std::vector<std::string> known = cieIlluminantNames();
+  if (std::find(known.begin(), known.end(), illuminant) == known.end()) {
+    std::string list;
+    for (const std::string& n : known) list += (list.empty() ? "" : ", ") + n;
+    fail("<develop>", "illuminant",
+         "unknown CIE illuminant '" + illuminant + "' (known: " + list + ")");
+  }
   isp.illuminant = illuminant;
   if (region) {
     if (isp.whiteBalance != W::kRegion)
@@ -339,6 +356,14 @@ py::array displayImage(const py::array& input, const std::string& config,
     fail("<display>", "dtype", "expected float32, uint8 or uint16");
   Image img(static_cast<int>(a.shape(1)), static_cast<int>(a.shape(0)), {"R", "G", "B"});
   std::memcpy(img.pixels.data(), a.data(), img.pixels.size() * sizeof(float));
+  // As expose() and develop() (found by probing: NaN passed through to NaN output).
+  for (std::size_t i = 0; i < img.pixels.size(); ++i)
+    if (!std::isfinite(img.pixels[i]))
+      fail("<display>", "image",
+           "value " + formatShortest(static_cast<double>(img.pixels[i])) + " at pixel (" +
+               std::to_string(i / 3 % static_cast<std::size_t>(img.width)) + ", " +
+               std::to_string(i / 3 / static_cast<std::size_t>(img.width)) +
+               "): expected finite ACEScg");
   const OcioProcessor ocio(config);
   Image shown;
   {

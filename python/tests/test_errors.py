@@ -114,7 +114,7 @@ def test_a_control_character_in_a_dict_name_is_refused_as_in_yaml(name):
             "shapes": [{"type": "sphere", "centre": [0, 0, 0], "radius": 1, "material": "m"}]})
 
 
-@pytest.mark.parametrize("threads", [-1, 1025, 100000])
+@pytest.mark.parametrize("threads", [-1, 1025, 100000, 2**40, -2**40, 2**70])
 def test_a_thread_count_out_of_range_is_an_input_error(threads):
     # Found by probing: 65537 threads or more crashed the interpreter in TBB (SIGSEGV).
     scene = camsim.default_scene(overrides={"spp": 1})
@@ -123,6 +123,9 @@ def test_a_thread_count_out_of_range_is_an_input_error(threads):
     with pytest.raises(camsim.InputError, match=r"key 'threads'"):
         camsim.expose(np.full((8, 8), 100, np.float32), camsim.Sensor("smartphone-1.4um"),
                       seed=1, threads=threads)
+    # Found by probing: past 32 bits (2**40) pybind11's TypeError, not camsim.InputError.
+    with pytest.raises(camsim.InputError, match=r"<expose_file>: key 'threads'"):
+        camsim.expose_file("no_such_raw.exr", threads=threads)
 
 
 def test_bad_overrides_name_the_key():

@@ -115,11 +115,17 @@ def test_stacked_sensor_round_trip():
     (lambda s: camsim.develop(np.zeros((4, 4), np.uint16), s, white_balance="region"), "region"),
     (lambda s: camsim.display(np.zeros((4, 4)), ), "image"),
     (lambda s: camsim.display(np.zeros((4, 4, 3)), view="No such view"), "view"),
+    # Found by probing: an unknown illuminant named "<input>" and no key; NaN and inf went
+    # through display() to NaN output.
+    (lambda s: camsim.develop(np.full((4, 4), 100, np.uint16), s, illuminant="Z99"), "illuminant"),
+    (lambda s: camsim.display(np.full((2, 2, 3), np.nan, np.float32)), "image"),
+    (lambda s: camsim.display(np.full((2, 2, 3), np.inf, np.float32)), "image"),
 ])
 def test_bad_input_raises_input_error_naming_the_argument(sensor, call, key):
     with pytest.raises(camsim.InputError) as e:
         call(sensor)
     assert key in str(e.value)
+    assert e.value.key == key
 
 
 def test_unknown_sensor_preset_is_an_input_error():

@@ -85,12 +85,16 @@ struct DngNoiseProfile {
   double offset = 0.0;  // O, variance at x = 0 (≥ 0)
 };
 
+// The largest value an EXIF RATIONAL (two 32-bit unsigned integers) holds: ExposureTime,
+// FNumber and FocalLength above it are written as 4294967295/0 (infinite) by libtiff.
+inline constexpr double kDngMaxRational = 4294967295.0;
+
 // What a camera records of the shot: the EXIF IFD (a value of 0, an empty date or an unset
 // optional is omitted), BaselineExposure (always written) and NoiseProfile (when set).
 struct DngCapture {
-  double exposureTimeS = 0.0;                   // ExposureTime, s
-  double fNumber = 0.0;                         // FNumber
-  double focalLengthMm = 0.0;                   // FocalLength, mm
+  double exposureTimeS = 0.0;                   // ExposureTime, s (≤ kDngMaxRational)
+  double fNumber = 0.0;                         // FNumber (≤ kDngMaxRational)
+  double focalLengthMm = 0.0;                   // FocalLength, mm (≤ kDngMaxRational)
   double iso = 0.0;                             // ISOSpeedRatings (rounded; at most 65535)
   std::string dateTimeOriginal;                 // DateTimeOriginal, "YYYY:MM:DD HH:MM:SS"
   std::optional<double> exposureBiasEv;         // ExposureBiasValue, EV (a bracket's offset)

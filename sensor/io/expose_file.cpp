@@ -117,7 +117,12 @@ SensorSpec chooseSensor(const ElectronsExr& in, const std::string& wanted,
                "' is not a preset (give --sensor, its description file): " + e.what());
     }
   }
-  SensorSpec spec = loadSensorSpec(wanted, lutsDir);
+  SensorSpec spec;
+  try {
+    spec = loadSensorSpec(wanted, lutsDir);
+  } catch (const InputError& e) {
+    throw inFile(e, in.path.string());  // an unknown preset named no file ("<input>")
+  }
   if (spec.name == in.sensorName) return spec;
   // Another sensor: it must see the same electrons. The recorded one is needed to compare.
   std::optional<SensorSpec> recorded;
@@ -175,11 +180,21 @@ ElectronsExr readElectronsExr(const std::filesystem::path& path) {
   e.exposureTimeS = numberAttribute(path, "camsim:exposure_time_s",
                                     requiredAttribute(path, e.metadata, "camsim:exposure_time_s"));
   if (e.exposureTimeS < 0.0) fail(path, "camsim:exposure_time_s", "negative exposure time");
+  // Found by probing: 1e300 passed and the DNG's EXIF said 4294967295/0.
+  const auto fitsTheDng = [&path](const char* key, double value, double scale, const char* tag) {
+    if (value * scale > kDngMaxRational)
+      fail(path, key,
+           formatShortest(value) + " is beyond what the DNG's EXIF " + tag + " holds (" +
+               formatShortest(kDngMaxRational / scale) + ")");
+  };
+  fitsTheDng("camsim:exposure_time_s", e.exposureTimeS, 1.0, "ExposureTime");
   if (const std::string* iso = findMetadata(e.metadata, "camsim:iso"))
     e.iso = numberAttribute(path, "camsim:iso", *iso);
   e.noiseSeed = seedAttribute(path, e.metadata);
   e.fNumber = positiveAttribute(path, e.metadata, "camsim:f_number");
   e.focalLengthM = positiveAttribute(path, e.metadata, "camsim:focal_length_m");
+  if (e.fNumber) fitsTheDng("camsim:f_number", *e.fNumber, 1.0, "FNumber");
+  if (e.focalLengthM) fitsTheDng("camsim:focal_length_m", *e.focalLengthM, 1e3, "FocalLength");
   readMotion(e);
   return e;
 }
@@ -225,6 +240,12 @@ ExposeJob prepareExpose(const std::filesystem::path& electronsExr,
              (spec.cfa.isStacked() ? " (a stacked sensor's planes in one file)" : ""));
 
   job.exposure.exposureTimeS = in.exposureTimeS * settings.exposureScale;
+  if (job.exposure.exposureTimeS > kDngMaxRational)
+    fail(file, "exposure_scale",
+         formatShortest(settings.exposureScale) + " makes the exposure " +
+             formatShortest(job.exposure.exposureTimeS) +
+             " s, beyond what the DNG's EXIF ExposureTime holds (" +
+             formatShortest(kDngMaxRational) + " s)");
   job.exposure.iso = settings.iso ? *settings.iso : in.iso ? *in.iso : spec.baseIso;
   try {
     (void)noiseAtIso(spec, job.exposure.iso);  // calibrated range, ISO > 0
@@ -235,8 +256,19 @@ ExposeJob prepareExpose(const std::filesystem::path& electronsExr,
 
   job.electrons = in.electrons;
   if (settings.exposureScale != 1.0)
-    for (float& v : job.electrons.pixels)
-      v = static_cast<float>(static_cast<double>(v) * settings.exposureScale);
+    for (std::size_t p = 0; p < job.electrons.pixels.size(); ++p) {
+      float& v = job.electrons.pixels[p];
+      const double scaled = static_cast<double>(v) * settings.exposureScale;
+      // Found by probing: electrons past the float range became inf, written into the output
+      // raw EXR that expose itself then refused.
+      if (!(scaled <= static_cast<double>(std::numeric_limits<float>::max())))
+        fail(file, "exposure_scale",
+             formatShortest(settings.exposureScale) + " scales " +
+                 formatNumber(static_cast<double>(v), 6) + " electrons (pixel " +
+                 std::to_string(p / job.electrons.channels.size()) +
+                 ") beyond the float range of the output's electrons layer");
+      v = static_cast<float>(scaled);
+    }
   std::string stem = file.stem().string();
   if (stem.size() > 4 && stem.compare(stem.size() - 4, 4, "_raw") == 0)
     stem.resize(stem.size() - 4);

@@ -257,6 +257,10 @@ TEST(ExposeFile, HeaderValuesOutOfRangeAreRefusedByKey) {
       {"camsim:f_number", "-2", "> 0"},
       {"camsim:f_number", "nan", "expected a number"},
       {"camsim:focal_length_m", "0", "> 0"},
+      // Found by probing: beyond an EXIF rational, the DNG said 4294967295/0 (exit 0).
+      {"camsim:exposure_time_s", "1e300", "beyond what the DNG's EXIF ExposureTime holds"},
+      {"camsim:f_number", "1e10", "beyond what the DNG's EXIF FNumber holds"},
+      {"camsim:focal_length_m", "1e300", "beyond what the DNG's EXIF FocalLength holds"},
   };
   for (const auto& c : cases) {
     SCOPED_TRACE(std::string(c.key) + "=" + c.value);
@@ -275,6 +279,44 @@ TEST(ExposeFile, HeaderValuesOutOfRangeAreRefusedByKey) {
   for (auto& [k, v] : m)
     if (k == "camsim:noise_seed") v = "9223372036854775807";
   EXPECT_EQ(errorOf(writeLevels(dir.path(), m), ExposeFileSettings{}), "");
+}
+
+// Found by probing: a scale that took electrons past the float range wrote inf into the
+// output raw EXR (which expose itself then refused), and one that took the exposure past an
+// EXIF rational wrote 4294967295/0 into the DNG, both exit 0; an unknown --sensor preset
+// named "<input>" instead of the file. Each refused naming the file and the key.
+TEST(ExposeFile, ScalesBeyondWhatTheOutputsHoldAreRefused) {
+  TempDir dir;
+  ExposeFileSettings s;
+  std::string key;
+  // The exposure: 1e4 s × 1e6 = 1e10 s.
+  Metadata m = rawMeta("smartphone-1.4um", "RGGB", "1");
+  for (auto& [k, v] : m)
+    if (k == "camsim:exposure_time_s") v = "1e4";
+  const fs::path longExposure = writeLevels(dir.path(), m);
+  s.exposureScale = 1e6;
+  std::string e = errorOf(longExposure, s, &key);
+  EXPECT_EQ(key, "exposure_scale") << e;
+  EXPECT_NE(e.find("ExposureTime holds"), std::string::npos) << e;
+  s.exposureScale = 4e5;  // 4e9 s: still held
+  EXPECT_EQ(errorOf(longExposure, s), "");
+  // The electrons: 3e38 × 2.
+  TempDir other;
+  Image huge(4, 4, {"electrons.e"});
+  for (float& v : huge.pixels) v = 3e38f;
+  const fs::path hugeExr = other.path() / "huge_raw.exr";
+  writeExr(hugeExr, huge, rawMeta("smartphone-1.4um", "RGGB", "1"), std::nullopt);
+  s.exposureScale = 2.0;
+  e = errorOf(hugeExr, s, &key);
+  EXPECT_EQ(key, "exposure_scale") << e;
+  EXPECT_NE(e.find("beyond the float range"), std::string::npos) << e;
+  EXPECT_NE(e.find("huge_raw.exr"), std::string::npos) << e;
+  // An unknown preset.
+  s.exposureScale = 1.0;
+  s.sensor = "nope";
+  e = errorOf(hugeExr, s, &key);
+  EXPECT_EQ(key, "sensor") << e;
+  EXPECT_EQ(e.rfind(hugeExr.string(), 0), 0u) << e;
 }
 
 TEST(ExposeFile, IsoOutsideTheCalibratedRangeIsRefused) {
