@@ -33,6 +33,7 @@ const std::set<std::string> kPerPart = {"camsim:tile_index",     "camsim:tiles",
                                         "camsim:render_seconds", "camsim:guide_train_seconds"};
 
 constexpr int kMaxTileCount = 1 << 20;  // as camsim render --tiles takes M
+constexpr float kMaxFilmValue = 1e30f;  // |film value| a part may hold (XYZ → RGB stays finite)
 
 // Compared first, so that a part of another render is told by what matters most.
 constexpr const char* kFirstCompared[] = {
@@ -181,12 +182,15 @@ ReadPart readPart(const std::filesystem::path& file) {
         const float v = exr.image.pixels[px * m + static_cast<std::size_t>(from)];
         // A render writes finite values only (it rejects non-finite samples; an AOV pixel
         // no sample hit holds 0: output.md); one that is not would pass into the merge.
-        if (!std::isfinite(v))
+        // Nor a film value near the float range (found by probing: 3e38 merged into an inf
+        // R channel, exit 0); a render's stays near the scene's luminance (≤ 1e15 cd/m²).
+        if (!std::isfinite(v) || (i == 0 && std::abs(v) > kMaxFilmValue))
           throw InputError(
               {file.string(), 0, 0}, std::string(kPrefixes[i]) + (*lists[i])[c],
               "pixel (" + std::to_string(px % static_cast<std::size_t>(h.resolution.x)) + ", " +
-                  std::to_string(px / static_cast<std::size_t>(h.resolution.x)) +
-                  ") is not finite: not as camsim render --tiles writes it");
+                  std::to_string(px / static_cast<std::size_t>(h.resolution.x)) + ") is " +
+                  (std::isfinite(v) ? "beyond 1e30" : "not finite") +
+                  ": not as camsim render --tiles writes it");
         image.pixels[px * n + c] = v;
       }
     }

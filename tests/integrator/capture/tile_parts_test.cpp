@@ -4,6 +4,7 @@
 // binary's byte-for-byte checks are in tests/cli/tile_merge_test.cpp).
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstring>
 #include <limits>
 #include <string>
@@ -152,13 +153,14 @@ std::vector<std::filesystem::path> writeTwoParts(const std::filesystem::path& di
 
 // Found by probing the command line: a part whose film held a NaN (or Inf) merged into an
 // image of NaN with exit 0; a render never writes one. Now the part is refused, naming the
-// file, the channel and the pixel; an AOV value is copied as it is.
+// file, the channel and the pixel; an AOV value is copied as it is. Likewise a film value
+// beyond 1e30 (found by probing: 3e38 merged into an inf R channel, exit 0).
 TEST(TileParts, NonFiniteFilmInAPartIsRefused) {
   const test::TempDir dir;
   const std::vector<std::filesystem::path> files = writeTwoParts(dir.path(), true);
   EXPECT_NO_THROW(assembleTileParts(files));
-  for (const float bad :
-       {std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity()}) {
+  for (const float bad : {std::numeric_limits<float>::quiet_NaN(),
+                          std::numeric_limits<float>::infinity(), 3e38f, -2e30f}) {
     ExrFile exr = readExr(files[1]);
     const int c = exr.image.channelIndex("film.Y");
     ASSERT_GE(c, 0);
@@ -171,7 +173,10 @@ TEST(TileParts, NonFiniteFilmInAPartIsRefused) {
     } catch (const InputError& e) {
       EXPECT_EQ(e.where().file, edited.string());
       EXPECT_EQ(e.key(), "film.Y");
-      EXPECT_NE(e.message().find("pixel (3, 0) is not finite"), std::string::npos) << e.what();
+      EXPECT_NE(e.message().find(std::isfinite(bad) ? "pixel (3, 0) is beyond 1e30"
+                                                    : "pixel (3, 0) is not finite"),
+                std::string::npos)
+          << e.what();
     }
   }
 }
