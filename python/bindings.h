@@ -46,7 +46,7 @@ pybind11::handle inputErrorType();
 // A `threads=` argument as the library's count (sensor/base/threads.h), InputError at
 // `where` for any int out of its range: bound as a C int, one past 32 bits was pybind11's
 // TypeError ("incompatible function arguments") instead (found by probing: 2**40).
-int threadCountArg(const pybind11::int_& threads, const std::string& where);
+int threadCountArg(const pybind11::object& threads, const std::string& where);
 
 // Overrides of a loaded scene (scene_overrides.cpp), through the library's override table
 // (integrator/scene/overrides.h). Each throws InputError naming the scene key ("<override>"

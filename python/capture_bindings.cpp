@@ -69,7 +69,7 @@ constexpr const char* kOverrideKwargs[] = {
     "exposure_time_s", "f_number", "iso",  "noise",        "noise_seed",   "pose",
     "projection",      "guiding"};
 
-py::object runCapture(PyScene& scene, const py::int_& threadsArg, const py::object& progress,
+py::object runCapture(PyScene& scene, const py::object& threadsArg, const py::object& progress,
                       const std::string& display, const std::string& view, const std::string& look,
                       const std::string& ocioConfig, bool reuse, const py::object& sensor,
                       const py::object& spp, const py::object& seed, const py::object& targetError,

@@ -41,14 +41,25 @@ py::handle inputErrorType() {
   return gInputError;
 }
 
-int threadCountArg(const py::int_& threads, const std::string& where) {
-  long long count = -1;
-  try {
-    count = threads.cast<long long>();
-  } catch (const py::cast_error&) {  // beyond 64 bits
+int threadCountArg(const py::object& threads, const std::string& where) {
+  const auto refuse = [&] {
     throw InputError({where, 0, 0}, "threads",
                      "expected 0 (all cores) or a count up to " + std::to_string(kMaxThreads) +
                          ", got " + std::string(py::repr(threads)));
+  };
+  // An int or anything with __index__ (a NumPy integer), as a C int parameter took; not a
+  // float.
+  if (!PyIndex_Check(threads.ptr())) refuse();
+  PyObject* index = PyNumber_Index(threads.ptr());
+  if (!index) {  // its __index__ raised
+    PyErr_Clear();
+    refuse();
+  }
+  long long count = -1;
+  try {
+    count = py::reinterpret_steal<py::int_>(index).cast<long long>();
+  } catch (const py::cast_error&) {  // beyond 64 bits
+    refuse();
   }
   checkThreadCount(count, where);
   return static_cast<int>(count);

@@ -102,7 +102,7 @@ py::array_t<std::uint16_t> exposeFrames(const py::array& electrons, const Sensor
                                         std::uint64_t seed, std::optional<long long> frames,
                                         std::uint64_t firstFrame, double exposureTimeS,
                                         std::optional<double> iso, double exposureScale,
-                                        const std::string& noise, const py::int_& threadsArg) {
+                                        const std::string& noise, const py::object& threadsArg) {
   const int threads = threadCountArg(threadsArg, "<expose>");
   if (!(exposureScale > 0.0 && exposureScale <= kMaxExposureScale))
     fail("<expose>", "exposure_scale",
@@ -165,7 +165,7 @@ py::array_t<std::uint16_t> exposeFrames(const py::array& electrons, const Sensor
 py::dict exposeFile(const std::string& path, const std::optional<std::string>& sensor,
                     std::optional<std::uint64_t> seed, long long frames, std::optional<double> iso,
                     double exposureScale, const std::string& noise,
-                    const std::optional<std::string>& outputDir, const py::int_& threadsArg) {
+                    const std::optional<std::string>& outputDir, const py::object& threadsArg) {
   const int threads = threadCountArg(threadsArg, "<expose_file>");
   ExposeFileSettings settings;
   settings.sensor = sensor.value_or("");

@@ -33,7 +33,10 @@ const std::set<std::string> kPerPart = {"camsim:tile_index",     "camsim:tiles",
                                         "camsim:render_seconds", "camsim:guide_train_seconds"};
 
 constexpr int kMaxTileCount = 1 << 20;  // as camsim render --tiles takes M
-constexpr float kMaxFilmValue = 1e30f;  // |film value| a part may hold (XYZ → RGB stays finite)
+// |film value| a part may hold: beyond it the XYZ → RGB conversion (rows of absolute sum < 8)
+// could overflow float. Film values are luminous energy on a photosite (lm·s, output.md); a
+// render's are not otherwise bounded (emission scales and light intensities up to 1e30).
+constexpr float kMaxFilmValue = std::numeric_limits<float>::max() / 8.0f;
 
 // Compared first, so that a part of another render is told by what matters most.
 constexpr const char* kFirstCompared[] = {
@@ -183,13 +186,13 @@ ReadPart readPart(const std::filesystem::path& file) {
         // A render writes finite values only (it rejects non-finite samples; an AOV pixel
         // no sample hit holds 0: output.md); one that is not would pass into the merge.
         // Nor a film value near the float range (found by probing: 3e38 merged into an inf
-        // R channel, exit 0); a render's stays near the scene's luminance (≤ 1e15 cd/m²).
+        // R channel, exit 0).
         if (!std::isfinite(v) || (i == 0 && std::abs(v) > kMaxFilmValue))
           throw InputError(
               {file.string(), 0, 0}, std::string(kPrefixes[i]) + (*lists[i])[c],
               "pixel (" + std::to_string(px % static_cast<std::size_t>(h.resolution.x)) + ", " +
                   std::to_string(px / static_cast<std::size_t>(h.resolution.x)) + ") is " +
-                  (std::isfinite(v) ? "beyond 1e30" : "not finite") +
+                  (std::isfinite(v) ? "beyond float's largest / 8" : "not finite") +
                   ": not as camsim render --tiles writes it");
         image.pixels[px * n + c] = v;
       }
@@ -278,8 +281,11 @@ std::optional<ModelledDimensions> parseModelledDims(const std::string& text) {
   }
   if (fields != 12) return std::nullopt;
   // What a render can have modelled (a hand-edited part merged "0 wavelengths").
+  // (Scene::analyseExposure; RenderOptions::forceTime, the bench's, would fail the time
+  // test, but the bench writes no part.)
   if (m.blades < 0 || m.movingObjects < 0 || m.wavelengths < 1 || m.timeSteps < 1 ||
-      m.lensSurfaces < 0 || m.time != (m.movingObjects > 0 || m.cameraMoves))
+      m.lensSurfaces < 0 || m.time != (m.movingObjects > 0 || m.cameraMoves) ||
+      (m.rollingShutter && !m.time))
     return std::nullopt;
   return m;
 }

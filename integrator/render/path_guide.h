@@ -104,9 +104,10 @@ class PathGuide {
   // (kChunkSpp samples of its pixels) and the guide is returned as it is.
   static PathGuide train(const Scene& scene, int spp, std::uint64_t seed, int threads,
                          const std::atomic<bool>* cancel = nullptr);
-  // An upper estimate of the records training holds at once (bytes) for a render of this
-  // size, spp and max_depth: a batch of tiles × one chunk of samples × up to 8 vertices a
-  // path (the Cornell box averages 3.8). The SD-tree itself is small (tens of kB).
+  // An estimate of the records training holds at once (bytes) for a render of this size,
+  // spp and max_depth: a batch of tiles × one chunk of samples × min(max_depth, 8) vertices
+  // a path (the Cornell box averages 3.8; a path records at most max_depth, and a tile's
+  // vector may hold up to twice its records' room). The SD-tree itself is small (tens of kB).
   static std::uint64_t trainingBytes(glm::ivec2 resolution, int spp, int maxDepth);
   // A guide from a tree (tests).
   explicit PathGuide(SDTree tree) : tree_(std::move(tree)) {}

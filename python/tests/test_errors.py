@@ -128,6 +128,14 @@ def test_a_thread_count_out_of_range_is_an_input_error(threads):
         camsim.expose_file("no_such_raw.exr", threads=threads)
 
 
+def test_a_thread_count_may_be_any_integer_type_but_not_a_float():
+    scene = camsim.default_scene(overrides={"spp": 1})
+    with pytest.raises(camsim.InputError, match=r"key 'threads'.*got 2.0"):
+        camsim.capture(scene, threads=2.0)
+    with pytest.raises(camsim.InputError, match=r"no such file"):  # past the thread check
+        camsim.expose_file("no_such_raw.exr", threads=np.int64(2))
+
+
 def test_bad_overrides_name_the_key():
     with pytest.raises(camsim.InputError, match="key 'overrides.spp'"):
         camsim.default_scene(overrides={"spp": "many"})

@@ -3,21 +3,30 @@
 namespace camsim {
 namespace {
 
-// `text` with its control bytes (C0 but tab and newline, and DEL) as \xNN: they come from the
-// input (a NUL inside a lens-file number, a carriage return in a file name), and printed raw
-// a NUL cut the line short and others would drive the user's terminal. UTF-8 passes.
+// `text` with its control characters as \xNN per byte — C0 but tab and newline, DEL, and C1
+// (U+0080–U+009F, two bytes in UTF-8) — which come from the input (a NUL inside a lens-file
+// number, a carriage return in a file name): printed raw, a NUL cut the line short and the
+// others could move the user's terminal about. Other UTF-8 passes.
 std::string printable(const std::string& text) {
+  constexpr char kHex[] = "0123456789abcdef";
   std::string out;
   out.reserve(text.size());
-  for (const char c : text) {
-    const auto b = static_cast<unsigned char>(c);
-    if ((b < 0x20 && c != '\t' && c != '\n') || b == 0x7f) {
-      constexpr char kHex[] = "0123456789abcdef";
-      out += "\\x";
-      out += kHex[b >> 4];
-      out += kHex[b & 15];
+  const auto escape = [&out, &kHex](unsigned char b) {
+    out += "\\x";
+    out += kHex[b >> 4];
+    out += kHex[b & 15];
+  };
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const auto b = static_cast<unsigned char>(text[i]);
+    const auto next = i + 1 < text.size() ? static_cast<unsigned char>(text[i + 1]) : 0;
+    if ((b < 0x20 && b != '\t' && b != '\n') || b == 0x7f) {
+      escape(b);
+    } else if (b == 0xc2 && next >= 0x80 && next <= 0x9f) {
+      escape(b);
+      escape(next);
+      ++i;
     } else {
-      out += c;
+      out += text[i];
     }
   }
   return out;

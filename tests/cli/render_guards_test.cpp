@@ -116,7 +116,7 @@ TEST(MemoryEstimate, CountsFilmImagesAndTriangles) {
   EXPECT_THROW(checkMemoryLimit(desc, 0.01), InputError);
   // Path guiding's training records (found by probing: not counted, a guided 64×32 render
   // at 16384 spp peaked at 491 MB under a 0.1 GB limit): a batch of 32 tiles × a chunk of
-  // 32 spp × up to 8 vertices × 40 bytes; a guide trained below 256 spp takes smaller
+  // 32 spp × up to 8 vertices × 40 bytes; a guide trained below 252 spp takes smaller
   // iterations (spp 64: 16 spp of 1 + 2 + 4 + 8 = 15, the last of 8).
   SceneDescription guided = desc;
   guided.render.guiding = true;

@@ -186,8 +186,12 @@ TEST(PsfImage, DoubleGaussConvergesForFarObjects) {
 
 // Found by probing: a grid no ray landed in was written as an all-zero PSF ("sum 1"
 // promised), exit 0. Now refused, naming --size.
+// The grid: 4 px of 1 µm; the disc ≈ 6 mm across, so a ray lands in the grid with
+// probability ≈ 6e-7 (1000 rays: 6e-4 for any seed).
 TEST(PsfImage, AGridNoRayLandsInIsRefused) {
-  const PhysicalCamera camera(thinLens(false));
+  PhysicalCameraParams p = thinLens(false);
+  p.resolution = {36000, 24000};
+  const PhysicalCamera camera(p);
   PsfSettings set = settings(0.0, 1000);
   set.size = 4;
   set.oversample = 1;

@@ -58,6 +58,8 @@ TEST(TileParts, ModelledDimensionsRoundTrip) {
         "aperture=0 blades=0 time=0 moving_objects=0 camera_moves=0 rolling_shutter=0 "
         "wavelengths=0 time_steps=1 diffraction=0 spectral_cv=1 lens_surfaces=0 lens_disperses=0",
         "aperture=0 blades=0 time=1 moving_objects=0 camera_moves=0 rolling_shutter=0 "
+        "wavelengths=4 time_steps=1 diffraction=0 spectral_cv=1 lens_surfaces=0 lens_disperses=0",
+        "aperture=0 blades=0 time=0 moving_objects=0 camera_moves=0 rolling_shutter=1 "
         "wavelengths=4 time_steps=1 diffraction=0 spectral_cv=1 lens_surfaces=0 lens_disperses=0"})
     EXPECT_FALSE(parseModelledDims(bad).has_value()) << bad;
 }
@@ -154,13 +156,14 @@ std::vector<std::filesystem::path> writeTwoParts(const std::filesystem::path& di
 // Found by probing the command line: a part whose film held a NaN (or Inf) merged into an
 // image of NaN with exit 0; a render never writes one. Now the part is refused, naming the
 // file, the channel and the pixel; an AOV value is copied as it is. Likewise a film value
-// beyond 1e30 (found by probing: 3e38 merged into an inf R channel, exit 0).
+// beyond float's largest / 8 (found by probing: 3e38 merged into an inf R channel, exit 0);
+// 1e37 merges (a render can write such values: emission scales reach 1e30).
 TEST(TileParts, NonFiniteFilmInAPartIsRefused) {
   const test::TempDir dir;
   const std::vector<std::filesystem::path> files = writeTwoParts(dir.path(), true);
   EXPECT_NO_THROW(assembleTileParts(files));
   for (const float bad : {std::numeric_limits<float>::quiet_NaN(),
-                          std::numeric_limits<float>::infinity(), 3e38f, -2e30f}) {
+                          std::numeric_limits<float>::infinity(), 3e38f, -5e37f}) {
     ExrFile exr = readExr(files[1]);
     const int c = exr.image.channelIndex("film.Y");
     ASSERT_GE(c, 0);
@@ -173,12 +176,17 @@ TEST(TileParts, NonFiniteFilmInAPartIsRefused) {
     } catch (const InputError& e) {
       EXPECT_EQ(e.where().file, edited.string());
       EXPECT_EQ(e.key(), "film.Y");
-      EXPECT_NE(e.message().find(std::isfinite(bad) ? "pixel (3, 0) is beyond 1e30"
+      EXPECT_NE(e.message().find(std::isfinite(bad) ? "pixel (3, 0) is beyond float's largest"
                                                     : "pixel (3, 0) is not finite"),
                 std::string::npos)
           << e.what();
     }
   }
+  ExrFile exr = readExr(files[1]);
+  exr.image.pixels[static_cast<std::size_t>(exr.image.channelIndex("film.Y"))] = 1e37f;
+  const std::filesystem::path bright = dir.path() / "bright.exr";
+  writeExr(bright, exr.image, exr.metadata, exr.chromaticities);
+  EXPECT_NO_THROW(assembleTileParts({files[0], bright}));
 }
 
 // Found by probing: header values out of range — an spp of 4294967298 was cut to 2 and

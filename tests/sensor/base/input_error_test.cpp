@@ -30,6 +30,12 @@ TEST(InputErrorText, ControlBytesArePrintedEscaped) {
   // Tabs, newlines and UTF-8 are text, not control bytes.
   EXPECT_EQ(formatInputError({"f", 0, 0}, "", "a\tb\nc ≥ µm"), "f: a\tb\nc ≥ µm");
   EXPECT_EQ(formatInputError({"f", 0, 0}, "", "del\x7f"), "f: del\\x7f");
+  // C1 controls in UTF-8 (U+009B: CSI), escaped; a lone continuation byte is left alone.
+  EXPECT_EQ(formatInputError({"f", 0, 0}, "",
+                             "a\xc2\x9b"
+                             "31m"),
+            "f: a\\xc2\\x9b31m");
+  EXPECT_EQ(formatInputError({"f", 0, 0}, "", "\xc2\xa0 \x9b"), "f: \xc2\xa0 \x9b");
 }
 
 }  // namespace
