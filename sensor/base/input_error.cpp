@@ -7,11 +7,12 @@ namespace {
 // (U+0080–U+009F, two bytes in UTF-8) — which come from the input (a NUL inside a lens-file
 // number, a carriage return in a file name): printed raw, a NUL cut the line short and the
 // others could move the user's terminal about. Other UTF-8 passes.
+constexpr char kHex[] = "0123456789abcdef";
+
 std::string printable(const std::string& text) {
-  constexpr char kHex[] = "0123456789abcdef";
   std::string out;
   out.reserve(text.size());
-  const auto escape = [&out, &kHex](unsigned char b) {
+  const auto escape = [&out](unsigned char b) {
     out += "\\x";
     out += kHex[b >> 4];
     out += kHex[b & 15];
