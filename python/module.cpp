@@ -42,11 +42,7 @@ py::handle inputErrorType() {
 }
 
 int threadCountArg(const py::object& threads, const std::string& where) {
-  const auto refuse = [&] {
-    throw InputError({where, 0, 0}, "threads",
-                     "expected 0 (all cores) or a count up to " + std::to_string(kMaxThreads) +
-                         ", got " + std::string(py::repr(threads)));
-  };
+  const auto refuse = [&] { throw threadCountError(where, py::repr(threads)); };
   // An int or anything with __index__ (a NumPy integer), as a C int parameter took; not a
   // float.
   if (!PyIndex_Check(threads.ptr())) refuse();

@@ -22,7 +22,6 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
-#include <limits>
 #include <optional>
 
 #include "python/bindings.h"
@@ -111,15 +110,11 @@ py::array_t<std::uint16_t> exposeFrames(const py::array& electrons, const Sensor
   Image img = electronsImage(electrons, sensor);
   // As a capture's bracket and `camsim expose` scale them: a static scene's electrons are
   // linear in the exposure time.
-  if (exposureScale != 1.0)
-    for (float& v : img.pixels) {
-      const double scaled = static_cast<double>(v) * exposureScale;
-      if (!(scaled <= static_cast<double>(std::numeric_limits<float>::max())))
-        fail("<expose>", "exposure_scale",
-             formatShortest(exposureScale) + " scales " + formatNumber(static_cast<double>(v), 6) +
-                 " electrons beyond the float range");
-      v = static_cast<float>(scaled);
-    }
+  try {
+    scaleElectrons(img, exposureScale);
+  } catch (const InputError& e) {
+    fail("<expose>", e.key(), e.message());
+  }
   exposureTimeS *= exposureScale;
   const NoiseMode mode = noiseMode(noise);
   const long long n = frames.value_or(1);
@@ -292,12 +287,10 @@ IspSettings ispSettings(const std::string& whiteBalance, const std::string& illu
   else
     fail("<develop>", "white_balance", "expected one of " + enumNameList<W>());
   // Checked here, named (found by probing: the ISP's own error said "<input>", no key).
-  const std::vector<std::string> known = cieIlluminantNames();
-  if (std::find(known.begin(), known.end(), illuminant) == known.end()) {
-    std::string list;
-    for (const std::string& n : known) list += (list.empty() ? "" : ", ") + n;
-    fail("<develop>", "illuminant",
-         "unknown CIE illuminant '" + illuminant + "' (known: " + list + ")");
+  try {
+    (void)cieIlluminant(illuminant);
+  } catch (const InputError& e) {
+    fail("<develop>", "illuminant", e.message());
   }
   isp.illuminant = illuminant;
   if (region) {

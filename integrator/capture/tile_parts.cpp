@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <initializer_list>
 #include <limits>
 #include <map>
 #include <set>
@@ -81,6 +82,27 @@ void copyRect(const Image& from, Image& to, TileRect rect) {
     std::copy_n(from.pixels.begin() + static_cast<std::ptrdiff_t>(begin), count,
                 to.pixels.begin() + static_cast<std::ptrdiff_t>(begin));
   }
+}
+
+// "key=value …" (camsim:modelled_dims, camsim:guide): the values of exactly `keys`, each
+// once, as T; nullopt for anything else (an unknown, missing or repeated key, a bad value).
+template <typename T>
+std::optional<std::map<std::string, T>> readFields(const std::string& text,
+                                                   std::initializer_list<const char*> keys) {
+  std::map<std::string, T> out;
+  std::istringstream in(text);
+  std::string item;
+  while (in >> item) {
+    const std::size_t eq = item.find('=');
+    if (eq == std::string::npos) return std::nullopt;
+    const std::string key = item.substr(0, eq);
+    const std::optional<T> v = parseNumber<T>(item.substr(eq + 1));
+    if (!v || std::find(keys.begin(), keys.end(), key) == keys.end() ||
+        !out.emplace(key, *v).second)
+      return std::nullopt;
+  }
+  if (out.size() != keys.size()) return std::nullopt;
+  return out;
 }
 
 struct ReadPart {
@@ -241,45 +263,25 @@ std::string modelledDimsText(const ModelledDimensions& m) {
 }
 
 std::optional<ModelledDimensions> parseModelledDims(const std::string& text) {
+  const std::optional<std::map<std::string, int>> f =
+      readFields<int>(text, {"aperture", "blades", "time", "moving_objects", "camera_moves",
+                             "rolling_shutter", "wavelengths", "time_steps", "diffraction",
+                             "spectral_cv", "lens_surfaces", "lens_disperses"});
+  if (!f) return std::nullopt;
+  const std::map<std::string, int>& v = *f;
   ModelledDimensions m;
-  std::istringstream in(text);
-  std::string item;
-  int fields = 0;
-  while (in >> item) {
-    const std::size_t eq = item.find('=');
-    if (eq == std::string::npos) return std::nullopt;
-    const std::optional<int> v = parseNumber<int>(item.substr(eq + 1));
-    if (!v) return std::nullopt;
-    const std::string key = item.substr(0, eq);
-    if (key == "aperture")
-      m.aperture = *v != 0;
-    else if (key == "blades")
-      m.blades = *v;
-    else if (key == "time")
-      m.time = *v != 0;
-    else if (key == "moving_objects")
-      m.movingObjects = *v;
-    else if (key == "camera_moves")
-      m.cameraMoves = *v != 0;
-    else if (key == "rolling_shutter")
-      m.rollingShutter = *v != 0;
-    else if (key == "wavelengths")
-      m.wavelengths = *v;
-    else if (key == "time_steps")
-      m.timeSteps = *v;
-    else if (key == "diffraction")
-      m.diffraction = *v != 0;
-    else if (key == "spectral_cv")
-      m.spectralControlVariate = *v != 0;
-    else if (key == "lens_surfaces")
-      m.lensSurfaces = *v;
-    else if (key == "lens_disperses")
-      m.lensDisperses = *v != 0;
-    else
-      return std::nullopt;
-    ++fields;
-  }
-  if (fields != 12) return std::nullopt;
+  m.aperture = v.at("aperture") != 0;
+  m.blades = v.at("blades");
+  m.time = v.at("time") != 0;
+  m.movingObjects = v.at("moving_objects");
+  m.cameraMoves = v.at("camera_moves") != 0;
+  m.rollingShutter = v.at("rolling_shutter") != 0;
+  m.wavelengths = v.at("wavelengths");
+  m.timeSteps = v.at("time_steps");
+  m.diffraction = v.at("diffraction") != 0;
+  m.spectralControlVariate = v.at("spectral_cv") != 0;
+  m.lensSurfaces = v.at("lens_surfaces");
+  m.lensDisperses = v.at("lens_disperses") != 0;
   // What a render can have modelled (a hand-edited part merged "0 wavelengths").
   // (Scene::analyseExposure; RenderOptions::forceTime, the bench's, would fail the time
   // test, but the bench writes no part.)
@@ -297,31 +299,19 @@ std::string guideStatsText(const GuideStats& g) {
 }
 
 std::optional<GuideStats> parseGuideStats(const std::string& text) {
+  const std::optional<std::map<std::string, std::uint64_t>> f =
+      readFields<std::uint64_t>(text, {"train_spp", "iterations", "records", "leaves", "bytes"});
+  if (!f) return std::nullopt;
+  const std::map<std::string, std::uint64_t>& v = *f;
+  for (const auto& [key, value] : v)
+    if (value > (1ull << 62)) return std::nullopt;
+  if (v.at("train_spp") > (1u << 30) || v.at("iterations") > 30) return std::nullopt;
   GuideStats g;
-  std::istringstream in(text);
-  std::string item;
-  int fields = 0;
-  while (in >> item) {
-    const std::size_t eq = item.find('=');
-    if (eq == std::string::npos) return std::nullopt;
-    const std::optional<std::uint64_t> v = parseNumber<std::uint64_t>(item.substr(eq + 1));
-    if (!v || *v > (1ull << 62)) return std::nullopt;
-    const std::string key = item.substr(0, eq);
-    if (key == "train_spp" && *v <= (1u << 30))
-      g.trainSpp = static_cast<int>(*v);
-    else if (key == "iterations" && *v <= 30)
-      g.iterations = static_cast<int>(*v);
-    else if (key == "records")
-      g.records = *v;
-    else if (key == "leaves")
-      g.leaves = static_cast<std::size_t>(*v);
-    else if (key == "bytes")
-      g.bytes = static_cast<std::size_t>(*v);
-    else
-      return std::nullopt;
-    ++fields;
-  }
-  if (fields != 5) return std::nullopt;
+  g.trainSpp = static_cast<int>(v.at("train_spp"));
+  g.iterations = static_cast<int>(v.at("iterations"));
+  g.records = v.at("records");
+  g.leaves = static_cast<std::size_t>(v.at("leaves"));
+  g.bytes = static_cast<std::size_t>(v.at("bytes"));
   return g;
 }
 

@@ -11,12 +11,17 @@ namespace camsim {
 
 inline constexpr int kMaxThreads = 1024;
 
+// The refusal of a count given as `got` (a front end's text of it: Python's repr of an int
+// beyond 64 bits).
+inline InputError threadCountError(const std::string& where, const std::string& got) {
+  return InputError(
+      {where, 0, 0}, "threads",
+      "expected 0 (all cores) or a count up to " + std::to_string(kMaxThreads) + ", got " + got);
+}
+
 // InputError at `where`, key "threads", unless 0 ≤ threads ≤ kMaxThreads.
 inline void checkThreadCount(long long threads, const std::string& where) {
-  if (threads < 0 || threads > kMaxThreads)
-    throw InputError({where, 0, 0}, "threads",
-                     "expected 0 (all cores) or a count up to " + std::to_string(kMaxThreads) +
-                         ", got " + std::to_string(threads));
+  if (threads < 0 || threads > kMaxThreads) throw threadCountError(where, std::to_string(threads));
 }
 
 }  // namespace camsim

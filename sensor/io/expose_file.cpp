@@ -199,6 +199,21 @@ ElectronsExr readElectronsExr(const std::filesystem::path& path) {
   return e;
 }
 
+void scaleElectrons(Image& electrons, double scale) {
+  if (scale == 1.0) return;
+  for (std::size_t p = 0; p < electrons.pixels.size(); ++p) {
+    float& v = electrons.pixels[p];
+    const double scaled = static_cast<double>(v) * scale;
+    if (!(scaled <= static_cast<double>(std::numeric_limits<float>::max())))
+      throw InputError({}, "exposure_scale",
+                       formatShortest(scale) + " scales " +
+                           formatNumber(static_cast<double>(v), 6) + " electrons (pixel " +
+                           std::to_string(p / electrons.channels.size()) +
+                           ") beyond the float range of the output's electrons layer");
+    v = static_cast<float>(scaled);
+  }
+}
+
 ExposeJob prepareExpose(const std::filesystem::path& electronsExr,
                         const ExposeFileSettings& settings, const std::filesystem::path& lutsDir) {
   const std::filesystem::path& file = electronsExr;
@@ -255,20 +270,11 @@ ExposeJob prepareExpose(const std::filesystem::path& electronsExr,
   job.seed = settings.seed ? *settings.seed : in.noiseSeed.value_or(0);
 
   job.electrons = in.electrons;
-  if (settings.exposureScale != 1.0)
-    for (std::size_t p = 0; p < job.electrons.pixels.size(); ++p) {
-      float& v = job.electrons.pixels[p];
-      const double scaled = static_cast<double>(v) * settings.exposureScale;
-      // Found by probing: electrons past the float range became inf, written into the output
-      // raw EXR that expose itself then refused.
-      if (!(scaled <= static_cast<double>(std::numeric_limits<float>::max())))
-        fail(file, "exposure_scale",
-             formatShortest(settings.exposureScale) + " scales " +
-                 formatNumber(static_cast<double>(v), 6) + " electrons (pixel " +
-                 std::to_string(p / job.electrons.channels.size()) +
-                 ") beyond the float range of the output's electrons layer");
-      v = static_cast<float>(scaled);
-    }
+  try {
+    scaleElectrons(job.electrons, settings.exposureScale);
+  } catch (const InputError& e) {
+    throw inFile(e, file.string());
+  }
   std::string stem = file.stem().string();
   if (stem.size() > 4 && stem.compare(stem.size() - 4, 4, "_raw") == 0)
     stem.resize(stem.size() - 4);

@@ -47,6 +47,11 @@ class OutputSet;
 inline constexpr long long kMaxExposeFrames = 100000;
 inline constexpr double kMaxExposureScale = 1e6;
 
+// electrons × scale, as a capture's bracket scales a static scene's; InputError (key
+// exposure_scale, no file: the caller's to add) when a value would leave float's range (found
+// by probing: inf was written, exit 0).
+void scaleElectrons(Image& electrons, double scale);
+
 struct ExposeFileSettings {
   std::string sensor;         // preset or YAML path; "": the file's camsim:sensor
   std::optional<double> iso;  // none: the file's camsim:iso (else the sensor's base ISO)

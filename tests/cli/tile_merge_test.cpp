@@ -120,6 +120,13 @@ class TileMerge : public ::testing::Test {
     for (const std::string& p : parts) args += " " + quote(p);
     return test::runCamsim(args + " -o " + quote((dir() / out).string()) + flags, dir());
   }
+  // The merge of parts 0 … m−1 of `name` in dir()/parts into dir()/out.
+  static RunResult mergeAll(const std::string& parts, const std::string& name, int m,
+                            const std::string& out, const std::string& flags = "") {
+    std::vector<std::string> files;
+    for (int k = 0; k < m; ++k) files.push_back(part(parts, name, k, m));
+    return merge(files, out, flags);
+  }
   static void expectSameFiles(const std::string& ref, const std::string& got) {
     const auto expected = fileContents(dir() / ref), actual = fileContents(dir() / got);
     ASSERT_GE(expected.size(), 3u);  // NAME.exr, .png, .json at least
@@ -175,18 +182,14 @@ TEST_F(TileMerge, OnePartMergesToTheRender) {
 
 TEST_F(TileMerge, MoreSharesThanTilesMergeToo) {
   splitInto("tiled.yaml", "parts8", 8, kOverrides);  // 6 tiles: parts 6 and 7 hold none
-  std::vector<std::string> parts;
-  for (int k = 0; k < 8; ++k) parts.push_back(part("parts8", "tiled", k, 8));
-  const RunResult r = merge(parts, "merged8", " --aov-previews");
+  const RunResult r = mergeAll("parts8", "tiled", 8, "merged8", " --aov-previews");
   ASSERT_EQ(r.exitCode, 0) << r.err;
   expectSameFiles("ref", "merged8");
 }
 
 TEST_F(TileMerge, MovingSceneWithoutSensorMerges) {
   splitInto("moving.yaml", "parts_moving", 2, "");
-  const RunResult r =
-      merge({part("parts_moving", "moving", 0, 2), part("parts_moving", "moving", 1, 2)},
-            "merged_moving");
+  const RunResult r = mergeAll("parts_moving", "moving", 2, "merged_moving");
   ASSERT_EQ(r.exitCode, 0) << r.err;
   expectSameFiles("ref_moving", "merged_moving");
 }
@@ -196,9 +199,7 @@ TEST_F(TileMerge, MovingSceneWithoutSensorMerges) {
 TEST_F(TileMerge, GuidedSceneMergesWithItsGuide) {
   ASSERT_EQ(render("moving.yaml", "ref_guided", " --reproducible --guiding 1 --spp 8").exitCode, 0);
   splitInto("moving.yaml", "parts_guided", 2, " --guiding 1 --spp 8");
-  const RunResult r =
-      merge({part("parts_guided", "moving", 0, 2), part("parts_guided", "moving", 1, 2)},
-            "merged_guided");
+  const RunResult r = mergeAll("parts_guided", "moving", 2, "merged_guided");
   ASSERT_EQ(r.exitCode, 0) << r.err;
   expectSameFiles("ref_guided", "merged_guided");
   const std::string json = fileContents(dir() / "merged_guided").at("moving.json");
