@@ -94,7 +94,12 @@ SceneDescription loadRenderScene(const RenderArgs& args) {
     const std::filesystem::path path(*args.scene);
     d = loadSceneFromText(readSceneFile(path), path.string(), sceneBaseDir(path));
   }
-  applyOverrides(d, args.overrides, {"<command line>", 0, 0});
+  const SourceLocation commandLine{"<command line>", 0, 0};
+  try {
+    applyOverrides(d, args.overrides, commandLine);
+  } catch (const InputError& e) {
+    throw namedByOverride(e, args.overrides, commandLine, overrideFlag);  // "--iso", not sensor.iso
+  }
   return d;
 }
 
@@ -113,9 +118,10 @@ void printCaptureNotes(const CaptureResult& r, std::ostream& log) {
           << " % of photosites clipped\n";
 }
 
-RenderCommandResult runRender(const RenderArgs& args, std::ostream& log,
-                              const std::atomic<bool>* cancel) {
-  SceneDescription desc = loadRenderScene(args);
+namespace {
+
+RenderCommandResult renderScene(SceneDescription desc, const RenderArgs& args, std::ostream& log,
+                                const std::atomic<bool>* cancel) {
   for (const std::string& note : desc.notes) log << "note: " << note << "\n";  // import notes
   checkMemoryLimit(desc, args.maxMemoryGb);                                    // before any work
   CaptureOutputOptions out{
@@ -163,6 +169,19 @@ RenderCommandResult runRender(const RenderArgs& args, std::ostream& log,
   for (const auto& f : outcome.files) log << "wrote " << f.string() << "\n";
   for (const std::string& s : writer.skippedExports()) log << s << "\n";
   return outcome;
+}
+
+}  // namespace
+
+RenderCommandResult runRender(const RenderArgs& args, std::ostream& log,
+                              const std::atomic<bool>* cancel) {
+  SceneDescription desc = loadRenderScene(args);  // the scene file's own errors as they are
+  try {
+    return renderScene(std::move(desc), args, log, cancel);
+  } catch (const InputError& e) {
+    // A value a flag gave (--target-error with --tiles) is refused by the flag's name.
+    throw namedByOverride(e, args.overrides, {"<command line>", 0, 0}, overrideFlag);
+  }
 }
 
 }  // namespace camsim

@@ -211,9 +211,8 @@ const OverrideSetting& setting(std::string_view key) {
 }  // namespace
 
 bool Overrides::empty() const {
-  return !sensor && !spp && !seed && !targetError && !timeLimitS && !adaptiveThreshold &&
-         !exposureTimeS && !fNumber && !iso && !noise && !noiseSeed && !pose && !projection &&
-         !guiding;
+  return std::none_of(kSettings.begin(), kSettings.end(),
+                      [this](const OverrideSetting& s) { return overrideIsSet(*this, s); });
 }
 
 const std::vector<OverrideSetting>& overrideSettings() {
@@ -386,6 +385,35 @@ void applyOverrides(SceneDescription& d, const Overrides& o, const SourceLocatio
   if (o.noiseSeed) d.sensor->noiseSeed = static_cast<std::uint64_t>(*o.noiseSeed);
   if (o.pose) setPose(d, *o.pose, where);
   if (o.projection) setProjection(d, *o.projection, where);
+}
+
+bool overrideIsSet(const Overrides& o, const OverrideSetting& setting) {
+  const std::string_view k = setting.key;
+  const std::pair<std::string_view, bool> set[] = {
+      {"sensor", o.sensor.has_value()},
+      {"spp", o.spp.has_value()},
+      {"seed", o.seed.has_value()},
+      {"target_error", o.targetError.has_value()},
+      {"time_limit_s", o.timeLimitS.has_value()},
+      {"adaptive_threshold", o.adaptiveThreshold.has_value()},
+      {"exposure_time_s", o.exposureTimeS.has_value()},
+      {"f_number", o.fNumber.has_value()},
+      {"iso", o.iso.has_value()},
+      {"noise", o.noise.has_value()},
+      {"noise_seed", o.noiseSeed.has_value()},
+      {"pose", o.pose.has_value()},
+      {"projection", o.projection.has_value()},
+      {"guiding", o.guiding.has_value()}};
+  for (const auto& [key, isSet] : set)
+    if (key == k) return isSet;
+  throw std::logic_error("overrideIsSet: no override " + std::string(k));
+}
+
+InputError namedByOverride(const InputError& e, const Overrides& o, const SourceLocation& where,
+                           std::string (*name)(const OverrideSetting&)) {
+  for (const OverrideSetting& s : kSettings)
+    if (s.sceneKey == e.key() && overrideIsSet(o, s)) return InputError(where, name(s), e.message());
+  return e;
 }
 
 std::string overridesText(const Overrides& o) {

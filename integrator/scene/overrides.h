@@ -138,6 +138,15 @@ void setOverrideNumber(Overrides& o, const OverrideSetting& setting, double valu
 // refuses (key camera.projection.<key>), a projection other than opencv with a flat pupil.
 void applyOverrides(SceneDescription& d, const Overrides& o, const SourceLocation& where);
 
+// Whether o sets the setting's value.
+bool overrideIsSet(const Overrides& o, const OverrideSetting& setting);
+// `e` named by where its value came from: an error a later stage found in a setting o set
+// (its key the setting's scene key, e.g. render.target_error when --target-error gave it) is
+// the same message at `where` with key name(setting) ("--target-error" for the CLI), not at
+// the scene file, which may not even have the key. Any other error is returned unchanged.
+InputError namedByOverride(const InputError& e, const Overrides& o, const SourceLocation& where,
+                           std::string (*name)(const OverrideSetting&));
+
 // One "key=value" line per set override (table order); "" when none.
 std::string overridesText(const Overrides& o);
 // Back from overridesText (lines; blank lines skipped). InputError at `where` (its file,

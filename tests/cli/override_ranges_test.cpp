@@ -236,6 +236,34 @@ TEST(OverrideRanges, SppAboveTheScenesMaxSppIsRefused) {
   }
 }
 
+// An error a later stage finds in a value an override gave names the override, not the
+// scene file (found by probing: `--tiles 0/2 --target-error 0.1` named the scene file's
+// render.target_error, a key the file did not have). Other errors keep their place.
+TEST(OverrideRanges, LaterErrorsNameTheOverrideThatGaveTheValue) {
+  Overrides o;
+  EXPECT_TRUE(o.empty());
+  for (const OverrideSetting& s : overrideSettings()) EXPECT_FALSE(overrideIsSet(o, s)) << s.key;
+  o.targetError = 0.1;
+  EXPECT_FALSE(o.empty());
+  EXPECT_TRUE(overrideIsSet(o, *findOverrideSetting("target_error")));
+  const SourceLocation commandLine{"<command line>", 0, 0};
+  const InputError later({"scene.yaml", 0, 0}, "render.target_error", "cannot be tiled");
+  const InputError named = namedByOverride(later, o, commandLine, overrideFlag);
+  EXPECT_EQ(named.where().file, "<command line>");
+  EXPECT_EQ(named.key(), "--target-error");
+  EXPECT_EQ(named.message(), "cannot be tiled");
+  // Python names the keyword: the same table, another name.
+  EXPECT_EQ(namedByOverride(later, o, {"<python>", 0, 0},
+                            [](const OverrideSetting& s) { return std::string(s.key); })
+                .key(),
+            "target_error");
+  // Another key, or the key without its override set, stays where it was found.
+  const InputError other({"scene.yaml", 4, 2}, "render.time_limit_s", "m");
+  EXPECT_EQ(namedByOverride(other, o, commandLine, overrideFlag).where().file, "scene.yaml");
+  EXPECT_EQ(namedByOverride(later, Overrides{}, commandLine, overrideFlag).key(),
+            "render.target_error");
+}
+
 // Tile parts keep the overrides as data: the text form reads back to the same values.
 TEST(OverrideRanges, TextFormRoundTrips) {
   Overrides o;

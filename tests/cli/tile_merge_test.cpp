@@ -291,13 +291,26 @@ TEST_F(TileMerge, CapturesThatCannotBeTiledAreRefused) {
   test::writeFile(dir() / "fixed.yaml", movingScene(sensor + "bracket_ev: [0]}\n"));
   const RunResult fixed = render("fixed.yaml", "parts_fixed", " --tiles 0/2");
   EXPECT_EQ(fixed.exitCode, 0) << fixed.err;
-  // Adaptive sampling scales its checks by the whole image's mean.
+  // Adaptive sampling scales its checks by the whole image's mean. Refused by the flag that
+  // asked for it (found by probing: the scene file was named, which has no such key)...
   const RunResult adaptive =
       render("fixed.yaml", "parts_adaptive", " --tiles 0/2 --adaptive-threshold 0.1");
   EXPECT_EQ(adaptive.exitCode, 2) << adaptive.err;
-  EXPECT_NE(adaptive.err.find("render.adaptive_threshold"), std::string::npos) << adaptive.err;
+  EXPECT_NE(adaptive.err.find("<command line>: key '--adaptive-threshold'"), std::string::npos)
+      << adaptive.err;
+  EXPECT_EQ(adaptive.err.find("fixed.yaml"), std::string::npos) << adaptive.err;
   EXPECT_NE(adaptive.err.find("cannot be split into tiles"), std::string::npos) << adaptive.err;
   EXPECT_TRUE(fileContents(dir() / "parts_adaptive").empty());
+  // ... or by the scene file's key when the file asked for it.
+  std::string inFile = movingScene();
+  const std::string renderKeys = "render: {spp: 2, ";
+  inFile.replace(inFile.find(renderKeys), renderKeys.size(),
+                 "render: {spp: 2, adaptive_threshold: 0.1, ");
+  test::writeFile(dir() / "adaptive.yaml", inFile);
+  const RunResult fromFile = render("adaptive.yaml", "parts_adaptive", " --tiles 0/2");
+  EXPECT_EQ(fromFile.exitCode, 2) << fromFile.err;
+  EXPECT_NE(fromFile.err.find("adaptive.yaml: key 'render.adaptive_threshold'"), std::string::npos)
+      << fromFile.err;
 }
 
 TEST(TileMergeArgs, TilesAndReproducibleParse) {
