@@ -412,7 +412,8 @@ bool overrideIsSet(const Overrides& o, const OverrideSetting& setting) {
 InputError namedByOverride(const InputError& e, const Overrides& o, const SourceLocation& where,
                            std::string (*name)(const OverrideSetting&)) {
   for (const OverrideSetting& s : kSettings)
-    if (s.sceneKey == e.key() && overrideIsSet(o, s)) return InputError(where, name(s), e.message());
+    if (s.sceneKey == e.key() && overrideIsSet(o, s))
+      return InputError(where, name(s), e.message());
   return e;
 }
 
