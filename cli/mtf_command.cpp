@@ -99,6 +99,12 @@ std::vector<std::filesystem::path> runMtf(const MtfArgs& args, std::ostream& out
                                           std::ostream& log) {
   std::vector<EdgeRoi> rois;
   for (const std::string& text : args.rois) rois.push_back(parseEdgeRoi(text));
+  // The output folder first, so that one that cannot be made fails before the summary is
+  // printed; a folder made here is removed again if anything below fails.
+  const std::filesystem::path outDir(args.outputDir);
+  const NewDirectoryCleanup cleanup(outDir);
+  for (const auto& stale : OutputSet::prepareDirectory(outDir))
+    log << "removed " << stale.string() << " (left by a run that was killed)\n";
   const MtfImage input = readMtfImage(args.image, args.linear);
   const Image channels = selectMtfChannels(input.image, args.channel, input.yWeights, args.image);
   SfrOptions options;
@@ -113,9 +119,6 @@ std::vector<std::filesystem::path> runMtf(const MtfArgs& args, std::ostream& out
         << "picture (camsim's NAME.png) does not give the linear MTF: measure NAME.exr\n";
   for (const MtfMeasurement& m : regions) out << formatMtfSummary(m);
 
-  const std::filesystem::path outDir(args.outputDir);
-  for (const auto& stale : OutputSet::prepareDirectory(outDir))
-    log << "removed " << stale.string() << " (left by a run that was killed)\n";
   OutputSet outputs(outDir);
   // One ROI: mtf.csv, mtf.json, mtf.png; several: mtf_1.csv … and mtf_fields.csv.
   const std::optional<std::string> python = pythonWithMatplotlib();

@@ -247,6 +247,14 @@ TEST(MtfBinary, BadInputExitsTwoAndWritesNothing) {
     EXPECT_NE(r.err.find("camsim: "), std::string::npos) << r.err;
     EXPECT_FALSE(fs::exists(out)) << c.args;  // not even the directory
   }
+  // An output folder that cannot be made fails first: found by probing, the summary was
+  // printed (as if measured and written) before the error.
+  const RunResult r = test::runCamsim("mtf " + quote(exr.string()) + " --roi 0,0,64,128 -o " +
+                                          quote((dir.path() / "notes.txt" / "mtf").string()),
+                                      dir.path());
+  EXPECT_EQ(r.exitCode, 2) << r.err;
+  EXPECT_NE(r.err.find("cannot create output directory"), std::string::npos) << r.err;
+  EXPECT_EQ(r.out, "");
 }
 
 }  // namespace mtf_command_test
