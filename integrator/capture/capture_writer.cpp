@@ -108,18 +108,22 @@ void writeFrames(const CaptureResult& r, const Metadata& meta, OutputSet& output
   for (std::size_t i = 0; i < r.frames.size(); ++i) {
     const CaptureFrame& frame = r.frames[i];
     Metadata frameMeta = meta;
+    // The frame's own exposure time (a bracket's, auto-exposure's) in place of the scene's,
+    // both in shortest round-trip form: camsim expose reads them back (found by
+    // probing: written with %f, 12.3 µs became 0.000012 and 0.4 µs became 0, so the
+    // re-exposure's dark signal and EXIF ExposureTime were wrong; an ISO of 1e-300 became 0).
     for (auto& [key, value] : frameMeta)
       if (key == "camsim:units")
         value =
             "raw.DN: raw digital numbers as the ADC gives them, black level "
             "included; electrons.<channel>: the noise-free expected photo-electrons per "
             "photosite at this frame's exposure";
-    frameMeta.insert(frameMeta.end(),
-                     {{"camsim:sensor", spec.name},
-                      {"camsim:iso", std::to_string(sensor.iso)},
-                      {"camsim:exposure_time_s", std::to_string(frame.exposureTimeS)},
-                      {"camsim:noise_seed", std::to_string(sensor.noiseSeed)},
-                      {"camsim:frame", std::to_string(frame.frameIndex)}});
+      else if (key == "camsim:exposure_time_s")
+        value = formatShortest(frame.exposureTimeS);
+    frameMeta.insert(frameMeta.end(), {{"camsim:sensor", spec.name},
+                                       {"camsim:iso", formatShortest(sensor.iso)},
+                                       {"camsim:noise_seed", std::to_string(sensor.noiseSeed)},
+                                       {"camsim:frame", std::to_string(frame.frameIndex)}});
     const std::string stem = frameStem(r, i);
     if (spec.cfa.isStacked()) {
       for (std::size_t c = 0; c < frame.raws.size(); ++c)

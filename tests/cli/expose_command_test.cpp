@@ -121,6 +121,30 @@ TEST(ExposeBinary, ReproducesTheRenderAndSeedsDecideTheBytes) {
   EXPECT_TRUE(scaled);
 }
 
+// The raw EXR records the frame's exposure time and ISO exactly, once each (found by
+// probing: written with %f, 12.3456789 µs read back as 12 µs and 0.4 µs as 0, so expose's
+// dark signal and EXIF ExposureTime were wrong; a second exposure_time_s entry shadowed the
+// exact one).
+TEST(ExposeBinary, RawHeaderKeepsTheExposureTimeAndIsoExactly) {
+  TempDir dir;
+  std::string text = scene("short", false);
+  for (const auto& [from, to] : {std::pair<std::string, std::string>{"close: 0.01", "close: 4e-7"},
+                                 {"iso: 200", "iso: 123.456789"}})
+    text.replace(text.find(from), from.size(), to);
+  test::writeFile(dir.path() / "short.yaml", text);
+  const RunResult r = test::runCamsim("render " + quote((dir.path() / "short.yaml").string()) +
+                                          " -o " + quote((dir.path() / "render").string()),
+                                      dir.path());
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  std::vector<std::string> times, isos;
+  for (const auto& [k, v] : readExr(dir.path() / "render" / "short_raw.exr").metadata) {
+    if (k == "camsim:exposure_time_s") times.push_back(v);
+    if (k == "camsim:iso") isos.push_back(v);
+  }
+  EXPECT_EQ(times, std::vector<std::string>{"4e-07"});
+  EXPECT_EQ(isos, std::vector<std::string>{"123.456789"});
+}
+
 TEST(ExposeBinary, MovingSceneIsRefusedAtAnotherExposure) {
   TempDir dir;
   const fs::path raw = renderRaw(dir.path(), "moving", true);
