@@ -251,8 +251,7 @@ RawImage expose(const Image& expectedElectrons, const SensorSpec& sensor,
   // Hot photosites' extra dark electrons (same temperature law as the dark current).
   const double hotE =
       ns.hotPixelFraction > 0.0
-          ? ns.hotPixelDarkCurrentEPerS * settings.exposureTimeS *
-                std::exp2((sensor.temperatureC - sensor.darkReferenceC) / sensor.darkDoublingC)
+          ? sensor.darkAtTemperature(ns.hotPixelDarkCurrentEPerS) * settings.exposureTimeS
           : 0.0;
   const bool tukey = at.shape == ReadNoiseShape::kTukeyLambda && at.tukeyScaleDn > 0.0;
 

@@ -6,6 +6,7 @@
 #include <set>
 
 #include "sensor/base/file_status.h"
+#include "sensor/base/format.h"
 #include "sensor/base/input_error.h"
 #include "sensor/base/input_file.h"
 #include "sensor/base/table_search.h"
@@ -17,7 +18,12 @@ namespace camsim {
 namespace fs = std::filesystem;
 
 double SensorSpec::darkCurrentAtTemperature() const {
-  return darkCurrentEPerS * std::exp2((temperatureC - darkReferenceC) / darkDoublingC);
+  return darkAtTemperature(darkCurrentEPerS);
+}
+
+double SensorSpec::darkAtTemperature(double ePerSAtReference) const {
+  if (ePerSAtReference == 0.0) return 0.0;  // not 0 × an overflowed factor (NaN)
+  return ePerSAtReference * std::exp2((temperatureC - darkReferenceC) / darkDoublingC);
 }
 
 double SensorSpec::systemGain(double iso) const {
@@ -267,6 +273,28 @@ SensorSpec parseSensorSpec(const std::string& yamlText, const std::string& displ
     spec.patternSeed = static_cast<std::uint64_t>(v->integer(0, INT64_MAX));
   if (const auto v = map.find("noiseless")) spec.noiseless = v->boolean();
   parseSensorNoise(map, spec);
+  // Each key is in range, but not every combination: found by probing, temperature_c 500 with
+  // dark_doubling_c 0.001 overflowed the factor to inf (every photosite saturated), and with
+  // dark_current_e_per_s 0 to NaN (cast to DN: undefined). Named at the temperature keys.
+  for (const auto& [rate, key] :
+       {std::pair{spec.darkCurrentEPerS, "dark_current_e_per_s"},
+        std::pair{spec.noise.hotPixelDarkCurrentEPerS, "hot_pixels.dark_current_e_per_s"}}) {
+    const double atT = spec.darkAtTemperature(rate);
+    if (atT <= 1e9) continue;
+    const char* named = "temperature_c";
+    for (const char* k : {"temperature_c", "dark_doubling_c", "dark_reference_c"})
+      if (map.find(k)) {
+        named = k;
+        break;
+      }
+    const auto where = map.find(named);
+    const std::string message =
+        std::string(key) + " at temperature_c = " + formatShortest(spec.temperatureC) +
+        " °C, × 2^((temperature_c − dark_reference_c) / dark_doubling_c), is " +
+        formatShortest(atT) + " e⁻/s: above 1e9 e⁻/s, the dark current's range";
+    if (where) where->fail(message);
+    map.self().fail(message);
+  }
   if (const auto v = map.find("dark_frames")) {
     fs::path dir(v->string());
     if (dir.is_relative()) dir = baseDir / dir;

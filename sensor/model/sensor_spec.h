@@ -76,6 +76,10 @@ struct SensorSpec {
   double whiteLevelDn() const { return static_cast<double>((1u << adcBits) - 1u); }
   // Mean dark electrons per second at the operating temperature.
   double darkCurrentAtTemperature() const;
+  // A dark current of `ePerSAtReference` e⁻/s at dark_reference_c, at the operating
+  // temperature: × 2^((T − T_ref)/T_double); 0 stays 0 (the factor may overflow: the loader
+  // refuses a sensor whose dark currents at temperature exceed 1e9 e⁻/s).
+  double darkAtTemperature(double ePerSAtReference) const;
   // System gain K (DN/e⁻) at an ISO (noiseAtIso: conversion-gain mode, iso_table).
   double systemGain(double iso) const;
   // Electrons at which the output saturates at an ISO: min(full well, ADC range / K),

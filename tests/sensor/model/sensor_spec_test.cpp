@@ -306,6 +306,33 @@ TEST(SensorSpec, DarkCurrentDoublesPerDoublingInterval) {
               2.0 * std::exp2(15.0 / 6.0), 1e-12);
 }
 
+// Found by probing: each key in range, 2^((500 − 25)/0.001) overflowed: with a dark current
+// every photosite saturated silently, without one 0 × inf made the expected electrons NaN
+// (then cast to DN). Refused at the temperature key; no dark current stays no dark current.
+TEST(SensorSpec, DarkCurrentOverflowingAtTemperatureIsRefused) {
+  const std::string hot = "dark_doubling_c: 0.001\ntemperature_c: 500";
+  for (const auto& [text, line] :
+       {std::pair{appended("dark_current_e_per_s: 5\n" + hot), 12},
+        std::pair{appended("hot_pixels: {fraction: 0.01, dark_current_e_per_s: 50}\n" + hot), 12},
+        std::pair{appended("dark_current_e_per_s: 1e8\ntemperature_c: 50"), 11}}) {
+    try {
+      parse(text);
+      ADD_FAILURE() << "accepted:\n" << text;
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.key(), "temperature_c") << e.what();
+      EXPECT_EQ(e.where().line, line) << e.what();
+      EXPECT_NE(e.message().find("above 1e9 e⁻/s"), std::string::npos) << e.what();
+    }
+  }
+  const SensorSpec none = parse(appended("dark_current_e_per_s: 0\n" + hot));
+  EXPECT_EQ(none.darkCurrentAtTemperature(), 0.0);
+  EXPECT_EQ(none.darkAtTemperature(0.0), 0.0);
+  // Within the range: accepted, the law as above.
+  EXPECT_DOUBLE_EQ(
+      parse(appended("dark_current_e_per_s: 1e8\ntemperature_c: 31")).darkCurrentAtTemperature(),
+      2e8);
+}
+
 TEST(SensorSpec, SaturationIsTheFullWellOrTheAdcRange) {
   SensorSpec s;
   s.adcBits = 12;
