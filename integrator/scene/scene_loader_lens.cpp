@@ -5,6 +5,7 @@
 
 #include "integrator/scene/scene_loader_parts.h"
 #include "integrator/scene/setting_ranges.h"
+#include "sensor/base/format.h"
 #include "sensor/base/input_error.h"
 #include "sensor/base/luts_directory.h"
 
@@ -54,6 +55,22 @@ void parseCameraLens(const YamlValue& value, const YamlMap& camera, const TableS
           "focus distance (from the entrance pupil) must put the object beyond the lens's "
           "front focal point and beyond 1.0001 × its focal length (" +
           std::to_string(paraxial.effectiveFocalLength * 1.0001) + " m)");
+    // Found by probing: a fisheye's entrance pupil lies 11.5 mm inside it, so 10.1 mm put the
+    // plane of focus inside the glass (rendered, exit 0); a telephoto at 0.349 m, beyond its
+    // front focal point, has a real bundle that leaves the rear group diverging (its best
+    // focus in front of the rear vertex: an internal check aborted the render).
+    if (!(fromVertex > 0.0))
+      v->fail("focus distance " + formatShortest(spec.focusDistance) +
+              " m (from the entrance pupil) puts the plane of focus " +
+              formatNumber(-fromVertex * 1e3, 4) +
+              " mm behind the lens's front vertex, inside the lens; the entrance pupil lies " +
+              formatNumber((spec.focusDistance - fromVertex) * 1e3, 4) + " mm behind it");
+    const double sensor = lens->focusSensorDistance(fromVertex, kLambdaDNm, FocusMethod::kBestRms);
+    if (!(sensor > 0.0))
+      v->fail("the lens forms no real image of a plane at " + formatShortest(spec.focusDistance) +
+              " m: the real rays from there leave its rear surface diverging (their best focus "
+              "lies " +
+              formatNumber(-sensor * 1e3, 4) + " mm in front of it); focus farther away");
   }
   lm.finish({"file", "f_number", "focus_distance_m"});
   if (c.aperture) {

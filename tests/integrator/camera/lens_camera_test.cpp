@@ -289,6 +289,22 @@ TEST(LensCamera, LoaderErrors) {
   expectLoadError("{file: dgauss.50mm.dat, focus_distance_m: 0.04}", "", "focus distance");
   expectLoadError("{file: dgauss.50mm.dat}", "  focal_length_mm: 50\n", "focal_length_mm");
   expectLoadError("{f_number: 2}", "", "file");
+  // Found by probing, both beyond the front focal point: the fisheye's entrance pupil lies
+  // 11.5 mm inside it, so 10.1 mm put the plane of focus inside the glass (rendered, exit
+  // 0); the telephoto's real bundle from 0.349 m leaves the rear group diverging (a check
+  // aborted the render, exit 134). 0.35 m images (best focus 17.9 m behind it).
+  expectLoadError("{file: fisheye.10mm.dat, focus_distance_m: 0.0101}", "",
+                  "key 'camera.lens.focus_distance_m': focus distance 0.0101 m (from the "
+                  "entrance pupil) puts the plane of focus 1.442 mm behind the lens's front "
+                  "vertex, inside the lens");
+  expectLoadError("{file: telephoto.250mm.dat, focus_distance_m: 0.349}", "",
+                  "key 'camera.lens.focus_distance_m': the lens forms no real image of a plane "
+                  "at 0.349 m");
+  EXPECT_NO_THROW(loadSceneFromText(
+      "format: camsim-scene/1\ncamera: {position: [0, 0, 0], look_at: [0, 0, 1], lens: {file: "
+      "telephoto.250mm.dat, focus_distance_m: 0.35}}\nshapes: [{type: sphere, centre: [0, 0, "
+      "3], radius: 1, emission: {luminance: 1}}]\n",
+      "ok.yaml", CAMSIM_SOURCE_DIR));
 }
 
 }  // namespace lens_camera_test
