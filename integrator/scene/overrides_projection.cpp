@@ -8,6 +8,7 @@
 #include <string>
 #include <utility>
 
+#include "integrator/camera/projection.h"
 #include "integrator/scene/scene_loader.h"
 #include "sensor/base/yaml_reader.h"
 #include "sensor/io/json_writer.h"
@@ -76,6 +77,14 @@ void setProjection(SceneDescription& d, const ProjectionOverride& p, const Sourc
                          "' with the scene's camera.aperture.pupil: flat: the flat pupil applies "
                          "to the opencv model only (the pupil of the fisheye and omnidirectional "
                          "models turns with the field)");
+  // And the exports' (parseExports): found by probing, a fisheye override wrote BOP's cam_K
+  // and KITTI's P2 as the pinhole the image was not (the same scene file is refused).
+  for (const ExportFormat f : d.exports)
+    if (!isUndistortedOpenCv(c.projection))
+      throw InputError(where, kKey,
+                       "model '" + p.model + "' with the scene's export '" + exportFormatName(f) +
+                           "': it needs the camera projection 'opencv' without distortion (its "
+                           "files describe the camera by a pinhole matrix alone)");
   d.camera.projection = c.projection;
   d.camera.intrinsicsFromLens = c.intrinsicsFromLens;
 }

@@ -113,6 +113,23 @@ TEST(ProjectionOverride, ErrorsAreTheLoadersNamingTheKey) {
             }),
             "");
   EXPECT_EQ(flat.camera.projection.k1, 0.1);
+  // The exports' rule (found by probing: BOP's cam_K was written as a pinhole for a fisheye).
+  std::string text = sceneText();
+  text.replace(text.find("render:"), 0, "exports: [bop, kitti]\n");
+  SceneDescription bop = loadSceneFromText(text, "lamp.yaml", ".");
+  for (const char* refused : {"{model: equidistant}", "{model: opencv, k1: 0.1}"}) {
+    try {
+      applyOverrides(bop, projectionOverride(refused), {"<command line>", 0, 0});
+      ADD_FAILURE() << refused;
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.key(), "camera.projection") << e.what();
+      EXPECT_NE(e.message().find("export 'bop'"), std::string::npos) << e.what();
+    }
+    EXPECT_EQ(bop.camera.projection.model, ProjectionModel::kOpenCv);
+  }
+  applyOverrides(bop, projectionOverride("{model: opencv, fx: 40, fy: 40, cx: 15.5, cy: 15.5}"),
+                 {"<command line>", 0, 0});
+  EXPECT_EQ(bop.camera.projection.fx, 40.0);
 }
 
 // A block in any YAML form becomes one line of JSON that reads back to the same doubles.
