@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cctype>
 #include <cmath>
 #include <cstdint>
 #include <numbers>
@@ -74,8 +75,11 @@ std::vector<std::optional<double>> visibleFractions(const Image& a,
 
 std::string typeOf(const ShapeDescription& s) {
   if (s.classNumber && std::to_string(*s.classNumber) == s.className) return "Class" + s.className;
+  // Every whitespace character (a label line's fields are whitespace-separated: found by
+  // probing, a tab or newline in a class name broke the line in two).
   std::string t = s.className;
-  std::replace(t.begin(), t.end(), ' ', '_');
+  std::replace_if(
+      t.begin(), t.end(), [](unsigned char c) { return std::isspace(c) != 0; }, '_');
   return t;
 }
 

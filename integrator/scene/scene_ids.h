@@ -21,6 +21,10 @@
 
 namespace camsim {
 
+// The largest class number: the dominant-id channels are float, exact to 2^24 (the scene
+// loader refuses an integer class above it, or names numbered past it).
+inline constexpr std::uint32_t kMaxClassNumber = 1u << 24;
+
 enum class IdKind : std::uint8_t { kInstance, kClass, kMaterial };
 inline constexpr int kIdKindCount = 3;
 inline const char* idKindName(IdKind k) {

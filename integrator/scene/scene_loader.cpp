@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <charconv>
 #include <cmath>
 #include <cstdlib>
 #include <map>
@@ -11,6 +12,7 @@
 #include <glm/geometric.hpp>
 
 #include "integrator/scene/gltf_convert.h"
+#include "integrator/scene/scene_ids.h"
 #include "integrator/scene/scene_loader_parts.h"
 #include "integrator/scene/scene_spectra.h"
 #include "sensor/base/file_status.h"
@@ -198,17 +200,45 @@ void checkMesh(const YamlValue& where, const MeshData& mesh) {
 }  // namespace
 
 void parseShapeClass(const YamlValue& c, ShapeDescription& s) {
-  // An integer ≥ 1 is the class number itself; any other text names a class that
-  // scene_ids.h numbers.
+  // An integer in [1, 2^24] is the class number itself (exact in the float class.id
+  // channel); any other text names a class that scene_ids.h numbers. Text that reads as
+  // another number (1e3, 2.0, -3) is refused: found by probing, `class: 1e3` became a class
+  // *named* "1e3" with number 1.
   s.className = c.string();
   s.classNumber.reset();
   const bool digits =
       !s.className.empty() && s.className.find_first_not_of("0123456789") == std::string::npos;
-  if (digits) s.classNumber = static_cast<std::uint32_t>(c.integer(1, UINT32_MAX));
+  if (digits) s.classNumber = static_cast<std::uint32_t>(c.integer(1, kMaxClassNumber));
   if (s.className.empty()) c.fail("class must be a non-empty name or an integer >= 1");
-  if (s.className.find_first_not_of("-0123456789") == std::string::npos && !digits)
-    c.integer(1, UINT32_MAX);  // a negative number: the range error names it
+  double number = 0.0;
+  const char* end = s.className.data() + s.className.size();
+  const auto [ptr, ec] = std::from_chars(s.className.data(), end, number);
+  if (!digits && ec == std::errc() && ptr == end &&
+      s.className.find_first_of("0123456789") != std::string::npos)
+    c.fail("class '" + s.className + "' reads as a number: give an integer in [1, " +
+           std::to_string(kMaxClassNumber) + "], or a name");
 }
+
+namespace {
+
+// Named classes are numbered after the largest integer class (scene_ids.h): all of them
+// must stay within kMaxClassNumber (found by probing: after class 4294967295 the next name
+// wrapped to 0, the background).
+void checkClassNumbers(const SceneDescription& scene, const YamlValue& shapes) {
+  std::uint64_t largest = 0;
+  std::set<std::string> names;
+  for (const ShapeDescription& s : scene.shapes) {
+    if (s.classNumber) largest = std::max<std::uint64_t>(largest, *s.classNumber);
+    if (!s.className.empty() && !s.classNumber) names.insert(s.className);
+  }
+  if (largest + names.size() > kMaxClassNumber)
+    shapes.fail("the named classes are numbered after the largest integer class, " +
+                std::to_string(largest) + ", and " + std::to_string(names.size()) +
+                " of them pass " + std::to_string(kMaxClassNumber) +
+                " (class.id is float, exact to 2^24): use smaller integer classes");
+}
+
+}  // namespace
 
 namespace {
 
@@ -454,9 +484,9 @@ SceneDescription loadSceneFromText(const std::string& text, const std::string& d
   for (size_t i = 0; i < items.size(); ++i)
     parseShape(YamlMap(items[i]), i, ctx, scene, scene.shapes);
   addGltfIncludes(includes, scene);
-  if (scene.shapes.empty())
-    (top.find("shapes") ? *top.find("shapes") : *top.find("include"))
-        .fail("the scene has no shapes");
+  const YamlValue shapesKey = top.find("shapes") ? *top.find("shapes") : *top.find("include");
+  if (scene.shapes.empty()) shapesKey.fail("the scene has no shapes");
+  checkClassNumbers(scene, shapesKey);
   if (auto l = top.find("lights")) {
     // The scene's own lights first, then the included assets' (added with their shapes).
     std::vector<LightDescription> own = parseLights(*l, ctx.search, baseDir, scene.renderOrigin);

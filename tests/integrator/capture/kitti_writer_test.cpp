@@ -133,6 +133,17 @@ TEST(KittiWriter, ALevelCamerasLabelHasTheClosedFormFields) {
   EXPECT_TRUE(f.skipped.empty());
 }
 
+// A label line's fields are whitespace-separated: every whitespace character of the class
+// name becomes '_' (found by probing: a tab and a newline in the name split the line).
+TEST(KittiWriter, WhitespaceInTheClassNameBecomesUnderscores) {
+  std::string text = sceneText({0, 0.3, -3}, {0, 0.3, 0});
+  const std::string from = "class: Car";
+  text.replace(text.find(from), from.size(), "class: \"traffic\\tcone\\nsmall big\"");
+  const KittiFrame f = kittiFrame(described(text));
+  ASSERT_EQ(f.labels.size(), 1U);
+  EXPECT_EQ(f.labels[0].type, "traffic_cone_small_big");
+}
+
 // Looking 23° down: rect stays level (y along gravity), so the location is the height
 // difference and the level distance; P2 = K [R_cam←rect | 0] projects the devkit's box as
 // the true camera projects the true box.

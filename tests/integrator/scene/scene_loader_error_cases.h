@@ -143,6 +143,17 @@ inline const ErrorCase kErrorCases[] = {
      "shapes[0].faces[0][2]", "out of range [0, 2]"},
     {"ZeroAreaMesh", meshWith("[[0, 0, 0], [1, 0, 0], [2, 0, 0]]", "[[0, 1, 2]]"), 10, 12,
      "shapes[0].faces", "zero area"},
+    // Class numbers are exact in the float class.id channel to 2^24; named classes follow
+    // the largest integer one (found by probing: after 4294967295 a name became class 0);
+    // text that reads as another number was a class *named* "1e3" with number 1.
+    {"ClassAboveTwoToThe24", sphereWith("1", ", material: m, class: 16777217"), 7, 70,
+     "shapes[0].class", "out of range [1, 16777216]"},
+    {"ClassReadsAsANumber", sphereWith("1", ", material: m, class: 1e3"), 7, 70, "shapes[0].class",
+     "class '1e3' reads as a number"},
+    {"NamedClassesPastTwoToThe24",
+     withShapes("  - {type: sphere, centre: [0, 0, 0], radius: 1, material: m, class: 16777216}\n"
+                "  - {type: sphere, centre: [3, 0, 0], radius: 1, material: m, class: car}\n"),
+     7, 3, "shapes", "1 of them pass 16777216"},
     {"UnknownMaterial", sphereWith("1", ", material: paint"), 7, 60, "shapes[0].material",
      "no material named 'paint'"},
     {"ReflectanceAboveOne",
