@@ -195,8 +195,7 @@ int runDatasetCommand(const std::vector<std::string>& args, std::ostream& out, s
   };
   if (a.check) {
     o.onlyItem.reset();
-    checkBaseScene(manifest);
-    for (const DatasetItem& item : manifest.items) (void)resolveItem(manifest, item, "");
+    checkDataset(manifest, o.onChecked);  // what a run checks, the same way
     checking.finish();
     out << manifest.file.string() << ": " << manifest.items.size() << " items, all valid\n";
     return 0;

@@ -93,22 +93,29 @@ void count(DatasetRunSummary& s, const ItemReport& r) {
 // Every item resolved and loaded, on all cores; the first error (in item order) is thrown.
 // The pose exports are checked here for every item before any renders (their models made and
 // dropped: all items' at once would hold every scene); each item's writer makes its own.
-void checkItems(const Manifest& manifest, const std::string& outputKey,
-                const DatasetRunOptions& options) {
+// An error the pose exports find is reported at the manifest line that set its key, as the
+// loader's are (found by probing: BOP's model check named a line of the edited scene text).
+void checkItems(const Manifest& manifest,
+                const std::function<void(std::size_t, std::size_t)>& onChecked) {
   const std::size_t n = manifest.items.size();
   std::vector<std::exception_ptr> errors(n);
   std::atomic<std::size_t> done{0};
   std::mutex progress;
   tbb::parallel_for(std::size_t{0}, n, [&](std::size_t i) {
     try {
-      checkPoseExports(resolveItem(manifest, manifest.items[i], outputKey).description);
+      const ResolvedItem item = resolveItem(manifest, manifest.items[i], "");
+      try {
+        checkPoseExports(item.description);
+      } catch (const InputError& e) {
+        throw item.manifestError(e);
+      }
     } catch (...) {
       errors[i] = std::current_exception();
     }
     const std::size_t d = ++done;
-    if (options.onChecked) {
+    if (onChecked) {
       std::lock_guard<std::mutex> lock(progress);
-      options.onChecked(d, n);
+      onChecked(d, n);
     }
   });
   for (const auto& e : errors)
@@ -160,6 +167,12 @@ void checkEarlierRun(const Manifest& manifest, const fs::path& directory) {
 
 }  // namespace
 
+void checkDataset(const Manifest& manifest,
+                  const std::function<void(std::size_t, std::size_t)>& onChecked) {
+  checkBaseScene(manifest);
+  checkItems(manifest, onChecked);
+}
+
 const char* itemStatusName(ItemStatus status) {
   switch (status) {
     case ItemStatus::kDone:
@@ -194,8 +207,7 @@ DatasetRunSummary runDataset(const Manifest& manifest, const DatasetRunOptions& 
                            std::to_string(options.shard.count));
   }
   // Every item checked before anything is written or rendered.
-  checkBaseScene(manifest);
-  checkItems(manifest, outputKey, options);
+  checkDataset(manifest, options.onChecked);
   checkEarlierRun(manifest, options.directory);
   std::vector<std::size_t> mine;
   for (const DatasetItem& item : manifest.items)
