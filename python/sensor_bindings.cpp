@@ -29,6 +29,7 @@
 #include "sensor/base/input_error.h"
 #include "sensor/base/luts_directory.h"
 #include "sensor/base/threads.h"
+#include "sensor/io/dark_frame_reader.h"
 #include "sensor/io/expose_file.h"
 #include "sensor/io/output_set.h"
 #include "sensor/isp/color_management.h"
@@ -120,7 +121,9 @@ py::array_t<std::uint16_t> exposeFrames(const py::array& electrons, const Sensor
   const long long n = frames.value_or(1);
   if (n < 1 || n > kMaxFrames)
     fail("<expose>", "frames", "expected 1 to " + std::to_string(kMaxFrames) + " frames");
-  const ExposureSettings settings{exposureTimeS, iso.value_or(sensor.baseIso)};
+  ExposureSettings settings{exposureTimeS, iso.value_or(sensor.baseIso)};
+  const std::optional<DarkFrameSet> darkFrames = darkFramesFor(sensor, mode);  // as a capture's
+  settings.darkFrames = darkFrames ? &*darkFrames : nullptr;
   // expose() checks the settings (InputError for ISO ≤ 0, a negative time); check them here
   // once, before the output is allocated, with this function's name.
   try {

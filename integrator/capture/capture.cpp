@@ -141,9 +141,7 @@ void exposeAndDevelop(CaptureResult& out, const RenderOptions& renderOptions,
   out.referenceFrame = zero == evs.end() ? 0 : static_cast<std::size_t>(zero - evs.begin());
   const Image base = out.exposureScale == 1.0 ? out.sensorFilm : filmAt(out.exposureScale);
   if (out.cancelled) return;
-  std::optional<DarkFrameSet> darkFrames;
-  if (!spec.darkFramesDir.empty() && sensor.noise == NoiseMode::kFull && !spec.noiseless)
-    darkFrames = loadDarkFrames(spec.darkFramesDir, spec);
+  const std::optional<DarkFrameSet> darkFrames = darkFramesFor(spec, sensor.noise);
   for (std::size_t i = 0; i < evs.size(); ++i) {
     CaptureFrame frame;
     frame.ev = evs[i];

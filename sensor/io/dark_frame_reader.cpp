@@ -166,4 +166,10 @@ DarkFrameSet loadDarkFrames(const fs::path& dir, const SensorSpec& sensor) {
   return set;
 }
 
+std::optional<DarkFrameSet> darkFramesFor(const SensorSpec& sensor, NoiseMode mode) {
+  if (sensor.darkFramesDir.empty() || mode != NoiseMode::kFull || sensor.noiseless)
+    return std::nullopt;
+  return loadDarkFrames(sensor.darkFramesDir, sensor);
+}
+
 }  // namespace camsim

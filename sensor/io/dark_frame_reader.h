@@ -5,9 +5,11 @@
 #pragma once
 
 #include <filesystem>
+#include <optional>
 
 #include "sensor/model/dark_frames.h"
 #include "sensor/model/raw_image.h"
+#include "sensor/model/sensor_model.h"
 #include "sensor/model/sensor_spec.h"
 
 namespace camsim {
@@ -20,5 +22,10 @@ RawImage readRawDng(const std::filesystem::path& path);
 // level) and against the sensor (black level, ADC range). InputError (key "dark_frames")
 // naming the file otherwise, or when the directory holds none.
 DarkFrameSet loadDarkFrames(const std::filesystem::path& dir, const SensorSpec& sensor);
+
+// The dark frames an exposure in `mode` adds (sensor-format.md, "Dark frames"): the sensor's
+// dark_frames folder loaded when the mode is full and the sensor is not noiseless; none
+// otherwise. Every exposing front end (render, camsim expose, Python's expose) asks here.
+std::optional<DarkFrameSet> darkFramesFor(const SensorSpec& sensor, NoiseMode mode);
 
 }  // namespace camsim

@@ -12,6 +12,7 @@
 #include "sensor/base/check.h"
 #include "sensor/base/format.h"
 #include "sensor/base/input_error.h"
+#include "sensor/io/dark_frame_reader.h"
 #include "sensor/io/exr_io.h"
 #include "sensor/io/output_set.h"
 #include "sensor/model/sensor_noise.h"
@@ -269,6 +270,9 @@ ExposeJob prepareExpose(const std::filesystem::path& electronsExr,
   }
   job.seed = settings.seed ? *settings.seed : in.noiseSeed.value_or(0);
 
+  // Found by probing: expose drew the parametric noise for a sensor with dark frames, so
+  // frame 0 was not the render's raw.
+  job.darkFrames = darkFramesFor(spec, job.noise);
   job.electrons = in.electrons;
   try {
     scaleElectrons(job.electrons, settings.exposureScale);
@@ -286,7 +290,9 @@ ExposeJob prepareExpose(const std::filesystem::path& electronsExr,
 }
 
 std::vector<RawImage> exposeJobFrame(const ExposeJob& job, std::uint64_t frame) {
-  return exposeChannels(job.electrons, job.sensor, job.exposure, job.noise, job.seed, frame);
+  ExposureSettings exposure = job.exposure;
+  exposure.darkFrames = job.darkFrames ? &*job.darkFrames : nullptr;
+  return exposeChannels(job.electrons, job.sensor, exposure, job.noise, job.seed, frame);
 }
 
 std::vector<std::string> exposeFrameFiles(const ExposeJob& job, std::uint64_t frame) {

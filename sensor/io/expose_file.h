@@ -36,6 +36,7 @@
 
 #include "sensor/base/image.h"
 #include "sensor/io/dng_writer.h"
+#include "sensor/model/dark_frames.h"
 #include "sensor/model/raw_image.h"
 #include "sensor/model/sensor_model.h"
 #include "sensor/model/sensor_spec.h"
@@ -89,6 +90,8 @@ struct ExposeJob {
   double exposureScale = 1.0;
   std::string stem;   // output names: <stem>_f<NNNN>.dng, <stem>_f<NNNN>_raw.exr
   DngColor dngColor;  // from the sensor's QE under D65 (mosaic R, G, B sensors)
+  // The sensor's dark frames in noise mode full (darkFramesFor), as the render adds them.
+  std::optional<DarkFrameSet> darkFrames;
 };
 // Reads the file and checks the settings against it. InputError naming the file and the key
 // (frames, exposure_scale, iso, noise, sensor, camsim:static_scene, …). lutsDir: the sensor

@@ -56,6 +56,14 @@ fs::path renderRaw(const fs::path& dir, const std::string& name, bool motion) {
   return dir / "render" / (name + "_raw.exr");
 }
 
+// A raw EXR's raw.DN channel (its other channels are the electrons).
+std::vector<float> rawDn(const fs::path& rawExr) {
+  const Image image = readExr(rawExr).image;
+  const int c = image.channelIndex("raw.DN");
+  EXPECT_GE(c, 0) << rawExr;
+  return c < 0 ? std::vector<float>{} : image.channel(c).pixels;
+}
+
 std::size_t fileCount(const fs::path& dir) {
   std::size_t n = 0;
   if (fs::exists(dir))
@@ -99,8 +107,7 @@ TEST(ExposeBinary, ReproducesTheRenderAndSeedsDecideTheBytes) {
   RunResult r =
       test::runCamsim("expose " + quote(raw.string()) + " -o " + quote(a.string()), dir.path());
   ASSERT_EQ(r.exitCode, 0) << r.err;
-  EXPECT_EQ(readExr(a / "still_f0000_raw.exr").image.channel(0).pixels,
-            readExr(raw).image.channel(0).pixels);
+  EXPECT_EQ(rawDn(a / "still_f0000_raw.exr"), rawDn(raw));
   // Four frames at another ISO and half the exposure, twice with seed 5, once with seed 6.
   const std::string opts = " --frames 4 --iso 400 --exposure-scale 0.5 --seed ";
   for (const auto& [out, seed] : {std::pair{a, "5"}, std::pair{b, "5"}, std::pair{c, "6"}}) {
@@ -143,6 +150,47 @@ TEST(ExposeBinary, RawHeaderKeepsTheExposureTimeAndIsoExactly) {
   }
   EXPECT_EQ(times, std::vector<std::string>{"4e-07"});
   EXPECT_EQ(isos, std::vector<std::string>{"123.456789"});
+}
+
+// A sensor with dark frames: expose adds one per frame as the render does, so frame 0 is the
+// render's raw (found by probing: expose drew the parametric noise instead).
+TEST(ExposeBinary, DarkFramesAreAddedAsTheRenderAddsThem) {
+  TempDir dir;
+  const fs::path raw = renderRaw(dir.path(), "still", false);
+  // Four dark frames: the render's electrons at a 1e-12 exposure, as DNGs.
+  const fs::path dark = dir.path() / "dark";
+  RunResult r =
+      test::runCamsim("expose " + quote(raw.string()) +
+                          " --exposure-scale 1e-12 --frames 4 --seed 99 -o " + quote(dark.string()),
+                      dir.path());
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  for (int f = 0; f < 4; ++f) fs::remove(dark / ("still_f000" + std::to_string(f) + "_raw.exr"));
+  std::string sensor = readFile(fs::path(CAMSIM_LUTS_DIR) / "sensors" / "smartphone-1.4um.yaml");
+  sensor.replace(sensor.find("name: smartphone-1.4um"), 22, "name: phone-dark");
+  const fs::path sensorFile = dir.path() / "dark_sensor.yaml";
+  test::writeFile(sensorFile, sensor + "dark_frames: dark\n");
+  std::string text = scene("df", false);
+  const std::string from = "model: smartphone-1.4um";
+  text.replace(text.find(from), from.size(), "model: dark_sensor.yaml");
+  test::writeFile(dir.path() / "df.yaml", text);
+  r = test::runCamsim("render " + quote((dir.path() / "df.yaml").string()) + " -o " +
+                          quote((dir.path() / "render").string()),
+                      dir.path());
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const fs::path dfRaw = dir.path() / "render" / "df_raw.exr";
+  const auto exposedDn = [&](const std::string& options, const std::string& out) {
+    const RunResult e = test::runCamsim(
+        "expose " + quote(dfRaw.string()) + options + " -o " + quote((dir.path() / out).string()),
+        dir.path());
+    EXPECT_EQ(e.exitCode, 0) << e.err;
+    return rawDn(dir.path() / out / "df_f0000_raw.exr");
+  };
+  const std::vector<float> rendered = rawDn(dfRaw);
+  EXPECT_EQ(exposedDn(" --sensor " + quote(sensorFile.string()), "x"), rendered);
+  // The same sensor without its dark frames draws other noise.
+  test::writeFile(dir.path() / "plain_sensor.yaml", sensor);
+  EXPECT_NE(exposedDn(" --sensor " + quote((dir.path() / "plain_sensor.yaml").string()), "plain"),
+            rendered);
 }
 
 TEST(ExposeBinary, MovingSceneIsRefusedAtAnotherExposure) {
