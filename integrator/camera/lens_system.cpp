@@ -75,6 +75,19 @@ double LensSystem::minFNumber() const {
   return f / (maxStopDiameter() / std::abs(frontGroup(n).a));
 }
 
+std::string LensSystem::fNumberProblem(double fNumber) const {
+  const double widest = minFNumber();
+  if (fNumber < widest * (1.0 - 1e-9))
+    return "f_number " + formatNumber(fNumber, 6) + " is faster than the lens's widest, f/" +
+           formatNumber(widest, 6) + " (its file's stop)";
+  if (fNumber > kMaxTracedFNumber)
+    return "f_number " + formatNumber(fNumber, 6) +
+           " is slower than a traced lens is stopped to, f/" + formatNumber(kMaxTracedFNumber, 6) +
+           " (its bundles on the rear element become too narrow for the exit-pupil bounds; "
+           "docs/camera.md)";
+  return "";
+}
+
 double LensSystem::rearClearRadius() const {
   return std::sqrt(shapes_.back().clearRadius2);
 }

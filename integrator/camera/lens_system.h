@@ -85,6 +85,12 @@ struct ParaxialField {
 };
 std::vector<ParaxialField> paraxialFields(const ParaxialData& p);
 
+// The slowest f-number a traced lens is stopped to: beyond it the bundle from a film point is
+// so narrow on the rear plane that the exit-pupil bounds (lens_pupil.h), which test three
+// film radii per interval, no longer cover the radii between (measured: the double-Gauss's
+// bounds lose their passing area from about f/500; lens_pupil_test).
+inline constexpr double kMaxTracedFNumber = 128.0;
+
 // How focusSensorDistance places the sensor.
 enum class FocusMethod {
   kParaxial,  // the paraxial image at the wavelength (exact for the formulas above)
@@ -108,6 +114,9 @@ class LensSystem {
   // The stop diameter (m) giving f-number N (EFL/EPD at λ_d), and the smallest N possible.
   double stopDiameterForFNumber(double fNumber) const;
   double minFNumber() const;
+  // "" when the lens can be stopped to f/`fNumber` (from minFNumber to kMaxTracedFNumber),
+  // else why not (the scene loader and the --f-number override name camera.lens.f_number).
+  std::string fNumberProblem(double fNumber) const;
 
   const LensPrescription& prescription() const { return lens_; }
   int surfaceCount() const { return static_cast<int>(shapes_.size()); }

@@ -356,11 +356,8 @@ void applyOverrides(SceneDescription& d, const Overrides& o, const SourceLocatio
   }
   if (o.fNumber) d.camera.fNumber = *o.fNumber;  // the stop follows (apertureDiameter)
   if (o.fNumber && d.camera.lens) {              // a traced lens: its stop, within the lens's range
-    const double widest = LensSystem(d.camera.lens->prescription).minFNumber();
-    if (*o.fNumber < widest * (1.0 - 1e-9))
-      throw InputError(where, "camera.lens.f_number",
-                       "f_number " + formatNumber(*o.fNumber, 6) +
-                           " is faster than the lens's widest, f/" + formatNumber(widest, 6));
+    const std::string problem = LensSystem(d.camera.lens->prescription).fNumberProblem(*o.fNumber);
+    if (!problem.empty()) throw InputError(where, "camera.lens.f_number", problem);
     d.camera.lens->fNumber = *o.fNumber;
   }
   if (o.projection && d.camera.lens)

@@ -40,9 +40,8 @@ void parseCameraLens(const YamlValue& value, const YamlMap& camera, const TableS
   }
   if (auto v = lm.find("f_number")) {
     spec.fNumber = v->number(setting_ranges::kFNumber.lo, setting_ranges::kFNumber.hi);
-    if (spec.fNumber < lens->minFNumber() * (1.0 - 1e-9))
-      v->fail("f_number " + std::to_string(spec.fNumber) + " is faster than the lens's widest, f/" +
-              std::to_string(lens->minFNumber()) + " (its file's stop)");
+    if (const std::string problem = lens->fNumberProblem(spec.fNumber); !problem.empty())
+      v->fail(problem);
   }
   if (spec.fNumber > 0.0) lens->setStop(lens->stopDiameterForFNumber(spec.fNumber));
   const ParaxialData paraxial = lens->paraxial();

@@ -284,6 +284,9 @@ void expectLoadError(const std::string& lens, const std::string& extra, const st
 
 TEST(LensCamera, LoaderErrors) {
   expectLoadError("{file: dgauss.50mm.dat, f_number: 1.4}", "", "faster than the lens");
+  expectLoadError("{file: dgauss.50mm.dat, f_number: 129}", "",
+                  "key 'camera.lens.f_number': f_number 129 is slower than a traced lens is "
+                  "stopped to, f/128");
   expectLoadError("{file: no_such_lens.dat}", "", "no_such_lens");
   expectLoadError("{file: dgauss.50mm.dat, focus: 2}", "", "focus");
   expectLoadError("{file: dgauss.50mm.dat, focus_distance_m: 0.04}", "", "focus distance");
