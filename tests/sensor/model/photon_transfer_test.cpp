@@ -243,6 +243,21 @@ TEST(PhotonTransferMeasurement, RecoversConfiguredBayerSensorOnGreen) {
   expectRecovered(s, 2);
 }
 
+// The black offsets of the analysed channel's tile positions are DSNU: G1 at +5 DN and G2 at
+// −5 DN spread the green photosites by 5 DN = 7.5 e⁻ at K = 1/1.5 (found by probing: the
+// configured DSNU left them out, 0 against a measured 5 e⁻ on such a sensor).
+TEST(PhotonTransferMeasurement, BlackOffsetsCountAsDsnu) {
+  SensorSpec s = bayerSensor();
+  s.noise.blackOffsetsDn = {0.0, 5.0, -5.0, 0.0};  // R, G1, G2, B
+  PtcOptions options;
+  options.seed = 6;
+  const PtcConfigured c = configuredPhotonTransfer(s, options);
+  const double fpn = std::sqrt(0.5 * 0.5 + 0.5 * 0.5);  // row and column FPN, e⁻
+  EXPECT_NEAR(c.dsnuE, std::sqrt(fpn * fpn + 7.5 * 7.5), 1e-9);
+  const PtcResult r = measurePhotonTransfer(s, options);
+  EXPECT_LT(relativeError(r.dsnuE, c.dsnuE), 0.03) << r.dsnuE << " vs " << c.dsnuE;
+}
+
 TEST(PhotonTransferMeasurement, RecoversConfiguredSensorWhoseAdcClipsFirst) {
   const SensorSpec s = adcClippedSensor();
   ASSERT_LT(s.saturationElectrons(s.baseIso), 0.5 * s.fullWellE);
