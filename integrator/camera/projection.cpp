@@ -252,6 +252,15 @@ namespace {
 
 }  // namespace
 
+std::string imagedNothing(const Projection& p, glm::ivec2 resolution) {
+  for (int i = 0; i < 81; ++i)
+    if (unproject(p, {(i % 9) / 8.0 * (resolution.x - 1), (i / 9) / 8.0 * (resolution.y - 1)}))
+      return "";
+  return "the model images none of a 9 × 9 grid of the " + std::to_string(resolution.x) + "×" +
+         std::to_string(resolution.y) +
+         " image's pixels (fx, fy, cx, cy are in pixels, centres at integers)";
+}
+
 void checkProjection(const Projection& p, const SourceLocation& where,
                      const std::string& keyPrefix) {
   const auto key = [&](const char* name) { return keyPrefix + "." + name; };
@@ -274,9 +283,12 @@ void checkProjection(const Projection& p, const SourceLocation& where,
   if (p.model == ProjectionModel::kUnified && !(p.xi >= 0.0))
     fail(where, key("xi"), "value " + formatNumber(p.xi, 10) + " must be ≥ 0");
   if (p.model == ProjectionModel::kDoubleSphere) {
-    if (!(p.xi >= -1.0 && p.xi <= 1.0))
+    // ξ = −1 is singular (found by probing: the axis imaged as a circle, α = ½ gave 0/0 and
+    // a black frame): (−1, 1].
+    if (!(p.xi > -1.0 && p.xi <= 1.0))
       fail(where, key("xi"),
-           "value " + formatNumber(p.xi, 10) + " is out of range " + formatRange(-1.0, 1.0));
+           "value " + formatNumber(p.xi, 10) + " is out of range " + formatRange(-1.0, 1.0, true) +
+               " (ξ = −1 is singular: the axis maps to a circle)");
     if (!(p.alpha >= 0.0 && p.alpha <= 1.0))
       fail(where, key("alpha"),
            "value " + formatNumber(p.alpha, 10) + " is out of range " + formatRange(0.0, 1.0));

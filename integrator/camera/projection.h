@@ -130,6 +130,11 @@ std::optional<ModelRay> unprojectWithDensity(const Projection& p, glm::dvec2 pix
 void checkProjection(const Projection& p, const SourceLocation& where = {},
                      const std::string& keyPrefix = "camera.projection");
 
+// "" when p images at least one of a 9 × 9 grid of pixel centres of a `resolution` image;
+// else why not (calibrated intrinsics in the wrong unit — cx in µm, fx in m — image nothing:
+// found by probing, a black frame with complete exports, exit 0).
+std::string imagedNothing(const Projection& p, glm::ivec2 resolution);
+
 // The opencv model with every distortion coefficient 0 and no field limit inside 90°: the
 // ideal pinhole's mapping.
 inline bool isUndistortedOpenCv(const Projection& p) {

@@ -43,9 +43,15 @@ bool cornerUnimaged(const Projection& p, glm::ivec2 resolution) {
   return false;
 }
 
-// The field angle (rad) of the last imaged point from (cx, cy) towards (edgeX, cy).
+// The field angle (rad) of the last imaged point from (cx, cy) towards (edgeX, cy), signed:
+// negative left of cx. The field across the width is then right's − left's, also when cx
+// lies outside the image (found by probing: unsigned angles added, cx = −20 px gave 87.9°
+// for a 45.3° field).
 double edgeFieldAngle(const Projection& p, double edgeX) {
-  const auto angle = [](const glm::dvec3& d) { return std::acos(std::clamp(d.z, -1.0, 1.0)); };
+  const double sign = edgeX < p.cx ? -1.0 : 1.0;
+  const auto angle = [sign](const glm::dvec3& d) {
+    return sign * std::acos(std::clamp(d.z, -1.0, 1.0));
+  };
   if (auto d = unproject(p, {edgeX, p.cy})) return angle(*d);
   double in = p.cx, out = edgeX;  // unproject(in) exists, unproject(out) does not
   for (int i = 0; i < 60; ++i) {
@@ -73,7 +79,7 @@ CameraExport cameraExport(const PhysicalCamera& camera) {
     e.maxFieldAngle = p.maxFieldAngle;
   e.cameraAngleX = p.model == ProjectionModel::kEquirectangular
                        ? res.x / p.fx
-                       : edgeFieldAngle(p, -0.5) + edgeFieldAngle(p, res.x - 0.5);
+                       : edgeFieldAngle(p, res.x - 0.5) - edgeFieldAngle(p, -0.5);
 
   const std::vector<double> k = {p.fx, p.fy, p.cx + 0.5, p.cy + 0.5};
   const std::string name = "the " + e.model + " model";

@@ -67,13 +67,19 @@ JsonObject shutterJson(const Shutter& shutter) {
   return j;
 }
 
-// Whether the camera is the opencv model with Brown–Conrady's k1 k2 k3 p1 p2 only and the
-// lens's intrinsics: the sidecar writes it as `distortion`, as the scenes before issue 36.
+// Whether the camera is the opencv model with Brown–Conrady's k1 k2 k3 p1 p2 only, the lens's
+// intrinsics and the field limit a `distortion` block gets (its fold, or none): the sidecar
+// writes it as `distortion`, as the scenes before issue 36. Found by probing: a user's
+// max_field_angle_deg was dropped that way, and the pasted-back block imaged 370 more pixels.
 bool plainDistortion(const PhysicalCameraParams& c) {
   const Projection& p = c.projection;
+  Projection asDistortion = p;
+  asDistortion.maxFieldAngle = Projection{}.maxFieldAngle;
+  const bool loaderLimit = p.maxFieldAngle == asDistortion.maxFieldAngle ||
+                           p.maxFieldAngle == limitedToFold(asDistortion).maxFieldAngle;
   return c.intrinsicsFromLens && p.model == ProjectionModel::kOpenCv && p.k4 == 0.0 &&
          p.k5 == 0.0 && p.k6 == 0.0 && p.s1 == 0.0 && p.s2 == 0.0 && p.s3 == 0.0 && p.s4 == 0.0 &&
-         p.tauX == 0.0 && p.tauY == 0.0;
+         p.tauX == 0.0 && p.tauY == 0.0 && loaderLimit;
 }
 
 // The degrees whose radians (glm::radians, as the scene loader converts) are exactly rad.

@@ -31,6 +31,21 @@ std::string fixed(double v) {
   return buf;
 }
 
+// A pose as rows of numbers in shortest round-trip form (JsonObject's 10 digits put a camera
+// at 1.2e8 m 2.3 cm off: found by probing; scenes allow coordinates to 1e15 m).
+std::string poseJson(const glm::dmat4& m) {
+  std::string s = "[";
+  for (const std::vector<double>& row : matrixRows(m)) {
+    s += s.size() > 1 ? ", [" : "[";
+    for (std::size_t c = 0; c < row.size(); ++c) {
+      if (c) s += ", ";
+      s += formatShortest(row[c]);
+    }
+    s += "]";
+  }
+  return s + "]";
+}
+
 std::vector<double> box(const glm::dvec4& b) {
   return {b.x, b.y, b.z, b.w};
 }
@@ -125,8 +140,8 @@ std::vector<std::filesystem::path> writeDatasetMetadata(const std::vector<Datase
         .setJson("cx", formatShortest(e.cx))
         .setJson("cy", formatShortest(e.cy));
     addCameraModel(frame, e);
-    cameraFrames.push_back(frame.set("world_from_camera_opencv", matrixRows(cv))
-                               .set("world_from_camera_opengl", matrixRows(toOpenGl(cv)))
+    cameraFrames.push_back(frame.setJson("world_from_camera_opencv", poseJson(cv))
+                               .setJson("world_from_camera_opengl", poseJson(toOpenGl(cv)))
                                .set("time_s", p.shutter.centre())
                                .set("shutter_open_s", p.shutter.open())
                                .set("shutter_close_s", p.shutter.close())
@@ -137,7 +152,7 @@ std::vector<std::filesystem::path> writeDatasetMetadata(const std::vector<Datase
                                .set("iso", f.isoValue)
                                .set("system_gain_dn_per_e", f.systemGainDnPerE));
     nerfFrames.push_back(
-        JsonObject().set("file_path", f.image).set("transform_matrix", matrixRows(toOpenGl(cv))));
+        JsonObject().set("file_path", f.image).setJson("transform_matrix", poseJson(toOpenGl(cv))));
     // COLMAP: camera-from-world (OpenCV axes) as a unit quaternion and translation.
     const glm::dmat3 worldFromCam(cv);
     const glm::dmat3 camFromWorld = glm::transpose(worldFromCam);

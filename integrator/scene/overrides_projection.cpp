@@ -85,6 +85,10 @@ void setProjection(SceneDescription& d, const ProjectionOverride& p, const Sourc
                        "model '" + p.model + "' with the scene's export '" + exportFormatName(f) +
                            "': it needs the camera projection 'opencv' without distortion (its "
                            "files describe the camera by a pinhole matrix alone)");
+  if (!c.intrinsicsFromLens)
+    if (const std::string problem = imagedNothing(c.projection, d.camera.resolution);
+        !problem.empty())
+      throw InputError(where, kKey, problem);
   d.camera.projection = c.projection;
   d.camera.intrinsicsFromLens = c.intrinsicsFromLens;
 }

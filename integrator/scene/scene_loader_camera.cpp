@@ -74,6 +74,7 @@ void parseProjection(const YamlValue& value, PhysicalCameraParams& c) {
   if (c.intrinsicsFromLens) p.fx = p.fy = 1.0;  // placeholders for the checks
   checkProjection(p, value.where(), value.key());
   p = limitedToFold(p);
+
   if (p.model != ProjectionModel::kOpenCv && c.pupil == LensPupil::kFlat)
     value.fail(
         "camera.aperture.pupil: flat applies to the opencv model only (the pupil of "
@@ -313,7 +314,15 @@ PhysicalCameraParams parseCamera(YamlMap map, const TableSearch& search) {
       d->fail("give the distortion inside camera.projection (model: opencv), not both");
     c.projection = limitedToFold(c.projection);
   }
-  if (auto pr = map.find("projection")) parseProjection(*pr, c);
+  if (auto pr = map.find("projection")) {
+    parseProjection(*pr, c);
+    // With the image's own size (the --projection override's probe scene has none: its
+    // check is applyOverrides', with the scene's size).
+    if (map.has("resolution") && !c.intrinsicsFromLens) {
+      const std::string problem = imagedNothing(c.projection, c.resolution);
+      if (!problem.empty()) pr->fail(problem);
+    }
+  }
   if (auto s = map.find("shutter")) c.shutter = parseShutter(YamlMap(*s));
   if (auto m = map.find("motion")) c.motion = parseMotion(*m, true, glm::dvec3(0.0));
   if (auto l = map.find("lens")) parseCameraLens(*l, map, search, c);

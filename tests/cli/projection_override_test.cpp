@@ -130,6 +130,15 @@ TEST(ProjectionOverride, ErrorsAreTheLoadersNamingTheKey) {
   applyOverrides(bop, projectionOverride("{model: opencv, fx: 40, fy: 40, cx: 15.5, cy: 15.5}"),
                  {"<command line>", 0, 0});
   EXPECT_EQ(bop.camera.projection.fx, 40.0);
+  // Intrinsics that image none of the scene's 32 × 32 pixels (cx 300 px: θ ≥ 26 rad there).
+  SceneDescription far = loadSceneFromText(sceneText(), "lamp.yaml", ".");
+  EXPECT_EQ(errorKey([&] {
+              applyOverrides(far,
+                             projectionOverride("{model: equidistant, fx: 10, fy: 10, cx: 300, "
+                                                "cy: 16}"),
+                             {"<o>", 0, 0});
+            }),
+            "camera.projection");
 }
 
 // A block in any YAML form becomes one line of JSON that reads back to the same doubles.

@@ -104,7 +104,14 @@ TEST(ProjectionCheck, TypicalCamerasPassAndBadCoefficientsAreNamed) {
   EXPECT_EQ(checkFailure(p), "camera.projection.alpha: value 1.2 is out of range [0, 1]");
   p.alpha = 0.5;
   p.xi = -1.5;
-  EXPECT_EQ(checkFailure(p), "camera.projection.xi: value -1.5 is out of range [-1, 1]");
+  EXPECT_EQ(checkFailure(p),
+            "camera.projection.xi: value -1.5 is out of range (-1, 1] (ξ = −1 is singular: the "
+            "axis maps to a circle)");
+  p.xi = -1.0;  // singular (found by probing: a black frame or a ring, exit 0)
+  EXPECT_NE(checkFailure(p), "");
+  p.xi = -0.999;
+  EXPECT_EQ(checkFailure(p), "");
+  p.xi = -1.5;
   p.model = ProjectionModel::kUnified;
   EXPECT_EQ(checkFailure(p), "camera.projection.xi: value -1.5 must be ≥ 0");
   // A Kannala–Brandt polynomial that turns back inside the field: ρ'(θ) = 1 − 0.6 θ² is 0 at

@@ -30,8 +30,8 @@ TEST(CameraExport, CameraAngleXIsTheFieldAcrossTheWidth) {
     return std::atan((95.5 - cx) / 50.0) - std::atan((-0.5 - cx) / 50.0);
   };
   for (const double cx : {47.5, -20.0, 120.0, 10.0}) {
-    const std::string block = "{model: opencv, fx: 50, fy: 50, cx: " + std::to_string(cx) +
-                              ", cy: 31.5}";
+    const std::string block =
+        "{model: opencv, fx: 50, fy: 50, cx: " + std::to_string(cx) + ", cy: 31.5}";
     EXPECT_NEAR(cameraAngleX(block), pinhole(cx), 1e-9) << block;
   }
   // The equidistant fisheye: θ = r / f, so the field is the width over fx wherever cx is.

@@ -49,10 +49,9 @@ TEST(DatasetWriterPose, FarCameraPositionsAreWrittenExactly) {
   frame.renderOrigin = d.renderOrigin;
   const test::TempDir dir;
   (void)writeDatasetMetadata({frame}, dir.path());
-  for (const auto& [file, key] :
-       {std::pair{"cameras.json", "world_from_camera_opencv"},
-        std::pair{"cameras.json", "world_from_camera_opengl"},
-        std::pair{"transforms.json", "transform_matrix"}}) {
+  for (const auto& [file, key] : {std::pair{"cameras.json", "world_from_camera_opencv"},
+                                  std::pair{"cameras.json", "world_from_camera_opengl"},
+                                  std::pair{"transforms.json", "transform_matrix"}}) {
     const std::vector<double> m = matrixAfter(test::readFile(dir.path() / file), key);
     ASSERT_EQ(m.size(), 16U) << file << " " << key;
     // Rows: the translation is each row's fourth number.

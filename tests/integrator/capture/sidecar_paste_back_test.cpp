@@ -160,5 +160,22 @@ TEST(SidecarPasteBack, EveryExampleSceneRendersTheSameBytes) {
   EXPECT_GE(scenes, 12);  // every example but the dataset manifest
 }
 
+// A field limit below the one a `distortion` block gets is kept: found by probing, the
+// sidecar wrote a plain opencv camera with max_field_angle_deg 30 as a bare `distortion`,
+// and the pasted-back scene imaged the pixels beyond 30°.
+TEST(SidecarPasteBack, AnOpenCvFieldLimitIsKept) {
+  for (const char* projection : {"{model: opencv, max_field_angle_deg: 30}",
+                                 "{model: opencv, k1: -0.2, max_field_angle_deg: 30}"}) {
+    SCOPED_TRACE(projection);
+    const std::filesystem::path file = kScenes / "cornell_box.yaml";
+    const std::string text =
+        applyYamlEdits(
+            tiny(test::readFile(file), file.string()), file.string(),
+            {edit("camera.focal_length_mm", "10"), edit("camera.projection", projection)})
+            .text;
+    checkPasteBack(text);
+  }
+}
+
 }  // namespace
 }  // namespace camsim

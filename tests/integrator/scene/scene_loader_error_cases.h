@@ -154,6 +154,17 @@ inline const ErrorCase kErrorCases[] = {
      withShapes("  - {type: sphere, centre: [0, 0, 0], radius: 1, material: m, class: 16777216}\n"
                 "  - {type: sphere, centre: [3, 0, 0], radius: 1, material: m, class: car}\n"),
      7, 3, "shapes", "1 of them pass 16777216"},
+    // Found by probing: ξ = −1 is singular (a black frame or a ring, exit 0); calibrated
+    // intrinsics in the wrong unit imaged no pixel (a black frame with exports, exit 0).
+    {"DoubleSphereXiMinusOne",
+     withCameraLine("  projection: {model: double_sphere, xi: -1, alpha: 0.5}\n"), 4, 15,
+     "camera.projection.xi", "(ξ = −1 is singular"},
+    {"IntrinsicsImageNoPixel",
+     kCamera +
+         "  resolution: [96, 64]\n  projection: {model: equidistant, fx: 10, fy: 10, cx: 1e7, "
+         "cy: 1e7}\n" +
+         kMaterials + "shapes:\n" + kSphere,
+     5, 15, "camera.projection", "images none of a 9 × 9 grid of the 96×64 image's pixels"},
     {"UnknownMaterial", sphereWith("1", ", material: paint"), 7, 60, "shapes[0].material",
      "no material named 'paint'"},
     {"ReflectanceAboveOne",
