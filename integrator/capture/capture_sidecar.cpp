@@ -193,10 +193,13 @@ JsonObject cameraJson(const PhysicalCameraParams& p, const glm::dvec3& renderOri
   else
     d.setJson("focus_distance_m", "null");
   d.set("image_distance_m", camera.imageDistance())
-      .set("aperture",
-           p.aperture
-               ? (p.aperture->blades ? std::to_string(p.aperture->blades) + " blades" : "circular")
-               : "pinhole")
+      // The camera's own aperture: a traced lens has its stop even where the scene gave no
+      // camera.aperture (found by probing: "pinhole" for the double-Gauss at f/2).
+      .set("aperture", camera.params().aperture
+                           ? (camera.params().aperture->blades
+                                  ? std::to_string(camera.params().aperture->blades) + " blades"
+                                  : "circular")
+                           : "pinhole")
       .set("working_f_number", camera.workingFNumber())
       .set("shutter_open_s", p.shutter.open())
       .set("shutter_close_s", p.shutter.close())
