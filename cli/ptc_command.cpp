@@ -271,6 +271,12 @@ std::vector<std::filesystem::path> runPtc(const PtcArgs& args, std::ostream& out
     requireUsableMeasurement(r.measured, sensor, iso);
     r.configured = configuredPhotonTransfer(sensor, options);
     r.uncertainty = photonTransferUncertainty(r.measured);
+    if (const double clipped = darkClippedFraction(r.configured, sensor, options); clipped > 1e-3)
+      log << "camsim ptc: warning: at ISO " << formatShortest(iso) << " the black level ("
+          << formatShortest(sensor.blackLevelDn) << " DN, black_level_dn) leaves about "
+          << formatNumber(100.0 * clipped, 2)
+          << " % of the dark photosites at 0 DN: EMVA 1288 needs an unclipped dark signal, so "
+             "K, σ_d, DSNU and the clip capacity below are biased\n";
     const PtcResult& m = r.measured;
     out << (reports.empty() ? "" : "\n") << "EMVA 1288 (Release 4.0 Linear) photon transfer of "
         << sensor.name << " at ISO " << formatShortest(iso)

@@ -127,4 +127,14 @@ PtcConfigured configuredPhotonTransfer(const SensorSpec& sensor, const PtcOption
   return c;
 }
 
+double darkClippedFraction(const PtcConfigured& c, const SensorSpec& sensor,
+                           const PtcOptions& options) {
+  const double k = c.systemGainK;
+  const double mean =
+      sensor.blackLevelDn + k * sensor.darkCurrentAtTemperature() * options.exposureTimeS;
+  const double sigma = std::sqrt(c.darkVarianceDn2 + k * k * c.dsnuE * c.dsnuE);
+  if (!(sigma > 0.0)) return mean > 0.0 ? 0.0 : 1.0;
+  return 0.5 * std::erfc(mean / (sigma * std::numbers::sqrt2));
+}
+
 }  // namespace camsim

@@ -258,6 +258,18 @@ TEST(PhotonTransferMeasurement, BlackOffsetsCountAsDsnu) {
   EXPECT_LT(relativeError(r.dsnuE, c.dsnuE), 0.03) << r.dsnuE << " vs " << c.dsnuE;
 }
 
+// The share of dark photosites at 0 DN, which biases EMVA's dark analysis (camsim ptc warns
+// above 1e-3): the smartphone's 64 DN pedestal is 1.25 σ of its dark noise at ISO 3200, and
+// the probe that found it counted 10.98 % of the dark photosites at 0 DN.
+TEST(PhotonTransferMeasurement, DarkClippedFractionOfTheSmartphone) {
+  const SensorSpec s = loadSensorSpec("smartphone-1.4um", CAMSIM_LUTS_DIR);
+  PtcOptions options;
+  options.iso = 3200.0;
+  EXPECT_NEAR(darkClippedFraction(configuredPhotonTransfer(s, options), s, options), 0.1098, 0.01);
+  options.iso = 400.0;
+  EXPECT_LT(darkClippedFraction(configuredPhotonTransfer(s, options), s, options), 1e-3);
+}
+
 TEST(PhotonTransferMeasurement, RecoversConfiguredSensorWhoseAdcClipsFirst) {
   const SensorSpec s = adcClippedSensor();
   ASSERT_LT(s.saturationElectrons(s.baseIso), 0.5 * s.fullWellE);
