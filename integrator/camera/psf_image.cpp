@@ -55,12 +55,18 @@ LensSystem withoutRims(const LensSystem& lens) {
 // (rims widened: a vignetted chief ray still counts, as LensSystem::chiefRayAngle's). Aimed
 // by the secant method on the stop's height, from the rear group alone (the surfaces behind
 // the stop, whose front surface is then the stop's plane). None if the aim fails.
+// Found by probing: aimed from 0 towards the far side of the axis and through the stop's own
+// rim, the secant's iterates missed the stop at field points the render lights (the
+// double-Gauss's corner, the fisheye beyond 12.5 mm), and psf refused them. Now aimed from
+// the paraxial exit pupil's direction, at the stop's plane widened tenfold (aimed at, not a
+// rim: the chief ray is then traced through `open`, the real stop included).
 std::optional<LensRay> psfChiefRay(const LensSystem& open, double h, double sensor) {
   LensPrescription rearGroup = open.prescription();
   rearGroup.surfaces.erase(rearGroup.surfaces.begin(),
                            rearGroup.surfaces.begin() + rearGroup.stopIndex);
   rearGroup.stopIndex = 0;
-  const LensSystem rear(std::move(rearGroup));  // its stop at the file's diameter
+  rearGroup.surfaces.front().apertureDiameter *= 10.0;
+  const LensSystem rear(std::move(rearGroup));
   const LensSystem::Indices nRear = rear.indicesAt(kLambdaDNm);
   const glm::dvec3 film(-h, 0.0, -sensor);
   const auto aim = [&film](double x) {
@@ -71,8 +77,12 @@ std::optional<LensRay> psfChiefRay(const LensSystem& open, double h, double sens
     if (!atStop) return std::nullopt;
     return atStop->origin.x;
   };
-  const std::optional<double> x =
-      secantRoot(stopHeight, 0.0, 0.1 * open.rearClearRadius() * (h >= 0.0 ? 1.0 : -1.0));
+  // The paraxial chief ray heads for the exit pupil's centre (lens-space z = exitPupilZ):
+  // it crosses the rear vertex's plane at film.x · z_XP / (z_XP + s).
+  const double exitPupilZ = open.paraxial().exitPupilZ;
+  const double guess = film.x * exitPupilZ / (exitPupilZ + sensor);
+  const double step = 0.01 * open.rearClearRadius() * (h >= 0.0 ? -1.0 : 1.0);
+  const std::optional<double> x = secantRoot(stopHeight, guess, guess + step);
   if (!x) return std::nullopt;
   return open.traceFromFilm(aim(*x), kLambdaDNm);
 }

@@ -163,6 +163,20 @@ TEST(PsfImage, DoubleGaussStoppedDownCentresOnTheChiefRay) {
   }
 }
 
+// The sensor's corner (field 1, 21.6 mm) and beyond: found by probing, the chief ray's aim
+// (from 0, towards the far side of the axis, through the stop's own rim) failed there and
+// psf refused a field point the render lights (the chief ray passes every surface at
+// 23.3°). Aimed from the paraxial exit pupil, it is found.
+TEST(PsfImage, DoubleGaussCornerHasItsChiefRay) {
+  const PhysicalCamera camera = doubleGauss(0.0);
+  for (double field : {1.0, 1.1}) {
+    PsfSettings set = settings(field, 20000);
+    set.wavelengthNm = kLambdaDNm;
+    const PsfImage psf = computePsf(camera, set);
+    EXPECT_GT(psf.landed, 0) << field;
+  }
+}
+
 // Found by probing: a far object's rays started at the object point, and the front
 // surface's intersection lost its precision: RMS 1281 µm at 10⁶ m against 153 µm at 10⁴ m,
 // no ray at all from 10⁸ m. The spot converges as the object recedes: 10⁴ … 10¹² m agree
