@@ -69,7 +69,7 @@ GridHits searchGrid(const PassTest& passes, const Window& w, int grid) {
 constexpr int kResolvedCells = 24;
 
 // The coarse box (grown by two cells) of the passing cells, empty if none passes. Searched
-// over `start`, doubled while a passing cell touches the border; then, while fewer than
+// over `w`, doubled about its centre while a passing cell touches the border; then, while fewer than
 // kResolvedCells pass, again over the box found, with cells that much smaller: found by
 // probing, a double-Gauss stopped to f/30 had a bundle on the rear plane about one 0.94 mm
 // cell wide, so some film radii found no cell centre in it (black pixels) or one (a bound of
@@ -79,7 +79,8 @@ PupilBox coarseBox(const PassTest& passes, Window w, int grid) {
   for (int attempt = 0; attempt < 6; ++attempt) {
     h = searchGrid(passes, w, grid);
     if (!h.touchesBorder) break;
-    w = {2.0 * w.x0, 2.0 * w.x1, 2.0 * w.y1};  // about the axis, as the first window
+    const double centre = 0.5 * (w.x0 + w.x1), half = w.x1 - w.x0;  // twice as wide, same centre
+    w = {centre - half, centre + half, 2.0 * w.y1};
   }
   for (int zoom = 0; zoom < 4 && h.count > 0 && h.count < kResolvedCells; ++zoom) {
     const Window inner{h.loX - 2.0 * h.cell, h.hiX + 2.0 * h.cell, h.hiY + 2.0 * h.cell};

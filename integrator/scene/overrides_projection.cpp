@@ -79,12 +79,8 @@ void setProjection(SceneDescription& d, const ProjectionOverride& p, const Sourc
                          "models turns with the field)");
   // And the exports' (parseExports): found by probing, a fisheye override wrote BOP's cam_K
   // and KITTI's P2 as the pinhole the image was not (the same scene file is refused).
-  for (const ExportFormat f : d.exports)
-    if (!isUndistortedOpenCv(c.projection))
-      throw InputError(where, kKey,
-                       "model '" + p.model + "' with the scene's export '" + exportFormatName(f) +
-                           "': it needs the camera projection 'opencv' without distortion (its "
-                           "files describe the camera by a pinhole matrix alone)");
+  if (const std::string problem = pinholeExportProblem(d, c.projection); !problem.empty())
+    throw InputError(where, kKey, "model '" + p.model + "': " + problem);
   if (!c.intrinsicsFromLens)
     if (const std::string problem = imagedNothing(c.projection, d.camera.resolution);
         !problem.empty())

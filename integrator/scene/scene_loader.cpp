@@ -74,12 +74,9 @@ void parseExports(const YamlValue& list, SceneDescription& scene) {
       item.fail(std::string("export '") + exportFormatName(f) + "' is listed twice");
     scene.exports.push_back(f);
   }
-  // Both describe the camera by a pinhole matrix (BOP's 3×3 K, KITTI's 3×4 P2).
-  for (const ExportFormat f : scene.exports)
-    if (!isUndistortedOpenCv(scene.camera.projection) || scene.camera.lens)
-      list.fail(std::string("export '") + exportFormatName(f) +
-                "' needs the camera projection 'opencv' without distortion and no traced lens: "
-                "its files describe the camera by a pinhole matrix alone");
+  if (const std::string problem = pinholeExportProblem(scene, scene.camera.projection);
+      !problem.empty())
+    list.fail(problem);
   // The aovs their files are made of: BOP's depth/ and, for both, the masks (BOP's mask/,
   // mask_visib/ and counts; KITTI's `occluded`) — amodal only with a labelled shape.
   std::vector<Aov>& aovs = scene.render.aovs;
@@ -552,6 +549,16 @@ std::filesystem::path sceneBaseDir(const std::filesystem::path& file) {
 
 SceneDescription loadScene(const std::filesystem::path& file, const LoadOptions& options) {
   return loadSceneFromText(readSceneFile(file), file.string(), sceneBaseDir(file), options);
+}
+
+std::string pinholeExportProblem(const SceneDescription& scene, const Projection& projection) {
+  // Both describe the camera by a pinhole matrix (BOP's 3×3 K, KITTI's 3×4 P2).
+  for (const ExportFormat f : scene.exports)
+    if (!isUndistortedOpenCv(projection) || scene.camera.lens)
+      return std::string("export '") + exportFormatName(f) +
+             "' needs the camera projection 'opencv' without distortion and no traced lens: its "
+             "files describe the camera by a pinhole matrix alone";
+  return "";
 }
 
 }  // namespace camsim

@@ -46,6 +46,11 @@ SceneDescription loadScene(const std::filesystem::path& file, const LoadOptions&
 // directory its relative paths resolve against ("." for a bare file name).
 std::string readSceneFile(const std::filesystem::path& file);
 std::filesystem::path sceneBaseDir(const std::filesystem::path& file);
+// "" when the scene's exports (BOP, KITTI: a pinhole matrix describes the camera) can
+// describe a camera of `projection` (and the scene's lens); else why not. The loader's rule
+// for `exports`, and the --projection override's.
+std::string pinholeExportProblem(const SceneDescription& scene, const Projection& projection);
+
 // `displayName` names the text in messages; relative paths resolve against baseDir.
 SceneDescription loadSceneFromText(const std::string& text, const std::string& displayName,
                                    const std::filesystem::path& baseDir,
