@@ -7,7 +7,7 @@ function(camsim_warnings target)
     -Wnull-dereference -Wdouble-promotion -Wformat=2 -Wimplicit-fallthrough)
   if(CMAKE_CXX_COMPILER_ID STREQUAL "GNU")
     # GCC 12 reports false -Wrestrict positives inside std::string concatenation (GCC PR 105329).
-    # (Clang, used for the fuzz build, does not know this warning.)
+    # (Clang, used for the sanitizer and fuzz build, does not know this warning.)
     target_compile_options(${target} PRIVATE -Wno-restrict)
   endif()
   if(CAMSIM_WERROR)

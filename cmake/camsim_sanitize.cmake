@@ -4,7 +4,8 @@
 # are the system's, not instrumented.
 #
 #   CAMSIM_SANITIZE=ON  AddressSanitizer + UndefinedBehaviorSanitizer, any error aborts
-#                       (scripts/test.sh builds build-asan/ this way, RelWithDebInfo).
+#                       (scripts/test.sh builds build-asan/ this way with Clang,
+#                       RelWithDebInfo, and CAMSIM_FUZZ=ON: one build for both).
 #   CAMSIM_FUZZ=ON      Clang only: the same sanitizers plus libFuzzer coverage
 #                       instrumentation (-fsanitize=fuzzer-no-link) for the libraries;
 #                       fuzz/ links the harnesses with -fsanitize=fuzzer.

@@ -2,7 +2,8 @@
 # Runs every libFuzzer harness (fuzz/fuzz_*.cpp) for SECONDS each (default 300), CAMSIM_JOBS
 # of them at a time.
 #   scripts/fuzz.sh [SECONDS] [HARNESS...]
-# Builds them first in $CAMSIM_FUZZ_BUILD_DIR (default build-fuzz/; Clang, CAMSIM_FUZZ=ON).
+# Builds them first in $CAMSIM_FUZZ_BUILD_DIR (default build-fuzz/; Clang, CAMSIM_FUZZ=ON;
+# scripts/test.sh passes its build-asan/).
 # Exits non-zero if any harness finds a crash, a sanitizer error, a leak, a timeout or an
 # out-of-memory; the input is then in <build>/fuzz/artifacts/<harness>/ (replay it with
 # `<build>/fuzz/fuzz_<harness> FILE`). The seed corpora in fuzz/corpus/ are only read: new
@@ -24,9 +25,13 @@ if ((${#harnesses[@]} == 0)); then  # all: fuzz/fuzz_<harness>.cpp
   done
 fi
 
-CC=clang CXX=clang++ cmake -S . -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-  -DCAMSIM_FUZZ=ON -DCAMSIM_BUILD_TESTS=OFF -DCAMSIM_BUILD_BENCH=OFF \
-  -DCAMSIM_WERROR=OFF -DCAMSIM_UNITY_BUILD=ON >/dev/null  # warnings: the GCC builds gate them
+# A build directory already configured with CAMSIM_FUZZ=ON keeps its configuration (the gate's
+# build-asan/, which also builds the tests: scripts/test.sh); any other is configured here.
+if ! grep -qs '^CAMSIM_FUZZ:BOOL=ON$' "$build_dir/CMakeCache.txt"; then
+  CC=clang CXX=clang++ cmake -S . -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+    -DCAMSIM_FUZZ=ON -DCAMSIM_BUILD_TESTS=OFF -DCAMSIM_BUILD_BENCH=OFF \
+    -DCAMSIM_WERROR=OFF -DCAMSIM_UNITY_BUILD=ON >/dev/null  # warnings: the gate's builds gate them
+fi
 cmake --build "$build_dir" -j"$jobs" --target "${harnesses[@]/#/fuzz_}"
 
 # Memory: ASan's hard_rss_limit_mb, not libFuzzer's -rss_limit_mb, whose report prints a

@@ -8,27 +8,28 @@
 #      then `camsim dataset` on a real single-node Slurm cluster started from Debian's
 #      slurm-wlm and munge (tests/cluster/slurm_dataset_test.sh, about a minute; needs root:
 #      it fails, saying why, where the daemons cannot start);
-#   2. the same suite built with AddressSanitizer + UndefinedBehaviorSanitizer (GCC,
-#      CAMSIM_SANITIZE=ON, -O1 -g1: line tables for the reports, a quarter faster to compile
-#      than -g) in build-asan/, less the slow tests of tests/asan_skip.txt; built portable
+#   2. the same suite and the libFuzzer harnesses in one instrumented build (Clang,
+#      CAMSIM_SANITIZE=ON and CAMSIM_FUZZ=ON: AddressSanitizer + UndefinedBehaviorSanitizer,
+#      libFuzzer's coverage instrumentation; -O1 -g1: line tables for the reports) in
+#      build-asan/: the suite less the slow tests of tests/asan_skip.txt, and every fuzz seed
+#      and regression input replayed once (CTest label fuzz); built portable
 #      (CAMSIM_SIMD=OFF: sensor/base/simd.h's portable path, no AVX2 copy, no x86 flag), so
 #      the whole suite runs on both paths without a build stage of its own; the libraries
-#      unity-built (CAMSIM_UNITY_BUILD: a few large translation units, half the compiling;
-#      as setup.sh builds the Release stage and README's first command);
-#   3. the libFuzzer harnesses (Clang, CAMSIM_FUZZ=ON, -O1 -g1 as in stage 2, the SIMD path, the libraries
-#      unity-built) in build-fuzz/: every seed and regression input replayed once (CTest),
-#      then each harness fuzzed for CAMSIM_FUZZ_SECONDS (default 12) by scripts/fuzz.sh.
+#      and tests unity-built (CAMSIM_UNITY_BUILD: a few large translation units, half the
+#      compiling; as setup.sh builds the Release stage and README's first command); Clang's
+#      warnings are errors too (the Release stage gates GCC's);
+#   3. each harness of that build fuzzed for CAMSIM_FUZZ_SECONDS (default 12) by
+#      scripts/fuzz.sh.
 # Every stage runs even when an earlier one failed; the script fails if any did. Each stage
 # prints its wall time, and its build and test parts separately (docs/testing.md's table).
-# Environment: CAMSIM_BUILD_DIR, CAMSIM_ASAN_BUILD_DIR, CAMSIM_FUZZ_BUILD_DIR (build
-# directories), CAMSIM_FUZZ_SECONDS (0 skips the fuzzing runs, not the replay), CAMSIM_JOBS
-# (parallel build and test jobs, default: nproc).
+# Environment: CAMSIM_BUILD_DIR, CAMSIM_ASAN_BUILD_DIR (build directories),
+# CAMSIM_FUZZ_SECONDS (0 skips the fuzzing runs, not the replay), CAMSIM_JOBS (parallel
+# build and test jobs, default: nproc).
 set -uo pipefail
 cd "$(dirname "$0")/.."
 
 build_dir=${CAMSIM_BUILD_DIR:-build}
 asan_dir=${CAMSIM_ASAN_BUILD_DIR:-build-asan}
-fuzz_dir=${CAMSIM_FUZZ_BUILD_DIR:-build-fuzz}
 fuzz_seconds=${CAMSIM_FUZZ_SECONDS:-12}
 jobs=${CAMSIM_JOBS:-$(nproc)}
 failed=()
@@ -60,13 +61,14 @@ release_suite() {
     part "Release suite" ctest --test-dir "$build_dir" --output-on-failure -j"$jobs"
 }
 
-# The ASan and fuzz builds have no Python module (-DCAMSIM_PYTHON=OFF, also their default): an
-# ASan-instrumented extension cannot be imported into Debian's unsanitised python3 (the
-# ASan runtime must be loaded first), so the pytest suite runs in the Release stage only.
-# Under ASan + UBSan every sanitizer report aborts the test (-fno-sanitize-recover=all)
-# and LeakSanitizer fails a process that leaks. The slow rendered and statistical tests
-# listed in tests/asan_skip.txt, each with its reason and the cheaper tests that run its code
-# under the sanitizers, are left out there (they run in the Release suite).
+# The instrumented build has no Python module (-DCAMSIM_PYTHON=OFF): an ASan-instrumented
+# extension cannot be imported into Debian's unsanitised python3 (the ASan runtime must be
+# loaded first), so the pytest suite runs in the Release stage only. Every sanitizer report
+# aborts the test (-fno-sanitize-recover=all) and LeakSanitizer fails a process that leaks.
+# The slow rendered and statistical tests listed in tests/asan_skip.txt, each with its reason
+# and the cheaper tests that run its code under the sanitizers, are left out there (they run
+# in the Release suite). One Clang build serves the suite and the fuzzing: the libraries are
+# compiled once instead of twice (docs/testing.md, "Trimmed again (2026-12-07)").
 # A parameterised test's CTest name goes on with "  # GetParam() = ...": hence ( |$).
 asan_skip_regex() {  # ^(A\.B|C\.D|...)( |$) from the first word of each line of tests/asan_skip.txt
   local names
@@ -79,44 +81,28 @@ asan_suite() {
   local asan=detect_leaks=1:strict_init_order=1:detect_stack_use_after_return=1
   local slow
   slow=$(asan_skip_regex)
-  cmake -S . -B "$asan_dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-    -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" -DCAMSIM_SANITIZE=ON \
+  CC=clang CXX=clang++ cmake -S . -B "$asan_dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+    -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" -DCAMSIM_SANITIZE=ON -DCAMSIM_FUZZ=ON \
     -DCAMSIM_SIMD=OFF -DCAMSIM_BUILD_BENCH=OFF -DCAMSIM_PYTHON=OFF -DCAMSIM_UNITY_BUILD=ON \
     >/dev/null &&
     part "ASan build" cmake --build "$asan_dir" -j"$jobs" &&
     ASAN_OPTIONS=${ASAN_OPTIONS:-$asan} \
       UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1} \
-      part "ASan suite" ctest --test-dir "$asan_dir" --output-on-failure -j"$jobs" -E "$slow"
-}
-
-# Only the harnesses (fuzz/fuzz_<harness>.cpp, as scripts/fuzz.sh finds them) and what they
-# link: the camsim executable, camsim_cli_lib and camsim_bench are not built with Clang here
-# (a sixth of the compiling in the Release build; the fuzz build does not gate warnings).
-fuzz_replay() {
-  local targets=() f
-  for f in fuzz/fuzz_*.cpp; do
-    f=${f#fuzz/}
-    targets+=("${f%.cpp}")
-  done
-  CC=clang CXX=clang++ cmake -S . -B "$fuzz_dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-    -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" -DCAMSIM_FUZZ=ON -DCAMSIM_BUILD_TESTS=OFF -DCAMSIM_BUILD_BENCH=OFF \
-    -DCAMSIM_WERROR=OFF -DCAMSIM_PYTHON=OFF -DCAMSIM_UNITY_BUILD=ON >/dev/null &&
-    part "fuzz build" cmake --build "$fuzz_dir" -j"$jobs" --target "${targets[@]}" &&
-    part "replay" ctest --test-dir "$fuzz_dir/fuzz" --output-on-failure -j"$jobs"
+      part "ASan suite and fuzz replay" ctest --test-dir "$asan_dir" --output-on-failure \
+      -j"$jobs" -E "$slow"
 }
 
 fuzz_run() {
-  CAMSIM_FUZZ_BUILD_DIR=$fuzz_dir CAMSIM_JOBS=$jobs scripts/fuzz.sh "$fuzz_seconds"
+  CAMSIM_FUZZ_BUILD_DIR=$asan_dir CAMSIM_JOBS=$jobs scripts/fuzz.sh "$fuzz_seconds"
 }
 
 stage "Release test suite ($build_dir)" release_suite
 stage "clang-format check" scripts/format.sh --check
 stage "Slurm: camsim dataset on a single-node cluster" \
   tests/cluster/slurm_dataset_test.sh "$build_dir/camsim" "$build_dir/slurm-test"
-stage "ASan+UBSan test suite ($asan_dir)" asan_suite
-stage "fuzz corpus and regression replay ($fuzz_dir)" fuzz_replay
+stage "ASan+UBSan test suite and fuzz replay ($asan_dir)" asan_suite
 if ((fuzz_seconds > 0)); then
-  stage "fuzzing, ${fuzz_seconds} s per harness ($fuzz_dir)" fuzz_run
+  stage "fuzzing, ${fuzz_seconds} s per harness ($asan_dir)" fuzz_run
 fi
 
 echo "== test.sh: $((SECONDS - start)) s in all" >&2
