@@ -347,12 +347,28 @@ void applyOverrides(SceneDescription& d, const Overrides& o, const SourceLocatio
   if (o.adaptiveThreshold) d.render.adaptiveThreshold = *o.adaptiveThreshold;
   if (o.guiding) d.render.guiding = *o.guiding != 0;
   if (o.exposureTimeS) {
+    const std::string key(setting("exposure_time_s").sceneKey);
     try {
       d.camera.shutter =
           d.camera.shutter.scaled(*o.exposureTimeS / d.camera.shutter.effectiveTime());
     } catch (const InputError& e) {
-      throw InputError(where, std::string(setting("exposure_time_s").sceneKey), e.message());
+      throw InputError(where, key, e.message());
     }
+    // A sequence's shutter angle sets each frame's box (frameCamera): the exposure becomes
+    // its angle (found by probing: the override changed the unused curve, and nothing).
+    if (d.frames && d.frames->shutterAngleDeg) {
+      const double angle = *o.exposureTimeS * d.frames->rateHz * 360.0;
+      if (!(angle >= setting_ranges::kMinShutterAngleDeg))
+        throw InputError(where, key,
+                         formatShortest(*o.exposureTimeS) + " s is a shutter angle of " +
+                             formatShortest(angle) + "° at frames.rate_hz " +
+                             formatShortest(d.frames->rateHz) +
+                             ", below frames.shutter_angle_deg's " +
+                             formatShortest(setting_ranges::kMinShutterAngleDeg) + "°");
+      d.frames->shutterAngleDeg = angle;
+    }
+    if (const std::string problem = frameTimingProblem(d); !problem.empty())
+      throw InputError(where, key, problem);
   }
   if (o.fNumber) d.camera.fNumber = *o.fNumber;  // the stop follows (apertureDiameter)
   if (o.fNumber && d.camera.lens) {              // a traced lens: its stop, within the lens's range

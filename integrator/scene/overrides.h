@@ -12,7 +12,9 @@
 // | time_limit_s    | render.time_limit_s      | s    | number, kTimeLimitS                |
 // | adaptive_threshold | render.adaptive_threshold | — | number, kAdaptiveThreshold         |
 // | exposure_time_s | camera.shutter           | s    | number, kExposureTimeS (the scene's|
-// |                 |                          |      | shutter curve stretched to it)     |
+// |                 |                          |      | shutter curve stretched to it; a   |
+// |                 |                          |      | sequence's shutter angle set to it;|
+// |                 |                          |      | within the frame period)           |
 // | f_number        | camera.f_number          | —    | number, kFNumber (the stop follows)|
 // | iso             | sensor.iso               | —    | number, kIso (needs a sensor)      |
 // | noise           | sensor.noise             | —    | none, photon or full (a sensor)    |

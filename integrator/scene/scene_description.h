@@ -328,12 +328,15 @@ struct SceneDescription {
   // "import_notes".
   std::vector<std::string> notes;
 
-  // The camera of sequence frame k (0-based): its shutter moved to the frame's start.
+  // The camera of sequence frame k (0-based): its shutter moved to the frame's start. A
+  // shutter angle makes it a box of (angle / 360°) / rate that keeps the camera's readout (a
+  // rolling shutter's row_time; found by probing: it was dropped, the frames read out global).
   PhysicalCameraParams frameCamera(int k) const {
     PhysicalCameraParams c = camera;
     if (!frames) return c;
     if (frames->shutterAngleDeg)
-      c.shutter = Shutter::box(0.0, *frames->shutterAngleDeg / 360.0 / frames->rateHz);
+      c.shutter = Shutter::trapezoid(0.0, *frames->shutterAngleDeg / 360.0 / frames->rateHz, 0.0,
+                                     0.0, camera.shutter.type(), camera.shutter.rowTime());
     c.shutter = c.shutter.shifted(frames->startTime(k) - c.shutter.open());
     return c;
   }

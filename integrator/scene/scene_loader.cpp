@@ -52,7 +52,8 @@ FrameSequence parseFrames(YamlMap map) {
   if (auto v = map.find("count")) f.count = static_cast<int>(v->integer(1, 100000));
   if (auto v = map.find("rate_hz")) f.rateHz = v->number(1e-3, 1e6);
   if (auto v = map.find("first")) f.first = static_cast<int>(v->integer(0, 10000000));
-  if (auto v = map.find("shutter_angle_deg")) f.shutterAngleDeg = v->number(1e-3, 360.0);
+  if (auto v = map.find("shutter_angle_deg"))
+    f.shutterAngleDeg = v->number(setting_ranges::kMinShutterAngleDeg, 360.0);
   map.finish({"count", "rate_hz", "first", "shutter_angle_deg"});
   return f;
 }
@@ -499,6 +500,7 @@ SceneDescription loadSceneFromText(const std::string& text, const std::string& d
     } catch (const InputError& e) {
       f->fail(e.message());
     }
+    if (const std::string problem = frameTimingProblem(scene); !problem.empty()) f->fail(problem);
   }
   if (auto e = top.find("exports")) parseExports(*e, scene);
   // An aov that needs what the scene lacks: an error at render.aovs.
@@ -558,6 +560,33 @@ std::string pinholeExportProblem(const SceneDescription& scene, const Projection
       return std::string("export '") + exportFormatName(f) +
              "' needs the camera projection 'opencv' without distortion and no traced lens: its "
              "files describe the camera by a pinhole matrix alone";
+  return "";
+}
+
+std::string frameTimingProblem(const SceneDescription& scene) {
+  if (!scene.frames) return "";
+  const double period = 1.0 / scene.frames->rateHz;
+  const Shutter& shutter = scene.camera.shutter;
+  const bool byAngle = scene.frames->shutterAngleDeg.has_value();
+  const double exposure =
+      byAngle ? *scene.frames->shutterAngleDeg / 360.0 * period : shutter.close() - shutter.open();
+  const int rows = scene.camera.resolution.y;
+  const double readout = shutter.rowTime() * rows;
+  // A relative 1e-12: a 360° shutter angle's box is the period itself, up to rounding.
+  const double limit = period * (1.0 + 1e-12);
+  const std::string periodText =
+      "the frame period 1/frames.rate_hz = " + formatShortest(period) + " s";
+  if (exposure > limit)
+    return "each frame's exposure, " + formatShortest(exposure) + " s (camera.shutter), is " +
+           "longer than " + periodText +
+           ": consecutive frames would expose at the same time; shorten the shutter, set "
+           "frames.shutter_angle_deg (at most 360) or lower frames.rate_hz";
+  if (readout > limit)
+    return "the rolling shutter reads its " + std::to_string(rows) + " rows in " +
+           formatShortest(readout) + " s (camera.shutter.row_time × rows), longer than " +
+           periodText +
+           ": a camera reads a frame out before the next; shorten row_time or "
+           "lower frames.rate_hz";
   return "";
 }
 

@@ -50,6 +50,12 @@ std::filesystem::path sceneBaseDir(const std::filesystem::path& file);
 // describe a camera of `projection` (and the scene's lens); else why not. The loader's rule
 // for `exports`, and the --projection override's.
 std::string pinholeExportProblem(const SceneDescription& scene, const Projection& projection);
+// "" when each frame of the scene's sequence fits in its frame period 1 / frames.rate_hz (or
+// there is no sequence); else why not. A row exposes for the shutter curve's length and a
+// rolling shutter reads its rows row_time apart, so a camera must finish a frame's exposure
+// and its readout (rows × row_time) within the period before the next begins. The loader's
+// rule for `frames`, and the exposure_time_s override's.
+std::string frameTimingProblem(const SceneDescription& scene);
 
 // `displayName` names the text in messages; relative paths resolve against baseDir.
 SceneDescription loadSceneFromText(const std::string& text, const std::string& displayName,

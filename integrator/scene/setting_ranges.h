@@ -51,6 +51,9 @@ inline constexpr SettingRange kIso{1.0, 1e7, false};
 // opens at 0 lasts at most kShutterTime: the effective exposure time's range.
 inline constexpr double kShutterTime = 1e6;
 inline constexpr SettingRange kExposureTimeS{0.0, kShutterTime, true};
+// frames.shutter_angle_deg ∈ [this, 360] °: the exposure_time_s override of a sequence
+// with a shutter angle sets the angle, within the same range.
+inline constexpr double kMinShutterAngleDeg = 1e-3;
 // render.target_error: an estimated MRAE (error_estimate.h), a fraction of the pixel values.
 inline constexpr SettingRange kTargetError{0.0, 1.0, true};
 // render.time_limit_s: s of render time (a year).

@@ -236,6 +236,44 @@ TEST(OverrideRanges, SppAboveTheScenesMaxSppIsRefused) {
   }
 }
 
+// A sequence's exposure override (found by probing): with frames.shutter_angle_deg it
+// changed the camera's curve, which the frames do not use, and nothing happened; it now sets
+// the angle. Either way an exposure longer than the frame period is refused, as the loader
+// refuses it in the file.
+TEST(OverrideRanges, ExposureOfASequenceSetsItsAngleWithinTheFramePeriod) {
+  const std::string yaml = kOverrideScene;
+  const SceneDescription byCurve =
+      loadSceneFromText(yaml + "frames: {count: 2, rate_hz: 24}\n", "probe.yaml", ".");
+  const SceneDescription byAngle = loadSceneFromText(
+      yaml + "frames: {count: 2, rate_hz: 24, shutter_angle_deg: 180}\n", "probe.yaml", ".");
+  for (const SceneDescription* base : {&byCurve, &byAngle}) {
+    SceneDescription d = *base;
+    Overrides o;
+    o.exposureTimeS = 0.005;
+    applyOverrides(d, o, {"<test>", 0, 0});
+    const Shutter s = d.frameCamera(1).shutter;
+    EXPECT_NEAR(s.effectiveTime(), 0.005, 1e-15);
+    EXPECT_NEAR(s.open(), 1.0 / 24.0, 1e-15);
+    if (base == &byAngle) {
+      EXPECT_NEAR(*d.frames->shutterAngleDeg, 43.2, 1e-12);
+    }
+    d = *base;
+    o.exposureTimeS = 0.05;
+    try {
+      applyOverrides(d, o, {"<test>", 0, 0});
+      ADD_FAILURE() << "took a 0.05 s exposure at 24 Hz";
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.key(), "camera.shutter");
+      EXPECT_NE(e.message().find("longer than the frame period"), std::string::npos) << e.what();
+    }
+  }
+  // Below the angle's range: 1e-9 s at 24 Hz is 8.64e-6°.
+  SceneDescription d = byAngle;
+  Overrides o;
+  o.exposureTimeS = 1e-9;
+  EXPECT_THROW(applyOverrides(d, o, {"<test>", 0, 0}), InputError);
+}
+
 // An error a later stage finds in a value an override gave names the override, not the
 // scene file (found by probing: `--tiles 0/2 --target-error 0.1` named the scene file's
 // render.target_error, a key the file did not have). Other errors keep their place.

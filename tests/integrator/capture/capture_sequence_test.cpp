@@ -67,6 +67,27 @@ double centroidX(const Image& aovs) {
   return -(sum / w) * kSeqPitch * kSeqZ / kSeqFocal;
 }
 
+// A shutter angle sets each frame's exposure and keeps the camera's rolling readout (found by
+// probing: the frames' box was a global shutter, the row_time dropped); a readout that fills
+// the frame period exactly is a camera's (480 rows of 1/(24 · 480) s).
+TEST(Sequence, AShutterAngleKeepsTheRollingReadout) {
+  const std::string text =
+      "camera: {position: [0, 0, 0], look_at: [0, 0, 1], shutter: {type: rolling, row_time: " +
+      test::num(1.0 / (24.0 * 480.0)) +
+      ", open: 0, close: 0.001}}\n"
+      "frames: {count: 3, rate_hz: 24, shutter_angle_deg: 180}\n"
+      "materials: {white: {type: diffuse}}\n"
+      "shapes: [{type: sphere, centre: [0, 0, 3], radius: 1, material: white}]\n";
+  const SceneDescription d = loadSceneFromText(text, "rolling.yaml", ".");
+  for (int k = 0; k < 3; ++k) {
+    const Shutter& s = d.frameCamera(k).shutter;
+    EXPECT_EQ(s.type(), Shutter::Type::kRolling);
+    EXPECT_EQ(s.rowTime(), 1.0 / (24.0 * 480.0));
+    EXPECT_NEAR(s.open(), k / 24.0, 1e-15);
+    EXPECT_NEAR(s.close() - s.open(), 0.5 / 24.0, 1e-15);
+  }
+}
+
 // Each frame integrates its own window [k/10, k/10 + 0.01] s: the ball's centroid sits at
 // its keyframed position at the window's centre, x = −0.08 + 0.5 (0.1 k + 0.005) m. The
 // tolerance, 1 mm (a quarter pixel there; steps are 5 cm), covers the silhouette's

@@ -256,6 +256,17 @@ inline const ErrorCase kErrorCases[] = {
      withCameraLine("  shutter: {open: 0, close: 1e-9}\n") +
          "frames: {count: 2, first: 10000000, rate_hz: 0.001}\n",
      9, 9, "frames", "too short for the time it opens at"},
+    // Found by probing: frames that overlap in time (an exposure or a rolling readout longer
+    // than the frame period) rendered as if a camera could take them.
+    {"FrameExposureLongerThanItsPeriod",
+     withCameraLine("  shutter: {open: 0, close: 0.05}\n") + "frames: {count: 2, rate_hz: 24}\n", 9,
+     9, "frames",
+     "each frame's exposure, 0.05 s (camera.shutter), is longer than the frame period "
+     "1/frames.rate_hz = 0.041666666666666664 s"},
+    {"RollingReadoutLongerThanItsPeriod",
+     withCameraLine("  shutter: {type: rolling, row_time: 1e-4, open: 0, close: 0.001}\n") +
+         "frames: {count: 2, rate_hz: 24, shutter_angle_deg: 180}\n",
+     9, 9, "frames", "the rolling shutter reads its 480 rows in 0.048"},
     {"CameraKeyframeBeyondRenderSpace",
      withCameraLine("  motion: [{time: 0, translate: [1e19, 0, 0]}]\n"), 4, 33,
      "camera.motion[0].translate", "within ±1e15 m"},
