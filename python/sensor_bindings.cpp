@@ -464,7 +464,8 @@ KeyboardInterrupt between groups of frames. Bad input raises camsim.InputError.)
 
 path: the raw EXR a render wrote (its electrons.<channel> layers: expected photo-electrons
   per photosite at that frame's exposure). sensor: a preset or YAML path (None -> the
-  file's camsim:sensor; another sensor only with the same CFA, photosite area and QE).
+  file's camsim:sensor, a preset: a render from a sensor description file needs it; another
+  sensor only with the same CFA, photosite area and QE).
 seed (None -> the file's camsim:noise_seed), iso (None -> the file's camsim:iso),
 exposure_scale X (electrons and exposure time times X; a scene that moved during the
   exposure is refused unless X = 1), noise ("full", "photon", "none"), frames n: frame f

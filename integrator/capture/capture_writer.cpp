@@ -121,6 +121,7 @@ void writeFrames(const CaptureResult& r, const Metadata& meta, OutputSet& output
       else if (key == "camsim:exposure_time_s")
         value = formatShortest(frame.exposureTimeS);
     frameMeta.insert(frameMeta.end(), {{"camsim:sensor", spec.name},
+                                       {"camsim:sensor_source", spec.sourceKind()},
                                        {"camsim:iso", formatShortest(sensor.iso)},
                                        {"camsim:noise_seed", std::to_string(sensor.noiseSeed)},
                                        {"camsim:frame", std::to_string(frame.frameIndex)}});

@@ -110,6 +110,13 @@ std::string sensorDifference(const SensorSpec& a, const SensorSpec& b) {
 SensorSpec chooseSensor(const ElectronsExr& in, const std::string& wanted,
                         const std::filesystem::path& lutsDir) {
   if (wanted.empty()) {
+    // Found by probing: a description file named like a preset (a copy of smartphone-1.4um
+    // with dark frames) was exposed with the preset.
+    if (in.sensorSource == "file")
+      fail(in.path, "sensor",
+           "the recorded sensor '" + in.sensorName +
+               "' was read from a sensor description file, not a preset (a preset of that "
+               "name may differ): give --sensor with that file");
     try {
       return loadSensorSpec(in.sensorName, lutsDir);
     } catch (const InputError& e) {
@@ -177,6 +184,8 @@ ElectronsExr readElectronsExr(const std::filesystem::path& path) {
       e.electrons.pixels[p * n + c] = v;
     }
   e.sensorName = requiredAttribute(path, e.metadata, "camsim:sensor");
+  if (const std::string* source = findMetadata(e.metadata, "camsim:sensor_source"))
+    e.sensorSource = *source;
   e.cfaName = requiredAttribute(path, e.metadata, "camsim:cfa");
   e.exposureTimeS = numberAttribute(path, "camsim:exposure_time_s",
                                     requiredAttribute(path, e.metadata, "camsim:exposure_time_s"));
@@ -311,6 +320,7 @@ void writeExposedFrame(const ExposeJob& job, std::uint64_t frame, const std::vec
                        const std::vector<std::filesystem::path>& paths) {
   const SensorSpec& spec = job.sensor;
   const Metadata replaced = {{"camsim:sensor", spec.name},
+                             {"camsim:sensor_source", spec.sourceKind()},
                              {"camsim:iso", formatShortest(job.exposure.iso)},
                              {"camsim:exposure_time_s", formatShortest(job.exposure.exposureTimeS)},
                              {"camsim:noise_seed", std::to_string(job.seed)},

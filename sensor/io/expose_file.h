@@ -7,7 +7,7 @@
 //
 // | setting        | unit | default                      | meaning |
 // |----------------|------|------------------------------|---------|
-// | sensor         | —    | the file's camsim:sensor     | preset or YAML; another sensor only with the same CFA, pixel area and QE |
+// | sensor         | —    | the file's camsim:sensor     | preset or YAML (needed when camsim:sensor_source is file); another sensor only with the same CFA, pixel area and QE |
 // | iso            | —    | the file's camsim:iso        | gain K(ISO) and noise (noiseAtIso: calibrated range, errors) |
 // | exposure_scale | —    | 1                            | X: electrons and exposure time × X; (0, 10⁶] |
 // | frames         | —    | 1                            | N frames, 1 … 100000 |
@@ -68,6 +68,8 @@ struct ElectronsExr {
   Image electrons;    // the electrons.<c> layers, named <c>
   Metadata metadata;  // every string attribute, as written
   std::string sensorName, cfaName;
+  // camsim:sensor_source: "preset", "file" (SensorSpec::sourceKind) or "" (files before it)
+  std::string sensorSource;
   double exposureTimeS = 0.0;
   std::optional<double> iso;
   std::optional<std::uint64_t> noiseSeed;

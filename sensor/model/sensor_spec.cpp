@@ -361,6 +361,7 @@ SensorSpec loadSensorSpec(const std::string& presetOrPath, const fs::path& lutsD
   SensorSpec spec = parseSensorSpec(readInputFile(path, "sensor description"), path.string(),
                                     path.parent_path(), lutsDir);
   spec.sourceFiles.insert(spec.sourceFiles.begin(), path);
+  spec.preset = !isPath;
   return spec;
 }
 

@@ -67,6 +67,11 @@ struct SensorSpec {
   std::filesystem::path darkFramesDir;
   // The files it was read from: the description (loadSensorSpec) and each CSV, in order.
   std::vector<std::filesystem::path> sourceFiles;
+  // Whether loadSensorSpec read it as a preset (luts/sensors/NAME.yaml, by its name). A raw
+  // EXR records it as camsim:sensor_source, so that camsim expose does not take a
+  // description file's sensor for the preset of the same name.
+  bool preset = false;
+  const char* sourceKind() const { return preset ? "preset" : "file"; }
   // How messages name the description: its file when it came from one (a preset's too),
   // else its name.
   std::string sourceName() const {

@@ -193,6 +193,55 @@ TEST(ExposeBinary, DarkFramesAreAddedAsTheRenderAddsThem) {
             rendered);
 }
 
+// A sensor description file named like a preset (found by probing: exposed without --sensor,
+// the preset was used, its noise not the file's): the raw EXR says where the sensor came from
+// (camsim:sensor_source), and expose then needs the file.
+TEST(ExposeBinary, ASensorFileNamedLikeAPresetNeedsTheFile) {
+  TempDir dir;
+  const fs::path preset = renderRaw(dir.path(), "bypreset", false);
+  const Metadata presetMeta = readExr(preset).metadata;
+  ASSERT_NE(findMetadata(presetMeta, "camsim:sensor_source"), nullptr);
+  EXPECT_EQ(*findMetadata(presetMeta, "camsim:sensor_source"), "preset");
+
+  std::string sensor = readFile(fs::path(CAMSIM_LUTS_DIR) / "sensors" / "smartphone-1.4um.yaml");
+  const std::string dark = "dark_current_e_per_s: 2.0";  // the preset's, here 2,500× higher
+  ASSERT_NE(sensor.find(dark), std::string::npos);
+  sensor.replace(sensor.find(dark), dark.size(), "dark_current_e_per_s: 5000");
+  test::writeFile(dir.path() / "smartphone-1.4um.yaml", sensor);
+  std::string text = scene("byfile", false);
+  const std::string from = "model: smartphone-1.4um";
+  text.replace(text.find(from), from.size(), "model: ./smartphone-1.4um.yaml");
+  test::writeFile(dir.path() / "byfile.yaml", text);
+  RunResult r = test::runCamsim("render " + quote((dir.path() / "byfile.yaml").string()) + " -o " +
+                                    quote((dir.path() / "render").string()),
+                                dir.path());
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const fs::path raw = dir.path() / "render" / "byfile_raw.exr";
+  const Metadata meta = readExr(raw).metadata;
+  ASSERT_NE(findMetadata(meta, "camsim:sensor_source"), nullptr);
+  EXPECT_EQ(*findMetadata(meta, "camsim:sensor_source"), "file");
+  EXPECT_EQ(*findMetadata(meta, "camsim:sensor"), "smartphone-1.4um");
+
+  const fs::path refused = dir.path() / "refused";
+  r = test::runCamsim("expose " + quote(raw.string()) + " -o " + quote(refused.string()),
+                      dir.path());
+  EXPECT_EQ(r.exitCode, 2);
+  EXPECT_NE(r.err.find("byfile_raw.exr: key 'sensor': the recorded sensor 'smartphone-1.4um' "
+                       "was read from a sensor description file, not a preset"),
+            std::string::npos)
+      << r.err;
+  EXPECT_EQ(fileCount(refused), 0u);
+  // With the file: the render's own DN again, and the output records the file too.
+  r = test::runCamsim("expose " + quote(raw.string()) + " --sensor " +
+                          quote((dir.path() / "smartphone-1.4um.yaml").string()) + " -o " +
+                          quote((dir.path() / "again").string()),
+                      dir.path());
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const fs::path again = dir.path() / "again" / "byfile_f0000_raw.exr";
+  EXPECT_EQ(rawDn(again), rawDn(raw));
+  EXPECT_EQ(*findMetadata(readExr(again).metadata, "camsim:sensor_source"), "file");
+}
+
 TEST(ExposeBinary, MovingSceneIsRefusedAtAnotherExposure) {
   TempDir dir;
   const fs::path raw = renderRaw(dir.path(), "moving", true);
