@@ -21,19 +21,8 @@
 namespace camsim {
 namespace {
 
-// A number as the shortest decimal that reads back as the same double: the scene inputs
-// below must paste back into a scene and give the same bytes (JsonObject keeps 10 digits).
-std::string exact(double v) {
-  return formatShortest(v);
-}
-std::string exact(const std::vector<double>& values) {
-  std::string s = "[";
-  for (std::size_t i = 0; i < values.size(); ++i) {
-    if (i) s += ", ";
-    s += exact(values[i]);
-  }
-  return s + "]";
-}
+// The scene inputs below are written in shortest round-trip form (setExact, formatShortest):
+// they must paste back into a scene and give the same bytes (JsonObject::set keeps 10 digits).
 
 // A length in m as the scene's mm: the loader keeps float(mm · 1e-3) (positiveFloat), so
 // 85 mm is 0.08500000089406967 m. The shortest float text ("85") when it reads back to the
@@ -46,22 +35,22 @@ std::string millimetres(double metres) {
   double mm = 0.0;
   std::from_chars(text.data(), text.data() + text.size(), mm);
   if (static_cast<double>(static_cast<float>(mm * 1e-3)) == metres) return text;
-  return exact(metres * 1e3);
+  return formatShortest(metres * 1e3);
 }
 
 // The camera's `shutter:` as a scene writes it: open/close for a box, else its curve.
 JsonObject shutterJson(const Shutter& shutter) {
   JsonObject j;
   j.set("type", std::string(enumName(shutter.type())));
-  if (shutter.type() == Shutter::Type::kRolling) j.setJson("row_time", exact(shutter.rowTime()));
+  if (shutter.type() == Shutter::Type::kRolling) j.setExact("row_time", shutter.rowTime());
   const std::vector<double>& t = shutter.times();
   const std::vector<double>& s = shutter.values();
   if (t.size() == 2 && s[0] == 1.0 && s[1] == 1.0) {
-    j.setJson("open", exact(t[0])).setJson("close", exact(t[1]));
+    j.setExact("open", t[0]).setExact("close", t[1]);
   } else {
     std::string curve = "[";
     for (std::size_t i = 0; i < t.size(); ++i)
-      curve += (i ? ", [" : "[") + exact(t[i]) + ", " + exact(s[i]) + "]";
+      curve += (i ? ", [" : "[") + formatShortest(t[i]) + ", " + formatShortest(s[i]) + "]";
     j.setJson("curve", curve + "]");
   }
   return j;
@@ -87,10 +76,10 @@ std::string exactDegrees(double rad) {
   const double d = glm::degrees(rad);
   double up = d, down = d;
   for (int i = 0; i < 16; ++i, up = std::nextafter(up, 1e9), down = std::nextafter(down, -1e9)) {
-    if (glm::radians(up) == rad) return exact(up);
-    if (glm::radians(down) == rad) return exact(down);
+    if (glm::radians(up) == rad) return formatShortest(up);
+    if (glm::radians(down) == rad) return formatShortest(down);
   }
-  return exact(d);
+  return formatShortest(d);
 }
 
 // The camera model in the scene's keys: `distortion` {k1 k2 k3 p1 p2} for a plain one, else
@@ -100,18 +89,15 @@ JsonObject projectionJson(const PhysicalCameraParams& c) {
   const Projection& p = c.projection;
   JsonObject j;
   if (plainDistortion(c))
-    return j.setJson("k1", exact(p.k1))
-        .setJson("k2", exact(p.k2))
-        .setJson("k3", exact(p.k3))
-        .setJson("p1", exact(p.p1))
-        .setJson("p2", exact(p.p2));
+    return j.setExact("k1", p.k1)
+        .setExact("k2", p.k2)
+        .setExact("k3", p.k3)
+        .setExact("p1", p.p1)
+        .setExact("p2", p.p2);
   j.set("model", std::string(enumName(p.model)));
   if (!c.intrinsicsFromLens)
-    j.setJson("fx", exact(p.fx))
-        .setJson("fy", exact(p.fy))
-        .setJson("cx", exact(p.cx))
-        .setJson("cy", exact(p.cy));
-  for (const auto& [name, value] : projectionCoefficients(p)) j.setJson(name, exact(value));
+    j.setExact("fx", p.fx).setExact("fy", p.fy).setExact("cx", p.cx).setExact("cy", p.cy);
+  for (const auto& [name, value] : projectionCoefficients(p)) j.setExact(name, value);
   if (p.model != ProjectionModel::kEquirectangular && p.maxFieldAngle < std::numbers::pi)
     j.setJson("max_field_angle_deg", exactDegrees(p.maxFieldAngle));
   return j;
@@ -122,8 +108,8 @@ JsonObject projectionJson(const PhysicalCameraParams& c) {
 JsonObject lensJson(const LensSpec& spec) {
   JsonObject j;
   j.set("file", spec.prescription.source);
-  if (spec.fNumber > 0.0) j.setJson("f_number", exact(spec.fNumber));
-  if (spec.focusDistance > 0.0) j.setJson("focus_distance_m", exact(spec.focusDistance));
+  if (spec.fNumber > 0.0) j.setExact("f_number", spec.fNumber);
+  if (spec.focusDistance > 0.0) j.setExact("focus_distance_m", spec.focusDistance);
   return j;
 }
 
@@ -161,22 +147,22 @@ JsonObject cameraJson(const PhysicalCameraParams& p, const glm::dvec3& renderOri
   for (int r = 0; r < 4; ++r)
     for (int c = 0; c < 4; ++c) pose.push_back(world[c][r]);
   JsonObject j;
-  j.setJson("world_from_camera", exact(pose))
-      .setJson("resolution", exact({double(p.resolution.x), double(p.resolution.y)}));
+  j.setExact("world_from_camera", pose)
+      .setExact("resolution", {double(p.resolution.x), double(p.resolution.y)});
   if (!hasSensor)  // with a sensor, the sensor sets them and the scene must not
     j.setJson("sensor_width_mm", millimetres(p.sensorSize.x))
         .setJson("sensor_height_mm", millimetres(p.sensorSize.y))
-        .setJson("fill_factor", exact(p.fillFactor));
+        .setExact("fill_factor", p.fillFactor);
   if (p.lens) {
     j.set("lens", lensJson(*p.lens));  // the thin lens's keys are refused beside it
   } else {
-    j.setJson("focal_length_mm", millimetres(p.focalLength)).setJson("f_number", exact(p.fNumber));
-    if (p.focusDistance > 0.0) j.setJson("focus_distance_m", exact(p.focusDistance));
+    j.setJson("focal_length_mm", millimetres(p.focalLength)).setExact("f_number", p.fNumber);
+    if (p.focusDistance > 0.0) j.setExact("focus_distance_m", p.focusDistance);
   }
   if (p.aperture)
     j.set("aperture", JsonObject()
                           .setJson("blades", std::to_string(p.aperture->blades))
-                          .setJson("rotation_deg", exact(glm::degrees(p.aperture->rotation)))
+                          .setExact("rotation_deg", glm::degrees(p.aperture->rotation))
                           .set("pupil", std::string(enumName(p.pupil)))
                           .setJson("diffraction", p.aperture->diffraction ? "true" : "false"));
   if (!p.lens)  // the lens replaces the camera model (the loader refuses both)
@@ -192,14 +178,13 @@ JsonObject cameraJson(const PhysicalCameraParams& p, const glm::dvec3& renderOri
     d.set("focus_distance_m", p.focusDistance);
   else
     d.setJson("focus_distance_m", "null");
+  // The camera's own aperture: a traced lens has its stop even where the scene gave no
+  // camera.aperture (found by probing: "pinhole" for the double-Gauss at f/2).
+  const auto& aperture = camera.params().aperture;
   d.set("image_distance_m", camera.imageDistance())
-      // The camera's own aperture: a traced lens has its stop even where the scene gave no
-      // camera.aperture (found by probing: "pinhole" for the double-Gauss at f/2).
-      .set("aperture", camera.params().aperture
-                           ? (camera.params().aperture->blades
-                                  ? std::to_string(camera.params().aperture->blades) + " blades"
-                                  : "circular")
-                           : "pinhole")
+      .set("aperture", !aperture          ? "pinhole"
+                       : aperture->blades ? std::to_string(aperture->blades) + " blades"
+                                          : "circular")
       .set("working_f_number", camera.workingFNumber())
       .set("shutter_open_s", p.shutter.open())
       .set("shutter_close_s", p.shutter.close())
@@ -226,18 +211,18 @@ JsonObject sensorJson(const CaptureResult& r) {
   for (const CaptureFrame& f : r.frames) evs.push_back(f.ev), times.push_back(f.exposureTimeS);
   JsonObject j;
   j.set("model", sensor.spec.name)
-      .setJson("iso", exact(sensor.iso))
+      .setExact("iso", sensor.iso)
       .set("noise", std::string(enumName(sensor.noise)))
       .setInteger("noise_seed", sensor.noiseSeed)
       .setInteger("frame", sensor.frame);
   if (const std::optional<AutoExposure>& ae = sensor.autoExposure) {
     JsonObject a;
-    a.set("metering", std::string(enumName(ae->metering))).setJson("target", exact(ae->target));
+    a.set("metering", std::string(enumName(ae->metering))).setExact("target", ae->target);
     if (ae->metering == AutoExposure::Metering::kPercentile)
-      a.setJson("percentile", exact(ae->percentile));
+      a.setExact("percentile", ae->percentile);
     j.set("auto_exposure", a);
   }
-  if (!sensor.bracketEv.empty()) j.setJson("bracket_ev", exact(sensor.bracketEv));
+  if (!sensor.bracketEv.empty()) j.setExact("bracket_ev", sensor.bracketEv);
   JsonObject d;
   d.set("auto_exposure_scale", r.exposureScale)
       .set("frame_ev", evs)
@@ -267,8 +252,8 @@ JsonObject ispJson(const CaptureResult& r) {
   JsonObject j;
   j.set("white_balance", std::string(enumName(isp.whiteBalance))).set("illuminant", isp.illuminant);
   if (isp.whiteBalance == IspSettings::WhiteBalance::kRegion)
-    j.setJson("region", exact({double(isp.region.x), double(isp.region.y), double(isp.region.width),
-                               double(isp.region.height)}));
+    j.setExact("region", {double(isp.region.x), double(isp.region.y), double(isp.region.width),
+                          double(isp.region.height)});
   j.set("demosaic", std::string(enumName(isp.demosaic)));
   JsonObject d;
   d.set("white_balance_gains", dev.whiteBalance)

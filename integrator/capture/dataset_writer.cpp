@@ -11,7 +11,6 @@
 #include "integrator/capture/camera_export.h"
 #include "integrator/capture/matrix_rows.h"
 #include "integrator/capture/object_poses.h"
-#include "sensor/base/format.h"
 #include "sensor/io/json_writer.h"
 #include "sensor/io/output_set.h"
 
@@ -29,21 +28,6 @@ std::string fixed(double v) {
   char buf[40];
   std::snprintf(buf, sizeof buf, "%.12g", v);
   return buf;
-}
-
-// A pose as rows of numbers in shortest round-trip form (JsonObject's 10 digits put a camera
-// at 1.2e8 m 2.3 cm off: found by probing; scenes allow coordinates to 1e15 m).
-std::string poseJson(const glm::dmat4& m) {
-  std::string s = "[";
-  for (const std::vector<double>& row : matrixRows(m)) {
-    s += s.size() > 1 ? ", [" : "[";
-    for (std::size_t c = 0; c < row.size(); ++c) {
-      if (c) s += ", ";
-      s += formatShortest(row[c]);
-    }
-    s += "]";
-  }
-  return s + "]";
 }
 
 std::vector<double> box(const glm::dvec4& b) {
@@ -135,13 +119,15 @@ std::vector<std::filesystem::path> writeDatasetMetadata(const std::vector<Datase
     frame.set("image", f.image)
         .set("width", double(p.resolution.x))
         .set("height", double(p.resolution.y))
-        .setJson("fx", formatShortest(e.fx))
-        .setJson("fy", formatShortest(e.fy))
-        .setJson("cx", formatShortest(e.cx))
-        .setJson("cy", formatShortest(e.cy));
+        .setExact("fx", e.fx)
+        .setExact("fy", e.fy)
+        .setExact("cx", e.cx)
+        .setExact("cy", e.cy);
     addCameraModel(frame, e);
-    cameraFrames.push_back(frame.setJson("world_from_camera_opencv", poseJson(cv))
-                               .setJson("world_from_camera_opengl", poseJson(toOpenGl(cv)))
+    // Poses exactly: 10 digits put a camera at 1.2e8 m 2.3 cm off (found by probing; scenes
+    // allow coordinates to 1e15 m).
+    cameraFrames.push_back(frame.setExact("world_from_camera_opencv", matrixRows(cv))
+                               .setExact("world_from_camera_opengl", matrixRows(toOpenGl(cv)))
                                .set("time_s", p.shutter.centre())
                                .set("shutter_open_s", p.shutter.open())
                                .set("shutter_close_s", p.shutter.close())
@@ -151,8 +137,9 @@ std::vector<std::filesystem::path> writeDatasetMetadata(const std::vector<Datase
                                .set("f_number", p.fNumber)
                                .set("iso", f.isoValue)
                                .set("system_gain_dn_per_e", f.systemGainDnPerE));
-    nerfFrames.push_back(
-        JsonObject().set("file_path", f.image).setJson("transform_matrix", poseJson(toOpenGl(cv))));
+    nerfFrames.push_back(JsonObject()
+                             .set("file_path", f.image)
+                             .setExact("transform_matrix", matrixRows(toOpenGl(cv))));
     // COLMAP: camera-from-world (OpenCV axes) as a unit quaternion and translation.
     const glm::dmat3 worldFromCam(cv);
     const glm::dmat3 camFromWorld = glm::transpose(worldFromCam);
@@ -189,10 +176,10 @@ std::vector<std::filesystem::path> writeDatasetMetadata(const std::vector<Datase
   const CameraExport& e0 = exports.front();
   JsonObject nerf;
   nerf.set("camera_model", e0.nerfstudioModel);
-  for (const auto& [key, value] : e0.nerfstudio) nerf.setJson(key, formatShortest(value));
+  for (const auto& [key, value] : e0.nerfstudio) nerf.setExact(key, value);
   nerf.set("w", double(first.camera.resolution.x))
       .set("h", double(first.camera.resolution.y))
-      .setJson("camera_angle_x", formatShortest(e0.cameraAngleX))
+      .setExact("camera_angle_x", e0.cameraAngleX)
       .set("frames", nerfFrames);
   // One COLMAP camera per frame (a frame's intrinsics may differ: focus, resolution).
   std::string camerasTxt =

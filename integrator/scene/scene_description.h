@@ -328,15 +328,19 @@ struct SceneDescription {
   // "import_notes".
   std::vector<std::string> notes;
 
-  // The camera of sequence frame k (0-based): its shutter moved to the frame's start. A
-  // shutter angle makes it a box of (angle / 360°) / rate that keeps the camera's readout (a
+  // Every frame's shutter before it is moved to the frame's start: the camera's, or with a
+  // shutter angle a box of (angle / 360°) / rate from 0 that keeps the camera's readout (a
   // rolling shutter's row_time; found by probing: it was dropped, the frames read out global).
+  Shutter frameShutter() const {
+    if (!frames || !frames->shutterAngleDeg) return camera.shutter;
+    return Shutter::trapezoid(0.0, *frames->shutterAngleDeg / 360.0 / frames->rateHz, 0.0, 0.0,
+                              camera.shutter.type(), camera.shutter.rowTime());
+  }
+  // The camera of sequence frame k (0-based): frameShutter() moved to the frame's start.
   PhysicalCameraParams frameCamera(int k) const {
     PhysicalCameraParams c = camera;
     if (!frames) return c;
-    if (frames->shutterAngleDeg)
-      c.shutter = Shutter::trapezoid(0.0, *frames->shutterAngleDeg / 360.0 / frames->rateHz, 0.0,
-                                     0.0, camera.shutter.type(), camera.shutter.rowTime());
+    c.shutter = frameShutter();
     c.shutter = c.shutter.shifted(frames->startTime(k) - c.shutter.open());
     return c;
   }

@@ -566,10 +566,8 @@ std::string pinholeExportProblem(const SceneDescription& scene, const Projection
 std::string frameTimingProblem(const SceneDescription& scene) {
   if (!scene.frames) return "";
   const double period = 1.0 / scene.frames->rateHz;
-  const Shutter& shutter = scene.camera.shutter;
-  const bool byAngle = scene.frames->shutterAngleDeg.has_value();
-  const double exposure =
-      byAngle ? *scene.frames->shutterAngleDeg / 360.0 * period : shutter.close() - shutter.open();
+  const Shutter shutter = scene.frameShutter();  // before the shift: no rounding by start time
+  const double exposure = shutter.close() - shutter.open();
   const int rows = scene.camera.resolution.y;
   const double readout = shutter.rowTime() * rows;
   // A relative 1e-12: a 360° shutter angle's box is the period itself, up to rounding.

@@ -74,7 +74,6 @@ void parseProjection(const YamlValue& value, PhysicalCameraParams& c) {
   if (c.intrinsicsFromLens) p.fx = p.fy = 1.0;  // placeholders for the checks
   checkProjection(p, value.where(), value.key());
   p = limitedToFold(p);
-
   if (p.model != ProjectionModel::kOpenCv && c.pupil == LensPupil::kFlat)
     value.fail(
         "camera.aperture.pupil: flat applies to the opencv model only (the pupil of "

@@ -9,6 +9,8 @@
 #include <utility>
 #include <vector>
 
+#include "sensor/base/format.h"
+
 namespace camsim {
 
 class JsonObject {
@@ -20,9 +22,7 @@ class JsonObject {
   JsonObject& set(const std::string& key, double value) { return raw(key, number(value)); }
   JsonObject& set(const std::string& key, bool value) { return raw(key, value ? "true" : "false"); }
   JsonObject& set(const std::string& key, const std::vector<double>& values) {
-    std::string s = "[";
-    for (size_t i = 0; i < values.size(); ++i) s += (i ? ", " : "") + number(values[i]);
-    return raw(key, s + "]");
+    return raw(key, array(values, number));
   }
   JsonObject& set(const std::string& key, const std::vector<std::string>& values) {
     std::string s = "[";
@@ -40,18 +40,18 @@ class JsonObject {
   }
   // A matrix, row by row (rows of numbers).
   JsonObject& set(const std::string& key, const std::vector<std::vector<double>>& rows) {
-    std::string s = "[";
-    for (size_t r = 0; r < rows.size(); ++r) {
-      s += r ? ", [" : "[";
-      for (size_t c = 0; c < rows[r].size(); ++c) {
-        // Appended piece by piece: `(c ? ", " : "") + number(…)` made GCC 12 report a false
-        // -Wstringop-overflow when the Python module's link inlines it (LTO).
-        if (c) s += ", ";
-        s += number(rows[r][c]);
-      }
-      s += "]";
-    }
-    return raw(key, s + "]");
+    return raw(key, matrix(rows, number));
+  }
+  // Numbers in their shortest round-trip form (formatShortest), for values that must read
+  // back as the same doubles — scene inputs, poses; set() keeps 10 significant digits.
+  JsonObject& setExact(const std::string& key, double value) {
+    return raw(key, exactNumber(value));
+  }
+  JsonObject& setExact(const std::string& key, const std::vector<double>& values) {
+    return raw(key, array(values, exactNumber));
+  }
+  JsonObject& setExact(const std::string& key, const std::vector<std::vector<double>>& rows) {
+    return raw(key, matrix(rows, exactNumber));
   }
 
   // An integer exactly (a 64-bit seed; set(key, double) keeps 10 significant digits).
@@ -109,6 +109,27 @@ class JsonObject {
     char buf[32];
     std::snprintf(buf, sizeof buf, "%.10g", v);
     return buf;
+  }
+  static std::string exactNumber(double v) { return std::isfinite(v) ? formatShortest(v) : "null"; }
+  // "[a, b, …]" and "[[…], […]]", each number by `format`. Appended piece by piece:
+  // `(c ? ", " : "") + number(…)` made GCC 12 report a false -Wstringop-overflow when the
+  // Python module's link inlines it (LTO).
+  static std::string array(const std::vector<double>& values, std::string (*format)(double)) {
+    std::string s = "[";
+    for (size_t i = 0; i < values.size(); ++i) {
+      if (i) s += ", ";
+      s += format(values[i]);
+    }
+    return s + "]";
+  }
+  static std::string matrix(const std::vector<std::vector<double>>& rows,
+                            std::string (*format)(double)) {
+    std::string s = "[";
+    for (size_t r = 0; r < rows.size(); ++r) {
+      if (r) s += ", ";
+      s += array(rows[r], format);
+    }
+    return s + "]";
   }
   // A control character as JSON's \u escape (a space before: Scene.from_dict turned a tab
   // in a name into a space, which the loader then took).

@@ -122,8 +122,8 @@ struct PtcConfigured {
   double muESat = 0.0;      // saturationElectrons(iso): where the output clips
   double muESatEmva = 0.0;  // where the temporal variance peaks, below the clip
   double muPMin = 0.0, dynamicRangeDb = 0.0, snrMaxDb = 0.0;
-  double dsnuE =
-      0.0;  // √(dsnu² + row² + column² + the analysed channel's black offsets' variance / K²)
+  // √(dsnu² + row² + column² + the analysed channel's black offsets' variance / K²)
+  double dsnuE = 0.0;
   double prnuPercent = 0.0;
 };
 

@@ -44,6 +44,13 @@ PsfSettings settings(double field, std::int64_t rays) {
   return s;
 }
 
+// The PSF at λ_d (one wavelength: no lateral colour) of `field` with `rays` rays.
+PsfImage psfAtD(const PhysicalCamera& camera, double field, std::int64_t rays) {
+  PsfSettings s = settings(field, rays);
+  s.wavelengthNm = kLambdaDNm;
+  return computePsf(camera, s);
+}
+
 // The radius x (λN) where the Airy pattern encloses `energy` (bisection on StopPsf's E).
 double airyRadius(double energy) {
   double lo = 0.1, hi = 1.5;
@@ -128,9 +135,8 @@ TEST(PsfImage, DoubleGaussCentredOnAxisAndVignettedOffAxis) {
   const PhysicalCamera camera = doubleGauss(0.0);
   double previous = -1.0;
   for (double field : {0.0, 0.5, 0.9}) {
-    PsfSettings set = settings(field, field == 0.0 ? 100000 : 40000);
-    set.wavelengthNm = kLambdaDNm;
-    const PsfImage psf = computePsf(camera, set);
+    const std::int64_t rays = field == 0.0 ? 100000 : 40000;
+    const PsfImage psf = psfAtD(camera, field, rays);
     std::printf("  dgauss field %.1f: centroid (%.3f, %.3f) µm, RMS %.2f µm, lost %.4f\n", field,
                 psf.centroidX * 1e6, psf.centroidY * 1e6, psf.rmsRadius * 1e6, psf.lostFraction);
     if (field == 0.0) {
@@ -140,7 +146,7 @@ TEST(PsfImage, DoubleGaussCentredOnAxisAndVignettedOffAxis) {
     }
     EXPECT_GT(psf.lostFraction, previous);
     previous = psf.lostFraction;
-    EXPECT_GT(psf.landed, set.rays / 10);
+    EXPECT_GT(psf.landed, rays / 10);
   }
   EXPECT_GT(previous, 0.05);  // wide open, 0.9 of the half diagonal is vignetted
 }
@@ -153,9 +159,7 @@ TEST(PsfImage, DoubleGaussStoppedDownCentresOnTheChiefRay) {
   // 0.4 and 0.75 of the half diagonal: 8.7 and 16.2 mm (at 0.9, 19.5 mm, the residual coma
   // at f/22 still moves the centroid 0.48 µm).
   for (double field : {0.4, 0.75}) {
-    PsfSettings set = settings(field, 40000);
-    set.wavelengthNm = kLambdaDNm;
-    const PsfImage psf = computePsf(camera, set);
+    const PsfImage psf = psfAtD(camera, field, 40000);
     std::printf("  dgauss f/22 field %.2f: centroid (%.3f, %.3f) µm, RMS %.2f µm, lost %.4f\n",
                 field, psf.centroidX * 1e6, psf.centroidY * 1e6, psf.rmsRadius * 1e6,
                 psf.lostFraction);
@@ -170,9 +174,7 @@ TEST(PsfImage, DoubleGaussStoppedDownCentresOnTheChiefRay) {
 TEST(PsfImage, DoubleGaussCornerHasItsChiefRay) {
   const PhysicalCamera camera = doubleGauss(0.0);
   for (double field : {1.0, 1.1}) {
-    PsfSettings set = settings(field, 20000);
-    set.wavelengthNm = kLambdaDNm;
-    const PsfImage psf = computePsf(camera, set);
+    const PsfImage psf = psfAtD(camera, field, 20000);
     EXPECT_GT(psf.landed, 0) << field;
   }
 }
