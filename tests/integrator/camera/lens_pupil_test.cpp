@@ -116,10 +116,9 @@ TEST(LensPupil, FewSampledRaysAreLost) {
 
 // Stopped down until the bundle on the rear plane is about one coarse cell wide (f/34: ≈ 1 mm
 // of a 0.94 mm cell) or far narrower (f/128, the slowest a traced lens takes): found by
-// probing, film radii whose
-// bundle fell between the cell centres got no bound (black pixels; from f/40 on, every
-// radius: the lens was refused), or one built from a single cell (exposure 0.8 of the camera
-// equation's at f/30). Now every radius of the image circle has a bound, the passing area
+// probing, film radii whose bundle fell between the cell centres got no bound (black pixels;
+// from f/40 on, every radius: the lens was refused), or one built from a single cell
+// (exposure 0.8 of the camera equation's at f/30). Now every radius of the image circle has a bound, the passing area
 // it gives agrees with a brute-force count around the bundle, and few sampled rays are lost.
 TEST(LensPupil, NarrowBundlesOfAStoppedDownLensAreFound) {
   struct Case {
