@@ -3,6 +3,8 @@
 #include "cli/args.h"
 #include "sensor/base/threads.h"
 
+#include <algorithm>
+
 namespace camsim {
 namespace {
 
@@ -23,19 +25,26 @@ bool parseCommand(CLI::App& app, const std::vector<std::string>& args) {
   // CLI11 takes the arguments in reverse order.
   std::vector<std::string> reversed(args.rbegin(), args.rend());
   if (!reversed.empty()) reversed.pop_back();  // the command's name
+  // Extras are collected rather than thrown: CLI11's ExtrasError lists them all, in its
+  // reversed order ("x.exr --out" for `--out x.exr`); the user is told the first one they
+  // typed, an unknown option before a stray argument (the value after it is the option's).
+  app.allow_extras(true);
   try {
     app.parse(reversed);
   } catch (const CLI::CallForHelp&) {
     return false;
-  } catch (const CLI::ExtrasError& e) {
-    // "The following argument was not expected: --bogus": named as the user typed it.
-    const std::string what = e.what();
-    const std::size_t colon = what.rfind(": ");
-    const std::string extra = colon == std::string::npos ? what : what.substr(colon + 2);
-    throw UsageError((extra.rfind('-', 0) == 0 ? "unknown option '" : "unexpected argument '") +
-                     extra + "' (try '" + commandName(app) + " --help')");
   } catch (const CLI::ParseError& e) {
     throw UsageError(std::string(e.what()) + " (try '" + commandName(app) + " --help')");
+  }
+  const std::vector<std::string> extras = app.remaining();
+  if (!extras.empty()) {
+    const auto option = std::find_if(extras.begin(), extras.end(), [](const std::string& x) {
+      return x.size() > 1 && x[0] == '-';
+    });
+    const std::string help = "' (try '" + commandName(app) + " --help')";
+    if (option != extras.end())
+      throw UsageError("unknown option '" + option->substr(0, option->find('=')) + help);
+    throw UsageError("unexpected argument '" + extras.front() + help);
   }
   return true;
 }

@@ -137,6 +137,18 @@ TEST(CamsimBinary, BadUsageExitsTwo) {
   RunResult r = camsim("render --bogus", dir.path());
   EXPECT_EQ(r.exitCode, 2);
   EXPECT_NE(r.err.find("unknown option '--bogus'"), std::string::npos) << r.err;
+  // A misspelt option with its value, after or before the scene: the option is named, alone
+  // (CLI11's own message listed every extra, reversed: "unexpected argument 'x.exr --out'").
+  for (const char* args : {"render s.yaml --out x.exr", "render --out=x.exr s.yaml"}) {
+    r = camsim(args, dir.path());
+    EXPECT_EQ(r.exitCode, 2) << args;
+    EXPECT_NE(r.err.find("camsim: unknown option '--out' (try 'camsim render --help')"),
+              std::string::npos)
+        << args << ": " << r.err;
+  }
+  r = camsim("render a.yaml b.yaml", dir.path());
+  EXPECT_EQ(r.exitCode, 2);
+  EXPECT_NE(r.err.find("unexpected argument 'b.yaml'"), std::string::npos) << r.err;
   r = camsim("frobnicate", dir.path());
   EXPECT_EQ(r.exitCode, 2);
   EXPECT_NE(r.err.find("unknown command 'frobnicate'"), std::string::npos) << r.err;
