@@ -120,6 +120,14 @@ std::vector<const ObjectModel*> bopShapeModels(const SceneDescription& d,
   return out;
 }
 
+DifferentBopModels firstDifferentBopModels(const std::vector<BopModel>& reference,
+                                           const std::vector<BopModel>& other) {
+  for (const BopModel& a : reference)  // both in obj_id order (PoseModels' map)
+    for (const BopModel& b : other)
+      if (a.objId == b.objId && !sameModel(a.model, b.model)) return {&a, &b};
+  return {};
+}
+
 BopModelInfo bopModelInfo(const ObjectModel& m) {
   BopModelInfo info;
   info.min = m.boxMin * kMmPerM;

@@ -94,6 +94,17 @@ class PoseModels {
   std::vector<const ObjectModel*> bopOfShape_, ownOfShape_;
 };
 
+// The models of reference and other that share an obj_id and differ (within 10⁻⁴ of the
+// model's size, as the shapes of one scene must agree): the first such pair in obj_id
+// order, or nulls. obj_ids only one side has are not compared. A dataset's items are one
+// BOP dataset (their train_pbr/ scenes gather under one models/), so it compares items.
+struct DifferentBopModels {
+  const BopModel* reference = nullptr;
+  const BopModel* other = nullptr;
+};
+DifferentBopModels firstDifferentBopModels(const std::vector<BopModel>& reference,
+                                           const std::vector<BopModel>& other);
+
 // What the models_info.json entry of a model holds (mm): the largest distance between two
 // of its vertices, and its box.
 struct BopModelInfo {

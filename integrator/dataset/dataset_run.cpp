@@ -2,20 +2,15 @@
 
 #include <unistd.h>
 
-#include <atomic>
 #include <chrono>
 #include <exception>
 #include <future>
 #include <memory>
-#include <mutex>
 #include <optional>
 #include <set>
 #include <thread>
 #include <utility>
 
-#include <tbb/parallel_for.h>
-
-#include "integrator/capture/bop_writer.h"
 #include "integrator/capture/capture_run.h"
 #include "integrator/capture/capture_writer.h"
 #include "integrator/dataset/dataset_item.h"
@@ -90,38 +85,6 @@ void count(DatasetRunSummary& s, const ItemReport& r) {
   if (r.status == ItemStatus::kFailed) ++s.failed;
 }
 
-// Every item resolved and loaded, on all cores; the first error (in item order) is thrown.
-// The pose exports are checked here for every item before any renders (their models made and
-// dropped: all items' at once would hold every scene); each item's writer makes its own.
-// An error the pose exports find is reported at the manifest line that set its key, as the
-// loader's are (found by probing: BOP's model check named a line of the edited scene text).
-void checkItems(const Manifest& manifest,
-                const std::function<void(std::size_t, std::size_t)>& onChecked) {
-  const std::size_t n = manifest.items.size();
-  std::vector<std::exception_ptr> errors(n);
-  std::atomic<std::size_t> done{0};
-  std::mutex progress;
-  tbb::parallel_for(std::size_t{0}, n, [&](std::size_t i) {
-    try {
-      const ResolvedItem item = resolveItem(manifest, manifest.items[i], "");
-      try {
-        checkPoseExports(item.description);
-      } catch (const InputError& e) {
-        throw item.manifestError(e);
-      }
-    } catch (...) {
-      errors[i] = std::current_exception();
-    }
-    const std::size_t d = ++done;
-    if (onChecked) {
-      std::lock_guard<std::mutex> lock(progress);
-      onChecked(d, n);
-    }
-  });
-  for (const auto& e : errors)
-    if (e) std::rethrow_exception(e);
-}
-
 // A folder that holds another manifest's dataset is refused before anything is written
 // (found by probing: a second manifest's run into the folder left the first's items beside
 // its own, and two "item 0 done" lines in the index). The same manifest, by name or by
@@ -166,12 +129,6 @@ void checkEarlierRun(const Manifest& manifest, const fs::path& directory) {
 }
 
 }  // namespace
-
-void checkDataset(const Manifest& manifest,
-                  const std::function<void(std::size_t, std::size_t)>& onChecked) {
-  checkBaseScene(manifest);
-  checkItems(manifest, onChecked);
-}
 
 const char* itemStatusName(ItemStatus status) {
   switch (status) {

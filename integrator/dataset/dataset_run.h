@@ -40,6 +40,7 @@
 #include <string>
 #include <vector>
 
+#include "integrator/dataset/item_check.h"  // checkDataset: what a run checks first
 #include "integrator/dataset/manifest.h"
 #include "sensor/base/share.h"
 #include "sensor/io/picture_writer.h"
@@ -83,13 +84,6 @@ struct DatasetRunSummary {
   // Up-to-date items (--resume) whose index line was missing and has been appended.
   std::vector<std::size_t> reindexed;
 };
-
-// What runDataset checks before it writes anything, and `camsim dataset --check` prints:
-// the base scene, then every item resolved and loaded (on all cores) with its pose exports'
-// models made (BOP: one model per obj_id). The first error in item order is thrown, named
-// by the manifest's line where the manifest set the key. onChecked(items checked, items).
-void checkDataset(const Manifest& manifest,
-                  const std::function<void(std::size_t, std::size_t)>& onChecked = {});
 
 // InputError (nothing written) for a bad manifest, scene or item, or an only_item outside
 // the manifest or the shard. An item that fails while rendering is reported and the others

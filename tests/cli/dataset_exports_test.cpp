@@ -127,5 +127,58 @@ TEST(DatasetExports, BopModelClashIsFoundByCheckAndNamedAtTheManifestLine) {
   EXPECT_FALSE(fs::exists(dir.path() / "out"));
 }
 
+// The items of a dataset are one BOP dataset (their train_pbr/ scenes gather under one
+// models/), so an obj_id has one model in all of them: the first item's that has it (found
+// by probing: a grid over a labelled mesh's scale wrote obj_000002.ply 159 mm across in item
+// 0 and 238 mm in item 1, and exited 0). Refused by --check and the run alike, at the
+// item's manifest line, before anything is written; a class's pose may vary.
+TEST(DatasetExports, AnObjIdHasOneModelInAllItems) {
+  const test::TempDir dir;
+  test::writeFile(dir.path() / "table.yaml", kScene);
+  const std::string head = "format: camsim-dataset/1\nscene: table.yaml\nset: {exports: [bop]}\n";
+  struct Case {
+    const char* items;
+    const char* error;  // "": valid
+  };
+  const Case cases[] = {
+      // Posed elsewhere (instances), a class added in later items with one model: valid.
+      {"items:\n"
+       "  - {camera.position: [0, 0, -2]}\n"
+       "  - {\"shapes[1].instances\": [{translate: [0.1, 0, 0]}]}\n"
+       "  - {\"shapes[0].class\": 4}\n"
+       "  - {\"shapes[0].class\": 4, camera.position: [0.1, 0, -2]}\n",
+       ""},
+      // Class 3's triangle larger in item 1.
+      {"items:\n"
+       "  - {camera.position: [0, 0, -2]}\n"
+       "  - {\"shapes[1].vertices\": [[0, 0, 0], [0.4, 0, 0], [0, 0.3, 0]]}\n",
+       "items.yaml:6:5: item 1 (the base scene with this item's values): bop: shape 'shapes[1][0]' "
+       "has class 3 (BOP's obj_id) but a different model than shape 'shapes[1][0]' of item 0"},
+      // Class 4, which item 0 lacks: item 2's rectangle against item 1's, from a grid.
+      {"items:\n"
+       "  - {camera.position: [0, 0, -2]}\n"
+       "  - {\"shapes[0].class\": 4}\n"
+       "  - {\"shapes[0].class\": 4, \"shapes[0].edge_u\": [3, 0, 0]}\n",
+       "items.yaml:7:5: item 2 (the base scene with this item's values): bop: shape 'shapes[0]' "
+       "has class 4 (BOP's obj_id) but a different model than shape 'shapes[0]' of item 1"},
+  };
+  for (const Case& c : cases) {
+    test::writeFile(dir.path() / "items.yaml", head + c.items);
+    for (const char* run : {" --check", " -o out"}) {
+      const test::RunResult r = test::runCamsim(
+          "dataset " + test::quote((dir.path() / "items.yaml").string()) + run + " --threads 1",
+          dir.path());
+      if (!*c.error) {
+        EXPECT_EQ(r.exitCode, 0) << c.items << run << "\n" << r.err;
+        continue;
+      }
+      EXPECT_EQ(r.exitCode, 2) << c.items << run << "\n" << r.err;
+      EXPECT_NE(r.err.find(c.error), std::string::npos) << run << "\n" << r.err;
+      EXPECT_FALSE(fs::exists(dir.path() / "out")) << c.items;
+    }
+    fs::remove_all(dir.path() / "out");
+  }
+}
+
 }  // namespace dataset_exports_test
 }  // namespace camsim
