@@ -153,9 +153,16 @@ void writeDng(const std::filesystem::path& path, const RawImage& raw, const DngC
     if (capture.focalLengthMm > 0.0)
       ok = ok && TIFFSetField(t, EXIFTAG_FOCALLENGTH, capture.focalLengthMm) == 1;
     if (capture.iso > 0.0) {
-      const std::uint16_t iso[1] = {
-          static_cast<std::uint16_t>(std::lround(std::min(capture.iso, 65535.0)))};
+      // ISOSpeedRatings is a SHORT: at 65535 and above, Exif 2.3's rule — 65535 there, the
+      // value in ISOSpeed (LONG) with SensitivityType 3 (ISO speed). Below, the tag alone (the
+      // same bytes as before).
+      const auto rounded = static_cast<std::uint32_t>(std::lround(std::min(capture.iso, 4.0e9)));
+      const std::uint16_t iso[1] = {static_cast<std::uint16_t>(std::min(rounded, 65535u))};
       ok = ok && TIFFSetField(t, EXIFTAG_ISOSPEEDRATINGS, 1, iso) == 1;
+      if (rounded >= 65535u) {
+        ok = ok && TIFFSetField(t, EXIFTAG_SENSITIVITYTYPE, 3) == 1;
+        ok = ok && TIFFSetField(t, EXIFTAG_ISOSPEED, rounded) == 1;
+      }
     }
     if (!capture.dateTimeOriginal.empty())
       ok = ok && TIFFSetField(t, EXIFTAG_DATETIMEORIGINAL, capture.dateTimeOriginal.c_str()) == 1;

@@ -92,13 +92,13 @@ inline constexpr double kDngMaxRational = 4294967295.0;
 // What a camera records of the shot: the EXIF IFD (a value of 0, an empty date or an unset
 // optional is omitted), BaselineExposure (always written) and NoiseProfile (when set).
 struct DngCapture {
-  double exposureTimeS = 0.0;                   // ExposureTime, s (≤ kDngMaxRational)
-  double fNumber = 0.0;                         // FNumber (≤ kDngMaxRational)
-  double focalLengthMm = 0.0;                   // FocalLength, mm (≤ kDngMaxRational)
-  double iso = 0.0;                             // ISOSpeedRatings (rounded; at most 65535)
-  std::string dateTimeOriginal;                 // DateTimeOriginal, "YYYY:MM:DD HH:MM:SS"
-  std::optional<double> exposureBiasEv;         // ExposureBiasValue, EV (a bracket's offset)
-  double baselineExposureEv = 0.0;              // BaselineExposure, EV
+  double exposureTimeS = 0.0;            // ExposureTime, s (≤ kDngMaxRational)
+  double fNumber = 0.0;                  // FNumber (≤ kDngMaxRational)
+  double focalLengthMm = 0.0;            // FocalLength, mm (≤ kDngMaxRational)
+  double iso = 0.0;                      // ISOSpeedRatings (rounded; ≥ 65535: 65535 and ISOSpeed)
+  std::string dateTimeOriginal;          // DateTimeOriginal, "YYYY:MM:DD HH:MM:SS"
+  std::optional<double> exposureBiasEv;  // ExposureBiasValue, EV (a bracket's offset)
+  double baselineExposureEv = 0.0;       // BaselineExposure, EV
   std::optional<DngNoiseProfile> noiseProfile;  // NoiseProfile, one pair for every plane
 };
 

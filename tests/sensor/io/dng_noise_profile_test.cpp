@@ -220,5 +220,28 @@ TEST_F(DngNoiseProfileTest, ExposureTagsAndNeutralScaling) {
       values(exif(dir_ / "plain.dng", "-ExposureCompensation"), "ExposureCompensation").empty());
 }
 
+// ISOSpeedRatings is 16 bits: an ISO of 65535 or more is written as Exif 2.3 says, 65535
+// there and the value in ISOSpeed with SensitivityType 3 (found by probing: ISO 204800 was
+// written as 65535, the real value nowhere in the file). Below 65535 the tag alone.
+TEST_F(DngNoiseProfileTest, AnIsoAbove65535IsInIsoSpeed) {
+  ASSERT_TRUE(onPath("exiftool")) << "exiftool is not installed (libimage-exiftool-perl)";
+  const std::string tags = "-ISO -ISOSpeed -SensitivityType";
+  for (const double iso : {204800.0, 65535.0, 6400.0}) {
+    DngCapture capture;
+    capture.iso = iso;
+    writeDng(dir_ / "iso.dng", raw(false), DngColor{}, {}, capture);
+    const std::string out = exif(dir_ / "iso.dng", tags);
+    SCOPED_TRACE(out);
+    EXPECT_EQ(values(out, "ISO"), std::vector<double>{std::min(iso, 65535.0)});
+    if (iso >= 65535.0) {
+      EXPECT_EQ(values(out, "ISOSpeed"), std::vector<double>{iso});
+      EXPECT_EQ(values(out, "SensitivityType"), std::vector<double>{3.0});
+    } else {
+      EXPECT_TRUE(values(out, "ISOSpeed").empty());
+      EXPECT_TRUE(values(out, "SensitivityType").empty());
+    }
+  }
+}
+
 }  // namespace
 }  // namespace camsim::dng_noise_profile_test
