@@ -58,7 +58,8 @@ struct CaptureOptions {
   std::function<void(int, int)> progress;
   const std::atomic<bool>* cancel = nullptr;
   std::optional<Share> tiles;
-  // Not used by captureSequence (it builds one Scene for all its frames and brackets).
+  // Not used by captureSequence (it builds one Scene for all its frames and brackets, moved
+  // to each frame's exposure).
   SceneCache* sceneCache = nullptr;
 };
 
@@ -131,10 +132,11 @@ struct SequenceSummary {
 // is captured as capture() would at description.frameCamera(k), named NAME_NNNN (the
 // sequence frame number first + k), its sensor noise frame sensor.frame + k·(brackets or 1)
 // — temporal noise differs per frame, the fixed pattern (noise seed) does not — and handed
-// to onFrame(result, k) as soon as it is done. The Scene is built once, its geometry and
-// motion over the whole sequence's exposure; a frame's step 4 re-renders on it (its shapes
-// over the bracket's window, then the sequence's again: Scene::setCamera). When nothing
-// moves anywhere in it, frame 0's film is reused for every frame (one render). A cancelled
+// to onFrame(result, k) as soon as it is done. The Scene is built once (files read once) and
+// moved to each frame's exposure window (Scene::setCamera: keyframed shapes built again
+// over it, so that a frame's pose is never interpolated across keyframes outside it); a
+// frame's step 4 re-renders on it (its shapes over the bracket's window). When nothing
+// moves anywhere in the sequence, frame 0's film is reused for every frame (one render). A cancelled
 // frame is handed on (cancelled) and ends it.
 SequenceSummary captureSequence(SceneDescription description, const CaptureOptions& options,
                                 const std::function<void(CaptureResult&&, int)>& onFrame);

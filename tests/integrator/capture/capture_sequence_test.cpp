@@ -1,5 +1,6 @@
 // captureSequence(): frames on one clock with keyframed motion, each at its own shutter
-// window, temporal noise per frame, one geometry build, and one render when nothing moves.
+// window, temporal noise per frame, keyframed motion built per frame (the scene's other
+// parts once), and one render when nothing moves.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -19,11 +20,9 @@ constexpr double kSeqPitch = 1.4e-6, kSeqFocal = 0.001, kSeqZ = 3.0;
 // A ball of radius 2 cm 3 m away (a view 27 cm wide) moving along +x at 0.5 m/s from
 // x = −8 cm at t = 0 (or resting), 3 frames at 10 Hz with a 36° shutter (10 ms), through
 // the smartphone sensor with full noise.
-SceneDescription ballSequence(bool moving, const std::string& render = "spp: 16") {
-  const std::string motion =
-      moving
-          ? ", motion: [{time: 0, translate: [-0.08, 0, 0]}, {time: 0.3, translate: [0.07, 0, 0]}]"
-          : "";
+// keys: the ball's keyframes ("" for none).
+SceneDescription ballSequenceWith(const std::string& keys, const std::string& render) {
+  const std::string motion = keys.empty() ? "" : ", motion: " + keys;
   const std::string text =
       "camera: {position: [0, 0, 0], look_at: [0, 0, 1], resolution: [" + std::to_string(kW) +
       ", " + std::to_string(kH) +
@@ -40,6 +39,12 @@ SceneDescription ballSequence(bool moving, const std::string& render = "spp: 16"
       "}\n"
       "lights:\n  - {type: point, position: [0, 0, 0], intensity: 50}\n";
   return loadSceneFromText(text, "balls.yaml", ".");
+}
+
+SceneDescription ballSequence(bool moving, const std::string& render = "spp: 16") {
+  return ballSequenceWith(
+      moving ? "[{time: 0, translate: [-0.08, 0, 0]}, {time: 0.3, translate: [0.07, 0, 0]}]" : "",
+      render);
 }
 
 std::vector<CaptureResult> run(SceneDescription d, int threads = 0,
@@ -105,6 +110,23 @@ TEST(Sequence, EachFrameShowsTheBallWhereItsKeyframesPutIt) {
     EXPECT_NEAR(f.description.camera.shutter.effectiveTime(), 0.01, 1e-12);
     EXPECT_NEAR(centroidX(f.aovs), -0.08 + 0.5 * (0.1 * k + 0.005), 1e-3) << "frame " << k;
   }
+}
+
+// A frame's pose is its keyframes', whatever the other frames: the ball jumps 15 cm between
+// frames 1 and 2 (keys at 0.195 and 0.1951 s; frame 2 opens at 0.2 s). Found by probing:
+// motion steps spread over the whole sequence (13 steps, 17.5 ms apart) put frame 2 between
+// the steps at 0.1925 and 0.21 s and drew the ball 4 cm short of its place; each frame now
+// builds its own steps.
+TEST(Sequence, AJumpBetweenFramesIsNotInterpolatedIntoTheNextFrame) {
+  const std::vector<CaptureResult> frames = run(ballSequenceWith(
+      "[{time: 0, translate: [-0.08, 0, 0]}, {time: 0.195, translate: [-0.08, 0, 0]}, "
+      "{time: 0.1951, translate: [0.07, 0, 0]}]",
+      "spp: 16"));
+  ASSERT_EQ(frames.size(), 3u);
+  const double expected[] = {-0.08, -0.08, 0.07};
+  for (int k = 0; k < 3; ++k)
+    EXPECT_NEAR(centroidX(frames[static_cast<size_t>(k)].aovs), expected[k], 1e-3) << "frame " << k;
+  EXPECT_FALSE(frames[2].stats.modelled.time);  // the ball rests during frame 2
 }
 
 // Temporal noise differs per frame (noise frame = sensor.frame + k); the fixed pattern
