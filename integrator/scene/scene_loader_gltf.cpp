@@ -9,6 +9,7 @@
 //                                   (gltf_motion.cpp)
 // Render space is world − renderOrigin; the include's placement maps asset → world.
 #include <algorithm>
+#include <cmath>
 #include <functional>
 #include <optional>
 
@@ -252,10 +253,28 @@ double applyGltfCamera(const YamlValue& spec, const std::vector<GltfInclude>& in
       if (gltfAnimatedNodes(inc)[static_cast<size_t>(n)])
         notes.push_back(inc.where + ": " + doc.nodes[static_cast<size_t>(n)].path +
                         ": the camera's animation is not used; it stays at its rest pose");
-      // glTF cameras look down −z with +y up; camsim's columns are right, up, forward.
-      camera.worldFromCamera = glm::dmat4(glm::dvec4(glm::normalize(glm::dvec3(m[0])), 0.0),
-                                          glm::dvec4(glm::normalize(glm::dvec3(m[1])), 0.0),
-                                          glm::dvec4(-glm::normalize(glm::dvec3(m[2])), 0.0), m[3]);
+      // glTF cameras look down −z with +y up; camsim's columns are right, up, forward. A
+      // uniform or per-axis scale is dropped; a zero scale, a shear or a mirror is refused
+      // (found by probing: a zero scale gave a NaN pose and a black image, exit 0; a
+      // mirroring scale rendered the image mirrored).
+      const std::string node = doc.nodes[static_cast<size_t>(n)].path;
+      glm::dvec3 axes[3];
+      for (int c = 0; c < 3; ++c) {
+        const double length = glm::length(glm::dvec3(m[c]));
+        if (!(length > 0.0 && std::isfinite(length)))
+          spec.fail(node + ": the camera's transform is singular (a zero scale)");
+        axes[c] = glm::dvec3(m[c]) / length;
+      }
+      if (std::abs(glm::dot(axes[0], axes[1])) > 1e-4 ||
+          std::abs(glm::dot(axes[1], axes[2])) > 1e-4 ||
+          std::abs(glm::dot(axes[0], axes[2])) > 1e-4)
+        spec.fail(node + ": the camera's transform shears (its axes are not perpendicular)");
+      if (glm::dot(glm::cross(axes[0], axes[1]), axes[2]) < 0.0)
+        spec.fail(node +
+                  ": the camera's transform mirrors (a negative scale): the image "
+                  "would be mirrored");
+      camera.worldFromCamera = glm::dmat4(glm::dvec4(axes[0], 0.0), glm::dvec4(axes[1], 0.0),
+                                          glm::dvec4(-axes[2], 0.0), m[3]);
       return true;
     }
     for (int c : doc.nodes[static_cast<size_t>(n)].children)

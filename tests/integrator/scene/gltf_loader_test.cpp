@@ -17,6 +17,8 @@
 #include "sensor/base/input_error.h"
 #include "sensor/spectra/cie.h"
 #include "tests/integrator/scene/gltf_test_support.h"
+#include "tests/support/temp_dir.h"
+#include "tests/support/text_file.h"
 
 namespace camsim {
 namespace {
@@ -61,6 +63,48 @@ TEST(GltfLoader, OrthographicCameraIsRefusedWithItsPath) {
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("cameras[1] is orthographic"), std::string::npos)
         << e.what();
+  }
+}
+
+// The camera node's scale is dropped, but a zero scale, a shear or a mirror is refused,
+// naming the node (found by probing: a zero scale gave a NaN pose and a black image with
+// exit 0; a mirroring scale was accepted and mirrored the image).
+TEST(GltfLoader, ASingularShearedOrMirroringCameraNodeIsRefused) {
+  const test::TempDir dir;
+  const auto gltf = [](const std::string& node) {
+    return "{\"asset\": {\"version\": \"2.0\"}, \"scene\": 0, \"scenes\": [{\"nodes\": [0]}], "
+           "\"nodes\": [{\"camera\": 0, " +
+           node +
+           "}], \"cameras\": [{\"type\": \"perspective\", \"perspective\": {\"yfov\": 0.7, "
+           "\"znear\": 0.01}}]}";
+  };
+  const std::string scene = sceneWith(
+      "  - gltf: cam.gltf\nmaterials: {m: {type: diffuse}}\n"
+      "shapes: [{type: sphere, centre: [0, 0, -3], radius: 1, material: m}]\n",
+      "  gltf: {camera: 0}\n");
+  test::writeFile(dir.path() / "cam.gltf",
+                  gltf("\"translation\": [0, 0.1, 1.5], \"scale\": [2, 3, 0.5]"));
+  const SceneDescription scaled = load(scene, dir.path());
+  EXPECT_NEAR(scaled.camera.worldFromCamera[0].x, 1.0, 1e-12);  // axes unit, forward −z
+  EXPECT_NEAR(scaled.camera.worldFromCamera[1].y, 1.0, 1e-12);
+  EXPECT_NEAR(scaled.camera.worldFromCamera[2].z, -1.0, 1e-12);
+  const std::pair<std::string, std::string> refused[] = {
+      {"\"scale\": [0, 0, 0]", "nodes[0]: the camera's transform is singular (a zero scale)"},
+      {"\"scale\": [1, 0, 1]", "nodes[0]: the camera's transform is singular"},
+      {"\"scale\": [-1, 1, 1]", "nodes[0]: the camera's transform mirrors"},
+      {"\"matrix\": [1, 0, 0, 0, 0.5, 1, 0, 0, 0, 0, 1, 0, 0, 0.1, 1.5, 1]",
+       "nodes[0]: the camera's transform shears"},
+  };
+  for (const auto& [node, message] : refused) {
+    test::writeFile(dir.path() / "cam.gltf", gltf(node));
+    try {
+      load(scene, dir.path());
+      ADD_FAILURE() << node << ": loaded";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("test.yaml:2:9: key 'camera.gltf': " + message),
+                std::string::npos)
+          << node << ": " << e.what();
+    }
   }
 }
 
