@@ -155,11 +155,15 @@ void readCamerasAndLights(const tinygltf::Model& model, GltfDocument& doc,
     g.range = l.range;
     g.innerConeAngle = l.spot.innerConeAngle;
     g.outerConeAngle = l.spot.outerConeAngle;
-    if (!(g.intensity >= 0.0) || !std::isfinite(g.intensity))
-      throw InputError({name, 0, 0}, g.path + ".intensity", "must be a finite number >= 0");
+    // The scene file's lights' bound (cd or lx): found by probing, an intensity of 1e45 gave
+    // NaN samples (dropped, exit 0). The colour is the extension's linear RGB in [0, 1].
+    if (!(g.intensity >= 0.0 && g.intensity <= 1e30))
+      throw InputError({name, 0, 0}, g.path + ".intensity",
+                       "must be a number in [0, 1e30] (cd, or lx for a directional light)");
     for (int c = 0; c < 3; ++c)
-      if (!(g.color[c] >= 0.0) || !std::isfinite(g.color[c]))
-        throw InputError({name, 0, 0}, g.path + ".color", "components must be finite and >= 0");
+      if (!(g.color[c] >= 0.0 && g.color[c] <= 1.0))
+        throw InputError({name, 0, 0}, g.path + ".color",
+                         "components must be in [0, 1] (linear RGB; the intensity scales it)");
     if (g.type == GltfLight::Type::kSpot &&
         !(g.innerConeAngle >= 0.0 && g.innerConeAngle < g.outerConeAngle &&
           g.outerConeAngle <= 1.5707963267948966))

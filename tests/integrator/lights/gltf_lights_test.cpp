@@ -9,6 +9,8 @@
 #include <numbers>
 #include <string>
 
+#include "integrator/scene/scene_loader.h"
+#include "sensor/base/input_error.h"
 #include "tests/integrator/render_test_support.h"
 #include "tests/integrator/scene/gltf_test_support.h"
 
@@ -65,6 +67,33 @@ TEST(GltfLights, SpotLightOnItsAxis) {
       R"("extensions":{"KHR_lights_punctual":{"light":0}}})"));
   test::MaxError error;
   EXPECT_LT(error(L * std::numbers::pi / 0.5, 25.0), 0.01);
+}
+
+// An intensity beyond the scene file's lights' bound (1e30 cd or lx) or a colour outside
+// [0, 1] is refused with its JSON path (found by probing: an intensity of 1e45 rendered with
+// 250 NaN samples dropped, exit 0).
+TEST(GltfLights, OutOfRangeIntensityOrColourIsRefusedWithItsPath) {
+  const std::pair<std::string, std::string> refused[] = {
+      {R"({"type":"point","intensity":1e45})",
+       "lights[0].intensity': must be a number in [0, 1e30]"},
+      {R"({"type":"directional","intensity":-1})", "lights[0].intensity'"},
+      {R"({"type":"point","intensity":1,"color":[2,1,1]})",
+       "lights[0].color': components must be in [0, 1]"},
+  };
+  for (const auto& [light, message] : refused) {
+    const auto file =
+        lightFile("refused", light, R"({"extensions":{"KHR_lights_punctual":{"light":0}}})");
+    const std::string yaml = test::cameraAboveOrigin(4) + test::floorOf(0.5) +
+                             "include:\n  - gltf: " + file.string() + "\n";
+    try {
+      (void)loadSceneFromText(yaml, "test.yaml", ".");
+      ADD_FAILURE() << light << ": loaded";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("extensions.KHR_lights_punctual." + message),
+                std::string::npos)
+          << e.what();
+    }
+  }
 }
 
 }  // namespace
