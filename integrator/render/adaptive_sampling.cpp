@@ -56,4 +56,8 @@ bool AdaptiveState::check(const Film& film, glm::ivec2 lo, glm::ivec2 hi) {
   return any;
 }
 
+bool AdaptiveState::anyActive() const {
+  return std::any_of(active_.begin(), active_.end(), [](std::uint8_t a) { return a != 0; });
+}
+
 }  // namespace camsim

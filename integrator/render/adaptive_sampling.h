@@ -65,6 +65,8 @@ class AdaptiveState {
   // film's): marks the converged ones inactive, keeping the 3 × 3 dilation. Returns whether
   // any stays active.
   bool check(const Film& film, glm::ivec2 lo, glm::ivec2 hi);
+  // Whether any pixel still takes samples (between passes: every tile has been checked).
+  bool anyActive() const;
 
  private:
   std::size_t index(glm::ivec2 p) const {

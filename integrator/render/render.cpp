@@ -173,6 +173,8 @@ const char* renderStopName(RenderStop stop) {
       return "time_limit";
     case RenderStop::kMaxSpp:
       return "max_spp";
+    case RenderStop::kConverged:
+      return "converged";
     case RenderStop::kCancelled:
       return "cancelled";
   }
@@ -318,6 +320,16 @@ RenderResult render(const Scene& scene, const std::vector<const SpectralResponse
     }
     if (adaptive && pass.first == 0) adaptive->setImageMean(film.errorMean());
     if (inPasses && pass.end >= 2) estimate = film.estimateError(pass.end);
+    // Every pixel converged: the next passes would trace nothing (found by probing: with a
+    // target the threshold never met, passes doubled an empty spp up to max_spp and
+    // reported 1048576 spp for pixels of at most 64 samples; a time limit never stopped it).
+    if (inPasses && adaptive && !adaptive->anyActive()) {
+      if (!(options.targetError && estimate && estimate->mrae <= *options.targetError))
+        stats.stop = RenderStop::kConverged;
+      else
+        stats.stop = RenderStop::kTargetError;
+      break;
+    }
     const int next = inPasses
                          ? nextPassEnd(options, pass.end, estimate, elapsedSince(start), stats.stop)
                          : options.spp;

@@ -91,7 +91,9 @@ struct RenderOptions {
 };
 
 // Why a render stopped adding samples.
-enum class RenderStop { kSpp, kTargetError, kTimeLimit, kMaxSpp, kCancelled };
+// kConverged: in passes with adaptive sampling, every pixel reached the adaptive threshold,
+// so further passes would add no samples.
+enum class RenderStop { kSpp, kTargetError, kTimeLimit, kMaxSpp, kConverged, kCancelled };
 const char* renderStopName(RenderStop stop);  // "spp", "target_error", …
 
 struct RenderStats {

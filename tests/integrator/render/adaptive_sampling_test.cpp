@@ -5,6 +5,7 @@
 // reference within its own statistical spread (the early stop's bias is below the noise).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -102,6 +103,29 @@ TEST(AdaptiveSampling, NothingStopsAtATinyThreshold) {
   EXPECT_TRUE(sameImage(adaptive.image, plain.image));
   EXPECT_DOUBLE_EQ(adaptive.stats.meanSpp, 16.0);
   EXPECT_TRUE(plain.sampleCounts.pixels.empty());  // only adaptive renders carry counts
+}
+
+// In passes, once every pixel has converged the render stops (`converged`) at the spp its
+// pixels reached, whatever the target or time limit (found by probing: passes that traced
+// nothing doubled the spp up to max_spp, reported 1048576 spp for pixels of at most 64
+// samples, and a time limit never stopped them).
+TEST(AdaptiveSampling, PassesStopWhenEveryPixelHasConverged) {
+  const Scene scene(smallCornell(16));
+  for (const bool byTime : {false, true}) {
+    RenderOptions o = adaptiveOptions(4, 0.5, 4, 2);
+    if (byTime)
+      o.timeLimitS = 1e6;
+    else
+      o.targetError = 1e-6;  // far below what the threshold lets the pixels reach
+    const RenderResult r = renderXyz(scene, o);
+    EXPECT_EQ(r.stats.stop, RenderStop::kConverged) << renderStopName(r.stats.stop);
+    EXPECT_STREQ(renderStopName(r.stats.stop), "converged");
+    float most = 0.0f;
+    for (const float n : r.sampleCounts.pixels) most = std::max(most, n);
+    EXPECT_EQ(static_cast<float>(r.stats.spp), most) << "passes " << r.stats.passes;
+    EXPECT_LT(r.stats.spp, 4096);
+    EXPECT_LT(r.stats.meanSpp, r.stats.spp);
+  }
 }
 
 // Bias. 16 seeds of an adaptive render (N = 32, M = 4, T = 0.3: 14.2 spp on average)
