@@ -7,6 +7,7 @@
 // in parallel and writes them all at once (OutputSet): an error leaves nothing written.
 #pragma once
 
+#include <atomic>
 #include <cstdint>
 #include <filesystem>
 #include <iosfwd>
@@ -31,10 +32,15 @@ ExposeArgs parseExposeArgs(const std::vector<std::string>& args);
 std::string exposeUsageText();
 
 // Exposes and writes; `log` gets progress and the files. Throws InputError (nothing written
-// then). Returns the files written.
-std::vector<std::filesystem::path> runExpose(const ExposeArgs& args, std::ostream& log);
+// then). Returns the files written; nullopt when `cancel` was set (frames in flight finish,
+// no other starts, and every temporary is removed: nothing written).
+std::optional<std::vector<std::filesystem::path>> runExpose(
+    const ExposeArgs& args, std::ostream& log, const std::atomic<bool>* cancel = nullptr);
 
-// Entry point from main(): parses `args` (args[0] == "expose"), runs, returns the exit code.
-int runExposeCommand(const std::vector<std::string>& args, std::ostream& out, std::ostream& log);
+// Entry point from main(): parses `args` (args[0] == "expose"), runs, returns the exit code
+// (128 + *signal when cancelled).
+int runExposeCommand(const std::vector<std::string>& args, std::ostream& out, std::ostream& log,
+                     const std::atomic<bool>* cancel = nullptr,
+                     const std::atomic<int>* signal = nullptr);
 
 }  // namespace camsim

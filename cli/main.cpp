@@ -24,7 +24,8 @@ std::atomic<int> gSignal{0};  // the signal that set gCancel
 
 // The first SIGINT/SIGTERM asks the render to stop (it checks every 64 samples of a pixel,
 // then writes NAME.partial.exr of the finished tiles and exits with 128 + the signal: 130,
-// 143); a second one, e.g. a second Ctrl-C, kills at once
+// 143), `camsim dataset` to stop after its item, `camsim expose` to start no frame and
+// remove its temporaries (nothing written); a second one, e.g. a second Ctrl-C, kills at once
 // (temporaries left behind are removed by the next run into the same directory).
 extern "C" void onSignal(int sig) {
   gSignal.store(sig);
@@ -49,8 +50,10 @@ int main(int argc, char** argv) {
   std::vector<std::string> args(argv + 1, argv + argc);
   try {
     if (!args.empty() && args[0] == "ptc") return camsim::runPtcCommand(args, std::cout, std::cerr);
-    if (!args.empty() && args[0] == "expose")
-      return camsim::runExposeCommand(args, std::cout, std::cerr);
+    if (!args.empty() && args[0] == "expose") {
+      catchSignals();
+      return camsim::runExposeCommand(args, std::cout, std::cerr, &gCancel, &gSignal);
+    }
     if (!args.empty() && args[0] == "merge")
       return camsim::runMergeCommand(args, std::cout, std::cerr);
     if (!args.empty() && args[0] == "dataset") {
