@@ -55,12 +55,12 @@ std::vector<std::string> zippedValues(const std::vector<std::string>& paths, con
   return out;
 }
 
-// [lo, hi] with lo ≤ hi (and lo > 0 when positive is asked).
-std::pair<double, double> range(const YamlValue& v, bool positive = false) {
+// [lo, hi] with lo ≤ hi (and lo > 0 when `positive` names what needs it).
+std::pair<double, double> range(const YamlValue& v, const char* positive = nullptr) {
   const std::vector<double> r = v.numbers();
   if (r.size() != 2) v.fail("expected [lo, hi]");
   if (!(r[0] <= r[1])) v.fail("expected lo <= hi");
-  if (positive && !(r[0] > 0.0)) v.fail("a log-uniform range must be positive");
+  if (positive && !(r[0] > 0.0)) v.fail(std::string(positive) + " must be positive");
   return {r[0], r[1]};
 }
 
@@ -88,7 +88,7 @@ Draw parseDraw(const std::string& path, const YamlValue& spec) {
     std::tie(d.lo, d.hi) = range(v);
   } else if (kind == "log_uniform") {
     d.kind = Draw::Kind::kLogUniform;
-    std::tie(d.lo, d.hi) = range(v, true);
+    std::tie(d.lo, d.hi) = range(v, "a log-uniform range");
   } else if (kind == "normal") {
     d.kind = Draw::Kind::kNormal;
     YamlMap n(v);
@@ -114,7 +114,7 @@ Draw parseDraw(const std::string& path, const YamlValue& spec) {
       v.fail("an orbit draws a camera position: its key path ends in 'position'");
     YamlMap o(v);
     d.centre = o.require("centre").vec3();
-    d.radius = range(o.require("radius"), true);
+    d.radius = range(o.require("radius"), "an orbit's radius range (m)");
     d.azimuth = o.find("azimuth_deg") ? range(*o.find("azimuth_deg")) : std::pair{0.0, 360.0};
     d.elevation = o.find("elevation_deg") ? range(*o.find("elevation_deg")) : std::pair{0.0, 0.0};
     if (d.elevation.first < -90.0 || d.elevation.second > 90.0)
