@@ -9,19 +9,6 @@
 #include "sensor/base/input_error.h"
 
 namespace camsim {
-namespace {
-
-double parsePositive(const std::string& flag, const std::string& text, double hi) {
-  double v = 0.0;
-  const auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
-  if (ec != std::errc() || ptr != text.data() + text.size() || !std::isfinite(v) || v <= 0.0 ||
-      v > hi)
-    throw UsageError(flag + " expects a positive number (at most " + std::to_string(hi) +
-                     "), got '" + text + "'");
-  return v;
-}
-
-}  // namespace
 
 const OverrideSetting* overrideOfFlag(const std::string& flag) {
   if (flag == "--exposure-time") return findOverrideSetting("exposure_time_s");  // its old name
@@ -97,12 +84,7 @@ std::unique_ptr<CLI::App> renderApp(RenderArgs& r) {
       ->type_name("SCENE");
   addOutputOption(*app, r.outputDir, "output directory (created if missing; default: out)");
   addThreadsOption(*app, r.threads, "the image does not depend on it");
-  app->add_option_function<std::string>(
-         "--max-memory-gb",
-         [&r](const std::string& t) { r.maxMemoryGb = parsePositive("--max-memory-gb", t, 1e9); },
-         "refuse to start a render whose estimated memory exceeds X GB (default: 75 % of "
-         "physical memory)")
-      ->type_name("X");
+  addMemoryLimitOption(*app, r.maxMemoryGb, "a render");
   addOverrideOptions(*app, r.overrides);
   addPictureOptions(*app, r.ocioConfig, r.display, r.view, r.look);
   app->add_flag("--aov-previews", r.aovPreviews,

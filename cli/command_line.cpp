@@ -1,9 +1,12 @@
 #include "cli/command_line.h"
 
 #include "cli/args.h"
+#include "integrator/capture/resource_guard.h"
 #include "sensor/base/threads.h"
 
 #include <algorithm>
+#include <charconv>
+#include <cmath>
 
 namespace camsim {
 namespace {
@@ -95,6 +98,23 @@ void addThreadsOption(CLI::App& app, int& threads, const std::string& what) {
          },
          "worker threads [1, " + std::to_string(kMaxThreads) + "] (default: all cores); " + what)
       ->type_name("N");
+}
+
+void addMemoryLimitOption(CLI::App& app, std::optional<double>& gb, const std::string& what) {
+  app.add_option_function<std::string>(
+         "--max-memory-gb",
+         [&gb](const std::string& t) {
+           double v = 0.0;
+           const auto [ptr, ec] = std::from_chars(t.data(), t.data() + t.size(), v);
+           if (ec != std::errc() || ptr != t.data() + t.size() || !std::isfinite(v) || v <= 0.0 ||
+               v > kMaxMemoryGb)
+             throw UsageError("--max-memory-gb expects a positive number (at most " +
+                              std::to_string(kMaxMemoryGb) + "), got '" + t + "'");
+           gb = v;
+         },
+         "refuse to start " + what +
+             " whose estimated memory exceeds X GB (default: 75 % of physical memory)")
+      ->type_name("X");
 }
 
 void addOutputOption(CLI::App& app, std::string& dir, const std::string& help) {

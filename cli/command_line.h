@@ -6,6 +6,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -41,5 +42,9 @@ void addOutputOption(CLI::App& app, std::string& dir, const std::string& help);
 // --threads N: worker threads in [1, kMaxThreads] (sensor/base/threads.h; UsageError otherwise); left as it is (0: all
 // hardware threads) unless given. What the threads do goes in `help`'s tail.
 void addThreadsOption(CLI::App& app, int& threads, const std::string& what);
+
+// --max-memory-gb X (resource_guard.h): refuse `what` ("a render", "an item") whose
+// estimated memory exceeds X GB.
+void addMemoryLimitOption(CLI::App& app, std::optional<double>& gb, const std::string& what);
 
 }  // namespace camsim

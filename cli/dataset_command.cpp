@@ -64,6 +64,7 @@ std::unique_ptr<CLI::App> datasetApp(DatasetArgs& a) {
          "render only item N (of this shard)")
       ->type_name("N");
   addThreadsOption(*app, a.threads, "the items' bytes do not depend on it");
+  addMemoryLimitOption(*app, a.maxMemoryGb, "a dataset any of whose items");
   app->add_flag("--check", a.check,
                 "check the manifest and every item, print the item count, render nothing");
   app->add_option_function<std::string>(
@@ -186,6 +187,7 @@ int runDatasetCommand(const std::vector<std::string>& args, std::ostream& out, s
   o.resume = a.resume;
   o.onlyItem = a.item;
   o.threads = a.threads;
+  o.maxMemoryGb = a.maxMemoryGb;
   o.picture = {a.ocioConfig, {a.display, a.view, a.look}};
   o.cancel = cancel;
   (void)checkPictureSettings(o.picture);
@@ -195,7 +197,7 @@ int runDatasetCommand(const std::vector<std::string>& args, std::ostream& out, s
   };
   if (a.check) {
     o.onlyItem.reset();
-    checkDataset(manifest, o.onChecked);  // what a run checks, the same way
+    checkDataset(manifest, o.onChecked, o.maxMemoryGb);  // what a run checks, the same way
     checking.finish();
     out << manifest.file.string() << ": " << manifest.items.size() << " items, all valid\n";
     return 0;

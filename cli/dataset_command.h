@@ -36,6 +36,7 @@ struct DatasetArgs {
   bool help = false;
   std::optional<std::string> status;  // --status DIR
   int threads = 0;
+  std::optional<double> maxMemoryGb;  // none: 75 % of physical memory (resource_guard.h)
   std::string ocioConfig, display, view, look;
 };
 

@@ -10,6 +10,7 @@
 
 #include "integrator/capture/capture_run.h"
 #include "integrator/capture/progress.h"
+#include "integrator/capture/resource_guard.h"
 #include "python/bindings.h"
 #include "python/capture_arrays.h"
 #include "python/worker_threads.h"
@@ -25,6 +26,7 @@ struct CaptureJob {
   SceneDescription description;
   PictureSettings picture;
   int threads = 0;
+  std::optional<double> maxMemoryGb;  // none: the default limit (resource_guard.h)
   std::atomic<bool> cancel{false};
   std::atomic<int> done{0}, total{0};                    // tiles over all frames (captureScene)
   std::vector<std::shared_ptr<CaptureBuffers>> results;  // one per frame, in order
@@ -52,8 +54,10 @@ void runJob(CaptureJob& job) {
       job.done = done;
     };
     options.sceneCache = job.built.get();
-    // No files here, but a scene whose BOP or KITTI export cannot be written is refused
-    // before it renders, as `camsim render` refuses it.
+    // No files here, but a scene whose BOP or KITTI export cannot be written, or that needs
+    // more memory than the limit, is refused before it renders, as `camsim render` refuses
+    // it (found by probing: a 32768 × 8192 capture raised MemoryError std::bad_alloc).
+    checkMemoryLimit(job.description, job.maxMemoryGb, "max_memory_gb");
     checkPoseExports(job.description);
     captureScene(std::move(job.description), options, [&job](CaptureResult&& r, int) {
       if (!r.cancelled) job.results.push_back(keep(std::move(r), job.picture));
@@ -77,8 +81,15 @@ py::object runCapture(PyScene& scene, const py::object& threadsArg, const py::ob
                       const py::object& exposureTimeS, const py::object& fNumber,
                       const py::object& iso, const py::object& noise, const py::object& noiseSeed,
                       const py::object& pose, const py::object& projection,
-                      const py::object& guiding) {
+                      const py::object& guiding, const py::object& maxMemoryGb) {
   const int threads = threadCountArg(threadsArg, "<capture>");
+  std::optional<double> memoryLimit;
+  if (!maxMemoryGb.is_none()) {
+    if (!PyNumber_Check(maxMemoryGb.ptr()) || PyBool_Check(maxMemoryGb.ptr()))
+      throw InputError({"<capture>", 0, 0}, "max_memory_gb", "expected a number of GB");
+    memoryLimit = checkMaxMemoryGb(py::cast<double>(py::float_(maxMemoryGb)), {"<capture>", 0, 0},
+                                   "max_memory_gb");
+  }
   // For this capture only (the Scene keeps its settings), checked before anything runs.
   Overrides overrides;
   const py::object* values[] = {
@@ -107,6 +118,7 @@ py::object runCapture(PyScene& scene, const py::object& threadsArg, const py::ob
   } giveBack{scene, *job};
   job->picture = PictureSettings{ocioConfig, DisplayChoice{display, view, look}};
   job->threads = threads;
+  job->maxMemoryGb = memoryLimit;
   const bool sequence = description.frames.has_value();
   std::optional<ProgressBar> bar;  // on stderr, drawn only when it is a terminal
   if (progress.is_none()) bar.emplace("rendering " + description.name);
@@ -206,7 +218,7 @@ void bindCaptureFunctions(py::module_& m) {
         py::arg("f_number") = py::none(), py::arg("iso") = py::none(),
         py::arg("noise") = py::none(), py::arg("noise_seed") = py::none(),
         py::arg("pose") = py::none(), py::arg("projection") = py::none(),
-        py::arg("guiding") = py::none(), kCaptureDoc);
+        py::arg("guiding") = py::none(), py::arg("max_memory_gb") = py::none(), kCaptureDoc);
   py::object scene = m.attr("Scene");
   scene.attr("render") = py::cpp_function(
       &runCapture, py::name("render"), py::is_method(scene), py::kw_only(), py::arg("threads") = 0,
@@ -218,6 +230,7 @@ void bindCaptureFunctions(py::module_& m) {
       py::arg("f_number") = py::none(), py::arg("iso") = py::none(), py::arg("noise") = py::none(),
       py::arg("noise_seed") = py::none(), py::arg("pose") = py::none(),
       py::arg("projection") = py::none(), py::arg("guiding") = py::none(),
+      py::arg("max_memory_gb") = py::none(),
       ("scene.render(...) is camsim.capture(scene, ...):\n\n" + std::string(kCaptureDoc)).c_str());
 }
 

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "integrator/render/path_guide.h"
+#include "sensor/base/format.h"
 #include "sensor/base/input_error.h"
 
 namespace camsim {
@@ -83,13 +84,21 @@ std::uint64_t physicalMemoryBytes() {
   return static_cast<std::uint64_t>(pages) * static_cast<std::uint64_t>(pageSize);
 }
 
-void checkMemoryLimit(const SceneDescription& desc, std::optional<double> maxMemoryGb) {
+double checkMaxMemoryGb(double gb, const SourceLocation& where, const std::string& option) {
+  if (!(gb > 0.0 && gb <= kMaxMemoryGb))
+    throw InputError(where, option,
+                     "must be a number of GB in (0, " + formatShortest(kMaxMemoryGb) + "]");
+  return gb;
+}
+
+void checkMemoryLimit(const SceneDescription& desc, std::optional<double> maxMemoryGb,
+                      const std::string& option) {
   const MemoryEstimate m = estimateRenderMemory(desc);
   double limit = 0.0;
   std::string which;
   if (maxMemoryGb) {
     limit = *maxMemoryGb * kBytesPerGb;
-    which = "the limit of " + gb(limit) + " set by --max-memory-gb";
+    which = "the limit of " + gb(limit) + " set by " + option;
   } else {
     const std::uint64_t physical = physicalMemoryBytes();
     if (physical == 0) return;  // unknown: nothing sensible to compare with
@@ -107,7 +116,7 @@ void checkMemoryLimit(const SceneDescription& desc, std::optional<double> maxMem
           (m.guide ? ", path guiding's training " + gb(static_cast<double>(m.guide))
                    : std::string()) +
           " for " + std::to_string(res.x) + "x" + std::to_string(res.y) + " px), more than " +
-          which + "; lower camera.resolution or raise the limit with --max-memory-gb GB");
+          which + "; lower camera.resolution or raise the limit with " + option + " GB");
 }
 
 }  // namespace camsim

@@ -1,4 +1,5 @@
-// The memory guard of every front end (camsim render, camsim.capture), checked after the
+// The memory guard of every front end (camsim render, camsim dataset's check of each item,
+// camsim.capture), checked after the
 // scene has loaded and before any work (no output directory, no Embree scene, no render):
 // the memory the run will need, estimated from the scene, against a limit. The scene loader
 // already bounds resolution, spp and inline mesh size (integrator/scene/scene_loader.h,
@@ -7,6 +8,7 @@
 
 #include <cstdint>
 #include <optional>
+#include <string>
 
 #include "integrator/scene/scene_description.h"
 
@@ -26,11 +28,18 @@ MemoryEstimate estimateRenderMemory(const SceneDescription& desc);
 // Physical memory (sysconf), 0 if unknown.
 std::uint64_t physicalMemoryBytes();
 
+// A limit given by a front end: (0, kMaxMemoryGb] GB.
+inline constexpr double kMaxMemoryGb = 1e9;
+// InputError at `where`, key `option`, unless 0 < gb ≤ kMaxMemoryGb (a front end's value).
+double checkMaxMemoryGb(double gb, const SourceLocation& where, const std::string& option);
+
 // The default limit: 75 % of physical memory (no limit if that is unknown).
 constexpr double kDefaultMemoryFraction = 0.75;
 
 // Throws InputError naming the estimate, the limit and how to raise it when the estimate
-// exceeds `maxMemoryGb` GB (10^9 bytes) or, without it, the default limit.
-void checkMemoryLimit(const SceneDescription& desc, std::optional<double> maxMemoryGb);
+// exceeds `maxMemoryGb` GB (10^9 bytes) or, without it, the default limit. option: how the
+// front end sets the limit ("--max-memory-gb", Python's "max_memory_gb"), for the message.
+void checkMemoryLimit(const SceneDescription& desc, std::optional<double> maxMemoryGb,
+                      const std::string& option = "--max-memory-gb");
 
 }  // namespace camsim

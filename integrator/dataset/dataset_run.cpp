@@ -164,7 +164,7 @@ DatasetRunSummary runDataset(const Manifest& manifest, const DatasetRunOptions& 
                            std::to_string(options.shard.count));
   }
   // Every item checked before anything is written or rendered.
-  checkDataset(manifest, options.onChecked);
+  checkDataset(manifest, options.onChecked, options.maxMemoryGb);
   checkEarlierRun(manifest, options.directory);
   std::vector<std::size_t> mine;
   for (const DatasetItem& item : manifest.items)

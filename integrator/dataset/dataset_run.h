@@ -64,7 +64,8 @@ struct DatasetRunOptions {
   Share shard;  // item i belongs to shard i mod count
   bool resume = false;
   std::optional<std::size_t> onlyItem;
-  int threads = 0;  // 0: all cores
+  int threads = 0;                    // 0: all cores
+  std::optional<double> maxMemoryGb;  // per item; none: 75 % of physical memory
   PictureSettings picture;
   const std::atomic<bool>* cancel = nullptr;
   // Before any rendering: every item resolved (items checked, items of the manifest).

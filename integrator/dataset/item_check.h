@@ -8,14 +8,17 @@
 
 #include <cstddef>
 #include <functional>
+#include <optional>
 
 #include "integrator/dataset/manifest.h"
 
 namespace camsim {
 
 // The first error in item order is thrown (InputError), named by the manifest's line where
-// the manifest set the key. onChecked(items checked, items).
+// the manifest set the key. onChecked(items checked, items). Each item's estimated memory is
+// held to maxMemoryGb (none: the default limit; resource_guard.h).
 void checkDataset(const Manifest& manifest,
-                  const std::function<void(std::size_t, std::size_t)>& onChecked = {});
+                  const std::function<void(std::size_t, std::size_t)>& onChecked = {},
+                  std::optional<double> maxMemoryGb = std::nullopt);
 
 }  // namespace camsim

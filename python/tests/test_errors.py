@@ -136,6 +136,18 @@ def test_a_thread_count_may_be_any_integer_type_but_not_a_float():
         camsim.expose_file("no_such_raw.exr", threads=np.int64(2))
 
 
+def test_a_capture_beyond_the_memory_limit_is_an_input_error():
+    # Found by probing: capture() had no memory guard (camsim render had): a 32768 x 8192
+    # scene raised MemoryError std::bad_alloc. max_memory_gb sets the limit, as
+    # --max-memory-gb does.
+    scene = camsim.default_scene(overrides={"spp": 1})
+    with pytest.raises(camsim.InputError, match=r"needs an estimated .* set by max_memory_gb"):
+        camsim.capture(scene, threads=1, max_memory_gb=0.001)
+    for bad in (0, -1, 2e9, "x", True):
+        with pytest.raises(camsim.InputError, match=r"<capture>: key 'max_memory_gb'"):
+            camsim.capture(scene, threads=1, max_memory_gb=bad)
+
+
 def test_bad_overrides_name_the_key():
     with pytest.raises(camsim.InputError, match="key 'overrides.spp'"):
         camsim.default_scene(overrides={"spp": "many"})

@@ -180,5 +180,32 @@ TEST(DatasetExports, AnObjIdHasOneModelInAllItems) {
   }
 }
 
+// Each item's estimated memory is held to the limit by --check and by the run (found by
+// probing: a 32768 × 8192 item passed --check, then failed with std::bad_alloc, exit 1):
+// a 256 × 256 item needs more than 1 MB (its film alone is 1.5 MB).
+TEST(DatasetExports, AnItemBeyondTheMemoryLimitIsRefusedBeforeAnything) {
+  const test::TempDir dir;
+  test::writeFile(dir.path() / "table.yaml", kScene);
+  test::writeFile(dir.path() / "big.yaml",
+                  "format: camsim-dataset/1\nscene: table.yaml\n"
+                  "items:\n"
+                  "  - {camera.resolution: [24, 16]}\n"
+                  "  - {camera.resolution: [256, 256]}\n");
+  for (const char* run : {" --check", " -o out"}) {
+    const test::RunResult r =
+        test::runCamsim("dataset " + test::quote((dir.path() / "big.yaml").string()) + run +
+                            " --threads 1 --max-memory-gb 0.001",
+                        dir.path());
+    EXPECT_EQ(r.exitCode, 2) << run << "\n" << r.err;
+    EXPECT_NE(r.err.find("big.yaml:5:5: item 1 (the base scene with this item's values): this "
+                         "render needs an estimated"),
+              std::string::npos)
+        << run << "\n"
+        << r.err;
+    EXPECT_NE(r.err.find("set by --max-memory-gb"), std::string::npos) << r.err;
+  }
+  EXPECT_FALSE(fs::exists(dir.path() / "out"));
+}
+
 }  // namespace dataset_exports_test
 }  // namespace camsim
