@@ -41,8 +41,8 @@ std::unique_ptr<CLI::App> exposeApp(ExposeArgs& a) {
       ->type_name("S");
   app->add_option_function<double>(
          "--iso", [&a](double v) { a.settings.iso = v; },
-         "ISO: gain and noise at it (default: the file's camsim:iso); within the sensor's "
-         "calibrated range")
+         "ISO in [1, 1e7]: gain and noise at it (default: the file's camsim:iso); within the "
+         "sensor's calibrated range")
       ->type_name("N");
   app->add_option("--exposure-scale", a.settings.exposureScale,
                   "X in (0, 1e6]: electrons and exposure time times X (default 1)")

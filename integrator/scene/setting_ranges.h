@@ -18,6 +18,8 @@
 #include <limits>
 #include <string>
 
+#include "sensor/model/sensor_noise.h"
+
 namespace camsim {
 
 // [lo, hi], or (lo, hi] when loOpen. Integer settings hold integral bounds.
@@ -46,7 +48,7 @@ inline constexpr IntegerRange kSeed{0, std::numeric_limits<std::int64_t>::max()}
 inline constexpr IntegerRange kNoiseSeed{0, std::numeric_limits<std::int64_t>::max()};
 // A lens in air is no faster than f/0.5 (NA ≤ 1).
 inline constexpr SettingRange kFNumber{0.5, 1e4, false};
-inline constexpr SettingRange kIso{1.0, 1e7, false};
+inline constexpr SettingRange kIso{kMinIso, kMaxIso, false};  // sensor_noise.h
 // The shutter's open and close times (s) lie within ±kShutterTime, so an exposure that
 // opens at 0 lasts at most kShutterTime: the effective exposure time's range.
 inline constexpr double kShutterTime = 1e6;

@@ -35,6 +35,10 @@
 
 namespace camsim {
 
+// ISO (a sensor's base ISO, its calibration rows, a capture's ISO) is at most kMaxIso; a
+// capture's ISO at least kMinIso (render's --iso, expose's).
+inline constexpr double kMinIso = 1.0, kMaxIso = 1e7;
+
 class YamlMap;
 struct SensorSpec;
 

@@ -13,7 +13,6 @@ namespace {
 
 constexpr double kMaxNoiseDn = 65535.0;
 constexpr double kMaxNoiseE = 1e6;
-constexpr double kMaxIso = 1e7;
 
 LogLinearFit parseFit(const YamlValue& value) {
   YamlMap map(value);

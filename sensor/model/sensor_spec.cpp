@@ -252,7 +252,7 @@ SensorSpec parseSensorSpec(const std::string& yamlText, const std::string& displ
   if (const auto v = map.find("full_well_e")) spec.fullWellE = v->number(0.0, 1e9, true);
   if (const auto v = map.find("conversion_gain_e_per_dn"))
     spec.conversionGainEPerDn = v->number(1e-6, 1e6);  // 1e-300 gave an infinite gain
-  if (const auto v = map.find("base_iso")) spec.baseIso = v->number(0.0, 1e7, true);
+  if (const auto v = map.find("base_iso")) spec.baseIso = v->number(0.0, kMaxIso, true);
   if (const auto v = map.find("read_noise_e")) spec.readNoiseE = v->number(0.0, 1e6);
   if (const auto v = map.find("dark_current_e_per_s")) spec.darkCurrentEPerS = v->number(0.0, 1e9);
   if (const auto v = map.find("dark_reference_c")) spec.darkReferenceC = v->number(-273.15, 500.0);

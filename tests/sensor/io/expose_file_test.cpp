@@ -341,5 +341,24 @@ TEST(ExposeFile, IsoOutsideTheCalibratedRangeIsRefused) {
   EXPECT_EQ(key, "iso");
 }
 
+// A sensor without an ISO table takes any ISO, within render's --iso range [1, 1e7] (found by
+// probing: --iso 1e12 was exposed and written, the DNG's ISO clamped).
+TEST(ExposeFile, IsoOutsideRendersRangeIsRefused) {
+  TempDir dir;
+  const fs::path exr = writeLevels(dir.path(), rawMeta("smartphone-1.4um", "RGGB", "1"));
+  ExposeFileSettings s;
+  for (const double iso : {1.0, 1e7}) {
+    s.iso = iso;
+    EXPECT_EQ(errorOf(exr, s), "") << iso;
+  }
+  for (const double iso : {0.5, 1.0000001e7, 1e12}) {
+    s.iso = iso;
+    std::string key;
+    const std::string e = errorOf(exr, s, &key);
+    EXPECT_EQ(key, "iso") << iso;
+    EXPECT_NE(e.find("is outside [1, 1e+07]"), std::string::npos) << e;
+  }
+}
+
 }  // namespace
 }  // namespace camsim::expose_file_test
