@@ -48,6 +48,12 @@ pybind11::handle inputErrorType();
 // TypeError ("incompatible function arguments") instead (found by probing: 2**40).
 int threadCountArg(const pybind11::object& threads, const std::string& where);
 
+// An integer argument (an int or anything with __index__, not a float or a bool) in [lo, hi]:
+// camsim.InputError at `where`, naming `key`, otherwise (pybind11's own conversion raised
+// TypeError for a negative seed).
+long long integerArg(const pybind11::object& value, const std::string& where,
+                     const std::string& key, long long lo, long long hi);
+
 // Overrides of a loaded scene (scene_overrides.cpp), through the library's override table
 // (integrator/scene/overrides.h). Each throws InputError naming the scene key ("<override>"
 // as its file) for a bad value; none reads a file but a sensor override's sensor

@@ -41,6 +41,29 @@ py::handle inputErrorType() {
   return gInputError;
 }
 
+long long integerArg(const py::object& value, const std::string& where, const std::string& key,
+                     long long lo, long long hi) {
+  const auto refuse = [&] {
+    throw InputError({where, 0, 0}, key,
+                     "expected an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) +
+                         "], got " + std::string(py::repr(value)));
+  };
+  if (PyBool_Check(value.ptr()) || !PyIndex_Check(value.ptr())) refuse();
+  PyObject* index = PyNumber_Index(value.ptr());
+  if (!index) {
+    PyErr_Clear();
+    refuse();
+  }
+  long long v = 0;
+  try {
+    v = py::reinterpret_steal<py::int_>(index).cast<long long>();
+  } catch (const py::cast_error&) {  // beyond 64 bits
+    refuse();
+  }
+  if (v < lo || v > hi) refuse();
+  return v;
+}
+
 int threadCountArg(const py::object& threads, const std::string& where) {
   const auto refuse = [&] { throw threadCountError(where, py::repr(threads)); };
   // An int or anything with __index__ (a NumPy integer), as a C int parameter took; not a

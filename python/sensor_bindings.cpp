@@ -22,6 +22,7 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <limits>
 #include <optional>
 
 #include "python/bindings.h"
@@ -99,11 +100,16 @@ void storeFrame(const std::vector<RawImage>& raws, std::uint16_t* out) {
 }
 
 py::array_t<std::uint16_t> exposeFrames(const py::array& electrons, const SensorSpec& sensor,
-                                        std::uint64_t seed, std::optional<long long> frames,
-                                        std::uint64_t firstFrame, double exposureTimeS,
+                                        const py::object& seedArg, std::optional<long long> frames,
+                                        const py::object& firstFrameArg, double exposureTimeS,
                                         std::optional<double> iso, double exposureScale,
                                         const std::string& noise, const py::object& threadsArg) {
   const int threads = threadCountArg(threadsArg, "<expose>");
+  constexpr long long kMaxIndex = std::numeric_limits<long long>::max();
+  const auto seed =
+      static_cast<std::uint64_t>(integerArg(seedArg, "<expose>", "seed", 0, kMaxIndex));
+  const auto firstFrame = static_cast<std::uint64_t>(
+      integerArg(firstFrameArg, "<expose>", "first_frame", 0, kMaxIndex));
   if (!(exposureScale > 0.0 && exposureScale <= kMaxExposureScale))
     fail("<expose>", "exposure_scale",
          "value " + formatShortest(exposureScale) + " is out of range " +
@@ -161,10 +167,14 @@ py::array_t<std::uint16_t> exposeFrames(const py::array& electrons, const Sensor
 // `camsim expose` from Python: a render's NAME_raw.exr → frames (n, h, w[, C]) and, with
 // output_dir, the CLI's files (sensor/io/expose_file.h does the reading, checks and writing).
 py::dict exposeFile(const std::string& path, const std::optional<std::string>& sensor,
-                    std::optional<std::uint64_t> seed, long long frames, std::optional<double> iso,
+                    const py::object& seedArg, long long frames, std::optional<double> iso,
                     double exposureScale, const std::string& noise,
                     const std::optional<std::string>& outputDir, const py::object& threadsArg) {
   const int threads = threadCountArg(threadsArg, "<expose_file>");
+  std::optional<std::uint64_t> seed;
+  if (!seedArg.is_none())
+    seed = static_cast<std::uint64_t>(
+        integerArg(seedArg, "<expose_file>", "seed", 0, std::numeric_limits<long long>::max()));
   ExposeFileSettings settings;
   settings.sensor = sensor.value_or("");
   settings.seed = seed;
@@ -393,7 +403,13 @@ base_iso, read_noise_e (e- rms), dark_current_e_per_s (e-/s at temperature_c), d
 (e- rms), prnu (fraction), adc_bits, black_level_dn, white_level_dn (DN), cfa (name),
 channels, stacked, noiseless, pattern_seed.)doc")
       .def(py::init([](const std::string& nameOrPath) {
-             return loadSensorSpec(nameOrPath, lutsDirectory());
+             // An unknown preset names no file (its error said "<input>"): named here.
+             try {
+               return loadSensorSpec(nameOrPath, lutsDirectory());
+             } catch (const InputError& e) {
+               if (!e.where().file.empty()) throw;
+               fail("<Sensor>", "name_or_path", e.message());
+             }
            }),
            py::arg("name_or_path"))
       .def_static(
@@ -425,10 +441,27 @@ channels, stacked, noiseless, pattern_seed.)doc")
       .def_property_readonly("cfa", [](const SensorSpec& s) { return s.cfa.name; })
       .def_property_readonly("channels", [](const SensorSpec& s) { return s.cfa.channels; })
       .def_property_readonly("stacked", [](const SensorSpec& s) { return s.cfa.isStacked(); })
-      .def("system_gain", &SensorSpec::systemGain, py::arg("iso"),
-           "System gain K at an ISO, DN/e- ((iso / base_iso) / conversion gain).")
-      .def("saturation_electrons", &SensorSpec::saturationElectrons, py::arg("iso"),
-           "Electrons at which the output saturates at an ISO: min(full well, ADC range / K).")
+      .def(
+          "system_gain",
+          [](const SensorSpec& s, double iso) {
+            try {
+              return s.systemGain(iso);
+            } catch (const InputError& e) {
+              fail("<system_gain>", "iso", e.message());
+            }
+          },
+          py::arg("iso"), "System gain K at an ISO, DN/e- ((iso / base_iso) / conversion gain).")
+      .def(
+          "saturation_electrons",
+          [](const SensorSpec& s, double iso) {
+            try {
+              return s.saturationElectrons(iso);
+            } catch (const InputError& e) {
+              fail("<saturation_electrons>", "iso", e.message());
+            }
+          },
+          py::arg("iso"),
+          "Electrons at which the output saturates at an ISO: min(full well, ADC range / K).")
       .def("__repr__", [](const SensorSpec& s) { return "<camsim.Sensor '" + s.name + "'>"; });
 
   m.def(

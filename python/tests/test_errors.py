@@ -136,6 +136,33 @@ def test_a_thread_count_may_be_any_integer_type_but_not_a_float():
         camsim.expose_file("no_such_raw.exr", threads=np.int64(2))
 
 
+def test_seeds_and_frame_indices_out_of_range_are_input_errors():
+    # Found by probing: a negative seed or first_frame raised pybind11's TypeError
+    # ("incompatible function arguments"), not camsim.InputError naming the argument.
+    electrons = np.full((8, 8), 100, np.float32)
+    sensor = camsim.Sensor("smartphone-1.4um")
+    for bad in (-1, 2**64, 1.5, True, "1"):
+        with pytest.raises(camsim.InputError, match=r"<expose>: key 'seed'"):
+            camsim.expose(electrons, sensor, seed=bad)
+        with pytest.raises(camsim.InputError, match=r"<expose>: key 'first_frame'"):
+            camsim.expose(electrons, sensor, seed=1, first_frame=bad)
+        with pytest.raises(camsim.InputError, match=r"<expose_file>: key 'seed'"):
+            camsim.expose_file("no_such_raw.exr", seed=bad)
+    assert camsim.expose(electrons, sensor, seed=np.uint8(3), first_frame=np.int64(2)).shape == (8, 8)
+
+
+def test_sensor_errors_name_the_function_and_argument():
+    # Found by probing: these said "<input>" with an empty file and no key.
+    with pytest.raises(camsim.InputError, match=r"^<Sensor>: key 'name_or_path'") as info:
+        camsim.Sensor("no-such-sensor")
+    assert (info.value.file, info.value.key) == ("<Sensor>", "name_or_path")
+    sensor = camsim.Sensor("smartphone-1.4um")
+    with pytest.raises(camsim.InputError, match=r"^<system_gain>: key 'iso'"):
+        sensor.system_gain(0)
+    with pytest.raises(camsim.InputError, match=r"^<saturation_electrons>: key 'iso'"):
+        sensor.saturation_electrons(float("nan"))
+
+
 def test_a_capture_beyond_the_memory_limit_is_an_input_error():
     # Found by probing: capture() had no memory guard (camsim render had): a 32768 x 8192
     # scene raised MemoryError std::bad_alloc. max_memory_gb sets the limit, as
