@@ -99,7 +99,7 @@ std::unique_ptr<CLI::App> psfApp(PsfArgs& a) {
   app->add_option_function<std::string>(
          "--rays",
          [&a](const std::string& t) { a.settings.rays = parseInteger("--rays", t, -kBig, kBig); },
-         "rays traced per entry, [1000, 1e8] (default 1000000)")
+         "rays traced per entry, [1000, 100000000] (default 1000000)")
       ->type_name("N");
   app->add_option_function<std::string>(
          "--seed",

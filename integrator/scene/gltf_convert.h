@@ -17,8 +17,10 @@ namespace camsim {
 
 // One `include:` entry, resolved.
 struct GltfInclude {
-  std::string where;  // "include[2] (file)": for notes
-  std::string label;  // shape and material name prefix
+  std::string where;        // "include[2] (file)": for notes
+  SourceLocation location;  // the entry in the scene file, and its key path ("include[2]"),
+  std::string key;          // for errors about its shapes found after loading
+  std::string label;        // shape and material name prefix
   GltfDocument doc;
   glm::dmat4 worldFromAsset{1.0};  // the entry's placement (scene world ← asset)
   int scene = 0;                   // which of the asset's scenes

@@ -131,7 +131,7 @@ const VertexColors* Scene::vertexColorsOf(const SceneDescription& d, const Shape
   const MeshData& mesh = s.sharedMesh ? *s.sharedMesh : s.mesh;
   if (mesh.colors.empty()) return nullptr;
   if (mesh.colors.size() != mesh.positions.size())
-    throw InputError({d.sourceFile, 0, 0}, s.label,
+    throw shapeError(d, s,
                      "the mesh has " + std::to_string(mesh.colors.size()) + " vertex colours for " +
                          std::to_string(mesh.positions.size()) + " vertices");
   const VertexColors*& colors = made[&mesh];
@@ -210,12 +210,12 @@ void Scene::buildShapes(const SceneDescription& d) {
         s.material < 0 ? nullptr : &d.materials[static_cast<size_t>(s.material)];
     if (material && material->alphaCutout) {
       if (s.kind != ShapeDescription::Kind::kMesh)
-        throw InputError({d.sourceFile, 0, 0}, s.label,
+        throw shapeError(d, s,
                          "material '" + material->name +
                              "' has an alpha cut-out, which needs a mesh with texture "
                              "coordinates (a sphere has none)");
       if (s.emission)
-        throw InputError({d.sourceFile, 0, 0}, s.label,
+        throw shapeError(d, s,
                          "material '" + material->name +
                              "' has an alpha cut-out and the shape emits: cut-out emitters "
                              "are not supported");

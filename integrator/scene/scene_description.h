@@ -235,6 +235,12 @@ struct ShapeDescription {
   enum class Kind { kMesh, kSphere };
   Kind kind = Kind::kMesh;
   std::string label;  // for messages: the user's name or "shapes[i]"; the instance's id name
+  // Where the scene file wrote it, for errors found after loading (its reach, placement,
+  // cut-out): the entry's line and key path ("shapes[2]", "shapes[2].instances[1]",
+  // "include[0]"); an empty file: a description built in code (then the scene file, and the
+  // label as the key).
+  SourceLocation where;
+  std::string key;
   // `class:` — the semantic class: its name (an integer's decimal text, or a word) and, for
   // an integer, its number (≥ 1); empty name: unlabelled (class 0, as the background).
   std::string className;

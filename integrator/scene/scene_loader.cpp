@@ -246,6 +246,8 @@ void parseShape(YamlMap map, size_t index, Context& ctx, SceneDescription& scene
                 std::vector<ShapeDescription>& out) {
   ShapeDescription s;
   s.label = "shapes[" + std::to_string(index) + "]";
+  s.key = s.label;
+  s.where = map.self().where();
   if (auto n = map.find("name")) s.label = n->string();
   const YamlValue type = map.require("type");
   const std::string t = type.string();

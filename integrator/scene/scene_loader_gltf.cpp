@@ -91,6 +91,8 @@ struct Walk {
               (mesh.primitives.size() > 1 ? "/" + std::to_string(k) : "");
     s.className = inc.className;
     s.classNumber = inc.classNumber;
+    s.where = inc.location;
+    s.key = inc.key;
     if (p.material < 0 && defaultMaterial < 0) defaultMaterial = addGltfDefaultMaterial(inc, scene);
     s.material = p.material >= 0 ? materials[static_cast<size_t>(p.material)] : defaultMaterial;
     const auto known = emissions.find(p.material);
@@ -192,6 +194,8 @@ std::vector<GltfInclude> parseGltfIncludes(const YamlValue& list,
     inc.doc = readGltf(file);
     for (const auto& f : inc.doc.filesRead) search.noteRead(f);
     inc.where = "include[" + std::to_string(i) + "] (" + file.filename().string() + ")";
+    inc.key = "include[" + std::to_string(i) + "]";
+    inc.location = map.self().where();
     inc.label = file.stem().string();
     if (auto n = map.find("name")) inc.label = n->string();
     inc.worldFromAsset = parsePlacement(map);  // matrix, or T · R · S

@@ -78,6 +78,8 @@ ShapeDescription parseInstance(YamlMap map, size_t j, const ShapeDescription& sh
                                const glm::dvec3& origin) {
   ShapeDescription s = shape;  // kind, mesh, material, emission, class
   s.label = shape.label + "[" + std::to_string(j) + "]";
+  s.key = shape.key + ".instances[" + std::to_string(j) + "]";
+  s.where = map.self().where();
   if (auto n = map.find("name")) s.label = n->string();
   if (auto c = map.find("class")) parseShapeClass(*c, s);
   if (auto m = map.find("material")) {

@@ -97,7 +97,7 @@ void checkReach(const SceneDescription& d, const ShapeDescription& s,
                                   : centre + row * meshReach);
     }
     if (!(reach <= SceneLimits::kMaxCoordinate))
-      throw InputError({d.sourceFile, 0, 0}, s.label,
+      throw shapeError(d, s,
                        "the shape reaches " + formatNumber(reach) +
                            " m from the camera's rest position; camsim traces within ±1e15 m "
                            "(limit SceneLimits::kMaxCoordinate)");
@@ -107,7 +107,7 @@ void checkReach(const SceneDescription& d, const ShapeDescription& s,
       const double radius = glm::length(glm::dvec3(m[0])) * static_cast<double>(s.radius);
       const auto stored = static_cast<float>(radius);
       if (!(stored >= static_cast<float>(SceneLimits::kMinSphereRadius) && radius <= 1e12))
-        throw InputError({d.sourceFile, 0, 0}, s.label,
+        throw shapeError(d, s,
                          "the sphere's radius times its keyframe scale is " + formatNumber(radius) +
                              " m, outside [1e-09, 1e+12] m");
     }
@@ -116,14 +116,19 @@ void checkReach(const SceneDescription& d, const ShapeDescription& s,
 
 }  // namespace
 
+InputError shapeError(const SceneDescription& d, const ShapeDescription& s,
+                      const std::string& message) {
+  if (s.where.file.empty()) return InputError({d.sourceFile, 0, 0}, s.label, message);
+  return InputError(s.where, s.key, s.label == s.key ? message : "'" + s.label + "': " + message);
+}
+
 void checkPlacement(const SceneDescription& d, const ShapeDescription& s) {
   const double det = glm::determinant(glm::dmat3(s.placement));
   bool finite = std::isfinite(det);
   for (int c = 0; c < 4; ++c)
     for (int r = 0; r < 4; ++r) finite = finite && std::isfinite(s.placement[c][r]);
   if (!finite || det == 0.0)
-    throw InputError({d.sourceFile, 0, 0}, s.label,
-                     "the instance's placement matrix is singular or not finite");
+    throw shapeError(d, s, "the instance's placement matrix is singular or not finite");
 }
 
 std::shared_ptr<const TriangleMesh> objectMesh(const MeshData& mesh) {

@@ -20,6 +20,12 @@ namespace camsim {
 // shape otherwise: descriptions built in code are not checked by the loader).
 void checkPlacement(const SceneDescription& d, const ShapeDescription& s);
 
+// The InputError of a problem with shape s found after loading: at s.where, key s.key (the
+// label first in the message when it is not the key); for a shape built in code, the scene
+// file and the label.
+InputError shapeError(const SceneDescription& d, const ShapeDescription& s,
+                      const std::string& message);
+
 // One shared object-space mesh per MeshData that several shapes place: static, sampled by
 // no light (emitting instances sample their own placed areas).
 std::shared_ptr<const TriangleMesh> objectMesh(const MeshData& mesh);

@@ -182,6 +182,9 @@ TEST(SceneLimits, SmallestSphereRadiusBuilds) {
     ADD_FAILURE() << "built a sphere of radius 5e-10 m";
   } catch (const InputError& e) {
     EXPECT_EQ(e.key(), "shapes[1]") << e.what();
+    // The entry's line (found by probing: errors found after loading named no line).
+    EXPECT_EQ(e.where().file, "tiny.yaml");
+    EXPECT_GT(e.where().line, 0) << e.what();
     EXPECT_NE(e.message().find("the sphere's radius times its keyframe scale is "),
               std::string::npos)
         << e.what();

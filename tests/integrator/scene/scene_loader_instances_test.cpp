@@ -176,7 +176,10 @@ TEST(SceneLoaderInstances, SceneRejectsWhatTheLoaderWouldHave) {
         try {
           const Scene scene(singular);
         } catch (const InputError& e) {
-          EXPECT_EQ(e.key(), "shapes[0][1]");
+          // The entry's key path and line; the label first in the message.
+          EXPECT_EQ(e.key(), "shapes[0].instances[1]");
+          EXPECT_GT(e.where().line, 0);
+          EXPECT_EQ(e.message().rfind("'shapes[0][1]': ", 0), 0u) << e.what();
           throw;
         }
       },
