@@ -45,36 +45,62 @@ ItemModels itemModels(const Manifest& manifest, std::size_t index,
   return m;
 }
 
-// InputError (the item's) when one of item's BOP models differs from reference's model of
-// the same obj_id. Found by probing: a grid over a labelled mesh's `scale` wrote
-// obj_000002.ply 159 mm across in item 0 and 238 mm in item 1, so the gathered dataset posed
-// one of them against the other's model.
-void checkSameModels(const ItemModels& reference, const ItemModels& item) {
-  const DifferentBopModels d = firstDifferentBopModels(reference.models.bop(), item.models.bop());
-  if (!d.other) return;
-  const SceneDescription& s = item.item.description;
-  // No key: the item's values (not `exports`, which a manifest's `set` may name) made it.
-  throw item.item.manifestError(InputError(
-      exportsPlace(s), "",
-      "bop: shape '" + s.shapes[d.other->shape].label + "' has class " +
-          std::to_string(d.other->objId) + " (BOP's obj_id) but a different model than shape '" +
-          reference.item.description.shapes[d.reference->shape].label + "' of item " +
-          std::to_string(reference.item.index) +
-          ": the items of a dataset are one BOP dataset, with one model per obj_id (models/obj_" +
-          formatSixDigits(d.other->objId) +
-          ".ply): vary a class's pose, not its mesh or scale, or give each variant a class of "
-          "its own (docs/dataset-format.md)"));
+// Why two models of one obj_id are refused. Found by probing: a grid over a labelled mesh's
+// `scale` wrote obj_000002.ply 159 mm across in item 0 and 238 mm in item 1, so the gathered
+// dataset posed one of them against the other's model.
+std::string clash(std::uint32_t objId, const std::string& shape, const std::string& firstShape,
+                  std::size_t firstItem) {
+  return "bop: shape '" + shape + "' has class " + std::to_string(objId) +
+         " (BOP's obj_id) but a different model than shape '" + firstShape + "' of item " +
+         std::to_string(firstItem) +
+         ": the items of a dataset are one BOP dataset, with one model per obj_id (models/obj_" +
+         formatSixDigits(objId) +
+         ".ply): vary a class's pose, not its mesh or scale, or give each variant a class of "
+         "its own (docs/dataset-format.md)";
 }
 
-// The obj_ids of models that reference lacks.
-std::vector<std::uint32_t> idsMissingFrom(const PoseModels& reference, const PoseModels& models) {
-  std::vector<std::uint32_t> ids;
-  for (const BopModel& m : models.bop()) {
+// The item's error for a message about its models (no key: the item's values made it, not
+// `exports`, which a manifest's `set` may name).
+InputError modelError(const ItemModels& m, const std::string& message) {
+  return m.item.manifestError(InputError(exportsPlace(m.item.description), "", message));
+}
+
+// InputError (the item's) when one of item's BOP models differs from first's model of the
+// same obj_id.
+void checkSameModels(const ItemModels& first, const ItemModels& item) {
+  const DifferentBopModels d = firstDifferentBopModels(first.models.bop(), item.models.bop());
+  if (!d.other) return;
+  throw modelError(
+      item, clash(d.other->objId, item.item.description.shapes[d.other->shape].label,
+                  first.item.description.shapes[d.reference->shape].label, first.item.index));
+}
+
+// A model of an obj_id the first item lacks, kept (not its item's scene) to compare with the
+// other items' models of it.
+struct KeptModel {
+  std::size_t item = 0;
+  std::vector<BopModel> model;  // one: the shape firstDifferentBopModels takes
+  std::string shape;            // its shape's label
+  SourceLocation where;         // the item's error's place and prefix (modelError)
+  std::string key, prefix;
+};
+
+// item's models of obj_ids that first lacks.
+std::vector<KeptModel> modelsMissingFrom(const PoseModels& first, const ItemModels& item) {
+  std::vector<KeptModel> kept;
+  for (const BopModel& m : item.models.bop()) {
     bool found = false;
-    for (const BopModel& r : reference.bop()) found = found || r.objId == m.objId;
-    if (!found) ids.push_back(m.objId);
+    for (const BopModel& r : first.bop()) found = found || r.objId == m.objId;
+    if (found) continue;
+    const InputError e = modelError(item, "");
+    kept.push_back({item.item.index,
+                    {m},
+                    item.item.description.shapes[m.shape].label,
+                    e.where(),
+                    e.key(),
+                    e.message()});
   }
-  return ids;
+  return kept;
 }
 
 void rethrowFirst(const std::vector<std::exception_ptr>& errors) {
@@ -83,16 +109,16 @@ void rethrowFirst(const std::vector<std::exception_ptr>& errors) {
 }
 
 // Every item's models against the first item's, on all cores; the models are dropped as they
-// are checked (all items' at once would hold every scene), the first item's kept. An obj_id
-// the first item lacks is then checked against the first item that has it, one item at a
-// time (rare: a manifest that adds a class in later items).
+// are checked (all items' at once would hold every scene), the first item's kept. Then the
+// models of obj_ids the first item lacks (only those models are kept), each against the first
+// item that has it: those clashes are reported after every other error.
 void checkItems(const Manifest& manifest,
                 const std::function<void(std::size_t, std::size_t)>& onChecked,
                 std::optional<double> maxMemoryGb) {
   const std::size_t n = manifest.items.size();
   if (n == 0) return;
   std::vector<std::exception_ptr> errors(n);
-  std::vector<std::vector<std::uint32_t>> newIds(n);  // per item: obj_ids item 0 lacks
+  std::vector<std::vector<KeptModel>> kept(n);  // per item: its models of obj_ids item 0 lacks
   std::optional<ItemModels> first;
   try {
     first.emplace(itemModels(manifest, 0, maxMemoryGb));
@@ -106,7 +132,7 @@ void checkItems(const Manifest& manifest,
         const ItemModels m = itemModels(manifest, i, maxMemoryGb);
         if (first) {
           checkSameModels(*first, m);
-          newIds[i] = idsMissingFrom(first->models, m.models);
+          kept[i] = modelsMissingFrom(first->models, m);
         }
       } catch (...) {
         errors[i] = std::current_exception();
@@ -119,21 +145,16 @@ void checkItems(const Manifest& manifest,
   });
   rethrowFirst(errors);
 
-  std::map<std::uint32_t, std::size_t> referenceOf;  // obj_id → the first item with it
+  std::map<std::uint32_t, const KeptModel*> firstOf;  // obj_id → the first item's model of it
   for (std::size_t i = 0; i < n; ++i)
-    for (const std::uint32_t id : newIds[i]) referenceOf.try_emplace(id, i);
-  std::map<std::size_t, ItemModels> references;
-  for (const auto& [id, i] : referenceOf)
-    if (!references.contains(i)) references.emplace(i, itemModels(manifest, i, maxMemoryGb));
-  for (std::size_t i = 0; i < n; ++i) {
-    if (newIds[i].empty()) continue;
-    std::optional<ItemModels> made;
-    const ItemModels& m = references.contains(i)
-                              ? references.at(i)
-                              : made.emplace(itemModels(manifest, i, maxMemoryGb));
-    for (const std::uint32_t id : newIds[i])
-      if (referenceOf[id] != i) checkSameModels(references.at(referenceOf[id]), m);
-  }
+    for (const KeptModel& k : kept[i]) {
+      const auto [it, added] = firstOf.try_emplace(k.model.front().objId, &k);
+      if (added) continue;
+      const KeptModel& f = *it->second;
+      if (firstDifferentBopModels(f.model, k.model).other)
+        throw InputError(k.where, k.key,
+                         k.prefix + clash(k.model.front().objId, k.shape, f.shape, f.item));
+    }
 }
 
 }  // namespace

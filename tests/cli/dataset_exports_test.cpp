@@ -113,7 +113,8 @@ TEST(DatasetExports, BopModelClashIsFoundByCheckAndNamedAtTheManifestLine) {
                   "set: {exports: [bop]}\n"
                   "items:\n"
                   "  - {\"shapes[0].class\": 3}\n");
-  for (const char* run : {" --check", " -o out"}) {
+  for (const std::string& run :
+       {std::string(" --check"), " -o " + test::quote((dir.path() / "out").string())}) {
     const test::RunResult r = test::runCamsim(
         "dataset " + test::quote((dir.path() / "clash.yaml").string()) + run, dir.path());
     EXPECT_EQ(r.exitCode, 2) << run << "\n" << r.err;
@@ -148,6 +149,16 @@ TEST(DatasetExports, AnObjIdHasOneModelInAllItems) {
        "  - {\"shapes[0].class\": 4}\n"
        "  - {\"shapes[0].class\": 4, camera.position: [0.1, 0, -2]}\n",
        ""},
+      // Each item's class 3 within the tolerance (4.2e-5 m) of item 0's, 6e-5 m from each
+      // other: valid; class 4, which item 0 lacks, compares only its own models (found in
+      // review: items 1 and 2 were compared on class 3 too, and refused).
+      {"items:\n"
+       "  - {camera.position: [0, 0, -2]}\n"
+       "  - {\"shapes[0].class\": 4, \"shapes[1].vertices\": [[0, 0, 0], [0.30003, 0, 0], "
+       "[0, 0.3, 0]]}\n"
+       "  - {\"shapes[0].class\": 4, \"shapes[1].vertices\": [[0, 0, 0], [0.29997, 0, 0], "
+       "[0, 0.3, 0]]}\n",
+       ""},
       // Class 3's triangle larger in item 1.
       {"items:\n"
        "  - {camera.position: [0, 0, -2]}\n"
@@ -164,7 +175,8 @@ TEST(DatasetExports, AnObjIdHasOneModelInAllItems) {
   };
   for (const Case& c : cases) {
     test::writeFile(dir.path() / "items.yaml", head + c.items);
-    for (const char* run : {" --check", " -o out"}) {
+    for (const std::string& run :
+         {std::string(" --check"), " -o " + test::quote((dir.path() / "out").string())}) {
       const test::RunResult r = test::runCamsim(
           "dataset " + test::quote((dir.path() / "items.yaml").string()) + run + " --threads 1",
           dir.path());
@@ -191,7 +203,8 @@ TEST(DatasetExports, AnItemBeyondTheMemoryLimitIsRefusedBeforeAnything) {
                   "items:\n"
                   "  - {camera.resolution: [24, 16]}\n"
                   "  - {camera.resolution: [256, 256]}\n");
-  for (const char* run : {" --check", " -o out"}) {
+  for (const std::string& run :
+       {std::string(" --check"), " -o " + test::quote((dir.path() / "out").string())}) {
     const test::RunResult r =
         test::runCamsim("dataset " + test::quote((dir.path() / "big.yaml").string()) + run +
                             " --threads 1 --max-memory-gb 0.001",
