@@ -64,7 +64,7 @@ std::unique_ptr<CLI::App> datasetApp(DatasetArgs& a) {
          "render only item N (of this shard)")
       ->type_name("N");
   addThreadsOption(*app, a.threads, "the items' bytes do not depend on it");
-  addMemoryLimitOption(*app, a.maxMemoryGb, "a dataset any of whose items");
+  addMemoryLimitOption(*app, a.maxMemoryGb, "a dataset with an item");
   app->add_flag("--check", a.check,
                 "check the manifest and every item, print the item count, render nothing");
   app->add_option_function<std::string>(

@@ -85,10 +85,17 @@ py::object runCapture(PyScene& scene, const py::object& threadsArg, const py::ob
   const int threads = threadCountArg(threadsArg, "<capture>");
   std::optional<double> memoryLimit;
   if (!maxMemoryGb.is_none()) {
-    if (!PyNumber_Check(maxMemoryGb.ptr()) || PyBool_Check(maxMemoryGb.ptr()))
-      throw InputError({"<capture>", 0, 0}, "max_memory_gb", "expected a number of GB");
-    memoryLimit = checkMaxMemoryGb(py::cast<double>(py::float_(maxMemoryGb)), {"<capture>", 0, 0},
-                                   "max_memory_gb");
+    // A real number (int or float, not a bool): a complex or an int past a double raised
+    // TypeError or OverflowError (found in review).
+    const bool real = (PyFloat_Check(maxMemoryGb.ptr()) || PyLong_Check(maxMemoryGb.ptr())) &&
+                      !PyBool_Check(maxMemoryGb.ptr());
+    if (!real) throw InputError({"<capture>", 0, 0}, "max_memory_gb", "expected a number of GB");
+    double gb = PyFloat_AsDouble(maxMemoryGb.ptr());
+    if (PyErr_Occurred()) {  // an int past a double: refused below
+      PyErr_Clear();
+      gb = -1.0;
+    }
+    memoryLimit = checkMaxMemoryGb(gb, {"<capture>", 0, 0}, "max_memory_gb");
   }
   // For this capture only (the Scene keeps its settings), checked before anything runs.
   Overrides overrides;

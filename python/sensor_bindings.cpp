@@ -127,6 +127,11 @@ py::array_t<std::uint16_t> exposeFrames(const py::array& electrons, const Sensor
   const long long n = frames.value_or(1);
   if (n < 1 || n > kMaxFrames)
     fail("<expose>", "frames", "expected 1 to " + std::to_string(kMaxFrames) + " frames");
+  // camsim render's and expose's ISO range (found in review: iso=1e12 was exposed).
+  if (iso && !(*iso >= kMinIso && *iso <= kMaxIso))
+    fail("<expose>", "iso",
+         "ISO " + formatShortest(*iso) + " is outside [" + formatShortest(kMinIso) + ", " +
+             formatShortest(kMaxIso) + "]");
   ExposureSettings settings{exposureTimeS, iso.value_or(sensor.baseIso)};
   const std::optional<DarkFrameSet> darkFrames = darkFramesFor(sensor, mode);  // as a capture's
   settings.darkFrames = darkFrames ? &*darkFrames : nullptr;

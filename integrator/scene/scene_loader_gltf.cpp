@@ -269,12 +269,20 @@ double applyGltfCamera(const YamlValue& spec, const std::vector<GltfInclude>& in
           spec.fail(node + ": the camera's transform is singular (a zero scale)");
         axes[c] = glm::dvec3(m[c]) / length;
       }
+      // The include's placement is part of m: when it mirrors or scales unevenly, it is
+      // named rather than the node (found in review).
+      const glm::dmat3 placed(inc.worldFromAsset);
+      const double sx = glm::length(placed[0]), sy = glm::length(placed[1]),
+                   sz = glm::length(placed[2]);
+      const bool uneven = std::abs(sx - sy) > 1e-6 * sx || std::abs(sx - sz) > 1e-6 * sx;
+      const std::string culprit =
+          glm::determinant(placed) < 0.0 || uneven ? inc.key + "'s placement (its scale)" : node;
       if (std::abs(glm::dot(axes[0], axes[1])) > 1e-4 ||
           std::abs(glm::dot(axes[1], axes[2])) > 1e-4 ||
           std::abs(glm::dot(axes[0], axes[2])) > 1e-4)
-        spec.fail(node + ": the camera's transform shears (its axes are not perpendicular)");
+        spec.fail(culprit + ": the camera's transform shears (its axes are not perpendicular)");
       if (glm::dot(glm::cross(axes[0], axes[1]), axes[2]) < 0.0)
-        spec.fail(node +
+        spec.fail(culprit +
                   ": the camera's transform mirrors (a negative scale): the image "
                   "would be mirrored");
       camera.worldFromCamera = glm::dmat4(glm::dvec4(axes[0], 0.0), glm::dvec4(axes[1], 0.0),

@@ -149,6 +149,9 @@ def test_seeds_and_frame_indices_out_of_range_are_input_errors():
         with pytest.raises(camsim.InputError, match=r"<expose_file>: key 'seed'"):
             camsim.expose_file("no_such_raw.exr", seed=bad)
     assert camsim.expose(electrons, sensor, seed=np.uint8(3), first_frame=np.int64(2)).shape == (8, 8)
+    for iso in (0.5, 1e12):  # camsim render's and expose's range, [1, 1e7]
+        with pytest.raises(camsim.InputError, match=r"<expose>: key 'iso'"):
+            camsim.expose(electrons, sensor, seed=1, iso=iso)
 
 
 def test_sensor_errors_name_the_function_and_argument():
@@ -170,7 +173,7 @@ def test_a_capture_beyond_the_memory_limit_is_an_input_error():
     scene = camsim.default_scene(overrides={"spp": 1})
     with pytest.raises(camsim.InputError, match=r"needs an estimated .* set by max_memory_gb"):
         camsim.capture(scene, threads=1, max_memory_gb=0.001)
-    for bad in (0, -1, 2e9, "x", True):
+    for bad in (0, -1, 2e9, "x", True, 1j, 10**400, float("nan")):
         with pytest.raises(camsim.InputError, match=r"<capture>: key 'max_memory_gb'"):
             camsim.capture(scene, threads=1, max_memory_gb=bad)
 

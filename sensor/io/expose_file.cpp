@@ -236,6 +236,11 @@ ExposeJob prepareExpose(const std::filesystem::path& electronsExr,
     fail(file, "exposure_scale",
          "value " + formatShortest(settings.exposureScale) + " is out of range " +
              formatRange(0.0, kMaxExposureScale, true));
+  // render's --iso range (found by probing: --iso 1e12 was exposed and written).
+  if (settings.iso && !(*settings.iso >= kMinIso && *settings.iso <= kMaxIso))
+    fail(file, "iso",
+         "ISO " + formatShortest(*settings.iso) + " is outside [" + formatShortest(kMinIso) + ", " +
+             formatShortest(kMaxIso) + "]");
   ExposeJob job;
   const std::optional<NoiseMode> noise = noiseModeFromName(settings.noise);
   if (!noise)
@@ -272,11 +277,6 @@ ExposeJob prepareExpose(const std::filesystem::path& electronsExr,
              " s, beyond what the DNG's EXIF ExposureTime holds (" +
              formatShortest(kDngMaxRational) + " s)");
   job.exposure.iso = settings.iso ? *settings.iso : in.iso ? *in.iso : spec.baseIso;
-  // render's --iso range (found by probing: --iso 1e12 was exposed and written).
-  if (settings.iso && !(*settings.iso >= kMinIso && *settings.iso <= kMaxIso))
-    fail(file, "iso",
-         "ISO " + formatShortest(*settings.iso) + " is outside [" + formatShortest(kMinIso) + ", " +
-             formatShortest(kMaxIso) + "]");
   try {
     (void)noiseAtIso(spec, job.exposure.iso);  // calibrated range, ISO > 0
   } catch (const InputError& e) {

@@ -95,6 +95,20 @@ TEST(GltfLoader, ASingularShearedOrMirroringCameraNodeIsRefused) {
       {"\"matrix\": [1, 0, 0, 0, 0.5, 1, 0, 0, 0, 0, 1, 0, 0, 0.1, 1.5, 1]",
        "nodes[0]: the camera's transform shears"},
   };
+  // A mirroring include names the include, not the node.
+  test::writeFile(dir.path() / "cam.gltf", gltf("\"translation\": [0, 0.1, 1.5]"));
+  try {
+    load(sceneWith("  - {gltf: cam.gltf, scale: [-1, 1, 1]}\nmaterials: {m: {type: diffuse}}\n"
+                   "shapes: [{type: sphere, centre: [0, 0, -3], radius: 1, material: m}]\n",
+                   "  gltf: {camera: 0}\n"),
+         dir.path());
+    ADD_FAILURE() << "a mirroring include loaded";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("include[0]'s placement (its scale): the camera's "
+                                         "transform mirrors"),
+              std::string::npos)
+        << e.what();
+  }
   for (const auto& [node, message] : refused) {
     test::writeFile(dir.path() / "cam.gltf", gltf(node));
     try {
