@@ -68,7 +68,7 @@ int threadCountArg(const py::object& threads, const std::string& where) {
   const auto refuse = [&] { throw threadCountError(where, py::repr(threads)); };
   // An int or anything with __index__ (a NumPy integer), as a C int parameter took; not a
   // float.
-  if (!PyIndex_Check(threads.ptr())) refuse();
+  if (PyBool_Check(threads.ptr()) || !PyIndex_Check(threads.ptr())) refuse();
   PyObject* index = PyNumber_Index(threads.ptr());
   if (!index) {  // its __index__ raised
     PyErr_Clear();

@@ -37,6 +37,9 @@ OverrideSource sourceOf(const OverrideSetting& s) {
 
 template <typename T>
 T castOverride(const py::handle& value, const std::string& key, const std::string& expected) {
+  // A bool is no number here (found by probing: spp=True rendered 1 spp).
+  if constexpr (std::is_arithmetic_v<T>)
+    if (PyBool_Check(value.ptr())) fail(key, "expected " + expected + ", got bool");
   try {
     return value.cast<T>();
   } catch (const py::cast_error&) {
@@ -97,7 +100,11 @@ std::string projectionTextOf(const py::handle& v, const std::string& key) {
     return json.attr("dumps")(v, py::arg("default") = py::module_::import("builtins").attr("float"))
         .cast<std::string>();
   } catch (const py::error_already_set& e) {
-    fail(key, std::string("a value is neither a str nor a number (") + e.what() + ")");
+    // The exception's own text, not e.what(), which carries the Python traceback (found by
+    // probing: an array value printed json/encoder.py's frames).
+    fail(key, "a value is neither a str nor a number (" +
+                  std::string(py::str(e.type().attr("__name__"))) + ": " +
+                  std::string(py::str(e.value())) + ")");
   }
 }
 
@@ -111,6 +118,11 @@ void setOverrideFromPython(Overrides& o, const OverrideSetting& s, const py::han
                            const std::string& typeKey) {
   switch (s.type) {
     case OverrideType::kInteger:
+      // An on/off setting ([0, 1]: guiding) also takes a bool.
+      if (PyBool_Check(value.ptr()) && s.integers.lo == 0 && s.integers.hi == 1) {
+        setOverrideInteger(o, s, value.ptr() == Py_True ? 1 : 0, sourceOf(s));
+        return;
+      }
       setOverrideInteger(o, s, castOverride<long long>(value, typeKey, "an int"), sourceOf(s));
       return;
     case OverrideType::kNumber:

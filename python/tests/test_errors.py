@@ -130,6 +130,13 @@ def test_a_thread_count_out_of_range_is_an_input_error(threads):
 
 def test_a_thread_count_may_be_any_integer_type_but_not_a_float():
     scene = camsim.default_scene(overrides={"spp": 1})
+    # Nor a bool (found by probing: threads=True ran one thread, spp=True rendered 1 spp).
+    with pytest.raises(camsim.InputError, match=r"key 'threads'"):
+        camsim.capture(scene, threads=True)
+    with pytest.raises(camsim.InputError, match=r"key 'spp'.*got bool"):
+        camsim.capture(scene, spp=True)
+    # An on/off setting takes one.
+    assert camsim.capture(scene, threads=1, guiding=False)["xyz"].shape[-1] == 3
     with pytest.raises(camsim.InputError, match=r"key 'threads'.*got 2.0"):
         camsim.capture(scene, threads=2.0)
     with pytest.raises(camsim.InputError, match=r"no such file"):  # past the thread check

@@ -121,6 +121,16 @@ def test_wrong_type_and_flat_pupil():
     assert e.value.key == "camera.projection.model"
 
 
+def test_an_array_value_is_refused_without_a_traceback():
+    # Found by probing: the message carried json/encoder.py's traceback frames.
+    import numpy as np
+    with pytest.raises(camsim.InputError, match=r"neither a str nor a number \(TypeError: ") as e:
+        camsim.capture(camsim.Scene.from_dict(lamp()),
+                       projection={"model": "kannala_brandt", "k1": np.array([0.02, 1])})
+    assert e.value.key == "projection"
+    assert "encoder.py" not in str(e.value) and "At:" not in str(e.value), str(e.value)
+
+
 def test_override_settings_reports_the_type():
     s = next(s for s in camsim.override_settings() if s["key"] == "projection")
     assert (s["type"], s["scene_key"], s["flag"]) == ("projection", "camera.projection",
