@@ -51,6 +51,19 @@ constexpr long long kMaxFrames = 100000;
   throw InputError(SourceLocation{function, 0, 0}, key, message);
 }
 
+// A sensor quantity at an ISO, its error named as the method's (found by probing: "<input>",
+// no key).
+template <double (SensorSpec::*quantity)(double) const>
+auto ofIso(const char* function) {
+  return [function](const SensorSpec& s, double iso) {
+    try {
+      return (s.*quantity)(iso);
+    } catch (const InputError& e) {
+      fail(function, "iso", e.message());
+    }
+  };
+}
+
 // A float image of one or C channels from a NumPy array (h, w) or (h, w, C), any real dtype;
 // every value finite and ≥ 0 (electrons). Copies, with the GIL held.
 Image electronsImage(const py::array& input, const SensorSpec& spec) {
@@ -446,27 +459,11 @@ channels, stacked, noiseless, pattern_seed.)doc")
       .def_property_readonly("cfa", [](const SensorSpec& s) { return s.cfa.name; })
       .def_property_readonly("channels", [](const SensorSpec& s) { return s.cfa.channels; })
       .def_property_readonly("stacked", [](const SensorSpec& s) { return s.cfa.isStacked(); })
-      .def(
-          "system_gain",
-          [](const SensorSpec& s, double iso) {
-            try {
-              return s.systemGain(iso);
-            } catch (const InputError& e) {
-              fail("<system_gain>", "iso", e.message());
-            }
-          },
-          py::arg("iso"), "System gain K at an ISO, DN/e- ((iso / base_iso) / conversion gain).")
-      .def(
-          "saturation_electrons",
-          [](const SensorSpec& s, double iso) {
-            try {
-              return s.saturationElectrons(iso);
-            } catch (const InputError& e) {
-              fail("<saturation_electrons>", "iso", e.message());
-            }
-          },
-          py::arg("iso"),
-          "Electrons at which the output saturates at an ISO: min(full well, ADC range / K).")
+      .def("system_gain", ofIso<&SensorSpec::systemGain>("<system_gain>"), py::arg("iso"),
+           "System gain K at an ISO, DN/e- ((iso / base_iso) / conversion gain).")
+      .def("saturation_electrons",
+           ofIso<&SensorSpec::saturationElectrons>("<saturation_electrons>"), py::arg("iso"),
+           "Electrons at which the output saturates at an ISO: min(full well, ADC range / K).")
       .def("__repr__", [](const SensorSpec& s) { return "<camsim.Sensor '" + s.name + "'>"; });
 
   m.def(

@@ -63,6 +63,20 @@ std::vector<std::string> fileNames(const fs::path& dir) {
   return names;
 }
 
+// scenes/NAME.yaml at side × side px (it must hold "resolution: [512, 512]"), as dir/FILE.
+fs::path smallScene(const fs::path& dir, const std::string& name, int side,
+                    const std::string& file) {
+  std::string scene = readFile(fs::path(CAMSIM_SOURCE_DIR) / "scenes" / (name + ".yaml"));
+  const std::string from = "resolution: [512, 512]";
+  const auto at = scene.find(from);
+  EXPECT_NE(at, std::string::npos) << "scenes/" << name << ".yaml no longer has " << from;
+  if (at != std::string::npos)
+    scene.replace(at, from.size(),
+                  "resolution: [" + std::to_string(side) + ", " + std::to_string(side) + "]");
+  writeFile(dir / file, scene);
+  return dir / file;
+}
+
 // ---- resource guards ---------------------------------------------------------------------
 
 TEST_F(RenderGuards, MillionPixelSidesFailAtOnceNamingTheLimit) {
@@ -148,12 +162,7 @@ constexpr std::chrono::seconds kStopDeadline{120};
 // on for 17 s after SIGINT, the tiles in flight finishing at full spp. It must exit within
 // 1 s of the signal with 130, and write nothing: no tile had finished.
 TEST_F(RenderGuards, SigintAt100kSppExitsWithinASecondWritingNothing) {
-  std::string scene = readFile(fs::path(CAMSIM_SOURCE_DIR) / "scenes/cornell_box.yaml");
-  const std::string from = "resolution: [512, 512]";
-  const auto at = scene.find(from);
-  ASSERT_NE(at, std::string::npos) << "scenes/cornell_box.yaml no longer has " << from;
-  scene.replace(at, from.size(), "resolution: [48, 48]");
-  writeFile(dir_ / "box48.yaml", scene);
+  smallScene(dir_, "cornell_box", 48, "box48.yaml");
   const fs::path out = dir_ / "out";
   Child run({"render", (dir_ / "box48.yaml").string(), "-o", out.string(), "--spp", "100000",
              "--threads", "2"},
@@ -271,15 +280,9 @@ TEST_F(RenderGuards, SigkillLeavesOnlyTemporariesAndTheNextRunRemovesThem) {
 // temporary is removed (found by probing: the signal killed it and left 2150 temporaries
 // after 2.5 s of a 100 000-frame run; 11 GB in a longer one).
 TEST_F(RenderGuards, SigintStopsExposeRemovingItsTemporaries) {
-  std::string scene = readFile(fs::path(CAMSIM_SOURCE_DIR) / "scenes/cornell_box_smartphone.yaml");
-  const std::string from = "resolution: [512, 512]";
-  const auto at = scene.find(from);
-  ASSERT_NE(at, std::string::npos) << "scenes/cornell_box_smartphone.yaml no longer has " << from;
-  scene.replace(at, from.size(), "resolution: [32, 32]");
-  writeFile(dir_ / "phone32.yaml", scene);
-  Child render(
-      {"render", (dir_ / "phone32.yaml").string(), "-o", (dir_ / "r").string(), "--spp", "1"},
-      dir_ / "render");
+  const fs::path phone = smallScene(dir_, "cornell_box_smartphone", 32, "phone32.yaml");
+  Child render({"render", phone.string(), "-o", (dir_ / "r").string(), "--spp", "1"},
+               dir_ / "render");
   const auto rendered = render.wait(std::chrono::seconds(120));
   ASSERT_TRUE(rendered);
   ASSERT_EQ(exitCode(*rendered), 0) << render.err();
