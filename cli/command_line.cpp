@@ -6,7 +6,6 @@
 
 #include <algorithm>
 #include <charconv>
-#include <cmath>
 
 namespace camsim {
 namespace {
@@ -104,13 +103,14 @@ void addMemoryLimitOption(CLI::App& app, std::optional<double>& gb, const std::s
   app.add_option_function<std::string>(
          "--max-memory-gb",
          [&gb](const std::string& t) {
-           double v = 0.0;
+           double v = -1.0;  // not a number: refused by the range
            const auto [ptr, ec] = std::from_chars(t.data(), t.data() + t.size(), v);
-           if (ec != std::errc() || ptr != t.data() + t.size() || !std::isfinite(v) || v <= 0.0 ||
-               v > kMaxMemoryGb)
-             throw UsageError("--max-memory-gb expects a positive number (at most " +
-                              std::to_string(kMaxMemoryGb) + "), got '" + t + "'");
-           gb = v;
+           if (ec != std::errc() || ptr != t.data() + t.size()) v = -1.0;
+           try {
+             gb = checkMaxMemoryGb(v, {}, "--max-memory-gb");
+           } catch (const InputError& e) {
+             throw UsageError("--max-memory-gb " + e.message() + ", got '" + t + "'");
+           }
          },
          "refuse to start " + what +
              " whose estimated memory exceeds X GB (default: 75 % of physical memory)")

@@ -2,6 +2,8 @@
 // parts of bindings.h. Library code throws camsim::InputError; this front end turns it into
 // the Python exception camsim.InputError, a ValueError whose message is the library's text
 // ("file:line:column: key 'k': message", a dict scene "<dict>: key 'k': message").
+#include <optional>
+
 #include <pybind11/pybind11.h>
 
 #include "python/bindings.h"
@@ -41,47 +43,41 @@ py::handle inputErrorType() {
   return gInputError;
 }
 
+namespace {
+
+// An int or anything with __index__ (a NumPy integer), as a C integer parameter took, within
+// 64 bits; not a float or a bool. None otherwise.
+std::optional<long long> indexValue(const py::object& value) {
+  if (PyBool_Check(value.ptr()) || !PyIndex_Check(value.ptr())) return std::nullopt;
+  PyObject* index = PyNumber_Index(value.ptr());
+  if (!index) {  // its __index__ raised
+    PyErr_Clear();
+    return std::nullopt;
+  }
+  try {
+    return py::reinterpret_steal<py::int_>(index).cast<long long>();
+  } catch (const py::cast_error&) {  // beyond 64 bits
+    return std::nullopt;
+  }
+}
+
+}  // namespace
+
 long long integerArg(const py::object& value, const std::string& where, const std::string& key,
                      long long lo, long long hi) {
-  const auto refuse = [&] {
+  const std::optional<long long> v = indexValue(value);
+  if (!v || *v < lo || *v > hi)
     throw InputError({where, 0, 0}, key,
                      "expected an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) +
                          "], got " + std::string(py::repr(value)));
-  };
-  if (PyBool_Check(value.ptr()) || !PyIndex_Check(value.ptr())) refuse();
-  PyObject* index = PyNumber_Index(value.ptr());
-  if (!index) {
-    PyErr_Clear();
-    refuse();
-  }
-  long long v = 0;
-  try {
-    v = py::reinterpret_steal<py::int_>(index).cast<long long>();
-  } catch (const py::cast_error&) {  // beyond 64 bits
-    refuse();
-  }
-  if (v < lo || v > hi) refuse();
-  return v;
+  return *v;
 }
 
 int threadCountArg(const py::object& threads, const std::string& where) {
-  const auto refuse = [&] { throw threadCountError(where, py::repr(threads)); };
-  // An int or anything with __index__ (a NumPy integer), as a C int parameter took; not a
-  // float.
-  if (PyBool_Check(threads.ptr()) || !PyIndex_Check(threads.ptr())) refuse();
-  PyObject* index = PyNumber_Index(threads.ptr());
-  if (!index) {  // its __index__ raised
-    PyErr_Clear();
-    refuse();
-  }
-  long long count = -1;
-  try {
-    count = py::reinterpret_steal<py::int_>(index).cast<long long>();
-  } catch (const py::cast_error&) {  // beyond 64 bits
-    refuse();
-  }
-  checkThreadCount(count, where);
-  return static_cast<int>(count);
+  const std::optional<long long> count = indexValue(threads);
+  if (!count) throw threadCountError(where, py::repr(threads));
+  checkThreadCount(*count, where);
+  return static_cast<int>(*count);
 }
 
 }  // namespace camsim::python

@@ -141,10 +141,9 @@ py::array_t<std::uint16_t> exposeFrames(const py::array& electrons, const Sensor
   if (n < 1 || n > kMaxFrames)
     fail("<expose>", "frames", "expected 1 to " + std::to_string(kMaxFrames) + " frames");
   // camsim render's and expose's ISO range (found in review: iso=1e12 was exposed).
-  if (iso && !(*iso >= kMinIso && *iso <= kMaxIso))
-    fail("<expose>", "iso",
-         "ISO " + formatShortest(*iso) + " is outside [" + formatShortest(kMinIso) + ", " +
-             formatShortest(kMaxIso) + "]");
+  if (iso)
+    if (const std::string problem = isoRangeProblem(*iso); !problem.empty())
+      fail("<expose>", "iso", problem);
   ExposureSettings settings{exposureTimeS, iso.value_or(sensor.baseIso)};
   const std::optional<DarkFrameSet> darkFrames = darkFramesFor(sensor, mode);  // as a capture's
   settings.darkFrames = darkFrames ? &*darkFrames : nullptr;

@@ -237,10 +237,9 @@ ExposeJob prepareExpose(const std::filesystem::path& electronsExr,
          "value " + formatShortest(settings.exposureScale) + " is out of range " +
              formatRange(0.0, kMaxExposureScale, true));
   // render's --iso range (found by probing: --iso 1e12 was exposed and written).
-  if (settings.iso && !(*settings.iso >= kMinIso && *settings.iso <= kMaxIso))
-    fail(file, "iso",
-         "ISO " + formatShortest(*settings.iso) + " is outside [" + formatShortest(kMinIso) + ", " +
-             formatShortest(kMaxIso) + "]");
+  if (settings.iso)
+    if (const std::string problem = isoRangeProblem(*settings.iso); !problem.empty())
+      fail(file, "iso", problem);
   ExposeJob job;
   const std::optional<NoiseMode> noise = noiseModeFromName(settings.noise);
   if (!noise)

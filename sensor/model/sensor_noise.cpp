@@ -65,6 +65,12 @@ std::optional<double> column(const IsoTableRow& a, const IsoTableRow& b, double 
 
 }  // namespace
 
+std::string isoRangeProblem(double iso) {
+  if (iso >= kMinIso && iso <= kMaxIso) return "";
+  return "ISO " + formatShortest(iso) + " is outside [" + formatShortest(kMinIso) + ", " +
+         formatShortest(kMaxIso) + "]";
+}
+
 NoiseAtIso noiseAtIso(const SensorSpec& sensor, double iso) {
   if (!(iso > 0.0) || !std::isfinite(iso))
     throw InputError({}, "iso", "ISO must be a finite number > 0");

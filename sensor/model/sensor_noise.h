@@ -38,6 +38,9 @@ namespace camsim {
 // ISO (a sensor's base ISO, its calibration rows, a capture's ISO) is at most kMaxIso; a
 // capture's ISO at least kMinIso (render's --iso, expose's).
 inline constexpr double kMinIso = 1.0, kMaxIso = 1e7;
+// Why a capture's ISO is outside [kMinIso, kMaxIso] ("ISO 1e+12 is outside [1, 1e+07]"), or
+// "" when it is inside.
+std::string isoRangeProblem(double iso);
 
 class YamlMap;
 struct SensorSpec;

@@ -176,9 +176,7 @@ TEST_F(DatasetCommand, SigtermStopsWithExitCode143AndTheItemInProgressDropped) {
   const fs::path out = dir_.path() / "out";
   test::Child child({"dataset", manifest_.string(), "-o", out.string(), "--threads", "1"},
                     dir_.path() / "term");
-  while (child.running() && child.cpuSeconds() < 1.0 && child.secondsSinceStart() < 60)
-    std::this_thread::sleep_for(std::chrono::milliseconds(10));
-  ASSERT_TRUE(child.running());
+  ASSERT_TRUE(child.workFor(1.0, 60.0));
   child.signal(SIGTERM);
   const auto status = child.wait(std::chrono::seconds(60));
   ASSERT_TRUE(status);

@@ -168,9 +168,7 @@ TEST_F(RenderGuards, SigintAt100kSppExitsWithinASecondWritingNothing) {
              "--threads", "2"},
             dir_ / "run");
   // Rendering for about a second of CPU (loading takes a fraction of that).
-  while (run.running() && run.cpuSeconds() < 1.0 && run.secondsSinceStart() < 30.0)
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  ASSERT_TRUE(run.running()) << "finished too early: " << run.err();
+  ASSERT_TRUE(run.workFor(1.0, 30.0)) << "finished too early: " << run.err();
   const auto sent = Clock::now();
   run.signal(SIGINT);
   const auto status = run.wait(std::chrono::seconds(30));
@@ -209,9 +207,7 @@ TEST_F(RenderGuards, SigintSavesTheFinishedTilesAsPartialExrAndTheNextRunRemoves
   const fs::path out = dir_ / "out";
   // 64 spp: ~10 s in Release, tiles of ~20 ms each; interrupted after 1.5 s of CPU.
   Child run({"render", "-o", out.string(), "--spp", "64", "--threads", "2"}, dir_ / "run");
-  while (run.running() && run.cpuSeconds() < 1.5 && run.secondsSinceStart() < 60.0)
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  ASSERT_TRUE(run.running()) << "finished too early: " << run.err();
+  ASSERT_TRUE(run.workFor(1.5, 60.0)) << "finished too early: " << run.err();
   run.signal(SIGINT);
   const auto status = run.wait(kStopDeadline);
   ASSERT_TRUE(status) << "did not stop within " << kStopDeadline.count() << " s of SIGINT";
@@ -290,9 +286,7 @@ TEST_F(RenderGuards, SigintStopsExposeRemovingItsTemporaries) {
   Child run({"expose", (dir_ / "r" / "cornell_box_smartphone_raw.exr").string(), "--frames",
              "100000", "--threads", "2", "-o", out.string()},
             dir_ / "run");
-  while (run.running() && run.cpuSeconds() < 1.0 && run.secondsSinceStart() < 60.0)
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  ASSERT_TRUE(run.running()) << "finished too early: " << run.err();
+  ASSERT_TRUE(run.workFor(1.0, 60.0)) << "finished too early: " << run.err();
   run.signal(SIGINT);
   const auto status = run.wait(kStopDeadline);
   ASSERT_TRUE(status) << "did not stop within " << kStopDeadline.count() << " s of SIGINT";

@@ -70,6 +70,16 @@ class Child {
     }
     return status_;
   }
+  // Lets the child work until it has used `cpu` seconds of CPU or `limit` seconds have passed
+  // since it started; whether it is still running then (it must not have exited, e.g. before
+  // a test signals it mid-way).
+  bool workFor(double cpu, double limit) {
+    while (cpuSeconds() < cpu && secondsSinceStart() < limit) {
+      if (wait(std::chrono::seconds(0))) return false;
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    return !wait(std::chrono::seconds(0));
+  }
   double secondsSinceStart() const {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
   }
