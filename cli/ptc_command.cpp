@@ -104,13 +104,14 @@ std::unique_ptr<CLI::App> ptcApp(PtcArgs& p) {
            for (const std::string& t : values) {
              char* end = nullptr;
              const double v = std::strtod(t.c_str(), &end);
-             if (t.empty() || end != t.c_str() + t.size() || !(v > 0.0) || !std::isfinite(v) ||
-                 v > 1e7)
-               throw UsageError("--iso: expected ISO values in (0, 1e7], got '" + t + "'");
+             if (t.empty() || end != t.c_str() + t.size() || !std::isfinite(v))
+               throw UsageError("--iso: expected ISO values (numbers), got '" + t + "'");
+             if (const std::string problem = isoRangeProblem(v); !problem.empty())
+               throw UsageError("--iso: " + problem);  // the capture range, as render's --iso
              p.isos.push_back(v);
            }
          },
-         "ISO settings to measure at (default: the base ISO)")
+         "ISO settings to measure at, each in [1, 1e7] (default: the base ISO)")
       ->type_name("N ...")
       ->expected(1, -1);
   app->add_option("--compare", p.compare, "compare two reports instead of measuring")
@@ -240,7 +241,12 @@ std::string formatPtcCsvRows(const PtcResult& m) {
 
 std::vector<std::filesystem::path> runPtc(const PtcArgs& args, std::ostream& out,
                                           std::ostream& log) {
-  const SensorSpec sensor = loadSensorSpec(args.sensor, lutsDirectory());
+  SensorSpec sensor;
+  try {
+    sensor = loadSensorSpec(args.sensor, lutsDirectory());
+  } catch (const InputError& e) {
+    throw inFile(e, "<command line>");  // an unknown preset named no file ("<input>")
+  }
   const std::filesystem::path outDir(args.outputDir);
   PtcOptions options;
   if (args.seed) options.seed = *args.seed;
@@ -268,7 +274,14 @@ std::vector<std::filesystem::path> runPtc(const PtcArgs& args, std::ostream& out
         << " photosites)\n";
     PtcIsoReport r;
     r.measured = measurePhotonTransfer(sensor, options);
-    requireUsableMeasurement(r.measured, sensor, iso);
+    try {
+      requireUsableMeasurement(r.measured, sensor, iso);
+    } catch (const InputError& e) {
+      if (args.isos.empty() || iso == sensor.baseIso) throw;  // the sensor's own settings
+      throw InputError({"<command line>", 0, 0}, "--iso",
+                       e.message() + " (in " + sensor.sourceName() + "; its base ISO is " +
+                           formatShortest(sensor.baseIso) + ")");
+    }
     r.configured = configuredPhotonTransfer(sensor, options);
     r.uncertainty = photonTransferUncertainty(r.measured);
     if (const double clipped = darkClippedFraction(r.configured, sensor, options); clipped > 1e-3)

@@ -141,7 +141,9 @@ TEST(PtcBinary, BadSensorExitsTwoWithALocatedMessageAndWritesNothing) {
   // An unknown preset and a missing argument are bad input too.
   r = camsim("", "ptc no-such-sensor -o " + quote(out.string()), dir.path());
   EXPECT_EQ(r.exitCode, 2);
-  EXPECT_NE(r.err.find("no-such-sensor"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("<command line>: key 'sensor': unknown sensor preset 'no-such-sensor'"),
+            std::string::npos)
+      << r.err;  // it said "<input>"
   EXPECT_EQ(camsim("", "ptc", dir.path()).exitCode, 2);
   EXPECT_EQ(camsim("", "ptc --help", dir.path()).exitCode, 0);
 }
@@ -191,6 +193,22 @@ TEST(PtcBinary, AnIsoOutsideTheCalibrationNamesTheOption) {
   EXPECT_NE(r.err.find("<command line>: key '--iso': ISO 50 is outside the range"),
             std::string::npos)
       << r.err;
+  EXPECT_FALSE(fs::exists(out));
+}
+
+// A sensor with a curve at its base ISO but none at the --iso asked for: the option is named,
+// with the sensor's file and base ISO (it named the file only, as if the sensor were bad).
+TEST(PtcBinary, AnIsoWithoutACurveNamesTheOption) {
+  TempDir dir;
+  const fs::path out = dir.path() / "ptc";
+  const RunResult r =
+      camsim("", "ptc smartphone-1.4um --iso 1e7 -o " + quote(out.string()), dir.path());
+  EXPECT_EQ(r.exitCode, 2) << r.err;
+  EXPECT_NE(r.err.find("<command line>: key '--iso': at ISO 1e+07 this sensor gives no "
+                       "photon-transfer curve"),
+            std::string::npos)
+      << r.err;
+  EXPECT_NE(r.err.find("smartphone-1.4um.yaml; its base ISO is 50)"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(out));
 }
 

@@ -230,9 +230,18 @@ TEST(PtcArgs, IsoListAndCompare) {
   using Args = std::vector<std::string>;
   for (const Args& args :
        {Args{"ptc", "s", "--iso"}, Args{"ptc", "s", "--iso", "0"}, Args{"ptc", "s", "--iso", "x"},
-        Args{"ptc", "s", "--iso", "-5"}, Args{"ptc", "--compare", "a.json"},
-        Args{"ptc", "s", "--compare", "a.json", "b.json"}})
+        Args{"ptc", "s", "--iso", "-5"}, Args{"ptc", "s", "--iso", "0.5"},
+        Args{"ptc", "s", "--iso", "1e8"}, Args{"ptc", "s", "--iso", "inf"},
+        Args{"ptc", "--compare", "a.json"}, Args{"ptc", "s", "--compare", "a.json", "b.json"}})
     EXPECT_THROW(parsePtcArgs(args), UsageError) << args.back();
+  // The capture range render's and expose's --iso have ([1, 1e7]: kMinIso, kMaxIso); ptc's
+  // own copy accepted 0.5.
+  try {
+    parsePtcArgs({"ptc", "s", "--iso", "0.5"});
+    ADD_FAILURE() << "--iso 0.5 accepted";
+  } catch (const UsageError& e) {
+    EXPECT_STREQ(e.what(), "--iso: ISO 0.5 is outside [1, 1e+07]");
+  }
 }
 
 }  // namespace
