@@ -1,5 +1,6 @@
 #include "sensor/base/yaml_reader.h"
 
+#include <yaml-cpp/depthguard.h>
 #include <yaml-cpp/eventhandler.h>
 #include <yaml-cpp/yaml.h>
 
@@ -366,6 +367,9 @@ class DocumentCounter final : public YAML::EventHandler {
   SourceLocation where{file, e.mark.line >= 0 ? e.mark.line + 1 : 0,
                        e.mark.column >= 0 ? e.mark.column + 1 : 0};
   std::string message = "YAML syntax error: " + e.msg;
+  if (const auto* deep = dynamic_cast<const YAML::DeepRecursion*>(&e))  // it says "bad file"
+    message = "YAML syntax error: lists or mappings nested more than " +
+              std::to_string(deep->depth()) + " levels deep (yaml-cpp's limit)";
   if (e.msg == YAML::ErrorMsg::END_OF_SEQ_FLOW || e.msg == YAML::ErrorMsg::END_OF_MAP_FLOW) {
     const size_t end = e.mark.pos >= 0 ? static_cast<size_t>(e.mark.pos) : text.size();
     if (const auto b = unclosedBracket(text, end)) {

@@ -61,5 +61,19 @@ TEST(YamlReader, AliasesThatExpandFarBeyondTheTextAreRefused) {
   EXPECT_NO_THROW(parseYaml("m: &m {type: diffuse}\nn: *m\no: *m\n", "ok.yaml"));
 }
 
+// Lists nested past yaml-cpp's depth guard: its message was "bad file" (found by probing).
+TEST(YamlReader, NestingPastTheParsersLimitSaysSo) {
+  const std::string text = "camera: " + std::string(5000, '[') + std::string(5000, ']') + "\n";
+  try {
+    parseYaml(text, "deep.yaml");
+    ADD_FAILURE() << "parsed";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.where().file, "deep.yaml");
+    EXPECT_EQ(e.where().line, 1);
+    EXPECT_NE(e.message().find("nested more than 500 levels deep"), std::string::npos) << e.what();
+  }
+  EXPECT_NO_THROW(parseYaml("a: " + std::string(100, '[') + std::string(100, ']'), "ok.yaml"));
+}
+
 }  // namespace
 }  // namespace camsim
