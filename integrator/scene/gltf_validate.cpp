@@ -347,6 +347,18 @@ void validateGltfJson(const std::string& json, const std::string& displayName,
       if (lights == lp->end() || !lights->is_array())
         c.fail("extensions.KHR_lights_punctual.lights", "must be an array");
       lightCount = lights->size();
+      // tinygltf's own message for a spot light without its "spot" has no path.
+      for (size_t i = 0; i < lightCount; ++i) {
+        const Json& l = (*lights)[i];
+        const std::string at = "extensions.KHR_lights_punctual.lights[" + std::to_string(i) + "]";
+        if (!l.is_object()) c.fail(at, "must be an object");
+        const auto type = l.find("type");
+        if (type != l.end() && type->is_string() && type->get<std::string>() == "spot") {
+          const auto spot = l.find("spot");
+          if (spot == l.end() || !spot->is_object())
+            c.fail(at + ".spot", "a spot light needs its \"spot\" object (the cone angles)");
+        }
+      }
     }
   }
   for (size_t i = 0; i < c.count("nodes"); ++i) {

@@ -71,7 +71,7 @@ TEST(GltfLights, SpotLightOnItsAxis) {
 
 // An intensity beyond the scene file's lights' bound (1e30 cd or lx) or a colour outside
 // [0, 1] is refused with its JSON path (found by probing: an intensity of 1e45 rendered with
-// 250 NaN samples dropped, exit 0).
+// 250 NaN samples dropped, exit 0), as a spot light without its cone angles.
 TEST(GltfLights, OutOfRangeIntensityOrColourIsRefusedWithItsPath) {
   const std::pair<std::string, std::string> refused[] = {
       {R"({"type":"point","intensity":1e45})",
@@ -79,6 +79,9 @@ TEST(GltfLights, OutOfRangeIntensityOrColourIsRefusedWithItsPath) {
       {R"({"type":"directional","intensity":-1})", "lights[0].intensity'"},
       {R"({"type":"point","intensity":1,"color":[2,1,1]})",
        "lights[0].color': components must be in [0, 1]"},
+      // tinygltf's "Spot light description not found" had no path.
+      {R"({"type":"spot","intensity":1})", "lights[0].spot': a spot light needs its"},
+      {R"({"type":"spot","intensity":1,"spot":3})", "lights[0].spot'"},
   };
   for (const auto& [light, message] : refused) {
     const auto file =
