@@ -3,6 +3,7 @@
 // between calls (a Scene owns its own description; a capture's arrays own their result).
 #pragma once
 
+#include <filesystem>
 #include <initializer_list>
 #include <memory>
 #include <string>
@@ -53,6 +54,23 @@ int threadCountArg(const pybind11::object& threads, const std::string& where);
 // TypeError for a negative seed).
 long long integerArg(const pybind11::object& value, const std::string& where,
                      const std::string& key, long long lo, long long hi);
+
+// A path argument as open() takes it (str, bytes or os.PathLike), as the OS's bytes
+// (os.fsencode: a name that is not UTF-8 still opens); InputError at `where` naming `key` for
+// another type or a NUL character (found by probing: the path was cut there, so another
+// file was read, and bytes were taken as their repr "b'...'").
+std::filesystem::path pathArg(const pybind11::handle& path, const std::string& where,
+                              const std::string& key);
+// A str as UTF-8; InputError at `where` naming `key` for one that is not valid Unicode (a
+// lone surrogate such as "\udce9": pybind11's cast raised RuntimeError).
+std::string textArg(const pybind11::handle& text, const std::string& where, const std::string& key);
+
+// Text from the OS (a path's bytes, maybe not UTF-8) as os.fsdecode shows it.
+pybind11::str osText(const std::string& text);
+
+// A sensor argument: a preset name or a file, as a str or os.PathLike (pathArg).
+std::string sensorNameOrPath(const pybind11::handle& sensor, const std::string& where,
+                             const std::string& key);
 
 // Overrides of a loaded scene (scene_overrides.cpp), through the library's override table
 // (integrator/scene/overrides.h). Each throws InputError naming the scene key ("<override>"

@@ -85,9 +85,10 @@ py::object runCapture(PyScene& scene, const py::object& threadsArg, const py::ob
   const int threads = threadCountArg(threadsArg, "<capture>");
   std::optional<double> memoryLimit;
   if (!maxMemoryGb.is_none()) {
-    // A real number (int or float, not a bool): a complex or an int past a double raised
-    // TypeError or OverflowError (found in review).
-    const bool real = (PyFloat_Check(maxMemoryGb.ptr()) || PyLong_Check(maxMemoryGb.ptr())) &&
+    // A real number (numbers.Real: int, float, NumPy's float32 as the overrides take; not a
+    // bool): a complex or an int past a double raised TypeError or OverflowError (found in
+    // review), and np.float32 was refused (found by probing).
+    const bool real = py::isinstance(maxMemoryGb, py::module_::import("numbers").attr("Real")) &&
                       !PyBool_Check(maxMemoryGb.ptr());
     if (!real) throw InputError({"<capture>", 0, 0}, "max_memory_gb", "expected a number of GB");
     double gb = PyFloat_AsDouble(maxMemoryGb.ptr());

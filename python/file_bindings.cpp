@@ -12,12 +12,8 @@ namespace {
 
 namespace py = pybind11;
 
-std::filesystem::path toPath(const py::object& p) {
-  return std::string(py::str(py::module_::import("os").attr("fspath")(p)));
-}
-
 py::dict readExrFile(const py::object& path) {
-  const std::filesystem::path file = toPath(path);
+  const std::filesystem::path file = pathArg(path, "<read_exr>", "path");
   ExrFile f;
   {
     py::gil_scoped_release release;
@@ -43,7 +39,7 @@ py::dict readExrFile(const py::object& path) {
 }
 
 py::array readPngFile(const py::object& path) {
-  const std::filesystem::path file = toPath(path);
+  const std::filesystem::path file = pathArg(path, "<read_png>", "path");
   PngImage png;
   {
     py::gil_scoped_release release;

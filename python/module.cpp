@@ -73,6 +73,44 @@ long long integerArg(const py::object& value, const std::string& where, const st
   return *v;
 }
 
+std::filesystem::path pathArg(const py::handle& path, const std::string& where,
+                              const std::string& key) {
+  PyObject* bytes = nullptr;
+  if (!PyUnicode_FSConverter(path.ptr(), &bytes)) {  // TypeError, or ValueError for a NUL
+    const bool nul = PyErr_ExceptionMatches(PyExc_ValueError);
+    PyErr_Clear();
+    throw InputError({where, 0, 0}, key,
+                     nul ? "a path cannot contain a NUL character ('\\x00')"
+                         : "expected a path (str, bytes or os.PathLike), got " +
+                               std::string(py::str(py::type::of(path).attr("__name__"))));
+  }
+  const auto owned = py::reinterpret_steal<py::bytes>(bytes);
+  return std::filesystem::path(std::string(owned));
+}
+
+std::string textArg(const py::handle& text, const std::string& where, const std::string& key) {
+  Py_ssize_t size = 0;
+  const char* utf8 = PyUnicode_AsUTF8AndSize(text.ptr(), &size);
+  if (!utf8) {
+    PyErr_Clear();
+    throw InputError({where, 0, 0}, key,
+                     "is not valid Unicode text (a lone surrogate such as '\\udce9')");
+  }
+  return std::string(utf8, static_cast<std::size_t>(size));
+}
+
+py::str osText(const std::string& text) {
+  PyObject* s =
+      PyUnicode_DecodeUTF8(text.data(), static_cast<Py_ssize_t>(text.size()), "surrogateescape");
+  if (!s) throw py::error_already_set();
+  return py::reinterpret_steal<py::str>(s);
+}
+
+std::string sensorNameOrPath(const py::handle& sensor, const std::string& where,
+                             const std::string& key) {
+  return pathArg(sensor, where, key).string();  // a name's NUL, too, would cut a file path
+}
+
 int threadCountArg(const py::object& threads, const std::string& where) {
   const std::optional<long long> count = indexValue(threads);
   if (!count) throw threadCountError(where, py::repr(threads));
@@ -103,12 +141,14 @@ PYBIND11_MODULE(camsim, m) {
     try {
       if (p) std::rethrow_exception(p);
     } catch (const camsim::InputError& e) {
-      py::object error = inputErrorType()(py::str(e.what()));
-      error.attr("file") = e.where().file;
+      // Text that is not UTF-8 (a path's bytes) as os.fsdecode shows it, not a second error.
+      const auto text = [](const std::string& t) { return osText(t); };
+      py::object error = inputErrorType()(text(e.what()));
+      error.attr("file") = text(e.where().file);
       error.attr("line") = e.where().line;
       error.attr("column") = e.where().column;
-      error.attr("key") = e.key();
-      error.attr("detail") = e.message();
+      error.attr("key") = text(e.key());
+      error.attr("detail") = text(e.message());
       PyErr_SetObject(inputErrorType().ptr(), error.ptr());
     }
   });

@@ -41,7 +41,18 @@ std::string typeName(const py::handle& v) {
 
 // v as JSON (YAML's .nan and .inf for non-finite floats, so that the loader reports them as
 // it does in a file); `key`: v's key path, for the error of a value JSON cannot hold.
-void emitValue(const py::handle& v, const std::string& key, std::string& out) {
+// yaml-cpp's depth guard is 500 levels; a dict or list that contains itself recursed here
+// until the stack overflowed (found by probing: a segfault).
+constexpr int kMaxDictDepth = 500;
+
+void emitValue(const py::handle& v, const std::string& key, std::string& out, int depth = 0) {
+  if (depth > kMaxDictDepth)
+    dictFail(key.size() > 120 ? key.substr(0, 120) + "…" : key,
+             "nested more than " + std::to_string(kMaxDictDepth) +
+                 " levels deep (does a dict or list contain itself?)");
+  const auto text = [](const py::handle& t, const std::string& at) {
+    return textArg(t, kDictName, at);
+  };
   if (v.is_none()) {
     out += "null";
   } else if (py::isinstance<py::bool_>(v)) {
@@ -51,29 +62,29 @@ void emitValue(const py::handle& v, const std::string& key, std::string& out) {
   } else if (py::isinstance<py::float_>(v)) {
     out += shortestNumber(v.cast<double>());
   } else if (py::isinstance<py::str>(v)) {
-    out += JsonObject::quoted(v.cast<std::string>());
+    out += JsonObject::quoted(text(v, key));
   } else if (py::hasattr(v, "__fspath__")) {
-    out += JsonObject::quoted(py::str(py::module_::import("os").attr("fspath")(v)));
+    out += JsonObject::quoted(text(py::module_::import("os").attr("fsdecode")(v), key));
   } else if (py::isinstance<py::dict>(v)) {
     out += "{";
     bool first = true;
     for (const auto& [k, item] : py::reinterpret_borrow<py::dict>(v)) {
       if (!py::isinstance<py::str>(k))
         dictFail(key, "keys must be str, got " + typeName(k) + " " + std::string(py::repr(k)));
-      const std::string name = k.cast<std::string>();
+      const std::string name = text(k, key);
       out += (first ? "" : ", ") + JsonObject::quoted(name) + ": ";
-      emitValue(item, key.empty() ? name : key + "." + name, out);
+      emitValue(item, key.empty() ? name : key + "." + name, out, depth + 1);
       first = false;
     }
     out += "}";
   } else if (py::hasattr(v, "tolist") && !py::isinstance<py::str>(v)) {
-    emitValue(v.attr("tolist")(), key, out);  // NumPy arrays and scalars
+    emitValue(v.attr("tolist")(), key, out, depth + 1);  // NumPy arrays and scalars
   } else if (py::isinstance<py::list>(v) || py::isinstance<py::tuple>(v)) {
     out += "[";
     std::size_t i = 0;
     for (const py::handle item : v) {
       out += i ? ", " : "";
-      emitValue(item, key + "[" + std::to_string(i) + "]", out);
+      emitValue(item, key + "[" + std::to_string(i) + "]", out, depth + 1);
       ++i;
     }
     out += "]";
@@ -88,8 +99,7 @@ PyScene withOverrides(SceneDescription d, const std::optional<py::dict>& overrid
 }
 
 PyScene loadPath(const py::object& path, const std::optional<py::dict>& overrides) {
-  const std::filesystem::path p(
-      std::string(py::str(py::module_::import("os").attr("fspath")(path))));
+  const std::filesystem::path p = pathArg(path, "<load>", "path");
   SceneDescription d;
   {
     py::gil_scoped_release release;  // meshes and textures are read here
@@ -115,8 +125,7 @@ PyScene loadDict(const py::object& scene, const py::object& baseDir,
                  typeName(scene));
   std::string text;
   emitValue(scene, "", text);
-  const std::filesystem::path base(
-      std::string(py::str(py::module_::import("os").attr("fspath")(baseDir))));
+  const std::filesystem::path base = pathArg(baseDir, "<scene>", "base_dir");
   SceneDescription d;
   try {
     py::gil_scoped_release release;
@@ -131,8 +140,7 @@ PyScene loadDict(const py::object& scene, const py::object& baseDir,
 
 PyScene loadText(const std::string& text, const std::string& name, const py::object& baseDir,
                  const std::optional<py::dict>& overrides) {
-  const std::filesystem::path base(
-      std::string(py::str(py::module_::import("os").attr("fspath")(baseDir))));
+  const std::filesystem::path base = pathArg(baseDir, "<scene>", "base_dir");
   SceneDescription d;
   {
     py::gil_scoped_release release;
@@ -394,7 +402,7 @@ description. Returns the Scene.)doc");
       "name", [](const PyScene& s) { return s.description.name; },
       "The output base name (the scene's name, else its file's stem).");
   scene.def_property_readonly(
-      "source_file", [](const PyScene& s) { return s.description.sourceFile; },
+      "source_file", [](const PyScene& s) { return osText(s.description.sourceFile); },
       "What it was loaded from (a path, \"<dict>\", or the default scene's name).");
   scene.def_property_readonly(
       "input_files",

@@ -91,7 +91,7 @@ PoseOverride poseOf(const py::handle& v, const std::string& key) {
 // A projection value: a dict (written as JSON, which the scene loader reads as YAML; NumPy
 // scalars become floats) or the YAML/JSON text itself.
 std::string projectionTextOf(const py::handle& v, const std::string& key) {
-  if (py::isinstance<py::str>(v)) return v.cast<std::string>();
+  if (py::isinstance<py::str>(v)) return textArg(v, kWhere.file, key);
   if (!py::isinstance<py::dict>(v))
     fail(key, "expected a dict (camera.projection's keys) or a str, got " +
                   std::string(py::str(py::type::of(v).attr("__name__"))));
@@ -129,8 +129,11 @@ void setOverrideFromPython(Overrides& o, const OverrideSetting& s, const py::han
       setOverrideNumber(o, s, castOverride<double>(value, typeKey, "a number"), sourceOf(s));
       return;
     case OverrideType::kNoise:
-    case OverrideType::kSensor:
-      setOverrideText(o, s, castOverride<std::string>(value, typeKey, "a str"), sourceOf(s));
+      if (!py::isinstance<py::str>(value)) (void)castOverride<std::string>(value, typeKey, "a str");
+      setOverrideText(o, s, textArg(value, kWhere.file, typeKey), sourceOf(s));
+      return;
+    case OverrideType::kSensor:  // a preset name or a file (str or os.PathLike)
+      setOverrideText(o, s, sensorNameOrPath(value, kWhere.file, typeKey), sourceOf(s));
       return;
     case OverrideType::kPose:
       o.pose = poseOf(value, typeKey);

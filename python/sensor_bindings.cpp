@@ -20,6 +20,7 @@
 #include <pybind11/stl.h>
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <filesystem>
 #include <limits>
@@ -183,11 +184,18 @@ py::array_t<std::uint16_t> exposeFrames(const py::array& electrons, const Sensor
 
 // `camsim expose` from Python: a render's NAME_raw.exr → frames (n, h, w[, C]) and, with
 // output_dir, the CLI's files (sensor/io/expose_file.h does the reading, checks and writing).
-py::dict exposeFile(const std::string& path, const std::optional<std::string>& sensor,
+py::dict exposeFile(const py::object& pathArgument, const py::object& sensorArg,
                     const py::object& seedArg, long long frames, std::optional<double> iso,
-                    double exposureScale, const std::string& noise,
-                    const std::optional<std::string>& outputDir, const py::object& threadsArg) {
+                    double exposureScale, const std::string& noise, const py::object& outputDirArg,
+                    const py::object& threadsArg) {
   const int threads = threadCountArg(threadsArg, "<expose_file>");
+  const std::filesystem::path path = pathArg(pathArgument, "<expose_file>", "path");
+  const std::optional<std::string> sensor =
+      sensorArg.is_none() ? std::nullopt
+                          : std::optional(sensorNameOrPath(sensorArg, "<expose_file>", "sensor"));
+  const std::optional<std::filesystem::path> outputDir =
+      outputDirArg.is_none() ? std::nullopt
+                             : std::optional(pathArg(outputDirArg, "<expose_file>", "output_dir"));
   std::optional<std::uint64_t> seed;
   if (!seedArg.is_none())
     seed = static_cast<std::uint64_t>(
@@ -356,15 +364,17 @@ py::array_t<float> developFrame(const py::object& raw, const SensorSpec& sensor,
   const std::vector<RawImage> raws = rawImages(raw, sensor);
   const IspSettings isp = ispSettings(whiteBalance, illuminant, region, demosaic);
   if (isp.whiteBalance == IspSettings::WhiteBalance::kRegion &&
-      (isp.region.x + isp.region.width > raws[0].width ||
-       isp.region.y + isp.region.height > raws[0].height))
+      (std::int64_t{isp.region.x} + isp.region.width > raws[0].width ||
+       std::int64_t{isp.region.y} + isp.region.height > raws[0].height))
     fail("<develop>", "region",
          "extends outside the " + std::to_string(raws[0].width) + "×" +
              std::to_string(raws[0].height) + " image");
   Image rgb;
-  {
+  try {
     py::gil_scoped_release release;
     rgb = workingRgb(developRaw(raws, sensor, isp, colorCheckerCsvPath()));
+  } catch (const InputError& e) {
+    throw inFile(e, "<develop>");  // the ISP's errors name no file (they read "<input>")
   }
   return toArray(rgb);
 }
@@ -419,7 +429,9 @@ pixel_pitch_m (m), full_well_e (e-), conversion_gain_e_per_dn (e-/DN at base ISO
 base_iso, read_noise_e (e- rms), dark_current_e_per_s (e-/s at temperature_c), dsnu_e
 (e- rms), prnu (fraction), adc_bits, black_level_dn, white_level_dn (DN), cfa (name),
 channels, stacked, noiseless, pattern_seed.)doc")
-      .def(py::init([](const std::string& nameOrPath) {
+      .def(py::init([](const py::object& nameOrPathArg) {
+             const std::string nameOrPath =
+                 sensorNameOrPath(nameOrPathArg, "<Sensor>", "name_or_path");
              // An unknown preset names no file (its error said "<input>"): named here.
              try {
                return loadSensorSpec(nameOrPath, lutsDirectory());

@@ -1,6 +1,7 @@
 #include "sensor/isp/white_balance.h"
 
 #include <cmath>
+#include <cstdint>
 #include <string>
 
 #include "sensor/base/input_error.h"
@@ -9,8 +10,10 @@ namespace camsim {
 namespace {
 
 void checkRegion(const Image& image, const PixelRegion& r) {
-  if (r.width <= 0 || r.height <= 0 || r.x < 0 || r.y < 0 || r.x + r.width > image.width ||
-      r.y + r.height > image.height)
+  // In 64 bits: x + width past INT_MAX wrapped negative and passed (found by probing Python's
+  // develop(): a segfault reading outside the image).
+  if (r.width <= 0 || r.height <= 0 || r.x < 0 || r.y < 0 ||
+      std::int64_t{r.x} + r.width > image.width || std::int64_t{r.y} + r.height > image.height)
     throw InputError({}, "region",
                      "white-balance region (" + std::to_string(r.x) + ", " + std::to_string(r.y) +
                          ", " + std::to_string(r.width) + " × " + std::to_string(r.height) +

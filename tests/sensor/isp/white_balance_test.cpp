@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <limits>
 
 #include <gtest/gtest.h>
 
@@ -176,6 +177,17 @@ TEST(WhiteBalanceEstimates, ClippedTilesAreSkipped) {
   EXPECT_THROW(whiteBalanceFromRegion(m, cfa, {2, 0, 2, 2}), InputError);  // only clipped
   EXPECT_THROW(whiteBalanceFromRegion(m, cfa, {1, 0, 2, 2}), InputError);  // no whole tile
   EXPECT_THROW(whiteBalanceFromRegion(m, cfa, {3, 0, 2, 2}), InputError);  // outside
+  // x + width past INT_MAX wrapped negative and passed the check: reads outside the image
+  // (found by probing Python's develop(): a segfault).
+  const int big = std::numeric_limits<int>::max();
+  for (const PixelRegion r : {PixelRegion{big, 0, 2, 2}, PixelRegion{big - 1, big - 1, big, big}})
+    try {
+      (void)whiteBalanceFromRegion(m, cfa, r);
+      ADD_FAILURE() << "accepted";
+    } catch (const InputError& e) {
+      EXPECT_NE(e.message().find("is empty or outside the 4 × 2 image"), std::string::npos)
+          << e.what();
+    }
 }
 
 TEST(ApplyWhiteBalance, GainsLandOnTheirCfaChannels) {
