@@ -1,6 +1,7 @@
 // The scene loader's `camera.lens`: a traced lens (integrator/camera/lens_camera.h) read
 // from a prescription file, its f-number and focus distance range-checked here, once
 // (docs/scene-format.md, `camera.lens`).
+#include <cmath>
 #include <string>
 
 #include "integrator/scene/scene_loader_parts.h"
@@ -64,12 +65,24 @@ void parseCameraLens(const YamlValue& value, const YamlMap& camera, const TableS
               formatNumber(-fromVertex * 1e3, 4) +
               " mm behind the lens's front vertex, inside the lens; the entrance pupil lies " +
               formatNumber((spec.focusDistance - fromVertex) * 1e3, 4) + " mm behind it");
-    const double sensor = lens->focusSensorDistance(fromVertex, kLambdaDNm, FocusMethod::kBestRms);
-    if (!(sensor > 0.0))
-      v->fail("the lens forms no real image of a plane at " + formatShortest(spec.focusDistance) +
-              " m: the real rays from there leave its rear surface diverging (their best focus "
-              "lies " +
-              formatNumber(-sensor * 1e3, 4) + " mm in front of it); focus farther away");
+  }
+  // Focused at infinity (the default) too: found by probing, an aspheric singlet whose real
+  // rays from infinity diverge passed here and aborted the render on an internal check.
+  const auto focus = lm.find("focus_distance_m");
+  const double sensor = lens->focusSensorDistance(
+      objectDistanceFromVertex(*lens, spec.focusDistance), kLambdaDNm, FocusMethod::kBestRms);
+  if (!(sensor > 0.0) || !std::isfinite(sensor)) {
+    const std::string object =
+        focus ? "a plane at " + formatShortest(spec.focusDistance) + " m"
+              : "a distant object (focus_distance_m unset: focused at infinity)";
+    const std::string diverging =
+        std::isfinite(sensor)
+            ? " (their best focus lies " + formatNumber(-sensor * 1e3, 4) + " mm in front of it)"
+            : "";
+    (focus ? *focus : value)
+        .fail("the lens forms no real image of " + object +
+              ": the real rays from there leave its rear surface diverging" + diverging +
+              (focus ? "; focus farther away" : ""));
   }
   lm.finish({"file", "f_number", "focus_distance_m"});
   if (c.aperture) {

@@ -21,6 +21,8 @@
 #include "sensor/measure/slanted_edge.h"
 #include "tests/integrator/edge_render_support.h"
 #include "tests/integrator/lens_test_support.h"
+#include "tests/support/temp_dir.h"
+#include "tests/support/text_file.h"
 
 namespace camsim {
 namespace lens_camera_test {
@@ -303,6 +305,15 @@ TEST(LensCamera, LoaderErrors) {
   expectLoadError("{file: telephoto.250mm.dat, focus_distance_m: 0.349}", "",
                   "key 'camera.lens.focus_distance_m': the lens forms no real image of a plane "
                   "at 0.349 m");
+  // Found by probing: a singlet whose aspheric term bends the real rays from infinity
+  // outwards was refused focused at 1000 m but, focused at infinity (the default), aborted
+  // the render on an internal check (exit 134).
+  const test::TempDir dir;
+  const std::filesystem::path singlet = dir.path() / "diverging.dat";
+  test::writeFile(singlet, "0 5 0 10\n50 3 1.5 20 a4=-1e-3\n-50 0 1 20\n");
+  expectLoadError("{file: " + singlet.string() + "}", "",
+                  "key 'camera.lens': the lens forms no real image of a distant object "
+                  "(focus_distance_m unset: focused at infinity)");
   EXPECT_NO_THROW(loadSceneFromText(
       "format: camsim-scene/1\ncamera: {position: [0, 0, 0], look_at: [0, 0, 1], lens: {file: "
       "telephoto.250mm.dat, focus_distance_m: 0.35}}\nshapes: [{type: sphere, centre: [0, 0, "
