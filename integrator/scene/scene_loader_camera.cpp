@@ -230,7 +230,11 @@ RigidMotion parseMotion(const YamlValue& value, bool forCamera, const glm::dvec3
     }
     map.finish(forCamera ? std::vector<std::string>{"time", "translate", "rotate"}
                          : std::vector<std::string>{"time", "translate", "rotate", "scale"});
-    if (!keys.empty() && std::abs(glm::dot(k.rotate, keys.back().rotate)) < 1e-9)
+    // Two keyframes' rotations differ by less than 180° when their quaternions (as parsed,
+    // not sign-flipped) have a positive dot product: about one axis it is cos(Δangle / 2).
+    // Its absolute value let 0° → 270° through, played as −90° (and 0° → 360° as no motion):
+    // found by probing.
+    if (!keys.empty() && !(glm::dot(k.rotate, keys.back().rotate) > 1e-9))
       item.fail("consecutive keyframes rotate by 180° or more: add keyframes in between");
     keys.push_back(k);
   }

@@ -267,6 +267,12 @@ inline const ErrorCase kErrorCases[] = {
      withCameraLine("  shutter: {type: rolling, row_time: 1e-4, open: 0, close: 0.001}\n") +
          "frames: {count: 2, rate_hz: 24, shutter_angle_deg: 180}\n",
      9, 9, "frames", "the rolling shutter reads its 480 rows in 0.048"},
+    // 0° → 270° about one axis was played as −90° (the quaternions' dot product was taken
+    // as its absolute value; found by probing).
+    {"KeyframesRotatingByMoreThan180Degrees",
+     withCameraLine("  motion: [{time: 0, rotate: {axis: [0, 0, 1], angle_deg: 0}}, {time: 0.01, "
+                    "rotate: {axis: [0, 0, 1], angle_deg: 270}}]\n"),
+     4, 64, "camera.motion[1]", "consecutive keyframes rotate by 180° or more"},
     {"CameraKeyframeBeyondRenderSpace",
      withCameraLine("  motion: [{time: 0, translate: [1e19, 0, 0]}]\n"), 4, 33,
      "camera.motion[0].translate", "within ±1e15 m"},
