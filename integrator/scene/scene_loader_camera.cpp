@@ -151,6 +151,12 @@ Shutter parseShutter(YamlMap map) {
     for (const YamlValue& point : curve->items()) {
       const std::vector<double> tv = point.numbers();
       if (tv.size() != 2) point.fail("expected [time_s, efficiency]");
+      // open's and close's range (found by probing: times of ±1e300 s made every sample NaN
+      // and wrote an exposure time of inf).
+      if (!(std::abs(tv[0]) <= setting_ranges::kShutterTime))
+        point.fail("time " + formatShortest(tv[0]) + " s is outside [-" +
+                   formatShortest(setting_ranges::kShutterTime) + ", " +
+                   formatShortest(setting_ranges::kShutterTime) + "] s");
       if (!times.empty() && tv[0] <= times.back()) point.fail("times must be strictly increasing");
       if (tv[1] < 0.0 || tv[1] > 1.0) point.fail("efficiency must lie in [0, 1]");
       times.push_back(tv[0]);

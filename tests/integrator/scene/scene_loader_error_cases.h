@@ -273,6 +273,10 @@ inline const ErrorCase kErrorCases[] = {
      withCameraLine("  motion: [{time: 0, rotate: {axis: [0, 0, 1], angle_deg: 0}}, {time: 0.01, "
                     "rotate: {axis: [0, 0, 1], angle_deg: 270}}]\n"),
      4, 64, "camera.motion[1]", "consecutive keyframes rotate by 180° or more"},
+    // Every sample NaN and an exposure time of inf, exit 0 (found by probing).
+    {"ShutterCurveTimeBeyondTheShuttersRange",
+     withCameraLine("  shutter: {curve: [[0, 1], [1e300, 1]]}\n"), 4, 29, "camera.shutter.curve[1]",
+     "time 1e+300 s is outside [-1e+06, 1e+06] s"},
     {"CameraKeyframeBeyondRenderSpace",
      withCameraLine("  motion: [{time: 0, translate: [1e19, 0, 0]}]\n"), 4, 33,
      "camera.motion[0].translate", "within ±1e15 m"},
