@@ -147,15 +147,20 @@ RenderCommandResult renderScene(SceneDescription desc, const RenderArgs& args, s
                        (sequence ? " (" + std::to_string(count) + " frames)" : ""));
   options.progress = [&](int done, int total) { progress.update(done, total); };
   CaptureRunWriter writer(out, desc);  // the pose exports' models: a bad scene fails here
-  const SequenceSummary summary =
-      captureScene(std::move(desc), options, [&](CaptureResult&& r, int) {
-        printCaptureNotes(r, log);
-        const WrittenCapture written = writer.write(r);
-        if (r.cancelled) return printInterrupted(r, written, log);
-        for (const auto& f : written.removed)
-          log << "removed " << f.string() << " of an interrupted run\n";
-        if (!sequence) printRendered(r, log);
-      });
+  SequenceSummary summary;
+  try {
+    summary = captureScene(std::move(desc), options, [&](CaptureResult&& r, int) {
+      printCaptureNotes(r, log);
+      const WrittenCapture written = writer.write(r);
+      if (r.cancelled) return printInterrupted(r, written, log);
+      for (const auto& f : written.removed)
+        log << "removed " << f.string() << " of an interrupted run\n";
+      if (!sequence) printRendered(r, log);
+    });
+  } catch (const InputError&) {
+    writer.discard();  // bad input: nothing written (a sequence's earlier frames)
+    throw;
+  }
   progress.finish();
   writer.finish();
   RenderCommandResult outcome{writer.files(), summary.cancelled};

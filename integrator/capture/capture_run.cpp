@@ -1,9 +1,11 @@
 #include "integrator/capture/capture_run.h"
 
 #include <algorithm>
+#include <system_error>
 #include <utility>
 
 #include "integrator/capture/kitti_writer.h"
+#include "sensor/base/input_error.h"
 
 namespace camsim {
 
@@ -25,11 +27,30 @@ SequenceSummary captureScene(SceneDescription description, const CaptureOptions&
     perFrame.progress = [&frame, count, &progress = options.progress](int done, int total) {
       progress(frame * total + done, count * total);
     };
-  return captureSequence(std::move(description), perFrame,
-                         [&frame, &onFrame](CaptureResult&& result, int k) {
-                           frame = k + 1;
-                           onFrame(std::move(result), k);
-                         });
+  const int first = description.frames->first;
+  try {
+    return captureSequence(std::move(description), perFrame,
+                           [&frame, &onFrame](CaptureResult&& result, int k) {
+                             onFrame(std::move(result), k);
+                             frame = k + 1;
+                           });
+  } catch (const InputError& e) {
+    // Bad input found only at a later frame (its rendered raw cannot be white-balanced):
+    // which frame (found by probing: the message did not say).
+    if (frame == 0) throw;
+    throw InputError(e.where(), e.key(),
+                     "at frame " + std::to_string(first + frame) + " (frame " +
+                         std::to_string(frame + 1) + " of " + std::to_string(count) +
+                         "): " + e.message());
+  }
+}
+
+void CaptureRunWriter::discard() {
+  for (const std::filesystem::path& f : files_) {
+    std::error_code ignored;
+    std::filesystem::remove(f, ignored);
+  }
+  files_.clear();
 }
 
 // The models of the scene before it renders are its frames': a capture changes its camera,

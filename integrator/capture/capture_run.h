@@ -51,6 +51,9 @@ class CaptureRunWriter {
   // The sequence's camera exports (nothing for one frame or after a cancelled frame) and
   // its BOP scene's models and JSON files (after a cancelled frame: of the frames done).
   std::vector<std::filesystem::path> finish();
+  // Removes every file written so far (a sequence refused at a later frame: no frames
+  // without their camera exports are left).
+  void discard();
   // Every final file written so far, in order.
   const std::vector<std::filesystem::path>& files() const { return files_; }
   // The camera exports finish() left out, a line each with the reason (a camera model the

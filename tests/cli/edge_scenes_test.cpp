@@ -131,5 +131,39 @@ TEST(EdgeScenes, RefusalsExitTwoNamingFileLineAndKey) {
   EXPECT_EQ(fileCount(out), 0u);
 }
 
+// A sequence whose third frame cannot be white-balanced (a black board slides in front of
+// the camera after frame 1): the error names the frame, and frames 0 and 1, written as
+// they finished, are removed (found by probing: they were left without the sequence's
+// camera exports, exit 2, and the message did not say which frame).
+TEST(EdgeScenes, ASequenceRefusedAtALaterFrameNamesItAndLeavesNothing) {
+  const test::TempDir dir;
+  const fs::path scene = dir.path() / "late.yaml";
+  test::writeFile(scene,
+                  "format: camsim-scene/1\n"
+                  "name: late\n"
+                  "render: {spp: 2, max_depth: 1}\n"
+                  "camera: {position: [0, 0, -2], look_at: [0, 0, 0], resolution: [16, 12], "
+                  "shutter: {open: 0, close: 0.005}}\n"
+                  "materials: {grey: {type: diffuse, reflectance: 0.5}, black: {type: diffuse, "
+                  "reflectance: 0}}\n"
+                  "shapes:\n"
+                  "  - {type: sphere, centre: [0, 0, 0], radius: 0.5, material: grey}\n"
+                  "  - {type: rectangle, corner: [-5, -5, 0], edge_u: [10, 0, 0], edge_v: [0, "
+                  "10, 0], material: black, motion: [{time: 0, translate: [0, 0, 10]}, {time: "
+                  "0.08, translate: [0, 0, 10]}, {time: 0.081, translate: [0, 0, -1]}]}\n"
+                  "lights: [{type: distant, illuminance: 1000, direction: [0, -0.3, 1]}]\n"
+                  "frames: {count: 3, rate_hz: 24}\n"
+                  "sensor: {model: smartphone-1.4um, noise: none}\n"
+                  "isp: {white_balance: grey_world}\n");
+  const fs::path out = dir.path() / "out";
+  const test::RunResult r = test::runCamsim(
+      "render " + test::quote(scene.string()) + " -o " + test::quote(out.string()), dir.path());
+  EXPECT_EQ(r.exitCode, 2) << r.err;
+  EXPECT_NE(r.err.find("late.yaml:12:22: key 'isp.white_balance': at frame 2 (frame 3 of 3): "),
+            std::string::npos)
+      << r.err;
+  EXPECT_EQ(fileCount(out), 0u);
+}
+
 }  // namespace
 }  // namespace camsim
