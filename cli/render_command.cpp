@@ -110,7 +110,9 @@ void printCaptureNotes(const CaptureResult& r, std::ostream& log) {
     log << "auto-exposure (" << meteringName(ae.metering) << ", target " << ae.target
         << " of saturation): exposure time "
         << desc.camera.shutter.effectiveTime() * r.exposureScale << " s (x" << r.exposureScale
-        << " the scene's), ISO " << desc.sensor->iso << "\n";
+        << " the scene's"
+        << (r.exposureAtFramePeriod ? ", held to the frame period 1/frames.rate_hz" : "")
+        << "), ISO " << desc.sensor->iso << "\n";
   }
   for (std::size_t i = 0; i < r.frames.size(); ++i)
     if (r.frames[i].clippedFraction > 0.01)

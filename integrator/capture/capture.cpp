@@ -132,9 +132,24 @@ void exposeAndDevelop(CaptureResult& out, const RenderOptions& renderOptions,
     out.cancelled = out.cancelled || again.stats.cancelled;
     return std::move(again.image);
   };
-  if (sensor.autoExposure)
+  if (sensor.autoExposure) {
     out.exposureScale = autoExposureScale(out.sensorFilm, *sensor.autoExposure,
                                           spec.saturationElectrons(sensor.iso));
+    // A video camera's exposure cannot outlast its frame period, the longest bracket's
+    // neither (found by probing: 0.22 s metered at 24 fps, over five frame periods, which a
+    // shutter given so is refused).
+    if (desc.frames) {
+      double longest = 1.0;
+      for (const double ev : sensor.bracketEv) longest = std::max(longest, std::exp2(ev));
+      const Shutter& shutter = desc.camera.shutter;
+      const double most =
+          (1.0 / desc.frames->rateHz) / ((shutter.close() - shutter.open()) * longest);
+      if (out.exposureScale > most) {
+        out.exposureScale = most;
+        out.exposureAtFramePeriod = true;
+      }
+    }
+  }
   const bool bracketed = !sensor.bracketEv.empty();
   const std::vector<double> evs = bracketed ? sensor.bracketEv : std::vector<double>{0.0};
   const auto zero = std::find(evs.begin(), evs.end(), 0.0);

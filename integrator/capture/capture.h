@@ -90,6 +90,7 @@ struct CaptureResult {
   Image sampleCounts;  // adaptive sampling: each pixel's samples (channel "spp"); else empty
 
   double exposureScale = 1.0;               // auto-exposure's factor on every frame's exposure time
+  bool exposureAtFramePeriod = false;       // a sequence's auto-exposure held to its frame period
   std::vector<CaptureFrame> frames;         // with a sensor: one per bracket, in the scene's order
   std::size_t referenceFrame = 0;           // the frame developed (0 EV, else the first)
   std::optional<DevelopedImage> developed;  // with a sensor

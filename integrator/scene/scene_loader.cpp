@@ -581,6 +581,15 @@ std::string frameTimingProblem(const SceneDescription& scene) {
            "longer than " + periodText +
            ": consecutive frames would expose at the same time; shorten the shutter, set "
            "frames.shutter_angle_deg (at most 360) or lower frames.rate_hz";
+  // The longest bracket is exposed within the frame too (found by probing: bracket_ev: [0, 4]
+  // at 24 fps exposed 0.27 s).
+  double longest = 1.0;
+  if (scene.sensor)
+    for (const double ev : scene.sensor->bracketEv) longest = std::max(longest, std::exp2(ev));
+  if (longest > 1.0 && exposure * longest > limit)
+    return "the longest bracket (sensor.bracket_ev, ×" + formatShortest(longest) +
+           ") exposes each frame for " + formatShortest(exposure * longest) + " s, longer than " +
+           periodText + "; shorten the shutter, lower the brackets or lower frames.rate_hz";
   if (readout > limit)
     return "the rolling shutter reads its " + std::to_string(rows) + " rows in " +
            formatShortest(readout) + " s (camera.shutter.row_time × rows), longer than " +

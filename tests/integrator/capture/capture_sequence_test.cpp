@@ -3,8 +3,10 @@
 // parts once), and one render when nothing moves.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "integrator/capture/capture.h"
@@ -21,13 +23,17 @@ constexpr double kSeqPitch = 1.4e-6, kSeqFocal = 0.001, kSeqZ = 3.0;
 // x = −8 cm at t = 0 (or resting), 3 frames at 10 Hz with a 36° shutter (10 ms), through
 // the smartphone sensor with full noise.
 // keys: the ball's keyframes ("" for none).
-SceneDescription ballSequenceWith(const std::string& keys, const std::string& render) {
+// sensor: more keys of the sensor map.
+SceneDescription ballSequenceWith(const std::string& keys, const std::string& render,
+                                  const std::string& sensor = "") {
   const std::string motion = keys.empty() ? "" : ", motion: " + keys;
   const std::string text =
       "camera: {position: [0, 0, 0], look_at: [0, 0, 1], resolution: [" + std::to_string(kW) +
       ", " + std::to_string(kH) +
       "], focal_length_mm: 1, f_number: 2}\n"
-      "sensor: {model: smartphone-1.4um, iso: 100, noise: full, noise_seed: 7}\n"
+      "sensor: {model: smartphone-1.4um, iso: 100, noise: full, noise_seed: 7" +
+      sensor +
+      "}\n"
       "render: {" +
       render +
       ", max_depth: 1, aovs: [position]}\n"
@@ -127,6 +133,25 @@ TEST(Sequence, AJumpBetweenFramesIsNotInterpolatedIntoTheNextFrame) {
   for (int k = 0; k < 3; ++k)
     EXPECT_NEAR(centroidX(frames[static_cast<size_t>(k)].aovs), expected[k], 1e-3) << "frame " << k;
   EXPECT_FALSE(frames[2].stats.modelled.time);  // the ball rests during frame 2
+}
+
+// Auto-exposure meters the dim ball far above the 10 ms shutter; in a sequence it is held
+// to the frame period (0.1 s), the longest bracket's exposure with it (found by probing: 0.22
+// s metered at 24 fps, where a shutter so long is refused).
+TEST(Sequence, AutoExposureIsHeldToTheFramePeriod) {
+  for (const auto& [brackets, longest] :
+       {std::pair<std::string, double>{"", 1.0}, {", bracket_ev: [0, 1]", 2.0}}) {
+    const std::vector<CaptureResult> frames = run(ballSequenceWith(
+        "", "spp: 4", ", auto_exposure: {metering: mean, target: 0.5}" + brackets));
+    ASSERT_EQ(frames.size(), 3u);
+    for (const CaptureResult& r : frames) {
+      EXPECT_TRUE(r.exposureAtFramePeriod) << brackets;
+      EXPECT_NEAR(r.exposureScale, 10.0 / longest, 1e-9) << brackets;  // 0.1 s / 10 ms
+      double most = 0.0;
+      for (const CaptureFrame& f : r.frames) most = std::max(most, f.exposureTimeS);
+      EXPECT_NEAR(most, 0.1, 1e-12) << brackets;
+    }
+  }
 }
 
 // Temporal noise differs per frame (noise frame = sensor.frame + k); the fixed pattern

@@ -263,6 +263,11 @@ inline const ErrorCase kErrorCases[] = {
      9, "frames",
      "each frame's exposure, 0.05 s (camera.shutter), is longer than the frame period "
      "1/frames.rate_hz = 0.041666666666666664 s"},
+    // Exposed 0.27 s at 24 fps (found by probing).
+    {"LongestBracketLongerThanTheFramePeriod",
+     withCameraLine("  shutter: {open: 0, close: 0.02}\n") +
+         "sensor: {model: smartphone-1.4um, bracket_ev: [0, 2]}\nframes: {count: 2, rate_hz: 24}\n",
+     10, 9, "frames", "the longest bracket (sensor.bracket_ev, ×4) exposes each frame for 0.08 s"},
     {"RollingReadoutLongerThanItsPeriod",
      withCameraLine("  shutter: {type: rolling, row_time: 1e-4, open: 0, close: 0.001}\n") +
          "frames: {count: 2, rate_hz: 24, shutter_angle_deg: 180}\n",
