@@ -28,7 +28,7 @@ double parsePsfNumber(const std::string& flag, const std::string& text) {
   const double v = std::strtod(text.c_str(), &end);
   if (text.empty() || end != text.c_str() + text.size() || errno != 0 || !std::isfinite(v))
     throw UsageError(flag + ": expected a number, got '" + text + "'");
-  return v;
+  return v == 0.0 ? 0.0 : v;  // -0 is 0 (it named files "f-0" beside "f0")
 }
 
 // A field or wavelength as it appears in the output files' names: %g, 6 significant digits.
@@ -80,25 +80,27 @@ std::unique_ptr<CLI::App> psfApp(PsfArgs& a) {
          [&a](const std::string& t) { a.wavelengthsNm = parsePsfList("--wavelength", t); },
          "wavelengths in nm, [360, 830], comma-separated (default 550)")
       ->type_name("NM[,NM...]");
-  constexpr std::int64_t kIntMax = 2147483647, kBig = std::int64_t{1} << 62;
   app->add_option_function<std::string>(
          "--size",
          [&a](const std::string& t) {
-           a.settings.size = static_cast<int>(parseInteger("--size", t, -kIntMax, kIntMax));
+           a.settings.size = static_cast<int>(
+               parseInteger("--size", t, psf_ranges::kSizeMin, psf_ranges::kSizeMax));
          },
          "the grid's side in film pixels, [4, 512] (default 32)")
       ->type_name("PX");
   app->add_option_function<std::string>(
          "--oversample",
          [&a](const std::string& t) {
-           a.settings.oversample =
-               static_cast<int>(parseInteger("--oversample", t, -kIntMax, kIntMax));
+           a.settings.oversample = static_cast<int>(parseInteger(
+               "--oversample", t, psf_ranges::kOversampleMin, psf_ranges::kOversampleMax));
          },
          "cells per pixel per axis, [1, 16], size × K ≤ 2048 (default 4)")
       ->type_name("K");
   app->add_option_function<std::string>(
          "--rays",
-         [&a](const std::string& t) { a.settings.rays = parseInteger("--rays", t, -kBig, kBig); },
+         [&a](const std::string& t) {
+           a.settings.rays = parseInteger("--rays", t, psf_ranges::kRaysMin, psf_ranges::kRaysMax);
+         },
          "rays traced per entry, [1000, 100000000] (default 1000000)")
       ->type_name("N");
   app->add_option_function<std::string>(
@@ -248,10 +250,12 @@ std::vector<std::filesystem::path> runPsf(const PsfArgs& args, std::ostream& out
     const std::string name = psfEntryName(p.settings.field, p.settings.wavelengthNm);
     Image y(p.cells, p.cells, {"Y"});
     for (size_t i = 0; i < p.energy.size(); ++i) y.pixels[i] = static_cast<float>(p.energy[i]);
-    const Metadata meta = {{"camsim:psf_field", std::to_string(p.settings.field)},
-                           {"camsim:psf_wavelength_nm", std::to_string(p.settings.wavelengthNm)},
-                           {"camsim:psf_cell_um", std::to_string(p.cellWidth * 1e6) + " x " +
-                                                      std::to_string(p.cellHeight * 1e6)},
+    // Shortest round-trip text, as the JSON (std::to_string wrote a field of 1e-7 as
+    // "0.000000").
+    const Metadata meta = {{"camsim:psf_field", formatShortest(p.settings.field)},
+                           {"camsim:psf_wavelength_nm", formatShortest(p.settings.wavelengthNm)},
+                           {"camsim:psf_cell_um", formatShortest(p.cellWidth * 1e6) + " x " +
+                                                      formatShortest(p.cellHeight * 1e6)},
                            {"camsim:scene", args.scene}};
     writeExr(outputs.add(name + ".exr"), y, meta, std::nullopt);
     writePsfPreview(outputs.add(name + ".png"), p);

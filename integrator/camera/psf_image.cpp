@@ -127,14 +127,17 @@ PsfTracedRays tracePsfLens(const LensCamera& camera, const PsfSettings& settings
       ray.direction = parallel;
       ray.origin = target - 4.0 * discRadius * parallel;
     } else {
+      // Scaled to its largest component first: beyond about 1.3e154 m the squared length
+      // overflowed and the direction was NaN (found by probing: "no ray reaches the film").
       const glm::dvec3 v = target - object;
-      ray.direction = glm::normalize(v);
+      const double largest = std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)});
+      ray.direction = glm::normalize(v / largest);
+      const double distance = glm::length(v / largest) * largest;
       // A far object's ray starts on its line as near the lens as the infinite case's: from
       // the object point itself, the front surface's intersection (terms ∝ distance²
       // against a clear radius² of 1e-3 m²) lost all precision beyond about 10 km (probing:
       // RMS 8× too large at 1e6 m, no ray at all from 1e8 m).
-      ray.origin =
-          glm::length(v) > 4.0 * discRadius ? target - 4.0 * discRadius * ray.direction : object;
+      ray.origin = distance > 4.0 * discRadius ? target - 4.0 * discRadius * ray.direction : object;
       const double c = -ray.direction.z;  // cos θ to the axis
       weight = c * c * c * c;
     }

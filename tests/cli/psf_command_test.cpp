@@ -8,6 +8,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <filesystem>
 #include <string>
 #include <utility>
@@ -71,6 +73,11 @@ TEST(PsfArgs, BadValuesNameTheirOption) {
       // files were in place (exit 1; found by probing).
       {{"psf", "s.yaml", "--field", "0,0"}, "--field: 0 is given twice"},
       {{"psf", "s.yaml", "--wavelength", "550,550.0000001"}, "--wavelength: 550 is given twice"},
+      // -0 is 0 (it named files "f-0" beside "f0"); integers past their range name it (the
+      // message gave the parser's ±2^62 bounds; found by probing).
+      {{"psf", "s.yaml", "--field", "0,-0"}, "--field: 0 is given twice"},
+      {{"psf", "s.yaml", "--rays", "9223372036854775807"}, "--rays must be in [1000, 100000000]"},
+      {{"psf", "s.yaml", "--size", "99999999999"}, "--size must be in [4, 512]"},
   };
   for (const auto& [args, name] : cases) {
     try {
@@ -110,6 +117,12 @@ TEST(PsfBinary, WritesImagesAndJson) {
           quote((out / "psf.json").string()),
       dir.path());
   ASSERT_EQ(json.exitCode, 0) << json.err;
+  // The EXR header's field as the JSON's (std::to_string wrote 1e-7 as "0.000000").
+  const auto meta = readExr(out / "psf_f0.5_550nm.exr").metadata;
+  const auto field = std::find_if(meta.begin(), meta.end(),
+                                  [](const auto& kv) { return kv.first == "camsim:psf_field"; });
+  ASSERT_NE(field, meta.end());
+  EXPECT_EQ(field->second, "0.5");
   // Half of the 36 × 24 mm sensor's diagonal: 10.8167 mm.
   EXPECT_EQ(json.out.substr(0, 5), "10.81") << json.out;
   EXPECT_NE(json.out.find("True"), std::string::npos) << json.out;
