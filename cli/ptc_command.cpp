@@ -54,10 +54,13 @@ std::string formatSigned(double v, int decimals) {
   return (std::signbit(v) ? "" : "+") + formatFixed(v, decimals);  // as printf "%+.*f"
 }
 
-// Significant digits without an exponent for the magnitudes in the table.
+// Significant digits without an exponent for the magnitudes in the table; beyond them
+// (1e-95 of a QE, 6e56 photons: found by probing, printed as 0.00000 and as 57 digits that
+// ran into the next column) with one.
 std::string number(double v) {
   const double a = std::abs(v);
   if (a == 0.0) return "0";
+  if (a >= 1e9 || a < 1e-4) return formatNumber(v, 4);
   if (a >= 1000.0) return formatFixed(v, 0);
   if (a >= 10.0) return formatFixed(v, 2);
   if (a >= 0.1) return formatFixed(v, 4);

@@ -183,8 +183,10 @@ PtcResult analysePhotonTransfer(const PtcMeasurements& data) {
   r.responsivityR = slopeThroughOrigin(photons, signal);
   const double k = r.systemGainK;
   r.quantumEfficiency = k > 0.0 ? r.responsivityR / k : 0.0;
+  // The 0.24 DN² floor is σ_d's (EMVA 1288's); σ_y.dark is the measured √σ²_y.dark (found by
+  // probing: a noiseless sensor reported σ²_y.dark 0 beside σ_y.dark 0.49).
   const double darkVar = std::max(data.varYDark, kPtcMinDarkVarDn2);
-  r.sigmaYDark = std::sqrt(darkVar);
+  r.sigmaYDark = std::sqrt(std::max(data.varYDark, 0.0));
   r.darkNoiseE = std::sqrt(darkVar - kPtcQuantisationVarDn2) / k;
   r.muPSat = data.levels[static_cast<std::size_t>(r.saturationIndex)].muP;
   r.muESat = r.quantumEfficiency * r.muPSat;

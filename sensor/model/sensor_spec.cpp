@@ -228,7 +228,15 @@ SensorSpec parseSensorSpec(const std::string& yamlText, const std::string& displ
   const TableSearch tables{{baseDir, lutsDir / "spectra", lutsDir}, &spec.sourceFiles};
 
   spec.name = fs::path(displayName).stem().string();
-  if (const auto v = map.find("name")) spec.name = v->string();
+  if (const auto v = map.find("name")) {
+    // It is printed, names camsim ptc's files and is the DNG's camera model (found by
+    // probing: "" printed "photon transfer of  at ISO 50").
+    spec.name = v->string();
+    if (spec.name.empty() || std::any_of(spec.name.begin(), spec.name.end(), [](char c) {
+          return static_cast<unsigned char>(c) < 0x20 || c == 0x7f;
+        }))
+      v->fail("name must be non-empty, without control characters");
+  }
   spec.pixelPitchM = map.require("pixel_pitch_um").number(0.0, 1000.0, true) * 1e-6;
   if (const auto v = map.find("fill_factor")) spec.fillFactor = v->number(0.0, 1.0, true);
   if (const auto v = map.find("cfa")) spec.cfa = parseCfa(*v);

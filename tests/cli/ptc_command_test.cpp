@@ -65,6 +65,13 @@ TEST(PtcTable, ShowsConfiguredMeasuredAndRelativeError) {
   for (const char* row : {"quantum efficiency", "temporal dark noise", "μ_e.sat", "μ_e.clip",
                           "μ_p.min", "dynamic range", "DSNU", "PRNU", "linearity error"})
     EXPECT_NE(table.find(row), std::string::npos) << row;
+  // Magnitudes the fixed columns cannot hold (a QE of 4e-20 printed as 0.00000, μ_p.min of
+  // 6e56 as 57 digits running into the next column: found by probing).
+  m.quantumEfficiency = 4.113e-20;
+  m.muPMin = 6.421e56;
+  const std::string tiny = formatPtcTable(m, c);
+  EXPECT_NE(tiny.find("4.113e-20"), std::string::npos) << tiny;
+  EXPECT_NE(tiny.find("6.421e+56"), std::string::npos) << tiny;
 }
 
 // ---- the binary -----------------------------------------------------------------------------

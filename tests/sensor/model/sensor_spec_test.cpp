@@ -92,6 +92,9 @@ TEST(SensorSpec, MalformedDescriptionsAreRejectedWithLineAndKey) {
       {replaced(6, "conversion_gain_e_per_dn: 1e-300"), "conversion_gain_e_per_dn", 6, 27},
       {appended("prnu_percent: 150"), "prnu_percent", 10, 15},
       {appended("noiseless: maybe"), "noiseless", 10, 12},
+      // Printed "photon transfer of  at ISO 50" (found by probing).
+      {replaced(1, "name: ''"), "name", 1, 7},
+      {replaced(1, "name: \"a\\tb\""), "name", 1, 7},
       {appended("gain: 3"), "gain", 10, 1},                          // unknown key
       {appended("read_noise_e: 3"), "read_noise_e", 10, 1},          // duplicate key
       {join({kBase[0], kBase[1], kBase[2], kBase[4]}), "qe", 1, 1},  // qe missing
