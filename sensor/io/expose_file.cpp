@@ -1,6 +1,7 @@
 // Re-exposure of a render's raw EXR (expose_file.h): read, check, expose, write.
 #include "sensor/io/expose_file.h"
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
@@ -95,15 +96,22 @@ std::string sensorDifference(const SensorSpec& a, const SensorSpec& b) {
   if (a.cfa.name != b.cfa.name) return "CFA " + a.cfa.name + " against " + b.cfa.name;
   const double areaA = a.pixelPitchM * a.pixelPitchM * a.fillFactor;
   const double areaB = b.pixelPitchM * b.pixelPitchM * b.fillFactor;
-  if (areaA != areaB)
-    return "photosite area (pitch² × fill factor) " + formatNumber(areaA * 1e12, 6) +
-           " µm² against " + formatNumber(areaB * 1e12, 6) + " µm²";
+  // Equal to a relative 1e-6, as the descriptions' decimals give them (found by probing: a
+  // pitch of 1.979898987 µm at fill factor 0.5 against 1.4 µm was refused as "1.96 µm²
+  // against 1.96 µm² differ", a peak QE of 0.6000001 against 0.6 too).
+  const auto differ = [](double x, double y) {
+    return std::abs(x - y) > 1e-6 * std::max(std::abs(x), std::abs(y));
+  };
+  if (differ(areaA, areaB))
+    return "photosite area (pitch² × fill factor) " + formatNumber(areaA * 1e12, 10) +
+           " µm² against " + formatNumber(areaB * 1e12, 10) + " µm²";
   if (a.qe.size() != b.qe.size()) return "the number of QE curves";
   for (std::size_t c = 0; c < a.qe.size(); ++c)
     for (int i = 0; i < kSpectrumSamples; ++i)
-      if (a.qe[c].sample(i) != b.qe[c].sample(i))
+      if (differ(a.qe[c].sample(i), b.qe[c].sample(i)))
         return "QE of channel " + a.cfa.channels[c] + " at " + std::to_string(kLambdaMinNm + i) +
-               " nm";
+               " nm (" + formatNumber(a.qe[c].sample(i), 8) + " against " +
+               formatNumber(b.qe[c].sample(i), 8) + ")";
   return "";
 }
 
@@ -189,7 +197,8 @@ ElectronsExr readElectronsExr(const std::filesystem::path& path) {
   e.cfaName = requiredAttribute(path, e.metadata, "camsim:cfa");
   e.exposureTimeS = numberAttribute(path, "camsim:exposure_time_s",
                                     requiredAttribute(path, e.metadata, "camsim:exposure_time_s"));
-  if (e.exposureTimeS < 0.0) fail(path, "camsim:exposure_time_s", "negative exposure time");
+  if (!(e.exposureTimeS > 0.0))
+    fail(path, "camsim:exposure_time_s", "the exposure time must be positive");
   // Found by probing: 1e300 passed and the DNG's EXIF said 4294967295/0.
   const auto fitsTheDng = [&path](const char* key, double value, double scale, const char* tag) {
     if (value * scale > kDngMaxRational)

@@ -11,12 +11,14 @@
 #include <cmath>
 #include <filesystem>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "sensor/base/input_error.h"
 #include "sensor/io/exr_io.h"
 #include "sensor/io/output_set.h"
 #include "sensor/model/sensor_noise.h"
+#include "tests/support/lut_paths.h"
 #include "tests/support/text_file.h"
 
 namespace camsim::expose_file_test {
@@ -239,6 +241,26 @@ TEST(ExposeFile, BadInputsNameTheFileAndKey) {
   s.sensor = "ideal-xyz";
   EXPECT_NE(errorOf(good, s, &key), "");
   EXPECT_EQ(key, "sensor");
+  // The same photosite area to the decimals a description gives (√2 · 1.4 µm at fill factor
+  // 0.5) sees the same light: it was refused as "1.96 µm² against 1.96 µm²" (found by
+  // probing); 1 % more area is another sensor, both areas printed so that they differ.
+  std::string text = test::readFile(test::kLuts / "sensors" / "smartphone-1.4um.yaml");
+  for (const auto& [pitch, accepted] :
+       {std::pair<const char*, bool>{"1.979898987", true}, {"1.9897", false}}) {
+    std::string other = text;
+    other.replace(other.find("name: smartphone-1.4um"), 22, "name: other");
+    other.replace(other.find("pixel_pitch_um: 1.4"), 19, std::string("pixel_pitch_um: ") + pitch);
+    other.replace(other.find("fill_factor: 1.0"), 16, "fill_factor: 0.5");
+    const fs::path file = dir.path() / "other.yaml";
+    test::writeFile(file, other);
+    s.sensor = file.string();
+    e = errorOf(good, s, &key);
+    if (accepted) {
+      EXPECT_EQ(e, "") << pitch;
+    } else {
+      EXPECT_NE(e.find("1.979453045 µm² against 1.96 µm²"), std::string::npos) << e;
+    }
+  }
 }
 
 // Found by probing: a noise seed of -1 or 1e20 became 2^64 - 1, and an f-number or focal
@@ -259,6 +281,7 @@ TEST(ExposeFile, HeaderValuesOutOfRangeAreRefusedByKey) {
       {"camsim:focal_length_m", "0", "> 0"},
       // Found by probing: beyond an EXIF rational, the DNG said 4294967295/0 (exit 0).
       {"camsim:exposure_time_s", "1e300", "beyond what the DNG's EXIF ExposureTime holds"},
+      {"camsim:exposure_time_s", "0", "must be positive"},  // accepted (found by probing)
       {"camsim:f_number", "1e10", "beyond what the DNG's EXIF FNumber holds"},
       {"camsim:focal_length_m", "1e300", "beyond what the DNG's EXIF FocalLength holds"},
   };
