@@ -10,10 +10,10 @@
 #include <OpenEXR/ImfStringAttribute.h>
 
 #include <charconv>
-
-#include "sensor/base/input_error.h"
+#include <cmath>
 
 #include "sensor/base/format.h"
+#include "sensor/base/input_error.h"
 
 namespace camsim {
 
@@ -45,6 +45,30 @@ void writeExr(const std::filesystem::path& path, const Image& image, const Metad
   file.writePixels(image.height);
 }
 
+namespace {
+
+// Chromaticities a colour conversion can use: finite, each y > 0 (xyY → XYZ divides by it)
+// and primaries that span a plane of chromaticity (found by probing: all six at 0.3 gave
+// NaN luminance weights, and camsim mtf blamed a "not finite" pixel of the ROI).
+void checkChromaticities(const ExrChromaticities& c, const std::filesystem::path& path) {
+  bool usable = true;
+  for (const Chromaticity& p : {c.red, c.green, c.blue, c.white})
+    usable = usable && std::isfinite(p.x) && std::isfinite(p.y) && p.y > 0.0;
+  const double area =
+      (c.green.x - c.red.x) * (c.blue.y - c.red.y) - (c.blue.x - c.red.x) * (c.green.y - c.red.y);
+  if (!usable || !(std::abs(area) > 1e-6))
+    throw InputError({path.string(), 0, 0}, "chromaticities",
+                     "the header's chromaticities are not a colour space (red " +
+                         formatNumber(c.red.x, 6) + ", " + formatNumber(c.red.y, 6) + "; green " +
+                         formatNumber(c.green.x, 6) + ", " + formatNumber(c.green.y, 6) +
+                         "; blue " + formatNumber(c.blue.x, 6) + ", " + formatNumber(c.blue.y, 6) +
+                         "; white " + formatNumber(c.white.x, 6) + ", " +
+                         formatNumber(c.white.y, 6) +
+                         "): each y must be > 0 and the primaries must not lie on a line");
+}
+
+}  // namespace
+
 ExrFile readExr(const std::filesystem::path& path) {
   try {
     Imf::InputFile file(path.c_str());
@@ -75,8 +99,11 @@ ExrFile readExr(const std::filesystem::path& path) {
                                              {double(c.green.x), double(c.green.y)},
                                              {double(c.blue.x), double(c.blue.y)},
                                              {double(c.white.x), double(c.white.y)}};
+      checkChromaticities(*out.chromaticities, path);
     }
     return out;
+  } catch (const InputError&) {
+    throw;
   } catch (const std::exception& e) {
     throw InputError({path.string(), 0, 0}, "", std::string("cannot read EXR: ") + e.what());
   }

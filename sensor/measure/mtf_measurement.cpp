@@ -287,7 +287,7 @@ std::string formatMtfSummary(const MtfMeasurement& m) {
       << formatFixed(ref.sfr.angleDeg, 2) << "°, " << ref.sfr.rowsUsed
       << (ref.sfr.vertical ? " rows" : " columns") << " along it; field height "
       << formatFixed(m.relativeFieldHeight(), 2);
-  if (pitchMm > 0.0) out << " (" << formatFixed(m.fieldHeightPx() * pitchMm, 1) << " mm)";
+  if (pitchMm > 0.0) out << " (" << formatNumber(m.fieldHeightPx() * pitchMm, 3) << " mm)";
   out << "\n";
   for (const MtfChannel& c : m.channels) {
     out << "  " << c.name << std::string(c.name.size() < 6 ? 6 - c.name.size() : 1, ' ') << "MTF50 "

@@ -28,6 +28,9 @@ constexpr double kMaxBinOffsetPx = 0.05;
 // phases) sample the ESF unevenly with a period of about a pixel, which aliases: up to
 // ±0.03 at Nyquist with 11 phases (a slope near 4/11, 20°). Flagged in the warnings.
 constexpr double kWarnPhasesPerPixel = 16.0;
+// The MTF of an unsharpened edge stays at or below 1 (its peak is 1 at DC): above this
+// somewhere up to Nyquist the ROI is sharpened or holds an outlier. Flagged in the warnings.
+constexpr double kWarnMtfAboveOne = 1.1;
 
 // 1 / the widest gap between the fractional parts of x(r + ½) over the used rows: how
 // many evenly spread positions relative to the pixel grid the rows give the edge.
@@ -342,6 +345,16 @@ SfrResult measureSfr(const Image& image, const EdgeRoi& roi, const SfrOptions& o
   if (out.mtf[0] <= 0.0) fail(o, "roi", "no contrast across the edge: the LSF sums to zero");
   out.mtf50 = mtfCrossing(out.frequency, out.mtf, 0.5);
   out.mtfAtNyquist = mtfAt(out.frequency, out.mtf, kNyquist);
+  // An MTF above 1 up to Nyquist: a sharpened image, or an outlier in the ROI (found by
+  // probing: one hot pixel gave 1.7 at Nyquist, with no warning).
+  std::size_t peak = 0;
+  for (std::size_t i = 0; i < out.mtf.size() && out.frequency[i] <= kNyquist; ++i)
+    if (out.mtf[i] > out.mtf[peak]) peak = i;
+  if (out.mtf[peak] > kWarnMtfAboveOne)
+    out.warnings.push_back("the MTF reaches " + formatFixed(out.mtf[peak], 3) + " at " +
+                           formatFixed(out.frequency[peak], 3) +
+                           " cy/px: above 1, the image is sharpened or the ROI holds an "
+                           "outlier (a hot pixel, a speck); check the ROI");
   return out;
 }
 

@@ -177,8 +177,9 @@ TEST(MtfBinary, SeveralRoisGiveAReportPerFieldHeight) {
                                           quote(out.string()),
                                       dir.path(), "CAMSIM_PYTHON=/nonexistent/python3");
   ASSERT_EQ(r.exitCode, 0) << r.err;
+  // 32 px of 2 µm: 0.064 mm (it printed "0.1 mm": found by probing).
   EXPECT_NE(r.out.find("ROI 0,0,64,64: vertical edge at 5.00°, 57 rows along it; field height "
-                       "0.45 (0.1 mm)"),
+                       "0.45 (0.064 mm)"),
             std::string::npos)
       << r.out;
   EXPECT_NE(r.out.find("ROI 0,64,64,64"), std::string::npos) << r.out;

@@ -3,6 +3,7 @@
 
 #include <unistd.h>
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
@@ -110,6 +111,31 @@ TEST_F(ExrIoTest, NoChromaticitiesNoMetadata) {
   EXPECT_TRUE(read.metadata.empty());
   ASSERT_EQ(read.image.channels, std::vector<std::string>{"Y"});
   EXPECT_EQ(read.image.pixels, image.pixels);
+}
+
+// Chromaticities no conversion can use (primaries on one point or line, a y of 0, NaN):
+// refused by the reader naming the attribute (found by probing: camsim mtf got NaN luminance
+// weights and blamed a "not finite" pixel of its ROI).
+TEST_F(ExrIoTest, ChromaticitiesThatAreNoColourSpaceAreRefused) {
+  Image image(2, 2, {"R", "G", "B"});
+  const double nan = std::nan("");
+  const ExrChromaticities bad[] = {
+      {{0.3, 0.3}, {0.3, 0.3}, {0.3, 0.3}, {0.3127, 0.329}},
+      {{0.1, 0.1}, {0.2, 0.2}, {0.3, 0.3}, {0.3127, 0.329}},
+      {{0.64, 0.33}, {0.30, 0.60}, {0.15, 0.0}, {0.3127, 0.329}},
+      {{nan, 0.33}, {0.30, 0.60}, {0.15, 0.06}, {0.3127, 0.329}},
+  };
+  for (const ExrChromaticities& c : bad) {
+    const std::filesystem::path path = dir_ / "bad.exr";
+    writeExr(path, image, {}, c);
+    try {
+      (void)readExr(path);
+      ADD_FAILURE() << "read";
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.key(), "chromaticities");
+      EXPECT_NE(e.message().find("are not a colour space"), std::string::npos) << e.what();
+    }
+  }
 }
 
 TEST_F(ExrIoTest, ReadingANonExrFileThrowsInputError) {
