@@ -240,6 +240,18 @@ Image OcioProcessor::toDisplay(const Image& acescg, const DisplayChoice& choice)
   return out;
 }
 
+namespace {
+
+// One pixel scaled so that its largest |channel| is at most kMaxInput (applyInPlace).
+void limitInput(float* rgb) {
+  const float largest = std::max({std::abs(rgb[0]), std::abs(rgb[1]), std::abs(rgb[2])});
+  if (!(largest > DisplayPipeline::kMaxInput)) return;
+  const float k = DisplayPipeline::kMaxInput / largest;
+  for (int c = 0; c < 3; ++c) rgb[c] *= k;
+}
+
+}  // namespace
+
 DisplayPipeline::DisplayPipeline(DisplayChoice choice, std::shared_ptr<const Impl> impl)
     : choice_(std::move(choice)), impl_(std::move(impl)) {}
 
@@ -247,11 +259,13 @@ void DisplayPipeline::applyInPlace(std::span<float> rgb, int width, int height) 
   CAMSIM_CHECK(width >= 0 && height >= 0);
   CAMSIM_CHECK(rgb.size() == static_cast<size_t>(width) * static_cast<size_t>(height) * 3);
   if (rgb.empty()) return;
+  for (std::size_t i = 0; i < rgb.size(); i += 3) limitInput(&rgb[i]);
   OCIO::PackedImageDesc desc(rgb.data(), width, height, 3);
   impl_->cpu->apply(desc);
 }
 
 std::array<float, 3> DisplayPipeline::applyPixel(std::array<float, 3> rgb) const {
+  limitInput(rgb.data());
   impl_->cpu->applyRGB(rgb.data());
   return rgb;
 }

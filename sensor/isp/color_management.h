@@ -108,7 +108,11 @@ class DisplayPipeline {
   const DisplayChoice& choice() const { return choice_; }  // resolved names
 
   // rgb: width·height·3 floats, packed RGB; converted in place. CAMSIM_CHECKs the size.
+  // A pixel whose largest |channel| exceeds kMaxInput is scaled down to it first, keeping
+  // its ratios: OCIO's ACES output transforms overflow far above it (found by probing: 1e25
+  // came out black between 1e20 and 1e35 white; 3e38 un-tone-mapped as inf).
   void applyInPlace(std::span<float> rgb, int width, int height) const;
+  static constexpr float kMaxInput = 1e10f;
   std::array<float, 3> applyPixel(std::array<float, 3> rgb) const;
 
  private:

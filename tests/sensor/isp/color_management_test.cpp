@@ -144,6 +144,26 @@ TEST_F(ColorManagementTest, EveryDisplayViewAndLookBuildsACpuProcessor) {
   EXPECT_EQ(pairs, 13);
 }
 
+// Every display and view, grey from 1 to the largest float: finite and never darker for
+// brighter input (found by probing: the ACES SDR view gave black at 1e25 and 1e30 between
+// white at 1e20 and 1e35; the un-tone-mapped view inf at 3e38).
+TEST_F(ColorManagementTest, BrighterInputIsNeverDarkerAndAlwaysFinite) {
+  const OcioProcessor ocio;
+  for (const std::string& display : ocio.displays())
+    for (const std::string& view : ocio.views(display)) {
+      if (view == "Raw") continue;  // data: no transform
+      SCOPED_TRACE(display + " / " + view);
+      const DisplayPipeline pipe = ocio.pipeline({display, view, ""});
+      float previous = -1.0f;
+      for (const float grey : {1.0f, 1e3f, 1e6f, 1e9f, 1e10f, 1e12f, 1e20f, 1e25f, 1e30f, 3e38f}) {
+        const std::array<float, 3> out = pipe.applyPixel({grey, grey, grey});
+        for (float v : out) ASSERT_TRUE(std::isfinite(v)) << grey;
+        EXPECT_GE(out[1], previous * (1.0f - 1e-5f)) << grey;
+        previous = out[1];
+      }
+    }
+}
+
 TEST_F(ColorManagementTest, MidGreyCodeValues) {
   const OcioProcessor ocio;
   // Un-tone-mapped: display Y = 0.18, sRGB-encoded 0.4614 → 117.7.
