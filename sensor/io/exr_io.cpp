@@ -47,24 +47,26 @@ void writeExr(const std::filesystem::path& path, const Image& image, const Metad
 
 namespace {
 
-// Chromaticities a colour conversion can use: finite, each y > 0 (xyY → XYZ divides by it)
-// and primaries that span a plane of chromaticity (found by probing: all six at 0.3 gave
-// NaN luminance weights, and camsim mtf blamed a "not finite" pixel of the ROI).
+// Chromaticities a colour conversion can use: finite, each y ≠ 0 (xyY → XYZ divides by it;
+// ACES AP0's blue primary has y = −0.077), the white's y > 0, and primaries that span a
+// plane of chromaticity (found by probing: all six at 0.3 gave NaN luminance weights, and
+// camsim mtf blamed a "not finite" pixel of the ROI).
 void checkChromaticities(const ExrChromaticities& c, const std::filesystem::path& path) {
-  bool usable = true;
+  bool usable = c.white.y > 0.0;
   for (const Chromaticity& p : {c.red, c.green, c.blue, c.white})
-    usable = usable && std::isfinite(p.x) && std::isfinite(p.y) && p.y > 0.0;
+    usable = usable && std::isfinite(p.x) && std::isfinite(p.y) && std::abs(p.y) > 1e-9;
   const double area =
       (c.green.x - c.red.x) * (c.blue.y - c.red.y) - (c.blue.x - c.red.x) * (c.green.y - c.red.y);
   if (!usable || !(std::abs(area) > 1e-6))
-    throw InputError({path.string(), 0, 0}, "chromaticities",
-                     "the header's chromaticities are not a colour space (red " +
-                         formatNumber(c.red.x, 6) + ", " + formatNumber(c.red.y, 6) + "; green " +
-                         formatNumber(c.green.x, 6) + ", " + formatNumber(c.green.y, 6) +
-                         "; blue " + formatNumber(c.blue.x, 6) + ", " + formatNumber(c.blue.y, 6) +
-                         "; white " + formatNumber(c.white.x, 6) + ", " +
-                         formatNumber(c.white.y, 6) +
-                         "): each y must be > 0 and the primaries must not lie on a line");
+    throw InputError(
+        {path.string(), 0, 0}, "chromaticities",
+        "the header's chromaticities are not a colour space (red " + formatNumber(c.red.x, 6) +
+            ", " + formatNumber(c.red.y, 6) + "; green " + formatNumber(c.green.x, 6) + ", " +
+            formatNumber(c.green.y, 6) + "; blue " + formatNumber(c.blue.x, 6) + ", " +
+            formatNumber(c.blue.y, 6) + "; white " + formatNumber(c.white.x, 6) + ", " +
+            formatNumber(c.white.y, 6) +
+            "): each y must be non-zero (the white's positive) and the primaries must not lie on a "
+            "line");
 }
 
 }  // namespace

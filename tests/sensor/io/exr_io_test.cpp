@@ -125,6 +125,10 @@ TEST_F(ExrIoTest, ChromaticitiesThatAreNoColourSpaceAreRefused) {
       {{0.64, 0.33}, {0.30, 0.60}, {0.15, 0.0}, {0.3127, 0.329}},
       {{nan, 0.33}, {0.30, 0.60}, {0.15, 0.06}, {0.3127, 0.329}},
   };
+  // ACES AP0 (ACES2065-1), whose blue primary lies below y = 0, is a colour space.
+  const ExrChromaticities ap0{{0.7347, 0.2653}, {0.0, 1.0}, {0.0001, -0.077}, {0.32168, 0.33767}};
+  writeExr(dir_ / "ap0.exr", image, {}, ap0);
+  EXPECT_NO_THROW((void)readExr(dir_ / "ap0.exr"));
   for (const ExrChromaticities& c : bad) {
     const std::filesystem::path path = dir_ / "bad.exr";
     writeExr(path, image, {}, c);
