@@ -46,7 +46,6 @@ namespace {
 namespace py = pybind11;
 
 // At most this many frames per expose() call (each a full raw image in memory).
-constexpr long long kMaxFrames = 100000;
 
 [[noreturn]] void fail(const char* function, const std::string& key, const std::string& message) {
   throw InputError(SourceLocation{function, 0, 0}, key, message);
@@ -114,7 +113,7 @@ void storeFrame(const std::vector<RawImage>& raws, std::uint16_t* out) {
 }
 
 py::array_t<std::uint16_t> exposeFrames(const py::array& electrons, const SensorSpec& sensor,
-                                        const py::object& seedArg, std::optional<long long> frames,
+                                        const py::object& seedArg, const py::object& framesArg,
                                         const py::object& firstFrameArg, double exposureTimeS,
                                         std::optional<double> iso, double exposureScale,
                                         const std::string& noise, const py::object& threadsArg) {
@@ -138,9 +137,13 @@ py::array_t<std::uint16_t> exposeFrames(const py::array& electrons, const Sensor
   }
   exposureTimeS *= exposureScale;
   const NoiseMode mode = noiseMode(noise);
+  // An integer as seed's (found by probing: frames=True gave one frame, 2**70 and 2.0
+  // pybind11's TypeError); None: one frame without the frames axis.
+  const std::optional<long long> frames =
+      framesArg.is_none()
+          ? std::nullopt
+          : std::optional(integerArg(framesArg, "<expose>", "frames", 1, kMaxExposeFrames));
   const long long n = frames.value_or(1);
-  if (n < 1 || n > kMaxFrames)
-    fail("<expose>", "frames", "expected 1 to " + std::to_string(kMaxFrames) + " frames");
   // camsim render's and expose's ISO range (found in review: iso=1e12 was exposed).
   if (iso)
     if (const std::string problem = isoRangeProblem(*iso); !problem.empty())
@@ -185,9 +188,9 @@ py::array_t<std::uint16_t> exposeFrames(const py::array& electrons, const Sensor
 // `camsim expose` from Python: a render's NAME_raw.exr → frames (n, h, w[, C]) and, with
 // output_dir, the CLI's files (sensor/io/expose_file.h does the reading, checks and writing).
 py::dict exposeFile(const py::object& pathArgument, const py::object& sensorArg,
-                    const py::object& seedArg, long long frames, std::optional<double> iso,
-                    double exposureScale, const std::string& noise, const py::object& outputDirArg,
-                    const py::object& threadsArg) {
+                    const py::object& seedArg, const py::object& framesArg,
+                    std::optional<double> iso, double exposureScale, const std::string& noise,
+                    const py::object& outputDirArg, const py::object& threadsArg) {
   const int threads = threadCountArg(threadsArg, "<expose_file>");
   const std::filesystem::path path = pathArg(pathArgument, "<expose_file>", "path");
   const std::optional<std::string> sensor =
@@ -203,7 +206,11 @@ py::dict exposeFile(const py::object& pathArgument, const py::object& sensorArg,
   ExposeFileSettings settings;
   settings.sensor = sensor.value_or("");
   settings.seed = seed;
-  settings.frames = frames;
+  // Any 64-bit integer, its range the library's (which names the file); not a bool or a
+  // float (pybind11's TypeError for 2**70 and 2.0; found by probing).
+  settings.frames =
+      integerArg(framesArg, "<expose_file>", "frames", std::numeric_limits<long long>::min(),
+                 std::numeric_limits<long long>::max());
   settings.iso = iso;
   settings.exposureScale = exposureScale;
   settings.noise = noise;

@@ -83,3 +83,16 @@ def test_max_memory_gb_takes_numpy_numbers():
     for gb in (np.float32(0.001), np.int64(0)):
         with pytest.raises(camsim.InputError, match=r"max_memory_gb"):
             camsim.capture(scene, threads=1, max_memory_gb=gb)
+
+
+def test_frame_counts_are_integers_named_as_frames():
+    # frames=True gave one frame; 2**70 and 2.0 raised pybind11's TypeError.
+    sensor = camsim.Sensor("smartphone-1.4um")
+    electrons = np.full((4, 4), 100.0)
+    for frames in (True, 2**70, 2.0, 0, 100001):
+        with pytest.raises(camsim.InputError, match=r"^<expose>: key 'frames'"):
+            camsim.expose(electrons, sensor, seed=1, frames=frames)
+    assert camsim.expose(electrons, sensor, seed=1, frames=np.int64(2)).shape == (2, 4, 4)
+    for frames in (True, 2**70, 2.0):
+        with pytest.raises(camsim.InputError, match=r"<expose_file>: key 'frames'"):
+            camsim.expose_file("unused_raw.exr", frames=frames)
