@@ -85,6 +85,9 @@ std::optional<std::vector<std::filesystem::path>> runExpose(const ExposeArgs& ar
                                                             const std::atomic<bool>* cancel) {
   const auto start = std::chrono::steady_clock::now();
   const ExposeJob job = prepareExpose(args.input, args.settings, lutsDirectory());
+  // Destroyed after `outputs` (which removes the temporaries): an interrupted run leaves no
+  // folder it made (found by probing: SIGTERM left the new output folder, empty).
+  NewDirectoryCleanup cleanup(args.outputDir);
   for (const auto& stale : OutputSet::prepareDirectory(args.outputDir))
     log << "removed " << stale.string() << " (left by a run that was killed)\n";
   OutputSet outputs(args.outputDir);
@@ -120,7 +123,8 @@ std::optional<std::vector<std::filesystem::path>> runExpose(const ExposeArgs& ar
   if (cancel && cancel->load()) {
     log << "expose interrupted after " << done.load() << " of " << job.frames
         << " frames: nothing written\n";
-    return std::nullopt;  // `outputs` removes the temporaries
+    cleanup.abandon();
+    return std::nullopt;  // `outputs` removes the temporaries, then `cleanup` the new folder
   }
   const std::vector<std::filesystem::path> files = outputs.commit();
   const double seconds =

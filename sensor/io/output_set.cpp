@@ -76,7 +76,7 @@ NewDirectoryCleanup::NewDirectoryCleanup(const std::filesystem::path& directory)
 
 NewDirectoryCleanup::~NewDirectoryCleanup() {
   namespace fs = std::filesystem;
-  if (std::uncaught_exceptions() <= exceptions_) return;
+  if (!abandoned_ && std::uncaught_exceptions() <= exceptions_) return;
   std::error_code ec;
   for (const auto& p : made_) {  // deepest first; remove() removes only an empty folder
     if (!fs::is_directory(fs::symlink_status(p, ec)) || !fs::remove(p, ec)) return;

@@ -65,10 +65,14 @@ class NewDirectoryCleanup {
   ~NewDirectoryCleanup();
   NewDirectoryCleanup(const NewDirectoryCleanup&) = delete;
   NewDirectoryCleanup& operator=(const NewDirectoryCleanup&) = delete;
+  // The command ends without an exception but writes nothing (interrupted): the folders it
+  // made are removed too, if empty, when this is destroyed.
+  void abandon() { abandoned_ = true; }
 
  private:
   std::vector<std::filesystem::path> made_;  // deepest first
   int exceptions_;                           // std::uncaught_exceptions() when made
+  bool abandoned_ = false;
 };
 
 }  // namespace camsim

@@ -293,6 +293,8 @@ TEST_F(RenderGuards, SigintStopsExposeRemovingItsTemporaries) {
   EXPECT_EQ(exitCode(*status), 130) << run.err();
   EXPECT_NE(run.err().find("expose interrupted after"), std::string::npos) << run.err();
   EXPECT_EQ(fileNames(out), std::vector<std::string>{}) << run.err();
+  // Nor the output folder it made (it was left, empty: found by probing).
+  EXPECT_FALSE(fs::exists(out));
 }
 
 }  // namespace
