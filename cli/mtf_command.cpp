@@ -113,7 +113,17 @@ std::vector<std::filesystem::path> runMtf(const MtfArgs& args, std::ostream& out
   options.pixelPitchM = args.pitchUm ? *args.pitchUm * 1e-6 : 0.0;
   options.source = args.image;
   std::vector<MtfMeasurement> regions;
-  for (const EdgeRoi& roi : rois) regions.push_back(measureMtf(channels, roi, options));
+  for (std::size_t r = 0; r < rois.size(); ++r) {
+    try {
+      regions.push_back(measureMtf(channels, rois[r], options));
+    } catch (const InputError& e) {
+      // With several, which one (found by probing: "no contrast" named none).
+      if (rois.size() == 1) throw;
+      throw InputError(e.where(), e.key(),
+                       "--roi " + args.rois[r] + " (region " + std::to_string(r + 1) + " of " +
+                           std::to_string(rois.size()) + "): " + e.message());
+    }
+  }
   if (input.format == "png" && !args.linear)
     log << "camsim mtf: " << args.image << " read as sRGB-encoded and decoded; a tone-mapped "
         << "picture (camsim's NAME.png) does not give the linear MTF: measure NAME.exr\n";

@@ -193,6 +193,18 @@ TEST(MtfBinary, SeveralRoisGiveAReportPerFieldHeight) {
             "field_height_mm,channel,mtf50_cy_px,mtf50_cy_mm,mtf_at_nyquist");
   EXPECT_NE(fields.find("\n1,0,0,64,64,0.447214,32,0.064,G,0.3"), std::string::npos) << fields;
   EXPECT_NE(fields.find("\n2,0,64,64,64,0.447214,32,0.064,G,0.3"), std::string::npos) << fields;
+  // A region without an edge among several is named (found by probing: the error said
+  // "no contrast" and not which --roi); nothing is written.
+  const fs::path refused = dir.path() / "refused";
+  const RunResult bad = test::runCamsim("mtf " + quote(exr.string()) +
+                                            " --roi 0,0,64,64 --roi 0,0,16,16 --channel G -o " +
+                                            quote(refused.string()),
+                                        dir.path());
+  EXPECT_EQ(bad.exitCode, 2) << bad.err;
+  EXPECT_NE(bad.err.find("key 'roi': --roi 0,0,16,16 (region 2 of 2): no contrast"),
+            std::string::npos)
+      << bad.err;
+  EXPECT_FALSE(fs::exists(refused));
   if (!hasMatplotlib()) GTEST_SKIP() << "no matplotlib for /usr/bin/python3: plots not checked";
   const fs::path plotted = dir.path() / "plotted";
   const RunResult p =
