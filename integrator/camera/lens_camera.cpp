@@ -5,6 +5,7 @@
 #include <glm/geometric.hpp>
 
 #include "sensor/base/check.h"
+#include "sensor/base/format.h"
 #include "sensor/base/input_error.h"
 
 namespace camsim {
@@ -20,6 +21,21 @@ LensSystem withStop(const LensSpec& spec) {
 }
 
 }  // namespace
+
+std::string realImageProblem(const LensSpec& spec) {
+  const LensSystem lens = withStop(spec);
+  const double sensor = lens.focusSensorDistance(objectDistanceFromVertex(lens, spec.focusDistance),
+                                                 kLambdaDNm, FocusMethod::kBestRms);
+  if (sensor > 0.0 && std::isfinite(sensor)) return "";
+  const std::string object = spec.focusDistance > 0.0
+                                 ? "a plane at " + formatShortest(spec.focusDistance) + " m"
+                                 : "a distant object (focus_distance_m unset: focused at infinity)";
+  return "the lens forms no real image of " + object +
+         ": the real rays from there leave its rear surface diverging" +
+         (std::isfinite(sensor)
+              ? " (their best focus lies " + formatNumber(-sensor * 1e3, 4) + " mm in front of it)"
+              : "");
+}
 
 double objectDistanceFromVertex(const LensSystem& lens, double focusDistance) {
   if (!(focusDistance > 0.0)) return kInfiniteDistance;

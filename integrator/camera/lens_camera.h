@@ -90,4 +90,9 @@ class LensCamera {
 // focusDistance (m from the entrance pupil, 0 = infinity): what LensSystem's focus takes.
 double objectDistanceFromVertex(const LensSystem& lens, double focusDistance);
 
+// Why the lens with spec's stop forms no real image of its focus plane (its real rays leave
+// the rear surface diverging: LensCamera would have no sensor distance), or "". The scene
+// loader and an f-number override ask it (the best focus depends on the stop).
+std::string realImageProblem(const LensSpec& spec);
+
 }  // namespace camsim

@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "integrator/camera/lens_camera.h"
 #include "integrator/scene/overrides_projection.h"
 #include "integrator/scene/scene_loader.h"
 #include "sensor/model/sensor_noise.h"
@@ -375,6 +376,10 @@ void applyOverrides(SceneDescription& d, const Overrides& o, const SourceLocatio
     const std::string problem = LensSystem(d.camera.lens->prescription).fNumberProblem(*o.fNumber);
     if (!problem.empty()) throw InputError(where, "camera.lens.f_number", problem);
     d.camera.lens->fNumber = *o.fNumber;
+    // The best focus depends on the stop: the loader's check again (found in review).
+    if (const std::string noImage = realImageProblem(*d.camera.lens); !noImage.empty())
+      throw InputError(where, "camera.lens.f_number",
+                       "at f/" + formatShortest(*o.fNumber) + " " + noImage);
   }
   if (o.projection && d.camera.lens)
     throw InputError(where, "camera.projection",

@@ -66,28 +66,16 @@ void parseCameraLens(const YamlValue& value, const YamlMap& camera, const TableS
               " mm behind the lens's front vertex, inside the lens; the entrance pupil lies " +
               formatNumber((spec.focusDistance - fromVertex) * 1e3, 4) + " mm behind it");
   }
-  // Focused at infinity (the default) too: found by probing, an aspheric singlet whose real
-  // rays from infinity diverge passed here and aborted the render on an internal check.
-  const auto focus = lm.find("focus_distance_m");
-  const double sensor = lens->focusSensorDistance(
-      objectDistanceFromVertex(*lens, spec.focusDistance), kLambdaDNm, FocusMethod::kBestRms);
-  if (!(sensor > 0.0) || !std::isfinite(sensor)) {
-    const std::string object =
-        focus ? "a plane at " + formatShortest(spec.focusDistance) + " m"
-              : "a distant object (focus_distance_m unset: focused at infinity)";
-    const std::string diverging =
-        std::isfinite(sensor)
-            ? " (their best focus lies " + formatNumber(-sensor * 1e3, 4) + " mm in front of it)"
-            : "";
-    (focus ? *focus : value)
-        .fail("the lens forms no real image of " + object +
-              ": the real rays from there leave its rear surface diverging" + diverging +
-              (focus ? "; focus farther away" : ""));
-  }
   lm.finish({"file", "f_number", "focus_distance_m"});
   if (c.aperture) {
     spec.blades = c.aperture->blades;
     spec.rotation = c.aperture->rotation;
+  }
+  // Focused at infinity (the default) too: found by probing, an aspheric singlet whose real
+  // rays from infinity diverge passed here and aborted the render on an internal check.
+  if (const std::string problem = realImageProblem(spec); !problem.empty()) {
+    const auto focus = lm.find("focus_distance_m");
+    (focus ? *focus : value).fail(problem + (focus ? "; focus farther away" : ""));
   }
   // The thin-lens stand-in (intrinsics, project(), the ground truth): the lens's paraxial
   // focal length and f-number at λ_d; PhysicalCamera sets them again from the same lens.
