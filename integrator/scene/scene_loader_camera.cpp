@@ -204,18 +204,47 @@ glm::dmat4 parseAffineMatrix(const YamlValue& m) {
   return out;
 }
 
-glm::dquat parseRotation(const YamlValue& value) {
+namespace {
+
+// A rotation as written: its unit axis and its angle (°, not wrapped).
+struct AxisAngle {
+  glm::dvec3 axis{0.0, 0.0, 1.0};
+  double degrees = 0.0;
+};
+
+AxisAngle parseAxisAngle(const YamlValue& value) {
   YamlMap rm(value);
   const YamlValue axisValue = rm.require("axis");
   const glm::dvec3 axis = axisValue.vec3();
   if (!(glm::length(axis) > 0.0)) axisValue.fail("rotation axis must not be zero");
   const double degrees = rm.require("angle_deg").number(-1e6, 1e6);
   rm.finish({"axis", "angle_deg"});
-  return glm::angleAxis(glm::radians(degrees), glm::normalize(axis));
+  return {glm::normalize(axis), degrees};
+}
+
+// Whether two keyframes' rotations, as written, differ by 180° or more. About one axis
+// (or its opposite) by the angles themselves: the quaternions' dot product, cos(Δ/2),
+// repeats every 720°, so 0° → 720° passed as no motion and 0° → 600° as −120° (found in
+// review); about different axes by the dot product (≤ 0: the relative rotation ≥ 180°).
+bool rotateHalfATurnOrMore(const AxisAngle& a, const AxisAngle& b) {
+  const double along = glm::dot(a.axis, b.axis);
+  if (glm::length(glm::cross(a.axis, b.axis)) < 1e-9 || a.degrees == 0.0 || b.degrees == 0.0)
+    return !(std::abs(b.degrees - (along < 0.0 ? -a.degrees : a.degrees)) < 180.0);
+  const glm::dquat qa = glm::angleAxis(glm::radians(a.degrees), a.axis);
+  const glm::dquat qb = glm::angleAxis(glm::radians(b.degrees), b.axis);
+  return !(glm::dot(qa, qb) > 1e-9);
+}
+
+}  // namespace
+
+glm::dquat parseRotation(const YamlValue& value) {
+  const AxisAngle r = parseAxisAngle(value);
+  return glm::angleAxis(glm::radians(r.degrees), r.axis);
 }
 
 RigidMotion parseMotion(const YamlValue& value, bool forCamera, const glm::dvec3& origin) {
   std::vector<Keyframe> keys;
+  AxisAngle previous;  // the last keyframe's rotation as written (none: 0°)
   for (const YamlValue& item : value.items()) {
     YamlMap map(item);
     Keyframe k;
@@ -229,19 +258,24 @@ RigidMotion parseMotion(const YamlValue& value, bool forCamera, const glm::dvec3
       k.translate = t->vec3() - origin;
       toPoint(*t, k.translate);
     }
-    if (auto r = map.find("rotate")) k.rotate = parseRotation(*r);
+    AxisAngle rotation;
+    if (auto r = map.find("rotate")) {
+      rotation = parseAxisAngle(*r);
+      k.rotate = glm::angleAxis(glm::radians(rotation.degrees), rotation.axis);
+    }
     if (auto sc = map.find("scale")) {
       if (forCamera) sc->fail("a camera cannot be scaled");
       k.scale = sc->number(0.0, 1e12, true);
     }
     map.finish(forCamera ? std::vector<std::string>{"time", "translate", "rotate"}
                          : std::vector<std::string>{"time", "translate", "rotate", "scale"});
-    // Two keyframes' rotations differ by less than 180° when their quaternions (as parsed,
-    // not sign-flipped) have a positive dot product: about one axis it is cos(Δangle / 2).
-    // Its absolute value let 0° → 270° through, played as −90° (and 0° → 360° as no motion):
-    // found by probing.
-    if (!keys.empty() && !(glm::dot(k.rotate, keys.back().rotate) > 1e-9))
-      item.fail("consecutive keyframes rotate by 180° or more: add keyframes in between");
+    // The absolute value of the quaternions' dot product let 0° → 270° through, played as
+    // −90°, and 0° → 360° as no motion (found by probing).
+    if (!keys.empty() && rotateHalfATurnOrMore(previous, rotation))
+      item.fail(
+          "consecutive keyframes rotate by 180° or more: add keyframes in between (or "
+          "continue the angle: 190 after 170, not -170)");
+    previous = rotation;
     keys.push_back(k);
   }
   if (keys.empty()) value.fail("motion needs at least one keyframe");

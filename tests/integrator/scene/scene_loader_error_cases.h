@@ -278,6 +278,11 @@ inline const ErrorCase kErrorCases[] = {
      withCameraLine("  motion: [{time: 0, rotate: {axis: [0, 0, 1], angle_deg: 0}}, {time: 0.01, "
                     "rotate: {axis: [0, 0, 1], angle_deg: 270}}]\n"),
      4, 64, "camera.motion[1]", "consecutive keyframes rotate by 180° or more"},
+    // 0° → 720° (cos(Δ/2) = 1) passed as no motion with the dot product (found in review).
+    {"KeyframesRotatingByTwoTurns",
+     withCameraLine("  motion: [{time: 0, rotate: {axis: [0, 0, 1], angle_deg: 0}}, {time: 0.01, "
+                    "rotate: {axis: [0, 0, 1], angle_deg: 720}}]\n"),
+     4, 64, "camera.motion[1]", "consecutive keyframes rotate by 180° or more"},
     // Every sample NaN and an exposure time of inf, exit 0 (found by probing).
     {"ShutterCurveTimeBeyondTheShuttersRange",
      withCameraLine("  shutter: {curve: [[0, 1], [1e300, 1]]}\n"), 4, 29, "camera.shutter.curve[1]",
