@@ -76,13 +76,17 @@ long long integerArg(const py::object& value, const std::string& where, const st
 std::filesystem::path pathArg(const py::handle& path, const std::string& where,
                               const std::string& key) {
   PyObject* bytes = nullptr;
-  if (!PyUnicode_FSConverter(path.ptr(), &bytes)) {  // TypeError, or ValueError for a NUL
-    const bool nul = PyErr_ExceptionMatches(PyExc_ValueError);
+  if (!PyUnicode_FSConverter(path.ptr(), &bytes)) {
+    // TypeError; UnicodeEncodeError (a ValueError) for a str the file system's encoding
+    // cannot hold; ValueError for a NUL (found in review: the encoding error said "NUL").
+    const bool unencodable = PyErr_ExceptionMatches(PyExc_UnicodeEncodeError);
+    const bool nul = !unencodable && PyErr_ExceptionMatches(PyExc_ValueError);
     PyErr_Clear();
     throw InputError({where, 0, 0}, key,
-                     nul ? "a path cannot contain a NUL character ('\\x00')"
-                         : "expected a path (str, bytes or os.PathLike), got " +
-                               std::string(py::str(py::type::of(path).attr("__name__"))));
+                     unencodable ? "the path is not valid Unicode text (a lone surrogate)"
+                     : nul       ? "a path cannot contain a NUL character ('\\x00')"
+                                 : "expected a path (str, bytes or os.PathLike), got " +
+                                 std::string(py::str(py::type::of(path).attr("__name__"))));
   }
   const auto owned = py::reinterpret_steal<py::bytes>(bytes);
   return std::filesystem::path(std::string(owned));

@@ -41,9 +41,10 @@ std::string typeName(const py::handle& v) {
 
 // v as JSON (YAML's .nan and .inf for non-finite floats, so that the loader reports them as
 // it does in a file); `key`: v's key path, for the error of a value JSON cannot hold.
-// yaml-cpp's depth guard is 500 levels; a dict or list that contains itself recursed here
-// until the stack overflowed (found by probing: a segfault).
-constexpr int kMaxDictDepth = 500;
+// Below yaml-cpp's depth guard (500, counting the top level and scalars): a dict or list
+// that contains itself recursed here until the stack overflowed (found by probing: a
+// segfault), and deeper ones get their key path here, not yaml-cpp's bare message.
+constexpr int kMaxDictDepth = 400;
 
 void emitValue(const py::handle& v, const std::string& key, std::string& out, int depth = 0) {
   if (depth > kMaxDictDepth)
@@ -399,7 +400,7 @@ description. Returns the Scene.)doc");
       "then the most a pixel gets. Returns the Scene.");
 
   scene.def_property_readonly(
-      "name", [](const PyScene& s) { return s.description.name; },
+      "name", [](const PyScene& s) { return osText(s.description.name); },
       "The output base name (the scene's name, else its file's stem).");
   scene.def_property_readonly(
       "source_file", [](const PyScene& s) { return osText(s.description.sourceFile); },
@@ -407,8 +408,8 @@ description. Returns the Scene.)doc");
   scene.def_property_readonly(
       "input_files",
       [](const PyScene& s) {
-        std::vector<std::string> out;
-        for (const auto& f : s.description.inputFiles) out.push_back(f.string());
+        py::list out;  // as os.fsdecode shows a name that is not UTF-8
+        for (const auto& f : s.description.inputFiles) out.append(osText(f.string()));
         return out;
       },
       "Every other file the loader read (meshes, textures, spectra, the sensor description).");

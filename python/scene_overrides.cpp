@@ -129,7 +129,9 @@ void setOverrideFromPython(Overrides& o, const OverrideSetting& s, const py::han
       setOverrideNumber(o, s, castOverride<double>(value, typeKey, "a number"), sourceOf(s));
       return;
     case OverrideType::kNoise:
-      if (!py::isinstance<py::str>(value)) (void)castOverride<std::string>(value, typeKey, "a str");
+      if (!py::isinstance<py::str>(value))  // bytes too (castOverride's caster takes them)
+        fail(typeKey,
+             "expected a str, got " + std::string(py::str(py::type::of(value).attr("__name__"))));
       setOverrideText(o, s, textArg(value, kWhere.file, typeKey), sourceOf(s));
       return;
     case OverrideType::kSensor:  // a preset name or a file (str or os.PathLike)

@@ -45,8 +45,6 @@ namespace {
 
 namespace py = pybind11;
 
-// At most this many frames per expose() call (each a full raw image in memory).
-
 [[noreturn]] void fail(const char* function, const std::string& key, const std::string& message) {
   throw InputError(SourceLocation{function, 0, 0}, key, message);
 }

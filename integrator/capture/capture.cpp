@@ -142,8 +142,10 @@ void exposeAndDevelop(CaptureResult& out, const RenderOptions& renderOptions,
       double longest = 1.0;
       for (const double ev : sensor.bracketEv) longest = std::max(longest, std::exp2(ev));
       const Shutter& shutter = desc.camera.shutter;
-      const double most =
-          (1.0 / desc.frames->rateHz) / ((shutter.close() - shutter.open()) * longest);
+      double most = (1.0 / desc.frames->rateHz) / ((shutter.close() - shutter.open()) * longest);
+      // A 360° shutter's window is the period up to rounding: exactly 1 then, so that the
+      // film is not rendered again at an equal shutter (found in review).
+      if (std::abs(most - 1.0) < 1e-9) most = 1.0;
       if (out.exposureScale > most) {
         out.exposureScale = most;
         out.exposureAtFramePeriod = true;

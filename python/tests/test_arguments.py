@@ -18,7 +18,7 @@ SENSOR_FILE = SOURCE / "luts" / "sensors" / "smartphone-1.4um.yaml"
 def test_a_dict_or_list_that_contains_itself_is_an_input_error():
     d = {"camera": {}}
     d["camera"]["self"] = d  # a segfault: the C++ stack overflowed
-    with pytest.raises(camsim.InputError, match=r"nested more than 500 levels deep") as info:
+    with pytest.raises(camsim.InputError, match=r"nested more than 400 levels deep") as info:
         camsim.Scene.from_dict(d)
     assert info.value.file == "<dict>" and info.value.key.startswith("camera.self.camera")
     assert len(info.value.key) < 200  # the path up to the limit, not 500 levels of it
@@ -79,10 +79,20 @@ def test_develop_region_sums_past_32_bits_are_outside_the_image():
 
 
 def test_max_memory_gb_takes_numpy_numbers():
+    # np.float32 was refused as "expected a number of GB": now the estimate and the range
+    # decide (messages the old code did not give for these).
     scene = camsim.default_scene(overrides={"spp": 1})
-    for gb in (np.float32(0.001), np.int64(0)):
-        with pytest.raises(camsim.InputError, match=r"max_memory_gb"):
-            camsim.capture(scene, threads=1, max_memory_gb=gb)
+    with pytest.raises(camsim.InputError, match=r"needs an estimated .* set by max_memory_gb"):
+        camsim.capture(scene, threads=1, max_memory_gb=np.float32(0.001))
+    with pytest.raises(camsim.InputError, match=r"max_memory_gb.*must be a number of GB in \(0,"):
+        camsim.capture(scene, threads=1, max_memory_gb=np.int64(0))
+
+
+def test_noise_is_a_str_and_names_non_utf8_files_decode():
+    with pytest.raises(camsim.InputError, match=r"key 'noise'.*expected a str, got bytes"):
+        camsim.default_scene().render(threads=1, spp=1, noise=b"full")
+    with pytest.raises(camsim.InputError, match=r"<load>: key 'path': the path is not valid"):
+        camsim.load("\ud800.yaml")
 
 
 def test_frame_counts_are_integers_named_as_frames():

@@ -368,8 +368,8 @@ class DocumentCounter final : public YAML::EventHandler {
                        e.mark.column >= 0 ? e.mark.column + 1 : 0};
   std::string message = "YAML syntax error: " + e.msg;
   if (const auto* deep = dynamic_cast<const YAML::DeepRecursion*>(&e))  // it says "bad file"
-    message = "YAML syntax error: lists or mappings nested more than " +
-              std::to_string(deep->depth()) + " levels deep (yaml-cpp's limit)";
+    message = "YAML syntax error: lists or mappings nested " + std::to_string(deep->depth()) +
+              " levels deep, yaml-cpp's limit";
   if (e.msg == YAML::ErrorMsg::END_OF_SEQ_FLOW || e.msg == YAML::ErrorMsg::END_OF_MAP_FLOW) {
     const size_t end = e.mark.pos >= 0 ? static_cast<size_t>(e.mark.pos) : text.size();
     if (const auto b = unclosedBracket(text, end)) {

@@ -246,6 +246,11 @@ namespace {
 void limitInput(float* rgb) {
   const float largest = std::max({std::abs(rgb[0]), std::abs(rgb[1]), std::abs(rgb[2])});
   if (!(largest > DisplayPipeline::kMaxInput)) return;
+  if (std::isinf(largest)) {  // its infinite channels at the limit, the others nothing beside
+    for (int c = 0; c < 3; ++c)
+      rgb[c] = std::isinf(rgb[c]) ? std::copysign(DisplayPipeline::kMaxInput, rgb[c]) : 0.0f;
+    return;
+  }
   const float k = DisplayPipeline::kMaxInput / largest;
   for (int c = 0; c < 3; ++c) rgb[c] *= k;
 }
