@@ -195,7 +195,23 @@ void setSensor(SceneDescription& d, const std::string& presetOrPath, const Sourc
   s.spec = std::move(spec);
   d.keyPlaces.erase("sensor.model");  // the scene's sensor is not this one
   s.iso = s.spec.baseIso;
-  d.camera.sensorSize = glm::dvec2(d.camera.resolution) * s.spec.pixelPitchM;
+  // The camera's own pixel geometry is replaced (docs: "sensor size from its pitch"); said
+  // so, with the field of view it changes (found by probing: a 36 mm sensor_width_mm became
+  // 45 µm without a word).
+  const glm::dvec2 size = glm::dvec2(d.camera.resolution) * s.spec.pixelPitchM;
+  std::string replaced;
+  for (const char* key :
+       {"camera.sensor_width_mm", "camera.sensor_height_mm", "camera.fill_factor"})
+    if (const auto at = d.keyPlaces.find(key); at != d.keyPlaces.end())
+      replaced += (replaced.empty() ? "" : ", ") + std::string(key) + " (" + at->second.file + ":" +
+                  std::to_string(at->second.line) + ")";
+  if (!replaced.empty())
+    d.notes.push_back("the sensor '" + s.spec.name + "' replaces the scene's " + replaced +
+                      ": its sensor is " + formatNumber(size.x * 1e3, 4) + " × " +
+                      formatNumber(size.y * 1e3, 4) + " mm (resolution × pixel pitch), fill " +
+                      "factor " + formatNumber(s.spec.fillFactor, 4) +
+                      ", so the field of view at the same focal length changes");
+  d.camera.sensorSize = size;
   d.camera.fillFactor = s.spec.fillFactor;
   for (const auto& f : s.spec.sourceFiles)
     if (std::find(d.inputFiles.begin(), d.inputFiles.end(), f) == d.inputFiles.end())

@@ -318,8 +318,9 @@ struct SceneDescription {
   std::optional<SensorSettings> sensor;  // none: the film records CIE XYZ only
   IspSettings isp;                       // raw → picture (scenes with a sensor)
   // Where the scene file sets the keys that a stage after loading may still refuse (the
-  // white balance of the rendered raw: sensor, isp, isp.white_balance, isp.region), so that its
-  // error names the file, line and key. Empty for descriptions built in code.
+  // white balance of the rendered raw: sensor, isp, isp.white_balance, isp.region; a sensor
+  // override: camera.sensor_width_mm, camera.sensor_height_mm, camera.fill_factor), so that
+  // its error names the file, line and key. Empty for descriptions built in code.
   std::map<std::string, SourceLocation> keyPlaces;
   std::optional<FrameSequence> frames;  // none: one capture at the camera's shutter
   std::vector<ExportFormat> exports;    // `exports:`, in the file's order, each once

@@ -444,6 +444,11 @@ SceneDescription loadSceneFromText(const std::string& text, const std::string& d
   std::optional<double> gltfYfov;
   if (auto g = YamlMap(cameraValue).find("gltf"))
     gltfYfov = applyGltfCamera(*g, includes, scene.camera, scene.notes);
+  // A sensor override replaces these with the sensor's pixel geometry: it refuses them, as
+  // the loader refuses them beside a scene's sensor (setSensor, overrides.cpp).
+  for (const char* key : {"sensor_width_mm", "sensor_height_mm", "fill_factor"})
+    if (auto v = YamlMap(cameraValue).find(key))
+      scene.keyPlaces[std::string("camera.") + key] = v->where();
   ctx.origin = glm::dvec3(scene.camera.worldFromCamera[3]);
   scene.renderOrigin = ctx.origin;
   scene.camera.worldFromCamera[3] = glm::dvec4(0.0, 0.0, 0.0, 1.0);

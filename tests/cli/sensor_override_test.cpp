@@ -63,5 +63,29 @@ TEST(SensorOverride, AnIsoOutsideTheCalibrationNamesTheOptionsKey) {
   EXPECT_EQ(d.sensor->iso, 400.0);
 }
 
+// The camera's own sensor size is replaced by resolution × pixel pitch (as documented), and
+// said so with the new size (found by probing: a 36 mm sensor_width_mm became 11.2 µm
+// without a word); a scene without them gets no note.
+TEST(SensorOverride, ReplacingTheCamerasSensorSizeIsNoted) {
+  SceneDescription d = loadSceneFromText(
+      "camera: {position: [0, 0, -3], look_at: [0, 0, 0], resolution: [8, 8], sensor_width_mm: "
+      "36, sensor_height_mm: 24}\n"
+      "shapes: [{type: sphere, centre: [0, 0, 0], radius: 1, emission: {luminance: 1}}]\n",
+      "wide.yaml", ".");
+  Overrides o;
+  o.sensor = "smartphone-1.4um";
+  applyOverrides(d, o, {"<command line>", 0, 0});
+  EXPECT_DOUBLE_EQ(d.camera.sensorSize.x, 8 * 1.4e-6);
+  ASSERT_EQ(d.notes.size(), 1u);
+  EXPECT_NE(d.notes[0].find("replaces the scene's camera.sensor_width_mm (wide.yaml:1), "
+                            "camera.sensor_height_mm (wide.yaml:1): its sensor is 0.0112 × "
+                            "0.0112 mm"),
+            std::string::npos)
+      << d.notes[0];
+  SceneDescription plain = loadSceneFromText(kScene, "base.yaml", ".");
+  applyOverrides(plain, o, {"<command line>", 0, 0});
+  EXPECT_TRUE(plain.notes.empty());
+}
+
 }  // namespace
 }  // namespace camsim
