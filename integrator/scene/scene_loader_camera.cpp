@@ -7,6 +7,7 @@
 
 #include "integrator/scene/scene_loader.h"
 #include "integrator/scene/scene_loader_parts.h"
+#include "sensor/base/format.h"
 #include "sensor/spectra/spectrum.h"
 
 namespace camsim {

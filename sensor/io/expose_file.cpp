@@ -107,11 +107,13 @@ std::string sensorDifference(const SensorSpec& a, const SensorSpec& b) {
            " µm² against " + formatNumber(areaB * 1e12, 10) + " µm²";
   if (a.qe.size() != b.qe.size()) return "the number of QE curves";
   for (std::size_t c = 0; c < a.qe.size(); ++c)
-    for (int i = 0; i < kSpectrumSamples; ++i)
-      if (differ(a.qe[c].sample(i), b.qe[c].sample(i)))
+    for (int i = 0; i < kSpectrumSamples; ++i) {
+      const double qa = static_cast<double>(a.qe[c].sample(i));
+      const double qb = static_cast<double>(b.qe[c].sample(i));
+      if (differ(qa, qb))
         return "QE of channel " + a.cfa.channels[c] + " at " + std::to_string(kLambdaMinNm + i) +
-               " nm (" + formatNumber(a.qe[c].sample(i), 8) + " against " +
-               formatNumber(b.qe[c].sample(i), 8) + ")";
+               " nm (" + formatNumber(qa, 8) + " against " + formatNumber(qb, 8) + ")";
+    }
   return "";
 }
 
