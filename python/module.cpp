@@ -146,13 +146,12 @@ PYBIND11_MODULE(camsim, m) {
       if (p) std::rethrow_exception(p);
     } catch (const camsim::InputError& e) {
       // Text that is not UTF-8 (a path's bytes) as os.fsdecode shows it, not a second error.
-      const auto text = [](const std::string& t) { return osText(t); };
-      py::object error = inputErrorType()(text(e.what()));
-      error.attr("file") = text(e.where().file);
+      py::object error = inputErrorType()(osText(e.what()));
+      error.attr("file") = osText(e.where().file);
       error.attr("line") = e.where().line;
       error.attr("column") = e.where().column;
-      error.attr("key") = text(e.key());
-      error.attr("detail") = text(e.message());
+      error.attr("key") = osText(e.key());
+      error.attr("detail") = osText(e.message());
       PyErr_SetObject(inputErrorType().ptr(), error.ptr());
     }
   });

@@ -51,9 +51,6 @@ void emitValue(const py::handle& v, const std::string& key, std::string& out, in
     dictFail(key.size() > 120 ? key.substr(0, 120) + "…" : key,
              "nested more than " + std::to_string(kMaxDictDepth) +
                  " levels deep (does a dict or list contain itself?)");
-  const auto text = [](const py::handle& t, const std::string& at) {
-    return textArg(t, kDictName, at);
-  };
   if (v.is_none()) {
     out += "null";
   } else if (py::isinstance<py::bool_>(v)) {
@@ -63,16 +60,17 @@ void emitValue(const py::handle& v, const std::string& key, std::string& out, in
   } else if (py::isinstance<py::float_>(v)) {
     out += shortestNumber(v.cast<double>());
   } else if (py::isinstance<py::str>(v)) {
-    out += JsonObject::quoted(text(v, key));
+    out += JsonObject::quoted(textArg(v, kDictName, key));
   } else if (py::hasattr(v, "__fspath__")) {
-    out += JsonObject::quoted(text(py::module_::import("os").attr("fsdecode")(v), key));
+    out +=
+        JsonObject::quoted(textArg(py::module_::import("os").attr("fsdecode")(v), kDictName, key));
   } else if (py::isinstance<py::dict>(v)) {
     out += "{";
     bool first = true;
     for (const auto& [k, item] : py::reinterpret_borrow<py::dict>(v)) {
       if (!py::isinstance<py::str>(k))
         dictFail(key, "keys must be str, got " + typeName(k) + " " + std::string(py::repr(k)));
-      const std::string name = text(k, key);
+      const std::string name = textArg(k, kDictName, key);
       out += (first ? "" : ", ") + JsonObject::quoted(name) + ": ";
       emitValue(item, key.empty() ? name : key + "." + name, out, depth + 1);
       first = false;

@@ -139,10 +139,9 @@ void exposeAndDevelop(CaptureResult& out, const RenderOptions& renderOptions,
     // neither (found by probing: 0.22 s metered at 24 fps, over five frame periods, which a
     // shutter given so is refused).
     if (desc.frames) {
-      double longest = 1.0;
-      for (const double ev : sensor.bracketEv) longest = std::max(longest, std::exp2(ev));
       const Shutter& shutter = desc.camera.shutter;
-      double most = (1.0 / desc.frames->rateHz) / ((shutter.close() - shutter.open()) * longest);
+      double most = (1.0 / desc.frames->rateHz) /
+                    ((shutter.close() - shutter.open()) * sensor.longestBracketFactor());
       // A 360° shutter's window is the period up to rounding: exactly 1 then, so that the
       // film is not rendered again at an equal shutter (found in review).
       if (std::abs(most - 1.0) < 1e-9) most = 1.0;

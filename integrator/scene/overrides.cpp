@@ -200,10 +200,9 @@ void setSensor(SceneDescription& d, const std::string& presetOrPath, const Sourc
   // 45 µm without a word).
   const glm::dvec2 size = glm::dvec2(d.camera.resolution) * s.spec.pixelPitchM;
   std::string replaced;
-  for (const char* key :
-       {"camera.sensor_width_mm", "camera.sensor_height_mm", "camera.fill_factor"})
-    if (const auto at = d.keyPlaces.find(key); at != d.keyPlaces.end())
-      replaced += (replaced.empty() ? "" : ", ") + std::string(key) + " (" + at->second.file + ":" +
+  for (const char* key : kSensorGeometryKeys)
+    if (const auto at = d.keyPlaces.find(std::string("camera.") + key); at != d.keyPlaces.end())
+      replaced += (replaced.empty() ? "" : ", ") + at->first + " (" + at->second.file + ":" +
                   std::to_string(at->second.line) + ")";
   if (!replaced.empty())
     d.notes.push_back("the sensor '" + s.spec.name + "' replaces the scene's " + replaced +

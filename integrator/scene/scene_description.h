@@ -3,6 +3,9 @@
 // objects from it. Nothing here refers to a file format.
 #pragma once
 
+#include <algorithm>
+#include <array>
+#include <cmath>
 #include <cstdint>
 #include <filesystem>
 #include <map>
@@ -282,6 +285,11 @@ inline const char* exportFormatName(ExportFormat f) {
   return enumName(f).data();
 }
 
+// The camera keys a sensor's pixel pitch and fill factor decide (refused beside a scene's
+// sensor, replaced by a sensor override with a note).
+inline constexpr std::array<const char*, 3> kSensorGeometryKeys = {
+    "sensor_width_mm", "sensor_height_mm", "fill_factor"};
+
 // `sensor:` — the camera's sensor and how it is exposed and read out.
 struct SensorSettings {
   SensorSpec spec;
@@ -291,6 +299,14 @@ struct SensorSettings {
   std::uint64_t frame = 0;
   std::optional<AutoExposure> autoExposure;
   std::vector<double> bracketEv;  // exposure offsets in stops; empty: one exposure
+
+  // The longest bracket's exposure over the scene's: 2^max(bracket_ev, 0) (a sequence's
+  // frame must hold it: frameTimingProblem, and auto-exposure's hold in capture()).
+  double longestBracketFactor() const {
+    double longest = 1.0;
+    for (const double ev : bracketEv) longest = std::max(longest, std::exp2(ev));
+    return longest;
+  }
 };
 // A bracketed frame's file-name suffix, "_ev" and the offset as %+g (6 significant digits):
 // NAME_ev+1.dng. The loader refuses offsets that give the same suffix.

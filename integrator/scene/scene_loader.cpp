@@ -446,7 +446,7 @@ SceneDescription loadSceneFromText(const std::string& text, const std::string& d
     gltfYfov = applyGltfCamera(*g, includes, scene.camera, scene.notes);
   // A sensor override replaces these with the sensor's pixel geometry: it refuses them, as
   // the loader refuses them beside a scene's sensor (setSensor, overrides.cpp).
-  for (const char* key : {"sensor_width_mm", "sensor_height_mm", "fill_factor"})
+  for (const char* key : kSensorGeometryKeys)
     if (auto v = YamlMap(cameraValue).find(key))
       scene.keyPlaces[std::string("camera.") + key] = v->where();
   ctx.origin = glm::dvec3(scene.camera.worldFromCamera[3]);
@@ -588,9 +588,7 @@ std::string frameTimingProblem(const SceneDescription& scene) {
            "frames.shutter_angle_deg (at most 360) or lower frames.rate_hz";
   // The longest bracket is exposed within the frame too (found by probing: bracket_ev: [0, 4]
   // at 24 fps exposed 0.27 s).
-  double longest = 1.0;
-  if (scene.sensor)
-    for (const double ev : scene.sensor->bracketEv) longest = std::max(longest, std::exp2(ev));
+  const double longest = scene.sensor ? scene.sensor->longestBracketFactor() : 1.0;
   if (longest > 1.0 && exposure * longest > limit)
     return "the longest bracket (sensor.bracket_ev, ×" + formatShortest(longest) +
            ") exposes each frame for " + formatShortest(exposure * longest) + " s, longer than " +

@@ -78,7 +78,7 @@ SensorSettings parseSensorSettings(YamlMap map, const std::filesystem::path& bas
 
   // The sensor sets the pixel geometry; the camera must not contradict it.
   YamlMap cameraKeys(camera);
-  for (const char* key : {"sensor_width_mm", "sensor_height_mm", "fill_factor"})
+  for (const char* key : kSensorGeometryKeys)
     if (auto v = cameraKeys.find(key))
       v->fail(std::string(key) +
               " conflicts with the sensor's pixel pitch and fill factor: remove it");
