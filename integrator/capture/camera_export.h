@@ -18,7 +18,9 @@
 // tool has no exact model, `colmapLacks` / `nerfstudioLacks` say what it lacks and the
 // writer leaves that export out (the exports are written by default, not requested).
 // COLMAP's OPENCV_FISHEYE projects through X/Z: points behind the camera (θ > 90°) cannot
-// be observations there, though the model's pixels are the same.
+// be observations there, though the model's pixels are the same. A traced lens (camera.lens)
+// has no closed-form model: its paraxial stand-in's fx … cy are written with `traced_lens`,
+// and COLMAP and nerfstudio lack it.
 #pragma once
 
 #include <optional>
@@ -47,6 +49,9 @@ struct CameraExport {
   // angles of the left and right edges' midpoints (row cy), or of the last imaged pixel
   // along that row where the image circle ends first; equirectangular W/fx.
   double cameraAngleX = 0.0;
+  // A traced lens (camera.lens): fx … cy are its paraxial thin-lens stand-in's and the
+  // image's distortion is the prescription's, which no tool's model expresses.
+  bool tracedLens = false;
 };
 
 CameraExport cameraExport(const PhysicalCamera& camera);

@@ -191,7 +191,7 @@ JsonObject cameraJson(const PhysicalCameraParams& p, const glm::dvec3& renderOri
       .set("exposure_time_s", p.shutter.effectiveTime())
       .set("rolling_shutter_row_time_s", p.shutter.rowTime())
       .set("opencv_fx_fy_cx_cy", std::vector<double>{k.x, k.y, k.z, k.w});
-  if (p.projection.model == ProjectionModel::kOpenCv)
+  if (p.projection.model == ProjectionModel::kOpenCv && !camera.lensCamera())
     d.set("opencv_k1_k2_p1_p2_k3",
           std::vector<double>{p.projection.k1, p.projection.k2, p.projection.p1, p.projection.p2,
                               p.projection.k3});

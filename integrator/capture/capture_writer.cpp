@@ -71,7 +71,7 @@ Metadata filmMetadata(const CaptureResult& r, bool reproducible) {
   meta.push_back({"camsim:camera_model", model.model});
   if (const std::string c = cameraModelText(model); !c.empty())
     meta.push_back({"camsim:camera_model_coefficients", c});
-  if (p.projection.model == ProjectionModel::kOpenCv)
+  if (p.projection.model == ProjectionModel::kOpenCv && !model.tracedLens)
     meta.push_back({"camsim:opencv_k1_k2_p1_p2_k3",
                     number(p.projection.k1) + " " + number(p.projection.k2) + " " +
                         number(p.projection.p1) + " " + number(p.projection.p2) + " " +

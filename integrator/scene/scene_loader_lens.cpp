@@ -1,7 +1,6 @@
 // The scene loader's `camera.lens`: a traced lens (integrator/camera/lens_camera.h) read
 // from a prescription file, its f-number and focus distance range-checked here, once
 // (docs/scene-format.md, `camera.lens`).
-#include <cmath>
 #include <string>
 
 #include "integrator/scene/scene_loader_parts.h"
