@@ -105,10 +105,15 @@ KittiFrame kittiFrame(const CaptureResult& result, std::span<const ObjectModel* 
   for (int r = 0; r < 3; ++r)
     for (int c = 0; c < 3; ++c) f.p2[static_cast<std::size_t>(4 * r + c)] = kr[c][r];
   const double w = d.camera.resolution.x, h = d.camera.resolution.y;
-  const double tilt = std::acos(std::clamp(camRect[2].z, -1.0, 1.0)) * 180.0 / std::numbers::pi;
+  // How far the camera is turned from rect, pitch and roll together: the rotation's angle
+  // (found by probing: the forward axis alone missed an 11° roll, P2 no longer K).
+  const double trace = camRect[0].x + camRect[1].y + camRect[2].z;
+  const double tilt =
+      std::acos(std::clamp(0.5 * (trace - 1.0), -1.0, 1.0)) * 180.0 / std::numbers::pi;
   if (tilt > 1.0)
     f.skipped.push_back("kitti: the camera is " + formatNumber(tilt, 3) +
-                        "° off level: P2 = K R (rect stays level), so a reader that takes fx, fy, "
+                        "° off level (pitched or rolled): P2 = K R (rect stays level), so a "
+                        "reader that takes fx, fy, "
                         "cx, cy from P2's entries needs K from cameras.json or NAME.json instead");
 
   const std::vector<ObjectPose> poses = objectPoses(d, d.camera, models);

@@ -261,6 +261,17 @@ TEST(KittiWriter, AStraightDownCamerasRectLooksWhereTheImagesTopFaces) {
   EXPECT_NE(f.skipped[0].find("90° off level"), std::string::npos) << f.skipped[0];
 }
 
+// A rolled camera is off level too (found by probing: only the forward axis's pitch was
+// measured, so an 11.3° roll, P2 no longer K, got no note); a level one gets none.
+TEST(KittiWriter, ARolledCameraIsOffLevel) {
+  std::string text = sceneText({0, 0.3, -2}, {0, 0.3, 2});
+  EXPECT_TRUE(kittiFrame(described(text)).skipped.empty());
+  text.replace(text.find("resolution:"), 0, "up: [0.2, 1, 0], ");
+  const KittiFrame f = kittiFrame(described(text));
+  ASSERT_EQ(f.skipped.size(), 1U);
+  EXPECT_NE(f.skipped[0].find("11.3° off level"), std::string::npos) << f.skipped[0];
+}
+
 // A frame whose one box is left out still writes its three files, the label file empty.
 TEST(KittiWriter, AFrameWithoutLabelsWritesAnEmptyLabelFile) {
   CaptureResult r = described(sceneText({0, 0.3, 2}, {0, 0.3, 5}));
