@@ -239,6 +239,13 @@ void readGltfMeshes(const tinygltf::Model& model, GltfDocument& doc, const std::
       } else {
         for (std::uint32_t i = 0; i < n; ++i) order.push_back(i);
       }
+      // glTF §3.7.2.1: a triangle list's count is a multiple of 3 (found by probing: the
+      // leftover vertices of 5 were dropped silently).
+      if (p.mode == TINYGLTF_MODE_TRIANGLES && order.size() % 3 != 0)
+        r.fail(p.indices >= 0 ? "accessors[" + std::to_string(p.indices) + "].count"
+                              : "accessors[" + std::to_string(position) + "].count",
+               std::to_string(order.size()) + " vertices are no list of triangles (" + g.path +
+                   ".mode 4 needs a multiple of 3)");
       g.mesh.indices = triangles(order, p.mode);
       if (g.mesh.indices.empty()) r.fail(g.path, "has no triangles");
       mesh.primitives.push_back(std::move(g));
@@ -285,12 +292,22 @@ void readGltfAnimations(const tinygltf::Model& model, GltfDocument& doc, const s
         if (!c.times.empty() && !(t.x > c.times.back()))
           r.fail("accessors[" + std::to_string(s.input) + "]",
                  "key times must be strictly increasing");
+        if (!(t.x >= 0.0))  // glTF 2.0 §3.11 (found by probing: −1 s was accepted)
+          r.fail("accessors[" + std::to_string(s.input) + "]", "key times must be >= 0 s");
         c.times.push_back(t.x);
       }
       const int comps = c.target == GltfChannel::Path::kRotation ? 4 : 3;
       c.values =
           r.read(s.output, comps, c.target == GltfChannel::Path::kRotation, "animation output");
       const size_t per = c.interpolation == GltfChannel::Interpolation::kCubicSpline ? 3 : 1;
+      // A rotation key is a unit quaternion, to the rounding of normalised integers (found
+      // by probing: zero keys were accepted); a cubic spline's tangents are any length.
+      if (c.target == GltfChannel::Path::kRotation)
+        for (size_t j = per == 3 ? 1 : 0; j < c.values.size(); j += per)
+          if (!(std::abs(glm::length(c.values[j]) - 1.0) < 0.1))
+            r.fail(
+                "accessors[" + std::to_string(s.output) + "]",
+                "rotation key " + std::to_string(j / per) + " is no unit quaternion (x, y, z, w)");
       if (c.values.size() != per * c.times.size())
         r.fail(sp + ".output", "has " + std::to_string(c.values.size()) + " values for " +
                                    std::to_string(c.times.size()) + " key times (needs " +

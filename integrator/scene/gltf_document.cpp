@@ -191,6 +191,11 @@ void readNodes(const tinygltf::Model& model, GltfDocument& doc, const std::strin
       if (n.matrix.size() != 16 || !finite(n.matrix)) bad("matrix", "needs 16 finite numbers");
       g.matrix = glm::make_mat4(n.matrix.data());  // column-major, as glTF stores it
       g.hasMatrix = true;
+      // An affine map, given instead of TRS (found by probing: a projective bottom row was
+      // read and the mesh landed where the render origin put it).
+      if (g.matrix[0][3] != 0.0 || g.matrix[1][3] != 0.0 || g.matrix[2][3] != 0.0 ||
+          g.matrix[3][3] != 1.0)
+        bad("matrix", "must be affine: its last row (elements 3, 7, 11, 15) 0, 0, 0, 1");
     }
     if (!n.translation.empty()) {
       if (n.translation.size() != 3 || !finite(n.translation))
@@ -228,11 +233,45 @@ void readNodes(const tinygltf::Model& model, GltfDocument& doc, const std::strin
                          "node " + std::to_string(c) + " has more than one parent, or is its own");
       parent[static_cast<size_t>(c)] = static_cast<int>(i);
     }
+  // Each node's depth, once (found by probing: walking every node's ancestors took 9.5 s for
+  // a chain of 100,000), and no deeper than the loader's recursion may go (2,000 levels
+  // overflowed the stack).
+  std::vector<int> depth(doc.nodes.size(), -1);
+  std::vector<size_t> path;
   for (size_t i = 0; i < doc.nodes.size(); ++i) {
-    size_t steps = 0;
-    for (int p = parent[i]; p >= 0; p = parent[static_cast<size_t>(p)])
-      if (++steps > doc.nodes.size())
+    path.clear();
+    int p = static_cast<int>(i);
+    while (p >= 0 && depth[static_cast<size_t>(p)] < 0) {
+      path.push_back(static_cast<size_t>(p));
+      if (path.size() > doc.nodes.size())
         throw InputError({name, 0, 0}, doc.nodes[i].path, "the node hierarchy has a cycle");
+      p = parent[static_cast<size_t>(p)];
+    }
+    int d = p < 0 ? 0 : depth[static_cast<size_t>(p)] + 1;
+    for (auto it = path.rbegin(); it != path.rend(); ++it) {
+      if (d >= kMaxGltfNodeDepth)
+        throw InputError({name, 0, 0}, doc.nodes[*it].path,
+                         "nests " + std::to_string(d + 1) + " nodes deep; camsim reads at most " +
+                             std::to_string(kMaxGltfNodeDepth));
+      depth[*it] = d++;
+    }
+  }
+  // A scene's nodes are distinct roots (found by probing: one listed twice, or also a child,
+  // was placed twice).
+  for (size_t s = 0; s < doc.scenes.size(); ++s) {
+    std::vector<bool> listed(doc.nodes.size(), false);
+    for (size_t k = 0; k < doc.scenes[s].size(); ++k) {
+      const auto r = static_cast<size_t>(doc.scenes[s][k]);
+      const std::string where = at("scenes", s) + ".nodes[" + std::to_string(k) + "]";
+      if (listed[r])
+        throw InputError({name, 0, 0}, where, "node " + std::to_string(r) + " is listed twice");
+      if (parent[r] >= 0)
+        throw InputError({name, 0, 0}, where,
+                         "node " + std::to_string(r) + " is a child of " +
+                             doc.nodes[static_cast<size_t>(parent[r])].path +
+                             ": a scene's nodes are roots");
+      listed[r] = true;
+    }
   }
 }
 

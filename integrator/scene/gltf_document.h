@@ -118,6 +118,10 @@ struct GltfLight {
   double innerConeAngle = 0.0, outerConeAngle = 0.7853981633974483;  // rad
 };
 
+// The deepest node hierarchy read (a root is depth 1): the loader walks it recursively, and
+// 2,000 levels overflowed the stack (found by probing); real assets nest a few dozen.
+inline constexpr int kMaxGltfNodeDepth = 256;
+
 struct GltfNode {
   std::string name, path;
   glm::dmat4 matrix{1.0};  // used when hasMatrix, else T·R·S

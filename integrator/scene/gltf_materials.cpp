@@ -140,12 +140,7 @@ struct MaterialConverter {
                     return std::clamp(srgbDecode(static_cast<double>(t[c])) * base[c], 0.0, 1.0);
                   }),
           m.baseColorTexture);
-    } else {
-      for (int c = 0; c < 3; ++c)
-        if (base[c] < 0.0 || base[c] > 1.0)
-          throw InputError({inc.doc.file.string(), 0, 0},
-                           m.path + ".pbrMetallicRoughness.baseColorFactor",
-                           "components must lie in [0, 1]");
+    } else {  // base in [0, 1] (gltf_read_materials.cpp)
       d.reflectance.value = rgbToReflectance(base, RgbColorSpace::linearRec709());
     }
     const double metallic = std::clamp(m.metallicFactor, 0.0, 1.0);
@@ -265,10 +260,16 @@ LightDescription gltfLight(const GltfInclude& inc, const GltfLight& l,
   LightDescription d;
   d.label = inc.label + ":" + (l.name.empty() ? l.path : l.name);
   d.position = glm::vec3(renderFromNode[3]);
+  // The node's −z, divided by its largest component before normalising: its length under a
+  // scale of 1e155 overflowed to inf, normalize() gave 0 and the light aborted (found by
+  // probing); under 1e-200 it underflowed to 0, "a zero scale".
   const glm::dvec3 dir = -glm::dvec3(renderFromNode[2]);
-  if (!(glm::length(dir) > 0.0))
-    throw InputError({inc.doc.file.string(), 0, 0}, l.path, "the light's node has a zero scale");
-  d.direction = glm::vec3(glm::normalize(dir));
+  const double largest = std::max({std::abs(dir.x), std::abs(dir.y), std::abs(dir.z)});
+  if (!(largest > 0.0) || !std::isfinite(largest))
+    throw InputError({inc.doc.file.string(), 0, 0}, l.path,
+                     largest > 0.0 ? "the light's node has a scale beyond double's range"
+                                   : "the light's node has a zero scale");
+  d.direction = glm::vec3(glm::normalize(dir / largest));
   const double photometric = l.intensity * lumaOf(l.color);
   if (!(photometric > 0.0)) {
     d.spectrum = Spectrum::constant(0.0);

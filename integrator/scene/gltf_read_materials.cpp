@@ -71,8 +71,16 @@ void readGltfMaterials(const tinygltf::Model& model, GltfDocument& doc, const st
     g.name = m.name;
     g.path = "materials[" + std::to_string(i) + "]";
     const auto& pbr = m.pbrMetallicRoughness;
-    for (size_t c = 0; c < 4 && c < pbr.baseColorFactor.size(); ++c)
+    // All four in [0, 1], with a texture or without (found by probing: alpha −1 hid a MASK
+    // material's geometry, and [50, −3, 0.8] with a texture was clamped silently).
+    for (size_t c = 0; c < 4 && c < pbr.baseColorFactor.size(); ++c) {
       g.baseColorFactor[static_cast<int>(c)] = pbr.baseColorFactor[c];
+      if (!(pbr.baseColorFactor[c] >= 0.0 && pbr.baseColorFactor[c] <= 1.0))
+        throw InputError(
+            {name, 0, 0},
+            g.path + ".pbrMetallicRoughness.baseColorFactor[" + std::to_string(c) + "]",
+            "must lie in [0, 1]");
+    }
     g.metallicFactor = pbr.metallicFactor;
     g.roughnessFactor = pbr.roughnessFactor;
     g.baseColorTexture = textureRef(
@@ -90,6 +98,9 @@ void readGltfMaterials(const tinygltf::Model& model, GltfDocument& doc, const st
                                     g.path + ".occlusionTexture");
     g.emissiveTexture = textureRef(model, m.emissiveTexture.index, m.emissiveTexture.texCoord, 1.0,
                                    m.emissiveTexture.extensions, g.path + ".emissiveTexture");
+    // The scene file's normal_scale bound.
+    if (!(std::abs(m.normalTexture.scale) <= 100.0))
+      throw InputError({name, 0, 0}, g.path + ".normalTexture.scale", "must lie in [-100, 100]");
     g.texCoord = materialTexCoord(g, doc.notes);
     for (size_t c = 0; c < 3 && c < m.emissiveFactor.size(); ++c) {
       g.emissiveFactor[static_cast<int>(c)] = m.emissiveFactor[c];

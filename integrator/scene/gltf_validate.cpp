@@ -30,6 +30,8 @@ namespace {
 
 using Json = nlohmann::json;
 
+constexpr std::int64_t kMaxZeroAccessorCount = std::int64_t(1) << 20;
+
 struct Checker {
   std::string file;
   std::filesystem::path baseDir;
@@ -77,6 +79,24 @@ struct Checker {
     if (!v.is_object())
       fail(std::string(array) + "[" + std::to_string(i) + "]", "must be an object");
     return v;
+  }
+  // obj[key], if present, an array of n numbers (tinygltf reads anything else as absent:
+  // found by probing, a translation "1,2,3" was ignored).
+  void numbers(const Json& obj, const std::string& path, const char* key, size_t n) const {
+    const auto it = obj.find(key);
+    if (it == obj.end()) return;
+    bool ok = it->is_array() && it->size() == n;
+    for (size_t i = 0; ok && i < n; ++i) ok = (*it)[i].is_number();
+    if (!ok) fail(path + "." + key, "must be an array of " + std::to_string(n) + " numbers");
+  }
+  // obj[key], if present (or required), a number.
+  void number(const Json& obj, const std::string& path, const char* key, bool required) const {
+    const auto it = obj.find(key);
+    if (it == obj.end()) {
+      if (required) fail(path + "." + key, "is missing");
+      return;
+    }
+    if (!it->is_number()) fail(path + "." + key, "must be a number");
   }
   static std::string at(const char* array, size_t i) {
     return std::string(array) + "[" + std::to_string(i) + "]";
@@ -270,7 +290,15 @@ void validateGltfJson(const std::string& json, const std::string& displayName,
       c.fail(p + ".type", "must be SCALAR, VEC2, VEC3, VEC4, MAT2, MAT3 or MAT4");
     const std::int64_t count = c.integer(a, p, "count", 1, std::int64_t(1) << 32, true);
     if (a.contains("sparse")) c.fail(p + ".sparse", "sparse accessors are not supported");
+    if (const auto nz = a.find("normalized"); nz != a.end() && !nz->is_boolean())
+      c.fail(p + ".normalized", "must be true or false");
     const std::int64_t view = c.index(a, p, "bufferView", "bufferViews", false);
+    // Without a view the elements are zeros, which no file stores: a 1.2 KB file asked for
+    // 2^32 of them, 137 GB (found by probing).
+    if (view < 0 && count > kMaxZeroAccessorCount)
+      c.fail(p + ".count", std::to_string(count) +
+                               " elements without a bufferView (all zeros); camsim reads at most " +
+                               std::to_string(kMaxZeroAccessorCount));
     if (view < 0) continue;  // all zeros
     const std::int64_t offset = c.integer(a, p, "byteOffset", 0, std::int64_t(1) << 40, false);
     const Json& v = root.at("bufferViews").at(static_cast<size_t>(view));
@@ -339,7 +367,26 @@ void validateGltfJson(const std::string& json, const std::string& displayName,
       c.integer(prim, pp, "mode", 0, 6, false, 4);
     }
   }
-  for (size_t i = 0; i < c.count("cameras"); ++i) c.item("cameras", i);
+  // Cameras' and lights' values of their types: tinygltf's messages name no path, or it
+  // reads a wrong type as the default (found by probing: an intensity "500" became 1 cd).
+  for (size_t i = 0; i < c.count("cameras"); ++i) {
+    const Json& cam = c.item("cameras", i);
+    const std::string p = Checker::at("cameras", i);
+    const auto type = cam.find("type");
+    if (type == cam.end() || !type->is_string())
+      c.fail(p + ".type", "must be \"perspective\" or \"orthographic\"");
+    const std::string t = type->get<std::string>();
+    if (t != "perspective" && t != "orthographic")
+      c.fail(p + ".type", "must be \"perspective\" or \"orthographic\" (it is \"" + t + "\")");
+    const auto block = cam.find(t);
+    if (block == cam.end() || !block->is_object()) c.fail(p + "." + t, "is missing");
+    const std::string bp = p + "." + t;
+    // glTF 2.0 §5.12–5.14: perspective needs yfov and znear, orthographic all but yfov.
+    for (const std::string key : {"yfov", "aspectRatio", "xmag", "ymag", "znear", "zfar"})
+      c.number(*block, bp, key.c_str(),
+               t == "perspective" ? key == "yfov" || key == "znear"
+                                  : key != "yfov" && key != "aspectRatio");
+  }
   size_t lightCount = 0;
   if (const auto ext = root.find("extensions"); ext != root.end() && ext->is_object()) {
     if (const auto lp = ext->find("KHR_lights_punctual"); lp != ext->end()) {
@@ -353,10 +400,17 @@ void validateGltfJson(const std::string& json, const std::string& displayName,
         const std::string at = "extensions.KHR_lights_punctual.lights[" + std::to_string(i) + "]";
         if (!l.is_object()) c.fail(at, "must be an object");
         const auto type = l.find("type");
-        if (type != l.end() && type->is_string() && type->get<std::string>() == "spot") {
+        if (type == l.end() || !type->is_string())
+          c.fail(at + ".type", "must be \"point\", \"spot\" or \"directional\"");
+        c.numbers(l, at, "color", 3);
+        c.number(l, at, "intensity", false);
+        c.number(l, at, "range", false);
+        if (type->get<std::string>() == "spot") {
           const auto spot = l.find("spot");
           if (spot == l.end() || !spot->is_object())
             c.fail(at + ".spot", "a spot light needs its \"spot\" object (the cone angles)");
+          c.number(*spot, at + ".spot", "innerConeAngle", false);
+          c.number(*spot, at + ".spot", "outerConeAngle", false);
         }
       }
     }
@@ -367,6 +421,13 @@ void validateGltfJson(const std::string& json, const std::string& displayName,
     c.index(n, p, "mesh", "meshes", false);
     c.index(n, p, "camera", "cameras", false);
     c.index(n, p, "skin", "skins", false);
+    c.numbers(n, p, "translation", 3);
+    c.numbers(n, p, "rotation", 4);
+    c.numbers(n, p, "scale", 3);
+    c.numbers(n, p, "matrix", 16);
+    if (n.contains("matrix") &&
+        (n.contains("translation") || n.contains("rotation") || n.contains("scale")))
+      c.fail(p + ".matrix", "a node has a matrix or translation/rotation/scale, not both");
     if (const auto ch = n.find("children"); ch != n.end()) {
       if (!ch->is_array()) c.fail(p + ".children", "must be an array");
       for (size_t k = 0; k < ch->size(); ++k)

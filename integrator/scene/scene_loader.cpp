@@ -461,6 +461,16 @@ SceneDescription loadSceneFromText(const std::string& text, const std::string& d
   }
   if (gltfYfov) {  // on the sensor's height, now that the sensor has set it
     scene.camera.focalLength = 0.5 * scene.camera.sensorSize.y / std::tan(0.5 * *gltfYfov);
+    // focal_length_mm's bound (found by probing: a yfov of 1e-20 rad rendered every sample
+    // NaN, a black image, exit 0).
+    if (!(scene.camera.focalLength <= 1e2))
+      YamlMap(cameraValue)
+          .find("gltf")
+          ->fail("the glTF camera's yfov, " + formatShortest(*gltfYfov) +
+                 " rad, gives a focal length of " +
+                 formatNumber(scene.camera.focalLength * 1e3, 4) + " mm on the sensor's " +
+                 formatShortest(scene.camera.sensorSize.y * 1e3) +
+                 " mm height, beyond focal_length_mm's 1e5");
     if (scene.camera.focusDistance > 0.0 &&
         !(scene.camera.focusDistance > scene.camera.focalLength * 1.0001))
       YamlMap(cameraValue)

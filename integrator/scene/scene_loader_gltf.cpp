@@ -12,6 +12,7 @@
 #include <cmath>
 #include <functional>
 #include <optional>
+#include <tuple>
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
@@ -33,7 +34,8 @@ struct Walk {
   std::vector<int> meshUses;  // static nodes using each mesh
   // Each glTF material's emission, worked out (and its notes written) once.
   std::map<int, std::optional<EmissionDescription>> emissions;
-  std::map<std::pair<int, int>, std::shared_ptr<const MeshData>> shared;  // (mesh, primitive)
+  // (mesh, primitive, mirrored): a mirroring node's copy has its winding reversed
+  std::map<std::tuple<int, int, bool>, std::shared_ptr<const MeshData>> shared;
 
   // Node n under renderFromParent (rest poses). Below animated nodes, `chain` lists them
   // (outermost first), `belowParent` is the static transform from the deepest one's space
@@ -102,8 +104,17 @@ struct Walk {
             : emissions.emplace(p.material, gltfEmission(inc, p.material, scene)).first->second;
     if (motion) s.motion = *motion;
     if (!motion && meshUses[static_cast<size_t>(g.mesh)] > 1) {
-      auto& sharedMesh = shared[{g.mesh, static_cast<int>(k)}];
-      if (!sharedMesh) sharedMesh = std::make_shared<const MeshData>(p.mesh);
+      // glTF keeps the front under a mirroring transform (its winding turns clockwise); a
+      // placement keeps the winding, so a mirrored node places a copy wound the other way
+      // (found by probing: a one-sided emitter on a mirrored node went dark when its mesh
+      // was shared, not when it was baked by transformed()).
+      const bool mirrored = glm::determinant(glm::dmat3(m)) < 0.0;
+      auto& sharedMesh = shared[{g.mesh, static_cast<int>(k), mirrored}];
+      if (!sharedMesh) {
+        MeshData copy = p.mesh;
+        if (mirrored) reverseWinding(copy);
+        sharedMesh = std::make_shared<const MeshData>(std::move(copy));
+      }
       s.sharedMesh = sharedMesh;
       s.placement = m;
     } else {
@@ -138,10 +149,13 @@ struct Walk {
       const glm::vec3 d = glm::vec3(glm::normalize(linear * glm::dvec3(t)));
       t = glm::vec4(d, det < 0.0 ? -t.w : t.w);
     }
-    if (det < 0.0)
-      for (size_t i = 0; i + 2 < out.indices.size(); i += 3)
-        std::swap(out.indices[i + 1], out.indices[i + 2]);
+    if (det < 0.0) reverseWinding(out);
     return out;
+  }
+
+  static void reverseWinding(MeshData& mesh) {
+    for (size_t i = 0; i + 2 < mesh.indices.size(); i += 3)
+      std::swap(mesh.indices[i + 1], mesh.indices[i + 2]);
   }
 };
 
@@ -199,6 +213,10 @@ std::vector<GltfInclude> parseGltfIncludes(const YamlValue& list,
     inc.label = file.stem().string();
     if (auto n = map.find("name")) inc.label = n->string();
     inc.worldFromAsset = parsePlacement(map);  // matrix, or T · R · S
+    // A file without scenes places nothing (glTF lets a library of meshes omit them; found
+    // by probing: such an include added nothing, without a word).
+    if (inc.doc.scenes.empty())
+      fileValue.fail("the file has no scenes (glTF's \"scenes\"): it places no node to import");
     inc.scene = inc.doc.defaultScene;
     if (auto v = map.find("scene")) {
       if (inc.doc.scenes.empty()) v->fail("the file has no scenes");
