@@ -283,15 +283,30 @@ Manifest parseManifest(const std::string& text, const std::string& displayName,
     top.self().fail(
         "the manifest has more than 100000 items (split the dataset into several manifests)");
 
+  // Whether the item's edits give map.key: the key itself, or the whole map with it.
+  const auto itemSets = [](const DatasetItem& item, const std::string& map, const char* key) {
+    for (const YamlEdit& e : item.edits) {
+      if (e.path == map + "." + key) return true;
+      if (e.path == map) {
+        const YamlValue v = parseYaml(e.value, e.key);
+        if (v.isMap() && YamlMap(v).has(key)) return true;
+      }
+    }
+    return false;
+  };
   auto finishItem = [&](DatasetItem& item) {
     if (!m.seedsPerItem) return;
-    // First, so that an item's own render.seed or sensor.noise_seed wins.
+    // Last, so that an edit replacing the whole render or sensor map (or adding the sensor)
+    // keeps them (found by probing: `set: {render: {spp: 2}}` rendered every item with seed
+    // 0, identical pictures, while params.json listed the seeds); an item's own seed wins.
     const std::string seedKey = "seeds (dataset seed " + std::to_string(m.seed) + ")";
-    const std::vector<YamlEdit> seeds = {
-        {"render.seed", std::to_string(streamKey(m.seed, item.index, 0) >> 1), item.where, seedKey},
-        {"sensor.noise_seed", std::to_string(streamKey(m.seed, item.index, kNoiseStream) >> 1),
-         item.where, seedKey, true}};
-    item.edits.insert(item.edits.begin(), seeds.begin(), seeds.end());
+    if (!itemSets(item, "render", "seed"))
+      item.edits.push_back({"render.seed", std::to_string(streamKey(m.seed, item.index, 0) >> 1),
+                            item.where, seedKey});
+    if (!itemSets(item, "sensor", "noise_seed"))
+      item.edits.push_back({"sensor.noise_seed",
+                            std::to_string(streamKey(m.seed, item.index, kNoiseStream) >> 1),
+                            item.where, seedKey, true});
   };
   for (const auto& [edits, where] : explicitItems) {
     DatasetItem item;

@@ -108,6 +108,27 @@ TEST_F(ManifestTest, AnItemDependsOnlyOnTheDatasetSeedAndItsIndex) {
             resolve(a, 4).sceneText);
 }
 
+// Per-item seeds survive an edit that replaces the whole render map or adds the sensor
+// (found by probing: `set: {render: {spp: 2}}` rendered every item with seed 0 while
+// params.json listed the seeds); an item's own seed, by its key or in its map, wins.
+TEST_F(ManifestTest, PerItemSeedsSurviveAReplacedRenderOrSensorMap) {
+  const Manifest m = parse(
+      "format: camsim-dataset/1\nscene: base.yaml\nseed: 5\n"
+      "set: {render: {spp: 2}, sensor: {model: smartphone-1.4um}}\n"
+      "items:\n  - {}\n  - {}\n  - {render: {spp: 2, seed: 7}, sensor.noise_seed: 9}\n");
+  const ResolvedItem a = resolve(m, 0), b = resolve(m, 1), c = resolve(m, 2);
+  EXPECT_EQ(a.description.render.spp, 2);
+  EXPECT_NE(a.description.render.seed, 0u);
+  EXPECT_NE(a.description.render.seed, b.description.render.seed);
+  ASSERT_TRUE(a.description.sensor && b.description.sensor);
+  EXPECT_NE(a.description.sensor->noiseSeed, 0u);
+  EXPECT_NE(a.description.sensor->noiseSeed, b.description.sensor->noiseSeed);
+  EXPECT_EQ(value(a, "render.seed"), std::to_string(a.description.render.seed));
+  EXPECT_EQ(value(a, "sensor.noise_seed"), std::to_string(a.description.sensor->noiseSeed));
+  EXPECT_EQ(c.description.render.seed, 7u);
+  EXPECT_EQ(c.description.sensor->noiseSeed, 9u);
+}
+
 TEST_F(ManifestTest, OrbitZippedKeysAndNull) {
   const Manifest m = parse(
       "format: camsim-dataset/1\nscene: base.yaml\nseeds: fixed\n"
