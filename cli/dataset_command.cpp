@@ -197,8 +197,13 @@ int runDatasetCommand(const std::vector<std::string>& args, std::ostream& out, s
   };
   if (a.check) {
     o.onlyItem.reset();
-    checkDataset(manifest, o.onChecked, o.maxMemoryGb);  // what a run checks, the same way
+    // What a run checks, the same way.
+    const bool checked = checkDataset(manifest, {o.onChecked, o.maxMemoryGb, o.threads, cancel});
     checking.finish();
+    if (!checked) {
+      log << "dataset " << manifest.file.filename().string() << ": check interrupted\n";
+      return 128 + (signal && signal->load() ? signal->load() : 2);
+    }
     out << manifest.file.string() << ": " << manifest.items.size() << " items, all valid\n";
     return 0;
   }

@@ -21,6 +21,7 @@
 #include "sensor/base/yaml_reader.h"
 #include "sensor/io/json_writer.h"
 #include "sensor/io/output_set.h"
+#include "sensor/isp/color_management.h"
 
 namespace fs = std::filesystem;
 
@@ -147,9 +148,15 @@ const char* itemStatusName(ItemStatus status) {
 DatasetRunSummary runDataset(const Manifest& manifest, const DatasetRunOptions& options) {
   CAMSIM_CHECK(options.shard.count >= 1 && options.shard.index >= 0 &&
                options.shard.index < options.shard.count);
+  // The pictures' config by its content, wherever it was found (found by probing: $OCIO
+  // was not in the key, so --resume kept pictures made through another config).
+  const fs::path ocio = resolveOcioConfig(options.picture.ocioConfig).path;
+  std::error_code ocioError;
   const std::string outputKey =
-      "ocio=" + options.picture.ocioConfig.string() + " display=" + options.picture.choice.display +
-      " view=" + options.picture.choice.view + " looks=" + options.picture.choice.looks;
+      "ocio=" +
+      fnv1aHex(fs::is_regular_file(ocio, ocioError) ? readWholeFile(ocio) : ocio.string()) +
+      " display=" + options.picture.choice.display + " view=" + options.picture.choice.view +
+      " looks=" + options.picture.choice.looks;
   if (options.onlyItem) {
     if (*options.onlyItem >= manifest.items.size())
       throw InputError({manifest.file.string(), 0, 0}, "",
@@ -164,14 +171,18 @@ DatasetRunSummary runDataset(const Manifest& manifest, const DatasetRunOptions& 
                            std::to_string(options.shard.count));
   }
   // Every item checked before anything is written or rendered.
-  checkDataset(manifest, options.onChecked, options.maxMemoryGb);
+  DatasetRunSummary summary;
+  if (!checkDataset(manifest,
+                    {options.onChecked, options.maxMemoryGb, options.threads, options.cancel})) {
+    summary.cancelled = true;  // nothing written
+    return summary;
+  }
   checkEarlierRun(manifest, options.directory);
   std::vector<std::size_t> mine;
   for (const DatasetItem& item : manifest.items)
     if (options.shard.owns(item.index) && (!options.onlyItem || *options.onlyItem == item.index))
       mine.push_back(item.index);
 
-  DatasetRunSummary summary;
   summary.items = mine.size();
   // This shard's items are this process's from here on (dataset_lock.h): a second run of the
   // shard is refused before it removes or writes anything.
@@ -320,9 +331,14 @@ DatasetStatus datasetStatus(const fs::path& directory) {
     throw InputError({directory.string(), 0, 0}, "",
                      "not a camsim dataset folder (no dataset.json: nothing has run into it)");
   DatasetStatus s;
-  s.total = static_cast<std::size_t>(YamlMap(parseYaml(readWholeFile(record), record.string()))
-                                         .require("items")
-                                         .integer(0, INT64_MAX));
+  // The record as runDataset writes it (found by probing: an edited "items" of 10^8 kept
+  // --status counting, past SIGTERM, and 9e18 grew its list of missing items without end).
+  YamlMap map(parseYaml(readWholeFile(record), record.string()));
+  const YamlValue format = map.require("format");
+  if (format.string() != "camsim-dataset-output/1")
+    format.fail("not a camsim dataset record (camsim-dataset-output/1)");
+  s.total = static_cast<std::size_t>(
+      map.require("items").integer(0, static_cast<std::int64_t>(kMaxDatasetItems)));
   const IndexLines index = readIndex(directory / "index.jsonl");
   std::set<std::size_t> listed;  // items with a done line
   for (const auto& [item, hash] : index.done) listed.insert(item);

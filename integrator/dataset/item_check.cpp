@@ -12,6 +12,7 @@
 #include <vector>
 
 #include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
 #include "integrator/capture/bop_writer.h"
 #include "integrator/capture/resource_guard.h"
@@ -112,11 +113,11 @@ void rethrowFirst(const std::vector<std::exception_ptr>& errors) {
 // are checked (all items' at once would hold every scene), the first item's kept. Then the
 // models of obj_ids the first item lacks (only those models are kept), each against the first
 // item that has it: those clashes are reported after every other error.
-void checkItems(const Manifest& manifest,
-                const std::function<void(std::size_t, std::size_t)>& onChecked,
-                std::optional<double> maxMemoryGb) {
+bool checkItems(const Manifest& manifest, const DatasetCheckOptions& options) {
   const std::size_t n = manifest.items.size();
-  if (n == 0) return;
+  if (n == 0) return true;
+  const std::optional<double> maxMemoryGb = options.maxMemoryGb;
+  const auto cancelled = [&] { return options.cancel && options.cancel->load(); };
   std::vector<std::exception_ptr> errors(n);
   std::vector<std::vector<KeptModel>> kept(n);  // per item: its models of obj_ids item 0 lacks
   std::optional<ItemModels> first;
@@ -127,22 +128,28 @@ void checkItems(const Manifest& manifest,
   }
   std::atomic<std::size_t> done{0};
   std::mutex progress;
-  tbb::parallel_for(std::size_t{0}, n, [&](std::size_t i) {
-    if (i > 0) try {
-        const ItemModels m = itemModels(manifest, i, maxMemoryGb);
-        if (first) {
-          checkSameModels(*first, m);
-          kept[i] = modelsMissingFrom(first->models, m);
+  tbb::task_arena arena(options.threads > 0 ? options.threads
+                                            : tbb::this_task_arena::max_concurrency());
+  arena.execute([&] {
+    tbb::parallel_for(std::size_t{0}, n, [&](std::size_t i) {
+      if (cancelled()) return;
+      if (i > 0) try {
+          const ItemModels m = itemModels(manifest, i, maxMemoryGb);
+          if (first) {
+            checkSameModels(*first, m);
+            kept[i] = modelsMissingFrom(first->models, m);
+          }
+        } catch (...) {
+          errors[i] = std::current_exception();
         }
-      } catch (...) {
-        errors[i] = std::current_exception();
+      const std::size_t d = ++done;
+      if (options.onChecked) {
+        std::lock_guard<std::mutex> lock(progress);
+        options.onChecked(d, n);
       }
-    const std::size_t d = ++done;
-    if (onChecked) {
-      std::lock_guard<std::mutex> lock(progress);
-      onChecked(d, n);
-    }
+    });
   });
+  if (cancelled()) return false;
   rethrowFirst(errors);
 
   std::map<std::uint32_t, const KeptModel*> firstOf;  // obj_id → the first item's model of it
@@ -155,15 +162,14 @@ void checkItems(const Manifest& manifest,
         throw InputError(k.where, k.key,
                          k.prefix + clash(k.model.front().objId, k.shape, f.shape, f.item));
     }
+  return true;
 }
 
 }  // namespace
 
-void checkDataset(const Manifest& manifest,
-                  const std::function<void(std::size_t, std::size_t)>& onChecked,
-                  std::optional<double> maxMemoryGb) {
+bool checkDataset(const Manifest& manifest, const DatasetCheckOptions& options) {
   checkBaseScene(manifest);
-  checkItems(manifest, onChecked, maxMemoryGb);
+  return checkItems(manifest, options);
 }
 
 }  // namespace camsim

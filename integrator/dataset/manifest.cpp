@@ -11,7 +11,7 @@
 namespace camsim {
 namespace {
 
-constexpr std::size_t kMaxItems = 100000;  // items are expanded up front (~1 kB each)
+constexpr std::size_t kMaxItems = kMaxDatasetItems;
 
 // One `random.draw` entry: how to draw the value at `path` (checked when parsed).
 struct Draw {

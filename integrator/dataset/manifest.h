@@ -47,6 +47,9 @@ struct DatasetItem {
   SourceLocation where;  // the manifest entry it comes from (items[i], grid or random)
 };
 
+// The most items a manifest may have: items are expanded up front (~1 kB each).
+inline constexpr std::size_t kMaxDatasetItems = 100000;
+
 struct Manifest {
   std::filesystem::path file;   // as given
   std::string text;             // the manifest's own text

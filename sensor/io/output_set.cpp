@@ -3,15 +3,20 @@
 #include <signal.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <charconv>
 #include <exception>
 #include <fstream>
+#include <optional>
 #include <stdexcept>
 #include <string_view>
 #include <system_error>
+#include <utility>
 
 #include "sensor/base/file_status.h"
+#include "sensor/base/fnv1a.h"
 #include "sensor/base/input_error.h"
 
 namespace camsim {
@@ -20,7 +25,8 @@ namespace {
 constexpr std::string_view kTempMarker = ".camsim-tmp-";
 
 std::filesystem::path temporaryName(const std::string& fileName, long pid) {
-  return "." + fileName + std::string(kTempMarker) + std::to_string(pid);
+  return "." + fileName + std::string(kTempMarker) + std::to_string(pid) + "@" +
+         OutputSet::hostTag();
 }
 
 }  // namespace
@@ -112,17 +118,43 @@ std::vector<std::filesystem::path> OutputSet::commit() {
   return finals;
 }
 
-long OutputSet::temporaryOwner(const std::string& fileName) {
+const std::string& OutputSet::hostTag() {
+  static const std::string tag = [] {
+    char name[256] = {};
+    if (::gethostname(name, sizeof name - 1) != 0 || name[0] == '\0') return std::string("local");
+    const std::string host(name);
+    const bool plain =
+        host.size() <= 32 && std::all_of(host.begin(), host.end(), [](char c) {
+          return std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '.' || c == '_';
+        });
+    return plain ? host : fnv1aHex(host);  // a file name's bytes stay few and printable
+  }();
+  return tag;
+}
+
+namespace {
+
+// The PID and the host of a temporary's name: "." + at least one character of the final
+// name + marker + digits, then "@" and the host (without: a temporary of an older camsim).
+std::optional<std::pair<long, std::string>> parseTemporary(const std::string& fileName) {
   const size_t marker = fileName.rfind(kTempMarker);
-  // "." + at least one character of the final name + marker + digits.
   if (fileName.size() < 2 || fileName[0] != '.' || marker == std::string::npos || marker < 2)
-    return -1;
+    return std::nullopt;
   const char* first = fileName.data() + marker + kTempMarker.size();
   const char* last = fileName.data() + fileName.size();
   long pid = 0;
   const auto [ptr, ec] = std::from_chars(first, last, pid);
-  if (first == last || ec != std::errc() || ptr != last || pid <= 0) return -1;
-  return pid;
+  if (first == last || ec != std::errc() || pid <= 0) return std::nullopt;
+  if (ptr == last) return std::pair{pid, std::string()};
+  if (*ptr != '@' || ptr + 1 == last) return std::nullopt;
+  return std::pair{pid, std::string(ptr + 1, last)};
+}
+
+}  // namespace
+
+long OutputSet::temporaryOwner(const std::string& fileName) {
+  const auto t = parseTemporary(fileName);
+  return t ? t->first : -1;
 }
 
 std::vector<std::filesystem::path> OutputSet::cleanStaleTemporaries(
@@ -133,8 +165,13 @@ std::vector<std::filesystem::path> OutputSet::cleanStaleTemporaries(
   std::error_code ec;
   for (std::filesystem::directory_iterator it(directory, ec), end; !ec && it != end;
        it.increment(ec)) {
-    const long pid = temporaryOwner(it->path().filename().string());
-    if (pid < 0 || pid == self) continue;
+    const auto owner = parseTemporary(it->path().filename().string());
+    if (!owner) continue;
+    // Another machine's (or container's) PIDs mean nothing here: its temporaries are left
+    // (found by probing: a live run's part on another node, its PID unused here, was removed
+    // as stale and that run's rename failed).
+    const auto& [pid, host] = *owner;
+    if (pid == self || (!host.empty() && host != hostTag())) continue;
     // Never follow or descend: a temporary is a regular file (or a link, removed as such).
     std::error_code typeError;
     const auto type = it->symlink_status(typeError).type();

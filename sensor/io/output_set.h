@@ -1,13 +1,14 @@
 // OutputSet: a render's output files appear all at once or not at all.
 // Each file is written under a temporary name in the target directory
-// (".<name>.camsim-tmp-<pid>") and renamed to its final name by commit(); an OutputSet
+// (".<name>.camsim-tmp-<pid>@<host>") and renamed to its final name by commit(); an OutputSet
 // destroyed before commit() (an error, an exception) removes its temporaries, so a
 // failed run never leaves a file under a final name.
 //
 // A run killed outright (SIGKILL, power loss) cannot remove its temporaries; the next run
-// into the same directory does, with cleanStaleTemporaries(): a temporary whose writer's
-// PID no longer exists is stale. (PIDs are those of this machine's PID namespace: do not
-// share an output directory between machines or containers.)
+// into the same directory does, with cleanStaleTemporaries(): a temporary of this host whose
+// writer's PID no longer exists is stale. Other hosts' temporaries (another node or container
+// writing `--tiles` parts or dataset shards into a shared folder: its PIDs mean nothing
+// here) are left alone.
 #pragma once
 
 #include <filesystem>
@@ -33,10 +34,11 @@ class OutputSet {
 
   const std::filesystem::path& directory() const { return directory_; }
 
-  // Removes the files `.<name>.camsim-tmp-<pid>` in `directory` (not in subdirectories)
-  // whose process <pid> is gone (kill(pid, 0) fails with ESRCH); a live process's
-  // temporaries, including this process's, and every other file are left alone. Returns
-  // the removed paths. A missing directory has nothing to clean.
+  // Removes the files `.<name>.camsim-tmp-<pid>@<host>` (or `-<pid>`, an older camsim's) in
+  // `directory` (not in subdirectories) of this host whose process <pid> is gone (kill(pid,
+  // 0) fails with ESRCH); a live process's temporaries, including this process's, other
+  // hosts' and every other file are left alone. Returns the removed paths. A missing
+  // directory has nothing to clean.
   static std::vector<std::filesystem::path> cleanStaleTemporaries(
       const std::filesystem::path& directory);
   // Creates `directory` if missing (InputError naming it if that fails or it is not a
@@ -45,6 +47,9 @@ class OutputSet {
       const std::filesystem::path& directory);
   // The PID in a temporary's file name, or -1 if `fileName` is not one.
   static long temporaryOwner(const std::string& fileName);
+  // This host in temporaries' names: its host name (at most 32 of [A-Za-z0-9._-]), else
+  // that name's FNV-1a 64 hash in hex.
+  static const std::string& hostTag();
 
  private:
   std::filesystem::path directory_;

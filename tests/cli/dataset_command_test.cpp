@@ -171,6 +171,44 @@ TEST_F(DatasetCommand, KilledMidItemResumesWithNothingLostOrTwice) {
       << status.out;
 }
 
+// The pictures' OCIO config is part of an item's hash by its content, also when $OCIO names
+// it (found by probing: --resume kept pictures made through another config).
+TEST_F(DatasetCommand, AnotherOcioConfigRendersAgainOnResume) {
+  const fs::path out = dir_.path() / "out";
+  ASSERT_EQ(run("-o " + out.string() + " --item 0 --threads 1").exitCode, 0);
+  const fs::path luts = fs::path(CAMSIM_SOURCE_DIR) / "luts";
+  fs::copy(luts / "looks", dir_.path() / "looks");
+  writeFile(dir_.path() / "same.ocio", readFile(luts / "config.ocio"));
+  writeFile(dir_.path() / "other.ocio", readFile(luts / "config.ocio") + "\n# another config\n");
+  test::EnvGuard ocio("OCIO");
+  ocio.set((dir_.path() / "same.ocio").string());  // the same content elsewhere: up to date
+  auto r = run("-o " + out.string() + " --item 0 --resume --threads 1");
+  EXPECT_NE(r.err.find("0 rendered, 1 up to date"), std::string::npos) << r.err;
+  ocio.set((dir_.path() / "other.ocio").string());
+  r = run("-o " + out.string() + " --item 0 --resume --threads 1");
+  EXPECT_NE(r.err.find("1 rendered, 0 up to date"), std::string::npos) << r.err;
+}
+
+// --status reads the record runDataset writes (found by probing: "items": 1e8 kept it
+// counting past SIGTERM, 9e18 grew its list of missing items without end).
+TEST_F(DatasetCommand, StatusRefusesARecordItDidNotWrite) {
+  const fs::path out = dir_.path() / "out";
+  ASSERT_EQ(run("-o " + out.string() + " --item 0 --threads 1").exitCode, 0);
+  const std::string record = readFile(out / "dataset.json");
+  std::string more = record;
+  more.replace(more.find("\"items\": 6"), 11, "\"items\": 100000000");
+  writeFile(out / "dataset.json", more);
+  auto st = test::runCamsim("dataset --status " + out.string(), dir_.path());
+  EXPECT_EQ(st.exitCode, 2) << st.out << st.err;
+  EXPECT_NE(st.err.find("key 'items'"), std::string::npos) << st.err;
+  std::string other = record;
+  other.replace(other.find("camsim-dataset-output/1"), 23, "camsim-dataset-output/9");
+  writeFile(out / "dataset.json", other);
+  st = test::runCamsim("dataset --status " + out.string(), dir_.path());
+  EXPECT_EQ(st.exitCode, 2) << st.out << st.err;
+  EXPECT_NE(st.err.find("key 'format'"), std::string::npos) << st.err;
+}
+
 TEST_F(DatasetCommand, SigtermStopsWithExitCode143AndTheItemInProgressDropped) {
   writeFile(dir_.path() / "base.yaml", baseScene(4096));
   const fs::path out = dir_.path() / "out";
@@ -186,6 +224,23 @@ TEST_F(DatasetCommand, SigtermStopsWithExitCode143AndTheItemInProgressDropped) {
   const auto st = test::runCamsim("dataset --status " + out.string(), dir_.path());
   EXPECT_EQ(st.exitCode, 1) << st.out;  // not all done
   EXPECT_NE(st.out.find("missing"), std::string::npos) << st.out;
+}
+
+// SIGTERM while the items are checked (before anything is written) stops at once (found by
+// probing: the check of every item ran on, minutes for a large manifest, then wrote).
+TEST_F(DatasetCommand, SigtermDuringTheItemCheckStopsWithNothingWritten) {
+  std::string many = kManifest;
+  many.replace(many.find("count: 6"), 8, "count: 20000");
+  writeFile(manifest_, many);
+  const fs::path out = dir_.path() / "out";
+  test::Child child({"dataset", manifest_.string(), "-o", out.string(), "--threads", "1"},
+                    dir_.path() / "term");
+  ASSERT_TRUE(child.workFor(0.5, 60.0));
+  child.signal(SIGTERM);
+  const auto status = child.wait(std::chrono::seconds(20));  // the whole check: minutes
+  ASSERT_TRUE(status) << "still checking 20 s after SIGTERM";
+  EXPECT_EQ(test::exitCode(*status), 143) << child.err();
+  EXPECT_FALSE(fs::exists(out / "dataset.json"));
 }
 
 // The items of index.jsonl's done lines, in the file's order.

@@ -249,6 +249,27 @@ TEST(OutputSetNames, TemporaryOwnerReadsThePidOfTemporaryNamesOnly) {
   EXPECT_EQ(OutputSet::temporaryOwner(".a.exr.camsim-tmp-0"), -1);
   EXPECT_EQ(OutputSet::temporaryOwner(".a.exr.camsim-tmp-99999999999999999999999"), -1);
   EXPECT_EQ(OutputSet::temporaryOwner("a.exr"), -1);
+  EXPECT_EQ(OutputSet::temporaryOwner(".a.exr.camsim-tmp-1234@node-7.cluster"), 1234);
+  EXPECT_EQ(OutputSet::temporaryOwner(".a.exr.camsim-tmp-1234@"), -1);  // no host
+  EXPECT_EQ(OutputSet::temporaryOwner(".a.exr.camsim-tmp-1234#node"), -1);
+}
+
+// A temporary names its host: PIDs of another node or container sharing the folder (`--tiles`
+// parts, dataset shards) mean nothing here, so its temporaries are left even where no
+// process here has its PID (found by probing: a live run's part on another node was removed
+// as stale, and its rename failed).
+TEST_F(OutputSetTest, CleanStaleTemporariesLeavesThoseOfOtherHosts) {
+  const std::string dead = std::to_string(deadPid());
+  const std::string other = OutputSet::hostTag() + "x";
+  test::writeFile(dir_ / (".a.exr.camsim-tmp-" + dead + "@" + OutputSet::hostTag()), "killed");
+  test::writeFile(dir_ / (".b.exr.camsim-tmp-" + dead + "@" + other), "another node's run");
+  const std::vector<std::filesystem::path> removed = OutputSet::cleanStaleTemporaries(dir_);
+  ASSERT_EQ(removed.size(), 1u);
+  EXPECT_EQ(removed[0], dir_ / (".a.exr.camsim-tmp-" + dead + "@" + OutputSet::hostTag()));
+  EXPECT_TRUE(std::filesystem::exists(dir_ / (".b.exr.camsim-tmp-" + dead + "@" + other)));
+  OutputSet set(dir_);
+  EXPECT_EQ(set.add("c.exr").filename().string(),
+            ".c.exr.camsim-tmp-" + std::to_string(::getpid()) + "@" + OutputSet::hostTag());
 }
 
 TEST_F(OutputSetTest, TemporariesCarryThisProcessPid) {
