@@ -201,7 +201,8 @@ int runDatasetCommand(const std::vector<std::string>& args, std::ostream& out, s
     const bool checked = checkDataset(manifest, {o.onChecked, o.maxMemoryGb, o.threads, cancel});
     checking.finish();
     if (!checked) {
-      log << "dataset " << manifest.file.filename().string() << ": check interrupted\n";
+      log << "dataset " << manifest.file.filename().string()
+          << ": interrupted while checking the items\n";
       return 128 + (signal && signal->load() ? signal->load() : 2);
     }
     out << manifest.file.string() << ": " << manifest.items.size() << " items, all valid\n";
@@ -225,6 +226,11 @@ int runDatasetCommand(const std::vector<std::string>& args, std::ostream& out, s
   };
   const DatasetRunSummary s = runDataset(manifest, o);
   checking.finish();
+  if (s.cancelledWhileChecking) {
+    log << "dataset " << manifest.file.filename().string()
+        << ": interrupted while checking the items (nothing written)\n";
+    return 128 + (signal && signal->load() ? signal->load() : 2);
+  }
   if (rendering) rendering->finish();
   for (const auto& f : s.removed)
     log << "removed " << f.string() << " (left by a run that was killed)\n";

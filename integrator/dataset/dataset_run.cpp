@@ -2,12 +2,14 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <exception>
 #include <future>
 #include <memory>
 #include <optional>
 #include <set>
+#include <sstream>
 #include <thread>
 #include <utility>
 
@@ -31,6 +33,40 @@ namespace {
 // A temporary item folder's prefix: ".NNNNNN.camsim-tmp-" (the PID follows).
 std::string temporaryPrefix(std::size_t index) {
   return "." + itemFolderName(index) + ".camsim-tmp-";
+}
+
+// The OCIO config the pictures go through, wherever it was found ($OCIO included), by its
+// content: its text and the files of its search_path folders (LUTs, looks), so that another
+// config or an edited LUT renders the items again and the same config elsewhere does not
+// (found by probing: $OCIO was not in the key, and --resume kept pictures of another config).
+std::string ocioConfigKey(const fs::path& explicitConfig) {
+  const fs::path config = resolveOcioConfig(explicitConfig).path;
+  std::error_code ec;
+  if (!fs::is_regular_file(config, ec)) return config.string();  // refused when it is read
+  const std::string text = readWholeFile(config);
+  std::string key = fnv1aHex(text);
+  try {
+    YamlMap map(parseYaml(text, config.string()));
+    const std::optional<YamlValue> searchPath = map.find("search_path");
+    if (!searchPath) return key;
+    std::vector<std::string> folders;
+    if (searchPath->isSequence()) {
+      for (const YamlValue& v : searchPath->items()) folders.push_back(v.string());
+    } else {
+      std::istringstream in(searchPath->string());
+      for (std::string folder; std::getline(in, folder, ':');) folders.push_back(folder);
+    }
+    for (const std::string& folder : folders) {
+      std::vector<fs::path> files;
+      for (const auto& e : fs::directory_iterator(config.parent_path() / folder, ec))
+        if (e.is_regular_file(ec)) files.push_back(e.path());
+      std::sort(files.begin(), files.end());
+      for (const fs::path& f : files)
+        key += " " + folder + "/" + f.filename().string() + "=" + fnv1aHex(readWholeFile(f));
+    }
+  } catch (const std::exception&) {  // OCIO reads the config later and names its faults
+  }
+  return key;
 }
 
 // Removes the temporary folders a killed run left for item `index`: this shard owns the
@@ -148,15 +184,10 @@ const char* itemStatusName(ItemStatus status) {
 DatasetRunSummary runDataset(const Manifest& manifest, const DatasetRunOptions& options) {
   CAMSIM_CHECK(options.shard.count >= 1 && options.shard.index >= 0 &&
                options.shard.index < options.shard.count);
-  // The pictures' config by its content, wherever it was found (found by probing: $OCIO
-  // was not in the key, so --resume kept pictures made through another config).
-  const fs::path ocio = resolveOcioConfig(options.picture.ocioConfig).path;
-  std::error_code ocioError;
-  const std::string outputKey =
-      "ocio=" +
-      fnv1aHex(fs::is_regular_file(ocio, ocioError) ? readWholeFile(ocio) : ocio.string()) +
-      " display=" + options.picture.choice.display + " view=" + options.picture.choice.view +
-      " looks=" + options.picture.choice.looks;
+  const std::string outputKey = "ocio=" + ocioConfigKey(options.picture.ocioConfig) +
+                                " display=" + options.picture.choice.display +
+                                " view=" + options.picture.choice.view +
+                                " looks=" + options.picture.choice.looks;
   if (options.onlyItem) {
     if (*options.onlyItem >= manifest.items.size())
       throw InputError({manifest.file.string(), 0, 0}, "",
@@ -174,7 +205,7 @@ DatasetRunSummary runDataset(const Manifest& manifest, const DatasetRunOptions& 
   DatasetRunSummary summary;
   if (!checkDataset(manifest,
                     {options.onChecked, options.maxMemoryGb, options.threads, options.cancel})) {
-    summary.cancelled = true;  // nothing written
+    summary.cancelled = summary.cancelledWhileChecking = true;  // nothing written
     return summary;
   }
   checkEarlierRun(manifest, options.directory);

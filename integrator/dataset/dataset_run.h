@@ -81,6 +81,7 @@ struct DatasetRunSummary {
   std::size_t items = 0;  // of this shard (or 1 with only_item)
   std::size_t done = 0, skipped = 0, failed = 0;
   bool cancelled = false;
+  bool cancelledWhileChecking = false;         // before anything was written
   std::vector<std::filesystem::path> removed;  // temporaries of killed runs
   // Up-to-date items (--resume) whose index line was missing and has been appended.
   std::vector<std::size_t> reindexed;

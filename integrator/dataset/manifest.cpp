@@ -1,6 +1,7 @@
 #include "integrator/dataset/manifest.h"
 
 #include <cmath>
+#include <map>
 #include <numbers>
 #include <optional>
 
@@ -283,14 +284,20 @@ Manifest parseManifest(const std::string& text, const std::string& displayName,
     top.self().fail(
         "the manifest has more than 100000 items (split the dataset into several manifests)");
 
-  // Whether the item's edits give map.key: the key itself, or the whole map with it.
-  const auto itemSets = [](const DatasetItem& item, const std::string& map, const char* key) {
-    for (const YamlEdit& e : item.edits) {
-      if (e.path == map + "." + key) return true;
-      if (e.path == map) {
-        const YamlValue v = parseYaml(e.value, e.key);
-        if (v.isMap() && YamlMap(v).has(key)) return true;
+  // Whether the item's edits leave map.key as they give it: the last edit of the key, or of
+  // the whole map, decides (a map edit without the key drops an earlier edit of it; found in
+  // review). Map values are parsed once per distinct text.
+  std::map<std::string, bool> mapHasSeed;  // (key, map value) → the value holds the key
+  const auto itemSets = [&](const DatasetItem& item, const std::string& map, const char* key) {
+    for (auto e = item.edits.rbegin(); e != item.edits.rend(); ++e) {
+      if (e->path == map + "." + key) return true;
+      if (e->path != map) continue;
+      const auto [it, added] = mapHasSeed.try_emplace(std::string(key) + "\n" + e->value);
+      if (added) {
+        const YamlValue v = parseYaml(e->value, m.file.string());
+        it->second = v.isMap() && YamlMap(v).has(key);
       }
+      return it->second;
     }
     return false;
   };

@@ -239,13 +239,14 @@ void readGltfMeshes(const tinygltf::Model& model, GltfDocument& doc, const std::
       } else {
         for (std::uint32_t i = 0; i < n; ++i) order.push_back(i);
       }
-      // glTF §3.7.2.1: a triangle list's count is a multiple of 3 (found by probing: the
-      // leftover vertices of 5 were dropped silently).
+      // A triangle list's count should be a multiple of 3 (the Khronos validator warns): the
+      // leftover vertices are dropped, and said so (found by probing: they were dropped
+      // silently).
       if (p.mode == TINYGLTF_MODE_TRIANGLES && order.size() % 3 != 0)
-        r.fail(p.indices >= 0 ? "accessors[" + std::to_string(p.indices) + "].count"
-                              : "accessors[" + std::to_string(position) + "].count",
-               std::to_string(order.size()) + " vertices are no list of triangles (" + g.path +
-                   ".mode 4 needs a multiple of 3)");
+        doc.notes.push_back("accessors[" + std::to_string(p.indices >= 0 ? p.indices : position) +
+                            "].count: " + std::to_string(order.size()) + " vertices of " + g.path +
+                            " (TRIANGLES) are no multiple of 3: the last " +
+                            std::to_string(order.size() % 3) + " dropped");
       g.mesh.indices = triangles(order, p.mode);
       if (g.mesh.indices.empty()) r.fail(g.path, "has no triangles");
       mesh.primitives.push_back(std::move(g));

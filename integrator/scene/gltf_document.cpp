@@ -258,8 +258,9 @@ void readNodes(const tinygltf::Model& model, GltfDocument& doc, const std::strin
   }
   // A scene's nodes are distinct roots (found by probing: one listed twice, or also a child,
   // was placed twice).
+  std::vector<bool> listed(doc.nodes.size(), false);
   for (size_t s = 0; s < doc.scenes.size(); ++s) {
-    std::vector<bool> listed(doc.nodes.size(), false);
+    for (int r : doc.scenes[s]) listed[static_cast<size_t>(r)] = false;  // this scene's only
     for (size_t k = 0; k < doc.scenes[s].size(); ++k) {
       const auto r = static_cast<size_t>(doc.scenes[s][k]);
       const std::string where = at("scenes", s) + ".nodes[" + std::to_string(k) + "]";

@@ -98,8 +98,8 @@ void readGltfMaterials(const tinygltf::Model& model, GltfDocument& doc, const st
                                     g.path + ".occlusionTexture");
     g.emissiveTexture = textureRef(model, m.emissiveTexture.index, m.emissiveTexture.texCoord, 1.0,
                                    m.emissiveTexture.extensions, g.path + ".emissiveTexture");
-    // The scene file's normal_scale bound.
-    if (!(std::abs(m.normalTexture.scale) <= 100.0))
+    // The scene file's normal_scale bound, where a normal texture uses it.
+    if (m.normalTexture.index >= 0 && !(std::abs(m.normalTexture.scale) <= 100.0))
       throw InputError({name, 0, 0}, g.path + ".normalTexture.scale", "must lie in [-100, 100]");
     g.texCoord = materialTexCoord(g, doc.notes);
     for (size_t c = 0; c < 3 && c < m.emissiveFactor.size(); ++c) {

@@ -219,12 +219,14 @@ std::vector<GltfInclude> parseGltfIncludes(const YamlValue& list,
       fileValue.fail("the file has no scenes (glTF's \"scenes\"): it places no node to import");
     inc.scene = inc.doc.defaultScene;
     if (auto v = map.find("scene")) {
-      if (inc.doc.scenes.empty()) v->fail("the file has no scenes");
       inc.scene =
           static_cast<int>(v->integer(0, static_cast<std::int64_t>(inc.doc.scenes.size()) - 1));
     }
-    if (!inc.doc.scenes.empty() && inc.scene >= static_cast<int>(inc.doc.scenes.size()))
+    if (inc.scene >= static_cast<int>(inc.doc.scenes.size()))
       fileValue.fail("the file's default scene " + std::to_string(inc.scene) + " does not exist");
+    if (inc.doc.scenes[static_cast<size_t>(inc.scene)].empty())
+      inc.doc.notes.push_back("scenes[" + std::to_string(inc.scene) +
+                              "] has no nodes: nothing is imported");
     inc.animations = parseAnimationChoice(map.find("animation"), inc.doc);
     if (auto v = map.find("lights")) inc.lights = v->boolean();
     if (auto v = map.find("emissive_luminance")) inc.emissiveLuminance = v->number(0.0, 1e12);
@@ -312,9 +314,8 @@ double applyGltfCamera(const YamlValue& spec, const std::vector<GltfInclude>& in
     return false;
   };
   bool placed = false;
-  if (!doc.scenes.empty())
-    for (int r : doc.scenes[static_cast<size_t>(inc.scene)])
-      placed = placed || find(r, inc.worldFromAsset);
+  for (int r : doc.scenes[static_cast<size_t>(inc.scene)])
+    placed = placed || find(r, inc.worldFromAsset);
   if (!placed) spec.fail(gc.path + " is not used by any node of the included scene");
   if (gc.aspectRatio > 0.0)
     notes.push_back(inc.where + ": " + gc.path + ": aspectRatio " + std::to_string(gc.aspectRatio) +
@@ -338,9 +339,7 @@ void addGltfIncludes(std::vector<GltfInclude>& includes, SceneDescription& scene
       if (g.mesh >= 0 && !moving) ++w.meshUses[static_cast<size_t>(g.mesh)];
       for (int c : g.children) count(c, moving);
     };
-    const std::vector<int>& roots = inc.doc.scenes.empty()
-                                        ? std::vector<int>{}
-                                        : inc.doc.scenes[static_cast<size_t>(inc.scene)];
+    const std::vector<int>& roots = inc.doc.scenes[static_cast<size_t>(inc.scene)];
     for (int r : roots) count(r, false);
     const size_t shapesBefore = scene.shapes.size();
     for (int r : roots) w.node(r, w.renderFromAsset(), {}, glm::dmat4(1.0), nullptr);

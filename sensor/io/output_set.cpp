@@ -121,13 +121,21 @@ std::vector<std::filesystem::path> OutputSet::commit() {
 const std::string& OutputSet::hostTag() {
   static const std::string tag = [] {
     char name[256] = {};
-    if (::gethostname(name, sizeof name - 1) != 0 || name[0] == '\0') return std::string("local");
-    const std::string host(name);
+    std::string host =
+        ::gethostname(name, sizeof name - 1) == 0 && name[0] != '\0' ? name : "local";
     const bool plain =
         host.size() <= 32 && std::all_of(host.begin(), host.end(), [](char c) {
           return std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '.' || c == '_';
         });
-    return plain ? host : fnv1aHex(host);  // a file name's bytes stay few and printable
+    if (!plain) host = fnv1aHex(host);  // a file name's bytes stay few and printable
+    // Containers may share the host's name (host networking) but not its PIDs: Linux names
+    // the PID namespace "pid:[INODE]" (found in review).
+    std::error_code ec;
+    const std::string ns = std::filesystem::read_symlink("/proc/self/ns/pid", ec).string();
+    const size_t open = ns.find('['), close = ns.find(']');
+    if (!ec && open != std::string::npos && close > open + 1)
+      host += "~" + ns.substr(open + 1, close - open - 1);
+    return host;
   }();
   return tag;
 }

@@ -5,10 +5,11 @@
 // failed run never leaves a file under a final name.
 //
 // A run killed outright (SIGKILL, power loss) cannot remove its temporaries; the next run
-// into the same directory does, with cleanStaleTemporaries(): a temporary of this host whose
-// writer's PID no longer exists is stale. Other hosts' temporaries (another node or container
-// writing `--tiles` parts or dataset shards into a shared folder: its PIDs mean nothing
-// here) are left alone.
+// into the same directory does, with cleanStaleTemporaries(): a temporary of this host (and
+// PID namespace) whose writer's PID no longer exists is stale. Other hosts' temporaries
+// (another node or container writing `--tiles` parts or dataset shards into a shared folder:
+// its PIDs mean nothing here) are left alone; a node that died leaves its own, hidden files
+// `.*.camsim-tmp-*@HOST`, for the user to remove.
 #pragma once
 
 #include <filesystem>
@@ -48,7 +49,7 @@ class OutputSet {
   // The PID in a temporary's file name, or -1 if `fileName` is not one.
   static long temporaryOwner(const std::string& fileName);
   // This host in temporaries' names: its host name (at most 32 of [A-Za-z0-9._-]), else
-  // that name's FNV-1a 64 hash in hex.
+  // that name's FNV-1a 64 hash in hex; then "~" and the PID namespace's inode (Linux).
   static const std::string& hostTag();
 
  private:

@@ -171,8 +171,9 @@ TEST_F(DatasetCommand, KilledMidItemResumesWithNothingLostOrTwice) {
       << status.out;
 }
 
-// The pictures' OCIO config is part of an item's hash by its content, also when $OCIO names
-// it (found by probing: --resume kept pictures made through another config).
+// The pictures' OCIO config is part of an item's hash by its content (its text and its
+// search_path's files), also when $OCIO names it (found by probing: --resume kept pictures
+// made through another config).
 TEST_F(DatasetCommand, AnotherOcioConfigRendersAgainOnResume) {
   const fs::path out = dir_.path() / "out";
   ASSERT_EQ(run("-o " + out.string() + " --item 0 --threads 1").exitCode, 0);
@@ -184,6 +185,11 @@ TEST_F(DatasetCommand, AnotherOcioConfigRendersAgainOnResume) {
   ocio.set((dir_.path() / "same.ocio").string());  // the same content elsewhere: up to date
   auto r = run("-o " + out.string() + " --item 0 --resume --threads 1");
   EXPECT_NE(r.err.find("0 rendered, 1 up to date"), std::string::npos) << r.err;
+  // A file of its search_path (a look) edited in place: the pictures may differ.
+  const fs::path look = dir_.path() / "looks" / "camsim_warm.cdl";
+  writeFile(look, readFile(look) + "\n");
+  r = run("-o " + out.string() + " --item 0 --resume --threads 1");
+  EXPECT_NE(r.err.find("1 rendered, 0 up to date"), std::string::npos) << r.err;
   ocio.set((dir_.path() / "other.ocio").string());
   r = run("-o " + out.string() + " --item 0 --resume --threads 1");
   EXPECT_NE(r.err.find("1 rendered, 0 up to date"), std::string::npos) << r.err;
@@ -196,13 +202,15 @@ TEST_F(DatasetCommand, StatusRefusesARecordItDidNotWrite) {
   ASSERT_EQ(run("-o " + out.string() + " --item 0 --threads 1").exitCode, 0);
   const std::string record = readFile(out / "dataset.json");
   std::string more = record;
-  more.replace(more.find("\"items\": 6"), 11, "\"items\": 100000000");
+  const std::string six = "\"items\": 6";
+  more.replace(more.find(six), six.size(), "\"items\": 100000000");
   writeFile(out / "dataset.json", more);
   auto st = test::runCamsim("dataset --status " + out.string(), dir_.path());
   EXPECT_EQ(st.exitCode, 2) << st.out << st.err;
   EXPECT_NE(st.err.find("key 'items'"), std::string::npos) << st.err;
   std::string other = record;
-  other.replace(other.find("camsim-dataset-output/1"), 23, "camsim-dataset-output/9");
+  const std::string format = "camsim-dataset-output/1";
+  other.replace(other.find(format), format.size(), "camsim-dataset-output/9");
   writeFile(out / "dataset.json", other);
   st = test::runCamsim("dataset --status " + out.string(), dir_.path());
   EXPECT_EQ(st.exitCode, 2) << st.out << st.err;
@@ -240,6 +248,9 @@ TEST_F(DatasetCommand, SigtermDuringTheItemCheckStopsWithNothingWritten) {
   const auto status = child.wait(std::chrono::seconds(20));  // the whole check: minutes
   ASSERT_TRUE(status) << "still checking 20 s after SIGTERM";
   EXPECT_EQ(test::exitCode(*status), 143) << child.err();
+  EXPECT_NE(child.err().find("interrupted while checking the items (nothing written)"),
+            std::string::npos)
+      << child.err();
   EXPECT_FALSE(fs::exists(out / "dataset.json"));
 }
 

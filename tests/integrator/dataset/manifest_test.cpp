@@ -127,6 +127,17 @@ TEST_F(ManifestTest, PerItemSeedsSurviveAReplacedRenderOrSensorMap) {
   EXPECT_EQ(value(a, "sensor.noise_seed"), std::to_string(a.description.sensor->noiseSeed));
   EXPECT_EQ(c.description.render.seed, 7u);
   EXPECT_EQ(c.description.sensor->noiseSeed, 9u);
+  // The last edit decides: an item's sensor map without a seed drops the set's seed 9, and
+  // the item gets its own (found in review).
+  const Manifest n = parse(
+      "format: camsim-dataset/1\nscene: base.yaml\nseed: 5\n"
+      "set: {sensor: {model: smartphone-1.4um, noise_seed: 9}}\n"
+      "items:\n  - {sensor: {model: smartphone-1.4um}}\n  - {}\n");
+  const ResolvedItem replaced = resolve(n, 0), kept = resolve(n, 1);
+  ASSERT_TRUE(replaced.description.sensor && kept.description.sensor);
+  EXPECT_NE(replaced.description.sensor->noiseSeed, 9u);
+  EXPECT_NE(replaced.description.sensor->noiseSeed, 0u);
+  EXPECT_EQ(kept.description.sensor->noiseSeed, 9u);
 }
 
 TEST_F(ManifestTest, OrbitZippedKeysAndNull) {
