@@ -155,6 +155,8 @@ Share resolveShard(const DatasetArgs& args, const std::map<std::string, std::str
 int runDatasetCommand(const std::vector<std::string>& args, std::ostream& out, std::ostream& log,
                       const std::atomic<bool>* cancel, const std::atomic<int>* signal) {
   const DatasetArgs a = parseDatasetArgs(args);
+  // 128 + the signal that stopped the run (SIGINT when not known).
+  const auto interrupted = [&] { return 128 + (signal && signal->load() ? signal->load() : 2); };
   if (a.help) {
     out << datasetUsageText();
     return 0;
@@ -203,7 +205,7 @@ int runDatasetCommand(const std::vector<std::string>& args, std::ostream& out, s
     if (!checked) {
       log << "dataset " << manifest.file.filename().string()
           << ": interrupted while checking the items\n";
-      return 128 + (signal && signal->load() ? signal->load() : 2);
+      return interrupted();
     }
     out << manifest.file.string() << ": " << manifest.items.size() << " items, all valid\n";
     return 0;
@@ -229,7 +231,7 @@ int runDatasetCommand(const std::vector<std::string>& args, std::ostream& out, s
   if (s.cancelledWhileChecking) {
     log << "dataset " << manifest.file.filename().string()
         << ": interrupted while checking the items (nothing written)\n";
-    return 128 + (signal && signal->load() ? signal->load() : 2);
+    return interrupted();
   }
   if (rendering) rendering->finish();
   for (const auto& f : s.removed)
@@ -241,7 +243,7 @@ int runDatasetCommand(const std::vector<std::string>& args, std::ostream& out, s
       << shard.count << (shardSource.empty() ? "" : " (" + shardSource + ")") << ": " << s.items
       << " of " << manifest.items.size() << " items: " << s.done << " rendered, " << s.skipped
       << " up to date, " << s.failed << " failed" << (s.cancelled ? "; interrupted" : "") << "\n";
-  if (s.cancelled) return 128 + (signal && signal->load() ? signal->load() : 2);
+  if (s.cancelled) return interrupted();
   return s.failed > 0 ? 1 : 0;
 }
 

@@ -9,7 +9,6 @@
 #include <memory>
 #include <optional>
 #include <set>
-#include <sstream>
 #include <thread>
 #include <utility>
 
@@ -40,31 +39,18 @@ std::string temporaryPrefix(std::size_t index) {
 // config or an edited LUT renders the items again and the same config elsewhere does not
 // (found by probing: $OCIO was not in the key, and --resume kept pictures of another config).
 std::string ocioConfigKey(const fs::path& explicitConfig) {
-  const fs::path config = resolveOcioConfig(explicitConfig).path;
-  std::error_code ec;
-  if (!fs::is_regular_file(config, ec)) return config.string();  // refused when it is read
-  const std::string text = readWholeFile(config);
-  std::string key = fnv1aHex(text);
-  try {
-    YamlMap map(parseYaml(text, config.string()));
-    const std::optional<YamlValue> searchPath = map.find("search_path");
-    if (!searchPath) return key;
-    std::vector<std::string> folders;
-    if (searchPath->isSequence()) {
-      for (const YamlValue& v : searchPath->items()) folders.push_back(v.string());
-    } else {
-      std::istringstream in(searchPath->string());
-      for (std::string folder; std::getline(in, folder, ':');) folders.push_back(folder);
-    }
-    for (const std::string& folder : folders) {
-      std::vector<fs::path> files;
-      for (const auto& e : fs::directory_iterator(config.parent_path() / folder, ec))
-        if (e.is_regular_file(ec)) files.push_back(e.path());
-      std::sort(files.begin(), files.end());
-      for (const fs::path& f : files)
-        key += " " + folder + "/" + f.filename().string() + "=" + fnv1aHex(readWholeFile(f));
-    }
-  } catch (const std::exception&) {  // OCIO reads the config later and names its faults
+  const OcioProcessor ocio(explicitConfig);  // InputError for a config that cannot be read
+  std::string key = fnv1aHex(readWholeFile(ocio.location().path));
+  const std::vector<fs::path> folders = ocio.searchFolders();
+  for (std::size_t i = 0; i < folders.size(); ++i) {
+    std::error_code ec;
+    std::vector<fs::path> files;
+    for (fs::directory_iterator it(folders[i], ec), end; !ec && it != end; it.increment(ec))
+      if (it->is_regular_file(ec)) files.push_back(it->path());
+    std::sort(files.begin(), files.end());
+    for (const fs::path& f : files)  // by the folder's place, not its path: any checkout alike
+      key +=
+          " " + std::to_string(i) + "/" + f.filename().string() + "=" + fnv1aHex(readWholeFile(f));
   }
   return key;
 }

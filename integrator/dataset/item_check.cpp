@@ -116,13 +116,12 @@ void rethrowFirst(const std::vector<std::exception_ptr>& errors) {
 bool checkItems(const Manifest& manifest, const DatasetCheckOptions& options) {
   const std::size_t n = manifest.items.size();
   if (n == 0) return true;
-  const std::optional<double> maxMemoryGb = options.maxMemoryGb;
   const auto cancelled = [&] { return options.cancel && options.cancel->load(); };
   std::vector<std::exception_ptr> errors(n);
   std::vector<std::vector<KeptModel>> kept(n);  // per item: its models of obj_ids item 0 lacks
   std::optional<ItemModels> first;
   try {
-    first.emplace(itemModels(manifest, 0, maxMemoryGb));
+    first.emplace(itemModels(manifest, 0, options.maxMemoryGb));
   } catch (...) {
     errors[0] = std::current_exception();
   }
@@ -134,7 +133,7 @@ bool checkItems(const Manifest& manifest, const DatasetCheckOptions& options) {
     tbb::parallel_for(std::size_t{0}, n, [&](std::size_t i) {
       if (cancelled()) return;
       if (i > 0) try {
-          const ItemModels m = itemModels(manifest, i, maxMemoryGb);
+          const ItemModels m = itemModels(manifest, i, options.maxMemoryGb);
           if (first) {
             checkSameModels(*first, m);
             kept[i] = modelsMissingFrom(first->models, m);

@@ -12,8 +12,6 @@
 namespace camsim {
 namespace {
 
-constexpr std::size_t kMaxItems = kMaxDatasetItems;
-
 // One `random.draw` entry: how to draw the value at `path` (checked when parsed).
 struct Draw {
   enum class Kind { kUniform, kLogUniform, kNormal, kChoice, kOrbit } kind = Kind::kUniform;
@@ -254,7 +252,8 @@ Manifest parseManifest(const std::string& text, const std::string& displayName,
     randomWhere = v->where();
     YamlMap r(*v);
     drawCount = 1;
-    if (auto c = r.find("count")) drawCount = static_cast<std::size_t>(c->integer(1, kMaxItems));
+    if (auto c = r.find("count"))
+      drawCount = static_cast<std::size_t>(c->integer(1, kMaxDatasetItems));
     if (auto d = r.find("draw")) {
       YamlMap dm(*d);
       for (const std::string& path : dm.keys()) {
@@ -269,18 +268,18 @@ Manifest parseManifest(const std::string& text, const std::string& displayName,
 
   std::size_t combinations = axes.empty() ? (randomWhere ? 1 : 0) : 1;
   for (const auto& axis : axes) {
-    if (combinations > kMaxItems / axis.size())
+    if (combinations > kMaxDatasetItems / axis.size())
       top.self().fail(
           "the grid has more than 100000 items (split the dataset into several manifests)");
     combinations *= axis.size();
   }
   const std::size_t perCombination = randomWhere ? drawCount : 1;
-  if (combinations > 0 && perCombination > kMaxItems / combinations)
+  if (combinations > 0 && perCombination > kMaxDatasetItems / combinations)
     top.self().fail(
         "the manifest has more than 100000 items (split the dataset into several manifests)");
   const std::size_t total = explicitItems.size() + combinations * perCombination;
   if (total == 0) top.self().fail("the manifest has no items: give items, grid or random");
-  if (total > kMaxItems)
+  if (total > kMaxDatasetItems)
     top.self().fail(
         "the manifest has more than 100000 items (split the dataset into several manifests)");
 

@@ -22,9 +22,12 @@
 
 namespace camsim {
 
-// gltf_validate_materials.cpp: a material's values of their types.
+// gltf_validate_materials.cpp: a material's values of their types; obj[key], when present
+// (or required: else "is missing"), a number (n = 0) or an array of n numbers.
 void checkGltfMaterialValues(const nlohmann::json& material, const std::string& path,
                              const std::string& file);
+void checkGltfNumbers(const std::string& file, const nlohmann::json& obj, const std::string& path,
+                      const char* key, size_t n, bool required);
 
 namespace {
 
@@ -79,24 +82,6 @@ struct Checker {
     if (!v.is_object())
       fail(std::string(array) + "[" + std::to_string(i) + "]", "must be an object");
     return v;
-  }
-  // obj[key], if present, an array of n numbers (tinygltf reads anything else as absent:
-  // found by probing, a translation "1,2,3" was ignored).
-  void numbers(const Json& obj, const std::string& path, const char* key, size_t n) const {
-    const auto it = obj.find(key);
-    if (it == obj.end()) return;
-    bool ok = it->is_array() && it->size() == n;
-    for (size_t i = 0; ok && i < n; ++i) ok = (*it)[i].is_number();
-    if (!ok) fail(path + "." + key, "must be an array of " + std::to_string(n) + " numbers");
-  }
-  // obj[key], if present (or required), a number.
-  void number(const Json& obj, const std::string& path, const char* key, bool required) const {
-    const auto it = obj.find(key);
-    if (it == obj.end()) {
-      if (required) fail(path + "." + key, "is missing");
-      return;
-    }
-    if (!it->is_number()) fail(path + "." + key, "must be a number");
   }
   static std::string at(const char* array, size_t i) {
     return std::string(array) + "[" + std::to_string(i) + "]";
@@ -383,9 +368,9 @@ void validateGltfJson(const std::string& json, const std::string& displayName,
     const std::string bp = p + "." + t;
     // glTF 2.0 §5.12–5.14: perspective needs yfov and znear, orthographic all but yfov.
     for (const std::string key : {"yfov", "aspectRatio", "xmag", "ymag", "znear", "zfar"})
-      c.number(*block, bp, key.c_str(),
-               t == "perspective" ? key == "yfov" || key == "znear"
-                                  : key != "yfov" && key != "aspectRatio");
+      checkGltfNumbers(c.file, *block, bp, key.c_str(), 0,
+                       t == "perspective" ? key == "yfov" || key == "znear"
+                                          : key != "yfov" && key != "aspectRatio");
   }
   size_t lightCount = 0;
   if (const auto ext = root.find("extensions"); ext != root.end() && ext->is_object()) {
@@ -402,15 +387,15 @@ void validateGltfJson(const std::string& json, const std::string& displayName,
         const auto type = l.find("type");
         if (type == l.end() || !type->is_string())
           c.fail(at + ".type", "must be \"point\", \"spot\" or \"directional\"");
-        c.numbers(l, at, "color", 3);
-        c.number(l, at, "intensity", false);
-        c.number(l, at, "range", false);
+        checkGltfNumbers(c.file, l, at, "color", 3, false);
+        checkGltfNumbers(c.file, l, at, "intensity", 0, false);
+        checkGltfNumbers(c.file, l, at, "range", 0, false);
         if (type->get<std::string>() == "spot") {
           const auto spot = l.find("spot");
           if (spot == l.end() || !spot->is_object())
             c.fail(at + ".spot", "a spot light needs its \"spot\" object (the cone angles)");
-          c.number(*spot, at + ".spot", "innerConeAngle", false);
-          c.number(*spot, at + ".spot", "outerConeAngle", false);
+          checkGltfNumbers(c.file, *spot, at + ".spot", "innerConeAngle", 0, false);
+          checkGltfNumbers(c.file, *spot, at + ".spot", "outerConeAngle", 0, false);
         }
       }
     }
@@ -421,10 +406,10 @@ void validateGltfJson(const std::string& json, const std::string& displayName,
     c.index(n, p, "mesh", "meshes", false);
     c.index(n, p, "camera", "cameras", false);
     c.index(n, p, "skin", "skins", false);
-    c.numbers(n, p, "translation", 3);
-    c.numbers(n, p, "rotation", 4);
-    c.numbers(n, p, "scale", 3);
-    c.numbers(n, p, "matrix", 16);
+    checkGltfNumbers(c.file, n, p, "translation", 3, false);
+    checkGltfNumbers(c.file, n, p, "rotation", 4, false);
+    checkGltfNumbers(c.file, n, p, "scale", 3, false);
+    checkGltfNumbers(c.file, n, p, "matrix", 16, false);
     if (n.contains("matrix") &&
         (n.contains("translation") || n.contains("rotation") || n.contains("scale")))
       c.fail(p + ".matrix", "a node has a matrix or translation/rotation/scale, not both");

@@ -29,11 +29,17 @@ namespace {
 
 using Json = nlohmann::json;
 
-// obj[key], when present, is a number (n = 0) or an array of n numbers.
-void checkNumbers(const std::string& file, const Json& obj, const std::string& path,
-                  const char* key, size_t n = 0) {
+}  // namespace
+
+// obj[key], when present (or required: else "is missing"), a number (n = 0) or an array of n
+// numbers (gltf_validate.cpp's values of their types too).
+void checkGltfNumbers(const std::string& file, const Json& obj, const std::string& path,
+                      const char* key, size_t n, bool required) {
   const auto v = obj.find(key);
-  if (v == obj.end()) return;
+  if (v == obj.end()) {
+    if (required) throw InputError({file, 0, 0}, path + "." + key, "is missing");
+    return;
+  }
   const bool ok =
       n == 0 ? v->is_number()
              : v->is_array() && v->size() == n &&
@@ -44,19 +50,17 @@ void checkNumbers(const std::string& file, const Json& obj, const std::string& p
         n == 0 ? "must be a number" : "must be an array of " + std::to_string(n) + " numbers");
 }
 
-}  // namespace
-
 void checkGltfMaterialValues(const Json& m, const std::string& p, const std::string& file) {
   const auto fail = [&](const std::string& path, const std::string& message) {
     throw InputError({file, 0, 0}, path, message);
   };
   if (const auto pbr = m.find("pbrMetallicRoughness"); pbr != m.end()) {
-    checkNumbers(file, *pbr, p + ".pbrMetallicRoughness", "baseColorFactor", 4);
+    checkGltfNumbers(file, *pbr, p + ".pbrMetallicRoughness", "baseColorFactor", 4, false);
     for (const char* key : {"metallicFactor", "roughnessFactor"})
-      checkNumbers(file, *pbr, p + ".pbrMetallicRoughness", key);
+      checkGltfNumbers(file, *pbr, p + ".pbrMetallicRoughness", key, 0, false);
   }
-  checkNumbers(file, m, p, "emissiveFactor", 3);
-  checkNumbers(file, m, p, "alphaCutoff");
+  checkGltfNumbers(file, m, p, "emissiveFactor", 3, false);
+  checkGltfNumbers(file, m, p, "alphaCutoff", 0, false);
   if (const auto a = m.find("alphaMode"); a != m.end() && !a->is_string())
     fail(p + ".alphaMode", "must be a string");
   if (const auto d = m.find("doubleSided"); d != m.end() && !d->is_boolean())
@@ -71,7 +75,7 @@ void checkGltfMaterialValues(const Json& m, const std::string& p, const std::str
     if (e == ext->end()) continue;
     const std::string ep = p + ".extensions." + name;
     if (!e->is_object()) fail(ep, "must be an object");
-    checkNumbers(file, *e, ep, key);
+    checkGltfNumbers(file, *e, ep, key, 0, false);
   }
 }
 

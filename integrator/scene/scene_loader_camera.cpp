@@ -211,6 +211,7 @@ namespace {
 struct AxisAngle {
   glm::dvec3 axis{0.0, 0.0, 1.0};
   double degrees = 0.0;
+  glm::dquat quaternion() const { return glm::angleAxis(glm::radians(degrees), axis); }
 };
 
 AxisAngle parseAxisAngle(const YamlValue& value) {
@@ -231,16 +232,13 @@ bool rotateHalfATurnOrMore(const AxisAngle& a, const AxisAngle& b) {
   const double along = glm::dot(a.axis, b.axis);
   if (glm::length(glm::cross(a.axis, b.axis)) < 1e-9 || a.degrees == 0.0 || b.degrees == 0.0)
     return !(std::abs(b.degrees - (along < 0.0 ? -a.degrees : a.degrees)) < 180.0);
-  const glm::dquat qa = glm::angleAxis(glm::radians(a.degrees), a.axis);
-  const glm::dquat qb = glm::angleAxis(glm::radians(b.degrees), b.axis);
-  return !(glm::dot(qa, qb) > 1e-9);
+  return !(glm::dot(a.quaternion(), b.quaternion()) > 1e-9);
 }
 
 }  // namespace
 
 glm::dquat parseRotation(const YamlValue& value) {
-  const AxisAngle r = parseAxisAngle(value);
-  return glm::angleAxis(glm::radians(r.degrees), r.axis);
+  return parseAxisAngle(value).quaternion();
 }
 
 RigidMotion parseMotion(const YamlValue& value, bool forCamera, const glm::dvec3& origin) {
@@ -262,7 +260,7 @@ RigidMotion parseMotion(const YamlValue& value, bool forCamera, const glm::dvec3
     AxisAngle rotation;
     if (auto r = map.find("rotate")) {
       rotation = parseAxisAngle(*r);
-      k.rotate = glm::angleAxis(glm::radians(rotation.degrees), rotation.axis);
+      k.rotate = rotation.quaternion();
     }
     if (auto sc = map.find("scale")) {
       if (forCamera) sc->fail("a camera cannot be scaled");

@@ -126,6 +126,18 @@ const std::string& OcioProcessor::inputColorSpace() const {
   return impl_->input;
 }
 
+std::vector<std::filesystem::path> OcioProcessor::searchFolders() const {
+  const OCIO::Config& config = *impl_->config;
+  const OCIO::ConstContextRcPtr context = config.getCurrentContext();
+  const std::filesystem::path working = config.getWorkingDir();
+  std::vector<std::filesystem::path> out;
+  for (int i = 0; i < config.getNumSearchPaths(); ++i) {
+    const std::filesystem::path folder = context->resolveStringVar(config.getSearchPath(i));
+    out.push_back(folder.is_absolute() ? folder : working / folder);
+  }
+  return out;
+}
+
 std::vector<std::string> OcioProcessor::displays() const {
   std::vector<std::string> out;
   for (int i = 0; i < impl_->config->getNumDisplays(); ++i)

@@ -83,6 +83,9 @@ class OcioProcessor {
   const std::string& inputColorSpace() const;  // the resolved name
 
   std::vector<std::string> displays() const;  // active displays, in config order
+  // The folders its search_path names (LUTs, looks), variables resolved, relative ones from
+  // the config's working folder; in the config's order.
+  std::vector<std::filesystem::path> searchFolders() const;
   std::string defaultDisplay() const;
   std::vector<std::string> views(const std::string& display) const;  // throws for unknown display
   std::string defaultView(const std::string& display) const;
